@@ -1,0 +1,13 @@
+#!/usr/bin/env bash
+# Installs every build and test dependency of impactfe from Debian packages (run as root).
+set -euo pipefail
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update
+$SUDO apt-get install -y --no-install-recommends \
+  build-essential cmake ninja-build pkg-config \
+  libeigen3-dev libsuitesparse-dev libmetis-dev libspectra-dev \
+  libcli11-dev libfmt-dev libhdf5-dev \
+  libgtest-dev libgmock-dev libbenchmark-dev \
+  clang-format python3

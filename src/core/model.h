@@ -1,0 +1,262 @@
+#pragma once
+/// The model database built by the deck reader: the user's node and element numbers (sparse
+/// ids), element types with KEYOPTs, real-constant sets, materials, sections, elements,
+/// master DOFs, gap conditions, and the analyses requested with their load steps.
+/// Nothing here solves anything.
+#include <Eigen/Core>
+
+#include <array>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/dof.h"
+#include "core/errors.h"
+
+namespace impactfe {
+
+using Vec3 = Eigen::Vector3d;
+
+struct Node {
+  int id = 0;
+  Vec3 x = Vec3::Zero();
+  /// Nodal-coordinate rotation angles THXY, THYZ, THZX in degrees (N command).
+  Vec3 angles_deg = Vec3::Zero();
+  bool rotated() const { return angles_deg.squaredNorm() > 0.0; }
+};
+
+/// Element families implemented by the element library (one family per file).
+enum class ElementKind {
+  Spar2D,          // LINK1
+  Spar3D,          // LINK8, LINK180
+  SpringDamper,    // COMBIN14
+  PointMass,       // MASS21
+  CombinationGap,  // COMBIN40
+  Shell4,          // SHELL63, SHELL181
+  Brick8,          // SOLID45, SOLID185
+  Superelement,    // MATRIX50
+};
+
+/// ET: local type number, ANSYS name (e.g. "LINK8"), and KEYOPT(1..18) (index 0 unused).
+struct ElementType {
+  int id = 0;
+  std::string ansys_name;
+  ElementKind kind = ElementKind::Spar3D;
+  std::array<int, 19> keyopt{};
+  SourceLocation where;
+  int key(int i) const { return keyopt.at(static_cast<std::size_t>(i)); }
+};
+
+/// R / RMORE: constants in input order; missing trailing values are zero.
+struct RealSet {
+  int id = 0;
+  std::vector<double> values;
+  /// Constant number i (1-based), 0 when absent.
+  double get(int i) const {
+    return (i >= 1 && i <= static_cast<int>(values.size()))
+               ? values[static_cast<std::size_t>(i - 1)]
+               : 0.0;
+  }
+  /// True when constant i (1-based) was given explicitly, even as blank→0.
+  bool given(int i) const { return i >= 1 && i <= static_cast<int>(values.size()); }
+};
+
+/// Linear-elastic material: EX, EY, EZ, NUXY (=PRXY), ..., GXY, DENS, ALPX, DAMP by label.
+struct Material {
+  int id = 0;
+  std::map<std::string, double> props;
+  bool has(const std::string& label) const { return props.count(label) != 0; }
+  double get(const std::string& label, double fallback) const {
+    auto it = props.find(label);
+    return it == props.end() ? fallback : it->second;
+  }
+};
+
+/// SECTYPE/SECDATA: LINK (area) and SHELL (thickness) sections.
+struct Section {
+  int id = 0;
+  std::string type;  // "LINK", "SHELL"
+  std::vector<double> data;
+};
+
+/// An element as defined in the deck. Node list may contain repeats (degenerate shapes).
+/// For a MATRIX50 element `superelement_file` names the file (resolved only when solving).
+struct ElementRecord {
+  int id = 0;
+  int type = 1;
+  int real = 1;
+  int mat = 1;
+  int secnum = 0;
+  std::vector<int> nodes;
+  std::string superelement_file;  // MATRIX50 only: "unit:8" (4x) or a file name (SE)
+  SourceLocation where;
+};
+
+/// GP: gap condition between master DOFs (or to ground) for reduced / MSUP transients.
+struct GapCondition {
+  int node_i = 0;
+  int node_j = 0;
+  Dof dof = Dof::UX;
+  double stiffness = 0.0;
+  double gap = 0.0;
+  double damping = 0.0;
+  SourceLocation where;
+};
+
+/// Result-output frequency of a load step (ITER NPOST / OUTRES).
+/// every == 0: last substep only; every == n > 0: every n-th substep and the last.
+struct OutputFrequency {
+  int every = 0;
+};
+
+/// One load step: the full load state at its end (not deltas) and its options.
+/// Loads are cumulative: a step inherits everything from the previous step unless changed.
+struct LoadStep {
+  int number = 1;
+  std::optional<double> time_end;        // TIME; blank = default (see analysis driver)
+  std::optional<double> dt;              // DTIME / DELTIM
+  std::optional<int> n_substeps;         // ITER NITTER / NSUBST
+  OutputFrequency output;                // ITER NPOST / OUTRES
+  int print_every = 0;                   // ITER NPRINT / OUTPR
+  bool stepped = false;                  // KBC: false = ramped, true = stepped
+  int reformulation = 1;                 // KRF / NROPT: re-form tangent every n iterations
+  bool time_integration = true;          // KAY(5) / TIMINT
+  Vec3 acel = Vec3::Zero();              // ACEL: acceleration of the reference frame
+  std::map<DofKey, double> constraints;  // D (value in nodal axes)
+  std::map<DofKey, double> forces;       // F (nodal axes)
+  SourceLocation where;                  // command that closed the step (LWRITE/SOLVE/...)
+};
+
+/// Initial condition on one DOF (IC).
+struct InitialCondition {
+  double displacement = 0.0;
+  double velocity = 0.0;
+};
+
+enum class AnalysisType { Static, Modal, Transient, Substructure };
+enum class TransientMethod { Full, Reduced, ModeSuperposition };
+enum class IntegratorKind { Houbolt, Newmark, HHT };
+enum class Dialect { Classic4x, Modern };
+
+/// Newmark / HHT / generalized-alpha parameters (TINTP; ALPHA = textbook beta, DELTA = gamma).
+struct TimeIntegrationParameters {
+  std::optional<double> gamma;  // TINTP GAMMA (amplitude decay), default 0.005
+  std::optional<double> alpha;  // Newmark beta
+  std::optional<double> delta;  // Newmark gamma
+  std::optional<double> alpha_f;
+  std::optional<double> alpha_m;
+};
+
+/// Newton-Raphson and convergence options (NEQIT, CNVTOL, NROPT).
+struct ConvergenceOptions {
+  int max_iterations = 25;
+  double force_tolerance = 0.005;
+  double force_minref = 1e-2;
+  std::optional<double> displacement_tolerance;  // CNVTOL,U (off unless given)
+  bool full_newton = true;
+};
+
+/// MODOPT: number of modes and frequency window (Hz).
+struct ModalOptions {
+  int n_modes = 10;
+  std::optional<double> freq_begin;
+  std::optional<double> freq_end;
+  bool normalize_to_unity = false;  // Nrmkey ON: max component 1, else mass-normalised
+  std::string method = "LANB";
+};
+
+/// One requested expansion of a reduced / MSUP transient: n solutions in (t_begin, t_end].
+struct ExpansionRequest {
+  int count = 1;
+  double t_begin = 0.0;
+  double t_end = 0.0;
+  bool every_step = false;  // NUMEXP,ALL
+};
+
+/// Analysis-wide options (first load step semantics).
+struct AnalysisOptions {
+  AnalysisType type = AnalysisType::Static;
+  TransientMethod method = TransientMethod::Full;
+  IntegratorKind integrator = IntegratorKind::Newmark;
+  TimeIntegrationParameters tintp;
+  bool large_deflection = false;   // KAY(6) / NLGEOM
+  bool stress_stiffening = false;  // KAY(8) / SSTIF (NLGEOM implies it)
+  bool lumped_mass = false;        // KAY(1) / LUMPM
+  ConvergenceOptions convergence;
+  ModalOptions modal;
+  int msup_modes = 0;                   // TRNOPT MAXMODE (0 = all computed)
+  double damping_ratio = 0.0;           // DMPRAT
+  std::map<int, double> modal_damping;  // MDAMP: mode -> ratio
+  double alpha_damping = 0.0;           // ALPHAD
+  double beta_damping = 0.0;            // BETAD
+  int superelement_matrices = 1;        // KAY(6) under KAN=7 / SEOPT SEMATR
+  std::string superelement_name;        // SEOPT Sename
+  std::optional<int> total_masters;     // TOTAL NTOT (automatic masters)
+  bool total_masters_exclude_rotations = false;
+  std::map<std::string, int> kay;  // raw KAY values as given (logged)
+};
+
+/// One analysis the deck asks to run (4x: /INPUT,27; modern: the SOLVEs of one ANTYPE),
+/// with a snapshot of the model taken when the analysis was frozen.
+struct AnalysisRequest {
+  AnalysisOptions options;
+  std::vector<LoadStep> load_steps;
+  SourceLocation where;  // the command that started the solution (/INPUT,27, SOLVE, ...)
+};
+
+/// Expansion ("stress") pass of the preceding reduced/MSUP analysis (/STRESS ... END, EXPASS).
+struct ExpansionPassRequest {
+  std::vector<ExpansionRequest> requests;
+  bool static_correction = true;  // EXPASS KeyStat
+  SourceLocation where;
+};
+
+/// A raw deck command kept for a later stage (POST1/POST26 blocks, *DO replays).
+struct StoredCommand {
+  std::string name;
+  std::vector<std::string> fields;
+  SourceLocation where;
+};
+
+/// Everything the deck defines. Node and element maps are ordered by user id.
+struct Model {
+  std::string title;
+  std::string jobname;
+  Dialect dialect = Dialect::Modern;
+
+  std::map<int, Node> nodes;
+  std::map<int, ElementType> element_types;
+  std::map<int, RealSet> real_sets;
+  std::map<int, Material> materials;
+  std::map<int, Section> sections;
+  std::map<int, ElementRecord> elements;
+
+  std::vector<DofKey> masters;                            // M, in input order, no duplicates
+  std::vector<GapCondition> gap_conditions;               // GP, in input order
+  std::map<DofKey, InitialCondition> initial_conditions;  // IC
+
+  /// Current (not yet written) load state and options; LWRITE/LSWRITE/SOLVE snapshot it.
+  AnalysisOptions options;
+  LoadStep current;
+
+  const Node& node(int id) const;
+  const ElementType& element_type(int id) const;
+};
+
+/// The parsed deck: the final model and the ordered solution/expansion/post requests.
+struct Job {
+  Model model;
+  /// In execution order; each entry is either an analysis or an expansion pass.
+  struct Step {
+    std::optional<AnalysisRequest> analysis;
+    std::optional<ExpansionPassRequest> expansion;
+    Model model_snapshot;  // model (geometry, elements, masters, gaps) as of this request
+  };
+  std::vector<Step> steps;
+  /// POST1 / POST26 commands in order (executed by the post-processing stage).
+  std::vector<StoredCommand> post_commands;
+  std::vector<std::string> ignored_commands;  // graphics / print-only commands, listed in the log
+};
+
+}  // namespace impactfe

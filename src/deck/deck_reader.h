@@ -1,0 +1,25 @@
+#pragma once
+/// Reads an APDL deck (ANSYS 4.2 "4x" dialect or modern Mechanical APDL) into a Job: the model
+/// plus the ordered list of analyses, expansion passes and post-processing commands.
+/// The deck layer only builds; it never solves.
+#include <optional>
+#include <string>
+
+#include "core/model.h"
+
+namespace impactfe {
+
+struct DeckOptions {
+  std::optional<Dialect> dialect;  // nullopt = auto-detect (spec §2.3)
+  bool skip_unknown = false;       // unknown commands become listed warnings
+  std::string jobname;             // default: the deck's file stem (or /FILNAME)
+};
+
+/// Parses `path` (following /INPUT files). Throws InputError "FILE:LINE: COMMAND: what".
+Job read_deck(const std::string& path, const DeckOptions& options = {});
+
+/// Same, from text (for tests); `virtual_path` names it in messages and resolves /INPUT.
+Job read_deck_text(const std::string& text, const std::string& virtual_path,
+                   const DeckOptions& options = {});
+
+}  // namespace impactfe

@@ -1,0 +1,120 @@
+#pragma once
+/// The element interface. Elements work in global (Cartesian) axes and never know the time
+/// scheme or the analysis driver; drivers never know element internals.
+#include <Eigen/Core>
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/dof.h"
+#include "core/model.h"
+
+namespace impactfe {
+
+/// Analysis-wide switches an element needs when it evaluates its matrices.
+struct ElementContext {
+  bool large_deflection = false;   // co-rotational / total-Lagrangian kinematics (NLGEOM, KAY(6))
+  bool stress_stiffening = false;  // add the geometric (stress) stiffness (SSTIF, KAY(8))
+  bool lumped_mass = false;        // diagonal mass (LUMPM, KAY(1))
+};
+
+/// Named scalar results of one element at one time point (e.g. SAXL, FORC, STAT).
+/// The names are fixed per element family and given by Element::result_names().
+using ElementResultValues = std::vector<double>;
+
+/// Gap / slider status of a status element (COMBIN40).
+enum class GapStatus { Open = 0, Closed = 1, Sliding = 2 };
+
+class Element {
+ public:
+  explicit Element(int id) : id_(id) {}
+  virtual ~Element() = default;
+  Element(const Element&) = delete;
+  Element& operator=(const Element&) = delete;
+
+  /// User element number.
+  int id() const { return id_; }
+  /// Descriptive family name: "Spar", "SpringDamper", "PointMass", "CombinationGap", ...
+  virtual const char* family() const = 0;
+  /// Element DOFs in element order (node, dof). Repeated nodes of degenerate shapes appear once.
+  virtual const std::vector<DofKey>& dofs() const = 0;
+  int n_dofs() const { return static_cast<int>(dofs().size()); }
+
+  /// True when stiffness or internal force depend on the displacement for this context
+  /// (large deflection, status elements). Linear elements are evaluated once per factorization.
+  virtual bool is_nonlinear(const ElementContext& ctx) const = 0;
+
+  /// Tangent stiffness K_T (material + stress stiffness when ctx asks for it) and internal
+  /// force f_int at total displacement u (element DOF order). For a linear element f_int = K u.
+  virtual void tangent(const ElementContext& ctx, const Eigen::VectorXd& u, Eigen::MatrixXd& K,
+                       Eigen::VectorXd& f_int) const = 0;
+  /// Mass matrix (consistent, or lumped when ctx.lumped_mass or the element is inherently lumped).
+  virtual void mass(const ElementContext& ctx, Eigen::MatrixXd& M) const = 0;
+  /// Viscous damping matrix at u (COMBIN40: only while closed). Default: none.
+  virtual bool has_damping() const { return false; }
+  virtual void damping(const ElementContext& ctx, const Eigen::VectorXd& u,
+                       Eigen::MatrixXd& C) const;
+
+  // ---- status elements (gap open/closed, slider stick/slide) --------------------------------
+  virtual bool has_status() const { return false; }
+  /// Re-evaluates the status from the latest iterate u; returns true when it changed (the
+  /// iteration is then not converged). Called once per equilibrium iteration.
+  virtual bool update_status(const ElementContext& ctx, const Eigen::VectorXd& u) { return false; }
+  /// Accepts the converged step at u: the trial status/slip become the committed ones.
+  virtual void commit(const Eigen::VectorXd& u) {}
+  /// Returns to the committed state (a step is restarted).
+  virtual void revert() {}
+  /// Freezes the current status for the rest of the step (chatter guard).
+  virtual void freeze_status(bool frozen) {}
+  virtual GapStatus status() const { return GapStatus::Closed; }
+
+  // ---- results ------------------------------------------------------------------------------
+  /// Names of the element results, e.g. {"FORC", "SAXL", "EPEL"} for a spar.
+  virtual const std::vector<std::string>& result_names() const = 0;
+  /// Values in result_names() order at displacement u and velocity v.
+  virtual void results(const ElementContext& ctx, const Eigen::VectorXd& u,
+                       const Eigen::VectorXd& v, ElementResultValues& out) const = 0;
+
+ private:
+  int id_;
+};
+
+/// What an element constructor gets: the model, its record, and a resolver for superelement
+/// files (MATRIX50), which are found only when the model is solved.
+struct ElementBuildContext {
+  const Model& model;
+  std::function<std::string(const ElementRecord&)> resolve_superelement_file;
+};
+
+/// Builds the element of a record. Throws InputError (with the element's source location) for
+/// bad data: missing material property, zero length/area/volume, wrong node count.
+std::unique_ptr<Element> create_element(const ElementBuildContext& ctx,
+                                        const ElementRecord& record);
+
+/// Element type names known to ET: ANSYS names and 4.2 numbers ("LINK8", "8" -> Spar3D).
+struct ElementTypeInfo {
+  const char* name;
+  int number;
+  ElementKind kind;
+  int n_nodes;  // nodes expected by E (MATRIX50: 0 = special)
+};
+const std::vector<ElementTypeInfo>& element_type_table();
+/// Looks up an ET name or number (case-insensitive); nullptr when unknown.
+const ElementTypeInfo* find_element_type(const std::string& name_or_number);
+
+// ---- one creator per family, each defined beside its class --------------------------------
+std::unique_ptr<Element> make_spar(const ElementBuildContext& ctx, const ElementRecord& record);
+std::unique_ptr<Element> make_spring_damper(const ElementBuildContext& ctx,
+                                            const ElementRecord& record);
+std::unique_ptr<Element> make_point_mass(const ElementBuildContext& ctx,
+                                         const ElementRecord& record);
+std::unique_ptr<Element> make_combination_gap(const ElementBuildContext& ctx,
+                                              const ElementRecord& record);
+std::unique_ptr<Element> make_shell4(const ElementBuildContext& ctx, const ElementRecord& record);
+std::unique_ptr<Element> make_brick8(const ElementBuildContext& ctx, const ElementRecord& record);
+std::unique_ptr<Element> make_superelement(const ElementBuildContext& ctx,
+                                           const ElementRecord& record);
+
+}  // namespace impactfe

@@ -1,0 +1,117 @@
+#pragma once
+/// The results file <jobname>.h5 (HDF5), written as the run goes: every stored time point is
+/// appended and flushed, so a run that dies keeps what it finished. Schema: docs/results_file.md.
+#include <Eigen/Core>
+
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/model.h"
+
+namespace impactfe {
+
+/// Element results of one family at one time point: one row per element.
+struct ElementResultTable {
+  std::vector<int> element_ids;         // fixed for an analysis
+  std::vector<std::string> item_names;  // e.g. {"FORC", "SAXL", "EPEL"}
+  Eigen::MatrixXd values;               // n_elements x n_items
+};
+
+/// One stored time point (or load step of a static run, or expansion time).
+/// Nodal arrays are n_nodes x 6 in the node order of the model section of the file
+/// (ascending node id), columns UX UY UZ ROTX ROTY ROTZ; NaN where a DOF does not exist or was
+/// not computed (e.g. slave DOFs of a reduced run before expansion).
+struct TimePoint {
+  double time = 0.0;
+  int load_step = 1;
+  int substep = 1;
+  Eigen::MatrixXd displacement;  // U
+  Eigen::MatrixXd velocity;      // V (NaN for static)
+  Eigen::MatrixXd acceleration;  // A (NaN for static)
+  Eigen::MatrixXd reaction;      // reaction forces at constrained DOFs, NaN elsewhere
+  std::map<std::string, ElementResultTable> element_results;  // by element family
+  Eigen::VectorXd gap_forces;  // GP gap-condition forces, input order (reduced / MSUP runs)
+  /// Energy balance: "kinetic", "strain", "external_work", "gap_work", "dissipation".
+  std::map<std::string, double> energy;
+};
+
+/// Kind of an analysis section in the file.
+enum class ResultsKind { Static, Modal, Transient, ReducedTransient, Expansion, Substructure };
+const char* results_kind_name(ResultsKind kind);
+
+/// Writes <jobname>.h5. One file per job; one /analysis_<k> group per analysis in run order.
+class ResultsWriter {
+ public:
+  /// Creates (truncates) the file and writes the model section (nodes, elements, title).
+  ResultsWriter(const std::string& path, const Model& model);
+  ~ResultsWriter();
+  ResultsWriter(const ResultsWriter&) = delete;
+  ResultsWriter& operator=(const ResultsWriter&) = delete;
+
+  /// Opens a new analysis group; returns its index k.
+  int begin_analysis(ResultsKind kind, const std::string& description);
+  /// Appends one time point to the current analysis and flushes the file.
+  void append(const TimePoint& point);
+  /// Modal results of the current analysis: frequencies (Hz) and mode shapes (each n_nodes x 6).
+  void write_modes(const std::vector<double>& frequencies_hz,
+                   const std::vector<Eigen::MatrixXd>& shapes);
+  /// Free-form scalar attributes of the current analysis (summary numbers, counts).
+  void set_attribute(const std::string& name, double value);
+  void set_attribute(const std::string& name, const std::string& value);
+  /// Marks the current analysis as finished (status attribute "complete" or the error text).
+  void end_analysis(const std::string& status = "complete");
+
+  const std::vector<int>& node_ids() const;
+  const std::string& path() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// Reads a results file for `impactfe post` / `info` and the POST1/POST26 stage.
+class ResultsReader {
+ public:
+  explicit ResultsReader(const std::string& path);
+  ~ResultsReader();
+
+  struct AnalysisInfo {
+    int index = 0;
+    ResultsKind kind = ResultsKind::Static;
+    std::string description;
+    std::string status;
+    int n_time_points = 0;
+    std::vector<std::string> element_families;
+    std::map<std::string, double> numeric_attributes;
+    std::map<std::string, std::string> text_attributes;
+  };
+
+  std::string title() const;
+  const std::vector<int>& node_ids() const;
+  Eigen::MatrixXd node_coordinates() const;  // n_nodes x 3
+  std::vector<AnalysisInfo> analyses() const;
+
+  /// Time series of a nodal quantity: lab in UX..ROTZ, VX VY VZ, AX AY AZ, or reaction FX..MZ.
+  /// Returns (time, value) pairs over all analyses in order, only where the value exists; at a
+  /// time present in several analyses the later analysis wins.
+  std::vector<std::pair<double, double>> nodal_series(int node, const std::string& lab) const;
+  /// Time series of an element item (SAXL, FORC, STAT, ...).
+  std::vector<std::pair<double, double>> element_series(int element, const std::string& item) const;
+  /// Time series of a GP gap-condition force (1-based gap number).
+  std::vector<std::pair<double, double>> gap_force_series(int gap) const;
+  /// Modal frequencies (Hz) of the last modal analysis; empty when none.
+  std::vector<double> frequencies() const;
+  /// Mode shape (n_nodes x 6) of mode 1-based `mode` of the last modal analysis.
+  Eigen::MatrixXd mode_shape(int mode) const;
+  /// Full time point k of analysis a.
+  TimePoint time_point(int analysis, int k) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace impactfe
