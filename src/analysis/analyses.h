@@ -1,0 +1,51 @@
+#pragma once
+/// Analysis drivers. Each gets the solvable structure, the request (options + load steps) and
+/// the results writer; none knows element internals.
+#include <memory>
+#include <string>
+
+#include "analysis/run_statistics.h"
+#include "analysis/structure.h"
+#include "results/results_file.h"
+
+namespace impactfe {
+
+/// Linear or nonlinear static analysis (KAN,0 / ANTYPE,STATIC; spec §10.7).
+void run_static_analysis(Structure& structure, const AnalysisRequest& request,
+                         ResultsWriter& writer, const RunSettings& settings,
+                         AnalysisStatistics& stats);
+/// Full (nonlinear) transient analysis (KAN,4 / TRNOPT,FULL; spec §10.3).
+void run_full_transient(Structure& structure, const AnalysisRequest& request, ResultsWriter& writer,
+                        const RunSettings& settings, AnalysisStatistics& stats);
+/// Modal analysis (ANTYPE,MODAL + MODOPT): natural frequencies (Hz) and mode shapes.
+void run_modal_analysis(Structure& structure, const AnalysisRequest& request, ResultsWriter& writer,
+                        const RunSettings& settings, AnalysisStatistics& stats);
+
+}  // namespace impactfe
+
+namespace impactfe {
+
+/// State a reduced (KAN,5 / TRNOPT,REDUC) or MSUP transient leaves for its expansion pass.
+struct ReducedSolutionState {
+  virtual ~ReducedSolutionState() = default;
+};
+
+/// Reduced linear transient on master DOFs with GP gap conditions (spec §10.4).
+void run_reduced_transient(Structure& structure, const AnalysisRequest& request,
+                           ResultsWriter& writer, const RunSettings& settings,
+                           AnalysisStatistics& stats,
+                           std::unique_ptr<ReducedSolutionState>& state_for_expansion);
+/// Mode-superposition transient (TRNOPT,MSUP) with GP gap conditions.
+void run_msup_transient(Structure& structure, const AnalysisRequest& request, ResultsWriter& writer,
+                        const RunSettings& settings, AnalysisStatistics& stats,
+                        std::unique_ptr<ReducedSolutionState>& state_for_expansion);
+/// Expansion ("stress") pass of the preceding reduced / MSUP transient (spec §10.5).
+void run_expansion_pass(const ExpansionPassRequest& request, ReducedSolutionState* state,
+                        ResultsWriter& writer, const RunSettings& settings,
+                        AnalysisStatistics& stats);
+/// Superelement generation (KAN,7 / ANTYPE,SUBSTR; spec §10.6): writes <jobname>.sub.h5.
+void run_substructure_generation(Structure& structure, const AnalysisRequest& request,
+                                 ResultsWriter& writer, const RunSettings& settings,
+                                 AnalysisStatistics& stats, const std::string& jobname);
+
+}  // namespace impactfe

@@ -1,0 +1,71 @@
+#include <cmath>
+
+#include "analysis/analyses.h"
+#include "assembly/loads.h"
+#include "core/log.h"
+#include "linalg/eigen_solver.h"
+#include "linalg/linear_solver.h"
+
+namespace impactfe {
+
+void run_modal_analysis(Structure& structure, const AnalysisRequest& request, ResultsWriter& writer,
+                        const RunSettings&, AnalysisStatistics& stats) {
+  stats.description = "modal";
+  writer.begin_analysis(ResultsKind::Modal, "modal analysis");
+  const ModalOptions& modal = structure.options().modal;
+  const LoadStep empty;
+  const LoadStep& step = request.load_steps.empty() ? empty : request.load_steps.front();
+  const DofMap dofs(structure.elements(), structure.constraints_of(step));
+  Assembler assembler(structure.elements(), dofs, structure.context());
+  const VectorXd zero = VectorXd::Zero(dofs.n_active());
+  SparseMatrix k(dofs.n_free(), dofs.n_free()), m(dofs.n_free(), dofs.n_free());
+  assembler.assemble({1.0, 0.0, 0.0}, zero, zero, Assembler::Output{&k, nullptr, nullptr});
+  assembler.assemble({0.0, 0.0, 1.0}, zero, zero, Assembler::Output{&m, nullptr, nullptr});
+  stats.n_dofs = dofs.n_free();
+
+  // Shift below the lowest wanted eigenvalue: FREQB when given, else slightly negative so that
+  // rigid-body modes (λ = 0) are found and K − σM stays regular.
+  double shift = 0.0;
+  if (modal.freq_begin && *modal.freq_begin > 0.0) {
+    shift = std::pow(2.0 * M_PI * *modal.freq_begin, 2);
+  } else {
+    double ratio_sum = 0.0;
+    int count = 0;
+    for (int i = 0; i < dofs.n_free(); ++i)
+      if (m.coeff(i, i) > 0.0 && k.coeff(i, i) > 0.0) {
+        ratio_sum += k.coeff(i, i) / m.coeff(i, i);
+        ++count;
+      }
+    shift = -1e-6 * (count > 0 ? ratio_sum / count : 1.0);
+  }
+  EigenResult eig;
+  try {
+    eig = lowest_eigenpairs(k, m, modal.n_modes, shift);
+  } catch (const SingularMatrixError& e) {
+    throw ModelError(
+        e.column() >= 0
+            ? fmt::format("modal analysis: {} has neither stiffness nor mass coupling (singular "
+                          "K - sigma M)",
+                          describe(dofs.key(e.column())))
+            : std::string("modal analysis: K - sigma M is singular (a DOF has neither stiffness "
+                          "nor mass)"));
+  }
+  std::vector<double> freqs;
+  std::vector<Eigen::MatrixXd> shapes;
+  for (int j = 0; j < eig.eigenvalues.size(); ++j) {
+    const double f = std::sqrt(std::max(eig.eigenvalues(j), 0.0)) / (2.0 * M_PI);
+    if (modal.freq_end && f > *modal.freq_end) break;
+    if (modal.freq_begin && f < *modal.freq_begin) continue;
+    VectorXd shape = VectorXd::Zero(dofs.n_active());
+    shape.head(dofs.n_free()) = eig.eigenvectors.col(j);
+    if (modal.normalize_to_unity) shape /= shape.cwiseAbs().maxCoeff();
+    freqs.push_back(f);
+    shapes.push_back(structure.nodal_table(dofs, shape));
+  }
+  writer.write_modes(freqs, shapes);
+  for (std::size_t j = 0; j < freqs.size(); ++j)
+    stats.notes.push_back(fmt::format("mode {}: {:.6g} Hz", j + 1, freqs[j]));
+  stats.n_stored = static_cast<int>(freqs.size());
+}
+
+}  // namespace impactfe

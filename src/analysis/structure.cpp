@@ -1,0 +1,152 @@
+#include "analysis/structure.h"
+
+#include <filesystem>
+#include <limits>
+
+#include "core/log.h"
+
+namespace impactfe {
+
+namespace {
+
+/// Superelement file of a MATRIX50 record: --se, else file<UNIT>.sub.h5 / <File>.sub.h5, else the
+/// only *.sub.h5 in the working directory (spec §2.3).
+std::string resolve_superelement(const ElementRecord& record, const RunSettings& settings) {
+  namespace fs = std::filesystem;
+  if (!settings.superelement_file.empty()) return settings.superelement_file;
+  std::vector<std::string> candidates;
+  const std::string& name = record.superelement_file;
+  if (name.rfind("unit:", 0) == 0) {
+    candidates.push_back("file" + name.substr(5) + ".sub.h5");
+  } else if (!name.empty()) {
+    candidates.push_back(name);
+    candidates.push_back(name + ".sub.h5");
+  }
+  for (const auto& c : candidates)
+    if (fs::exists(c)) return c;
+  std::vector<std::string> found;
+  for (const auto& entry : fs::directory_iterator(fs::current_path())) {
+    const std::string file = entry.path().filename().string();
+    if (file.size() > 7 && file.substr(file.size() - 7) == ".sub.h5") found.push_back(file);
+  }
+  if (found.size() == 1) return found.front();
+  std::string listing;
+  for (const auto& f : found) listing += " " + f;
+  throw InputError(record.where,
+                   fmt::format("element {}: superelement file not found (looked for{}{}; "
+                               "*.sub.h5 here:{}); give it with --se FILE",
+                               record.id, candidates.empty() ? "" : " ",
+                               candidates.empty() ? std::string() : candidates.front(),
+                               listing.empty() ? " none" : listing));
+}
+
+}  // namespace
+
+Structure::Structure(const Model& model, const AnalysisOptions& options,
+                     const RunSettings& settings)
+    : model_(model), options_(options) {
+  context_.large_deflection = options.large_deflection;
+  context_.stress_stiffening = options.stress_stiffening || options.large_deflection;
+  context_.lumped_mass = options.lumped_mass;
+
+  for (const auto& [id, node] : model.nodes) {
+    if (node.rotated())
+      throw NotImplementedError(fmt::format(
+          "node {}: rotated nodal coordinate systems (THXY/THYZ/THZX) are not implemented yet",
+          id));
+    node_row_[id] = static_cast<int>(node_ids_.size());
+    node_ids_.push_back(id);
+  }
+
+  ElementBuildContext build{
+      model, [&settings](const ElementRecord& r) { return resolve_superelement(r, settings); }};
+  for (const auto& [id, record] : model.elements)
+    elements_.push_back(create_element(build, record));
+
+  // Automatic constraints: DOFs without stiffness and without mass (spec §10.1 item 5).
+  // Status elements (gaps) count as stiffness: a gap may close later.
+  DofMap all(elements_, {});
+  VectorXd stiff = VectorXd::Zero(all.n_active());
+  VectorXd mass = VectorXd::Zero(all.n_active());
+  Eigen::MatrixXd k, m;
+  VectorXd zero, f;
+  for (std::size_t e = 0; e < elements_.size(); ++e) {
+    const Element& element = *elements_[e];
+    const auto& idx = all.element_indices(e);
+    zero.setZero(element.n_dofs());
+    element.tangent(context_, zero, k, f);
+    element.mass(context_, m);
+    for (int a = 0; a < element.n_dofs(); ++a) {
+      stiff(idx[a]) += std::abs(k(a, a)) + (element.has_status() ? 1.0 : 0.0);
+      mass(idx[a]) += std::abs(m(a, a));
+    }
+  }
+  for (int i = 0; i < all.n_active(); ++i)
+    if (stiff(i) == 0.0 && mass(i) == 0.0) automatic_.insert(all.key(i));
+  if (!automatic_.empty()) {
+    std::string list;
+    int shown = 0;
+    for (const auto& key : automatic_) {
+      if (shown++ < 20)
+        list += " " + std::string(dof_name(key.dof)) + "@" + std::to_string(key.node);
+    }
+    Log::warn("{} DOF(s) have neither stiffness nor mass and are constrained to zero:{}{}",
+              automatic_.size(), list, automatic_.size() > 20 ? " ..." : "");
+  }
+}
+
+std::set<DofKey> Structure::constraints_of(const LoadStep& step) const {
+  std::set<DofKey> out = automatic_;
+  for (const auto& entry : step.constraints) out.insert(entry.first);
+  return out;
+}
+
+Eigen::MatrixXd Structure::nodal_table(const DofMap& dofs, const VectorXd& values) const {
+  Eigen::MatrixXd table = Eigen::MatrixXd::Constant(static_cast<int>(node_ids_.size()), 6,
+                                                    std::numeric_limits<double>::quiet_NaN());
+  for (int i = 0; i < dofs.n_active(); ++i) {
+    const DofKey& key = dofs.key(i);
+    table(node_row_.at(key.node), static_cast<int>(key.dof)) = values(i);
+  }
+  return table;
+}
+
+Eigen::MatrixXd Structure::reaction_table(const DofMap& dofs, const VectorXd& reactions) const {
+  Eigen::MatrixXd table = Eigen::MatrixXd::Constant(static_cast<int>(node_ids_.size()), 6,
+                                                    std::numeric_limits<double>::quiet_NaN());
+  for (int i = dofs.n_free(); i < dofs.n_active(); ++i) {
+    const DofKey& key = dofs.key(i);
+    table(node_row_.at(key.node), static_cast<int>(key.dof)) = reactions(i);
+  }
+  return table;
+}
+
+std::map<std::string, ElementResultTable> Structure::element_results(const Assembler& assembler,
+                                                                     const VectorXd& u,
+                                                                     const VectorXd& v) const {
+  std::map<std::string, ElementResultTable> tables;
+  std::map<std::string, std::vector<std::size_t>> members;
+  for (std::size_t e = 0; e < elements_.size(); ++e) {
+    if (elements_[e]->result_names().empty()) continue;
+    members[elements_[e]->family()].push_back(e);
+  }
+  VectorXd ue, ve;
+  ElementResultValues values;
+  for (const auto& [family, list] : members) {
+    ElementResultTable& table = tables[family];
+    table.item_names = elements_[list.front()]->result_names();
+    table.values.resize(static_cast<int>(list.size()), static_cast<int>(table.item_names.size()));
+    for (std::size_t r = 0; r < list.size(); ++r) {
+      const Element& element = *elements_[list[r]];
+      table.element_ids.push_back(element.id());
+      assembler.gather(list[r], u, ue);
+      assembler.gather(list[r], v, ve);
+      element.results(context_, ue, ve, values);
+      for (std::size_t c = 0; c < values.size() && c < table.item_names.size(); ++c)
+        table.values(static_cast<int>(r), static_cast<int>(c)) = values[c];
+    }
+  }
+  return tables;
+}
+
+}  // namespace impactfe

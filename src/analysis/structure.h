@@ -1,0 +1,65 @@
+#pragma once
+/// The solvable form of a model snapshot: element objects built from the records, the element
+/// context of the analysis, the node table of the results file, and the automatic constraints
+/// of DOFs that carry neither stiffness nor mass (spec §10.1 item 5).
+#include <functional>
+#include <map>
+#include <memory>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "assembly/assembler.h"
+#include "assembly/dof_map.h"
+#include "elements/element.h"
+#include "results/results_file.h"
+
+namespace impactfe {
+
+/// Run-time settings that do not come from the deck.
+struct RunSettings {
+  bool continue_on_nonconvergence = false;
+  std::string superelement_file;  // --se
+  int threads = 1;
+};
+
+class Structure {
+ public:
+  Structure(const Model& model, const AnalysisOptions& options, const RunSettings& settings);
+
+  const Model& model() const { return model_; }
+  const AnalysisOptions& options() const { return options_; }
+  const ElementContext& context() const { return context_; }
+  const std::vector<std::unique_ptr<Element>>& elements() const { return elements_; }
+  const std::vector<int>& node_ids() const { return node_ids_; }
+
+  /// DOFs with neither stiffness nor mass (listed in the log, constrained to zero).
+  const std::set<DofKey>& automatic_constraints() const { return automatic_; }
+  /// D of the load step plus the automatic constraints.
+  std::set<DofKey> constraints_of(const LoadStep& step) const;
+
+  /// n_nodes x 6 table (ascending node id; NaN where the DOF does not exist) from values over
+  /// the active DOFs of `dofs`.
+  Eigen::MatrixXd nodal_table(const DofMap& dofs, const VectorXd& values) const;
+  /// Same, with only the constrained DOFs filled (reactions).
+  Eigen::MatrixXd reaction_table(const DofMap& dofs, const VectorXd& reactions) const;
+  /// Element results grouped by family at (u, v) over the active DOFs.
+  std::map<std::string, ElementResultTable> element_results(const Assembler& assembler,
+                                                            const VectorXd& u,
+                                                            const VectorXd& v) const;
+  /// Names a DOF in messages: "node 12 UZ".
+  static std::string describe_dof(const DofMap& dofs, int index) {
+    return describe(dofs.key(index));
+  }
+
+ private:
+  const Model& model_;
+  AnalysisOptions options_;
+  ElementContext context_;
+  std::vector<std::unique_ptr<Element>> elements_;
+  std::vector<int> node_ids_;
+  std::map<int, int> node_row_;
+  std::set<DofKey> automatic_;
+};
+
+}  // namespace impactfe

@@ -1,0 +1,157 @@
+#include "assembly/assembler.h"
+
+#include <algorithm>
+
+namespace impactfe {
+
+Assembler::Assembler(const std::vector<std::unique_ptr<Element>>& elements, const DofMap& dofs,
+                     const ElementContext& ctx)
+    : elements_(elements), dofs_(dofs), ctx_(ctx) {
+  const int nf = dofs_.n_free();
+  // Pattern: every pair of free DOFs that share an element (lower triangle).
+  std::vector<Eigen::Triplet<double, int>> triplets;
+  for (std::size_t e = 0; e < elements_.size(); ++e) {
+    const auto& idx = dofs_.element_indices(e);
+    for (int a : idx)
+      for (int b : idx)
+        if (a < nf && b < nf && a >= b) triplets.emplace_back(a, b, 0.0);
+  }
+  for (int i = 0; i < nf; ++i) triplets.emplace_back(i, i, 0.0);  // keep every diagonal
+  pattern_.resize(nf, nf);
+  pattern_.setFromTriplets(triplets.begin(), triplets.end());
+  pattern_.makeCompressed();
+  std::fill(pattern_.valuePtr(), pattern_.valuePtr() + pattern_.nonZeros(), 0.0);
+
+  slots_.resize(elements_.size());
+  mass_.resize(elements_.size());
+  linear_stiffness_.resize(elements_.size());
+  is_linear_.assign(elements_.size(), false);
+  for (std::size_t e = 0; e < elements_.size(); ++e) {
+    const auto& idx = dofs_.element_indices(e);
+    const int n = static_cast<int>(idx.size());
+    auto& slot = slots_[e];
+    slot.assign(static_cast<std::size_t>(n * n), -1);
+    for (int a = 0; a < n; ++a)
+      for (int b = 0; b < n; ++b) {
+        int row = idx[a], col = idx[b];
+        if (row >= nf || col >= nf) continue;
+        if (row < col) std::swap(row, col);
+        // Binary search of `row` within column `col`.
+        const int* begin = pattern_.innerIndexPtr() + pattern_.outerIndexPtr()[col];
+        const int* end = pattern_.innerIndexPtr() + pattern_.outerIndexPtr()[col + 1];
+        const int* it = std::lower_bound(begin, end, row);
+        slot[static_cast<std::size_t>(a * n + b)] = static_cast<int>(it - pattern_.innerIndexPtr());
+      }
+    elements_[e]->mass(ctx_, mass_[e]);
+    // Linear elements: the stiffness is evaluated once; f_int = K_e u_e afterwards.
+    if (!elements_[e]->is_nonlinear(ctx_)) {
+      VectorXd zero = VectorXd::Zero(n), f;
+      elements_[e]->tangent(ctx_, zero, linear_stiffness_[e], f);
+      is_linear_[e] = true;
+    }
+    has_damping_ = has_damping_ || elements_[e]->has_damping();
+  }
+}
+
+void Assembler::gather(std::size_t e, const VectorXd& global, VectorXd& local) const {
+  const auto& idx = dofs_.element_indices(e);
+  local.resize(static_cast<int>(idx.size()));
+  for (std::size_t a = 0; a < idx.size(); ++a) local(static_cast<int>(a)) = global(idx[a]);
+}
+
+void Assembler::assemble(const IntegrationCoefficients& coeff, const VectorXd& u, const VectorXd& v,
+                         const Output& out) const {
+  if (out.effective) {
+    if (out.effective->nonZeros() != pattern_.nonZeros()) *out.effective = pattern_;
+    std::fill(out.effective->valuePtr(), out.effective->valuePtr() + pattern_.nonZeros(), 0.0);
+  }
+  if (out.internal_force) out.internal_force->setZero(dofs_.n_active());
+  if (out.damping_force) out.damping_force->setZero(dofs_.n_active());
+
+  MatrixXd k, c, eff;
+  VectorXd ue, ve, fe;
+  for (std::size_t e = 0; e < elements_.size(); ++e) {
+    const Element& element = *elements_[e];
+    const auto& idx = dofs_.element_indices(e);
+    const int n = static_cast<int>(idx.size());
+    gather(e, u, ue);
+    if (is_linear_[e]) {
+      fe.noalias() = linear_stiffness_[e] * ue;
+    } else {
+      element.tangent(ctx_, ue, k, fe);
+    }
+    const MatrixXd& ke = is_linear_[e] ? linear_stiffness_[e] : k;
+    const bool damped = element.has_damping();
+    if (damped) element.damping(ctx_, ue, c);
+    if (out.internal_force)
+      for (int a = 0; a < n; ++a) (*out.internal_force)(idx[a]) += fe(a);
+    if (damped && out.damping_force) {
+      gather(e, v, ve);
+      const VectorXd fd = c * ve;
+      for (int a = 0; a < n; ++a) (*out.damping_force)(idx[a]) += fd(a);
+    }
+    if (out.effective) {
+      eff = coeff.cK * ke;
+      if (coeff.cM != 0.0) eff += coeff.cM * mass_[e];
+      if (damped && coeff.cC != 0.0) eff += coeff.cC * c;
+      double* values = out.effective->valuePtr();
+      const auto& slot = slots_[e];
+      for (int a = 0; a < n; ++a)
+        for (int b = 0; b <= a; ++b) {
+          const int s = slot[static_cast<std::size_t>(a * n + b)];
+          if (s < 0) continue;
+          values[s] += eff(a, b);
+        }
+    }
+  }
+}
+
+SparseMatrix Assembler::full_matrix(Which which, const VectorXd& u) const {
+  std::vector<Eigen::Triplet<double, int>> triplets;
+  MatrixXd m;
+  VectorXd ue, fe;
+  for (std::size_t e = 0; e < elements_.size(); ++e) {
+    const auto& idx = dofs_.element_indices(e);
+    const int n = static_cast<int>(idx.size());
+    switch (which) {
+      case Which::Mass:
+        m = mass_[e];
+        break;
+      case Which::Stiffness:
+        if (is_linear_[e]) {
+          m = linear_stiffness_[e];
+        } else {
+          gather(e, u, ue);
+          elements_[e]->tangent(ctx_, ue, m, fe);
+        }
+        break;
+      case Which::Damping:
+        if (!elements_[e]->has_damping()) continue;
+        gather(e, u, ue);
+        elements_[e]->damping(ctx_, ue, m);
+        break;
+    }
+    for (int a = 0; a < n; ++a)
+      for (int b = 0; b < n; ++b)
+        if (m(a, b) != 0.0) triplets.emplace_back(idx[a], idx[b], m(a, b));
+  }
+  SparseMatrix out(dofs_.n_active(), dofs_.n_active());
+  out.setFromTriplets(triplets.begin(), triplets.end());
+  return out;
+}
+
+bool Assembler::is_nonlinear() const {
+  return std::any_of(is_linear_.begin(), is_linear_.end(), [](bool linear) { return !linear; });
+}
+
+SparseMatrix Assembler::mass_matrix() const {
+  return full_matrix(Which::Mass, VectorXd());
+}
+SparseMatrix Assembler::stiffness_matrix(const VectorXd& u) const {
+  return full_matrix(Which::Stiffness, u);
+}
+SparseMatrix Assembler::damping_matrix(const VectorXd& u) const {
+  return full_matrix(Which::Damping, u);
+}
+
+}  // namespace impactfe

@@ -1,0 +1,42 @@
+#pragma once
+/// Equation numbering. Active DOFs are the union of the DOFs of the elements present; the free
+/// ones come first (0 .. n_free-1), the constrained ones after them (n_free .. n_active-1), so
+/// that constraints are eliminated, not penalised (thesis eq. 2-7/2-8).
+#include <map>
+#include <memory>
+#include <set>
+#include <vector>
+
+#include "core/dof.h"
+#include "elements/element.h"
+
+namespace impactfe {
+
+class DofMap {
+ public:
+  DofMap() = default;
+  /// `constrained`: DOFs held by D (and automatic constraints); those not active are ignored.
+  DofMap(const std::vector<std::unique_ptr<Element>>& elements,
+         const std::set<DofKey>& constrained);
+
+  int n_active() const { return static_cast<int>(keys_.size()); }
+  int n_free() const { return n_free_; }
+  int n_constrained() const { return n_active() - n_free_; }
+  /// Index of a DOF (free: < n_free), -1 when the DOF is not active.
+  int index(const DofKey& key) const;
+  bool is_active(const DofKey& key) const { return index(key) >= 0; }
+  const DofKey& key(int index) const { return keys_[static_cast<std::size_t>(index)]; }
+  const std::vector<DofKey>& keys() const { return keys_; }
+  /// Global indices of element e's DOFs, in element DOF order.
+  const std::vector<int>& element_indices(std::size_t e) const { return element_indices_[e]; }
+  /// All DOFs the elements carry, as a set (for validation of loads, masters).
+  std::set<DofKey> active_set() const { return {keys_.begin(), keys_.end()}; }
+
+ private:
+  std::vector<DofKey> keys_;
+  std::map<DofKey, int> index_;
+  std::vector<std::vector<int>> element_indices_;
+  int n_free_ = 0;
+};
+
+}  // namespace impactfe

@@ -1,0 +1,34 @@
+#pragma once
+/// External loads of a load step at a fraction of its time span: nodal forces (F), the inertia
+/// load of the frame acceleration (ACEL: f = -M r a, spec §3.19) and prescribed displacements
+/// (D), ramped or stepped per KBC (spec §3.20).
+#include "assembly/dof_map.h"
+#include "core/model.h"
+#include "linalg/sparse.h"
+
+namespace impactfe {
+
+/// Interpolation of one load step: `previous` is the step before (nullptr for the first step)
+/// and `fraction` in [0, 1] the position within the step (1 = end of step).
+struct LoadPoint {
+  const LoadStep* current = nullptr;
+  const LoadStep* previous = nullptr;
+  double fraction = 1.0;
+};
+
+/// Value of a DOF entry of a load table at a load point (KBC ramp from the previous value).
+double interpolate(const LoadPoint& at, double previous_value, double current_value);
+
+/// Nodal forces F over all active DOFs (entries on constrained DOFs are dropped: the constraint
+/// wins).
+VectorXd nodal_forces(const DofMap& dofs, const LoadPoint& at);
+/// Frame acceleration (ACEL) at a load point.
+Vec3 frame_acceleration(const LoadPoint& at);
+/// Inertia load -M r a of a frame acceleration, over all active DOFs (M: full storage).
+VectorXd inertia_load(const DofMap& dofs, const SparseMatrix& mass_all, const Vec3& acel);
+/// Prescribed displacements: values on constrained DOFs (index >= n_free), zero elsewhere.
+VectorXd prescribed_displacements(const DofMap& dofs, const LoadPoint& at);
+/// Constrained DOF set of a load step (D entries).
+std::set<DofKey> constrained_set(const LoadStep& step);
+
+}  // namespace impactfe

@@ -1,0 +1,194 @@
+#include "linalg/linear_solver.h"
+
+#include <cholmod.h>
+#include <fmt/format.h>
+
+#include <Eigen/Dense>
+#include <Eigen/SparseCholesky>
+#include <cmath>
+#include <limits>
+
+namespace impactfe {
+
+namespace {
+
+/// Relative pivot below which a symmetric positive (semi)definite matrix is treated as singular.
+constexpr double kSingularPivot = 1e-11;
+
+/// CHOLMOD supernodal LLᵀ, falling back to simplicial LDLᵀ for indefinite (but regular)
+/// effective matrices (e.g. compressive stress stiffening).
+class CholmodSolver final : public LinearSolver {
+ public:
+  CholmodSolver() {
+    cholmod_start(&common_);
+    common_.print = 0;
+    common_.error_handler = nullptr;
+    common_.supernodal = CHOLMOD_AUTO;
+    common_.final_ll = 1;
+    common_.quick_return_if_not_posdef = 1;
+  }
+  ~CholmodSolver() override {
+    if (factor_) cholmod_free_factor(&factor_, &common_);
+    cholmod_finish(&common_);
+  }
+
+  std::string name() const override { return "CHOLMOD"; }
+
+  void analyze_pattern(const SparseMatrix& lower) override {
+    if (factor_) cholmod_free_factor(&factor_, &common_);
+    cholmod_sparse A = view(lower);
+    factor_ = cholmod_analyze(&A, &common_);
+    if (!factor_) throw std::runtime_error("CHOLMOD: symbolic analysis failed");
+    ++counters_.analyses;
+    n_ = static_cast<int>(lower.rows());
+  }
+
+  void factorize(const SparseMatrix& lower) override {
+    if (!factor_) analyze_pattern(lower);
+    cholmod_sparse A = view(lower);
+    common_.final_ll = 1;
+    cholmod_factorize(&A, factor_, &common_);
+    ++counters_.factorizations;
+    if (common_.status == CHOLMOD_NOT_POSDEF || factor_->minor < factor_->n) {
+      // Retry as LDLᵀ: regular but indefinite matrices factor; a zero pivot stays singular.
+      cholmod_free_factor(&factor_, &common_);
+      const int saved = common_.supernodal;
+      common_.supernodal = CHOLMOD_SIMPLICIAL;
+      common_.final_ll = 0;
+      factor_ = cholmod_analyze(&A, &common_);
+      cholmod_factorize(&A, factor_, &common_);
+      common_.supernodal = saved;
+      if (common_.status != CHOLMOD_OK || factor_->minor < factor_->n) {
+        const int column = factor_->minor < factor_->n
+                               ? static_cast<const int*>(factor_->Perm)[factor_->minor]
+                               : weakest_pivot_row(lower);
+        cholmod_free_factor(&factor_, &common_);
+        throw SingularMatrixError(column, "zero pivot in the factorization");
+      }
+      check_pivots(lower);
+      return;
+    }
+    // rcond is (min L_jj / max L_jj)^2: only a near-mechanism gets below 1e-13; then diagnose.
+    if (cholmod_rcond(factor_, &common_) < 1e-13) check_pivots(lower);
+  }
+
+  VectorXd solve(const VectorXd& b) override {
+    MatrixXd B = b;
+    return solve(B).col(0);
+  }
+
+  MatrixXd solve(const MatrixXd& B) override {
+    if (!factor_) throw std::runtime_error("CHOLMOD: solve before factorize");
+    cholmod_dense rhs;
+    rhs.nrow = static_cast<size_t>(B.rows());
+    rhs.ncol = static_cast<size_t>(B.cols());
+    rhs.nzmax = rhs.nrow * rhs.ncol;
+    rhs.d = rhs.nrow;
+    rhs.x = const_cast<double*>(B.data());
+    rhs.z = nullptr;
+    rhs.xtype = CHOLMOD_REAL;
+    rhs.dtype = CHOLMOD_DOUBLE;
+    cholmod_dense* x = cholmod_solve(CHOLMOD_A, factor_, &rhs, &common_);
+    if (!x) throw std::runtime_error("CHOLMOD: solve failed");
+    MatrixXd X = Eigen::Map<MatrixXd>(static_cast<double*>(x->x), B.rows(), B.cols());
+    cholmod_free_dense(&x, &common_);
+    counters_.solves += B.cols();
+    return X;
+  }
+
+ private:
+  static cholmod_sparse view(const SparseMatrix& lower) {
+    cholmod_sparse A;
+    A.nrow = static_cast<size_t>(lower.rows());
+    A.ncol = static_cast<size_t>(lower.cols());
+    A.nzmax = static_cast<size_t>(lower.nonZeros());
+    A.p = const_cast<int*>(lower.outerIndexPtr());
+    A.i = const_cast<int*>(lower.innerIndexPtr());
+    A.nz = nullptr;
+    A.x = const_cast<double*>(lower.valuePtr());
+    A.z = nullptr;
+    A.stype = -1;  // lower triangle stored
+    A.itype = CHOLMOD_INT;
+    A.xtype = CHOLMOD_REAL;
+    A.dtype = CHOLMOD_DOUBLE;
+    A.sorted = 1;
+    A.packed = 1;
+    return A;
+  }
+
+  /// A tiny pivot relative to its diagonal means a mechanism: name the weakest equation.
+  void check_pivots(const SparseMatrix& lower) {
+    const int row = weakest_pivot_row(lower);
+    if (row >= 0) throw SingularMatrixError(row, "near-zero pivot in the factorization");
+  }
+
+  cholmod_common common_{};
+  cholmod_factor* factor_ = nullptr;
+  int n_ = 0;
+};
+
+/// Dense LDLᵀ with pivoting, for small systems (reduced master sets, tiny models).
+class DenseSolver final : public LinearSolver {
+ public:
+  std::string name() const override { return "dense LDLT"; }
+  void analyze_pattern(const SparseMatrix&) override { ++counters_.analyses; }
+  void factorize(const SparseMatrix& lower) override {
+    const MatrixXd A = MatrixXd(lower).selfadjointView<Eigen::Lower>();
+    ++counters_.factorizations;
+    ldlt_.compute(A);
+    const VectorXd d = ldlt_.vectorD();
+    double scale = 0.0;
+    for (int i = 0; i < A.rows(); ++i) scale = std::max(scale, std::abs(A(i, i)));
+    if (A.rows() == 0) return;
+    for (int i = 0; i < d.size(); ++i) {
+      if (!(std::abs(d(i)) > kSingularPivot * std::max(scale, 1e-300))) {
+        // Map the permuted pivot back to the equation it belongs to.
+        Eigen::VectorXi perm = Eigen::VectorXi::LinSpaced(A.rows(), 0, A.rows() - 1);
+        perm = ldlt_.transpositionsP() * perm;
+        throw SingularMatrixError(perm(i), "zero pivot in the factorization");
+      }
+    }
+  }
+  VectorXd solve(const VectorXd& b) override {
+    ++counters_.solves;
+    return ldlt_.solve(b);
+  }
+  MatrixXd solve(const MatrixXd& B) override {
+    counters_.solves += B.cols();
+    return ldlt_.solve(B);
+  }
+
+ private:
+  Eigen::LDLT<MatrixXd> ldlt_;
+};
+
+}  // namespace
+
+int weakest_pivot_row(const SparseMatrix& lower) {
+  Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower> ldlt(lower);
+  const VectorXd d = ldlt.vectorD();
+  const auto& perm = ldlt.permutationP();
+  // Pivot j of the permuted matrix belongs to original row perm^-1(j).
+  const Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> inverse_perm = perm.inverse();
+  const Eigen::VectorXi& inverse = inverse_perm.indices();
+  int worst = -1;
+  double worst_ratio = kSingularPivot;
+  for (int j = 0; j < d.size(); ++j) {
+    const int row = inverse(j);
+    const double diag = std::abs(lower.coeff(row, row));
+    const double ratio = diag > 0.0 ? d(j) / diag : (d(j) > 0.0 ? 1.0 : -1.0);
+    if (ratio < worst_ratio) {
+      worst_ratio = ratio;
+      worst = row;
+    }
+  }
+  return worst;
+}
+
+std::unique_ptr<LinearSolver> make_linear_solver(int n, LinearSolverKind kind) {
+  if (kind == LinearSolverKind::Dense || (kind == LinearSolverKind::Auto && n <= 64))
+    return std::make_unique<DenseSolver>();
+  return std::make_unique<CholmodSolver>();
+}
+
+}  // namespace impactfe
