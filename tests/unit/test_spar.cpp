@@ -8,6 +8,7 @@
 #include "core/errors.h"
 #include "elements/element.h"
 #include "elements/spar.h"
+#include "materials/linear_elastic.h"
 
 namespace impactfe {
 namespace {
@@ -350,6 +351,21 @@ TEST(Spar, DefaultDensityIsZero) {
   Eigen::MatrixXd M;
   e->mass(ElementContext{}, M);
   EXPECT_EQ(M.norm(), 0.0);
+}
+
+TEST(LinearElastic, DefaultsAndPrxyAlias) {
+  Model m = spar_model(Vec3(0, 0, 0), Vec3(1, 0, 0));
+  m.materials[1].props = {{"EX", 2.6e6}};
+  ElasticMaterial mat = elastic_material(m, spar_record(), "Spar");
+  EXPECT_DOUBLE_EQ(mat.youngs_modulus, 2.6e6);
+  EXPECT_DOUBLE_EQ(mat.poisson_ratio, 0.3);
+  EXPECT_DOUBLE_EQ(mat.density, 0.0);
+  m.materials[1].props["PRXY"] = 0.25;
+  EXPECT_DOUBLE_EQ(elastic_material(m, spar_record(), "Spar").poisson_ratio, 0.25);
+  m.materials[1].props["NUXY"] = 0.33;
+  EXPECT_DOUBLE_EQ(elastic_material(m, spar_record(), "Spar").poisson_ratio, 0.33);
+  m.materials[1].props["EX"] = 0.0;
+  EXPECT_THROW(elastic_material(m, spar_record(), "Spar"), InputError);
 }
 
 }  // namespace
