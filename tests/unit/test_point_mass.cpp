@@ -1,6 +1,7 @@
 // PointMass (MASS21): DOF sets by KEYOPT(3), diagonal mass, no stiffness. Spec §11.3.
 #include <gtest/gtest.h>
 
+#include "../support/dense_assembly.h"
 #include "core/errors.h"
 #include "elements/element.h"
 #include "elements/point_mass.h"
@@ -107,6 +108,33 @@ TEST(PointMass, InputErrors) {
   Model no_node = mass_model(2, {1.0});
   no_node.nodes.clear();
   expect_error(no_node, "node 2");
+}
+
+TEST(PointMass, SparWithEndMassVibratesAtSqrtKOverM) {
+  // Pendulum case 1 bar (EA/L = 3e5 lb/in, massless) with the 1 lbf·s²/in bob, pivot fixed:
+  // the axial mode has ω² = 3e5 s⁻²; the two transverse modes have no stiffness (ω² = 0).
+  Model m = mass_model(2, {1.0});
+  m.nodes[1] = Node{1, Vec3(0, 0, 0)};
+  ElementType link;
+  link.id = 1;
+  link.ansys_name = "LINK8";
+  link.kind = ElementKind::Spar3D;
+  m.element_types[1] = link;
+  m.real_sets[1] = RealSet{1, {0.1}};
+  m.materials[1].props = {{"EX", 30e6}};
+  ElementRecord bar;
+  bar.id = 1;
+  bar.nodes = {1, 2};
+  std::vector<std::unique_ptr<Element>> elements;
+  elements.push_back(create_element(ElementBuildContext{m, {}}, bar));
+  elements.push_back(build(m));
+  testing::DenseSystem sys(elements);
+  const std::set<DofKey> fixed = {{1, Dof::UX}, {1, Dof::UY}, {1, Dof::UZ}};
+  const Eigen::VectorXd w2 = sys.eigenvalues(fixed);
+  ASSERT_EQ(w2.size(), 3);
+  EXPECT_NEAR(w2(0), 0.0, 1e-6);
+  EXPECT_NEAR(w2(1), 0.0, 1e-6);
+  EXPECT_NEAR(w2(2), 3e5, 1e-6 * 3e5);
 }
 
 }  // namespace
