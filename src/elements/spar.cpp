@@ -1,14 +1,131 @@
-// Placeholder until the spar element lands.
+#include "elements/spar.h"
+
 #include <fmt/format.h>
 
-#include "core/errors.h"
-#include "elements/element.h"
+#include <cmath>
+
+#include "elements/line_element_data.h"
+#include "materials/linear_elastic.h"
 
 namespace impactfe {
 
-std::unique_ptr<Element> make_spar(const ElementBuildContext&, const ElementRecord& record) {
-  throw NotImplementedError(
-      fmt::format("element {}: element not implemented yet (spar)", record.id));
+using corotational::AxialKinematics;
+using corotational::AxialMember;
+
+Spar::Spar(int id, std::vector<DofKey> dofs, AxialMember member, double area, double youngs_modulus,
+           double density, double initial_strain)
+    : Element(id),
+      dofs_(std::move(dofs)),
+      member_(std::move(member)),
+      area_(area),
+      youngs_modulus_(youngs_modulus),
+      density_(density),
+      initial_strain_(initial_strain) {}
+
+AxialKinematics Spar::kinematics(const ElementContext& ctx) const {
+  if (ctx.large_deflection) return AxialKinematics::Corotational;
+  if (ctx.stress_stiffening) return AxialKinematics::StressStiffened;
+  return AxialKinematics::Linear;
+}
+
+bool Spar::is_nonlinear(const ElementContext& ctx) const {
+  return ctx.large_deflection || ctx.stress_stiffening;
+}
+
+void Spar::tangent(const ElementContext& ctx, const Eigen::VectorXd& u, Eigen::MatrixXd& K,
+                   Eigen::VectorXd& f_int) const {
+  const double ea = youngs_modulus_ * area_;
+  corotational::axial_response(member_, kinematics(ctx), ea / member_.length, ea * initial_strain_,
+                               u, K, f_int, id());
+}
+
+void Spar::mass(const ElementContext& ctx, Eigen::MatrixXd& M) const {
+  const int d = member_.dim();
+  const double total = density_ * area_ * member_.length;
+  M.setZero(2 * d, 2 * d);
+  if (ctx.lumped_mass) {
+    M.diagonal().setConstant(0.5 * total);
+    return;
+  }
+  const Eigen::MatrixXd I = Eigen::MatrixXd::Identity(d, d);
+  M.topLeftCorner(d, d) = (total / 3.0) * I;
+  M.bottomRightCorner(d, d) = (total / 3.0) * I;
+  M.topRightCorner(d, d) = (total / 6.0) * I;
+  M.bottomLeftCorner(d, d) = (total / 6.0) * I;
+}
+
+const std::vector<std::string>& Spar::result_names() const {
+  static const std::vector<std::string> names = {"FORC", "SAXL", "EPEL", "LENGTH"};
+  return names;
+}
+
+void Spar::results(const ElementContext& ctx, const Eigen::VectorXd& u, const Eigen::VectorXd&,
+                   ElementResultValues& out) const {
+  Eigen::MatrixXd K;
+  Eigen::VectorXd f;
+  const double ea = youngs_modulus_ * area_;
+  const auto s = corotational::axial_response(member_, kinematics(ctx), ea / member_.length,
+                                              ea * initial_strain_, u, K, f, id());
+  out = {s.force, s.force / area_, s.force / ea, s.current_length};
+}
+
+std::unique_ptr<Element> make_spar(const ElementBuildContext& ctx, const ElementRecord& record) {
+  const Model& model = ctx.model;
+  const ElementType& type = line_data::element_type(model, record);
+  const bool planar = type.kind == ElementKind::Spar2D;
+  const char* family = planar ? "Spar 2-D" : "Spar";
+  const Node& ni = line_data::node(model, record, 0, 2, family);
+  const Node& nj = line_data::node(model, record, 1, 2, family);
+  if (ni.id == nj.id)
+    throw InputError(record.where, fmt::format("element {} ({}): both nodes are node {}", record.id,
+                                               family, ni.id));
+  const Vec3 chord = nj.x - ni.x;
+  const double length = chord.norm();
+  if (!(length > 0.0))
+    throw InputError(record.where,
+                     fmt::format("element {} ({}): zero length (nodes {} and {} coincide)",
+                                 record.id, family, ni.id, nj.id));
+  if (planar && std::abs(chord.z()) > 1e-9 * length)
+    throw InputError(record.where,
+                     fmt::format("element {} ({}): LINK1 must lie in an X-Y plane (nodes {} and "
+                                 "{} differ in Z by {})",
+                                 record.id, family, ni.id, nj.id, chord.z()));
+
+  // Area: LINK180 may take it from a LINK section (SECTYPE/SECDATA), otherwise real constant 1.
+  double area = 0.0;
+  double initial_strain = 0.0;
+  bool area_from_section = false;
+  if (record.secnum > 0) {
+    const auto sec = model.sections.find(record.secnum);
+    if (sec != model.sections.end() && sec->second.type == "LINK" && !sec->second.data.empty()) {
+      area = sec->second.data[0];
+      area_from_section = true;
+    }
+  }
+  const auto real_it = model.real_sets.find(record.real);
+  if (real_it != model.real_sets.end()) {
+    if (!area_from_section) area = real_it->second.get(1);
+    initial_strain = real_it->second.get(2);
+  } else if (!area_from_section) {
+    throw InputError(record.where,
+                     fmt::format("element {} ({}): real constant set {} (AREA) is not defined",
+                                 record.id, family, record.real));
+  }
+  if (!(area > 0.0))
+    throw InputError(record.where,
+                     fmt::format("element {} ({}): AREA is missing or not positive (real set {})",
+                                 record.id, family, record.real));
+  const ElasticMaterial mat = elastic_material(model, record, family);
+
+  const int d = planar ? 2 : 3;
+  AxialMember member;
+  member.n = (chord / length).head(d);
+  member.length = length;
+  std::vector<DofKey> dofs;
+  for (int node : {ni.id, nj.id})
+    for (int c = 0; c < d; ++c) dofs.push_back(DofKey{node, static_cast<Dof>(c)});
+  return std::make_unique<Spar>(record.id, std::move(dofs), std::move(member), area,
+                                mat.youngs_modulus, mat.density, initial_strain);
 }
 
 }  // namespace impactfe
