@@ -429,5 +429,51 @@ TEST(Shell4, StressStiffeningAddsMembraneGeometricStiffness) {
   EXPECT_NEAR(mode.dot(Kg * mode), E * t * 1e-2 * 1.0, 1e-12);
 }
 
+TEST(Shell4, KeyoptionsAndThetaThroughTheModel) {
+  // Unit square, stretched in x (ε_x = 1e-3) and bent (w = x²/2 · 1e-3).
+  Model m;
+  const std::vector<Vec3> x = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  for (int i = 0; i < 4; ++i) m.nodes[i + 1] = Node{i + 1, x[i]};
+  m.materials[1] = Material{1, {{"EX", 1.0e6}, {"NUXY", 0.0}}};
+  m.real_sets[1] = RealSet{1, {0.1, 0, 0, 0, 0, 90.0}};  // THETA = 90° (6th constant)
+  m.real_sets[2] = RealSet{2, {0.1}};
+  for (int key1 : {0, 1, 2}) {
+    ElementType et;
+    et.id = key1 + 1;
+    et.ansys_name = "SHELL63";
+    et.kind = ElementKind::Shell4;
+    et.keyopt[1] = key1;
+    m.element_types[et.id] = et;
+  }
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(24);
+  for (int a = 0; a < 4; ++a) {
+    u(6 * a) = 1e-3 * x[a].x();
+    u(6 * a + 2) = 0.5e-3 * x[a].x() * x[a].x();
+    u(6 * a + 4) = -1e-3 * x[a].x();  // θy = −w,x
+  }
+  auto res = [&](int type, int real) {
+    ElementRecord rec;
+    rec.id = 1;
+    rec.type = type;
+    rec.real = real;
+    rec.nodes = {1, 2, 3, 4};
+    ElementResultValues r;
+    create_element(ElementBuildContext{m, {}}, rec)->results({}, u, Eigen::VectorXd(), r);
+    return r;
+  };
+  const double TX = 1.0e6 * 0.1 * 1e-3, MX = -1.0e6 * 1e-3 / 12 * 1e-3;  // ν = 0
+  const auto full = res(1, 2), membrane = res(2, 2), bending = res(3, 2), rotated = res(1, 1);
+  EXPECT_NEAR(full[0], TX, 1e-9 * TX);
+  EXPECT_NEAR(full[3], MX, 1e-9 * std::abs(MX));
+  EXPECT_NEAR(membrane[0], TX, 1e-9 * TX);  // KEYOPT(1)=1: membrane only
+  EXPECT_EQ(membrane[3], 0.0);
+  EXPECT_EQ(bending[0], 0.0);  // KEYOPT(1)=2: bending only
+  EXPECT_NEAR(bending[3], MX, 1e-9 * std::abs(MX));
+  // THETA = 90°: the x result axis is the element y axis.
+  EXPECT_NEAR(rotated[1], TX, 1e-9 * TX);
+  EXPECT_NEAR(rotated[0], 0.0, 1e-9 * TX);
+  EXPECT_NEAR(rotated[4], MX, 1e-9 * std::abs(MX));
+}
+
 }  // namespace
 }  // namespace impactfe
