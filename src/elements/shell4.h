@@ -1,0 +1,75 @@
+#pragma once
+/// SHELL63 (and SHELL181 for linear elastic use): 4-node elastic flat-facet shell, or the
+/// triangle it becomes when K = L. Six DOFs per node in global axes. See docs/elements/shell63.md.
+///
+/// Small deflection: K = Aᵀ K_l A with A = (warping rigid links) · (global → element axes) and
+/// K_l from shell::FlatShellKernel. Large deflection: element-independent co-rotational
+/// formulation (Rankin & Nour-Omid 1988; Felippa & Haugen 2005), see tangent().
+#include <Eigen/Core>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "elements/element.h"
+#include "elements/shell_kernel.h"
+
+namespace impactfe {
+
+/// Everything make_shell4 reads from the model, resolved; also lets tests build elements
+/// without a deck.
+struct Shell4Data {
+  std::vector<int> node_ids;    // 3 or 4 distinct nodes
+  std::vector<Vec3> positions;  // initial coordinates, same order
+  shell::KernelData kernel;     // material, thickness, options
+  double theta_deg = 0.0;       // THETA: result axes rotated about the normal
+  bool shell181 = false;
+};
+
+class Shell4 : public Element {
+ public:
+  /// Throws InputError(where, ...) for zero area or a re-entrant quad.
+  Shell4(int id, const Shell4Data& data, const SourceLocation& where);
+
+  const char* family() const override { return "Shell4"; }
+  const std::vector<DofKey>& dofs() const override { return dofs_; }
+  bool is_nonlinear(const ElementContext& ctx) const override {
+    return ctx.large_deflection || ctx.stress_stiffening;
+  }
+  /// Small deflection: K = K_lin (+ stress stiffness Aᵀ K_g(σ(u)) A with SSTIF), f = K u.
+  /// Large deflection: co-rotational f = Bᵀ K̄ d(u), K = Bᵀ K̄ B + ∂Bᵀ/∂u·(K̄ d), with
+  /// B = ∂d/∂u analytic and its derivative by central differences of the analytic B.
+  void tangent(const ElementContext& ctx, const Eigen::VectorXd& u, Eigen::MatrixXd& K,
+               Eigen::VectorXd& f_int) const override;
+  void mass(const ElementContext& ctx, Eigen::MatrixXd& M) const override;
+  const std::vector<std::string>& result_names() const override;
+  /// Centroidal resultants and stresses in element axes (rotated by THETA); see result_names.
+  void results(const ElementContext& ctx, const Eigen::VectorXd& u, const Eigen::VectorXd& v,
+               ElementResultValues& out) const override;
+
+  /// Deformational local displacement d(u) (element axes, before the warping links) and, when
+  /// B != nullptr, its derivative B = ∂d/∂u (co-rotational kinematics). Exposed for tests.
+  void corotational_kinematics(const Eigen::VectorXd& u, Eigen::VectorXd& d,
+                               Eigen::MatrixXd* B) const;
+  const shell::FlatShellKernel& kernel() const { return *kernel_; }
+  int n_nodes() const { return n_; }
+
+ private:
+  Eigen::VectorXd local_displacement(const ElementContext& ctx, const Eigen::VectorXd& u) const;
+
+  int n_ = 0;
+  std::vector<DofKey> dofs_;
+  std::vector<Vec3> X_;
+  Eigen::Matrix3d R0_;
+  Vec3 c0_ = Vec3::Zero();
+  std::vector<double> h_;   // warping offsets of the corners from the mean plane
+  Eigen::MatrixXd W_;       // rigid links corner → mean plane, local axes (6n × 6n)
+  Eigen::MatrixXd A_;       // W · (global → local)
+  Eigen::MatrixXd K_lin_;   // Aᵀ K_l A
+  Eigen::MatrixXd K_bar_;   // Wᵀ K_l W (co-rotational, local axes)
+  Eigen::MatrixXd M_cons_;  // Aᵀ M_l A
+  double theta_ = 0.0;      // rad
+  std::unique_ptr<shell::FlatShellKernel> kernel_;
+};
+
+}  // namespace impactfe

@@ -1,0 +1,371 @@
+#include "elements/shell_kernel.h"
+
+#include <Eigen/Dense>
+
+#include <cmath>
+#include <stdexcept>
+
+namespace impactfe::shell {
+
+namespace {
+
+constexpr double kXiQ[4] = {-1.0, 1.0, 1.0, -1.0};
+constexpr double kEtaQ[4] = {-1.0, -1.0, 1.0, 1.0};
+
+/// Corner (quadratic) and midside shape functions of the DK rotation fields, value and natural
+/// derivatives: out[0..n) corners, out[n..2n) midside of side k (corner k → corner k+1).
+/// Triangle: 6-node quadratic (Batoz et al. 1980 eq. 14); quad: 8-node serendipity (Batoz &
+/// Ben Tahar 1982).
+void dk_shape(int n, double xi, double eta, double* val, double* dxi, double* deta) {
+  if (n == 3) {
+    const double L = 1.0 - xi - eta;
+    val[0] = L * (2 * L - 1), dxi[0] = -(4 * L - 1), deta[0] = -(4 * L - 1);
+    val[1] = xi * (2 * xi - 1), dxi[1] = 4 * xi - 1, deta[1] = 0.0;
+    val[2] = eta * (2 * eta - 1), dxi[2] = 0.0, deta[2] = 4 * eta - 1;
+    val[3] = 4 * xi * L, dxi[3] = 4 * L - 4 * xi, deta[3] = -4 * xi;     // side 1-2
+    val[4] = 4 * xi * eta, dxi[4] = 4 * eta, deta[4] = 4 * xi;           // side 2-3
+    val[5] = 4 * eta * L, dxi[5] = -4 * eta, deta[5] = 4 * L - 4 * eta;  // side 3-1
+    return;
+  }
+  for (int i = 0; i < 4; ++i) {
+    const double a = kXiQ[i], b = kEtaQ[i];
+    val[i] = 0.25 * (1 + xi * a) * (1 + eta * b) * (xi * a + eta * b - 1);
+    dxi[i] = 0.25 * a * (1 + eta * b) * (2 * xi * a + eta * b);
+    deta[i] = 0.25 * b * (1 + xi * a) * (xi * a + 2 * eta * b);
+  }
+  val[4] = 0.5 * (1 - xi * xi) * (1 - eta), dxi[4] = -xi * (1 - eta),
+  deta[4] = -0.5 * (1 - xi * xi);
+  val[5] = 0.5 * (1 + xi) * (1 - eta * eta), dxi[5] = 0.5 * (1 - eta * eta),
+  deta[5] = -eta * (1 + xi);
+  val[6] = 0.5 * (1 - xi * xi) * (1 + eta), dxi[6] = -xi * (1 + eta), deta[6] = 0.5 * (1 - xi * xi);
+  val[7] = 0.5 * (1 - xi) * (1 - eta * eta), dxi[7] = -0.5 * (1 - eta * eta),
+  deta[7] = -eta * (1 - xi);
+}
+
+}  // namespace
+
+Eigen::Matrix3d plane_stress(double nu, double scale) {
+  Eigen::Matrix3d D;
+  D << 1.0, nu, 0.0, nu, 1.0, 0.0, 0.0, 0.0, 0.5 * (1.0 - nu);
+  return D * scale;
+}
+
+FlatShellKernel::FlatShellKernel(const std::vector<Eigen::Vector2d>& xy, const KernelData& data)
+    : n_(static_cast<int>(xy.size())), data_(data), xy_(xy) {
+  if (n_ != 3 && n_ != 4) throw std::invalid_argument("a shell facet has 3 or 4 corners");
+  // Jacobian check and area.
+  Eigen::VectorXd N;
+  Eigen::MatrixXd dN;
+  double detJ = 0.0;
+  for (const auto& p : points()) {
+    shape(p.xi, p.eta, N, dN, detJ);
+    if (!(detJ > 0.0))
+      throw std::invalid_argument("non-positive Jacobian (zero area or bad shape)");
+    area_ += detJ * p.w;
+    total_mass_ += (data_.rho * thickness_at(N) + data_.added_mass) * detJ * p.w;
+  }
+  // DK side coefficients (Batoz et al. 1980 eq. 19 with x_ij = x_i − x_j).
+  side_.resize(static_cast<std::size_t>(n_));
+  for (int k = 0; k < n_; ++k) {
+    const Eigen::Vector2d d =
+        xy_[static_cast<std::size_t>(k)] - xy_[static_cast<std::size_t>((k + 1) % n_)];
+    const double l2 = d.squaredNorm();
+    side_[static_cast<std::size_t>(k)] = {
+        -d.x() / l2, 0.75 * d.x() * d.y() / l2, (0.25 * d.x() * d.x() - 0.5 * d.y() * d.y()) / l2,
+        -d.y() / l2, (0.25 * d.y() * d.y() - 0.5 * d.x() * d.x()) / l2};
+  }
+  K_.setZero(6 * n_, 6 * n_);
+  Bm0_.setZero(3, 2 * n_);
+  Bb0_.setZero(3, 3 * n_);
+  build_membrane();
+  build_bending();
+  if (data_.efs > 0.0)
+    for (int a = 0; a < n_; ++a) K_(6 * a + 2, 6 * a + 2) += data_.efs * area_ / n_;
+  build_mass();
+}
+
+std::vector<FlatShellKernel::Point> FlatShellKernel::points() const {
+  if (n_ == 3) {
+    const double w = 1.0 / 6.0;  // reference triangle area 1/2, three interior points (degree 2)
+    return {{1.0 / 6.0, 1.0 / 6.0, w}, {2.0 / 3.0, 1.0 / 6.0, w}, {1.0 / 6.0, 2.0 / 3.0, w}};
+  }
+  const double g = 1.0 / std::sqrt(3.0);
+  return {{-g, -g, 1.0}, {g, -g, 1.0}, {g, g, 1.0}, {-g, g, 1.0}};
+}
+
+void FlatShellKernel::shape(double xi, double eta, Eigen::VectorXd& N, Eigen::MatrixXd& dN_dx,
+                            double& detJ) const {
+  Eigen::MatrixXd dnat(2, n_);
+  N.resize(n_);
+  if (n_ == 3) {
+    N << 1.0 - xi - eta, xi, eta;
+    dnat << -1.0, 1.0, 0.0, -1.0, 0.0, 1.0;
+  } else {
+    for (int i = 0; i < 4; ++i) {
+      N(i) = 0.25 * (1 + xi * kXiQ[i]) * (1 + eta * kEtaQ[i]);
+      dnat(0, i) = 0.25 * kXiQ[i] * (1 + eta * kEtaQ[i]);
+      dnat(1, i) = 0.25 * kEtaQ[i] * (1 + xi * kXiQ[i]);
+    }
+  }
+  Eigen::Matrix2d J = Eigen::Matrix2d::Zero();
+  for (int i = 0; i < n_; ++i) {
+    J(0, 0) += dnat(0, i) * xy_[static_cast<std::size_t>(i)].x();
+    J(0, 1) += dnat(0, i) * xy_[static_cast<std::size_t>(i)].y();
+    J(1, 0) += dnat(1, i) * xy_[static_cast<std::size_t>(i)].x();
+    J(1, 1) += dnat(1, i) * xy_[static_cast<std::size_t>(i)].y();
+  }
+  detJ = J.determinant();
+  dN_dx = J.inverse() * dnat;
+}
+
+double FlatShellKernel::thickness_at(const Eigen::VectorXd& N) const {
+  double t = 0.0;
+  for (int i = 0; i < n_; ++i) t += N(i) * data_.t[static_cast<std::size_t>(i)];
+  return t;
+}
+
+void FlatShellKernel::dk_fields(const double* f, Eigen::VectorXd& Hx, Eigen::VectorXd& Hy) const {
+  // βx = Hx·U, βy = Hy·U, U = (w, θx, θy) per corner. At a corner β = (θy, −θx); at a midside
+  // the tangential rotation comes from the cubic w along the side and the normal one is the
+  // mean of the corners (Batoz et al. 1980 eqs. 17–20, same construction for DKQ).
+  Hx.setZero(3 * n_);
+  Hy.setZero(3 * n_);
+  for (int i = 0; i < n_; ++i) {
+    Hx(3 * i + 2) += f[i];
+    Hy(3 * i + 1) -= f[i];
+  }
+  for (int k = 0; k < n_; ++k) {
+    const auto& s = side_[static_cast<std::size_t>(k)];
+    const double M = f[n_ + k];
+    const int i = k, j = (k + 1) % n_;
+    Hx(3 * i) += 1.5 * s[0] * M;
+    Hx(3 * j) -= 1.5 * s[0] * M;
+    Hy(3 * i) += 1.5 * s[3] * M;
+    Hy(3 * j) -= 1.5 * s[3] * M;
+    for (int node : {i, j}) {
+      Hx(3 * node + 1) += s[1] * M;
+      Hx(3 * node + 2) -= s[2] * M;
+      Hy(3 * node + 1) += s[4] * M;
+      Hy(3 * node + 2) -= s[1] * M;
+    }
+  }
+}
+
+void FlatShellKernel::dk_rotations(double xi, double eta, Eigen::VectorXd& Hx,
+                                   Eigen::VectorXd& Hy) const {
+  double v[8], dx[8], de[8];
+  dk_shape(n_, xi, eta, v, dx, de);
+  dk_fields(v, Hx, Hy);
+}
+
+void FlatShellKernel::dk_curvature(double xi, double eta, Eigen::MatrixXd& B, double& detJ) const {
+  double v[8], dxi[8], deta[8];
+  dk_shape(n_, xi, eta, v, dxi, deta);
+  Eigen::VectorXd Hx_xi, Hy_xi, Hx_eta, Hy_eta;
+  dk_fields(dxi, Hx_xi, Hy_xi);
+  dk_fields(deta, Hx_eta, Hy_eta);
+  // Jacobian of the (bi)linear geometry map.
+  Eigen::VectorXd N;
+  Eigen::MatrixXd dN;
+  shape(xi, eta, N, dN, detJ);
+  Eigen::Matrix2d J = Eigen::Matrix2d::Zero();
+  // Rebuild J⁻¹ from dN/dx: for the linear map, [∂/∂x; ∂/∂y] = J⁻¹ [∂/∂ξ; ∂/∂η].
+  Eigen::MatrixXd dnat(2, n_);
+  if (n_ == 3) {
+    dnat << -1.0, 1.0, 0.0, -1.0, 0.0, 1.0;
+  } else {
+    for (int i = 0; i < 4; ++i) {
+      dnat(0, i) = 0.25 * kXiQ[i] * (1 + eta * kEtaQ[i]);
+      dnat(1, i) = 0.25 * kEtaQ[i] * (1 + xi * kXiQ[i]);
+    }
+  }
+  for (int i = 0; i < n_; ++i) {
+    J(0, 0) += dnat(0, i) * xy_[static_cast<std::size_t>(i)].x();
+    J(0, 1) += dnat(0, i) * xy_[static_cast<std::size_t>(i)].y();
+    J(1, 0) += dnat(1, i) * xy_[static_cast<std::size_t>(i)].x();
+    J(1, 1) += dnat(1, i) * xy_[static_cast<std::size_t>(i)].y();
+  }
+  const Eigen::Matrix2d Ji = J.inverse();
+  B.resize(3, 3 * n_);
+  const Eigen::RowVectorXd Hx_x = Ji(0, 0) * Hx_xi.transpose() + Ji(0, 1) * Hx_eta.transpose();
+  const Eigen::RowVectorXd Hx_y = Ji(1, 0) * Hx_xi.transpose() + Ji(1, 1) * Hx_eta.transpose();
+  const Eigen::RowVectorXd Hy_x = Ji(0, 0) * Hy_xi.transpose() + Ji(0, 1) * Hy_eta.transpose();
+  const Eigen::RowVectorXd Hy_y = Ji(1, 0) * Hy_xi.transpose() + Ji(1, 1) * Hy_eta.transpose();
+  B.row(0) = Hx_x;
+  B.row(1) = Hy_y;
+  B.row(2) = Hx_y + Hy_x;
+}
+
+void FlatShellKernel::build_membrane() {
+  const double c_xi = n_ == 3 ? 1.0 / 3.0 : 0.0;
+  Eigen::VectorXd N;
+  Eigen::MatrixXd dN;
+  double detJ = 0.0;
+  auto compatible_B = [&](const Eigen::MatrixXd& d) {
+    Eigen::MatrixXd B = Eigen::MatrixXd::Zero(3, 2 * n_);
+    for (int a = 0; a < n_; ++a) {
+      B(0, 2 * a) = d(0, a);
+      B(1, 2 * a + 1) = d(1, a);
+      B(2, 2 * a) = d(1, a);
+      B(2, 2 * a + 1) = d(0, a);
+    }
+    return B;
+  };
+  shape(c_xi, c_xi, N, dN, detJ);
+  Bm0_ = compatible_B(dN);
+  const double G = data_.E / (2.0 * (1.0 + data_.nu));
+
+  Eigen::MatrixXd Kuu = Eigen::MatrixXd::Zero(2 * n_, 2 * n_);
+  const bool incompatible = n_ == 4 && data_.extra_shapes;
+  Eigen::MatrixXd Kua = Eigen::MatrixXd::Zero(2 * n_, 4), Kaa = Eigen::MatrixXd::Zero(4, 4);
+  double detJ0 = 0.0;
+  Eigen::Matrix2d J0i = Eigen::Matrix2d::Identity();
+  if (incompatible) {
+    Eigen::VectorXd N0;
+    Eigen::MatrixXd dN0;
+    shape(0.0, 0.0, N0, dN0, detJ0);
+    // J0⁻¹ from the bilinear map at the centre (Taylor, Beresford & Wilson 1976).
+    Eigen::Matrix2d J0 = Eigen::Matrix2d::Zero();
+    for (int i = 0; i < 4; ++i) {
+      J0(0, 0) += 0.25 * kXiQ[i] * xy_[static_cast<std::size_t>(i)].x();
+      J0(0, 1) += 0.25 * kXiQ[i] * xy_[static_cast<std::size_t>(i)].y();
+      J0(1, 0) += 0.25 * kEtaQ[i] * xy_[static_cast<std::size_t>(i)].x();
+      J0(1, 1) += 0.25 * kEtaQ[i] * xy_[static_cast<std::size_t>(i)].y();
+    }
+    J0i = J0.inverse();
+  }
+  Eigen::MatrixXd Kd = Eigen::MatrixXd::Zero(3 * n_, 3 * n_);  // drilling: (u, v, θz) per node
+  for (const auto& p : points()) {
+    shape(p.xi, p.eta, N, dN, detJ);
+    const double t = thickness_at(N);
+    const double wgt = detJ * p.w;
+    const Eigen::Matrix3d D = plane_stress(data_.nu, data_.E * t / (1.0 - data_.nu * data_.nu));
+    const Eigen::MatrixXd B = compatible_B(dN);
+    Kuu += B.transpose() * D * B * wgt;
+    if (incompatible) {
+      // Modified incompatible modes: derivatives with J0 and the factor detJ0/detJ so that
+      // ∫ B_inc dA = 0 on any quad, i.e. the patch test is passed.
+      Eigen::Vector2d d1 = (detJ0 / detJ) * J0i * Eigen::Vector2d(-2.0 * p.xi, 0.0);
+      Eigen::Vector2d d2 = (detJ0 / detJ) * J0i * Eigen::Vector2d(0.0, -2.0 * p.eta);
+      Eigen::Matrix<double, 3, 4> Bi;
+      Bi << d1.x(), d2.x(), 0.0, 0.0, 0.0, 0.0, d1.y(), d2.y(), d1.y(), d2.y(), d1.x(), d2.x();
+      Kua += B.transpose() * D * Bi * wgt;
+      Kaa += Bi.transpose() * D * Bi * wgt;
+    }
+    // Hughes–Brezzi drilling penalty on r = θz − ½(∂v/∂x − ∂u/∂y).
+    Eigen::RowVectorXd r = Eigen::RowVectorXd::Zero(3 * n_);
+    for (int a = 0; a < n_; ++a) {
+      r(3 * a) = 0.5 * dN(1, a);
+      r(3 * a + 1) = -0.5 * dN(0, a);
+      r(3 * a + 2) = N(a);
+    }
+    Kd += data_.drill_factor * G * t * r.transpose() * r * wgt;
+  }
+  if (incompatible) Kuu -= Kua * Kaa.ldlt().solve(Kua.transpose());
+  if (data_.membrane) {
+    for (int a = 0; a < n_; ++a)
+      for (int b = 0; b < n_; ++b)
+        for (int i = 0; i < 2; ++i)
+          for (int j = 0; j < 2; ++j) K_(6 * a + i, 6 * b + j) += Kuu(2 * a + i, 2 * b + j);
+  }
+  // The drilling term also stiffens θz when the membrane is switched off, so the element stays
+  // regular; it still vanishes for rigid in-plane rotations.
+  const int map[3] = {0, 1, 5};
+  for (int a = 0; a < n_; ++a)
+    for (int b = 0; b < n_; ++b)
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) K_(6 * a + map[i], 6 * b + map[j]) += Kd(3 * a + i, 3 * b + j);
+}
+
+void FlatShellKernel::build_bending() {
+  Eigen::MatrixXd B;
+  double detJ = 0.0;
+  const double c = n_ == 3 ? 1.0 / 3.0 : 0.0;
+  dk_curvature(c, c, B, detJ);
+  Bb0_ = B;
+  if (!data_.bending) return;
+  Eigen::MatrixXd Kb = Eigen::MatrixXd::Zero(3 * n_, 3 * n_);
+  Eigen::VectorXd N;
+  Eigen::MatrixXd dN;
+  for (const auto& p : points()) {
+    shape(p.xi, p.eta, N, dN, detJ);
+    const double t = thickness_at(N);
+    const Eigen::Matrix3d D = plane_stress(
+        data_.nu, data_.E * t * t * t * data_.rmi / (12.0 * (1.0 - data_.nu * data_.nu)));
+    dk_curvature(p.xi, p.eta, B, detJ);
+    Kb += B.transpose() * D * B * detJ * p.w;
+  }
+  for (int a = 0; a < n_; ++a)
+    for (int b = 0; b < n_; ++b)
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) K_(6 * a + 2 + i, 6 * b + 2 + j) += Kb(3 * a + i, 3 * b + j);
+}
+
+void FlatShellKernel::build_mass() {
+  M_.setZero(6 * n_, 6 * n_);
+  Eigen::VectorXd N;
+  Eigen::MatrixXd dN;
+  double detJ = 0.0;
+  for (const auto& p : points()) {
+    shape(p.xi, p.eta, N, dN, detJ);
+    const double t = thickness_at(N);
+    const double m = (data_.rho * t + data_.added_mass) * detJ * p.w;
+    const double r = data_.rotary_inertia ? data_.rho * t * t * t / 12.0 * detJ * p.w : 0.0;
+    for (int a = 0; a < n_; ++a)
+      for (int b = 0; b < n_; ++b) {
+        const double nn = N(a) * N(b);
+        for (int i = 0; i < 3; ++i) {
+          M_(6 * a + i, 6 * b + i) += m * nn;
+          M_(6 * a + 3 + i, 6 * b + 3 + i) += r * nn;
+        }
+      }
+  }
+}
+
+Eigen::MatrixXd FlatShellKernel::lumped_mass() const {
+  Eigen::MatrixXd M = Eigen::MatrixXd::Zero(6 * n_, 6 * n_);
+  for (int a = 0; a < n_; ++a)
+    for (int i = 0; i < 3; ++i) M(6 * a + i, 6 * a + i) = total_mass_ / n_;
+  return M;
+}
+
+Resultants FlatShellKernel::resultants(const Eigen::VectorXd& d) const {
+  Resultants r;
+  Eigen::VectorXd N(n_);
+  if (n_ == 3)
+    N.setConstant(1.0 / 3.0);
+  else
+    N.setConstant(0.25);
+  r.t = thickness_at(N);
+  Eigen::VectorXd dm(2 * n_), db(3 * n_);
+  for (int a = 0; a < n_; ++a) {
+    dm(2 * a) = d(6 * a), dm(2 * a + 1) = d(6 * a + 1);
+    for (int i = 0; i < 3; ++i) db(3 * a + i) = d(6 * a + 2 + i);
+  }
+  const double nu2 = 1.0 - data_.nu * data_.nu;
+  if (data_.membrane) r.N = plane_stress(data_.nu, data_.E * r.t / nu2) * (Bm0_ * dm);
+  if (data_.bending)
+    r.M =
+        plane_stress(data_.nu, data_.E * r.t * r.t * r.t * data_.rmi / (12.0 * nu2)) * (Bb0_ * db);
+  return r;
+}
+
+Eigen::MatrixXd FlatShellKernel::geometric_stiffness(const Eigen::VectorXd& d) const {
+  const Eigen::Vector3d Nr = resultants(d).N;
+  Eigen::Matrix2d S;
+  S << Nr(0), Nr(2), Nr(2), Nr(1);
+  Eigen::MatrixXd Kg = Eigen::MatrixXd::Zero(6 * n_, 6 * n_);
+  Eigen::VectorXd N;
+  Eigen::MatrixXd dN;
+  double detJ = 0.0;
+  for (const auto& p : points()) {
+    shape(p.xi, p.eta, N, dN, detJ);
+    const Eigen::MatrixXd g = dN.transpose() * S * dN * (detJ * p.w);
+    for (int a = 0; a < n_; ++a)
+      for (int b = 0; b < n_; ++b)
+        for (int i = 0; i < 3; ++i) Kg(6 * a + i, 6 * b + i) += g(a, b);
+  }
+  return Kg;
+}
+
+}  // namespace impactfe::shell

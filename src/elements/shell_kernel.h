@@ -1,0 +1,106 @@
+#pragma once
+/// The flat-facet kernel of the SHELL63 / SHELL181 element: a small-strain, linear elastic
+/// shell of 3 or 4 nodes in its own plane (local x, y; z normal). It knows nothing about
+/// global axes, warping or large rotations (shell4.cpp does that).
+///
+/// Local DOFs per node, in this order: u, v, w, θx, θy, θz (θx = ∂w/∂y, θy = −∂w/∂x for a
+/// Kirchhoff plate; θz is the drilling rotation).
+///
+/// - Membrane: quad = bilinear plane stress with the modified (Taylor–Beresford–Wilson)
+///   incompatible modes 1−ξ², 1−η², condensed, 2×2 Gauss (Cook et al. §6.7); triangle = CST.
+/// - Drilling: Hughes–Brezzi penalty γ ∫ (θz − ½(∂v/∂x − ∂u/∂y))² dA with γ = drill_factor·G·t,
+///   which vanishes for a rigid in-plane rotation (Hughes & Brezzi 1989).
+/// - Bending: discrete Kirchhoff DKT triangle (Batoz, Bathe & Ho 1980) / DKQ quad (Batoz &
+///   Ben Tahar 1982), D_b = E t³ RMI / (12(1−ν²)).
+#include <Eigen/Core>
+
+#include <array>
+#include <vector>
+
+namespace impactfe::shell {
+
+/// Material, section and option data of one facet.
+struct KernelData {
+  double E = 0.0;
+  double nu = 0.3;
+  double rho = 0.0;                     // mass density
+  double added_mass = 0.0;              // ADMSUA, mass per unit area added to ρt
+  double rmi = 1.0;                     // bending-inertia ratio (bending stiffness only)
+  double efs = 0.0;                     // elastic foundation stiffness (force / length³)
+  std::array<double, 4> t{0, 0, 0, 0};  // thickness at the corners
+  bool membrane = true;                 // KEYOPT(1) != 2
+  bool bending = true;                  // KEYOPT(1) != 1
+  bool extra_shapes = true;             // KEYOPT(3) != 2 (quad membrane only)
+  bool rotary_inertia = true;           // KEYOPT(7) != 1
+  double drill_factor = 1.0e-3;         // γ / (G t) of the drilling penalty
+};
+
+/// Stress resultants at the centroid, element axes: N = (TX, TY, TXY) force/length,
+/// M = (MX, MY, MXY) moment/length with MX = −D(∂²w/∂x² + ν ∂²w/∂y²) (Timoshenko's sign),
+/// and the centroidal thickness.
+struct Resultants {
+  Eigen::Vector3d N = Eigen::Vector3d::Zero();
+  Eigen::Vector3d M = Eigen::Vector3d::Zero();
+  double t = 0.0;
+};
+
+class FlatShellKernel {
+ public:
+  /// xy: corner coordinates in the facet plane, counter-clockwise (3 or 4 of them).
+  /// Throws std::invalid_argument for a non-positive Jacobian (zero area / re-entrant quad).
+  FlatShellKernel(const std::vector<Eigen::Vector2d>& xy, const KernelData& data);
+
+  int n_nodes() const { return n_; }
+  int n_dofs() const { return 6 * n_; }
+  double area() const { return area_; }
+  /// ∫ (ρt + ADMSUA) dA: the translational mass of the facet.
+  double total_mass() const { return total_mass_; }
+
+  /// Linear stiffness, 6n × 6n, local DOF order (precomputed).
+  const Eigen::MatrixXd& stiffness() const { return K_; }
+  /// Consistent mass: (ρt + ADMSUA) ∫NᵀN on u, v, w with the bilinear/linear N, plus rotary
+  /// inertia ρt³/12 ∫NᵀN on θx, θy, θz unless rotary inertia is off.
+  const Eigen::MatrixXd& consistent_mass() const { return M_; }
+  /// Lumped mass: total_mass()/n on each translation, nothing on rotations.
+  Eigen::MatrixXd lumped_mass() const;
+
+  /// Geometric (stress) stiffness of the membrane resultants of the local displacement d:
+  /// ∫ ∇Nᵀ [[TX, TXY], [TXY, TY]] ∇N dA on each of u, v, w (centroidal resultants).
+  Eigen::MatrixXd geometric_stiffness(const Eigen::VectorXd& d) const;
+
+  /// Centroidal resultants of the local displacement d.
+  Resultants resultants(const Eigen::VectorXd& d) const;
+
+  /// DK rotation fields βx = Hx·U, βy = Hy·U (β = −∇w at the Kirchhoff points) at natural
+  /// point (ξ, η) for the bending DOFs U = (w, θx, θy) per node; exposed for tests.
+  void dk_rotations(double xi, double eta, Eigen::VectorXd& Hx, Eigen::VectorXd& Hy) const;
+
+ private:
+  struct Point {
+    double xi, eta, w;
+  };
+  void shape(double xi, double eta, Eigen::VectorXd& N, Eigen::MatrixXd& dN_dx, double& detJ) const;
+  void dk_fields(const double* N6, Eigen::VectorXd& Hx, Eigen::VectorXd& Hy) const;
+  void dk_curvature(double xi, double eta, Eigen::MatrixXd& B, double& detJ) const;
+  double thickness_at(const Eigen::VectorXd& N) const;
+  std::vector<Point> points() const;
+  void build_membrane();
+  void build_bending();
+  void build_mass();
+
+  int n_;
+  KernelData data_;
+  std::vector<Eigen::Vector2d> xy_;
+  double area_ = 0.0;
+  double total_mass_ = 0.0;
+  // DK side coefficients a, b, c, d, e per side k (corner k → corner k+1).
+  std::vector<std::array<double, 5>> side_;
+  Eigen::MatrixXd K_, M_;
+  Eigen::MatrixXd Bm0_;  // centroidal membrane strain of (u, v) of all nodes, 3 × 2n
+  Eigen::MatrixXd Bb0_;  // centroidal curvature of (w, θx, θy), 3 × 3n
+};
+
+/// Plane-stress (or plate) constitutive matrix [[1,ν,0],[ν,1,0],[0,0,(1−ν)/2]]·scale.
+Eigen::Matrix3d plane_stress(double nu, double scale);
+
+}  // namespace impactfe::shell

@@ -1,0 +1,479 @@
+// Unit tests of the SHELL63 / SHELL181 element (src/elements/shell4.*, shell_kernel.*).
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+
+#include <cmath>
+#include <cstdio>
+
+#include "core/errors.h"
+#include "elements/shell4.h"
+#include "shell4_test_helpers.h"
+
+namespace impactfe {
+namespace {
+
+using testing::build;
+using testing::DenseSystem;
+using testing::make_shell;
+using testing::plate_data;
+using testing::ShellMesh;
+using testing::solve_prescribed;
+
+const std::vector<Vec3> kQuad = {
+    {0.1, -0.05, 0.0}, {2.2, 0.1, 0.0}, {1.9, 1.3, 0.0}, {-0.2, 1.0, 0.0}};
+const std::vector<Vec3> kTri = {{0.1, -0.05, 0.0}, {2.2, 0.3, 0.0}, {0.7, 1.4, 0.0}};
+// A quad in general position in space, warped: corner 3 lifted off the plane of 0, 1, 2.
+std::vector<Vec3> warped_quad() {
+  const Eigen::Matrix3d R =
+      (Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()) * Eigen::AngleAxisd(0.3, Vec3::UnitX()))
+          .toRotationMatrix();
+  std::vector<Vec3> x = kQuad;
+  x[2].z() = 0.15;
+  for (auto& p : x) p = R * p + Vec3(3.0, -1.0, 2.0);
+  return x;
+}
+
+std::unique_ptr<Element> quad(const shell::KernelData& k, const std::vector<Vec3>& x = kQuad) {
+  return make_shell(1, {1, 2, 3, 4}, x, k);
+}
+std::unique_ptr<Element> tri(const shell::KernelData& k, const std::vector<Vec3>& x = kTri) {
+  return make_shell(1, {1, 2, 3}, x, k);
+}
+
+Eigen::MatrixXd stiffness(const Element& e, const ElementContext& ctx = {},
+                          Eigen::VectorXd u = Eigen::VectorXd()) {
+  if (u.size() == 0) u.setZero(e.n_dofs());
+  Eigen::MatrixXd K;
+  Eigen::VectorXd f;
+  e.tangent(ctx, u, K, f);
+  return K;
+}
+
+/// Rigid-body motion vector: translation t plus infinitesimal rotation w about the origin.
+Eigen::VectorXd rigid(const std::vector<Vec3>& x, const Vec3& t, const Vec3& w) {
+  Eigen::VectorXd r(6 * static_cast<int>(x.size()));
+  for (std::size_t a = 0; a < x.size(); ++a) {
+    r.segment<3>(6 * static_cast<int>(a)) = t + w.cross(x[a]);
+    r.segment<3>(6 * static_cast<int>(a) + 3) = w;
+  }
+  return r;
+}
+
+// ---- DK rotation fields: exact for quadratic w (the basis of the plate patch test) ---------
+TEST(Shell4Kernel, DkFieldsReproduceQuadraticDeflection) {
+  // w = c0 + c1 x + c2 y + c3 x² + c4 xy + c5 y²; nodal θx = w,y, θy = −w,x; β must be −∇w.
+  const double c[6] = {0.3, -0.2, 0.5, 0.7, -0.4, 0.25};
+  auto w_x = [&](double x, double y) { return c[1] + 2 * c[3] * x + c[4] * y; };
+  auto w_y = [&](double x, double y) { return c[2] + c[4] * x + 2 * c[5] * y; };
+  for (int n : {3, 4}) {
+    std::vector<Eigen::Vector2d> xy;
+    for (int a = 0; a < n; ++a) xy.emplace_back((n == 3 ? kTri : kQuad)[a].head<2>());
+    shell::FlatShellKernel k(xy, plate_data(1.0, 0.3, 0.1));
+    Eigen::VectorXd U(3 * n);
+    for (int a = 0; a < n; ++a) {
+      const double x = xy[a].x(), y = xy[a].y();
+      U(3 * a) = c[0] + c[1] * x + c[2] * y + c[3] * x * x + c[4] * x * y + c[5] * y * y;
+      U(3 * a + 1) = w_y(x, y);
+      U(3 * a + 2) = -w_x(x, y);
+    }
+    for (auto [xi, eta] : {std::pair{0.2, 0.3}, std::pair{0.6, 0.1}, std::pair{0.1, 0.7}}) {
+      if (n == 4) xi = 2 * xi - 1, eta = 2 * eta - 1;
+      Eigen::VectorXd Hx, Hy;
+      k.dk_rotations(xi, eta, Hx, Hy);
+      // Physical point of (ξ, η).
+      Eigen::Vector2d p = Eigen::Vector2d::Zero();
+      if (n == 3) {
+        p = (1 - xi - eta) * xy[0] + xi * xy[1] + eta * xy[2];
+      } else {
+        const double s[4] = {-1, 1, 1, -1}, t[4] = {-1, -1, 1, 1};
+        for (int a = 0; a < 4; ++a) p += 0.25 * (1 + xi * s[a]) * (1 + eta * t[a]) * xy[a];
+      }
+      EXPECT_NEAR(Hx.dot(U), -w_x(p.x(), p.y()), 1e-12) << "n=" << n;
+      EXPECT_NEAR(Hy.dot(U), -w_y(p.x(), p.y()), 1e-12) << "n=" << n;
+    }
+  }
+}
+
+// ---- symmetry and rigid-body modes -----------------------------------------------------------
+TEST(Shell4, StiffnessSymmetricWithExactlySixZeroEnergyModes) {
+  // Moderately thick (t/L ≈ 0.1) so that the smallest deformation eigenvalue (drilling penalty
+  // γ = 1e-3 G t) is ~1e-5 of the largest, far above the 1e-10 threshold; rigid-body
+  // eigenvalues are round-off (~1e-16 relative).
+  const auto k = plate_data(2.0e5, 0.3, 0.2);
+  std::vector<std::pair<std::string, std::unique_ptr<Element>>> cases;
+  cases.emplace_back("quad", quad(k));
+  cases.emplace_back("triangle", tri(k));
+  cases.emplace_back("warped quad", quad(k, warped_quad()));
+  for (auto& [name, e] : cases) {
+    const Eigen::MatrixXd K = stiffness(*e);
+    const double kmax = K.cwiseAbs().maxCoeff();
+    EXPECT_LE((K - K.transpose()).cwiseAbs().maxCoeff(), 1e-13 * kmax) << name;
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(K);
+    const Eigen::VectorXd ev = es.eigenvalues();
+    const double lmax = ev.maxCoeff();
+    int zeros = 0;
+    for (int i = 0; i < ev.size(); ++i) zeros += std::abs(ev(i)) < 1e-10 * lmax;
+    EXPECT_EQ(zeros, 6) << name;
+    std::printf("%s: |largest rigid eigenvalue| / max = %.1e, smallest deformation / max = %.1e\n",
+                name.c_str(), ev.head(6).cwiseAbs().maxCoeff() / lmax, ev(6) / lmax);
+    // The six rigid motions are among them (finite translations / infinitesimal rotations).
+    const auto x = name == "triangle" ? kTri : name == "quad" ? kQuad : warped_quad();
+    for (int i = 0; i < 6; ++i) {
+      Vec3 t = Vec3::Zero(), w = Vec3::Zero();
+      (i < 3 ? t : w)(i % 3) = 1.0;
+      const Eigen::VectorXd r = rigid(x, t, w);
+      EXPECT_LE((K * r).norm(), 1e-12 * kmax * r.norm()) << name << " rigid mode " << i;
+    }
+  }
+}
+
+TEST(Shell4, TriangleFromRepeatedNodeHasEighteenDofs) {
+  Model m;
+  m.nodes[1] = Node{1, kTri[0]};
+  m.nodes[2] = Node{2, kTri[1]};
+  m.nodes[3] = Node{3, kTri[2]};
+  ElementType et;
+  et.id = 1;
+  et.ansys_name = "SHELL63";
+  et.kind = ElementKind::Shell4;
+  m.element_types[1] = et;
+  m.materials[1] = Material{1, {{"EX", 3.0e7}, {"NUXY", 0.3}, {"DENS", 7.3e-4}}};
+  m.real_sets[1] = RealSet{1, {0.1}};
+  ElementRecord rec;
+  rec.id = 7;
+  rec.nodes = {1, 2, 3, 3};
+  rec.where = SourceLocation{"deck.inp", 12, "E"};
+  const auto e = create_element(ElementBuildContext{m, {}}, rec);
+  EXPECT_EQ(e->n_dofs(), 18);
+  EXPECT_STREQ(e->family(), "Shell4");
+
+  // SHELL181 with a SECTYPE SHELL thickness gives the same stiffness.
+  ElementType et181 = et;
+  et181.id = 2;
+  et181.ansys_name = "SHELL181";
+  m.element_types[2] = et181;
+  m.sections[5] = Section{5, "SHELL", {0.1}};
+  ElementRecord rec181 = rec;
+  rec181.type = 2;
+  rec181.real = 99;  // not defined: the section must be used
+  rec181.secnum = 5;
+  const auto e181 = create_element(ElementBuildContext{m, {}}, rec181);
+  EXPECT_LE((stiffness(*e) - stiffness(*e181)).norm(), 1e-12 * stiffness(*e).norm());
+
+  // Input errors carry the element's location.
+  auto expect_error = [&](const ElementRecord& r, const std::string& what) {
+    try {
+      create_element(ElementBuildContext{m, {}}, r);
+      ADD_FAILURE() << "no error for " << what;
+    } catch (const InputError& err) {
+      EXPECT_EQ(err.where().line, 12) << what;
+      EXPECT_NE(std::string(err.what()).find("element 7"), std::string::npos) << err.what();
+    }
+  };
+  ElementRecord bad = rec;
+  bad.nodes = {1, 2, 2, 3};
+  expect_error(bad, "repeated node");
+  m.nodes[4] = Node{4, 0.5 * (kTri[0] + kTri[1])};
+  bad.nodes = {1, 2, 4, 4};
+  expect_error(bad, "collinear nodes");
+  bad = rec;
+  bad.mat = 2;
+  m.materials[2] = Material{2, {{"DENS", 1.0}}};
+  expect_error(bad, "missing EX");
+  bad = rec;
+  bad.real = 3;
+  m.real_sets[3] = RealSet{3, {0.0}};
+  expect_error(bad, "zero thickness");
+}
+
+// ---- mass -----------------------------------------------------------------------------------
+TEST(Shell4, MassSumsEqualRhoTArea) {
+  // Per direction Σ_ij M(u_i, u_j) = ∫(ρt + ADMSUA) dA, consistent and lumped.
+  // Triangle with linearly varying thickness: ∫t dA = A (t1 + t2 + t3)/3 exactly.
+  auto k = plate_data(2.0e5, 0.3, 0.1, 7.8e-9);
+  k.t = {0.1, 0.2, 0.3, 0.0};
+  k.added_mass = 2.0e-10;
+  const auto e = tri(k);
+  const double A = 0.5 * (kTri[1] - kTri[0]).cross(kTri[2] - kTri[0]).norm();
+  const double expect_tri = (7.8e-9 * 0.2 + 2.0e-10) * A;
+  // Rectangle 2 × 1.5, uniform t.
+  const auto kq = plate_data(2.0e5, 0.3, 0.1, 7.8e-9);
+  const auto q = quad(kq, {{0, 0, 0}, {2, 0, 0}, {2, 1.5, 0}, {0, 1.5, 0}});
+  const double expect_quad = 7.8e-9 * 0.1 * 3.0;
+  for (bool lumped : {false, true}) {
+    ElementContext ctx;
+    ctx.lumped_mass = lumped;
+    for (auto [el, expect] : {std::pair{e.get(), expect_tri}, std::pair{q.get(), expect_quad}}) {
+      Eigen::MatrixXd M;
+      el->mass(ctx, M);
+      EXPECT_LE((M - M.transpose()).cwiseAbs().maxCoeff(), 1e-14 * M.cwiseAbs().maxCoeff());
+      for (int c = 0; c < 3; ++c) {
+        Eigen::VectorXd r = Eigen::VectorXd::Zero(el->n_dofs());
+        for (int a = c; a < el->n_dofs(); a += 6) r(a) = 1.0;
+        EXPECT_NEAR(r.dot(M * r), expect, 1e-13 * expect) << "lumped=" << lumped << " dir " << c;
+      }
+      // Mass is positive semi-definite; consistent mass is positive definite (rotary inertia).
+      const double lmin = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(M).eigenvalues()(0);
+      if (lumped)
+        EXPECT_GE(lmin, 0.0);
+      else
+        EXPECT_GT(lmin, 0.0);
+    }
+  }
+}
+
+// ---- patch tests (distorted 5-element patch of MacNeal & Harder 1985) -----------------------
+/// In-plane tensor (Sx, Sy, Sxy) in axes rotated by phi (element x axis along I→J).
+Eigen::Vector3d rotate_tensor(const Eigen::Vector3d& s, double phi) {
+  const double c = std::cos(phi), n = std::sin(phi);
+  return {s(0) * c * c + s(1) * n * n + 2 * s(2) * n * c,
+          s(0) * n * n + s(1) * c * c - 2 * s(2) * n * c,
+          (s(1) - s(0)) * n * c + s(2) * (c * c - n * n)};
+}
+double element_angle(const ShellMesh& m, const Element& e) {
+  const Vec3 d = m.nodes.at(e.dofs()[6].node) - m.nodes.at(e.dofs()[0].node);
+  return std::atan2(d.y(), d.x());
+}
+
+ShellMesh patch(bool triangles) {
+  ShellMesh m;
+  const double c[8][2] = {{0, 0},       {0.24, 0},    {0.24, 0.12}, {0, 0.12},
+                          {0.04, 0.02}, {0.18, 0.03}, {0.16, 0.08}, {0.08, 0.08}};
+  for (int i = 0; i < 8; ++i) m.nodes[i + 1] = Vec3(c[i][0], c[i][1], 0.0);
+  const std::vector<std::vector<int>> quads = {
+      {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 4, 8, 7}, {4, 1, 5, 8}, {5, 6, 7, 8}};
+  for (const auto& q : quads) {
+    if (triangles) {
+      m.elements.push_back({q[0], q[1], q[2]});
+      m.elements.push_back({q[0], q[2], q[3]});
+    } else {
+      m.elements.push_back(q);
+    }
+  }
+  return m;
+}
+
+TEST(Shell4, MembraneConstantStrainPatchTest) {
+  const double E = 1.0e6, nu = 0.25, t = 0.001;
+  for (bool triangles : {false, true}) {
+    const ShellMesh mesh = patch(triangles);
+    const auto els = build(mesh, plate_data(E, nu, t));
+    DenseSystem s(els);
+    // u = 1e-3 (x + y/2), v = 1e-3 (y + x/2): ε = (1e-3, 1e-3, 1e-3), rotation 0.
+    auto exact = [](const Vec3& x) {
+      return Vec3(1e-3 * (x.x() + 0.5 * x.y()), 1e-3 * (x.y() + 0.5 * x.x()), 0.0);
+    };
+    std::map<DofKey, double> bc;
+    for (int n = 1; n <= 8; ++n) {
+      for (Dof d : {Dof::UZ, Dof::ROTX, Dof::ROTY}) bc[{n, d}] = 0.0;
+      if (n <= 4) {
+        bc[{n, Dof::UX}] = exact(mesh.nodes.at(n)).x();
+        bc[{n, Dof::UY}] = exact(mesh.nodes.at(n)).y();
+        bc[{n, Dof::ROTZ}] = 0.0;
+      }
+    }
+    const Eigen::VectorXd u = solve_prescribed(s, Eigen::VectorXd::Zero(s.n()), bc);
+    for (int n = 5; n <= 8; ++n) {
+      EXPECT_NEAR(u(s.index(n, Dof::UX)), exact(mesh.nodes.at(n)).x(), 1e-15) << n;
+      EXPECT_NEAR(u(s.index(n, Dof::UY)), exact(mesh.nodes.at(n)).y(), 1e-15) << n;
+      EXPECT_NEAR(u(s.index(n, Dof::ROTZ)), 0.0, 1e-14) << n;
+    }
+    const double f = E * t / (1 - nu * nu);
+    for (const auto& e : els) {
+      ElementResultValues r;
+      e->results({}, testing::gather(s, *e, u), Eigen::VectorXd(), r);
+      // Resultants are in element axes (x along I→J).
+      const Eigen::Vector3d ref = rotate_tensor(
+          f * 1e-3 * Eigen::Vector3d(1 + nu, 1 + nu, 0.5 * (1 - nu)), element_angle(mesh, *e));
+      EXPECT_NEAR(r[0], ref(0), 1e-10 * f * 1e-3);
+      EXPECT_NEAR(r[1], ref(1), 1e-10 * f * 1e-3);
+      EXPECT_NEAR(r[2], ref(2), 1e-10 * f * 1e-3);
+      EXPECT_NEAR(r[9], r[0] / t, 1e-9 * std::abs(r[0] / t));  // SX_MID = TX/t
+    }
+  }
+}
+
+TEST(Shell4, PlateConstantCurvaturePatchTest) {
+  const double E = 1.0e6, nu = 0.25, t = 0.001;
+  const double D = E * t * t * t / (12 * (1 - nu * nu));
+  // w = 1e-3 (x² + xy + y²)/2: κ = −(w,xx, w,yy, 2w,xy) = −1e-3 (1, 1, 1).
+  auto w = [](const Vec3& x) { return 0.5e-3 * (x.x() * x.x() + x.x() * x.y() + x.y() * x.y()); };
+  auto wx = [](const Vec3& x) { return 0.5e-3 * (2 * x.x() + x.y()); };
+  auto wy = [](const Vec3& x) { return 0.5e-3 * (x.x() + 2 * x.y()); };
+  for (bool triangles : {false, true}) {
+    const ShellMesh mesh = patch(triangles);
+    const auto els = build(mesh, plate_data(E, nu, t));
+    DenseSystem s(els);
+    std::map<DofKey, double> bc;
+    for (int n = 1; n <= 8; ++n) {
+      for (Dof d : {Dof::UX, Dof::UY, Dof::ROTZ}) bc[{n, d}] = 0.0;
+      if (n <= 4) {
+        const Vec3& x = mesh.nodes.at(n);
+        bc[{n, Dof::UZ}] = w(x);
+        bc[{n, Dof::ROTX}] = wy(x);
+        bc[{n, Dof::ROTY}] = -wx(x);
+      }
+    }
+    const Eigen::VectorXd u = solve_prescribed(s, Eigen::VectorXd::Zero(s.n()), bc);
+    for (int n = 5; n <= 8; ++n) {
+      const Vec3& x = mesh.nodes.at(n);
+      EXPECT_NEAR(u(s.index(n, Dof::UZ)), w(x), 1e-15) << n;
+      EXPECT_NEAR(u(s.index(n, Dof::ROTX)), wy(x), 1e-14) << n;
+      EXPECT_NEAR(u(s.index(n, Dof::ROTY)), -wx(x), 1e-14) << n;
+    }
+    const double m_ref = D * 1e-3;
+    for (const auto& e : els) {
+      ElementResultValues r;
+      e->results({}, testing::gather(s, *e, u), Eigen::VectorXd(), r);
+      const Eigen::Vector3d ref = rotate_tensor(
+          -m_ref * Eigen::Vector3d(1 + nu, 1 + nu, 0.5 * (1 - nu)), element_angle(mesh, *e));
+      EXPECT_NEAR(r[3], ref(0), 1e-9 * m_ref) << "MX";
+      EXPECT_NEAR(r[4], ref(1), 1e-9 * m_ref) << "MY";
+      EXPECT_NEAR(r[5], ref(2), 1e-9 * m_ref) << "MXY";
+      // Top fibre: σ = 6M/t² (z up), bottom the opposite.
+      EXPECT_NEAR(r[6], 6 * r[3] / (t * t), 1e-9 * std::abs(r[6]));
+      EXPECT_NEAR(r[12], -6 * r[3] / (t * t), 1e-9 * std::abs(r[6]));
+    }
+  }
+}
+
+// ---- co-rotational large deflection ----------------------------------------------------------
+Eigen::VectorXd finite_rotation(const std::vector<Vec3>& x, const Eigen::Matrix3d& R,
+                                const Vec3& t) {
+  const Eigen::AngleAxisd aa(R);
+  Eigen::VectorXd u(6 * static_cast<int>(x.size()));
+  for (std::size_t a = 0; a < x.size(); ++a) {
+    u.segment<3>(6 * static_cast<int>(a)) = R * x[a] + t - x[a];
+    u.segment<3>(6 * static_cast<int>(a) + 3) = aa.angle() * aa.axis();
+  }
+  return u;
+}
+
+TEST(Shell4, CorotationalZeroForceUnderRigidRotation) {
+  ElementContext ctx;
+  ctx.large_deflection = true;
+  const auto k = plate_data(2.0e5, 0.3, 0.05);
+  for (const auto& x : {kQuad, kTri, warped_quad()}) {
+    const auto e = make_shell(
+        1, x.size() == 3 ? std::vector<int>{1, 2, 3} : std::vector<int>{1, 2, 3, 4}, x, k);
+    const Eigen::Matrix3d R =
+        Eigen::AngleAxisd(M_PI / 2, Vec3(1, -2, 0.5).normalized()).toRotationMatrix();
+    const Eigen::VectorXd u = finite_rotation(x, R, Vec3(0.3, -1.0, 2.0));
+    Eigen::MatrixXd K;
+    Eigen::VectorXd f;
+    e->tangent(ctx, u, K, f);
+    const double kmax = stiffness(*e).cwiseAbs().maxCoeff();
+    // Round-off level: |f| / (kmax · L) ~ 1e-15; the linear element would give O(1).
+    EXPECT_LE(f.cwiseAbs().maxCoeff(), 1e-12 * kmax) << x.size();
+    Eigen::VectorXd f_lin = stiffness(*e) * u;
+    EXPECT_GT(f_lin.cwiseAbs().maxCoeff(), 1e-2 * kmax);
+    // Stresses vanish too.
+    ElementResultValues r;
+    e->results(ctx, u, Eigen::VectorXd(), r);
+    for (double v : r) EXPECT_LE(std::abs(v), 1e-9 * 2.0e5);
+  }
+}
+
+TEST(Shell4, CorotationalTangentMatchesFiniteDifferences) {
+  ElementContext ctx;
+  ctx.large_deflection = true;
+  const auto k = plate_data(2.0e5, 0.3, 0.05);
+  for (const auto& x : {kQuad, kTri, warped_quad()}) {
+    const auto e = make_shell(
+        1, x.size() == 3 ? std::vector<int>{1, 2, 3} : std::vector<int>{1, 2, 3, 4}, x, k);
+    const int nd = e->n_dofs();
+    // At u = 0 the co-rotational tangent is the linear stiffness.
+    const Eigen::MatrixXd K0 = stiffness(*e);
+    EXPECT_LE((stiffness(*e, ctx) - K0).norm(), 1e-8 * K0.norm());
+    // A large rigid rotation plus a deformation of a few per cent.
+    Eigen::VectorXd u = finite_rotation(
+        x, Eigen::AngleAxisd(0.8, Vec3(0.2, 1, 0.4).normalized()).toRotationMatrix(), Vec3::Zero());
+    Eigen::VectorXd pert = Eigen::VectorXd::LinSpaced(nd, -1.0, 1.0).array().sin();
+    for (int i = 0; i < nd; ++i) pert(i) *= (i % 6 < 3 ? 0.03 : 0.05);
+    u += pert;
+    Eigen::MatrixXd K;
+    Eigen::VectorXd f;
+    e->tangent(ctx, u, K, f);
+    EXPECT_GT(f.norm(), 1e-3 * K0.norm() * 0.03);  // genuinely loaded state
+    // Central differences of f_int with a step 1e-6 (error ~1e-9 relative).
+    Eigen::MatrixXd Kfd(nd, nd);
+    for (int j = 0; j < nd; ++j) {
+      const double h = 1e-6;
+      Eigen::VectorXd up = u, um = u, fp, fm;
+      Eigen::MatrixXd dummy;
+      up(j) += h;
+      um(j) -= h;
+      e->tangent(ctx, up, dummy, fp);
+      e->tangent(ctx, um, dummy, fm);
+      Kfd.col(j) = (fp - fm) / (2 * h);
+    }
+    EXPECT_LE((K - Kfd).norm(), 1e-6 * K.norm()) << x.size();
+  }
+}
+
+TEST(Shell4, StressStiffeningAddsMembraneGeometricStiffness) {
+  // Square plate stretched in x: the geometric stiffness must raise the energy of a transverse
+  // mode w = x (slope 1 over the element) by ∫ TX (w,x)² dA = TX · A.
+  const std::vector<Vec3> x = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  const double E = 1.0e3, nu = 0.0, t = 0.1;
+  const auto e = quad(plate_data(E, nu, t), x);
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(24);
+  for (int a = 0; a < 4; ++a) u(6 * a) = 1e-2 * x[a].x();  // ε_x = 0.01 → TX = E t ε
+  ElementContext ss;
+  ss.stress_stiffening = true;
+  EXPECT_TRUE(e->is_nonlinear(ss));
+  const Eigen::MatrixXd Kg = stiffness(*e, ss, u) - stiffness(*e);
+  Eigen::VectorXd mode = Eigen::VectorXd::Zero(24);
+  for (int a = 0; a < 4; ++a) mode(6 * a + 2) = x[a].x();
+  EXPECT_NEAR(mode.dot(Kg * mode), E * t * 1e-2 * 1.0, 1e-12);
+}
+
+TEST(Shell4, KeyoptionsAndThetaThroughTheModel) {
+  // Unit square, stretched in x (ε_x = 1e-3) and bent (w = x²/2 · 1e-3).
+  Model m;
+  const std::vector<Vec3> x = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  for (int i = 0; i < 4; ++i) m.nodes[i + 1] = Node{i + 1, x[i]};
+  m.materials[1] = Material{1, {{"EX", 1.0e6}, {"NUXY", 0.0}}};
+  m.real_sets[1] = RealSet{1, {0.1, 0, 0, 0, 0, 90.0}};  // THETA = 90° (6th constant)
+  m.real_sets[2] = RealSet{2, {0.1}};
+  for (int key1 : {0, 1, 2}) {
+    ElementType et;
+    et.id = key1 + 1;
+    et.ansys_name = "SHELL63";
+    et.kind = ElementKind::Shell4;
+    et.keyopt[1] = key1;
+    m.element_types[et.id] = et;
+  }
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(24);
+  for (int a = 0; a < 4; ++a) {
+    u(6 * a) = 1e-3 * x[a].x();
+    u(6 * a + 2) = 0.5e-3 * x[a].x() * x[a].x();
+    u(6 * a + 4) = -1e-3 * x[a].x();  // θy = −w,x
+  }
+  auto res = [&](int type, int real) {
+    ElementRecord rec;
+    rec.id = 1;
+    rec.type = type;
+    rec.real = real;
+    rec.nodes = {1, 2, 3, 4};
+    ElementResultValues r;
+    create_element(ElementBuildContext{m, {}}, rec)->results({}, u, Eigen::VectorXd(), r);
+    return r;
+  };
+  const double TX = 1.0e6 * 0.1 * 1e-3, MX = -1.0e6 * 1e-3 / 12 * 1e-3;  // ν = 0
+  const auto full = res(1, 2), membrane = res(2, 2), bending = res(3, 2), rotated = res(1, 1);
+  EXPECT_NEAR(full[0], TX, 1e-9 * TX);
+  EXPECT_NEAR(full[3], MX, 1e-9 * std::abs(MX));
+  EXPECT_NEAR(membrane[0], TX, 1e-9 * TX);  // KEYOPT(1)=1: membrane only
+  EXPECT_EQ(membrane[3], 0.0);
+  EXPECT_EQ(bending[0], 0.0);  // KEYOPT(1)=2: bending only
+  EXPECT_NEAR(bending[3], MX, 1e-9 * std::abs(MX));
+  // THETA = 90°: the x result axis is the element y axis.
+  EXPECT_NEAR(rotated[1], TX, 1e-9 * TX);
+  EXPECT_NEAR(rotated[0], 0.0, 1e-9 * TX);
+  EXPECT_NEAR(rotated[4], MX, 1e-9 * std::abs(MX));
+}
+
+}  // namespace
+}  // namespace impactfe
