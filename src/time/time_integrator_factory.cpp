@@ -7,15 +7,24 @@ namespace {
 
 constexpr double kDefaultAmplitudeDecay = 0.005;  // TINTP GAMMA default
 
-/// Newmark is unconditionally stable for gamma >= 1/2 and beta >= (1/2 + gamma)^2 / 4
-/// (Hughes 2000, §9.1); other values are legal but conditionally stable, so say so in the log.
+/// Unconditional stability (linear case): Newmark needs gamma >= 1/2 and beta >= gamma/2
+/// (Hughes 2000, §9.1.2); generalized-alpha needs alpha_m <= alpha_f <= 1/2, gamma >= 1/2 and
+/// beta >= 1/4 + (alpha_f - alpha_m)/2 (Chung & Hulbert 1993). Other values are legal but only
+/// conditionally stable, so say so in the log rather than refuse the deck.
 void warn_if_conditionally_stable(const GeneralizedAlphaParameters& p) {
-  const double s = 0.5 + p.gamma - p.alpha_f + p.alpha_m;
-  if (p.gamma < 0.5 || p.beta < 0.25 * s * s - 1e-12) {
+  const double tol = 1e-12;
+  bool stable = p.gamma >= 0.5 - tol;
+  if (p.alpha_f == 0.0 && p.alpha_m == 0.0) {
+    stable = stable && p.beta >= 0.5 * p.gamma - tol;
+  } else {
+    stable = stable && p.alpha_m <= p.alpha_f + tol && p.alpha_f <= 0.5 + tol &&
+             p.beta >= 0.25 + 0.5 * (p.alpha_f - p.alpha_m) - tol;
+  }
+  if (!stable) {
     Log::warn(
-        "TINTP: beta = {:g}, gamma = {:g} is only conditionally stable (unconditional "
-        "stability needs gamma >= 1/2 and beta >= (1/2 + gamma)^2/4)",
-        p.beta, p.gamma);
+        "TINTP: beta = {:g}, gamma = {:g}, alpha_f = {:g}, alpha_m = {:g} is only conditionally "
+        "stable",
+        p.beta, p.gamma, p.alpha_f, p.alpha_m);
   }
 }
 

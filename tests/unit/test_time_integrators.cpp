@@ -10,6 +10,7 @@
 #include <numbers>
 #include <vector>
 
+#include "core/log.h"
 #include "core/model.h"
 #include "time/time_integrator.h"
 
@@ -428,6 +429,25 @@ TEST(TimeIntegrators, FactoryFollowsTintp) {
   params(*ti, beta, gamma);
   EXPECT_NEAR(beta, 0.3025, 1e-12);
   EXPECT_NEAR(gamma, 0.6, 1e-12);
+}
+
+/// Conditionally stable TINTP values are accepted but logged: Newmark beta = 0.1 < gamma/2 = 0.25
+/// (Hughes 2000, §9.1.2) warns once; the default Newmark and HHT presets do not warn.
+TEST(TimeIntegrators, FactoryWarnsOnConditionalStability) {
+  Log::set_sink([](LogLevel, const std::string&) {});
+  Log::clear();
+  AnalysisOptions o;
+  o.integrator = IntegratorKind::Newmark;
+  make_time_integrator(o);
+  o.integrator = IntegratorKind::HHT;
+  make_time_integrator(o);
+  EXPECT_EQ(Log::warnings().size(), 0u);
+  o.integrator = IntegratorKind::Newmark;
+  o.tintp.alpha = 0.1;
+  o.tintp.delta = 0.5;
+  make_time_integrator(o);
+  EXPECT_EQ(Log::warnings().size(), 1u);
+  Log::clear();
 }
 
 TEST(TimeIntegrators, RejectsNonPositiveStep) {
