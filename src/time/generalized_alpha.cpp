@@ -72,6 +72,7 @@ class GeneralizedAlpha final : public TimeIntegrator {
     u_ = u0;
     v_ = v0;
     a_ = a0;
+    started_ = true;
   }
 
   /// One-step scheme: the state (u, v, a) needs no re-sampling.
@@ -101,6 +102,10 @@ class GeneralizedAlpha final : public TimeIntegrator {
   /// v_{n+1} = v_n + h ((1 - gamma) a_n + gamma a_{n+1}).
   void kinematics(const Eigen::VectorXd& u_next, Eigen::VectorXd& v_next,
                   Eigen::VectorXd& a_next) const override {
+    if (!started_) throw std::logic_error("GeneralizedAlpha: start() must be called first");
+    if (u_next.size() != u_.size()) {
+      throw std::invalid_argument("GeneralizedAlpha::kinematics: trial vector has the wrong size");
+    }
     const double h2 = h_ * h_;
     a_next = (u_next - u_ - h_ * v_ - (h2 * (0.5 - p_.beta)) * a_) / (p_.beta * h2);
     v_next = v_ + (h_ * (1.0 - p_.gamma)) * a_ + (h_ * p_.gamma) * a_next;
@@ -123,6 +128,7 @@ class GeneralizedAlpha final : public TimeIntegrator {
  private:
   GeneralizedAlphaParameters p_;
   double h_ = 0.0;
+  bool started_ = false;
   Eigen::VectorXd u_, v_, a_;
 };
 

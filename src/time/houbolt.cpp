@@ -37,8 +37,12 @@ class Houbolt final : public TimeIntegrator {
 
   void set_step(double h) override {
     require_positive_step(h);
-    if (h == h_) return;
+    // A step recomputed by the driver (e.g. (t_end - t_start)/n) may differ from the current
+    // one by round-off; re-sampling then would needlessly replace the true history by a
+    // parabola, so changes below 1e-9 relative keep the history.
+    const bool same_step = started_ && std::abs(h - h_) <= 1e-9 * h_;
     h_ = h;
+    if (same_step) return;
     // v_, a_ are the backward-difference values at the old spacing (or the initial state), so
     // the new history is the parabola through the current state (spec §10.2). It is exact for
     // uniformly accelerated motion, which keeps a free fall exact across the step change.
@@ -61,11 +65,16 @@ class Houbolt final : public TimeIntegrator {
   /// Thesis eqs. 3-2, 3-3 at t_{n+1}.
   void kinematics(const Eigen::VectorXd& u_next, Eigen::VectorXd& v_next,
                   Eigen::VectorXd& a_next) const override {
+    require_started();
+    if (u_next.size() != u_.size()) {
+      throw std::invalid_argument("Houbolt::kinematics: trial vector has the wrong size");
+    }
     v_next = (11.0 * u_next - 18.0 * u_ + 9.0 * u_m1_ - 2.0 * u_m2_) / (6.0 * h_);
     a_next = (2.0 * u_next - 5.0 * u_ + 4.0 * u_m1_ - u_m2_) / (h_ * h_);
   }
 
   void advance(const Eigen::VectorXd& u_next) override {
+    require_started();
     Eigen::VectorXd v_next, a_next;
     kinematics(u_next, v_next, a_next);
     u_m2_ = std::move(u_m1_);
@@ -80,6 +89,10 @@ class Houbolt final : public TimeIntegrator {
   const Eigen::VectorXd& a() const override { return a_; }
 
  private:
+  void require_started() const {
+    if (!started_) throw std::logic_error("Houbolt: start() must be called first");
+  }
+
   /// u_{n-1} = u_n - h v_n + h^2/2 a_n, u_{n-2} = u_n - 2h v_n + 2h^2 a_n (spec §10.2).
   void resample_history() {
     u_m1_ = u_ - h_ * v_ + (0.5 * h_ * h_) * a_;

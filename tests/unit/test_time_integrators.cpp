@@ -361,6 +361,32 @@ TEST(Houbolt, StepChangeKeepsStateAndResamplesHistory) {
   EXPECT_NEAR(ti->predict()(0), u + h * v + 0.5 * h * h * a, 1e-15);
 }
 
+/// A step that differs from the current one only by round-off (1e-12 relative) keeps the true
+/// history: kinematics() is unchanged (1e-9) for a non-parabolic history u = sin(10 t), whereas a
+/// real change re-samples (the acceleration then differs by O(h |u'''|) = O(100)).
+TEST(Houbolt, RoundOffStepChangeKeepsHistory) {
+  const double h = 0.1;
+  auto ti = make_houbolt();
+  ti->start(vec(0.0), vec(10.0), vec(0.0), h);
+  for (int i = 1; i <= 4; ++i) ti->advance(vec(std::sin(10.0 * i * h)));
+  Eigen::VectorXd v0, a0, v1, a1;
+  const Eigen::VectorXd trial = vec(std::sin(10.0 * 5 * h));
+  ti->kinematics(trial, v0, a0);
+  ti->set_step(h * (1.0 + 1e-12));
+  ti->kinematics(trial, v1, a1);
+  EXPECT_NEAR(a1(0), a0(0), 1e-9 * std::abs(a0(0)));
+  EXPECT_NEAR(v1(0), v0(0), 1e-9 * std::abs(v0(0)));
+  ti->set_step(h * 1.001);
+  ti->kinematics(trial, v1, a1);
+  EXPECT_GT(std::abs(a1(0) - a0(0)), 1.0);
+}
+
+TEST(TimeIntegrators, RequireStart) {
+  Eigen::VectorXd v, a;
+  EXPECT_THROW(make_houbolt()->kinematics(vec(0.0), v, a), std::logic_error);
+  EXPECT_THROW(make_generalized_alpha({})->kinematics(vec(0.0), v, a), std::logic_error);
+}
+
 /// make_time_integrator follows TINTP (spec §10.3): Newmark default g = 0.005 -> beta =
 /// 0.25250625, gamma = 0.505; explicit ALPHA/DELTA are textbook beta/gamma; HHT default
 /// alpha_f = 0.005, alpha_m = 0; HHT with GAMMA g -> alpha_f = g. Parameters are read back
