@@ -19,6 +19,7 @@ void require_positive_step(double h) {
 
 class Houbolt final : public TimeIntegrator {
  public:
+  explicit Houbolt(HouboltStartup startup) : startup_(startup) {}
   std::string name() const override { return "Houbolt"; }
 
   void start(const Eigen::VectorXd& u0, const Eigen::VectorXd& v0, const Eigen::VectorXd& a0,
@@ -30,7 +31,11 @@ class Houbolt final : public TimeIntegrator {
     h_ = h;
     u_ = u0;
     v_ = v0;
-    a_ = a0;
+    if (startup_ == HouboltStartup::ConstantVelocity) {
+      a_ = Eigen::VectorXd::Zero(a0.size());  // what the backward differences of a line give
+    } else {
+      a_ = a0;
+    }
     resample_history();
     started_ = true;
   }
@@ -99,6 +104,7 @@ class Houbolt final : public TimeIntegrator {
     u_m2_ = u_ - (2.0 * h_) * v_ + (2.0 * h_ * h_) * a_;
   }
 
+  HouboltStartup startup_;
   double h_ = 0.0;
   bool started_ = false;
   Eigen::VectorXd u_, v_, a_;  // current state u_n, v_n, a_n
@@ -109,7 +115,11 @@ class Houbolt final : public TimeIntegrator {
 }  // namespace
 
 std::unique_ptr<TimeIntegrator> make_houbolt() {
-  return std::make_unique<Houbolt>();
+  return std::make_unique<Houbolt>(HouboltStartup::UniformlyAccelerated);
+}
+
+std::unique_ptr<TimeIntegrator> make_houbolt(HouboltStartup startup) {
+  return std::make_unique<Houbolt>(startup);
 }
 
 }  // namespace impactfe

@@ -387,6 +387,30 @@ TEST(TimeIntegrators, RequireStart) {
   EXPECT_THROW(make_generalized_alpha({})->kinematics(vec(0.0), v, a), std::logic_error);
 }
 
+/// Optional start-up "unaccelerated past motion" (spec §10.2). From rest under gravity the
+/// history is flat (u0 three times), so (2m/h^2)(u1 - u0) = m g: the first drop is g h^2/2 as
+/// with the default start, but the velocity reported after it is 11 u1/(6h) = (11/12) g h
+/// instead of g h, and the fall then lags the parabola: after 20 steps the drop is short of
+/// g t^2/2 by more than 1 %, and the lag in time is between 0 and 2 steps (spec: "lags by about
+/// one coarse step").
+TEST(Houbolt, ConstantVelocityStartupLagsFreeFall) {
+  const double g = 386.4, h = 0.004, m = 0.05;
+  Sdof s{m, 0.0, 0.0, [&](double) { return m * g; }};
+  auto ti = make_houbolt(HouboltStartup::ConstantVelocity);
+  start(*ti, s, 0.0, 0.0, h);
+  EXPECT_EQ(ti->a()(0), 0.0);
+  take_step(*ti, s, 0.0);
+  EXPECT_NEAR(ti->u()(0), 0.5 * g * h * h, 1e-12 * g * h * h);
+  EXPECT_NEAR(ti->v()(0), 11.0 / 12.0 * g * h, 1e-9 * g * h);
+  for (int i = 1; i < 20; ++i) take_step(*ti, s, i * h);
+  const double t = 20 * h;
+  const double drop = ti->u()(0);
+  EXPECT_LT(drop, 0.99 * 0.5 * g * t * t);
+  const double t_equivalent = std::sqrt(2.0 * drop / g);  // time the exact fall needs
+  EXPECT_GT(t - t_equivalent, 0.0);
+  EXPECT_LT(t - t_equivalent, 2.0 * h);
+}
+
 /// make_time_integrator follows TINTP (spec §10.3): Newmark default g = 0.005 -> beta =
 /// 0.25250625, gamma = 0.505; explicit ALPHA/DELTA are textbook beta/gamma; HHT default
 /// alpha_f = 0.005, alpha_m = 0; HHT with GAMMA g -> alpha_f = g. Parameters are read back
