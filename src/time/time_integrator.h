@@ -65,6 +65,16 @@ class TimeIntegrator {
 /// start-up (spec §10.2) and history re-sampling when h changes.
 std::unique_ptr<TimeIntegrator> make_houbolt();
 
+/// Houbolt start-up history u_{-1}, u_{-2} (spec §10.2).
+enum class HouboltStartup {
+  /// Default: the parabola of (u0, v0, a0): u_{-k} = u0 - k h v0 + (k h)^2/2 a0 (exact free fall).
+  UniformlyAccelerated,
+  /// Option: unaccelerated past motion u_{-k} = u0 - k h v0 (a0 ignored, reported a = 0); "at
+  /// rest before t = 0" when v0 = 0. Makes a free fall lag by about one step.
+  ConstantVelocity,
+};
+std::unique_ptr<TimeIntegrator> make_houbolt(HouboltStartup startup);
+
 /// Newmark / HHT-alpha / generalized-alpha in one class (ANSYS TINTP: ALPHA = beta, DELTA = gamma).
 struct GeneralizedAlphaParameters {
   double beta = 0.25;
