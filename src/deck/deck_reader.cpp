@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -130,7 +131,10 @@ std::optional<double> DeckReader::opt_real(const Command& c, int i) const {
   try {
     return evaluate(t, params);
   } catch (const ExpressionError& e) {
-    fail(c, fmt::format("field {}: bad number '{}' ({})", i, t, e.what()));
+    bool letters = false;
+    for (char ch : t) letters = letters || std::isalpha(static_cast<unsigned char>(ch));
+    if (!letters) fail(c, fmt::format("field {}: bad number '{}'", i, t));
+    fail(c, fmt::format("field {}: bad number or expression '{}' ({})", i, t, e.what()));
   }
 }
 
