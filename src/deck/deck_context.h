@@ -116,8 +116,8 @@ class DeckReader {
   Dialect dialect;
   unsigned processor = kBegin;
   Parameters params;
-  std::map<std::string, double> increments;                 // 4x *SET,Par,VALUE,INC
-  std::map<std::string, std::vector<RawCommand>> macros;    // *BEGIN / *CREATE blocks
+  std::map<std::string, double> increments;               // 4x *SET,Par,VALUE,INC
+  std::map<std::string, std::vector<RawCommand>> macros;  // *BEGIN / *CREATE blocks
   bool jobname_from_option = false;
 
   // PREP7 attribute pointers and generation memory.
@@ -125,16 +125,16 @@ class DeckReader {
   int current_real = 1;
   int current_mat = 1;
   int current_secnum = 0;
-  int last_real_set = 0;  // RMORE target
-  int last_section = 0;   // SECDATA target
-  std::vector<int> defined_by_n;  // nodes defined by N, in order (FILL defaults)
+  int last_real_set = 0;           // RMORE target
+  int last_section = 0;            // SECDATA target
+  std::vector<int> defined_by_n;   // nodes defined by N, in order (FILL defaults)
   std::vector<int> element_order;  // element ids in creation order (EGEN negative IEL1)
 
   // 4x analysis definition.
   int kan = 0;
   std::vector<LoadStep> load_steps_4x;  // LWRITE
-  std::optional<Job::Step> frozen;       // AFWRITE
-  bool exec_armed = false;               // /EXEC
+  std::optional<Job::Step> frozen;      // AFWRITE
+  bool exec_armed = false;              // /EXEC
   // 4x /STRESS block.
   std::vector<ExpansionRequest> stress_requests;
   int stress_count = 1;

@@ -67,8 +67,8 @@ bool uses_4x(const std::vector<RawCommand>& cmds, const std::string& path, int d
     if (n == "/INPUT" && !c.fields.empty()) {
       if (trim(c.fields[0]) == "27") return true;
       if (depth < kMaxNesting) {
-        const std::string inc = resolve_input(path, c.fields[0],
-                                              c.fields.size() > 1 ? c.fields[1] : std::string());
+        const std::string inc =
+            resolve_input(path, c.fields[0], c.fields.size() > 1 ? c.fields[1] : std::string());
         std::ifstream in(inc, std::ios::binary);
         if (in) {
           std::ostringstream ss;
@@ -105,8 +105,8 @@ DeckReader::DeckReader(const DeckOptions& opts, Dialect d, const std::string& jo
   model.jobname = jobname;
   jobname_from_option = !opts.jobname.empty();
   // 4x decks integrate with Houbolt (the only 4.2 integrator); modern decks default to Newmark.
-  model.options.integrator = d == Dialect::Classic4x ? IntegratorKind::Houbolt
-                                                     : IntegratorKind::Newmark;
+  model.options.integrator =
+      d == Dialect::Classic4x ? IntegratorKind::Houbolt : IntegratorKind::Newmark;
   // MAPDL elements carry SECNUM 1 unless changed; 4x had no sections.
   current_secnum = d == Dialect::Modern ? 1 : 0;
 }
@@ -145,7 +145,8 @@ double DeckReader::real(const Command& c, int i, double fallback) const {
 std::optional<int> DeckReader::opt_int(const Command& c, int i) const {
   auto v = opt_real(c, i);
   if (!v) return std::nullopt;
-  if (std::fabs(*v) > 2.0e9) fail(c, fmt::format("field {}: integer '{}' out of range", i, c.text(i)));
+  if (std::fabs(*v) > 2.0e9)
+    fail(c, fmt::format("field {}: integer '{}' out of range", i, c.text(i)));
   return static_cast<int>(std::lround(*v));
 }
 
@@ -153,7 +154,9 @@ int DeckReader::integer(const Command& c, int i, int fallback) const {
   return opt_int(c, i).value_or(fallback);
 }
 
-std::string DeckReader::label(const Command& c, int i) const { return to_upper(c.text(i)); }
+std::string DeckReader::label(const Command& c, int i) const {
+  return to_upper(c.text(i));
+}
 
 bool DeckReader::on_off(const Command& c, int i, bool fallback) const {
   const std::string l = label(c, i);
@@ -184,7 +187,8 @@ std::vector<int> DeckReader::node_range(const Command& c, int node_field, int en
     require_node(c, *first);
     return {*first};
   }
-  if ((last - *first) * inc < 0) fail(c, fmt::format("empty node range {} to {} step {}", *first, last, inc));
+  if ((last - *first) * inc < 0)
+    fail(c, fmt::format("empty node range {} to {} step {}", *first, last, inc));
   for (int n = *first; inc > 0 ? n <= last : n >= last; n += inc)
     if (model.nodes.count(n) != 0) out.push_back(n);
   if (out.empty()) fail(c, fmt::format("no node is defined in the range {} to {}", *first, last));
@@ -229,7 +233,8 @@ void DeckReader::validate_elements() const {
   for (const auto& [id, e] : model.elements) {
     const auto t = model.element_types.find(e.type);
     if (t == model.element_types.end())
-      throw InputError(e.where, fmt::format("element {}: element type {} is not defined", id, e.type));
+      throw InputError(e.where,
+                       fmt::format("element {}: element type {} is not defined", id, e.type));
     const ElementKind kind = t->second.kind;
     const bool has_section = e.secnum > 0 && model.sections.count(e.secnum) != 0;
     bool needs_real = false;
@@ -251,7 +256,8 @@ void DeckReader::validate_elements() const {
         break;
       case ElementKind::Superelement:
         if (e.superelement_file.empty())
-          throw InputError(e.where, fmt::format("element {}: MATRIX50 without a superelement file", id));
+          throw InputError(e.where,
+                           fmt::format("element {}: MATRIX50 without a superelement file", id));
         break;
     }
     if (needs_real && model.real_sets.count(e.real) == 0)
@@ -341,12 +347,14 @@ void DeckReader::run_do(const std::vector<RawCommand>& cmds, std::size_t& i, std
     const int n2 = integer(c, 3, n1);
     for (int k = n1; k <= n2; ++k) {
       run_macro(c, first, depth);
-      for (const auto& [name, inc] : increments) params.set(name, params.get(name).value_or(0.0) + inc);
+      for (const auto& [name, inc] : increments)
+        params.set(name, params.get(name).value_or(0.0) + inc);
     }
     ++i;
     return;
   }
-  if (!is_parameter_name(first)) fail(c, fmt::format("'{}' is neither a *BEGIN block nor a loop parameter", c.text(1)));
+  if (!is_parameter_name(first))
+    fail(c, fmt::format("'{}' is neither a *BEGIN block nor a loop parameter", c.text(1)));
   if (depth >= kMaxNesting) fail(c, "*DO nesting deeper than 20");
   const std::size_t close = find_block_end(cmds, i + 1, end, "*DO", "*ENDDO", c);
   const double ival = real(c, 2, 0.0);
@@ -386,7 +394,8 @@ void DeckReader::run_if(const std::vector<RawCommand>& cmds, std::size_t& i, std
   int nest = 0;
   for (std::size_t j = i + 1; j < end; ++j) {
     const std::string& n = cmds[j].name;
-    if (n == "*IF" && cmds[j].fields.size() >= 4 && to_upper(trim(cmds[j].fields[3])) == "THEN") ++nest;
+    if (n == "*IF" && cmds[j].fields.size() >= 4 && to_upper(trim(cmds[j].fields[3])) == "THEN")
+      ++nest;
     else if (n == "*ENDIF") {
       if (nest == 0) {
         close = j;
@@ -404,7 +413,8 @@ void DeckReader::run_if(const std::vector<RawCommand>& cmds, std::size_t& i, std
     bool take = head.name == "*ELSE";
     if (!take) {
       Command h = resolve(head);
-      if (label(h, 4) != "THEN") fail(h, "only the block form *IF,VAL1,Oper,VAL2,THEN is supported");
+      if (label(h, 4) != "THEN")
+        fail(h, "only the block form *IF,VAL1,Oper,VAL2,THEN is supported");
       try {
         take = compare(label(h, 2), real(h, 1, 0.0), real(h, 3, 0.0));
       } catch (const ExpressionError& e) {
@@ -480,7 +490,8 @@ void DeckReader::run(const std::vector<RawCommand>& cmds, std::size_t begin, std
     if (c.name == "*END") fail(c, "*END without *BEGIN or *CREATE");
     if (c.name == "*USE") {
       const std::string name = label(c, 1);
-      if (macros.count(name) == 0) fail(c, fmt::format("macro '{}' is not defined (*CREATE)", name));
+      if (macros.count(name) == 0)
+        fail(c, fmt::format("macro '{}' is not defined (*CREATE)", name));
       for (int a = 2; a <= std::min(c.n_fields(), 19); ++a)
         if (!c.blank(a)) params.set(fmt::format("ARG{}", a - 1), real(c, a, 0.0));
       run_macro(c, name, depth);

@@ -10,8 +10,12 @@
 
 namespace impactfe::deck {
 
-void Parameters::set(const std::string& name, double value) { values_[to_upper(name)] = value; }
-void Parameters::erase(const std::string& name) { values_.erase(to_upper(name)); }
+void Parameters::set(const std::string& name, double value) {
+  values_[to_upper(name)] = value;
+}
+void Parameters::erase(const std::string& name) {
+  values_.erase(to_upper(name));
+}
 std::optional<double> Parameters::get(const std::string& name) const {
   auto it = values_.find(to_upper(name));
   if (it == values_.end()) return std::nullopt;
@@ -104,8 +108,7 @@ class Parser {
     if (std::isdigit(static_cast<unsigned char>(c)) || c == '.') return number();
     if (std::isalpha(static_cast<unsigned char>(c)) || c == '_') {
       std::size_t j = i_;
-      while (j < s_.size() &&
-             (std::isalnum(static_cast<unsigned char>(s_[j])) || s_[j] == '_'))
+      while (j < s_.size() && (std::isalnum(static_cast<unsigned char>(s_[j])) || s_[j] == '_'))
         ++j;
       const std::string name = to_upper(s_.substr(i_, j - i_));
       i_ = j;
@@ -142,8 +145,7 @@ class Parser {
   }
   double call(const std::string& f, const std::vector<double>& a) {
     auto need = [&](std::size_t n) {
-      if (a.size() != n)
-        throw ExpressionError(f + " takes " + std::to_string(n) + " argument(s)");
+      if (a.size() != n) throw ExpressionError(f + " takes " + std::to_string(n) + " argument(s)");
     };
     const double to_rad = p_.degrees ? std::numbers::pi / 180.0 : 1.0;
     const double from_rad = 1.0 / to_rad;

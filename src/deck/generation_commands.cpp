@@ -17,7 +17,8 @@ std::vector<double> fill_fractions(int n, double space) {
   std::vector<double> d(static_cast<std::size_t>(divisions), 1.0);
   if (space > 0.0 && std::fabs(space - 1.0) > 1e-12 && divisions > 1) {
     const double ratio = std::pow(space, 1.0 / (divisions - 1));
-    for (int k = 1; k < divisions; ++k) d[static_cast<std::size_t>(k)] = d[static_cast<std::size_t>(k - 1)] * ratio;
+    for (int k = 1; k < divisions; ++k)
+      d[static_cast<std::size_t>(k)] = d[static_cast<std::size_t>(k - 1)] * ratio;
   }
   double total = 0.0;
   for (double v : d) total += v;
@@ -155,7 +156,8 @@ void copy_element(DeckReader& r, const Command& c, const ElementRecord& src, int
   for (int& n : e.nodes) {
     n += k * ninc;
     if (r.model.nodes.count(n) == 0)
-      r.fail(c, fmt::format("node {} of generated element {} (copy of {}) is not defined", n, id, src.id));
+      r.fail(c, fmt::format("node {} of generated element {} (copy of {}) is not defined", n, id,
+                            src.id));
   }
   const ElementTypeInfo* info = find_element_type(t->second.ansys_name);
   if (info != nullptr && static_cast<int>(e.nodes.size()) != info->n_nodes)
@@ -211,7 +213,8 @@ void cmd_engen(DeckReader& r, const Command& c) {
   std::vector<ElementRecord> src;
   for (int id : pattern) src.push_back(r.model.elements.at(id));
   for (int k = 1; k < itime; ++k)
-    for (const auto& e : src) copy_element(r, c, e, e.id + k * iinc, k, ninc, minc, tinc, rinc, sinc);
+    for (const auto& e : src)
+      copy_element(r, c, e, e.id + k * iinc, k, ninc, minc, tinc, rinc, sinc);
 }
 
 }  // namespace

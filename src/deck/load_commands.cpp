@@ -17,7 +17,8 @@ std::vector<Dof> parse_dof_labels(DeckReader& r, const Command& c, int lab_field
       if (r.dialect != Dialect::Classic4x)
         r.fail(c, fmt::format("field {}: bad number '{}' (a DOF label belongs in Lab2..Lab6)", f,
                               c.text(f)));
-      r.warn(c, fmt::format("DOF label '{}' in numeric field {} taken as an extra label (4x)", l, f));
+      r.warn(c,
+             fmt::format("DOF label '{}' in numeric field {} taken as an extra label (4x)", l, f));
       for (int g = f; g <= inc_field; ++g)
         if (!c.blank(g)) labels.push_back(r.label(c, g));
       if (f == end_field) end_field = 0;
@@ -109,8 +110,9 @@ void cmd_ic(DeckReader& r, const Command& c) {
     dofs = {static_cast<Dof>(3 + (l[3] - 'X'))};
     velocity = true;
   } else {
-    r.fail(c, fmt::format("bad initial-condition label '{}' (UX..ROTZ, VELX..VELZ, OMGX..OMGZ, ALL)",
-                          c.text(2)));
+    r.fail(c,
+           fmt::format("bad initial-condition label '{}' (UX..ROTZ, VELX..VELZ, OMGX..OMGZ, ALL)",
+                       c.text(2)));
   }
   for (int node : r.node_range(c, 1, 5, 6)) {
     for (Dof d : dofs) {
@@ -125,7 +127,9 @@ void cmd_ic(DeckReader& r, const Command& c) {
   }
 }
 
-void cmd_icdele(DeckReader& r, const Command&) { r.model.initial_conditions.clear(); }
+void cmd_icdele(DeckReader& r, const Command&) {
+  r.model.initial_conditions.clear();
+}
 
 }  // namespace
 

@@ -30,7 +30,9 @@ std::string substitute(const DeckReader& r, const std::string& text) {
   }
 }
 
-void cmd_post_only(DeckReader& r, const Command& c) { store_post_command(r, c); }
+void cmd_post_only(DeckReader& r, const Command& c) {
+  store_post_command(r, c);
+}
 
 }  // namespace
 
@@ -44,10 +46,10 @@ void store_post_command(DeckReader& r, const Command& c) {
 
 void register_post_commands(std::vector<CommandSpec>& t) {
   for (const char* name :
-       {"SET",    "NSOL",   "ESOL",  "RFORCE", "GAPF",   "DERIV",  "INT1",  "NUMVAR", "ADD",
-        "PROD",   "QUOT",   "ABS",   "SQRT",   "FILLDATA", "EXTREM", "TIMERANGE", "STORE",
-        "NSORT",  "ESORT",  "ETABLE", "NSEL",  "ESEL",   "ALLSEL", "FSUM",  "SOLU",   "VARNAM",
-        "LINES",  "/GRID",  "/XRANGE_POST"})
+       {"SET",   "NSOL",   "ESOL",  "RFORCE", "GAPF",        "DERIV",    "INT1",   "NUMVAR",
+        "ADD",   "PROD",   "QUOT",  "ABS",    "SQRT",        "FILLDATA", "EXTREM", "TIMERANGE",
+        "STORE", "NSORT",  "ESORT", "ETABLE", "NSEL",        "ESEL",     "ALLSEL", "FSUM",
+        "SOLU",  "VARNAM", "LINES", "/GRID",  "/XRANGE_POST"})
     t.push_back({name, cmd_post_only, kPost});
 }
 

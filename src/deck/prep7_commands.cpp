@@ -53,7 +53,8 @@ void cmd_et(DeckReader& r, const Command& c) {
 void cmd_keyopt(DeckReader& r, const Command& c) {
   const int id = r.integer(c, 1, 0);
   auto it = r.model.element_types.find(id);
-  if (it == r.model.element_types.end()) r.fail(c, fmt::format("element type {} is not defined", id));
+  if (it == r.model.element_types.end())
+    r.fail(c, fmt::format("element type {} is not defined", id));
   const int k = r.integer(c, 2, 0);
   if (k < 1 || k > 18) r.fail(c, fmt::format("KEYOPT number {} out of range 1..18", k));
   it->second.keyopt[static_cast<std::size_t>(k)] = r.integer(c, 3, 0);
@@ -84,7 +85,8 @@ void cmd_rmore(DeckReader& r, const Command& c) {
 void cmd_rmodif(DeckReader& r, const Command& c) {
   const int id = r.integer(c, 1, 0);
   auto it = r.model.real_sets.find(id);
-  if (it == r.model.real_sets.end()) r.fail(c, fmt::format("real constant set {} is not defined", id));
+  if (it == r.model.real_sets.end())
+    r.fail(c, fmt::format("real constant set {} is not defined", id));
   const int start = r.integer(c, 2, 0);
   if (start <= 0) r.fail(c, "STLOC must be positive");
   auto& v = it->second.values;
@@ -99,9 +101,9 @@ void cmd_rmodif(DeckReader& r, const Command& c) {
 // ---- materials ---------------------------------------------------------------------------------
 
 const std::vector<std::string>& material_labels() {
-  static const std::vector<std::string> labels = {
-      "EX",   "EY",   "EZ",   "NUXY", "NUYZ", "NUXZ", "PRXY", "PRYZ", "PRXZ",
-      "GXY",  "GYZ",  "GXZ",  "DENS", "ALPX", "ALPY", "ALPZ", "DAMP"};
+  static const std::vector<std::string> labels = {"EX",   "EY",   "EZ",   "NUXY", "NUYZ", "NUXZ",
+                                                  "PRXY", "PRYZ", "PRXZ", "GXY",  "GYZ",  "GXZ",
+                                                  "DENS", "ALPX", "ALPY", "ALPZ", "DAMP"};
   return labels;
 }
 
@@ -125,7 +127,9 @@ void set_material(DeckReader& r, const Command& c, const std::string& lab, int m
   if (lab.rfind("NU", 0) == 0) m.props["PR" + lab.substr(2)] = c0;
 }
 
-void cmd_material(DeckReader& r, const Command& c) { set_material(r, c, c.name, 1); }
+void cmd_material(DeckReader& r, const Command& c) {
+  set_material(r, c, c.name, 1);
+}
 
 void cmd_mp(DeckReader& r, const Command& c) {
   if (c.blank(1)) r.fail(c, "property label missing");
@@ -158,7 +162,9 @@ void cmd_secdata(DeckReader& r, const Command& c) {
     r.fail(c, fmt::format("{} must be positive", s.type == "LINK" ? "area" : "thickness"));
 }
 
-void cmd_secnum(DeckReader& r, const Command& c) { r.current_secnum = r.integer(c, 1, 1); }
+void cmd_secnum(DeckReader& r, const Command& c) {
+  r.current_secnum = r.integer(c, 1, 1);
+}
 
 // ---- nodes and elements ------------------------------------------------------------------------
 
@@ -236,9 +242,15 @@ void cmd_se(DeckReader& r, const Command& c) {
   add_superelement(r, c, next_element_id(r), c.text(1));
 }
 
-void cmd_type(DeckReader& r, const Command& c) { r.current_type = r.integer(c, 1, 1); }
-void cmd_real(DeckReader& r, const Command& c) { r.current_real = r.integer(c, 1, 1); }
-void cmd_mat(DeckReader& r, const Command& c) { r.current_mat = r.integer(c, 1, 1); }
+void cmd_type(DeckReader& r, const Command& c) {
+  r.current_type = r.integer(c, 1, 1);
+}
+void cmd_real(DeckReader& r, const Command& c) {
+  r.current_real = r.integer(c, 1, 1);
+}
+void cmd_mat(DeckReader& r, const Command& c) {
+  r.current_mat = r.integer(c, 1, 1);
+}
 
 // ---- masters and gaps ------------------------------------------------------------------------
 
@@ -305,7 +317,8 @@ void apply_kay(DeckReader& r, const Command& c, int key, int value, bool log) {
       o.stress_stiffening = value == 1;
       return;
     default:
-      if (log) r.warn(c, fmt::format("KAY({}) = {} has no known meaning; stored and ignored", key, value));
+      if (log)
+        r.warn(c, fmt::format("KAY({}) = {} has no known meaning; stored and ignored", key, value));
   }
 }
 
@@ -336,7 +349,11 @@ void cmd_kan(DeckReader& r, const Command& c) {
     case 8:
       r.fail(c, fmt::format("KAN={} ({}) is not supported; supported: 0 static, 2 modal, 4 full "
                             "transient, 5 reduced transient, 7 substructure",
-                            kan, kan == 1 ? "buckling" : kan == 3 ? "harmonic" : kan == 6 ? "reduced harmonic" : "spectrum"));
+                            kan,
+                            kan == 1   ? "buckling"
+                            : kan == 3 ? "harmonic"
+                            : kan == 6 ? "reduced harmonic"
+                                       : "spectrum"));
     default:
       r.fail(c, fmt::format("unknown analysis type KAN={}", kan));
   }

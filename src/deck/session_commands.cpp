@@ -9,9 +9,13 @@ namespace impactfe::deck {
 
 namespace {
 
-void cmd_prep7(DeckReader& r, const Command&) { r.processor = kPrep7; }
+void cmd_prep7(DeckReader& r, const Command&) {
+  r.processor = kPrep7;
+}
 
-void cmd_solu(DeckReader& r, const Command&) { r.processor = kSolu; }
+void cmd_solu(DeckReader& r, const Command&) {
+  r.processor = kSolu;
+}
 
 void cmd_post(DeckReader& r, const Command& c) {
   r.processor = c.name == "/POST1" ? kPost1 : kPost26;
@@ -31,7 +35,9 @@ void cmd_finish(DeckReader& r, const Command& c) {
   r.processor = kBegin;
 }
 
-void cmd_title(DeckReader& r, const Command& c) { r.model.title = c.rest; }
+void cmd_title(DeckReader& r, const Command& c) {
+  r.model.title = c.rest;
+}
 
 void cmd_com(DeckReader& r, const Command& c) {
   Log::info("{}:{}: /COM {}", c.where.file, c.where.line, c.rest);
@@ -53,8 +59,10 @@ bool reserved_label(const std::string& name) {
 
 void cmd_set(DeckReader& r, const Command& c) {
   const std::string name = r.label(c, 1);
-  if (!is_parameter_name(name)) r.fail(c, fmt::format("'{}' is not a valid parameter name", c.text(1)));
-  if (reserved_label(name)) r.fail(c, fmt::format("'{}' is a label and cannot be a parameter", name));
+  if (!is_parameter_name(name))
+    r.fail(c, fmt::format("'{}' is not a valid parameter name", c.text(1)));
+  if (reserved_label(name))
+    r.fail(c, fmt::format("'{}' is a label and cannot be a parameter", name));
   if (c.assignment) {
     const std::string& expr = c.text(2);
     if (expr.empty()) {
@@ -122,15 +130,16 @@ void register_session_commands(std::vector<CommandSpec>& t) {
                            "*CREATE", "*USE", "/INPUT", "/EOF"})
     t.push_back({name, nullptr, kAnywhere});
   for (const char* name :
-       {"/SHOW", "/DSCALE", "/FOCUS", "/DIST", "/NOERASE", "/ERASE", "/INTER", "/NOPR", "/GOPR",
-        "/VIEW", "/OUTPUT", "/PNUM", "/PBC", "EPLOT", "NPLOT", "/REPLOT", "/ANGLE", "/AUTO",
-        "/TRIAD", "/PLOPTS", "/WINDOW", "/DEVICE", "/RGB", "/CONTOUR", "/EDGE", "/ESHAPE", "/TYPE",
-        "/USER", "/ZOOM", "/HEADER", "/PAGE", "/FORMAT", "/GRAPHICS", "/GFILE", "/GLINE",
-        "/GCOLUMN", "/XRANGE", "/YRANGE", "/GROPT", "/GTHK", "/WAIT", "/UIS", "/BATCH", "/UNITS",
-        "/VERIFY", "/NERR", "/GST", "/CWD", "/CONFIG", "/SYS", "/AXLAB", "NLIST", "ELIST", "ETLIST",
-        "DLIST", "FLIST", "MPLIST", "RLIST", "KLIST", "LLIST", "/STATUS", "*STATUS", "*LIST",
-        "PLDISP", "PLNSOL", "PLESOL", "PLETAB", "PLVAR", "PRVAR", "PRNSOL", "PRESOL", "PRRSOL",
-        "PRETAB", "PRTIME", "SAVE", "/PSF", "/PSYMB", "GPLOT", "/LINE", "/COLOR"})
+       {"/SHOW",     "/DSCALE", "/FOCUS",  "/DIST",    "/NOERASE", "/ERASE",  "/INTER", "/NOPR",
+        "/GOPR",     "/VIEW",   "/OUTPUT", "/PNUM",    "/PBC",     "EPLOT",   "NPLOT",  "/REPLOT",
+        "/ANGLE",    "/AUTO",   "/TRIAD",  "/PLOPTS",  "/WINDOW",  "/DEVICE", "/RGB",   "/CONTOUR",
+        "/EDGE",     "/ESHAPE", "/TYPE",   "/USER",    "/ZOOM",    "/HEADER", "/PAGE",  "/FORMAT",
+        "/GRAPHICS", "/GFILE",  "/GLINE",  "/GCOLUMN", "/XRANGE",  "/YRANGE", "/GROPT", "/GTHK",
+        "/WAIT",     "/UIS",    "/BATCH",  "/UNITS",   "/VERIFY",  "/NERR",   "/GST",   "/CWD",
+        "/CONFIG",   "/SYS",    "/AXLAB",  "NLIST",    "ELIST",    "ETLIST",  "DLIST",  "FLIST",
+        "MPLIST",    "RLIST",   "KLIST",   "LLIST",    "/STATUS",  "*STATUS", "*LIST",  "PLDISP",
+        "PLNSOL",    "PLESOL",  "PLETAB",  "PLVAR",    "PRVAR",    "PRNSOL",  "PRESOL", "PRRSOL",
+        "PRETAB",    "PRTIME",  "SAVE",    "/PSF",     "/PSYMB",   "GPLOT",   "/LINE",  "/COLOR"})
     t.push_back({name, cmd_graphics, kAnywhere});
 }
 

@@ -166,7 +166,9 @@ void cmd_sstif(DeckReader& r, const Command& c) {
   r.model.options.stress_stiffening = r.on_off(c, 1, false);
 }
 
-void cmd_lumpm(DeckReader& r, const Command& c) { r.model.options.lumped_mass = r.on_off(c, 1, false); }
+void cmd_lumpm(DeckReader& r, const Command& c) {
+  r.model.options.lumped_mass = r.on_off(c, 1, false);
+}
 
 // ---- analysis type and method ------------------------------------------------------------------
 
@@ -184,7 +186,8 @@ void cmd_antype(DeckReader& r, const Command& c) {
   else if (l.empty())
     ;
   else
-    r.fail(c, fmt::format("analysis type '{}' not supported (STATIC, MODAL, TRANS, SUBSTR)", c.text(1)));
+    r.fail(c, fmt::format("analysis type '{}' not supported (STATIC, MODAL, TRANS, SUBSTR)",
+                          c.text(1)));
   const std::string status = r.label(c, 2);
   if (!status.empty() && status != "NEW")
     r.fail(c, fmt::format("ANTYPE status '{}' not supported (only NEW)", c.text(2)));
@@ -230,9 +233,15 @@ void cmd_tintp(DeckReader& r, const Command& c) {
   if (!c.blank(11)) p.alpha_m = r.opt_real(c, 11);
 }
 
-void cmd_alphad(DeckReader& r, const Command& c) { r.model.options.alpha_damping = r.real(c, 1, 0.0); }
-void cmd_betad(DeckReader& r, const Command& c) { r.model.options.beta_damping = r.real(c, 1, 0.0); }
-void cmd_dmprat(DeckReader& r, const Command& c) { r.model.options.damping_ratio = r.real(c, 1, 0.0); }
+void cmd_alphad(DeckReader& r, const Command& c) {
+  r.model.options.alpha_damping = r.real(c, 1, 0.0);
+}
+void cmd_betad(DeckReader& r, const Command& c) {
+  r.model.options.beta_damping = r.real(c, 1, 0.0);
+}
+void cmd_dmprat(DeckReader& r, const Command& c) {
+  r.model.options.damping_ratio = r.real(c, 1, 0.0);
+}
 
 void cmd_mdamp(DeckReader& r, const Command& c) {
   const int start = r.integer(c, 1, r.mdamp_next);
@@ -288,7 +297,9 @@ void cmd_outres(DeckReader& r, const Command& c) {
   r.model.current.output.every = output_frequency(r, c);
 }
 
-void cmd_outpr(DeckReader& r, const Command& c) { r.model.current.print_every = output_frequency(r, c); }
+void cmd_outpr(DeckReader& r, const Command& c) {
+  r.model.current.print_every = output_frequency(r, c);
+}
 
 void cmd_seopt(DeckReader& r, const Command& c) {
   AnalysisOptions& o = r.model.options;
@@ -347,7 +358,8 @@ void cmd_afwrite(DeckReader& r, const Command& c) {
   if (r.kan == 7 && r.model.masters.empty())
     r.fail(c, "KAN=7 (substructure generation) needs master DOFs (M)");
   if (r.kan == 4 && !r.model.masters.empty())
-    r.warn(c, fmt::format("{} master DOFs ignored in a full transient (KAN=4)", r.model.masters.size()));
+    r.warn(c, fmt::format("{} master DOFs ignored in a full transient (KAN=4)",
+                          r.model.masters.size()));
   for (const auto& [key, value] : r.model.options.kay)
     Log::info("KAY({}) = {} (KAN={})", key, value, r.kan);
   Job::Step step;
@@ -423,7 +435,8 @@ void cmd_lswrite(DeckReader& r, const Command& c) {
     return;
   }
   if (l == "STAT") {
-    Log::info("{}:{}: LSWRITE: {} load steps stored", c.where.file, c.where.line, r.lswrite_steps.size());
+    Log::info("{}:{}: LSWRITE: {} load steps stored", c.where.file, c.where.line,
+              r.lswrite_steps.size());
     return;
   }
   const int next = r.lswrite_steps.empty() ? 1 : r.lswrite_steps.rbegin()->first + 1;
@@ -439,7 +452,8 @@ void cmd_lssolve(DeckReader& r, const Command& c) {
   const int inc = std::max(1, r.integer(c, 3, 1));
   for (int n = *first; n <= last; n += inc) {
     auto it = r.lswrite_steps.find(n);
-    if (it == r.lswrite_steps.end()) r.fail(c, fmt::format("load step {} was not written (LSWRITE)", n));
+    if (it == r.lswrite_steps.end())
+      r.fail(c, fmt::format("load step {} was not written (LSWRITE)", n));
     r.model.current = it->second;
     solve_current(r, c);
   }
@@ -451,8 +465,10 @@ void cmd_stress(DeckReader& r, const Command& c) {
   bool analysed = false;
   for (const auto& s : r.job.steps) analysed = analysed || s.analysis.has_value();
   if (!analysed) r.fail(c, "/STRESS without a preceding analysis (/INPUT,27)");
-  const auto& last = *std::find_if(r.job.steps.rbegin(), r.job.steps.rend(),
-                                   [](const Job::Step& s) { return s.analysis.has_value(); })->analysis;
+  const auto& last =
+      *std::find_if(r.job.steps.rbegin(), r.job.steps.rend(), [](const Job::Step& s) {
+         return s.analysis.has_value();
+       })->analysis;
   if (last.options.method != TransientMethod::Reduced)
     r.warn(c, "/STRESS after an analysis that is not a reduced transient (KAN=5)");
   r.processor = kStress;
@@ -469,7 +485,8 @@ void cmd_nstres(DeckReader& r, const Command& c) {
 }
 
 void cmd_end(DeckReader& r, const Command& c) {
-  if (r.stress_requests.empty()) r.fail(c, "END without an NSTRES/TIME request in the /STRESS block");
+  if (r.stress_requests.empty())
+    r.fail(c, "END without an NSTRES/TIME request in the /STRESS block");
   Job::Step step;
   step.expansion = ExpansionPassRequest{r.stress_requests, true, c.where};
   step.model_snapshot = r.model;

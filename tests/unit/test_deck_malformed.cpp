@@ -40,7 +40,9 @@ std::vector<std::filesystem::path> malformed_decks() {
 
 }  // namespace
 
-TEST(DeckMalformed, AtLeastFifteenDecks) { EXPECT_GE(malformed_decks().size(), 15u); }
+TEST(DeckMalformed, AtLeastFifteenDecks) {
+  EXPECT_GE(malformed_decks().size(), 15u);
+}
 
 TEST(DeckMalformed, EachDeckFailsWhereItsHeaderSays) {
   for (const auto& deck : malformed_decks()) {

@@ -27,7 +27,9 @@ std::string error_of(const std::string& text, std::optional<Dialect> dialect = s
   return "";
 }
 
-bool has(const std::map<DofKey, double>& m, int node, Dof d) { return m.count(DofKey{node, d}) != 0; }
+bool has(const std::map<DofKey, double>& m, int node, Dof d) {
+  return m.count(DofKey{node, d}) != 0;
+}
 
 }  // namespace
 
@@ -60,7 +62,8 @@ TEST(DeckModel, NgenCopiesPattern) {
 
 TEST(DeckModel, EgenKeepsPatternAttributesAndIncrements) {
   const Job job = parse(
-      "/PREP7\nET,1,LINK180\nET,2,LINK180\nET,3,LINK180\nN,1\n,2,1\n,3,2\n,4,3\nTYPE,1\nMAT,1\nREAL,1\nE,1,2\n"
+      "/PREP7\nET,1,LINK180\nET,2,LINK180\nET,3,LINK180\nN,1\n,2,1\n,3,2\n,4,3\nTYPE,1\nMAT,"
+      "1\nREAL,1\nE,1,2\n"
       "TYPE,2\nMAT,5\nEGEN,3,1,1,,,1,1,2\n");
   const Model& m = job.model;
   ASSERT_EQ(m.elements.size(), 3u);
@@ -99,7 +102,8 @@ TEST(DeckModel, ElementNodeCountsAndDegenerateShapes) {
   EXPECT_EQ(job.model.elements.at(2).nodes, (std::vector<int>{1, 2, 3, 3, 5, 6, 7, 7}));
   EXPECT_EQ(job.model.elements.at(3).nodes, (std::vector<int>{4}));
   EXPECT_EQ(job.model.elements.at(3).where.line, 14);
-  EXPECT_NE(error_of("/PREP7\nET,1,SOLID45\nN,1\nN,2,1\nE,1,2,1,2\n").find("SOLID45 needs 8 nodes, 4 given"),
+  EXPECT_NE(error_of("/PREP7\nET,1,SOLID45\nN,1\nN,2,1\nE,1,2,1,2\n")
+                .find("SOLID45 needs 8 nodes, 4 given"),
             std::string::npos);
   EXPECT_NE(error_of("/PREP7\nET,1,LINK8\nN,1\nE,,1\n").find("node 1 of element 1 is blank"),
             std::string::npos);
@@ -173,7 +177,8 @@ TEST(DeckModel, TolerantDofLabelIn4xOnly) {
   EXPECT_TRUE(has(job.model.current.constraints, 1, Dof::UX));
   EXPECT_TRUE(has(job.model.current.constraints, 1, Dof::UY));
   EXPECT_EQ(job.model.current.constraints.size(), 2u);
-  EXPECT_NE(error_of("/PREP7\nN,1\nD,1,UX,,,,UY\n").find("mem.inp:3: D: field 6"), std::string::npos);
+  EXPECT_NE(error_of("/PREP7\nN,1\nD,1,UX,,,,UY\n").find("mem.inp:3: D: field 6"),
+            std::string::npos);
 }
 
 TEST(DeckModel, MastersDeduplicatedInInputOrder) {
@@ -188,7 +193,8 @@ TEST(DeckModel, KayBeforeKanIsReinterpreted) {
   EXPECT_EQ(job.model.options.superelement_matrices, 2);
   EXPECT_FALSE(job.model.options.large_deflection);
   EXPECT_EQ(job.model.options.type, AnalysisType::Substructure);
-  EXPECT_NE(error_of("/PREP7\nKAN,3\n").find("KAN=3 (harmonic) is not supported"), std::string::npos);
+  EXPECT_NE(error_of("/PREP7\nKAN,3\n").find("KAN=3 (harmonic) is not supported"),
+            std::string::npos);
 }
 
 TEST(DeckModel, FourXLoadStepsAreCumulativeSnapshots) {

@@ -14,13 +14,17 @@ using namespace impactfe;
 
 namespace {
 
-std::string deck(const std::string& name) { return std::string(IMPACTFE_TEST_DECKS) + "/thesis/" + name; }
+std::string deck(const std::string& name) {
+  return std::string(IMPACTFE_TEST_DECKS) + "/thesis/" + name;
+}
 
 double constraint(const LoadStep& s, int node, Dof d) {
   auto it = s.constraints.find(DofKey{node, d});
   return it == s.constraints.end() ? NAN : it->second;
 }
-bool constrained(const LoadStep& s, int node, Dof d) { return s.constraints.count(DofKey{node, d}) != 0; }
+bool constrained(const LoadStep& s, int node, Dof d) {
+  return s.constraints.count(DofKey{node, d}) != 0;
+}
 double force(const LoadStep& s, int node, Dof d) {
   auto it = s.forces.find(DofKey{node, d});
   return it == s.forces.end() ? NAN : it->second;
@@ -29,9 +33,9 @@ double force(const LoadStep& s, int node, Dof d) {
 }  // namespace
 
 TEST(DeckThesis, AllDecksParse) {
-  for (const char* name : {"pendulum1.inp", "pendulum1_post.inp", "pendulum2.inp",
-                           "pendulum2_post.inp", "crash1.inp", "crash2.inp", "crash3.inp",
-                           "helmet_full.inp", "helmet_segen.inp", "helmet_use.inp"}) {
+  for (const char* name :
+       {"pendulum1.inp", "pendulum1_post.inp", "pendulum2.inp", "pendulum2_post.inp", "crash1.inp",
+        "crash2.inp", "crash3.inp", "helmet_full.inp", "helmet_segen.inp", "helmet_use.inp"}) {
     SCOPED_TRACE(name);
     EXPECT_NO_THROW({
       Job job = read_deck(deck(name));
@@ -112,7 +116,8 @@ TEST(DeckThesis, PendulumPostMacroExpanded) {
   }
   // Fig. 5-1-2: iterations 1, 6, 11, ..., 96 (20 passes of *DO,MARC,1,20 with NJIT += 5).
   ASSERT_EQ(sets.size(), 20u);
-  for (int k = 0; k < 20; ++k) EXPECT_EQ(sets[static_cast<std::size_t>(k)], std::to_string(1 + 5 * k));
+  for (int k = 0; k < 20; ++k)
+    EXPECT_EQ(sets[static_cast<std::size_t>(k)], std::to_string(1 + 5 * k));
   EXPECT_EQ(pldisp, 20);
   EXPECT_EQ(job.post_commands.front().name, "/POST1");
   // /INTER and /SHOW come before /POST1: ignored, not stored.
@@ -140,7 +145,8 @@ TEST(DeckThesis, Crash1) {
   ASSERT_EQ(m.elements.size(), 6u);  // E,1,2 + EGEN,6,1,1
   for (int e = 1; e <= 6; ++e) EXPECT_EQ(m.elements.at(e).nodes, (std::vector<int>{e, e + 1}));
   ASSERT_EQ(m.masters.size(), 7u);
-  for (int i = 0; i < 7; ++i) EXPECT_EQ(m.masters[static_cast<std::size_t>(i)], (DofKey{i + 1, Dof::UX}));
+  for (int i = 0; i < 7; ++i)
+    EXPECT_EQ(m.masters[static_cast<std::size_t>(i)], (DofKey{i + 1, Dof::UX}));
   ASSERT_EQ(m.gap_conditions.size(), 1u);
   const GapCondition& g = m.gap_conditions[0];
   EXPECT_EQ(g.node_i, 10);
@@ -213,12 +219,14 @@ HelmetMesh read_helmet_mesh() {
   HelmetMesh mesh;
   const std::regex node_re(R"((\d+):\(([-0-9.]+),([-0-9.]+),([-0-9.]+)\))");
   for (std::sregex_iterator it(text.begin(), text.end(), node_re), end; it != end; ++it)
-    mesh.nodes[std::stoi((*it)[1])] = Vec3(std::stod((*it)[2]), std::stod((*it)[3]), std::stod((*it)[4]));
+    mesh.nodes[std::stoi((*it)[1])] =
+        Vec3(std::stod((*it)[2]), std::stod((*it)[3]), std::stod((*it)[4]));
   const std::size_t shell_part = text.find("Shell elements");
   const std::string shells = text.substr(text.find('\n', shell_part));
   const std::regex shell_re(R"((\d+):(\d+),(\d+),(\d+))");
   for (std::sregex_iterator it(shells.begin(), shells.end(), shell_re), end; it != end; ++it)
-    mesh.shells[std::stoi((*it)[1])] = {std::stoi((*it)[2]), std::stoi((*it)[3]), std::stoi((*it)[4])};
+    mesh.shells[std::stoi((*it)[1])] = {std::stoi((*it)[2]), std::stoi((*it)[3]),
+                                        std::stoi((*it)[4])};
   return mesh;
 }
 
