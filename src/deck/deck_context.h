@@ -105,7 +105,9 @@ class DeckReader {
   void add_element(const Command& c, int id, std::vector<int> nodes);
   /// Checks that every element has the real set / material / section its type needs
   /// (done when an analysis is frozen, since ANSYS allows R and MP after E).
-  void validate_elements() const;
+  /// Before that, an element whose SECNUM is the modern default 1 (SECNUM never issued) and names
+  /// no defined section gets SECNUM 0 (real constants are used).
+  void validate_elements();
   /// Largest previous load-step end time (TIME must increase).
   std::optional<double> previous_time() const;
 
@@ -125,6 +127,7 @@ class DeckReader {
   int current_real = 1;
   int current_mat = 1;
   int current_secnum = 0;
+  bool secnum_given = false;       // SECNUM issued
   int last_real_set = 0;           // RMORE target
   int last_section = 0;            // SECDATA target
   std::vector<int> defined_by_n;   // nodes defined by N, in order (FILL defaults)

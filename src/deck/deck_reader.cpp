@@ -229,7 +229,10 @@ void DeckReader::add_element(const Command& c, int id, std::vector<int> nodes) {
   model.elements[id] = std::move(rec);
 }
 
-void DeckReader::validate_elements() const {
+void DeckReader::validate_elements() {
+  if (!secnum_given)
+    for (auto& [id, e] : model.elements)
+      if (e.secnum > 0 && model.sections.count(e.secnum) == 0) e.secnum = 0;
   for (const auto& [id, e] : model.elements) {
     const auto t = model.element_types.find(e.type);
     if (t == model.element_types.end())

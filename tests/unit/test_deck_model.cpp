@@ -144,6 +144,10 @@ TEST(DeckModel, SectionsForLink180AndShell181) {
   EXPECT_EQ(job.model.elements.at(1).secnum, 1);
   EXPECT_DOUBLE_EQ(job.model.sections.at(1).data.at(0), 0.25);
   EXPECT_EQ(job.steps.size(), 1u);
+  // Without a section the modern default SECNUM 1 is dropped when the analysis is frozen.
+  const Job no_section =
+      parse("/PREP7\nET,1,LINK180\nR,1,0.25\nMP,EX,1,1\nN,1\nN,2,1\nE,1,2\nFINISH\n/SOLU\nSOLVE\n");
+  EXPECT_EQ(no_section.steps.at(0).model_snapshot.elements.at(1).secnum, 0);
 }
 
 TEST(DeckModel, ConstraintsRangesLabelsAndDeletion) {
