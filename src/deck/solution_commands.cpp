@@ -81,9 +81,8 @@ void cmd_iter(DeckReader& r, const Command& c) {
   s.print_every = r.integer(c, 2, 0);
   s.output.every = r.integer(c, 3, 0);
   if (s.print_every < 0 || s.output.every < 0) r.fail(c, "NPRINT/NPOST must not be negative");
-  // NPRINT/NPOST equal to NITTER mean "last substep only".
-  if (s.print_every >= nitter) s.print_every = 0;
-  if (s.output.every >= nitter && r.kan != 0) s.output.every = 0;
+  // Kept as given (n = every n-th substep and the last): under KAN=5 NITTER is not the
+  // number of steps, so "NPOST >= NITTER" must not be read as "last only".
 }
 
 void cmd_autots(DeckReader& r, const Command& c) {

@@ -167,6 +167,7 @@ TEST(DeckThesis, Crash1) {
   for (const auto& s : a.load_steps) {
     EXPECT_DOUBLE_EQ(*s.dt, 1e-4);
     EXPECT_TRUE(s.stepped);
+    EXPECT_EQ(s.output.every, 1);  // ITER,1,1,1: write every step of the reduced run
   }
   EXPECT_FALSE(a.load_steps[0].time_end.has_value());
   EXPECT_DOUBLE_EQ(*a.load_steps[1].time_end, 1e-4);
