@@ -263,10 +263,14 @@ ResultsReader::ResultsReader(const std::string& path) : impl_(std::make_unique<I
     throw InputError(fmt::format("results file '{}' does not exist", path));
   if (H5Fis_hdf5(path.c_str()) <= 0)
     throw InputError(fmt::format("'{}' is not an impactfe results file (not HDF5)", path));
-  // A running job holds its file open for writing: read without taking the lock.
-  Handle fapl(check(H5Pcreate(H5P_FILE_ACCESS), "create file access list"));
-  H5Pset_file_locking(fapl, false, true);
-  hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl);
+  // Default access first: in the same process this shares the file a live ResultsWriter has
+  // open. Another process's running job holds the file lock: then read without taking it.
+  hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (f < 0) {
+    Handle fapl(check(H5Pcreate(H5P_FILE_ACCESS), "create file access list"));
+    H5Pset_file_locking(fapl, false, true);
+    f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl);
+  }
   if (f < 0) throw InputError(fmt::format("cannot open results file '{}'", path));
   impl_->file = Handle(f);
   try {
