@@ -295,6 +295,36 @@ TEST_F(ResultsFileTest, KilledRunKeepsAppendedPoints) {
   expect_three_points(path);
 }
 
+TEST_F(ResultsFileTest, ReaderOpensFileOfRunningJobInAnotherProcess) {
+  const std::string path = file("running.h5");
+  int ready[2];
+  ASSERT_EQ(pipe(ready), 0);
+  pid_t pid = fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    close(ready[0]);
+    alarm(30);                             // never outlive a broken parent
+    ResultsWriter w(path, small_model());  // holds the HDF5 file lock while it lives
+    write_three_points(w);
+    char c = 1;
+    if (write(ready[1], &c, 1) != 1) _exit(2);
+    pause();  // keep the file open until killed
+    _exit(0);
+  }
+  close(ready[1]);
+  struct KillChild {  // also when the reader throws
+    pid_t pid;
+    ~KillChild() {
+      kill(pid, SIGKILL);
+      waitpid(pid, nullptr, 0);
+    }
+  } guard{pid};
+  char c = 0;
+  ASSERT_EQ(read(ready[0], &c, 1), 1);
+  close(ready[0]);
+  expect_three_points(path);  // `impactfe info` on a running job
+}
+
 TEST_F(ResultsFileTest, MergeRuleReducedThenExpansion) {
   {
     ResultsWriter w(file("merge.h5"), small_model());
