@@ -96,7 +96,9 @@ void DirectSolution::set_constraints(const LoadStep& step) {
   }
   constrained_ = std::move(wanted);
   dofs_ = std::move(dofs);
-  assembler_ = std::make_unique<Assembler>(structure_.elements(), *dofs_, ctx_);
+  assembler_ = std::make_unique<Assembler>(structure_.elements(), *dofs_, ctx_,
+                                           structure_.options().alpha_damping,
+                                           structure_.options().beta_damping);
   mass_all_ = assembler_->mass_matrix();
   solver_ = make_linear_solver(dofs_->n_free());
   effective_ = assembler_->pattern();

@@ -5,8 +5,8 @@
 namespace impactfe {
 
 Assembler::Assembler(const std::vector<std::unique_ptr<Element>>& elements, const DofMap& dofs,
-                     const ElementContext& ctx)
-    : elements_(elements), dofs_(dofs), ctx_(ctx) {
+                     const ElementContext& ctx, double alpha, double beta)
+    : elements_(elements), dofs_(dofs), ctx_(ctx), alpha_(alpha), beta_(beta) {
   const int nf = dofs_.n_free();
   // Pattern: every pair of free DOFs that share an element (lower triangle).
   std::vector<Eigen::Triplet<double, int>> triplets;
@@ -49,7 +49,7 @@ Assembler::Assembler(const std::vector<std::unique_ptr<Element>>& elements, cons
       elements_[e]->tangent(ctx_, zero, linear_stiffness_[e], f);
       is_linear_[e] = true;
     }
-    has_damping_ = has_damping_ || elements_[e]->has_damping();
+    has_damping_ = has_damping_ || elements_[e]->has_damping() || alpha_ != 0.0 || beta_ != 0.0;
   }
 }
 
@@ -81,8 +81,14 @@ void Assembler::assemble(const IntegrationCoefficients& coeff, const VectorXd& u
       element.tangent(ctx_, ue, k, fe);
     }
     const MatrixXd& ke = is_linear_[e] ? linear_stiffness_[e] : k;
-    const bool damped = element.has_damping();
-    if (damped) element.damping(ctx_, ue, c);
+    const bool rayleigh = alpha_ != 0.0 || beta_ != 0.0;
+    const bool damped = element.has_damping() || rayleigh;
+    if (element.has_damping()) {
+      element.damping(ctx_, ue, c);
+    } else if (rayleigh) {
+      c.setZero(n, n);
+    }
+    if (rayleigh) c += alpha_ * mass_[e] + beta_ * (is_linear_[e] ? linear_stiffness_[e] : k);
     if (out.internal_force)
       for (int a = 0; a < n; ++a) (*out.internal_force)(idx[a]) += fe(a);
     if (damped && out.damping_force) {
@@ -125,11 +131,22 @@ SparseMatrix Assembler::full_matrix(Which which, const VectorXd& u) const {
           elements_[e]->tangent(ctx_, ue, m, fe);
         }
         break;
-      case Which::Damping:
-        if (!elements_[e]->has_damping()) continue;
+      case Which::Damping: {
+        const bool rayleigh = alpha_ != 0.0 || beta_ != 0.0;
+        if (!elements_[e]->has_damping() && !rayleigh) continue;
         gather(e, u, ue);
-        elements_[e]->damping(ctx_, ue, m);
+        if (elements_[e]->has_damping()) {
+          elements_[e]->damping(ctx_, ue, m);
+        } else {
+          m.setZero(n, n);
+        }
+        if (rayleigh) {
+          MatrixXd ke = linear_stiffness_[e];
+          if (!is_linear_[e]) elements_[e]->tangent(ctx_, ue, ke, fe);
+          m += alpha_ * mass_[e] + beta_ * ke;
+        }
         break;
+      }
     }
     for (int a = 0; a < n; ++a)
       for (int b = 0; b < n; ++b)

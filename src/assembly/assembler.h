@@ -15,8 +15,10 @@ namespace impactfe {
 
 class Assembler {
  public:
+  /// `alpha`, `beta`: Rayleigh damping C += alpha M + beta K (ALPHAD, BETAD), element by element
+  /// with the current tangent.
   Assembler(const std::vector<std::unique_ptr<Element>>& elements, const DofMap& dofs,
-            const ElementContext& ctx);
+            const ElementContext& ctx, double alpha = 0.0, double beta = 0.0);
 
   const DofMap& dofs() const { return dofs_; }
   const ElementContext& context() const { return ctx_; }
@@ -62,6 +64,8 @@ class Assembler {
   std::vector<MatrixXd> linear_stiffness_;  // K_e of linear elements (evaluated once)
   std::vector<bool> is_linear_;
   bool has_damping_ = false;
+  double alpha_ = 0.0;  // Rayleigh mass coefficient
+  double beta_ = 0.0;   // Rayleigh stiffness coefficient
 };
 
 }  // namespace impactfe
