@@ -1,14 +1,391 @@
-// Placeholder until the brick8 element lands.
+#include "elements/brick8.h"
+
 #include <fmt/format.h>
 
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+
 #include "core/errors.h"
-#include "elements/element.h"
+#include "core/log.h"
 
 namespace impactfe {
 
-std::unique_ptr<Element> make_brick8(const ElementBuildContext&, const ElementRecord& record) {
-  throw NotImplementedError(
-      fmt::format("element {}: element not implemented yet (brick8)", record.id));
+namespace {
+
+// Natural coordinates of the corners I..P (IJKL at ζ = -1, MNOP at ζ = +1).
+constexpr double kCornerXi[8][3] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1},
+                                    {-1, -1, 1},  {1, -1, 1},  {1, 1, 1},  {-1, 1, 1}};
+
+/// Trilinear shape functions and their natural derivatives (row i = d/dξ_i) at (ξ, η, ζ).
+void shape(const double* xi, Eigen::Matrix<double, 8, 1>& n, Eigen::Matrix<double, 3, 8>& dn) {
+  for (int a = 0; a < 8; ++a) {
+    const double f0 = 1.0 + xi[0] * kCornerXi[a][0];
+    const double f1 = 1.0 + xi[1] * kCornerXi[a][1];
+    const double f2 = 1.0 + xi[2] * kCornerXi[a][2];
+    n(a) = 0.125 * f0 * f1 * f2;
+    dn(0, a) = 0.125 * kCornerXi[a][0] * f1 * f2;
+    dn(1, a) = 0.125 * f0 * kCornerXi[a][1] * f2;
+    dn(2, a) = 0.125 * f0 * f1 * kCornerXi[a][2];
+  }
+}
+
+/// Jacobian J(i, j) = ∂x_j/∂ξ_i (Bathe's convention: ∂/∂x = J⁻¹ ∂/∂ξ).
+Eigen::Matrix3d jacobian(const Eigen::Matrix<double, 3, 8>& dn, const std::array<Vec3, 8>& x) {
+  Eigen::Matrix3d j = Eigen::Matrix3d::Zero();
+  for (int a = 0; a < 8; ++a) j += dn.col(a) * x[a].transpose();
+  return j;
+}
+
+Eigen::Matrix3d voigt_to_tensor(const Vector6d& s) {
+  Eigen::Matrix3d t;
+  t << s(0), s(3), s(5), s(3), s(1), s(4), s(5), s(4), s(2);
+  return t;
+}
+
+}  // namespace
+
+Brick8::Brick8(int id, const std::array<int, 8>& nodes, const std::array<Vec3, 8>& x,
+               const IsotropicElasticity& material, bool extra_shapes, const SourceLocation& where)
+    : Element(id), nodes_(nodes), x_(x) {
+  // Distinct nodes in order of first appearance; coincident corners share DOFs.
+  std::vector<int> unique;
+  for (int c = 0; c < 8; ++c) {
+    const auto it = std::find(unique.begin(), unique.end(), nodes[c]);
+    if (it == unique.end()) {
+      corner_to_unique_[c] = static_cast<int>(unique.size());
+      unique.push_back(nodes[c]);
+    } else {
+      corner_to_unique_[c] = static_cast<int>(it - unique.begin());
+    }
+  }
+  n_unique_ = static_cast<int>(unique.size());
+  if (n_unique_ < 4)
+    throw InputError(where, fmt::format("element {}: a brick needs at least 4 distinct nodes, "
+                                        "got {}",
+                                        id, n_unique_));
+  for (int node : unique)
+    for (Dof dof : {Dof::UX, Dof::UY, Dof::UZ}) dofs_.push_back(DofKey{node, dof});
+
+  d_ = isotropic_elasticity_matrix(material.young, material.poisson);
+  density_ = material.density;
+  // Wilson's bubbles need a genuine hexahedron: dropped for collapsed shapes (ANSYS does too).
+  extra_shapes_ = extra_shapes && n_unique_ == 8;
+
+  // Length scale for the Jacobian test: a determinant below 1e-10 of (size/2)³ is "zero".
+  double size = 0.0;
+  for (int a = 0; a < 8; ++a)
+    for (int b = a + 1; b < 8; ++b) size = std::max(size, (x[a] - x[b]).norm());
+  const double det_floor = 1e-10 * std::pow(0.5 * size, 3);
+
+  Eigen::Matrix<double, 8, 1> n;
+  Eigen::Matrix<double, 3, 8> dn;
+  const double centre[3] = {0.0, 0.0, 0.0};
+  shape(centre, n, dn);
+  const Eigen::Matrix3d j0 = jacobian(dn, x);
+  const double det0 = j0.determinant();
+  if (!(det0 > det_floor))
+    throw InputError(where, fmt::format("element {}: zero or negative Jacobian determinant {:.6g} "
+                                        "at the element centre (check the node order I..P and "
+                                        "coincident nodes)",
+                                        id, det0));
+  const Eigen::Matrix3d j0_inv = j0.inverse();
+  grad_centre_ = j0_inv * dn;
+
+  const double g = 1.0 / std::sqrt(3.0);
+  volume_ = 0.0;
+  for (int p = 0; p < kGauss; ++p) {
+    const double xi[3] = {g * kCornerXi[p][0], g * kCornerXi[p][1], g * kCornerXi[p][2]};
+    shape(xi, n, dn);
+    const Eigen::Matrix3d j = jacobian(dn, x);
+    const double det = j.determinant();
+    if (!(det > det_floor))
+      throw InputError(where, fmt::format("element {}: zero or negative Jacobian determinant "
+                                          "{:.6g} at Gauss point {} (check the node order I..P "
+                                          "and coincident nodes)",
+                                          id, det, p + 1));
+    GaussPoint& gp = gauss_[p];
+    gp.n = n;
+    gp.dv = det;  // Gauss weights are 1 for the 2-point rule
+    gp.grad.setZero();
+    gp.grad.leftCols<8>() = j.inverse() * dn;
+    // Taylor's modification: bubble gradients with the centre Jacobian, scaled by det J0/det J,
+    // so that ∫ ∂P/∂x dV = det J0 J0⁻¹ ∫ ∂P/∂ξ dξ = 0 and constant strain is reproduced.
+    for (int k = 0; k < kModes; ++k) {
+      Eigen::Vector3d dp = Eigen::Vector3d::Zero();
+      dp(k) = -2.0 * xi[k];
+      gp.grad.col(8 + k) = (det0 / det) * (j0_inv * dp);
+    }
+    volume_ += det;
+  }
+
+  // Small-strain stiffness (q = 0 in the total-Lagrangian sum), condensed once.
+  const int nf = extra_shapes_ ? kFunctions : 8;
+  Eigen::MatrixXd kfull;
+  Eigen::VectorXd ffull;
+  tl_sum(nf, Eigen::VectorXd::Zero(3 * nf), kfull, ffull);
+  mode_recovery_.setZero();
+  if (extra_shapes_) {
+    const Eigen::MatrixXd kaa = kfull.bottomRightCorner(9, 9);
+    mode_recovery_ = -kaa.ldlt().solve(kfull.bottomLeftCorner(9, 24));
+    k_linear_ = kfull.topLeftCorner(24, 24) + kfull.topRightCorner(24, 9) * mode_recovery_;
+    k_linear_ = 0.5 * (k_linear_ + k_linear_.transpose()).eval();
+  } else {
+    k_linear_ = kfull;
+  }
+}
+
+Eigen::Matrix<double, 24, 1> Brick8::to_corners(const Eigen::VectorXd& u) const {
+  Eigen::Matrix<double, 24, 1> uc;
+  for (int c = 0; c < 8; ++c) uc.segment<3>(3 * c) = u.segment<3>(3 * corner_to_unique_[c]);
+  return uc;
+}
+
+void Brick8::from_corners(const Eigen::MatrixXd& kc, const Eigen::VectorXd& fc, Eigen::MatrixXd& k,
+                          Eigen::VectorXd& f) const {
+  if (n_unique_ == 8) {
+    // Corner order is the DOF order when no node repeats.
+    k = kc;
+    f = fc;
+    return;
+  }
+  const int n = 3 * n_unique_;
+  k.setZero(n, n);
+  f.setZero(n);
+  for (int a = 0; a < 8; ++a) {
+    const int p = 3 * corner_to_unique_[a];
+    f.segment<3>(p) += fc.segment<3>(3 * a);
+    for (int b = 0; b < 8; ++b)
+      k.block<3, 3>(p, 3 * corner_to_unique_[b]) += kc.block<3, 3>(3 * a, 3 * b);
+  }
+}
+
+void Brick8::tl_sum(int nf, const Eigen::VectorXd& q, Eigen::MatrixXd& k,
+                    Eigen::VectorXd& f) const {
+  const int nq = 3 * nf;
+  k.setZero(nq, nq);
+  f.setZero(nq);
+  Eigen::Matrix<double, 6, Eigen::Dynamic> b(6, nq);
+  for (const GaussPoint& gp : gauss_) {
+    const auto grad = gp.grad.leftCols(nf);
+    // Deformation gradient F = I + Σ q_a ⊗ ∇N_a (Bathe 6.2.3).
+    Eigen::Matrix3d f_grad = Eigen::Matrix3d::Identity();
+    for (int a = 0; a < nf; ++a) f_grad += q.segment<3>(3 * a) * grad.col(a).transpose();
+    const Eigen::Matrix3d e = 0.5 * (f_grad.transpose() * f_grad - Eigen::Matrix3d::Identity());
+    Vector6d e_voigt;
+    e_voigt << e(0, 0), e(1, 1), e(2, 2), 2.0 * e(0, 1), 2.0 * e(1, 2), 2.0 * e(0, 2);
+    const Vector6d s = d_ * e_voigt;  // 2nd Piola-Kirchhoff, St. Venant-Kirchhoff
+    // B_L: variation of the Green strain, δE = B_L δq (reduces to the small-strain B at F = I).
+    for (int a = 0; a < nf; ++a) {
+      const double g0 = grad(0, a), g1 = grad(1, a), g2 = grad(2, a);
+      for (int i = 0; i < 3; ++i) {
+        const int col = 3 * a + i;
+        b(0, col) = f_grad(i, 0) * g0;
+        b(1, col) = f_grad(i, 1) * g1;
+        b(2, col) = f_grad(i, 2) * g2;
+        b(3, col) = f_grad(i, 0) * g1 + f_grad(i, 1) * g0;
+        b(4, col) = f_grad(i, 1) * g2 + f_grad(i, 2) * g1;
+        b(5, col) = f_grad(i, 0) * g2 + f_grad(i, 2) * g0;
+      }
+    }
+    f.noalias() += gp.dv * (b.transpose() * s);
+    k.noalias() += gp.dv * (b.transpose() * d_ * b);
+    if (s.squaredNorm() > 0.0) {
+      // Geometric stiffness ∫ ∇N_aᵀ S ∇N_b dV0 on each displacement component.
+      const Eigen::MatrixXd gs = gp.dv * (grad.transpose() * voigt_to_tensor(s) * grad);
+      for (int a = 0; a < nf; ++a)
+        for (int c = 0; c < nf; ++c)
+          for (int i = 0; i < 3; ++i) k(3 * a + i, 3 * c + i) += gs(a, c);
+    }
+  }
+}
+
+void Brick8::tangent_linear(const ElementContext& ctx, const Eigen::Matrix<double, 24, 1>& uc,
+                            Eigen::MatrixXd& kc, Eigen::VectorXd& fc) const {
+  kc = k_linear_;
+  fc = k_linear_ * uc;
+  if (!ctx.stress_stiffening) return;
+  // Stress stiffness with the small-strain stress of u (standard functions only).
+  const Eigen::Matrix<double, 9, 1> alpha = mode_recovery_ * uc;
+  Eigen::Matrix<double, 24, 24> kg = Eigen::Matrix<double, 24, 24>::Zero();
+  for (const GaussPoint& gp : gauss_) {
+    Eigen::Matrix3d h = Eigen::Matrix3d::Zero();
+    for (int a = 0; a < 8; ++a) h += uc.segment<3>(3 * a) * gp.grad.col(a).transpose();
+    if (extra_shapes_)
+      for (int m = 0; m < kModes; ++m)
+        h += alpha.segment<3>(3 * m) * gp.grad.col(8 + m).transpose();
+    Vector6d eps;
+    eps << h(0, 0), h(1, 1), h(2, 2), h(0, 1) + h(1, 0), h(1, 2) + h(2, 1), h(0, 2) + h(2, 0);
+    const Vector6d sigma = d_ * eps;
+    const auto grad = gp.grad.leftCols<8>();
+    const Eigen::Matrix<double, 8, 8> gs =
+        gp.dv * (grad.transpose() * voigt_to_tensor(sigma) * grad);
+    for (int a = 0; a < 8; ++a)
+      for (int c = 0; c < 8; ++c)
+        for (int i = 0; i < 3; ++i) kg(3 * a + i, 3 * c + i) += gs(a, c);
+  }
+  kc += kg;
+  fc += kg * uc;
+}
+
+void Brick8::tangent_large(const Eigen::Matrix<double, 24, 1>& uc, Eigen::MatrixXd& kc,
+                           Eigen::VectorXd& fc) const {
+  if (!extra_shapes_) {
+    tl_sum(8, uc, kc, fc);
+    return;
+  }
+  // Incompatible modes in the deformation gradient: the bubble amplitudes α are internal, so
+  // solve ∂Π/∂α = f_α(u, α) = 0 by Newton for this u, then condense the consistent tangent:
+  // K = K_uu - K_uα K_αα⁻¹ K_αu (exact at f_α = 0).
+  Eigen::VectorXd q = Eigen::VectorXd::Zero(3 * kFunctions);
+  q.head<24>() = uc;
+  q.tail<9>() = mode_recovery_ * uc;  // small-strain prediction
+  Eigen::MatrixXd kq;
+  Eigen::VectorXd fq;
+  const double scale = std::max(uc.lpNorm<Eigen::Infinity>(), 1e-300);
+  bool converged = false;
+  for (int iter = 0; iter < 30; ++iter) {
+    tl_sum(kFunctions, q, kq, fq);
+    const Eigen::Matrix<double, 9, 1> step =
+        -kq.bottomRightCorner<9, 9>().ldlt().solve(fq.tail<9>());
+    q.tail<9>() += step;
+    if (step.lpNorm<Eigen::Infinity>() <=
+        1e-13 * std::max(scale, q.tail<9>().lpNorm<Eigen::Infinity>())) {
+      converged = true;
+      break;
+    }
+  }
+  if (!converged)
+    Log::warn("element {}: incompatible-mode amplitudes did not converge (large deflection)", id());
+  tl_sum(kFunctions, q, kq, fq);
+  const Eigen::Matrix<double, 9, 9> kaa = kq.bottomRightCorner<9, 9>();
+  const Eigen::Matrix<double, 9, 24> kau = kq.bottomLeftCorner<9, 24>();
+  const auto kaa_ldlt = kaa.ldlt();
+  kc = kq.topLeftCorner<24, 24>() - kau.transpose() * kaa_ldlt.solve(kau);
+  kc = 0.5 * (kc + kc.transpose()).eval();
+  fc = fq.head<24>() - kau.transpose() * kaa_ldlt.solve(fq.tail<9>());
+}
+
+void Brick8::tangent(const ElementContext& ctx, const Eigen::VectorXd& u, Eigen::MatrixXd& K,
+                     Eigen::VectorXd& f_int) const {
+  const Eigen::Matrix<double, 24, 1> uc = to_corners(u);
+  Eigen::MatrixXd kc;
+  Eigen::VectorXd fc;
+  if (ctx.large_deflection)
+    tangent_large(uc, kc, fc);
+  else
+    tangent_linear(ctx, uc, kc, fc);
+  from_corners(kc, fc, K, f_int);
+}
+
+Eigen::MatrixXd Brick8::scalar_mass() const {
+  Eigen::Matrix<double, 8, 8> mc = Eigen::Matrix<double, 8, 8>::Zero();
+  for (const GaussPoint& gp : gauss_)
+    mc.noalias() += (density_ * gp.dv) * (gp.n * gp.n.transpose());
+  Eigen::MatrixXd m = Eigen::MatrixXd::Zero(n_unique_, n_unique_);
+  for (int a = 0; a < 8; ++a)
+    for (int b = 0; b < 8; ++b) m(corner_to_unique_[a], corner_to_unique_[b]) += mc(a, b);
+  return m;
+}
+
+void Brick8::mass(const ElementContext& ctx, Eigen::MatrixXd& M) const {
+  Eigen::MatrixXd ms = scalar_mass();
+  if (ctx.lumped_mass) {
+    // HRZ (Hinton-Rock-Zienkiewicz): diagonal of the consistent matrix scaled to ρV.
+    const Eigen::VectorXd diag = ms.diagonal();
+    const double sum = diag.sum();
+    ms.setZero();
+    if (sum > 0.0) ms.diagonal() = diag * (density_ * volume_ / sum);
+  }
+  const int n = 3 * n_unique_;
+  M.setZero(n, n);
+  for (int p = 0; p < n_unique_; ++p)
+    for (int q = 0; q < n_unique_; ++q)
+      for (int i = 0; i < 3; ++i) M(3 * p + i, 3 * q + i) = ms(p, q);
+}
+
+Vector6d Brick8::centroid_stress(const ElementContext& ctx, const Eigen::VectorXd& u) const {
+  const Eigen::Matrix<double, 24, 1> uc = to_corners(u);
+  // The bubble gradients vanish at ξ = 0, so only the trilinear part contributes here.
+  Eigen::Matrix3d h = Eigen::Matrix3d::Zero();
+  for (int a = 0; a < 8; ++a) h += uc.segment<3>(3 * a) * grad_centre_.col(a).transpose();
+  if (!ctx.large_deflection) {
+    Vector6d eps;
+    eps << h(0, 0), h(1, 1), h(2, 2), h(0, 1) + h(1, 0), h(1, 2) + h(2, 1), h(0, 2) + h(2, 0);
+    return d_ * eps;
+  }
+  const Eigen::Matrix3d f_grad = Eigen::Matrix3d::Identity() + h;
+  const Eigen::Matrix3d e = 0.5 * (f_grad.transpose() * f_grad - Eigen::Matrix3d::Identity());
+  Vector6d e_voigt;
+  e_voigt << e(0, 0), e(1, 1), e(2, 2), 2.0 * e(0, 1), 2.0 * e(1, 2), 2.0 * e(0, 2);
+  // Cauchy stress σ = F S Fᵀ / det F (Bathe 6.2.2).
+  const Eigen::Matrix3d sigma =
+      f_grad * voigt_to_tensor(d_ * e_voigt) * f_grad.transpose() / f_grad.determinant();
+  Vector6d out;
+  out << sigma(0, 0), sigma(1, 1), sigma(2, 2), sigma(0, 1), sigma(1, 2), sigma(0, 2);
+  return out;
+}
+
+const std::vector<std::string>& Brick8::result_names() const {
+  static const std::vector<std::string> names = {"SX", "SY", "SZ", "SXY",  "SYZ", "SXZ",
+                                                 "S1", "S2", "S3", "SINT", "SEQV"};
+  return names;
+}
+
+void Brick8::results(const ElementContext& ctx, const Eigen::VectorXd& u, const Eigen::VectorXd& v,
+                     ElementResultValues& out) const {
+  const Vector6d s = centroid_stress(ctx, u);
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(voigt_to_tensor(s),
+                                                          Eigen::EigenvaluesOnly);
+  const Eigen::Vector3d pr = es.eigenvalues();  // ascending
+  const double s1 = pr(2), s2 = pr(1), s3 = pr(0);
+  const double seqv =
+      std::sqrt(0.5 * ((s1 - s2) * (s1 - s2) + (s2 - s3) * (s2 - s3) + (s3 - s1) * (s3 - s1)));
+  out = {s(0), s(1), s(2), s(3), s(4), s(5), s1, s2, s3, s1 - s3, seqv};
+}
+
+std::unique_ptr<Element> make_brick8(const ElementBuildContext& ctx, const ElementRecord& record) {
+  const Model& model = ctx.model;
+  if (record.nodes.size() != 8)
+    throw InputError(record.where, fmt::format("element {}: an 8-node brick needs nodes I..P, "
+                                               "got {} nodes",
+                                               record.id, record.nodes.size()));
+  std::array<int, 8> nodes{};
+  std::array<Vec3, 8> x;
+  for (int c = 0; c < 8; ++c) {
+    nodes[c] = record.nodes[c];
+    const auto it = model.nodes.find(nodes[c]);
+    if (it == model.nodes.end())
+      throw InputError(record.where,
+                       fmt::format("element {}: node {} is not defined", record.id, nodes[c]));
+    x[c] = it->second.x;
+  }
+  const auto type_it = model.element_types.find(record.type);
+  if (type_it == model.element_types.end())
+    throw InputError(record.where, fmt::format("element {}: element type {} is not defined",
+                                               record.id, record.type));
+  const ElementType& type = type_it->second;
+  const ElementTypeInfo* info = find_element_type(type.ansys_name);
+  const bool solid185 = info != nullptr && info->number == 185;
+  // SOLID45: KEYOPT(1) = 1 suppresses the extra shapes. SOLID185: only KEYOPT(2) = 3
+  // (simplified enhanced strain) maps to them; B-bar (0), reduced (1) and enhanced strain (2)
+  // are approximated by full 2x2x2 integration without extra shapes (docs/elements/solid45.md).
+  const bool extra = solid185 ? type.key(2) == 3 : type.key(1) != 1;
+  const bool approximated = solid185 ? type.key(2) != 3 : type.key(2) == 1;
+  if (approximated) {
+    // Warn once per element type: only for the first element of this type.
+    const auto first = std::find_if(model.elements.begin(), model.elements.end(),
+                                    [&](const auto& kv) { return kv.second.type == record.type; });
+    if (first == model.elements.end() || first->first == record.id)
+      Log::warn(
+          "element type {} ({} KEYOPT(2) = {}): integrated with full 2x2x2 Gauss{} "
+          "(approximation)",
+          record.type, solid185 ? "SOLID185" : "SOLID45", type.key(2),
+          extra ? " and extra shapes" : ", no extra shapes");
+  }
+  const IsotropicElasticity material =
+      read_isotropic_elasticity(model, record.mat, record.id, record.where);
+  return std::make_unique<Brick8>(record.id, nodes, x, material, extra, record.where);
 }
 
 }  // namespace impactfe

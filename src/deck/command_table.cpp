@@ -1,0 +1,74 @@
+// The single command table: every handler group registers its commands here once.
+#include <algorithm>
+
+#include "deck/deck_context.h"
+
+namespace impactfe::deck {
+
+const char* processor_name(unsigned processor) {
+  switch (processor) {
+    case kBegin:
+      return "Begin level";
+    case kPrep7:
+      return "/PREP7";
+    case kSolu:
+      return "/SOLU";
+    case kPost1:
+      return "/POST1";
+    case kPost26:
+      return "/POST26";
+    case kStress:
+      return "/STRESS";
+    default:
+      return "?";
+  }
+}
+
+const std::vector<CommandSpec>& command_table() {
+  static const std::vector<CommandSpec> table = [] {
+    std::vector<CommandSpec> t;
+    register_session_commands(t);
+    register_prep7_commands(t);
+    register_generation_commands(t);
+    register_solution_commands(t);
+    register_load_commands(t);
+    register_post_commands(t);
+    return t;
+  }();
+  return table;
+}
+
+const CommandSpec* find_command(const std::string& name) {
+  for (const auto& spec : command_table())
+    if (name == spec.name) return &spec;
+  return nullptr;
+}
+
+namespace {
+/// Leading '/' or '*' (kept) plus the first four characters after it.
+std::string significant(const std::string& name) {
+  std::size_t lead = (!name.empty() && (name[0] == '/' || name[0] == '*')) ? 1 : 0;
+  return name.substr(0, lead + 4);
+}
+}  // namespace
+
+const CommandSpec* find_command_by_prefix(const std::string& name, bool& ambiguous) {
+  ambiguous = false;
+  const std::size_t lead = (!name.empty() && (name[0] == '/' || name[0] == '*')) ? 1 : 0;
+  if (name.size() < lead + 4) return nullptr;
+  const std::string key = significant(name);
+  const CommandSpec* found = nullptr;
+  for (const auto& spec : command_table()) {
+    const std::string candidate = spec.name;
+    if (candidate.size() < key.size()) continue;
+    if (significant(candidate) != key) continue;
+    if (found != nullptr) {
+      ambiguous = true;
+      return nullptr;
+    }
+    found = &spec;
+  }
+  return found;
+}
+
+}  // namespace impactfe::deck

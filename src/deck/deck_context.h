@@ -1,0 +1,187 @@
+#pragma once
+/// Internal state of one deck read: the model being built, the current processor, the
+/// parameters, the 4x load-step list and the modern open analysis. Shared by the handler files
+/// (prep7_commands.cpp, solution_commands.cpp, post_commands.cpp, session_commands.cpp); not a
+/// public interface.
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/log.h"
+#include "core/model.h"
+#include "deck/deck_reader.h"
+#include "deck/expression.h"
+#include "deck/lexer.h"
+
+namespace impactfe::deck {
+
+/// Processors (phases) a command may be valid in; bit mask.
+enum Processor : unsigned {
+  kBegin = 1u,
+  kPrep7 = 2u,
+  kSolu = 4u,
+  kPost1 = 8u,
+  kPost26 = 16u,
+  kStress = 32u,  // 4x /STRESS block
+};
+inline constexpr unsigned kAnywhere = 63u;
+inline constexpr unsigned kPrepSolu = kPrep7 | kSolu;
+inline constexpr unsigned kPost = kPost1 | kPost26;
+const char* processor_name(unsigned processor);
+
+/// A command ready for its handler: resolved (upper-case) name and raw field texts.
+struct Command {
+  std::string name;
+  std::vector<std::string> fields;  // fields[0] is field 1
+  std::string rest;                 // raw text after the first comma (/TITLE, /COM)
+  bool assignment = false;          // modern `Par = expr`
+  SourceLocation where;
+  int n_fields() const { return static_cast<int>(fields.size()); }
+  /// Field i (1-based), "" when absent.
+  const std::string& text(int i) const;
+  bool blank(int i) const { return text(i).empty(); }
+  /// Index of the last non-blank field (0 when none).
+  int last_given() const;
+};
+
+class DeckReader;
+using Handler = void (*)(DeckReader&, const Command&);
+
+/// One entry of the command table: name → handler and the processors it is valid in.
+/// Control commands (*DO, *IF, /INPUT, ...) have a null handler; the executor runs them.
+struct CommandSpec {
+  const char* name;
+  Handler handler;
+  unsigned processors;
+};
+
+/// The command table (all handler groups registered once).
+const std::vector<CommandSpec>& command_table();
+/// Exact lookup of an upper-case name.
+const CommandSpec* find_command(const std::string& name);
+/// 4x rule (APDL_SUBSET §1.8): the unique command whose first four significant characters (after
+/// a leading '/' or '*') match. nullptr when none; `ambiguous` set when several match.
+const CommandSpec* find_command_by_prefix(const std::string& name, bool& ambiguous);
+
+void register_session_commands(std::vector<CommandSpec>& table);
+void register_prep7_commands(std::vector<CommandSpec>& table);
+void register_generation_commands(std::vector<CommandSpec>& table);
+void register_solution_commands(std::vector<CommandSpec>& table);
+void register_load_commands(std::vector<CommandSpec>& table);
+void register_post_commands(std::vector<CommandSpec>& table);
+
+class DeckReader {
+ public:
+  DeckReader(const DeckOptions& options, Dialect dialect, const std::string& jobname);
+
+  /// Reads and executes a deck file (`where` = the /INPUT command, empty for the main deck).
+  void run_file(const std::string& path, int depth, const SourceLocation& where);
+  /// Executes lexed text (the main deck of read_deck_text).
+  void run_text(const std::string& text, const std::string& path);
+  /// Closes open blocks at the end of the deck and returns the job.
+  Job finish();
+
+  // ---- field access (1-based field numbers as in the spec) --------------------------------
+  std::optional<double> opt_real(const Command& c, int i) const;
+  double real(const Command& c, int i, double fallback) const;
+  std::optional<int> opt_int(const Command& c, int i) const;
+  int integer(const Command& c, int i, int fallback) const;
+  /// Upper-cased trimmed label ("" when blank).
+  std::string label(const Command& c, int i) const;
+  /// ON/OFF/1/0/YES/NO (blank → fallback).
+  bool on_off(const Command& c, int i, bool fallback) const;
+  [[noreturn]] void fail(const Command& c, const std::string& message) const;
+  void warn(const Command& c, const std::string& message) const;
+  /// Records a graphics/print-only command as ignored.
+  void ignore(const Command& c);
+
+  // ---- model helpers ---------------------------------------------------------------------
+  /// Node numbers NODE..NEND step NINC (field numbers given); NODE may be ALL. Missing nodes in a
+  /// range are skipped; a single missing node (or an empty range) is an error.
+  std::vector<int> node_range(const Command& c, int node_field, int end_field, int inc_field);
+  void require_node(const Command& c, int id) const;
+  /// Checks the node count against the element type and stores the record (repeats allowed).
+  void add_element(const Command& c, int id, std::vector<int> nodes);
+  /// Checks that every element has the real set / material / section its type needs
+  /// (done when an analysis is frozen, since ANSYS allows R and MP after E).
+  /// Before that, an element whose SECNUM is the modern default 1 (SECNUM never issued) and names
+  /// no defined section gets SECNUM 0 (real constants are used).
+  void validate_elements();
+  /// Largest previous load-step end time (TIME must increase).
+  std::optional<double> previous_time() const;
+
+  // ---- state (handlers are friends of the deck layer; kept public for simplicity) -----------
+  DeckOptions options;
+  Job job;
+  Model& model;
+  Dialect dialect;
+  unsigned processor = kBegin;
+  Parameters params;
+  std::map<std::string, double> increments;               // 4x *SET,Par,VALUE,INC
+  std::map<std::string, std::vector<RawCommand>> macros;  // *BEGIN / *CREATE blocks
+  bool jobname_from_option = false;
+
+  // PREP7 attribute pointers and generation memory.
+  int current_type = 1;
+  int current_real = 1;
+  int current_mat = 1;
+  int current_secnum = 0;
+  bool secnum_given = false;       // SECNUM issued
+  int last_real_set = 0;           // RMORE target
+  int last_section = 0;            // SECDATA target
+  std::vector<int> defined_by_n;   // nodes defined by N, in order (FILL defaults)
+  std::vector<int> element_order;  // element ids in creation order (EGEN negative IEL1)
+
+  // 4x analysis definition.
+  int kan = 0;
+  std::vector<LoadStep> load_steps_4x;  // LWRITE
+  std::optional<Job::Step> frozen;      // AFWRITE
+  bool exec_armed = false;              // /EXEC
+  // 4x /STRESS block.
+  std::vector<ExpansionRequest> stress_requests;
+  int stress_count = 1;
+  double stress_t_prev = 0.0;
+  SourceLocation stress_where;
+
+  // Modern analysis definition.
+  std::optional<std::size_t> open_analysis;  // index in job.steps
+  std::map<int, LoadStep> lswrite_steps;
+  bool expass = false;
+  ExpansionPassRequest expansion;
+  std::optional<double> last_solved_time;  // end time of the last solved load step
+
+  // MDAMP memory.
+  int mdamp_next = 1;
+
+ private:
+  void run(const std::vector<RawCommand>& cmds, std::size_t begin, std::size_t end, int depth);
+  std::size_t find_block_end(const std::vector<RawCommand>& cmds, std::size_t begin,
+                             std::size_t end, const char* open, const char* close,
+                             const Command& opener) const;
+  void run_do(const std::vector<RawCommand>& cmds, std::size_t& i, std::size_t end, int depth,
+              const Command& c);
+  void run_if(const std::vector<RawCommand>& cmds, std::size_t& i, std::size_t end, int depth,
+              const Command& c);
+  void run_macro(const Command& c, const std::string& name, int depth);
+  Command resolve(const RawCommand& raw);
+  void dispatch(const Command& c, const CommandSpec& spec);
+  void store_post(const Command& c);
+
+  std::string last_name_;
+  bool eof_ = false;
+  friend void store_post_command(DeckReader& r, const Command& c);
+};
+
+/// Stores a POST1/POST26 command (parameters substituted) into Job::post_commands.
+void store_post_command(DeckReader& r, const Command& c);
+/// DOF labels of D/M/DDELE: Lab in `lab_field`, extra labels in `extra_first..extra_last`. In 4x a
+/// DOF label in a numeric range field (`end_field`, `inc_field`) starts the extra-label list
+/// (APDL_SUBSET §1.11); the range fields it consumes are set to 0. ALL gives all six DOFs.
+std::vector<Dof> parse_dof_labels(DeckReader& r, const Command& c, int lab_field, int& end_field,
+                                  int& inc_field, int extra_first, int extra_last);
+
+/// 4x `/INPUT,27`: appends the analysis frozen by AFWRITE as a Job::Step.
+void run_frozen_analysis(DeckReader& r, const Command& c);
+
+}  // namespace impactfe::deck

@@ -1,0 +1,229 @@
+// Generation commands FILL, NGEN, EGEN, ENGEN (APDL_SUBSET §3.8, §3.9, §3.11, §3.12).
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "deck/deck_context.h"
+#include "elements/element.h"
+
+namespace impactfe::deck {
+
+namespace {
+
+/// Fractions 0 < f_1 < ... < f_n < 1 of n interior points; SPACE = ratio of the last division to
+/// the first (1 = uniform), divisions in geometric progression.
+std::vector<double> fill_fractions(int n, double space) {
+  const int divisions = n + 1;
+  std::vector<double> d(static_cast<std::size_t>(divisions), 1.0);
+  if (space > 0.0 && std::fabs(space - 1.0) > 1e-12 && divisions > 1) {
+    const double ratio = std::pow(space, 1.0 / (divisions - 1));
+    for (int k = 1; k < divisions; ++k)
+      d[static_cast<std::size_t>(k)] = d[static_cast<std::size_t>(k - 1)] * ratio;
+  }
+  double total = 0.0;
+  for (double v : d) total += v;
+  std::vector<double> f;
+  double acc = 0.0;
+  for (int k = 0; k < n; ++k) {
+    acc += d[static_cast<std::size_t>(k)];
+    f.push_back(acc / total);
+  }
+  return f;
+}
+
+void cmd_fill(DeckReader& r, const Command& c) {
+  const auto& defined = r.defined_by_n;
+  int node1 = 0;
+  int node2 = 0;
+  if (c.blank(1) || c.blank(2)) {
+    if (defined.size() < 2) r.fail(c, "FILL needs two nodes: fewer than two nodes defined by N");
+    node1 = defined[defined.size() - 2];
+    node2 = defined[defined.size() - 1];
+  }
+  node1 = r.integer(c, 1, node1);
+  node2 = r.integer(c, 2, node2);
+  r.require_node(c, node1);
+  r.require_node(c, node2);
+  const int nfill = r.integer(c, 3, std::abs(node2 - node1) - 1);
+  if (nfill <= 0) {
+    r.warn(c, fmt::format("no node to fill between {} and {}", node1, node2));
+    return;
+  }
+  int ninc_default = (node2 - node1) / (nfill + 1);
+  if (ninc_default == 0) ninc_default = node2 >= node1 ? 1 : -1;
+  const int ninc = r.integer(c, 5, ninc_default);
+  const int nstrt = r.integer(c, 4, node1 + ninc);
+  const int itime = std::max(1, r.integer(c, 6, 1));
+  const int inc = r.integer(c, 7, 1);
+  const double space = r.real(c, 8, 1.0);
+  const auto f = fill_fractions(nfill, space);
+  for (int t = 0; t < itime; ++t) {
+    const int a = node1 + t * inc;
+    const int b = node2 + t * inc;
+    r.require_node(c, a);
+    r.require_node(c, b);
+    const Node na = r.model.nodes.at(a);
+    const Node nb = r.model.nodes.at(b);
+    for (int k = 0; k < nfill; ++k) {
+      Node n;
+      n.id = nstrt + t * inc + k * ninc;
+      if (n.id <= 0) r.fail(c, fmt::format("generated node number {} is not positive", n.id));
+      const double s = f[static_cast<std::size_t>(k)];
+      n.x = na.x + s * (nb.x - na.x);
+      n.angles_deg = na.angles_deg + s * (nb.angles_deg - na.angles_deg);
+      r.model.nodes[n.id] = n;
+    }
+  }
+}
+
+void cmd_ngen(DeckReader& r, const Command& c) {
+  const int itime = r.integer(c, 1, 1);
+  const int inc = r.integer(c, 2, 0);
+  if (itime < 2) {
+    r.warn(c, "ITIME < 2: nothing generated");
+    return;
+  }
+  if (inc == 0) r.fail(c, "node number increment INC is zero (copies would overwrite the pattern)");
+  std::vector<int> pattern;
+  if (r.label(c, 3) == "ALL") {
+    for (const auto& [id, n] : r.model.nodes) pattern.push_back(id);
+  } else {
+    const auto first = r.opt_int(c, 3);
+    if (!first) r.fail(c, "NODE1 missing");
+    const int last = r.integer(c, 4, *first);
+    int ninc = r.integer(c, 5, 1);
+    if (ninc == 0) ninc = 1;
+    for (int n = *first; ninc > 0 ? n <= last : n >= last; n += ninc)
+      if (r.model.nodes.count(n) != 0) pattern.push_back(n);
+  }
+  if (pattern.empty()) r.fail(c, "no existing node in the pattern");
+  const Vec3 d(r.real(c, 6, 0.0), r.real(c, 7, 0.0), r.real(c, 8, 0.0));
+  if (!c.blank(9) && r.real(c, 9, 1.0) != 1.0) r.warn(c, "SPACE ignored (uniform copies)");
+  std::vector<Node> source;
+  for (int id : pattern) source.push_back(r.model.nodes.at(id));
+  for (int k = 1; k < itime; ++k) {
+    for (const Node& s : source) {
+      Node n = s;
+      n.id = s.id + k * inc;
+      if (n.id <= 0) r.fail(c, fmt::format("generated node number {} is not positive", n.id));
+      n.x = s.x + static_cast<double>(k) * d;
+      r.model.nodes[n.id] = n;
+    }
+  }
+}
+
+/// Pattern IEL1..IEL2 step IEINC (IEL1 = ALL: all; IEL1 < 0: the last |IEL1| elements created).
+std::vector<int> element_pattern(DeckReader& r, const Command& c, int f1) {
+  std::vector<int> out;
+  if (r.label(c, f1) == "ALL") {
+    for (const auto& [id, e] : r.model.elements) out.push_back(id);
+  } else {
+    const auto first = r.opt_int(c, f1);
+    if (!first) r.fail(c, "IEL1 missing");
+    if (*first < 0) {
+      const auto& order = r.element_order;
+      const std::size_t n = std::min(order.size(), static_cast<std::size_t>(-*first));
+      for (std::size_t k = order.size() - n; k < order.size(); ++k)
+        if (r.model.elements.count(order[k]) != 0) out.push_back(order[k]);
+    } else {
+      const int last = r.integer(c, f1 + 1, *first);
+      int step = r.integer(c, f1 + 2, 1);
+      if (step == 0) step = 1;
+      for (int e = *first; step > 0 ? e <= last : e >= last; e += step)
+        if (r.model.elements.count(e) != 0) out.push_back(e);
+    }
+  }
+  if (out.empty()) r.fail(c, "no existing element in the pattern");
+  return out;
+}
+
+/// Copies `src` k times its increments; `id` is the new element number.
+void copy_element(DeckReader& r, const Command& c, const ElementRecord& src, int id, int k,
+                  int ninc, int minc, int tinc, int rinc, int sinc) {
+  ElementRecord e = src;
+  e.id = id;
+  e.mat += k * minc;
+  e.type += k * tinc;
+  e.real += k * rinc;
+  e.secnum += k * sinc;
+  e.where = c.where;
+  if (id <= 0) r.fail(c, fmt::format("generated element number {} is not positive", id));
+  const auto t = r.model.element_types.find(e.type);
+  if (t == r.model.element_types.end())
+    r.fail(c, fmt::format("element type {} of generated element {} is not defined", e.type, id));
+  if (t->second.kind == ElementKind::Superelement)
+    r.fail(c, fmt::format("element {} is a superelement and cannot be copied", src.id));
+  for (int& n : e.nodes) {
+    n += k * ninc;
+    if (r.model.nodes.count(n) == 0)
+      r.fail(c, fmt::format("node {} of generated element {} (copy of {}) is not defined", n, id,
+                            src.id));
+  }
+  const ElementTypeInfo* info = find_element_type(t->second.ansys_name);
+  if (info != nullptr && static_cast<int>(e.nodes.size()) != info->n_nodes)
+    r.fail(c, fmt::format("generated element {}: {} needs {} nodes, the pattern has {}", id,
+                          t->second.ansys_name, info->n_nodes, e.nodes.size()));
+  if (r.model.elements.count(id) == 0) r.element_order.push_back(id);
+  r.model.elements[id] = std::move(e);
+}
+
+void warn_dxyz(DeckReader& r, const Command& c, int first) {
+  for (int f = first; f < first + 3; ++f)
+    if (!c.blank(f)) {
+      r.warn(c, "DX/DY/DZ ignored (only for solid-model meshes)");
+      return;
+    }
+}
+
+void cmd_egen(DeckReader& r, const Command& c) {
+  // EGEN,ITIME,NINC,IEL1,IEL2,IEINC,MINC,TINC,RINC,CINC,SINC,DX,DY,DZ
+  const int itime = r.integer(c, 1, 1);
+  if (itime < 2) {
+    r.warn(c, "ITIME < 2: nothing generated");
+    return;
+  }
+  const int ninc = r.integer(c, 2, 0);
+  const auto pattern = element_pattern(r, c, 3);
+  const int minc = r.integer(c, 6, 0), tinc = r.integer(c, 7, 0), rinc = r.integer(c, 8, 0);
+  const int sinc = r.integer(c, 10, 0);
+  warn_dxyz(r, c, 11);
+  std::vector<ElementRecord> src;
+  for (int id : pattern) src.push_back(r.model.elements.at(id));
+  for (int k = 1; k < itime; ++k)
+    for (const auto& e : src) {
+      const int id = r.model.elements.rbegin()->first + 1;
+      copy_element(r, c, e, id, k, ninc, minc, tinc, rinc, sinc);
+    }
+}
+
+void cmd_engen(DeckReader& r, const Command& c) {
+  // ENGEN,IINC,ITIME,NINC,IEL1,IEL2,IEINC,MINC,TINC,RINC,CINC,SINC,DX,DY,DZ
+  const int iinc = r.integer(c, 1, 0);
+  const int itime = r.integer(c, 2, 1);
+  if (itime < 2) {
+    r.warn(c, "ITIME < 2: nothing generated");
+    return;
+  }
+  if (iinc == 0) r.fail(c, "element number increment IINC is zero");
+  const int ninc = r.integer(c, 3, 0);
+  const auto pattern = element_pattern(r, c, 4);
+  const int minc = r.integer(c, 7, 0), tinc = r.integer(c, 8, 0), rinc = r.integer(c, 9, 0);
+  const int sinc = r.integer(c, 11, 0);
+  warn_dxyz(r, c, 12);
+  std::vector<ElementRecord> src;
+  for (int id : pattern) src.push_back(r.model.elements.at(id));
+  for (int k = 1; k < itime; ++k)
+    for (const auto& e : src)
+      copy_element(r, c, e, e.id + k * iinc, k, ninc, minc, tinc, rinc, sinc);
+}
+
+}  // namespace
+
+void register_generation_commands(std::vector<CommandSpec>& t) {
+  t.push_back({"FILL", cmd_fill, kPrep7});
+  t.push_back({"NGEN", cmd_ngen, kPrep7});
+  t.push_back({"EGEN", cmd_egen, kPrep7});
+  t.push_back({"ENGEN", cmd_engen, kPrep7});
+}
+
+}  // namespace impactfe::deck

@@ -1,0 +1,199 @@
+#include "deck/lexer.h"
+
+#include <cctype>
+#include <cstdlib>
+
+namespace impactfe::deck {
+
+std::string to_upper(std::string_view text) {
+  std::string out(text);
+  for (char& c : out) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return out;
+}
+
+std::string trim(std::string_view text) {
+  std::size_t b = 0;
+  std::size_t e = text.size();
+  auto blank = [](char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n'; };
+  while (b < e && blank(text[b])) ++b;
+  while (e > b && blank(text[e - 1])) --e;
+  return std::string(text.substr(b, e - b));
+}
+
+std::optional<double> parse_fortran_number(std::string_view text) {
+  std::size_t i = 0;
+  const std::size_t n = text.size();
+  std::string normal;
+  if (i < n && (text[i] == '+' || text[i] == '-')) normal += text[i++];
+  int digits = 0;
+  while (i < n && std::isdigit(static_cast<unsigned char>(text[i]))) {
+    normal += text[i++];
+    ++digits;
+  }
+  if (i < n && text[i] == '.') {
+    normal += text[i++];
+    while (i < n && std::isdigit(static_cast<unsigned char>(text[i]))) {
+      normal += text[i++];
+      ++digits;
+    }
+  }
+  if (digits == 0) return std::nullopt;
+  if (i < n && (text[i] == 'e' || text[i] == 'E' || text[i] == 'd' || text[i] == 'D')) {
+    normal += 'E';
+    ++i;
+    if (i < n && (text[i] == '+' || text[i] == '-')) normal += text[i++];
+    int exp_digits = 0;
+    while (i < n && std::isdigit(static_cast<unsigned char>(text[i]))) {
+      normal += text[i++];
+      ++exp_digits;
+    }
+    if (exp_digits == 0) return std::nullopt;
+  }
+  if (i != n) return std::nullopt;
+  // A lone "-." or "." was excluded by digits == 0; strtod accepts "-2." and ".06".
+  return std::strtod(normal.c_str(), nullptr);
+}
+
+namespace {
+
+/// Removes a `!` comment that is not inside a single-quoted string.
+std::string_view strip_comment(std::string_view text) {
+  bool quoted = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    if (text[i] == '\'') quoted = !quoted;
+    if (text[i] == '!' && !quoted) return text.substr(0, i);
+  }
+  return text;
+}
+
+/// Splits on commas outside single quotes and parentheses (function arguments in expressions).
+std::vector<std::string> split_fields(std::string_view text) {
+  std::vector<std::string> out;
+  std::string current;
+  bool quoted = false;
+  int depth = 0;
+  for (char c : text) {
+    if (c == '\'') quoted = !quoted;
+    if (!quoted && c == '(') ++depth;
+    if (!quoted && c == ')' && depth > 0) --depth;
+    if (c == ',' && !quoted && depth == 0) {
+      out.push_back(trim(current));
+      current.clear();
+    } else {
+      current += c;
+    }
+  }
+  out.push_back(trim(current));
+  return out;
+}
+
+bool is_identifier(std::string_view s) {
+  if (s.empty() || !(std::isalpha(static_cast<unsigned char>(s[0])) || s[0] == '_')) return false;
+  for (char c : s)
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_')) return false;
+  return true;
+}
+
+/// Splits on `$` outside quotes (modern dialect only).
+std::vector<std::string_view> split_dollar(std::string_view text) {
+  std::vector<std::string_view> out;
+  bool quoted = false;
+  std::size_t start = 0;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    if (text[i] == '\'') quoted = !quoted;
+    if (text[i] == '$' && !quoted) {
+      out.push_back(text.substr(start, i - start));
+      start = i + 1;
+    }
+  }
+  out.push_back(text.substr(start));
+  return out;
+}
+
+/// Lexes one command (no `$`). Returns false for an empty/comment segment.
+bool lex_segment(std::string_view raw, const std::string& file, int line, RawCommand& cmd) {
+  const std::string text = trim(raw);
+  if (text.empty()) return false;
+  cmd = RawCommand{};
+  cmd.file = file;
+  cmd.line = line;
+  if (text[0] == ',') {
+    cmd.repeat = true;
+    cmd.rest = text.substr(1);
+    cmd.fields = split_fields(std::string_view(text).substr(1));
+    return true;
+  }
+  const std::size_t comma = text.find(',');
+  const std::size_t equal = text.find('=');
+  if (equal != std::string::npos && (comma == std::string::npos || equal < comma)) {
+    const std::string lhs = trim(std::string_view(text).substr(0, equal));
+    if (is_identifier(lhs)) {
+      cmd.name = "*SET";
+      cmd.assignment = true;
+      cmd.fields = {lhs, trim(std::string_view(text).substr(equal + 1))};
+      return true;
+    }
+  }
+  cmd.name = to_upper(trim(std::string_view(text).substr(0, comma)));
+  if (comma != std::string::npos) {
+    cmd.rest = trim(std::string_view(text).substr(comma + 1));
+    cmd.fields = split_fields(std::string_view(text).substr(comma + 1));
+  }
+  return true;
+}
+
+bool starts_with_upper(std::string_view text, std::string_view prefix) {
+  if (text.size() < prefix.size()) return false;
+  return to_upper(text.substr(0, prefix.size())) == prefix;
+}
+
+}  // namespace
+
+std::vector<RawCommand> lex_line(std::string_view text, const std::string& file, int line,
+                                 Dialect dialect) {
+  std::vector<RawCommand> out;
+  const std::string stripped = trim(text);
+  if (stripped.empty()) return out;
+  if (starts_with_upper(stripped, "C***")) return out;  // 4x comment line
+  // /TITLE and /COM keep the rest of the line verbatim (commas, case, '$' and '!').
+  if (starts_with_upper(stripped, "/TIT") || starts_with_upper(stripped, "/COM")) {
+    RawCommand cmd;
+    cmd.file = file;
+    cmd.line = line;
+    const std::size_t comma = stripped.find(',');
+    cmd.name = to_upper(trim(std::string_view(stripped).substr(0, comma)));
+    if (comma != std::string::npos) cmd.rest = trim(std::string_view(stripped).substr(comma + 1));
+    cmd.fields = {cmd.rest};
+    out.push_back(std::move(cmd));
+    return out;
+  }
+  const std::string_view code = strip_comment(stripped);
+  std::vector<std::string_view> segments;
+  if (dialect == Dialect::Modern)
+    segments = split_dollar(code);
+  else
+    segments = {code};
+  for (std::string_view segment : segments) {
+    RawCommand cmd;
+    if (lex_segment(segment, file, line, cmd)) out.push_back(std::move(cmd));
+  }
+  return out;
+}
+
+std::vector<RawCommand> lex_text(std::string_view text, const std::string& file, Dialect dialect) {
+  std::vector<RawCommand> out;
+  int line = 0;
+  std::size_t pos = 0;
+  while (pos <= text.size()) {
+    std::size_t end = text.find('\n', pos);
+    if (end == std::string_view::npos) end = text.size();
+    ++line;
+    auto cmds = lex_line(text.substr(pos, end - pos), file, line, dialect);
+    for (auto& c : cmds) out.push_back(std::move(c));
+    if (end == text.size()) break;
+    pos = end + 1;
+  }
+  return out;
+}
+
+}  // namespace impactfe::deck

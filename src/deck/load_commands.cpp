@@ -1,0 +1,146 @@
+// Loads and initial conditions: D, DDELE, F, FDELE, ACEL, IC, ICDELE (APDL_SUBSET §3.19, §3.22,
+// §3.23; APDL_SCRIPTING §E.9). Loads are cumulative state in Model::current.
+#include <fmt/format.h>
+
+#include "core/dof.h"
+#include "deck/deck_context.h"
+
+namespace impactfe::deck {
+
+std::vector<Dof> parse_dof_labels(DeckReader& r, const Command& c, int lab_field, int& end_field,
+                                  int& inc_field, int extra_first, int extra_last) {
+  std::vector<std::string> labels{r.label(c, lab_field)};
+  for (int f : {end_field, inc_field}) {
+    if (f <= 0) continue;
+    const std::string l = r.label(c, f);
+    if ((parse_dof_label(l) || l == "ALL") && !r.params.get(l)) {
+      if (r.dialect != Dialect::Classic4x)
+        r.fail(c, fmt::format("field {}: bad number '{}' (a DOF label belongs in Lab2..Lab6)", f,
+                              c.text(f)));
+      r.warn(c,
+             fmt::format("DOF label '{}' in numeric field {} taken as an extra label (4x)", l, f));
+      for (int g = f; g <= inc_field; ++g)
+        if (!c.blank(g)) labels.push_back(r.label(c, g));
+      if (f == end_field) end_field = 0;
+      inc_field = 0;
+      break;
+    }
+  }
+  for (int f = extra_first; f <= extra_last; ++f)
+    if (!c.blank(f)) labels.push_back(r.label(c, f));
+  if (labels[0].empty()) r.fail(c, "DOF label missing");
+  std::vector<Dof> dofs;
+  for (const auto& l : labels) {
+    if (l == "ALL") return {kAllDofs.begin(), kAllDofs.end()};
+    auto d = parse_dof_label(l);
+    if (!d) r.fail(c, fmt::format("bad DOF label '{}' (UX UY UZ ROTX ROTY ROTZ ALL)", l));
+    dofs.push_back(*d);
+  }
+  return dofs;
+}
+
+namespace {
+
+void cmd_d(DeckReader& r, const Command& c) {
+  // D,NODE,Lab,VALUE,VALUE2,NEND,NINC,Lab2..Lab6
+  int end_field = 5;
+  int inc_field = 6;
+  const auto dofs = parse_dof_labels(r, c, 2, end_field, inc_field, 7, 11);
+  const double value = r.real(c, 3, 0.0);
+  if (r.real(c, 4, 0.0) != 0.0) r.warn(c, "VALUE2 (imaginary part) ignored");
+  for (int node : r.node_range(c, 1, end_field, inc_field))
+    for (Dof d : dofs) r.model.current.constraints[DofKey{node, d}] = value;
+}
+
+void cmd_ddele(DeckReader& r, const Command& c) {
+  // DDELE,NODE,Lab,NEND,NINC
+  std::vector<Dof> dofs(kAllDofs.begin(), kAllDofs.end());
+  const std::string l = r.label(c, 2);
+  if (!l.empty() && l != "ALL") {
+    auto d = parse_dof_label(l);
+    if (!d) r.fail(c, fmt::format("bad DOF label '{}'", c.text(2)));
+    dofs = {*d};
+  }
+  for (int node : r.node_range(c, 1, 3, 4))
+    for (Dof d : dofs) r.model.current.constraints.erase(DofKey{node, d});
+}
+
+void cmd_f(DeckReader& r, const Command& c) {
+  // F,NODE,Lab,VALUE,VALUE2,NEND,NINC ; a blank VALUE is 0 (§3.23)
+  const std::string l = r.label(c, 2);
+  auto d = parse_force_label(l);
+  if (!d) r.fail(c, fmt::format("bad force label '{}' (FX FY FZ MX MY MZ)", c.text(2)));
+  const double value = r.real(c, 3, 0.0);
+  if (r.real(c, 4, 0.0) != 0.0) r.warn(c, "VALUE2 (imaginary part) ignored");
+  for (int node : r.node_range(c, 1, 5, 6)) r.model.current.forces[DofKey{node, *d}] = value;
+}
+
+void cmd_fdele(DeckReader& r, const Command& c) {
+  // FDELE,NODE,Lab,NEND,NINC
+  std::vector<Dof> dofs(kAllDofs.begin(), kAllDofs.end());
+  const std::string l = r.label(c, 2);
+  if (!l.empty() && l != "ALL") {
+    auto d = parse_force_label(l);
+    if (!d) r.fail(c, fmt::format("bad force label '{}'", c.text(2)));
+    dofs = {*d};
+  }
+  for (int node : r.node_range(c, 1, 3, 4))
+    for (Dof d : dofs) r.model.current.forces.erase(DofKey{node, d});
+}
+
+void cmd_acel(DeckReader& r, const Command& c) {
+  r.model.current.acel = Vec3(r.real(c, 1, 0.0), r.real(c, 2, 0.0), r.real(c, 3, 0.0));
+}
+
+void cmd_ic(DeckReader& r, const Command& c) {
+  // IC,NODE,Lab,VALUE,VALUE2,NEND,NINC
+  const std::string l = r.label(c, 2);
+  const double value = r.real(c, 3, 0.0);
+  const auto value2 = r.opt_real(c, 4);
+  std::vector<Dof> dofs;
+  bool velocity = false;
+  if (l == "ALL") {
+    dofs.assign(kAllDofs.begin(), kAllDofs.end());
+  } else if (auto d = parse_dof_label(l)) {
+    dofs = {*d};
+  } else if (l == "VELX" || l == "VELY" || l == "VELZ") {
+    dofs = {static_cast<Dof>(l[3] - 'X')};
+    velocity = true;
+  } else if (l == "OMGX" || l == "OMGY" || l == "OMGZ") {
+    dofs = {static_cast<Dof>(3 + (l[3] - 'X'))};
+    velocity = true;
+  } else {
+    r.fail(c,
+           fmt::format("bad initial-condition label '{}' (UX..ROTZ, VELX..VELZ, OMGX..OMGZ, ALL)",
+                       c.text(2)));
+  }
+  for (int node : r.node_range(c, 1, 5, 6)) {
+    for (Dof d : dofs) {
+      InitialCondition& ic = r.model.initial_conditions[DofKey{node, d}];
+      if (velocity) {
+        ic.velocity = value;
+      } else {
+        ic.displacement = value;
+        if (value2) ic.velocity = *value2;  // legacy: velocity in VALUE2
+      }
+    }
+  }
+}
+
+void cmd_icdele(DeckReader& r, const Command&) {
+  r.model.initial_conditions.clear();
+}
+
+}  // namespace
+
+void register_load_commands(std::vector<CommandSpec>& t) {
+  t.push_back({"D", cmd_d, kPrepSolu});
+  t.push_back({"DDELE", cmd_ddele, kPrepSolu});
+  t.push_back({"F", cmd_f, kPrepSolu});
+  t.push_back({"FDELE", cmd_fdele, kPrepSolu});
+  t.push_back({"ACEL", cmd_acel, kPrepSolu});
+  t.push_back({"IC", cmd_ic, kPrepSolu});
+  t.push_back({"ICDELE", cmd_icdele, kPrepSolu});
+}
+
+}  // namespace impactfe::deck

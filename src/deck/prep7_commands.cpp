@@ -1,0 +1,401 @@
+// PREP7 model commands: element types, real constants, materials, sections, nodes, elements,
+// attribute pointers, master DOFs, gap conditions, superelements and the 4x KAN/KAY keys.
+#include <fmt/format.h>
+
+#include <algorithm>
+
+#include "core/dof.h"
+#include "deck/deck_context.h"
+#include "elements/element.h"
+
+namespace impactfe::deck {
+
+namespace {
+
+// ---- element types ---------------------------------------------------------------------------
+
+void cmd_et(DeckReader& r, const Command& c) {
+  int id = 0;
+  if (c.blank(1)) {
+    id = r.model.element_types.empty() ? 1 : r.model.element_types.rbegin()->first + 1;
+  } else {
+    id = r.integer(c, 1, 1);
+  }
+  if (id <= 0) r.fail(c, fmt::format("element type number {} must be positive", id));
+  if (c.blank(2)) r.fail(c, "element name or number missing");
+  const ElementTypeInfo* info = find_element_type(trim(c.text(2)));
+  if (info == nullptr)
+    r.fail(c, fmt::format("unknown element type '{}' (supported: LINK1 LINK8 LINK180 COMBIN14 "
+                          "MASS21 COMBIN40 SHELL63 SHELL181 SOLID45 SOLID185 MATRIX50)",
+                          c.text(2)));
+  ElementType et;
+  et.id = id;
+  et.ansys_name = info->name;
+  et.kind = info->kind;
+  et.where = c.where;
+  for (int k = 1; k <= 6; ++k) et.keyopt[static_cast<std::size_t>(k)] = r.integer(c, k + 2, 0);
+  // Field 9 is INOPR (print suppression): ignored. Fields 10..12 (4x OCR, §3.4) → KEYOPT(7..9).
+  for (int f = 10; f <= c.n_fields(); ++f) {
+    if (c.blank(f)) continue;
+    if (r.dialect == Dialect::Classic4x && f <= 12) {
+      et.keyopt[static_cast<std::size_t>(f - 3)] = r.integer(c, f, 0);
+      r.warn(c, fmt::format("field {} stored as KEYOPT({}) = {} (4x position, uncertain)", f, f - 3,
+                            r.integer(c, f, 0)));
+    } else {
+      r.warn(c, fmt::format("field {} ('{}') ignored", f, c.text(f)));
+    }
+  }
+  if (std::string(info->name) == "SHELL181")
+    r.warn(c, "SHELL181 is computed with the SHELL63 kernel (thin elastic shell)");
+  r.model.element_types[id] = et;
+}
+
+void cmd_keyopt(DeckReader& r, const Command& c) {
+  const int id = r.integer(c, 1, 0);
+  auto it = r.model.element_types.find(id);
+  if (it == r.model.element_types.end())
+    r.fail(c, fmt::format("element type {} is not defined", id));
+  const int k = r.integer(c, 2, 0);
+  if (k < 1 || k > 18) r.fail(c, fmt::format("KEYOPT number {} out of range 1..18", k));
+  it->second.keyopt[static_cast<std::size_t>(k)] = r.integer(c, 3, 0);
+}
+
+// ---- real constants ----------------------------------------------------------------------------
+
+void cmd_r(DeckReader& r, const Command& c) {
+  const auto id = r.opt_int(c, 1);
+  if (!id || *id <= 0) r.fail(c, "real constant set number missing or not positive");
+  RealSet set;
+  set.id = *id;
+  for (int f = 2; f <= c.last_given(); ++f) set.values.push_back(r.real(c, f, 0.0));
+  r.model.real_sets[*id] = set;
+  r.last_real_set = *id;
+}
+
+void cmd_rmore(DeckReader& r, const Command& c) {
+  auto it = r.model.real_sets.find(r.last_real_set);
+  if (it == r.model.real_sets.end()) r.fail(c, "RMORE without a preceding R");
+  auto& v = it->second.values;
+  const std::size_t start = ((v.size() + 5) / 6) * 6;  // next block of six (R7.., R13.., ...)
+  if (c.last_given() == 0) return;
+  v.resize(start, 0.0);
+  for (int f = 1; f <= c.last_given(); ++f) v.push_back(r.real(c, f, 0.0));
+}
+
+void cmd_rmodif(DeckReader& r, const Command& c) {
+  const int id = r.integer(c, 1, 0);
+  auto it = r.model.real_sets.find(id);
+  if (it == r.model.real_sets.end())
+    r.fail(c, fmt::format("real constant set {} is not defined", id));
+  const int start = r.integer(c, 2, 0);
+  if (start <= 0) r.fail(c, "STLOC must be positive");
+  auto& v = it->second.values;
+  for (int f = 3; f <= c.last_given(); ++f) {
+    if (c.blank(f)) continue;
+    const std::size_t pos = static_cast<std::size_t>(start + f - 4);
+    if (v.size() <= pos) v.resize(pos + 1, 0.0);
+    v[pos] = r.real(c, f, 0.0);
+  }
+}
+
+// ---- materials ---------------------------------------------------------------------------------
+
+const std::vector<std::string>& material_labels() {
+  static const std::vector<std::string> labels = {"EX",   "EY",   "EZ",   "NUXY", "NUYZ", "NUXZ",
+                                                  "PRXY", "PRYZ", "PRXZ", "GXY",  "GYZ",  "GXZ",
+                                                  "DENS", "ALPX", "ALPY", "ALPZ", "DAMP"};
+  return labels;
+}
+
+/// Stores Lab for MAT = C0 (C1..C4 temperature coefficients warned and ignored). PRxy is stored
+/// under its own label and under NUxy (isotropic use).
+void set_material(DeckReader& r, const Command& c, const std::string& lab, int mat_field) {
+  if (std::find(material_labels().begin(), material_labels().end(), lab) == material_labels().end())
+    r.fail(c, fmt::format("unknown material property '{}'", lab));
+  const int mat = r.integer(c, mat_field, 1);
+  if (mat <= 0) r.fail(c, fmt::format("material number {} must be positive", mat));
+  const double c0 = r.real(c, mat_field + 1, 0.0);
+  for (int f = mat_field + 2; f <= mat_field + 5; ++f)
+    if (r.real(c, f, 0.0) != 0.0)
+      r.warn(c, "temperature coefficients C1..C4 ignored (no temperature loads)");
+  for (int f = mat_field + 6; f <= c.n_fields(); ++f)
+    if (!c.blank(f)) r.warn(c, fmt::format("field {} ignored", f));
+  Material& m = r.model.materials[mat];
+  m.id = mat;
+  m.props[lab] = c0;
+  if (lab.rfind("PR", 0) == 0) m.props["NU" + lab.substr(2)] = c0;
+  if (lab.rfind("NU", 0) == 0) m.props["PR" + lab.substr(2)] = c0;
+}
+
+void cmd_material(DeckReader& r, const Command& c) {
+  set_material(r, c, c.name, 1);
+}
+
+void cmd_mp(DeckReader& r, const Command& c) {
+  if (c.blank(1)) r.fail(c, "property label missing");
+  set_material(r, c, r.label(c, 1), 2);
+}
+
+// ---- sections ---------------------------------------------------------------------------------
+
+void cmd_sectype(DeckReader& r, const Command& c) {
+  const int id = r.integer(c, 1, 0);
+  if (id <= 0) r.fail(c, "section id missing or not positive");
+  const std::string type = r.label(c, 2);
+  if (type != "LINK" && type != "SHELL")
+    r.fail(c, fmt::format("section type '{}' not supported (LINK or SHELL)", c.text(2)));
+  Section s;
+  s.id = id;
+  s.type = type;
+  r.model.sections[id] = s;
+  r.last_section = id;
+}
+
+void cmd_secdata(DeckReader& r, const Command& c) {
+  auto it = r.model.sections.find(r.last_section);
+  if (it == r.model.sections.end()) r.fail(c, "SECDATA without a preceding SECTYPE");
+  Section& s = it->second;
+  if (!s.data.empty()) r.fail(c, "only one SECDATA (a single homogeneous layer) is supported");
+  const int n = std::max(1, c.last_given());
+  for (int f = 1; f <= n; ++f) s.data.push_back(r.real(c, f, 0.0));
+  if (s.data[0] <= 0.0)
+    r.fail(c, fmt::format("{} must be positive", s.type == "LINK" ? "area" : "thickness"));
+}
+
+void cmd_secnum(DeckReader& r, const Command& c) {
+  r.current_secnum = r.integer(c, 1, 1);
+}
+
+// ---- nodes and elements ------------------------------------------------------------------------
+
+void cmd_n(DeckReader& r, const Command& c) {
+  int id = 0;
+  if (c.blank(1))
+    id = r.model.nodes.empty() ? 1 : r.model.nodes.rbegin()->first + 1;
+  else
+    id = r.integer(c, 1, 0);
+  if (id <= 0) r.fail(c, fmt::format("node number {} must be positive", id));
+  Node n;
+  n.id = id;
+  n.x = Vec3(r.real(c, 2, 0.0), r.real(c, 3, 0.0), r.real(c, 4, 0.0));
+  n.angles_deg = Vec3(r.real(c, 5, 0.0), r.real(c, 6, 0.0), r.real(c, 7, 0.0));
+  r.model.nodes[id] = n;
+  r.defined_by_n.push_back(id);
+}
+
+std::vector<int> node_fields(DeckReader& r, const Command& c, int first) {
+  std::vector<int> nodes;
+  const int last = c.last_given();
+  for (int f = first; f <= last; ++f) nodes.push_back(r.integer(c, f, 0));
+  return nodes;
+}
+
+int next_element_id(const DeckReader& r) {
+  return r.model.elements.empty() ? 1 : r.model.elements.rbegin()->first + 1;
+}
+
+bool active_type_is_matrix50(const DeckReader& r) {
+  auto it = r.model.element_types.find(r.current_type);
+  return it != r.model.element_types.end() && it->second.kind == ElementKind::Superelement;
+}
+
+void add_superelement(DeckReader& r, const Command& c, int id, const std::string& file) {
+  ElementRecord rec;
+  rec.id = id;
+  rec.type = r.current_type;
+  rec.real = r.current_real;
+  rec.mat = r.current_mat;
+  rec.secnum = r.current_secnum;
+  rec.superelement_file = file;
+  rec.where = c.where;
+  if (r.model.elements.count(id) == 0) r.element_order.push_back(id);
+  r.model.elements[id] = rec;
+}
+
+void cmd_e(DeckReader& r, const Command& c) {
+  if (active_type_is_matrix50(r)) {
+    if (r.dialect != Dialect::Classic4x)
+      r.fail(c, "the active type is MATRIX50: define the superelement with SE,File");
+    // 4x (§3.10): E,id,unit reads the superelement written to Fortran unit `unit`.
+    const int id = r.integer(c, 1, next_element_id(r));
+    const auto unit = r.opt_int(c, 2);
+    if (!unit) r.fail(c, "MATRIX50: superelement file unit (field 2) missing");
+    r.warn(c, fmt::format("MATRIX50 element {} reads superelement file unit {} (4x E,id,unit)", id,
+                          *unit));
+    add_superelement(r, c, id, fmt::format("unit:{}", *unit));
+    return;
+  }
+  if (c.last_given() == 0) r.fail(c, "node list missing");
+  r.add_element(c, next_element_id(r), node_fields(r, c, 1));
+}
+
+void cmd_en(DeckReader& r, const Command& c) {
+  const auto id = r.opt_int(c, 1);
+  if (!id) r.fail(c, "element number missing");
+  if (c.last_given() < 2) r.fail(c, "node list missing");
+  r.add_element(c, *id, node_fields(r, c, 2));
+}
+
+void cmd_se(DeckReader& r, const Command& c) {
+  if (!active_type_is_matrix50(r)) r.fail(c, "the active element TYPE must be MATRIX50");
+  if (c.blank(1)) r.fail(c, "superelement file name missing");
+  add_superelement(r, c, next_element_id(r), c.text(1));
+}
+
+void cmd_type(DeckReader& r, const Command& c) {
+  r.current_type = r.integer(c, 1, 1);
+}
+void cmd_real(DeckReader& r, const Command& c) {
+  r.current_real = r.integer(c, 1, 1);
+}
+void cmd_mat(DeckReader& r, const Command& c) {
+  r.current_mat = r.integer(c, 1, 1);
+}
+
+// ---- masters and gaps ------------------------------------------------------------------------
+
+void cmd_m(DeckReader& r, const Command& c) {
+  // M,NODE,Lab1,NEND,NINC,Lab2..Lab6,SUPPORT
+  int end_field = 3;
+  int inc_field = 4;
+  const std::vector<Dof> dofs = parse_dof_labels(r, c, 2, end_field, inc_field, 5, 9);
+  for (int node : r.node_range(c, 1, end_field, inc_field)) {
+    for (Dof d : dofs) {
+      const DofKey key{node, d};
+      if (std::find(r.model.masters.begin(), r.model.masters.end(), key) == r.model.masters.end())
+        r.model.masters.push_back(key);
+    }
+  }
+}
+
+void cmd_total(DeckReader& r, const Command& c) {
+  const auto n = r.opt_int(c, 1);
+  if (!n || *n < 0) r.fail(c, "NTOT missing or negative");
+  r.model.options.total_masters = *n;
+  r.model.options.total_masters_exclude_rotations = r.integer(c, 2, 0) == 1;
+}
+
+void cmd_gp(DeckReader& r, const Command& c) {
+  GapCondition g;
+  g.node_i = r.integer(c, 1, 0);
+  g.node_j = r.integer(c, 2, 0);
+  r.require_node(c, g.node_i);
+  r.require_node(c, g.node_j);
+  const std::string lab = r.label(c, 3);
+  auto d = parse_force_label(lab);
+  if (!d) d = parse_dof_label(lab);
+  if (!d) r.fail(c, fmt::format("bad gap direction label '{}' (FX FY FZ MX MY MZ)", c.text(3)));
+  g.dof = *d;
+  const auto stif = r.opt_real(c, 4);
+  if (!stif) r.fail(c, "gap stiffness STIF missing");
+  g.stiffness = *stif;
+  g.gap = r.real(c, 5, 0.0);
+  g.damping = r.real(c, 6, 0.0);
+  g.where = c.where;
+  r.model.gap_conditions.push_back(g);
+}
+
+// ---- 4x analysis keys -------------------------------------------------------------------------
+
+/// Applies the stored KAY values with the meaning they have under the current KAN (§3.3).
+void apply_kay(DeckReader& r, const Command& c, int key, int value, bool log) {
+  AnalysisOptions& o = r.model.options;
+  switch (key) {
+    case 1:
+      o.lumped_mass = value == 1;
+      return;
+    case 5:
+      r.model.current.time_integration = value != 0;
+      return;
+    case 6:
+      if (r.kan == 7)
+        o.superelement_matrices = value;
+      else
+        o.large_deflection = value == 1;
+      return;
+    case 8:
+      o.stress_stiffening = value == 1;
+      return;
+    default:
+      if (log)
+        r.warn(c, fmt::format("KAY({}) = {} has no known meaning; stored and ignored", key, value));
+  }
+}
+
+void cmd_kan(DeckReader& r, const Command& c) {
+  const int kan = r.integer(c, 1, 0);
+  AnalysisOptions& o = r.model.options;
+  switch (kan) {
+    case 0:
+      o.type = AnalysisType::Static;
+      break;
+    case 2:
+      o.type = AnalysisType::Modal;
+      break;
+    case 4:
+      o.type = AnalysisType::Transient;
+      o.method = TransientMethod::Full;
+      break;
+    case 5:
+      o.type = AnalysisType::Transient;
+      o.method = TransientMethod::Reduced;
+      break;
+    case 7:
+      o.type = AnalysisType::Substructure;
+      break;
+    case 1:
+    case 3:
+    case 6:
+    case 8:
+      r.fail(c, fmt::format("KAN={} ({}) is not supported; supported: 0 static, 2 modal, 4 full "
+                            "transient, 5 reduced transient, 7 substructure",
+                            kan,
+                            kan == 1   ? "buckling"
+                            : kan == 3 ? "harmonic"
+                            : kan == 6 ? "reduced harmonic"
+                                       : "spectrum"));
+    default:
+      r.fail(c, fmt::format("unknown analysis type KAN={}", kan));
+  }
+  o.integrator = IntegratorKind::Houbolt;
+  r.kan = kan;
+  for (const auto& [key, value] : o.kay) apply_kay(r, c, std::stoi(key), value, false);
+}
+
+void cmd_kay(DeckReader& r, const Command& c) {
+  const auto key = r.opt_int(c, 1);
+  if (!key || *key <= 0) r.fail(c, "key number missing");
+  const int value = r.integer(c, 2, 0);
+  r.model.options.kay[std::to_string(*key)] = value;
+  apply_kay(r, c, *key, value, true);
+  Log::info("{}:{}: KAY({}) = {}", c.where.file, c.where.line, *key, value);
+}
+
+}  // namespace
+
+void register_prep7_commands(std::vector<CommandSpec>& t) {
+  t.push_back({"ET", cmd_et, kPrep7});
+  t.push_back({"KEYOPT", cmd_keyopt, kPrep7});
+  t.push_back({"R", cmd_r, kPrep7});
+  t.push_back({"RMORE", cmd_rmore, kPrep7});
+  t.push_back({"RMODIF", cmd_rmodif, kPrep7 | kSolu});
+  for (const auto& lab : material_labels()) t.push_back({lab.c_str(), cmd_material, kPrep7});
+  t.push_back({"MP", cmd_mp, kPrep7 | kSolu});
+  t.push_back({"SECTYPE", cmd_sectype, kPrep7});
+  t.push_back({"SECDATA", cmd_secdata, kPrep7});
+  t.push_back({"SECNUM", cmd_secnum, kPrep7});
+  t.push_back({"N", cmd_n, kPrep7});
+  t.push_back({"E", cmd_e, kPrep7});
+  t.push_back({"EN", cmd_en, kPrep7});
+  t.push_back({"SE", cmd_se, kPrep7});
+  t.push_back({"TYPE", cmd_type, kPrep7});
+  t.push_back({"REAL", cmd_real, kPrep7});
+  t.push_back({"MAT", cmd_mat, kPrep7});
+  t.push_back({"M", cmd_m, kPrep7 | kSolu});
+  t.push_back({"TOTAL", cmd_total, kPrep7 | kSolu});
+  t.push_back({"GP", cmd_gp, kPrep7 | kSolu});
+  t.push_back({"KAN", cmd_kan, kPrep7});
+  t.push_back({"KAY", cmd_kay, kPrep7});
+}
+
+}  // namespace impactfe::deck

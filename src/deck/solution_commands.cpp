@@ -1,0 +1,580 @@
+// Solution commands: load-step options, analysis options (4x and modern), load-step closing
+// (LWRITE, AFWRITE, /INPUT,27, SOLVE, LSWRITE, LSSOLVE) and expansion passes (/STRESS, EXPASS).
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "deck/deck_context.h"
+
+namespace impactfe::deck {
+
+namespace {
+
+// ---- time and substeps -----------------------------------------------------------------------
+
+void stress_time(DeckReader& r, const Command& c) {
+  // /STRESS group: NSTRES solutions evenly spaced in (T_prev, T] (§3.26).
+  const auto t = r.opt_real(c, 1);
+  if (!t) r.fail(c, "TIME value missing");
+  if (*t <= r.stress_t_prev)
+    r.fail(c, fmt::format("TIME {} is not greater than the previous expansion time {}", *t,
+                          r.stress_t_prev));
+  r.stress_requests.push_back(ExpansionRequest{r.stress_count, r.stress_t_prev, *t, false});
+  r.stress_t_prev = *t;
+  r.stress_count = 1;
+}
+
+void cmd_time(DeckReader& r, const Command& c) {
+  if (r.processor == kStress) {
+    stress_time(r, c);
+    return;
+  }
+  const auto t = r.opt_real(c, 1);
+  if (t && *t < 0.0) r.fail(c, fmt::format("TIME {} is negative", *t));
+  const auto prev = r.previous_time();
+  if (t && prev && *t <= *prev)
+    r.fail(c, fmt::format("TIME {} is not greater than the previous load step's TIME {} (TIME "
+                          "must increase)",
+                          *t, *prev));
+  r.model.current.time_end = t;
+}
+
+void cmd_dtime(DeckReader& r, const Command& c) {
+  const auto dt = r.opt_real(c, 1);
+  if (!dt) r.fail(c, "time step value missing");
+  if (*dt <= 0.0) r.fail(c, fmt::format("time step {} must be positive", *dt));
+  LoadStep& s = r.model.current;
+  s.dt = *dt;
+  // DTIME/DELTIM and NSUBST/ITER are alternatives: the last one given wins (KAN=5 keeps both;
+  // its NITTER is not used for the step size).
+  if (!(r.dialect == Dialect::Classic4x && r.kan == 5)) s.n_substeps.reset();
+  if (c.name == "DELTIM")
+    for (int f = 2; f <= 4; ++f)
+      if (!c.blank(f)) {
+        r.warn(c, "DTMIN/DTMAX/Carry ignored (constant time steps)");
+        break;
+      }
+}
+
+void cmd_nsubst(DeckReader& r, const Command& c) {
+  const auto n = r.opt_int(c, 1);
+  if (!n) r.fail(c, "number of substeps missing");
+  if (*n <= 0) r.fail(c, fmt::format("number of substeps {} must be positive", *n));
+  r.model.current.n_substeps = *n;
+  r.model.current.dt.reset();
+}
+
+void cmd_iter(DeckReader& r, const Command& c) {
+  if (r.processor == kStress) return;  // NPRINT/NPOST of the expansion pass: printing only
+  const auto n = r.opt_int(c, 1);
+  const int nitter = n.value_or(1);
+  if (nitter < 0) r.fail(c, "negative NITTER (iterate to convergence) is not supported");
+  if (nitter == 0) r.fail(c, "zero substeps: NITTER must be positive");
+  LoadStep& s = r.model.current;
+  if (r.kan == 0) {
+    r.model.options.convergence.max_iterations = nitter;  // §3.16: static → equilibrium iterations
+  } else {
+    s.n_substeps = nitter;
+    if (r.kan == 4) s.dt.reset();
+  }
+  s.print_every = r.integer(c, 2, 0);
+  s.output.every = r.integer(c, 3, 0);
+  if (s.print_every < 0 || s.output.every < 0) r.fail(c, "NPRINT/NPOST must not be negative");
+  // Kept as given (n = every n-th substep and the last): under KAN=5 NITTER is not the
+  // number of steps, so "NPOST >= NITTER" must not be read as "last only".
+}
+
+void cmd_autots(DeckReader& r, const Command& c) {
+  const std::string l = r.label(c, 1);
+  if (l == "ON" || l == "AUTO" || l == "1")
+    r.warn(c, "automatic time stepping is not supported; constant steps are used (AUTOTS,OFF)");
+  else if (!(l == "OFF" || l == "0" || l.empty()))
+    r.fail(c, fmt::format("bad key '{}' (ON, OFF, AUTO)", c.text(1)));
+}
+
+void cmd_kbc(DeckReader& r, const Command& c) {
+  const int k = r.integer(c, 1, 0);
+  if (k != 0 && k != 1) r.fail(c, fmt::format("KBC key {} must be 0 (ramped) or 1 (stepped)", k));
+  r.model.current.stepped = k == 1;
+}
+
+void cmd_krf(DeckReader& r, const Command& c) {
+  const int n = r.integer(c, 1, 1);
+  if (n <= 0) r.fail(c, fmt::format("re-formulation interval {} must be positive", n));
+  r.model.current.reformulation = n;
+  r.model.options.convergence.full_newton = n == 1;
+}
+
+void cmd_nropt(DeckReader& r, const Command& c) {
+  const std::string l = r.label(c, 1);
+  ConvergenceOptions& cv = r.model.options.convergence;
+  if (l == "FULL" || l == "AUTO" || l.empty()) {
+    cv.full_newton = true;
+    r.model.current.reformulation = 1;
+  } else if (l == "MODI" || l == "INIT") {
+    cv.full_newton = false;
+    r.model.current.reformulation = l == "INIT" ? 1000000 : 1;
+  } else if (l == "UNSYM") {
+    r.warn(c, "UNSYM treated as FULL (symmetric matrices)");
+    cv.full_newton = true;
+  } else {
+    r.fail(c, fmt::format("bad option '{}' (FULL, MODI, INIT, AUTO)", c.text(1)));
+  }
+}
+
+void cmd_neqit(DeckReader& r, const Command& c) {
+  const int n = r.integer(c, 1, 25);
+  if (n <= 0) r.fail(c, fmt::format("NEQIT {} must be positive", n));
+  r.model.options.convergence.max_iterations = n;
+  if (r.label(c, 2) == "FORCE") r.model.options.convergence.max_iterations = 1;
+}
+
+void cmd_cnvtol(DeckReader& r, const Command& c) {
+  const std::string lab = r.label(c, 1);
+  ConvergenceOptions& cv = r.model.options.convergence;
+  const auto value = r.opt_real(c, 2);
+  if (lab == "F" || lab == "M") {
+    if (value && *value < 0.0) {
+      r.warn(c, "removing the force criterion is not supported; kept");
+      return;
+    }
+    cv.force_tolerance = r.real(c, 3, 0.005);
+    cv.force_minref = r.real(c, 5, cv.force_minref);
+  } else if (lab == "U" || lab == "ROT") {
+    if (value && *value < 0.0)
+      cv.displacement_tolerance.reset();
+    else
+      cv.displacement_tolerance = r.real(c, 3, 0.05);
+  } else {
+    r.fail(c, fmt::format("bad label '{}' (F, M, U, ROT)", c.text(1)));
+  }
+}
+
+void cmd_timint(DeckReader& r, const Command& c) {
+  r.model.current.time_integration = r.on_off(c, 1, true);
+}
+
+void cmd_nlgeom(DeckReader& r, const Command& c) {
+  const bool on = r.on_off(c, 1, false);
+  r.model.options.large_deflection = on;
+  if (on) r.model.options.stress_stiffening = true;
+}
+
+void cmd_sstif(DeckReader& r, const Command& c) {
+  r.model.options.stress_stiffening = r.on_off(c, 1, false);
+}
+
+void cmd_lumpm(DeckReader& r, const Command& c) {
+  r.model.options.lumped_mass = r.on_off(c, 1, false);
+}
+
+// ---- analysis type and method ------------------------------------------------------------------
+
+void cmd_antype(DeckReader& r, const Command& c) {
+  const std::string l = r.label(c, 1);
+  AnalysisType type = r.model.options.type;
+  if (l == "STATIC" || l == "0" || l == "STAT")
+    type = AnalysisType::Static;
+  else if (l == "MODAL" || l == "2")
+    type = AnalysisType::Modal;
+  else if (l == "TRANS" || l == "TRANSIENT" || l == "4")
+    type = AnalysisType::Transient;
+  else if (l == "SUBSTR" || l == "SUBSTRUCTURE" || l == "7")
+    type = AnalysisType::Substructure;
+  else if (l.empty())
+    ;
+  else
+    r.fail(c, fmt::format("analysis type '{}' not supported (STATIC, MODAL, TRANS, SUBSTR)",
+                          c.text(1)));
+  const std::string status = r.label(c, 2);
+  if (!status.empty() && status != "NEW")
+    r.fail(c, fmt::format("ANTYPE status '{}' not supported (only NEW)", c.text(2)));
+  if (type != r.model.options.type) r.open_analysis.reset();
+  r.model.options.type = type;
+}
+
+void cmd_trnopt(DeckReader& r, const Command& c) {
+  // TRNOPT,Method,MAXMODE,InitialAcc,MINMODE,MCout,TINTOPT,VAout,...
+  AnalysisOptions& o = r.model.options;
+  const std::string m = r.label(c, 1);
+  if (m == "FULL" || m.empty())
+    o.method = TransientMethod::Full;
+  else if (m == "REDUC")
+    o.method = TransientMethod::Reduced;
+  else if (m == "MSUP")
+    o.method = TransientMethod::ModeSuperposition;
+  else
+    r.fail(c, fmt::format("transient method '{}' not supported (FULL, REDUC, MSUP)", c.text(1)));
+  if (!c.blank(2)) o.msup_modes = r.integer(c, 2, 0);
+  if (!c.blank(4) && r.integer(c, 4, 1) != 1) r.warn(c, "MINMODE ignored (modes from 1 are used)");
+  const std::string t = r.label(c, 6);
+  if (t == "NMK" || t == "0")
+    o.integrator = IntegratorKind::Newmark;
+  else if (t == "HHT" || t == "1")
+    o.integrator = IntegratorKind::HHT;
+  else if (t == "HOUB")
+    o.integrator = IntegratorKind::Houbolt;  // program extension (§9.4)
+  else if (!t.empty())
+    r.fail(c, fmt::format("bad TINTOPT '{}' (NMK, HHT, HOUB)", c.text(6)));
+}
+
+void cmd_tintp(DeckReader& r, const Command& c) {
+  TimeIntegrationParameters& p = r.model.options.tintp;
+  const std::string g = r.label(c, 1);
+  if (g == "IMPA" || g == "HISP" || g == "MOSP" || g == "LOSP" || g == "QUAS")
+    r.warn(c, fmt::format("application label {} ignored; default parameters used", g));
+  else if (!g.empty())
+    p.gamma = r.opt_real(c, 1);
+  if (!c.blank(2)) p.alpha = r.opt_real(c, 2);
+  if (!c.blank(3)) p.delta = r.opt_real(c, 3);
+  if (!c.blank(10)) p.alpha_f = r.opt_real(c, 10);
+  if (!c.blank(11)) p.alpha_m = r.opt_real(c, 11);
+}
+
+void cmd_alphad(DeckReader& r, const Command& c) {
+  r.model.options.alpha_damping = r.real(c, 1, 0.0);
+}
+void cmd_betad(DeckReader& r, const Command& c) {
+  r.model.options.beta_damping = r.real(c, 1, 0.0);
+}
+void cmd_dmprat(DeckReader& r, const Command& c) {
+  r.model.options.damping_ratio = r.real(c, 1, 0.0);
+}
+
+void cmd_mdamp(DeckReader& r, const Command& c) {
+  const int start = r.integer(c, 1, r.mdamp_next);
+  if (start <= 0) r.fail(c, "STLOC must be positive");
+  for (int k = 0; k < 6; ++k) {
+    if (c.blank(2 + k)) continue;
+    r.model.options.modal_damping[start + k] = r.real(c, 2 + k, 0.0);
+    r.mdamp_next = std::max(r.mdamp_next, start + k + 1);
+  }
+}
+
+void cmd_modopt(DeckReader& r, const Command& c) {
+  ModalOptions& m = r.model.options.modal;
+  const std::string method = r.label(c, 1);
+  if (!method.empty()) m.method = method;
+  if (method == "QRDAMP" || method == "DAMP" || method == "UNSYM")
+    r.warn(c, "damped/unsymmetric eigensolvers not available; undamped real modes computed");
+  const auto n = r.opt_int(c, 2);
+  if (!n) r.fail(c, "NMODE (number of modes) is required");
+  if (*n <= 0) r.fail(c, fmt::format("NMODE {} must be positive", *n));
+  m.n_modes = *n;
+  m.freq_begin = r.opt_real(c, 3);
+  m.freq_end = r.opt_real(c, 4);
+  m.normalize_to_unity = r.label(c, 6) == "ON";
+}
+
+void cmd_mxpand(DeckReader& r, const Command& c) {
+  Log::info("{}:{}: MXPAND: all extracted modes are kept in memory and written", c.where.file,
+            c.where.line);
+}
+
+/// OUTRES/OUTPR frequency: n, ALL (1), LAST (0), NONE (0 + warning); blank: every substep for a
+/// transient, the last otherwise.
+int output_frequency(DeckReader& r, const Command& c) {
+  const std::string f = r.label(c, 2);
+  if (r.label(c, 1) == "ERASE") return 0;
+  if (f.empty()) return r.model.options.type == AnalysisType::Transient ? 1 : 0;
+  if (f == "ALL") return 1;
+  if (f == "LAST") return 0;
+  if (f == "NONE") {
+    r.warn(c, "NONE: the last substep of each load step is still written");
+    return 0;
+  }
+  const int n = r.integer(c, 2, 1);
+  if (n < 0) {
+    r.warn(c, "-n (auto time stepping) taken as every substep");
+    return 1;
+  }
+  return n;
+}
+
+void cmd_outres(DeckReader& r, const Command& c) {
+  r.model.current.output.every = output_frequency(r, c);
+}
+
+void cmd_outpr(DeckReader& r, const Command& c) {
+  r.model.current.print_every = output_frequency(r, c);
+}
+
+void cmd_seopt(DeckReader& r, const Command& c) {
+  AnalysisOptions& o = r.model.options;
+  if (!c.blank(1)) o.superelement_name = c.text(1);
+  const int sematr = r.integer(c, 2, 1);
+  if (sematr < 1 || sematr > 3) r.fail(c, fmt::format("SEMATR {} must be 1, 2 or 3", sematr));
+  o.superelement_matrices = sematr;
+  if (!c.blank(4)) o.stress_stiffening = r.integer(c, 4, 0) != 0;
+}
+
+void cmd_seexp(DeckReader& r, const Command& c) {
+  r.warn(c, "SEEXP options noted; the expansion uses the superelement of the last generation pass");
+}
+
+void cmd_cmsopt(DeckReader& r, const Command& c) {
+  r.fail(c, "component mode synthesis (CMSOPT) is not implemented");
+}
+
+// ---- load steps and analyses -----------------------------------------------------------------
+
+/// The current load state as load step `number`, closed by command `c`.
+LoadStep snapshot(DeckReader& r, const Command& c, int number) {
+  LoadStep s = r.model.current;
+  s.number = number;
+  s.where = c.where;
+  return s;
+}
+
+void check_increasing(DeckReader& r, const Command& c, const std::vector<LoadStep>& previous,
+                      const LoadStep& s) {
+  if (previous.empty() || !s.time_end) return;
+  std::optional<double> prev;
+  for (const auto& p : previous)
+    if (p.time_end && (!prev || *p.time_end > *prev)) prev = p.time_end;
+  if (prev && *s.time_end <= *prev)
+    r.fail(c, fmt::format("load step {} ends at TIME {}, not after the previous step ({}); "
+                          "TIME must increase",
+                          s.number, *s.time_end, *prev));
+}
+
+void cmd_lwrite(DeckReader& r, const Command& c) {
+  if (r.frozen) r.fail(c, "LWRITE after AFWRITE: the analysis file is already written");
+  LoadStep s = snapshot(r, c, static_cast<int>(r.load_steps_4x.size()) + 1);
+  check_increasing(r, c, r.load_steps_4x, s);
+  if (r.kan == 5 && !r.load_steps_4x.empty() && s.dt != r.load_steps_4x.front().dt)
+    r.warn(c, "DTIME changed in a reduced transient (KAN=5): the first step's DTIME is used");
+  r.load_steps_4x.push_back(std::move(s));
+}
+
+void cmd_afwrite(DeckReader& r, const Command& c) {
+  if (r.frozen) r.fail(c, "AFWRITE issued twice");
+  if (r.load_steps_4x.empty()) r.load_steps_4x.push_back(snapshot(r, c, 1));  // §3.25
+  r.validate_elements();
+  if (r.kan == 5 && r.model.masters.empty())
+    r.fail(c, "KAN=5 (reduced transient) needs master DOFs (M)");
+  if (r.kan == 7 && r.model.masters.empty())
+    r.fail(c, "KAN=7 (substructure generation) needs master DOFs (M)");
+  if (r.kan == 4 && !r.model.masters.empty())
+    r.warn(c, fmt::format("{} master DOFs ignored in a full transient (KAN=4)",
+                          r.model.masters.size()));
+  for (const auto& [key, value] : r.model.options.kay)
+    Log::info("KAY({}) = {} (KAN={})", key, value, r.kan);
+  Job::Step step;
+  AnalysisRequest a;
+  a.options = r.model.options;
+  a.load_steps = r.load_steps_4x;
+  a.where = c.where;
+  step.analysis = std::move(a);
+  step.model_snapshot = r.model;
+  r.frozen = std::move(step);
+}
+
+void cmd_exec(DeckReader& r, const Command&) {
+  r.exec_armed = true;
+  r.processor = kSolu;
+}
+
+/// Opens a modern analysis (one Job::Step) if none is open.
+AnalysisRequest& open_analysis(DeckReader& r, const Command& c) {
+  if (!r.open_analysis) {
+    r.validate_elements();
+    if (r.model.options.type == AnalysisType::Transient &&
+        r.model.options.method == TransientMethod::Reduced && r.model.masters.empty())
+      r.fail(c, "a reduced transient (TRNOPT,REDUC) needs master DOFs (M)");
+    Job::Step step;
+    AnalysisRequest a;
+    a.options = r.model.options;
+    a.where = c.where;
+    step.analysis = std::move(a);
+    step.model_snapshot = r.model;
+    r.job.steps.push_back(std::move(step));
+    r.open_analysis = r.job.steps.size() - 1;
+  }
+  return *r.job.steps[*r.open_analysis].analysis;
+}
+
+void solve_current(DeckReader& r, const Command& c) {
+  AnalysisRequest& a = open_analysis(r, c);
+  LoadStep s = snapshot(r, c, static_cast<int>(a.load_steps.size()) + 1);
+  check_increasing(r, c, a.load_steps, s);
+  a.load_steps.push_back(std::move(s));
+  if (a.load_steps.back().time_end) r.last_solved_time = a.load_steps.back().time_end;
+}
+
+void solve_expansion(DeckReader& r, const Command& c) {
+  if (r.job.steps.empty()) r.fail(c, "expansion pass (EXPASS,ON) without a preceding analysis");
+  ExpansionPassRequest e = r.expansion;
+  if (e.requests.empty()) {
+    Log::info("{}:{}: SOLVE: no NUMEXP/EXPSOL given; every solution is expanded", c.where.file,
+              c.where.line);
+    e.requests.push_back(ExpansionRequest{0, 0.0, r.last_solved_time.value_or(0.0), true});
+  }
+  e.where = c.where;
+  Job::Step step;
+  step.expansion = std::move(e);
+  step.model_snapshot = r.model;
+  r.job.steps.push_back(std::move(step));
+  r.open_analysis.reset();
+  r.expansion.requests.clear();
+}
+
+void cmd_solve(DeckReader& r, const Command& c) {
+  if (r.expass)
+    solve_expansion(r, c);
+  else
+    solve_current(r, c);
+}
+
+void cmd_lswrite(DeckReader& r, const Command& c) {
+  const std::string l = r.label(c, 1);
+  if (l == "INIT") {
+    r.lswrite_steps.clear();
+    return;
+  }
+  if (l == "STAT") {
+    Log::info("{}:{}: LSWRITE: {} load steps stored", c.where.file, c.where.line,
+              r.lswrite_steps.size());
+    return;
+  }
+  const int next = r.lswrite_steps.empty() ? 1 : r.lswrite_steps.rbegin()->first + 1;
+  const int n = r.integer(c, 1, next);
+  if (n <= 0) r.fail(c, fmt::format("load step number {} must be positive", n));
+  r.lswrite_steps[n] = snapshot(r, c, n);
+}
+
+void cmd_lssolve(DeckReader& r, const Command& c) {
+  const auto first = r.opt_int(c, 1);
+  if (!first) r.fail(c, "LSMIN missing");
+  const int last = r.integer(c, 2, *first);
+  const int inc = std::max(1, r.integer(c, 3, 1));
+  for (int n = *first; n <= last; n += inc) {
+    auto it = r.lswrite_steps.find(n);
+    if (it == r.lswrite_steps.end())
+      r.fail(c, fmt::format("load step {} was not written (LSWRITE)", n));
+    r.model.current = it->second;
+    solve_current(r, c);
+  }
+}
+
+// ---- expansion passes ---------------------------------------------------------------------------
+
+void cmd_stress(DeckReader& r, const Command& c) {
+  bool analysed = false;
+  for (const auto& s : r.job.steps) analysed = analysed || s.analysis.has_value();
+  if (!analysed) r.fail(c, "/STRESS without a preceding analysis (/INPUT,27)");
+  const auto& last =
+      *std::find_if(r.job.steps.rbegin(), r.job.steps.rend(), [](const Job::Step& s) {
+         return s.analysis.has_value();
+       })->analysis;
+  if (last.options.method != TransientMethod::Reduced)
+    r.warn(c, "/STRESS after an analysis that is not a reduced transient (KAN=5)");
+  r.processor = kStress;
+  r.stress_requests.clear();
+  r.stress_count = 1;
+  r.stress_t_prev = 0.0;
+  r.stress_where = c.where;
+}
+
+void cmd_nstres(DeckReader& r, const Command& c) {
+  const auto n = r.opt_int(c, 1);
+  if (!n || *n <= 0) r.fail(c, "number of expanded solutions must be positive");
+  r.stress_count = *n;
+}
+
+void cmd_end(DeckReader& r, const Command& c) {
+  if (r.stress_requests.empty())
+    r.fail(c, "END without an NSTRES/TIME request in the /STRESS block");
+  Job::Step step;
+  step.expansion = ExpansionPassRequest{r.stress_requests, true, c.where};
+  step.model_snapshot = r.model;
+  r.job.steps.push_back(std::move(step));
+  r.stress_requests.clear();
+}
+
+void cmd_expass(DeckReader& r, const Command& c) {
+  r.expass = r.on_off(c, 1, false);
+  r.expansion = ExpansionPassRequest{};
+  r.expansion.static_correction = r.on_off(c, 4, true);
+}
+
+void cmd_numexp(DeckReader& r, const Command& c) {
+  ExpansionRequest q;
+  if (r.label(c, 1) == "ALL") {
+    q.every_step = true;
+    q.count = 0;
+  } else {
+    const auto n = r.opt_int(c, 1);
+    if (!n || *n <= 0) r.fail(c, "NUM must be a positive number or ALL");
+    q.count = *n;
+  }
+  q.t_begin = r.real(c, 2, 0.0);
+  const auto end = r.opt_real(c, 3);
+  if (!end && !r.last_solved_time) r.fail(c, "ENDRNG missing and no solved load step with a TIME");
+  q.t_end = end ? *end : *r.last_solved_time;
+  if (q.t_end < q.t_begin) r.fail(c, fmt::format("empty range {} to {}", q.t_begin, q.t_end));
+  r.expansion.requests.push_back(q);
+}
+
+void cmd_expsol(DeckReader& r, const Command& c) {
+  const auto t = r.opt_real(c, 3);
+  if (!t) r.fail(c, "only EXPSOL by time (TIMFRQ, field 3) is supported");
+  r.expansion.requests.push_back(ExpansionRequest{1, *t, *t, false});
+}
+
+}  // namespace
+
+void run_frozen_analysis(DeckReader& r, const Command& c) {
+  if (!r.frozen) r.fail(c, "no analysis to run: AFWRITE was not issued before /INPUT,27");
+  Job::Step step = *r.frozen;
+  step.analysis->where = c.where;
+  r.job.steps.push_back(std::move(step));
+  r.exec_armed = false;
+}
+
+void register_solution_commands(std::vector<CommandSpec>& t) {
+  t.push_back({"TIME", cmd_time, kPrepSolu | kStress});
+  t.push_back({"DTIME", cmd_dtime, kPrepSolu});
+  t.push_back({"DELTIM", cmd_dtime, kPrepSolu});
+  t.push_back({"NSUBST", cmd_nsubst, kPrepSolu});
+  t.push_back({"ITER", cmd_iter, kPrepSolu | kStress});
+  t.push_back({"AUTOTS", cmd_autots, kPrepSolu});
+  t.push_back({"KBC", cmd_kbc, kPrepSolu});
+  t.push_back({"KRF", cmd_krf, kPrepSolu});
+  t.push_back({"NROPT", cmd_nropt, kPrepSolu});
+  t.push_back({"NEQIT", cmd_neqit, kPrepSolu});
+  t.push_back({"CNVTOL", cmd_cnvtol, kPrepSolu});
+  t.push_back({"TIMINT", cmd_timint, kPrepSolu});
+  t.push_back({"NLGEOM", cmd_nlgeom, kPrepSolu});
+  t.push_back({"SSTIF", cmd_sstif, kPrepSolu});
+  t.push_back({"LUMPM", cmd_lumpm, kPrepSolu});
+  t.push_back({"ANTYPE", cmd_antype, kPrepSolu});
+  t.push_back({"TRNOPT", cmd_trnopt, kPrepSolu});
+  t.push_back({"TINTP", cmd_tintp, kPrepSolu});
+  t.push_back({"ALPHAD", cmd_alphad, kPrepSolu});
+  t.push_back({"BETAD", cmd_betad, kPrepSolu});
+  t.push_back({"DMPRAT", cmd_dmprat, kPrepSolu});
+  t.push_back({"MDAMP", cmd_mdamp, kPrepSolu});
+  t.push_back({"MODOPT", cmd_modopt, kPrepSolu});
+  t.push_back({"MXPAND", cmd_mxpand, kPrepSolu});
+  t.push_back({"OUTRES", cmd_outres, kPrepSolu});
+  t.push_back({"OUTPR", cmd_outpr, kPrepSolu});
+  t.push_back({"SEOPT", cmd_seopt, kPrepSolu});
+  t.push_back({"SEEXP", cmd_seexp, kSolu});
+  t.push_back({"CMSOPT", cmd_cmsopt, kPrepSolu});
+  t.push_back({"LWRITE", cmd_lwrite, kPrepSolu});
+  t.push_back({"AFWRITE", cmd_afwrite, kPrep7});
+  t.push_back({"/EXEC", cmd_exec, kBegin | kPrep7});
+  t.push_back({"SOLVE", cmd_solve, kSolu});
+  t.push_back({"LSWRITE", cmd_lswrite, kPrepSolu});
+  t.push_back({"LSSOLVE", cmd_lssolve, kSolu});
+  t.push_back({"/STRESS", cmd_stress, kBegin | kStress});
+  t.push_back({"NSTRES", cmd_nstres, kStress});
+  t.push_back({"END", cmd_end, kStress});
+  t.push_back({"EXPASS", cmd_expass, kSolu});
+  t.push_back({"NUMEXP", cmd_numexp, kSolu});
+  t.push_back({"EXPSOL", cmd_expsol, kSolu});
+}
+
+}  // namespace impactfe::deck

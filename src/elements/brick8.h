@@ -1,0 +1,95 @@
+#pragma once
+/// SOLID45 / SOLID185: the 8-node isoparametric brick (UX UY UZ per node), 2x2x2 Gauss
+/// integration (thesis eq. 2-5, Bathe §5.3), optional Wilson incompatible modes with Taylor's
+/// modification (extra shapes), degenerate prism / pyramid / tetrahedron by repeated nodes,
+/// consistent or HRZ-lumped mass, linear stress stiffening and a total-Lagrangian large-deflection
+/// formulation (Green-Lagrange strain, 2nd Piola-Kirchhoff stress, St. Venant-Kirchhoff).
+#include <Eigen/Core>
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "elements/element.h"
+#include "materials/isotropic_elasticity.h"
+
+namespace impactfe {
+
+/// The 8-node brick. All matrices are in global Cartesian axes; the DOF order is (node, UX/UY/UZ)
+/// for the distinct nodes in order of first appearance in I..P.
+class Brick8 final : public Element {
+ public:
+  /// `nodes`: node ids I..P (repeats allowed: degenerate shapes); `x`: their coordinates.
+  /// `extra_shapes` requests the incompatible modes; they are dropped when nodes repeat.
+  /// Throws InputError at `where` for a zero or negative Jacobian at a Gauss point.
+  Brick8(int id, const std::array<int, 8>& nodes, const std::array<Vec3, 8>& x,
+         const IsotropicElasticity& material, bool extra_shapes, const SourceLocation& where = {});
+
+  const char* family() const override { return "Brick8"; }
+  const std::vector<DofKey>& dofs() const override { return dofs_; }
+  bool is_nonlinear(const ElementContext& ctx) const override {
+    return ctx.large_deflection || ctx.stress_stiffening;
+  }
+  /// Linear: K = condensed ∫BᵀDB dV, f_int = K u (+ K_σ u with stress stiffening, K_σ from the
+  /// stress of u, so that the converged state solves (K + K_σ(u)) u = F as ANSYS SSTIF does).
+  /// Large deflection: total-Lagrangian f_int = ∫ B_Lᵀ S dV0 and its exact derivative.
+  void tangent(const ElementContext& ctx, const Eigen::VectorXd& u, Eigen::MatrixXd& K,
+               Eigen::VectorXd& f_int) const override;
+  /// Consistent ρ∫NᵀN dV (trilinear functions, 2x2x2) or HRZ-lumped when ctx.lumped_mass.
+  void mass(const ElementContext& ctx, Eigen::MatrixXd& M) const override;
+
+  /// SX SY SZ SXY SYZ SXZ S1 S2 S3 SINT SEQV at the centroid, global axes (Cauchy stress under
+  /// large deflection).
+  const std::vector<std::string>& result_names() const override;
+  void results(const ElementContext& ctx, const Eigen::VectorXd& u, const Eigen::VectorXd& v,
+               ElementResultValues& out) const override;
+
+  /// True when the incompatible modes are active (requested and all 8 nodes distinct).
+  bool extra_shapes() const { return extra_shapes_; }
+  /// True when some of the nodes I..P repeat (prism, pyramid, tetrahedron).
+  bool degenerate() const { return n_unique_ < 8; }
+  /// Element volume ∫dV (2x2x2 Gauss), in the deck's length unit cubed.
+  double volume() const { return volume_; }
+  /// Cauchy stress (xx, yy, zz, xy, yz, xz) at the centroid for displacement u.
+  Vector6d centroid_stress(const ElementContext& ctx, const Eigen::VectorXd& u) const;
+
+ private:
+  static constexpr int kGauss = 8;
+  static constexpr int kModes = 3;  // incompatible bubble functions (1-ξ²), (1-η²), (1-ζ²)
+  static constexpr int kFunctions = 11;  // 8 trilinear + 3 bubbles
+  struct GaussPoint {
+    Eigen::Matrix<double, 8, 1> n;              // trilinear shape functions
+    Eigen::Matrix<double, 3, kFunctions> grad;  // d/dX of the 8 (+3 modified) functions
+    double dv = 0.0;                            // weight * det J
+  };
+
+  Eigen::Matrix<double, 24, 1> to_corners(const Eigen::VectorXd& u) const;
+  void from_corners(const Eigen::MatrixXd& kc, const Eigen::VectorXd& fc, Eigen::MatrixXd& k,
+                    Eigen::VectorXd& f) const;
+  /// ∫ B_Lᵀ S dV0 and ∫ (B_Lᵀ D B_L + G ᵀ S G) dV0 over the first nf functions at the
+  /// generalised displacements q (3 nf: corners then bubble amplitudes). q = 0 gives the
+  /// linear stiffness.
+  void tl_sum(int nf, const Eigen::VectorXd& q, Eigen::MatrixXd& k, Eigen::VectorXd& f) const;
+  void tangent_linear(const ElementContext& ctx, const Eigen::Matrix<double, 24, 1>& uc,
+                      Eigen::MatrixXd& kc, Eigen::VectorXd& fc) const;
+  void tangent_large(const Eigen::Matrix<double, 24, 1>& uc, Eigen::MatrixXd& kc,
+                     Eigen::VectorXd& fc) const;
+  /// Scalar (one direction) mass matrix over the distinct nodes, consistent.
+  Eigen::MatrixXd scalar_mass() const;
+
+  std::array<int, 8> nodes_;
+  std::array<Vec3, 8> x_;
+  std::array<int, 8> corner_to_unique_{};
+  int n_unique_ = 0;
+  std::vector<DofKey> dofs_;
+  Matrix6d d_;
+  double density_ = 0.0;
+  bool extra_shapes_ = false;
+  double volume_ = 0.0;
+  std::array<GaussPoint, kGauss> gauss_;
+  Eigen::Matrix<double, 3, 8> grad_centre_;     // d/dX of the trilinear functions at ξ = 0
+  Eigen::Matrix<double, 24, 24> k_linear_;      // condensed small-strain stiffness (corners)
+  Eigen::Matrix<double, 9, 24> mode_recovery_;  // α = mode_recovery_ * u_c (linear)
+};
+
+}  // namespace impactfe
