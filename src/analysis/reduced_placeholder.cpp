@@ -16,9 +16,5 @@ void run_expansion_pass(const ExpansionPassRequest&, ReducedSolutionState*, Resu
                         const RunSettings&, AnalysisStatistics&) {
   throw NotImplementedError("expansion pass is not implemented yet");
 }
-void run_substructure_generation(Structure&, const AnalysisRequest&, ResultsWriter&,
-                                 const RunSettings&, AnalysisStatistics&, const std::string&) {
-  throw NotImplementedError("substructure generation (KAN,7) is not implemented yet");
-}
 
 }  // namespace impactfe
