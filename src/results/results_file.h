@@ -40,7 +40,15 @@ struct TimePoint {
 
 /// Kind of an analysis section in the file.
 enum class ResultsKind { Static, Modal, Transient, ReducedTransient, Expansion, Substructure };
+/// "static", "modal", "transient", "reduced_transient", "expansion", "substructure".
 const char* results_kind_name(ResultsKind kind);
+
+/// Energy columns of the per-analysis `energy` dataset, in stored order (docs/results_file.md).
+inline constexpr const char* kEnergyNames[5] = {"kinetic", "strain", "external_work", "gap_work",
+                                                "dissipation"};
+
+/// Two stored times are the same time point when |a - b| <= 1e-12 * max(1, |a|, |b|).
+bool same_time(double a, double b);
 
 /// Writes <jobname>.h5. One file per job; one /analysis_<k> group per analysis in run order.
 class ResultsWriter {
@@ -51,7 +59,8 @@ class ResultsWriter {
   ResultsWriter(const ResultsWriter&) = delete;
   ResultsWriter& operator=(const ResultsWriter&) = delete;
 
-  /// Opens a new analysis group; returns its index k.
+  /// Opens a new analysis group /analysis_<k>; returns its 1-based index k. Ends the previous
+  /// analysis first if it is still open (status "complete").
   int begin_analysis(ResultsKind kind, const std::string& description);
   /// Appends one time point to the current analysis and flushes the file.
   void append(const TimePoint& point);
@@ -62,6 +71,8 @@ class ResultsWriter {
   void set_attribute(const std::string& name, double value);
   void set_attribute(const std::string& name, const std::string& value);
   /// Marks the current analysis as finished (status attribute "complete" or the error text).
+  /// An analysis still open when the writer is destroyed is marked "incomplete"; a killed run
+  /// leaves "running".
   void end_analysis(const std::string& status = "complete");
 
   const std::vector<int>& node_ids() const;
@@ -79,20 +90,38 @@ class ResultsReader {
   ~ResultsReader();
 
   struct AnalysisInfo {
-    int index = 0;
+    int index = 0;  // 1-based, the k of /analysis_<k>
     ResultsKind kind = ResultsKind::Static;
     std::string description;
     std::string status;
     int n_time_points = 0;
+    double time_first = 0.0;  // first / last stored time (0 when no time point)
+    double time_last = 0.0;
+    int n_gaps = 0;   // columns of gap_forces
+    int n_modes = 0;  // modal results stored in this analysis
     std::vector<std::string> element_families;
     std::map<std::string, double> numeric_attributes;
     std::map<std::string, std::string> text_attributes;
   };
 
+  /// Element of the model section (node list without the zero padding).
+  struct ElementInfo {
+    int id = 0;
+    std::string type_name;  // ANSYS name, e.g. "LINK8"
+    int type = 0;
+    int mat = 0;
+    int real = 0;
+    std::vector<int> nodes;
+  };
+
+  const std::string& path() const;
   std::string title() const;
   const std::vector<int>& node_ids() const;
   Eigen::MatrixXd node_coordinates() const;  // n_nodes x 3
+  const std::vector<ElementInfo>& elements() const;
   std::vector<AnalysisInfo> analyses() const;
+  /// Stored times of analysis a (1-based).
+  std::vector<double> times(int analysis) const;
 
   /// Time series of a nodal quantity: lab in UX..ROTZ, VX VY VZ, AX AY AZ, or reaction FX..MZ.
   /// Returns (time, value) pairs over all analyses in order, only where the value exists; at a
@@ -106,7 +135,8 @@ class ResultsReader {
   std::vector<double> frequencies() const;
   /// Mode shape (n_nodes x 6) of mode 1-based `mode` of the last modal analysis.
   Eigen::MatrixXd mode_shape(int mode) const;
-  /// Full time point k of analysis a.
+  /// Full time point k (0-based) of analysis a (1-based). Energies that were not stored are
+  /// absent from the map; the element tables hold every family of the analysis.
   TimePoint time_point(int analysis, int k) const;
 
  private:

@@ -1,0 +1,215 @@
+#include "results/h5_util.h"
+
+#include <fmt/format.h>
+
+#include <numeric>
+#include <stdexcept>
+
+namespace impactfe::h5 {
+
+void silence_errors() {
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+}
+
+hid_t check(hid_t id, const std::string& what) {
+  if (id < 0) throw std::runtime_error(fmt::format("results file: cannot {}", what));
+  return id;
+}
+
+void check_status(herr_t status, const std::string& what) {
+  if (status < 0) throw std::runtime_error(fmt::format("results file: cannot {}", what));
+}
+
+bool exists(hid_t loc, const std::string& name) {
+  return H5Lexists(loc, name.c_str(), H5P_DEFAULT) > 0;
+}
+
+Handle string_type() {
+  Handle t(check(H5Tcopy(H5T_C_S1), "create string type"));
+  check_status(H5Tset_size(t, H5T_VARIABLE), "set string size");
+  check_status(H5Tset_cset(t, H5T_CSET_UTF8), "set string charset");
+  return t;
+}
+
+namespace {
+
+void delete_attribute_if_present(hid_t obj, const std::string& name) {
+  if (H5Aexists(obj, name.c_str()) > 0) H5Adelete(obj, name.c_str());
+}
+
+hsize_t product(const std::vector<hsize_t>& dims) {
+  return std::accumulate(dims.begin(), dims.end(), hsize_t{1}, std::multiplies<>());
+}
+
+void write_dataset_raw(hid_t loc, const std::string& name, const std::vector<hsize_t>& dims,
+                       hid_t file_type, hid_t mem_type, const void* data) {
+  Handle space(check(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr),
+                     "create dataspace for " + name));
+  Handle ds(
+      check(H5Dcreate2(loc, name.c_str(), file_type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+            "create dataset " + name));
+  if (product(dims) > 0)
+    check_status(H5Dwrite(ds, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), "write " + name);
+}
+
+}  // namespace
+
+void write_attribute(hid_t obj, const std::string& name, double value) {
+  delete_attribute_if_present(obj, name);
+  Handle space(check(H5Screate(H5S_SCALAR), "create scalar dataspace"));
+  Handle attr(check(H5Acreate2(obj, name.c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT),
+                    "create attribute " + name));
+  check_status(H5Awrite(attr, H5T_NATIVE_DOUBLE, &value), "write attribute " + name);
+}
+
+void write_attribute(hid_t obj, const std::string& name, const std::string& value) {
+  delete_attribute_if_present(obj, name);
+  Handle type = string_type();
+  Handle space(check(H5Screate(H5S_SCALAR), "create scalar dataspace"));
+  Handle attr(check(H5Acreate2(obj, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT),
+                    "create attribute " + name));
+  const char* p = value.c_str();
+  check_status(H5Awrite(attr, type, &p), "write attribute " + name);
+}
+
+void write_attribute(hid_t obj, const std::string& name, const std::vector<std::string>& values) {
+  delete_attribute_if_present(obj, name);
+  Handle type = string_type();
+  hsize_t n = values.size();
+  Handle space(check(H5Screate_simple(1, &n, nullptr), "create dataspace"));
+  Handle attr(check(H5Acreate2(obj, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT),
+                    "create attribute " + name));
+  std::vector<const char*> ptrs;
+  for (const auto& v : values) ptrs.push_back(v.c_str());
+  if (n > 0) check_status(H5Awrite(attr, type, ptrs.data()), "write attribute " + name);
+}
+
+namespace {
+
+/// Reads n strings (variable or fixed length) from an attribute or dataset.
+template <typename ReadFn>
+std::vector<std::string> read_string_values(hid_t file_type, hid_t space, hsize_t n, ReadFn read) {
+  std::vector<std::string> out;
+  if (n == 0) return out;
+  if (H5Tis_variable_str(file_type) > 0) {
+    Handle mem = string_type();
+    std::vector<char*> buf(n, nullptr);
+    check_status(read(mem.get(), static_cast<void*>(buf.data())), "read strings");
+    for (char* p : buf) out.emplace_back(p ? p : "");
+    H5Dvlen_reclaim(mem, space, H5P_DEFAULT, buf.data());
+  } else {
+    std::size_t size = H5Tget_size(file_type);
+    Handle mem(check(H5Tcopy(H5T_C_S1), "copy string type"));
+    H5Tset_size(mem, size);
+    std::vector<char> buf(size * n, '\0');
+    check_status(read(mem.get(), static_cast<void*>(buf.data())), "read strings");
+    for (hsize_t i = 0; i < n; ++i) {
+      std::string s(buf.data() + i * size, size);
+      s.erase(s.find_last_not_of(std::string("\0 ", 2)) + 1);
+      out.push_back(s);
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string read_string_attribute(hid_t obj, const std::string& name) {
+  auto v = read_string_list_attribute(obj, name);
+  return v.empty() ? std::string() : v.front();
+}
+
+std::vector<std::string> read_string_list_attribute(hid_t obj, const std::string& name) {
+  Handle attr(check(H5Aopen(obj, name.c_str(), H5P_DEFAULT), "open attribute " + name));
+  Handle type(check(H5Aget_type(attr), "get attribute type"));
+  Handle space(check(H5Aget_space(attr), "get attribute space"));
+  hssize_t n = H5Sget_simple_extent_npoints(space);
+  return read_string_values(type, space, static_cast<hsize_t>(n),
+                            [&](hid_t mem, void* buf) { return H5Aread(attr, mem, buf); });
+}
+
+std::vector<std::string> attribute_names(hid_t obj) {
+  std::vector<std::string> names;
+  hsize_t idx = 0;
+  H5Aiterate2(
+      obj, H5_INDEX_NAME, H5_ITER_INC, &idx,
+      [](hid_t, const char* name, const H5A_info_t*, void* data) -> herr_t {
+        static_cast<std::vector<std::string>*>(data)->emplace_back(name);
+        return 0;
+      },
+      &names);
+  return names;
+}
+
+void write_dataset(hid_t loc, const std::string& name, const std::vector<hsize_t>& dims,
+                   const double* data) {
+  write_dataset_raw(loc, name, dims, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, data);
+}
+
+void write_dataset(hid_t loc, const std::string& name, const std::vector<hsize_t>& dims,
+                   const int* data) {
+  write_dataset_raw(loc, name, dims, H5T_STD_I32LE, H5T_NATIVE_INT, data);
+}
+
+void write_dataset(hid_t loc, const std::string& name, const std::vector<std::string>& values) {
+  Handle type = string_type();
+  std::vector<const char*> ptrs;
+  for (const auto& v : values) ptrs.push_back(v.c_str());
+  write_dataset_raw(loc, name, {values.size()}, type, type, ptrs.data());
+}
+
+std::vector<hsize_t> dims_of(hid_t dataset) {
+  Handle space(check(H5Dget_space(dataset), "get dataspace"));
+  int rank = H5Sget_simple_extent_ndims(space);
+  std::vector<hsize_t> dims(static_cast<std::size_t>(std::max(rank, 0)));
+  if (rank > 0) H5Sget_simple_extent_dims(space, dims.data(), nullptr);
+  return dims;
+}
+
+namespace {
+template <typename T>
+std::vector<T> read_all(hid_t loc, const std::string& name, hid_t mem_type) {
+  Handle ds(check(H5Dopen2(loc, name.c_str(), H5P_DEFAULT), "open dataset " + name));
+  auto dims = dims_of(ds);
+  std::vector<T> out(product(dims));
+  if (!out.empty())
+    check_status(H5Dread(ds, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()),
+                 "read dataset " + name);
+  return out;
+}
+}  // namespace
+
+std::vector<double> read_doubles(hid_t loc, const std::string& name) {
+  return read_all<double>(loc, name, H5T_NATIVE_DOUBLE);
+}
+
+std::vector<int> read_ints(hid_t loc, const std::string& name) {
+  return read_all<int>(loc, name, H5T_NATIVE_INT);
+}
+
+std::vector<std::string> read_strings(hid_t loc, const std::string& name) {
+  Handle ds(check(H5Dopen2(loc, name.c_str(), H5P_DEFAULT), "open dataset " + name));
+  Handle type(check(H5Dget_type(ds), "get dataset type"));
+  Handle space(check(H5Dget_space(ds), "get dataset space"));
+  hssize_t n = H5Sget_simple_extent_npoints(space);
+  return read_string_values(type, space, static_cast<hsize_t>(n), [&](hid_t mem, void* buf) {
+    return H5Dread(ds, mem, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf);
+  });
+}
+
+std::vector<double> read_slab(hid_t dataset, const std::vector<hsize_t>& start,
+                              const std::vector<hsize_t>& count) {
+  std::vector<double> out(product(count));
+  if (out.empty()) return out;
+  Handle file_space(check(H5Dget_space(dataset), "get dataspace"));
+  check_status(
+      H5Sselect_hyperslab(file_space, H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr),
+      "select hyperslab");
+  hsize_t n = out.size();
+  Handle mem_space(check(H5Screate_simple(1, &n, nullptr), "create memory dataspace"));
+  check_status(H5Dread(dataset, H5T_NATIVE_DOUBLE, mem_space, file_space, H5P_DEFAULT, out.data()),
+               "read hyperslab");
+  return out;
+}
+
+}  // namespace impactfe::h5

@@ -1,0 +1,468 @@
+// ResultsReader: reads the model section and the analysis index once, then time series and
+// time points on demand (schema: docs/results_file.md).
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+
+#include "core/errors.h"
+#include "results/h5_util.h"
+#include "results/results_file.h"
+
+namespace impactfe {
+
+using h5::check;
+using h5::check_status;
+using h5::Handle;
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+std::string upper(std::string s) {
+  for (auto& c : s) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return s;
+}
+
+ResultsKind parse_kind(const std::string& name, const std::string& path) {
+  for (auto k : {ResultsKind::Static, ResultsKind::Modal, ResultsKind::Transient,
+                 ResultsKind::ReducedTransient, ResultsKind::Expansion, ResultsKind::Substructure})
+    if (name == results_kind_name(k)) return k;
+  throw InputError(fmt::format("results file '{}': unknown analysis kind '{}'", path, name));
+}
+
+/// Where a nodal label lives: dataset and column.
+struct NodalLabel {
+  const char* dataset;
+  int column;
+};
+
+std::optional<NodalLabel> parse_nodal_label(const std::string& lab) {
+  static const std::pair<const char*, NodalLabel> table[] = {
+      {"UX", {"U", 0}},   {"UY", {"U", 1}},   {"UZ", {"U", 2}}, {"ROTX", {"U", 3}},
+      {"ROTY", {"U", 4}}, {"ROTZ", {"U", 5}}, {"VX", {"V", 0}}, {"VY", {"V", 1}},
+      {"VZ", {"V", 2}},   {"AX", {"A", 0}},   {"AY", {"A", 1}}, {"AZ", {"A", 2}},
+      {"FX", {"R", 0}},   {"FY", {"R", 1}},   {"FZ", {"R", 2}}, {"MX", {"R", 3}},
+      {"MY", {"R", 4}},   {"MZ", {"R", 5}}};
+  const std::string u = upper(lab);
+  for (const auto& [name, where] : table)
+    if (u == name) return where;
+  return std::nullopt;
+}
+
+struct Family {
+  std::string name;
+  std::vector<int> element_ids;
+  std::vector<std::string> items;
+};
+
+struct Analysis {
+  ResultsReader::AnalysisInfo info;
+  std::string group;
+  std::vector<double> times;
+  std::vector<Family> families;
+};
+
+using Series = std::vector<std::pair<double, double>>;
+
+/// The merge rule of nodal_series: finite values only; a later analysis replaces values at the
+/// same time; the result is stably sorted by time.
+void merge_into(Series& merged, Series later) {
+  if (later.empty()) return;
+  std::vector<double> later_times;
+  for (const auto& p : later) later_times.push_back(p.first);
+  std::sort(later_times.begin(), later_times.end());
+  auto in_later = [&](double t) {
+    const double tol = 2e-12 * std::max(1.0, std::abs(t));  // wider than same_time's window
+    for (auto it = std::lower_bound(later_times.begin(), later_times.end(), t - tol);
+         it != later_times.end() && *it <= t + tol; ++it)
+      if (same_time(*it, t)) return true;
+    return false;
+  };
+  merged.erase(std::remove_if(merged.begin(), merged.end(),
+                              [&](const auto& p) { return in_later(p.first); }),
+               merged.end());
+  merged.insert(merged.end(), later.begin(), later.end());
+}
+
+}  // namespace
+
+struct ResultsReader::Impl {
+  std::string path;
+  Handle file;
+  std::string title;
+  std::vector<int> node_ids;
+  Eigen::MatrixXd coords;
+  std::vector<ElementInfo> elements;
+  std::vector<Analysis> analyses;
+
+  int node_index(int node) const {
+    auto it = std::lower_bound(node_ids.begin(), node_ids.end(), node);
+    if (it == node_ids.end() || *it != node)
+      throw InputError(fmt::format("node {} is not in results file '{}'", node, path));
+    return static_cast<int>(it - node_ids.begin());
+  }
+
+  const Analysis& analysis(int a) const {
+    if (a < 1 || a > static_cast<int>(analyses.size()))
+      throw InputError(fmt::format("results file '{}' has no analysis {} (it has {})", path, a,
+                                   analyses.size()));
+    return analyses[static_cast<std::size_t>(a - 1)];
+  }
+
+  /// Column `col` of row `index` of dataset (n_t, n, m) over the first n_t rows, NaN-padded
+  /// when the dataset is shorter (a quantity that stopped being written).
+  std::vector<double> column(const Analysis& an, const std::string& dataset, hsize_t index,
+                             hsize_t col) const {
+    std::vector<double> out(an.times.size(), kNaN);
+    std::string name = an.group + "/" + dataset;
+    if (!h5::exists(file, an.group + "/" + dataset.substr(0, dataset.find('/'))) ||
+        !h5::exists(file, name))
+      return out;
+    Handle ds(check(H5Dopen2(file, name.c_str(), H5P_DEFAULT), "open " + name));
+    auto dims = h5::dims_of(ds);
+    hsize_t rows = std::min<hsize_t>(dims[0], out.size());
+    std::vector<hsize_t> start{0}, count{rows};
+    if (dims.size() >= 2) {
+      start.push_back(index);
+      count.push_back(1);
+    }
+    if (dims.size() >= 3) {
+      start.push_back(col);
+      count.push_back(1);
+    }
+    auto v = h5::read_slab(ds, start, count);
+    std::copy(v.begin(), v.end(), out.begin());
+    return out;
+  }
+
+  Series collect(const Analysis& an, const std::vector<double>& values) const {
+    Series s;
+    for (std::size_t k = 0; k < values.size(); ++k)
+      if (std::isfinite(values[k])) s.emplace_back(an.times[k], values[k]);
+    return s;
+  }
+
+  /// Reads a full (n_nodes x 6) row of U/V/A/R or a NaN matrix when absent.
+  Eigen::MatrixXd nodal_row(const Analysis& an, const std::string& dataset, int k) const {
+    Eigen::MatrixXd m =
+        Eigen::MatrixXd::Constant(static_cast<Eigen::Index>(node_ids.size()), 6, kNaN);
+    std::string name = an.group + "/" + dataset;
+    if (!h5::exists(file, name)) return m;
+    Handle ds(check(H5Dopen2(file, name.c_str(), H5P_DEFAULT), "open " + name));
+    auto dims = h5::dims_of(ds);
+    if (static_cast<hsize_t>(k) >= dims[0]) return m;
+    auto v = h5::read_slab(ds, {static_cast<hsize_t>(k), 0, 0}, {1, dims[1], dims[2]});
+    for (std::size_t i = 0; i < node_ids.size(); ++i)
+      for (int j = 0; j < 6; ++j) m(static_cast<Eigen::Index>(i), j) = v[i * 6 + j];
+    return m;
+  }
+
+  void load();
+};
+
+void ResultsReader::Impl::load() {
+  if (H5Aexists(file, "format") <= 0 ||
+      h5::read_string_attribute(file, "format") != "impactfe-results")
+    throw InputError(fmt::format("'{}' is not an impactfe results file", path));
+  title = h5::read_string_attribute(file, "title");
+  node_ids = h5::read_ints(file, "model/node_ids");
+  auto xyz = h5::read_doubles(file, "model/node_coordinates");
+  coords.resize(static_cast<Eigen::Index>(node_ids.size()), 3);
+  for (std::size_t i = 0; i < node_ids.size(); ++i)
+    for (int j = 0; j < 3; ++j) coords(static_cast<Eigen::Index>(i), j) = xyz[i * 3 + j];
+
+  auto ids = h5::read_ints(file, "model/element_ids");
+  auto names = h5::read_strings(file, "model/element_type_names");
+  auto types = h5::read_ints(file, "model/element_types");
+  auto mats = h5::read_ints(file, "model/element_materials");
+  auto reals = h5::read_ints(file, "model/element_reals");
+  auto nodes = h5::read_ints(file, "model/element_nodes");
+  const std::size_t width = ids.empty() ? 0 : nodes.size() / ids.size();
+  for (std::size_t e = 0; e < ids.size(); ++e) {
+    ElementInfo info{ids[e], names[e], types[e], mats[e], reals[e], {}};
+    for (std::size_t i = 0; i < width; ++i)
+      if (int n = nodes[e * width + i]; n != 0) info.nodes.push_back(n);
+    elements.push_back(std::move(info));
+  }
+
+  for (int k = 1;; ++k) {
+    std::string group = fmt::format("analysis_{}", k);
+    if (!h5::exists(file, group)) break;
+    Handle g(check(H5Gopen2(file, group.c_str(), H5P_DEFAULT), "open group " + group));
+    Analysis an;
+    an.group = group;
+    an.info.index = k;
+    an.info.kind = parse_kind(h5::read_string_attribute(g, "kind"), path);
+    an.info.description = h5::read_string_attribute(g, "description");
+    an.info.status = h5::read_string_attribute(g, "status");
+    for (const auto& name : h5::attribute_names(g)) {
+      if (name == "kind" || name == "description" || name == "status") continue;
+      Handle attr(check(H5Aopen(g, name.c_str(), H5P_DEFAULT), "open attribute " + name));
+      Handle type(check(H5Aget_type(attr), "get attribute type"));
+      const auto cls = H5Tget_class(type);
+      if (cls == H5T_STRING) {
+        an.info.text_attributes[name] = h5::read_string_attribute(g, name);
+      } else if (cls == H5T_FLOAT || cls == H5T_INTEGER) {
+        double v = 0.0;
+        check_status(H5Aread(attr, H5T_NATIVE_DOUBLE, &v), "read attribute " + name);
+        an.info.numeric_attributes[name] = v;
+      }
+    }
+    if (h5::exists(g, "time")) an.times = h5::read_doubles(g, "time");
+    an.info.n_time_points = static_cast<int>(an.times.size());
+    if (!an.times.empty()) {
+      an.info.time_first = an.times.front();
+      an.info.time_last = an.times.back();
+    }
+    if (h5::exists(g, "gap_forces")) {
+      Handle ds(check(H5Dopen2(g, "gap_forces", H5P_DEFAULT), "open gap_forces"));
+      an.info.n_gaps = static_cast<int>(h5::dims_of(ds).at(1));
+    }
+    if (h5::exists(g, "frequencies"))
+      an.info.n_modes = static_cast<int>(h5::read_doubles(g, "frequencies").size());
+    if (h5::exists(g, "elements")) {
+      Handle eg(check(H5Gopen2(g, "elements", H5P_DEFAULT), "open elements group"));
+      std::vector<std::string> fam_names;
+      hsize_t idx = 0;
+      H5Literate(
+          eg, H5_INDEX_CRT_ORDER, H5_ITER_INC, &idx,
+          [](hid_t, const char* name, const H5L_info_t*, void* data) -> herr_t {
+            static_cast<std::vector<std::string>*>(data)->emplace_back(name);
+            return 0;
+          },
+          &fam_names);
+      if (fam_names.empty())  // creation order not tracked: fall back to name order
+        H5Literate(
+            eg, H5_INDEX_NAME, H5_ITER_INC, &idx,
+            [](hid_t, const char* name, const H5L_info_t*, void* data) -> herr_t {
+              static_cast<std::vector<std::string>*>(data)->emplace_back(name);
+              return 0;
+            },
+            &fam_names);
+      for (const auto& fname : fam_names) {
+        Handle fg(check(H5Gopen2(eg, fname.c_str(), H5P_DEFAULT), "open family " + fname));
+        Family f{fname, h5::read_ints(fg, "element_ids"),
+                 h5::read_string_list_attribute(fg, "items")};
+        an.info.element_families.push_back(fname);
+        an.families.push_back(std::move(f));
+      }
+    }
+    analyses.push_back(std::move(an));
+  }
+}
+
+ResultsReader::ResultsReader(const std::string& path) : impl_(std::make_unique<Impl>()) {
+  h5::silence_errors();
+  impl_->path = path;
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw InputError(fmt::format("results file '{}' does not exist", path));
+  if (H5Fis_hdf5(path.c_str()) <= 0)
+    throw InputError(fmt::format("'{}' is not an impactfe results file (not HDF5)", path));
+  // Default access first: in the same process this shares the file a live ResultsWriter has
+  // open. Another process's running job holds the file lock: then read without taking it.
+  hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (f < 0) {
+    Handle fapl(check(H5Pcreate(H5P_FILE_ACCESS), "create file access list"));
+    H5Pset_file_locking(fapl, false, true);
+    f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl);
+  }
+  if (f < 0) throw InputError(fmt::format("cannot open results file '{}'", path));
+  impl_->file = Handle(f);
+  try {
+    impl_->load();
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw InputError(fmt::format("results file '{}' is damaged: {}", path, e.what()));
+  }
+}
+
+ResultsReader::~ResultsReader() = default;
+
+const std::string& ResultsReader::path() const {
+  return impl_->path;
+}
+std::string ResultsReader::title() const {
+  return impl_->title;
+}
+const std::vector<int>& ResultsReader::node_ids() const {
+  return impl_->node_ids;
+}
+Eigen::MatrixXd ResultsReader::node_coordinates() const {
+  return impl_->coords;
+}
+const std::vector<ResultsReader::ElementInfo>& ResultsReader::elements() const {
+  return impl_->elements;
+}
+
+std::vector<ResultsReader::AnalysisInfo> ResultsReader::analyses() const {
+  std::vector<AnalysisInfo> out;
+  for (const auto& a : impl_->analyses) out.push_back(a.info);
+  return out;
+}
+
+std::vector<double> ResultsReader::times(int analysis) const {
+  return impl_->analysis(analysis).times;
+}
+
+std::vector<std::pair<double, double>> ResultsReader::nodal_series(int node,
+                                                                   const std::string& lab) const {
+  auto where = parse_nodal_label(lab);
+  if (!where)
+    throw InputError(fmt::format(
+        "unknown nodal result label '{}' (expected UX UY UZ ROTX ROTY ROTZ, VX VY VZ, AX AY AZ "
+        "or FX FY FZ MX MY MZ)",
+        lab));
+  const auto index = static_cast<hsize_t>(impl_->node_index(node));
+  Series merged;
+  for (const auto& an : impl_->analyses)
+    merge_into(merged, impl_->collect(an, impl_->column(an, where->dataset, index,
+                                                        static_cast<hsize_t>(where->column))));
+  std::stable_sort(merged.begin(), merged.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  return merged;
+}
+
+std::vector<std::pair<double, double>> ResultsReader::element_series(
+    int element, const std::string& item) const {
+  const bool known = std::any_of(impl_->elements.begin(), impl_->elements.end(),
+                                 [&](const ElementInfo& e) { return e.id == element; });
+  if (!known)
+    throw InputError(fmt::format("element {} is not in results file '{}'", element, impl_->path));
+  const std::string it_name = upper(item);
+  Series merged;
+  bool found = false;
+  std::vector<std::string> available;
+  for (const auto& an : impl_->analyses) {
+    for (const auto& fam : an.families) {
+      auto e = std::find(fam.element_ids.begin(), fam.element_ids.end(), element);
+      if (e == fam.element_ids.end()) continue;
+      auto i = std::find_if(fam.items.begin(), fam.items.end(),
+                            [&](const std::string& s) { return upper(s) == it_name; });
+      if (i == fam.items.end()) {
+        for (const auto& s : fam.items)
+          if (std::find(available.begin(), available.end(), s) == available.end())
+            available.push_back(s);
+        continue;
+      }
+      found = true;
+      merge_into(merged,
+                 impl_->collect(an, impl_->column(an, "elements/" + fam.name + "/values",
+                                                  static_cast<hsize_t>(e - fam.element_ids.begin()),
+                                                  static_cast<hsize_t>(i - fam.items.begin()))));
+    }
+  }
+  if (!found) {
+    if (available.empty())
+      throw InputError(fmt::format("no element results are stored for element {} in '{}'", element,
+                                   impl_->path));
+    std::string list;
+    for (const auto& s : available) list += (list.empty() ? "" : " ") + s;
+    throw InputError(fmt::format("element item '{}' is not stored for element {} (available: {})",
+                                 item, element, list));
+  }
+  std::stable_sort(merged.begin(), merged.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  return merged;
+}
+
+std::vector<std::pair<double, double>> ResultsReader::gap_force_series(int gap) const {
+  Series merged;
+  bool found = false;
+  int max_gaps = 0;
+  for (const auto& an : impl_->analyses) {
+    max_gaps = std::max(max_gaps, an.info.n_gaps);
+    if (gap < 1 || gap > an.info.n_gaps) continue;
+    found = true;
+    merge_into(merged, impl_->collect(
+                           an, impl_->column(an, "gap_forces", static_cast<hsize_t>(gap - 1), 0)));
+  }
+  if (!found)
+    throw InputError(max_gaps == 0
+                         ? fmt::format("no gap forces are stored in '{}'", impl_->path)
+                         : fmt::format("gap {} does not exist (the results file has gaps 1..{})",
+                                       gap, max_gaps));
+  std::stable_sort(merged.begin(), merged.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  return merged;
+}
+
+std::vector<double> ResultsReader::frequencies() const {
+  for (auto it = impl_->analyses.rbegin(); it != impl_->analyses.rend(); ++it)
+    if (it->info.n_modes > 0) return h5::read_doubles(impl_->file, it->group + "/frequencies");
+  return {};
+}
+
+Eigen::MatrixXd ResultsReader::mode_shape(int mode) const {
+  for (auto it = impl_->analyses.rbegin(); it != impl_->analyses.rend(); ++it) {
+    if (it->info.n_modes == 0) continue;
+    if (mode < 1 || mode > it->info.n_modes)
+      throw InputError(fmt::format("mode {} does not exist (the results file has modes 1..{})",
+                                   mode, it->info.n_modes));
+    std::string name = it->group + "/mode_shapes";
+    Handle ds(check(H5Dopen2(impl_->file, name.c_str(), H5P_DEFAULT), "open " + name));
+    const auto n = impl_->node_ids.size();
+    auto v = h5::read_slab(ds, {static_cast<hsize_t>(mode - 1), 0, 0}, {1, n, 6});
+    Eigen::MatrixXd m(static_cast<Eigen::Index>(n), 6);
+    for (std::size_t i = 0; i < n; ++i)
+      for (int j = 0; j < 6; ++j) m(static_cast<Eigen::Index>(i), j) = v[i * 6 + j];
+    return m;
+  }
+  throw InputError(fmt::format("no mode shapes are stored in '{}'", impl_->path));
+}
+
+TimePoint ResultsReader::time_point(int analysis, int k) const {
+  const Analysis& an = impl_->analysis(analysis);
+  if (k < 0 || k >= static_cast<int>(an.times.size()))
+    throw InputError(
+        fmt::format("analysis {} has no time point {} (it has {})", analysis, k, an.times.size()));
+  const hid_t file = impl_->file;
+  const auto row = static_cast<hsize_t>(k);
+  TimePoint p;
+  p.time = an.times[row];
+  p.load_step = h5::read_ints(file, an.group + "/load_step").at(row);
+  p.substep = h5::read_ints(file, an.group + "/substep").at(row);
+  p.displacement = impl_->nodal_row(an, "U", k);
+  p.velocity = impl_->nodal_row(an, "V", k);
+  p.acceleration = impl_->nodal_row(an, "A", k);
+  p.reaction = impl_->nodal_row(an, "R", k);
+  if (an.info.n_gaps > 0) {
+    p.gap_forces = Eigen::VectorXd::Constant(an.info.n_gaps, kNaN);
+    for (int g = 0; g < an.info.n_gaps; ++g)
+      p.gap_forces[g] = impl_->column(an, "gap_forces", static_cast<hsize_t>(g), 0)[row];
+  }
+  if (h5::exists(file, an.group + "/energy")) {
+    Handle ds(check(H5Dopen2(file, (an.group + "/energy").c_str(), H5P_DEFAULT), "open energy"));
+    if (h5::dims_of(ds)[0] > row) {
+      auto v = h5::read_slab(ds, {row, 0}, {1, 5});
+      for (int i = 0; i < 5; ++i)
+        if (std::isfinite(v[static_cast<std::size_t>(i)]))
+          p.energy[kEnergyNames[i]] = v[static_cast<std::size_t>(i)];
+    }
+  }
+  for (const auto& fam : an.families) {
+    ElementResultTable t;
+    t.element_ids = fam.element_ids;
+    t.item_names = fam.items;
+    const auto n_e = fam.element_ids.size(), n_i = fam.items.size();
+    t.values = Eigen::MatrixXd::Constant(static_cast<Eigen::Index>(n_e),
+                                         static_cast<Eigen::Index>(n_i), kNaN);
+    std::string name = an.group + "/elements/" + fam.name + "/values";
+    Handle ds(check(H5Dopen2(file, name.c_str(), H5P_DEFAULT), "open " + name));
+    if (n_e > 0 && n_i > 0 && h5::dims_of(ds)[0] > row) {
+      auto v = h5::read_slab(ds, {row, 0, 0}, {1, n_e, n_i});
+      for (std::size_t e = 0; e < n_e; ++e)
+        for (std::size_t i = 0; i < n_i; ++i)
+          t.values(static_cast<Eigen::Index>(e), static_cast<Eigen::Index>(i)) = v[e * n_i + i];
+    }
+    p.element_results[fam.name] = std::move(t);
+  }
+  return p;
+}
+
+}  // namespace impactfe

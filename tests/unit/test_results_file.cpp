@@ -1,0 +1,473 @@
+// Results file round trips: model section, time points, NaN handling, crash safety (flush),
+// the series merge rule across analyses, modes, attributes and error messages.
+#include <gtest/gtest.h>
+#include <hdf5.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+
+#include "core/errors.h"
+#include "results/results_file.h"
+
+namespace impactfe {
+namespace {
+
+namespace fs = std::filesystem;
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+/// A fresh scratch directory per test, removed afterwards.
+class ResultsFileTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::temp_directory_path() /
+           (std::string("impactfe_results_") + info->name() + "_" + std::to_string(getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string file(const std::string& name) const { return (dir_ / name).string(); }
+  fs::path dir_;
+};
+
+/// Nodes 1, 2, 5 (inserted out of order), a LINK8 (6), a triangular SHELL63 (7), a MASS21 (8).
+Model small_model() {
+  Model m;
+  m.title = "Pendulum test model";
+  m.jobname = "pend";
+  for (auto [id, x, y] : {std::tuple{5, 0.0, 10.0}, {1, 0.0, 0.0}, {2, 10.0, 0.0}}) {
+    Node n;
+    n.id = id;
+    n.x = Vec3(x, y, 0.5 * id);
+    m.nodes[id] = n;
+  }
+  auto add_type = [&](int id, const char* name, ElementKind kind) {
+    ElementType t;
+    t.id = id;
+    t.ansys_name = name;
+    t.kind = kind;
+    m.element_types[id] = t;
+  };
+  add_type(1, "LINK8", ElementKind::Spar3D);
+  add_type(2, "SHELL63", ElementKind::Shell4);
+  add_type(3, "MASS21", ElementKind::PointMass);
+  auto add_elem = [&](int id, int type, int mat, int real, std::vector<int> nodes) {
+    ElementRecord e;
+    e.id = id;
+    e.type = type;
+    e.mat = mat;
+    e.real = real;
+    e.nodes = std::move(nodes);
+    m.elements[id] = e;
+  };
+  add_elem(6, 1, 1, 1, {1, 2});
+  add_elem(7, 2, 2, 3, {1, 2, 5, 5});
+  add_elem(8, 3, 1, 2, {5});
+  return m;
+}
+
+/// Analytic nodal field: value(node index i, dof j, time t, quantity q).
+double field(int i, int j, double t, int q) {
+  return 100.0 * q + 10.0 * i + j + 0.25 * t;
+}
+
+Eigen::MatrixXd nodal(double t, int q) {
+  Eigen::MatrixXd m(3, 6);
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 6; ++j) m(i, j) = field(i, j, t, q);
+  return m;
+}
+
+TimePoint make_point(double t, int step, int sub) {
+  TimePoint p;
+  p.time = t;
+  p.load_step = step;
+  p.substep = sub;
+  p.displacement = nodal(t, 0);
+  p.velocity = nodal(t, 1);
+  p.acceleration = nodal(t, 2);
+  p.reaction = Eigen::MatrixXd::Constant(3, 6, kNaN);
+  p.reaction(0, 0) = -3.0 * t;  // only node 1 UX is constrained
+  ElementResultTable spar{{6}, {"FORC", "SAXL"}, Eigen::MatrixXd(1, 2)};
+  spar.values << 7.0 * t, 70.0 * t;
+  ElementResultTable shell{{7}, {"SX"}, Eigen::MatrixXd::Constant(1, 1, -t)};
+  p.element_results = {{"spar", spar}, {"shell", shell}};
+  p.gap_forces = Eigen::Vector2d(1.0 + t, 2.0 + t);
+  p.energy = {{"kinetic", 0.5 * t}, {"strain", 0.25 * t}};
+  return p;
+}
+
+void write_three_points(ResultsWriter& w) {
+  w.begin_analysis(ResultsKind::Transient, "full transient");
+  w.append(make_point(0.0, 1, 1));
+  w.append(make_point(0.5, 1, 2));
+  w.append(make_point(1.0, 2, 1));
+}
+
+void expect_matrix_eq(const Eigen::MatrixXd& got, const Eigen::MatrixXd& want) {
+  ASSERT_EQ(got.rows(), want.rows());
+  ASSERT_EQ(got.cols(), want.cols());
+  for (Eigen::Index i = 0; i < got.rows(); ++i)
+    for (Eigen::Index j = 0; j < got.cols(); ++j) {
+      if (std::isnan(want(i, j)))
+        EXPECT_TRUE(std::isnan(got(i, j))) << i << "," << j;
+      else
+        EXPECT_EQ(got(i, j), want(i, j)) << i << "," << j;  // float64 stored: bit exact
+    }
+}
+
+TEST_F(ResultsFileTest, ModelSectionRoundTrip) {
+  const Model model = small_model();
+  {
+    ResultsWriter w(file("m.h5"), model);
+    EXPECT_EQ(w.node_ids(), (std::vector<int>{1, 2, 5}));
+  }
+  ResultsReader r(file("m.h5"));
+  EXPECT_EQ(r.title(), "Pendulum test model");
+  EXPECT_EQ(r.node_ids(), (std::vector<int>{1, 2, 5}));
+  Eigen::MatrixXd xyz(3, 3);
+  xyz << 0, 0, 0.5, 10, 0, 1.0, 0, 10, 2.5;
+  expect_matrix_eq(r.node_coordinates(), xyz);
+  ASSERT_EQ(r.elements().size(), 3u);
+  const auto& shell = r.elements()[1];
+  EXPECT_EQ(shell.id, 7);
+  EXPECT_EQ(shell.type_name, "SHELL63");
+  EXPECT_EQ(shell.type, 2);
+  EXPECT_EQ(shell.mat, 2);
+  EXPECT_EQ(shell.real, 3);
+  EXPECT_EQ(shell.nodes, (std::vector<int>{1, 2, 5, 5}));
+  EXPECT_EQ(r.elements()[2].type_name, "MASS21");
+  EXPECT_EQ(r.elements()[2].nodes, (std::vector<int>{5}));
+  EXPECT_TRUE(r.analyses().empty());
+
+  // Schema check with the plain C API: node lists padded with 0 to 8 columns.
+  hid_t f = H5Fopen(file("m.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  ASSERT_GE(f, 0);
+  hid_t ds = H5Dopen2(f, "model/element_nodes", H5P_DEFAULT);
+  ASSERT_GE(ds, 0);
+  hid_t space = H5Dget_space(ds);
+  hsize_t dims[2] = {0, 0};
+  H5Sget_simple_extent_dims(space, dims, nullptr);
+  EXPECT_EQ(dims[0], 3u);
+  EXPECT_EQ(dims[1], 8u);
+  std::vector<int> buf(24);
+  H5Dread(ds, H5T_NATIVE_INT, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf.data());
+  EXPECT_EQ(buf, (std::vector<int>{1, 2, 0, 0, 0, 0, 0, 0, 1, 2, 5, 5,
+                                   0, 0, 0, 0, 5, 0, 0, 0, 0, 0, 0, 0}));
+  H5Sclose(space);
+  H5Dclose(ds);
+  H5Fclose(f);
+}
+
+TEST_F(ResultsFileTest, ThreeTimePointsRoundTrip) {
+  {
+    ResultsWriter w(file("t.h5"), small_model());
+    write_three_points(w);
+    w.end_analysis();
+  }
+  ResultsReader r(file("t.h5"));
+  auto an = r.analyses();
+  ASSERT_EQ(an.size(), 1u);
+  EXPECT_EQ(an[0].index, 1);
+  EXPECT_EQ(an[0].kind, ResultsKind::Transient);
+  EXPECT_EQ(an[0].description, "full transient");
+  EXPECT_EQ(an[0].status, "complete");
+  EXPECT_EQ(an[0].n_time_points, 3);
+  EXPECT_EQ(an[0].time_first, 0.0);
+  EXPECT_EQ(an[0].time_last, 1.0);
+  EXPECT_EQ(an[0].n_gaps, 2);
+  EXPECT_EQ(an[0].element_families, (std::vector<std::string>{"shell", "spar"}));
+  EXPECT_EQ(r.times(1), (std::vector<double>{0.0, 0.5, 1.0}));
+
+  for (int k = 0; k < 3; ++k) {
+    const double t = 0.5 * k;
+    const TimePoint want = make_point(t, 0, 0);
+    const TimePoint got = r.time_point(1, k);
+    EXPECT_EQ(got.time, t);
+    expect_matrix_eq(got.displacement, want.displacement);
+    expect_matrix_eq(got.velocity, want.velocity);
+    expect_matrix_eq(got.acceleration, want.acceleration);
+    expect_matrix_eq(got.reaction, want.reaction);
+    expect_matrix_eq(got.gap_forces, want.gap_forces);
+    ASSERT_EQ(got.element_results.size(), 2u);
+    const auto& spar = got.element_results.at("spar");
+    EXPECT_EQ(spar.element_ids, (std::vector<int>{6}));
+    EXPECT_EQ(spar.item_names, (std::vector<std::string>{"FORC", "SAXL"}));
+    expect_matrix_eq(spar.values, want.element_results.at("spar").values);
+    // Only the stored energy terms come back.
+    EXPECT_EQ(got.energy,
+              (std::map<std::string, double>{{"kinetic", 0.5 * t}, {"strain", 0.25 * t}}));
+  }
+  EXPECT_EQ(r.time_point(1, 2).load_step, 2);
+  EXPECT_EQ(r.time_point(1, 1).substep, 2);
+
+  using S = std::vector<std::pair<double, double>>;
+  // Node 2 is index 1: UY = 10 + 1 + 0.25 t; VZ = 100 + 10 + 2 + 0.25 t; AX = 200 + 10 + 0.25 t.
+  EXPECT_EQ(r.nodal_series(2, "UY"), (S{{0.0, 11.0}, {0.5, 11.125}, {1.0, 11.25}}));
+  EXPECT_EQ(r.nodal_series(2, "vz"), (S{{0.0, 112.0}, {0.5, 112.125}, {1.0, 112.25}}));
+  EXPECT_EQ(r.nodal_series(2, "AX"), (S{{0.0, 210.0}, {0.5, 210.125}, {1.0, 210.25}}));
+  EXPECT_EQ(r.nodal_series(5, "ROTZ"), (S{{0.0, 25.0}, {0.5, 25.125}, {1.0, 25.25}}));
+  EXPECT_EQ(r.nodal_series(1, "FX"), (S{{0.0, -0.0}, {0.5, -1.5}, {1.0, -3.0}}));
+  EXPECT_TRUE(r.nodal_series(2, "FX").empty());  // unconstrained: reaction absent everywhere
+  EXPECT_EQ(r.element_series(6, "SAXL"), (S{{0.0, 0.0}, {0.5, 35.0}, {1.0, 70.0}}));
+  EXPECT_EQ(r.element_series(6, "forc"), (S{{0.0, 0.0}, {0.5, 3.5}, {1.0, 7.0}}));
+  EXPECT_EQ(r.element_series(7, "SX"), (S{{0.0, -0.0}, {0.5, -0.5}, {1.0, -1.0}}));
+  EXPECT_EQ(r.gap_force_series(2), (S{{0.0, 2.0}, {0.5, 2.5}, {1.0, 3.0}}));
+  EXPECT_TRUE(r.frequencies().empty());
+}
+
+TEST_F(ResultsFileTest, NaNAndMissingQuantities) {
+  {
+    ResultsWriter w(file("n.h5"), small_model());
+    w.begin_analysis(ResultsKind::Static, "static");
+    for (int k = 0; k < 3; ++k) {
+      TimePoint p;
+      p.time = 1.0 + k;
+      p.load_step = k + 1;
+      p.displacement = nodal(p.time, 0);
+      if (k == 1) p.displacement(2, 2) = kNaN;  // node 5 UZ not computed at t = 2
+      // velocity / acceleration / reaction / gaps / energy left empty (static)
+      if (k >= 1) {  // element family appears only from the second point on
+        ElementResultTable spar{{6}, {"SAXL"}, Eigen::MatrixXd::Constant(1, 1, 10.0 * k)};
+        p.element_results["spar"] = spar;
+      }
+      w.append(p);
+    }
+  }
+  ResultsReader r(file("n.h5"));
+  using S = std::vector<std::pair<double, double>>;
+  EXPECT_EQ(r.nodal_series(5, "UZ"), (S{{1.0, 22.25}, {3.0, 22.75}}));
+  EXPECT_TRUE(r.nodal_series(5, "VX").empty());
+  EXPECT_TRUE(r.nodal_series(1, "MZ").empty());
+  EXPECT_EQ(r.element_series(6, "SAXL"), (S{{2.0, 10.0}, {3.0, 20.0}}));
+  const TimePoint p0 = r.time_point(1, 0);
+  EXPECT_TRUE(p0.velocity.array().isNaN().all());
+  EXPECT_EQ(p0.velocity.rows(), 3);
+  EXPECT_TRUE(std::isnan(p0.element_results.at("spar").values(0, 0)));
+  EXPECT_EQ(p0.gap_forces.size(), 0);
+  EXPECT_TRUE(p0.energy.empty());
+  // The writer was destroyed without end_analysis.
+  EXPECT_EQ(r.analyses()[0].status, "incomplete");
+}
+
+/// Reads the three points written by write_three_points from `path`.
+void expect_three_points(const std::string& path) {
+  ResultsReader r(path);
+  ASSERT_EQ(r.analyses().size(), 1u);
+  EXPECT_EQ(r.analyses()[0].status, "running");
+  EXPECT_EQ(r.times(1), (std::vector<double>{0.0, 0.5, 1.0}));
+  using S = std::vector<std::pair<double, double>>;
+  EXPECT_EQ(r.nodal_series(2, "UY"), (S{{0.0, 11.0}, {0.5, 11.125}, {1.0, 11.25}}));
+  EXPECT_EQ(r.element_series(6, "SAXL"), (S{{0.0, 0.0}, {0.5, 35.0}, {1.0, 70.0}}));
+  EXPECT_EQ(r.gap_force_series(1), (S{{0.0, 1.0}, {0.5, 1.5}, {1.0, 2.0}}));
+}
+
+TEST_F(ResultsFileTest, AppendedPointsAreOnDiskBeforeClose) {
+  ResultsWriter w(file("live.h5"), small_model());
+  write_three_points(w);
+  // The writer is still open: a byte copy of the file must already be a complete file.
+  fs::copy_file(file("live.h5"), file("copy.h5"));
+  expect_three_points(file("copy.h5"));
+  // A reader in the same process (post stage while the writer lives) sees the same points.
+  expect_three_points(file("live.h5"));
+  w.append(make_point(1.5, 2, 2));
+  EXPECT_EQ(ResultsReader(file("live.h5")).times(1).size(), 4u);
+}
+
+TEST_F(ResultsFileTest, KilledRunKeepsAppendedPoints) {
+  const std::string path = file("killed.h5");
+  pid_t pid = fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    ResultsWriter w(path, small_model());
+    write_three_points(w);
+    raise(SIGKILL);  // no destructors, no HDF5 shutdown
+    _exit(3);
+  }
+  int status = 0;
+  waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFSIGNALED(status));
+  expect_three_points(path);
+}
+
+TEST_F(ResultsFileTest, ReaderOpensFileOfRunningJobInAnotherProcess) {
+  const std::string path = file("running.h5");
+  int ready[2];
+  ASSERT_EQ(pipe(ready), 0);
+  pid_t pid = fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    close(ready[0]);
+    alarm(30);                             // never outlive a broken parent
+    ResultsWriter w(path, small_model());  // holds the HDF5 file lock while it lives
+    write_three_points(w);
+    char c = 1;
+    if (write(ready[1], &c, 1) != 1) _exit(2);
+    pause();  // keep the file open until killed
+    _exit(0);
+  }
+  close(ready[1]);
+  struct KillChild {  // also when the reader throws
+    pid_t pid;
+    ~KillChild() {
+      kill(pid, SIGKILL);
+      waitpid(pid, nullptr, 0);
+    }
+  } guard{pid};
+  char c = 0;
+  ASSERT_EQ(read(ready[0], &c, 1), 1);
+  close(ready[0]);
+  expect_three_points(path);  // `impactfe info` on a running job
+}
+
+TEST_F(ResultsFileTest, MergeRuleReducedThenExpansion) {
+  {
+    ResultsWriter w(file("merge.h5"), small_model());
+    // Reduced run: node 2 UX is a master, node 5 UX a slave (not computed).
+    w.begin_analysis(ResultsKind::ReducedTransient, "reduced");
+    for (int k = 0; k < 4; ++k) {
+      TimePoint p;
+      p.time = 0.1 * k;
+      p.displacement = Eigen::MatrixXd::Constant(3, 6, kNaN);
+      p.displacement(1, 0) = 1.0 + k;  // 1 2 3 4
+      w.append(p);
+    }
+    w.end_analysis();
+    // Expansion at t = 0.1 and t = 0.3 (slightly off, within 1e-12 relative).
+    w.begin_analysis(ResultsKind::Expansion, "expansion");
+    const double times[2] = {0.1, 0.3 + 1e-14};
+    for (int k = 0; k < 2; ++k) {
+      TimePoint p;
+      p.time = times[k];
+      p.displacement = Eigen::MatrixXd::Constant(3, 6, kNaN);
+      p.displacement(1, 0) = k == 0 ? 20.0 : kNaN;  // NaN: the earlier value must survive
+      p.displacement(2, 0) = 50.0 + k;
+      w.append(p);
+    }
+    w.end_analysis();
+  }
+  ResultsReader r(file("merge.h5"));
+  ASSERT_EQ(r.analyses().size(), 2u);
+  EXPECT_EQ(r.analyses()[1].kind, ResultsKind::Expansion);
+  auto node2 = r.nodal_series(2, "UX");
+  ASSERT_EQ(node2.size(), 4u);
+  EXPECT_DOUBLE_EQ(node2[0].second, 1.0);
+  EXPECT_DOUBLE_EQ(node2[1].first, 0.1);
+  EXPECT_DOUBLE_EQ(node2[1].second, 20.0);  // expansion replaces the reduced value
+  EXPECT_DOUBLE_EQ(node2[2].second, 3.0);
+  EXPECT_DOUBLE_EQ(node2[3].second, 4.0);  // expansion had no value at 0.3
+  for (std::size_t i = 1; i < node2.size(); ++i) EXPECT_LT(node2[i - 1].first, node2[i].first);
+  auto node5 = r.nodal_series(5, "UX");
+  ASSERT_EQ(node5.size(), 2u);
+  EXPECT_DOUBLE_EQ(node5[0].first, 0.1);
+  EXPECT_DOUBLE_EQ(node5[0].second, 50.0);
+  EXPECT_DOUBLE_EQ(node5[1].second, 51.0);
+}
+
+TEST_F(ResultsFileTest, ModesAndAttributes) {
+  std::vector<Eigen::MatrixXd> shapes = {nodal(0.0, 3), nodal(4.0, 4)};
+  shapes[1](0, 5) = kNaN;
+  {
+    ResultsWriter w(file("modal.h5"), small_model());
+    EXPECT_EQ(w.begin_analysis(ResultsKind::Modal, "modes"), 1);
+    w.write_modes({1.5, 12.25}, shapes);
+    w.set_attribute("n_modes_requested", 2.0);
+    w.set_attribute("method", "LANB");
+    w.end_analysis();
+    EXPECT_EQ(w.begin_analysis(ResultsKind::Static, "after"), 2);
+    w.end_analysis("solution failed: singular matrix");
+  }
+  ResultsReader r(file("modal.h5"));
+  EXPECT_EQ(r.frequencies(), (std::vector<double>{1.5, 12.25}));
+  expect_matrix_eq(r.mode_shape(1), shapes[0]);
+  expect_matrix_eq(r.mode_shape(2), shapes[1]);
+  auto an = r.analyses();
+  ASSERT_EQ(an.size(), 2u);
+  EXPECT_EQ(an[0].kind, ResultsKind::Modal);
+  EXPECT_EQ(an[0].n_modes, 2);
+  EXPECT_EQ(an[0].n_time_points, 0);
+  EXPECT_EQ(an[0].numeric_attributes, (std::map<std::string, double>{{"n_modes_requested", 2.0}}));
+  EXPECT_EQ(an[0].text_attributes, (std::map<std::string, std::string>{{"method", "LANB"}}));
+  EXPECT_EQ(an[1].status, "solution failed: singular matrix");
+  try {
+    r.mode_shape(3);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(), "mode 3 does not exist (the results file has modes 1..2)");
+  }
+}
+
+/// Expects an InputError without location whose message contains `part`.
+template <typename F>
+void expect_input_error(F f, const std::string& part) {
+  try {
+    f();
+    ADD_FAILURE() << "expected InputError containing: " << part;
+  } catch (const InputError& e) {
+    EXPECT_FALSE(e.where().known());
+    EXPECT_EQ(std::string(e.what()), e.message());
+    EXPECT_NE(e.message().find(part), std::string::npos) << e.message();
+  }
+}
+
+TEST_F(ResultsFileTest, ErrorMessages) {
+  expect_input_error([&] { ResultsReader r(file("none.h5")); },
+                     "results file '" + file("none.h5") + "' does not exist");
+  std::ofstream(file("text.h5")) << "not hdf5\n";
+  expect_input_error([&] { ResultsReader r(file("text.h5")); }, "is not an impactfe results file");
+  expect_input_error([&] { ResultsWriter w(file("no_dir/x.h5"), small_model()); },
+                     "cannot create results file");
+  {
+    ResultsWriter w(file("e.h5"), small_model());
+    write_three_points(w);
+  }
+  ResultsReader r(file("e.h5"));
+  expect_input_error([&] { r.nodal_series(99, "UX"); }, "node 99 is not in results file");
+  expect_input_error([&] { r.nodal_series(2, "UQ"); }, "unknown nodal result label 'UQ'");
+  expect_input_error([&] { r.element_series(42, "SAXL"); }, "element 42 is not in results file");
+  expect_input_error([&] { r.element_series(6, "SEQV"); },
+                     "element item 'SEQV' is not stored for element 6 (available: FORC SAXL)");
+  expect_input_error([&] { r.element_series(8, "SAXL"); },
+                     "no element results are stored for element 8");
+  expect_input_error([&] { r.gap_force_series(3); },
+                     "gap 3 does not exist (the results file has gaps 1..2)");
+  expect_input_error([&] { r.time_point(2, 0); }, "has no analysis 2 (it has 1)");
+  expect_input_error([&] { r.time_point(1, 3); }, "analysis 1 has no time point 3 (it has 3)");
+  expect_input_error([&] { r.mode_shape(1); }, "no mode shapes are stored");
+}
+
+TEST_F(ResultsFileTest, ModelWithoutElements) {
+  Model m;
+  m.title = "nodes only";
+  Node n;
+  n.id = 3;
+  m.nodes[3] = n;
+  {
+    ResultsWriter w(file("empty.h5"), m);
+    w.begin_analysis(ResultsKind::Static, "");
+    TimePoint p;
+    p.displacement = Eigen::MatrixXd::Zero(1, 6);
+    w.append(p);
+    w.end_analysis();
+  }
+  ResultsReader r(file("empty.h5"));
+  EXPECT_TRUE(r.elements().empty());
+  EXPECT_EQ(r.nodal_series(3, "UZ"), (std::vector<std::pair<double, double>>{{0.0, 0.0}}));
+}
+
+TEST(ResultsKindTest, NamesAndSameTime) {
+  EXPECT_STREQ(results_kind_name(ResultsKind::ReducedTransient), "reduced_transient");
+  EXPECT_STREQ(results_kind_name(ResultsKind::Expansion), "expansion");
+  EXPECT_TRUE(same_time(1.0, 1.0 + 0.9e-12));
+  EXPECT_FALSE(same_time(1.0, 1.0 + 1.1e-12));
+  EXPECT_TRUE(same_time(1e6, 1e6 + 0.9e-6));  // relative for |t| > 1
+  EXPECT_FALSE(same_time(0.0, 2e-12));        // absolute 1e-12 near zero
+}
+
+}  // namespace
+}  // namespace impactfe
