@@ -1,0 +1,71 @@
+#pragma once
+/// Linear transient on a small dense system in generalized coordinates q (Guyan masters or
+/// modal coordinates): M q̈ + C q̇ + K q = f(t) + Σ gap forces, integrated by any TimeIntegrator.
+/// The effective matrix cK K + cC C + cM M is constant for a constant step and factorized once
+/// (dense LDLᵀ). Gap conditions (GP) act explicitly as loads computed from the displacements
+/// extrapolated from the previous two time points (spec §10.4 step 5); K is never modified.
+#include <Eigen/Cholesky>
+
+#include <memory>
+#include <vector>
+
+#include "linalg/sparse.h"
+#include "time/time_integrator.h"
+
+namespace impactfe {
+
+/// A GP gap condition in generalized coordinates: the physical displacement of end I is
+/// b_iᵀ q (b_i empty: ground, u = 0), likewise J. Separation s = u_J − u_I + gap; closed when
+/// s <= 0, force P = stiffness·s + damping·(v_J − v_I) (<= 0 when closed), applied as −P on J
+/// and +P on I.
+struct GeneralizedGap {
+  VectorXd b_i, b_j;
+  double stiffness = 0.0;
+  double gap = 0.0;
+  double damping = 0.0;
+};
+
+class ReducedDynamics {
+ public:
+  ReducedDynamics(MatrixXd k, MatrixXd m, MatrixXd c, std::vector<GeneralizedGap> gaps,
+                  std::unique_ptr<TimeIntegrator> integrator);
+
+  /// Starts at (q0, v0) with the load f0 at t = 0 (gap forces of the initial state added):
+  /// a0 from M a0 = f0 − C v0 − K q0 (min-norm when M is singular), then the integrator
+  /// start-up with step h (spec §10.2).
+  void start(const VectorXd& q0, const VectorXd& v0, const VectorXd& f0, double h);
+  /// Advances one step to t_{n+1} with the reduced external load f_{n+1} (without gap forces).
+  void step(const VectorXd& f_next);
+
+  const VectorXd& q() const { return integrator_->u(); }
+  const VectorXd& v() const { return integrator_->v(); }
+  const VectorXd& a() const { return integrator_->a(); }
+  /// Gap forces P (input order) used in the last step (or at the start).
+  const VectorXd& gap_forces() const { return gap_forces_; }
+  /// Generalized gap load Σ (±P b) of the last step.
+  const VectorXd& gap_load() const { return gap_load_; }
+  long n_factorizations() const { return n_factorizations_; }
+  long n_solves() const { return n_solves_; }
+  const TimeIntegrator& integrator() const { return *integrator_; }
+  const MatrixXd& k() const { return k_; }
+  const MatrixXd& m() const { return m_; }
+
+ private:
+  /// Gap forces at predicted displacement q* (and velocity v*), into gap_forces_ / gap_load_.
+  void gap_loads(const VectorXd& q_star, const VectorXd& v_star);
+  void factorize();
+
+  MatrixXd k_, m_, c_;
+  std::vector<GeneralizedGap> gaps_;
+  std::unique_ptr<TimeIntegrator> integrator_;
+  Eigen::LDLT<MatrixXd> effective_;
+  IntegrationCoefficients factored_{0.0, 0.0, 0.0};
+  bool factor_valid_ = false;
+  VectorXd q_prev_;  // q_{n−1}, for the gap predictor
+  VectorXd f_old_;   // total load (external + gaps) of the last step
+  VectorXd gap_forces_, gap_load_;
+  long n_factorizations_ = 0, n_solves_ = 0;
+  bool first_step_ = true;
+};
+
+}  // namespace impactfe

@@ -1,0 +1,223 @@
+#include "reduction/reduced_run.h"
+
+#include <Eigen/Eigenvalues>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "core/log.h"
+
+namespace impactfe {
+
+VectorXd ReducedRunState::external_force(const ReducedPoint& p) const {
+  const std::size_t i = static_cast<std::size_t>(p.step_index);
+  const LoadPoint at{&load_steps[i], i > 0 ? &load_steps[i - 1] : nullptr, p.fraction};
+  return nodal_forces(*dofs, at) + inertia_load(*dofs, mass_all, frame_acceleration(at));
+}
+
+VectorXd ReducedRunState::expand(const VectorXd& gq, const VectorXd* f) const {
+  if (guyan) return guyan->expand(gq, f);
+  return modes * gq;
+}
+
+VectorXd ReducedRunState::to_active(const VectorXd& free) const {
+  VectorXd out = VectorXd::Zero(dofs->n_active());
+  out.head(dofs->n_free()) = free.head(dofs->n_free());
+  return out;
+}
+
+void prepare_reduced_model(ReducedRunState& state, const Structure& structure,
+                           const AnalysisRequest& request, const RunSettings& settings,
+                           const std::vector<DofKey>& keep, AnalysisStatistics& stats) {
+  state.structure = std::make_unique<Structure>(structure.model(), structure.options(), settings);
+  state.load_steps = request.load_steps;
+  state.alpha_damping = structure.options().alpha_damping;
+  state.beta_damping = structure.options().beta_damping;
+  if (state.load_steps.empty()) throw InputError(request.where, "no load steps were written");
+  const LoadStep& first = state.load_steps.front();
+  for (const LoadStep& step : state.load_steps) {
+    for (const auto& [key, value] : step.constraints)
+      if (value != 0.0)
+        throw NotImplementedError(
+            fmt::format("load step {}: non-zero imposed displacement on {} in a reduced / "
+                        "mode-superposition transient is not implemented yet",
+                        step.number, describe(key)));
+    if (constrained_set(step) != constrained_set(first))
+      throw NotImplementedError(fmt::format(
+          "load step {}: changing the constrained DOF set in a reduced / mode-superposition "
+          "transient is not implemented yet",
+          step.number));
+  }
+  const Structure& s = *state.structure;
+  std::set<DofKey> constrained = s.constraints_of(first);
+  {
+    const DofMap trial(s.elements(), constrained);
+    const Assembler assembler(s.elements(), trial, s.context());
+    const SparseMatrix k = assembler.stiffness_matrix(VectorXd::Zero(trial.n_active()));
+    const VectorXd diag = k.diagonal();
+    const double scale = trial.n_free() ? diag.head(trial.n_free()).cwiseAbs().maxCoeff() : 0.0;
+    const std::set<DofKey> kept(keep.begin(), keep.end());
+    std::string list;
+    int dropped = 0;
+    for (int i = 0; i < trial.n_free(); ++i) {
+      if (std::abs(diag(i)) > 1e-14 * scale || kept.count(trial.key(i))) continue;
+      constrained.insert(trial.key(i));
+      if (dropped++ < 20) list += " " + describe(trial.key(i));
+    }
+    if (dropped) {
+      const std::string note = fmt::format(
+          "{} DOF(s) without stiffness (not restrained by anything) dropped from the reduction "
+          "as constrained slaves:{}{}",
+          dropped, list, dropped > 20 ? " ..." : "");
+      Log::info("{}", note);
+      stats.notes.push_back(note);
+    }
+  }
+  state.dofs = std::make_unique<DofMap>(s.elements(), constrained);
+  state.assembler = std::make_unique<Assembler>(s.elements(), *state.dofs, s.context());
+  state.mass_all = state.assembler->mass_matrix();
+  stats.n_dofs = state.dofs->n_free();
+  if (state.assembler->is_nonlinear())
+    Log::warn(
+        "reduced / mode-superposition transient is linear: nonlinear elements keep their initial "
+        "stiffness and status (use GP gap conditions for contact)");
+}
+
+SparseMatrix damping_matrix(const ReducedRunState& state, const SparseMatrix& k) {
+  const int n = state.dofs->n_active();
+  SparseMatrix c(n, n);
+  if (state.assembler->has_damping()) c = state.assembler->damping_matrix(VectorXd::Zero(n));
+  if (state.alpha_damping != 0.0) c += state.alpha_damping * state.mass_all;
+  if (state.beta_damping != 0.0) c += state.beta_damping * k;
+  return c;
+}
+
+std::vector<GeneralizedGap> generalized_gaps(const Model& model, const DofMap& dofs,
+                                             const std::function<VectorXd(int)>& row,
+                                             const std::string& requirement) {
+  std::set<int> active_nodes;
+  for (const DofKey& key : dofs.keys()) active_nodes.insert(key.node);
+  std::vector<GeneralizedGap> gaps;
+  for (const GapCondition& gc : model.gap_conditions) {
+    auto end = [&](int node) -> VectorXd {
+      if (node == 0 || !active_nodes.count(node)) return {};  // ground
+      const DofKey key{node, gc.dof};
+      const int i = dofs.index(key);
+      if (i < 0)
+        throw InputError(gc.where,
+                         fmt::format("GP: node {} has no {} DOF", node, dof_name(gc.dof)));
+      if (i >= dofs.n_free()) return {};  // constrained: fixed like ground
+      VectorXd b = row(i);
+      if (b.size() == 0)
+        throw InputError(gc.where,
+                         fmt::format("GP: {} is not a master DOF; {}", describe(key), requirement));
+      return b;
+    };
+    GeneralizedGap g;
+    g.b_i = end(gc.node_i);
+    g.b_j = end(gc.node_j);
+    g.stiffness = gc.stiffness;
+    g.gap = gc.gap;
+    g.damping = gc.damping;
+    gaps.push_back(std::move(g));
+  }
+  return gaps;
+}
+
+namespace {
+
+/// Static initial state K q = f with a check that K is regular; names the coordinates of the
+/// rigid motions otherwise (spec §10.4 step 3).
+VectorXd static_initial_state(const MatrixXd& k, const VectorXd& f,
+                              const std::function<std::string(int)>& name) {
+  Eigen::SelfAdjointEigenSolver<MatrixXd> eig(k);
+  const VectorXd& lambda = eig.eigenvalues();
+  const double scale = lambda.cwiseAbs().maxCoeff();
+  std::string free;
+  for (int j = 0; j < lambda.size(); ++j) {
+    if (std::abs(lambda(j)) > 1e-10 * scale && scale > 0.0) continue;
+    Eigen::Index where = 0;
+    eig.eigenvectors().col(j).cwiseAbs().maxCoeff(&where);
+    free += " " + name(static_cast<int>(where));
+  }
+  if (!free.empty())
+    throw ModelError(fmt::format(
+        "reduced transient: load step 1 carries loads, so its static solution is the initial "
+        "state, but the reduced stiffness is singular (free rigid motion of{}); remove the loads "
+        "of load step 1 or restrain the structure",
+        free));
+  return eig.eigenvectors() *
+         (lambda.cwiseInverse().asDiagonal() * (eig.eigenvectors().transpose() * f));
+}
+
+}  // namespace
+
+void integrate_reduced(ReducedRunState& state, ReducedDynamics& dynamics,
+                       const std::function<VectorXd(const VectorXd&)>& reduce,
+                       const std::function<VectorXd(const VectorXd&)>& table, const VectorXd& q0,
+                       const VectorXd& v0, const std::function<std::string(int)>& coordinate_name,
+                       ResultsWriter& writer, AnalysisStatistics& stats, double& seconds_per_step) {
+  using clock = std::chrono::steady_clock;
+  const DofMap& dofs = *state.dofs;
+  const int nf = dofs.n_free();
+  const Structure& structure = *state.structure;
+  const Eigen::MatrixXd nan_table = Eigen::MatrixXd::Constant(
+      static_cast<int>(structure.node_ids().size()), 6, std::numeric_limits<double>::quiet_NaN());
+
+  auto store = [&](const ReducedPoint& p) {
+    auto nodal = [&](const VectorXd& gq) {
+      VectorXd values =
+          VectorXd::Constant(dofs.n_active(), std::numeric_limits<double>::quiet_NaN());
+      values.head(nf) = table(gq);
+      return structure.nodal_table(dofs, values);
+    };
+    TimePoint tp;
+    tp.time = p.time;
+    tp.load_step = p.load_step;
+    tp.substep = p.substep;
+    tp.displacement = nodal(dynamics.q());
+    tp.velocity = nodal(dynamics.v());
+    tp.acceleration = nodal(dynamics.a());
+    tp.reaction = nan_table;
+    tp.gap_forces = dynamics.gap_forces();
+    tp.energy["kinetic"] = 0.5 * dynamics.v().dot(dynamics.m() * dynamics.v());
+    tp.energy["strain"] = 0.5 * dynamics.q().dot(dynamics.k() * dynamics.q());
+    writer.append(tp);
+    ++stats.n_stored;
+    state.q.push_back(dynamics.q());
+    state.v.push_back(dynamics.v());
+    state.a.push_back(dynamics.a());
+    state.gap_forces.push_back(dynamics.gap_forces());
+  };
+
+  const ReducedPoint& p0 = state.points.front();
+  const VectorXd f0 = reduce(VectorXd(state.external_force(p0).head(nf)));
+  VectorXd q_init = q0;
+  if (f0.squaredNorm() > 0.0) q_init = static_initial_state(dynamics.k(), f0, coordinate_name);
+  dynamics.start(q_init, v0, f0, state.dt > 0.0 ? state.dt : 1.0);
+  store(p0);
+  ++stats.n_load_steps;
+
+  double integration = 0.0;
+  int n_steps = 0;
+  int last_step = p0.load_step;
+  for (std::size_t i = 1; i < state.points.size(); ++i) {
+    const ReducedPoint& p = state.points[i];
+    const auto t0 = clock::now();
+    const VectorXd f = reduce(VectorXd(state.external_force(p).head(nf)));
+    dynamics.step(f);
+    integration += std::chrono::duration<double>(clock::now() - t0).count();
+    ++n_steps;
+    ++stats.n_substeps;
+    if (p.load_step != last_step) {
+      ++stats.n_load_steps;
+      last_step = p.load_step;
+    }
+    store(p);
+  }
+  seconds_per_step = n_steps ? integration / n_steps : 0.0;
+  stats.n_factorizations += dynamics.n_factorizations();
+  stats.n_solves += dynamics.n_solves();
+}
+
+}  // namespace impactfe

@@ -1,0 +1,92 @@
+#pragma once
+/// Pieces shared by the reduced (Guyan) and mode-superposition transients and their expansion
+/// pass: the KAN=5 time axis, loads in generalized coordinates, GP gaps, and the state the
+/// expansion pass needs (spec §10.4, §10.5).
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "analysis/analyses.h"
+#include "assembly/loads.h"
+#include "reduction/guyan.h"
+#include "reduction/reduced_dynamics.h"
+
+namespace impactfe {
+
+/// One computed time point of a reduced / MSUP run.
+struct ReducedPoint {
+  double time = 0.0;
+  int load_step = 1;
+  int substep = 1;
+  int step_index = 0;     // index into the load-step list
+  double fraction = 1.0;  // position within the load step (KBC interpolation)
+};
+
+/// Time axis of a reduced / MSUP transient: load step 1 is the initial state at t = 0 (its
+/// TIME ignored); later steps advance with the constant Δt (DTIME of the first step that gives
+/// one, else the span of step 2 over its substeps) from the previous TIME (spec §3.17, §3.18).
+std::vector<ReducedPoint> reduced_time_axis(const std::vector<LoadStep>& steps, double& dt,
+                                            AnalysisStatistics& stats);
+
+/// Everything the expansion pass needs from the transient that ran before it.
+class ReducedRunState : public ReducedSolutionState {
+ public:
+  // Owned model view (the transient's Structure is gone when the expansion pass runs).
+  std::unique_ptr<Structure> structure;
+  std::unique_ptr<DofMap> dofs;
+  std::unique_ptr<Assembler> assembler;
+  SparseMatrix mass_all;
+  std::vector<LoadStep> load_steps;
+  double alpha_damping = 0.0, beta_damping = 0.0;
+
+  // Basis: Guyan (u_free = [I; T] u_m + static correction) or modes (u_free = Φ q).
+  std::unique_ptr<GuyanReduction> guyan;
+  MatrixXd modes;
+  std::string method;  // "reduced" or "msup"
+
+  double dt = 0.0;
+  std::vector<ReducedPoint> points;
+  std::vector<VectorXd> q, v, a, gap_forces;
+
+  /// External load over all active DOFs at a computed point (F + ACEL inertia).
+  VectorXd external_force(const ReducedPoint& p) const;
+  /// Free-DOF vector from generalized coordinates; `f` (free-DOF load) adds the static
+  /// correction of the slaves (Guyan only).
+  VectorXd expand(const VectorXd& gq, const VectorXd* f) const;
+  /// Vector over all active DOFs (constrained DOFs zero) from a free-DOF vector.
+  VectorXd to_active(const VectorXd& free) const;
+};
+
+/// Computed points selected by expansion requests (NUMEXP/NSTRES spacing in (t_begin, t_end],
+/// each snapped to the nearest computed time, ascending, duplicates removed; spec §3.26).
+std::vector<int> expansion_points(const std::vector<ExpansionRequest>& requests,
+                                  const std::vector<ReducedPoint>& points);
+
+/// Rebuilds the structure for the state and the DOF numbering of a reduction: constraints of
+/// load step 1, plus free DOFs with a zero stiffness diagonal that are not in `keep` (spec U24:
+/// they carry mass but nothing restrains them — dropped as constrained slaves, logged).
+void prepare_reduced_model(ReducedRunState& state, const Structure& structure,
+                           const AnalysisRequest& request, const RunSettings& settings,
+                           const std::vector<DofKey>& keep, AnalysisStatistics& stats);
+
+/// Full-storage damping over the active DOFs: element dampers + α M + β K.
+SparseMatrix damping_matrix(const ReducedRunState& state, const SparseMatrix& k);
+
+/// GP gap conditions in generalized coordinates. `row(free_index)` gives the row of the basis
+/// (b with u_i = bᵀ q); a node without active DOFs (or a constrained DOF) is ground; any other
+/// DOF that row() cannot express (returns an empty vector) is an input error.
+std::vector<GeneralizedGap> generalized_gaps(const Model& model, const DofMap& dofs,
+                                             const std::function<VectorXd(int free_index)>& row,
+                                             const std::string& requirement);
+
+/// Runs the time loop shared by both transients: initial state (static solve when load step 1
+/// carries loads), integration, a results point per step (`table`: free-DOF values for the
+/// nodal tables, NaN where not computed), and the histories kept in the state.
+void integrate_reduced(ReducedRunState& state, ReducedDynamics& dynamics,
+                       const std::function<VectorXd(const VectorXd& f_free)>& reduce,
+                       const std::function<VectorXd(const VectorXd& gq)>& table, const VectorXd& q0,
+                       const VectorXd& v0, const std::function<std::string(int)>& coordinate_name,
+                       ResultsWriter& writer, AnalysisStatistics& stats, double& seconds_per_step);
+
+}  // namespace impactfe
