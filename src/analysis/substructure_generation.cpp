@@ -29,9 +29,8 @@ void run_substructure_generation(Structure& structure, const AnalysisRequest& re
 
   stats.n_dofs = summary.n_masters;
   stats.n_load_steps = static_cast<int>(request.load_steps.size());
-  stats.n_analyses = summary.counters.analyses;
-  stats.n_factorizations = summary.counters.factorizations;
-  stats.n_solves = summary.counters.solves;
+  stats.n_analyses = summary.factorizations;
+  stats.n_factorizations = summary.factorizations;
   stats.notes.push_back(fmt::format(
       "superelement {} -> {}: {} masters, {} slaves condensed, {} constrained; matrices {}", name,
       path, summary.n_masters, summary.n_slaves, summary.n_constrained,

@@ -7,7 +7,7 @@
 
 #include "assembly/loads.h"
 #include "core/log.h"
-#include "substructure/condensation.h"
+#include "reduction/guyan.h"
 
 namespace impactfe {
 
@@ -55,8 +55,7 @@ SuperelementData generate_superelement(const Structure& structure, const Analysi
         "linear and uses their matrices at zero displacement");
 
   // Master and slave partition of the free DOFs.
-  std::vector<int> masters, slaves;
-  std::vector<bool> is_master(static_cast<std::size_t>(dofs.n_active()), false);
+  std::vector<int> masters;
   for (const DofKey& key : model.masters) {
     const int i = dofs.index(key);
     if (i < 0)
@@ -72,10 +71,7 @@ SuperelementData generate_superelement(const Structure& structure, const Analysi
                           ? " (it has neither stiffness nor mass)"
                           : " by D"));
     masters.push_back(i);
-    is_master[static_cast<std::size_t>(i)] = true;
   }
-  for (int i = 0; i < dofs.n_free(); ++i)
-    if (!is_master[static_cast<std::size_t>(i)]) slaves.push_back(i);
 
   const VectorXd zero = VectorXd::Zero(dofs.n_active());
   const SparseMatrix K = assembler.stiffness_matrix(zero);
@@ -85,26 +81,35 @@ SuperelementData generate_superelement(const Structure& structure, const Analysi
   if (o.alpha_damping != 0.0) C += o.alpha_damping * M;
   if (o.beta_damping != 0.0) C += o.beta_damping * K;
 
-  const StaticCondensation cond(K, masters, slaves,
-                                [&dofs](int i) { return Structure::describe_dof(dofs, i); });
+  // Guyan condensation (src/reduction/guyan): one K_ss factorization, T = −K_ss⁻¹K_sm by a
+  // multi-right-hand-side solve, reduced matrices TᵀAT.
+  const bool has_mass = M.nonZeros() > 0 && M.coeffs().cwiseAbs().maxCoeff() > 0.0;
+  const bool has_damping = C.nonZeros() > 0 && C.coeffs().cwiseAbs().maxCoeff() > 0.0;
+  const GuyanReduction cond(K, M, has_damping ? &C : nullptr, dofs.n_free(), masters, &dofs);
+  // K_ss⁻¹ f_s of a vector over the active DOFs: the slave part of a static correction.
+  const VectorXd zero_m = VectorXd::Zero(cond.n_masters());
+  auto slave_response = [&cond, &zero_m](const VectorXd& f) {
+    const VectorXd u = cond.expand(zero_m, &f);
+    VectorXd us(cond.n_slaves());
+    for (int k = 0; k < cond.n_slaves(); ++k) us(k) = u(cond.slaves()[static_cast<std::size_t>(k)]);
+    return us;
+  };
 
   SuperelementData se;
   se.name = name;
   se.title = model.title;
-  se.stiffness = cond.reduce_matrix(K);
+  se.stiffness = cond.k();
 
   // Mass whenever the substructure has any (spec U5), damping whenever it has any (or SEMATR 3).
-  const bool has_mass = M.nonZeros() > 0 && M.coeffs().cwiseAbs().maxCoeff() > 0.0;
-  const bool has_damping = C.nonZeros() > 0 && C.coeffs().cwiseAbs().maxCoeff() > 0.0;
   int matrices = 1;
   if (o.superelement_matrices >= 2 || has_mass) {
-    se.mass = cond.reduce_matrix(M);
+    se.mass = cond.m();
     matrices = 2;
     if (o.superelement_matrices < 2)
       Log::info("superelement generation: the substructure has mass; M_r is generated too");
   }
   if (o.superelement_matrices >= 3 || has_damping) {
-    se.damping = cond.reduce_matrix(C);
+    se.damping = cond.c();
     matrices = 3;
   }
   se.matrices = matrices;
@@ -114,7 +119,7 @@ SuperelementData generate_superelement(const Structure& structure, const Analysi
     const Node& node = model.node(key.node);
     se.masters.push_back({key, node.x, node.angles_deg});
   }
-  for (int i : slaves) se.slaves.push_back(dofs.key(i));
+  for (int i : cond.slaves()) se.slaves.push_back(dofs.key(i));
   for (int i = dofs.n_free(); i < dofs.n_active(); ++i) se.constrained.push_back(dofs.key(i));
   se.transformation = cond.transformation();
 
@@ -127,8 +132,8 @@ SuperelementData generate_superelement(const Structure& structure, const Analysi
                        k > 0 ? &request.load_steps[static_cast<std::size_t>(k - 1)] : nullptr, 1.0};
     const VectorXd f =
         nodal_forces(dofs, at) + inertia_load(elements, dofs, ctx, frame_acceleration(at));
-    se.load_vectors.col(k) = cond.reduce_vector(f);
-    se.load_correction.col(k) = cond.slave_response(f);
+    se.load_vectors.col(k) = cond.reduce_force(f);
+    se.load_correction.col(k) = slave_response(f);
   }
 
   // Unit-acceleration vectors g_d = Tᵀ M r_d, through the elements' frame-acceleration loads
@@ -137,8 +142,8 @@ SuperelementData generate_superelement(const Structure& structure, const Analysi
   se.acceleration_correction.setZero(cond.n_slaves(), 3);
   for (int d = 0; d < 3; ++d) {
     const VectorXd p = -inertia_load(elements, dofs, ctx, Vec3::Unit(d));
-    se.unit_acceleration.col(d) = cond.reduce_vector(p);
-    se.acceleration_correction.col(d) = cond.slave_response(p);
+    se.unit_acceleration.col(d) = cond.reduce_force(p);
+    se.acceleration_correction.col(d) = slave_response(p);
     double total = 0.0, reduced = 0.0;
     for (int i = 0; i < dofs.n_active(); ++i)
       if (static_cast<int>(dofs.key(i).dof) == d) total += p(i);
@@ -154,7 +159,7 @@ SuperelementData generate_superelement(const Structure& structure, const Analysi
   summary.n_masters = cond.n_masters();
   summary.n_slaves = cond.n_slaves();
   summary.n_constrained = dofs.n_constrained();
-  summary.counters = cond.counters();
+  summary.factorizations = cond.n_slaves() > 0 ? 1 : 0;
   summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return se;
 }

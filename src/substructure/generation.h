@@ -5,7 +5,6 @@
 #include <string>
 
 #include "analysis/structure.h"
-#include "linalg/linear_solver.h"
 #include "substructure/superelement_file.h"
 
 namespace impactfe {
@@ -18,7 +17,7 @@ struct GenerationSummary {
   double total_mass[3] = {0.0, 0.0, 0.0};    // rᵀ M r of the full substructure per direction
   double reduced_mass[3] = {0.0, 0.0, 0.0};  // r_mᵀ g_d: the part the masters carry
   double seconds = 0.0;
-  SolverCounters counters;
+  int factorizations = 0;  // of K_ss
 };
 
 /// Generates the superelement of `structure` for `request` (its load steps give the reduced
