@@ -13,7 +13,7 @@ void run_analysis(const Job::Step& step, const std::string& jobname, const RunSe
                   ResultsWriter& writer, AnalysisStatistics& stats,
                   std::unique_ptr<ReducedSolutionState>& reduced_state) {
   const AnalysisRequest& request = *step.analysis;
-  Structure structure(step.model_snapshot, request.options, settings);
+  Structure structure(step.model_snapshot, request.options, settings, &request.load_steps);
   switch (request.options.type) {
     case AnalysisType::Static:
       run_static_analysis(structure, request, writer, settings, stats);

@@ -43,7 +43,7 @@ std::string resolve_superelement(const ElementRecord& record, const RunSettings&
 }  // namespace
 
 Structure::Structure(const Model& model, const AnalysisOptions& options,
-                     const RunSettings& settings)
+                     const RunSettings& settings, const std::vector<LoadStep>* steps)
     : model_(model), options_(options) {
   context_.large_deflection = options.large_deflection;
   context_.stress_stiffening = options.stress_stiffening || options.large_deflection;
@@ -83,15 +83,24 @@ Structure::Structure(const Model& model, const AnalysisOptions& options,
   }
   for (int i = 0; i < all.n_active(); ++i)
     if (stiff(i) == 0.0 && mass(i) == 0.0) automatic_.insert(all.key(i));
-  if (!automatic_.empty()) {
+  // Report only the DOFs the deck leaves free in every load step: the others are held anyway.
+  std::set<DofKey> reported;
+  for (const auto& key : automatic_) {
+    bool held_everywhere = steps != nullptr && !steps->empty();
+    if (steps)
+      for (const auto& step : *steps)
+        held_everywhere = held_everywhere && step.constraints.count(key);
+    if (!held_everywhere) reported.insert(key);
+  }
+  if (!reported.empty()) {
     std::string list;
     int shown = 0;
-    for (const auto& key : automatic_) {
+    for (const auto& key : reported) {
       if (shown++ < 20)
         list += " " + std::string(dof_name(key.dof)) + "@" + std::to_string(key.node);
     }
     Log::warn("{} DOF(s) have neither stiffness nor mass and are constrained to zero:{}{}",
-              automatic_.size(), list, automatic_.size() > 20 ? " ..." : "");
+              reported.size(), list, reported.size() > 20 ? " ..." : "");
   }
 }
 

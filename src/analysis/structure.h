@@ -25,7 +25,10 @@ struct RunSettings {
 
 class Structure {
  public:
-  Structure(const Model& model, const AnalysisOptions& options, const RunSettings& settings);
+  /// `steps`: the load steps to be run (only used to keep the automatic-constraint report to the
+  /// DOFs that the deck does not hold itself).
+  Structure(const Model& model, const AnalysisOptions& options, const RunSettings& settings,
+            const std::vector<LoadStep>* steps = nullptr);
 
   const Model& model() const { return model_; }
   const AnalysisOptions& options() const { return options_; }

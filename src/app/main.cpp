@@ -1,3 +1,217 @@
-int main() {
-  return 0;
+/// impactfe command-line interface: run a deck, query a results file, export, Houbolt spectrum.
+#include <fmt/format.h>
+#include <CLI/CLI.hpp>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
+#include "analysis/job_runner.h"
+#include "core/errors.h"
+#include "core/log.h"
+#include "deck/deck_reader.h"
+#include "results/post_csv.h"
+#include "results/results_file.h"
+#include "results/vtk_export.h"
+#include "time/houbolt_spectrum.h"
+
+namespace fs = std::filesystem;
+using namespace impactfe;
+
+namespace {
+
+constexpr int kExitOk = 0;
+constexpr int kExitInput = 1;
+constexpr int kExitSolution = 2;
+
+struct RunArgs {
+  std::string deck;
+  std::string out_dir = ".";
+  std::string jobname;
+  int threads = 1;
+  bool skip_unknown = false;
+  std::string dialect = "auto";
+  std::string results;
+  std::string superelement;
+  bool continue_on_nonconvergence = false;
+};
+
+void print_summary(const std::string& jobname, const RunStatistics& stats, double wall) {
+  std::cout << fmt::format("impactfe: job {}\n", jobname);
+  for (const auto& a : stats.analyses) {
+    std::cout << fmt::format(
+        "  {}: {} DOFs, {} load steps, {} substeps, {} iterations, {} stored, "
+        "{} factorizations ({} symbolic), {} solves, {} status changes, {:.3f} s\n",
+        a.description, a.n_dofs, a.n_load_steps, a.n_substeps, a.n_iterations, a.n_stored,
+        a.n_factorizations, a.n_analyses, a.n_solves, a.n_status_changes, a.wall_seconds);
+    for (const auto& note : a.notes) std::cout << "    " << note << "\n";
+  }
+  if (!Log::warnings().empty())
+    std::cout << fmt::format("  {} warning(s), see {}.log\n", Log::warnings().size(), jobname);
+  std::cout << fmt::format("  wall time {:.3f} s\n", wall);
+}
+
+int run_command(const RunArgs& args) {
+  const auto start = std::chrono::steady_clock::now();
+  const fs::path deck = fs::absolute(args.deck);
+  if (!fs::exists(deck)) {
+    std::cerr << "error: deck not found: " << args.deck << "\n";
+    return kExitInput;
+  }
+  fs::create_directories(args.out_dir);
+  fs::current_path(args.out_dir);
+  std::string jobname = args.jobname.empty() ? deck.stem().string() : args.jobname;
+  std::ofstream log_file(jobname + ".log");
+  Log::set_sink([&log_file](LogLevel level, const std::string& message) {
+    static const char* names[] = {"debug", "info", "warning", "error"};
+    log_file << names[static_cast<int>(level)] << ": " << message << "\n";
+    log_file.flush();
+    if (level >= LogLevel::Warning) std::cerr << "warning: " << message << "\n";
+  });
+
+  DeckOptions options;
+  options.skip_unknown = args.skip_unknown;
+  options.jobname = args.jobname;
+  if (args.dialect == "4x") options.dialect = Dialect::Classic4x;
+  if (args.dialect == "modern") options.dialect = Dialect::Modern;
+
+  Job job;
+  try {
+    job = read_deck(deck.string(), options);
+  } catch (const InputError& e) {
+    std::cerr << "error: " << e.what() << "\n";
+    return kExitInput;
+  }
+  if (args.jobname.empty() && !job.model.jobname.empty()) jobname = job.model.jobname;
+  for (const auto& ignored : job.ignored_commands) Log::info("ignored: {}", ignored);
+
+  RunSettings settings;
+  settings.continue_on_nonconvergence = args.continue_on_nonconvergence;
+  settings.superelement_file = args.superelement;
+  settings.threads = args.threads;
+
+  RunStatistics stats;
+  if (job.steps.empty()) {
+    if (!job.post_commands.empty())
+      Log::warn(
+          "{} POST1/POST26 command(s) recognised and stored; post-processing decks are "
+          "not executed yet (use `impactfe post`)",
+          job.post_commands.size());
+    print_summary(jobname, stats, 0.0);
+    return kExitOk;
+  }
+  std::unique_ptr<ResultsWriter> writer;
+  try {
+    writer = std::make_unique<ResultsWriter>(jobname + ".h5", job.model);
+    run_job(job, jobname, settings, *writer, stats);
+  } catch (const SolutionError& e) {
+    std::cerr << "error: " << e.what() << "\n";
+    std::cerr << fmt::format("results up to the failure are kept in {}.h5\n", jobname);
+    Log::write(LogLevel::Error, e.what());
+    return kExitSolution;
+  } catch (const std::exception& e) {
+    std::cerr << "error: " << e.what() << "\n";
+    Log::write(LogLevel::Error, e.what());
+    return kExitInput;
+  }
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  print_summary(jobname, stats, wall);
+  std::cout << fmt::format("  results: {}\n", (fs::current_path() / (jobname + ".h5")).string());
+  return kExitOk;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"impactfe: finite elements for structural impact dynamics"};
+  app.require_subcommand(1);
+
+  RunArgs run;
+  CLI::App* run_cmd = app.add_subcommand("run", "run an APDL deck (ANSYS 4.2 or modern)");
+  run_cmd->add_option("deck", run.deck, "input deck")->required();
+  run_cmd->add_option("-o,--output", run.out_dir, "working directory for results (default .)");
+  run_cmd->add_option("-j,--jobname", run.jobname, "job name (default: deck file stem)");
+  run_cmd->add_option("--threads", run.threads, "threads for element loops");
+  run_cmd->add_flag("--skip-unknown", run.skip_unknown, "warn and skip unknown commands");
+  run_cmd->add_option("--dialect", run.dialect, "4x|modern|auto")
+      ->check(CLI::IsMember({"4x", "modern", "auto"}));
+  run_cmd->add_option("--results", run.results, "results file for post-only decks");
+  run_cmd->add_option("--se", run.superelement, "superelement file for MATRIX50 elements");
+  run_cmd->add_flag("--continue-on-nonconvergence", run.continue_on_nonconvergence,
+                    "accept non-converged steps with a warning");
+
+  std::string post_file;
+  std::vector<std::string> nsol, esol, gapf;
+  bool freq = false;
+  int mode = 0;
+  CLI::App* post_cmd = app.add_subcommand("post", "print time histories / modal results as CSV");
+  post_cmd->add_option("results", post_file, "results file (.h5)")->required();
+  post_cmd->add_option("--nsol", nsol, "NODE,LAB (UX..ROTZ, VX..VZ, AX..AZ, FX..MZ)");
+  post_cmd->add_option("--esol", esol, "ELEM,ITEM (SAXL, FORC, STAT, ...)");
+  post_cmd->add_option("--gapf", gapf, "GP gap-condition number");
+  post_cmd->add_flag("--freq", freq, "print mode,frequency_hz");
+  post_cmd->add_option("--mode", mode, "print the shape of mode N");
+
+  std::string info_file;
+  CLI::App* info_cmd = app.add_subcommand("info", "summarise a results file");
+  info_cmd->add_option("results", info_file, "results file (.h5)")->required();
+
+  std::string export_file, export_dir = ".";
+  CLI::App* export_cmd = app.add_subcommand("export", "write VTU/PVD files for ParaView");
+  export_cmd->add_option("results", export_file, "results file (.h5)")->required();
+  export_cmd->add_option("-o,--output", export_dir, "output directory");
+
+  std::vector<double> xi = {0.0};
+  CLI::App* spectrum_cmd = app.add_subcommand(
+      "houbolt-spectrum", "spectral radius of the Houbolt amplification matrix (thesis Fig. 3-4)");
+  spectrum_cmd->add_option("--xi", xi, "damping ratios");
+
+  CLI11_PARSE(app, argc, argv);
+
+  try {
+    if (*run_cmd) return run_command(run);
+    if (*post_cmd) {
+      ResultsReader reader(post_file);
+      if (freq) {
+        std::cout << frequencies_csv(reader);
+        return kExitOk;
+      }
+      if (mode > 0) {
+        std::cout << mode_shape_csv(reader, mode);
+        return kExitOk;
+      }
+      std::vector<PostRequest> requests;
+      for (const auto& s : nsol) requests.push_back(parse_nsol(s));
+      for (const auto& s : esol) requests.push_back(parse_esol(s));
+      for (const auto& s : gapf) requests.push_back(parse_gapf(s));
+      if (requests.empty()) {
+        std::cerr << "error: give --nsol, --esol, --gapf, --freq or --mode\n";
+        return kExitInput;
+      }
+      std::cout << post_csv(reader, requests);
+      return kExitOk;
+    }
+    if (*info_cmd) {
+      std::cout << results_info(ResultsReader(info_file));
+      return kExitOk;
+    }
+    if (*export_cmd) {
+      ResultsReader reader(export_file);
+      fs::create_directories(export_dir);
+      export_vtu_series(reader, export_dir, fs::path(export_file).stem().string());
+      return kExitOk;
+    }
+    if (*spectrum_cmd) {
+      std::vector<double> ratios;
+      for (double r = 1e-3; r <= 1e3 * 1.0001; r *= std::pow(10.0, 0.1)) ratios.push_back(r);
+      std::cout << houbolt_spectrum_csv(ratios, xi);
+      return kExitOk;
+    }
+  } catch (const std::exception& e) {
+    std::cerr << "error: " << e.what() << "\n";
+    return kExitInput;
+  }
+  return kExitOk;
 }
