@@ -49,10 +49,18 @@ SuperelementData generate_superelement(const Structure& structure, const Analysi
   generation_constraints(request);
   const DofMap dofs(elements, structure.constraints_of(request.load_steps.front()));
   const Assembler assembler(elements, dofs, ctx);
-  if (assembler.is_nonlinear())
+  // Status elements (gaps) enter with their matrices at u = 0. Stress stiffening (KAY(8) /
+  // SESST) has no prestress to act on in a generation from the unloaded state.
+  bool has_status = false;
+  for (const auto& e : elements) has_status |= e->has_status();
+  if (has_status)
     Log::warn(
-        "superelement generation: the substructure has nonlinear elements; the superelement is "
-        "linear and uses their matrices at zero displacement");
+        "superelement generation: the substructure has status (gap) elements; the superelement "
+        "is linear and uses their matrices at zero displacement");
+  if (ctx.stress_stiffening)
+    Log::info(
+        "superelement generation: stress stiffening requested; the matrices are formed at "
+        "the unloaded state (zero stress), so it does not change them");
 
   // Master and slave partition of the free DOFs.
   std::vector<int> masters;
