@@ -107,7 +107,8 @@ void DirectSolution::set_constraints(const LoadStep& step) {
 }
 
 VectorXd DirectSolution::external_force(const LoadPoint& at) const {
-  return nodal_forces(*dofs_, at) + inertia_load(*dofs_, mass_all_, frame_acceleration(at));
+  return nodal_forces(*dofs_, at) +
+         inertia_load(structure_.elements(), *dofs_, ctx_, frame_acceleration(at));
 }
 
 void DirectSolution::factorize(const IntegrationCoefficients& coeff, const VectorXd& u) {

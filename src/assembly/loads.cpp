@@ -44,6 +44,20 @@ VectorXd inertia_load(const DofMap& dofs, const SparseMatrix& mass_all, const Ve
   return -(mass_all * rigid);
 }
 
+VectorXd inertia_load(const std::vector<std::unique_ptr<Element>>& elements, const DofMap& dofs,
+                      const ElementContext& ctx, const Vec3& acel) {
+  VectorXd f = VectorXd::Zero(dofs.n_active());
+  if (acel.squaredNorm() == 0.0) return f;
+  VectorXd fe;
+  for (std::size_t e = 0; e < elements.size(); ++e) {
+    elements[e]->frame_acceleration_load(ctx, acel, fe);
+    const auto& idx = dofs.element_indices(e);
+    for (std::size_t a = 0; a < idx.size(); ++a)
+      if (idx[a] >= 0) f(idx[a]) += fe(static_cast<int>(a));
+  }
+  return f;
+}
+
 VectorXd prescribed_displacements(const DofMap& dofs, const LoadPoint& at) {
   VectorXd u = VectorXd::Zero(dofs.n_active());
   for (const auto& [key, value] : at.current->constraints) {

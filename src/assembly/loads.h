@@ -26,6 +26,10 @@ VectorXd nodal_forces(const DofMap& dofs, const LoadPoint& at);
 Vec3 frame_acceleration(const LoadPoint& at);
 /// Inertia load -M r a of a frame acceleration, over all active DOFs (M: full storage).
 VectorXd inertia_load(const DofMap& dofs, const SparseMatrix& mass_all, const Vec3& acel);
+/// Inertia load of a frame acceleration over all active DOFs, summed from each element's
+/// Element::frame_acceleration_load (−M r a, or −Σ a_d g_d exactly for a superelement).
+VectorXd inertia_load(const std::vector<std::unique_ptr<Element>>& elements, const DofMap& dofs,
+                      const ElementContext& ctx, const Vec3& acel);
 /// Prescribed displacements: values on constrained DOFs (index >= n_free), zero elsewhere.
 VectorXd prescribed_displacements(const DofMap& dofs, const LoadPoint& at);
 /// Constrained DOF set of a load step (D entries).

@@ -56,6 +56,11 @@ class Element {
   virtual bool has_damping() const { return false; }
   virtual void damping(const ElementContext& ctx, const Eigen::VectorXd& u,
                        Eigen::MatrixXd& C) const;
+  /// Load of a frame acceleration a (ACEL, spec §3.19) on the element DOFs. Default: f = −M r a
+  /// with the element mass and r the rigid translation of each translational DOF. A
+  /// superelement overrides it with the exact reduced vectors −Σ_d a_d g_d (spec §10.6, U25).
+  virtual void frame_acceleration_load(const ElementContext& ctx, const Vec3& a,
+                                       Eigen::VectorXd& f) const;
 
   // ---- status elements (gap open/closed, slider stick/slide) --------------------------------
   virtual bool has_status() const { return false; }

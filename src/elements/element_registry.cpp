@@ -11,6 +11,18 @@ void Element::damping(const ElementContext&, const Eigen::VectorXd&, Eigen::Matr
   C.setZero(n_dofs(), n_dofs());
 }
 
+void Element::frame_acceleration_load(const ElementContext& ctx, const Vec3& a,
+                                      Eigen::VectorXd& f) const {
+  Eigen::MatrixXd m;
+  mass(ctx, m);
+  Eigen::VectorXd ra = Eigen::VectorXd::Zero(n_dofs());
+  for (int i = 0; i < n_dofs(); ++i) {
+    const int d = static_cast<int>(dofs()[static_cast<std::size_t>(i)].dof);
+    if (d < 3) ra(i) = a(d);
+  }
+  f = -(m * ra);
+}
+
 const std::vector<ElementTypeInfo>& element_type_table() {
   static const std::vector<ElementTypeInfo> table = {
       {"LINK1", 1, ElementKind::Spar2D, 2},

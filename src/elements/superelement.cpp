@@ -1,15 +1,89 @@
-// Placeholder until the superelement element lands.
+#include "elements/superelement.h"
+
 #include <fmt/format.h>
 
-#include "core/errors.h"
-#include "elements/element.h"
+#include "core/log.h"
 
 namespace impactfe {
 
-std::unique_ptr<Element> make_superelement(const ElementBuildContext&,
+namespace {
+/// MAPDL's node-coincidence tolerance for master nodes of a use pass (TOLER, spec §10.6).
+constexpr double kCoordinateTolerance = 1e-4;
+}  // namespace
+
+Superelement::Superelement(int id, std::string path, std::shared_ptr<const SuperelementData> data)
+    : Element(id), path_(std::move(path)), data_(std::move(data)), dofs_(data_->master_keys()) {}
+
+void Superelement::tangent(const ElementContext&, const Eigen::VectorXd& u, Eigen::MatrixXd& K,
+                           Eigen::VectorXd& f_int) const {
+  K = data_->stiffness;
+  f_int = K * u;
+}
+
+void Superelement::mass(const ElementContext&, Eigen::MatrixXd& M) const {
+  if (data_->mass)
+    M = *data_->mass;
+  else
+    M.setZero(n_dofs(), n_dofs());
+}
+
+void Superelement::damping(const ElementContext&, const Eigen::VectorXd&,
+                           Eigen::MatrixXd& C) const {
+  if (data_->damping)
+    C = *data_->damping;
+  else
+    C.setZero(n_dofs(), n_dofs());
+}
+
+void Superelement::frame_acceleration_load(const ElementContext&, const Vec3& a,
+                                           Eigen::VectorXd& f) const {
+  f = -(data_->unit_acceleration * a);
+}
+
+const std::vector<std::string>& Superelement::result_names() const {
+  static const std::vector<std::string> none;
+  return none;
+}
+
+void Superelement::results(const ElementContext&, const Eigen::VectorXd&, const Eigen::VectorXd&,
+                           ElementResultValues& out) const {
+  out.clear();
+}
+
+std::unique_ptr<Element> make_superelement(const ElementBuildContext& ctx,
                                            const ElementRecord& record) {
-  throw NotImplementedError(
-      fmt::format("element {}: element not implemented yet (superelement)", record.id));
+  if (!ctx.resolve_superelement_file)
+    throw InputError(record.where,
+                     fmt::format("element {}: no superelement file resolver", record.id));
+  const std::string path = ctx.resolve_superelement_file(record);
+  auto data = std::make_shared<const SuperelementData>(read_superelement(path, record.where));
+  if (data->masters.empty())
+    throw InputError(
+        record.where,
+        fmt::format("element {}: superelement file {} has no master DOFs", record.id, path));
+  // The master nodes of the use pass are the nodes with the masters' numbers.
+  for (const SuperelementMaster& m : data->masters) {
+    auto it = ctx.model.nodes.find(m.key.node);
+    if (it == ctx.model.nodes.end())
+      throw InputError(
+          record.where,
+          fmt::format("element {}: master node {} of superelement {} ({}) is not "
+                      "defined in this model; define it with N at ({}, {}, {})",
+                      record.id, m.key.node, data->name, path, m.x(0), m.x(1), m.x(2)));
+    const double distance = (it->second.x - m.x).norm();
+    if (distance > kCoordinateTolerance)
+      Log::warn(
+          "element {}: node {} is at ({}, {}, {}) but superelement {} has its master there at "
+          "({}, {}, {}) (distance {:.3g} > {})",
+          record.id, m.key.node, it->second.x(0), it->second.x(1), it->second.x(2), data->name,
+          m.x(0), m.x(1), m.x(2), distance, kCoordinateTolerance);
+    if ((it->second.angles_deg - m.angles_deg).norm() > kCoordinateTolerance)
+      Log::warn("element {}: node {} nodal angles differ from the superelement's master node",
+                record.id, m.key.node);
+  }
+  Log::info("element {}: superelement {} from {} ({} master DOFs, matrices {})", record.id,
+            data->name, path, data->n_masters(), data->matrices);
+  return std::make_unique<Superelement>(record.id, path, std::move(data));
 }
 
 }  // namespace impactfe

@@ -1,0 +1,62 @@
+// Superelement generation driver (KAN,7 / ANTYPE,SUBSTR; spec §10.6): condenses the
+// substructure, writes <jobname>.sub.h5 next to the results file, and records a summary in the
+// results file.
+#include <fmt/format.h>
+
+#include <filesystem>
+
+#include "analysis/analyses.h"
+#include "core/log.h"
+#include "substructure/generation.h"
+
+namespace impactfe {
+
+void run_substructure_generation(Structure& structure, const AnalysisRequest& request,
+                                 ResultsWriter& writer, const RunSettings& settings,
+                                 AnalysisStatistics& stats, const std::string& jobname) {
+  stats.description = "substructure generation (Guyan)";
+  writer.begin_analysis(ResultsKind::Substructure, stats.description);
+  const std::string name = structure.options().superelement_name.empty()
+                               ? jobname
+                               : structure.options().superelement_name;
+  GenerationSummary summary;
+  const SuperelementData se = generate_superelement(structure, request, name, summary);
+
+  // The file goes beside the results file (the working directory of the run).
+  const std::filesystem::path dir = std::filesystem::path(writer.path()).parent_path();
+  const std::string path = (dir / (jobname + ".sub.h5")).string();
+  write_superelement(path, se);
+
+  stats.n_dofs = summary.n_masters;
+  stats.n_load_steps = static_cast<int>(request.load_steps.size());
+  stats.n_analyses = summary.factorizations;
+  stats.n_factorizations = summary.factorizations;
+  stats.notes.push_back(fmt::format(
+      "superelement {} -> {}: {} masters, {} slaves condensed, {} constrained; matrices {}", name,
+      path, summary.n_masters, summary.n_slaves, summary.n_constrained,
+      se.matrices == 1   ? "K"
+      : se.matrices == 2 ? "K, M"
+                         : "K, M, C"));
+  stats.notes.push_back(fmt::format(
+      "superelement mass per direction X/Y/Z: total {:.6g} / {:.6g} / {:.6g}, carried by "
+      "masters {:.6g} / {:.6g} / {:.6g}",
+      summary.total_mass[0], summary.total_mass[1], summary.total_mass[2], summary.reduced_mass[0],
+      summary.reduced_mass[1], summary.reduced_mass[2]));
+  for (const auto& note : stats.notes) Log::info("{}", note);
+
+  writer.set_attribute("superelement_name", name);
+  writer.set_attribute("superelement_file", path);
+  writer.set_attribute("n_masters", static_cast<double>(summary.n_masters));
+  writer.set_attribute("n_slaves", static_cast<double>(summary.n_slaves));
+  writer.set_attribute("n_constrained", static_cast<double>(summary.n_constrained));
+  writer.set_attribute("n_load_vectors", static_cast<double>(request.load_steps.size()));
+  writer.set_attribute("matrices", static_cast<double>(se.matrices));
+  writer.set_attribute("generation_seconds", summary.seconds);
+  const char* axes[3] = {"x", "y", "z"};
+  for (int d = 0; d < 3; ++d) {
+    writer.set_attribute(fmt::format("total_mass_{}", axes[d]), summary.total_mass[d]);
+    writer.set_attribute(fmt::format("master_mass_{}", axes[d]), summary.reduced_mass[d]);
+  }
+}
+
+}  // namespace impactfe
