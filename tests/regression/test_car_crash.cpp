@@ -4,6 +4,8 @@
 // Also: reduced vs full transient on a spar model (all DOFs masters / fewer masters).
 #include <gtest/gtest.h>
 
+#include "../support/run_deck.h"
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -37,8 +39,7 @@ double onset(const Series& s, double level) {
 
 /// Runs a deck (file or text) into `dir`; returns the results file path.
 std::string run(const Job& job, const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("impactfe_reduced_" + name);
-  fs::create_directories(dir);
+  const fs::path dir = impactfe::testing::fresh_directory("reduced_" + name);
   const std::string path = (dir / (name + ".h5")).string();
   ResultsWriter writer(path, job.model);
   RunStatistics stats;
@@ -128,7 +129,10 @@ INSTANTIATE_TEST_SUITE_P(
     ReferenceSection2, CarCrash,
     ::testing::Values(CrashCase{1, 0.1, 1e-4, 0.37017, 0.37022, 1.05e-3, 270.2, 256.9, 34.5},
                       CrashCase{2, 0.04, 4e-5, 0.12539, 0.12554, 4.2e-4, 853.9, 814.2, 113.1},
-                      CrashCase{3, 0.01, 1e-5, 0.03688, 0.03731, 1.05e-4, 2688, 2560, 396}));
+                      CrashCase{3, 0.01, 1e-5, 0.03688, 0.03731, 1.05e-4, 2688, 2560, 396}),
+    [](const ::testing::TestParamInfo<CrashCase>& info) {
+      return "case" + std::to_string(info.param.number);
+    });
 
 namespace {
 

@@ -4,6 +4,8 @@
 // (helmet_full.inp) and with the rigid-helmet reference values of REFERENCE.md §3.
 #include <gtest/gtest.h>
 
+#include "../support/run_deck.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -29,24 +31,11 @@ const fs::path kDecks = fs::path(IMPACTFE_TEST_DECKS) / "thesis";
 const int kMasterNodes[9] = {27, 29, 31, 41, 43, 45, 55, 57, 59};
 constexpr int kGroundGap = 86;  // E,68,43 (TYPE 3, REAL 3): the last element of both decks
 
-/// Runs a deck with `dir` as working directory; the results file is <jobname>.h5 there.
+/// Runs a thesis deck in `dir` (shared by the generation and use passes) and prints its notes.
 void run_deck(const std::string& deck, const fs::path& dir, const std::string& jobname) {
-  const fs::path previous = fs::current_path();
-  fs::current_path(dir);
-  try {
-    DeckOptions options;
-    options.jobname = jobname;
-    const Job job = read_deck((kDecks / deck).string(), options);
-    ResultsWriter writer((dir / (jobname + ".h5")).string(), job.model);
-    RunStatistics stats;
-    run_job(job, jobname, RunSettings{}, writer, stats);
-    for (const auto& a : stats.analyses)
-      for (const auto& note : a.notes) std::printf("  [%s] %s\n", jobname.c_str(), note.c_str());
-  } catch (...) {
-    fs::current_path(previous);
-    throw;
-  }
-  fs::current_path(previous);
+  const auto run = testing::run_deck_in((kDecks / deck).string(), dir, RunSettings{}, jobname);
+  for (const auto& a : run.statistics.analyses)
+    for (const auto& note : a.notes) std::printf("  [%s] %s\n", jobname.c_str(), note.c_str());
 }
 
 /// Value of a series at time t (exact grid match expected; NaN if absent).
@@ -73,9 +62,7 @@ double first_closure(const ResultsReader& r, int element) {
 class HelmetSuperelement : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    dir_ = fs::temp_directory_path() / "impactfe_helmet_superelement";
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    dir_ = testing::fresh_directory("helmet_superelement");
     run_deck("helmet_segen.inp", dir_, "helmet_segen");
     run_deck("helmet_use.inp", dir_, "helmet_use");
     run_deck("helmet_full.inp", dir_, "helmet_full");

@@ -1,6 +1,8 @@
 #pragma once
 /// Test support: runs a deck through the same path as `impactfe run` (read_deck + run_job) in
 /// a fresh directory and opens the results file.
+#include <unistd.h>
+
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -18,26 +20,47 @@ struct DeckRun {
   std::unique_ptr<ResultsReader> reader;
 };
 
-/// Runs `deck` (absolute path) with jobname = deck stem in <tmp>/impactfe_tests/<tag>.
-inline DeckRun run_deck(const std::string& deck, const std::string& tag,
-                        const RunSettings& settings = {}) {
+/// A fresh working directory <tmp>/impactfe_tests/<tag>_<pid>: unique per test process, since
+/// ctest runs the tests of one binary in parallel processes.
+inline std::filesystem::path fresh_directory(const std::string& tag) {
+  namespace fs = std::filesystem;
+  const fs::path dir =
+      fs::temp_directory_path() / "impactfe_tests" / (tag + "_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+/// Runs `deck` (absolute path) in `directory` (kept: a generation pass leaves its superelement
+/// there for the use pass) with jobname = deck stem unless given.
+inline DeckRun run_deck_in(const std::string& deck, const std::filesystem::path& directory,
+                           const RunSettings& settings = {}, std::string jobname = {}) {
   namespace fs = std::filesystem;
   DeckRun run;
-  run.directory = fs::temp_directory_path() / "impactfe_tests" / tag;
-  fs::remove_all(run.directory);
-  fs::create_directories(run.directory);
+  run.directory = directory;
   const fs::path previous = fs::current_path();
   fs::current_path(run.directory);
-  const std::string jobname = fs::path(deck).stem().string();
-  {
-    const Job job = read_deck(deck);
+  if (jobname.empty()) jobname = fs::path(deck).stem().string();
+  try {
+    DeckOptions options;
+    options.jobname = jobname;
+    const Job job = read_deck(deck, options);
     ResultsWriter writer(jobname + ".h5", job.model);
     run_job(job, jobname, settings, writer, run.statistics);
+  } catch (...) {
+    fs::current_path(previous);
+    throw;
   }
   fs::current_path(previous);
   run.results_path = (run.directory / (jobname + ".h5")).string();
   run.reader = std::make_unique<ResultsReader>(run.results_path);
   return run;
+}
+
+/// Runs `deck` in a fresh directory named after `tag`.
+inline DeckRun run_deck(const std::string& deck, const std::string& tag,
+                        const RunSettings& settings = {}) {
+  return run_deck_in(deck, fresh_directory(tag), settings);
 }
 
 /// Linear interpolation of a (time, value) series at time t (clamped to its ends).
