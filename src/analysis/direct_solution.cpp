@@ -213,6 +213,17 @@ void DirectSolution::run(const std::vector<LoadStep>& steps, bool transient) {
     previous = &step;
     t_start = t.t_end;
   }
+  if (transient) {
+    // Energy balance at the end (spec: kinetic, strain, gap work, dissipation vs external work);
+    // the remainder is the integrator's numerical dissipation (Houbolt damps high modes).
+    const double kinetic = 0.5 * v_.dot(mass_all_ * v_);
+    const double strain = internal_work_ - gap_work_;
+    const double balance = external_work_ - kinetic - strain - gap_work_ - damping_work_;
+    stats_.notes.push_back(fmt::format(
+        "energy at t = {:.6g}: kinetic {:.6g}, strain {:.6g}, gap work {:.6g}, damping {:.6g}, "
+        "external work {:.6g}, numerical dissipation {:.6g}",
+        time_, kinetic, strain, gap_work_, damping_work_, external_work_, balance));
+  }
   stats_.n_analyses = solver_ ? solver_->counters().analyses : 0;
   stats_.n_factorizations = solver_ ? solver_->counters().factorizations : 0;
   stats_.n_solves = solver_ ? solver_->counters().solves : 0;
@@ -330,15 +341,20 @@ void DirectSolution::solve_increment(const LoadPoint& at, double time, int load_
   external_work_ += 0.5 * (f_new + f_ext_old_).dot(du);
   damping_work_ += 0.5 * (f_damp + f_damp_old_).dot(du);
   {
-    // Internal work split into gap elements and the rest (trapezoidal rule).
-    VectorXd ue_old, ue_new, f_old, f_now;
+    // Internal work split into gap elements and the rest (trapezoidal rule on each).
+    VectorXd ue_old, ue_new, f_now;
     Eigen::MatrixXd k;
+    if (gap_force_old_.size() != elements.size())
+      gap_force_old_.assign(elements.size(), VectorXd());
     for (std::size_t e = 0; e < elements.size(); ++e) {
       if (!is_gap_[e]) continue;
       assembler_->gather(e, u_, ue_old);
       assembler_->gather(e, u, ue_new);
       elements[e]->tangent(ctx_, ue_new, k, f_now);
-      gap_work_ += f_now.dot(ue_new - ue_old);  // f is piecewise linear: use the end force
+      VectorXd& f_old = gap_force_old_[e];
+      if (f_old.size() != f_now.size()) f_old = VectorXd::Zero(f_now.size());
+      gap_work_ += 0.5 * (f_old + f_now).dot(ue_new - ue_old);
+      f_old = f_now;
     }
     internal_work_ += 0.5 * (f_int + f_int_old_).dot(du);
   }
