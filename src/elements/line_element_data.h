@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include <string_view>
+#include <utility>
 
 #include "core/errors.h"
 #include "core/model.h"
@@ -43,6 +44,18 @@ inline const Node& node(const Model& model, const ElementRecord& record, std::si
     throw InputError(record.where,
                      fmt::format("element {} ({}): node {} is not defined", record.id, family, id));
   return it->second;
+}
+
+/// Nodes I and J of a two-node element, which must be distinct nodes.
+inline std::pair<const Node&, const Node&> distinct_node_pair(const Model& model,
+                                                              const ElementRecord& record,
+                                                              std::string_view family) {
+  const Node& ni = node(model, record, 0, 2, family);
+  const Node& nj = node(model, record, 1, 2, family);
+  if (ni.id == nj.id)
+    throw InputError(record.where, fmt::format("element {} ({}): both nodes are node {}", record.id,
+                                               family, ni.id));
+  return {ni, nj};
 }
 
 }  // namespace impactfe::line_data

@@ -74,11 +74,7 @@ std::unique_ptr<Element> make_spar(const ElementBuildContext& ctx, const Element
   const ElementType& type = line_data::element_type(model, record);
   const bool planar = type.kind == ElementKind::Spar2D;
   const char* family = planar ? "Spar 2-D" : "Spar";
-  const Node& ni = line_data::node(model, record, 0, 2, family);
-  const Node& nj = line_data::node(model, record, 1, 2, family);
-  if (ni.id == nj.id)
-    throw InputError(record.where, fmt::format("element {} ({}): both nodes are node {}", record.id,
-                                               family, ni.id));
+  const auto [ni, nj] = line_data::distinct_node_pair(model, record, family);
   const Vec3 chord = nj.x - ni.x;
   const double length = chord.norm();
   if (!(length > 0.0))

@@ -73,11 +73,7 @@ std::unique_ptr<Element> make_spring_damper(const ElementBuildContext& ctx,
   const Model& model = ctx.model;
   constexpr const char* family = "SpringDamper";
   const ElementType& type = line_data::element_type(model, record);
-  const Node& ni = line_data::node(model, record, 0, 2, family);
-  const Node& nj = line_data::node(model, record, 1, 2, family);
-  if (ni.id == nj.id)
-    throw InputError(record.where, fmt::format("element {} ({}): both nodes are node {}", record.id,
-                                               family, ni.id));
+  const auto [ni, nj] = line_data::distinct_node_pair(model, record, family);
   const int k2 = type.key(2);
   const int k3 = type.key(3);
   SpringMode mode;

@@ -2,6 +2,8 @@
 // co-rotational rigid rotation, results and input errors. Spec §11.1.
 #include <gtest/gtest.h>
 
+#include "../support/element_checks.h"
+
 #include <Eigen/Dense>
 #include <cmath>
 
@@ -53,21 +55,7 @@ std::unique_ptr<Element> build(const Model& m, const ElementRecord& r = spar_rec
 }
 
 /// Central finite-difference derivative of f_int.
-Eigen::MatrixXd fd_tangent(const Element& e, const ElementContext& ctx, const Eigen::VectorXd& u,
-                           double h) {
-  const int n = e.n_dofs();
-  Eigen::MatrixXd K(n, n), Kd;
-  Eigen::VectorXd fp, fm;
-  for (int j = 0; j < n; ++j) {
-    Eigen::VectorXd up = u, um = u;
-    up(j) += h;
-    um(j) -= h;
-    e.tangent(ctx, up, Kd, fp);
-    e.tangent(ctx, um, Kd, fm);
-    K.col(j) = (fp - fm) / (2.0 * h);
-  }
-  return K;
-}
+using testing::fd_tangent;
 
 /// Displacements of the two nodes for an infinitesimal rotation w × x (3-D).
 Eigen::VectorXd small_rotation(const Vec3& w, const Vec3& xi, const Vec3& xj) {

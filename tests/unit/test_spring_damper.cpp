@@ -2,6 +2,8 @@
 // deflection and input errors. Spec §11.2.
 #include <gtest/gtest.h>
 
+#include "../support/element_checks.h"
+
 #include <Eigen/Dense>
 #include <cmath>
 
@@ -41,21 +43,7 @@ std::unique_ptr<Element> build(const Model& m) {
   return create_element(ElementBuildContext{m, {}}, spring_record());
 }
 
-Eigen::MatrixXd fd_tangent(const Element& e, const ElementContext& ctx, const Eigen::VectorXd& u,
-                           double h) {
-  const int n = e.n_dofs();
-  Eigen::MatrixXd K(n, n), Kd;
-  Eigen::VectorXd fp, fm;
-  for (int j = 0; j < n; ++j) {
-    Eigen::VectorXd up = u, um = u;
-    up(j) += h;
-    um(j) -= h;
-    e.tangent(ctx, up, Kd, fp);
-    e.tangent(ctx, um, Kd, fm);
-    K.col(j) = (fp - fm) / (2.0 * h);
-  }
-  return K;
-}
+using testing::fd_tangent;
 
 TEST(SpringDamper, Longitudinal3DStiffnessDampingAndNoMass) {
   const Vec3 xi(0, 0, 0), xj(0, 3, 4);  // n = (0, 0.6, 0.8)
