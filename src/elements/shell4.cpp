@@ -17,6 +17,11 @@ namespace impactfe {
 namespace {
 
 using Mat3 = Eigen::Matrix3d;
+// Fixed-capacity types (at most 4 corners): the co-rotational kinematics runs dozens of times
+// per element and iteration, so it must not touch the heap.
+using Mat3N = Eigen::Matrix<double, 3, Eigen::Dynamic, Eigen::ColMajor, 3, 12>;
+using RowN = Eigen::Matrix<double, 1, Eigen::Dynamic, Eigen::RowMajor, 1, 12>;
+using Corners = Eigen::Matrix<double, 3, Eigen::Dynamic, Eigen::ColMajor, 3, 4>;
 
 Mat3 spin(const Vec3& v) {
   Mat3 S;
@@ -80,10 +85,9 @@ Mat3 left_jacobian_inverse(const Vec3& psi) {
 /// i.e. the mean plane; (J−I)×(K−I) for a triangle), e1 along I→J projected on the plane,
 /// e2 = e3×e1; c = centroid of the corners. If G != nullptr it receives the frame spin
 /// δω = G δx (3 × 3n, global components) for corner translation variations δx.
-void element_frame(const std::vector<Vec3>& x, Mat3& R, Vec3& c, Eigen::MatrixXd* G) {
-  const int n = static_cast<int>(x.size());
-  c = Vec3::Zero();
-  for (const auto& p : x) c += p / n;
+void element_frame(const Corners& x, Mat3& R, Vec3& c, Mat3N* G) {
+  const int n = static_cast<int>(x.cols());
+  c = x.rowwise().mean();
   Vec3 a, b;
   int ia0, ia1, ib0, ib1;  // a = x[ia1] − x[ia0], b = x[ib1] − x[ib0]
   if (n == 4) {
@@ -91,12 +95,12 @@ void element_frame(const std::vector<Vec3>& x, Mat3& R, Vec3& c, Eigen::MatrixXd
   } else {
     ia0 = 0, ia1 = 1, ib0 = 0, ib1 = 2;
   }
-  a = x[static_cast<std::size_t>(ia1)] - x[static_cast<std::size_t>(ia0)];
-  b = x[static_cast<std::size_t>(ib1)] - x[static_cast<std::size_t>(ib0)];
+  a = x.col(ia1) - x.col(ia0);
+  b = x.col(ib1) - x.col(ib0);
   const Vec3 nvec = a.cross(b);
   const double nn = nvec.norm();
   const Vec3 e3 = nvec / nn;
-  const Vec3 v = x[1] - x[0];
+  const Vec3 v = x.col(1) - x.col(0);
   const Vec3 p = v - v.dot(e3) * e3;
   const double pn = p.norm();
   const Vec3 e1 = p / pn;
@@ -105,17 +109,19 @@ void element_frame(const std::vector<Vec3>& x, Mat3& R, Vec3& c, Eigen::MatrixXd
   R.col(1) = e2;
   R.col(2) = e3;
   if (G == nullptr) return;
-  auto sel = [n](int i) {
-    Eigen::MatrixXd E = Eigen::MatrixXd::Zero(3, 3 * n);
-    E.block<3, 3>(0, 3 * i).setIdentity();
-    return E;
-  };
-  const Eigen::MatrixXd Dn = -spin(b) * (sel(ia1) - sel(ia0)) + spin(a) * (sel(ib1) - sel(ib0));
-  const Eigen::MatrixXd De3 = (Mat3::Identity() - e3 * e3.transpose()) / nn * Dn;
-  const Eigen::RowVectorXd w1 = -e2.transpose() * De3;
-  const Eigen::RowVectorXd w2 = e1.transpose() * De3;
-  const Eigen::RowVectorXd w3 =
-      (e2.transpose() * (sel(1) - sel(0)) - v.dot(e3) * e2.transpose() * De3) / pn;
+  // d(a×b) = −spin(b) da + spin(a) db, with da, db selecting corner translations.
+  Mat3N Dn = Mat3N::Zero(3, 3 * n);
+  Dn.block<3, 3>(0, 3 * ia1) -= spin(b);
+  Dn.block<3, 3>(0, 3 * ia0) += spin(b);
+  Dn.block<3, 3>(0, 3 * ib1) += spin(a);
+  Dn.block<3, 3>(0, 3 * ib0) -= spin(a);
+  const Mat3N De3 = (Mat3::Identity() - e3 * e3.transpose()) / nn * Dn;
+  const RowN w1 = -e2.transpose() * De3;
+  const RowN w2 = e1.transpose() * De3;
+  RowN dv = RowN::Zero(1, 3 * n);  // e2ᵀ d(x1 − x0)
+  dv.segment<3>(3) += e2.transpose();
+  dv.segment<3>(0) -= e2.transpose();
+  const RowN w3 = (dv - v.dot(e3) * e2.transpose() * De3) / pn;
   *G = e1 * w1 + e2 * w2 + e3 * w3;
 }
 
@@ -129,7 +135,9 @@ Shell4::Shell4(int id, const Shell4Data& data, const SourceLocation& where)
     : Element(id), n_(static_cast<int>(data.node_ids.size())), X_(data.positions) {
   for (int node : data.node_ids)
     for (Dof d : kAllDofs) dofs_.push_back(DofKey{node, d});
-  element_frame(X_, R0_, c0_, nullptr);
+  Corners corners(3, n_);
+  for (int a = 0; a < n_; ++a) corners.col(a) = X_[static_cast<std::size_t>(a)];
+  element_frame(corners, R0_, c0_, nullptr);
   if (!R0_.allFinite())
     throw InputError(where,
                      fmt::format("element {}: zero area (coincident or collinear nodes)", id));
@@ -175,28 +183,27 @@ Shell4::Shell4(int id, const Shell4Data& data, const SourceLocation& where)
 void Shell4::corotational_kinematics(const Eigen::VectorXd& u, Eigen::VectorXd& d,
                                      Eigen::MatrixXd* B) const {
   const int nd = 6 * n_;
-  std::vector<Vec3> x(static_cast<std::size_t>(n_));
-  for (int a = 0; a < n_; ++a)
-    x[static_cast<std::size_t>(a)] = X_[static_cast<std::size_t>(a)] + u.segment<3>(6 * a);
+  Corners x(3, n_);
+  for (int a = 0; a < n_; ++a) x.col(a) = X_[static_cast<std::size_t>(a)] + u.segment<3>(6 * a);
   Mat3 Rc;
   Vec3 c;
-  Eigen::MatrixXd G;
+  Mat3N G;
   element_frame(x, Rc, c, B != nullptr ? &G : nullptr);
   d.resize(nd);
   if (B != nullptr) B->setZero(nd, nd);
   for (int a = 0; a < n_; ++a) {
     const std::size_t s = static_cast<std::size_t>(a);
-    const Vec3 r = x[s] - c;
+    const Vec3 r = x.col(a) - c;
     d.segment<3>(6 * a) = Rc.transpose() * r - R0_.transpose() * (X_[s] - c0_);
     const Vec3 psi = u.segment<3>(6 * a + 3);
     const Vec3 th = log_so3(Rc.transpose() * exp_so3(psi) * R0_);
     d.segment<3>(6 * a + 3) = th;
     if (B == nullptr) continue;
     // δd_a = Rcᵀ(δx_a − δc + spin(r_a) δω);  δθ_a = T(θ_a)⁻¹ Rcᵀ(T(ψ_a) δψ_a − δω), δω = G δx.
-    const Eigen::MatrixXd RtG = Rc.transpose() * G;  // 3 × 3n over corner translations
-    const Eigen::MatrixXd RsG = Rc.transpose() * spin(r) * G;
+    const Mat3N RtG = Rc.transpose() * G;  // 3 × 3n over corner translations
+    const Mat3N RsG = Rc.transpose() * spin(r) * G;
     const Mat3 Ji = left_jacobian_inverse(th);
-    const Eigen::MatrixXd JRtG = Ji * RtG;
+    const Mat3N JRtG = Ji * RtG;
     for (int b = 0; b < n_; ++b) {
       Mat3 blk = RsG.block<3, 3>(0, 3 * b) - Rc.transpose() / n_;
       if (a == b) blk += Rc.transpose();
