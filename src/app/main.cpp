@@ -29,7 +29,7 @@ struct RunArgs {
   std::string deck;
   std::string out_dir = ".";
   std::string jobname;
-  int threads = 1;
+  int threads = 0;  // 0: all cores
   bool skip_unknown = false;
   std::string dialect = "auto";
   std::string results;
@@ -54,6 +54,7 @@ void print_summary(const std::string& jobname, const RunStatistics& stats, doubl
 
 int run_command(const RunArgs& args) {
   const auto start = std::chrono::steady_clock::now();
+  if (args.threads > 0) omp_set_num_threads(args.threads);
   const fs::path deck = fs::absolute(args.deck);
   if (!fs::exists(deck)) {
     std::cerr << "error: deck not found: " << args.deck << "\n";
@@ -133,7 +134,7 @@ int main(int argc, char** argv) {
   run_cmd->add_option("deck", run.deck, "input deck")->required();
   run_cmd->add_option("-o,--output", run.out_dir, "working directory for results (default .)");
   run_cmd->add_option("-j,--jobname", run.jobname, "job name (default: deck file stem)");
-  run_cmd->add_option("--threads", run.threads, "threads for element loops");
+  run_cmd->add_option("--threads", run.threads, "threads for element loops (default: all cores)");
   run_cmd->add_flag("--skip-unknown", run.skip_unknown, "warn and skip unknown commands");
   run_cmd->add_option("--dialect", run.dialect, "4x|modern|auto")
       ->check(CLI::IsMember({"4x", "modern", "auto"}));

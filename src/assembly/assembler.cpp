@@ -26,6 +26,8 @@ Assembler::Assembler(const std::vector<std::unique_ptr<Element>>& elements, cons
   mass_.resize(elements_.size());
   linear_stiffness_.resize(elements_.size());
   is_linear_.assign(elements_.size(), false);
+  tangent_buffer_.resize(elements_.size());
+  force_buffer_.resize(elements_.size());
   for (std::size_t e = 0; e < elements_.size(); ++e) {
     const auto& idx = dofs_.element_indices(e);
     const int n = static_cast<int>(idx.size());
@@ -48,6 +50,8 @@ Assembler::Assembler(const std::vector<std::unique_ptr<Element>>& elements, cons
       VectorXd zero = VectorXd::Zero(n), f;
       elements_[e]->tangent(ctx_, zero, linear_stiffness_[e], f);
       is_linear_[e] = true;
+    } else {
+      nonlinear_.push_back(e);
     }
     has_damping_ = has_damping_ || elements_[e]->has_damping() || alpha_ != 0.0 || beta_ != 0.0;
   }
@@ -68,7 +72,20 @@ void Assembler::assemble(const IntegrationCoefficients& coeff, const VectorXd& u
   if (out.internal_force) out.internal_force->setZero(dofs_.n_active());
   if (out.damping_force) out.damping_force->setZero(dofs_.n_active());
 
-  MatrixXd k, c, eff;
+  // Phase 1, in parallel: tangents of the nonlinear elements (the expensive part: co-rotational
+  // shells, total-Lagrangian bricks) into per-element buffers. Elements are const here and keep
+  // no shared scratch, so this is race-free; the scatter below stays serial and deterministic.
+  const int n_nonlinear = static_cast<int>(nonlinear_.size());
+#pragma omp parallel for schedule(dynamic, 8) if (n_nonlinear > 64)
+  for (int i = 0; i < n_nonlinear; ++i) {
+    const std::size_t e = nonlinear_[static_cast<std::size_t>(i)];
+    VectorXd ue_local;
+    gather(e, u, ue_local);
+    elements_[e]->tangent(ctx_, ue_local, tangent_buffer_[e], force_buffer_[e]);
+  }
+
+  // Phase 2, serial: scatter.
+  MatrixXd c, eff;
   VectorXd ue, ve, fe;
   for (std::size_t e = 0; e < elements_.size(); ++e) {
     const Element& element = *elements_[e];
@@ -78,8 +95,9 @@ void Assembler::assemble(const IntegrationCoefficients& coeff, const VectorXd& u
     if (is_linear_[e]) {
       fe.noalias() = linear_stiffness_[e] * ue;
     } else {
-      element.tangent(ctx_, ue, k, fe);
+      fe = force_buffer_[e];
     }
+    const MatrixXd& k = tangent_buffer_[e];
     const MatrixXd& ke = is_linear_[e] ? linear_stiffness_[e] : k;
     const bool rayleigh = alpha_ != 0.0 || beta_ != 0.0;
     const bool damped = element.has_damping() || rayleigh;

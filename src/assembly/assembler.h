@@ -63,6 +63,10 @@ class Assembler {
   std::vector<MatrixXd> mass_;              // constant element mass matrices
   std::vector<MatrixXd> linear_stiffness_;  // K_e of linear elements (evaluated once)
   std::vector<bool> is_linear_;
+  std::vector<std::size_t> nonlinear_;  // indices of the nonlinear elements
+  // Per-element results of the parallel tangent phase of assemble() (scratch, not state).
+  mutable std::vector<MatrixXd> tangent_buffer_;
+  mutable std::vector<VectorXd> force_buffer_;
   bool has_damping_ = false;
   double alpha_ = 0.0;  // Rayleigh mass coefficient
   double beta_ = 0.0;   // Rayleigh stiffness coefficient
