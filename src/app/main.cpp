@@ -68,7 +68,8 @@ int run_command(const RunArgs& args) {
     static const char* names[] = {"debug", "info", "warning", "error"};
     log_file << names[static_cast<int>(level)] << ": " << message << "\n";
     log_file.flush();
-    if (level >= LogLevel::Warning) std::cerr << "warning: " << message << "\n";
+    // Errors reach the terminal once, from the command itself; warnings as they happen.
+    if (level == LogLevel::Warning) std::cerr << "warning: " << message << "\n";
   });
 
   DeckOptions options;
