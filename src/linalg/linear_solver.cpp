@@ -172,11 +172,13 @@ int weakest_pivot_row(const SparseMatrix& lower) {
   const Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> inverse_perm = perm.inverse();
   const Eigen::VectorXi& inverse = inverse_perm.indices();
   int worst = -1;
-  double worst_ratio = kSingularPivot;
+  double worst_ratio = kSingularPivot;  // only pivots below this count
   for (int j = 0; j < d.size(); ++j) {
     const int row = inverse(j);
     const double diag = std::abs(lower.coeff(row, row));
-    const double ratio = diag > 0.0 ? d(j) / diag : (d(j) > 0.0 ? 1.0 : -1.0);
+    // |pivot| relative to its diagonal: a negative pivot of an indefinite but regular matrix
+    // (compressive stress stiffening) is fine; a vanishing one is a mechanism.
+    const double ratio = diag > 0.0 ? std::abs(d(j)) / diag : (d(j) != 0.0 ? 1.0 : 0.0);
     if (ratio < worst_ratio) {
       worst_ratio = ratio;
       worst = row;
