@@ -441,13 +441,18 @@ void DirectSolution::time_step_advice(double h) {
   }
   if (omega_max <= 0.0) return;
   const double period = 2.0 * M_PI / omega_max;
-  const std::string note = fmt::format(
-      "time-step advice: highest contact frequency {:.4g} Hz (element {} closed), T = {:.4g} s, "
-      "suggested dt = T/30 = {:.4g} s; this load step uses dt = {:.4g} s",
-      omega_max / (2.0 * M_PI), which, period, period / 30.0, h);
-  stats_.notes.push_back(note);
+  if (!advice_given_) {
+    stats_.notes.push_back(fmt::format(
+        "time-step advice: highest contact frequency {:.4g} Hz (element {} closed), T = {:.4g} s, "
+        "suggested dt = T/30 = {:.4g} s",
+        omega_max / (2.0 * M_PI), which, period, period / 30.0));
+    advice_given_ = true;
+  }
   if (h > period / 10.0)
-    Log::warn("dt = {:.4g} s is coarser than T/10 = {:.4g} s ({})", h, period / 10.0, note);
+    Log::warn(
+        "dt = {:.4g} s is coarser than T/10 = {:.4g} s of the contact frequency {:.4g} Hz "
+        "(element {} closed); suggested dt = T/30 = {:.4g} s",
+        h, period / 10.0, omega_max / (2.0 * M_PI), which, period / 30.0);
 }
 
 }  // namespace impactfe

@@ -66,7 +66,9 @@ class DirectSolution {
   // Energy balance (spec: kinetic, strain, external work, gap work, dissipation).
   double external_work_ = 0.0, internal_work_ = 0.0, gap_work_ = 0.0, damping_work_ = 0.0;
   std::vector<bool> is_gap_;
-  std::vector<VectorXd> gap_force_old_;  // gap element forces at the last converged step
+  std::vector<VectorXd> gap_force_old_;
+  bool advice_given_ = false;  // the time-step advice note is given once per analysis  // gap
+                               // element forces at the last converged step
 };
 
 }  // namespace impactfe
