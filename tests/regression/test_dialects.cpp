@@ -28,3 +28,37 @@ TEST(Dialects, ModernPendulumMatchesThe42Deck) {
 
 }  // namespace
 }  // namespace impactfe
+
+namespace impactfe {
+namespace {
+
+TEST(Dialects, ModernReducedCrashMatchesThe42Deck) {
+  // Car crash case 1: KAN,5 + /STRESS (4.2) against TRNOPT,REDUC + EXPASS (modern). Master
+  // histories must agree at every step; element stresses wherever both passes expanded.
+  const std::string decks = IMPACTFE_TEST_DECKS;
+  const auto classic = testing::run_deck(decks + "/thesis/crash1.inp", "dialect_crash_4x");
+  const auto modern =
+      testing::run_deck(decks + "/modern/crash1_modern.inp", "dialect_crash_modern");
+  const auto a = classic.reader->nodal_series(7, "UX");
+  const auto b = modern.reader->nodal_series(7, "UX");
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    EXPECT_NEAR(a[k].first, b[k].first, 1e-12);
+    EXPECT_NEAR(a[k].second, b[k].second, 1e-12);
+  }
+  const auto s_classic = classic.reader->element_series(6, "SAXL");
+  const auto s_modern = modern.reader->element_series(6, "SAXL");
+  ASSERT_EQ(s_classic.size(), 60u);
+  ASSERT_EQ(s_modern.size(), 61u);  // NUMEXP,ALL also expands t = 0
+  int matched = 0;
+  for (const auto& [t, s] : s_classic)
+    for (const auto& [u, r] : s_modern)
+      if (std::abs(t - u) < 1e-12) {
+        EXPECT_NEAR(s, r, 1e-9 * (1.0 + std::abs(s)));
+        ++matched;
+      }
+  EXPECT_EQ(matched, 60);
+}
+
+}  // namespace
+}  // namespace impactfe
