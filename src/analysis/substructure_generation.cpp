@@ -1,6 +1,6 @@
 // Superelement generation driver (KAN,7 / ANTYPE,SUBSTR; spec §10.6): condenses the
-// substructure, writes <jobname>.sub.h5 next to the results file, and records a summary in the
-// results file.
+// substructure, writes <Sename>.sub.h5 (default <jobname>) next to the results file, and records a
+// summary in the results file.
 #include <fmt/format.h>
 
 #include <filesystem>
@@ -24,7 +24,8 @@ void run_substructure_generation(Structure& structure, const AnalysisRequest& re
 
   // The file goes beside the results file (the working directory of the run).
   const std::filesystem::path dir = std::filesystem::path(writer.path()).parent_path();
-  const std::string path = (dir / (jobname + ".sub.h5")).string();
+  // SEOPT Sename names the file (default: the jobname), so SE,Sename finds it.
+  const std::string path = (dir / (name + ".sub.h5")).string();
   write_superelement(path, se);
 
   stats.n_dofs = summary.n_masters;

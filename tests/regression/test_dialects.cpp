@@ -62,3 +62,21 @@ TEST(Dialects, ModernReducedCrashMatchesThe42Deck) {
 
 }  // namespace
 }  // namespace impactfe
+
+namespace impactfe {
+namespace {
+
+TEST(Dialects, ModernSuperelementGenerationAndUse) {
+  // ANTYPE,SUBSTR + SEOPT,bar writes bar.sub.h5; SE,bar reads it in the use pass.
+  const std::string decks = IMPACTFE_TEST_DECKS;
+  const auto dir = testing::fresh_directory("dialect_superelement");
+  testing::run_deck_in(decks + "/modern/se_generate_bar.inp", dir);
+  EXPECT_TRUE(std::filesystem::exists(dir / "bar.sub.h5"));
+  const auto use = testing::run_deck_in(decks + "/modern/se_use_spring.inp", dir);
+  const auto u = use.reader->nodal_series(11, "UX");
+  ASSERT_EQ(u.size(), 1u);
+  EXPECT_NEAR(u[0].second, 1000.0 / (3.0e6 + 1000.0), 1e-12);
+}
+
+}  // namespace
+}  // namespace impactfe
