@@ -103,6 +103,11 @@ void DirectSolution::set_constraints(const LoadStep& step) {
   for (int d = 0; d < 3; ++d)
     unit_inertia_load_[static_cast<std::size_t>(d)] =
         inertia_load(structure_.elements(), *dofs_, ctx_, Vec3::Unit(d));
+  if (solver_) {  // keep the work of the previous numbering in the counts
+    retired_.analyses += solver_->counters().analyses;
+    retired_.factorizations += solver_->counters().factorizations;
+    retired_.solves += solver_->counters().solves;
+  }
   solver_ = make_linear_solver(dofs_->n_free());
   effective_ = assembler_->pattern();
   factor_valid_ = false;
@@ -232,9 +237,10 @@ void DirectSolution::run(const std::vector<LoadStep>& steps, bool transient) {
         "external work {:.6g}, numerical dissipation {:.6g}",
         time_, kinetic, strain, gap_work_, damping_work_, external_work_, balance));
   }
-  stats_.n_analyses = solver_ ? solver_->counters().analyses : 0;
-  stats_.n_factorizations = solver_ ? solver_->counters().factorizations : 0;
-  stats_.n_solves = solver_ ? solver_->counters().solves : 0;
+  const SolverCounters now = solver_ ? solver_->counters() : SolverCounters{};
+  stats_.n_analyses = retired_.analyses + now.analyses;
+  stats_.n_factorizations = retired_.factorizations + now.factorizations;
+  stats_.n_solves = retired_.solves + now.solves;
 }
 
 void DirectSolution::solve_increment(const LoadPoint& at, double time, int load_step, int substep,

@@ -48,6 +48,7 @@ class DirectSolution {
   std::unique_ptr<DofMap> dofs_;
   std::unique_ptr<Assembler> assembler_;
   std::unique_ptr<LinearSolver> solver_;
+  SolverCounters retired_;  // counts of solvers replaced when the constraint set changed
   std::set<DofKey> constrained_;
   SparseMatrix mass_all_;
   std::array<VectorXd, 3> unit_inertia_load_;  // -M r_d (per unit frame acceleration in X, Y, Z)
