@@ -1,8 +1,7 @@
 #include "core/dof.h"
+#include "core/text.h"
 
 #include <fmt/format.h>
-
-#include <cctype>
 
 namespace impactfe {
 
@@ -10,11 +9,6 @@ namespace {
 constexpr std::array<const char*, 6> kDofNames = {"UX", "UY", "UZ", "ROTX", "ROTY", "ROTZ"};
 constexpr std::array<const char*, 6> kForceNames = {"FX", "FY", "FZ", "MX", "MY", "MZ"};
 
-std::string upper(std::string_view s) {
-  std::string out(s);
-  for (char& c : out) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-  return out;
-}
 }  // namespace
 
 const char* dof_name(Dof dof) {
@@ -25,14 +19,14 @@ const char* force_name(Dof dof) {
 }
 
 std::optional<Dof> parse_dof_label(std::string_view label) {
-  const std::string u = upper(label);
+  const std::string u = to_upper(label);
   for (int i = 0; i < 6; ++i)
     if (u == kDofNames[i]) return static_cast<Dof>(i);
   return std::nullopt;
 }
 
 std::optional<Dof> parse_force_label(std::string_view label) {
-  const std::string u = upper(label);
+  const std::string u = to_upper(label);
   for (int i = 0; i < 6; ++i)
     if (u == kForceNames[i]) return static_cast<Dof>(i);
   return std::nullopt;

@@ -5,12 +5,6 @@
 
 namespace impactfe::deck {
 
-std::string to_upper(std::string_view text) {
-  std::string out(text);
-  for (char& c : out) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-  return out;
-}
-
 std::string trim(std::string_view text) {
   std::size_t b = 0;
   std::size_t e = text.size();

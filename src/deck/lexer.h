@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/model.h"
+#include "core/text.h"
 
 namespace impactfe::deck {
 
@@ -22,8 +23,6 @@ struct RawCommand {
   int line = 0;
 };
 
-/// Upper-cases ASCII letters.
-std::string to_upper(std::string_view text);
 /// Strips blanks, tabs and a trailing '\r'.
 std::string trim(std::string_view text);
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 
+#include "core/text.h"
 #include "elements/element.h"
 
 namespace impactfe {
@@ -41,8 +42,7 @@ const std::vector<ElementTypeInfo>& element_type_table() {
 }
 
 const ElementTypeInfo* find_element_type(const std::string& name_or_number) {
-  std::string key = name_or_number;
-  for (char& c : key) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  const std::string key = to_upper(name_or_number);
   const auto& table = element_type_table();
   for (const auto& info : table) {
     if (key == info.name || key == std::to_string(info.number)) return &info;

@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "core/errors.h"
+#include "core/text.h"
 
 namespace impactfe {
 
@@ -19,11 +20,6 @@ std::string trim(const std::string& s) {
   if (b == std::string::npos) return {};
   auto e = s.find_last_not_of(" \t");
   return s.substr(b, e - b + 1);
-}
-
-std::string upper(std::string s) {
-  for (auto& c : s) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-  return s;
 }
 
 std::vector<std::string> split_fields(const std::string& spec) {
@@ -73,7 +69,7 @@ PostRequest parse_nsol(const std::string& spec) {
   auto f = split_fields(spec);
   if (f.size() != 2 || !parse_positive(f[0]))
     throw InputError(fmt::format("nodal request '{}': expected NODE,LAB (e.g. 2,UX)", spec));
-  std::string lab = upper(f[1]);
+  std::string lab = to_upper(f[1]);
   if (!is_nodal_label(lab))
     throw InputError(fmt::format(
         "nodal request '{}': unknown label '{}' (expected UX UY UZ ROTX ROTY ROTZ, VX VY VZ, "
@@ -86,7 +82,7 @@ PostRequest parse_esol(const std::string& spec) {
   auto f = split_fields(spec);
   if (f.size() != 2 || !parse_positive(f[0]) || !is_item_name(f[1]))
     throw InputError(fmt::format("element request '{}': expected ELEM,ITEM (e.g. 6,SAXL)", spec));
-  return {PostRequest::Element, *parse_positive(f[0]), upper(f[1])};
+  return {PostRequest::Element, *parse_positive(f[0]), to_upper(f[1])};
 }
 
 PostRequest parse_gapf(const std::string& spec) {

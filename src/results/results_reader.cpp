@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "core/errors.h"
+#include "core/text.h"
 #include "results/h5_util.h"
 #include "results/results_file.h"
 
@@ -21,11 +22,6 @@ using h5::Handle;
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-std::string upper(std::string s) {
-  for (auto& c : s) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-  return s;
-}
 
 ResultsKind parse_kind(const std::string& name, const std::string& path) {
   for (auto k : {ResultsKind::Static, ResultsKind::Modal, ResultsKind::Transient,
@@ -47,7 +43,7 @@ std::optional<NodalLabel> parse_nodal_label(const std::string& lab) {
       {"VZ", {"V", 2}},   {"AX", {"A", 0}},   {"AY", {"A", 1}}, {"AZ", {"A", 2}},
       {"FX", {"R", 0}},   {"FY", {"R", 1}},   {"FZ", {"R", 2}}, {"MX", {"R", 3}},
       {"MY", {"R", 4}},   {"MZ", {"R", 5}}};
-  const std::string u = upper(lab);
+  const std::string u = to_upper(lab);
   for (const auto& [name, where] : table)
     if (u == name) return where;
   return std::nullopt;
@@ -334,7 +330,7 @@ std::vector<std::pair<double, double>> ResultsReader::element_series(
                                  [&](const ElementInfo& e) { return e.id == element; });
   if (!known)
     throw InputError(fmt::format("element {} is not in results file '{}'", element, impl_->path));
-  const std::string it_name = upper(item);
+  const std::string it_name = to_upper(item);
   Series merged;
   bool found = false;
   std::vector<std::string> available;
@@ -343,7 +339,7 @@ std::vector<std::pair<double, double>> ResultsReader::element_series(
       auto e = std::find(fam.element_ids.begin(), fam.element_ids.end(), element);
       if (e == fam.element_ids.end()) continue;
       auto i = std::find_if(fam.items.begin(), fam.items.end(),
-                            [&](const std::string& s) { return upper(s) == it_name; });
+                            [&](const std::string& s) { return to_upper(s) == it_name; });
       if (i == fam.items.end()) {
         for (const auto& s : fam.items)
           if (std::find(available.begin(), available.end(), s) == available.end())
