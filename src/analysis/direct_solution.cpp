@@ -273,15 +273,20 @@ void DirectSolution::solve_increment(const LoadPoint& at, double time, int load_
   double residual_norm = 0.0, reference = 0.0;
   bool converged = false;
   int iteration = 0;
-  VectorXd ue;
+  VectorXd ue, inertia_new;
+  // Terms of the residual fixed within the step: old-state forces and inertia (generalized-α).
+  VectorXd fixed_terms;
+  if (dynamic)
+    fixed_terms = w.external * f_new + (1.0 - w.external) * f_ext_old_ -
+                  (1.0 - w.inertia) * (mass_all_ * integrator_->a()) -
+                  (1.0 - w.stiffness) * (f_int_old_ + f_damp_old_);
   for (; iteration <= conv.max_iterations; ++iteration) {
     if (dynamic) integrator_->kinematics(u, v, a);
     assembler_->assemble(coeff, u, v, Assembler::Output{nullptr, &f_int, &f_damp});
     if (dynamic) {
-      const VectorXd inertia = mass_all_ * (w.inertia * a + (1.0 - w.inertia) * integrator_->a());
-      r = w.external * f_new + (1.0 - w.external) * f_ext_old_ - inertia -
-          w.stiffness * (f_int + f_damp) - (1.0 - w.stiffness) * (f_int_old_ + f_damp_old_);
-      reference = std::max({f_new.head(nf).norm(), (mass_all_ * a).head(nf).norm(),
+      inertia_new = mass_all_ * a;
+      r = fixed_terms - w.inertia * inertia_new - w.stiffness * (f_int + f_damp);
+      reference = std::max({f_new.head(nf).norm(), inertia_new.head(nf).norm(),
                             f_int.head(nf).norm(), conv.force_minref});
     } else {
       r = f_new - f_int;
