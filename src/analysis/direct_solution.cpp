@@ -100,9 +100,7 @@ void DirectSolution::set_constraints(const LoadStep& step) {
                                            structure_.options().alpha_damping,
                                            structure_.options().beta_damping);
   mass_all_ = assembler_->mass_matrix();
-  for (int d = 0; d < 3; ++d)
-    unit_inertia_load_[static_cast<std::size_t>(d)] =
-        inertia_load(structure_.elements(), *dofs_, ctx_, Vec3::Unit(d));
+  frame_load_ = FrameAccelerationLoad(structure_.elements(), *dofs_, ctx_);
   if (solver_) {  // keep the work of the previous numbering in the counts
     retired_.analyses += solver_->counters().analyses;
     retired_.factorizations += solver_->counters().factorizations;
@@ -115,13 +113,7 @@ void DirectSolution::set_constraints(const LoadStep& step) {
 }
 
 VectorXd DirectSolution::external_force(const LoadPoint& at) const {
-  // The frame-acceleration load is linear in a: f = sum_d a_d f(e_d), with f(e_d) evaluated once
-  // per DOF numbering (superelements supply their exact T^T M r_d through the element hook).
-  const Vec3 a = frame_acceleration(at);
-  VectorXd f = nodal_forces(*dofs_, at);
-  for (int d = 0; d < 3; ++d)
-    if (a(d) != 0.0) f += a(d) * unit_inertia_load_[static_cast<std::size_t>(d)];
-  return f;
+  return nodal_forces(*dofs_, at) + frame_load_(frame_acceleration(at));
 }
 
 void DirectSolution::factorize(const IntegrationCoefficients& coeff, const VectorXd& u) {

@@ -2,7 +2,6 @@
 /// Static and full transient solution on all DOFs: load steps, substeps, Newton-Raphson
 /// equilibrium iterations wrapped in the element status loop (gap open/closed, slider), time
 /// integration through the TimeIntegrator interface (spec §10.3, §10.7; thesis eqs. 4-13..4-15).
-#include <array>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -51,7 +50,7 @@ class DirectSolution {
   SolverCounters retired_;  // counts of solvers replaced when the constraint set changed
   std::set<DofKey> constrained_;
   SparseMatrix mass_all_;
-  std::array<VectorXd, 3> unit_inertia_load_;  // -M r_d (per unit frame acceleration in X, Y, Z)
+  FrameAccelerationLoad frame_load_;  // -M r a, assembled once per DOF numbering
   SparseMatrix effective_;
   std::unique_ptr<TimeIntegrator> integrator_;
   bool dynamics_started_ = false;

@@ -33,17 +33,6 @@ Vec3 frame_acceleration(const LoadPoint& at) {
   return a;
 }
 
-VectorXd inertia_load(const DofMap& dofs, const SparseMatrix& mass_all, const Vec3& acel) {
-  VectorXd rigid = VectorXd::Zero(dofs.n_active());
-  if (acel.squaredNorm() == 0.0) return rigid;
-  // r a: each translational DOF moves with the frame acceleration of its direction.
-  for (int i = 0; i < dofs.n_active(); ++i) {
-    const int d = static_cast<int>(dofs.key(i).dof);
-    if (d < 3) rigid(i) = acel(d);
-  }
-  return -(mass_all * rigid);
-}
-
 VectorXd inertia_load(const std::vector<std::unique_ptr<Element>>& elements, const DofMap& dofs,
                       const ElementContext& ctx, const Vec3& acel) {
   VectorXd f = VectorXd::Zero(dofs.n_active());
@@ -55,6 +44,19 @@ VectorXd inertia_load(const std::vector<std::unique_ptr<Element>>& elements, con
     for (std::size_t a = 0; a < idx.size(); ++a)
       if (idx[a] >= 0) f(idx[a]) += fe(static_cast<int>(a));
   }
+  return f;
+}
+
+FrameAccelerationLoad::FrameAccelerationLoad(const std::vector<std::unique_ptr<Element>>& elements,
+                                             const DofMap& dofs, const ElementContext& ctx) {
+  for (int d = 0; d < 3; ++d)
+    unit_[static_cast<std::size_t>(d)] = inertia_load(elements, dofs, ctx, Vec3::Unit(d));
+}
+
+VectorXd FrameAccelerationLoad::operator()(const Vec3& acel) const {
+  VectorXd f = VectorXd::Zero(unit_[0].size());
+  for (int d = 0; d < 3; ++d)
+    if (acel(d) != 0.0) f += acel(d) * unit_[static_cast<std::size_t>(d)];
   return f;
 }
 

@@ -12,7 +12,7 @@ namespace impactfe {
 VectorXd ReducedRunState::external_force(const ReducedPoint& p) const {
   const std::size_t i = static_cast<std::size_t>(p.step_index);
   const LoadPoint at{&load_steps[i], i > 0 ? &load_steps[i - 1] : nullptr, p.fraction};
-  return nodal_forces(*dofs, at) + inertia_load(*dofs, mass_all, frame_acceleration(at));
+  return nodal_forces(*dofs, at) + frame_load(frame_acceleration(at));
 }
 
 VectorXd ReducedRunState::expand(const VectorXd& gq, const VectorXd* f) const {
@@ -76,6 +76,7 @@ void prepare_reduced_model(ReducedRunState& state, const Structure& structure,
   state.dofs = std::make_unique<DofMap>(s.elements(), constrained);
   state.assembler = std::make_unique<Assembler>(s.elements(), *state.dofs, s.context());
   state.mass_all = state.assembler->mass_matrix();
+  state.frame_load = FrameAccelerationLoad(s.elements(), *state.dofs, s.context());
   stats.n_dofs = state.dofs->n_free();
   if (state.assembler->is_nonlinear())
     Log::warn(

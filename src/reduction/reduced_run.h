@@ -37,6 +37,7 @@ class ReducedRunState : public ReducedSolutionState {
   std::unique_ptr<DofMap> dofs;
   std::unique_ptr<Assembler> assembler;
   SparseMatrix mass_all;
+  FrameAccelerationLoad frame_load;  // -M r a (exact for superelements through the element hook)
   std::vector<LoadStep> load_steps;
   double alpha_damping = 0.0, beta_damping = 0.0;
 

@@ -90,7 +90,7 @@ TEST(Assembler, EffectiveMatrixEqualsDenseSum) {
   const double total = 0.5 * 2.0 * (4.0 + std::sqrt(2.0));
   EXPECT_NEAR(mass.sum(), 2.0 * total, 1e-12);  // two translational directions
   // Frame acceleration: -M r a sums to -total * a in Y.
-  const VectorXd f_acel = inertia_load(dofs, mass, Vec3(0.0, 386.4, 0.0));
+  const VectorXd f_acel = FrameAccelerationLoad(elements, dofs, ctx)(Vec3(0.0, 386.4, 0.0));
   EXPECT_NEAR(f_acel.sum(), -total * 386.4, 1e-9);
 }
 
