@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
-# Configures and builds impactfe (Release) into build/.
+# Configures and builds impactfe (Release) into build/ (ccache is used when it is installed).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
+launcher=()
+if command -v ccache >/dev/null 2>&1; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release "${launcher[@]}"
 cmake --build build -j "$(nproc)"
