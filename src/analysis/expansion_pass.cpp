@@ -8,8 +8,8 @@
 #include <set>
 
 #include "analysis/analyses.h"
+#include "analysis/reduced_run.h"
 #include "core/log.h"
-#include "reduction/reduced_run.h"
 
 namespace impactfe {
 

@@ -6,9 +6,9 @@
 #include <limits>
 
 #include "analysis/analyses.h"
+#include "analysis/reduced_run.h"
 #include "core/log.h"
 #include "linalg/eigen_solver.h"
-#include "reduction/reduced_run.h"
 
 namespace impactfe {
 
@@ -105,7 +105,7 @@ void run_msup_transient(Structure& structure, const AnalysisRequest& request, Re
   const VectorXd q0 = m_phi.transpose() * u0.head(nf);
   const VectorXd v0 = m_phi.transpose() * vel0.head(nf);
 
-  state->points = reduced_time_axis(state->load_steps, state->dt, stats);
+  state->points = reduced_time_axis(state->load_steps, state->dt, stats.notes);
   if (state->dt > 0.0 && nm > 0) {
     const double period = 2.0 * M_PI / omega(nm - 1);
     if (state->dt > period / 10.0)

@@ -5,8 +5,8 @@
 #include <limits>
 
 #include "analysis/analyses.h"
+#include "analysis/reduced_run.h"
 #include "core/log.h"
-#include "reduction/reduced_run.h"
 
 namespace impactfe {
 
@@ -85,7 +85,7 @@ void run_reduced_transient(Structure& structure, const AnalysisRequest& request,
   }
 
   // --- Integration ---------------------------------------------------------------------------
-  state->points = reduced_time_axis(state->load_steps, state->dt, stats);
+  state->points = reduced_time_axis(state->load_steps, state->dt, stats.notes);
   ReducedDynamics dynamics(guyan.k(), guyan.m(), guyan.c(), std::move(gaps),
                            make_time_integrator(options));
   double seconds_per_step = 0.0;

@@ -6,8 +6,8 @@
 #include <filesystem>
 
 #include "analysis/analyses.h"
+#include "analysis/superelement_generation.h"
 #include "core/log.h"
-#include "substructure/generation.h"
 
 namespace impactfe {
 

@@ -11,6 +11,10 @@ std::string format_location(const SourceLocation& where, const std::string& mess
 }
 }  // namespace
 
+void fail_internal_check(const char* file, int line, const std::string& message) {
+  throw InternalError(fmt::format("{}:{}: internal error: {}", file, line, message));
+}
+
 InputError::InputError(const SourceLocation& where, const std::string& message)
     : std::runtime_error(format_location(where, message)), where_(where), message_(message) {}
 

@@ -46,4 +46,19 @@ class NotImplementedError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// A broken internal invariant: a programming error, never the user's (exit status 3, reported
+/// as an internal error to be filed as a bug). Checked in release builds too (IMPACTFE_CHECK).
+class InternalError : public std::logic_error {
+ public:
+  using std::logic_error::logic_error;
+};
+
+/// Throws InternalError("FILE:LINE: internal error: <message>") when the condition is false.
+[[noreturn]] void fail_internal_check(const char* file, int line, const std::string& message);
+
 }  // namespace impactfe
+
+#define IMPACTFE_CHECK(condition, message)                                          \
+  do {                                                                              \
+    if (!(condition)) ::impactfe::fail_internal_check(__FILE__, __LINE__, message); \
+  } while (false)

@@ -26,23 +26,11 @@ struct Node {
   bool rotated() const { return angles_deg.squaredNorm() > 0.0; }
 };
 
-/// Element families implemented by the element library (one family per file).
-enum class ElementKind {
-  Spar2D,          // LINK1
-  Spar3D,          // LINK8, LINK180
-  SpringDamper,    // COMBIN14
-  PointMass,       // MASS21
-  CombinationGap,  // COMBIN40
-  Shell4,          // SHELL63, SHELL181
-  Brick8,          // SOLID45, SOLID185
-  Superelement,    // MATRIX50
-};
-
-/// ET: local type number, ANSYS name (e.g. "LINK8"), and KEYOPT(1..18) (index 0 unused).
+/// ET: local type number, ANSYS name (e.g. "LINK8", the name it is registered under in the
+/// element registry), and KEYOPT(1..18) (index 0 unused).
 struct ElementType {
   int id = 0;
   std::string ansys_name;
-  ElementKind kind = ElementKind::Spar3D;
   std::array<int, 19> keyopt{};
   SourceLocation where;
   int key(int i) const { return keyopt.at(static_cast<std::size_t>(i)); }

@@ -11,7 +11,7 @@
 #include <sstream>
 
 #include "deck/deck_context.h"
-#include "elements/element.h"
+#include "elements/element_registry.h"
 
 namespace impactfe {
 
@@ -201,17 +201,24 @@ void DeckReader::add_element(const Command& c, int id, std::vector<int> nodes) {
   if (type_it == model.element_types.end())
     fail(c, fmt::format("element type {} is not defined (ET missing before TYPE/E)", current_type));
   const ElementType& type = type_it->second;
-  const ElementTypeInfo* info = find_element_type(type.ansys_name);
-  const int expected = info != nullptr ? info->n_nodes : 0;
+  const ElementTypeDescriptor& d = element_type_descriptor(type);
+  if (d.defined_by_file)
+    fail(c, fmt::format("the active element type is {}: use SE,File (modern) or E,id,unit (4x)",
+                        d.name));
+  // Trailing blank optional nodes (a beam's orientation node) are not nodes.
+  while (static_cast<int>(nodes.size()) > d.n_nodes && nodes.back() == 0) nodes.pop_back();
   const int given = static_cast<int>(nodes.size());
-  if (type.kind == ElementKind::Superelement)
-    fail(c, "the active element type is MATRIX50: use SE,File (modern) or E,id,unit (4x)");
-  if (type.kind == ElementKind::Shell4 && given == 3) {
-    nodes.push_back(nodes[2]);  // triangle: K repeated as L
-  } else if (given != expected) {
-    fail(c, fmt::format("{} needs {} node{}, {} given", type.ansys_name, expected,
-                        expected == 1 ? "" : "s", given));
+  if (given < d.least_nodes() || given > d.max_nodes()) {
+    std::string range;
+    if (d.least_nodes() < d.n_nodes)
+      range = fmt::format(" (at least {}: missing corner nodes repeat the last)", d.least_nodes());
+    else if (d.n_optional_nodes > 0)
+      range = fmt::format(" (and up to {} optional)", d.n_optional_nodes);
+    fail(c, fmt::format("{} needs {} node{}, {} given{}", type.ansys_name, d.n_nodes,
+                        d.n_nodes == 1 ? "" : "s", given, range));
   }
+  // Missing corner nodes repeat the last given one (3-node shell: K repeated as L).
+  while (static_cast<int>(nodes.size()) < d.n_nodes) nodes.push_back(nodes.back());
   for (std::size_t k = 0; k < nodes.size(); ++k) {
     if (nodes[k] <= 0)
       fail(c, fmt::format("node {} of element {} is blank or not positive", k + 1, id));
@@ -238,31 +245,16 @@ void DeckReader::validate_elements() {
     if (t == model.element_types.end())
       throw InputError(e.where,
                        fmt::format("element {}: element type {} is not defined", id, e.type));
-    const ElementKind kind = t->second.kind;
-    const bool has_section = e.secnum > 0 && model.sections.count(e.secnum) != 0;
-    bool needs_real = false;
-    bool needs_mat = false;
-    switch (kind) {
-      case ElementKind::Spar2D:
-      case ElementKind::Spar3D:
-      case ElementKind::Shell4:
-        needs_real = !has_section;
-        needs_mat = true;
-        break;
-      case ElementKind::SpringDamper:
-      case ElementKind::PointMass:
-      case ElementKind::CombinationGap:
-        needs_real = true;
-        break;
-      case ElementKind::Brick8:
-        needs_mat = true;
-        break;
-      case ElementKind::Superelement:
-        if (e.superelement_file.empty())
-          throw InputError(e.where,
-                           fmt::format("element {}: MATRIX50 without a superelement file", id));
-        break;
-    }
+    const ElementTypeDescriptor& d = element_type_descriptor(t->second);
+    if (d.defined_by_file && e.superelement_file.empty())
+      throw InputError(e.where,
+                       fmt::format("element {}: {} without a superelement file", id, d.name));
+    const auto section = model.sections.find(e.secnum);
+    const bool has_section =
+        e.secnum > 0 && section != model.sections.end() && d.accepts_section(section->second.type);
+    const bool needs_real = d.real_constants == RealConstantUse::Required ||
+                            (d.real_constants == RealConstantUse::UnlessSection && !has_section);
+    const bool needs_mat = d.needs_material;
     if (needs_real && model.real_sets.count(e.real) == 0)
       throw InputError(e.where, fmt::format("element {} ({}): real constant set {} is not defined",
                                             id, t->second.ansys_name, e.real));

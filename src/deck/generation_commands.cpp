@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "deck/deck_context.h"
-#include "elements/element.h"
+#include "elements/element_registry.h"
 
 namespace impactfe::deck {
 
@@ -151,7 +151,8 @@ void copy_element(DeckReader& r, const Command& c, const ElementRecord& src, int
   const auto t = r.model.element_types.find(e.type);
   if (t == r.model.element_types.end())
     r.fail(c, fmt::format("element type {} of generated element {} is not defined", e.type, id));
-  if (t->second.kind == ElementKind::Superelement)
+  const ElementTypeDescriptor& d = element_type_descriptor(t->second);
+  if (d.defined_by_file)
     r.fail(c, fmt::format("element {} is a superelement and cannot be copied", src.id));
   for (int& n : e.nodes) {
     n += k * ninc;
@@ -159,10 +160,10 @@ void copy_element(DeckReader& r, const Command& c, const ElementRecord& src, int
       r.fail(c, fmt::format("node {} of generated element {} (copy of {}) is not defined", n, id,
                             src.id));
   }
-  const ElementTypeInfo* info = find_element_type(t->second.ansys_name);
-  if (info != nullptr && static_cast<int>(e.nodes.size()) != info->n_nodes)
+  if (static_cast<int>(e.nodes.size()) < d.n_nodes ||
+      static_cast<int>(e.nodes.size()) > d.max_nodes())
     r.fail(c, fmt::format("generated element {}: {} needs {} nodes, the pattern has {}", id,
-                          t->second.ansys_name, info->n_nodes, e.nodes.size()));
+                          t->second.ansys_name, d.n_nodes, e.nodes.size()));
   if (r.model.elements.count(id) == 0) r.element_order.push_back(id);
   r.model.elements[id] = std::move(e);
 }

@@ -6,7 +6,7 @@
 
 #include "core/dof.h"
 #include "deck/deck_context.h"
-#include "elements/element.h"
+#include "elements/element_registry.h"
 
 namespace impactfe::deck {
 
@@ -23,15 +23,13 @@ void cmd_et(DeckReader& r, const Command& c) {
   }
   if (id <= 0) r.fail(c, fmt::format("element type number {} must be positive", id));
   if (c.blank(2)) r.fail(c, "element name or number missing");
-  const ElementTypeInfo* info = find_element_type(trim(c.text(2)));
+  const ElementTypeDescriptor* info = find_element_type(trim(c.text(2)));
   if (info == nullptr)
-    r.fail(c, fmt::format("unknown element type '{}' (supported: LINK1 LINK8 LINK180 COMBIN14 "
-                          "MASS21 COMBIN40 SHELL63 SHELL181 SOLID45 SOLID185 MATRIX50)",
-                          c.text(2)));
+    r.fail(c, fmt::format("unknown element type '{}' (supported: {})", c.text(2),
+                          supported_element_type_names()));
   ElementType et;
   et.id = id;
   et.ansys_name = info->name;
-  et.kind = info->kind;
   et.where = c.where;
   for (int k = 1; k <= 6; ++k) et.keyopt[static_cast<std::size_t>(k)] = r.integer(c, k + 2, 0);
   // Field 9 is INOPR (print suppression): ignored. Fields 10..12 (4x OCR, §3.4) → KEYOPT(7..9).
@@ -45,8 +43,7 @@ void cmd_et(DeckReader& r, const Command& c) {
       r.warn(c, fmt::format("field {} ('{}') ignored", f, c.text(f)));
     }
   }
-  if (std::string(info->name) == "SHELL181")
-    r.warn(c, "SHELL181 is computed with the SHELL63 kernel (thin elastic shell)");
+  if (!info->note.empty()) r.warn(c, info->note);
   r.model.element_types[id] = et;
 }
 
@@ -196,7 +193,7 @@ int next_element_id(const DeckReader& r) {
 
 bool active_type_is_matrix50(const DeckReader& r) {
   auto it = r.model.element_types.find(r.current_type);
-  return it != r.model.element_types.end() && it->second.kind == ElementKind::Superelement;
+  return it != r.model.element_types.end() && element_type_descriptor(it->second).defined_by_file;
 }
 
 void add_superelement(DeckReader& r, const Command& c, int id, const std::string& file) {

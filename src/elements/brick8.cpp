@@ -8,6 +8,7 @@
 
 #include "core/errors.h"
 #include "core/log.h"
+#include "elements/element_registry.h"
 
 namespace impactfe {
 
@@ -326,10 +327,13 @@ Vector6d Brick8::centroid_stress(const ElementContext& ctx, const Eigen::VectorX
   return out;
 }
 
-const std::vector<std::string>& Brick8::result_names() const {
-  static const std::vector<std::string> names = {"SX", "SY", "SZ", "SXY",  "SYZ", "SXZ",
+namespace {
+const std::vector<std::string> kBrick8Results = {"SX", "SY", "SZ", "SXY",  "SYZ", "SXZ",
                                                  "S1", "S2", "S3", "SINT", "SEQV"};
-  return names;
+}  // namespace
+
+const std::vector<std::string>& Brick8::result_names() const {
+  return kBrick8Results;
 }
 
 void Brick8::results(const ElementContext& ctx, const Eigen::VectorXd& u, const Eigen::VectorXd& v,
@@ -344,7 +348,11 @@ void Brick8::results(const ElementContext& ctx, const Eigen::VectorXd& u, const 
   out = {s(0), s(1), s(2), s(3), s(4), s(5), s1, s2, s3, s1 - s3, seqv};
 }
 
-std::unique_ptr<Element> make_brick8(const ElementBuildContext& ctx, const ElementRecord& record) {
+namespace {
+
+/// SOLID45, or SOLID185 (`solid185`: its KEYOPT(2) selects the integration).
+std::unique_ptr<Element> make_brick8(const ElementBuildContext& ctx, const ElementRecord& record,
+                                     bool solid185) {
   const Model& model = ctx.model;
   if (record.nodes.size() != 8)
     throw InputError(record.where, fmt::format("element {}: an 8-node brick needs nodes I..P, "
@@ -365,8 +373,6 @@ std::unique_ptr<Element> make_brick8(const ElementBuildContext& ctx, const Eleme
     throw InputError(record.where, fmt::format("element {}: element type {} is not defined",
                                                record.id, record.type));
   const ElementType& type = type_it->second;
-  const ElementTypeInfo* info = find_element_type(type.ansys_name);
-  const bool solid185 = info != nullptr && info->number == 185;
   // SOLID45: KEYOPT(1) = 1 suppresses the extra shapes. SOLID185: only KEYOPT(2) = 3
   // (simplified enhanced strain) maps to them; B-bar (0), reduced (1) and enhanced strain (2)
   // are approximated by full 2x2x2 integration without extra shapes (docs/elements/solid45.md).
@@ -387,5 +393,23 @@ std::unique_ptr<Element> make_brick8(const ElementBuildContext& ctx, const Eleme
       read_isotropic_elasticity(model, record.mat, record.id, record.where);
   return std::make_unique<Brick8>(record.id, nodes, x, material, extra, record.where);
 }
+
+ElementTypeDescriptor brick_type(const char* name, int number, bool solid185) {
+  return {.name = name,
+          .number = number,
+          .family = "Brick8",
+          .n_nodes = 8,
+          .needs_material = true,
+          .vtk_cell = VtkCell::Hexahedron,
+          .result_names = kBrick8Results,
+          .create = [solid185](const ElementBuildContext& ctx, const ElementRecord& record) {
+            return make_brick8(ctx, record, solid185);
+          }};
+}
+
+const ElementRegistration kSolid45{brick_type("SOLID45", 45, false)};
+const ElementRegistration kSolid185{brick_type("SOLID185", 185, true)};
+
+}  // namespace
 
 }  // namespace impactfe

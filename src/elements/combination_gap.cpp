@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "elements/element_registry.h"
 #include "elements/line_element_data.h"
 
 namespace impactfe {
@@ -149,9 +150,13 @@ void CombinationGap::revert() {
   frozen_ = false;
 }
 
+namespace {
+const std::vector<std::string> kCombinationGapResults = {"FORC", "F1",    "F2",
+                                                         "STAT", "DELTA", "SLIDE"};
+}  // namespace
+
 const std::vector<std::string>& CombinationGap::result_names() const {
-  static const std::vector<std::string> names = {"FORC", "F1", "F2", "STAT", "DELTA", "SLIDE"};
-  return names;
+  return kCombinationGapResults;
 }
 
 void CombinationGap::results(const ElementContext&, const Eigen::VectorXd& u,
@@ -160,6 +165,8 @@ void CombinationGap::results(const ElementContext&, const Eigen::VectorXd& u,
   out = {f.f1 + f.f2, f.f1,  f.f2, static_cast<double>(static_cast<int>(trial_.status)),
          f.delta,     f.slip};
 }
+
+namespace {
 
 std::unique_ptr<Element> make_combination_gap(const ElementBuildContext& ctx,
                                               const ElementRecord& record) {
@@ -201,5 +208,17 @@ std::unique_ptr<Element> make_combination_gap(const ElementBuildContext& ctx,
   return std::make_unique<CombinationGap>(record.id,
                                           std::vector<DofKey>{{ni.id, dof}, {nj.id, dof}}, data);
 }
+
+const ElementRegistration kCombin40{{.name = "COMBIN40",
+                                     .number = 40,
+                                     .family = "CombinationGap",
+                                     .n_nodes = 2,
+                                     .real_constants = RealConstantUse::Required,
+                                     .vtk_cell = VtkCell::Line,
+                                     .result_names = kCombinationGapResults,
+                                     .has_status = true,
+                                     .create = make_combination_gap}};
+
+}  // namespace
 
 }  // namespace impactfe

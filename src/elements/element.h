@@ -100,28 +100,4 @@ struct ElementBuildContext {
 std::unique_ptr<Element> create_element(const ElementBuildContext& ctx,
                                         const ElementRecord& record);
 
-/// Element type names known to ET: ANSYS names and 4.2 numbers ("LINK8", "8" -> Spar3D).
-struct ElementTypeInfo {
-  const char* name;
-  int number;
-  ElementKind kind;
-  int n_nodes;  // nodes expected by E (MATRIX50: 0 = special)
-};
-const std::vector<ElementTypeInfo>& element_type_table();
-/// Looks up an ET name or number (case-insensitive); nullptr when unknown.
-const ElementTypeInfo* find_element_type(const std::string& name_or_number);
-
-// ---- one creator per family, each defined beside its class --------------------------------
-std::unique_ptr<Element> make_spar(const ElementBuildContext& ctx, const ElementRecord& record);
-std::unique_ptr<Element> make_spring_damper(const ElementBuildContext& ctx,
-                                            const ElementRecord& record);
-std::unique_ptr<Element> make_point_mass(const ElementBuildContext& ctx,
-                                         const ElementRecord& record);
-std::unique_ptr<Element> make_combination_gap(const ElementBuildContext& ctx,
-                                              const ElementRecord& record);
-std::unique_ptr<Element> make_shell4(const ElementBuildContext& ctx, const ElementRecord& record);
-std::unique_ptr<Element> make_brick8(const ElementBuildContext& ctx, const ElementRecord& record);
-std::unique_ptr<Element> make_superelement(const ElementBuildContext& ctx,
-                                           const ElementRecord& record);
-
 }  // namespace impactfe

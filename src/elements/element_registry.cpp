@@ -1,79 +1,71 @@
+#include "elements/element_registry.h"
+
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <cctype>
+#include <map>
 
 #include "core/text.h"
-#include "elements/element.h"
 
 namespace impactfe {
 
-void Element::damping(const ElementContext&, const Eigen::VectorXd&, Eigen::MatrixXd& C) const {
-  C.setZero(n_dofs(), n_dofs());
+namespace {
+
+/// Registered types by name. A function-local static: registrations run during static
+/// initialisation of other translation units, in no fixed order.
+std::map<std::string, ElementTypeDescriptor>& registry() {
+  static std::map<std::string, ElementTypeDescriptor> types;
+  return types;
 }
 
-void Element::frame_acceleration_load(const ElementContext& ctx, const Vec3& a,
-                                      Eigen::VectorXd& f) const {
-  Eigen::MatrixXd m;
-  mass(ctx, m);
-  Eigen::VectorXd ra = Eigen::VectorXd::Zero(n_dofs());
-  for (int i = 0; i < n_dofs(); ++i) {
-    const int d = static_cast<int>(dofs()[static_cast<std::size_t>(i)].dof);
-    if (d < 3) ra(i) = a(d);
+}  // namespace
+
+bool ElementTypeDescriptor::accepts_section(const std::string& type) const {
+  return std::find(section_types.begin(), section_types.end(), type) != section_types.end();
+}
+
+void register_element_type(ElementTypeDescriptor d) {
+  d.name = to_upper(d.name);
+  IMPACTFE_CHECK(!d.name.empty() && d.create, "element type registered without name or factory");
+  IMPACTFE_CHECK(d.defined_by_file || (d.n_nodes > 0 && d.least_nodes() <= d.n_nodes),
+                 "element type " + d.name + " registered with an inconsistent node count");
+  for (const auto& [name, other] : registry()) {
+    IMPACTFE_CHECK(name != d.name, "element type " + d.name + " registered twice");
+    IMPACTFE_CHECK(d.number == 0 || other.number != d.number,
+                   fmt::format("element types {} and {} share number {}", name, d.name, d.number));
   }
-  f = -(m * ra);
+  registry().emplace(d.name, std::move(d));
 }
 
-const std::vector<ElementTypeInfo>& element_type_table() {
-  static const std::vector<ElementTypeInfo> table = {
-      {"LINK1", 1, ElementKind::Spar2D, 2},
-      {"LINK8", 8, ElementKind::Spar3D, 2},
-      {"LINK180", 180, ElementKind::Spar3D, 2},
-      {"COMBIN14", 14, ElementKind::SpringDamper, 2},
-      {"MASS21", 21, ElementKind::PointMass, 1},
-      {"COMBIN40", 40, ElementKind::CombinationGap, 2},
-      {"SHELL63", 63, ElementKind::Shell4, 4},
-      {"SHELL181", 181, ElementKind::Shell4, 4},
-      {"SOLID45", 45, ElementKind::Brick8, 8},
-      {"SOLID185", 185, ElementKind::Brick8, 8},
-      {"MATRIX50", 50, ElementKind::Superelement, 0},
-  };
-  return table;
+ElementRegistration::ElementRegistration(ElementTypeDescriptor descriptor) {
+  register_element_type(std::move(descriptor));
 }
 
-const ElementTypeInfo* find_element_type(const std::string& name_or_number) {
+const ElementTypeDescriptor* find_element_type(const std::string& name_or_number) {
   const std::string key = to_upper(name_or_number);
-  const auto& table = element_type_table();
-  for (const auto& info : table) {
-    if (key == info.name || key == std::to_string(info.number)) return &info;
-  }
+  const auto it = registry().find(key);
+  if (it != registry().end()) return &it->second;
+  for (const auto& [name, d] : registry())
+    if (d.number != 0 && key == std::to_string(d.number)) return &d;
   return nullptr;
 }
 
-std::unique_ptr<Element> create_element(const ElementBuildContext& ctx,
-                                        const ElementRecord& record) {
-  const auto type_it = ctx.model.element_types.find(record.type);
-  if (type_it == ctx.model.element_types.end())
-    throw InputError(record.where, fmt::format("element {}: element type {} is not defined",
-                                               record.id, record.type));
-  switch (type_it->second.kind) {
-    case ElementKind::Spar2D:
-    case ElementKind::Spar3D:
-      return make_spar(ctx, record);
-    case ElementKind::SpringDamper:
-      return make_spring_damper(ctx, record);
-    case ElementKind::PointMass:
-      return make_point_mass(ctx, record);
-    case ElementKind::CombinationGap:
-      return make_combination_gap(ctx, record);
-    case ElementKind::Shell4:
-      return make_shell4(ctx, record);
-    case ElementKind::Brick8:
-      return make_brick8(ctx, record);
-    case ElementKind::Superelement:
-      return make_superelement(ctx, record);
-  }
-  throw InputError(record.where, "unknown element kind");
+const ElementTypeDescriptor& element_type_descriptor(const ElementType& type) {
+  const ElementTypeDescriptor* d = find_element_type(type.ansys_name);
+  IMPACTFE_CHECK(d != nullptr, "element type " + type.ansys_name + " is not registered");
+  return *d;
+}
+
+std::vector<const ElementTypeDescriptor*> registered_element_types() {
+  std::vector<const ElementTypeDescriptor*> out;
+  for (const auto& [name, d] : registry()) out.push_back(&d);
+  return out;
+}
+
+std::string supported_element_type_names() {
+  std::string out;
+  for (const auto& [name, d] : registry()) out += (out.empty() ? "" : " ") + name;
+  return out;
 }
 
 }  // namespace impactfe

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "core/log.h"
+#include "elements/element_registry.h"
 #include "elements/line_element_data.h"
 
 namespace impactfe {
@@ -20,15 +21,20 @@ void PointMass::mass(const ElementContext&, Eigen::MatrixXd& M) const {
   M = diagonal_.asDiagonal();
 }
 
+namespace {
+const std::vector<std::string> kPointMassResults;
+}  // namespace
+
 const std::vector<std::string>& PointMass::result_names() const {
-  static const std::vector<std::string> names;
-  return names;
+  return kPointMassResults;
 }
 
 void PointMass::results(const ElementContext&, const Eigen::VectorXd&, const Eigen::VectorXd&,
                         ElementResultValues& out) const {
   out.clear();
 }
+
+namespace {
 
 std::unique_ptr<Element> make_point_mass(const ElementBuildContext& ctx,
                                          const ElementRecord& record) {
@@ -82,5 +88,16 @@ std::unique_ptr<Element> make_point_mass(const ElementBuildContext& ctx,
   for (Dof d : dofs) keys.push_back(DofKey{node.id, d});
   return std::make_unique<PointMass>(record.id, std::move(keys), std::move(diagonal));
 }
+
+const ElementRegistration kMass21{{.name = "MASS21",
+                                   .number = 21,
+                                   .family = "PointMass",
+                                   .n_nodes = 1,
+                                   .real_constants = RealConstantUse::Required,
+                                   .vtk_cell = VtkCell::Vertex,
+                                   .result_names = kPointMassResults,
+                                   .create = make_point_mass}};
+
+}  // namespace
 
 }  // namespace impactfe

@@ -11,6 +11,7 @@
 
 #include "core/errors.h"
 #include "core/log.h"
+#include "elements/element_registry.h"
 
 namespace impactfe {
 
@@ -260,12 +261,14 @@ void Shell4::mass(const ElementContext& ctx, Eigen::MatrixXd& M) const {
   M = kernel_->lumped_mass();
 }
 
+namespace {
+const std::vector<std::string> kShell4Results = {
+    "TX",     "TY",     "TXY",     "MX",     "MY",     "MXY",     "SX_TOP",   "SY_TOP",  "SXY_TOP",
+    "SX_MID", "SY_MID", "SXY_MID", "SX_BOT", "SY_BOT", "SXY_BOT", "SEQV_TOP", "SEQV_BOT"};
+}  // namespace
+
 const std::vector<std::string>& Shell4::result_names() const {
-  static const std::vector<std::string> names = {
-      "TX",     "TY",     "TXY",     "MX",       "MY",      "MXY",
-      "SX_TOP", "SY_TOP", "SXY_TOP", "SX_MID",   "SY_MID",  "SXY_MID",
-      "SX_BOT", "SY_BOT", "SXY_BOT", "SEQV_TOP", "SEQV_BOT"};
-  return names;
+  return kShell4Results;
 }
 
 Eigen::VectorXd Shell4::local_displacement(const ElementContext& ctx,
@@ -309,7 +312,11 @@ void Shell4::results(const ElementContext& ctx, const Eigen::VectorXd& u, const 
          von_mises(bot(0), bot(1), bot(2))};
 }
 
-std::unique_ptr<Element> make_shell4(const ElementBuildContext& ctx, const ElementRecord& record) {
+namespace {
+
+/// SHELL63, or SHELL181 (`shell181`) computed with the same thin elastic kernel.
+std::unique_ptr<Element> make_shell4(const ElementBuildContext& ctx, const ElementRecord& record,
+                                     bool shell181) {
   const Model& model = ctx.model;
   const auto fail = [&](const std::string& msg) {
     return InputError(record.where, fmt::format("element {}: {}", record.id, msg));
@@ -319,7 +326,7 @@ std::unique_ptr<Element> make_shell4(const ElementBuildContext& ctx, const Eleme
     throw fail(fmt::format("element type {} is not defined", record.type));
   const ElementType& type = type_it->second;
   Shell4Data data;
-  data.shell181 = type.ansys_name == "SHELL181" || type.ansys_name == "181";
+  data.shell181 = shell181;
 
   // Nodes: I, J, K, L; K = L (or three nodes) gives the triangle.
   std::vector<int> ids = record.nodes;
@@ -379,5 +386,28 @@ std::unique_ptr<Element> make_shell4(const ElementBuildContext& ctx, const Eleme
   k.rotary_inertia = type.key(7) != 1;
   return std::make_unique<Shell4>(record.id, data, record.where);
 }
+
+ElementTypeDescriptor shell_type(const char* name, int number, bool shell181) {
+  return {
+      .name = name,
+      .number = number,
+      .family = "Shell4",
+      .n_nodes = 4,
+      .min_nodes = 3,
+      .real_constants = RealConstantUse::UnlessSection,
+      .needs_material = true,
+      .section_types = {"SHELL"},
+      .vtk_cell = VtkCell::Quad,
+      .result_names = kShell4Results,
+      .note = shell181 ? "SHELL181 is computed with the SHELL63 kernel (thin elastic shell)" : "",
+      .create = [shell181](const ElementBuildContext& ctx, const ElementRecord& record) {
+        return make_shell4(ctx, record, shell181);
+      }};
+}
+
+const ElementRegistration kShell63{shell_type("SHELL63", 63, false)};
+const ElementRegistration kShell181{shell_type("SHELL181", 181, true)};
+
+}  // namespace
 
 }  // namespace impactfe

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "elements/element_registry.h"
 #include "elements/line_element_data.h"
 #include "materials/linear_elastic.h"
 
@@ -54,9 +55,12 @@ void Spar::mass(const ElementContext& ctx, Eigen::MatrixXd& M) const {
   M.bottomLeftCorner(d, d) = (total / 6.0) * I;
 }
 
+namespace {
+const std::vector<std::string> kSparResults = {"FORC", "SAXL", "EPEL", "LENGTH"};
+}  // namespace
+
 const std::vector<std::string>& Spar::result_names() const {
-  static const std::vector<std::string> names = {"FORC", "SAXL", "EPEL", "LENGTH"};
-  return names;
+  return kSparResults;
 }
 
 void Spar::results(const ElementContext& ctx, const Eigen::VectorXd& u, const Eigen::VectorXd&,
@@ -69,10 +73,12 @@ void Spar::results(const ElementContext& ctx, const Eigen::VectorXd& u, const Ei
   out = {s.force, s.force / area_, s.force / ea, s.current_length};
 }
 
-std::unique_ptr<Element> make_spar(const ElementBuildContext& ctx, const ElementRecord& record) {
+namespace {
+
+/// LINK1 (`planar`, UX UY in the X-Y plane) or LINK8 / LINK180 (UX UY UZ).
+std::unique_ptr<Element> make_spar(const ElementBuildContext& ctx, const ElementRecord& record,
+                                   bool planar) {
   const Model& model = ctx.model;
-  const ElementType& type = line_data::element_type(model, record);
-  const bool planar = type.kind == ElementKind::Spar2D;
   const char* family = planar ? "Spar 2-D" : "Spar";
   const auto [ni, nj] = line_data::distinct_node_pair(model, record, family);
   const Vec3 chord = nj.x - ni.x;
@@ -123,5 +129,26 @@ std::unique_ptr<Element> make_spar(const ElementBuildContext& ctx, const Element
   return std::make_unique<Spar>(record.id, std::move(dofs), std::move(member), area,
                                 mat.youngs_modulus, mat.density, initial_strain);
 }
+
+ElementTypeDescriptor spar_type(const char* name, int number, bool planar) {
+  return {.name = name,
+          .number = number,
+          .family = "Spar",
+          .n_nodes = 2,
+          .real_constants = RealConstantUse::UnlessSection,
+          .needs_material = true,
+          .section_types = {"LINK"},
+          .vtk_cell = VtkCell::Line,
+          .result_names = kSparResults,
+          .create = [planar](const ElementBuildContext& ctx, const ElementRecord& record) {
+            return make_spar(ctx, record, planar);
+          }};
+}
+
+const ElementRegistration kLink1{spar_type("LINK1", 1, true)};
+const ElementRegistration kLink8{spar_type("LINK8", 8, false)};
+const ElementRegistration kLink180{spar_type("LINK180", 180, false)};
+
+}  // namespace
 
 }  // namespace impactfe

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/log.h"
+#include "elements/element_registry.h"
 #include "elements/line_element_data.h"
 
 namespace impactfe {
@@ -54,9 +55,12 @@ void SpringDamper::damping(const ElementContext& ctx, const Eigen::VectorXd& u,
   corotational::add_block(n * n.transpose(), damping_, C);
 }
 
+namespace {
+const std::vector<std::string> kSpringDamperResults = {"FORC", "STRETCH"};
+}  // namespace
+
 const std::vector<std::string>& SpringDamper::result_names() const {
-  static const std::vector<std::string> names = {"FORC", "STRETCH"};
-  return names;
+  return kSpringDamperResults;
 }
 
 void SpringDamper::results(const ElementContext& ctx, const Eigen::VectorXd& u,
@@ -67,6 +71,8 @@ void SpringDamper::results(const ElementContext& ctx, const Eigen::VectorXd& u,
       corotational::axial_response(member_, kinematics(ctx), stiffness_, 0.0, u, K, f, id());
   out = {s.force, s.extension};
 }
+
+namespace {
 
 std::unique_ptr<Element> make_spring_damper(const ElementBuildContext& ctx,
                                             const ElementRecord& record) {
@@ -136,5 +142,16 @@ std::unique_ptr<Element> make_spring_damper(const ElementBuildContext& ctx,
   return std::make_unique<SpringDamper>(record.id, mode, std::move(dofs), std::move(member),
                                         stiffness, damping);
 }
+
+const ElementRegistration kCombin14{{.name = "COMBIN14",
+                                     .number = 14,
+                                     .family = "SpringDamper",
+                                     .n_nodes = 2,
+                                     .real_constants = RealConstantUse::Required,
+                                     .vtk_cell = VtkCell::Line,
+                                     .result_names = kSpringDamperResults,
+                                     .create = make_spring_damper}};
+
+}  // namespace
 
 }  // namespace impactfe

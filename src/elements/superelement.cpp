@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "core/log.h"
+#include "elements/element_registry.h"
 
 namespace impactfe {
 
@@ -40,15 +41,20 @@ void Superelement::frame_acceleration_load(const ElementContext&, const Vec3& a,
   f = -(data_->unit_acceleration * a);
 }
 
+namespace {
+const std::vector<std::string> kSuperelementResults;
+}  // namespace
+
 const std::vector<std::string>& Superelement::result_names() const {
-  static const std::vector<std::string> none;
-  return none;
+  return kSuperelementResults;
 }
 
 void Superelement::results(const ElementContext&, const Eigen::VectorXd&, const Eigen::VectorXd&,
                            ElementResultValues& out) const {
   out.clear();
 }
+
+namespace {
 
 std::unique_ptr<Element> make_superelement(const ElementBuildContext& ctx,
                                            const ElementRecord& record) {
@@ -85,5 +91,15 @@ std::unique_ptr<Element> make_superelement(const ElementBuildContext& ctx,
             data->name, path, data->n_masters(), data->matrices);
   return std::make_unique<Superelement>(record.id, path, std::move(data));
 }
+
+const ElementRegistration kMatrix50{{.name = "MATRIX50",
+                                     .number = 50,
+                                     .family = "Superelement",
+                                     .defined_by_file = true,
+                                     .vtk_cell = VtkCell::PolyVertex,
+                                     .result_names = kSuperelementResults,
+                                     .create = make_superelement}};
+
+}  // namespace
 
 }  // namespace impactfe

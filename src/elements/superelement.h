@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "elements/element.h"
-#include "substructure/superelement_file.h"
+#include "io/superelement_file.h"
 
 namespace impactfe {
 

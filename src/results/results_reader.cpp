@@ -10,7 +10,7 @@
 
 #include "core/errors.h"
 #include "core/text.h"
-#include "results/h5_util.h"
+#include "io/h5_util.h"
 #include "results/results_file.h"
 
 namespace impactfe {

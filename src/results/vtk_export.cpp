@@ -8,17 +8,14 @@
 #include <fstream>
 
 #include "core/errors.h"
+#include "elements/element_registry.h"
 
 namespace impactfe {
 
 namespace {
 
-constexpr int kVtkVertex = 1;
-constexpr int kVtkPolyVertex = 2;
-constexpr int kVtkLine = 3;
-constexpr int kVtkTriangle = 5;
-constexpr int kVtkQuad = 9;
-constexpr int kVtkHexahedron = 12;
+constexpr int kVtkPolyVertex = static_cast<int>(VtkCell::PolyVertex);
+constexpr int kVtkTriangle = static_cast<int>(VtkCell::Triangle);
 
 struct Cell {
   int type = kVtkPolyVertex;
@@ -26,20 +23,14 @@ struct Cell {
   int element_id = 0, type_id = 0, mat_id = 0;
 };
 
-bool starts_with(const std::string& s, const char* prefix) {
-  return s.rfind(prefix, 0) == 0;
-}
-
-/// VTK cell type of an element from its ANSYS name and node list (zero padding removed).
+/// VTK cell type of an element: the registered cell of its type, a quadrilateral with K = L
+/// drawn as a triangle; a poly-vertex for a type this program does not know.
 int cell_type(const std::string& name, const std::vector<int>& nodes) {
-  const auto n = nodes.size();
-  if (starts_with(name, "MATRIX")) return kVtkPolyVertex;
-  if (n == 1) return kVtkVertex;
-  if (n == 2) return kVtkLine;
-  if (n == 3) return kVtkTriangle;
-  if (n == 4 && !starts_with(name, "SOLID")) return nodes[2] == nodes[3] ? kVtkTriangle : kVtkQuad;
-  if (n == 8) return kVtkHexahedron;
-  return kVtkPolyVertex;
+  const ElementTypeDescriptor* d = find_element_type(name);
+  if (d == nullptr) return kVtkPolyVertex;
+  if (d->vtk_cell == VtkCell::Quad && nodes.size() == 4 && nodes[2] == nodes[3])
+    return kVtkTriangle;
+  return static_cast<int>(d->vtk_cell);
 }
 
 std::vector<Cell> build_cells(const ResultsReader& reader) {

@@ -15,11 +15,11 @@
 #include <vector>
 
 #include "analysis/job_runner.h"
+#include "analysis/superelement_expansion.h"
 #include "core/log.h"
 #include "deck/deck_reader.h"
+#include "io/superelement_file.h"
 #include "results/results_file.h"
-#include "substructure/expansion.h"
-#include "substructure/superelement_file.h"
 
 namespace impactfe {
 namespace {

@@ -19,7 +19,6 @@ Model truss() {
   ElementType t;
   t.id = 1;
   t.ansys_name = "LINK1";
-  t.kind = ElementKind::Spar2D;
   m.element_types[1] = t;
   m.real_sets[1] = RealSet{1, {2.0}};
   Material mat;

@@ -520,7 +520,6 @@ Model brick_model(const std::string& type_name, int keyopt1, int keyopt2, bool w
   ElementType t;
   t.id = 1;
   t.ansys_name = type_name;
-  t.kind = ElementKind::Brick8;
   t.keyopt[1] = keyopt1;
   t.keyopt[2] = keyopt2;
   m.element_types[1] = t;

@@ -24,7 +24,6 @@ Model gap_model(const GapSpec& s) {
   ElementType et;
   et.id = 3;
   et.ansys_name = "COMBIN40";
-  et.kind = ElementKind::CombinationGap;
   et.keyopt[1] = s.keyopt1;
   et.keyopt[3] = s.keyopt3;
   et.keyopt[6] = s.keyopt6;

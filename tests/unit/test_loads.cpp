@@ -17,7 +17,6 @@ class LoadsTest : public ::testing::Test {
     ElementType t;
     t.id = 1;
     t.ansys_name = "LINK8";
-    t.kind = ElementKind::Spar3D;
     m.element_types[1] = t;
     m.real_sets[1] = RealSet{1, {1.0}};
     Material mat;

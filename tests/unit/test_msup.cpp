@@ -29,7 +29,6 @@ struct Bar {
     ElementType et;
     et.id = 1;
     et.ansys_name = "LINK1";
-    et.kind = find_element_type("LINK1")->kind;
     model.element_types[1] = et;
     model.real_sets[1] = RealSet{1, {1.0}};
     Material mat;

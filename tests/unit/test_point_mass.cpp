@@ -15,7 +15,6 @@ Model mass_model(int keyopt3, std::vector<double> reals) {
   ElementType et;
   et.id = 2;
   et.ansys_name = "MASS21";
-  et.kind = ElementKind::PointMass;
   et.keyopt[3] = keyopt3;
   m.element_types[2] = et;
   m.real_sets[2] = RealSet{2, std::move(reals)};
@@ -118,7 +117,6 @@ TEST(PointMass, SparWithEndMassVibratesAtSqrtKOverM) {
   ElementType link;
   link.id = 1;
   link.ansys_name = "LINK8";
-  link.kind = ElementKind::Spar3D;
   m.element_types[1] = link;
   m.real_sets[1] = RealSet{1, {0.1}};
   m.materials[1].props = {{"EX", 30e6}};

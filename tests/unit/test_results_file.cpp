@@ -46,16 +46,15 @@ Model small_model() {
     n.x = Vec3(x, y, 0.5 * id);
     m.nodes[id] = n;
   }
-  auto add_type = [&](int id, const char* name, ElementKind kind) {
+  auto add_type = [&](int id, const char* name) {
     ElementType t;
     t.id = id;
     t.ansys_name = name;
-    t.kind = kind;
     m.element_types[id] = t;
   };
-  add_type(1, "LINK8", ElementKind::Spar3D);
-  add_type(2, "SHELL63", ElementKind::Shell4);
-  add_type(3, "MASS21", ElementKind::PointMass);
+  add_type(1, "LINK8");
+  add_type(2, "SHELL63");
+  add_type(3, "MASS21");
   auto add_elem = [&](int id, int type, int mat, int real, std::vector<int> nodes) {
     ElementRecord e;
     e.id = id;

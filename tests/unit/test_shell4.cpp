@@ -136,7 +136,6 @@ TEST(Shell4, TriangleFromRepeatedNodeHasEighteenDofs) {
   ElementType et;
   et.id = 1;
   et.ansys_name = "SHELL63";
-  et.kind = ElementKind::Shell4;
   m.element_types[1] = et;
   m.materials[1] = Material{1, {{"EX", 3.0e7}, {"NUXY", 0.3}, {"DENS", 7.3e-4}}};
   m.real_sets[1] = RealSet{1, {0.1}};
@@ -441,7 +440,6 @@ TEST(Shell4, KeyoptionsAndThetaThroughTheModel) {
     ElementType et;
     et.id = key1 + 1;
     et.ansys_name = "SHELL63";
-    et.kind = ElementKind::Shell4;
     et.keyopt[1] = key1;
     m.element_types[et.id] = et;
   }

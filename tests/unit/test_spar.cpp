@@ -32,7 +32,6 @@ Model spar_model(const Vec3& xi, const Vec3& xj, const char* type_name = "LINK8"
   ElementType et;
   et.id = 1;
   et.ansys_name = type_name;
-  et.kind = find_element_type(type_name)->kind;
   m.element_types[1] = et;
   m.real_sets[1] = RealSet{1, {kA, istrn}};
   Material mat;
@@ -51,7 +50,7 @@ ElementRecord spar_record() {
 }
 
 std::unique_ptr<Element> build(const Model& m, const ElementRecord& r = spar_record()) {
-  return make_spar(ElementBuildContext{m, {}}, r);
+  return create_element(ElementBuildContext{m, {}}, r);
 }
 
 /// Central finite-difference derivative of f_int.

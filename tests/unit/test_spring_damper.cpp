@@ -23,7 +23,6 @@ Model spring_model(const Vec3& xi, const Vec3& xj, int keyopt2, int keyopt3,
   ElementType et;
   et.id = 1;
   et.ansys_name = "COMBIN14";
-  et.kind = ElementKind::SpringDamper;
   et.keyopt[2] = keyopt2;
   et.keyopt[3] = keyopt3;
   m.element_types[1] = et;

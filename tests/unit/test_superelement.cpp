@@ -14,12 +14,12 @@
 #include <string>
 
 #include "analysis/structure.h"
+#include "analysis/superelement_expansion.h"
+#include "analysis/superelement_generation.h"
 #include "assembly/loads.h"
 #include "core/log.h"
 #include "deck/deck_reader.h"
 #include "elements/superelement.h"
-#include "substructure/expansion.h"
-#include "substructure/generation.h"
 
 namespace impactfe {
 namespace {

@@ -1,152 +1,30 @@
-// Superelement file I/O with the HDF5 C library. Matrices are stored row-major as
+// Superelement file I/O on the shared HDF5 helpers (io/h5_util.h). Matrices are stored row-major as
 // [rows x cols] float64 datasets; DOF lists as node-id (int) + label (string) pairs.
-#include "substructure/superelement_file.h"
+#include "io/superelement_file.h"
 
 #include <fmt/format.h>
-#include <hdf5.h>
 
 #include <filesystem>
 #include <sstream>
 #include <stdexcept>
 
 #include "core/errors.h"
+#include "io/h5_util.h"
 
 namespace impactfe {
 
 namespace {
 
 constexpr const char* kFormat = "impactfe superelement";
-constexpr int kVersion = 1;
+/// Version 2 stores element types by name only; version 1 also stored an enum integer, which
+/// is skipped when reading (the name decides).
+constexpr int kVersion = 2;
 
-/// Owns an HDF5 id.
-class H5 {
- public:
-  explicit H5(hid_t id, const std::string& what) : id_(id) {
-    if (id_ < 0) throw std::runtime_error("superelement file: cannot " + what);
-  }
-  ~H5() {
-    if (id_ >= 0) H5Idec_ref(id_);
-  }
-  H5(const H5&) = delete;
-  H5& operator=(const H5&) = delete;
-  operator hid_t() const { return id_; }
-
- private:
-  hid_t id_;
-};
-
-void check(herr_t status, const std::string& what) {
-  if (status < 0) throw std::runtime_error("superelement file: cannot " + what);
-}
-
-using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-
-void write_matrix(hid_t loc, const std::string& name, const Eigen::MatrixXd& m) {
-  const RowMajor r = m;
-  hsize_t dims[2] = {static_cast<hsize_t>(m.rows()), static_cast<hsize_t>(m.cols())};
-  H5 space(H5Screate_simple(2, dims, nullptr), "create dataspace " + name);
-  H5 ds(H5Dcreate2(loc, name.c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-        "create " + name);
-  if (m.size() > 0)
-    check(H5Dwrite(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, r.data()),
-          "write " + name);
-}
-
-Eigen::MatrixXd read_matrix(hid_t loc, const std::string& name) {
-  H5 ds(H5Dopen2(loc, name.c_str(), H5P_DEFAULT), "open " + name);
-  H5 space(H5Dget_space(ds), "get dataspace of " + name);
-  hsize_t dims[2] = {0, 0};
-  if (H5Sget_simple_extent_ndims(space) != 2) throw std::runtime_error(name + " is not 2-D");
-  H5Sget_simple_extent_dims(space, dims, nullptr);
-  RowMajor r(static_cast<Eigen::Index>(dims[0]), static_cast<Eigen::Index>(dims[1]));
-  if (r.size() > 0)
-    check(H5Dread(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, r.data()), "read " + name);
-  return r;
-}
-
-void write_ints(hid_t loc, const std::string& name, const std::vector<int>& v) {
-  hsize_t dims[1] = {v.size()};
-  H5 space(H5Screate_simple(1, dims, nullptr), "create dataspace " + name);
-  H5 ds(H5Dcreate2(loc, name.c_str(), H5T_STD_I32LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-        "create " + name);
-  if (!v.empty())
-    check(H5Dwrite(ds, H5T_NATIVE_INT, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()), "write " + name);
-}
-
-std::vector<int> read_ints(hid_t loc, const std::string& name) {
-  H5 ds(H5Dopen2(loc, name.c_str(), H5P_DEFAULT), "open " + name);
-  H5 space(H5Dget_space(ds), "get dataspace of " + name);
-  std::vector<int> v(static_cast<std::size_t>(H5Sget_simple_extent_npoints(space)));
-  if (!v.empty())
-    check(H5Dread(ds, H5T_NATIVE_INT, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()), "read " + name);
-  return v;
-}
-
-H5 string_type() {
-  H5 t(H5Tcopy(H5T_C_S1), "copy string type");
-  check(H5Tset_size(t, H5T_VARIABLE), "set string size");
-  check(H5Tset_cset(t, H5T_CSET_UTF8), "set string charset");
-  return H5(H5Tcopy(t), "copy string type");
-}
-
-void write_strings(hid_t loc, const std::string& name, const std::vector<std::string>& v) {
-  H5 type = string_type();
-  std::vector<const char*> p;
-  for (const auto& s : v) p.push_back(s.c_str());
-  hsize_t dims[1] = {v.size()};
-  H5 space(H5Screate_simple(1, dims, nullptr), "create dataspace " + name);
-  H5 ds(H5Dcreate2(loc, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-        "create " + name);
-  if (!v.empty())
-    check(H5Dwrite(ds, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, p.data()), "write " + name);
-}
-
-std::vector<std::string> read_strings(hid_t loc, const std::string& name) {
-  H5 type = string_type();
-  H5 ds(H5Dopen2(loc, name.c_str(), H5P_DEFAULT), "open " + name);
-  H5 space(H5Dget_space(ds), "get dataspace of " + name);
-  std::vector<char*> p(static_cast<std::size_t>(H5Sget_simple_extent_npoints(space)), nullptr);
-  std::vector<std::string> out;
-  if (p.empty()) return out;
-  check(H5Dread(ds, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, p.data()), "read " + name);
-  for (char* s : p) out.emplace_back(s ? s : "");
-  H5Dvlen_reclaim(type, space, H5P_DEFAULT, p.data());
-  return out;
-}
-
-void write_attribute(hid_t obj, const std::string& name, const std::string& value) {
-  H5 type = string_type();
-  H5 space(H5Screate(H5S_SCALAR), "create scalar space");
-  H5 attr(H5Acreate2(obj, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT),
-          "create attribute " + name);
-  const char* p = value.c_str();
-  check(H5Awrite(attr, type, &p), "write attribute " + name);
-}
-
-void write_attribute(hid_t obj, const std::string& name, double value) {
-  H5 space(H5Screate(H5S_SCALAR), "create scalar space");
-  H5 attr(H5Acreate2(obj, name.c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT),
-          "create attribute " + name);
-  check(H5Awrite(attr, H5T_NATIVE_DOUBLE, &value), "write attribute " + name);
-}
-
-std::string read_string_attribute(hid_t obj, const std::string& name) {
-  if (H5Aexists(obj, name.c_str()) <= 0) return {};
-  H5 type = string_type();
-  H5 attr(H5Aopen(obj, name.c_str(), H5P_DEFAULT), "open attribute " + name);
-  char* p = nullptr;
-  check(H5Aread(attr, type, &p), "read attribute " + name);
-  std::string s = p ? p : "";
-  H5free_memory(p);
-  return s;
-}
-
-double read_double_attribute(hid_t obj, const std::string& name) {
-  H5 attr(H5Aopen(obj, name.c_str(), H5P_DEFAULT), "open attribute " + name);
-  double v = 0.0;
-  check(H5Aread(attr, H5T_NATIVE_DOUBLE, &v), "read attribute " + name);
-  return v;
-}
+using h5::check_status;
+using h5::Handle;
+using h5::read_matrix;
+using h5::write_attribute;
+using h5::write_matrix;
 
 void write_dofs(hid_t loc, const std::string& prefix, const std::vector<DofKey>& keys) {
   std::vector<int> nodes;
@@ -155,13 +33,13 @@ void write_dofs(hid_t loc, const std::string& prefix, const std::vector<DofKey>&
     nodes.push_back(k.node);
     labels.emplace_back(dof_name(k.dof));
   }
-  write_ints(loc, prefix + "_node", nodes);
-  write_strings(loc, prefix + "_dof", labels);
+  h5::write_dataset(loc, prefix + "_node", {nodes.size()}, nodes.data());
+  h5::write_dataset(loc, prefix + "_dof", labels);
 }
 
 std::vector<DofKey> read_dofs(hid_t loc, const std::string& prefix) {
-  const std::vector<int> nodes = read_ints(loc, prefix + "_node");
-  const std::vector<std::string> labels = read_strings(loc, prefix + "_dof");
+  const std::vector<int> nodes = h5::read_ints(loc, prefix + "_node");
+  const std::vector<std::string> labels = h5::read_strings(loc, prefix + "_dof");
   if (nodes.size() != labels.size())
     throw std::runtime_error("superelement file: " + prefix + " node/dof lists differ in length");
   std::vector<DofKey> keys;
@@ -173,11 +51,6 @@ std::vector<DofKey> read_dofs(hid_t loc, const std::string& prefix) {
   return keys;
 }
 
-H5 create_group(hid_t loc, const std::string& name) {
-  return H5(H5Gcreate2(loc, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-            "create group " + name);
-}
-
 }  // namespace
 
 std::vector<DofKey> SuperelementData::master_keys() const {
@@ -186,9 +59,9 @@ std::vector<DofKey> SuperelementData::master_keys() const {
   return keys;
 }
 
-void write_superelement(const std::string& path, const SuperelementData& d) {
-  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // libraries never print
-  H5 file(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), "create " + path);
+namespace {
+
+void write_contents(hid_t file, const SuperelementData& d) {
   write_attribute(file, "format", kFormat);
   write_attribute(file, "version", static_cast<double>(kVersion));
   write_attribute(file, "name", d.name);
@@ -199,7 +72,7 @@ void write_superelement(const std::string& path, const SuperelementData& d) {
   write_attribute(file, "n_load_vectors", static_cast<double>(d.load_vectors.cols()));
 
   {
-    H5 g = create_group(file, "masters");
+    Handle g = h5::create_group(file, "masters");
     write_dofs(g, "master", d.master_keys());
     Eigen::MatrixXd x(d.n_masters(), 3), a(d.n_masters(), 3);
     for (int i = 0; i < d.n_masters(); ++i) {
@@ -210,19 +83,19 @@ void write_superelement(const std::string& path, const SuperelementData& d) {
     write_matrix(g, "angles_deg", a);
   }
   {
-    H5 g = create_group(file, "matrices");
+    Handle g = h5::create_group(file, "matrices");
     write_matrix(g, "K", d.stiffness);
     if (d.mass) write_matrix(g, "M", *d.mass);
     if (d.damping) write_matrix(g, "C", *d.damping);
   }
   {
-    H5 g = create_group(file, "loads");
+    Handle g = h5::create_group(file, "loads");
     write_attribute(g, "layout", "columns: load vectors (one per load step) / X Y Z");
     write_matrix(g, "load_vectors", d.load_vectors);
     write_matrix(g, "unit_acceleration", d.unit_acceleration);
   }
   {
-    H5 g = create_group(file, "expansion");
+    Handle g = h5::create_group(file, "expansion");
     write_dofs(g, "slave", d.slaves);
     write_dofs(g, "constrained", d.constrained);
     write_matrix(g, "transformation", d.transformation);
@@ -230,25 +103,43 @@ void write_superelement(const std::string& path, const SuperelementData& d) {
     write_matrix(g, "acceleration_correction", d.acceleration_correction);
     write_attribute(g, "model", d.model_text);
   }
-  check(H5Fflush(file, H5F_SCOPE_GLOBAL), "flush " + path);
+  check_status(H5Fflush(file, H5F_SCOPE_GLOBAL), "flush the file");
+}
+
+}  // namespace
+
+void write_superelement(const std::string& path, const SuperelementData& d) {
+  h5::silence_errors();  // libraries never print
+  try {
+    const Handle file(h5::check(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT),
+                                "create the file"));
+    write_contents(file, d);
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error(fmt::format("superelement file {}: {}", path, e.what()));
+  }
 }
 
 SuperelementData read_superelement(const std::string& path, const SourceLocation& where) {
-  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  h5::silence_errors();
   if (!std::filesystem::exists(path))
     throw InputError(where, fmt::format("superelement file {} does not exist", path));
   if (H5Fis_hdf5(path.c_str()) <= 0)
     throw InputError(where, fmt::format("{} is not an HDF5 superelement file", path));
   try {
-    H5 file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), "open " + path);
-    if (read_string_attribute(file, "format") != kFormat)
+    Handle file(h5::check(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), "open the file"));
+    if (!H5Aexists(file, "format") || h5::read_string_attribute(file, "format") != kFormat)
       throw InputError(where, fmt::format("{} is not an impactfe superelement file", path));
     SuperelementData d;
-    d.name = read_string_attribute(file, "name");
-    d.title = read_string_attribute(file, "title");
-    d.matrices = static_cast<int>(read_double_attribute(file, "matrices"));
+    const int version = static_cast<int>(h5::read_double_attribute(file, "version"));
+    if (version < 1 || version > kVersion)
+      throw InputError(where, fmt::format("{}: superelement file version {} is not supported "
+                                          "(this impactfe reads versions 1 to {})",
+                                          path, version, kVersion));
+    d.name = h5::read_string_attribute(file, "name");
+    d.title = h5::read_string_attribute(file, "title");
+    d.matrices = static_cast<int>(h5::read_double_attribute(file, "matrices"));
     {
-      H5 g(H5Gopen2(file, "masters", H5P_DEFAULT), "open masters");
+      Handle g = h5::open_group(file, "masters");
       const std::vector<DofKey> keys = read_dofs(g, "master");
       const Eigen::MatrixXd x = read_matrix(g, "coordinates");
       const Eigen::MatrixXd a = read_matrix(g, "angles_deg");
@@ -256,24 +147,24 @@ SuperelementData read_superelement(const std::string& path, const SourceLocation
         d.masters.push_back({keys[i], x.row(int(i)).transpose(), a.row(int(i)).transpose()});
     }
     {
-      H5 g(H5Gopen2(file, "matrices", H5P_DEFAULT), "open matrices");
+      Handle g = h5::open_group(file, "matrices");
       d.stiffness = read_matrix(g, "K");
       if (H5Lexists(g, "M", H5P_DEFAULT) > 0) d.mass = read_matrix(g, "M");
       if (H5Lexists(g, "C", H5P_DEFAULT) > 0) d.damping = read_matrix(g, "C");
     }
     {
-      H5 g(H5Gopen2(file, "loads", H5P_DEFAULT), "open loads");
+      Handle g = h5::open_group(file, "loads");
       d.load_vectors = read_matrix(g, "load_vectors");
       d.unit_acceleration = read_matrix(g, "unit_acceleration");
     }
     {
-      H5 g(H5Gopen2(file, "expansion", H5P_DEFAULT), "open expansion");
+      Handle g = h5::open_group(file, "expansion");
       d.slaves = read_dofs(g, "slave");
       d.constrained = read_dofs(g, "constrained");
       d.transformation = read_matrix(g, "transformation");
       d.load_correction = read_matrix(g, "load_correction");
       d.acceleration_correction = read_matrix(g, "acceleration_correction");
-      d.model_text = read_string_attribute(g, "model");
+      d.model_text = h5::read_string_attribute(g, "model");
     }
     const int n = d.n_masters();
     if (d.stiffness.rows() != n || d.stiffness.cols() != n || (d.mass && d.mass->rows() != n) ||
@@ -293,13 +184,13 @@ std::string serialize_generation_model(const Model& model, bool lumped_mass,
                                        bool stress_stiffening) {
   std::ostringstream o;
   o.precision(17);
-  o << "impactfe-model 1\n";
+  o << "impactfe-model 2\n";
   o << "flags " << int(lumped_mass) << ' ' << int(stress_stiffening) << '\n';
   for (const auto& [id, n] : model.nodes)
     o << "node " << id << ' ' << n.x(0) << ' ' << n.x(1) << ' ' << n.x(2) << ' ' << n.angles_deg(0)
       << ' ' << n.angles_deg(1) << ' ' << n.angles_deg(2) << '\n';
   for (const auto& [id, t] : model.element_types) {
-    o << "etype " << id << ' ' << t.ansys_name << ' ' << static_cast<int>(t.kind);
+    o << "etype " << id << ' ' << t.ansys_name;
     for (int k = 1; k <= 18; ++k) o << ' ' << t.key(k);
     o << '\n';
   }
@@ -333,12 +224,16 @@ Model deserialize_generation_model(const std::string& text, bool& lumped_mass,
   std::istringstream in(text);
   std::string line;
   int line_no = 0;
+  int model_version = 1;
   while (std::getline(in, line)) {
     ++line_no;
     std::istringstream s(line);
     std::string tag;
     if (!(s >> tag)) continue;
-    if (tag == "impactfe-model") continue;
+    if (tag == "impactfe-model") {
+      s >> model_version;
+      continue;
+    }
     if (tag == "flags") {
       int a = 0, b = 0;
       s >> a >> b;
@@ -351,9 +246,11 @@ Model deserialize_generation_model(const std::string& text, bool& lumped_mass,
       model.nodes[n.id] = n;
     } else if (tag == "etype") {
       ElementType t;
-      int kind = 0;
-      s >> t.id >> t.ansys_name >> kind;
-      t.kind = static_cast<ElementKind>(kind);
+      s >> t.id >> t.ansys_name;
+      if (model_version == 1) {
+        int enum_kind = 0;  // version 1 stored an enum integer after the name: the name decides
+        s >> enum_kind;
+      }
       for (int k = 1; k <= 18; ++k) s >> t.keyopt[static_cast<std::size_t>(k)];
       model.element_types[t.id] = t;
     } else if (tag == "real") {

@@ -1,4 +1,4 @@
-#include "substructure/generation.h"
+#include "analysis/superelement_generation.h"
 
 #include <fmt/format.h>
 

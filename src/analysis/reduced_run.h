@@ -11,23 +11,9 @@
 #include "assembly/loads.h"
 #include "reduction/guyan.h"
 #include "reduction/reduced_dynamics.h"
+#include "time/time_axis.h"
 
 namespace impactfe {
-
-/// One computed time point of a reduced / MSUP run.
-struct ReducedPoint {
-  double time = 0.0;
-  int load_step = 1;
-  int substep = 1;
-  int step_index = 0;     // index into the load-step list
-  double fraction = 1.0;  // position within the load step (KBC interpolation)
-};
-
-/// Time axis of a reduced / MSUP transient: load step 1 is the initial state at t = 0 (its
-/// TIME ignored); later steps advance with the constant Δt (DTIME of the first step that gives
-/// one, else the span of step 2 over its substeps) from the previous TIME (spec §3.17, §3.18).
-std::vector<ReducedPoint> reduced_time_axis(const std::vector<LoadStep>& steps, double& dt,
-                                            AnalysisStatistics& stats);
 
 /// Everything the expansion pass needs from the transient that ran before it.
 class ReducedRunState : public ReducedSolutionState {

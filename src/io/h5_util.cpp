@@ -1,4 +1,4 @@
-#include "results/h5_util.h"
+#include "io/h5_util.h"
 
 #include <fmt/format.h>
 
@@ -12,16 +12,25 @@ void silence_errors() {
 }
 
 hid_t check(hid_t id, const std::string& what) {
-  if (id < 0) throw std::runtime_error(fmt::format("results file: cannot {}", what));
+  if (id < 0) throw std::runtime_error(fmt::format("cannot {}", what));
   return id;
 }
 
 void check_status(herr_t status, const std::string& what) {
-  if (status < 0) throw std::runtime_error(fmt::format("results file: cannot {}", what));
+  if (status < 0) throw std::runtime_error(fmt::format("cannot {}", what));
 }
 
 bool exists(hid_t loc, const std::string& name) {
   return H5Lexists(loc, name.c_str(), H5P_DEFAULT) > 0;
+}
+
+Handle create_group(hid_t loc, const std::string& name) {
+  return Handle(check(H5Gcreate2(loc, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+                      "create group " + name));
+}
+
+Handle open_group(hid_t loc, const std::string& name) {
+  return Handle(check(H5Gopen2(loc, name.c_str(), H5P_DEFAULT), "open group " + name));
 }
 
 Handle string_type() {
@@ -119,6 +128,13 @@ std::string read_string_attribute(hid_t obj, const std::string& name) {
   return v.empty() ? std::string() : v.front();
 }
 
+double read_double_attribute(hid_t obj, const std::string& name) {
+  Handle attr(check(H5Aopen(obj, name.c_str(), H5P_DEFAULT), "open attribute " + name));
+  double v = 0.0;
+  check_status(H5Aread(attr, H5T_NATIVE_DOUBLE, &v), "read attribute " + name);
+  return v;
+}
+
 std::vector<std::string> read_string_list_attribute(hid_t obj, const std::string& name) {
   Handle attr(check(H5Aopen(obj, name.c_str(), H5P_DEFAULT), "open attribute " + name));
   Handle type(check(H5Aget_type(attr), "get attribute type"));
@@ -181,6 +197,25 @@ std::vector<T> read_all(hid_t loc, const std::string& name, hid_t mem_type) {
 
 std::vector<double> read_doubles(hid_t loc, const std::string& name) {
   return read_all<double>(loc, name, H5T_NATIVE_DOUBLE);
+}
+
+using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+Eigen::MatrixXd read_matrix(hid_t loc, const std::string& name) {
+  Handle ds(check(H5Dopen2(loc, name.c_str(), H5P_DEFAULT), "open dataset " + name));
+  const auto dims = dims_of(ds);
+  if (dims.size() != 2) throw std::runtime_error(fmt::format("dataset {} is not 2-D", name));
+  RowMajor r(static_cast<Eigen::Index>(dims[0]), static_cast<Eigen::Index>(dims[1]));
+  if (r.size() > 0)
+    check_status(H5Dread(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, r.data()),
+                 "read dataset " + name);
+  return r;
+}
+
+void write_matrix(hid_t loc, const std::string& name, const Eigen::MatrixXd& m) {
+  const RowMajor r = m;
+  write_dataset(loc, name, {static_cast<hsize_t>(m.rows()), static_cast<hsize_t>(m.cols())},
+                r.data());
 }
 
 std::vector<int> read_ints(hid_t loc, const std::string& name) {

@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "analysis/structure.h"
+#include "io/superelement_file.h"
 #include "results/results_file.h"
-#include "substructure/superelement_file.h"
 
 namespace impactfe {
 

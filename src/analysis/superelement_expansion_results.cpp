@@ -5,9 +5,9 @@
 #include <cmath>
 #include <map>
 
+#include "analysis/superelement_expansion.h"
 #include "core/errors.h"
 #include "core/log.h"
-#include "substructure/expansion.h"
 
 namespace impactfe {
 

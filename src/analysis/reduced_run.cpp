@@ -1,4 +1,4 @@
-#include "reduction/reduced_run.h"
+#include "analysis/reduced_run.h"
 
 #include <Eigen/Eigenvalues>
 #include <chrono>

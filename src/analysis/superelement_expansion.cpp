@@ -1,4 +1,4 @@
-#include "substructure/expansion.h"
+#include "analysis/superelement_expansion.h"
 
 #include <fmt/format.h>
 

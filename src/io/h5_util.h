@@ -1,6 +1,7 @@
 #pragma once
-/// Thin RAII helpers over the HDF5 C API shared by the results writer and reader (internal).
+/// Thin RAII helpers over the HDF5 C API shared by the results file and the superelement file.
 #include <hdf5.h>
+#include <Eigen/Core>
 
 #include <string>
 #include <vector>
@@ -39,11 +40,14 @@ class Handle {
 /// Silences the HDF5 error stack printer: libraries never print; failures become exceptions.
 void silence_errors();
 
-/// Throws std::runtime_error("results file: <what>") when id < 0.
+/// Throws std::runtime_error("cannot <what>") when id < 0 (callers add the file name).
 hid_t check(hid_t id, const std::string& what);
 void check_status(herr_t status, const std::string& what);
 
 bool exists(hid_t loc, const std::string& name);
+
+Handle create_group(hid_t loc, const std::string& name);
+Handle open_group(hid_t loc, const std::string& name);
 
 /// Variable-length UTF-8 string datatype.
 Handle string_type();
@@ -53,6 +57,7 @@ void write_attribute(hid_t obj, const std::string& name, const std::string& valu
 void write_attribute(hid_t obj, const std::string& name, const std::vector<std::string>& values);
 
 std::string read_string_attribute(hid_t obj, const std::string& name);
+double read_double_attribute(hid_t obj, const std::string& name);
 std::vector<std::string> read_string_list_attribute(hid_t obj, const std::string& name);
 /// Names of all attributes of an object in creation/name order.
 std::vector<std::string> attribute_names(hid_t obj);
@@ -68,6 +73,9 @@ void write_dataset(hid_t loc, const std::string& name, const std::vector<std::st
 std::vector<hsize_t> dims_of(hid_t dataset);
 
 std::vector<double> read_doubles(hid_t loc, const std::string& name);
+/// A 2-D float64 dataset (row-major in the file) as a matrix.
+Eigen::MatrixXd read_matrix(hid_t loc, const std::string& name);
+void write_matrix(hid_t loc, const std::string& name, const Eigen::MatrixXd& m);
 std::vector<int> read_ints(hid_t loc, const std::string& name);
 std::vector<std::string> read_strings(hid_t loc, const std::string& name);
 

@@ -5,7 +5,7 @@
 #include <string>
 
 #include "analysis/structure.h"
-#include "substructure/superelement_file.h"
+#include "io/superelement_file.h"
 
 namespace impactfe {
 

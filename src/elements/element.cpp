@@ -1,0 +1,34 @@
+#include "elements/element.h"
+
+#include <fmt/format.h>
+
+#include "elements/element_registry.h"
+
+namespace impactfe {
+
+std::unique_ptr<Element> create_element(const ElementBuildContext& ctx,
+                                        const ElementRecord& record) {
+  const auto type_it = ctx.model.element_types.find(record.type);
+  if (type_it == ctx.model.element_types.end())
+    throw InputError(record.where, fmt::format("element {}: element type {} is not defined",
+                                               record.id, record.type));
+  return element_type_descriptor(type_it->second).create(ctx, record);
+}
+
+void Element::damping(const ElementContext&, const Eigen::VectorXd&, Eigen::MatrixXd& C) const {
+  C.setZero(n_dofs(), n_dofs());
+}
+
+void Element::frame_acceleration_load(const ElementContext& ctx, const Vec3& a,
+                                      Eigen::VectorXd& f) const {
+  Eigen::MatrixXd m;
+  mass(ctx, m);
+  Eigen::VectorXd ra = Eigen::VectorXd::Zero(n_dofs());
+  for (int i = 0; i < n_dofs(); ++i) {
+    const int d = static_cast<int>(dofs()[static_cast<std::size_t>(i)].dof);
+    if (d < 3) ra(i) = a(d);
+  }
+  f = -(m * ra);
+}
+
+}  // namespace impactfe

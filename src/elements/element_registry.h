@@ -1,0 +1,90 @@
+#pragma once
+/// The element registry: every element type registers itself once, beside its class, with what
+/// the rest of the program needs to know about it (ANSYS names, node count, required data, VTK
+/// cell, result items, status). The deck reader's validation, the supported-type list of error
+/// messages, the VTK export and the superelement file take this from here; nothing else tests
+/// what kind an element is.
+///
+/// Registration is one line in the element's .cpp:
+///   const ElementRegistration kCombin14{{.name = "COMBIN14", .number = 14, ..., .create = ...}};
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "elements/element.h"
+
+namespace impactfe {
+
+/// Whether an element type reads a real-constant set (R).
+enum class RealConstantUse {
+  None,           // never (bricks)
+  Required,       // always (springs, masses, gaps)
+  UnlessSection,  // unless the element's SECNUM names a section of an accepted type (LINK180)
+};
+
+/// VTK cell types (VTK's vtkCellType.h numbering) of the full node list of an element.
+enum class VtkCell : int {
+  Vertex = 1,
+  PolyVertex = 2,
+  Line = 3,
+  Triangle = 5,
+  Quad = 9,
+  Hexahedron = 12,
+};
+
+using ElementFactory =
+    std::function<std::unique_ptr<Element>(const ElementBuildContext&, const ElementRecord&)>;
+
+/// What one element type (one ANSYS name) tells the rest of the program.
+struct ElementTypeDescriptor {
+  std::string name;    // ANSYS name, upper case: "LINK8"
+  int number = 0;      // ANSYS 4.2 type number (ET,1,8); 0 when the type has none
+  std::string family;  // descriptive family of the element class: "Spar"
+  /// Nodes E must give: from `min_nodes` to `n_nodes + n_optional_nodes`. Missing corner nodes
+  /// between min_nodes and n_nodes repeat the last given node (a 3-node SHELL63 is a triangle,
+  /// K repeated as L); optional nodes beyond n_nodes (a beam's orientation node) may be absent.
+  int n_nodes = 0;
+  int min_nodes = 0;  // 0: same as n_nodes
+  int n_optional_nodes = 0;
+  /// Defined by a file, not by nodes (MATRIX50: SE,File or 4x E,id,unit).
+  bool defined_by_file = false;
+  RealConstantUse real_constants = RealConstantUse::None;
+  bool needs_material = false;
+  /// SECTYPE types an element of this type may reference through SECNUM ("LINK", "SHELL").
+  std::vector<std::string> section_types;
+  VtkCell vtk_cell = VtkCell::PolyVertex;
+  /// Result item names, in the order Element::results() returns them.
+  std::vector<std::string> result_names;
+  /// True when elements of this type may carry a status (gap open/closed, slider).
+  bool has_status = false;
+  /// Logged when ET defines the type (e.g. a kernel substitution worth knowing about).
+  std::string note;
+  ElementFactory create;
+
+  int max_nodes() const { return n_nodes + n_optional_nodes; }
+  int least_nodes() const { return min_nodes > 0 ? min_nodes : n_nodes; }
+  bool accepts_section(const std::string& type) const;
+};
+
+/// Adds a type to the registry. A second registration under the same name or number is a
+/// programming error (InternalError).
+void register_element_type(ElementTypeDescriptor descriptor);
+
+/// Registers at static-initialisation time: one such object per element type, in the element's
+/// .cpp (or in a test, for a test-only element).
+struct ElementRegistration {
+  explicit ElementRegistration(ElementTypeDescriptor descriptor);
+};
+
+/// Looks up an ET name or 4.2 number (case-insensitive: "link8", "8"); nullptr when unknown.
+const ElementTypeDescriptor* find_element_type(const std::string& name_or_number);
+/// The descriptor of a defined element type (InternalError when the name is not registered:
+/// ET only stores registered names).
+const ElementTypeDescriptor& element_type_descriptor(const ElementType& type);
+/// All registered types, ordered by name.
+std::vector<const ElementTypeDescriptor*> registered_element_types();
+/// "COMBIN14 COMBIN40 LINK1 ..." for error messages.
+std::string supported_element_type_names();
+
+}  // namespace impactfe

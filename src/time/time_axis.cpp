@@ -1,0 +1,110 @@
+#include "time/time_axis.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/log.h"
+
+namespace impactfe {
+
+namespace {
+
+[[noreturn]] void fail(const LoadStep& step, const std::string& message) {
+  throw InputError(step.where, fmt::format("load step {}: {}", step.number, message));
+}
+
+}  // namespace
+
+int substep_count(const LoadStep& step, double span, double dt) {
+  if (!(dt > 0.0)) fail(step, fmt::format("time step {} must be > 0", dt));
+  const double n = std::round(span / dt);
+  if (!(n <= static_cast<double>(kMaxSubstepsPerLoadStep)))
+    fail(step, fmt::format("a span of {:g} in steps of {:g} would need {:.4g} substeps (more than "
+                           "{}); check DELTIM / DTIME and TIME",
+                           span, dt, span / dt, kMaxSubstepsPerLoadStep));
+  return std::max(1, static_cast<int>(n));
+}
+
+LoadStepTiming load_step_timing(const LoadStep& step, double t_start, bool transient) {
+  LoadStepTiming t;
+  t.t_start = t_start;
+  if (step.time_end) {
+    t.t_end = *step.time_end;
+  } else if (transient) {
+    fail(step, "TIME (end time) is required in a transient analysis");
+  } else {
+    t.t_end = static_cast<double>(step.number);  // static default: the load-step number
+  }
+  if (!(t.t_end > t_start))
+    fail(step, fmt::format("end time {} does not increase (previous end {})", t.t_end, t_start));
+  const double span = t.t_end - t_start;
+  if (step.dt) {
+    t.n_substeps = substep_count(step, span, *step.dt);
+  } else if (step.n_substeps) {
+    if (*step.n_substeps <= 0)
+      fail(step, fmt::format("number of substeps {} must be > 0", *step.n_substeps));
+    if (*step.n_substeps > kMaxSubstepsPerLoadStep)
+      fail(step,
+           fmt::format("{} substeps is more than {}", *step.n_substeps, kMaxSubstepsPerLoadStep));
+    t.n_substeps = *step.n_substeps;
+  }
+  t.h = span / t.n_substeps;
+  return t;
+}
+
+std::vector<ReducedPoint> reduced_time_axis(const std::vector<LoadStep>& steps, double& dt,
+                                            std::vector<std::string>& notes) {
+  if (steps.empty()) throw InputError("reduced transient: no load steps were written");
+  dt = 0.0;
+  for (const LoadStep& s : steps)
+    if (s.dt) {
+      dt = *s.dt;
+      break;
+    }
+  if (dt == 0.0 && steps.size() > 1 && steps[1].time_end)
+    dt = *steps[1].time_end / std::max(1, steps[1].n_substeps.value_or(1));
+  if (steps.size() > 1 && !(dt > 0.0))
+    throw InputError(
+        steps.front().where,
+        fmt::format("reduced transient: time step {} must be > 0 (DTIME / DELTIM)", dt));
+  std::vector<ReducedPoint> points;
+  points.push_back({0.0, steps.front().number, 1, 0, 1.0});
+  double t_prev = 0.0;
+  bool warned = false;
+  for (std::size_t i = 1; i < steps.size(); ++i) {
+    const LoadStep& step = steps[i];
+    if (!step.time_end) fail(step, "TIME (end time) is required in a transient analysis");
+    if (step.dt && std::abs(*step.dt - dt) > 1e-9 * dt && !warned) {
+      const std::string note = fmt::format(
+          "load step {}: DTIME {:g} ignored; a reduced / mode-superposition transient keeps the "
+          "constant step {:g} of the first load step that gives one",
+          step.number, *step.dt, dt);
+      Log::warn("{}", note);
+      notes.push_back(note);
+      warned = true;
+    }
+    const double span = *step.time_end - t_prev;
+    if (!(span > 0.0))
+      fail(step,
+           fmt::format("end time {} does not increase (previous end {})", *step.time_end, t_prev));
+    const int n = substep_count(step, span, dt);
+    const bool exact = std::abs(n * dt - span) <= 1e-6 * dt;
+    if (!exact) {
+      const std::string note = fmt::format(
+          "load step {}: span {:g} is not a multiple of dt = {:g}; {} steps end at t = {:g}",
+          step.number, span, dt, n, t_prev + n * dt);
+      Log::warn("{}", note);
+      notes.push_back(note);
+    }
+    for (int k = 1; k <= n; ++k) {
+      const double t = (k == n && exact) ? *step.time_end : t_prev + k * dt;
+      points.push_back({t, step.number, k, static_cast<int>(i), static_cast<double>(k) / n});
+    }
+    t_prev = exact ? *step.time_end : t_prev + n * dt;
+  }
+  return points;
+}
+
+}  // namespace impactfe

@@ -1,0 +1,52 @@
+#pragma once
+/// The time axis of an analysis: how the load steps' TIME, DELTIM/DTIME and NSUBST/ITER values
+/// become substeps (APDL_SUBSET §3.16-3.18, §9.4; spec §10.3, §10.4). The one place that
+/// interprets them, for the full (static / transient) and the reduced / mode-superposition
+/// drivers alike.
+#include <string>
+#include <vector>
+
+#include "core/model.h"
+
+namespace impactfe {
+
+/// More substeps than this in one load step is refused as absurd input (a DELTIM far below the
+/// span, or an overflowing count), before anything is attempted.
+inline constexpr long kMaxSubstepsPerLoadStep = 100'000'000;
+
+/// Number of constant steps of size dt in `span` (nearest integer, at least 1). Throws
+/// InputError at the step's command when dt <= 0 or the count exceeds kMaxSubstepsPerLoadStep.
+int substep_count(const LoadStep& step, double span, double dt);
+
+/// One load step of a full analysis: substep k (1-based) ends at t_start + k h.
+struct LoadStepTiming {
+  double t_start = 0.0;
+  double t_end = 0.0;
+  int n_substeps = 1;
+  double h = 0.0;
+};
+
+/// Timing of a load step of a static or full transient analysis starting at t_start. TIME is
+/// required in a transient; a static step without TIME ends at its load-step number. DELTIM wins
+/// over NSUBST when both were given (the deck keeps only the last of the two); neither gives one
+/// substep.
+LoadStepTiming load_step_timing(const LoadStep& step, double t_start, bool transient);
+
+/// One computed time point of a reduced / mode-superposition transient.
+struct ReducedPoint {
+  double time = 0.0;
+  int load_step = 1;
+  int substep = 1;
+  int step_index = 0;     // index into the load-step list
+  double fraction = 1.0;  // position within the load step (KBC interpolation)
+};
+
+/// Time axis of a reduced / MSUP transient (KAN=5 semantics, spec §3.17, §3.18): load step 1 is
+/// the initial state at t = 0 (its TIME ignored); later steps advance with one constant Δt (the
+/// DTIME of the first step that gives one, else the span of step 2 over its substeps) from the
+/// previous TIME. `dt` receives Δt; `notes` receives what the run summary should say (a span
+/// that is not a multiple of Δt, an ignored DTIME).
+std::vector<ReducedPoint> reduced_time_axis(const std::vector<LoadStep>& steps, double& dt,
+                                            std::vector<std::string>& notes);
+
+}  // namespace impactfe
