@@ -2,10 +2,10 @@
 
 #include <Eigen/SparseCholesky>
 #include <cmath>
-#include <functional>
-#include <map>
 
+#include "analysis/time_step_advice.h"
 #include "core/log.h"
+#include "time/time_axis.h"
 
 namespace impactfe {
 
@@ -22,8 +22,6 @@ VectorXd remap(const VectorXd& values, const DofMap& from, const DofMap& to) {
   return out;
 }
 
-constexpr int kChatterLimit = 4;  // status flips of one element in one step (spec §10.3)
-
 }  // namespace
 
 DirectSolution::DirectSolution(Structure& structure, ResultsWriter& writer,
@@ -32,42 +30,8 @@ DirectSolution::DirectSolution(Structure& structure, ResultsWriter& writer,
       writer_(writer),
       settings_(settings),
       stats_(stats),
-      ctx_(structure.context()) {
-  for (const auto& e : structure_.elements()) is_gap_.push_back(e->has_status());
-}
-
-DirectSolution::StepTiming DirectSolution::timing(const LoadStep& step, double t_start,
-                                                  bool transient) const {
-  StepTiming t;
-  t.t_start = t_start;
-  if (step.time_end) {
-    t.t_end = *step.time_end;
-  } else if (transient) {
-    throw InputError(step.where, fmt::format("load step {}: TIME (end time) is required in a "
-                                             "transient analysis",
-                                             step.number));
-  } else {
-    t.t_end = static_cast<double>(step.number);  // static default: the load-step number
-  }
-  if (!(t.t_end > t_start))
-    throw InputError(step.where,
-                     fmt::format("load step {}: end time {} does not increase (previous end {})",
-                                 step.number, t.t_end, t_start));
-  const double span = t.t_end - t_start;
-  if (step.dt) {
-    if (!(*step.dt > 0.0))
-      throw InputError(
-          step.where, fmt::format("load step {}: time step {} must be > 0", step.number, *step.dt));
-    t.n_substeps = std::max(1, static_cast<int>(std::lround(span / *step.dt)));
-  } else if (step.n_substeps) {
-    if (*step.n_substeps <= 0)
-      throw InputError(step.where, fmt::format("load step {}: number of substeps {} must be > 0",
-                                               step.number, *step.n_substeps));
-    t.n_substeps = *step.n_substeps;
-  }
-  t.h = span / t.n_substeps;
-  return t;
-}
+      ctx_(structure.context()),
+      energy_(std::make_unique<EnergyBalance>(structure.elements())) {}
 
 void DirectSolution::set_constraints(const LoadStep& step) {
   std::set<DofKey> wanted = structure_.constraints_of(step);
@@ -99,6 +63,7 @@ void DirectSolution::set_constraints(const LoadStep& step) {
   assembler_ = std::make_unique<Assembler>(structure_.elements(), *dofs_, ctx_,
                                            structure_.options().alpha_damping,
                                            structure_.options().beta_damping);
+  status_loop_ = std::make_unique<StatusLoop>(structure_.elements(), *assembler_);
   mass_all_ = assembler_->mass_matrix();
   frame_load_ = FrameAccelerationLoad(structure_.elements(), *dofs_, ctx_);
   if (solver_) {  // keep the work of the previous numbering in the counts
@@ -179,7 +144,7 @@ void DirectSolution::run(const std::vector<LoadStep>& steps, bool transient) {
   double t_start = 0.0;
   bool first = true;
   for (const LoadStep& step : steps) {
-    const StepTiming t = timing(step, t_start, transient);
+    const LoadStepTiming t = load_step_timing(step, t_start, transient);
     set_constraints(step);
     const bool dynamic = transient && step.time_integration;
     if (first) {
@@ -208,7 +173,7 @@ void DirectSolution::run(const std::vector<LoadStep>& steps, bool transient) {
     for (int k = 1; k <= t.n_substeps; ++k) {
       const double time = t.t_start + k * t.h;
       const LoadPoint at{&step, previous, static_cast<double>(k) / t.n_substeps};
-      solve_increment(at, time, step.number, k, dynamic);
+      solve_increment(at, StepLabel{step.number, k, time}, dynamic);
       ++stats_.n_substeps;
       const bool last = k == t.n_substeps;
       const int every = step.output.every;
@@ -218,173 +183,116 @@ void DirectSolution::run(const std::vector<LoadStep>& steps, bool transient) {
     previous = &step;
     t_start = t.t_end;
   }
-  if (transient) {
-    // Energy balance at the end (spec: kinetic, strain, gap work, dissipation vs external work);
-    // the remainder is the integrator's numerical dissipation (Houbolt damps high modes).
-    const double kinetic = 0.5 * v_.dot(mass_all_ * v_);
-    const double strain = internal_work_ - gap_work_;
-    const double balance = external_work_ - kinetic - strain - gap_work_ - damping_work_;
-    stats_.notes.push_back(fmt::format(
-        "energy at t = {:.6g}: kinetic {:.6g}, strain {:.6g}, gap work {:.6g}, damping {:.6g}, "
-        "external work {:.6g}, numerical dissipation {:.6g}",
-        time_, kinetic, strain, gap_work_, damping_work_, external_work_, balance));
-  }
+  if (transient) stats_.notes.push_back(energy_->summary(time_, 0.5 * v_.dot(mass_all_ * v_)));
   const SolverCounters now = solver_ ? solver_->counters() : SolverCounters{};
   stats_.n_analyses = retired_.analyses + now.analyses;
   stats_.n_factorizations = retired_.factorizations + now.factorizations;
   stats_.n_solves = retired_.solves + now.solves;
 }
 
-void DirectSolution::solve_increment(const LoadPoint& at, double time, int load_step, int substep,
-                                     bool dynamic) {
+int DirectSolution::n_unknowns() const {
+  return dofs_->n_free();
+}
+
+double DirectSolution::residual(const VectorXd& u, VectorXd& r, double& reference) {
+  Increment& inc = increment_;
+  const int nf = dofs_->n_free();
+  if (inc.dynamic) integrator_->kinematics(u, inc.v, inc.a);
+  assembler_->assemble(inc.coeff, u, inc.v, Assembler::Output{nullptr, &inc.f_int, &inc.f_damp});
+  if (inc.dynamic) {
+    const VectorXd inertia = mass_all_ * inc.a;
+    r = inc.fixed_terms - inc.weights.inertia * inertia -
+        inc.weights.stiffness * (inc.f_int + inc.f_damp);
+    reference =
+        std::max({inc.f_ext.head(nf).norm(), inertia.head(nf).norm(), inc.f_int.head(nf).norm()});
+  } else {
+    r = inc.f_ext - inc.f_int;
+    reference = std::max(inc.f_ext.head(nf).norm(), inc.f_int.head(nf).norm());
+  }
+  return r.head(nf).norm();
+}
+
+bool DirectSolution::update_status(const VectorXd& u) {
+  const int changed = status_loop_->update(u, increment_.label);
+  if (changed == 0) return false;
+  increment_.n_status_changes += changed;
+  factor_valid_ = false;
+  return true;
+}
+
+void DirectSolution::solve_increment(const LoadPoint& at, const StepLabel& label, bool dynamic) {
   const AnalysisOptions& options = structure_.options();
   const ConvergenceOptions& conv = options.convergence;
-  const int nf = dofs_->n_free();
   const int nc = dofs_->n_constrained();
-  const auto& elements = structure_.elements();
 
-  const VectorXd f_new = external_force(at);
+  Increment& inc = increment_;
+  inc.dynamic = dynamic;
+  inc.label = label;
+  inc.n_status_changes = 0;
+  inc.f_ext = external_force(at);
+  inc.v = v_;
+  inc.a = a_;
   VectorXd u = dynamic ? integrator_->predict() : u_;
   u.tail(nc) = prescribed_displacements(*dofs_, at).tail(nc);
-
-  const IntegrationCoefficients coeff =
-      dynamic ? integrator_->coefficients() : IntegrationCoefficients{1.0, 0.0, 0.0};
-  const ResidualWeights w = dynamic ? integrator_->weights() : ResidualWeights{};
-  if (factor_valid_ &&
-      (coeff.cK != factored_.cK || coeff.cC != factored_.cC || coeff.cM != factored_.cM))
+  inc.coeff = dynamic ? integrator_->coefficients() : IntegrationCoefficients{1.0, 0.0, 0.0};
+  inc.weights = dynamic ? integrator_->weights() : ResidualWeights{};
+  if (factor_valid_ && (inc.coeff.cK != factored_.cK || inc.coeff.cC != factored_.cC ||
+                        inc.coeff.cM != factored_.cM))
     factor_valid_ = false;
-  // Tangent varies with u under large deflection or stress stiffening: full Newton re-forms it
-  // every `reformulation` iterations (KRF / NROPT); otherwise only a status change re-forms it.
-  const bool tangent_varies =
-      assembler_->is_nonlinear() && (ctx_.large_deflection || ctx_.stress_stiffening);
-  const int reform_every = std::max(1, at.current->reformulation);
-
-  std::map<int, int> flips;  // element index -> status changes in this step
-  bool status_changed = false;
-  VectorXd v = v_, a = a_, f_int, f_damp, r;
-  double residual_norm = 0.0, reference = 0.0;
-  bool converged = false;
-  int iteration = 0;
-  VectorXd ue, inertia_new;
   // Terms of the residual fixed within the step: old-state forces and inertia (generalized-α).
-  VectorXd fixed_terms;
-  if (dynamic)
-    fixed_terms = w.external * f_new + (1.0 - w.external) * f_ext_old_ -
-                  (1.0 - w.inertia) * (mass_all_ * integrator_->a()) -
-                  (1.0 - w.stiffness) * (f_int_old_ + f_damp_old_);
-  for (; iteration <= conv.max_iterations; ++iteration) {
-    if (dynamic) integrator_->kinematics(u, v, a);
-    assembler_->assemble(coeff, u, v, Assembler::Output{nullptr, &f_int, &f_damp});
-    if (dynamic) {
-      inertia_new = mass_all_ * a;
-      r = fixed_terms - w.inertia * inertia_new - w.stiffness * (f_int + f_damp);
-      reference = std::max({f_new.head(nf).norm(), inertia_new.head(nf).norm(),
-                            f_int.head(nf).norm(), conv.force_minref});
-    } else {
-      r = f_new - f_int;
-      reference = std::max({f_new.head(nf).norm(), f_int.head(nf).norm(), conv.force_minref});
-    }
-    residual_norm = r.head(nf).norm();
-    if (!status_changed && residual_norm <= conv.force_tolerance * reference &&
-        (iteration > 0 || residual_norm == 0.0 || nf == 0)) {
-      converged = true;
-      break;
-    }
-    if (iteration == conv.max_iterations) break;
-    if (nf == 0) {
-      converged = true;
-      break;
-    }
-    const bool reform = !factor_valid_ || status_changed ||
-                        (tangent_varies && conv.full_newton && iteration % reform_every == 0);
-    if (reform) factorize(coeff, u);
-    const VectorXd du = solver_->solve(VectorXd(r.head(nf)));
-    u.head(nf) += du;
-    if (conv.displacement_tolerance &&
-        du.norm() > *conv.displacement_tolerance * std::max(u.head(nf).norm(), 1e-30)) {
-      status_changed = true;  // displacement criterion not met: force another iteration
-    } else {
-      status_changed = false;
-    }
-    // Status loop: gaps open/close, sliders stick/slide, judged on the new iterate.
-    for (std::size_t e = 0; e < elements.size(); ++e) {
-      if (!is_gap_[e]) continue;
-      assembler_->gather(e, u, ue);
-      if (elements[e]->update_status(ctx_, ue)) {
-        status_changed = true;
-        factor_valid_ = false;
-        ++stats_.n_status_changes;
-        if (++flips[static_cast<int>(e)] == kChatterLimit) {
-          elements[e]->freeze_status(true);
-          Log::warn(
-              "load step {} substep {} (t = {:g}): element {} changed status {} times; "
-              "status frozen for the rest of the step",
-              load_step, substep, time, elements[e]->id(), kChatterLimit);
-        }
-      }
-    }
+  if (dynamic) {
+    const ResidualWeights& w = inc.weights;
+    inc.fixed_terms = w.external * inc.f_ext + (1.0 - w.external) * f_ext_old_ -
+                      (1.0 - w.inertia) * (mass_all_ * integrator_->a()) -
+                      (1.0 - w.stiffness) * (f_int_old_ + f_damp_old_);
   }
-  stats_.n_iterations += iteration;
-  for (const auto& [e, count] : flips)
-    if (count >= kChatterLimit) elements[static_cast<std::size_t>(e)]->freeze_status(false);
 
-  if (!converged) {
-    std::string chatter;
-    for (const auto& [e, count] : flips)
-      if (count >= 2)
-        chatter += fmt::format(" {}({}x)", elements[static_cast<std::size_t>(e)]->id(), count);
+  // The tangent varies with u under large deflection or stress stiffening: full Newton re-forms
+  // it every `reformulation` iterations (KRF / NROPT); otherwise only a status change does.
+  NewtonOptions newton;
+  newton.max_iterations = conv.max_iterations;
+  newton.full_newton = conv.full_newton;
+  newton.reform_every = at.current->reformulation;
+  newton.tangent_varies =
+      assembler_->is_nonlinear() && (ctx_.large_deflection || ctx_.stress_stiffening);
+  status_loop_->begin_step();
+  const NewtonResult result = NewtonRaphson(newton, ConvergenceTest(conv)).solve(*this, u);
+  status_loop_->end_step();
+  stats_.n_iterations += result.iterations;
+  stats_.n_status_changes += inc.n_status_changes;
+
+  if (!result.converged) {
+    const std::string chatter = status_loop_->chatter_report();
     const std::string message = fmt::format(
         "load step {} substep {} (t = {:g}) did not converge in {} iterations: force residual "
         "{:.4e} > {:g} x reference {:.4e}{}",
-        load_step, substep, time, conv.max_iterations, residual_norm, conv.force_tolerance,
-        reference, chatter.empty() ? "" : "; elements that kept changing status:" + chatter);
+        label.load_step, label.substep, label.time, conv.max_iterations, result.residual_norm,
+        conv.force_tolerance, result.reference,
+        chatter.empty() ? "" : "; elements that kept changing status:" + chatter);
     if (!settings_.continue_on_nonconvergence) throw SolutionError(message);
     Log::warn("{} (accepted: --continue-on-nonconvergence)", message);
   }
 
   // Accept the step: commit element states, advance the integrator, energy bookkeeping.
-  for (std::size_t e = 0; e < elements.size(); ++e) {
-    if (!is_gap_[e]) continue;
-    assembler_->gather(e, u, ue);
-    elements[e]->commit(ue);
-  }
-  const VectorXd du = u - u_;
-  external_work_ += 0.5 * (f_new + f_ext_old_).dot(du);
-  damping_work_ += 0.5 * (f_damp + f_damp_old_).dot(du);
-  {
-    // Internal work split into gap elements and the rest (trapezoidal rule on each).
-    VectorXd ue_old, ue_new, f_now;
-    Eigen::MatrixXd k;
-    if (gap_force_old_.size() != elements.size())
-      gap_force_old_.assign(elements.size(), VectorXd());
-    for (std::size_t e = 0; e < elements.size(); ++e) {
-      if (!is_gap_[e]) continue;
-      assembler_->gather(e, u_, ue_old);
-      assembler_->gather(e, u, ue_new);
-      elements[e]->tangent(ctx_, ue_new, k, f_now);
-      VectorXd& f_old = gap_force_old_[e];
-      if (f_old.size() != f_now.size()) f_old = VectorXd::Zero(f_now.size());
-      gap_work_ += 0.5 * (f_old + f_now).dot(ue_new - ue_old);
-      f_old = f_now;
-    }
-    internal_work_ += 0.5 * (f_int + f_int_old_).dot(du);
-  }
+  status_loop_->commit(u);
+  energy_->add_step(*assembler_, u_, u,
+                    {f_ext_old_, inc.f_ext, f_int_old_, inc.f_int, f_damp_old_, inc.f_damp});
   if (dynamic) {
     integrator_->advance(u);
     u_ = integrator_->u();
     v_ = integrator_->v();
     a_ = integrator_->a();
-    reactions_ = f_int + f_damp + mass_all_ * a_ - f_new;
+    reactions_ = inc.f_int + inc.f_damp + mass_all_ * a_ - inc.f_ext;
   } else {
     u_ = u;
     v_.setZero();
     a_.setZero();
-    reactions_ = f_int - f_new;
+    reactions_ = inc.f_int - inc.f_ext;
   }
-  f_ext_old_ = f_new;
-  f_int_old_ = f_int;
-  f_damp_old_ = f_damp;
-  time_ = time;
+  f_ext_old_ = inc.f_ext;
+  f_int_old_ = inc.f_int;
+  f_damp_old_ = inc.f_damp;
+  time_ = label.time;
 }
 
 void DirectSolution::store(double time, int load_step, int substep, bool dynamic) {
@@ -399,71 +307,28 @@ void DirectSolution::store(double time, int load_step, int substep, bool dynamic
   }
   point.reaction = structure_.reaction_table(*dofs_, reactions_);
   point.element_results = structure_.element_results(*assembler_, u_, v_);
-  const double kinetic = 0.5 * v_.dot(mass_all_ * v_);
-  point.energy["kinetic"] = kinetic;
-  point.energy["strain"] = internal_work_ - gap_work_;
-  point.energy["external_work"] = external_work_;
-  point.energy["gap_work"] = gap_work_;
-  point.energy["dissipation"] = damping_work_;
+  point.energy = energy_->columns(0.5 * v_.dot(mass_all_ * v_));
   writer_.append(point);
   ++stats_.n_stored;
 }
 
 void DirectSolution::time_step_advice(double h) {
-  // Highest frequency that matters for the impact (thesis §III.C, eq. 5-3-1): each gap closed,
-  // acting between the bodies it joins, taken as rigid: w = sqrt(k (1/m_I + 1/m_J)), where m is
-  // the mass (in the gap direction) of the body the node belongs to - the nodes connected
-  // through non-gap elements - and a constrained node is ground (infinite mass).
-  const auto& elements = structure_.elements();
-  std::map<int, int> parent;
-  std::function<int(int)> find = [&](int n) {
-    auto it = parent.find(n);
-    if (it == parent.end() || it->second == n) return parent[n] = n;
-    return it->second = find(it->second);
-  };
-  for (std::size_t e = 0; e < elements.size(); ++e) {
-    if (is_gap_[e]) continue;
-    const auto& keys = elements[e]->dofs();
-    for (const auto& k : keys) parent[find(k.node)] = find(keys.front().node);
-  }
-  // Body mass per direction: row sums of M (exact for lumped, total mass for consistent).
-  std::map<std::pair<int, int>, double> body_mass;
-  const VectorXd row_sum = mass_all_ * VectorXd::Ones(dofs_->n_active());
-  for (int i = 0; i < dofs_->n_active(); ++i) {
-    const DofKey& key = dofs_->key(i);
-    body_mass[{find(key.node), static_cast<int>(key.dof)}] += row_sum(i);
-  }
-  double omega_max = 0.0;
-  int which = 0;
-  for (std::size_t e = 0; e < elements.size(); ++e) {
-    const double k = elements[e]->closed_stiffness();
-    if (!is_gap_[e] || k <= 0.0) continue;
-    double flexibility = 0.0;  // 1/m_I + 1/m_J
-    for (int index : dofs_->element_indices(e)) {
-      if (index >= dofs_->n_free()) continue;  // ground
-      const DofKey& key = dofs_->key(index);
-      const double m = body_mass[{find(key.node), static_cast<int>(key.dof)}];
-      if (m > 0.0) flexibility += 1.0 / m;
-    }
-    if (flexibility > 0.0 && std::sqrt(k * flexibility) > omega_max) {
-      omega_max = std::sqrt(k * flexibility);
-      which = elements[e]->id();
-    }
-  }
-  if (omega_max <= 0.0) return;
-  const double period = 2.0 * M_PI / omega_max;
+  const auto contact = highest_contact_frequency(structure_.elements(), *dofs_, mass_all_);
+  if (!contact) return;
+  const double period = contact->period();
+  const double hz = contact->omega / (2.0 * M_PI);
   if (!advice_given_) {
     stats_.notes.push_back(fmt::format(
         "time-step advice: highest contact frequency {:.4g} Hz (element {} closed), T = {:.4g} s, "
         "suggested dt = T/30 = {:.4g} s",
-        omega_max / (2.0 * M_PI), which, period, period / 30.0));
+        hz, contact->element, period, period / 30.0));
     advice_given_ = true;
   }
   if (h > period / 10.0)
     Log::warn(
         "dt = {:.4g} s is coarser than T/10 = {:.4g} s of the contact frequency {:.4g} Hz "
         "(element {} closed); suggested dt = T/30 = {:.4g} s",
-        h, period / 10.0, omega_max / (2.0 * M_PI), which, period / 30.0);
+        h, period / 10.0, hz, contact->element, period / 30.0);
 }
 
 }  // namespace impactfe

@@ -1,21 +1,27 @@
 #pragma once
-/// Static and full transient solution on all DOFs: load steps, substeps, Newton-Raphson
-/// equilibrium iterations wrapped in the element status loop (gap open/closed, slider), time
-/// integration through the TimeIntegrator interface (spec §10.3, §10.7; thesis eqs. 4-13..4-15).
+/// Static and full transient solution on all DOFs (spec §10.3, §10.7; thesis eqs. 4-13..4-15):
+/// load steps and substeps from the time axis, each increment solved by Newton-Raphson with the
+/// element status loop (src/nonlinear), time integration through the TimeIntegrator interface,
+/// energy balance and time-step advice as units of their own. The driver knows neither element
+/// kinds nor the time scheme.
 #include <memory>
 #include <optional>
+#include <set>
 #include <vector>
 
+#include "analysis/energy_balance.h"
 #include "analysis/run_statistics.h"
 #include "analysis/structure.h"
 #include "assembly/loads.h"
 #include "linalg/linear_solver.h"
+#include "nonlinear/newton_raphson.h"
+#include "nonlinear/status_loop.h"
 #include "results/results_file.h"
 #include "time/time_integrator.h"
 
 namespace impactfe {
 
-class DirectSolution {
+class DirectSolution : private NonlinearProblem {
  public:
   DirectSolution(Structure& structure, ResultsWriter& writer, const RunSettings& settings,
                  AnalysisStatistics& stats);
@@ -23,20 +29,21 @@ class DirectSolution {
   void run(const std::vector<LoadStep>& steps, bool transient);
 
  private:
-  struct StepTiming {
-    double t_start = 0.0;
-    double t_end = 0.0;
-    int n_substeps = 1;
-    double h = 0.0;
-  };
-  StepTiming timing(const LoadStep& step, double t_start, bool transient) const;
   void set_constraints(const LoadStep& step);
   void start_dynamics(const LoadPoint& at, double h);
   VectorXd external_force(const LoadPoint& at) const;
-  void solve_increment(const LoadPoint& at, double time, int load_step, int substep, bool dynamic);
+  void solve_increment(const LoadPoint& at, const StepLabel& label, bool dynamic);
   void factorize(const IntegrationCoefficients& coeff, const VectorXd& u);
   void store(double time, int load_step, int substep, bool dynamic);
   void time_step_advice(double h);
+
+  // ---- NonlinearProblem: the equations of the current increment ----------------------------
+  int n_unknowns() const override;
+  double residual(const VectorXd& u, VectorXd& r, double& reference) override;
+  bool tangent_stale() const override { return !factor_valid_; }
+  void factorize_tangent(const VectorXd& u) override { factorize(increment_.coeff, u); }
+  VectorXd solve(const VectorXd& r) override { return solver_->solve(r); }
+  bool update_status(const VectorXd& u) override;
 
   Structure& structure_;
   ResultsWriter& writer_;
@@ -46,6 +53,7 @@ class DirectSolution {
 
   std::unique_ptr<DofMap> dofs_;
   std::unique_ptr<Assembler> assembler_;
+  std::unique_ptr<StatusLoop> status_loop_;
   std::unique_ptr<LinearSolver> solver_;
   SolverCounters retired_;  // counts of solvers replaced when the constraint set changed
   std::set<DofKey> constrained_;
@@ -61,16 +69,25 @@ class DirectSolution {
   VectorXd reactions_;
   double time_ = 0.0;
 
+  // The increment being solved: integration coefficients, residual weights, the load at its
+  // end, the residual terms fixed within it, and the latest iterate's forces.
+  struct Increment {
+    bool dynamic = false;
+    IntegrationCoefficients coeff;
+    ResidualWeights weights;
+    VectorXd f_ext;
+    VectorXd fixed_terms;  // dynamic: old-state forces and inertia (generalized-α form)
+    VectorXd v, a, f_int, f_damp;
+    StepLabel label;
+    int n_status_changes = 0;
+  } increment_;
+
   // Factorization bookkeeping: refactor only when the effective matrix can have changed.
   bool factor_valid_ = false;
   IntegrationCoefficients factored_{};
 
-  // Energy balance (spec: kinetic, strain, external work, gap work, dissipation).
-  double external_work_ = 0.0, internal_work_ = 0.0, gap_work_ = 0.0, damping_work_ = 0.0;
-  std::vector<bool> is_gap_;
-  std::vector<VectorXd> gap_force_old_;
-  bool advice_given_ = false;  // the time-step advice note is given once per analysis  // gap
-                               // element forces at the last converged step
+  std::unique_ptr<EnergyBalance> energy_;
+  bool advice_given_ = false;  // the time-step advice note is given once per analysis
 };
 
 }  // namespace impactfe

@@ -54,7 +54,7 @@ class CombinationGap final : public Element {
   void revert() override;
   void freeze_status(bool frozen) override { frozen_ = frozen; }
   GapStatus status() const override { return trial_.status; }
-  double closed_stiffness() const override { return data_.k1 + data_.k2; }
+  double contact_stiffness() const override { return data_.k1 + data_.k2; }
 
   const std::vector<std::string>& result_names() const override;
   void results(const ElementContext& ctx, const Eigen::VectorXd& u, const Eigen::VectorXd& v,

@@ -75,7 +75,7 @@ class Element {
   virtual void freeze_status(bool frozen) {}
   virtual GapStatus status() const { return GapStatus::Closed; }
   /// Stiffness of the closed contact (COMBIN40: K1 + K2), for time-step advice; 0 otherwise.
-  virtual double closed_stiffness() const { return 0.0; }
+  virtual double contact_stiffness() const { return 0.0; }
 
   // ---- results ------------------------------------------------------------------------------
   /// Names of the element results, e.g. {"FORC", "SAXL", "EPEL"} for a spar.

@@ -1,0 +1,55 @@
+#include "analysis/energy_balance.h"
+
+#include <fmt/format.h>
+
+namespace impactfe {
+
+EnergyBalance::EnergyBalance(const std::vector<std::unique_ptr<Element>>& elements)
+    : elements_(elements) {
+  for (std::size_t e = 0; e < elements_.size(); ++e)
+    if (elements_[e]->has_status()) status_elements_.push_back(e);
+  status_force_old_.resize(status_elements_.size());
+}
+
+void EnergyBalance::add_step(const Assembler& assembler, const VectorXd& u_old,
+                             const VectorXd& u_new, const StepForces& f) {
+  const VectorXd du = u_new - u_old;
+  external_work_ += 0.5 * (f.external_new + f.external_old).dot(du);
+  damping_work_ += 0.5 * (f.damping_new + f.damping_old).dot(du);
+  // Work on the status elements, element by element (trapezoidal rule on each).
+  VectorXd ue_old, ue_new, f_now;
+  Eigen::MatrixXd k;
+  for (std::size_t s = 0; s < status_elements_.size(); ++s) {
+    const std::size_t e = status_elements_[s];
+    assembler.gather(e, u_old, ue_old);
+    assembler.gather(e, u_new, ue_new);
+    elements_[e]->tangent(assembler.context(), ue_new, k, f_now);
+    VectorXd& f_old = status_force_old_[s];
+    if (f_old.size() != f_now.size()) f_old = VectorXd::Zero(f_now.size());
+    gap_work_ += 0.5 * (f_old + f_now).dot(ue_new - ue_old);
+    f_old = f_now;
+  }
+  internal_work_ += 0.5 * (f.internal_new + f.internal_old).dot(du);
+}
+
+std::map<std::string, double> EnergyBalance::columns(double kinetic) const {
+  return {{"kinetic", kinetic},
+          {"strain", strain_energy()},
+          {"external_work", external_work_},
+          {"gap_work", gap_work_},
+          {"dissipation", damping_work_}};
+}
+
+double EnergyBalance::numerical_dissipation(double kinetic) const {
+  return external_work_ - kinetic - strain_energy() - gap_work_ - damping_work_;
+}
+
+std::string EnergyBalance::summary(double time, double kinetic) const {
+  return fmt::format(
+      "energy at t = {:.6g}: kinetic {:.6g}, strain {:.6g}, gap work {:.6g}, damping {:.6g}, "
+      "external work {:.6g}, numerical dissipation {:.6g}",
+      time, kinetic, strain_energy(), gap_work_, damping_work_, external_work_,
+      numerical_dissipation(kinetic));
+}
+
+}  // namespace impactfe

@@ -1,0 +1,54 @@
+#pragma once
+/// Work and energy bookkeeping of a static or transient run on all DOFs: external work, internal
+/// (strain) work, the work done on status elements (gaps: energy stored in or dissipated by the
+/// contact springs), damping dissipation, each by the trapezoidal rule over the converged steps;
+/// kinetic energy from M v. The remainder external − kinetic − strain − gap − damping is the time
+/// integrator's numerical dissipation (Houbolt damps high modes; Bathe §9.4).
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "assembly/assembler.h"
+#include "elements/element.h"
+
+namespace impactfe {
+
+class EnergyBalance {
+ public:
+  explicit EnergyBalance(const std::vector<std::unique_ptr<Element>>& elements);
+
+  /// Forces at the start and the end of one converged step (over all active DOFs).
+  struct StepForces {
+    const VectorXd& external_old;
+    const VectorXd& external_new;
+    const VectorXd& internal_old;
+    const VectorXd& internal_new;
+    const VectorXd& damping_old;
+    const VectorXd& damping_new;
+  };
+  /// Adds the work of a converged step from u_old to u_new (same DOF numbering).
+  void add_step(const Assembler& assembler, const VectorXd& u_old, const VectorXd& u_new,
+                const StepForces& f);
+
+  double external_work() const { return external_work_; }
+  double gap_work() const { return gap_work_; }
+  double damping_work() const { return damping_work_; }
+  /// Internal work minus the work on status elements.
+  double strain_energy() const { return internal_work_ - gap_work_; }
+  /// The results-file energy columns ("kinetic", "strain", "external_work", "gap_work",
+  /// "dissipation") for the given kinetic energy.
+  std::map<std::string, double> columns(double kinetic) const;
+  /// What was not accounted for: external − kinetic − strain − gap − damping.
+  double numerical_dissipation(double kinetic) const;
+  /// One line for the run summary.
+  std::string summary(double time, double kinetic) const;
+
+ private:
+  const std::vector<std::unique_ptr<Element>>& elements_;
+  std::vector<std::size_t> status_elements_;
+  std::vector<VectorXd> status_force_old_;  // element forces of the status elements, last step
+  double external_work_ = 0.0, internal_work_ = 0.0, gap_work_ = 0.0, damping_work_ = 0.0;
+};
+
+}  // namespace impactfe

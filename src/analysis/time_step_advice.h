@@ -1,0 +1,29 @@
+#pragma once
+/// Time-step advice for impacts (thesis §III.C, eq. 5-3-1): the highest frequency that matters
+/// is that of a contact while it is closed, acting between the bodies it joins, taken as rigid:
+/// ω = √(k (1/m_I + 1/m_J)), with k the element's contact stiffness and m the mass (in the
+/// contact direction) of the body each end belongs to — the nodes connected through elements
+/// without a status — and a constrained end as ground. Δt = T/30 resolves it; Δt > T/10 does not.
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "assembly/dof_map.h"
+#include "elements/element.h"
+#include "linalg/sparse.h"
+
+namespace impactfe {
+
+struct ContactFrequency {
+  double omega = 0.0;  // rad per unit time
+  int element = 0;     // user id of the element that sets it
+  double period() const;
+};
+
+/// The highest contact frequency of the model, or nullopt when no element has a contact
+/// stiffness. `mass_all`: mass matrix over the active DOFs of `dofs`.
+std::optional<ContactFrequency> highest_contact_frequency(
+    const std::vector<std::unique_ptr<Element>>& elements, const DofMap& dofs,
+    const SparseMatrix& mass_all);
+
+}  // namespace impactfe

@@ -1,0 +1,57 @@
+#include "nonlinear/status_loop.h"
+
+#include <fmt/format.h>
+
+#include "core/log.h"
+
+namespace impactfe {
+
+StatusLoop::StatusLoop(const std::vector<std::unique_ptr<Element>>& elements,
+                       const Assembler& assembler, int chatter_limit)
+    : elements_(elements), assembler_(assembler), chatter_limit_(chatter_limit) {
+  for (std::size_t e = 0; e < elements_.size(); ++e)
+    if (elements_[e]->has_status()) members_.push_back(e);
+}
+
+void StatusLoop::begin_step() {
+  flips_.clear();
+}
+
+int StatusLoop::update(const VectorXd& u, const StepLabel& where) {
+  int changed = 0;
+  for (std::size_t e : members_) {
+    assembler_.gather(e, u, ue_);
+    if (!elements_[e]->update_status(assembler_.context(), ue_)) continue;
+    ++changed;
+    ++n_changes_;
+    if (++flips_[e] == chatter_limit_) {
+      elements_[e]->freeze_status(true);
+      Log::warn(
+          "load step {} substep {} (t = {:g}): element {} changed status {} times; status frozen "
+          "for the rest of the step",
+          where.load_step, where.substep, where.time, elements_[e]->id(), chatter_limit_);
+    }
+  }
+  return changed;
+}
+
+void StatusLoop::end_step() {
+  for (const auto& [e, count] : flips_)
+    if (count >= chatter_limit_) elements_[e]->freeze_status(false);
+}
+
+void StatusLoop::commit(const VectorXd& u) {
+  for (std::size_t e : members_) {
+    assembler_.gather(e, u, ue_);
+    elements_[e]->commit(ue_);
+  }
+}
+
+std::string StatusLoop::chatter_report() const {
+  std::string out;
+  for (const auto& [e, count] : flips_)
+    if (count >= 2) out += fmt::format(" {}({}x)", elements_[e]->id(), count);
+  return out;
+}
+
+}  // namespace impactfe
