@@ -1,0 +1,189 @@
+// Newton-Raphson of the nonlinear layer (src/nonlinear/newton_raphson.h): quadratic convergence
+// of full Newton on a smooth problem (Bathe §8.4.1), modified Newton on a linear problem in one
+// iteration, the status hook, the line-search hook and an honest non-convergence report.
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+
+#include "nonlinear/newton_raphson.h"
+
+namespace impactfe {
+namespace {
+
+/// Two hardening springs in series, f = (f1, f2):
+///   r(u) = f − [k1 u1 + c u1³ − k2 (u2 − u1);  k2 (u2 − u1) + c (u2 − u1)³]   (smooth, convex).
+/// The trailing entry of u is a prescribed DOF that must stay untouched.
+class HardeningChain final : public NonlinearProblem {
+ public:
+  double k1 = 100.0, k2 = 50.0, c = 50.0;
+  Eigen::Vector2d f{30.0, 20.0};
+  bool linear = false;  // c = 0: a linear problem
+  int factorizations = 0, solves = 0, status_calls = 0;
+  int status_changes_left = 0;  // update_status reports a change this many times
+
+  int n_unknowns() const override { return 2; }
+  double residual(const VectorXd& u, VectorXd& r, double& reference) override {
+    const double cc = linear ? 0.0 : c;
+    const double d = u(1) - u(0);
+    Eigen::Vector2d fint(k1 * u(0) + cc * u(0) * u(0) * u(0) - k2 * d - cc * d * d * d,
+                         k2 * d + cc * d * d * d);
+    r = VectorXd::Zero(3);
+    r.head(2) = f - fint;
+    reference = std::max(f.norm(), fint.norm());
+    return r.head(2).norm();
+  }
+  bool tangent_stale() const override { return stale_; }
+  void factorize_tangent(const VectorXd& u) override {
+    const double cc = linear ? 0.0 : c;
+    const double d = u(1) - u(0);
+    const double kd = k2 + 3.0 * cc * d * d;
+    Eigen::Matrix2d k;
+    k << k1 + 3.0 * cc * u(0) * u(0) + kd, -kd, -kd, kd;
+    ldlt_.compute(k);
+    stale_ = false;
+    ++factorizations;
+  }
+  VectorXd solve(const VectorXd& r) override {
+    ++solves;
+    return ldlt_.solve(r);
+  }
+  bool update_status(const VectorXd&) override {
+    ++status_calls;
+    if (status_changes_left == 0) return false;
+    --status_changes_left;
+    stale_ = true;
+    return true;
+  }
+
+ private:
+  bool stale_ = true;
+  Eigen::LDLT<Eigen::Matrix2d> ldlt_;
+};
+
+ConvergenceOptions tight() {
+  ConvergenceOptions o;
+  o.force_tolerance = 1e-12;
+  o.force_minref = 1e-30;
+  o.max_iterations = 30;
+  return o;
+}
+
+TEST(NewtonRaphson, FullNewtonConvergesQuadraticallyOnASmoothProblem) {
+  HardeningChain p;
+  NewtonOptions options;
+  options.max_iterations = 30;
+  VectorXd u = VectorXd::Zero(3);
+  u(2) = 0.123;  // prescribed, not an unknown
+  const NewtonResult result = NewtonRaphson(options, ConvergenceTest(tight())).solve(p, u);
+  ASSERT_TRUE(result.converged);
+  EXPECT_EQ(u(2), 0.123);
+  EXPECT_EQ(p.factorizations, result.iterations);  // full Newton: a tangent per iteration
+  EXPECT_LE(result.iterations, 12);
+  // Quadratic convergence: once in the basin, r_{k+1} <= C r_k^2 with a moderate C; the number
+  // of correct digits doubles. Checked on the last iterations before round-off.
+  const auto& h = result.history;
+  int quadratic_steps = 0;
+  for (std::size_t k = 1; k + 1 < h.size(); ++k) {
+    if (h[k] > 1e-2 || h[k + 1] < 1e-11) continue;
+    const double rate = h[k + 1] / (h[k] * h[k]);
+    EXPECT_LT(rate, 1.0) << "iteration " << k;
+    ++quadratic_steps;
+  }
+  EXPECT_GE(quadratic_steps, 1);
+  // The solution satisfies equilibrium.
+  VectorXd r;
+  double ref = 0.0;
+  EXPECT_LT(p.residual(u, r, ref), 1e-10);
+}
+
+TEST(NewtonRaphson, ModifiedNewtonSolvesALinearProblemInOneIteration) {
+  HardeningChain p;
+  p.linear = true;
+  NewtonOptions options;
+  options.full_newton = false;
+  VectorXd u = VectorXd::Zero(3);
+  const NewtonResult result = NewtonRaphson(options, ConvergenceTest(tight())).solve(p, u);
+  ASSERT_TRUE(result.converged);
+  EXPECT_EQ(result.iterations, 1);
+  EXPECT_EQ(p.factorizations, 1);
+  EXPECT_EQ(p.solves, 1);
+  // Exact: u1 = (f1 + f2)/k1, u2 = u1 + f2/k2.
+  EXPECT_NEAR(u(0), 50.0 / 100.0, 1e-14);
+  EXPECT_NEAR(u(1), 0.5 + 20.0 / 50.0, 1e-14);
+}
+
+TEST(NewtonRaphson, ModifiedNewtonKeepsOneTangentOnANonlinearProblem) {
+  HardeningChain p;
+  NewtonOptions options;
+  options.full_newton = false;
+  options.max_iterations = 200;
+  ConvergenceOptions conv = tight();
+  conv.force_tolerance = 1e-8;
+  conv.max_iterations = 200;
+  VectorXd u = VectorXd::Zero(3);
+  const NewtonResult result = NewtonRaphson(options, ConvergenceTest(conv)).solve(p, u);
+  ASSERT_TRUE(result.converged);
+  EXPECT_EQ(p.factorizations, 1);   // the initial tangent only
+  EXPECT_GT(result.iterations, 5);  // linear, not quadratic, convergence
+}
+
+TEST(NewtonRaphson, AStatusChangeForcesAnotherIterationAndANewTangent) {
+  HardeningChain p;
+  p.linear = true;
+  p.status_changes_left = 2;
+  NewtonOptions options;
+  options.full_newton = false;
+  VectorXd u = VectorXd::Zero(3);
+  const NewtonResult result = NewtonRaphson(options, ConvergenceTest(tight())).solve(p, u);
+  ASSERT_TRUE(result.converged);
+  // Balanced after the first correction, but two status changes keep the step open.
+  EXPECT_EQ(result.iterations, 3);
+  EXPECT_EQ(p.factorizations, 3);
+}
+
+TEST(NewtonRaphson, ReportsNonConvergenceWithTheLastResidual) {
+  HardeningChain p;
+  p.f *= 50.0;  // far from the start: many iterations needed
+  NewtonOptions options;
+  options.max_iterations = 2;
+  VectorXd u = VectorXd::Zero(3);
+  const NewtonResult result = NewtonRaphson(options, ConvergenceTest(tight())).solve(p, u);
+  EXPECT_FALSE(result.converged);
+  EXPECT_EQ(result.iterations, 2);
+  EXPECT_EQ(result.history.size(), 3u);
+  EXPECT_GT(result.residual_norm, 1e-12 * result.reference);
+}
+
+TEST(NewtonRaphson, LineSearchScalesTheCorrection) {
+  HardeningChain p;
+  p.linear = true;
+  NewtonOptions options;
+  options.full_newton = false;
+  options.max_iterations = 100;
+  NewtonRaphson newton(options, ConvergenceTest(tight()));
+  int calls = 0;
+  newton.set_line_search([&](const VectorXd&, const VectorXd&, double) {
+    ++calls;
+    return 0.5;  // half steps: the error halves each iteration
+  });
+  VectorXd u = VectorXd::Zero(3);
+  const NewtonResult result = newton.solve(p, u);
+  ASSERT_TRUE(result.converged);
+  EXPECT_EQ(calls, result.iterations);
+  EXPECT_GT(result.iterations, 30);
+  for (std::size_t k = 1; k + 1 < result.history.size() && k < 10; ++k)
+    EXPECT_NEAR(result.history[k + 1] / result.history[k], 0.5, 1e-9);
+}
+
+TEST(NewtonRaphson, APredictorInBalanceIsAcceptedWithoutIterating) {
+  HardeningChain p;
+  p.f.setZero();
+  VectorXd u = VectorXd::Zero(3);
+  const NewtonResult result = NewtonRaphson(NewtonOptions{}, ConvergenceTest(tight())).solve(p, u);
+  EXPECT_TRUE(result.converged);
+  EXPECT_EQ(result.iterations, 0);
+  EXPECT_EQ(p.factorizations, 0);
+}
+
+}  // namespace
+}  // namespace impactfe
