@@ -43,6 +43,10 @@ void run_msup_transient(Structure& structure, const AnalysisRequest& request, Re
 void run_expansion_pass(const ExpansionPassRequest& request, ReducedSolutionState* state,
                         ResultsWriter& writer, const RunSettings& settings,
                         AnalysisStatistics& stats);
+/// Superelement expansion pass (EXPASS + SEEXP; spec §10.6): the use pass's master histories
+/// expanded to the whole substructure, appended to `writer` as one Expansion analysis.
+void run_superelement_expansion(const ExpansionPassRequest& request, ResultsWriter& writer,
+                                AnalysisStatistics& stats);
 /// Superelement generation (KAN,7 / ANTYPE,SUBSTR; spec §10.6): writes <jobname>.sub.h5.
 void run_substructure_generation(Structure& structure, const AnalysisRequest& request,
                                  ResultsWriter& writer, const RunSettings& settings,

@@ -155,6 +155,7 @@ void DirectSolution::run(const std::vector<LoadStep>& steps, bool transient) {
             prescribed_displacements(*dofs_, at0).tail(dofs_->n_constrained());
         if (dynamic) start_dynamics(at0, t.h);
         reactions_ = VectorXd::Zero(dofs_->n_active());
+        acel_ = frame_acceleration(at0);
         store(t_start, 0, 0, dynamic);
       }
       first = false;
@@ -292,6 +293,7 @@ void DirectSolution::solve_increment(const LoadPoint& at, const StepLabel& label
   f_ext_old_ = inc.f_ext;
   f_int_old_ = inc.f_int;
   f_damp_old_ = inc.f_damp;
+  acel_ = frame_acceleration(at);
   time_ = label.time;
 }
 
@@ -308,6 +310,7 @@ void DirectSolution::store(double time, int load_step, int substep, bool dynamic
   point.reaction = structure_.reaction_table(*dofs_, reactions_);
   point.element_results = structure_.element_results(*assembler_, u_, v_);
   point.energy = energy_->columns(0.5 * v_.dot(mass_all_ * v_));
+  point.frame_acceleration = acel_;
   writer_.append(point);
   ++stats_.n_stored;
 }

@@ -67,6 +67,7 @@ class DirectSolution : private NonlinearProblem {
   VectorXd u_, v_, a_;
   VectorXd f_ext_old_, f_int_old_, f_damp_old_;
   VectorXd reactions_;
+  Vec3 acel_ = Vec3::Zero();  // frame acceleration of the last converged step
   double time_ = 0.0;
 
   // The increment being solved: integration coefficients, residual weights, the load at its

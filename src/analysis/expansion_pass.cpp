@@ -27,7 +27,9 @@ void run_expansion_pass(const ExpansionPassRequest& request, ReducedSolutionStat
                                     state->method == "msup" ? "mode-superposition" : "reduced"));
   std::vector<ExpansionRequest> requests = request.requests;
   if (requests.empty()) requests.push_back({1, 0.0, state->points.back().time, false});
-  const std::vector<int> selected = expansion_points(requests, state->points);
+  std::vector<double> times;
+  for (const ReducedPoint& p : state->points) times.push_back(p.time);
+  const std::vector<int> selected = expansion_points(requests, times);
 
   const DofMap& dofs = *state->dofs;
   const int nf = dofs.n_free();

@@ -3,6 +3,7 @@
 #include <chrono>
 
 #include "analysis/analyses.h"
+#include "analysis/superelement_expansion.h"
 #include "core/log.h"
 
 namespace impactfe {
@@ -42,6 +43,24 @@ void run_analysis(const Job::Step& step, const std::string& jobname, const RunSe
 
 }  // namespace
 
+Model results_model(const Job& job) {
+  for (const Job::Step& step : job.steps) {
+    if (!step.expansion || !step.expansion->superelement) continue;
+    const SuperelementExpansionSource& source = *step.expansion->superelement;
+    if (job.steps.size() != 1)
+      throw InputError(step.expansion->where,
+                       "a superelement expansion pass (EXPASS + SEEXP) must be the only solution "
+                       "of its job (MAPDL runs it as a job of its own: /CLEAR, /FILNAME,Sename)");
+    const SuperelementData data = read_superelement(superelement_file_of(source), source.where);
+    bool lumped = false, sstif = false;
+    Model model = deserialize_generation_model(data.model_text, lumped, sstif);
+    model.title = data.title;
+    model.jobname = job.model.jobname;
+    return model;
+  }
+  return job.model;
+}
+
 void run_job(const Job& job, const std::string& jobname, const RunSettings& settings,
              ResultsWriter& writer, RunStatistics& stats) {
   std::unique_ptr<ReducedSolutionState> reduced_state;
@@ -52,6 +71,8 @@ void run_job(const Job& job, const std::string& jobname, const RunSettings& sett
     try {
       if (step.analysis) {
         run_analysis(step, jobname, settings, writer, current, reduced_state);
+      } else if (step.expansion && step.expansion->superelement) {
+        run_superelement_expansion(*step.expansion, writer, current);
       } else if (step.expansion) {
         current.description = "expansion pass";
         run_expansion_pass(*step.expansion, reduced_state.get(), writer, settings, current);

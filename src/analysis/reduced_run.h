@@ -45,11 +45,6 @@ class ReducedRunState : public ReducedSolutionState {
   VectorXd to_active(const VectorXd& free) const;
 };
 
-/// Computed points selected by expansion requests (NUMEXP/NSTRES spacing in (t_begin, t_end],
-/// each snapped to the nearest computed time, ascending, duplicates removed; spec §3.26).
-std::vector<int> expansion_points(const std::vector<ExpansionRequest>& requests,
-                                  const std::vector<ReducedPoint>& points);
-
 /// Rebuilds the structure for the state and the DOF numbering of a reduction: constraints of
 /// load step 1, plus free DOFs with a zero stiffness diagonal that are not in `keep` (spec U24:
 /// they carry mass but nothing restrains them — dropped as constrained slaves, logged).

@@ -20,7 +20,6 @@ namespace impactfe {
 struct RunSettings {
   bool continue_on_nonconvergence = false;
   std::string superelement_file;  // --se
-  int threads = 1;
 };
 
 class Structure {

@@ -47,13 +47,19 @@ class SuperelementExpansion {
   std::vector<int> master_index_, slave_index_;
 };
 
-/// Expansion of a use pass stored in a results file (modern SEEXP + EXPASS): reads the master
-/// histories (U, V, A at every stored time point of the static/transient analyses) of
-/// `use_results`, expands them with the superelement file `sub_file` and writes `out_results`
-/// (model section = the generation model) with one Expansion analysis. `acel`: constant frame
-/// acceleration of the use pass for the static correction (zero: none). Returns the number of
-/// time points written.
-int expand_superelement_results(const std::string& sub_file, const std::string& use_results,
-                                const std::string& out_results, const Vec3& acel = Vec3::Zero());
+/// Where the files of a superelement expansion pass are: SEEXP Sename → <Sename>.sub.h5 (or the
+/// name as given), Usefil → <Usefil>.h5 (or the name as given), in the working directory.
+/// InputError at the SEEXP command when one is missing.
+std::string superelement_file_of(const SuperelementExpansionSource& source);
+std::string use_results_file_of(const SuperelementExpansionSource& source);
+
+/// The superelement expansion pass (EXPASS + SEEXP; spec §10.6 "Expansion"): reads the master
+/// histories (U, V, A) of the use pass's static and transient analyses, selects the time points
+/// the requests ask for (NUMEXP / EXPSOL), and appends one Expansion analysis of the generation
+/// model to `writer` (whose model section must be the generation model: see results_model()).
+/// The static correction (KeyStat) adds the slave response to the frame acceleration the use
+/// pass recorded. Returns the number of time points written.
+int expand_superelement_use_pass(const SuperelementExpansion& expansion, const ResultsReader& use,
+                                 const ExpansionPassRequest& request, ResultsWriter& writer);
 
 }  // namespace impactfe

@@ -24,6 +24,15 @@ namespace {
 constexpr int kExitOk = 0;
 constexpr int kExitInput = 1;
 constexpr int kExitSolution = 2;
+constexpr int kExitInternal = 3;
+
+/// A broken internal invariant: the user's input is not to blame.
+int report_internal_error(const InternalError& e) {
+  std::cerr << "error: " << e.what()
+            << "\nThis is a bug in impactfe, not in your input; please report it with the deck.\n";
+  Log::write(LogLevel::Error, e.what());
+  return kExitInternal;
+}
 
 struct RunArgs {
   std::string deck;
@@ -32,7 +41,6 @@ struct RunArgs {
   int threads = 0;  // 0: all cores
   bool skip_unknown = false;
   std::string dialect = "auto";
-  std::string results;
   std::string superelement;
   bool continue_on_nonconvergence = false;
 };
@@ -91,7 +99,6 @@ int run_command(const RunArgs& args) {
   RunSettings settings;
   settings.continue_on_nonconvergence = args.continue_on_nonconvergence;
   settings.superelement_file = args.superelement;
-  settings.threads = args.threads;
 
   RunStatistics stats;
   if (job.steps.empty()) {
@@ -105,13 +112,15 @@ int run_command(const RunArgs& args) {
   }
   std::unique_ptr<ResultsWriter> writer;
   try {
-    writer = std::make_unique<ResultsWriter>(jobname + ".h5", job.model);
+    writer = std::make_unique<ResultsWriter>(jobname + ".h5", results_model(job));
     run_job(job, jobname, settings, *writer, stats);
   } catch (const SolutionError& e) {
     std::cerr << "error: " << e.what() << "\n";
     std::cerr << fmt::format("results up to the failure are kept in {}.h5\n", jobname);
     Log::write(LogLevel::Error, e.what());
     return kExitSolution;
+  } catch (const InternalError& e) {
+    return report_internal_error(e);
   } catch (const std::exception& e) {
     std::cerr << "error: " << e.what() << "\n";
     Log::write(LogLevel::Error, e.what());
@@ -139,7 +148,6 @@ int main(int argc, char** argv) {
   run_cmd->add_flag("--skip-unknown", run.skip_unknown, "warn and skip unknown commands");
   run_cmd->add_option("--dialect", run.dialect, "4x|modern|auto")
       ->check(CLI::IsMember({"4x", "modern", "auto"}));
-  run_cmd->add_option("--results", run.results, "results file for post-only decks");
   run_cmd->add_option("--se", run.superelement, "superelement file for MATRIX50 elements");
   run_cmd->add_flag("--continue-on-nonconvergence", run.continue_on_nonconvergence,
                     "accept non-converged steps with a warning");
@@ -211,6 +219,8 @@ int main(int argc, char** argv) {
       std::cout << houbolt_spectrum_csv(ratios, xi);
       return kExitOk;
     }
+  } catch (const InternalError& e) {
+    return report_internal_error(e);
   } catch (const std::exception& e) {
     std::cerr << "error: " << e.what() << "\n";
     return kExitInput;

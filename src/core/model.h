@@ -106,7 +106,6 @@ struct LoadStep {
   std::optional<double> dt;              // DTIME / DELTIM
   std::optional<int> n_substeps;         // ITER NITTER / NSUBST
   OutputFrequency output;                // ITER NPOST / OUTRES
-  int print_every = 0;                   // ITER NPRINT / OUTPR
   bool stepped = false;                  // KBC: false = ramped, true = stepped
   int reformulation = 1;                 // KRF / NROPT: re-form tangent every n iterations
   bool time_integration = true;          // KAY(5) / TIMINT
@@ -193,10 +192,19 @@ struct AnalysisRequest {
   SourceLocation where;  // the command that started the solution (/INPUT,27, SOLVE, ...)
 };
 
-/// Expansion ("stress") pass of the preceding reduced/MSUP analysis (/STRESS ... END, EXPASS).
+/// SEEXP: the superelement to expand and the use pass whose master results drive it.
+struct SuperelementExpansionSource {
+  std::string name;      // Sename: the superelement file <Sename>.sub.h5 (or the name as given)
+  std::string use_file;  // Usefil: the use pass results <Usefil>.h5 (or the name as given)
+  SourceLocation where;  // the SEEXP command
+};
+
+/// Expansion ("stress") pass of the preceding reduced/MSUP analysis (/STRESS ... END, EXPASS), or
+/// of a superelement's use pass (EXPASS + SEEXP).
 struct ExpansionPassRequest {
   std::vector<ExpansionRequest> requests;
   bool static_correction = true;  // EXPASS KeyStat
+  std::optional<SuperelementExpansionSource> superelement;
   SourceLocation where;
 };
 

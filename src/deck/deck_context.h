@@ -149,7 +149,8 @@ class DeckReader {
   std::map<int, LoadStep> lswrite_steps;
   bool expass = false;
   ExpansionPassRequest expansion;
-  std::optional<double> last_solved_time;  // end time of the last solved load step
+  std::optional<SuperelementExpansionSource> seexp;  // SEEXP of the current expansion pass
+  std::optional<double> last_solved_time;            // end time of the last solved load step
 
   // MDAMP memory.
   int mdamp_next = 1;
@@ -180,6 +181,10 @@ void store_post_command(DeckReader& r, const Command& c);
 /// (APDL_SUBSET §1.11); the range fields it consumes are set to 0. ALL gives all six DOFs.
 std::vector<Dof> parse_dof_labels(DeckReader& r, const Command& c, int lab_field, int& end_field,
                                   int& inc_field, int extra_first, int extra_last);
+
+/// Closes a 4x /STRESS block (END, FINISH or the end of the deck): its requests become an
+/// expansion pass of the preceding reduced transient.
+void close_stress_block(DeckReader& r, const SourceLocation& where);
 
 /// 4x `/INPUT,27`: appends the analysis frozen by AFWRITE as a Job::Step.
 void run_frozen_analysis(DeckReader& r, const Command& c);

@@ -523,10 +523,7 @@ void DeckReader::dispatch(const Command& c, const CommandSpec& spec) {
 Job DeckReader::finish() {
   if (processor == kStress && !stress_requests.empty()) {
     Log::warn("/STRESS block not closed by END at the end of the deck; expansion requests kept");
-    Job::Step step;
-    step.expansion = ExpansionPassRequest{stress_requests, true, stress_where};
-    step.model_snapshot = model;
-    job.steps.push_back(std::move(step));
+    close_stress_block(*this, stress_where);
   }
   return std::move(job);
 }

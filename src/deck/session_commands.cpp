@@ -25,11 +25,7 @@ void cmd_post(DeckReader& r, const Command& c) {
 void cmd_finish(DeckReader& r, const Command& c) {
   if (r.processor == kStress && !r.stress_requests.empty()) {
     r.warn(c, "/STRESS block closed by FINISH without END; expansion requests kept");
-    Job::Step step;
-    step.expansion = ExpansionPassRequest{r.stress_requests, true, r.stress_where};
-    step.model_snapshot = r.model;
-    r.job.steps.push_back(std::move(step));
-    r.stress_requests.clear();
+    close_stress_block(r, r.stress_where);
   }
   if (r.processor & kPost) store_post_command(r, c);
   r.processor = kBegin;

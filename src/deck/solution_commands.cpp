@@ -4,12 +4,22 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "deck/deck_context.h"
 
 namespace impactfe::deck {
 
 namespace {
+
+/// ITER NPRINT / OUTPR ask for a solution printout in the output listing; impactfe writes every
+/// result to the results file instead (printed with PRNSOL / PRESOL / PRVAR).
+void log_no_printout(const Command& c) {
+  Log::info(
+      "{}:{}: {}: no solution printout is produced; results are in the results file (print them "
+      "with PRNSOL / PRESOL / PRVAR or `impactfe post`)",
+      c.where.file, c.where.line, c.name);
+}
 
 // ---- time and substeps -----------------------------------------------------------------------
 
@@ -78,9 +88,10 @@ void cmd_iter(DeckReader& r, const Command& c) {
     s.n_substeps = nitter;
     if (r.kan == 4) s.dt.reset();
   }
-  s.print_every = r.integer(c, 2, 0);
+  const int nprint = r.integer(c, 2, 0);
   s.output.every = r.integer(c, 3, 0);
-  if (s.print_every < 0 || s.output.every < 0) r.fail(c, "NPRINT/NPOST must not be negative");
+  if (nprint < 0 || s.output.every < 0) r.fail(c, "NPRINT/NPOST must not be negative");
+  if (nprint > 0) log_no_printout(c);
   // Kept as given (n = every n-th substep and the last): under KAN=5 NITTER is not the
   // number of steps, so "NPOST >= NITTER" must not be read as "last only".
 }
@@ -297,7 +308,8 @@ void cmd_outres(DeckReader& r, const Command& c) {
 }
 
 void cmd_outpr(DeckReader& r, const Command& c) {
-  r.model.current.print_every = output_frequency(r, c);
+  output_frequency(r, c);  // validates the fields
+  log_no_printout(c);
 }
 
 void cmd_seopt(DeckReader& r, const Command& c) {
@@ -310,7 +322,19 @@ void cmd_seopt(DeckReader& r, const Command& c) {
 }
 
 void cmd_seexp(DeckReader& r, const Command& c) {
-  r.warn(c, "SEEXP options noted; the expansion uses the superelement of the last generation pass");
+  // SEEXP,Sename,Usefil,Imagky,Expopt (APDL_SCRIPTING §E.14).
+  if (c.blank(1)) r.fail(c, "Sename (the superelement to expand) missing");
+  if (c.blank(2)) r.fail(c, "Usefil (the results file of the use pass) missing");
+  const std::string imagky = r.label(c, 3);
+  if (!imagky.empty() && imagky != "REAL" && imagky != "0")
+    r.fail(c, fmt::format("Imagky '{}': only real solutions exist here (no harmonic analyses)",
+                          c.text(3)));
+  const std::string expopt = r.label(c, 4);
+  if (!expopt.empty() && expopt != "ON")
+    r.fail(c, fmt::format("Expopt '{}' not supported: the master DOF values of the use pass are "
+                          "always part of the expanded results (ON)",
+                          c.text(4)));
+  r.seexp = SuperelementExpansionSource{c.text(1), c.text(2), c.where};
 }
 
 void cmd_cmsopt(DeckReader& r, const Command& c) {
@@ -343,8 +367,6 @@ void cmd_lwrite(DeckReader& r, const Command& c) {
   if (r.frozen) r.fail(c, "LWRITE after AFWRITE: the analysis file is already written");
   LoadStep s = snapshot(r, c, static_cast<int>(r.load_steps_4x.size()) + 1);
   check_increasing(r, c, r.load_steps_4x, s);
-  if (r.kan == 5 && !r.load_steps_4x.empty() && s.dt != r.load_steps_4x.front().dt)
-    r.warn(c, "DTIME changed in a reduced transient (KAN=5): the first step's DTIME is used");
   r.load_steps_4x.push_back(std::move(s));
 }
 
@@ -404,8 +426,12 @@ void solve_current(DeckReader& r, const Command& c) {
 }
 
 void solve_expansion(DeckReader& r, const Command& c) {
-  if (r.job.steps.empty()) r.fail(c, "expansion pass (EXPASS,ON) without a preceding analysis");
+  if (r.job.steps.empty() && !r.seexp)
+    r.fail(c,
+           "expansion pass (EXPASS,ON) without a preceding analysis (or SEEXP for a "
+           "superelement)");
   ExpansionPassRequest e = r.expansion;
+  e.superelement = r.seexp;
   if (e.requests.empty()) {
     Log::info("{}:{}: SOLVE: no NUMEXP/EXPSOL given; every solution is expanded", c.where.file,
               c.where.line);
@@ -486,15 +512,12 @@ void cmd_nstres(DeckReader& r, const Command& c) {
 void cmd_end(DeckReader& r, const Command& c) {
   if (r.stress_requests.empty())
     r.fail(c, "END without an NSTRES/TIME request in the /STRESS block");
-  Job::Step step;
-  step.expansion = ExpansionPassRequest{r.stress_requests, true, c.where};
-  step.model_snapshot = r.model;
-  r.job.steps.push_back(std::move(step));
-  r.stress_requests.clear();
+  close_stress_block(r, c.where);
 }
 
 void cmd_expass(DeckReader& r, const Command& c) {
   r.expass = r.on_off(c, 1, false);
+  r.seexp.reset();
   r.expansion = ExpansionPassRequest{};
   r.expansion.static_correction = r.on_off(c, 4, true);
 }
@@ -511,8 +534,12 @@ void cmd_numexp(DeckReader& r, const Command& c) {
   }
   q.t_begin = r.real(c, 2, 0.0);
   const auto end = r.opt_real(c, 3);
-  if (!end && !r.last_solved_time) r.fail(c, "ENDRNG missing and no solved load step with a TIME");
-  q.t_end = end ? *end : *r.last_solved_time;
+  if (!end && !r.last_solved_time && !r.seexp)
+    r.fail(c, "ENDRNG missing and no solved load step with a TIME");
+  // Without a solved step here (a superelement expansion), the range ends with the use pass.
+  q.t_end = end                  ? *end
+            : r.last_solved_time ? *r.last_solved_time
+                                 : std::numeric_limits<double>::infinity();
   if (q.t_end < q.t_begin) r.fail(c, fmt::format("empty range {} to {}", q.t_begin, q.t_end));
   r.expansion.requests.push_back(q);
 }
@@ -524,6 +551,17 @@ void cmd_expsol(DeckReader& r, const Command& c) {
 }
 
 }  // namespace
+
+void close_stress_block(DeckReader& r, const SourceLocation& where) {
+  Job::Step step;
+  ExpansionPassRequest e;
+  e.requests = r.stress_requests;
+  e.where = where;
+  step.expansion = std::move(e);
+  step.model_snapshot = r.model;
+  r.job.steps.push_back(std::move(step));
+  r.stress_requests.clear();
+}
 
 void run_frozen_analysis(DeckReader& r, const Command& c) {
   if (!r.frozen) r.fail(c, "no analysis to run: AFWRITE was not issued before /INPUT,27");

@@ -34,6 +34,9 @@ struct TimePoint {
   Eigen::MatrixXd reaction;      // reaction forces at constrained DOFs, NaN elsewhere
   std::map<std::string, ElementResultTable> element_results;  // by element family
   Eigen::VectorXd gap_forces;  // GP gap-condition forces, input order (reduced / MSUP runs)
+  /// Frame acceleration (ACEL) acting at this time point, when the analysis records it (full
+  /// runs): a superelement expansion applies its static correction from it.
+  std::optional<Eigen::Vector3d> frame_acceleration;
   /// Energy balance: "kinetic", "strain", "external_work", "gap_work", "dissipation".
   std::map<std::string, double> energy;
 };

@@ -432,6 +432,14 @@ TimePoint ResultsReader::time_point(int analysis, int k) const {
     for (int g = 0; g < an.info.n_gaps; ++g)
       p.gap_forces[g] = impl_->column(an, "gap_forces", static_cast<hsize_t>(g), 0)[row];
   }
+  if (h5::exists(file, an.group + "/frame_acceleration")) {
+    Handle ds(check(H5Dopen2(file, (an.group + "/frame_acceleration").c_str(), H5P_DEFAULT),
+                    "open frame_acceleration"));
+    if (h5::dims_of(ds)[0] > row) {
+      const auto v = h5::read_slab(ds, {row, 0}, {1, 3});
+      p.frame_acceleration = Eigen::Vector3d(v[0], v[1], v[2]);
+    }
+  }
   if (h5::exists(file, an.group + "/energy")) {
     Handle ds(check(H5Dopen2(file, (an.group + "/energy").c_str(), H5P_DEFAULT), "open energy"));
     if (h5::dims_of(ds)[0] > row) {

@@ -137,8 +137,7 @@ struct ResultsWriter::Impl {
   hsize_t n_nodes() const { return node_ids.size(); }
 
   void require_open(const char* what) const {
-    if (!group.valid())
-      throw std::logic_error(fmt::format("ResultsWriter::{}: no analysis is open", what));
+    IMPACTFE_CHECK(!(!group.valid()), fmt::format("ResultsWriter::{}: no analysis is open", what));
   }
 
   void write_model(const Model& model);
@@ -204,9 +203,9 @@ void ResultsWriter::Impl::write_nodal(const std::string& name, const Eigen::Matr
     write_row(it->second, n_t, H5T_NATIVE_DOUBLE, nan_row.data());
     return;
   }
-  if (m.rows() != static_cast<Eigen::Index>(n_nodes()) || m.cols() != 6)
-    throw std::invalid_argument(fmt::format("ResultsWriter::append: {} is {}x{}, expected {}x6",
-                                            name, m.rows(), m.cols(), n_nodes()));
+  IMPACTFE_CHECK(!(m.rows() != static_cast<Eigen::Index>(n_nodes()) || m.cols() != 6),
+                 fmt::format("ResultsWriter::append: {} is {}x{}, expected {}x6", name, m.rows(),
+                             m.cols(), n_nodes()));
   if (it == series.end())
     it = series.emplace(name, create_series(group, name, {n_nodes(), 6}, n_t)).first;
   RowMajor r = m;
@@ -214,15 +213,14 @@ void ResultsWriter::Impl::write_nodal(const std::string& name, const Eigen::Matr
 }
 
 void ResultsWriter::Impl::write_family(const std::string& family, const ElementResultTable& table) {
-  if (family.empty() || family.find('/') != std::string::npos || family == ".")
-    throw std::invalid_argument(fmt::format("ResultsWriter: bad element family name '{}'", family));
+  IMPACTFE_CHECK(!(family.empty() || family.find('/') != std::string::npos || family == "."),
+                 fmt::format("ResultsWriter: bad element family name '{}'", family));
   const auto n_e = table.element_ids.size();
   const auto n_i = table.item_names.size();
-  if (static_cast<std::size_t>(table.values.rows()) != n_e ||
-      static_cast<std::size_t>(table.values.cols()) != n_i)
-    throw std::invalid_argument(
-        fmt::format("ResultsWriter::append: element table '{}' is {}x{}, expected {}x{}", family,
-                    table.values.rows(), table.values.cols(), n_e, n_i));
+  IMPACTFE_CHECK(!(static_cast<std::size_t>(table.values.rows()) != n_e ||
+                   static_cast<std::size_t>(table.values.cols()) != n_i),
+                 fmt::format("ResultsWriter::append: element table '{}' is {}x{}, expected {}x{}",
+                             family, table.values.rows(), table.values.cols(), n_e, n_i));
   auto it = families.find(family);
   if (it == families.end()) {
     if (!elements_group.valid()) {
@@ -242,11 +240,12 @@ void ResultsWriter::Impl::write_family(const std::string& family, const ElementR
     fs.values = create_series(g, "values", {n_e, n_i}, n_t);
     h5::write_attribute(g, "items", table.item_names);
     it = families.emplace(family, std::move(fs)).first;
-  } else if (it->second.element_ids != table.element_ids || it->second.items != table.item_names) {
-    throw std::invalid_argument(fmt::format(
-        "ResultsWriter::append: element ids or items of family '{}' changed within an analysis",
-        family));
-  }
+  } else
+    IMPACTFE_CHECK(
+        !(it->second.element_ids != table.element_ids || it->second.items != table.item_names),
+        fmt::format(
+            "ResultsWriter::append: element ids or items of family '{}' changed within an analysis",
+            family));
   if (n_e == 0 || n_i == 0) return;
   RowMajor r = table.values;
   write_row(it->second.values, n_t, H5T_NATIVE_DOUBLE, r.data());
@@ -300,12 +299,21 @@ void ResultsWriter::append(const TimePoint& point) {
     if (it == m.series.end())
       it = m.series.emplace("gap_forces", create_series(m.group, "gap_forces", {n_g}, m.n_t)).first;
     if (n_g > 0) {
-      if (n_g != it->second.row_dims[0])
-        throw std::invalid_argument(
-            fmt::format("ResultsWriter::append: {} gap forces, the analysis has {}", n_g,
-                        it->second.row_dims[0]));
+      IMPACTFE_CHECK(!(n_g != it->second.row_dims[0]),
+                     fmt::format("ResultsWriter::append: {} gap forces, the analysis has {}", n_g,
+                                 it->second.row_dims[0]));
       write_row(it->second, m.n_t, H5T_NATIVE_DOUBLE, point.gap_forces.data());
     }
+  }
+
+  if (point.frame_acceleration) {
+    auto it = m.series.find("frame_acceleration");
+    if (it == m.series.end())
+      it = m.series
+               .emplace("frame_acceleration",
+                        create_series(m.group, "frame_acceleration", {3}, m.n_t))
+               .first;
+    write_row(it->second, m.n_t, H5T_NATIVE_DOUBLE, point.frame_acceleration->data());
   }
 
   if (!point.energy.empty()) {
@@ -314,9 +322,8 @@ void ResultsWriter::append(const TimePoint& point) {
     for (const auto& [name, value] : point.energy) {
       auto pos = std::find_if(std::begin(kEnergyNames), std::end(kEnergyNames),
                               [&](const char* n) { return name == n; });
-      if (pos == std::end(kEnergyNames))
-        throw std::invalid_argument(
-            fmt::format("ResultsWriter::append: unknown energy term '{}'", name));
+      IMPACTFE_CHECK(!(pos == std::end(kEnergyNames)),
+                     fmt::format("ResultsWriter::append: unknown energy term '{}'", name));
       row[pos - std::begin(kEnergyNames)] = value;
     }
     auto it = m.series.find("energy");
@@ -356,18 +363,17 @@ void ResultsWriter::write_modes(const std::vector<double>& frequencies_hz,
                                 const std::vector<Eigen::MatrixXd>& shapes) {
   impl_->require_open("write_modes");
   Impl& m = *impl_;
-  if (shapes.size() != frequencies_hz.size())
-    throw std::invalid_argument(fmt::format("ResultsWriter::write_modes: {} frequencies, {} shapes",
-                                            frequencies_hz.size(), shapes.size()));
+  IMPACTFE_CHECK(!(shapes.size() != frequencies_hz.size()),
+                 fmt::format("ResultsWriter::write_modes: {} frequencies, {} shapes",
+                             frequencies_hz.size(), shapes.size()));
   const hsize_t n_modes = shapes.size();
   std::vector<double> buf;
   buf.reserve(n_modes * m.n_nodes() * 6);
   for (const auto& s : shapes) {
-    if (s.rows() != static_cast<Eigen::Index>(m.n_nodes()) || s.cols() != 6)
-      throw std::invalid_argument(
-          fmt::format("ResultsWriter::write_modes: shape is {}x{}, "
-                      "expected {}x6",
-                      s.rows(), s.cols(), m.n_nodes()));
+    IMPACTFE_CHECK(!(s.rows() != static_cast<Eigen::Index>(m.n_nodes()) || s.cols() != 6),
+                   fmt::format("ResultsWriter::write_modes: shape is {}x{}, "
+                               "expected {}x6",
+                               s.rows(), s.cols(), m.n_nodes()));
     RowMajor r = s;
     buf.insert(buf.end(), r.data(), r.data() + r.size());
   }

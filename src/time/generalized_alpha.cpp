@@ -33,16 +33,6 @@ GeneralizedAlphaParameters GeneralizedAlphaParameters::hht(double alpha_f, doubl
   return p;
 }
 
-GeneralizedAlphaParameters GeneralizedAlphaParameters::chung_hulbert(double rho_inf) {
-  if (!(rho_inf >= 0.0 && rho_inf <= 1.0)) {
-    throw InputError("generalized-alpha: spectral radius at infinity must be in [0, 1], got " +
-                     std::to_string(rho_inf));
-  }
-  const double am = (2.0 * rho_inf - 1.0) / (rho_inf + 1.0);
-  const double af = rho_inf / (rho_inf + 1.0);
-  return hht(af, am);
-}
-
 namespace {
 
 class GeneralizedAlpha final : public TimeIntegrator {
@@ -66,9 +56,8 @@ class GeneralizedAlpha final : public TimeIntegrator {
   void start(const Eigen::VectorXd& u0, const Eigen::VectorXd& v0, const Eigen::VectorXd& a0,
              double h) override {
     set_step(h);
-    if (v0.size() != u0.size() || a0.size() != u0.size()) {
-      throw std::invalid_argument("GeneralizedAlpha::start: u0, v0, a0 sizes differ");
-    }
+    IMPACTFE_CHECK(!(v0.size() != u0.size() || a0.size() != u0.size()),
+                   "GeneralizedAlpha::start: u0, v0, a0 sizes differ");
     u_ = u0;
     v_ = v0;
     a_ = a0;
@@ -102,10 +91,9 @@ class GeneralizedAlpha final : public TimeIntegrator {
   /// v_{n+1} = v_n + h ((1 - gamma) a_n + gamma a_{n+1}).
   void kinematics(const Eigen::VectorXd& u_next, Eigen::VectorXd& v_next,
                   Eigen::VectorXd& a_next) const override {
-    if (!started_) throw std::logic_error("GeneralizedAlpha: start() must be called first");
-    if (u_next.size() != u_.size()) {
-      throw std::invalid_argument("GeneralizedAlpha::kinematics: trial vector has the wrong size");
-    }
+    IMPACTFE_CHECK(!(!started_), "GeneralizedAlpha: start() must be called first");
+    IMPACTFE_CHECK(!(u_next.size() != u_.size()),
+                   "GeneralizedAlpha::kinematics: trial vector has the wrong size");
     const double h2 = h_ * h_;
     a_next = (u_next - u_ - h_ * v_ - (h2 * (0.5 - p_.beta)) * a_) / (p_.beta * h2);
     v_next = v_ + (h_ * (1.0 - p_.gamma)) * a_ + (h_ * p_.gamma) * a_next;

@@ -19,23 +19,17 @@ void require_positive_step(double h) {
 
 class Houbolt final : public TimeIntegrator {
  public:
-  explicit Houbolt(HouboltStartup startup) : startup_(startup) {}
   std::string name() const override { return "Houbolt"; }
 
   void start(const Eigen::VectorXd& u0, const Eigen::VectorXd& v0, const Eigen::VectorXd& a0,
              double h) override {
     require_positive_step(h);
-    if (v0.size() != u0.size() || a0.size() != u0.size()) {
-      throw std::invalid_argument("Houbolt::start: u0, v0, a0 sizes differ");
-    }
+    IMPACTFE_CHECK(!(v0.size() != u0.size() || a0.size() != u0.size()),
+                   "Houbolt::start: u0, v0, a0 sizes differ");
     h_ = h;
     u_ = u0;
     v_ = v0;
-    if (startup_ == HouboltStartup::ConstantVelocity) {
-      a_ = Eigen::VectorXd::Zero(a0.size());  // what the backward differences of a line give
-    } else {
-      a_ = a0;
-    }
+    a_ = a0;
     resample_history();
     started_ = true;
   }
@@ -71,9 +65,8 @@ class Houbolt final : public TimeIntegrator {
   void kinematics(const Eigen::VectorXd& u_next, Eigen::VectorXd& v_next,
                   Eigen::VectorXd& a_next) const override {
     require_started();
-    if (u_next.size() != u_.size()) {
-      throw std::invalid_argument("Houbolt::kinematics: trial vector has the wrong size");
-    }
+    IMPACTFE_CHECK(!(u_next.size() != u_.size()),
+                   "Houbolt::kinematics: trial vector has the wrong size");
     v_next = (11.0 * u_next - 18.0 * u_ + 9.0 * u_m1_ - 2.0 * u_m2_) / (6.0 * h_);
     a_next = (2.0 * u_next - 5.0 * u_ + 4.0 * u_m1_ - u_m2_) / (h_ * h_);
   }
@@ -95,7 +88,7 @@ class Houbolt final : public TimeIntegrator {
 
  private:
   void require_started() const {
-    if (!started_) throw std::logic_error("Houbolt: start() must be called first");
+    IMPACTFE_CHECK(!(!started_), "Houbolt: start() must be called first");
   }
 
   /// u_{n-1} = u_n - h v_n + h^2/2 a_n, u_{n-2} = u_n - 2h v_n + 2h^2 a_n (spec §10.2).
@@ -104,7 +97,6 @@ class Houbolt final : public TimeIntegrator {
     u_m2_ = u_ - (2.0 * h_) * v_ + (2.0 * h_ * h_) * a_;
   }
 
-  HouboltStartup startup_;
   double h_ = 0.0;
   bool started_ = false;
   Eigen::VectorXd u_, v_, a_;  // current state u_n, v_n, a_n
@@ -115,11 +107,7 @@ class Houbolt final : public TimeIntegrator {
 }  // namespace
 
 std::unique_ptr<TimeIntegrator> make_houbolt() {
-  return std::make_unique<Houbolt>(HouboltStartup::UniformlyAccelerated);
-}
-
-std::unique_ptr<TimeIntegrator> make_houbolt(HouboltStartup startup) {
-  return std::make_unique<Houbolt>(startup);
+  return std::make_unique<Houbolt>();
 }
 
 }  // namespace impactfe

@@ -8,6 +8,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "core/errors.h"
 #include "time/time_integrator.h"
 
 namespace impactfe {
@@ -20,9 +21,7 @@ namespace impactfe {
 ///   A13 = beta/(w dt)^2 + 2 gamma/3   (Bathe 1996, §9.4 stability analysis of Houbolt).
 /// The printed eq. 3-9 drops xi from beta and the minus sign on the 3 gamma of A12.
 Eigen::Matrix3d houbolt_amplification_matrix(double dt_over_period, double damping_ratio) {
-  if (!(dt_over_period > 0.0)) {
-    throw std::invalid_argument("houbolt_amplification_matrix: dt/T must be positive");
-  }
+  IMPACTFE_CHECK(!(!(dt_over_period > 0.0)), "houbolt_amplification_matrix: dt/T must be positive");
   const double wdt = 2.0 * std::numbers::pi * dt_over_period;  // omega * dt
   const double xi = damping_ratio;
   const double q = 1.0 / (wdt * wdt);
@@ -38,9 +37,8 @@ Eigen::Matrix3d houbolt_amplification_matrix(double dt_over_period, double dampi
 }
 
 double spectral_radius(const Eigen::MatrixXd& A) {
-  if (A.rows() != A.cols() || A.rows() == 0) {
-    throw std::invalid_argument("spectral_radius: matrix must be square and non-empty");
-  }
+  IMPACTFE_CHECK(!(A.rows() != A.cols() || A.rows() == 0),
+                 "spectral_radius: matrix must be square and non-empty");
   Eigen::EigenSolver<Eigen::MatrixXd> solver(A, /*computeEigenvectors=*/false);
   return solver.eigenvalues().cwiseAbs().maxCoeff();
 }
@@ -58,9 +56,7 @@ std::string houbolt_spectrum_csv(const std::vector<double>& dt_over_T,
 }
 
 std::vector<double> log_grid(double lo, double hi, int n) {
-  if (!(lo > 0.0 && hi > lo) || n < 2) {
-    throw std::invalid_argument("log_grid: need 0 < lo < hi and n >= 2");
-  }
+  IMPACTFE_CHECK(!(!(lo > 0.0 && hi > lo) || n < 2), "log_grid: need 0 < lo < hi and n >= 2");
   std::vector<double> g(n);
   const double a = std::log10(lo);
   const double b = std::log10(hi);

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 
 #include "core/log.h"
 
@@ -105,6 +106,39 @@ std::vector<ReducedPoint> reduced_time_axis(const std::vector<LoadStep>& steps, 
     t_prev = exact ? *step.time_end : t_prev + n * dt;
   }
   return points;
+}
+
+namespace {
+
+/// Index of the stored time nearest to t.
+int nearest_time(const std::vector<double>& times, double t) {
+  int best = 0;
+  for (std::size_t i = 1; i < times.size(); ++i)
+    if (std::abs(times[i] - t) < std::abs(times[static_cast<std::size_t>(best)] - t))
+      best = static_cast<int>(i);
+  return best;
+}
+
+}  // namespace
+
+std::vector<int> expansion_points(const std::vector<ExpansionRequest>& requests,
+                                  const std::vector<double>& times) {
+  std::set<int> chosen;
+  if (times.empty()) return {};
+  const double t_last = times.back();
+  for (const ExpansionRequest& r : requests) {
+    double begin = r.t_begin, end = std::min(r.t_end, t_last);
+    if (end <= begin && begin == 0.0) end = t_last;  // blank range: the whole run
+    if (r.every_step) {
+      for (std::size_t i = 0; i < times.size(); ++i)
+        if (times[i] > begin - 1e-12 * t_last && times[i] <= end + 1e-12 * t_last)
+          chosen.insert(static_cast<int>(i));
+      continue;
+    }
+    const int n = std::max(1, r.count);
+    for (int k = 1; k <= n; ++k) chosen.insert(nearest_time(times, begin + k * (end - begin) / n));
+  }
+  return {chosen.begin(), chosen.end()};
 }
 
 }  // namespace impactfe

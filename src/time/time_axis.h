@@ -49,4 +49,10 @@ struct ReducedPoint {
 std::vector<ReducedPoint> reduced_time_axis(const std::vector<LoadStep>& steps, double& dt,
                                             std::vector<std::string>& notes);
 
+/// Stored time points selected by expansion requests (NUMEXP/NSTRES spacing in (t_begin, t_end],
+/// each snapped to the nearest stored time; NUMEXP,ALL: every time in the range), ascending,
+/// duplicates removed (spec §3.26). An end beyond the last time (or infinite) means the last.
+std::vector<int> expansion_points(const std::vector<ExpansionRequest>& requests,
+                                  const std::vector<double>& times);
+
 }  // namespace impactfe

@@ -65,16 +65,6 @@ class TimeIntegrator {
 /// start-up (spec §10.2) and history re-sampling when h changes.
 std::unique_ptr<TimeIntegrator> make_houbolt();
 
-/// Houbolt start-up history u_{-1}, u_{-2} (spec §10.2).
-enum class HouboltStartup {
-  /// Default: the parabola of (u0, v0, a0): u_{-k} = u0 - k h v0 + (k h)^2/2 a0 (exact free fall).
-  UniformlyAccelerated,
-  /// Option: unaccelerated past motion u_{-k} = u0 - k h v0 (a0 ignored, reported a = 0); "at
-  /// rest before t = 0" when v0 = 0. Makes a free fall lag by about one step.
-  ConstantVelocity,
-};
-std::unique_ptr<TimeIntegrator> make_houbolt(HouboltStartup startup);
-
 /// Newmark / HHT-alpha / generalized-alpha in one class (ANSYS TINTP: ALPHA = beta, DELTA = gamma).
 struct GeneralizedAlphaParameters {
   double beta = 0.25;
@@ -87,10 +77,6 @@ struct GeneralizedAlphaParameters {
   static GeneralizedAlphaParameters newmark_beta_gamma(double beta, double gamma);
   /// HHT-alpha (ANSYS convention alpha_f >= 0): beta = (1+af-am)^2/4, gamma = 1/2 + af - am.
   static GeneralizedAlphaParameters hht(double alpha_f, double alpha_m = 0.0);
-  /// Chung-Hulbert generalized-alpha from the spectral radius at infinity rho_inf in [0, 1]:
-  /// alpha_m = (2 rho - 1)/(rho + 1), alpha_f = rho/(rho + 1), gamma = 1/2 - am + af,
-  /// beta = (1 - am + af)^2 / 4.
-  static GeneralizedAlphaParameters chung_hulbert(double rho_inf);
 };
 std::unique_ptr<TimeIntegrator> make_generalized_alpha(const GeneralizedAlphaParameters& p);
 

@@ -45,7 +45,7 @@ inline DeckRun run_deck_in(const std::string& deck, const std::filesystem::path&
     DeckOptions options;
     options.jobname = jobname;
     const Job job = read_deck(deck, options);
-    ResultsWriter writer(jobname + ".h5", job.model);
+    ResultsWriter writer(jobname + ".h5", results_model(job));
     run_job(job, jobname, settings, writer, run.statistics);
   } catch (...) {
     fs::current_path(previous);

@@ -208,8 +208,10 @@ TEST(ReducedTimeAxis, CrashStepsAndStressPassTimes) {
   EXPECT_EQ(points[60].time, 6e-3);
   EXPECT_EQ(points[60].substep, 59);
   // /STRESS: NSTRES,1 TIME .0001; NSTRES,60 over (1e-4, 6e-3] → 60 requests meet 59 steps.
+  std::vector<double> times;
+  for (const ReducedPoint& p : points) times.push_back(p.time);
   const std::vector<int> chosen =
-      expansion_points({{1, 0.0, 1e-4, false}, {60, 1e-4, 6e-3, false}}, points);
+      expansion_points({{1, 0.0, 1e-4, false}, {60, 1e-4, 6e-3, false}}, times);
   ASSERT_EQ(chosen.size(), 60u);
   EXPECT_EQ(chosen.front(), 1);
   EXPECT_EQ(chosen.back(), 60);

@@ -1,11 +1,12 @@
-// Superelement generation driver (KAN,7 / ANTYPE,SUBSTR; spec §10.6): condenses the
-// substructure, writes <Sename>.sub.h5 (default <jobname>) next to the results file, and records a
-// summary in the results file.
+// Superelement generation and expansion drivers (spec §10.6). Generation (KAN,7 / ANTYPE,SUBSTR)
+// condenses the substructure, writes <Sename>.sub.h5 (default <jobname>) next to the results
+// file and records a summary in the results file; expansion (EXPASS + SEEXP) expands a use pass.
 #include <fmt/format.h>
 
 #include <filesystem>
 
 #include "analysis/analyses.h"
+#include "analysis/superelement_expansion.h"
 #include "analysis/superelement_generation.h"
 #include "core/log.h"
 
@@ -58,6 +59,21 @@ void run_substructure_generation(Structure& structure, const AnalysisRequest& re
     writer.set_attribute(fmt::format("total_mass_{}", axes[d]), summary.total_mass[d]);
     writer.set_attribute(fmt::format("master_mass_{}", axes[d]), summary.reduced_mass[d]);
   }
+}
+
+void run_superelement_expansion(const ExpansionPassRequest& request, ResultsWriter& writer,
+                                AnalysisStatistics& stats) {
+  const SuperelementExpansionSource& source = *request.superelement;
+  const std::string sub_file = superelement_file_of(source);
+  const std::string use_file = use_results_file_of(source);
+  stats.description = fmt::format("superelement {} expansion", source.name);
+  const SuperelementExpansion expansion(read_superelement(sub_file, source.where));
+  const ResultsReader use(use_file);
+  stats.n_stored = expand_superelement_use_pass(expansion, use, request, writer);
+  stats.n_dofs = expansion.dofs().n_free();
+  writer.set_attribute("superelement_file", sub_file);
+  stats.notes.push_back(
+      fmt::format("expanded {} solutions of {} with {}", stats.n_stored, use_file, sub_file));
 }
 
 }  // namespace impactfe
