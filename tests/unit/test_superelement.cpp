@@ -380,3 +380,29 @@ TEST_F(SuperelementTest, MissingFileIsAnInputError) {
 
 }  // namespace
 }  // namespace impactfe
+
+namespace impactfe {
+namespace {
+
+TEST(SuperelementFile, VersionOneFilesAreStillRead) {
+  // Written by impactfe before element types were stored by name only (format version 1: the
+  // generation model listed "etype id name enum ..."): tests/decks/modern/se_generate_bar.inp.
+  const std::string path = std::string(IMPACTFE_TEST_DECKS) + "/files/bar_format_v1.sub.h5";
+  const SuperelementData se = read_superelement(path);
+  ASSERT_EQ(se.n_masters(), 2);
+  EXPECT_EQ(se.masters[0].key, (DofKey{1, Dof::UX}));
+  EXPECT_NEAR(se.stiffness(0, 0), 3e6, 1e-6 * 3e6);  // EA/L of the 10-inch bar
+  bool lumped = true, sstif = true;
+  const Model m = deserialize_generation_model(se.model_text, lumped, sstif);
+  ASSERT_EQ(m.element_types.size(), 1u);
+  EXPECT_EQ(m.element_types.at(1).ansys_name, "LINK180");
+  EXPECT_EQ(m.element_types.at(1).key(1),
+            0);  // the enum integer was skipped, not read as KEYOPT(1)
+  EXPECT_EQ(m.elements.size(), 10u);
+  // A current file round-trips the model text through format version 2.
+  EXPECT_NE(serialize_generation_model(m, false, false).find("etype 1 LINK180 0 0"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace impactfe
