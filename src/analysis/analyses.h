@@ -10,13 +10,13 @@
 
 namespace impactfe {
 
-/// Linear or nonlinear static analysis (KAN,0 / ANTYPE,STATIC; spec §10.7).
-void run_static_analysis(Structure& structure, const AnalysisRequest& request,
-                         ResultsWriter& writer, const RunSettings& settings,
-                         AnalysisStatistics& stats);
-/// Full (nonlinear) transient analysis (KAN,4 / TRNOPT,FULL; spec §10.3).
-void run_full_transient(Structure& structure, const AnalysisRequest& request, ResultsWriter& writer,
-                        const RunSettings& settings, AnalysisStatistics& stats);
+class DirectSolution;
+/// Opens a linear or nonlinear static analysis (KAN,0 / ANTYPE,STATIC; spec §10.7) or a full
+/// (nonlinear) transient (KAN,4 / TRNOPT,FULL; spec §10.3), as the structure's options say: the
+/// results analysis is begun and the solution waits for its load steps.
+std::unique_ptr<DirectSolution> begin_direct_analysis(Structure& structure, ResultsWriter& writer,
+                                                      const RunSettings& settings,
+                                                      AnalysisStatistics& stats);
 /// Modal analysis (ANTYPE,MODAL + MODOPT): natural frequencies (Hz) and mode shapes.
 void run_modal_analysis(Structure& structure, const AnalysisRequest& request, ResultsWriter& writer,
                         const RunSettings& settings, AnalysisStatistics& stats);

@@ -138,53 +138,66 @@ void DirectSolution::start_dynamics(const LoadPoint& at, double h) {
 }
 
 void DirectSolution::run(const std::vector<LoadStep>& steps, bool transient) {
-  const AnalysisOptions& options = structure_.options();
-  if (transient) integrator_ = make_time_integrator(options);
-  const LoadStep* previous = nullptr;
-  double t_start = 0.0;
-  bool first = true;
-  for (const LoadStep& step : steps) {
-    const LoadStepTiming t = load_step_timing(step, t_start, transient);
-    set_constraints(step);
-    const bool dynamic = transient && step.time_integration;
-    if (first) {
-      // Store the initial state (t = 0) of a transient, so histories start at rest.
-      if (transient) {
-        LoadPoint at0{&step, previous, 0.0};
-        u_.tail(dofs_->n_constrained()) =
-            prescribed_displacements(*dofs_, at0).tail(dofs_->n_constrained());
-        if (dynamic) start_dynamics(at0, t.h);
-        reactions_ = VectorXd::Zero(dofs_->n_active());
-        acel_ = frame_acceleration(at0);
-        store(t_start, 0, 0, dynamic);
-      }
-      first = false;
+  begin(transient);
+  for (const LoadStep& step : steps) solve_load_step(step);
+  finish();
+}
+
+void DirectSolution::begin(bool transient) {
+  transient_ = transient;
+  if (transient) integrator_ = make_time_integrator(structure_.options());
+}
+
+void DirectSolution::solve_load_step(const LoadStep& step) {
+  const bool transient = transient_;
+  const LoadStep* previous = previous_ ? &*previous_ : nullptr;
+  const LoadStepTiming t = load_step_timing(step, t_end_, transient);
+  set_constraints(step);
+  const bool dynamic = transient && step.time_integration;
+  if (!previous) {
+    // Store the initial state (t = 0) of a transient, so histories start at rest.
+    if (transient) {
+      LoadPoint at0{&step, previous, 0.0};
+      u_.tail(dofs_->n_constrained()) =
+          prescribed_displacements(*dofs_, at0).tail(dofs_->n_constrained());
+      if (dynamic) start_dynamics(at0, t.h);
+      reactions_ = VectorXd::Zero(dofs_->n_active());
+      acel_ = frame_acceleration(at0);
+      store(t_end_, 0, 0, dynamic);
     }
-    if (dynamic) {
-      if (!dynamics_started_) {
-        start_dynamics(LoadPoint{&step, previous, 0.0}, t.h);
-      } else if (std::abs(integrator_->step() - t.h) > 1e-12 * t.h) {
-        integrator_->set_step(t.h);  // Houbolt re-samples its history (spec §10.2)
-        factor_valid_ = false;
-      }
-      time_step_advice(t.h);
-    } else {
-      dynamics_started_ = false;
-    }
-    for (int k = 1; k <= t.n_substeps; ++k) {
-      const double time = t.t_start + k * t.h;
-      const LoadPoint at{&step, previous, static_cast<double>(k) / t.n_substeps};
-      solve_increment(at, StepLabel{step.number, k, time}, dynamic);
-      ++stats_.n_substeps;
-      const bool last = k == t.n_substeps;
-      const int every = step.output.every;
-      if (last || (every > 0 && k % every == 0)) store(time, step.number, k, dynamic);
-    }
-    ++stats_.n_load_steps;
-    previous = &step;
-    t_start = t.t_end;
   }
-  if (transient) stats_.notes.push_back(energy_->summary(time_, 0.5 * v_.dot(mass_all_ * v_)));
+  if (dynamic) {
+    if (!dynamics_started_) {
+      start_dynamics(LoadPoint{&step, previous, 0.0}, t.h);
+    } else if (std::abs(integrator_->step() - t.h) > 1e-12 * t.h) {
+      integrator_->set_step(t.h);  // Houbolt re-samples its history (spec §10.2)
+      factor_valid_ = false;
+    }
+    time_step_advice(t.h);
+  } else {
+    dynamics_started_ = false;
+  }
+  for (int k = 1; k <= t.n_substeps; ++k) {
+    const double time = t.t_start + k * t.h;
+    const LoadPoint at{&step, previous, static_cast<double>(k) / t.n_substeps};
+    solve_increment(at, StepLabel{step.number, k, time}, dynamic);
+    ++stats_.n_substeps;
+    const bool last = k == t.n_substeps;
+    const int every = step.output.every;
+    if (last || (every > 0 && k % every == 0)) store(time, step.number, k, dynamic);
+  }
+  ++stats_.n_load_steps;
+  previous_ = step;
+  t_end_ = t.t_end;
+  update_counters();
+}
+
+void DirectSolution::finish() {
+  if (transient_) stats_.notes.push_back(energy_->summary(time_, 0.5 * v_.dot(mass_all_ * v_)));
+  update_counters();
+}
+
+void DirectSolution::update_counters() {
   const SolverCounters now = solver_ ? solver_->counters() : SolverCounters{};
   stats_.n_analyses = retired_.analyses + now.analyses;
   stats_.n_factorizations = retired_.factorizations + now.factorizations;

@@ -28,7 +28,14 @@ class DirectSolution : private NonlinearProblem {
   /// Runs the load steps. `transient`: dynamic steps (unless TIMINT is off for a step).
   void run(const std::vector<LoadStep>& steps, bool transient);
 
+  /// The same, one load step at a time (MAPDL solves a load step when SOLVE is read): begin,
+  /// then solve_load_step for each load step in order, then finish.
+  void begin(bool transient);
+  void solve_load_step(const LoadStep& step);
+  void finish();
+
  private:
+  void update_counters();
   void set_constraints(const LoadStep& step);
   void start_dynamics(const LoadPoint& at, double h);
   VectorXd external_force(const LoadPoint& at) const;
@@ -61,7 +68,10 @@ class DirectSolution : private NonlinearProblem {
   FrameAccelerationLoad frame_load_;  // -M r a, assembled once per DOF numbering
   SparseMatrix effective_;
   std::unique_ptr<TimeIntegrator> integrator_;
+  bool transient_ = false;
   bool dynamics_started_ = false;
+  std::optional<LoadStep> previous_;  // the last load step solved (KBC ramps start from it)
+  double t_end_ = 0.0;                // end time of the last load step solved
 
   // Converged state over all active DOFs, and the force terms of the last converged step.
   VectorXd u_, v_, a_;

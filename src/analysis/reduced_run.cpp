@@ -30,6 +30,7 @@ void prepare_reduced_model(ReducedRunState& state, const Structure& structure,
                            const AnalysisRequest& request, const RunSettings& settings,
                            const std::vector<DofKey>& keep, AnalysisStatistics& stats) {
   state.structure = std::make_unique<Structure>(structure.model(), structure.options(), settings);
+  state.structure->use_table_nodes(structure.node_ids());
   state.load_steps = request.load_steps;
   state.alpha_damping = structure.options().alpha_damping;
   state.beta_damping = structure.options().beta_damping;

@@ -104,6 +104,20 @@ Structure::Structure(const Model& model, const AnalysisOptions& options,
   }
 }
 
+void Structure::use_table_nodes(const std::vector<int>& ids) {
+  if (ids == node_ids_) return;
+  std::map<int, int> rows;
+  for (std::size_t r = 0; r < ids.size(); ++r) rows[ids[r]] = static_cast<int>(r);
+  for (int id : node_ids_)
+    if (rows.count(id) == 0)
+      throw InputError(fmt::format(
+          "node {} is not in the model of the results file: the model gained nodes after the job's "
+          "first solution; start a new job for the new model (/CLEAR, /FILNAME)",
+          id));
+  node_ids_ = ids;
+  node_row_ = std::move(rows);
+}
+
 std::set<DofKey> Structure::constraints_of(const LoadStep& step) const {
   std::set<DofKey> out = automatic_;
   for (const auto& entry : step.constraints) out.insert(entry.first);

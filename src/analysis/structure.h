@@ -40,6 +40,11 @@ class Structure {
   /// D of the load step plus the automatic constraints.
   std::set<DofKey> constraints_of(const LoadStep& step) const;
 
+  /// Makes the nodal tables follow the node list of a results file (`ids`, ascending): rows of
+  /// nodes this structure does not have stay NaN. InputError naming the node when the structure
+  /// has a node the list lacks (the model grew after the results file was begun).
+  void use_table_nodes(const std::vector<int>& ids);
+
   /// n_nodes x 6 table (ascending node id; NaN where the DOF does not exist) from values over
   /// the active DOFs of `dofs`.
   Eigen::MatrixXd nodal_table(const DofMap& dofs, const VectorXd& values) const;

@@ -7,7 +7,7 @@
 #include <fstream>
 #include <iostream>
 
-#include "analysis/job_runner.h"
+#include "analysis/job_session.h"
 #include "core/errors.h"
 #include "core/log.h"
 #include "deck/deck_reader.h"
@@ -86,37 +86,21 @@ int run_command(const RunArgs& args) {
   if (args.dialect == "4x") options.dialect = Dialect::Classic4x;
   if (args.dialect == "modern") options.dialect = Dialect::Modern;
 
-  Job job;
-  try {
-    job = read_deck(deck.string(), options);
-  } catch (const InputError& e) {
-    std::cerr << "error: " << e.what() << "\n";
-    return kExitInput;
-  }
-  if (args.jobname.empty() && !job.model.jobname.empty()) jobname = job.model.jobname;
-  for (const auto& ignored : job.ignored_commands) Log::info("ignored: {}", ignored);
-
   RunSettings settings;
   settings.continue_on_nonconvergence = args.continue_on_nonconvergence;
   settings.superelement_file = args.superelement;
 
+  // The deck runs command by command: each solution request is solved by the session when the
+  // deck reaches it.
   RunStatistics stats;
-  if (job.steps.empty()) {
-    if (!job.post_commands.empty())
-      Log::warn(
-          "{} POST1/POST26 command(s) recognised and stored; post-processing decks are "
-          "not executed yet (use `impactfe post`)",
-          job.post_commands.size());
-    print_summary(jobname, stats, 0.0);
-    return kExitOk;
-  }
-  std::unique_ptr<ResultsWriter> writer;
+  JobSession session(jobname, settings, stats);
+  options.host = &session;
+  Job job;
   try {
-    writer = std::make_unique<ResultsWriter>(jobname + ".h5", results_model(job));
-    run_job(job, jobname, settings, *writer, stats);
+    job = read_deck(deck.string(), options);
   } catch (const SolutionError& e) {
     std::cerr << "error: " << e.what() << "\n";
-    std::cerr << fmt::format("results up to the failure are kept in {}.h5\n", jobname);
+    std::cerr << fmt::format("results up to the failure are kept in {}\n", session.results_path());
     Log::write(LogLevel::Error, e.what());
     return kExitSolution;
   } catch (const InternalError& e) {
@@ -126,10 +110,19 @@ int run_command(const RunArgs& args) {
     Log::write(LogLevel::Error, e.what());
     return kExitInput;
   }
+  if (args.jobname.empty() && !job.model.jobname.empty()) jobname = job.model.jobname;
+  for (const auto& ignored : job.ignored_commands) Log::info("ignored: {}", ignored);
+  if (job.steps.empty() && !job.post_commands.empty())
+    Log::warn(
+        "{} POST1/POST26 command(s) recognised and stored; post-processing decks are "
+        "not executed yet (use `impactfe post`)",
+        job.post_commands.size());
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   print_summary(jobname, stats, wall);
-  std::cout << fmt::format("  results: {}\n", (fs::current_path() / (jobname + ".h5")).string());
+  if (!session.results_path().empty())
+    std::cout << fmt::format("  results: {}\n",
+                             (fs::current_path() / session.results_path()).string());
   return kExitOk;
 }
 

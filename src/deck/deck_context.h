@@ -13,6 +13,7 @@
 #include "deck/deck_reader.h"
 #include "deck/expression.h"
 #include "deck/lexer.h"
+#include "deck/solution_host.h"
 
 namespace impactfe::deck {
 
@@ -108,6 +109,8 @@ class DeckReader {
   /// Before that, an element whose SECNUM is the modern default 1 (SECNUM never issued) and names
   /// no defined section gets SECNUM 0 (real constants are used).
   void validate_elements();
+  /// Hands job.steps[step] (new, or grown by a load step) to the solution host, if any.
+  void solve_step(std::size_t step);
   /// Largest previous load-step end time (TIME must increase).
   std::optional<double> previous_time() const;
 

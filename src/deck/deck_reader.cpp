@@ -264,6 +264,10 @@ void DeckReader::validate_elements() {
   }
 }
 
+void DeckReader::solve_step(std::size_t step) {
+  if (options.host != nullptr) options.host->solve(job, step);
+}
+
 std::optional<double> DeckReader::previous_time() const {
   std::optional<double> t;
   auto take = [&](const LoadStep& s) {
@@ -525,6 +529,7 @@ Job DeckReader::finish() {
     Log::warn("/STRESS block not closed by END at the end of the deck; expansion requests kept");
     close_stress_block(*this, stress_where);
   }
+  if (options.host != nullptr) options.host->finish(job);
   return std::move(job);
 }
 

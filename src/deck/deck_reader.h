@@ -9,10 +9,14 @@
 
 namespace impactfe {
 
+class SolutionHost;
+
 struct DeckOptions {
   std::optional<Dialect> dialect;  // nullopt = auto-detect (spec §2.3)
   bool skip_unknown = false;       // unknown commands become listed warnings
   std::string jobname;             // default: the deck's file stem (or /FILNAME)
+  /// Solves each request as the deck reaches it (null: requests are only collected).
+  SolutionHost* host = nullptr;
 };
 
 /// Parses `path` (following /INPUT files). Throws InputError "FILE:LINE: COMMAND: what".

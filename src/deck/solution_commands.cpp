@@ -423,6 +423,7 @@ void solve_current(DeckReader& r, const Command& c) {
   check_increasing(r, c, a.load_steps, s);
   a.load_steps.push_back(std::move(s));
   if (a.load_steps.back().time_end) r.last_solved_time = a.load_steps.back().time_end;
+  r.solve_step(*r.open_analysis);
 }
 
 void solve_expansion(DeckReader& r, const Command& c) {
@@ -444,6 +445,7 @@ void solve_expansion(DeckReader& r, const Command& c) {
   r.job.steps.push_back(std::move(step));
   r.open_analysis.reset();
   r.expansion.requests.clear();
+  r.solve_step(r.job.steps.size() - 1);
 }
 
 void cmd_solve(DeckReader& r, const Command& c) {
@@ -561,6 +563,7 @@ void close_stress_block(DeckReader& r, const SourceLocation& where) {
   step.model_snapshot = r.model;
   r.job.steps.push_back(std::move(step));
   r.stress_requests.clear();
+  r.solve_step(r.job.steps.size() - 1);
 }
 
 void run_frozen_analysis(DeckReader& r, const Command& c) {
@@ -569,6 +572,7 @@ void run_frozen_analysis(DeckReader& r, const Command& c) {
   step.analysis->where = c.where;
   r.job.steps.push_back(std::move(step));
   r.exec_armed = false;
+  r.solve_step(r.job.steps.size() - 1);
 }
 
 void register_solution_commands(std::vector<CommandSpec>& t) {

@@ -10,7 +10,7 @@
 #include <cmath>
 #include <filesystem>
 
-#include "analysis/job_runner.h"
+#include "analysis/job_session.h"
 #include "deck/deck_reader.h"
 #include "results/results_file.h"
 

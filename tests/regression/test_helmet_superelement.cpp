@@ -10,11 +10,12 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <string>
 #include <vector>
 
-#include "analysis/job_runner.h"
+#include "analysis/job_session.h"
 #include "core/log.h"
 #include "deck/deck_reader.h"
 #include "io/superelement_file.h"
@@ -218,11 +219,9 @@ TEST_F(HelmetSuperelement, ExpansionPassMustBeAJobOfItsOwn) {
       "/PREP7\nET,1,LINK8\nR,1,1\nMP,EX,1,1\nN,1\nN,2,1\nE,1,2\nD,1,ALL\nFINISH\n"
       "/SOLU\nANTYPE,STATIC\nSOLVE\nFINISH\n/SOLU\nEXPASS,ON\nSEEXP,helmet_segen,helmet_use\n"
       "SOLVE\nFINISH\n";
-  const Job job = read_deck_text(text, "mixed.inp");
-  const fs::path previous = fs::current_path();
-  fs::current_path(dir_);
-  EXPECT_THROW(results_model(job), InputError);
-  fs::current_path(previous);
+  const fs::path mixed = dir_ / "mixed.inp";
+  std::ofstream(mixed) << text;
+  EXPECT_THROW(testing::run_deck_in(mixed.string(), dir_, RunSettings{}, "mixed"), InputError);
   const Job missing =
       read_deck_text("/SOLU\nEXPASS,ON\nSEEXP,nosuch,helmet_use\nSOLVE\n", "missing.inp");
   try {

@@ -1,5 +1,5 @@
 #pragma once
-/// Test support: runs a deck through the same path as `impactfe run` (read_deck + run_job) in
+/// Test support: runs a deck through the same path as `impactfe run` (read_deck + JobSession) in
 /// a fresh directory and opens the results file.
 #include <unistd.h>
 
@@ -7,7 +7,7 @@
 #include <memory>
 #include <string>
 
-#include "analysis/job_runner.h"
+#include "analysis/job_session.h"
 #include "deck/deck_reader.h"
 #include "results/results_file.h"
 
@@ -42,11 +42,12 @@ inline DeckRun run_deck_in(const std::string& deck, const std::filesystem::path&
   fs::current_path(run.directory);
   if (jobname.empty()) jobname = fs::path(deck).stem().string();
   try {
+    // As `impactfe run`: the session solves each request when the deck reaches it.
+    JobSession session(jobname, settings, run.statistics);
     DeckOptions options;
     options.jobname = jobname;
+    options.host = &session;
     const Job job = read_deck(deck, options);
-    ResultsWriter writer(jobname + ".h5", results_model(job));
-    run_job(job, jobname, settings, writer, run.statistics);
   } catch (...) {
     fs::current_path(previous);
     throw;

@@ -1,0 +1,207 @@
+#include "analysis/job_session.h"
+
+#include <fmt/format.h>
+
+#include "analysis/analyses.h"
+#include "analysis/direct_solution.h"
+#include "analysis/superelement_expansion.h"
+#include "core/log.h"
+
+namespace impactfe {
+
+namespace {
+
+bool is_superelement_expansion(const Job::Step& step) {
+  return step.expansion && step.expansion->superelement;
+}
+
+/// Static and full transient analyses advance load step by load step.
+bool solves_incrementally(const AnalysisOptions& o) {
+  return o.type == AnalysisType::Static ||
+         (o.type == AnalysisType::Transient && o.method == TransientMethod::Full);
+}
+
+const SourceLocation& location_of(const Job::Step& step) {
+  return step.analysis ? step.analysis->where : step.expansion->where;
+}
+
+}  // namespace
+
+Model results_model(const Job& job, std::size_t step) {
+  if (step < job.steps.size() && is_superelement_expansion(job.steps[step])) {
+    const SuperelementExpansionSource& source = *job.steps[step].expansion->superelement;
+    const SuperelementData data = read_superelement(superelement_file_of(source), source.where);
+    bool lumped = false, sstif = false;
+    Model model = deserialize_generation_model(data.model_text, lumped, sstif);
+    model.title = data.title;
+    model.jobname = job.model.jobname;
+    return model;
+  }
+  return job.model;
+}
+
+JobSession::JobSession(std::string jobname, const RunSettings& settings, RunStatistics& stats)
+    : jobname_(std::move(jobname)), settings_(settings), stats_(stats) {}
+
+JobSession::JobSession(ResultsWriter& writer, std::string jobname, const RunSettings& settings,
+                       RunStatistics& stats)
+    : jobname_(std::move(jobname)), settings_(settings), stats_(stats), writer_(&writer) {}
+
+JobSession::~JobSession() = default;
+
+std::string JobSession::results_path() const {
+  return writer_ ? writer_->path() : std::string();
+}
+
+ResultsWriter& JobSession::writer_for(const Job& job, std::size_t step) {
+  const bool expansion = is_superelement_expansion(job.steps[step]);
+  const bool first = stats_.analyses.size() == 1;  // the step being opened is the only one
+  if ((expansion && !first) || (!expansion && superelement_expansion_job_))
+    throw InputError(location_of(job.steps[step]),
+                     "a superelement expansion pass (EXPASS + SEEXP) must be the only solution "
+                     "of its job (MAPDL runs it as a job of its own: /CLEAR, /FILNAME,Sename)");
+  superelement_expansion_job_ = expansion;
+  if (!writer_) {
+    if (!job.model.jobname.empty()) jobname_ = job.model.jobname;  // /FILNAME before the solution
+    owned_writer_ = std::make_unique<ResultsWriter>(jobname_ + ".h5", results_model(job, step));
+    writer_ = owned_writer_.get();
+  }
+  return *writer_;
+}
+
+void JobSession::solve(const Job& job, std::size_t step) {
+  IMPACTFE_CHECK(step < job.steps.size(), "solution request out of range");
+  const Job::Step& s = job.steps[step];
+  if (open_ && *open_ != step) close_open();
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    if (!open_) {
+      stats_.analyses.emplace_back();
+      AnalysisStatistics& current = stats_.analyses.back();
+      ResultsWriter& writer = writer_for(job, step);
+      open_ = step;
+      open_seconds_ = 0.0;
+      load_steps_solved_ = 0;
+      if (s.expansion) {
+        // An expansion pass is complete when it is requested: it runs now and closes.
+        if (s.expansion->superelement) {
+          run_superelement_expansion(*s.expansion, writer, current);
+        } else {
+          current.description = "expansion pass";
+          run_expansion_pass(*s.expansion, reduced_state_.get(), writer, settings_, current);
+        }
+        open_seconds_ =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        close_open();
+        return;
+      }
+      models_.push_back(std::make_unique<Model>(s.model_snapshot));
+      open_step_.emplace();
+      open_step_->analysis = *s.analysis;
+      if (solves_incrementally(s.analysis->options)) {
+        structure_ = std::make_unique<Structure>(*models_.back(), s.analysis->options, settings_,
+                                                 &s.analysis->load_steps);
+        structure_->use_table_nodes(writer.node_ids());
+        direct_ = begin_direct_analysis(*structure_, writer, settings_, current);
+      }
+    }
+    // The analysis grew by the load steps its SOLVEs appended since the last call.
+    open_step_->analysis->load_steps = s.analysis->load_steps;
+    if (direct_) {
+      const auto& steps = open_step_->analysis->load_steps;
+      while (load_steps_solved_ < steps.size())
+        direct_->solve_load_step(steps[load_steps_solved_++]);
+    }
+  } catch (...) {
+    open_seconds_ +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    fail(std::current_exception());
+  }
+  open_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+void JobSession::run_whole(const Job::Step& step, AnalysisStatistics& stats) {
+  const AnalysisRequest& request = *step.analysis;
+  Structure structure(*models_.back(), request.options, settings_, &request.load_steps);
+  structure.use_table_nodes(writer_->node_ids());
+  switch (request.options.type) {
+    case AnalysisType::Modal:
+      run_modal_analysis(structure, request, *writer_, settings_, stats);
+      break;
+    case AnalysisType::Transient:
+      if (request.options.method == TransientMethod::Reduced)
+        run_reduced_transient(structure, request, *writer_, settings_, stats, reduced_state_);
+      else
+        run_msup_transient(structure, request, *writer_, settings_, stats, reduced_state_);
+      break;
+    case AnalysisType::Substructure:
+      run_substructure_generation(structure, request, *writer_, settings_, stats, jobname_);
+      break;
+    case AnalysisType::Static:
+      IMPACTFE_CHECK(false, "a static analysis is solved load step by load step");
+  }
+}
+
+void JobSession::close_open() {
+  if (!open_) return;
+  AnalysisStatistics& current = stats_.analyses.back();
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    if (direct_)
+      direct_->finish();
+    else if (open_step_ && open_step_->analysis)
+      run_whole(*open_step_, current);
+  } catch (...) {
+    open_seconds_ +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    fail(std::current_exception());
+  }
+  current.wall_seconds =
+      open_seconds_ +
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  writer_->set_attribute("wall_seconds", current.wall_seconds);
+  writer_->set_attribute("factorizations", static_cast<double>(current.n_factorizations));
+  writer_->end_analysis("complete");
+  direct_.reset();
+  structure_.reset();
+  open_step_.reset();
+  open_.reset();
+}
+
+void JobSession::fail(const std::exception_ptr& error) {
+  if (!stats_.analyses.empty()) stats_.analyses.back().wall_seconds = open_seconds_;
+  try {
+    std::rethrow_exception(error);
+  } catch (const std::exception& e) {
+    try {
+      if (writer_) writer_->end_analysis(std::string("failed: ") + e.what());
+    } catch (...) {
+      // No analysis group was opened; nothing to mark.
+    }
+  } catch (...) {
+  }
+  direct_.reset();
+  structure_.reset();
+  open_step_.reset();
+  open_.reset();
+  std::rethrow_exception(error);
+}
+
+std::string JobSession::results_for_reading(const Job&) {
+  // A static or full transient has written every solved step already; the others run whole.
+  if (open_ && !direct_) close_open();
+  return results_path();
+}
+
+void JobSession::finish(const Job&) {
+  close_open();
+}
+
+void run_job(const Job& job, const std::string& jobname, const RunSettings& settings,
+             ResultsWriter& writer, RunStatistics& stats) {
+  JobSession session(writer, jobname, settings, stats);
+  for (std::size_t i = 0; i < job.steps.size(); ++i) session.solve(job, i);
+  session.finish(job);
+}
+
+}  // namespace impactfe
