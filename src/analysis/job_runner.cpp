@@ -70,6 +70,10 @@ void run_job(const Job& job, const std::string& jobname, const RunSettings& sett
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     writer.set_attribute("wall_seconds", current.wall_seconds);
     writer.set_attribute("factorizations", static_cast<double>(current.n_factorizations));
+    writer.set_attribute("dofs", static_cast<double>(current.n_dofs));
+    writer.set_attribute("substeps", static_cast<double>(current.n_substeps));
+    writer.set_attribute("iterations", static_cast<double>(current.n_iterations));
+    writer.set_attribute("status_changes", static_cast<double>(current.n_status_changes));
     writer.end_analysis("complete");
   }
 }
