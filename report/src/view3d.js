@@ -8,8 +8,16 @@ import { el, f32, fmt } from './util.js';
 const BANDS = ['#0000ff', '#0080ff', '#00ffff', '#00ff80', '#00ff00', '#80ff00', '#ffff00', '#ff8000', '#ff0000'];
 const BAND_RGB = BANDS.map((h) => new THREE.Color(h));
 const NO_VALUE = new THREE.Color('#b9bec6');
+const NO_VALUE_LINE = new THREE.Color('#5a606b');
 const UNIFORM = new THREE.Color('#8fb3d9');
 const MODE_STEPS = 48;
+
+/** Length of a displacement whose absent components (NaN: a 2-D model has no UZ) count as 0;
+ *  NaN when all three are absent. */
+function magnitude(x, y, z) {
+  if (Number.isNaN(x) && Number.isNaN(y) && Number.isNaN(z)) return NaN;
+  return Math.hypot(x || 0, y || 0, z || 0);
+}
 
 /** 1, 2, 5 x 10^k closest below v. */
 function niceBelow(v) {
@@ -67,7 +75,15 @@ export class View3D {
     for (let i = 0; i < this.nNodes; i++) b.expandByPoint(v.fromArray(this.xyz, 3 * i));
     this.box = b;
     const s = b.getSize(new THREE.Vector3());
-    this.planarZ = s.z <= 1e-9 * Math.max(s.x, s.y, 1e-30);
+    // A model in the XY plane that moves in its plane is seen face on, Y up (a 2-D model).
+    let inPlane = 0, outOfPlane = 0;
+    for (const a of [this.U, this.modes || []])
+      for (let i = 0; i < a.length; i += 3) {
+        if (Number.isFinite(a[i])) inPlane = Math.max(inPlane, Math.abs(a[i]));
+        if (Number.isFinite(a[i + 1])) inPlane = Math.max(inPlane, Math.abs(a[i + 1]));
+        if (Number.isFinite(a[i + 2])) outOfPlane = Math.max(outOfPlane, Math.abs(a[i + 2]));
+      }
+    this.planarZ = s.z <= 1e-9 * Math.max(s.x, s.y, 1e-30) && outOfPlane <= 0.1 * inPlane;
     return Math.max(s.length(), 1e-12);
   }
 
@@ -139,7 +155,13 @@ export class View3D {
     [...m.edges, ...m.lines].forEach((n, k) => und.set(this.xyz.subarray(3 * n, 3 * n + 3), 3 * k));
     undGeom.setAttribute('position', new THREE.BufferAttribute(und, 3));
     this.undObj = new THREE.LineSegments(undGeom, new THREE.LineBasicMaterial({ color: 0x7a7a7a, transparent: true, opacity: 0.35 }));
-    for (const o of [this.triMesh, this.lineObj, this.pointObj, this.edgeObj, this.undObj]) {
+    // A model of lines only (spars, springs) gets node markers: 1-pixel lines alone are faint.
+    const used = new Set([...m.lines, ...m.points]);
+    this.markerNodes = m.triangles.length ? [] : [...used];
+    const markerGeom = new THREE.BufferGeometry();
+    markerGeom.setAttribute('position', new THREE.BufferAttribute(new Float32Array(this.markerNodes.length * 3), 3));
+    this.markerObj = new THREE.Points(markerGeom, new THREE.PointsMaterial({ color: 0x1a1a1a, size: 5, sizeAttenuation: false }));
+    for (const o of [this.triMesh, this.lineObj, this.pointObj, this.edgeObj, this.undObj, this.markerObj]) {
       o.frustumCulled = false;
       this.scene.add(o);
     }
@@ -213,7 +235,7 @@ export class View3D {
     const a = this.set.kind === 'frames' ? this.U : this.modes.subarray(this.set.mode * this.nNodes * 3, (this.set.mode + 1) * this.nNodes * 3);
     let m = 0;
     for (let i = 0; i < a.length; i += 3) {
-      const v = Math.hypot(a[i], a[i + 1], a[i + 2]);
+      const v = magnitude(a[i], a[i + 1], a[i + 2]);
       if (Number.isFinite(v) && v > m) m = v;
     }
     return m;
@@ -248,10 +270,10 @@ export class View3D {
   fieldValue(name, k, node, element) {
     if (name === '|φ| (mode shape)') {
       const o = (this.set.mode * this.nNodes + node) * 3;
-      return Math.hypot(this.modes[o], this.modes[o + 1], this.modes[o + 2]);
+      return magnitude(this.modes[o], this.modes[o + 1], this.modes[o + 2]);
     }
     const o = (k * this.nNodes + node) * 3;
-    if (name === '|U|') return Math.hypot(this.U[o], this.U[o + 1], this.U[o + 2]);
+    if (name === '|U|') return magnitude(this.U[o], this.U[o + 1], this.U[o + 2]);
     if (name === 'UX') return this.U[o];
     if (name === 'UY') return this.U[o + 1];
     if (name === 'UZ') return this.U[o + 2];
@@ -284,8 +306,8 @@ export class View3D {
     return (this.rangeCache[key] = Number.isFinite(lo) ? [lo, hi] : null);
   }
 
-  colourOf(v, r, out) {
-    if (!r || !Number.isFinite(v)) return out.copy(NO_VALUE);
+  colourOf(v, r, out, missing = NO_VALUE) {
+    if (!r || !Number.isFinite(v)) return out.copy(missing);
     const t = r[1] > r[0] ? (v - r[0]) / (r[1] - r[0]) : 0.5;
     return out.copy(BAND_RGB[Math.min(BANDS.length - 1, Math.max(0, Math.floor(t * BANDS.length)))]);
   }
@@ -317,14 +339,14 @@ export class View3D {
       for (let c = 0; c < 3; c++) pos[3 * i + c] = this.xyz[3 * i + c] + scale * d[c];
     }
     const col = new THREE.Color();
-    const fill = (obj, nodes, perItem, elementOf) => {
+    const fill = (obj, nodes, perItem, elementOf, missing = NO_VALUE) => {
       const p = obj.geometry.attributes.position, cl = obj.geometry.attributes.color;
       for (let k = 0; k < nodes.length; k++) {
         const n = nodes[k];
         p.array.set(pos.subarray(3 * n, 3 * n + 3), 3 * k);
         const e = elementOf[Math.floor(k / perItem)];
         if (name === 'none') col.copy(UNIFORM);
-        else this.colourOf(elementField ? this.fieldValue(name, this.step, 0, e) : this.fieldValue(name, this.step, n, e), r, col);
+        else this.colourOf(elementField ? this.fieldValue(name, this.step, 0, e) : this.fieldValue(name, this.step, n, e), r, col, missing);
         col.toArray(cl.array, 3 * k);
       }
       p.needsUpdate = true;
@@ -332,11 +354,14 @@ export class View3D {
     };
     fill(this.triMesh, m.triangles, 3, m.triangle_element);
     this.triMesh.geometry.computeVertexNormals();
-    fill(this.lineObj, m.lines, 2, m.line_element);
+    fill(this.lineObj, m.lines, 2, m.line_element, NO_VALUE_LINE);
     fill(this.pointObj, m.points, 1, m.point_element);
     const ep = this.edgeObj.geometry.attributes.position;
     m.edges.forEach((n, k) => ep.array.set(pos.subarray(3 * n, 3 * n + 3), 3 * k));
     ep.needsUpdate = true;
+    const mp = this.markerObj.geometry.attributes.position;
+    this.markerNodes.forEach((n, k) => mp.array.set(pos.subarray(3 * n, 3 * n + 3), 3 * k));
+    mp.needsUpdate = true;
     this.edgeObj.visible = this.edgesBox.checked;
     this.undObj.visible = this.undeformed.checked;
     this.drawLegend(name, r);

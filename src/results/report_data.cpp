@@ -202,7 +202,8 @@ struct Pass {
   std::vector<TimePoint> frames;  // the chosen frames, in frame order
 };
 
-Pass scan_time_points(const ResultsReader& reader, const std::vector<FrameRef>& frames) {
+Pass scan_time_points(const ResultsReader& reader, const std::vector<FrameRef>& frames,
+                      int max_points) {
   Pass pass;
   const auto n_nodes = static_cast<Eigen::Index>(reader.node_ids().size());
   pass.peaks.node = Eigen::MatrixXd::Constant(n_nodes, 3, kNaN);
@@ -262,10 +263,11 @@ Pass scan_time_points(const ResultsReader& reader, const std::vector<FrameRef>& 
       Series s;
       for (std::size_t k = 0; k < t.size(); ++k)
         if (std::isfinite(energy[name][k])) s.emplace_back(t[k], energy[name][k]);
-      if (s.empty()) continue;
-      e["curves"].push_back(curve(name, s, 2000));
+      if (s.size() < 2) continue;
+      e["curves"].push_back(curve(name, s, max_points));
       final_values[name] = s.back().second;
     }
+    if (e["curves"].empty()) continue;  // a single static point: no balance over time
     e["final"] = final_values;
     e["time_final"] = t.back();
     pass.energy.push_back(std::move(e));
@@ -280,17 +282,18 @@ bool is_stress_item(const std::string& item) {
          item != "SLIDE";
 }
 
-/// "element 39 (SHELL63)" or "elements 39, 41 (SHELL63)" from the curves' labels.
-std::string element_names(const json& series, const std::string& type) {
+/// "element 39 (SHELL63)" or "elements 39 (SHELL63), 73 (SOLID45)" from the curves' labels
+/// ("Element 39 (SHELL63) SEQV_TOP").
+std::string element_names(const json& series) {
   std::vector<std::string> ids;
   for (const auto& s : series) {
-    const std::string label = s["label"];  // "Element 39 (SHELL63) SEQV_TOP"
-    std::string id = label.substr(8, label.find(' ', 8) - 8);
+    const std::string label = s["label"];
+    const std::string id = label.substr(8, label.find(')') - 7);
     if (std::find(ids.begin(), ids.end(), id) == ids.end()) ids.push_back(id);
   }
   std::string list;
   for (const auto& id : ids) list += (list.empty() ? "" : ", ") + id;
-  return fmt::format("element{} {} ({})", ids.size() == 1 ? "" : "s", list, type);
+  return fmt::format("element{} {}", ids.size() == 1 ? "" : "s", list);
 }
 
 std::string dof_label(const char* prefix, int d) {
@@ -312,7 +315,7 @@ json nodal_figures(const ResultsReader& reader, const std::vector<std::vector<in
       for (int node : groups[g])
         for (int d : dirs) {
           const Series s = reader.nodal_series(node, dof_label(q.prefix, d));
-          if (!s.empty() && series.size() < kMaxCurves)
+          if (s.size() >= 2 && series.size() < kMaxCurves)  // one point is no history
             series.push_back(
                 curve(fmt::format("Node {} {}", node, dof_label(q.prefix, d)), s, max_points));
         }
@@ -411,7 +414,7 @@ std::string report_data_json(const ResultsReader& reader, const ReportOptions& o
       std::min<std::size_t>(static_cast<std::size_t>(options.max_frames),
                             std::max<std::size_t>(2, kFrameValueBudget / per_frame));
   const auto frame_refs = choose_frames(reader, mesh, max_frames);
-  Pass pass = scan_time_points(reader, frame_refs);
+  Pass pass = scan_time_points(reader, frame_refs, options.max_points);
   const Peaks& peaks = pass.peaks;
 
   json data;
@@ -546,7 +549,7 @@ std::string report_data_json(const ResultsReader& reader, const ReportOptions& o
                                    info.type_name, reader.path()));
     for (const auto& item : items) {
       const Series s = reader.element_series(e, item);
-      if (s.empty()) continue;
+      if (s.size() < 2) continue;
       const std::string key = is_stress_item(item) ? "stress|" + info.type_name : item;
       if (!by_figure.count(key)) by_figure[key] = json::array();
       by_figure[key].push_back(
@@ -557,12 +560,10 @@ std::string report_data_json(const ResultsReader& reader, const ReportOptions& o
   for (auto& [key, series] : by_figure) {
     const auto& items = figure_items[key];
     const std::string one = items.size() == 1 ? " " + *items.begin() : "";
-    std::string title = fmt::format("Element {} vs time", key), ylabel = key;
-    if (key.rfind("stress|", 0) == 0) {  // one stress figure per element type
-      const std::string type = key.substr(7);
-      title = fmt::format("Stress of {} vs time", element_names(series, type));
-      ylabel = "Stress" + one;
-    }
+    const bool stress = key.rfind("stress|", 0) == 0;  // one stress figure per element type
+    const std::string title =
+        fmt::format("{} of {} vs time", stress ? "Stress" : key, element_names(series));
+    const std::string ylabel = stress ? "Stress" + one : key;
     figures.push_back({{"group", "element"},
                        {"title", title},
                        {"xlabel", "Time"},
@@ -579,9 +580,10 @@ std::string report_data_json(const ResultsReader& reader, const ReportOptions& o
   std::size_t n_gap_rows = 0;
   for (const auto& [id, peak] : gaps) {
     const auto& type = reader.elements()[mesh.element_index.at(id)].type_name;
-    if (gap_curves.size() < kMaxGapCurves)
-      gap_curves.push_back(curve(fmt::format("Element {} ({}) FORC", id, type),
-                                 reader.element_series(id, "FORC"), options.max_points));
+    const Series s = reader.element_series(id, "FORC");
+    if (gap_curves.size() < kMaxGapCurves && s.size() >= 2)
+      gap_curves.push_back(
+          curve(fmt::format("Element {} ({}) FORC", id, type), s, options.max_points));
   }
   std::vector<int> gap_ids;
   for (const auto& [id, m] : peaks.family_of)
@@ -606,7 +608,7 @@ std::string report_data_json(const ResultsReader& reader, const ReportOptions& o
   for (const auto& a : analyses) n_conditions = std::max(n_conditions, a.n_gaps);
   for (int g = 1; g <= n_conditions; ++g) {
     const Series s = reader.gap_force_series(g);
-    if (gap_curves.size() < kMaxGapCurves)
+    if (gap_curves.size() < kMaxGapCurves && s.size() >= 2)
       gap_curves.push_back(curve(fmt::format("Gap condition {} force", g), s, options.max_points));
     if (++n_gap_rows <= kMaxGapRows)
       rows.push_back(

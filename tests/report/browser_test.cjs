@@ -72,6 +72,10 @@ async function main() {
     }
     check(stats.gapRows > 0, 'no gap status timeline');
 
+    // The page as it opens (the 3-D view at the frame of the peak stress).
+    const shot = path.join(outDir, 'report_screenshot.png');
+    await page.screenshot({ path: shot, fullPage: true });
+
     // Move the time slider to the middle and colour by |U|: still drawn, no error.
     const after = await page.evaluate(() => {
       const v = window.impactfeReport.view;
@@ -84,9 +88,6 @@ async function main() {
 
     const viewShot = path.join(outDir, 'report_3d_view.png');
     await page.locator('.view3d').screenshot({ path: viewShot });
-    const shot = path.join(outDir, 'report_screenshot.png');
-    await page.evaluate(() => window.scrollTo(0, 0));
-    await page.screenshot({ path: shot, fullPage: true });
     console.log(`screenshot: ${shot}`);
     console.log(`3-D view screenshot: ${viewShot}`);
   } finally {
