@@ -4,6 +4,8 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <limits>
 #include <nlohmann/json.hpp>
@@ -228,6 +230,98 @@ TEST_F(ReportTest, PageIsSelfContained) {
   EXPECT_EQ(bytes, fs::file_size(dir_ / "r.html"));
   EXPECT_THROW(write_report(ResultsReader(path_), {}, (dir_ / "no" / "r.html").string()),
                InputError);
+}
+
+/// Base64 float32 of the page data back to numbers.
+std::vector<float> decode_floats(const std::string& b64) {
+  const std::string alphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::vector<unsigned char> bytes;
+  std::uint32_t acc = 0;
+  int bits = 0;
+  for (char c : b64) {
+    if (c == '=') break;
+    acc = (acc << 6) | static_cast<std::uint32_t>(alphabet.find(c));
+    bits += 6;
+    if (bits >= 8) {
+      bits -= 8;
+      bytes.push_back(static_cast<unsigned char>((acc >> bits) & 0xff));
+    }
+  }
+  std::vector<float> out(bytes.size() / 4);
+  std::memcpy(out.data(), bytes.data(), out.size() * 4);
+  return out;
+}
+
+/// A long history like the one in issue 10: 190 nodes (a 19 x 10 shell grid), 3000 stored
+/// points with a narrow peak at step 1234. The page stays small: curves sampled to at most
+/// 2000 points with the peak kept, at most 300 frames.
+TEST(ReportLongHistory, SampledAndSmall) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("impactfe_report_long_" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  Model m;
+  m.title = "long history";
+  for (int j = 0; j < 10; ++j)
+    for (int i = 0; i < 19; ++i) {
+      Node n;
+      n.id = 1 + i + 19 * j;
+      n.x = Vec3(i, j, 0.0);
+      m.nodes[n.id] = n;
+    }
+  ElementType shell;
+  shell.id = 1;
+  shell.ansys_name = "SHELL63";
+  m.element_types[1] = shell;
+  std::vector<int> ids;
+  for (int j = 0; j < 9; ++j)
+    for (int i = 0; i < 18; ++i) {
+      ElementRecord e;
+      e.id = 1 + i + 18 * j;
+      e.type = 1;
+      const int a = 1 + i + 19 * j;
+      e.nodes = {a, a + 1, a + 20, a + 19};
+      m.elements[e.id] = e;
+      ids.push_back(e.id);
+    }
+  const std::string path = (dir / "long.h5").string();
+  {
+    ResultsWriter w(path, m);
+    w.begin_analysis(ResultsKind::Transient, "long");
+    for (int k = 0; k < 3000; ++k) {
+      TimePoint p;
+      p.time = 1e-4 * k;
+      const double s = std::sin(0.01 * k) + (k == 1234 ? 5.0 : 0.0);
+      p.displacement = Eigen::MatrixXd::Zero(190, 6);
+      for (int i = 0; i < 190; ++i) p.displacement(i, 2) = s * (1.0 + 0.01 * i);
+      p.velocity = p.acceleration = p.displacement;
+      p.reaction = Eigen::MatrixXd::Constant(190, 6, kNaN);
+      Eigen::MatrixXd seqv(162, 2);
+      for (int e = 0; e < 162; ++e) seqv.row(e) << std::abs(s) * (1 + e), std::abs(s);
+      p.element_results["shell"] = {ids, {"SEQV_TOP", "SEQV_BOT"}, seqv};
+      w.append(p);
+    }
+    w.end_analysis();
+  }
+  const std::string html = report_html(ResultsReader(path), {});
+  std::printf("long-history page: %zu bytes\n", html.size());
+  EXPECT_LT(html.size(), 4'000'000u);
+  const auto begin = html.find("id=\"impactfe-data\">") + 19;
+  const json d = json::parse(html.substr(begin, html.find("</script>", begin) - begin));
+  ASSERT_FALSE(d["figures"].empty());
+  for (const auto& f : d["figures"])
+    for (const auto& c : f["series"]) {
+      EXPECT_EQ(c["n_stored"], 3000);
+      EXPECT_LE(c["n"].get<int>(), 2000);
+      const auto y = decode_floats(c["y"]);
+      ASSERT_EQ(y.size(), c["n"].get<std::size_t>());
+      float peak = 0;
+      for (float v : y) peak = std::max(peak, std::abs(v));
+      EXPECT_FLOAT_EQ(peak, static_cast<float>(c["peak_abs"].get<double>())) << c["label"];
+    }
+  EXPECT_EQ(d["frames"]["times"].size(), 300u);
+  EXPECT_DOUBLE_EQ(d["frames"]["times"].back().get<double>(), 0.2999);
+  if (!std::getenv("IMPACTFE_KEEP_TEST_FILES")) fs::remove_all(dir);
 }
 
 }  // namespace
