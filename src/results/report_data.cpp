@@ -405,7 +405,7 @@ std::string report_data_json(const ResultsReader& reader, const ReportOptions& o
     }
   }
   for (int node : options.nodes)
-    if (!std::binary_search(node_ids.begin(), node_ids.end(), node))
+    if (node_row(node_ids, node) < 0)
       throw InputError(fmt::format("node {} is not in results file '{}'", node, reader.path()));
 
   // Frames of the 3-D view within the value budget, then the single pass.
@@ -472,12 +472,9 @@ std::string report_data_json(const ResultsReader& reader, const ReportOptions& o
     for (const auto& e : reader.elements()) {
       auto f = peaks.gap_force.find(e.id);
       if (!is_gap_type(e.type_name) || f == peaks.gap_force.end()) continue;
-      for (int n : e.nodes) {
-        auto it = std::lower_bound(node_ids.begin(), node_ids.end(), n);
-        if (it == node_ids.end() || *it != n) continue;
-        double& load = gap_load[static_cast<int>(it - node_ids.begin())];
-        load = std::max(load, f->second);
-      }
+      for (int n : e.nodes)
+        if (const int row = node_row(node_ids, n); row >= 0)
+          gap_load[row] = std::max(gap_load[row], f->second);
     }
     for (const auto& body : mesh.bodies) {
       // The node with the largest response, then the moving gap nodes, most loaded gap first

@@ -38,6 +38,11 @@ std::vector<int> unique_in_order(const std::vector<int>& face) {
 
 }  // namespace
 
+int node_row(const std::vector<int>& node_ids, int node) {
+  auto it = std::lower_bound(node_ids.begin(), node_ids.end(), node);
+  return it == node_ids.end() || *it != node ? -1 : static_cast<int>(it - node_ids.begin());
+}
+
 bool is_gap_type(const std::string& type_name) {
   return type_name == "COMBIN40";
 }
@@ -45,10 +50,7 @@ bool is_gap_type(const std::string& type_name) {
 ReportMesh build_report_mesh(const ResultsReader& reader) {
   ReportMesh mesh;
   const auto& ids = reader.node_ids();
-  auto index_of = [&](int node) {
-    auto it = std::lower_bound(ids.begin(), ids.end(), node);
-    return it == ids.end() || *it != node ? -1 : static_cast<int>(it - ids.begin());
-  };
+  auto index_of = [&](int node) { return node_row(ids, node); };
   // Brick faces (ANSYS SOLID45 node order I J K L M N O P), outward for the positive volume.
   static const std::array<std::array<int, 4>, 6> kBrickFaces = {
       {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}}};
@@ -137,13 +139,21 @@ ReportMesh build_report_mesh(const ResultsReader& reader) {
     if (is_gap_type(el.type_name) || el.nodes.empty()) continue;
     if (int i = index_of(el.nodes[0]); i >= 0) ++types[parts.root(i)][el.type_name];
   }
+  // Nodes not joined to any other (held by gaps only, lone masses, superelement masters whose
+  // superelement is not in the file) form one group, not one part each.
   std::vector<std::vector<int>> groups;
-  for (auto& [root, nodes] : by_root) groups.push_back(nodes);
+  std::vector<int> single;
+  for (auto& [root, nodes] : by_root) {
+    if (nodes.size() == 1)
+      single.push_back(nodes.front());
+    else
+      groups.push_back(nodes);
+  }
   std::sort(groups.begin(), groups.end(),
             [](const auto& a, const auto& b) { return a.front() < b.front(); });
   std::map<std::string, int> name_count;
   for (const auto& nodes : groups) {
-    std::string type = "unconnected";
+    std::string type;
     int best = 0;
     for (const auto& [name, count] : types[parts.root(nodes.front())])
       if (count > best) {
@@ -155,16 +165,15 @@ ReportMesh build_report_mesh(const ResultsReader& reader) {
   }
   std::map<std::string, int> seen;
   for (auto& b : mesh.bodies) {
-    if (b.name == "unconnected") {  // held by gaps only, e.g. the ground node
-      b.name = b.nodes.size() == 1
-                   ? fmt::format("node {}", ids[static_cast<std::size_t>(b.nodes[0])])
-                   : "the nodes held by gaps only";
-      continue;
-    }
     const int k = ++seen[b.name];
     b.name = name_count[b.name] > 1 ? fmt::format("the {} part {}", b.name, k)
                                     : fmt::format("the {} part", b.name);
   }
+  if (single.size() == 1)
+    mesh.bodies.push_back(
+        {fmt::format("node {}", ids[static_cast<std::size_t>(single[0])]), single});
+  else if (!single.empty())
+    mesh.bodies.push_back({"the single nodes", single});
   return mesh;
 }
 

@@ -26,13 +26,16 @@ struct ReportMesh {
   std::vector<int> point_element;
   std::vector<int> used_nodes;  // node indices referenced by some element, ascending
   std::set<int> gap_nodes;      // node indices of gap (COMBIN40) elements
-  std::vector<Body> bodies;     // ordered by their smallest node id
+  std::vector<Body> bodies;     // parts by their smallest node id, then the single nodes
 };
 
 /// Surfaces of shells (a 4-node shell with K = L is a triangle, a quadrilateral two) and bricks
 /// (outer faces only: a face shared by two bricks is dropped; repeated nodes collapse), lines
 /// of 2-node elements, points of 1-node elements and superelement nodes.
 ReportMesh build_report_mesh(const ResultsReader& reader);
+
+/// Row of `node` in the ascending node ids of a results file; -1 when absent.
+int node_row(const std::vector<int>& node_ids, int node);
 
 /// True for element types that act as gaps (COMBIN40): their nodes are picked for the nodal
 /// figures and they do not join bodies.
