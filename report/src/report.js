@@ -213,7 +213,13 @@ function main() {
     modeRows: data.modes.frequencies.length,
     errors: errors.slice(),
   });
-  requestAnimationFrame(() => requestAnimationFrame(() => (hook.ready = true)));
+  // uPlot lays its axes out on the next frame: then align the timeline and mark the page ready.
+  requestAnimationFrame(() =>
+    requestAnimationFrame(() => {
+      if (timeline) timeline.draw();
+      hook.ready = true;
+    }),
+  );
 }
 
 try {

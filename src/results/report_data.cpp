@@ -611,11 +611,12 @@ std::string report_data_json(const ResultsReader& reader, const ReportOptions& o
       rows.push_back(
           {{"label", fmt::format("Gap condition {}", g)}, {"changes", status_changes(s, true)}});
   }
-  data["gap_force"] = gap_curves.empty() ? json()
-                                         : json{{"title", "Gap force vs time"},
-                                                {"xlabel", "Time"},
-                                                {"ylabel", "Gap force (negative = compression)"},
-                                                {"series", std::move(gap_curves)}};
+  data["gap_force"] = gap_curves.empty()
+                          ? json()
+                          : json{{"title", "Gap force vs time (negative: compression)"},
+                                 {"xlabel", "Time"},
+                                 {"ylabel", "Gap force"},
+                                 {"series", std::move(gap_curves)}};
   data["gap_status"] = {{"rows", std::move(rows)},
                         {"n_gaps", gap_ids.size() + static_cast<std::size_t>(n_conditions)}};
 
