@@ -671,7 +671,8 @@ std::string report_data_json(const ResultsReader& reader, const ReportOptions& o
     frame_json["fields"].push_back(
         {{"name", fields[f].name}, {"values", float32_base64(field_values[f])}});
   data["frames"] = std::move(frame_json);
-  return data.dump();
+  // Titles of old decks may hold bytes that are not UTF-8: replaced, not an exception.
+  return data.dump(-1, ' ', false, json::error_handler_t::replace);
 }
 
 }  // namespace impactfe

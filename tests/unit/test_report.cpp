@@ -232,6 +232,24 @@ TEST_F(ReportTest, PageIsSelfContained) {
                InputError);
 }
 
+TEST(ReportTitle, BytesThatAreNotUtf8AreReplaced) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("impactfe_report_title_" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  Model m = two_part_model();
+  m.title = "CASE \xb0 1";  // Latin-1 degree sign from an old deck
+  const std::string path = (dir / "t.h5").string();
+  {
+    ResultsWriter w(path, m);
+    w.begin_analysis(ResultsKind::Static, "static");
+    w.end_analysis();
+  }
+  const json d = json::parse(report_data_json(ResultsReader(path), {}));
+  EXPECT_EQ(d["title"], "CASE \xef\xbf\xbd 1");  // U+FFFD
+  fs::remove_all(dir);
+}
+
 /// Base64 float32 of the page data back to numbers.
 std::vector<float> decode_floats(const std::string& b64) {
   const std::string alphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
