@@ -161,6 +161,10 @@ void JobSession::close_open() {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   writer_->set_attribute("wall_seconds", current.wall_seconds);
   writer_->set_attribute("factorizations", static_cast<double>(current.n_factorizations));
+  writer_->set_attribute("dofs", static_cast<double>(current.n_dofs));
+  writer_->set_attribute("substeps", static_cast<double>(current.n_substeps));
+  writer_->set_attribute("iterations", static_cast<double>(current.n_iterations));
+  writer_->set_attribute("status_changes", static_cast<double>(current.n_status_changes));
   writer_->end_analysis("complete");
   direct_.reset();
   structure_.reset();

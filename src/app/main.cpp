@@ -1,4 +1,5 @@
-/// impactfe command-line interface: run a deck, query a results file, export, Houbolt spectrum.
+/// impactfe command-line interface: run a deck, query a results file, export, report, Houbolt
+/// spectrum.
 #include <fmt/format.h>
 #include <CLI/CLI.hpp>
 
@@ -12,6 +13,7 @@
 #include "core/log.h"
 #include "deck/deck_reader.h"
 #include "results/post_csv.h"
+#include "results/report.h"
 #include "results/results_file.h"
 #include "results/vtk_export.h"
 #include "time/houbolt_spectrum.h"
@@ -166,6 +168,26 @@ int main(int argc, char** argv) {
   export_cmd->add_option("results", export_file, "results file (.h5)")->required();
   export_cmd->add_option("-o,--output", export_dir, "output directory");
 
+  std::string report_file, report_out;
+  ReportOptions report;
+  CLI::App* report_cmd = app.add_subcommand(
+      "report", "write a self-contained HTML report (summary, plots, energy, gaps, 3-D view)");
+  report_cmd->add_option("results", report_file, "results file (.h5)")->required();
+  report_cmd->add_option("-o,--output", report_out,
+                         "HTML file (default: the results file with extension .html)");
+  report_cmd->add_option("--node", report.nodes, "node of the time-history figures (repeatable)")
+      ->delimiter(',');
+  report_cmd->add_option("--element", report.elements, "element of the stress figure (repeatable)")
+      ->delimiter(',');
+  report_cmd
+      ->add_option("--item", report.items,
+                   "direction UX|UY|UZ and/or element item SEQV, SAXL, FORC, ... (repeatable)")
+      ->delimiter(',');
+  report_cmd->add_option("--max-points", report.max_points, "at most this many points per curve")
+      ->check(CLI::Range(4, 10000000));
+  report_cmd->add_option("--frames", report.max_frames, "at most this many frames in the 3-D view")
+      ->check(CLI::Range(2, 1000000));
+
   std::vector<double> xi = {0.0};
   CLI::App* spectrum_cmd = app.add_subcommand(
       "houbolt-spectrum", "spectral radius of the Houbolt amplification matrix (thesis Fig. 3-4)");
@@ -204,6 +226,15 @@ int main(int argc, char** argv) {
       ResultsReader reader(export_file);
       fs::create_directories(export_dir);
       export_vtu_series(reader, export_dir, fs::path(export_file).stem().string());
+      return kExitOk;
+    }
+    if (*report_cmd) {
+      ResultsReader reader(report_file);
+      const std::string out = report_out.empty()
+                                  ? fs::path(report_file).replace_extension(".html").string()
+                                  : report_out;
+      const auto bytes = write_report(reader, report, out);
+      std::cout << fmt::format("report: wrote {} ({:.2f} MB)\n", out, bytes / 1e6);
       return kExitOk;
     }
     if (*spectrum_cmd) {
