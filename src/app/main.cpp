@@ -45,6 +45,7 @@ struct RunArgs {
   std::string dialect = "auto";
   std::string superelement;
   bool continue_on_nonconvergence = false;
+  bool no_condense = false;
 };
 
 void print_summary(const std::string& jobname, const RunStatistics& stats, double wall) {
@@ -91,6 +92,7 @@ int run_command(const RunArgs& args) {
   RunSettings settings;
   settings.continue_on_nonconvergence = args.continue_on_nonconvergence;
   settings.superelement_file = args.superelement;
+  settings.condense = !args.no_condense;
 
   // The deck runs command by command: each solution request is solved by the session when the
   // deck reaches it.
@@ -146,6 +148,8 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--se", run.superelement, "superelement file for MATRIX50 elements");
   run_cmd->add_flag("--continue-on-nonconvergence", run.continue_on_nonconvergence,
                     "accept non-converged steps with a warning");
+  run_cmd->add_flag("--no-condense", run.no_condense,
+                    "full Newton on all DOFs in a transient, never the condensed linear part");
 
   std::string post_file;
   std::vector<std::string> nsol, esol, gapf;
