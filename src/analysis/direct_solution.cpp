@@ -101,11 +101,7 @@ void DirectSolution::set_constraints(const LoadStep& step) {
                                            structure_.options().beta_damping);
   mass_all_ = assembler_->mass_matrix();
   frame_load_ = FrameAccelerationLoad(structure_.elements(), *dofs_, ctx_);
-  if (solver_) {  // keep the work of the previous numbering in the counts
-    retired_.analyses += solver_->counters().analyses;
-    retired_.factorizations += solver_->counters().factorizations;
-    retired_.solves += solver_->counters().solves;
-  }
+  if (solver_) retired_ += solver_->counters();  // keep the previous numbering's work
   solver_ = make_linear_solver(dofs_->n_free());
   effective_ = assembler_->pattern();
   factor_valid_ = false;
@@ -229,10 +225,9 @@ void DirectSolution::run(const std::vector<LoadStep>& steps, bool transient) {
         "external work {:.6g}, numerical dissipation {:.6g}",
         time_, kinetic, strain, gap_work_, damping_work_, external_work_, balance));
   }
-  const SolverCounters now = solver_ ? solver_->counters() : SolverCounters{};
-  stats_.n_analyses = retired_.analyses + now.analyses;
-  stats_.n_factorizations = retired_.factorizations + now.factorizations;
-  stats_.n_solves = retired_.solves + now.solves;
+  SolverCounters total = retired_;
+  if (solver_) total += solver_->counters();
+  record_solver_counters(stats_, total);
 }
 
 void DirectSolution::solve_increment(const LoadPoint& at, double time, int load_step, int substep,

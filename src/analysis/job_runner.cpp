@@ -70,6 +70,15 @@ void run_job(const Job& job, const std::string& jobname, const RunSettings& sett
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     writer.set_attribute("wall_seconds", current.wall_seconds);
     writer.set_attribute("factorizations", static_cast<double>(current.n_factorizations));
+    if (current.factor_nonzeros > 0) {  // linear solver figures (docs/results_file.md)
+      writer.set_attribute("solves", static_cast<double>(current.n_solves));
+      writer.set_attribute("analyze_seconds", current.analyze_seconds);
+      writer.set_attribute("factorize_seconds", current.factorize_seconds);
+      writer.set_attribute("solve_seconds", current.solve_seconds);
+      writer.set_attribute("matrix_nonzeros", static_cast<double>(current.matrix_nonzeros));
+      writer.set_attribute("factor_nonzeros", static_cast<double>(current.factor_nonzeros));
+      writer.set_attribute("factor_bytes", static_cast<double>(current.factor_bytes));
+    }
     writer.end_analysis("complete");
   }
 }
