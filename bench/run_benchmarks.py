@@ -4,8 +4,8 @@ with the linear-solver figures, the memory-bandwidth floor and (opt-in) CalculiX
 
 One command, stdlib only (docs/benchmarks.md explains every column):
     python3 bench/run_benchmarks.py                       # default set, 3 repeats, --threads 1
-    python3 bench/run_benchmarks.py --sizes large         # adds 10^5 .. 4x10^5 DOF block drops
-    python3 bench/run_benchmarks.py --sizes huge --only blockdrop_256x256x4 --repeat 1
+    python3 bench/run_benchmarks.py --sizes large         # adds 5.6x10^4 and 2.5x10^5 DOF block drops
+    python3 bench/run_benchmarks.py --sizes huge --repeat 1   # the 10^6 DOF block drop only
     python3 bench/run_benchmarks.py --compare             # + CalculiX and the thread modes
     python3 bench/run_benchmarks.py --sizes smoke --repeat 1 --check   # the CI smoke test
 
@@ -20,7 +20,8 @@ factor and the solver's analyze / factorize / solve times (medians). Derived:
   floor      = 2 * bytes(L) / B, B = one-thread STREAM triad bandwidth measured by
                bench_memory in the same run (best of the measurements before and after the
                cases: the higher the bandwidth, the lower and safer the floor);
-  step/floor = step / floor.
+  step/floor = step / floor;
+  ms/solve   = solve time / solves, and solve/floor = ms/solve / floor (the solver alone).
 A case may be a chain of decks run in the same directory (superelement generation, then use
 pass); its figures are the sums over the chain (DOFs and sizes: the largest).
 
@@ -73,9 +74,11 @@ BLOCKDROP_SIZES = {
     "smoke": [(4, 4, 2, 1e-4)],
     "small": [(4, 4, 2, 1e-5), (8, 8, 4, 1e-5)],
     "default": [(8, 8, 4, 1e-5), (16, 16, 8, 1e-5)],
-    "large": [(8, 8, 4, 1e-5), (16, 16, 8, 1e-5), (32, 32, 16, 1e-4), (48, 48, 24, 1e-4)],
-    # Opt-in, one at a time (--only): ~4x10^5 DOFs as a 2:2:1 brick, ~10^6 DOFs as a slab.
-    "huge": [(64, 64, 32, 1e-4), (256, 256, 4, 1e-4)],
+    # 55 539 DOFs as a 2:2:1 brick, 249 615 DOFs as a slab (NZ = 4): minutes each.
+    "large": [(8, 8, 4, 1e-5), (16, 16, 8, 1e-5), (32, 32, 16, 1e-4), (128, 128, 4, 1e-4)],
+    # 990 735 DOFs, a slab: a factor of several GB and about an hour with the reference BLAS.
+    # (A 2:2:1 brick of 10^6 DOFs has a factor of tens of GB: beyond this machine.)
+    "huge": [(256, 256, 4, 1e-4)],
 }
 # generate_models.py sets for each --sizes value (None: none of those models).
 SCALED_SET = {"smoke": "smoke", "small": "small", "default": "default", "large": "large",
@@ -228,7 +231,24 @@ def run_case(exe, decks, repeat, threads=None, keep=None):
             t_solve=per_run(lambda an: sum(a.get("t_so", 0.0) for a in an)),
             step_ms=1e3 * per_run(step_seconds),
         )
+        solves = res["solves"]
+        res["solve_ms"] = 1e3 * res["t_solve"] / solves if solves else float("nan")
     return res
+
+
+def render_saved(path):
+    """The tables of a run saved with --save (re-rendered with the current columns)."""
+    with open(path) as f:
+        saved = json.load(f)
+    rows = [(name, r) for name, r in saved["cases"]]
+    for _, r in rows:
+        if r.get("has_solver") and "solve_ms" not in r:
+            r["solve_ms"] = 1e3 * r["t_solve"] / r["solves"] if r["solves"] else float("nan")
+        add_floor(r, saved["bandwidth"]["triad"])
+    text = saved.get("header", "") + "\n" + table(rows)
+    for name, cmp in saved["compare"]:
+        text += compare_table("Block drop %s, side by side (medians)" % name, cmp)
+    return text
 
 
 def add_floor(res, bandwidth):
@@ -236,6 +256,8 @@ def add_floor(res, bandwidth):
     if res.get("has_solver") and bandwidth:
         res["floor_ms"] = 1e3 * 2.0 * res["factor_bytes"] / bandwidth
         res["step_floor_ratio"] = res["step_ms"] / res["floor_ms"] if res["floor_ms"] > 0 else float("nan")
+        res["solve_floor_ratio"] = (res["solve_ms"] / res["floor_ms"] if res["floor_ms"] > 0
+                                    else float("nan"))
 
 
 def measure_bandwidth(bench_memory, repeat, min_time, length):
@@ -400,9 +422,9 @@ def fmt_num(value, spec):
 def table(rows):
     head = ("| case | DOFs | nnz(K) | nnz(L) | factor MB | substeps | fact. | solves | analyze s "
             "| factorize s | solve s | wall s (median) | wall s (min) | CPU s | per step ms "
-            "| step ms | floor ms | step/floor | peak RSS MB |\n"
+            "| step ms | floor ms | step/floor | ms/solve | solve/floor | peak RSS MB |\n"
             "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:"
-            "|---:|---:|\n")
+            "|---:|---:|---:|---:|\n")
     body = ""
     for name, r in rows:
         body += "| %s |" % name + "|".join(" %s " % c for c in [
@@ -412,7 +434,8 @@ def table(rows):
             fmt_num(r.get("t_analyze"), "%.4f"), fmt_num(r.get("t_factorize"), "%.4f"),
             fmt_num(r.get("t_solve"), "%.4f"), "%.3f" % r["wall_med"], "%.3f" % r["wall_min"],
             "%.3f" % r["cpu_med"], fmt_num(r["per_step_ms"], "%.3f"), fmt_num(r.get("step_ms"), "%.3f"),
-            fmt_num(r.get("floor_ms"), "%.4f"), fmt_num(r.get("step_floor_ratio"), "%.1f"),
+            fmt_num(r.get("floor_ms"), "%.4f"), fmt_num(r.get("step_floor_ratio"), "%.3g"),
+            fmt_num(r.get("solve_ms"), "%.4f"), fmt_num(r.get("solve_floor_ratio"), "%.3g"),
             "%.1f" % r["rss_mb"]]) + "|\n"
     return head + body
 
@@ -501,7 +524,7 @@ def main():
                     help="the bandwidth benchmark (bench/bench_memory.cpp)")
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--sizes", choices=sorted(BLOCKDROP_SIZES), default="default",
-                    help="model set: smoke (CI), small, default, large (+10^5 DOFs), huge (opt-in)")
+                    help="model set: smoke (CI), small, default, large (+ 10^5 DOFs), huge (10^6)")
     ap.add_argument("--threads", type=int, default=1,
                     help="impactfe --threads for the main table (0: impactfe's default)")
     ap.add_argument("--no-thesis", action="store_true", help="skip the thesis decks")
@@ -520,7 +543,11 @@ def main():
     ap.add_argument("--check", action="store_true",
                     help="fail unless every figure is present and plausible (CI smoke test)")
     ap.add_argument("--save", action="store_true", help="write bench/results/<date>-<sizes>.md/.json")
+    ap.add_argument("--render", metavar="JSON", help="print the tables of a saved run and exit")
     args = ap.parse_args()
+    if args.render:
+        print(render_saved(args.render))
+        return
     exe = os.path.abspath(args.exe)
     if not os.access(exe, os.X_OK):
         sys.exit("impactfe executable not found: %s (build it first)" % exe)
@@ -574,7 +601,8 @@ def main():
     for _, r in rows:
         add_floor(r, bandwidth["triad"])
 
-    text = machine_line(args, bandwidth, load_before, loadavg()) + "\n" + table(rows)
+    header = machine_line(args, bandwidth, load_before, loadavg())
+    text = header + "\n" + table(rows)
     for name, cmp in compare:
         text += compare_table("Block drop %s, side by side (medians; impactfe %d runs each)"
                               % (name, args.repeat), cmp)
@@ -585,8 +613,8 @@ def main():
         with open(stem + ".md", "w") as f:
             f.write("# impactfe benchmark run\n\n" + text)
         with open(stem + ".json", "w") as f:
-            json.dump({"bandwidth": bandwidth, "bandwidth_runs": bw_runs, "cases": rows,
-                       "compare": compare}, f, indent=1)
+            json.dump({"header": header, "bandwidth": bandwidth, "bandwidth_runs": bw_runs,
+                       "cases": rows, "compare": compare}, f, indent=1)
         print("written %s.md, .json" % stem, file=sys.stderr)
     if args.check:
         problems = check_results(rows, bandwidth, compare)
