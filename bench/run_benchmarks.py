@@ -422,7 +422,7 @@ def fmt_num(value, spec):
 def table(rows):
     head = ("| case | DOFs | nnz(K) | nnz(L) | factor MB | substeps | fact. | solves | analyze s "
             "| factorize s | solve s | wall s (median) | wall s (min) | CPU s | per step ms "
-            "| step ms | floor ms | step/floor | ms/solve | solve/floor | peak RSS MB |\n"
+            "| step ms | floor ms | step/floor | ms/solve | solve/floor | peak RSS MiB |\n"
             "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:"
             "|---:|---:|---:|---:|\n")
     body = ""
