@@ -68,8 +68,8 @@ void DirectSolution::set_constraints(const LoadStep& step) {
   mass_all_ = assembler_->mass_matrix();
   frame_load_ = FrameAccelerationLoad(structure_.elements(), *dofs_, ctx_);
   // Keep the work of the previous numbering in the counts.
-  if (solver_) retire(solver_->counters());
-  if (condensation_) retire(condensation_->counters());
+  if (solver_) retired_ += solver_->counters();
+  if (condensation_) retired_ += condensation_->counters();
   solver_ = make_linear_solver(dofs_->n_free());
   effective_ = assembler_->pattern();
   factor_valid_ = false;
@@ -86,12 +86,6 @@ void DirectSolution::set_constraints(const LoadStep& step) {
           dofs_->n_free(), condensation_->size(), assembler_->n_nonlinear_elements());
     }
   }
-}
-
-void DirectSolution::retire(const SolverCounters& c) {
-  retired_.analyses += c.analyses;
-  retired_.factorizations += c.factorizations;
-  retired_.solves += c.solves;
 }
 
 VectorXd DirectSolution::external_force(const LoadPoint& at) const {
@@ -222,14 +216,10 @@ void DirectSolution::finish() {
 
 void DirectSolution::update_counters() {
   SolverCounters now = solver_ ? solver_->counters() : SolverCounters{};
-  if (condensation_) {
-    now.analyses += condensation_->counters().analyses;
-    now.factorizations += condensation_->counters().factorizations;
-    now.solves += condensation_->counters().solves;
-  }
-  stats_.n_analyses = retired_.analyses + now.analyses;
-  stats_.n_factorizations = retired_.factorizations + now.factorizations;
-  stats_.n_solves = retired_.solves + now.solves;
+  if (condensation_) now += condensation_->counters();
+  SolverCounters total = retired_;
+  total += now;
+  record_solver_counters(stats_, total);
 }
 
 int DirectSolution::n_unknowns() const {

@@ -37,7 +37,6 @@ class DirectSolution : private NonlinearProblem {
 
  private:
   void update_counters();
-  void retire(const SolverCounters& counters);
   void set_constraints(const LoadStep& step);
   void start_dynamics(const LoadPoint& at, double h);
   VectorXd external_force(const LoadPoint& at) const;

@@ -56,6 +56,12 @@ void print_summary(const std::string& jobname, const RunStatistics& stats, doubl
         "{} factorizations ({} symbolic), {} solves, {} status changes, {:.3f} s\n",
         a.description, a.n_dofs, a.n_load_steps, a.n_substeps, a.n_iterations, a.n_stored,
         a.n_factorizations, a.n_analyses, a.n_solves, a.n_status_changes, a.wall_seconds);
+    if (a.factor_nonzeros > 0)
+      std::cout << fmt::format(
+          "    linear solver: nnz(K) {}, nnz(L) {}, factor {:.6g} MB, analyze {:.6f} s, "
+          "factorize {:.6f} s, solve {:.6f} s\n",
+          a.matrix_nonzeros, a.factor_nonzeros, a.factor_bytes / 1.0e6, a.analyze_seconds,
+          a.factorize_seconds, a.solve_seconds);
     for (const auto& note : a.notes) std::cout << "    " << note << "\n";
   }
   if (!Log::warnings().empty())
