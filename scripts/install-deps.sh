@@ -8,7 +8,7 @@ $SUDO apt-get update
 $SUDO apt-get install -y --no-install-recommends \
   build-essential cmake ninja-build pkg-config \
   libeigen3-dev libsuitesparse-dev libmetis-dev libspectra-dev \
-  libcli11-dev libfmt-dev libhdf5-dev \
+  libcli11-dev libfmt-dev libhdf5-dev libopenblas0-openmp \
   libgtest-dev libgmock-dev libbenchmark-dev \
   clang-format python3 nlohmann-json3-dev chromium fonts-dejavu-core
 # node and npm fetch the report page's libraries at build time (report/package-lock.json); the

@@ -147,7 +147,9 @@ int main(int argc, char** argv) {
   run_cmd->add_option("deck", run.deck, "input deck")->required();
   run_cmd->add_option("-o,--output", run.out_dir, "working directory for results (default .)");
   run_cmd->add_option("-j,--jobname", run.jobname, "job name (default: deck file stem)");
-  run_cmd->add_option("--threads", run.threads, "threads for element loops (default: all cores)");
+  run_cmd->add_option(
+      "--threads", run.threads,
+      "threads for element loops and BLAS (default: all cores where the work pays for them)");
   run_cmd->add_flag("--skip-unknown", run.skip_unknown, "warn and skip unknown commands");
   run_cmd->add_option("--dialect", run.dialect, "4x|modern|auto")
       ->check(CLI::IsMember({"4x", "modern", "auto"}));

@@ -1,6 +1,11 @@
 #include "assembly/assembler.h"
 
 #include <algorithm>
+#include <chrono>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 namespace impactfe {
 
@@ -72,17 +77,7 @@ void Assembler::assemble(const IntegrationCoefficients& coeff, const VectorXd& u
   if (out.internal_force) out.internal_force->setZero(dofs_.n_active());
   if (out.damping_force) out.damping_force->setZero(dofs_.n_active());
 
-  // Phase 1, in parallel: tangents of the nonlinear elements (the expensive part: co-rotational
-  // shells, total-Lagrangian bricks) into per-element buffers. Elements are const here and keep
-  // no shared scratch, so this is race-free; the scatter below stays serial and deterministic.
-  const int n_nonlinear = static_cast<int>(nonlinear_.size());
-#pragma omp parallel for schedule(dynamic, 8) if (n_nonlinear > 64)
-  for (int i = 0; i < n_nonlinear; ++i) {
-    const std::size_t e = nonlinear_[static_cast<std::size_t>(i)];
-    VectorXd ue_local;
-    gather(e, u, ue_local);
-    elements_[e]->tangent(ctx_, ue_local, tangent_buffer_[e], force_buffer_[e]);
-  }
+  compute_nonlinear_tangents(u);
 
   // Phase 2, serial: scatter.
   MatrixXd c, eff;
@@ -112,6 +107,40 @@ void Assembler::assemble(const IntegrationCoefficients& coeff, const VectorXd& u
       scatter_lower(e, eff, *out.effective);
     }
   }
+}
+
+void Assembler::compute_nonlinear_tangents(const VectorXd& u) const {
+  // Tangents of the nonlinear elements (the expensive part: co-rotational shells,
+  // total-Lagrangian bricks) into per-element buffers. Elements are const here and keep no shared
+  // scratch, so the loop is race-free and its results do not depend on the thread count; the
+  // scatter that follows stays serial and deterministic.
+  const int n_nonlinear = static_cast<int>(nonlinear_.size());
+  auto evaluate = [&](int i) {
+    const std::size_t e = nonlinear_[static_cast<std::size_t>(i)];
+    VectorXd ue_local;
+    gather(e, u, ue_local);
+    elements_[e]->tangent(ctx_, ue_local, tangent_buffer_[e], force_buffer_[e]);
+  };
+  if (threading_.parallel) {
+#pragma omp parallel for schedule(dynamic, 8)
+    for (int i = 0; i < n_nonlinear; ++i) evaluate(i);
+    return;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  for (int i = 0; i < n_nonlinear; ++i) evaluate(i);
+  threading_.record_serial_pass(
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+}
+
+void Assembler::TangentThreading::record_serial_pass(double seconds) {
+  if (probes_left == 0) return;
+  fastest_serial_seconds = std::min(fastest_serial_seconds, seconds);
+  if (--probes_left > 0) return;
+  int threads = 1;
+#ifdef _OPENMP
+  threads = omp_get_max_threads();
+#endif
+  parallel = threads > 1 && fastest_serial_seconds >= kMinParallelSeconds;
 }
 
 bool Assembler::element_damping(std::size_t e, const VectorXd& ue, const MatrixXd& k,
@@ -171,13 +200,15 @@ void Assembler::assemble_nonlinear_part(const IntegrationCoefficients& coeff, do
                                         const VectorXd& u, const VectorXd& v,
                                         const std::vector<int>& position, VectorXd& phi,
                                         MatrixXd* tangent) const {
-  MatrixXd k, c;
+  compute_nonlinear_tangents(u);
+  MatrixXd c;
   VectorXd ue, ve, fe;
   for (std::size_t e : nonlinear_) {
     const auto& idx = dofs_.element_indices(e);
     const int n = static_cast<int>(idx.size());
+    const MatrixXd& k = tangent_buffer_[e];
+    fe = force_buffer_[e];
     gather(e, u, ue);
-    elements_[e]->tangent(ctx_, ue, k, fe);
     const bool damped = element_damping(e, ue, k, c);
     if (damped) {
       gather(e, v, ve);

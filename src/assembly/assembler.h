@@ -82,9 +82,28 @@ class Assembler {
   std::vector<MatrixXd> linear_stiffness_;  // K_e of linear elements (evaluated once)
   std::vector<bool> is_linear_;
   std::vector<std::size_t> nonlinear_;  // indices of the nonlinear elements
-  // Per-element results of the parallel tangent phase of assemble() (scratch, not state).
+  // Per-element results of the tangent phase (scratch, not state).
   mutable std::vector<MatrixXd> tangent_buffer_;
   mutable std::vector<VectorXd> force_buffer_;
+  /// Tangents and internal forces of the nonlinear elements at u into the buffers.
+  void compute_nonlinear_tangents(const VectorXd& u) const;
+
+  /// Whether the tangent phase runs on several threads, decided from its measured cost: a
+  /// parallel region costs a thread wake-up and leaves the workers spinning (libgomp) while the
+  /// serial solve that follows runs, which on small per-step work or a busy machine costs more
+  /// than it saves (issue 11: a 1215-DOF block drop took 4x longer on two threads). So the first
+  /// kProbes passes run serially and are timed; the phase goes parallel only when the fastest of
+  /// them took at least kMinParallelSeconds and more than one thread is allowed. The results are
+  /// the same either way (per-element buffers, serial scatter).
+  struct TangentThreading {
+    static constexpr int kProbes = 3;
+    static constexpr double kMinParallelSeconds = 2.0e-3;
+    int probes_left = kProbes;
+    double fastest_serial_seconds = 1e300;
+    bool parallel = false;
+    void record_serial_pass(double seconds);
+  };
+  mutable TangentThreading threading_;
   bool has_damping_ = false;
   double alpha_ = 0.0;  // Rayleigh mass coefficient
   double beta_ = 0.0;   // Rayleigh stiffness coefficient
