@@ -1,27 +1,25 @@
 #include "deck/output.h"
 
+#include <algorithm>
 #include <stdexcept>
+#include <string_view>
 
 #include "core/log.h"
 
 namespace impactfe::deck {
 
-void OutputSink::print(const std::string& text) {
-  std::size_t start = 0;
-  for (;;) {
-    const std::size_t end = text.find('\n', start);
-    ++n_lines_;
-    if (end == std::string::npos) break;
-    start = end + 1;
-  }
+void OutputSink::write(const std::string& text) {
+  n_lines_ += std::count(text.begin(), text.end(), '\n');
   if (file_.is_open()) {
-    file_ << text << '\n';
+    file_ << text;
     file_.flush();  // a run that fails later keeps what was printed
   } else if (terminal_ != nullptr) {
-    *terminal_ << text << '\n';
+    *terminal_ << text;
     terminal_->flush();
   } else {
-    Log::info("output: {}", text);
+    std::string_view lines(text);
+    if (!lines.empty() && lines.back() == '\n') lines.remove_suffix(1);
+    Log::info("output: {}", lines);
   }
 }
 

@@ -16,7 +16,9 @@ class OutputSink {
   explicit OutputSink(std::ostream* terminal = nullptr) : terminal_(terminal) {}
 
   /// Writes `text` followed by a newline (text may hold several lines).
-  void print(const std::string& text);
+  void print(const std::string& text) { write(text + '\n'); }
+  /// Writes `text` as it is (the caller supplies the newlines).
+  void write(const std::string& text);
   /// /OUT,Fname,Ext,,Loc: following output goes to `path` (overwritten, or appended). Throws
   /// std::runtime_error when the file cannot be opened.
   void redirect(const std::string& path, bool append);
@@ -34,5 +36,10 @@ class OutputSink {
   std::string path_;
   long long n_lines_ = 0;
 };
+
+class DeckReader;
+/// Writes `text` as it is (newlines included) to the deck's output: the terminal stream or the
+/// /OUT file. The POST1/POST26 listings print through this.
+void write_output(DeckReader& r, const std::string& text);
 
 }  // namespace impactfe::deck

@@ -292,6 +292,10 @@ void cmd_cfclos(DeckReader& r, const Command& c) {
 
 }  // namespace
 
+void write_output(DeckReader& r, const std::string& text) {
+  r.output.write(text);
+}
+
 void register_output_commands(std::vector<CommandSpec>& t) {
   t.push_back({"*VWRITE", cmd_vwrite, kAnywhere});
   t.push_back({"*MSG", cmd_msg, kAnywhere});

@@ -2,6 +2,7 @@
 // assignment interface of parameters.h (assign_parameter, assign_vector, read_vector, ...).
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/dof.h"
@@ -278,6 +279,18 @@ Param& numeric_column(DeckReader& r, const Command& c, const ArrayPosition& pos,
 
 void assign_vector(DeckReader& r, const Command& c, const std::string& target,
                    const std::vector<double>& values) {
+  // An undefined target is dimensioned to hold the values, as POST26 VGET and *VGET create it.
+  if (const auto n = split_subscripted_name(target); n && r.params.find(n->name) == nullptr) {
+    const Target t = n->has_parentheses ? parse_target(r, c, target)
+                                        : Target{checked_name(r, c, n->name, target)};
+    if (t.s[0] < 1 || t.s[1] < 1 || t.s[2] < 1)
+      r.fail(c, fmt::format("{}: subscripts start at 1", target));
+    const long long rows =
+        t.s[0] - 1 + static_cast<long long>(std::max<std::size_t>(values.size(), 1));
+    if (rows * t.s[1] * t.s[2] > kMaxArrayEntries)
+      r.fail(c, fmt::format("{}: more than {} entries", target, kMaxArrayEntries));
+    r.params.define(t.name, Param::array(ParamType::Array, static_cast<int>(rows), t.s[1], t.s[2]));
+  }
   const ArrayPosition pos = array_position(r, c, target);
   Param& p = numeric_column(r, c, pos, values.size(), "stored in");
   for (std::size_t n = 0; n < values.size(); ++n)
@@ -293,6 +306,38 @@ std::vector<double> read_vector(DeckReader& r, const Command& c, const std::stri
   for (int n = 0; n < count; ++n)
     out[static_cast<std::size_t>(n)] = p.values[p.offset(pos.i + n, pos.j, pos.k)];
   return out;
+}
+
+ParameterInfo parameter_info(DeckReader& r, const std::string& name) {
+  ParameterInfo info;
+  const Param* p = r.params.find(to_upper(trim(name)));
+  if (p == nullptr) return info;
+  switch (p->type) {
+    case ParamType::Number:
+      info.type = 0;
+      break;
+    case ParamType::Array:
+      info.type = 1;
+      break;
+    case ParamType::Table:
+      info.type = 2;
+      break;
+    case ParamType::Text:
+      info.type = 3;
+      break;
+    case ParamType::CharArray:
+      info.type = 4;
+      break;
+  }
+  if (p->is_array()) info.dims[0] = p->imax, info.dims[1] = p->jmax, info.dims[2] = p->kmax;
+  return info;
+}
+
+std::pair<int, int> parameter_counts(DeckReader& r) {
+  int basic = 0;
+  for (const auto& [name, p] : r.params.all())
+    if (p.type == ParamType::Number) ++basic;
+  return {static_cast<int>(r.params.all().size()), basic};
 }
 
 void register_parameter_commands(std::vector<CommandSpec>& t) {

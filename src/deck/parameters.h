@@ -10,6 +10,7 @@
 #include <random>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -136,14 +137,25 @@ void assign_parameter(DeckReader& r, const Command& c, const std::string& target
 void assign_text_parameter(DeckReader& r, const Command& c, const std::string& target,
                            const std::string& value);
 /// Fills an array column from the given start: "NAME(i)" or "NAME(i,j[,k])" (plain "NAME" =
-/// NAME(1,1,1)); values go down the first subscript. Error when the array is undefined, not
-/// numeric, or too short for all values.
+/// NAME(1,1,1)); values go down the first subscript. An undefined NAME is created as an ARRAY
+/// just long enough (as POST26 VGET does); an error when it is not numeric or too short.
 void assign_vector(DeckReader& r, const Command& c, const std::string& target,
                    const std::vector<double>& values);
 /// Reads `count` values down an array column from the given start (as *VPUT and POST26 VPUT
 /// read). Error when the array is undefined, not numeric, or too short.
 std::vector<double> read_vector(DeckReader& r, const Command& c, const std::string& source,
                                 int count);
+
+/// *GET,Par,PARM,Name,TYPE / DIM: the type code of MAPDL (-1 undefined, 0 numeric scalar,
+/// 1 numeric array, 2 table, 3 character scalar, 4 character array) and the extents of an array
+/// (0 for a scalar).
+struct ParameterInfo {
+  int type = -1;
+  int dims[3] = {0, 0, 0};
+};
+ParameterInfo parameter_info(DeckReader& r, const std::string& name);
+/// Number of defined global parameters (PARM,,MAX) and of numeric scalars among them (BASIC).
+std::pair<int, int> parameter_counts(DeckReader& r);
 
 /// Position of an array element given in a command field ("NAME", "NAME(i)", "NAME(i,j,k)"):
 /// the parameter and its subscripts (missing subscripts are 1). Error when `text` does not name

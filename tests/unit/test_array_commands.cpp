@@ -267,7 +267,8 @@ TEST(ArrayCommands, VgetFromTheModelAndAssignmentInterface) {
   EXPECT_EQ(s.column("X"), (V{0, 8, 9, 5}));
   EXPECT_EQ(read_vector(s.reader, c, "X(3)", 2), (V{9, 5}));
   EXPECT_THROW(assign_vector(s.reader, c, "X(3)", {1, 2, 3}), InputError);
-  EXPECT_THROW(assign_vector(s.reader, c, "NOPE(1)", {1}), InputError);
+  assign_vector(s.reader, c, "NOPE(1)", {1});  // created, as POST26 VGET creates its array
+  EXPECT_EQ(s.column("NOPE"), (V{1}));
   EXPECT_THROW(read_vector(s.reader, c, "X(4)", 2), InputError);
   try {
     assign_parameter(s.reader, c, "NS(9)", 1.0);
@@ -294,4 +295,42 @@ TEST(ArrayCommands, VgetFromTheModelAndAssignmentInterface) {
   EXPECT_THROW(get_item(s.reader, c, q), InputError);  // a results item: not the model's
   EXPECT_NE(error_of("*DIM,V,,2\n*VPUT,V,NODE,1,U,X\n").find("cannot be stored into"),
             std::string::npos);
+}
+
+// The assignment interface the *GET / POST26 handlers of the post branch store through.
+TEST(ArrayCommands, AssignmentInterface) {
+  Session s;
+  s.run("*DIM,A,ARRAY,4,2\n*DIM,L,CHAR,2\nT = 'AB'\n");
+  Command c;
+  c.name = "*GET";
+  c.where = {"mem.inp", 9, "*GET"};
+  assign_parameter(s.reader, c, "X", 2.5);
+  assign_parameter(s.reader, c, "A(2,2)", -1.0);
+  assign_text_parameter(s.reader, c, "L(2)", "R2");
+  assign_vector(s.reader, c, "A(2,1)", {7, 8, 9});
+  assign_vector(s.reader, c, "NEWV(3)", {1, 2});  // created, 4 rows
+  EXPECT_DOUBLE_EQ(s.num("X"), 2.5);
+  EXPECT_EQ(s.column("A", 1), (V{0, 7, 8, 9}));
+  EXPECT_EQ(s.column("A", 2), (V{0, -1, 0, 0}));
+  EXPECT_EQ(s.text("L(2)"), "R2");
+  EXPECT_EQ(s.column("NEWV"), (V{0, 0, 1, 2}));
+  EXPECT_EQ(read_vector(s.reader, c, "A(3,1)", 2), (V{8, 9}));
+  EXPECT_THROW(read_vector(s.reader, c, "A(3,1)", 3), InputError);  // too short
+  EXPECT_THROW(assign_vector(s.reader, c, "A(1,1)", {1, 2, 3, 4, 5}), InputError);
+  EXPECT_THROW(assign_vector(s.reader, c, "L(1)", {1}), InputError);   // CHAR array
+  EXPECT_THROW(assign_parameter(s.reader, c, "Q(1)", 1), InputError);  // not dimensioned
+  const ParameterInfo a = parameter_info(s.reader, "a");
+  EXPECT_EQ(a.type, 1);
+  EXPECT_EQ(a.dims[0], 4);
+  EXPECT_EQ(a.dims[1], 2);
+  EXPECT_EQ(a.dims[2], 1);
+  EXPECT_EQ(parameter_info(s.reader, "L").type, 4);
+  EXPECT_EQ(parameter_info(s.reader, "T").type, 3);
+  EXPECT_EQ(parameter_info(s.reader, "X").type, 0);
+  EXPECT_EQ(parameter_info(s.reader, "NOPE").type, -1);
+  const auto [all, basic] = parameter_counts(s.reader);
+  EXPECT_EQ(all, 5);  // A L T X NEWV
+  EXPECT_EQ(basic, 1);
+  write_output(s.reader, "  line 1\n  line 2\n");
+  EXPECT_NE(s.out.str().find("  line 1\n  line 2\n"), std::string::npos);
 }
