@@ -236,6 +236,23 @@ void cmd_output(DeckReader& r, const Command& c) {
   Log::info("{}:{}: /OUTPUT: output goes to {}", c.where.file, c.where.line, path);
 }
 
+void cmd_delete(DeckReader& r, const Command& c) {
+  // /DELETE,Fname,Ext: the *CREATE file in memory and the file on disk; a missing file is a note
+  // (APDL_SCRIPTING §A.14).
+  const std::string name = file_name(r, c, 1, "");
+  if (name.empty()) r.fail(c, "file name missing");
+  if (r.output.redirected() && r.output.file() == name)
+    r.fail(c, fmt::format("'{}' is the open /OUT file (/OUT back to the terminal first)", name));
+  if (r.command_file.stream.is_open() && r.command_file.path == name)
+    r.fail(c, fmt::format("'{}' is the open *CFOPEN file (*CFCLOS first)", name));
+  const bool in_memory = r.files.erase(to_upper(name)) != 0;
+  std::error_code ec;
+  const bool on_disk = std::filesystem::remove(name, ec);
+  if (ec) r.fail(c, fmt::format("cannot delete '{}': {}", name, ec.message()));
+  if (!in_memory && !on_disk)
+    Log::info("{}:{}: /DELETE: no file '{}' to delete", c.where.file, c.where.line, name);
+}
+
 void cmd_com(DeckReader& r, const Command& c) {
   Log::info("{}:{}: /COM {}", c.where.file, c.where.line, c.rest);
   r.output.print(" " + c.rest);
@@ -261,7 +278,7 @@ void cmd_cfwrite(DeckReader& r, const Command& c) {
   // values (free format) and %...% substituted.
   if (!r.command_file.stream.is_open()) r.fail(c, "no command file open (*CFOPEN first)");
   std::string line = c.rest;
-  if (c.rest.find('=') == std::string::npos && !c.fields.empty()) {
+  if (c.fields.size() > 1) {  // a single field (`*CFWRITE,A = 5`) is written as it stands
     line = c.fields[0];
     for (std::size_t k = 1; k < c.fields.size(); ++k) {
       const std::string& f = c.fields[k];
@@ -304,6 +321,7 @@ void register_output_commands(std::vector<CommandSpec>& t) {
   t.push_back({"/OUTPUT", cmd_output, kAnywhere});
   t.push_back({"/OUT", cmd_output, kAnywhere});
   t.push_back({"/COM", cmd_com, kAnywhere});
+  t.push_back({"/DELETE", cmd_delete, kAnywhere});
   t.push_back({"*CFOPEN", cmd_cfopen, kAnywhere});
   t.push_back({"*CFWRITE", cmd_cfwrite, kAnywhere});
   t.push_back({"*CFCLOS", cmd_cfclos, kAnywhere});

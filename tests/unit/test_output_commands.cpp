@@ -120,6 +120,7 @@ TEST(OutputCommands, CommandFiles) {
 *CFWRITE,N,N,2.5*N,0
 *CFWRITE,D,%N%,UX,0
 *CFWRITE,A = 5
+*CFWRITE,B = ,N*2
 *VWRITE,N
 ('! written ',F3.0)
 *CFCLOS
@@ -127,7 +128,7 @@ TEST(OutputCommands, CommandFiles) {
 (F3.0)
 )");
   EXPECT_EQ(out, " 3.\n");
-  EXPECT_EQ(file_text(dir / "cmds.mac"), "N,3,7.5,0\nD,3,UX,0\nA = 5\n! written  3.\n");
+  EXPECT_EQ(file_text(dir / "cmds.mac"), "N,3,7.5,0\nD,3,UX,0\nA = 5\nB =,6\n! written  3.\n");
   // Without Fname: <jobname>.cmd.
   run_in(dir, "*CFOPEN\n*CFWRITE,FINISH\n*CFCLOS\n");
   EXPECT_EQ(file_text(dir / "mem.cmd"), "FINISH\n");
@@ -172,4 +173,15 @@ TEST(OutputCommands, SinkWithoutTerminalLogs) {
   deck::OutputSink sink;
   sink.print("line one\nline two");
   EXPECT_EQ(sink.n_lines(), 2);
+}
+
+TEST(OutputCommands, DeleteFiles) {
+  const auto dir = impactfe::testing::fresh_directory("output_commands_delete");
+  std::ofstream(dir / "old.txt") << "x\n";
+  run_in(dir, "*CREATE,MAC2,MAC\nN,1\n*END\n/DELETE,old,txt\n/DELETE,MAC2,MAC\n/DELETE,none,txt\n");
+  EXPECT_FALSE(std::filesystem::exists(dir / "old.txt"));
+  EXPECT_NE(
+      error_of("*CREATE,MAC2,MAC\nN,1\n*END\n/DELETE,MAC2,MAC\n*LIST,MAC2,MAC\n").find("not found"),
+      std::string::npos);
+  EXPECT_THROW(run_in(dir, "/OUT,held,txt\n/DELETE,held,txt\n"), InputError);  // still open
 }
