@@ -1,5 +1,5 @@
 // Matrix commands *MFUN, *MOPER and the array I/O commands *VGET, *VPUT (APDL_MODELING §10.1,
-// §10.2). *VGET / *VPUT read and store through the *GET item providers of get_functions.h.
+// §10.2). *VGET / *VPUT read and store through the *GET item providers of get_hooks.h.
 #include <fmt/format.h>
 
 #include <Eigen/Dense>

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "deck/deck_context.h"
-#include "deck/get_functions.h"
+#include "deck/get_hooks.h"
 
 namespace impactfe::deck {
 

@@ -6,7 +6,7 @@
 #include <sstream>
 
 #include "deck/deck_context.h"
-#include "deck/get_functions.h"
+#include "deck/get_hooks.h"
 #include "deck/parameters.h"
 
 using namespace impactfe;

@@ -1,6 +1,6 @@
 // Get functions and *GET items answered from the model (APDL_MODELING §10.1, §10.3;
 // APDL_SCRIPTING §B), and the tables other groups extend.
-#include "deck/get_functions.h"
+#include "deck/get_hooks.h"
 
 #include <fmt/format.h>
 
