@@ -50,12 +50,14 @@ JobSession::JobSession(ResultsWriter& writer, std::string jobname, const RunSett
 JobSession::~JobSession() = default;
 
 std::string JobSession::results_path() const {
-  return writer_ ? writer_->path() : std::string();
+  if (writer_) return writer_->path();
+  return closed_files_.empty() ? std::string() : closed_files_.back();
 }
 
 ResultsWriter& JobSession::writer_for(const Job& job, std::size_t step) {
   const bool expansion = is_superelement_expansion(job.steps[step]);
-  const bool first = stats_.analyses.size() == 1;  // the step being opened is the only one
+  // The step being opened is the only one of this job (since the start or the last /CLEAR).
+  const bool first = stats_.analyses.size() == job_first_analysis_ + 1;
   if ((expansion && !first) || (!expansion && superelement_expansion_job_))
     throw InputError(location_of(job.steps[step]),
                      "a superelement expansion pass (EXPASS + SEEXP) must be the only solution "
@@ -63,6 +65,12 @@ ResultsWriter& JobSession::writer_for(const Job& job, std::size_t step) {
   superelement_expansion_job_ = expansion;
   if (!writer_) {
     if (!job.model.jobname.empty()) jobname_ = job.model.jobname;  // /FILNAME before the solution
+    for (const auto& old : closed_files_)
+      if (old == jobname_ + ".h5")
+        Log::warn(
+            "{}: the results file of the job before /CLEAR is replaced (give the new job "
+            "its own name with /FILNAME)",
+            old);
     owned_writer_ = std::make_unique<ResultsWriter>(jobname_ + ".h5", results_model(job, step));
     writer_ = owned_writer_.get();
   }
@@ -208,6 +216,25 @@ std::string JobSession::results_for_reading(const Job&) {
 
 void JobSession::finish(const Job&) {
   close_open();
+}
+
+std::vector<std::string> JobSession::results_files() const {
+  std::vector<std::string> out = closed_files_;
+  if (writer_) out.push_back(writer_->path());
+  return out;
+}
+
+void JobSession::clear(const Job&) {
+  close_open();
+  if (owned_writer_) {
+    closed_files_.push_back(owned_writer_->path());
+    owned_writer_.reset();  // the file is closed and complete
+    writer_ = nullptr;
+  }
+  superelement_expansion_job_ = false;
+  reduced_state_.reset();  // an expansion pass cannot refer to a solution of the job before
+  models_.clear();
+  job_first_analysis_ = stats_.analyses.size();
 }
 
 void run_job(const Job& job, const std::string& jobname, const RunSettings& settings,

@@ -69,6 +69,22 @@ void print_summary(const std::string& jobname, const RunStatistics& stats, doubl
   std::cout << fmt::format("  wall time {:.3f} s\n", wall);
 }
 
+/// --skip-unknown: what was skipped and how often, in the summary and the log.
+void print_skipped(const Job& job) {
+  if (job.skipped_unknown.empty()) return;
+  int total = 0;
+  for (const auto& s : job.skipped_unknown) total += s.count;
+  const std::string head = fmt::format("  {} unknown command(s) skipped (--skip-unknown):", total);
+  std::cout << head << "\n";
+  Log::warn("{}", head.substr(2));
+  for (const auto& s : job.skipped_unknown) {
+    const std::string line =
+        fmt::format("{:<16} {:>6} x   first at {}:{}", s.name, s.count, s.first.file, s.first.line);
+    std::cout << "    " << line << "\n";
+    Log::info("skipped: {}", line);
+  }
+}
+
 int run_command(const RunArgs& args) {
   const auto start = std::chrono::steady_clock::now();
   if (args.threads > 0) omp_set_num_threads(args.threads);
@@ -92,6 +108,7 @@ int run_command(const RunArgs& args) {
   DeckOptions options;
   options.skip_unknown = args.skip_unknown;
   options.jobname = args.jobname;
+  options.output = &std::cout;  // the deck's listings (*VWRITE, *MSG, /COM, ...) until /OUT
   if (args.dialect == "4x") options.dialect = Dialect::Classic4x;
   if (args.dialect == "modern") options.dialect = Dialect::Modern;
 
@@ -130,9 +147,9 @@ int run_command(const RunArgs& args) {
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   print_summary(jobname, stats, wall);
-  if (!session.results_path().empty())
-    std::cout << fmt::format("  results: {}\n",
-                             (fs::current_path() / session.results_path()).string());
+  print_skipped(job);
+  for (const auto& file : session.results_files())
+    std::cout << fmt::format("  results: {}\n", (fs::current_path() / file).string());
   return kExitOk;
 }
 
