@@ -163,10 +163,13 @@ int main(int argc, char** argv) {
   CLI::App* info_cmd = app.add_subcommand("info", "summarise a results file");
   info_cmd->add_option("results", info_file, "results file (.h5)")->required();
 
-  std::string export_file, export_dir = ".";
-  CLI::App* export_cmd = app.add_subcommand("export", "write VTU/PVD files for ParaView");
+  std::string export_file, export_dir = ".", export_format = "vtkhdf";
+  CLI::App* export_cmd = app.add_subcommand(
+      "export", "write the results for ParaView: one VTKHDF file (default) or VTU files + PVD");
   export_cmd->add_option("results", export_file, "results file (.h5)")->required();
-  export_cmd->add_option("-o,--output", export_dir, "output directory");
+  export_cmd->add_option("-o,--output", export_dir, "output directory (default .)");
+  export_cmd->add_option("--format", export_format, "vtkhdf (default) | vtu")
+      ->check(CLI::IsMember({"vtkhdf", "vtu"}));
 
   std::string report_file, report_out;
   ReportOptions report;
@@ -200,6 +203,10 @@ int main(int argc, char** argv) {
     if (*post_cmd) {
       ResultsReader reader(post_file);
       if (freq) {
+        if (reader.frequencies().empty())
+          throw InputError(fmt::format(
+              "'{}' holds no modal results (no modal analysis was run); --freq needs one",
+              post_file));
         std::cout << frequencies_csv(reader);
         return kExitOk;
       }
@@ -225,7 +232,19 @@ int main(int argc, char** argv) {
     if (*export_cmd) {
       ResultsReader reader(export_file);
       fs::create_directories(export_dir);
-      export_vtu_series(reader, export_dir, fs::path(export_file).stem().string());
+      const std::string stem = fs::path(export_file).stem().string();
+      const ExportSummary s =
+          export_format == "vtu"
+              ? export_vtu_series(reader, export_dir, stem)
+              : export_vtkhdf(reader, (fs::path(export_dir) / (stem + ".vtkhdf")).string());
+      std::cout << fmt::format(
+          "export: wrote {}{} ({} time points, {} points, {} cells, {:.2f} MB)\n", s.files.front(),
+          s.files.size() > 1 ? fmt::format(" and {} .vtu files", s.files.size() - 1) : "", s.frames,
+          s.points, s.cells, static_cast<double>(s.bytes) / 1e6);
+      if (!s.skipped_elements.empty())
+        std::cout << fmt::format(
+            "  {} element(s) not drawn (a node is not in the model), e.g. {}\n",
+            s.skipped_elements.size(), s.skipped_elements.front());
       return kExitOk;
     }
     if (*report_cmd) {
