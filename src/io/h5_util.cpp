@@ -59,8 +59,10 @@ Handle checked_creation_list(const std::vector<hsize_t>& chunk, const double* fi
   check_status(H5Pset_chunk(dcpl, static_cast<int>(chunk.size()), chunk.data()), "set chunk");
   // Shuffle groups the bytes of equal significance, which deflate then compresses well.
   // Fletcher32 last, so the checksum covers the stored bytes.
-  check_status(H5Pset_shuffle(dcpl), "set shuffle filter");
-  check_status(H5Pset_deflate(dcpl, static_cast<unsigned>(level)), "set deflate filter");
+  if (level > 0) {
+    check_status(H5Pset_shuffle(dcpl), "set shuffle filter");
+    check_status(H5Pset_deflate(dcpl, static_cast<unsigned>(level)), "set deflate filter");
+  }
   check_status(H5Pset_fletcher32(dcpl), "set Fletcher32 filter");
   if (fill != nullptr)
     check_status(H5Pset_fill_value(dcpl, H5T_NATIVE_DOUBLE, fill), "set fill value");

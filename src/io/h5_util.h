@@ -62,7 +62,7 @@ enum class StringLayout { Variable, Fixed };
 enum class Storage { Contiguous, Checked };
 
 /// Dataset creation list for a chunked, compressed and checksummed dataset (shuffle, deflate at
-/// `level`, Fletcher32); `fill` (optional) is the float64 fill value.
+/// `level`; level 0: Fletcher32 only); `fill` (optional) is the float64 fill value.
 Handle checked_creation_list(const std::vector<hsize_t>& chunk, const double* fill = nullptr,
                              int level = 4);
 

@@ -117,6 +117,19 @@ struct ResultsReader::Impl {
     return analyses[static_cast<std::size_t>(a - 1)];
   }
 
+  /// Datasets stay open for the reader's life, so that their chunk caches keep the blocks read
+  /// last: reading the time points of a block one after the other decompresses it once.
+  mutable std::map<std::string, Handle> open_datasets;
+  hid_t dataset(const std::string& name) const {
+    auto it = open_datasets.find(name);
+    if (it == open_datasets.end())
+      it = open_datasets
+               .emplace(name,
+                        Handle(check(H5Dopen2(file, name.c_str(), H5P_DEFAULT), "open " + name)))
+               .first;
+    return it->second;
+  }
+
   /// Rows [0, n_t) of the slab (start, count) after the time axis of a per-time-point dataset,
   /// NaN where absent: the finished points from the main dataset, the recent ones from the
   /// staging dataset of a file still being written (docs/results_file.md, "Storage").
@@ -132,7 +145,7 @@ struct ResultsReader::Impl {
     auto read_part = [&](const std::string& name, hsize_t file_first, std::size_t out_first,
                          std::size_t n) {
       if (n == 0 || !h5::exists_path(file, name)) return;
-      Handle ds(check(H5Dopen2(file, name.c_str(), H5P_DEFAULT), "open " + name));
+      const hid_t ds = this->dataset(name);
       const auto dims = h5::dims_of(ds);
       if (dims.size() != count.size() + 1)
         throw std::runtime_error(fmt::format("dataset {} has rank {}", name, dims.size()));
@@ -348,9 +361,11 @@ ResultsReader::ResultsReader(const std::string& path) : impl_(std::make_unique<I
     throw InputError(fmt::format("'{}' is not an impactfe results file (not HDF5)", path));
   // Default access first: in the same process this shares the file a live ResultsWriter has
   // open. Another process's running job holds the file lock: then read without taking it.
-  hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  // Chunk cache per dataset: a whole block (at most 64 MB for all quantities, see the writer).
+  Handle fapl(check(H5Pcreate(H5P_FILE_ACCESS), "create file access list"));
+  H5Pset_cache(fapl, 0, 4099, 64u << 20, 0.75);
+  hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl);
   if (f < 0) {
-    Handle fapl(check(H5Pcreate(H5P_FILE_ACCESS), "create file access list"));
     H5Pset_file_locking(fapl, false, true);
     f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl);
   }
@@ -529,8 +544,7 @@ TimePoint ResultsReader::time_point(int analysis, int k) const {
     TimePoint p;
     p.time = an.times[row];
     auto integer_at = [&](const char* name) {
-      Handle ds(check(H5Dopen2(file, (an.group + "/" + name).c_str(), H5P_DEFAULT),
-                      std::string("open ") + name));
+      const hid_t ds = impl_->dataset(an.group + "/" + name);
       return static_cast<int>(h5::read_slab(ds, {row}, {1}).at(0));
     };
     p.load_step = integer_at("load_step");
