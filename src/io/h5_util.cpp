@@ -83,6 +83,14 @@ bool exists_path(hid_t loc, const std::string& path) {
   }
 }
 
+Handle checksummed_group_creation_list(bool file_creation) {
+  Handle plist(check(H5Pcreate(file_creation ? H5P_FILE_CREATE : H5P_GROUP_CREATE),
+                     "create group property list"));
+  check_status(H5Pset_link_phase_change(plist, 65535, 65535), "keep links compact");
+  check_status(H5Pset_attr_phase_change(plist, 65535, 65535), "keep attributes compact");
+  return plist;
+}
+
 Handle create_group(hid_t loc, const std::string& name) {
   return Handle(check(H5Gcreate2(loc, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
                       "create group " + name));

@@ -71,6 +71,10 @@ bool exists(hid_t loc, const std::string& name);
 bool exists_path(hid_t loc, const std::string& path);
 
 Handle create_group(hid_t loc, const std::string& name);
+/// Group (or file: `file_creation` for the root group) creation list that keeps links and
+/// attributes in the object header, which carries a checksum, instead of moving them to "dense"
+/// storage past 8 entries (fractal heap blocks without checksums).
+Handle checksummed_group_creation_list(bool file_creation = false);
 Handle open_group(hid_t loc, const std::string& name);
 
 /// Variable-length UTF-8 string datatype.

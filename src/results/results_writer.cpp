@@ -284,7 +284,8 @@ void ResultsWriter::Impl::compact() {
   try {
     {
       Handle fapl = h5::file_access_checksummed();
-      Handle out(check(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl), "create " + tmp));
+      Handle fcpl = h5::checksummed_group_creation_list(true);
+      Handle out(check(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, fcpl, fapl), "create " + tmp));
       constexpr auto kFixed = StringLayout::Fixed;
       h5::write_attribute(out, "format", std::string("impactfe-results"), kFixed);
       h5::write_integer_attribute(out, "format_version", kFormatVersion);
@@ -313,8 +314,8 @@ void ResultsWriter::Impl::write_model(const Model& model) {
   jobname = model.jobname;
   h5::write_attribute(file, "title", model.title, kFixed);
   h5::write_attribute(file, "jobname", model.jobname, kFixed);
-  Handle g(check(H5Gcreate2(file, "model", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-                 "create group /model"));
+  Handle gcpl = h5::checksummed_group_creation_list();
+  Handle g(check(H5Gcreate2(file, "model", H5P_DEFAULT, gcpl, H5P_DEFAULT), "create group /model"));
   constexpr auto kChecked = h5::Storage::Checked;
   std::vector<double> xyz;
   for (const auto& [id, node] : model.nodes) {
@@ -362,8 +363,9 @@ BlockSeries& ResultsWriter::Impl::series_for(const std::string& name,
   auto it = series.find(name);
   if (it != series.end()) return it->second;
   if (!recent_group.valid()) {
-    recent_group = Handle(check(H5Gcreate2(group, "recent", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-                                "create group recent"));
+    Handle gcpl = h5::checksummed_group_creation_list();
+    recent_group = Handle(
+        check(H5Gcreate2(group, "recent", H5P_DEFAULT, gcpl, H5P_DEFAULT), "create group recent"));
     h5::write_integer_attribute(recent_group, "first_row", static_cast<long long>(block_start));
   }
   // A quantity that starts later: its main dataset spans the finished blocks already (NaN).
@@ -512,14 +514,14 @@ void ResultsWriter::Impl::write_family(const std::string& family, const ElementR
   if (it == families.end()) {
     if (!elements_group.valid()) {
       // Track creation order so that the reader lists families in the order they appeared.
-      Handle gcpl(check(H5Pcreate(H5P_GROUP_CREATE), "create group property list"));
+      Handle gcpl = h5::checksummed_group_creation_list();
       H5Pset_link_creation_order(gcpl, H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED);
       elements_group = Handle(check(H5Gcreate2(group, "elements", H5P_DEFAULT, gcpl, H5P_DEFAULT),
                                     "create group elements"));
     }
-    Handle g(
-        check(H5Gcreate2(elements_group, family.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-              "create group elements/" + family));
+    Handle fgcpl = h5::checksummed_group_creation_list();
+    Handle g(check(H5Gcreate2(elements_group, family.c_str(), H5P_DEFAULT, fgcpl, H5P_DEFAULT),
+                   "create group elements/" + family));
     h5::write_dataset(g, "element_ids", {n_e}, table.element_ids.data(), h5::Storage::Checked);
     h5::write_attribute(g, "items", table.item_names, StringLayout::Fixed);
     it = families.emplace(family, FamilySeries{table.element_ids, table.item_names}).first;
@@ -541,7 +543,8 @@ ResultsWriter::ResultsWriter(const std::string& path, const Model& model)
   h5::silence_errors();
   impl_->path = path;
   Handle fapl = h5::file_access_checksummed();
-  hid_t f = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
+  Handle fcpl = h5::checksummed_group_creation_list(true);
+  hid_t f = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, fcpl, fapl);
   if (f < 0) {
     const std::string detail = h5::error_detail();
     throw InputError(fmt::format("cannot create results file '{}'{}", path,
@@ -570,7 +573,8 @@ int ResultsWriter::begin_analysis(ResultsKind kind, const std::string& descripti
   Impl& m = *impl_;
   const int k = ++m.n_analyses;
   const std::string name = fmt::format("analysis_{}", k);
-  m.group = Handle(check(H5Gcreate2(m.file, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+  Handle gcpl = h5::checksummed_group_creation_list();
+  m.group = Handle(check(H5Gcreate2(m.file, name.c_str(), H5P_DEFAULT, gcpl, H5P_DEFAULT),
                          "create group " + name));
   m.n_t = 0;
   m.block_start = 0;
