@@ -35,6 +35,10 @@ class Structure {
   const std::vector<std::unique_ptr<Element>>& elements() const { return elements_; }
   const std::vector<int>& node_ids() const { return node_ids_; }
 
+  /// Stiffness-proportional damping β of each element's material (MP,DAMP), element order;
+  /// empty when no material has one.
+  const std::vector<double>& material_stiffness_damping() const { return material_beta_; }
+
   /// DOFs with neither stiffness nor mass (listed in the log, constrained to zero).
   const std::set<DofKey>& automatic_constraints() const { return automatic_; }
   /// D of the load step plus the automatic constraints.
@@ -67,6 +71,7 @@ class Structure {
   std::vector<int> node_ids_;
   std::map<int, int> node_row_;
   std::set<DofKey> automatic_;
+  std::vector<double> material_beta_;
 };
 
 }  // namespace impactfe

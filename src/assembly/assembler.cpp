@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "core/errors.h"
+
 namespace impactfe {
 
 Assembler::Assembler(const std::vector<std::unique_ptr<Element>>& elements, const DofMap& dofs,
@@ -57,6 +59,13 @@ Assembler::Assembler(const std::vector<std::unique_ptr<Element>>& elements, cons
   }
 }
 
+void Assembler::set_material_stiffness_damping(std::vector<double> beta) {
+  IMPACTFE_CHECK(beta.empty() || beta.size() == elements_.size(),
+                 "material damping: one value per element expected");
+  material_beta_ = std::move(beta);
+  for (double b : material_beta_) has_damping_ = has_damping_ || b != 0.0;
+}
+
 void Assembler::gather(std::size_t e, const VectorXd& global, VectorXd& local) const {
   const auto& idx = dofs_.element_indices(e);
   local.resize(static_cast<int>(idx.size()));
@@ -99,14 +108,15 @@ void Assembler::assemble(const IntegrationCoefficients& coeff, const VectorXd& u
     }
     const MatrixXd& k = tangent_buffer_[e];
     const MatrixXd& ke = is_linear_[e] ? linear_stiffness_[e] : k;
-    const bool rayleigh = alpha_ != 0.0 || beta_ != 0.0;
+    const double beta = beta_of(e);
+    const bool rayleigh = alpha_ != 0.0 || beta != 0.0;
     const bool damped = element.has_damping() || rayleigh;
     if (element.has_damping()) {
       element.damping(ctx_, ue, c);
     } else if (rayleigh) {
       c.setZero(n, n);
     }
-    if (rayleigh) c += alpha_ * mass_[e] + beta_ * (is_linear_[e] ? linear_stiffness_[e] : k);
+    if (rayleigh) c += alpha_ * mass_[e] + beta * (is_linear_[e] ? linear_stiffness_[e] : k);
     if (out.internal_force)
       for (int a = 0; a < n; ++a) (*out.internal_force)(idx[a]) += fe(a);
     if (damped && out.damping_force) {
@@ -150,7 +160,8 @@ SparseMatrix Assembler::full_matrix(Which which, const VectorXd& u) const {
         }
         break;
       case Which::Damping: {
-        const bool rayleigh = alpha_ != 0.0 || beta_ != 0.0;
+        const double beta = beta_of(e);
+        const bool rayleigh = alpha_ != 0.0 || beta != 0.0;
         if (!elements_[e]->has_damping() && !rayleigh) continue;
         gather(e, u, ue);
         if (elements_[e]->has_damping()) {
@@ -161,7 +172,7 @@ SparseMatrix Assembler::full_matrix(Which which, const VectorXd& u) const {
         if (rayleigh) {
           MatrixXd ke = linear_stiffness_[e];
           if (!is_linear_[e]) elements_[e]->tangent(ctx_, ue, ke, fe);
-          m += alpha_ * mass_[e] + beta_ * ke;
+          m += alpha_ * mass_[e] + beta * ke;
         }
         break;
       }
