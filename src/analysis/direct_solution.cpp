@@ -183,8 +183,14 @@ void DirectSolution::solve_load_step(const LoadStep& step) {
   for (int k = 1; k <= t.n_substeps; ++k) {
     const double time = t.t_start + k * t.h;
     const LoadPoint at{&step, previous, static_cast<double>(k) / t.n_substeps};
+    const int iterations_before = stats_.n_iterations;
+    const int changes_before = stats_.n_status_changes;
     solve_increment(at, StepLabel{step.number, k, time}, dynamic);
     ++stats_.n_substeps;
+    if (settings_.progress)
+      settings_.progress->substep_done({stats_.description, time, t.t_end, step.number, k,
+                                        t.n_substeps, t.h, stats_.n_iterations - iterations_before,
+                                        stats_.n_status_changes - changes_before});
     const bool last = k == t.n_substeps;
     const int every = step.output.every;
     if (last || (every > 0 && k % every == 0)) store(time, step.number, k, dynamic);

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "analysis/progress.h"
 #include "assembly/assembler.h"
 #include "assembly/dof_map.h"
 #include "elements/element.h"
@@ -19,7 +20,8 @@ namespace impactfe {
 /// Run-time settings that do not come from the deck.
 struct RunSettings {
   bool continue_on_nonconvergence = false;
-  std::string superelement_file;  // --se
+  std::string superelement_file;         // --se
+  ProgressObserver* progress = nullptr;  // told after every substep (the CLI's progress line)
 };
 
 class Structure {

@@ -9,6 +9,7 @@
 #include <iostream>
 
 #include "analysis/job_session.h"
+#include "app/terminal_progress.h"
 #include "core/errors.h"
 #include "core/log.h"
 #include "deck/deck_reader.h"
@@ -47,19 +48,22 @@ struct RunArgs {
   bool continue_on_nonconvergence = false;
 };
 
+/// The run summary, printed and written to the log (energy balance included).
 void print_summary(const std::string& jobname, const RunStatistics& stats, double wall) {
-  std::cout << fmt::format("impactfe: job {}\n", jobname);
+  std::string text = fmt::format("impactfe: job {}\n", jobname);
   for (const auto& a : stats.analyses) {
-    std::cout << fmt::format(
+    text += fmt::format(
         "  {}: {} DOFs, {} load steps, {} substeps, {} iterations, {} stored, "
         "{} factorizations ({} symbolic), {} solves, {} status changes, {:.3f} s\n",
         a.description, a.n_dofs, a.n_load_steps, a.n_substeps, a.n_iterations, a.n_stored,
         a.n_factorizations, a.n_analyses, a.n_solves, a.n_status_changes, a.wall_seconds);
-    for (const auto& note : a.notes) std::cout << "    " << note << "\n";
+    for (const auto& note : a.notes) text += "    " + note + "\n";
   }
   if (!Log::warnings().empty())
-    std::cout << fmt::format("  {} warning(s), see {}.log\n", Log::warnings().size(), jobname);
-  std::cout << fmt::format("  wall time {:.3f} s\n", wall);
+    text += fmt::format("  {} warning(s), see {}.log\n", Log::warnings().size(), jobname);
+  text += fmt::format("  wall time {:.3f} s\n", wall);
+  std::cout << text;
+  Log::info("run summary:\n{}", text);
 }
 
 int run_command(const RunArgs& args) {
@@ -74,12 +78,16 @@ int run_command(const RunArgs& args) {
   fs::current_path(args.out_dir);
   std::string jobname = args.jobname.empty() ? deck.stem().string() : args.jobname;
   std::ofstream log_file(jobname + ".log");
-  Log::set_sink([&log_file](LogLevel level, const std::string& message) {
+  TerminalProgress progress;
+  Log::set_sink([&log_file, &progress](LogLevel level, const std::string& message) {
     static const char* names[] = {"debug", "info", "warning", "error"};
     log_file << names[static_cast<int>(level)] << ": " << message << "\n";
     log_file.flush();
     // Errors reach the terminal once, from the command itself; warnings as they happen.
-    if (level == LogLevel::Warning) std::cerr << "warning: " << message << "\n";
+    if (level == LogLevel::Warning) {
+      progress.clear();
+      std::cerr << "warning: " << message << "\n";
+    }
   });
 
   DeckOptions options;
@@ -91,6 +99,7 @@ int run_command(const RunArgs& args) {
   RunSettings settings;
   settings.continue_on_nonconvergence = args.continue_on_nonconvergence;
   settings.superelement_file = args.superelement;
+  settings.progress = &progress;
 
   // The deck runs command by command: each solution request is solved by the session when the
   // deck reaches it.
@@ -100,14 +109,18 @@ int run_command(const RunArgs& args) {
   Job job;
   try {
     job = read_deck(deck.string(), options);
+    progress.clear();
   } catch (const SolutionError& e) {
+    progress.clear();
     std::cerr << "error: " << e.what() << "\n";
     std::cerr << fmt::format("results up to the failure are kept in {}\n", session.results_path());
     Log::write(LogLevel::Error, e.what());
     return kExitSolution;
   } catch (const InternalError& e) {
+    progress.clear();
     return report_internal_error(e);
   } catch (const std::exception& e) {
+    progress.clear();
     std::cerr << "error: " << e.what() << "\n";
     Log::write(LogLevel::Error, e.what());
     return kExitInput;
