@@ -184,6 +184,15 @@ void JobSession::close_open() {
   writer_->set_count("substeps", static_cast<long long>(current.n_substeps));
   writer_->set_count("iterations", static_cast<long long>(current.n_iterations));
   writer_->set_count("status_changes", static_cast<long long>(current.n_status_changes));
+  if (current.factor_nonzeros > 0) {  // linear solver figures (docs/results_file.md)
+    writer_->set_count("solves", static_cast<long long>(current.n_solves));
+    writer_->set_attribute("analyze_seconds", current.analyze_seconds);
+    writer_->set_attribute("factorize_seconds", current.factorize_seconds);
+    writer_->set_attribute("solve_seconds", current.solve_seconds);
+    writer_->set_count("matrix_nonzeros", static_cast<long long>(current.matrix_nonzeros));
+    writer_->set_count("factor_nonzeros", static_cast<long long>(current.factor_nonzeros));
+    writer_->set_count("factor_bytes", static_cast<long long>(current.factor_bytes));
+  }
   writer_->end_analysis("complete");
   direct_.reset();
   structure_.reset();
