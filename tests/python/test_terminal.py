@@ -1,5 +1,6 @@
-"""What `impactfe run` says while and after it runs (issue 10): a progress line on a terminal
-only, and the run summary with the energy balance in the job's log as well as on stdout."""
+"""What the CLI says (issue 10): a progress line of `impactfe run` on a terminal
+only, the run summary with the energy balance in the job's log as well as on stdout, and
+`post --freq` on a file without modes as an error."""
 import os
 import pty
 import re
@@ -80,3 +81,15 @@ def test_summary_and_energy_in_the_log(binary, tmp_path):
     assert energy in log  # the same line, word for word
     assert "initial kinetic 50" in energy
     assert "run summary:" in log and "full transient (Newmark): 1 DOFs" in log
+
+
+def test_post_freq_without_modes_is_an_error(binary, tmp_path):
+    """`post --freq` / `--mode` on a file without a modal analysis: exit 1 and a message, never a
+    bare CSV header with exit 0."""
+    out = tmp_path / "nomodes"
+    run([binary, "run", _deck(tmp_path, 50), "-o", str(out)])
+    results = str(out / "progress.h5")
+    p = run([binary, "post", results, "--freq"], expect=1)
+    assert p.stdout == "" and "holds no modal results" in p.stderr, p.stderr
+    p = run([binary, "post", results, "--mode", "1"], expect=1)
+    assert p.stdout == "" and "no mode shapes" in p.stderr, p.stderr
