@@ -117,7 +117,8 @@ void run_msup_transient(Structure& structure, const AnalysisRequest& request, Re
   integrate_reduced(
       *state, dynamics, [&](const VectorXd& f) { return VectorXd(phi.transpose() * f); },
       [&](const VectorXd& q) { return VectorXd(phi * q); }, q0, v0,
-      [&](int j) { return fmt::format("mode {}", j + 1); }, writer, stats, seconds_per_step);
+      [&](int j) { return fmt::format("mode {}", j + 1); }, writer, stats, seconds_per_step,
+      settings.progress);
 
   writer.set_count("modes", static_cast<long long>(nm));
   writer.set_count("gap_conditions", static_cast<long long>(model.gap_conditions.size()));

@@ -14,7 +14,7 @@ struct ProgressEvent {
   int substeps = 0;  // substeps of the load step
   double dt = 0.0;
   int iterations = 0;      // equilibrium iterations of this substep
-  int status_changes = 0;  // status changes of this substep
+  int status_changes = 0;  // status changes of this substep (-1: not counted)
 };
 
 class ProgressObserver {

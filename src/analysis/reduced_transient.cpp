@@ -99,7 +99,7 @@ void run_reduced_transient(Structure& structure, const AnalysisRequest& request,
       },
       q0, v0,
       [&](int j) { return describe(dofs.key(guyan.masters()[static_cast<std::size_t>(j)])); },
-      writer, stats, seconds_per_step);
+      writer, stats, seconds_per_step, settings.progress);
 
   // --- Summary -------------------------------------------------------------------------------
   writer.set_count("masters", static_cast<long long>(guyan.n_masters()));

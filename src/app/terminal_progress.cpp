@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 
 namespace impactfe {
@@ -29,7 +30,7 @@ void TerminalProgress::substep_done(const ProgressEvent& e) {
     analysis_ = e.analysis;
     status_changes_ = 0;
   }
-  status_changes_ += e.status_changes;
+  status_changes_ += std::max(e.status_changes, 0);
   if (e.load_step != load_step_) {  // the estimate is made per load step (its rate and end)
     load_step_ = e.load_step;
     step_start_wall_ = now;
@@ -45,10 +46,10 @@ void TerminalProgress::substep_done(const ProgressEvent& e) {
   if (done > 0.0 && e.time_end > e.time)
     left = fmt::format(", ~{} left in load step", seconds(in_step * (e.time_end - e.time) / done));
   const std::string line = fmt::format(
-      "{}: t = {:.6g} of {:.6g}, load step {}, substep {}/{}, dt {:.3g}, {} iter, {} status "
-      "changes, {} elapsed{}",
+      "{}: t = {:.6g} of {:.6g}, load step {}, substep {}/{}, dt {:.3g}, {} iter, {}{} elapsed{}",
       e.analysis, e.time, e.time_end, e.load_step, e.substep, e.substeps, e.dt, e.iterations,
-      status_changes_, seconds(elapsed), left);
+      e.status_changes < 0 ? "" : fmt::format("{} status changes, ", status_changes_),
+      seconds(elapsed), left);
   std::fprintf(stderr, "\r\033[K%s", line.c_str());
   std::fflush(stderr);
   shown_ = true;

@@ -66,6 +66,19 @@ def test_progress_line_on_a_terminal(binary, tmp_path):
     assert text.endswith("\r\x1b[K"), "the line is cleared at the end"
 
 
+def test_progress_line_of_a_reduced_transient(binary, tmp_path):
+    """The reduced (Guyan) transient reports its steps too; it does not count gap status changes,
+    so the line leaves them out rather than printing 0."""
+    deck = os.path.join(DECKS, "modern", "crash1_modern.inp")
+    status, text = _run_on_terminal(binary, deck, str(tmp_path / "reduced"))
+    assert status == 0, text
+    lines = [s for s in text.split("\r\x1b[K") if s.startswith("transient (reduced")]
+    assert lines, text
+    assert all(re.match(r"transient \(reduced, \w+\): t = \S+ of \S+, load step \d+, "
+                        r"substep \d+/\d+, dt \S+, 1 iter, \S+ s elapsed", s) for s in lines), lines
+    assert "status changes" not in "".join(lines)
+
+
 def test_no_progress_line_without_a_terminal(binary, tmp_path):
     deck = _deck(tmp_path, 2000)
     p = run([binary, "run", deck, "-o", str(tmp_path / "pipe")])
