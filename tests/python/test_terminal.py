@@ -106,3 +106,14 @@ def test_post_freq_without_modes_is_an_error(binary, tmp_path):
     assert p.stdout == "" and "holds no modal results" in p.stderr, p.stderr
     p = run([binary, "post", results, "--mode", "1"], expect=1)
     assert p.stdout == "" and "no mode shapes" in p.stderr, p.stderr
+
+
+def test_mp_damp_refused_where_it_is_not_applied(binary, tmp_path):
+    """MP,DAMP in a reduced transient (which forms C from ALPHAD/BETAD only) is an input error
+    naming the element's deck line, not a damping silently dropped."""
+    deck = os.path.join(os.path.dirname(os.path.abspath(__file__)), "decks",
+                        "mp_damp_reduced_transient.inp")
+    p = run([binary, "run", deck, "-o", str(tmp_path)], expect=1)
+    assert "mp_damp_reduced_transient.inp:12: E: element 1: its material 1 has MP,DAMP" in p.stderr, \
+        p.stderr
+    assert "BETAD" in p.stderr
