@@ -23,6 +23,9 @@ Expectation lines in the deck (comments, so the deck stays a valid APDL deck):
   ! EXPECT: FILE <name> LINE <n> IS <text>                        line n is <text> (trailing
         blanks are not compared)
   ! EXPECT: STDOUT CONTAINS <text>                                the run printed <text>
+  ! EXPECT: WARNING <text>      the run warned with <text> on stderr and in <job>.log
+  ! EXPECT: NOWARNING <text>    no warning containing <text>
+  ! EXPECT: LOG <text>          <job>.log contains <text> (e.g. the run summary)
 `AT <time>` picks the stored point nearest to <time> (within 1e-9 relative), or interpolates
 linearly between stored points when the time lies between them.
 """
@@ -164,6 +167,21 @@ def main():
             continue
         if tok[0] in ("FILE", "STDOUT"):
             all_ok &= check_file(e, work, run.stdout)
+            continue
+        if tok[0] in ("WARNING", "NOWARNING", "LOG"):
+            text = e[len(tok[0]):].strip()
+            with open(os.path.join(work, stem + ".log")) as f:
+                log = f.read()
+            if tok[0] == "LOG":
+                ok = text in log
+            else:
+                warned = [ln for ln in run.stderr.splitlines() if ln.startswith("warning:")]
+                logged = [ln for ln in log.splitlines() if ln.startswith("warning:")]
+                in_err = any(text in ln for ln in warned)
+                in_log = any(text in ln for ln in logged)
+                ok = (in_err and in_log) if tok[0] == "WARNING" else not (in_err or in_log)
+            print("%s %s" % ("ok  " if ok else "FAIL", e))
+            all_ok &= ok
             continue
         if tok[0] in ("NSOL", "RSOL", "ESOL"):
             m = re.match(r"(\w+)\s+(\d+)\s+(\w+)\s+AT\s+(\S+)\s*=\s*(\S+)\s+(TOL|RTOL)\s+(\S+)$", e)
