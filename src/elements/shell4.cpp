@@ -177,7 +177,7 @@ void add_geometric_stiffness(const CorotationalState& s, const VecF& f_l, MatK& 
     Q += spin(s.r[i]) * spin(N[i]) + spin(M[i]) + Z[i];
   }
   // Translations × translations: frame curvature, centroid projection, and Gᵀ δw.
-  ShellMatNN Kxx = frame_spin_derivative(s.frame, w) + G.transpose() * Q * G;
+  ShellMatNN Kxx = frame_spin_derivative(s.frame, w) + G.transpose().lazyProduct(Q * G);
   for (int a = 0; a < n; ++a) {
     const Mat3 SN = spin(N[static_cast<std::size_t>(a)] - N_mean);
     const ShellMat3N SNG = SN * G;
@@ -199,6 +199,25 @@ void add_geometric_stiffness(const CorotationalState& s, const VecF& f_l, MatK& 
     }
     K.template block<3, 3>(6 * a + 3, 6 * a + 3) +=
         so3::d_left_jacobian_transpose(s.psi[i], M[i]) + T.transpose() * Z[i] * T;
+  }
+}
+
+/// Material part Bᵀ K̄ B, using the sparsity of B: the column of a nodal rotation ψ_b has only
+/// the 3 × 3 block T(θ_b)⁻¹ Rcᵀ T(ψ_b) in the rows of θ_b (about half the work of dense products).
+template <class MatB>
+void material_stiffness(const MatB& B, const Eigen::MatrixXd& K_bar, Eigen::MatrixXd& K) {
+  const int nd = static_cast<int>(B.rows());
+  Mat24 KB(nd, nd);
+  for (int b = 0; b < nd; b += 6) {
+    KB.middleCols<3>(b).noalias() = K_bar.lazyProduct(B.template middleCols<3>(b));
+    KB.middleCols<3>(b + 3).noalias() =
+        K_bar.middleCols<3>(b + 3) * B.template block<3, 3>(b + 3, b + 3);
+  }
+  K.resize(nd, nd);
+  for (int b = 0; b < nd; b += 6) {
+    K.middleRows<3>(b).noalias() = B.template middleCols<3>(b).transpose().lazyProduct(KB);
+    K.middleRows<3>(b + 3).noalias() =
+        B.template block<3, 3>(b + 3, b + 3).transpose() * KB.middleRows<3>(b + 3);
   }
 }
 
@@ -237,8 +256,7 @@ void Shell4::tangent(const ElementContext& ctx, const Eigen::VectorXd& u, Eigen:
   kinematic_matrix(s, B);
   const Vec24 f_l = K_bar_ * d;
   f_int = B.transpose() * f_l;
-  const Mat24 KB = K_bar_ * B;
-  K.noalias() = B.transpose() * KB;
+  material_stiffness(B, K_bar_, K);
   add_geometric_stiffness(s, f_l, K);
 }
 

@@ -6,6 +6,9 @@
 
 namespace impactfe {
 
+// The 3n × 3n products below have inner dimension 3: lazyProduct keeps them coefficient-based
+// (Eigen would otherwise send these small dynamic-size products through its blocked GEMM).
+
 namespace {
 
 using Mat3 = Eigen::Matrix3d;
@@ -91,8 +94,8 @@ ShellMatNN normal_hessian(const ShellFrame& f, const Vec3& y) {
   const Vec3 e3 = f.e3();
   const Vec3 g = (y - e3 * e3.dot(y)) / f.n_norm;
   const Mat3 Sg = spin(g);
-  ShellMatNN H = f.Dn.transpose() * unit_vector_hessian(e3, f.n_norm, y) * f.Dn;
-  H += f.Sb.transpose() * Sg * f.Sa - f.Sa.transpose() * Sg * f.Sb;
+  ShellMatNN H = f.Dn.transpose().lazyProduct(unit_vector_hessian(e3, f.n_norm, y) * f.Dn);
+  H += f.Sb.transpose().lazyProduct(Sg * f.Sa) - f.Sa.transpose().lazyProduct(Sg * f.Sb);
   return H;
 }
 
@@ -106,9 +109,10 @@ ShellMatNN side_hessian(const ShellFrame& f, const Vec3& y) {
   const double alpha = f.v.dot(e3), beta = g.dot(e3);
   const ShellVecN grad_alpha = f.Sv.transpose() * e3 + f.De3.transpose() * f.v;
   const ShellVecN grad_beta = f.De3.transpose() * g;
-  const ShellMatNN SvDe3 = f.Sv.transpose() * f.De3;
-  ShellMatNN H = f.Dp.transpose() * unit_vector_hessian(e1, f.p_norm, y) * f.Dp;
-  H -= grad_alpha * grad_beta.transpose() + grad_beta * grad_alpha.transpose();
+  const ShellMatNN SvDe3 = f.Sv.transpose().lazyProduct(f.De3);
+  ShellMatNN H = f.Dp.transpose().lazyProduct(unit_vector_hessian(e1, f.p_norm, y) * f.Dp);
+  H -=
+      grad_alpha.lazyProduct(grad_beta.transpose()) + grad_beta.lazyProduct(grad_alpha.transpose());
   H -= beta * (SvDe3 + SvDe3.transpose());
   H -= normal_hessian(f, beta * f.v + alpha * g);
   return H;
@@ -120,9 +124,9 @@ ShellMatNN side_hessian(const ShellFrame& f, const Vec3& y) {
 ShellMatNN frame_spin_derivative(const ShellFrame& f, const Vec3& w) {
   const Vec3 e1 = f.e1(), e2 = f.e2(), e3 = f.e3();
   const double s1 = e1.dot(w), s2 = e2.dot(w), s3 = e3.dot(w);
-  ShellMatNN H = f.G.transpose() * spin(w) * f.G;
-  H += f.De3.transpose() * ((s1 * spin(e2) - s2 * spin(e1)) * f.G);
-  H -= s3 * f.De1.transpose() * (spin(e2) * f.G);
+  ShellMatNN H = f.G.transpose().lazyProduct(spin(w) * f.G);
+  H += f.De3.transpose().lazyProduct((s1 * spin(e2) - s2 * spin(e1)) * f.G);
+  H -= f.De1.transpose().lazyProduct((s3 * spin(e2)) * f.G);
   H += normal_hessian(f, -s1 * e2 + s2 * e1);
   H += side_hessian(f, s3 * e2);
   return H;
