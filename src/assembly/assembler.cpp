@@ -7,6 +7,8 @@
 #include <omp.h>
 #endif
 
+#include "core/errors.h"
+
 namespace impactfe {
 
 Assembler::Assembler(const std::vector<std::unique_ptr<Element>>& elements, const DofMap& dofs,
@@ -60,6 +62,13 @@ Assembler::Assembler(const std::vector<std::unique_ptr<Element>>& elements, cons
     }
     has_damping_ = has_damping_ || elements_[e]->has_damping() || alpha_ != 0.0 || beta_ != 0.0;
   }
+}
+
+void Assembler::set_material_stiffness_damping(std::vector<double> beta) {
+  IMPACTFE_CHECK(beta.empty() || beta.size() == elements_.size(),
+                 "material damping: one value per element expected");
+  material_beta_ = std::move(beta);
+  for (double b : material_beta_) has_damping_ = has_damping_ || b != 0.0;
 }
 
 void Assembler::gather(std::size_t e, const VectorXd& global, VectorXd& local) const {
@@ -146,7 +155,8 @@ void Assembler::TangentThreading::record_serial_pass(double seconds) {
 bool Assembler::element_damping(std::size_t e, const VectorXd& ue, const MatrixXd& k,
                                 MatrixXd& c) const {
   const Element& element = *elements_[e];
-  const bool rayleigh = alpha_ != 0.0 || beta_ != 0.0;
+  const double beta = beta_of(e);  // global BETAD plus the material's MP,DAMP
+  const bool rayleigh = alpha_ != 0.0 || beta != 0.0;
   if (element.has_damping()) {
     element.damping(ctx_, ue, c);
   } else if (rayleigh) {
@@ -154,7 +164,7 @@ bool Assembler::element_damping(std::size_t e, const VectorXd& ue, const MatrixX
   } else {
     return false;
   }
-  if (rayleigh) c += alpha_ * mass_[e] + beta_ * k;
+  if (rayleigh) c += alpha_ * mass_[e] + beta * k;
   return true;
 }
 
@@ -248,7 +258,8 @@ SparseMatrix Assembler::full_matrix(Which which, const VectorXd& u) const {
         }
         break;
       case Which::Damping: {
-        const bool rayleigh = alpha_ != 0.0 || beta_ != 0.0;
+        const double beta = beta_of(e);
+        const bool rayleigh = alpha_ != 0.0 || beta != 0.0;
         if (!elements_[e]->has_damping() && !rayleigh) continue;
         gather(e, u, ue);
         if (elements_[e]->has_damping()) {
@@ -259,7 +270,7 @@ SparseMatrix Assembler::full_matrix(Which which, const VectorXd& u) const {
         if (rayleigh) {
           MatrixXd ke = linear_stiffness_[e];
           if (!is_linear_[e]) elements_[e]->tangent(ctx_, ue, ke, fe);
-          m += alpha_ * mass_[e] + beta_ * ke;
+          m += alpha_ * mass_[e] + beta * ke;
         }
         break;
       }

@@ -20,6 +20,10 @@ class Assembler {
   Assembler(const std::vector<std::unique_ptr<Element>>& elements, const DofMap& dofs,
             const ElementContext& ctx, double alpha = 0.0, double beta = 0.0);
 
+  /// Stiffness-proportional damping of each element's material (MP,DAMP = BETD: C_e += β_e K_e,
+  /// APDL_MODELING §6.1), added to the global beta; one value per element, in element order.
+  void set_material_stiffness_damping(std::vector<double> beta);
+
   const DofMap& dofs() const { return dofs_; }
   const ElementContext& context() const { return ctx_; }
 
@@ -105,8 +109,12 @@ class Assembler {
   };
   mutable TangentThreading threading_;
   bool has_damping_ = false;
-  double alpha_ = 0.0;  // Rayleigh mass coefficient
-  double beta_ = 0.0;   // Rayleigh stiffness coefficient
+  double alpha_ = 0.0;                 // Rayleigh mass coefficient
+  double beta_ = 0.0;                  // Rayleigh stiffness coefficient
+  std::vector<double> material_beta_;  // per element (empty: none)
+  double beta_of(std::size_t e) const {
+    return material_beta_.empty() ? beta_ : beta_ + material_beta_[e];
+  }
 };
 
 }  // namespace impactfe
