@@ -39,6 +39,8 @@ class DirectSolution : private NonlinearProblem {
   void set_constraints(const LoadStep& step);
   void start_dynamics(const LoadPoint& at, double h);
   VectorXd external_force(const LoadPoint& at) const;
+  LoadPoint load_point(const LoadStep& step, const LoadStep* previous, double fraction,
+                       double time) const;
   void solve_increment(const LoadPoint& at, const StepLabel& label, bool dynamic);
   void factorize(const IntegrationCoefficients& coeff, const VectorXd& u);
   void store(double time, int load_step, int substep, bool dynamic);
@@ -91,6 +93,9 @@ class DirectSolution : private NonlinearProblem {
     VectorXd v, a, f_int, f_damp;
     StepLabel label;
     int n_status_changes = 0;
+    LoadPoint at;           // the load point of the increment
+    bool follower = false;  // face pressures that follow the deformation (large deflection)
+    VectorXd f_pressure;    // their load at the latest iterate
   } increment_;
 
   // Factorization bookkeeping: refactor only when the effective matrix can have changed.

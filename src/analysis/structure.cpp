@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <limits>
 
+#include "assembly/element_adapters.h"
 #include "core/log.h"
 
 namespace impactfe {
@@ -50,18 +51,15 @@ Structure::Structure(const Model& model, const AnalysisOptions& options,
   context_.lumped_mass = options.lumped_mass;
 
   for (const auto& [id, node] : model.nodes) {
-    if (node.rotated())
-      throw NotImplementedError(fmt::format(
-          "node {}: rotated nodal coordinate systems (THXY/THYZ/THZX) are not implemented yet",
-          id));
     node_row_[id] = static_cast<int>(node_ids_.size());
     node_ids_.push_back(id);
   }
 
   ElementBuildContext build{
       model, [&settings](const ElementRecord& r) { return resolve_superelement(r, settings); }};
+  // Rotated nodes (DOFs in nodal axes) and material damping enter through element adapters.
   for (const auto& [id, record] : model.elements)
-    elements_.push_back(create_element(build, record));
+    elements_.push_back(adapt_element(create_element(build, record), model, record));
 
   // Automatic constraints: DOFs without stiffness and without mass (spec §10.1 item 5).
   // Status elements (gaps) count as stiffness: a gap may close later.
