@@ -13,6 +13,7 @@
 #include "deck/deck_reader.h"
 #include "deck/expression.h"
 #include "deck/lexer.h"
+#include "deck/modeling_state.h"
 #include "deck/solution_host.h"
 
 namespace impactfe::deck {
@@ -71,6 +72,16 @@ void register_generation_commands(std::vector<CommandSpec>& table);
 void register_solution_commands(std::vector<CommandSpec>& table);
 void register_load_commands(std::vector<CommandSpec>& table);
 void register_post_commands(std::vector<CommandSpec>& table);
+// Model building (APDL_MODELING): registered before the post commands, whose NSEL/ESEL/ALLSEL
+// entries they take over outside /POST1 and /POST26.
+void register_csys_commands(std::vector<CommandSpec>& table);
+void register_solid_model_commands(std::vector<CommandSpec>& table);
+void register_solid_edit_commands(std::vector<CommandSpec>& table);
+void register_mesh_commands(std::vector<CommandSpec>& table);
+void register_entity_selection_commands(std::vector<CommandSpec>& table);
+void register_mesh_selection_commands(std::vector<CommandSpec>& table);
+void register_surface_load_commands(std::vector<CommandSpec>& table);
+void register_material_commands(std::vector<CommandSpec>& table);
 
 class DeckReader {
  public:
@@ -158,6 +169,9 @@ class DeckReader {
   // MDAMP memory.
   int mdamp_next = 1;
 
+  // Model-building state that is not model data (MPTEMP table, current TB table, ESYS).
+  ModelingState modeling;
+
  private:
   void run(const std::vector<RawCommand>& cmds, std::size_t begin, std::size_t end, int depth);
   std::size_t find_block_end(const std::vector<RawCommand>& cmds, std::size_t begin,
@@ -184,6 +198,10 @@ void store_post_command(DeckReader& r, const Command& c);
 /// (APDL_SUBSET §1.11); the range fields it consumes are set to 0. ALL gives all six DOFs.
 std::vector<Dof> parse_dof_labels(DeckReader& r, const Command& c, int lab_field, int& end_field,
                                   int& inc_field, int extra_first, int extra_last);
+
+/// Model building at a solution request (SOLVE, LSWRITE): transfers the solid-model loads to the
+/// mesh and checks that the materials the elements use are supported.
+void prepare_model_for_solution(DeckReader& r, const Command& c);
 
 /// Closes a 4x /STRESS block (END, FINISH or the end of the deck): its requests become an
 /// expansion pass of the preceding reduced transient.

@@ -133,9 +133,9 @@ void register_session_commands(std::vector<CommandSpec>& t) {
         "/GRAPHICS", "/GFILE",  "/GLINE",  "/GCOLUMN", "/XRANGE",  "/YRANGE", "/GROPT", "/GTHK",
         "/WAIT",     "/UIS",    "/BATCH",  "/UNITS",   "/VERIFY",  "/NERR",   "/GST",   "/CWD",
         "/CONFIG",   "/SYS",    "/AXLAB",  "NLIST",    "ELIST",    "ETLIST",  "DLIST",  "FLIST",
-        "MPLIST",    "RLIST",   "KLIST",   "LLIST",    "/STATUS",  "*STATUS", "*LIST",  "PLDISP",
-        "PLNSOL",    "PLESOL",  "PLETAB",  "PLVAR",    "PRVAR",    "PRNSOL",  "PRESOL", "PRRSOL",
-        "PRETAB",    "PRTIME",  "SAVE",    "/PSF",     "/PSYMB",   "GPLOT",   "/LINE",  "/COLOR"})
+        "MPLIST",    "RLIST",   "/STATUS", "*STATUS",  "*LIST",    "PLDISP",  "PLNSOL", "PLESOL",
+        "PLETAB",    "PLVAR",   "PRVAR",   "PRNSOL",   "PRESOL",   "PRRSOL",  "PRETAB", "PRTIME",
+        "SAVE",      "/PSF",    "/PSYMB",  "GPLOT",    "/LINE",    "/COLOR"})
     t.push_back({name, cmd_graphics, kAnywhere});
 }
 
