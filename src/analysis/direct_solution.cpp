@@ -444,7 +444,10 @@ void DirectSolution::solve_increment(const LoadPoint& at, const StepLabel& label
       assembler_->is_nonlinear() && (ctx_.large_deflection || ctx_.stress_stiffening);
   status_loop_->begin_step();
   NewtonResult result;
-  const bool condensed = dynamic && condensation_ && solve_condensed(u, newton, result);
+  // Follower pressures load the linear part's DOFs through u, which the condensed system does
+  // not see: such steps take full Newton.
+  const bool condensed =
+      dynamic && condensation_ && !inc.follower && solve_condensed(u, newton, result);
   if (!condensed) {
     // Full Newton on all free DOFs (also the fallback when a condensed step left a residual
     // the full criterion does not accept; it starts from the condensed iterate).
