@@ -33,6 +33,14 @@ const std::vector<CommandSpec>& command_table() {
     register_generation_commands(t);
     register_solution_commands(t);
     register_load_commands(t);
+    register_csys_commands(t);
+    register_solid_model_commands(t);
+    register_solid_edit_commands(t);
+    register_mesh_commands(t);
+    register_entity_selection_commands(t);
+    register_mesh_selection_commands(t);
+    register_surface_load_commands(t);
+    register_material_commands(t);
     register_post_commands(t);
     register_parameter_commands(t);
     register_array_commands(t);

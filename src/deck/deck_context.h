@@ -13,6 +13,7 @@
 #include "deck/deck_reader.h"
 #include "deck/expression.h"
 #include "deck/lexer.h"
+#include "deck/modeling_state.h"
 #include "deck/output.h"
 #include "deck/parameters.h"
 #include "deck/solution_host.h"
@@ -108,6 +109,16 @@ struct CommandFileState {
   std::ofstream stream;
   std::string path;
 };
+// Model building (APDL_MODELING): registered before the post commands, whose NSEL/ESEL/ALLSEL
+// entries they take over outside /POST1 and /POST26.
+void register_csys_commands(std::vector<CommandSpec>& table);
+void register_solid_model_commands(std::vector<CommandSpec>& table);
+void register_solid_edit_commands(std::vector<CommandSpec>& table);
+void register_mesh_commands(std::vector<CommandSpec>& table);
+void register_entity_selection_commands(std::vector<CommandSpec>& table);
+void register_mesh_selection_commands(std::vector<CommandSpec>& table);
+void register_surface_load_commands(std::vector<CommandSpec>& table);
+void register_material_commands(std::vector<CommandSpec>& table);
 
 class DeckReader {
  public:
@@ -222,6 +233,8 @@ class DeckReader {
   /// Runs a macro (in-memory *CREATE file or macro file on disk) with ARG1..AR19 set from
   /// `args`; false when no macro of that name exists.
   bool call_macro(const Command& c, const std::string& name, const std::vector<Value>& args);
+  // Model-building state that is not model data (MPTEMP table, current TB table, ESYS).
+  ModelingState modeling;
 
  private:
   struct Program;
@@ -267,6 +280,10 @@ void store_post_command(DeckReader& r, const Command& c);
 /// (APDL_SUBSET §1.11); the range fields it consumes are set to 0. ALL gives all six DOFs.
 std::vector<Dof> parse_dof_labels(DeckReader& r, const Command& c, int lab_field, int& end_field,
                                   int& inc_field, int extra_first, int extra_last);
+
+/// Model building at a solution request (SOLVE, LSWRITE): transfers the solid-model loads to the
+/// mesh and checks that the materials the elements use are supported.
+void prepare_model_for_solution(DeckReader& r, const Command& c);
 
 /// Closes a 4x /STRESS block (END, FINISH or the end of the deck): its requests become an
 /// expansion pass of the preceding reduced transient.

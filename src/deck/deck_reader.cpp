@@ -232,8 +232,12 @@ std::vector<int> DeckReader::node_range(const Command& c, int node_field, int en
                                         int inc_field) {
   std::vector<int> out;
   if (label(c, node_field) == "ALL") {
-    for (const auto& [id, node] : model.nodes) out.push_back(id);
-    if (out.empty()) fail(c, "ALL: no nodes are defined");
+    // ALL = the selected nodes (APDL_MODELING §1.0); everything is selected unless a select
+    // command changed it.
+    for (const auto& [id, node] : model.nodes)
+      if (model.selection.nodes.selected(id)) out.push_back(id);
+    if (out.empty())
+      fail(c, model.nodes.empty() ? "ALL: no nodes are defined" : "ALL: no node is selected");
     return out;
   }
   const auto first = opt_int(c, node_field);

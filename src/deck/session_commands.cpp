@@ -76,9 +76,9 @@ void register_session_commands(std::vector<CommandSpec>& t) {
         "/GFILE",  "/GLINE",  "/GCOLUMN", "/XRANGE", "/YRANGE",  "/GROPT", "/GTHK",    "/WAIT",
         "/UIS",    "/BATCH",  "/UNITS",   "/VERIFY", "/NERR",    "/GST",   "/CWD",     "/CONFIG",
         "/SYS",    "/AXLAB",  "NLIST",    "ELIST",   "ETLIST",   "DLIST",  "FLIST",    "MPLIST",
-        "RLIST",   "KLIST",   "LLIST",    "/STATUS", "PLDISP",   "PLNSOL", "PLESOL",   "PLETAB",
-        "PLVAR",   "PRVAR",   "PRNSOL",   "PRESOL",  "PRRSOL",   "PRETAB", "PRTIME",   "/PSF",
-        "/PSYMB",  "GPLOT",   "/LINE",    "/COLOR"})
+        "RLIST",   "/STATUS", "PLDISP",   "PLNSOL",  "PLESOL",   "PLETAB", "PLVAR",    "PRVAR",
+        "PRNSOL",  "PRESOL",  "PRRSOL",   "PRETAB",  "PRTIME",   "/PSF",   "/PSYMB",   "GPLOT",
+        "/LINE",   "/COLOR"})
     t.push_back({name, cmd_graphics, kAnywhere});
 }
 
