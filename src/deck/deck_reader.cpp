@@ -194,10 +194,13 @@ std::string DeckReader::substitute_percent(const Command& c, const std::string& 
     }
     const std::string inner = text.substr(i + 1, close - i - 1);
     const Param* p = params.find(trim(inner));
-    if (p != nullptr && p->type == ParamType::Table)
-      fail(c, fmt::format("%{}% names a TABLE: table-driven loads are not supported (give the "
-                          "value, or interpolate with {}(x))",
-                          trim(inner), trim(inner)));
+    if (p != nullptr && p->type == ParamType::Table) {
+      // %TABLE% stays as written: a load command's value field reads it as a table load
+      // (load_field, APDL_MODELING §5.5); any other numeric field rejects it as not a number.
+      out += text.substr(i, close - i + 1);
+      i = close + 1;
+      continue;
+    }
     try {
       const Value v = evaluate_value(inner, params, &functions_);
       if (is_text(v)) {

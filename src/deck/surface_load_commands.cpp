@@ -268,12 +268,32 @@ LoadField load_field(DeckReader& r, const Command& c, int i) {
   if (text.size() >= 2 && text.front() == '%' && text.back() == '%') {
     const std::string name = to_upper(text.substr(1, text.size() - 2));
     if (name == "_FIX") r.fail(c, "%_FIX% (hold the current value) is not supported");
-    // Merge point with the TABLE parameters of the scripting layer: a TABLE array whose primary
-    // variable is TIME is made available as Model::time_functions[NAME].
-    if (r.model.time_functions.count(name) == 0)
+    // A TABLE parameter whose primary variable is TIME becomes Model::time_functions[NAME]:
+    // its index column T(i,0) are the times, column 1 the values (APDL_SCRIPTING §A.7). The
+    // table is taken as it stands at this command, like every other load value.
+    const Param* table = r.params.find(name);
+    if (table == nullptr || table->type != ParamType::Table)
       r.fail(c, fmt::format("table %{}% is not defined (a TABLE array with primary variable TIME "
                             "is needed: *DIM,{},TABLE,n,1,1,TIME)",
                             name, name));
+    if (to_upper(trim(table->variables[0])) != "TIME")
+      r.fail(c, fmt::format("table %{}% has primary variable '{}': only TIME (a load history) is "
+                            "supported, not spatial tables",
+                            name, table->variables[0]));
+    if (table->jmax != 1 || table->kmax != 1)
+      r.fail(c, fmt::format("table %{}% has {}x{}x{} entries: a load history has one column of "
+                            "values (*DIM,{},TABLE,n,1,1,TIME)",
+                            name, table->imax, table->jmax, table->kmax, name));
+    TimeFunction history;
+    for (int i = 1; i <= table->imax; ++i) {
+      const double t = table->values[table->offset(i, 0, 1)];
+      if (!history.time.empty() && !(t > history.time.back()))
+        r.fail(c, fmt::format("table %{}%: its times must increase ({}({},0) = {} after {})", name,
+                              name, i, t, history.time.back()));
+      history.time.push_back(t);
+      history.value.push_back(table->values[table->offset(i, 1, 1)]);
+    }
+    r.model.time_functions[name] = std::move(history);
     return LoadField{0.0, name};
   }
   return LoadField{r.real(c, i, 0.0), {}};
