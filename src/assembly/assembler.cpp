@@ -1,6 +1,7 @@
 #include "assembly/assembler.h"
 
 #include <algorithm>
+#include <exception>
 
 namespace impactfe {
 
@@ -75,14 +76,28 @@ void Assembler::assemble(const IntegrationCoefficients& coeff, const VectorXd& u
   // Phase 1, in parallel: tangents of the nonlinear elements (the expensive part: co-rotational
   // shells, total-Lagrangian bricks) into per-element buffers. Elements are const here and keep
   // no shared scratch, so this is race-free; the scatter below stays serial and deterministic.
+  // An exception must not leave the parallel region (that would terminate the program): the
+  // one of the lowest element index is kept (deterministic whatever the threads) and rethrown
+  // after it, e.g. an element that collapsed under large deflection (ElementSolutionError).
   const int n_nonlinear = static_cast<int>(nonlinear_.size());
+  std::exception_ptr failure;
+  int failed_at = n_nonlinear;
 #pragma omp parallel for schedule(dynamic, 8) if (n_nonlinear > 64)
   for (int i = 0; i < n_nonlinear; ++i) {
     const std::size_t e = nonlinear_[static_cast<std::size_t>(i)];
-    VectorXd ue_local;
-    gather(e, u, ue_local);
-    elements_[e]->tangent(ctx_, ue_local, tangent_buffer_[e], force_buffer_[e]);
+    try {
+      VectorXd ue_local;
+      gather(e, u, ue_local);
+      elements_[e]->tangent(ctx_, ue_local, tangent_buffer_[e], force_buffer_[e]);
+    } catch (...) {
+#pragma omp critical(impactfe_assembly_failure)
+      if (i < failed_at) {
+        failed_at = i;
+        failure = std::current_exception();
+      }
+    }
   }
+  if (failure) std::rethrow_exception(failure);
 
   // Phase 2, serial: scatter.
   MatrixXd c, eff;

@@ -8,16 +8,59 @@
 namespace impactfe::h5 {
 
 void silence_errors() {
+  // No library shutdown at exit: every file is flushed after each write and closed by its
+  // owner, and after a failed write (a full disk) HDF5's shutdown crashes closing the dataset
+  // whose close already failed (HDF5 1.10). Only effective before the library starts, so done
+  // here, the first HDF5 call of every reader and writer.
+  static const bool no_atexit = [] {
+    H5dont_atexit();
+    return true;
+  }();
+  (void)no_atexit;
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
 }
 
+namespace {
+
+/// The innermost message of the HDF5 error stack: the system's reason when a system call
+/// failed ("No space left on device", "Permission denied"), else HDF5's own description.
+herr_t innermost(unsigned, const H5E_error2_t* error, void* data) {
+  auto& out = *static_cast<std::string*>(data);
+  if (error->desc == nullptr) return 0;
+  const std::string desc = error->desc;
+  const std::string key = "error message = '";
+  const auto pos = desc.find(key);
+  if (pos != std::string::npos) {
+    const auto end = desc.find('\'', pos + key.size());
+    out = desc.substr(pos + key.size(), end == std::string::npos ? end : end - pos - key.size());
+    return 1;  // the system's reason: stop here
+  }
+  if (out.empty()) out = desc;
+  return 0;
+}
+
+}  // namespace
+
+std::string last_error_reason() {
+  std::string reason;
+  H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, innermost, &reason);
+  return reason;
+}
+
+Error::Error(const std::string& what)
+    : std::runtime_error([&what] {
+        const std::string reason = last_error_reason();
+        return reason.empty() ? fmt::format("cannot {}", what)
+                              : fmt::format("cannot {}: {}", what, reason);
+      }()) {}
+
 hid_t check(hid_t id, const std::string& what) {
-  if (id < 0) throw std::runtime_error(fmt::format("cannot {}", what));
+  if (id < 0) throw Error(what);
   return id;
 }
 
 void check_status(herr_t status, const std::string& what) {
-  if (status < 0) throw std::runtime_error(fmt::format("cannot {}", what));
+  if (status < 0) throw Error(what);
 }
 
 bool exists(hid_t loc, const std::string& name) {

@@ -3,6 +3,7 @@
 #include <hdf5.h>
 #include <Eigen/Core>
 
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -38,9 +39,20 @@ class Handle {
 };
 
 /// Silences the HDF5 error stack printer: libraries never print; failures become exceptions.
+/// Also keeps HDF5 from installing its shutdown at exit (see h5_util.cpp).
 void silence_errors();
 
-/// Throws std::runtime_error("cannot <what>") when id < 0 (callers add the file name).
+/// The system's reason for the last HDF5 failure ("No space left on device"), or HDF5's
+/// innermost message; "" when the error stack is empty.
+std::string last_error_reason();
+
+/// A failed HDF5 call: "cannot <what>: <reason>" (callers add the file name).
+class Error : public std::runtime_error {
+ public:
+  explicit Error(const std::string& what);
+};
+
+/// Throws Error when id < 0.
 hid_t check(hid_t id, const std::string& what);
 void check_status(herr_t status, const std::string& what);
 

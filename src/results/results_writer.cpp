@@ -256,7 +256,10 @@ ResultsWriter::ResultsWriter(const std::string& path, const Model& model)
   h5::silence_errors();
   impl_->path = path;
   hid_t f = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
-  if (f < 0) throw InputError(fmt::format("cannot create results file '{}'", path));
+  // Exit status 2 (the run cannot keep its results), with the system's reason.
+  if (f < 0)
+    throw SolutionError(
+        fmt::format("cannot create results file '{}': {}", path, h5::last_error_reason()));
   impl_->file = Handle(f);
   impl_->write_model(model);
   H5Fflush(impl_->file, H5F_SCOPE_GLOBAL);
