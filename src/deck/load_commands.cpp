@@ -72,7 +72,10 @@ void cmd_f(DeckReader& r, const Command& c) {
   if (!d) r.fail(c, fmt::format("bad force label '{}' (FX FY FZ MX MY MZ)", c.text(2)));
   const double value = r.real(c, 3, 0.0);
   if (r.real(c, 4, 0.0) != 0.0) r.warn(c, "VALUE2 (imaginary part) ignored");
-  for (int node : r.node_range(c, 1, 5, 6)) r.model.current.forces[DofKey{node, *d}] = value;
+  for (int node : r.node_range(c, 1, 5, 6)) {
+    r.model.current.forces[DofKey{node, *d}] = value;
+    r.model.current.force_where[DofKey{node, *d}] = c.where;
+  }
 }
 
 void cmd_fdele(DeckReader& r, const Command& c) {
@@ -85,7 +88,10 @@ void cmd_fdele(DeckReader& r, const Command& c) {
     dofs = {*d};
   }
   for (int node : r.node_range(c, 1, 3, 4))
-    for (Dof d : dofs) r.model.current.forces.erase(DofKey{node, d});
+    for (Dof d : dofs) {
+      r.model.current.forces.erase(DofKey{node, d});
+      r.model.current.force_where.erase(DofKey{node, d});
+    }
 }
 
 void cmd_acel(DeckReader& r, const Command& c) {
@@ -117,6 +123,7 @@ void cmd_ic(DeckReader& r, const Command& c) {
   for (int node : r.node_range(c, 1, 5, 6)) {
     for (Dof d : dofs) {
       InitialCondition& ic = r.model.initial_conditions[DofKey{node, d}];
+      ic.where = c.where;
       if (velocity) {
         ic.velocity = value;
       } else {
