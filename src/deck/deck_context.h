@@ -185,6 +185,16 @@ void store_post_command(DeckReader& r, const Command& c);
 std::vector<Dof> parse_dof_labels(DeckReader& r, const Command& c, int lab_field, int& end_field,
                                   int& inc_field, int extra_first, int extra_last);
 
+/// Largest node or element number a deck may use (the field limit of DeckReader::opt_int).
+inline constexpr long long kMaxEntityNumber = 2'000'000'000;
+/// Fails at `c` when the model would hold more than DeckOptions::max_nodes nodes or
+/// max_elements elements after adding `new_nodes` and `new_elements` (counts, not checked for
+/// duplicates: an upper bound).
+void check_model_size(const DeckReader& r, const Command& c, long long new_nodes,
+                      long long new_elements);
+/// Fails at `c` when a generated node or element number is outside 1..kMaxEntityNumber.
+int checked_number(const DeckReader& r, const Command& c, long long number, const char* what);
+
 /// Closes a 4x /STRESS block (END, FINISH or the end of the deck): its requests become an
 /// expansion pass of the preceding reduced transient.
 void close_stress_block(DeckReader& r, const SourceLocation& where);
