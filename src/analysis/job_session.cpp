@@ -169,6 +169,15 @@ void JobSession::close_open() {
   writer_->set_attribute("substeps", static_cast<double>(current.n_substeps));
   writer_->set_attribute("iterations", static_cast<double>(current.n_iterations));
   writer_->set_attribute("status_changes", static_cast<double>(current.n_status_changes));
+  if (current.factor_nonzeros > 0) {  // linear solver figures (docs/results_file.md)
+    writer_->set_attribute("solves", static_cast<double>(current.n_solves));
+    writer_->set_attribute("analyze_seconds", current.analyze_seconds);
+    writer_->set_attribute("factorize_seconds", current.factorize_seconds);
+    writer_->set_attribute("solve_seconds", current.solve_seconds);
+    writer_->set_attribute("matrix_nonzeros", static_cast<double>(current.matrix_nonzeros));
+    writer_->set_attribute("factor_nonzeros", static_cast<double>(current.factor_nonzeros));
+    writer_->set_attribute("factor_bytes", static_cast<double>(current.factor_bytes));
+  }
   writer_->end_analysis("complete");
   direct_.reset();
   structure_.reset();

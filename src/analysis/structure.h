@@ -22,6 +22,9 @@ namespace impactfe {
 struct RunSettings {
   bool continue_on_nonconvergence = false;
   std::string superelement_file;  // --se
+  /// Condense the linear part of a full transient onto the nonlinear elements' DOFs when that
+  /// applies (--no-condense turns it off).
+  bool condense = true;
 };
 
 class Structure {

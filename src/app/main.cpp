@@ -47,6 +47,7 @@ struct RunArgs {
   std::string dialect = "auto";
   std::string superelement;
   bool continue_on_nonconvergence = false;
+  bool no_condense = false;
 };
 
 void print_summary(const std::string& jobname, const RunStatistics& stats, double wall) {
@@ -57,6 +58,12 @@ void print_summary(const std::string& jobname, const RunStatistics& stats, doubl
         "{} factorizations ({} symbolic), {} solves, {} status changes, {:.3f} s\n",
         a.description, a.n_dofs, a.n_load_steps, a.n_substeps, a.n_iterations, a.n_stored,
         a.n_factorizations, a.n_analyses, a.n_solves, a.n_status_changes, a.wall_seconds);
+    if (a.factor_nonzeros > 0)
+      std::cout << fmt::format(
+          "    linear solver: nnz(K) {}, nnz(L) {}, factor {:.6g} MB, analyze {:.6f} s, "
+          "factorize {:.6f} s, solve {:.6f} s\n",
+          a.matrix_nonzeros, a.factor_nonzeros, a.factor_bytes / 1.0e6, a.analyze_seconds,
+          a.factorize_seconds, a.solve_seconds);
     for (const auto& note : a.notes) std::cout << "    " << note << "\n";
   }
   if (!Log::warnings().empty())
@@ -106,6 +113,7 @@ int run_command(const RunArgs& args) {
   RunSettings settings;
   settings.continue_on_nonconvergence = args.continue_on_nonconvergence;
   settings.superelement_file = args.superelement;
+  settings.condense = !args.no_condense;
 
   // The deck runs command by command: each solution request is solved by the session when the
   // deck reaches it.
@@ -163,6 +171,8 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--se", run.superelement, "superelement file for MATRIX50 elements");
   run_cmd->add_flag("--continue-on-nonconvergence", run.continue_on_nonconvergence,
                     "accept non-converged steps with a warning");
+  run_cmd->add_flag("--no-condense", run.no_condense,
+                    "full Newton on all DOFs in a transient, never the condensed linear part");
 
   std::string post_file;
   std::vector<std::string> nsol, esol, gapf;

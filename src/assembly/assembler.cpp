@@ -103,7 +103,6 @@ void Assembler::assemble(const IntegrationCoefficients& coeff, const VectorXd& u
   MatrixXd c, eff;
   VectorXd ue, ve, fe;
   for (std::size_t e = 0; e < elements_.size(); ++e) {
-    const Element& element = *elements_[e];
     const auto& idx = dofs_.element_indices(e);
     const int n = static_cast<int>(idx.size());
     gather(e, u, ue);
@@ -112,16 +111,8 @@ void Assembler::assemble(const IntegrationCoefficients& coeff, const VectorXd& u
     } else {
       fe = force_buffer_[e];
     }
-    const MatrixXd& k = tangent_buffer_[e];
-    const MatrixXd& ke = is_linear_[e] ? linear_stiffness_[e] : k;
-    const bool rayleigh = alpha_ != 0.0 || beta_ != 0.0;
-    const bool damped = element.has_damping() || rayleigh;
-    if (element.has_damping()) {
-      element.damping(ctx_, ue, c);
-    } else if (rayleigh) {
-      c.setZero(n, n);
-    }
-    if (rayleigh) c += alpha_ * mass_[e] + beta_ * (is_linear_[e] ? linear_stiffness_[e] : k);
+    const MatrixXd& ke = is_linear_[e] ? linear_stiffness_[e] : tangent_buffer_[e];
+    const bool damped = element_damping(e, ue, ke, c);
     if (out.internal_force)
       for (int a = 0; a < n; ++a) (*out.internal_force)(idx[a]) += fe(a);
     if (damped && out.damping_force) {
@@ -133,14 +124,90 @@ void Assembler::assemble(const IntegrationCoefficients& coeff, const VectorXd& u
       eff = coeff.cK * ke;
       if (coeff.cM != 0.0) eff += coeff.cM * mass_[e];
       if (damped && coeff.cC != 0.0) eff += coeff.cC * c;
-      double* values = out.effective->valuePtr();
-      const auto& slot = slots_[e];
-      for (int a = 0; a < n; ++a)
-        for (int b = 0; b <= a; ++b) {
-          const int s = slot[static_cast<std::size_t>(a * n + b)];
-          if (s < 0) continue;
-          values[s] += eff(a, b);
-        }
+      scatter_lower(e, eff, *out.effective);
+    }
+  }
+}
+
+bool Assembler::element_damping(std::size_t e, const VectorXd& ue, const MatrixXd& k,
+                                MatrixXd& c) const {
+  const Element& element = *elements_[e];
+  const bool rayleigh = alpha_ != 0.0 || beta_ != 0.0;
+  if (element.has_damping()) {
+    element.damping(ctx_, ue, c);
+  } else if (rayleigh) {
+    c.setZero(element.n_dofs(), element.n_dofs());
+  } else {
+    return false;
+  }
+  if (rayleigh) c += alpha_ * mass_[e] + beta_ * k;
+  return true;
+}
+
+void Assembler::scatter_lower(std::size_t e, const MatrixXd& m, SparseMatrix& effective) const {
+  const int n = static_cast<int>(dofs_.element_indices(e).size());
+  double* values = effective.valuePtr();
+  const auto& slot = slots_[e];
+  for (int a = 0; a < n; ++a)
+    for (int b = 0; b <= a; ++b) {
+      const int s = slot[static_cast<std::size_t>(a * n + b)];
+      if (s < 0) continue;
+      values[s] += m(a, b);
+    }
+}
+
+std::vector<int> Assembler::nonlinear_free_dofs() const {
+  std::vector<int> out;
+  for (std::size_t e : nonlinear_)
+    for (int i : dofs_.element_indices(e))
+      if (i < dofs_.n_free()) out.push_back(i);
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+void Assembler::assemble_linear_part(const IntegrationCoefficients& coeff,
+                                     SparseMatrix& effective) const {
+  if (effective.nonZeros() != pattern_.nonZeros()) effective = pattern_;
+  std::fill(effective.valuePtr(), effective.valuePtr() + pattern_.nonZeros(), 0.0);
+  MatrixXd c, eff;
+  for (std::size_t e = 0; e < elements_.size(); ++e) {
+    eff = coeff.cM * mass_[e];
+    if (is_linear_[e]) {
+      eff += coeff.cK * linear_stiffness_[e];
+      VectorXd ue = VectorXd::Zero(elements_[e]->n_dofs());
+      if (coeff.cC != 0.0 && element_damping(e, ue, linear_stiffness_[e], c)) eff += coeff.cC * c;
+    }
+    scatter_lower(e, eff, effective);
+  }
+}
+
+void Assembler::assemble_nonlinear_part(const IntegrationCoefficients& coeff, double w,
+                                        const VectorXd& u, const VectorXd& v,
+                                        const std::vector<int>& position, VectorXd& phi,
+                                        MatrixXd* tangent) const {
+  MatrixXd k, c;
+  VectorXd ue, ve, fe;
+  for (std::size_t e : nonlinear_) {
+    const auto& idx = dofs_.element_indices(e);
+    const int n = static_cast<int>(idx.size());
+    gather(e, u, ue);
+    elements_[e]->tangent(ctx_, ue, k, fe);
+    const bool damped = element_damping(e, ue, k, c);
+    if (damped) {
+      gather(e, v, ve);
+      fe += c * ve;
+    }
+    for (int a = 0; a < n; ++a) {
+      const int pa = position[static_cast<std::size_t>(idx[a])];
+      if (pa < 0) continue;
+      phi(pa) += w * fe(a);
+      if (!tangent) continue;
+      for (int b = 0; b < n; ++b) {
+        const int pb = position[static_cast<std::size_t>(idx[b])];
+        if (pb < 0) continue;
+        (*tangent)(pa, pb) += coeff.cK * k(a, b) + (damped ? coeff.cC * c(a, b) : 0.0);
+      }
     }
   }
 }

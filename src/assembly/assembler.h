@@ -33,6 +33,20 @@ class Assembler {
   void assemble(const IntegrationCoefficients& coeff, const VectorXd& u, const VectorXd& v,
                 const Output& out) const;
 
+  // ---- the split into a linear part and the nonlinear elements (condensed transient) ---------
+  /// Free DOF indices touched by the nonlinear elements, ascending.
+  std::vector<int> nonlinear_free_dofs() const;
+  /// Effective matrix of the linear part, cK K_L + cC C_L + cM M: the stiffness and damping of
+  /// the linear elements and the mass of every element (free-free lower triangle).
+  void assemble_linear_part(const IntegrationCoefficients& coeff, SparseMatrix& effective) const;
+  /// The nonlinear elements' share of the residual and of the effective tangent, on the DOFs
+  /// numbered by `position` (active index → position, −1 for DOFs left out):
+  /// phi += w (f_int + C v),  tangent += cK K_T + cC C  (C with the Rayleigh terms).
+  void assemble_nonlinear_part(const IntegrationCoefficients& coeff, double w, const VectorXd& u,
+                               const VectorXd& v, const std::vector<int>& position, VectorXd& phi,
+                               MatrixXd* tangent) const;
+  int n_nonlinear_elements() const { return static_cast<int>(nonlinear_.size()); }
+
   /// Mass matrix over all active DOFs (full symmetric storage), for inertia forces M a and the
   /// frame-acceleration load -M r a.
   SparseMatrix mass_matrix() const;
@@ -52,6 +66,10 @@ class Assembler {
  private:
   enum class Which { Stiffness, Mass, Damping };
   SparseMatrix full_matrix(Which which, const VectorXd& u) const;
+  /// Element damping matrix at ue (element dampers + Rayleigh α M_e + β K_e); false when none.
+  bool element_damping(std::size_t e, const VectorXd& ue, const MatrixXd& k, MatrixXd& c) const;
+  /// Adds the lower triangle of an element matrix into the free-free pattern values.
+  void scatter_lower(std::size_t e, const MatrixXd& m, SparseMatrix& effective) const;
 
   const std::vector<std::unique_ptr<Element>>& elements_;
   const DofMap& dofs_;

@@ -5,6 +5,8 @@
 
 #include <Eigen/Dense>
 #include <Eigen/SparseCholesky>
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <new>
@@ -17,6 +19,21 @@ namespace {
 
 /// Relative pivot below which a symmetric positive (semi)definite matrix is treated as singular.
 constexpr double kSingularPivot = 1e-11;
+
+/// Adds the wall time of its scope to `total` (solver phase timers of SolverCounters).
+class ScopedTimer {
+ public:
+  explicit ScopedTimer(double& total) : total_(total), start_(std::chrono::steady_clock::now()) {}
+  ~ScopedTimer() {
+    total_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
+  ScopedTimer(const ScopedTimer&) = delete;
+  ScopedTimer& operator=(const ScopedTimer&) = delete;
+
+ private:
+  double& total_;
+  std::chrono::steady_clock::time_point start_;
+};
 
 /// CHOLMOD supernodal LLᵀ, falling back to simplicial LDLᵀ for indefinite (but regular)
 /// effective matrices (e.g. compressive stress stiffening).
@@ -38,6 +55,7 @@ class CholmodSolver final : public LinearSolver {
   std::string name() const override { return "CHOLMOD"; }
 
   void analyze_pattern(const SparseMatrix& lower) override {
+    ScopedTimer timer(counters_.analyze_seconds);
     if (factor_) cholmod_free_factor(&factor_, &common_);
     cholmod_sparse A = view(lower);
     factor_ = cholmod_analyze(&A, &common_);
@@ -52,6 +70,7 @@ class CholmodSolver final : public LinearSolver {
 
   void factorize(const SparseMatrix& lower) override {
     if (!factor_) analyze_pattern(lower);
+    ScopedTimer timer(counters_.factorize_seconds);
     cholmod_sparse A = view(lower);
     common_.final_ll = 1;
     cholmod_factorize(&A, factor_, &common_);
@@ -77,10 +96,12 @@ class CholmodSolver final : public LinearSolver {
       }
       check_pivots(lower);
       count_negative_pivots();
+      record_sizes(lower);
       return;
     }
     // rcond is (min L_jj / max L_jj)^2: only a near-mechanism gets below 1e-13; then diagnose.
     if (cholmod_rcond(factor_, &common_) < 1e-13) check_pivots(lower);
+    record_sizes(lower);
   }
 
   VectorXd solve(const VectorXd& b) override {
@@ -90,6 +111,7 @@ class CholmodSolver final : public LinearSolver {
 
   MatrixXd solve(const MatrixXd& B) override {
     IMPACTFE_CHECK(factor_ != nullptr, "CHOLMOD: solve before factorize");
+    ScopedTimer timer(counters_.solve_seconds);
     cholmod_dense rhs;
     rhs.nrow = static_cast<size_t>(B.rows());
     rhs.ncol = static_cast<size_t>(B.cols());
@@ -144,6 +166,23 @@ class CholmodSolver final : public LinearSolver {
       }
   }
 
+  /// Sizes of the factor just computed. common_.lnz is nnz(L) of the last symbolic analysis
+  /// (set by cholmod_analyze; the LDLᵀ retry re-analyzes). The bytes are what a solve reads:
+  /// the dense supernode blocks and their row indices, or the simplicial columns.
+  void record_sizes(const SparseMatrix& lower) {
+    counters_.matrix_nonzeros = static_cast<long>(lower.nonZeros());
+    counters_.factor_nonzeros = static_cast<long>(common_.lnz);
+    if (factor_->is_super) {
+      counters_.factor_bytes =
+          static_cast<long>(factor_->xsize * sizeof(double) + factor_->ssize * sizeof(int));
+    } else {
+      const int* column_nz = static_cast<const int*>(factor_->nz);
+      long stored = 0;
+      for (size_t j = 0; j < factor_->n; ++j) stored += column_nz[j];
+      counters_.factor_bytes = stored * static_cast<long>(sizeof(double) + sizeof(int));
+    }
+  }
+
   /// A tiny pivot relative to its diagonal means a mechanism: name the weakest equation.
   void check_pivots(const SparseMatrix& lower) {
     const int row = weakest_pivot_row(lower);
@@ -161,9 +200,15 @@ class DenseSolver final : public LinearSolver {
   std::string name() const override { return "dense LDLT"; }
   void analyze_pattern(const SparseMatrix&) override { ++counters_.analyses; }
   void factorize(const SparseMatrix& lower) override {
+    ScopedTimer timer(counters_.factorize_seconds);
     const MatrixXd A = MatrixXd(lower).selfadjointView<Eigen::Lower>();
     ++counters_.factorizations;
     ldlt_.compute(A);
+    // A dense factor: the solves read its lower triangle.
+    const long n = static_cast<long>(A.rows());
+    counters_.matrix_nonzeros = static_cast<long>(lower.nonZeros());
+    counters_.factor_nonzeros = n * (n + 1) / 2;
+    counters_.factor_bytes = counters_.factor_nonzeros * static_cast<long>(sizeof(double));
     const VectorXd d = ldlt_.vectorD();
     negative_pivots_ = 0;
     first_negative_row_ = -1;
@@ -186,10 +231,12 @@ class DenseSolver final : public LinearSolver {
       }
   }
   VectorXd solve(const VectorXd& b) override {
+    ScopedTimer timer(counters_.solve_seconds);
     ++counters_.solves;
     return ldlt_.solve(b);
   }
   MatrixXd solve(const MatrixXd& B) override {
+    ScopedTimer timer(counters_.solve_seconds);
     counters_.solves += B.cols();
     return ldlt_.solve(B);
   }
@@ -199,6 +246,19 @@ class DenseSolver final : public LinearSolver {
 };
 
 }  // namespace
+
+SolverCounters& SolverCounters::operator+=(const SolverCounters& other) {
+  analyses += other.analyses;
+  factorizations += other.factorizations;
+  solves += other.solves;
+  analyze_seconds += other.analyze_seconds;
+  factorize_seconds += other.factorize_seconds;
+  solve_seconds += other.solve_seconds;
+  matrix_nonzeros = std::max(matrix_nonzeros, other.matrix_nonzeros);
+  factor_nonzeros = std::max(factor_nonzeros, other.factor_nonzeros);
+  factor_bytes = std::max(factor_bytes, other.factor_bytes);
+  return *this;
+}
 
 int weakest_pivot_row(const SparseMatrix& lower) {
   Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower> ldlt(lower);
