@@ -1,4 +1,4 @@
-// libFuzzer harness over the deck reader and the model builder (issue 12; scripts/fuzz.sh builds and runs it).
+// libFuzzer harness over the deck reader and the model builder (issue 12; scripts/fuzz.sh).
 //
 // Every input is read as a deck with read_deck_text and no solution host: the lexer, the
 // expressions, the command handlers and the model checks run, and the only acceptable outcomes
