@@ -65,6 +65,7 @@ void DirectSolution::set_constraints(const LoadStep& step) {
   assembler_ = std::make_unique<Assembler>(structure_.elements(), *dofs_, ctx_,
                                            structure_.options().alpha_damping,
                                            structure_.options().beta_damping);
+  assembler_->set_material_stiffness_damping(structure_.material_stiffness_damping());
   status_loop_ = std::make_unique<StatusLoop>(structure_.elements(), *assembler_);
   mass_all_ = assembler_->mass_matrix();
   frame_load_ = FrameAccelerationLoad(structure_.elements(), *dofs_, ctx_);
@@ -195,6 +196,8 @@ void DirectSolution::solve_load_step(const LoadStep& step) {
       u_.tail(dofs_->n_constrained()) =
           prescribed_displacements(*dofs_, at0).tail(dofs_->n_constrained());
       if (dynamic) start_dynamics(at0, t.h);
+      // Initial velocities (IC) bring kinetic energy that the balance must count as put in.
+      energy_->set_initial_kinetic(0.5 * v_.dot(mass_all_ * v_));
       reactions_ = VectorXd::Zero(dofs_->n_active());
       acel_ = frame_acceleration(at0);
       store(t_end_, 0, 0, dynamic);
@@ -214,8 +217,14 @@ void DirectSolution::solve_load_step(const LoadStep& step) {
   for (int k = 1; k <= t.n_substeps; ++k) {
     const double time = t.t_start + k * t.h;
     const LoadPoint at{&step, previous, static_cast<double>(k) / t.n_substeps};
+    const int iterations_before = stats_.n_iterations;
+    const int changes_before = stats_.n_status_changes;
     solve_increment(at, StepLabel{step.number, k, time}, dynamic);
     ++stats_.n_substeps;
+    if (settings_.progress)
+      settings_.progress->substep_done({stats_.description, time, t.t_end, step.number, k,
+                                        t.n_substeps, t.h, stats_.n_iterations - iterations_before,
+                                        stats_.n_status_changes - changes_before});
     const bool last = k == t.n_substeps;
     const int every = step.output.every;
     if (last || (every > 0 && k % every == 0)) store(time, step.number, k, dynamic);
@@ -233,7 +242,11 @@ void DirectSolution::finish() {
                                              condensation_note_, condensed_steps_,
                                              full_fallback_steps_)
                                : condensation_note_);
-  if (transient_) stats_.notes.push_back(energy_->summary(time_, 0.5 * v_.dot(mass_all_ * v_)));
+  if (transient_) {
+    const double kinetic = 0.5 * v_.dot(mass_all_ * v_);
+    stats_.notes.push_back(energy_->summary(time_, kinetic));
+    if (const auto warning = energy_->balance_warning(kinetic)) Log::warn("{}", *warning);
+  }
   update_counters();
 }
 

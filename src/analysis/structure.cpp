@@ -133,6 +133,30 @@ Structure::Structure(const Model& model, const AnalysisOptions& options,
   for (const auto& [id, record] : model.elements)
     elements_.push_back(create_element(build, record));
 
+  // MP,DAMP: stiffness-proportional damping of the element's material, C_e += β K_e (MAPDL's
+  // material BETD; APDL_MODELING §6.1, M6). The full (static/transient) solution assembles it
+  // element by element; the reduced drivers form C from global ALPHAD/BETAD only, so there it
+  // is refused rather than ignored.
+  const ElementRecord* damped = nullptr;  // the first element whose material has DAMP
+  for (const auto& [id, record] : model.elements) {
+    double beta = 0.0;
+    if (auto m = model.materials.find(record.mat); m != model.materials.end())
+      beta = m->second.get("DAMP", 0.0);
+    if (beta != 0.0 && damped == nullptr) damped = &record;
+    material_beta_.push_back(beta);
+  }
+  if (damped == nullptr) {
+    material_beta_.clear();
+  } else if ((options.type == AnalysisType::Transient && options.method != TransientMethod::Full) ||
+             (options.type == AnalysisType::Substructure && options.superelement_matrices == 3)) {
+    throw InputError(
+        damped->where,
+        fmt::format("element {}: its material {} has MP,DAMP (material stiffness damping), which "
+                    "only a full transient applies; for a reduced or mode-superposition transient "
+                    "or a superelement damping matrix use BETAD (global beta) or DMPRAT",
+                    damped->id, damped->mat));
+  }
+
   // Automatic constraints: DOFs without stiffness and without mass (spec §10.1 item 5).
   // Status elements (gaps) count as stiffness: a gap may close later.
   DofMap all(elements_, {});
@@ -164,20 +188,25 @@ Structure::Structure(const Model& model, const AnalysisOptions& options,
   if (!reported.empty())
     Log::warn("{} DOF(s) have neither stiffness nor mass and are constrained to zero:{}",
               reported.size(), dof_list(reported));
-  // A dynamic analysis: free DOFs with stiffness but no mass carry no inertia.
+  // A dynamic analysis: free translational DOFs with stiffness but no mass (no DENS, no MASS21)
+  // carry no inertia; say which. Massless rotations are normal (lumped masses), and a reduced
+  // transient's slaves are massless by design (its masters are checked by the driver).
   const bool dynamic =
       options.type == AnalysisType::Modal ||
       (options.type == AnalysisType::Transient && options.method != TransientMethod::Reduced);
   if (dynamic) {
     std::set<DofKey> massless;
-    for (int i = 0; i < all.n_active(); ++i)
-      if (stiff(i) != 0.0 && mass(i) == 0.0 && !held_in_every_step(all.key(i), steps))
-        massless.insert(all.key(i));
+    for (int i = 0; i < all.n_active(); ++i) {
+      const DofKey key = all.key(i);
+      const bool translation = key.dof == Dof::UX || key.dof == Dof::UY || key.dof == Dof::UZ;
+      if (translation && stiff(i) != 0.0 && mass(i) == 0.0 && !held_in_every_step(key, steps))
+        massless.insert(key);
+    }
     if (!massless.empty())
       Log::warn(
-          "{} free DOF(s) have stiffness but no mass: they carry no inertia (in a transient they "
-          "follow the loads quasi-statically, in a modal analysis they have no mode); give them "
-          "mass (DENS, MASS21) if they should:{}",
+          "{} free translational DOF(s) have stiffness but no mass (is DENS missing, or a "
+          "MASS21?): they carry no inertia (in a transient they follow the loads "
+          "quasi-statically, in a modal analysis they have no mode):{}",
           massless.size(), dof_list(massless));
   }
 }

@@ -1,7 +1,14 @@
 #include "assembly/assembler.h"
 
 #include <algorithm>
+#include <chrono>
 #include <exception>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include "core/errors.h"
 
 namespace impactfe {
 
@@ -58,6 +65,13 @@ Assembler::Assembler(const std::vector<std::unique_ptr<Element>>& elements, cons
   }
 }
 
+void Assembler::set_material_stiffness_damping(std::vector<double> beta) {
+  IMPACTFE_CHECK(beta.empty() || beta.size() == elements_.size(),
+                 "material damping: one value per element expected");
+  material_beta_ = std::move(beta);
+  for (double b : material_beta_) has_damping_ = has_damping_ || b != 0.0;
+}
+
 void Assembler::gather(std::size_t e, const VectorXd& global, VectorXd& local) const {
   const auto& idx = dofs_.element_indices(e);
   local.resize(static_cast<int>(idx.size()));
@@ -73,31 +87,7 @@ void Assembler::assemble(const IntegrationCoefficients& coeff, const VectorXd& u
   if (out.internal_force) out.internal_force->setZero(dofs_.n_active());
   if (out.damping_force) out.damping_force->setZero(dofs_.n_active());
 
-  // Phase 1, in parallel: tangents of the nonlinear elements (the expensive part: co-rotational
-  // shells, total-Lagrangian bricks) into per-element buffers. Elements are const here and keep
-  // no shared scratch, so this is race-free; the scatter below stays serial and deterministic.
-  // An exception must not leave the parallel region (that would terminate the program): the
-  // one of the lowest element index is kept (deterministic whatever the threads) and rethrown
-  // after it, e.g. an element that collapsed under large deflection (ElementSolutionError).
-  const int n_nonlinear = static_cast<int>(nonlinear_.size());
-  std::exception_ptr failure;
-  int failed_at = n_nonlinear;
-#pragma omp parallel for schedule(dynamic, 8) if (n_nonlinear > 64)
-  for (int i = 0; i < n_nonlinear; ++i) {
-    const std::size_t e = nonlinear_[static_cast<std::size_t>(i)];
-    try {
-      VectorXd ue_local;
-      gather(e, u, ue_local);
-      elements_[e]->tangent(ctx_, ue_local, tangent_buffer_[e], force_buffer_[e]);
-    } catch (...) {
-#pragma omp critical(impactfe_assembly_failure)
-      if (i < failed_at) {
-        failed_at = i;
-        failure = std::current_exception();
-      }
-    }
-  }
-  if (failure) std::rethrow_exception(failure);
+  compute_nonlinear_tangents(u);
 
   // Phase 2, serial: scatter.
   MatrixXd c, eff;
@@ -129,10 +119,62 @@ void Assembler::assemble(const IntegrationCoefficients& coeff, const VectorXd& u
   }
 }
 
+void Assembler::compute_nonlinear_tangents(const VectorXd& u) const {
+  // Tangents of the nonlinear elements (the expensive part: co-rotational shells,
+  // total-Lagrangian bricks) into per-element buffers. Elements are const here and keep no shared
+  // scratch, so the loop is race-free and its results do not depend on the thread count; the
+  // scatter that follows stays serial and deterministic.
+  const int n_nonlinear = static_cast<int>(nonlinear_.size());
+  auto evaluate = [&](int i) {
+    const std::size_t e = nonlinear_[static_cast<std::size_t>(i)];
+    VectorXd ue_local;
+    gather(e, u, ue_local);
+    elements_[e]->tangent(ctx_, ue_local, tangent_buffer_[e], force_buffer_[e]);
+  };
+  if (threading_.parallel) {
+    // An exception must not leave the parallel region (that would terminate the program): the
+    // one of the lowest element index is kept (deterministic whatever the threads, and the one
+    // the serial loop would throw) and rethrown after it, e.g. an element that collapsed under
+    // large deflection (ElementSolutionError).
+    std::exception_ptr failure;
+    int failed_at = n_nonlinear;
+#pragma omp parallel for schedule(dynamic, 8)
+    for (int i = 0; i < n_nonlinear; ++i) {
+      try {
+        evaluate(i);
+      } catch (...) {
+#pragma omp critical(impactfe_assembly_failure)
+        if (i < failed_at) {
+          failed_at = i;
+          failure = std::current_exception();
+        }
+      }
+    }
+    if (failure) std::rethrow_exception(failure);
+    return;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  for (int i = 0; i < n_nonlinear; ++i) evaluate(i);
+  threading_.record_serial_pass(
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+}
+
+void Assembler::TangentThreading::record_serial_pass(double seconds) {
+  if (probes_left == 0) return;
+  fastest_serial_seconds = std::min(fastest_serial_seconds, seconds);
+  if (--probes_left > 0) return;
+  int threads = 1;
+#ifdef _OPENMP
+  threads = omp_get_max_threads();
+#endif
+  parallel = threads > 1 && fastest_serial_seconds >= kMinParallelSeconds;
+}
+
 bool Assembler::element_damping(std::size_t e, const VectorXd& ue, const MatrixXd& k,
                                 MatrixXd& c) const {
   const Element& element = *elements_[e];
-  const bool rayleigh = alpha_ != 0.0 || beta_ != 0.0;
+  const double beta = beta_of(e);  // global BETAD plus the material's MP,DAMP
+  const bool rayleigh = alpha_ != 0.0 || beta != 0.0;
   if (element.has_damping()) {
     element.damping(ctx_, ue, c);
   } else if (rayleigh) {
@@ -140,7 +182,7 @@ bool Assembler::element_damping(std::size_t e, const VectorXd& ue, const MatrixX
   } else {
     return false;
   }
-  if (rayleigh) c += alpha_ * mass_[e] + beta_ * k;
+  if (rayleigh) c += alpha_ * mass_[e] + beta * k;
   return true;
 }
 
@@ -186,13 +228,15 @@ void Assembler::assemble_nonlinear_part(const IntegrationCoefficients& coeff, do
                                         const VectorXd& u, const VectorXd& v,
                                         const std::vector<int>& position, VectorXd& phi,
                                         MatrixXd* tangent) const {
-  MatrixXd k, c;
+  compute_nonlinear_tangents(u);
+  MatrixXd c;
   VectorXd ue, ve, fe;
   for (std::size_t e : nonlinear_) {
     const auto& idx = dofs_.element_indices(e);
     const int n = static_cast<int>(idx.size());
+    const MatrixXd& k = tangent_buffer_[e];
+    fe = force_buffer_[e];
     gather(e, u, ue);
-    elements_[e]->tangent(ctx_, ue, k, fe);
     const bool damped = element_damping(e, ue, k, c);
     if (damped) {
       gather(e, v, ve);
@@ -232,7 +276,8 @@ SparseMatrix Assembler::full_matrix(Which which, const VectorXd& u) const {
         }
         break;
       case Which::Damping: {
-        const bool rayleigh = alpha_ != 0.0 || beta_ != 0.0;
+        const double beta = beta_of(e);
+        const bool rayleigh = alpha_ != 0.0 || beta != 0.0;
         if (!elements_[e]->has_damping() && !rayleigh) continue;
         gather(e, u, ue);
         if (elements_[e]->has_damping()) {
@@ -243,7 +288,7 @@ SparseMatrix Assembler::full_matrix(Which which, const VectorXd& u) const {
         if (rayleigh) {
           MatrixXd ke = linear_stiffness_[e];
           if (!is_linear_[e]) elements_[e]->tangent(ctx_, ue, ke, fe);
-          m += alpha_ * mass_[e] + beta_ * ke;
+          m += alpha_ * mass_[e] + beta * ke;
         }
         break;
       }

@@ -257,6 +257,13 @@ struct Job {
   /// POST1 / POST26 commands in order (executed by the post-processing stage).
   std::vector<StoredCommand> post_commands;
   std::vector<std::string> ignored_commands;  // graphics / print-only commands, listed in the log
+  /// --skip-unknown: each unknown command skipped, how often, and where it first appeared.
+  struct Skipped {
+    std::string name;
+    int count = 0;
+    SourceLocation first;
+  };
+  std::vector<Skipped> skipped_unknown;
 };
 
 }  // namespace impactfe

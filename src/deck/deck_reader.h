@@ -4,6 +4,7 @@
 /// The deck layer only builds; it never solves.
 #include <cstddef>
 #include <optional>
+#include <ostream>
 #include <string>
 
 #include "core/model.h"
@@ -22,6 +23,9 @@ struct DeckOptions {
   /// would go beyond are refused up front (never attempted until memory runs out).
   std::size_t max_nodes = 10'000'000;
   std::size_t max_elements = 10'000'000;
+  /// Where the deck's printed output goes until /OUT redirects it (*VWRITE, *MSG, *STATUS,
+  /// /COM, PRNSOL, ...). Null: to the log; `impactfe run` passes std::cout.
+  std::ostream* output = nullptr;
 };
 
 /// Parses `path` (following /INPUT files). Throws InputError "FILE:LINE: COMMAND: what".

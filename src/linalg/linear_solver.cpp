@@ -13,6 +13,10 @@
 
 #include "core/errors.h"
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 namespace impactfe {
 
 namespace {
@@ -34,6 +38,36 @@ class ScopedTimer {
   double& total_;
   std::chrono::steady_clock::time_point start_;
 };
+
+/// Caps the OpenMP team size for one scope. OpenBLAS (the openmp build the README installs) sizes
+/// every BLAS call by omp_get_max_threads(), so this is how a solver phase chooses its BLAS
+/// threads.
+class ScopedThreadLimit {
+ public:
+  explicit ScopedThreadLimit(int limit) {
+#ifdef _OPENMP
+    saved_ = omp_get_max_threads();
+    omp_set_num_threads(std::max(1, std::min(limit, saved_)));
+#endif
+  }
+  ~ScopedThreadLimit() {
+#ifdef _OPENMP
+    omp_set_num_threads(saved_);
+#endif
+  }
+  ScopedThreadLimit(const ScopedThreadLimit&) = delete;
+  ScopedThreadLimit& operator=(const ScopedThreadLimit&) = delete;
+
+ private:
+  int saved_ = 1;
+};
+
+/// Floating-point operations of a factorization above which its BLAS kernels (dsyrk, dgemm,
+/// dpotrf on the supernodes) may run on several threads. Below it a factorization takes
+/// milliseconds and every threaded kernel call pays a team wake-up that a busy machine turns
+/// into a wait for a core.
+constexpr double kParallelFactorFlops = 2.0e8;
+constexpr int kAllThreads = std::numeric_limits<int>::max();
 
 /// CHOLMOD supernodal LLᵀ, falling back to simplicial LDLᵀ for indefinite (but regular)
 /// effective matrices (e.g. compressive stress stiffening).
@@ -71,6 +105,8 @@ class CholmodSolver final : public LinearSolver {
   void factorize(const SparseMatrix& lower) override {
     if (!factor_) analyze_pattern(lower);
     ScopedTimer timer(counters_.factorize_seconds);
+    // common_.fl: flop count of the factorization, from the symbolic analysis.
+    ScopedThreadLimit threads(common_.fl >= kParallelFactorFlops ? kAllThreads : 1);
     cholmod_sparse A = view(lower);
     common_.final_ll = 1;
     cholmod_factorize(&A, factor_, &common_);
@@ -112,6 +148,14 @@ class CholmodSolver final : public LinearSolver {
   MatrixXd solve(const MatrixXd& B) override {
     IMPACTFE_CHECK(factor_ != nullptr, "CHOLMOD: solve before factorize");
     ScopedTimer timer(counters_.solve_seconds);
+    // A solve streams the factor once forward and once backward, supernode by supernode, with
+    // one small dgemv/dtrsv (one right-hand side) or dgemm/dtrsm per supernode: memory-bound
+    // work that threads do not speed up, while each threaded call costs a synchronisation (on a
+    // 1215-DOF block drop a two-thread solve was 20x slower on a busy machine). Threads are left
+    // to block solves of many right-hand sides of a large factor (the condensation's Schur
+    // complement).
+    ScopedThreadLimit threads(B.cols() >= 8 && common_.fl >= kParallelFactorFlops ? kAllThreads
+                                                                                  : 1);
     cholmod_dense rhs;
     rhs.nrow = static_cast<size_t>(B.rows());
     rhs.ncol = static_cast<size_t>(B.cols());

@@ -41,7 +41,7 @@ TEST(Diagnostics, TransientWithMasslessDofsWarnsAndNamesThem) {
       "/PREP7\nET,1,COMBIN14,,1\nET,2,MASS21,,,4\nR,1,100\nR,2,1\nN,1\nN,2,1\nN,3,2\nE,1,2\n"
       "E,2,3\nTYPE,2\nREAL,2\nE,2\nFINISH\n/SOLU\nANTYPE,TRANS\nD,1,ALL\nD,ALL,UY\nF,3,FX,1\n"
       "TIME,0.01\nDELTIM,0.001\nSOLVE\nFINISH\n");
-  EXPECT_TRUE(any_contains(warnings, "1 free DOF(s) have stiffness but no mass"))
+  EXPECT_TRUE(any_contains(warnings, "1 free translational DOF(s) have stiffness but no mass"))
       << warnings.size();
   EXPECT_TRUE(any_contains(warnings, "UX@3"));
   EXPECT_FALSE(any_contains(warnings, "UX@2"));
