@@ -17,6 +17,11 @@ class DirectSolution;
 std::unique_ptr<DirectSolution> begin_direct_analysis(Structure& structure, ResultsWriter& writer,
                                                       const RunSettings& settings,
                                                       AnalysisStatistics& stats);
+/// The number of modes a modal or mode-superposition analysis can compute: `wanted`, or fewer
+/// when fewer free DOFs carry mass (noted in `stats`). ModelError naming the materials without
+/// density when no free DOF has mass (the mass matrix is zero: no frequency exists).
+int modes_with_mass(const Structure& structure, const SparseMatrix& m_lower, int wanted,
+                    const char* analysis, AnalysisStatistics& stats);
 /// Modal analysis (ANTYPE,MODAL + MODOPT): natural frequencies (Hz) and mode shapes.
 void run_modal_analysis(Structure& structure, const AnalysisRequest& request, ResultsWriter& writer,
                         const RunSettings& settings, AnalysisStatistics& stats);

@@ -2,6 +2,7 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/SparseCholesky>
+#include <algorithm>
 #include <cmath>
 
 #include "analysis/time_step_advice.h"
@@ -105,11 +106,32 @@ void DirectSolution::factorize(const IntegrationCoefficients& coeff, const Vecto
     if (!factor_valid_ && solver_->counters().analyses == 0) solver_->analyze_pattern(effective_);
     solver_->factorize(effective_);
   } catch (const SingularMatrixError& e) {
+    const std::string dof = structure_.describe_dof(*dofs_, e.column());
+    if (coeff.cM != 0.0)
+      throw ModelError(fmt::format(
+          "the effective matrix K + cC C + cM M of the time step is singular at {} (zero pivot, "
+          "{}): it has neither stiffness nor mass there; constrain it with D, connect it to the "
+          "structure or give it mass",
+          dof, elements_at(e.column())));
     throw ModelError(
-        fmt::format("the model is singular: {} is unrestrained (zero pivot in the {} matrix); "
-                    "constrain it with D or connect it to the structure",
-                    structure_.describe_dof(*dofs_, e.column()),
-                    coeff.cM != 0.0 ? "effective stiffness" : "stiffness"));
+        fmt::format("the model is singular: {} is unrestrained (zero pivot in the stiffness "
+                    "matrix, {}); constrain it with D or connect it to the structure",
+                    dof, elements_at(e.column())));
+  }
+  // A negative pivot of a dynamic effective matrix: the tangent stiffness is negative there
+  // (compressive stress stiffening, buckling) by more than the inertia term cM M holds, so the
+  // step may leave the stable path.
+  if (coeff.cM != 0.0 && solver_->negative_pivots() > 0 && !negative_pivot_warned_) {
+    negative_pivot_warned_ = true;
+    const int row = solver_->first_negative_pivot_row();
+    Log::warn(
+        "load step {} substep {} (t = {:g}): the effective matrix K + cC C + cM M has {} negative "
+        "pivot(s), the first at {} ({}): the tangent stiffness there is negative (compression, "
+        "buckling) beyond what the inertia of the time step holds; the solution may follow an "
+        "unstable path. Use a smaller time step (DELTIM / DTIME)",
+        increment_.label.load_step, increment_.label.substep, increment_.label.time,
+        solver_->negative_pivots(), row >= 0 ? structure_.describe_dof(*dofs_, row) : "?",
+        row >= 0 ? elements_at(row) : "?");
   }
   factor_valid_ = true;
   factored_ = coeff;
@@ -170,6 +192,7 @@ void DirectSolution::solve_load_step(const LoadStep& step) {
   const bool transient = transient_;
   const LoadStep* previous = previous_ ? &*previous_ : nullptr;
   const LoadStepTiming t = load_step_timing(step, t_end_, transient);
+  structure_.check_load_step(step);
   set_constraints(step);
   const bool dynamic = transient && step.time_integration;
   if (!previous) {
@@ -472,14 +495,18 @@ void DirectSolution::solve_increment(const LoadPoint& at, const StepLabel& label
   stats_.n_iterations += result.iterations;
   stats_.n_status_changes += inc.n_status_changes;
 
+  if (!result.finite || !u.head(dofs_->n_free()).allFinite()) fail_not_finite(u, label);
   if (!result.converged) {
     const std::string chatter = status_loop_->chatter_report();
     const std::string message = fmt::format(
         "load step {} substep {} (t = {:g}) did not converge in {} iterations: force residual "
-        "{:.4e} > {:g} x reference {:.4e}{}",
+        "{:.4e} > {:g} x reference {:.4e}; {}; use a smaller time step (DELTIM / DTIME) or more "
+        "substeps (NSUBST / ITER), allow more iterations (NEQIT), or accept such steps with "
+        "--continue-on-nonconvergence",
         label.load_step, label.substep, label.time, conv.max_iterations, result.residual_norm,
         conv.force_tolerance, result.reference,
-        chatter.empty() ? "" : "; elements that kept changing status:" + chatter);
+        chatter.empty() ? largest_residual(u)
+                        : "elements that kept changing status (open/closed chatter):" + chatter);
     if (!settings_.continue_on_nonconvergence) throw SolutionError(message);
     Log::warn("{} (accepted: --continue-on-nonconvergence)", message);
   }
@@ -505,6 +532,65 @@ void DirectSolution::solve_increment(const LoadPoint& at, const StepLabel& label
   f_damp_old_ = inc.f_damp;
   acel_ = frame_acceleration(at);
   time_ = label.time;
+}
+
+std::string DirectSolution::elements_at(int index) const {
+  std::string list;
+  int shown = 0;
+  for (std::size_t e = 0; e < structure_.elements().size(); ++e) {
+    const auto& idx = dofs_->element_indices(e);
+    if (std::find(idx.begin(), idx.end(), index) == idx.end()) continue;
+    if (shown++ < 8)
+      list += fmt::format("{}{}", shown > 1 ? ", " : "", structure_.elements()[e]->id());
+  }
+  if (shown > 8) list += ", ...";
+  return shown == 0 ? std::string("no element") : (shown == 1 ? "element " : "elements ") + list;
+}
+
+std::string DirectSolution::largest_residual(const VectorXd& u) {
+  VectorXd r;
+  double reference = 0.0;
+  residual(u, r, reference);
+  const int nf = dofs_->n_free();
+  if (nf == 0) return "no free DOF";
+  Eigen::Index worst = 0;
+  r.head(nf).cwiseAbs().maxCoeff(&worst);
+  const int i = static_cast<int>(worst);
+  return fmt::format("the largest out-of-balance force {:.4e} is at {} ({})", r(i),
+                     structure_.describe_dof(*dofs_, i), elements_at(i));
+}
+
+void DirectSolution::fail_not_finite(const VectorXd& u, const StepLabel& label) {
+  const int nf = dofs_->n_free();
+  int bad = -1;
+  for (int i = 0; i < nf && bad < 0; ++i)
+    if (!std::isfinite(u(i))) bad = i;
+  std::string where;
+  if (bad >= 0) {
+    where =
+        fmt::format("{} = {} ({})", structure_.describe_dof(*dofs_, bad), u(bad), elements_at(bad));
+  } else {
+    VectorXd r;
+    double reference = 0.0;
+    residual(u, r, reference);
+    for (int i = 0; i < nf && bad < 0; ++i)
+      if (!std::isfinite(r(i))) bad = i;
+    if (bad >= 0) {
+      where = fmt::format("the out-of-balance force at {} is {} ({})",
+                          structure_.describe_dof(*dofs_, bad), r(bad), elements_at(bad));
+    } else if (nf > 0) {  // finite entries whose norm overflows
+      Eigen::Index worst = 0;
+      r.head(nf).cwiseAbs().maxCoeff(&worst);
+      bad = static_cast<int>(worst);
+      where = fmt::format("the out-of-balance force {:g} at {} ({}) is too large to measure",
+                          r(bad), structure_.describe_dof(*dofs_, bad), elements_at(bad));
+    }
+  }
+  throw SolutionError(fmt::format(
+      "load step {} substep {} (t = {:g}): the solution is not a finite number: {}; the "
+      "results of the steps before it are kept. Check for huge loads or stiffnesses, a "
+      "near-mechanism, or a time step too large for the model",
+      label.load_step, label.substep, label.time, where));
 }
 
 void DirectSolution::store(double time, int load_step, int substep, bool dynamic) {

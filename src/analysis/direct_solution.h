@@ -7,6 +7,7 @@
 #include <memory>
 #include <optional>
 #include <set>
+#include <string>
 #include <vector>
 
 #include "analysis/energy_balance.h"
@@ -49,6 +50,12 @@ class DirectSolution : private NonlinearProblem {
   void factorize(const IntegrationCoefficients& coeff, const VectorXd& u);
   void store(double time, int load_step, int substep, bool dynamic);
   void time_step_advice(double h);
+  /// "elements 3, 4" carrying active DOF `index` (for messages).
+  std::string elements_at(int index) const;
+  /// Names the free DOF with the largest out-of-balance force at u and its elements.
+  std::string largest_residual(const VectorXd& u);
+  /// SolutionError at the first DOF whose value (or force) is NaN or infinite.
+  [[noreturn]] void fail_not_finite(const VectorXd& u, const StepLabel& label);
 
   // ---- NonlinearProblem: the equations of the current increment ----------------------------
   int n_unknowns() const override;
@@ -111,7 +118,8 @@ class DirectSolution : private NonlinearProblem {
   std::unique_ptr<LinearPartCondensation> condensation_;
   std::string condensation_note_;
   long condensed_steps_ = 0, full_fallback_steps_ = 0;
-  bool advice_given_ = false;  // the time-step advice note is given once per analysis
+  bool advice_given_ = false;           // the time-step advice note is given once per analysis
+  bool negative_pivot_warned_ = false;  // the negative-pivot warning is given once per analysis
 };
 
 }  // namespace impactfe

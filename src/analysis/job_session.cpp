@@ -99,6 +99,7 @@ void JobSession::solve(const Job& job, std::size_t step) {
   const Job::Step& s = job.steps[step];
   if (open_ && *open_ != step) close_open();
   const auto start = std::chrono::steady_clock::now();
+  where_ = location_of(s);
   try {
     if (!open_) {
       stats_.analyses.emplace_back();
@@ -135,8 +136,10 @@ void JobSession::solve(const Job& job, std::size_t step) {
     open_step_->analysis->load_steps = s.analysis->load_steps;
     if (direct_) {
       const auto& steps = open_step_->analysis->load_steps;
-      while (load_steps_solved_ < steps.size())
+      while (load_steps_solved_ < steps.size()) {
+        where_ = steps[load_steps_solved_].where;
         direct_->solve_load_step(steps[load_steps_solved_++]);
+      }
     }
   } catch (...) {
     open_seconds_ +=
@@ -173,6 +176,7 @@ void JobSession::close_open() {
   if (!open_) return;
   AnalysisStatistics& current = stats_.analyses.back();
   const auto start = std::chrono::steady_clock::now();
+  if (!direct_ && open_step_ && open_step_->analysis) where_ = open_step_->analysis->where;
   try {
     if (direct_)
       direct_->finish();
@@ -210,13 +214,33 @@ void JobSession::close_open() {
 
 void JobSession::fail(const std::exception_ptr& error) {
   if (!stats_.analyses.empty()) stats_.analyses.back().wall_seconds = open_seconds_;
+  std::exception_ptr located;
   try {
     std::rethrow_exception(error);
+  } catch (const ElementSolutionError& e) {
+    // Name the element's E command too: the failure is the element's, the step is where.
+    std::string defined;
+    if (!models_.empty()) {
+      const auto it = models_.back()->elements.find(e.element());
+      if (it != models_.back()->elements.end() && it->second.where.known())
+        defined = fmt::format(" (element {} is defined at {})", e.element(),
+                              location_text(it->second.where));
+    }
+    located = std::make_exception_ptr(SolutionError(where_, e.message() + defined));
+  } catch (...) {
+    try {
+      rethrow_at(where_);
+    } catch (...) {
+      located = std::current_exception();
+    }
+  }
+  try {
+    std::rethrow_exception(located);
   } catch (const std::exception& e) {
     try {
       if (writer_) writer_->end_analysis(std::string("failed: ") + e.what());
     } catch (...) {
-      // No analysis group was opened; nothing to mark.
+      // No analysis group was opened, or the file cannot be written any more.
     }
   } catch (...) {
   }
@@ -224,7 +248,7 @@ void JobSession::fail(const std::exception_ptr& error) {
   structure_.reset();
   open_step_.reset();
   open_.reset();
-  std::rethrow_exception(error);
+  std::rethrow_exception(located);
 }
 
 std::string JobSession::results_for_reading(const Job&) {

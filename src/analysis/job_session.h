@@ -51,7 +51,8 @@ class JobSession final : public SolutionHost {
   /// Runs what the open step still owes and ends its results analysis.
   void close_open();
   void run_whole(const Job::Step& step, AnalysisStatistics& stats);
-  /// Marks the open analysis failed (keeping every result written) and rethrows.
+  /// Marks the open analysis failed (keeping every result written) and rethrows the error,
+  /// naming the command being executed (`where_`) when it names no deck location itself.
   [[noreturn]] void fail(const std::exception_ptr& error);
 
   std::string jobname_;
@@ -76,6 +77,7 @@ class JobSession final : public SolutionHost {
   std::unique_ptr<ReducedSolutionState> reduced_state_;
   std::chrono::steady_clock::time_point open_since_;
   double open_seconds_ = 0.0;  // wall time spent on the open step so far
+  SourceLocation where_;       // the command being executed (SOLVE of the load step, ...)
 };
 
 /// The model whose nodes and elements the results file of a job describes when its first

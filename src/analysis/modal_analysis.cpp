@@ -8,6 +8,29 @@
 
 namespace impactfe {
 
+int modes_with_mass(const Structure& structure, const SparseMatrix& m_lower, int wanted,
+                    const char* analysis, AnalysisStatistics& stats) {
+  int massive = 0;
+  for (int i = 0; i < m_lower.rows(); ++i)
+    if (m_lower.coeff(i, i) > 0.0) ++massive;
+  if (massive == 0) {
+    std::string no_density;
+    for (const auto& [id, mat] : structure.model().materials)
+      if (!(mat.get("DENS", 0.0) > 0.0)) no_density += " " + std::to_string(id);
+    throw ModelError(fmt::format(
+        "{}: the mass matrix is zero (no free DOF carries mass), so no natural frequency "
+        "exists; give the material a density (MP,DENS{}) or add point masses (MASS21)",
+        analysis, no_density.empty() ? std::string() : "; material(s) without DENS:" + no_density));
+  }
+  if (massive < wanted) {
+    stats.notes.push_back(
+        fmt::format("{}: only {} free DOF(s) carry mass, so at most {} modes exist ({} requested)",
+                    analysis, massive, massive, wanted));
+    return massive;
+  }
+  return wanted;
+}
+
 void run_modal_analysis(Structure& structure, const AnalysisRequest& request, ResultsWriter& writer,
                         const RunSettings&, AnalysisStatistics& stats) {
   stats.description = "modal";
@@ -38,9 +61,10 @@ void run_modal_analysis(Structure& structure, const AnalysisRequest& request, Re
       }
     shift = -1e-6 * (count > 0 ? ratio_sum / count : 1.0);
   }
+  const int n_modes = modes_with_mass(structure, m, modal.n_modes, "modal analysis", stats);
   EigenResult eig;
   try {
-    eig = lowest_eigenpairs(k, m, modal.n_modes, shift);
+    eig = lowest_eigenpairs(k, m, n_modes, shift);
   } catch (const SingularMatrixError& e) {
     throw ModelError(
         e.column() >= 0

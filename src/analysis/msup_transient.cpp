@@ -49,6 +49,7 @@ void run_msup_transient(Structure& structure, const AnalysisRequest& request, Re
       ++count;
     }
   const double shift = -1e-6 * (count > 0 ? ratio_sum / count : 1.0);
+  n_modes = modes_with_mass(structure, m_lower, n_modes, "mode-superposition transient", stats);
   EigenResult eig;
   try {
     eig = lowest_eigenpairs(k_lower, m_lower, n_modes, shift);

@@ -67,6 +67,18 @@ void prepare_reduced_model(ReducedRunState& state, const Structure& structure,
     int dropped = 0;
     for (int i = 0; i < trial.n_free(); ++i) {
       if (std::abs(diag(i)) > 1e-14 * scale || kept.count(trial.key(i))) continue;
+      // A load on such a DOF would vanish with it (issue 12: no silent wrong answer).
+      for (const LoadStep& step : state.load_steps) {
+        const auto f = step.forces.find(trial.key(i));
+        if (f == step.forces.end() || f->second == 0.0) continue;
+        const auto w = step.force_where.find(trial.key(i));
+        throw ModelError(
+            w != step.force_where.end() ? w->second : step.where,
+            fmt::format("{} carries the force {} = {:g} but has no stiffness, so the "
+                        "reduction cannot keep it as a slave; make it a master DOF "
+                        "(M) or connect it to the structure",
+                        describe(trial.key(i)), force_name(trial.key(i).dof), f->second));
+      }
       constrained.insert(trial.key(i));
       if (dropped++ < 20) list += " " + describe(trial.key(i));
     }

@@ -2,6 +2,7 @@
 // spec §10.4): Guyan reduction, constant-step integration of the dense reduced system, explicit
 // gap forces, and the master histories kept for the expansion pass.
 #include <chrono>
+#include <cmath>
 #include <limits>
 
 #include "analysis/analyses.h"
@@ -35,8 +36,16 @@ void run_reduced_transient(Structure& structure, const AnalysisRequest& request,
   const MasterSelection masters = select_masters(
       model.masters, dofs, k.diagonal().head(nf), state->mass_all.diagonal().head(nf),
       options.total_masters, options.total_masters_exclude_rotations);
-  for (const DofKey& key : masters.ignored)
-    Log::warn("master DOF {} is constrained or not present in the model; ignored", describe(key));
+  for (const DofKey& key : masters.ignored) {
+    if (!dofs.is_active(key)) {
+      const auto w = model.master_where.find(key);
+      throw InputError(w != model.master_where.end() ? w->second : request.where,
+                       fmt::format("master DOF {} is not a DOF of any element (no element at "
+                                   "node {} carries {})",
+                                   describe(key), key.node, dof_name(key.dof)));
+    }
+    Log::warn("master DOF {} is constrained; ignored", describe(key));
+  }
   if (!masters.automatic.empty()) {
     std::string list;
     for (const DofKey& key : masters.automatic) list += " " + describe(key);
@@ -120,8 +129,10 @@ void run_reduced_transient(Structure& structure, const AnalysisRequest& request,
       if (f != 0.0 && std::isnan(closed_at)) closed_at = state->points[p].time;
       if (std::abs(f) > std::abs(peak)) peak = f;
     }
-    stats.notes.push_back(
-        fmt::format("gap {}: first force at t = {:g}, peak force {:.6g}", g + 1, closed_at, peak));
+    stats.notes.push_back(std::isnan(closed_at)
+                              ? fmt::format("gap {}: never closed (no force)", g + 1)
+                              : fmt::format("gap {}: first force at t = {:g}, peak force {:.6g}",
+                                            g + 1, closed_at, peak));
   }
   state_for_expansion = std::move(state);
 }

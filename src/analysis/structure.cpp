@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <limits>
+#include <optional>
 
 #include "assembly/element_adapters.h"
 #include "core/log.h"
@@ -40,6 +41,79 @@ std::string resolve_superelement(const ElementRecord& record, const RunSettings&
                                record.id, candidates.empty() ? "" : " ",
                                candidates.empty() ? std::string() : candidates.front(),
                                listing.empty() ? " none" : listing));
+}
+
+/// "UY@2 UY@3 ..." (at most 20 DOFs).
+std::string dof_list(const std::set<DofKey>& keys) {
+  std::string list;
+  int shown = 0;
+  for (const auto& key : keys)
+    if (shown++ < 20) list += " " + std::string(dof_name(key.dof)) + "@" + std::to_string(key.node);
+  return keys.size() > 20 ? list + " ..." : list;
+}
+
+/// True when every load step holds `key` with D (false without load steps).
+bool held_in_every_step(const DofKey& key, const std::vector<LoadStep>* steps) {
+  if (steps == nullptr || steps->empty()) return false;
+  for (const auto& step : *steps)
+    if (!step.constraints.count(key)) return false;
+  return true;
+}
+
+/// What acts on a DOF (a force, an initial condition, a master designation of an analysis that
+/// uses masters) and the command that put it there.
+struct Demand {
+  std::string what;
+  SourceLocation where;
+};
+
+std::optional<Demand> force_on(const DofKey& key, const LoadStep& step) {
+  if (step.constraints.count(key)) return std::nullopt;
+  const auto w = step.force_where.find(key);
+  const SourceLocation where = w != step.force_where.end() ? w->second : step.where;
+  if (const auto t = step.force_tables.find(key); t != step.force_tables.end())
+    return Demand{fmt::format("carries the force {} = %{}% (load step {})", force_name(key.dof),
+                              t->second, step.number),
+                  where};
+  const auto f = step.forces.find(key);
+  if (f == step.forces.end() || f->second == 0.0) return std::nullopt;
+  return Demand{fmt::format("carries the force {} = {:g} (load step {})", force_name(key.dof),
+                            f->second, step.number),
+                where};
+}
+
+std::optional<Demand> demand_on(const DofKey& key, const Model& model,
+                                const AnalysisOptions& options,
+                                const std::vector<LoadStep>* steps) {
+  if (steps)
+    for (const auto& step : *steps)
+      if (auto demand = force_on(key, step)) return demand;
+  const bool held = steps && !steps->empty() && steps->front().constraints.count(key);
+  const auto ic = model.initial_conditions.find(key);
+  if (ic != model.initial_conditions.end() && !held &&
+      (ic->second.displacement != 0.0 || ic->second.velocity != 0.0))
+    return Demand{fmt::format("has the initial condition u = {:g}, v = {:g}",
+                              ic->second.displacement, ic->second.velocity),
+                  ic->second.where};
+  const bool uses_masters =
+      options.type == AnalysisType::Substructure ||
+      (options.type == AnalysisType::Transient && options.method == TransientMethod::Reduced);
+  if (uses_masters && !held &&
+      std::find(model.masters.begin(), model.masters.end(), key) != model.masters.end()) {
+    const auto w = model.master_where.find(key);
+    return Demand{"is a master DOF (M)",
+                  w != model.master_where.end() ? w->second : SourceLocation{}};
+  }
+  return std::nullopt;
+}
+
+[[noreturn]] void fail_mechanism(const DofKey& key, const Demand& demand) {
+  throw ModelError(demand.where,
+                   fmt::format("{} {} but has neither stiffness nor mass: the model is a "
+                               "mechanism there (e.g. a spar or spring loaded across its axis, "
+                               "or a zero real constant); connect it to an element that resists "
+                               "it or restrain it with D",
+                               describe(key), demand.what));
 }
 
 }  // namespace
@@ -113,48 +187,43 @@ Structure::Structure(const Model& model, const AnalysisOptions& options,
   }
   for (int i = 0; i < all.n_active(); ++i)
     if (stiff(i) == 0.0 && mass(i) == 0.0) automatic_.insert(all.key(i));
-  // A dynamic analysis with translational DOFs that have stiffness but no mass (no DENS, no
-  // MASS21) solves them statically: say which. Massless rotations are normal (lumped masses).
-  if (options.type == AnalysisType::Transient) {
-    std::vector<DofKey> massless;
+  // Nothing acting on such a DOF may vanish with it: a load, an initial condition or a master
+  // designation on it means the model is a mechanism there (issue 12: no silent wrong answer).
+  for (const auto& key : automatic_)
+    if (const auto demand = demand_on(key, model, options, steps)) fail_mechanism(key, *demand);
+  // Report only the DOFs the deck leaves free in some load step: the others are held anyway.
+  std::set<DofKey> reported;
+  for (const auto& key : automatic_)
+    if (!held_in_every_step(key, steps)) reported.insert(key);
+  if (!reported.empty())
+    Log::warn("{} DOF(s) have neither stiffness nor mass and are constrained to zero:{}",
+              reported.size(), dof_list(reported));
+  // A dynamic analysis: free translational DOFs with stiffness but no mass (no DENS, no MASS21)
+  // carry no inertia; say which. Massless rotations are normal (lumped masses), and a reduced
+  // transient's slaves are massless by design (its masters are checked by the driver).
+  const bool dynamic =
+      options.type == AnalysisType::Modal ||
+      (options.type == AnalysisType::Transient && options.method != TransientMethod::Reduced);
+  if (dynamic) {
+    std::set<DofKey> massless;
     for (int i = 0; i < all.n_active(); ++i) {
       const DofKey key = all.key(i);
       const bool translation = key.dof == Dof::UX || key.dof == Dof::UY || key.dof == Dof::UZ;
-      bool held = steps != nullptr && !steps->empty();
-      if (steps)
-        for (const auto& step : *steps) held = held && step.constraints.count(key);
-      if (translation && mass(i) == 0.0 && stiff(i) != 0.0 && !held) massless.push_back(key);
+      if (translation && stiff(i) != 0.0 && mass(i) == 0.0 && !held_in_every_step(key, steps))
+        massless.insert(key);
     }
-    if (!massless.empty()) {
-      std::string list;
-      for (std::size_t k = 0; k < massless.size() && k < 20; ++k)
-        list +=
-            " " + std::string(dof_name(massless[k].dof)) + "@" + std::to_string(massless[k].node);
+    if (!massless.empty())
       Log::warn(
-          "{} free translational DOF(s) of this transient have no mass (is DENS missing, or a "
-          "MASS21?); they follow the load without inertia:{}{}",
-          massless.size(), list, massless.size() > 20 ? " ..." : "");
-    }
+          "{} free translational DOF(s) have stiffness but no mass (is DENS missing, or a "
+          "MASS21?): they carry no inertia (in a transient they follow the loads "
+          "quasi-statically, in a modal analysis they have no mode):{}",
+          massless.size(), dof_list(massless));
   }
-  // Report only the DOFs the deck leaves free in every load step: the others are held anyway.
-  std::set<DofKey> reported;
-  for (const auto& key : automatic_) {
-    bool held_everywhere = steps != nullptr && !steps->empty();
-    if (steps)
-      for (const auto& step : *steps)
-        held_everywhere = held_everywhere && step.constraints.count(key);
-    if (!held_everywhere) reported.insert(key);
-  }
-  if (!reported.empty()) {
-    std::string list;
-    int shown = 0;
-    for (const auto& key : reported) {
-      if (shown++ < 20)
-        list += " " + std::string(dof_name(key.dof)) + "@" + std::to_string(key.node);
-    }
-    Log::warn("{} DOF(s) have neither stiffness nor mass and are constrained to zero:{}{}",
-              reported.size(), list, reported.size() > 20 ? " ..." : "");
-  }
+}
+
+void Structure::check_load_step(const LoadStep& step) const {
+  for (const auto& key : automatic_)
+    if (const auto demand = force_on(key, step)) fail_mechanism(key, *demand);
 }
 
 void Structure::use_table_nodes(const std::vector<int>& ids) {

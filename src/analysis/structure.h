@@ -4,6 +4,9 @@
 /// the analysis, the node table of the results file, and the automatic constraints of DOFs that
 /// carry neither stiffness nor mass (spec §10.1 item 5). Nodal tables of rotated nodes are in
 /// their nodal axes, as MAPDL reports them.
+/// A DOF that carries a load, an initial condition or a master designation is never constrained
+/// automatically: the constructor throws ModelError at the command that put it there (the model
+/// is a mechanism).
 #include <functional>
 #include <map>
 #include <memory>
@@ -31,8 +34,8 @@ struct RunSettings {
 
 class Structure {
  public:
-  /// `steps`: the load steps to be run (only used to keep the automatic-constraint report to the
-  /// DOFs that the deck does not hold itself).
+  /// `steps`: the load steps to be run (their forces must not act on an automatically
+  /// constrained DOF; the automatic-constraint report omits the DOFs they hold themselves).
   Structure(const Model& model, const AnalysisOptions& options, const RunSettings& settings,
             const std::vector<LoadStep>* steps = nullptr);
 
@@ -48,6 +51,9 @@ class Structure {
 
   /// DOFs with neither stiffness nor mass (listed in the log, constrained to zero).
   const std::set<DofKey>& automatic_constraints() const { return automatic_; }
+  /// ModelError when a force of `step` acts on an automatically constrained DOF (a load step
+  /// solved after the structure was built).
+  void check_load_step(const LoadStep& step) const;
   /// D of the load step plus the automatic constraints.
   std::set<DofKey> constraints_of(const LoadStep& step) const;
 

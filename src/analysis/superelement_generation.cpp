@@ -66,18 +66,19 @@ SuperelementData generate_superelement(const Structure& structure, const Analysi
   std::vector<int> masters;
   for (const DofKey& key : model.masters) {
     const int i = dofs.index(key);
+    const auto defined = model.master_where.find(key);
+    const SourceLocation& where =
+        defined != model.master_where.end() ? defined->second : request.where;
     if (i < 0)
-      throw InputError(request.where,
-                       fmt::format("master DOF {} is not a DOF of any element of the "
-                                   "substructure",
-                                   describe(key)));
+      throw InputError(where, fmt::format("master DOF {} is not a DOF of any element of the "
+                                          "substructure",
+                                          describe(key)));
     if (i >= dofs.n_free())
       throw InputError(
-          request.where,
-          fmt::format("master DOF {} is constrained{}; a master must be free", describe(key),
-                      structure.automatic_constraints().count(key)
-                          ? " (it has neither stiffness nor mass)"
-                          : " by D"));
+          where, fmt::format("master DOF {} is constrained{}; a master must be free", describe(key),
+                             structure.automatic_constraints().count(key)
+                                 ? " (it has neither stiffness nor mass)"
+                                 : " by D"));
     masters.push_back(i);
   }
 

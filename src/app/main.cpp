@@ -3,7 +3,9 @@
 #include <fmt/format.h>
 #include <CLI/CLI.hpp>
 
+#include <cerrno>
 #include <chrono>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -97,10 +99,23 @@ int run_command(const RunArgs& args) {
     std::cerr << "error: deck not found: " << args.deck << "\n";
     return kExitInput;
   }
-  fs::create_directories(args.out_dir);
-  fs::current_path(args.out_dir);
+  // The output directory must exist (or be creatable) and take files: else the run could not
+  // keep its results, which is exit status 2 like a full disk.
   std::string jobname = args.jobname.empty() ? deck.stem().string() : args.jobname;
+  std::error_code ec;
+  fs::create_directories(args.out_dir, ec);
+  if (!ec) fs::current_path(args.out_dir, ec);
+  if (ec) {
+    std::cerr << fmt::format("error: cannot use the output directory '{}': {}\n", args.out_dir,
+                             ec.message());
+    return kExitSolution;
+  }
   std::ofstream log_file(jobname + ".log");
+  if (!log_file) {
+    std::cerr << fmt::format("error: cannot write in the output directory '{}' ({}): {}\n",
+                             args.out_dir, jobname + ".log", std::strerror(errno));
+    return kExitSolution;
+  }
   TerminalProgress progress;
   Log::set_sink([&log_file, &progress](LogLevel level, const std::string& message) {
     static const char* names[] = {"debug", "info", "warning", "error"};
@@ -138,7 +153,9 @@ int run_command(const RunArgs& args) {
   } catch (const SolutionError& e) {
     progress.clear();
     std::cerr << "error: " << e.what() << "\n";
-    std::cerr << fmt::format("results up to the failure are kept in {}\n", session.results_path());
+    if (!session.results_path().empty())
+      std::cerr << fmt::format("results up to the failure are kept in {}\n",
+                               session.results_path());
     Log::write(LogLevel::Error, e.what());
     return kExitSolution;
   } catch (const InternalError& e) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <exception>
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -131,8 +132,25 @@ void Assembler::compute_nonlinear_tangents(const VectorXd& u) const {
     elements_[e]->tangent(ctx_, ue_local, tangent_buffer_[e], force_buffer_[e]);
   };
   if (threading_.parallel) {
+    // An exception must not leave the parallel region (that would terminate the program): the
+    // one of the lowest element index is kept (deterministic whatever the threads, and the one
+    // the serial loop would throw) and rethrown after it, e.g. an element that collapsed under
+    // large deflection (ElementSolutionError).
+    std::exception_ptr failure;
+    int failed_at = n_nonlinear;
 #pragma omp parallel for schedule(dynamic, 8)
-    for (int i = 0; i < n_nonlinear; ++i) evaluate(i);
+    for (int i = 0; i < n_nonlinear; ++i) {
+      try {
+        evaluate(i);
+      } catch (...) {
+#pragma omp critical(impactfe_assembly_failure)
+        if (i < failed_at) {
+          failed_at = i;
+          failure = std::current_exception();
+        }
+      }
+    }
+    if (failure) std::rethrow_exception(failure);
     return;
   }
   const auto start = std::chrono::steady_clock::now();

@@ -50,6 +50,13 @@ class Assembler {
                                const VectorXd& v, const std::vector<int>& position, VectorXd& phi,
                                MatrixXd* tangent) const;
   int n_nonlinear_elements() const { return static_cast<int>(nonlinear_.size()); }
+  /// Runs the nonlinear elements' tangent phase on every allowed thread from the first pass,
+  /// without the timing probes of TangentThreading (for tests of the parallel loop: the results
+  /// are the same either way).
+  void force_parallel_tangents() const {
+    threading_.probes_left = 0;
+    threading_.parallel = true;
+  }
 
   /// Mass matrix over all active DOFs (full symmetric storage), for inertia forces M a and the
   /// frame-acceleration load -M r a.

@@ -109,16 +109,17 @@ struct OutputFrequency {
 /// Loads are cumulative: a step inherits everything from the previous step unless changed.
 struct LoadStep {
   int number = 1;
-  std::optional<double> time_end;        // TIME; blank = default (see analysis driver)
-  std::optional<double> dt;              // DTIME / DELTIM
-  std::optional<int> n_substeps;         // ITER NITTER / NSUBST
-  OutputFrequency output;                // ITER NPOST / OUTRES
-  bool stepped = false;                  // KBC: false = ramped, true = stepped
-  int reformulation = 1;                 // KRF / NROPT: re-form tangent every n iterations
-  bool time_integration = true;          // KAY(5) / TIMINT
-  Vec3 acel = Vec3::Zero();              // ACEL: acceleration of the reference frame
-  std::map<DofKey, double> constraints;  // D (value in nodal axes)
-  std::map<DofKey, double> forces;       // F (nodal axes)
+  std::optional<double> time_end;                // TIME; blank = default (see analysis driver)
+  std::optional<double> dt;                      // DTIME / DELTIM
+  std::optional<int> n_substeps;                 // ITER NITTER / NSUBST
+  OutputFrequency output;                        // ITER NPOST / OUTRES
+  bool stepped = false;                          // KBC: false = ramped, true = stepped
+  int reformulation = 1;                         // KRF / NROPT: re-form tangent every n iterations
+  bool time_integration = true;                  // KAY(5) / TIMINT
+  Vec3 acel = Vec3::Zero();                      // ACEL: acceleration of the reference frame
+  std::map<DofKey, double> constraints;          // D (value in nodal axes)
+  std::map<DofKey, double> forces;               // F (nodal axes)
+  std::map<DofKey, SourceLocation> force_where;  // the F command that set each force
   // Time-function loads (`%TABLE%`, APDL_MODELING §5.5): the table named here gives the value
   // at each time (KBC does not apply); the number in constraints/forces is then unused.
   std::map<DofKey, std::string> constraint_tables;
@@ -132,6 +133,7 @@ struct LoadStep {
 struct InitialCondition {
   double displacement = 0.0;
   double velocity = 0.0;
+  SourceLocation where;  // the IC command
 };
 
 enum class AnalysisType { Static, Modal, Transient, Substructure };
@@ -146,6 +148,7 @@ struct TimeIntegrationParameters {
   std::optional<double> delta;  // Newmark gamma
   std::optional<double> alpha_f;
   std::optional<double> alpha_m;
+  SourceLocation where;  // the TINTP command (blank when none was given)
 };
 
 /// Newton-Raphson and convergence options (NEQIT, CNVTOL, NROPT).
@@ -242,6 +245,7 @@ struct Model {
   std::map<int, ElementRecord> elements;
 
   std::vector<DofKey> masters;                            // M, in input order, no duplicates
+  std::map<DofKey, SourceLocation> master_where;          // the M command of each master
   std::vector<GapCondition> gap_conditions;               // GP, in input order
   std::map<DofKey, InitialCondition> initial_conditions;  // IC
 

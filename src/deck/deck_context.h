@@ -284,6 +284,15 @@ std::vector<Dof> parse_dof_labels(DeckReader& r, const Command& c, int lab_field
 /// Model building at a solution request (SOLVE, LSWRITE): transfers the solid-model loads to the
 /// mesh and checks that the materials the elements use are supported.
 void prepare_model_for_solution(DeckReader& r, const Command& c);
+/// Largest node or element number a deck may use (the field limit of DeckReader::opt_int).
+inline constexpr long long kMaxEntityNumber = 2'000'000'000;
+/// Fails at `c` when the model would hold more than DeckOptions::max_nodes nodes or
+/// max_elements elements after adding `new_nodes` and `new_elements` (counts, not checked for
+/// duplicates: an upper bound).
+void check_model_size(const DeckReader& r, const Command& c, long long new_nodes,
+                      long long new_elements);
+/// Fails at `c` when a generated node or element number is outside 1..kMaxEntityNumber.
+int checked_number(const DeckReader& r, const Command& c, long long number, const char* what);
 
 /// Closes a 4x /STRESS block (END, FINISH or the end of the deck): its requests become an
 /// expansion pass of the preceding reduced transient.

@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <filesystem>
@@ -91,19 +92,24 @@ void DeckReader::ignore(const Command& c) {
 std::optional<double> DeckReader::opt_real(const Command& c, int i) const {
   const std::string& t = c.text(i);
   if (t.empty()) return std::nullopt;
-  if (auto v = parse_fortran_number(t)) return v;
+  std::optional<double> value = parse_fortran_number(t);
   try {
-    const Value v = evaluate_value(t, params, &functions_);
-    if (is_text(v))
-      fail(c, fmt::format("field {}: a number is needed, not the text '{}'", i,
-                          std::get<std::string>(v)));
-    return std::get<double>(v);
+    if (!value) {
+      const Value v = evaluate_value(t, params, &functions_);
+      if (is_text(v))
+        fail(c, fmt::format("field {}: a number is needed, not the text '{}'", i,
+                            std::get<std::string>(v)));
+      value = std::get<double>(v);
+    }
   } catch (const ExpressionError& e) {
     bool letters = false;
     for (char ch : t) letters = letters || std::isalpha(static_cast<unsigned char>(ch));
     if (!letters) fail(c, fmt::format("field {}: bad number '{}'", i, t));
     fail(c, fmt::format("field {}: bad number or expression '{}' ({})", i, t, e.what()));
   }
+  // An overflow (1E999, 1E300*1E300) would travel into the model as inf or NaN.
+  if (!std::isfinite(*value)) fail(c, fmt::format("field {}: '{}' is not a finite number", i, t));
+  return value;
 }
 
 double DeckReader::real(const Command& c, int i, double fallback) const {
@@ -252,10 +258,13 @@ std::vector<int> DeckReader::node_range(const Command& c, int node_field, int en
     require_node(c, *first);
     return {*first};
   }
-  if ((last - *first) * inc < 0)
+  if ((static_cast<long long>(last) - *first) * inc < 0)
     fail(c, fmt::format("empty node range {} to {} step {}", *first, last, inc));
-  for (int n = *first; inc > 0 ? n <= last : n >= last; n += inc)
-    if (model.nodes.count(n) != 0) out.push_back(n);
+  // Walk the defined nodes, not the number range (which may span 10^9 numbers).
+  const int lo = std::min(*first, last), hi = std::max(*first, last);
+  for (auto it = model.nodes.lower_bound(lo); it != model.nodes.end() && it->first <= hi; ++it)
+    if ((static_cast<long long>(it->first) - *first) % inc == 0) out.push_back(it->first);
+  if (inc < 0) std::reverse(out.begin(), out.end());
   if (out.empty()) fail(c, fmt::format("no node is defined in the range {} to {}", *first, last));
   return out;
 }

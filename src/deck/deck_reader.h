@@ -2,6 +2,7 @@
 /// Reads an APDL deck (ANSYS 4.2 "4x" dialect or modern Mechanical APDL) into a Job: the model
 /// plus the ordered list of analyses, expansion passes and post-processing commands.
 /// The deck layer only builds; it never solves.
+#include <cstddef>
 #include <optional>
 #include <ostream>
 #include <string>
@@ -18,6 +19,10 @@ struct DeckOptions {
   std::string jobname;             // default: the deck's file stem (or /FILNAME)
   /// Solves each request as the deck reaches it (null: requests are only collected).
   SolutionHost* host = nullptr;
+  /// Most nodes and most elements the deck may define: N, E and the generation commands that
+  /// would go beyond are refused up front (never attempted until memory runs out).
+  std::size_t max_nodes = 10'000'000;
+  std::size_t max_elements = 10'000'000;
   /// Where the deck's printed output goes until /OUT redirects it (*VWRITE, *MSG, *STATUS,
   /// /COM, PRNSOL, ...). Null: to the log; `impactfe run` passes std::cout.
   std::ostream* output = nullptr;

@@ -1,6 +1,8 @@
 // Generation commands FILL, NGEN, EGEN, ENGEN (APDL_SUBSET §3.8, §3.9, §3.11, §3.12).
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <climits>
 #include <cmath>
 
 #include "deck/deck_context.h"
@@ -10,7 +12,40 @@
 
 namespace impactfe::deck {
 
+void check_model_size(const DeckReader& r, const Command& c, long long new_nodes,
+                      long long new_elements) {
+  const auto nodes = static_cast<long long>(r.model.nodes.size()) + std::max(0LL, new_nodes);
+  const auto elements =
+      static_cast<long long>(r.model.elements.size()) + std::max(0LL, new_elements);
+  if (nodes > static_cast<long long>(r.options.max_nodes))
+    r.fail(c, fmt::format("this would make {} nodes, more than the limit of {}", nodes,
+                          r.options.max_nodes));
+  if (elements > static_cast<long long>(r.options.max_elements))
+    r.fail(c, fmt::format("this would make {} elements, more than the limit of {}", elements,
+                          r.options.max_elements));
+}
+
+int checked_number(const DeckReader& r, const Command& c, long long number, const char* what) {
+  if (number <= 0 || number > kMaxEntityNumber)
+    r.fail(c,
+           fmt::format("generated {} number {} is outside 1..{}", what, number, kMaxEntityNumber));
+  return static_cast<int>(number);
+}
+
 namespace {
+
+/// Existing ids of `map` in first, first + inc, ... up to last (inc != 0), in that order:
+/// walks the map, never the (possibly huge) number range.
+template <class Map>
+std::vector<int> existing_in_range(const Map& map, long long first, long long last, long long inc) {
+  std::vector<int> out;
+  const long long lo = std::min(first, last), hi = std::max(first, last);
+  for (auto it = map.lower_bound(static_cast<int>(std::max<long long>(lo, INT_MIN)));
+       it != map.end() && it->first <= hi; ++it)
+    if ((it->first - first) % inc == 0) out.push_back(it->first);
+  if (inc < 0) std::reverse(out.begin(), out.end());
+  return out;
+}
 
 /// Fractions 0 < f_1 < ... < f_n < 1 of n interior points; SPACE = ratio of the last division to
 /// the first (1 = uniform), divisions in geometric progression.
@@ -32,30 +67,31 @@ void cmd_fill(DeckReader& r, const Command& c) {
   node2 = r.integer(c, 2, node2);
   r.require_node(c, node1);
   r.require_node(c, node2);
-  const int nfill = r.integer(c, 3, std::abs(node2 - node1) - 1);
+  const long long nfill =
+      r.integer(c, 3, static_cast<int>(std::abs(static_cast<long long>(node2) - node1) - 1));
   if (nfill <= 0) {
     r.warn(c, fmt::format("no node to fill between {} and {}", node1, node2));
     return;
   }
-  int ninc_default = (node2 - node1) / (nfill + 1);
+  long long ninc_default = (static_cast<long long>(node2) - node1) / (nfill + 1);
   if (ninc_default == 0) ninc_default = node2 >= node1 ? 1 : -1;
-  const int ninc = r.integer(c, 5, ninc_default);
-  const int nstrt = r.integer(c, 4, node1 + ninc);
+  const long long ninc = r.integer(c, 5, static_cast<int>(ninc_default));
+  const long long nstrt = c.blank(4) ? node1 + ninc : r.integer(c, 4, 0);
   const int itime = std::max(1, r.integer(c, 6, 1));
-  const int inc = r.integer(c, 7, 1);
+  const long long inc = r.integer(c, 7, 1);
   const double space = r.real(c, 8, 1.0);
-  const auto f = fill_fractions(nfill, space);
+  check_model_size(r, c, nfill * itime, 0);
+  const auto f = fill_fractions(static_cast<int>(nfill), space);
   for (int t = 0; t < itime; ++t) {
-    const int a = node1 + t * inc;
-    const int b = node2 + t * inc;
+    const int a = checked_number(r, c, node1 + t * inc, "node");
+    const int b = checked_number(r, c, node2 + t * inc, "node");
     r.require_node(c, a);
     r.require_node(c, b);
     const Node na = r.model.nodes.at(a);
     const Node nb = r.model.nodes.at(b);
-    for (int k = 0; k < nfill; ++k) {
+    for (long long k = 0; k < nfill; ++k) {
       Node n;
-      n.id = nstrt + t * inc + k * ninc;
-      if (n.id <= 0) r.fail(c, fmt::format("generated node number {} is not positive", n.id));
+      n.id = checked_number(r, c, nstrt + t * inc + k * ninc, "node");
       const double s = f[static_cast<std::size_t>(k)];
       // Interpolated in the active coordinate system (an arc in a cylindrical one).
       n.x = geometry::interpolate_in_system(r.model.coordinate_systems.active_system(), na.x, nb.x,
@@ -84,10 +120,10 @@ void cmd_ngen(DeckReader& r, const Command& c) {
     const int last = r.integer(c, 4, *first);
     int ninc = r.integer(c, 5, 1);
     if (ninc == 0) ninc = 1;
-    for (int n = *first; ninc > 0 ? n <= last : n >= last; n += ninc)
-      if (r.model.nodes.count(n) != 0) pattern.push_back(n);
+    pattern = existing_in_range(r.model.nodes, *first, last, ninc);
   }
   if (pattern.empty()) r.fail(c, "no existing node in the pattern");
+  check_model_size(r, c, static_cast<long long>(pattern.size()) * (itime - 1), 0);
   const Vec3 d(r.real(c, 6, 0.0), r.real(c, 7, 0.0), r.real(c, 8, 0.0));
   if (!c.blank(9) && r.real(c, 9, 1.0) != 1.0) r.warn(c, "SPACE ignored (uniform copies)");
   std::vector<Node> source;
@@ -96,8 +132,7 @@ void cmd_ngen(DeckReader& r, const Command& c) {
   for (int k = 1; k < itime; ++k) {
     for (const Node& s : source) {
       Node n = s;
-      n.id = s.id + k * inc;
-      if (n.id <= 0) r.fail(c, fmt::format("generated node number {} is not positive", n.id));
+      n.id = checked_number(r, c, s.id + static_cast<long long>(k) * inc, "node");
       // DX, DY, DZ are increments in the active coordinate system (DR, Dθ, DZ when cylindrical).
       n.x = active.to_global(active.from_global(s.x) + static_cast<double>(k) * d);
       r.model.nodes[n.id] = n;
@@ -124,8 +159,7 @@ std::vector<int> element_pattern(DeckReader& r, const Command& c, int f1) {
       const int last = r.integer(c, f1 + 1, *first);
       int step = r.integer(c, f1 + 2, 1);
       if (step == 0) step = 1;
-      for (int e = *first; step > 0 ? e <= last : e >= last; e += step)
-        if (r.model.elements.count(e) != 0) out.push_back(e);
+      out = existing_in_range(r.model.elements, *first, last, step);
     }
   }
   if (out.empty()) r.fail(c, "no existing element in the pattern");
@@ -133,16 +167,17 @@ std::vector<int> element_pattern(DeckReader& r, const Command& c, int f1) {
 }
 
 /// Copies `src` k times its increments; `id` is the new element number.
-void copy_element(DeckReader& r, const Command& c, const ElementRecord& src, int id, int k,
-                  int ninc, int minc, int tinc, int rinc, int sinc) {
+void copy_element(DeckReader& r, const Command& c, const ElementRecord& src, long long number,
+                  long long k, long long ninc, long long minc, long long tinc, long long rinc,
+                  long long sinc) {
   ElementRecord e = src;
+  const int id = checked_number(r, c, number, "element");
   e.id = id;
-  e.mat += k * minc;
-  e.type += k * tinc;
-  e.real += k * rinc;
-  e.secnum += k * sinc;
+  if (minc != 0) e.mat = checked_number(r, c, e.mat + k * minc, "material");
+  if (tinc != 0) e.type = checked_number(r, c, e.type + k * tinc, "element type");
+  if (rinc != 0) e.real = checked_number(r, c, e.real + k * rinc, "real constant set");
+  if (sinc != 0) e.secnum = checked_number(r, c, e.secnum + k * sinc, "section");
   e.where = c.where;
-  if (id <= 0) r.fail(c, fmt::format("generated element number {} is not positive", id));
   const auto t = r.model.element_types.find(e.type);
   if (t == r.model.element_types.end())
     r.fail(c, fmt::format("element type {} of generated element {} is not defined", e.type, id));
@@ -150,7 +185,7 @@ void copy_element(DeckReader& r, const Command& c, const ElementRecord& src, int
   if (d.defined_by_file)
     r.fail(c, fmt::format("element {} is a superelement and cannot be copied", src.id));
   for (int& n : e.nodes) {
-    n += k * ninc;
+    n = checked_number(r, c, n + k * ninc, "node");
     if (r.model.nodes.count(n) == 0)
       r.fail(c, fmt::format("node {} of generated element {} (copy of {}) is not defined", n, id,
                             src.id));
@@ -183,11 +218,12 @@ void cmd_egen(DeckReader& r, const Command& c) {
   const int minc = r.integer(c, 6, 0), tinc = r.integer(c, 7, 0), rinc = r.integer(c, 8, 0);
   const int sinc = r.integer(c, 10, 0);
   warn_dxyz(r, c, 11);
+  check_model_size(r, c, 0, static_cast<long long>(pattern.size()) * (itime - 1));
   std::vector<ElementRecord> src;
   for (int id : pattern) src.push_back(r.model.elements.at(id));
   for (int k = 1; k < itime; ++k)
     for (const auto& e : src) {
-      const int id = r.model.elements.rbegin()->first + 1;
+      const long long id = static_cast<long long>(r.model.elements.rbegin()->first) + 1;
       copy_element(r, c, e, id, k, ninc, minc, tinc, rinc, sinc);
     }
 }
@@ -206,11 +242,13 @@ void cmd_engen(DeckReader& r, const Command& c) {
   const int minc = r.integer(c, 7, 0), tinc = r.integer(c, 8, 0), rinc = r.integer(c, 9, 0);
   const int sinc = r.integer(c, 11, 0);
   warn_dxyz(r, c, 12);
+  check_model_size(r, c, 0, static_cast<long long>(pattern.size()) * (itime - 1));
   std::vector<ElementRecord> src;
   for (int id : pattern) src.push_back(r.model.elements.at(id));
   for (int k = 1; k < itime; ++k)
     for (const auto& e : src)
-      copy_element(r, c, e, e.id + k * iinc, k, ninc, minc, tinc, rinc, sinc);
+      copy_element(r, c, e, e.id + static_cast<long long>(k) * iinc, k, ninc, minc, tinc, rinc,
+                   sinc);
 }
 
 }  // namespace

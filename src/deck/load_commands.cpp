@@ -85,6 +85,7 @@ void cmd_f(DeckReader& r, const Command& c) {
   LoadStep& s = r.model.current;
   for (int node : r.node_range(c, 1, 5, 6)) {
     s.forces[DofKey{node, *d}] = value.value;
+    s.force_where[DofKey{node, *d}] = c.where;
     if (value.table.empty())
       s.force_tables.erase(DofKey{node, *d});
     else
@@ -105,6 +106,7 @@ void cmd_fdele(DeckReader& r, const Command& c) {
     for (Dof d : dofs) {
       r.model.current.forces.erase(DofKey{node, d});
       r.model.current.force_tables.erase(DofKey{node, d});
+      r.model.current.force_where.erase(DofKey{node, d});
     }
 }
 
@@ -142,6 +144,7 @@ void cmd_ic(DeckReader& r, const Command& c) {
   for (int node : r.node_range(c, 1, 5, 6)) {
     for (Dof d : dofs) {
       InitialCondition& ic = r.model.initial_conditions[DofKey{node, d}];
+      ic.where = c.where;
       if (velocity) {
         ic.velocity = value;
       } else {

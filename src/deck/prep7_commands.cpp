@@ -134,6 +134,7 @@ void cmd_n(DeckReader& r, const Command& c) {
   else
     id = r.integer(c, 1, 0);
   if (id <= 0) r.fail(c, fmt::format("node number {} must be positive", id));
+  if (r.model.nodes.count(id) == 0) check_model_size(r, c, 1, 0);
   Node n;
   n.id = id;
   // X, Y, Z in the active coordinate system (APDL_MODELING §2.2); angles relative to global.
@@ -187,6 +188,7 @@ void cmd_e(DeckReader& r, const Command& c) {
     return;
   }
   if (c.last_given() == 0) r.fail(c, "node list missing");
+  check_model_size(r, c, 0, 1);
   r.add_element(c, next_element_id(r), node_fields(r, c, 1));
 }
 
@@ -194,6 +196,7 @@ void cmd_en(DeckReader& r, const Command& c) {
   const auto id = r.opt_int(c, 1);
   if (!id) r.fail(c, "element number missing");
   if (c.last_given() < 2) r.fail(c, "node list missing");
+  if (r.model.elements.count(*id) == 0) check_model_size(r, c, 0, 1);
   r.add_element(c, *id, node_fields(r, c, 2));
 }
 
@@ -225,6 +228,7 @@ void cmd_m(DeckReader& r, const Command& c) {
       const DofKey key{node, d};
       if (std::find(r.model.masters.begin(), r.model.masters.end(), key) == r.model.masters.end())
         r.model.masters.push_back(key);
+      r.model.master_where[key] = c.where;
     }
   }
 }

@@ -232,6 +232,7 @@ void cmd_trnopt(DeckReader& r, const Command& c) {
 
 void cmd_tintp(DeckReader& r, const Command& c) {
   TimeIntegrationParameters& p = r.model.options.tintp;
+  p.where = c.where;
   const std::string g = r.label(c, 1);
   if (g == "IMPA" || g == "HISP" || g == "MOSP" || g == "LOSP" || g == "QUAS")
     r.warn(c, fmt::format("application label {} ignored; default parameters used", g));
@@ -479,8 +480,8 @@ void cmd_lssolve(DeckReader& r, const Command& c) {
   if (!first) r.fail(c, "LSMIN missing");
   const int last = r.integer(c, 2, *first);
   const int inc = std::max(1, r.integer(c, 3, 1));
-  for (int n = *first; n <= last; n += inc) {
-    auto it = r.lswrite_steps.find(n);
+  for (long long n = *first; n <= last; n += inc) {
+    auto it = r.lswrite_steps.find(static_cast<int>(n));
     if (it == r.lswrite_steps.end())
       r.fail(c, fmt::format("load step {} was not written (LSWRITE)", n));
     r.model.current = it->second;

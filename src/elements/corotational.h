@@ -50,7 +50,7 @@ inline void add_block(const Eigen::MatrixXd& A, double s, Eigen::MatrixXd& K) {
 
 /// Axial force, internal force f (2d) and tangent K (2d×2d) for displacement u (2d), axial
 /// stiffness k (EA/L for a spar, K for a spring) and force at zero extension N0 (EA·ISTRN).
-/// Throws SolutionError when a co-rotational member collapses to zero length.
+/// Throws ElementSolutionError when a co-rotational member collapses to zero length.
 inline AxialState axial_response(const AxialMember& m, AxialKinematics kin, double k, double n0,
                                  const Eigen::VectorXd& u, Eigen::MatrixXd& K, Eigen::VectorXd& f,
                                  int element_id) {
@@ -84,8 +84,11 @@ inline AxialState axial_response(const AxialMember& m, AxialKinematics kin, doub
     case AxialKinematics::Corotational: {
       const double ell = s.current_length;
       if (!(ell > 1e-12 * std::max(m.length, 1.0)))
-        throw SolutionError(
-            fmt::format("element {}: collapsed to zero length (large deflection)", element_id));
+        throw ElementSolutionError(
+            element_id, fmt::format("element {} collapsed to zero length under large deflection "
+                                    "(its nodes met); use a smaller time step (DELTIM) or more "
+                                    "substeps (NSUBST), or check the loads",
+                                    element_id));
       g = chord / ell;
       s.extension = ell - m.length;
       s.force = k * s.extension + n0;

@@ -79,6 +79,10 @@ std::unique_ptr<Element> make_point_mass(const ElementBuildContext& ctx,
                                    record.id, family, values[i], record.real));
     diagonal(static_cast<Eigen::Index>(i)) = values[i];
   }
+  if (diagonal.size() > 0 && diagonal.maxCoeff() == 0.0)
+    throw InputError(record.where, fmt::format("element {} ({}): real set {} gives no mass (all "
+                                               "masses and inertias are zero)",
+                                               record.id, family, record.real));
   if (type.key(2) == 1 && node.rotated() && type.key(3) == 0)
     Log::warn(
         "element {} ({}): KEYOPT(2) = 1 (mass in nodal axes) on rotated node {}: the "

@@ -106,6 +106,18 @@ std::unique_ptr<Element> make_spring_damper(const ElementBuildContext& ctx,
   const RealSet& real = line_data::real_set(model, record, family);
   const double stiffness = real.get(1);
   const double damping = real.get(2);
+  if (stiffness < 0.0 || damping < 0.0)
+    throw InputError(record.where,
+                     fmt::format("element {} ({}): stiffness K = {:g} and damping CV1 = {:g} must "
+                                 "not be negative (real set {})",
+                                 record.id, family, stiffness, damping, record.real));
+  // An empty set (R,1,) would give an element that does nothing: its nodes would silently lose
+  // their only connection.
+  if (stiffness == 0.0 && damping == 0.0)
+    throw InputError(record.where,
+                     fmt::format("element {} ({}): real set {} gives neither a stiffness K nor a "
+                                 "damping CV1 (R,{},K,CV1)",
+                                 record.id, family, record.real, record.real));
   if (real.get(3) != 0.0)
     Log::warn("element {} ({}): nonlinear damping CV2 = {} is ignored (linear damping CV1 only)",
               record.id, family, real.get(3));

@@ -9,31 +9,53 @@
 namespace impactfe::h5 {
 
 void silence_errors() {
+  // No library shutdown at exit: every file is flushed after each write and closed by its
+  // owner, and after a failed write (a full disk) HDF5's shutdown crashes closing the dataset
+  // whose close already failed (HDF5 1.10). Only effective before the library starts, so done
+  // here, the first HDF5 call of every reader and writer.
+  static const bool no_atexit = [] {
+    H5dont_atexit();
+    return true;
+  }();
+  (void)no_atexit;
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
 }
 
-std::string error_detail() {
-  std::string detail;
-  H5Ewalk2(
-      H5E_DEFAULT, H5E_WALK_UPWARD,
-      [](unsigned n, const H5E_error2_t* e, void* data) -> herr_t {
-        auto* out = static_cast<std::string*>(data);
-        // The most specific entry with a text of its own (the first walking upward).
-        if (out->empty() && e->desc != nullptr && e->desc[0] != '\0') *out = e->desc;
-        return 0;
-      },
-      &detail);
-  return detail;
+namespace {
+
+/// Walker of the HDF5 error stack, innermost entry first: keeps the system's reason when a
+/// system call failed (the "error message = '...'" part: "No space left on device", "No such
+/// file or directory"), else the most specific entry with a text of its own (e.g. "checksum
+/// verification failed", "truncated file: eof = 4096, ...").
+herr_t most_specific(unsigned, const H5E_error2_t* error, void* data) {
+  auto& out = *static_cast<std::string*>(data);
+  if (error->desc == nullptr || error->desc[0] == '\0') return 0;
+  const std::string desc = error->desc;
+  const std::string key = "error message = '";
+  const auto pos = desc.find(key);
+  if (pos != std::string::npos) {
+    const auto end = desc.find('\'', pos + key.size());
+    out = desc.substr(pos + key.size(), end == std::string::npos ? end : end - pos - key.size());
+    return 1;  // the system's reason: stop here
+  }
+  if (out.empty()) out = desc;
+  return 0;
 }
 
-namespace {
 [[noreturn]] void fail(const std::string& what) {
   const std::string detail = error_detail();
   H5Eclear2(H5E_DEFAULT);
   throw std::runtime_error(detail.empty() ? fmt::format("cannot {}", what)
-                                          : fmt::format("cannot {} ({})", what, detail));
+                                          : fmt::format("cannot {}: {}", what, detail));
 }
+
 }  // namespace
+
+std::string error_detail() {
+  std::string detail;
+  H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, most_specific, &detail);
+  return detail;
+}
 
 hid_t check(hid_t id, const std::string& what) {
   if (id < 0) fail(what);

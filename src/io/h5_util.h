@@ -3,6 +3,7 @@
 #include <hdf5.h>
 #include <Eigen/Core>
 
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -38,14 +39,16 @@ class Handle {
 };
 
 /// Silences the HDF5 error stack printer: libraries never print; failures become exceptions.
+/// Also keeps HDF5 from installing its shutdown at exit (see h5_util.cpp).
 void silence_errors();
 
-/// Throws std::runtime_error("cannot <what> (<HDF5's innermost error>)") when id < 0 (callers
-/// add the file name).
+/// Throws std::runtime_error("cannot <what>: <error_detail()>") when id < 0 (callers add the
+/// file name).
 hid_t check(hid_t id, const std::string& what);
 void check_status(herr_t status, const std::string& what);
-/// The most specific message on HDF5's error stack ("" when empty), e.g. "checksum
-/// verification failed" or "truncated file: eof = 4096, ...".
+/// The reason for the last HDF5 failure ("" when the error stack is empty): the system's when
+/// a system call failed ("No space left on device"), else the most specific message on the
+/// stack, e.g. "checksum verification failed" or "truncated file: eof = 4096, ...".
 std::string error_detail();
 
 /// File access property list of files written in the HDF5 1.8 format, whose superblock and

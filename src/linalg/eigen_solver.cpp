@@ -2,6 +2,7 @@
 
 #include <Spectra/MatOp/SparseSymMatProd.h>
 #include <Spectra/SymGEigsShiftSolver.h>
+#include <fmt/format.h>
 #include <Eigen/Dense>
 #include <algorithm>
 #include <memory>
@@ -86,10 +87,24 @@ EigenResult lowest_eigenpairs(const SparseMatrix& k_lower, const SparseMatrix& m
   Spectra::SymGEigsShiftSolver<ShiftInvertOperator, Spectra::SparseSymMatProd<double>,
                                Spectra::GEigsMode::ShiftInvert>
       solver(op, bop, nev, ncv, shift);
-  solver.init();
-  solver.compute(Spectra::SortRule::LargestMagn, 1000, 1e-10);
+  // Spectra reports problems in its own words (e.g. "initial residual vector cannot be zero"
+  // for a zero mass matrix): say what they mean for the model instead.
+  try {
+    solver.init();
+    solver.compute(Spectra::SortRule::LargestMagn, 1000, 1e-10);
+  } catch (const SingularMatrixError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw std::runtime_error(fmt::format(
+        "the Lanczos eigensolver could not run ({}): the mass matrix is zero or nearly so for the "
+        "{} modes requested; check the densities (DENS) and point masses",
+        e.what(), nev));
+  }
   if (solver.info() != Spectra::CompInfo::Successful)
-    throw std::runtime_error("modal analysis: the Lanczos iteration did not converge");
+    throw std::runtime_error(fmt::format(
+        "the Lanczos eigensolver did not converge to {} modes in 1000 restarts; request fewer "
+        "modes (MODOPT) or check the mass distribution",
+        nev));
   const VectorXd values = solver.eigenvalues();
   const MatrixXd vectors = solver.eigenvectors();
   std::vector<int> order(static_cast<std::size_t>(values.size()));

@@ -9,6 +9,9 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <new>
+
+#include "core/errors.h"
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -90,7 +93,11 @@ class CholmodSolver final : public LinearSolver {
     if (factor_) cholmod_free_factor(&factor_, &common_);
     cholmod_sparse A = view(lower);
     factor_ = cholmod_analyze(&A, &common_);
-    if (!factor_) throw std::runtime_error("CHOLMOD: symbolic analysis failed");
+    if (!factor_) {
+      if (common_.status == CHOLMOD_OUT_OF_MEMORY) throw std::bad_alloc();
+      throw std::runtime_error(fmt::format(
+          "the sparse solver's symbolic analysis failed (CHOLMOD status {})", common_.status));
+    }
     ++counters_.analyses;
     n_ = static_cast<int>(lower.rows());
   }
@@ -104,6 +111,9 @@ class CholmodSolver final : public LinearSolver {
     common_.final_ll = 1;
     cholmod_factorize(&A, factor_, &common_);
     ++counters_.factorizations;
+    negative_pivots_ = 0;
+    first_negative_row_ = -1;
+    if (common_.status == CHOLMOD_OUT_OF_MEMORY) throw std::bad_alloc();
     if (common_.status == CHOLMOD_NOT_POSDEF || factor_->minor < factor_->n) {
       // Retry as LDLᵀ: regular but indefinite matrices factor; a zero pivot stays singular.
       cholmod_free_factor(&factor_, &common_);
@@ -121,6 +131,7 @@ class CholmodSolver final : public LinearSolver {
         throw SingularMatrixError(column, "zero pivot in the factorization");
       }
       check_pivots(lower);
+      count_negative_pivots();
       record_sizes(lower);
       return;
     }
@@ -135,7 +146,7 @@ class CholmodSolver final : public LinearSolver {
   }
 
   MatrixXd solve(const MatrixXd& B) override {
-    if (!factor_) throw std::runtime_error("CHOLMOD: solve before factorize");
+    IMPACTFE_CHECK(factor_ != nullptr, "CHOLMOD: solve before factorize");
     ScopedTimer timer(counters_.solve_seconds);
     // A solve streams the factor once forward and once backward, supernode by supernode, with
     // one small dgemv/dtrsv (one right-hand side) or dgemm/dtrsm per supernode: memory-bound
@@ -155,7 +166,11 @@ class CholmodSolver final : public LinearSolver {
     rhs.xtype = CHOLMOD_REAL;
     rhs.dtype = CHOLMOD_DOUBLE;
     cholmod_dense* x = cholmod_solve(CHOLMOD_A, factor_, &rhs, &common_);
-    if (!x) throw std::runtime_error("CHOLMOD: solve failed");
+    if (!x) {
+      if (common_.status == CHOLMOD_OUT_OF_MEMORY) throw std::bad_alloc();
+      throw std::runtime_error(
+          fmt::format("the sparse solver's solve failed (CHOLMOD status {})", common_.status));
+    }
     MatrixXd X = Eigen::Map<MatrixXd>(static_cast<double*>(x->x), B.rows(), B.cols());
     cholmod_free_dense(&x, &common_);
     counters_.solves += B.cols();
@@ -180,6 +195,19 @@ class CholmodSolver final : public LinearSolver {
     A.sorted = 1;
     A.packed = 1;
     return A;
+  }
+
+  /// Counts the negative entries of D in a simplicial LDLᵀ factor (the diagonal is the first
+  /// entry of each column) and maps the first to its unpermuted row.
+  void count_negative_pivots() {
+    if (factor_->is_super || factor_->is_ll) return;
+    const auto* p = static_cast<const int*>(factor_->p);
+    const auto* x = static_cast<const double*>(factor_->x);
+    const auto* perm = static_cast<const int*>(factor_->Perm);
+    for (std::size_t j = 0; j < factor_->n; ++j)
+      if (x[p[j]] < 0.0) {
+        if (negative_pivots_++ == 0) first_negative_row_ = perm ? perm[j] : static_cast<int>(j);
+      }
   }
 
   /// Sizes of the factor just computed. common_.lnz is nnz(L) of the last symbolic analysis
@@ -226,6 +254,8 @@ class DenseSolver final : public LinearSolver {
     counters_.factor_nonzeros = n * (n + 1) / 2;
     counters_.factor_bytes = counters_.factor_nonzeros * static_cast<long>(sizeof(double));
     const VectorXd d = ldlt_.vectorD();
+    negative_pivots_ = 0;
+    first_negative_row_ = -1;
     double scale = 0.0;
     for (int i = 0; i < A.rows(); ++i) scale = std::max(scale, std::abs(A(i, i)));
     if (A.rows() == 0) return;
@@ -237,6 +267,12 @@ class DenseSolver final : public LinearSolver {
         throw SingularMatrixError(perm(i), "zero pivot in the factorization");
       }
     }
+    for (int i = 0; i < d.size(); ++i)
+      if (d(i) < 0.0 && negative_pivots_++ == 0) {
+        Eigen::VectorXi perm = Eigen::VectorXi::LinSpaced(A.rows(), 0, A.rows() - 1);
+        perm = ldlt_.transpositionsP() * perm;
+        first_negative_row_ = perm(i);
+      }
   }
   VectorXd solve(const VectorXd& b) override {
     ScopedTimer timer(counters_.solve_seconds);

@@ -52,9 +52,15 @@ class LinearSolver {
   virtual MatrixXd solve(const MatrixXd& B) = 0;
   virtual std::string name() const = 0;
   const SolverCounters& counters() const { return counters_; }
+  /// Negative pivots of the last factorization (an indefinite matrix factored as LDLᵀ) and the
+  /// 0-based row of the (unpermuted) matrix where the first one is (-1 when none).
+  int negative_pivots() const { return negative_pivots_; }
+  int first_negative_pivot_row() const { return first_negative_row_; }
 
  protected:
   SolverCounters counters_;
+  int negative_pivots_ = 0;
+  int first_negative_row_ = -1;
 };
 
 enum class LinearSolverKind { Auto, Cholmod, Dense };

@@ -1,6 +1,7 @@
 #include "nonlinear/newton_raphson.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace impactfe {
 
@@ -19,6 +20,10 @@ NewtonResult NewtonRaphson::solve(NonlinearProblem& problem, VectorXd& u) const 
     result.history.push_back(residual_norm);
     result.residual_norm = residual_norm;
     result.reference = test_.reference(reference);
+    if (!std::isfinite(residual_norm)) {  // more iterations cannot repair a NaN or an overflow
+      result.finite = false;
+      break;
+    }
     // The first evaluation converges only when nothing is out of balance: a predictor is never
     // accepted on a relative criterion alone.
     if (!unsettled && test_.force_converged(residual_norm, reference) &&

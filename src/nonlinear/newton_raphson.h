@@ -48,6 +48,7 @@ struct NewtonResult {
   int iterations = 0;           // equilibrium iterations (corrections applied)
   double residual_norm = 0.0;   // at the last evaluation
   double reference = 0.0;       // with MINREF applied
+  bool finite = true;           // false: the residual became NaN or infinite (iteration stopped)
   std::vector<double> history;  // residual norm at each evaluation
 };
 

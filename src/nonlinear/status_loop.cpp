@@ -27,8 +27,9 @@ int StatusLoop::update(const VectorXd& u, const StepLabel& where) {
     if (++flips_[e] == chatter_limit_) {
       elements_[e]->freeze_status(true);
       Log::warn(
-          "load step {} substep {} (t = {:g}): element {} changed status {} times; status frozen "
-          "for the rest of the step",
+          "load step {} substep {} (t = {:g}): element {} changed status {} times (open/closed "
+          "chatter); status frozen for the rest of the step. A smaller time step (DELTIM / DTIME) "
+          "resolves the contact",
           where.load_step, where.substep, where.time, elements_[e]->id(), chatter_limit_);
     }
   }

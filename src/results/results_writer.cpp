@@ -545,10 +545,11 @@ ResultsWriter::ResultsWriter(const std::string& path, const Model& model)
   Handle fapl = h5::file_access_checksummed();
   Handle fcpl = h5::checksummed_group_creation_list(true);
   hid_t f = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, fcpl, fapl);
+  // Exit status 2 (the run cannot keep its results), with the system's reason.
   if (f < 0) {
     const std::string detail = h5::error_detail();
-    throw InputError(fmt::format("cannot create results file '{}'{}", path,
-                                 detail.empty() ? "" : ": " + detail));
+    throw SolutionError(fmt::format("cannot create results file '{}'{}", path,
+                                    detail.empty() ? "" : ": " + detail));
   }
   impl_->file = Handle(f);
   try {
@@ -628,6 +629,11 @@ void ResultsWriter::append(const TimePoint& point) {
 
   for (const auto& [family, table] : point.element_results) m.write_family(family, table);
   m.finish_append();
+  // The rows reach the file before `time` grows: HDF5 writes dirty chunks and metadata in an
+  // order of its own at a flush (or a cache eviction), so with one flush per point a run killed
+  // during that flush could leave `time` one point longer than the rows on disk (NaN read
+  // back for a point the file claims; CrashSafety.KilledExpansionPassKeepsCompletedSteps).
+  m.flush();
 
   // Counters and time last: a reader takes the length of `time` as the number of complete
   // points, so a run killed in the middle of an append shows only whole points.

@@ -30,7 +30,9 @@ void warn_if_conditionally_stable(const GeneralizedAlphaParameters& p) {
 
 }  // namespace
 
-std::unique_ptr<TimeIntegrator> make_time_integrator(const AnalysisOptions& options) {
+namespace {
+
+std::unique_ptr<TimeIntegrator> make_integrator(const AnalysisOptions& options) {
   const TimeIntegrationParameters& t = options.tintp;
   switch (options.integrator) {
     case IntegratorKind::Houbolt:
@@ -69,6 +71,18 @@ std::unique_ptr<TimeIntegrator> make_time_integrator(const AnalysisOptions& opti
     }
   }
   return make_houbolt();
+}
+
+}  // namespace
+
+std::unique_ptr<TimeIntegrator> make_time_integrator(const AnalysisOptions& options) {
+  try {
+    return make_integrator(options);
+  } catch (const InputError& e) {
+    // Bad parameters come from TINTP: name it.
+    if (e.where().known() || !options.tintp.where.known()) throw;
+    throw InputError(options.tintp.where, e.message());
+  }
 }
 
 }  // namespace impactfe

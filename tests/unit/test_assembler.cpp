@@ -3,9 +3,14 @@
 // linear elements are K u; the frame-acceleration load is -M r a.
 #include <gtest/gtest.h>
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 #include "../support/dense_assembly.h"
 #include "assembly/assembler.h"
 #include "assembly/loads.h"
+#include "core/errors.h"
 
 namespace impactfe {
 namespace {
@@ -105,6 +110,71 @@ TEST(Assembler, PatternIsBuiltOnceAndReused) {
   assembler.assemble({2.0, 0.0, 0.0}, zero, zero, Assembler::Output{&eff, nullptr, nullptr});
   EXPECT_EQ(eff.innerIndexPtr(), inner);  // same storage: values refilled in place
   EXPECT_EQ(eff.nonZeros(), assembler.pattern().nonZeros());
+}
+
+/// `n` separate LINK1 bars of unit length along X: bar e joins nodes 2e-1 and 2e.
+Model separate_bars(int n) {
+  Model m;
+  ElementType t;
+  t.id = 1;
+  t.ansys_name = "LINK1";
+  m.element_types[1] = t;
+  m.real_sets[1] = RealSet{1, {0.1}};
+  Material mat;
+  mat.id = 1;
+  mat.props = {{"EX", 100.0}};
+  m.materials[1] = mat;
+  for (int e = 1; e <= n; ++e) {
+    m.nodes[2 * e - 1] = Node{2 * e - 1, Vec3(0.0, e, 0.0), Vec3::Zero()};
+    m.nodes[2 * e] = Node{2 * e, Vec3(1.0, e, 0.0), Vec3::Zero()};
+    ElementRecord r;
+    r.id = e;
+    r.nodes = {2 * e - 1, 2 * e};
+    m.elements[r.id] = r;
+  }
+  return m;
+}
+
+TEST(Assembler, ElementFailureInParallelTangentPhaseIsRethrownForTheFirstElement) {
+  // Large deflection: the bars are co-rotational (nonlinear), so their tangents are evaluated in
+  // the tangent phase, here forced onto several threads. Bars 37 and 150 collapse (node j moved
+  // onto node i): the exception must leave the parallel region as a SolutionError of bar 37, the
+  // first in element order, whatever thread met which bar first, and never terminate.
+  const int n = 200;
+  const Model m = separate_bars(n);
+  const auto elements = build(m);
+  const DofMap dofs(elements, {});
+  ElementContext ctx;
+  ctx.large_deflection = true;
+  const Assembler assembler(elements, dofs, ctx);
+  ASSERT_EQ(assembler.n_nonlinear_elements(), n);
+  assembler.force_parallel_tangents();
+#ifdef _OPENMP
+  const int threads_before = omp_get_max_threads();
+  omp_set_num_threads(4);
+#endif
+  VectorXd u = VectorXd::Zero(dofs.n_active());
+  for (int e : {150, 37}) u(dofs.index(DofKey{2 * e, Dof::UX})) = -1.0;
+  const VectorXd v = VectorXd::Zero(dofs.n_active());
+  VectorXd f_int;
+  for (int repeat = 0; repeat < 20; ++repeat) {
+    try {
+      assembler.assemble({1.0, 0.0, 0.0}, u, v, Assembler::Output{nullptr, &f_int, nullptr});
+      ADD_FAILURE() << "no error for the collapsed bars";
+    } catch (const ElementSolutionError& e) {
+      EXPECT_EQ(e.element(), 37);
+      EXPECT_NE(std::string(e.what()).find("element 37 collapsed"), std::string::npos);
+    }
+  }
+  // Without a collapsed bar the parallel phase gives the serial internal forces: bar 37
+  // shortened by half carries -EA/2 at its end node.
+  u(dofs.index(DofKey{2 * 150, Dof::UX})) = 0.0;
+  u(dofs.index(DofKey{2 * 37, Dof::UX})) = -0.5;
+  assembler.assemble({1.0, 0.0, 0.0}, u, v, Assembler::Output{nullptr, &f_int, nullptr});
+  EXPECT_NEAR(f_int(dofs.index(DofKey{2 * 37, Dof::UX})), -5.0, 1e-12);
+#ifdef _OPENMP
+  omp_set_num_threads(threads_before);
+#endif
 }
 
 }  // namespace

@@ -1,0 +1,158 @@
+// libFuzzer harness over the deck reader and the model builder (issue 12; scripts/fuzz.sh).
+//
+// Every input is read as a deck with read_deck_text and no solution host: the lexer, the
+// expressions, the command handlers and the model checks run, and the only acceptable outcomes
+// are a Job or a user error that names the deck (InputError & co., LocatedError). Anything else
+// is a finding: InternalError, a library exception in its own words, a sanitizer report, a
+// crash, or an input that takes more than a second (run with -timeout=1).
+//
+// When the deck builds a small model, the cheapest solve runs too: the deck is read again with
+// a JobSession in a temporary directory, so the element factories, the structure checks, the
+// drivers and the results writer see the fuzzed model. Bounds keep every input fast: at most
+// kMaxSolveNodes nodes and elements, kMaxSolveSubsteps substeps and kMaxSolveIterations
+// equilibrium iterations per substep. Decks that name files the solve would write (/FILNAME,
+// SEOPT) are not solved, so that no input can write outside the temporary directory.
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+#include "analysis/job_session.h"
+#include "core/errors.h"
+#include "core/log.h"
+#include "deck/deck_reader.h"
+
+namespace fs = std::filesystem;
+using namespace impactfe;
+
+namespace {
+
+constexpr std::size_t kMaxInput = 16384;      // bytes of deck text
+constexpr std::size_t kMaxReadNodes = 20000;  // model size limits of the read
+constexpr std::size_t kMaxSolveNodes = 40;    // model size of an input that is solved
+constexpr double kMaxSolveSubsteps = 200.0;   // substeps over all load steps
+constexpr int kMaxSolveIterations = 30;       // NEQIT
+constexpr int kMaxSolveModes = 20;            // MODOPT
+
+fs::path work_directory;
+
+/// A finding: print what happened and abort, so that libFuzzer saves the input.
+[[noreturn]] void finding(const char* what, const std::string& message) {
+  std::fprintf(stderr, "\n==== fuzz_deck finding: %s: %s\n", what, message.c_str());
+  std::fflush(stderr);
+  std::abort();
+}
+
+bool contains_upper(const std::string& text, const char* word) {
+  std::string upper(text);
+  for (char& c : upper) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return upper.find(word) != std::string::npos;
+}
+
+/// Substeps the job would run, over every load step (an upper estimate; huge when unknown).
+double substeps_of(const Job& job) {
+  double total = 0.0;
+  for (const auto& step : job.steps) {
+    if (step.expansion) total += 1.0;
+    if (!step.analysis) continue;
+    const AnalysisOptions& o = step.analysis->options;
+    if (o.convergence.max_iterations > kMaxSolveIterations) return 1e300;
+    if (o.modal.n_modes > kMaxSolveModes || o.msup_modes > kMaxSolveModes) return 1e300;
+    double t_prev = 0.0;
+    double reduced_dt = 0.0;
+    for (const LoadStep& ls : step.analysis->load_steps) {
+      const double t_end = ls.time_end.value_or(t_prev + 1.0);
+      const double span = std::abs(t_end - t_prev);
+      double n = ls.n_substeps ? std::max(1, *ls.n_substeps) : 1.0;
+      if (ls.dt && *ls.dt > 0.0) {
+        n = span / *ls.dt;
+        if (reduced_dt == 0.0) reduced_dt = *ls.dt;
+      } else if (reduced_dt > 0.0) {
+        n = std::max(n, span / reduced_dt);  // reduced / MSUP keep the first DTIME
+      }
+      if (!std::isfinite(n)) return 1e300;
+      total += n + 1.0;
+      t_prev = t_end;
+    }
+  }
+  return total;
+}
+
+bool small_enough_to_solve(const Job& job, const std::string& text) {
+  if (job.steps.empty()) return false;
+  if (contains_upper(text, "FILN") || contains_upper(text, "SEOP")) return false;
+  for (const auto& step : job.steps) {
+    const Model& m = step.model_snapshot;
+    if (m.nodes.size() > kMaxSolveNodes || m.elements.size() > kMaxSolveNodes) return false;
+  }
+  return substeps_of(job) <= kMaxSolveSubsteps;
+}
+
+/// Runs `read` and checks that whatever it throws is a user error naming the deck.
+template <class Read>
+void expect_user_error_only(const char* phase, Read read) {
+  try {
+    read();
+  } catch (const InternalError& e) {
+    finding(phase, std::string("internal error: ") + e.what());
+  } catch (const LocatedError& e) {
+    // The contract: a message for the user that names the deck command that caused it.
+    if (e.message().empty()) finding(phase, "empty error message");
+    if (!e.where().known()) finding(phase, std::string("error without FILE:LINE: ") + e.what());
+  } catch (const std::bad_alloc&) {
+    finding(phase, "std::bad_alloc (a resource bound is missing)");
+  } catch (const std::exception& e) {
+    finding(phase, std::string("untranslated exception: ") + e.what());
+  }
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerInitialize(int*, char***) {
+  Log::set_sink([](LogLevel, const std::string&) {});
+  work_directory = fs::temp_directory_path() / ("impactfe_fuzz_" + std::to_string(::getpid()));
+  fs::create_directories(work_directory);
+  fs::current_path(work_directory);
+  std::atexit([] {
+    std::error_code ec;
+    fs::current_path(fs::temp_directory_path(), ec);
+    fs::remove_all(work_directory, ec);
+  });
+  return 0;
+}
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  if (size > kMaxInput) return -1;  // not added to the corpus
+  const std::string text(reinterpret_cast<const char*>(data), size);
+  const std::string path = (work_directory / "fuzz.inp").string();
+  Log::clear();
+
+  DeckOptions options;
+  options.max_nodes = kMaxReadNodes;
+  options.max_elements = kMaxReadNodes;
+  options.jobname = "fuzz";
+  Job job;
+  bool built = false;
+  expect_user_error_only("read", [&] {
+    job = read_deck_text(text, path, options);
+    built = true;
+  });
+  if (!built || !small_enough_to_solve(job, text)) return 0;
+
+  // The cheapest solve: the same deck with a job session in the work directory.
+  expect_user_error_only("solve", [&] {
+    RunSettings settings;
+    RunStatistics stats;
+    JobSession session("fuzz", settings, stats);
+    DeckOptions solve_options = options;
+    solve_options.host = &session;
+    read_deck_text(text, path, solve_options);
+  });
+  Log::clear();
+  return 0;
+}
