@@ -208,11 +208,12 @@ struct ExpansionPassRequest {
   SourceLocation where;
 };
 
-/// A raw deck command kept for a later stage (POST1/POST26 blocks, *DO replays).
-struct StoredCommand {
-  std::string name;
-  std::vector<std::string> fields;
-  SourceLocation where;
+/// CM: a named, frozen list of entity numbers of one kind (APDL_MODELING §1.7). Later
+/// selection changes do not alter it; entities deleted later drop out when it is used.
+struct Component {
+  std::string entity;    // "NODE", "ELEM" (solid-model kinds: "KP", "LINE", "AREA", "VOLU")
+  std::vector<int> ids;  // ascending
+  SourceLocation where;  // the CM command
 };
 
 /// Everything the deck defines. Node and element maps are ordered by user id.
@@ -231,6 +232,7 @@ struct Model {
   std::vector<DofKey> masters;                            // M, in input order, no duplicates
   std::vector<GapCondition> gap_conditions;               // GP, in input order
   std::map<DofKey, InitialCondition> initial_conditions;  // IC
+  std::map<std::string, Component> components;            // CM, by upper-case name
 
   /// Current (not yet written) load state and options; LWRITE/LSWRITE/SOLVE snapshot it.
   AnalysisOptions options;
@@ -240,7 +242,7 @@ struct Model {
   const ElementType& element_type(int id) const;
 };
 
-/// The parsed deck: the final model and the ordered solution/expansion/post requests.
+/// The parsed deck: the final model and the ordered solution and expansion requests.
 struct Job {
   Model model;
   /// In execution order; each entry is either an analysis or an expansion pass.
@@ -250,8 +252,6 @@ struct Job {
     Model model_snapshot;  // model (geometry, elements, masters, gaps) as of this request
   };
   std::vector<Step> steps;
-  /// POST1 / POST26 commands in order (executed by the post-processing stage).
-  std::vector<StoredCommand> post_commands;
   std::vector<std::string> ignored_commands;  // graphics / print-only commands, listed in the log
 };
 

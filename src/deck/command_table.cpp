@@ -2,6 +2,7 @@
 #include <algorithm>
 
 #include "deck/deck_context.h"
+#include "deck/language_standin.h"
 
 namespace impactfe::deck {
 
@@ -32,7 +33,12 @@ const std::vector<CommandSpec>& command_table() {
     register_generation_commands(t);
     register_solution_commands(t);
     register_load_commands(t);
-    register_post_commands(t);
+    register_selection_commands(t);
+    register_get_commands(t);
+    register_post1_commands(t);
+    register_post1_plot_commands(t);
+    register_post26_commands(t);
+    register_language_standin_commands(t);  // removed when the language branch merges
     return t;
   }();
   return table;

@@ -1,9 +1,10 @@
 #pragma once
 /// Internal state of one deck read: the model being built, the current processor, the
 /// parameters, the 4x load-step list and the modern open analysis. Shared by the handler files
-/// (prep7_commands.cpp, solution_commands.cpp, post_commands.cpp, session_commands.cpp); not a
-/// public interface.
+/// (prep7_commands.cpp, solution_commands.cpp, selection_commands.cpp, post1_commands.cpp, ...);
+/// not a public interface.
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -13,6 +14,7 @@
 #include "deck/deck_reader.h"
 #include "deck/expression.h"
 #include "deck/lexer.h"
+#include "deck/selection.h"
 #include "deck/solution_host.h"
 
 namespace impactfe::deck {
@@ -70,7 +72,13 @@ void register_prep7_commands(std::vector<CommandSpec>& table);
 void register_generation_commands(std::vector<CommandSpec>& table);
 void register_solution_commands(std::vector<CommandSpec>& table);
 void register_load_commands(std::vector<CommandSpec>& table);
-void register_post_commands(std::vector<CommandSpec>& table);
+void register_selection_commands(std::vector<CommandSpec>& table);
+void register_get_commands(std::vector<CommandSpec>& table);
+void register_post1_commands(std::vector<CommandSpec>& table);
+void register_post1_plot_commands(std::vector<CommandSpec>& table);
+void register_post26_commands(std::vector<CommandSpec>& table);
+
+struct PostState;
 
 class DeckReader {
  public:
@@ -98,8 +106,9 @@ class DeckReader {
   void ignore(const Command& c);
 
   // ---- model helpers ---------------------------------------------------------------------
-  /// Node numbers NODE..NEND step NINC (field numbers given); NODE may be ALL. Missing nodes in a
-  /// range are skipped; a single missing node (or an empty range) is an error.
+  /// Node numbers NODE..NEND step NINC (field numbers given); NODE may be ALL (the selected
+  /// nodes) or a component name. Missing nodes in a range are skipped; a single missing node (or
+  /// an empty range, or nothing selected) is an error.
   std::vector<int> node_range(const Command& c, int node_field, int end_field, int inc_field);
   void require_node(const Command& c, int id) const;
   /// Checks the node count against the element type and stores the record (repeats allowed).
@@ -158,6 +167,12 @@ class DeckReader {
   // MDAMP memory.
   int mdamp_next = 1;
 
+  // Selection (NSEL, ESEL, ...; components are in the Model) and post-processing state (the
+  // current POST1 set, element table, plot settings, POST26 variables: deck/post_state.h).
+  Selection selection;
+  std::shared_ptr<PostState> post;
+  std::size_t solutions = 0;  // solution requests handed to the host so far
+
  private:
   void run(const std::vector<RawCommand>& cmds, std::size_t begin, std::size_t end, int depth);
   std::size_t find_block_end(const std::vector<RawCommand>& cmds, std::size_t begin,
@@ -170,15 +185,11 @@ class DeckReader {
   void run_macro(const Command& c, const std::string& name, int depth);
   Command resolve(const RawCommand& raw);
   void dispatch(const Command& c, const CommandSpec& spec);
-  void store_post(const Command& c);
 
   std::string last_name_;
   bool eof_ = false;
-  friend void store_post_command(DeckReader& r, const Command& c);
 };
 
-/// Stores a POST1/POST26 command (parameters substituted) into Job::post_commands.
-void store_post_command(DeckReader& r, const Command& c);
 /// DOF labels of D/M/DDELE: Lab in `lab_field`, extra labels in `extra_first..extra_last`. In 4x a
 /// DOF label in a numeric range field (`end_field`, `inc_field`) starts the extra-label list
 /// (APDL_SUBSET §1.11); the range fields it consumes are set to 0. ALL gives all six DOFs.

@@ -11,6 +11,8 @@
 #include <sstream>
 
 #include "deck/deck_context.h"
+#include "deck/language_standin.h"
+#include "deck/post_support.h"
 #include "elements/element_registry.h"
 
 namespace impactfe {
@@ -173,10 +175,12 @@ void DeckReader::require_node(const Command& c, int id) const {
 std::vector<int> DeckReader::node_range(const Command& c, int node_field, int end_field,
                                         int inc_field) {
   std::vector<int> out;
-  if (label(c, node_field) == "ALL") {
-    for (const auto& [id, node] : model.nodes) out.push_back(id);
-    if (out.empty()) fail(c, "ALL: no nodes are defined");
-    return out;
+  // ALL = the selected nodes; a component name = its nodes (APDL_MODELING §1.9).
+  const std::string first_label = label(c, node_field);
+  if (first_label == "ALL") return require_selected_nodes(*this, c);
+  if (auto members = component_members(*this, c, first_label, "NODE")) {
+    if (members->empty()) fail(c, fmt::format("component {} has no existing nodes", first_label));
+    return *members;
   }
   const auto first = opt_int(c, node_field);
   if (!first) fail(c, fmt::format("field {}: node number missing", node_field));
@@ -265,6 +269,7 @@ void DeckReader::validate_elements() {
 }
 
 void DeckReader::solve_step(std::size_t step) {
+  ++solutions;  // results read before this request are out of date
   if (options.host != nullptr) options.host->solve(job, step);
 }
 
@@ -495,6 +500,13 @@ void DeckReader::run(const std::vector<RawCommand>& cmds, std::size_t begin, std
         if (!c.blank(a)) params.set(fmt::format("ARG{}", a - 1), real(c, a, 0.0));
       run_macro(c, name, depth);
       ++i;
+      continue;
+    }
+    if (c.name == "*VWRITE") {  // language stand-in: the next line is the format
+      if (i + 1 >= end) fail(c, "format line missing after *VWRITE");
+      const RawCommand& f = cmds[i + 1];
+      standin_vwrite(*this, c, f.name + (f.rest.empty() ? "" : "," + f.rest));
+      i += 2;
       continue;
     }
     if (c.name == "/EOF") {

@@ -402,6 +402,17 @@ ElementTypeDescriptor brick_type(const char* name, int number, bool solid185) {
           .needs_material = true,
           .vtk_cell = VtkCell::Hexahedron,
           .result_names = kBrick8Results,
+          .result_sequences = {{"S", "X", "SX"},
+                               {"S", "Y", "SY"},
+                               {"S", "Z", "SZ"},
+                               {"S", "XY", "SXY"},
+                               {"S", "YZ", "SYZ"},
+                               {"S", "XZ", "SXZ"},
+                               {"S", "1", "S1"},
+                               {"S", "2", "S2"},
+                               {"S", "3", "S3"},
+                               {"S", "INT", "SINT"},
+                               {"S", "EQV", "SEQV"}},
           .create = [solid185](const ElementBuildContext& ctx, const ElementRecord& record) {
             return make_brick8(ctx, record, solid185);
           }};

@@ -399,6 +399,17 @@ ElementTypeDescriptor shell_type(const char* name, int number, bool shell181) {
       .section_types = {"SHELL"},
       .vtk_cell = VtkCell::Quad,
       .result_names = kShell4Results,
+      // S at the top surface (MAPDL's default shell location); SMISC 1-6 = T and M resultants.
+      .result_sequences = {{"S", "X", "SX_TOP"},
+                           {"S", "Y", "SY_TOP"},
+                           {"S", "XY", "SXY_TOP"},
+                           {"S", "EQV", "SEQV_TOP"},
+                           {"SMISC", "1", "TX"},
+                           {"SMISC", "2", "TY"},
+                           {"SMISC", "3", "TXY"},
+                           {"SMISC", "4", "MX"},
+                           {"SMISC", "5", "MY"},
+                           {"SMISC", "6", "MXY"}},
       .note = shell181 ? "SHELL181 is computed with the SHELL63 kernel (thin elastic shell)" : "",
       .create = [shell181](const ElementBuildContext& ctx, const ElementRecord& record) {
         return make_shell4(ctx, record, shell181);

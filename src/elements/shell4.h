@@ -51,6 +51,8 @@ class Shell4 : public Element {
   /// B != nullptr, its derivative B = ∂d/∂u (co-rotational kinematics). Exposed for tests.
   void corotational_kinematics(const Eigen::VectorXd& u, Eigen::VectorXd& d,
                                Eigen::MatrixXd* B) const;
+  /// ∫t dA of the facet.
+  std::optional<double> volume() const override { return kernel_->volume(); }
   const shell::FlatShellKernel& kernel() const { return *kernel_; }
   int n_nodes() const { return n_; }
 
