@@ -34,6 +34,7 @@ const std::vector<CommandSpec>& command_table() {
     register_solution_commands(t);
     register_load_commands(t);
     register_selection_commands(t);
+    register_component_commands(t);
     register_get_commands(t);
     register_post1_commands(t);
     register_post1_plot_commands(t);

@@ -73,6 +73,7 @@ void register_generation_commands(std::vector<CommandSpec>& table);
 void register_solution_commands(std::vector<CommandSpec>& table);
 void register_load_commands(std::vector<CommandSpec>& table);
 void register_selection_commands(std::vector<CommandSpec>& table);
+void register_component_commands(std::vector<CommandSpec>& table);
 void register_get_commands(std::vector<CommandSpec>& table);
 void register_post1_commands(std::vector<CommandSpec>& table);
 void register_post1_plot_commands(std::vector<CommandSpec>& table);
