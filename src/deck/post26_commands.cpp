@@ -437,12 +437,9 @@ void cmd_plvar(DeckReader& r, const Command& c) {
   for (int n : vars) {
     GraphCurve g;
     g.name = fmt::format("{} {}", n, n == 1 ? "TIME" : ps.variables.at(n).name);
-    const auto y = post26_values(r, c, n);
-    for (std::size_t k = 0; k < x.size(); ++k)
-      if (in_prtime(ps, ps.times[k])) {
-        g.x.push_back(x[k]);
-        g.y.push_back(y[k]);
-      }
+    // All stored points (TIMERANGE limits those); PRTIME limits listings only, /XRANGE the axis.
+    g.x = x;
+    g.y = post26_values(r, c, n);
     curves.push_back(std::move(g));
   }
   GraphOptions o;
