@@ -127,5 +127,29 @@ TEST(ThesisPostDecks, ResultsOptionAndMissingResults) {
   EXPECT_EQ(legends(read_file(other / "pendulum1_post000.svg")).size(), 20u);
 }
 
+// examples/crash1_post26.inp, the POST26 companion of the thesis car crash (case 1), run against
+// the results of crash1.inp: its target / computed / ratio table against the exact lumped
+// elastic-bar values of REFERENCE §2 (max |UX| of nodes 7 and 1 within 0.5 %, max gap force within
+// 2 %, peak stresses of elements 6 and 1 within 3 %) and its three PLVAR graphs.
+TEST(ThesisPostDecks, Crash1Post26CurvesMatchTheReference) {
+  const fs::path dir = fresh_directory("post_crash1_post26");
+  run_deck_in(deck("crash1.inp"), dir);
+  run_post_deck(std::string(IMPACTFE_TEST_DECKS) + "/../../examples/crash1_post26.inp", dir);
+  std::ifstream table(dir / "crash1_post26.txt");
+  ASSERT_TRUE(table.good());
+  const double tolerance[5] = {0.005, 0.005, 0.02, 0.03, 0.03};
+  double target = 0.0, computed = 0.0, ratio = 0.0;
+  int row = 0;
+  while (table >> target >> computed >> ratio) {
+    ASSERT_LT(row, 5);
+    EXPECT_NEAR(ratio, computed / target, 1e-6) << "row " << row;
+    EXPECT_NEAR(ratio, 1.0, tolerance[row]) << "row " << row;
+    ++row;
+  }
+  EXPECT_EQ(row, 5);
+  for (const char* svg : {"crash1_post26000.svg", "crash1_post26001.svg", "crash1_post26002.svg"})
+    EXPECT_NE(read_file(dir / svg).find("<polyline"), std::string::npos) << svg;
+}
+
 }  // namespace
 }  // namespace impactfe
