@@ -11,7 +11,7 @@ Models (all in in, lbf, s; steel-like material):
   link_bar_N.inp         LINK180 bar of N elements pushed by a step force into a wall gap,
                          reduced transient (TRNOPT,REDUC, UX masters every N/32 nodes, GP gap).
 
-Usage: generate_models.py [--out DIR] [--sizes small|default|large]
+Usage: generate_models.py [--out DIR] [--sizes smoke|small|default|large]
 """
 import argparse
 import os
@@ -190,6 +190,7 @@ def link_bar(n, steps=600):
 
 
 SIZES = {
+    "smoke": dict(shell=[10], shell_nl=[], solid=[(4, 2)], bar=[256]),  # CI: seconds in all
     "small": dict(shell=[10], shell_nl=[10], solid=[(6, 2)], bar=[256]),
     "default": dict(shell=[20, 40, 80], shell_nl=[20], solid=[(8, 2), (16, 4)], bar=[1024, 8192]),
     "large": dict(shell=[20, 40, 80, 160], shell_nl=[20, 40], solid=[(8, 2), (16, 4), (24, 6)],

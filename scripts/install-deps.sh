@@ -8,9 +8,10 @@ $SUDO apt-get update
 $SUDO apt-get install -y --no-install-recommends \
   build-essential cmake ninja-build pkg-config \
   libeigen3-dev libsuitesparse-dev libmetis-dev libspectra-dev \
-  libcli11-dev libfmt-dev libhdf5-dev \
+  libcli11-dev libfmt-dev libhdf5-dev libopenblas0-openmp zlib1g-dev \
   libgtest-dev libgmock-dev libbenchmark-dev \
-  clang-format python3 nlohmann-json3-dev chromium fonts-dejavu-core
+  clang-format python3 nlohmann-json3-dev chromium fonts-dejavu-core \
+  python3-numpy python3-h5py python3-pandas python3-pytest python3-vtk9
 # node and npm fetch the report page's libraries at build time (report/package-lock.json); the
 # machine image may already carry a newer node, which is kept.
 if ! command -v node >/dev/null 2>&1 || ! command -v npm >/dev/null 2>&1; then

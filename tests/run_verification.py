@@ -13,6 +13,19 @@ Expectation lines in the deck (comments, so the deck stays a valid APDL deck):
         first stored time at which the item satisfies op (GE, LE) the threshold
   ! EXPECT: FREQ <mode> = <hz> RTOL <rel>                         modal frequency
   ! EXPECT: EXIT <status>                                         exit status of the run
+  ! EXPECT: FILE <name> COLUMN <j> = <value> TOL|RTOL <tol>       every row of the text file
+        <name> (written by the deck in its working directory, e.g. through /OUT or *CFOPEN)
+        whose whitespace-separated token j (1-based) is a number: that number (e.g. a ratio
+        column of a *VWRITE target / computed / ratio table); at least one such row
+  ! EXPECT: FILE <name> ROW <i> COLUMN <j> = <value> TOL|RTOL <tol>   the i-th such row only
+  ! EXPECT: FILE <name> ROWS <n>                                  number of rows with a number
+        in their first token
+  ! EXPECT: FILE <name> LINE <n> IS <text>                        line n is <text> (trailing
+        blanks are not compared)
+  ! EXPECT: STDOUT CONTAINS <text>                                the run printed <text>
+  ! EXPECT: WARNING <text>      the run warned with <text> on stderr and in <job>.log
+  ! EXPECT: NOWARNING <text>    no warning containing <text>
+  ! EXPECT: LOG <text>          <job>.log contains <text> (e.g. the run summary)
 `AT <time>` picks the stored point nearest to <time> (within 1e-9 relative), or interpolates
 linearly between stored points when the time lies between them.
 """
@@ -63,6 +76,67 @@ def check(name, got, want, tol, rel=False):
     return ok
 
 
+def number(token):
+    try:
+        return float(token)
+    except ValueError:
+        return None
+
+
+def numeric_rows(path, column):
+    """Rows of a text file whose token `column` (1-based) is a number, as (line, value)."""
+    if not os.path.exists(path):
+        fail("file %s was not written" % path)
+    rows = []
+    with open(path) as f:
+        for line in f:
+            tok = line.split()
+            if len(tok) >= column and number(tok[column - 1]) is not None:
+                rows.append((line.rstrip("\n"), number(tok[column - 1])))
+    return rows
+
+
+def check_file(e, work, stdout):
+    """FILE / STDOUT expectations; returns True when met."""
+    m = re.match(r"STDOUT\s+CONTAINS\s+(.*)$", e)
+    if m:
+        ok = m.group(1) in stdout
+        print("%s %s" % ("ok  " if ok else "FAIL", e))
+        return ok
+    m = re.match(r"FILE\s+(\S+)\s+LINE\s+(\d+)\s+IS(?:\s(.*))?$", e)
+    if m:
+        path = os.path.join(work, m.group(1))
+        if not os.path.exists(path):
+            fail("file %s was not written" % path)
+        lines = open(path).read().split("\n")
+        n = int(m.group(2))
+        got = lines[n - 1] if n <= len(lines) else None
+        ok = got is not None and got.rstrip() == (m.group(3) or "").rstrip()
+        print("%s %s (got %r)" % ("ok  " if ok else "FAIL", e, got))
+        return ok
+    m = re.match(r"FILE\s+(\S+)\s+ROWS\s+(\d+)$", e)
+    if m:
+        got = len(numeric_rows(os.path.join(work, m.group(1)), 1))
+        ok = got == int(m.group(2))
+        print("%s %s (got %d)" % ("ok  " if ok else "FAIL", e, got))
+        return ok
+    m = re.match(r"FILE\s+(\S+)\s+(?:ROW\s+(\d+)\s+)?COLUMN\s+(\d+)\s*=\s*(\S+)\s+(TOL|RTOL)\s+(\S+)$", e)
+    if not m:
+        fail("bad EXPECT line: " + e)
+    name, row, column, want, tk, tol = m.groups()
+    rows = numeric_rows(os.path.join(work, name), int(column))
+    if not rows:
+        fail("%s: no row with a number in column %s" % (name, column))
+    if row:
+        if int(row) > len(rows):
+            fail("%s: only %d numeric rows" % (name, len(rows)))
+        rows = [rows[int(row) - 1]]
+    ok = True
+    for line, got in rows:
+        ok &= check("%s [%s]" % (e, line.strip()), got, float(want), float(tol), tk == "RTOL")
+    return ok
+
+
 def main():
     binary, deck, outdir = sys.argv[1], sys.argv[2], sys.argv[3]
     stem = os.path.splitext(os.path.basename(deck))[0]
@@ -90,6 +164,24 @@ def main():
     for e in expects:
         tok = e.split()
         if tok[0] == "EXIT":
+            continue
+        if tok[0] in ("FILE", "STDOUT"):
+            all_ok &= check_file(e, work, run.stdout)
+            continue
+        if tok[0] in ("WARNING", "NOWARNING", "LOG"):
+            text = e[len(tok[0]):].strip()
+            with open(os.path.join(work, stem + ".log")) as f:
+                log = f.read()
+            if tok[0] == "LOG":
+                ok = text in log
+            else:
+                warned = [ln for ln in run.stderr.splitlines() if ln.startswith("warning:")]
+                logged = [ln for ln in log.splitlines() if ln.startswith("warning:")]
+                in_err = any(text in ln for ln in warned)
+                in_log = any(text in ln for ln in logged)
+                ok = (in_err and in_log) if tok[0] == "WARNING" else not (in_err or in_log)
+            print("%s %s" % ("ok  " if ok else "FAIL", e))
+            all_ok &= ok
             continue
         if tok[0] in ("NSOL", "RSOL", "ESOL"):
             m = re.match(r"(\w+)\s+(\d+)\s+(\w+)\s+AT\s+(\S+)\s*=\s*(\S+)\s+(TOL|RTOL)\s+(\S+)$", e)

@@ -1,5 +1,6 @@
 #include "analysis/direct_solution.h"
 
+#include <Eigen/Cholesky>
 #include <Eigen/SparseCholesky>
 #include <cmath>
 
@@ -63,18 +64,29 @@ void DirectSolution::set_constraints(const LoadStep& step) {
   assembler_ = std::make_unique<Assembler>(structure_.elements(), *dofs_, ctx_,
                                            structure_.options().alpha_damping,
                                            structure_.options().beta_damping);
+  assembler_->set_material_stiffness_damping(structure_.material_stiffness_damping());
   status_loop_ = std::make_unique<StatusLoop>(structure_.elements(), *assembler_);
   mass_all_ = assembler_->mass_matrix();
   frame_load_ = FrameAccelerationLoad(structure_.elements(), *dofs_, ctx_);
-  if (solver_) {  // keep the work of the previous numbering in the counts
-    retired_.analyses += solver_->counters().analyses;
-    retired_.factorizations += solver_->counters().factorizations;
-    retired_.solves += solver_->counters().solves;
-  }
+  // Keep the work of the previous numbering in the counts.
+  if (solver_) retired_ += solver_->counters();
+  if (condensation_) retired_ += condensation_->counters();
   solver_ = make_linear_solver(dofs_->n_free());
   effective_ = assembler_->pattern();
   factor_valid_ = false;
   stats_.n_dofs = dofs_->n_free();
+  condensation_.reset();
+  if (transient_ && settings_.condense && assembler_->n_nonlinear_elements() > 0) {
+    if (const auto why = LinearPartCondensation::refusal(*assembler_)) {
+      condensation_note_ = "condensed transient not used: " + *why;
+    } else {
+      condensation_ = std::make_unique<LinearPartCondensation>(*assembler_);
+      condensation_note_ = fmt::format(
+          "condensed transient: the linear part ({} free DOFs) is factorized once per time step "
+          "size and condensed onto the {} DOFs of the {} nonlinear elements",
+          dofs_->n_free(), condensation_->size(), assembler_->n_nonlinear_elements());
+    }
+  }
 }
 
 VectorXd DirectSolution::external_force(const LoadPoint& at) const {
@@ -161,6 +173,8 @@ void DirectSolution::solve_load_step(const LoadStep& step) {
       u_.tail(dofs_->n_constrained()) =
           prescribed_displacements(*dofs_, at0).tail(dofs_->n_constrained());
       if (dynamic) start_dynamics(at0, t.h);
+      // Initial velocities (IC) bring kinetic energy that the balance must count as put in.
+      energy_->set_initial_kinetic(0.5 * v_.dot(mass_all_ * v_));
       reactions_ = VectorXd::Zero(dofs_->n_active());
       acel_ = frame_acceleration(at0);
       store(t_end_, 0, 0, dynamic);
@@ -180,8 +194,14 @@ void DirectSolution::solve_load_step(const LoadStep& step) {
   for (int k = 1; k <= t.n_substeps; ++k) {
     const double time = t.t_start + k * t.h;
     const LoadPoint at{&step, previous, static_cast<double>(k) / t.n_substeps};
+    const int iterations_before = stats_.n_iterations;
+    const int changes_before = stats_.n_status_changes;
     solve_increment(at, StepLabel{step.number, k, time}, dynamic);
     ++stats_.n_substeps;
+    if (settings_.progress)
+      settings_.progress->substep_done({stats_.description, time, t.t_end, step.number, k,
+                                        t.n_substeps, t.h, stats_.n_iterations - iterations_before,
+                                        stats_.n_status_changes - changes_before});
     const bool last = k == t.n_substeps;
     const int every = step.output.every;
     if (last || (every > 0 && k % every == 0)) store(time, step.number, k, dynamic);
@@ -193,15 +213,26 @@ void DirectSolution::solve_load_step(const LoadStep& step) {
 }
 
 void DirectSolution::finish() {
-  if (transient_) stats_.notes.push_back(energy_->summary(time_, 0.5 * v_.dot(mass_all_ * v_)));
+  if (!condensation_note_.empty())
+    stats_.notes.push_back(condensed_steps_ + full_fallback_steps_ > 0
+                               ? fmt::format("{}; {} steps condensed, {} finished by full Newton",
+                                             condensation_note_, condensed_steps_,
+                                             full_fallback_steps_)
+                               : condensation_note_);
+  if (transient_) {
+    const double kinetic = 0.5 * v_.dot(mass_all_ * v_);
+    stats_.notes.push_back(energy_->summary(time_, kinetic));
+    if (const auto warning = energy_->balance_warning(kinetic)) Log::warn("{}", *warning);
+  }
   update_counters();
 }
 
 void DirectSolution::update_counters() {
-  const SolverCounters now = solver_ ? solver_->counters() : SolverCounters{};
-  stats_.n_analyses = retired_.analyses + now.analyses;
-  stats_.n_factorizations = retired_.factorizations + now.factorizations;
-  stats_.n_solves = retired_.solves + now.solves;
+  SolverCounters now = solver_ ? solver_->counters() : SolverCounters{};
+  if (condensation_) now += condensation_->counters();
+  SolverCounters total = retired_;
+  total += now;
+  record_solver_counters(stats_, total);
 }
 
 int DirectSolution::n_unknowns() const {
@@ -231,6 +262,142 @@ bool DirectSolution::update_status(const VectorXd& u) {
   if (changed == 0) return false;
   increment_.n_status_changes += changed;
   factor_valid_ = false;
+  return true;
+}
+
+namespace {
+
+/// The c part of a step of the condensed transient (linear_part_condensation.h): unknowns δ_c,
+/// residual ρ = S (y − δ_c) − [φ(δ_c) − φ(0)], tangent S + cK K_N + cC C_N. The nonlinear elements
+/// see the full state u0 + E δ_c (and v0 + (cC/wk) E δ_c: v is affine in u with that slope).
+class CondensedIncrement final : public NonlinearProblem {
+ public:
+  CondensedIncrement(const Assembler& assembler, LinearPartCondensation& condensation,
+                     StatusLoop& status_loop, const StepLabel& label,
+                     const IntegrationCoefficients& coeff, double wk, const VectorXd& u0,
+                     const VectorXd& v0, VectorXd y, double reference)
+      : assembler_(assembler),
+        condensation_(condensation),
+        status_loop_(status_loop),
+        label_(label),
+        coeff_(coeff),
+        wk_(wk),
+        u_(u0),
+        v_(v0),
+        u0_(u0),
+        v0_(v0),
+        y_(std::move(y)),
+        reference_(reference),
+        phi0_(VectorXd::Zero(condensation.size())) {
+    assembler_.assemble_nonlinear_part(coeff_, wk_, u_, v_, condensation_.position(), phi0_,
+                                       nullptr);
+  }
+
+  int n_unknowns() const override { return condensation_.size(); }
+  double residual(const VectorXd& delta, VectorXd& r, double& reference) override {
+    set_state(delta);
+    VectorXd phi = VectorXd::Zero(n_unknowns());
+    assembler_.assemble_nonlinear_part(coeff_, wk_, u_, v_, condensation_.position(), phi, nullptr);
+    r = condensation_.schur() * (y_ - delta) - (phi - phi0_);
+    reference = reference_;
+    return r.norm();
+  }
+  bool tangent_stale() const override { return stale_; }
+  void factorize_tangent(const VectorXd& delta) override {
+    set_state(delta);
+    MatrixXd tangent = condensation_.schur();
+    VectorXd phi = VectorXd::Zero(n_unknowns());
+    assembler_.assemble_nonlinear_part(coeff_, wk_, u_, v_, condensation_.position(), phi,
+                                       &tangent);
+    tangent_.compute(tangent);
+    stale_ = false;
+  }
+  VectorXd solve(const VectorXd& r) override { return tangent_.solve(r); }
+  bool update_status(const VectorXd& delta) override {
+    set_state(delta);
+    n_status_changes_ += status_loop_.update(u_, label_);
+    if (n_status_changes_ == reported_) return false;
+    reported_ = n_status_changes_;
+    stale_ = true;
+    return true;
+  }
+  int n_status_changes() const { return n_status_changes_; }
+
+ private:
+  void set_state(const VectorXd& delta) {
+    const double slope = wk_ != 0.0 ? coeff_.cC / wk_ : 0.0;  // dv/du of the time scheme
+    const auto& c = condensation_.dofs();
+    for (std::size_t k = 0; k < c.size(); ++k) {
+      const int i = c[k];
+      u_(i) = u0_(i) + delta(static_cast<Eigen::Index>(k));
+      v_(i) = v0_(i) + slope * delta(static_cast<Eigen::Index>(k));
+    }
+  }
+
+  const Assembler& assembler_;
+  LinearPartCondensation& condensation_;
+  StatusLoop& status_loop_;
+  StepLabel label_;
+  IntegrationCoefficients coeff_;
+  double wk_;
+  VectorXd u_, v_;          // full state at the current δ_c
+  const VectorXd u0_, v0_;  // at the predictor
+  VectorXd y_;
+  double reference_;
+  VectorXd phi0_;
+  Eigen::LDLT<MatrixXd> tangent_;
+  bool stale_ = true;
+  int n_status_changes_ = 0, reported_ = 0;
+};
+
+}  // namespace
+
+bool DirectSolution::solve_condensed(VectorXd& u, const NewtonOptions& newton,
+                                     NewtonResult& result) {
+  Increment& inc = increment_;
+  const ConvergenceOptions& conv = structure_.options().convergence;
+  try {
+    condensation_->prepare(inc.coeff);
+  } catch (const SingularMatrixError& e) {
+    // A DOF held only by nonlinear elements (no mass, no linear stiffness): full Newton.
+    condensation_note_ = fmt::format(
+        "condensed transient not used: the linear part alone is singular at {} (held only by "
+        "nonlinear elements)",
+        describe(dofs_->key(e.column())));
+    condensation_.reset();
+    return false;
+  }
+  const int nf = dofs_->n_free();
+  VectorXd r0;
+  double reference = 0.0;
+  residual(u, r0, reference);  // also v(u0) into inc.v
+  const VectorXd x = condensation_->solve(VectorXd(r0.head(nf)));
+  const auto& c = condensation_->dofs();
+  VectorXd y(condensation_->size());
+  for (std::size_t k = 0; k < c.size(); ++k) y(static_cast<Eigen::Index>(k)) = x(c[k]);
+  CondensedIncrement problem(*assembler_, *condensation_, *status_loop_, inc.label, inc.coeff,
+                             inc.weights.stiffness, u, inc.v, y, reference);
+  VectorXd delta = VectorXd::Zero(condensation_->size());
+  result = NewtonRaphson(newton, ConvergenceTest(conv)).solve(problem, delta);
+  inc.n_status_changes += problem.n_status_changes();
+  // The whole field, once: δ = A_L⁻¹ r0 − G S (y − δ_c); on c it is δ_c itself.
+  const VectorXd u0 = u;
+  u.head(nf) += x - condensation_->transfer() * (condensation_->schur() * (y - delta));
+  for (std::size_t k = 0; k < c.size(); ++k)
+    u(c[k]) = u0(c[k]) + delta(static_cast<Eigen::Index>(k));
+  // The full criterion on the recovered state (this evaluation also gives the forces the step
+  // is accepted with).
+  VectorXd r;
+  const double residual_norm = this->residual(u, r, reference);
+  const ConvergenceTest test(conv);
+  if (!result.converged || !test.force_converged(residual_norm, reference)) {
+    factor_valid_ = false;  // statuses may have changed since the full tangent was factorized
+    ++full_fallback_steps_;
+    return false;
+  }
+  ++condensed_steps_;
+  result.residual_norm = residual_norm;
+  result.reference = test.reference(reference);
   return true;
 }
 
@@ -270,7 +437,15 @@ void DirectSolution::solve_increment(const LoadPoint& at, const StepLabel& label
   newton.tangent_varies =
       assembler_->is_nonlinear() && (ctx_.large_deflection || ctx_.stress_stiffening);
   status_loop_->begin_step();
-  const NewtonResult result = NewtonRaphson(newton, ConvergenceTest(conv)).solve(*this, u);
+  NewtonResult result;
+  const bool condensed = dynamic && condensation_ && solve_condensed(u, newton, result);
+  if (!condensed) {
+    // Full Newton on all free DOFs (also the fallback when a condensed step left a residual
+    // the full criterion does not accept; it starts from the condensed iterate).
+    const int before = result.iterations;
+    result = NewtonRaphson(newton, ConvergenceTest(conv)).solve(*this, u);
+    result.iterations += before;
+  }
   status_loop_->end_step();
   stats_.n_iterations += result.iterations;
   stats_.n_status_changes += inc.n_status_changes;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "analysis/energy_balance.h"
+#include "analysis/linear_part_condensation.h"
 #include "analysis/run_statistics.h"
 #include "analysis/structure.h"
 #include "assembly/loads.h"
@@ -40,6 +41,9 @@ class DirectSolution : private NonlinearProblem {
   void start_dynamics(const LoadPoint& at, double h);
   VectorXd external_force(const LoadPoint& at) const;
   void solve_increment(const LoadPoint& at, const StepLabel& label, bool dynamic);
+  /// A dynamic increment on the condensed system; false when the full Newton path must take
+  /// over (from the returned state), with `result` holding the condensed iterations.
+  bool solve_condensed(VectorXd& u, const NewtonOptions& newton, NewtonResult& result);
   void factorize(const IntegrationCoefficients& coeff, const VectorXd& u);
   void store(double time, int load_step, int substep, bool dynamic);
   void time_step_advice(double h);
@@ -98,6 +102,10 @@ class DirectSolution : private NonlinearProblem {
   IntegrationCoefficients factored_{};
 
   std::unique_ptr<EnergyBalance> energy_;
+  // Condensed transient (linear_part_condensation.h): set up per DOF numbering when it applies.
+  std::unique_ptr<LinearPartCondensation> condensation_;
+  std::string condensation_note_;
+  long condensed_steps_ = 0, full_fallback_steps_ = 0;
   bool advice_given_ = false;  // the time-step advice note is given once per analysis
 };
 

@@ -41,14 +41,34 @@ std::map<std::string, double> EnergyBalance::columns(double kinetic) const {
 }
 
 double EnergyBalance::numerical_dissipation(double kinetic) const {
-  return external_work_ - kinetic - strain_energy() - gap_work_ - damping_work_;
+  return initial_kinetic_ + external_work_ - kinetic - strain_energy() - gap_work_ - damping_work_;
+}
+
+std::optional<std::string> EnergyBalance::balance_warning(double kinetic) const {
+  const double input = initial_kinetic_ + external_work_;
+  if (!(input > 0.0)) return std::nullopt;
+  const double lost = numerical_dissipation(kinetic) / input;
+  if (lost > 0.05)
+    return fmt::format(
+        "the time integration dissipated {:.1f} % of the energy put in ({:.4g} of {:.4g}): "
+        "results are damped numerically. Use a smaller time step (DELTIM/DTIME or more "
+        "substeps) or a less dissipative integrator (TRNOPT,FULL,,,,,NMK: Newmark, trapezoidal "
+        "rule by default)",
+        100.0 * lost, numerical_dissipation(kinetic), input);
+  if (lost < -0.01)
+    return fmt::format(
+        "the energy balance is off by {:.1f} % of the energy put in (energy created: {:.4g} of "
+        "{:.4g}): use a smaller time step (DELTIM/DTIME or more substeps)",
+        -100.0 * lost, -numerical_dissipation(kinetic), input);
+  return std::nullopt;
 }
 
 std::string EnergyBalance::summary(double time, double kinetic) const {
   return fmt::format(
       "energy at t = {:.6g}: kinetic {:.6g}, strain {:.6g}, gap work {:.6g}, damping {:.6g}, "
-      "external work {:.6g}, numerical dissipation {:.6g}",
+      "external work {:.6g}{}, numerical dissipation {:.6g}",
       time, kinetic, strain_energy(), gap_work_, damping_work_, external_work_,
+      initial_kinetic_ != 0.0 ? fmt::format(", initial kinetic {:.6g}", initial_kinetic_) : "",
       numerical_dissipation(kinetic));
 }
 

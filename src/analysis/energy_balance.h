@@ -6,6 +6,7 @@
 /// integrator's numerical dissipation (Houbolt damps high modes; Bathe §9.4).
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,8 @@ class EnergyBalance {
   void add_step(const Assembler& assembler, const VectorXd& u_old, const VectorXd& u_new,
                 const StepForces& f);
 
+  /// Kinetic energy of the initial velocities (IC): energy put in before the first step.
+  void set_initial_kinetic(double energy) { initial_kinetic_ = energy; }
   double external_work() const { return external_work_; }
   double gap_work() const { return gap_work_; }
   double damping_work() const { return damping_work_; }
@@ -39,8 +42,12 @@ class EnergyBalance {
   /// The results-file energy columns ("kinetic", "strain", "external_work", "gap_work",
   /// "dissipation") for the given kinetic energy.
   std::map<std::string, double> columns(double kinetic) const;
-  /// What was not accounted for: external − kinetic − strain − gap − damping.
+  /// What was not accounted for: initial kinetic + external − kinetic − strain − gap − damping.
   double numerical_dissipation(double kinetic) const;
+  /// A warning when the time integrator lost more than 5 % of the energy put in (external work
+  /// plus initial kinetic energy: numerical dissipation) or the balance is off the other way by
+  /// more than 1 % (energy created), with the remedy; nothing otherwise.
+  std::optional<std::string> balance_warning(double kinetic) const;
   /// One line for the run summary.
   std::string summary(double time, double kinetic) const;
 
@@ -48,6 +55,7 @@ class EnergyBalance {
   const std::vector<std::unique_ptr<Element>>& elements_;
   std::vector<std::size_t> status_elements_;
   std::vector<VectorXd> status_force_old_;  // element forces of the status elements, last step
+  double initial_kinetic_ = 0.0;
   double external_work_ = 0.0, internal_work_ = 0.0, gap_work_ = 0.0, damping_work_ = 0.0;
 };
 

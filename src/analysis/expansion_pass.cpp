@@ -64,7 +64,7 @@ void run_expansion_pass(const ExpansionPassRequest& request, ReducedSolutionStat
   }
   const double seconds = std::chrono::duration<double>(clock::now() - t0).count();
   stats.n_dofs = nf;
-  writer.set_attribute("expanded_solutions", static_cast<double>(selected.size()));
+  writer.set_count("expanded_solutions", static_cast<long long>(selected.size()));
   writer.set_attribute("expansion_seconds", seconds);
   stats.notes.push_back(fmt::format("expansion: {} solutions ({} requested groups) in {:.3g} s",
                                     selected.size(), requests.size(), seconds));

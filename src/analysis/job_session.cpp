@@ -2,6 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <map>
+
 #include "analysis/analyses.h"
 #include "analysis/direct_solution.h"
 #include "analysis/superelement_expansion.h"
@@ -23,6 +26,20 @@ bool solves_incrementally(const AnalysisOptions& o) {
 
 const SourceLocation& location_of(const Job::Step& step) {
   return step.analysis ? step.analysis->where : step.expansion->where;
+}
+
+/// A superelement's nodes (its master nodes) come from its file, so the model section of the
+/// results file lacks them until the element is built: record them then, for the exports.
+void record_file_defined_nodes(const Structure& structure, ResultsWriter& writer) {
+  std::map<int, std::vector<int>> lists;
+  for (const auto& e : structure.elements()) {
+    const auto record = structure.model().elements.find(e->id());
+    if (record == structure.model().elements.end() || !record->second.nodes.empty()) continue;
+    std::vector<int>& nodes = lists[e->id()];
+    for (const auto& key : e->dofs())
+      if (std::find(nodes.begin(), nodes.end(), key.node) == nodes.end()) nodes.push_back(key.node);
+  }
+  if (!lists.empty()) writer.set_element_nodes(lists);
 }
 
 }  // namespace
@@ -50,12 +67,14 @@ JobSession::JobSession(ResultsWriter& writer, std::string jobname, const RunSett
 JobSession::~JobSession() = default;
 
 std::string JobSession::results_path() const {
-  return writer_ ? writer_->path() : std::string();
+  if (writer_) return writer_->path();
+  return closed_files_.empty() ? std::string() : closed_files_.back();
 }
 
 ResultsWriter& JobSession::writer_for(const Job& job, std::size_t step) {
   const bool expansion = is_superelement_expansion(job.steps[step]);
-  const bool first = stats_.analyses.size() == 1;  // the step being opened is the only one
+  // The step being opened is the only one of this job (since the start or the last /CLEAR).
+  const bool first = stats_.analyses.size() == job_first_analysis_ + 1;
   if ((expansion && !first) || (!expansion && superelement_expansion_job_))
     throw InputError(location_of(job.steps[step]),
                      "a superelement expansion pass (EXPASS + SEEXP) must be the only solution "
@@ -63,6 +82,12 @@ ResultsWriter& JobSession::writer_for(const Job& job, std::size_t step) {
   superelement_expansion_job_ = expansion;
   if (!writer_) {
     if (!job.model.jobname.empty()) jobname_ = job.model.jobname;  // /FILNAME before the solution
+    for (const auto& old : closed_files_)
+      if (old == jobname_ + ".h5")
+        Log::warn(
+            "{}: the results file of the job before /CLEAR is replaced (give the new job "
+            "its own name with /FILNAME)",
+            old);
     owned_writer_ = std::make_unique<ResultsWriter>(jobname_ + ".h5", results_model(job, step));
     writer_ = owned_writer_.get();
   }
@@ -102,6 +127,7 @@ void JobSession::solve(const Job& job, std::size_t step) {
         structure_ = std::make_unique<Structure>(*models_.back(), s.analysis->options, settings_,
                                                  &s.analysis->load_steps);
         structure_->use_table_nodes(writer.node_ids());
+        record_file_defined_nodes(*structure_, writer);
         direct_ = begin_direct_analysis(*structure_, writer, settings_, current);
       }
     }
@@ -124,6 +150,7 @@ void JobSession::run_whole(const Job::Step& step, AnalysisStatistics& stats) {
   const AnalysisRequest& request = *step.analysis;
   Structure structure(*models_.back(), request.options, settings_, &request.load_steps);
   structure.use_table_nodes(writer_->node_ids());
+  record_file_defined_nodes(structure, *writer_);
   switch (request.options.type) {
     case AnalysisType::Modal:
       run_modal_analysis(structure, request, *writer_, settings_, stats);
@@ -160,11 +187,20 @@ void JobSession::close_open() {
       open_seconds_ +
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   writer_->set_attribute("wall_seconds", current.wall_seconds);
-  writer_->set_attribute("factorizations", static_cast<double>(current.n_factorizations));
-  writer_->set_attribute("dofs", static_cast<double>(current.n_dofs));
-  writer_->set_attribute("substeps", static_cast<double>(current.n_substeps));
-  writer_->set_attribute("iterations", static_cast<double>(current.n_iterations));
-  writer_->set_attribute("status_changes", static_cast<double>(current.n_status_changes));
+  writer_->set_count("factorizations", static_cast<long long>(current.n_factorizations));
+  writer_->set_count("dofs", static_cast<long long>(current.n_dofs));
+  writer_->set_count("substeps", static_cast<long long>(current.n_substeps));
+  writer_->set_count("iterations", static_cast<long long>(current.n_iterations));
+  writer_->set_count("status_changes", static_cast<long long>(current.n_status_changes));
+  if (current.factor_nonzeros > 0) {  // linear solver figures (docs/results_file.md)
+    writer_->set_count("solves", static_cast<long long>(current.n_solves));
+    writer_->set_attribute("analyze_seconds", current.analyze_seconds);
+    writer_->set_attribute("factorize_seconds", current.factorize_seconds);
+    writer_->set_attribute("solve_seconds", current.solve_seconds);
+    writer_->set_count("matrix_nonzeros", static_cast<long long>(current.matrix_nonzeros));
+    writer_->set_count("factor_nonzeros", static_cast<long long>(current.factor_nonzeros));
+    writer_->set_count("factor_bytes", static_cast<long long>(current.factor_bytes));
+  }
   writer_->end_analysis("complete");
   direct_.reset();
   structure_.reset();
@@ -199,6 +235,25 @@ std::string JobSession::results_for_reading(const Job&) {
 
 void JobSession::finish(const Job&) {
   close_open();
+}
+
+std::vector<std::string> JobSession::results_files() const {
+  std::vector<std::string> out = closed_files_;
+  if (writer_) out.push_back(writer_->path());
+  return out;
+}
+
+void JobSession::clear(const Job&) {
+  close_open();
+  if (owned_writer_) {
+    closed_files_.push_back(owned_writer_->path());
+    owned_writer_.reset();  // the file is closed and complete
+    writer_ = nullptr;
+  }
+  superelement_expansion_job_ = false;
+  reduced_state_.reset();  // an expansion pass cannot refer to a solution of the job before
+  models_.clear();
+  job_first_analysis_ = stats_.analyses.size();
 }
 
 void run_job(const Job& job, const std::string& jobname, const RunSettings& settings,

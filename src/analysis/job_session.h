@@ -35,9 +35,16 @@ class JobSession final : public SolutionHost {
   void solve(const Job& job, std::size_t step) override;
   std::string results_for_reading(const Job& job) override;
   void finish(const Job& job) override;
+  /// /CLEAR: closes the open analysis and the results file; the next solution starts a new
+  /// results file (named after the jobname then current). A session appending to a writer it was
+  /// given keeps appending to it.
+  void clear(const Job& job) override;
 
-  /// The results file ("" before the first solution).
+  /// The results file of the current job (after a /CLEAR with no solution since: the previous
+  /// job's; "" before the first solution).
   std::string results_path() const;
+  /// Every results file written, in order (several when /CLEAR started new jobs).
+  std::vector<std::string> results_files() const;
 
  private:
   ResultsWriter& writer_for(const Job& job, std::size_t step);
@@ -53,6 +60,8 @@ class JobSession final : public SolutionHost {
   ResultsWriter* writer_ = nullptr;
   std::unique_ptr<ResultsWriter> owned_writer_;
   bool superelement_expansion_job_ = false;
+  std::size_t job_first_analysis_ = 0;     // index in stats_.analyses of this job's first analysis
+  std::vector<std::string> closed_files_;  // results files of the jobs ended by /CLEAR
 
   // The open step: its own copy of the model snapshot (the job's step list may reallocate), the
   // structure and, for static / full transient analyses, the solution advanced load step by

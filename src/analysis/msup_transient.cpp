@@ -117,10 +117,11 @@ void run_msup_transient(Structure& structure, const AnalysisRequest& request, Re
   integrate_reduced(
       *state, dynamics, [&](const VectorXd& f) { return VectorXd(phi.transpose() * f); },
       [&](const VectorXd& q) { return VectorXd(phi * q); }, q0, v0,
-      [&](int j) { return fmt::format("mode {}", j + 1); }, writer, stats, seconds_per_step);
+      [&](int j) { return fmt::format("mode {}", j + 1); }, writer, stats, seconds_per_step,
+      settings.progress);
 
-  writer.set_attribute("modes", static_cast<double>(nm));
-  writer.set_attribute("gap_conditions", static_cast<double>(model.gap_conditions.size()));
+  writer.set_count("modes", static_cast<long long>(nm));
+  writer.set_count("gap_conditions", static_cast<long long>(model.gap_conditions.size()));
   writer.set_attribute("time_step", state->dt);
   writer.set_attribute("reduction_seconds", modes_seconds);
   writer.set_attribute("integration_seconds_per_step", seconds_per_step);

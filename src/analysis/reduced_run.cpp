@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <map>
 
 #include "core/log.h"
 
@@ -158,7 +159,8 @@ void integrate_reduced(ReducedRunState& state, ReducedDynamics& dynamics,
                        const std::function<VectorXd(const VectorXd&)>& reduce,
                        const std::function<VectorXd(const VectorXd&)>& table, const VectorXd& q0,
                        const VectorXd& v0, const std::function<std::string(int)>& coordinate_name,
-                       ResultsWriter& writer, AnalysisStatistics& stats, double& seconds_per_step) {
+                       ResultsWriter& writer, AnalysisStatistics& stats, double& seconds_per_step,
+                       ProgressObserver* progress) {
   using clock = std::chrono::steady_clock;
   const DofMap& dofs = *state.dofs;
   const int nf = dofs.n_free();
@@ -200,6 +202,14 @@ void integrate_reduced(ReducedRunState& state, ReducedDynamics& dynamics,
   store(p0);
   ++stats.n_load_steps;
 
+  // End time and substep count of each load step, for the progress line.
+  std::map<int, std::pair<double, int>> step_end;
+  for (const ReducedPoint& p : state.points) {
+    auto& [end, count] = step_end[p.load_step];
+    end = std::max(end, p.time);
+    count = std::max(count, p.substep);
+  }
+
   double integration = 0.0;
   int n_steps = 0;
   int last_step = p0.load_step;
@@ -216,6 +226,12 @@ void integrate_reduced(ReducedRunState& state, ReducedDynamics& dynamics,
       last_step = p.load_step;
     }
     store(p);
+    if (progress) {
+      const auto& [end, count] = step_end[p.load_step];
+      // One linear solve per step; the GP gap conditions' status changes are not counted (-1).
+      progress->substep_done({stats.description, p.time, end, p.load_step, p.substep, count,
+                              p.time - state.points[i - 1].time, 1, -1});
+    }
   }
   seconds_per_step = n_steps ? integration / n_steps : 0.0;
   stats.n_factorizations += dynamics.n_factorizations();

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "analysis/analyses.h"
+#include "analysis/progress.h"
 #include "assembly/loads.h"
 #include "reduction/guyan.h"
 #include "reduction/reduced_dynamics.h"
@@ -64,11 +65,13 @@ std::vector<GeneralizedGap> generalized_gaps(const Model& model, const DofMap& d
 
 /// Runs the time loop shared by both transients: initial state (static solve when load step 1
 /// carries loads), integration, a results point per step (`table`: free-DOF values for the
-/// nodal tables, NaN where not computed), and the histories kept in the state.
+/// nodal tables, NaN where not computed), and the histories kept in the state. `progress`
+/// (may be null) is told after every step.
 void integrate_reduced(ReducedRunState& state, ReducedDynamics& dynamics,
                        const std::function<VectorXd(const VectorXd& f_free)>& reduce,
                        const std::function<VectorXd(const VectorXd& gq)>& table, const VectorXd& q0,
                        const VectorXd& v0, const std::function<std::string(int)>& coordinate_name,
-                       ResultsWriter& writer, AnalysisStatistics& stats, double& seconds_per_step);
+                       ResultsWriter& writer, AnalysisStatistics& stats, double& seconds_per_step,
+                       ProgressObserver* progress);
 
 }  // namespace impactfe

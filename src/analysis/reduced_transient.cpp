@@ -99,12 +99,12 @@ void run_reduced_transient(Structure& structure, const AnalysisRequest& request,
       },
       q0, v0,
       [&](int j) { return describe(dofs.key(guyan.masters()[static_cast<std::size_t>(j)])); },
-      writer, stats, seconds_per_step);
+      writer, stats, seconds_per_step, settings.progress);
 
   // --- Summary -------------------------------------------------------------------------------
-  writer.set_attribute("masters", static_cast<double>(guyan.n_masters()));
-  writer.set_attribute("slaves", static_cast<double>(guyan.n_slaves()));
-  writer.set_attribute("gap_conditions", static_cast<double>(model.gap_conditions.size()));
+  writer.set_count("masters", static_cast<long long>(guyan.n_masters()));
+  writer.set_count("slaves", static_cast<long long>(guyan.n_slaves()));
+  writer.set_count("gap_conditions", static_cast<long long>(model.gap_conditions.size()));
   writer.set_attribute("time_step", state->dt);
   writer.set_attribute("reduction_seconds", reduction_seconds);
   writer.set_attribute("integration_seconds_per_step", seconds_per_step);

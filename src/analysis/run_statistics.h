@@ -3,6 +3,8 @@
 #include <string>
 #include <vector>
 
+#include "linalg/linear_solver.h"
+
 namespace impactfe {
 
 struct AnalysisStatistics {
@@ -15,10 +17,30 @@ struct AnalysisStatistics {
   long n_analyses = 0;   // symbolic factorizations
   long n_factorizations = 0;
   long n_solves = 0;
+  // Linear solver figures (SolverCounters): phase times and the sizes of the largest factor.
+  double analyze_seconds = 0.0;
+  double factorize_seconds = 0.0;
+  double solve_seconds = 0.0;
+  long matrix_nonzeros = 0;  // nnz of the factored matrix (lower triangle)
+  long factor_nonzeros = 0;  // nnz(L)
+  long factor_bytes = 0;     // bytes of L a solve reads
   int n_status_changes = 0;
   double wall_seconds = 0.0;
   std::vector<std::string> notes;  // time-step advice, energy balance, ...
 };
+
+/// Copies a linear solver's counters (counts, phase times, factor sizes) into `stats`.
+inline void record_solver_counters(AnalysisStatistics& stats, const SolverCounters& c) {
+  stats.n_analyses = c.analyses;
+  stats.n_factorizations = c.factorizations;
+  stats.n_solves = c.solves;
+  stats.analyze_seconds = c.analyze_seconds;
+  stats.factorize_seconds = c.factorize_seconds;
+  stats.solve_seconds = c.solve_seconds;
+  stats.matrix_nonzeros = c.matrix_nonzeros;
+  stats.factor_nonzeros = c.factor_nonzeros;
+  stats.factor_bytes = c.factor_bytes;
+}
 
 struct RunStatistics {
   std::vector<AnalysisStatistics> analyses;

@@ -63,6 +63,30 @@ Structure::Structure(const Model& model, const AnalysisOptions& options,
   for (const auto& [id, record] : model.elements)
     elements_.push_back(create_element(build, record));
 
+  // MP,DAMP: stiffness-proportional damping of the element's material, C_e += β K_e (MAPDL's
+  // material BETD; APDL_MODELING §6.1, M6). The full (static/transient) solution assembles it
+  // element by element; the reduced drivers form C from global ALPHAD/BETAD only, so there it
+  // is refused rather than ignored.
+  const ElementRecord* damped = nullptr;  // the first element whose material has DAMP
+  for (const auto& [id, record] : model.elements) {
+    double beta = 0.0;
+    if (auto m = model.materials.find(record.mat); m != model.materials.end())
+      beta = m->second.get("DAMP", 0.0);
+    if (beta != 0.0 && damped == nullptr) damped = &record;
+    material_beta_.push_back(beta);
+  }
+  if (damped == nullptr) {
+    material_beta_.clear();
+  } else if ((options.type == AnalysisType::Transient && options.method != TransientMethod::Full) ||
+             (options.type == AnalysisType::Substructure && options.superelement_matrices == 3)) {
+    throw InputError(
+        damped->where,
+        fmt::format("element {}: its material {} has MP,DAMP (material stiffness damping), which "
+                    "only a full transient applies; for a reduced or mode-superposition transient "
+                    "or a superelement damping matrix use BETAD (global beta) or DMPRAT",
+                    damped->id, damped->mat));
+  }
+
   // Automatic constraints: DOFs without stiffness and without mass (spec §10.1 item 5).
   // Status elements (gaps) count as stiffness: a gap may close later.
   DofMap all(elements_, {});
@@ -83,6 +107,29 @@ Structure::Structure(const Model& model, const AnalysisOptions& options,
   }
   for (int i = 0; i < all.n_active(); ++i)
     if (stiff(i) == 0.0 && mass(i) == 0.0) automatic_.insert(all.key(i));
+  // A dynamic analysis with translational DOFs that have stiffness but no mass (no DENS, no
+  // MASS21) solves them statically: say which. Massless rotations are normal (lumped masses).
+  if (options.type == AnalysisType::Transient) {
+    std::vector<DofKey> massless;
+    for (int i = 0; i < all.n_active(); ++i) {
+      const DofKey key = all.key(i);
+      const bool translation = key.dof == Dof::UX || key.dof == Dof::UY || key.dof == Dof::UZ;
+      bool held = steps != nullptr && !steps->empty();
+      if (steps)
+        for (const auto& step : *steps) held = held && step.constraints.count(key);
+      if (translation && mass(i) == 0.0 && stiff(i) != 0.0 && !held) massless.push_back(key);
+    }
+    if (!massless.empty()) {
+      std::string list;
+      for (std::size_t k = 0; k < massless.size() && k < 20; ++k)
+        list +=
+            " " + std::string(dof_name(massless[k].dof)) + "@" + std::to_string(massless[k].node);
+      Log::warn(
+          "{} free translational DOF(s) of this transient have no mass (is DENS missing, or a "
+          "MASS21?); they follow the load without inertia:{}{}",
+          massless.size(), list, massless.size() > 20 ? " ..." : "");
+    }
+  }
   // Report only the DOFs the deck leaves free in every load step: the others are held anyway.
   std::set<DofKey> reported;
   for (const auto& key : automatic_) {

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "analysis/progress.h"
 #include "assembly/assembler.h"
 #include "assembly/dof_map.h"
 #include "elements/element.h"
@@ -19,7 +20,11 @@ namespace impactfe {
 /// Run-time settings that do not come from the deck.
 struct RunSettings {
   bool continue_on_nonconvergence = false;
-  std::string superelement_file;  // --se
+  std::string superelement_file;         // --se
+  ProgressObserver* progress = nullptr;  // told after every substep (the CLI's progress line)
+  /// Condense the linear part of a full transient onto the nonlinear elements' DOFs when that
+  /// applies (--no-condense turns it off).
+  bool condense = true;
 };
 
 class Structure {
@@ -34,6 +39,10 @@ class Structure {
   const ElementContext& context() const { return context_; }
   const std::vector<std::unique_ptr<Element>>& elements() const { return elements_; }
   const std::vector<int>& node_ids() const { return node_ids_; }
+
+  /// Stiffness-proportional damping β of each element's material (MP,DAMP), element order;
+  /// empty when no material has one.
+  const std::vector<double>& material_stiffness_damping() const { return material_beta_; }
 
   /// DOFs with neither stiffness nor mass (listed in the log, constrained to zero).
   const std::set<DofKey>& automatic_constraints() const { return automatic_; }
@@ -67,6 +76,7 @@ class Structure {
   std::vector<int> node_ids_;
   std::map<int, int> node_row_;
   std::set<DofKey> automatic_;
+  std::vector<double> material_beta_;
 };
 
 }  // namespace impactfe

@@ -48,11 +48,11 @@ void run_substructure_generation(Structure& structure, const AnalysisRequest& re
 
   writer.set_attribute("superelement_name", name);
   writer.set_attribute("superelement_file", path);
-  writer.set_attribute("n_masters", static_cast<double>(summary.n_masters));
-  writer.set_attribute("n_slaves", static_cast<double>(summary.n_slaves));
-  writer.set_attribute("n_constrained", static_cast<double>(summary.n_constrained));
-  writer.set_attribute("n_load_vectors", static_cast<double>(request.load_steps.size()));
-  writer.set_attribute("matrices", static_cast<double>(se.matrices));
+  writer.set_count("n_masters", static_cast<long long>(summary.n_masters));
+  writer.set_count("n_slaves", static_cast<long long>(summary.n_slaves));
+  writer.set_count("n_constrained", static_cast<long long>(summary.n_constrained));
+  writer.set_count("n_load_vectors", static_cast<long long>(request.load_steps.size()));
+  writer.set_count("matrices", static_cast<long long>(se.matrices));
   writer.set_attribute("generation_seconds", summary.seconds);
   const char* axes[3] = {"x", "y", "z"};
   for (int d = 0; d < 3; ++d) {

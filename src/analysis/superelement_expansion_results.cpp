@@ -102,7 +102,7 @@ int expand_superelement_use_pass(const SuperelementExpansion& expansion, const R
     writer.append(p);
     ++written;
   }
-  writer.set_attribute("n_expanded", static_cast<double>(written));
+  writer.set_count("n_expanded", static_cast<long long>(written));
   Log::info("superelement {}: expanded {} of the {} use-pass solutions", se.name, written,
             solutions.size());
   return written;

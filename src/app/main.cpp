@@ -9,6 +9,7 @@
 #include <iostream>
 
 #include "analysis/job_session.h"
+#include "app/terminal_progress.h"
 #include "core/errors.h"
 #include "core/log.h"
 #include "deck/deck_reader.h"
@@ -46,21 +47,47 @@ struct RunArgs {
   std::string results;
   std::string superelement;
   bool continue_on_nonconvergence = false;
+  bool no_condense = false;
 };
 
+/// The run summary, printed and written to the log (energy balance included).
 void print_summary(const std::string& jobname, const RunStatistics& stats, double wall) {
-  std::cout << fmt::format("impactfe: job {}\n", jobname);
+  std::string text = fmt::format("impactfe: job {}\n", jobname);
   for (const auto& a : stats.analyses) {
-    std::cout << fmt::format(
+    text += fmt::format(
         "  {}: {} DOFs, {} load steps, {} substeps, {} iterations, {} stored, "
         "{} factorizations ({} symbolic), {} solves, {} status changes, {:.3f} s\n",
         a.description, a.n_dofs, a.n_load_steps, a.n_substeps, a.n_iterations, a.n_stored,
         a.n_factorizations, a.n_analyses, a.n_solves, a.n_status_changes, a.wall_seconds);
-    for (const auto& note : a.notes) std::cout << "    " << note << "\n";
+    if (a.factor_nonzeros > 0)
+      text += fmt::format(
+          "    linear solver: nnz(K) {}, nnz(L) {}, factor {:.6g} MB, analyze {:.6f} s, "
+          "factorize {:.6f} s, solve {:.6f} s\n",
+          a.matrix_nonzeros, a.factor_nonzeros, a.factor_bytes / 1.0e6, a.analyze_seconds,
+          a.factorize_seconds, a.solve_seconds);
+    for (const auto& note : a.notes) text += "    " + note + "\n";
   }
   if (!Log::warnings().empty())
-    std::cout << fmt::format("  {} warning(s), see {}.log\n", Log::warnings().size(), jobname);
-  std::cout << fmt::format("  wall time {:.3f} s\n", wall);
+    text += fmt::format("  {} warning(s), see {}.log\n", Log::warnings().size(), jobname);
+  text += fmt::format("  wall time {:.3f} s\n", wall);
+  std::cout << text;
+  Log::info("run summary:\n{}", text);
+}
+
+/// --skip-unknown: what was skipped and how often, in the summary and the log.
+void print_skipped(const Job& job) {
+  if (job.skipped_unknown.empty()) return;
+  int total = 0;
+  for (const auto& s : job.skipped_unknown) total += s.count;
+  const std::string head = fmt::format("  {} unknown command(s) skipped (--skip-unknown):", total);
+  std::cout << head << "\n";
+  Log::warn("{}", head.substr(2));
+  for (const auto& s : job.skipped_unknown) {
+    const std::string line =
+        fmt::format("{:<16} {:>6} x   first at {}:{}", s.name, s.count, s.first.file, s.first.line);
+    std::cout << "    " << line << "\n";
+    Log::info("skipped: {}", line);
+  }
 }
 
 int run_command(const RunArgs& args) {
@@ -76,12 +103,16 @@ int run_command(const RunArgs& args) {
   fs::current_path(args.out_dir);
   std::string jobname = args.jobname.empty() ? deck.stem().string() : args.jobname;
   std::ofstream log_file(jobname + ".log");
-  Log::set_sink([&log_file](LogLevel level, const std::string& message) {
+  TerminalProgress progress;
+  Log::set_sink([&log_file, &progress](LogLevel level, const std::string& message) {
     static const char* names[] = {"debug", "info", "warning", "error"};
     log_file << names[static_cast<int>(level)] << ": " << message << "\n";
     log_file.flush();
     // Errors reach the terminal once, from the command itself; warnings as they happen.
-    if (level == LogLevel::Warning) std::cerr << "warning: " << message << "\n";
+    if (level == LogLevel::Warning) {
+      progress.clear();
+      std::cerr << "warning: " << message << "\n";
+    }
   });
 
   DeckOptions options;
@@ -95,12 +126,15 @@ int run_command(const RunArgs& args) {
     }
     options.results_file = results.string();
   }
+  options.output = &std::cout;  // the deck's listings (*VWRITE, *MSG, /COM, ...) until /OUT
   if (args.dialect == "4x") options.dialect = Dialect::Classic4x;
   if (args.dialect == "modern") options.dialect = Dialect::Modern;
 
   RunSettings settings;
   settings.continue_on_nonconvergence = args.continue_on_nonconvergence;
   settings.superelement_file = args.superelement;
+  settings.progress = &progress;
+  settings.condense = !args.no_condense;
 
   // The deck runs command by command: each solution request is solved by the session when the
   // deck reaches it.
@@ -110,14 +144,18 @@ int run_command(const RunArgs& args) {
   Job job;
   try {
     job = read_deck(deck.string(), options);
+    progress.clear();
   } catch (const SolutionError& e) {
+    progress.clear();
     std::cerr << "error: " << e.what() << "\n";
     std::cerr << fmt::format("results up to the failure are kept in {}\n", session.results_path());
     Log::write(LogLevel::Error, e.what());
     return kExitSolution;
   } catch (const InternalError& e) {
+    progress.clear();
     return report_internal_error(e);
   } catch (const std::exception& e) {
+    progress.clear();
     std::cerr << "error: " << e.what() << "\n";
     Log::write(LogLevel::Error, e.what());
     return kExitInput;
@@ -127,9 +165,9 @@ int run_command(const RunArgs& args) {
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   print_summary(jobname, stats, wall);
-  if (!session.results_path().empty())
-    std::cout << fmt::format("  results: {}\n",
-                             (fs::current_path() / session.results_path()).string());
+  print_skipped(job);
+  for (const auto& file : session.results_files())
+    std::cout << fmt::format("  results: {}\n", (fs::current_path() / file).string());
   return kExitOk;
 }
 
@@ -144,7 +182,9 @@ int main(int argc, char** argv) {
   run_cmd->add_option("deck", run.deck, "input deck")->required();
   run_cmd->add_option("-o,--output", run.out_dir, "working directory for results (default .)");
   run_cmd->add_option("-j,--jobname", run.jobname, "job name (default: deck file stem)");
-  run_cmd->add_option("--threads", run.threads, "threads for element loops (default: all cores)");
+  run_cmd->add_option(
+      "--threads", run.threads,
+      "threads for element loops and BLAS (default: all cores where the work pays for them)");
   run_cmd->add_flag("--skip-unknown", run.skip_unknown, "warn and skip unknown commands");
   run_cmd->add_option("--dialect", run.dialect, "4x|modern|auto")
       ->check(CLI::IsMember({"4x", "modern", "auto"}));
@@ -154,6 +194,8 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--se", run.superelement, "superelement file for MATRIX50 elements");
   run_cmd->add_flag("--continue-on-nonconvergence", run.continue_on_nonconvergence,
                     "accept non-converged steps with a warning");
+  run_cmd->add_flag("--no-condense", run.no_condense,
+                    "full Newton on all DOFs in a transient, never the condensed linear part");
 
   std::string post_file;
   std::vector<std::string> nsol, esol, gapf;
@@ -171,10 +213,13 @@ int main(int argc, char** argv) {
   CLI::App* info_cmd = app.add_subcommand("info", "summarise a results file");
   info_cmd->add_option("results", info_file, "results file (.h5)")->required();
 
-  std::string export_file, export_dir = ".";
-  CLI::App* export_cmd = app.add_subcommand("export", "write VTU/PVD files for ParaView");
+  std::string export_file, export_dir = ".", export_format = "vtkhdf";
+  CLI::App* export_cmd = app.add_subcommand(
+      "export", "write the results for ParaView: one VTKHDF file (default) or VTU files + PVD");
   export_cmd->add_option("results", export_file, "results file (.h5)")->required();
-  export_cmd->add_option("-o,--output", export_dir, "output directory");
+  export_cmd->add_option("-o,--output", export_dir, "output directory (default .)");
+  export_cmd->add_option("--format", export_format, "vtkhdf (default) | vtu")
+      ->check(CLI::IsMember({"vtkhdf", "vtu"}));
 
   std::string report_file, report_out;
   ReportOptions report;
@@ -208,6 +253,10 @@ int main(int argc, char** argv) {
     if (*post_cmd) {
       ResultsReader reader(post_file);
       if (freq) {
+        if (reader.frequencies().empty())
+          throw InputError(fmt::format(
+              "'{}' holds no modal results (no modal analysis was run); --freq needs one",
+              post_file));
         std::cout << frequencies_csv(reader);
         return kExitOk;
       }
@@ -233,7 +282,19 @@ int main(int argc, char** argv) {
     if (*export_cmd) {
       ResultsReader reader(export_file);
       fs::create_directories(export_dir);
-      export_vtu_series(reader, export_dir, fs::path(export_file).stem().string());
+      const std::string stem = fs::path(export_file).stem().string();
+      const ExportSummary s =
+          export_format == "vtu"
+              ? export_vtu_series(reader, export_dir, stem)
+              : export_vtkhdf(reader, (fs::path(export_dir) / (stem + ".vtkhdf")).string());
+      std::cout << fmt::format(
+          "export: wrote {}{} ({} time points, {} points, {} cells, {:.2f} MB)\n", s.files.front(),
+          s.files.size() > 1 ? fmt::format(" and {} .vtu files", s.files.size() - 1) : "", s.frames,
+          s.points, s.cells, static_cast<double>(s.bytes) / 1e6);
+      if (!s.skipped_elements.empty())
+        std::cout << fmt::format(
+            "  {} element(s) not drawn (a node is not in the model), e.g. {}\n",
+            s.skipped_elements.size(), s.skipped_elements.front());
       return kExitOk;
     }
     if (*report_cmd) {

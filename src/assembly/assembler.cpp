@@ -1,6 +1,13 @@
 #include "assembly/assembler.h"
 
 #include <algorithm>
+#include <chrono>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include "core/errors.h"
 
 namespace impactfe {
 
@@ -57,6 +64,13 @@ Assembler::Assembler(const std::vector<std::unique_ptr<Element>>& elements, cons
   }
 }
 
+void Assembler::set_material_stiffness_damping(std::vector<double> beta) {
+  IMPACTFE_CHECK(beta.empty() || beta.size() == elements_.size(),
+                 "material damping: one value per element expected");
+  material_beta_ = std::move(beta);
+  for (double b : material_beta_) has_damping_ = has_damping_ || b != 0.0;
+}
+
 void Assembler::gather(std::size_t e, const VectorXd& global, VectorXd& local) const {
   const auto& idx = dofs_.element_indices(e);
   local.resize(static_cast<int>(idx.size()));
@@ -72,23 +86,12 @@ void Assembler::assemble(const IntegrationCoefficients& coeff, const VectorXd& u
   if (out.internal_force) out.internal_force->setZero(dofs_.n_active());
   if (out.damping_force) out.damping_force->setZero(dofs_.n_active());
 
-  // Phase 1, in parallel: tangents of the nonlinear elements (the expensive part: co-rotational
-  // shells, total-Lagrangian bricks) into per-element buffers. Elements are const here and keep
-  // no shared scratch, so this is race-free; the scatter below stays serial and deterministic.
-  const int n_nonlinear = static_cast<int>(nonlinear_.size());
-#pragma omp parallel for schedule(dynamic, 8) if (n_nonlinear > 64)
-  for (int i = 0; i < n_nonlinear; ++i) {
-    const std::size_t e = nonlinear_[static_cast<std::size_t>(i)];
-    VectorXd ue_local;
-    gather(e, u, ue_local);
-    elements_[e]->tangent(ctx_, ue_local, tangent_buffer_[e], force_buffer_[e]);
-  }
+  compute_nonlinear_tangents(u);
 
   // Phase 2, serial: scatter.
   MatrixXd c, eff;
   VectorXd ue, ve, fe;
   for (std::size_t e = 0; e < elements_.size(); ++e) {
-    const Element& element = *elements_[e];
     const auto& idx = dofs_.element_indices(e);
     const int n = static_cast<int>(idx.size());
     gather(e, u, ue);
@@ -97,16 +100,8 @@ void Assembler::assemble(const IntegrationCoefficients& coeff, const VectorXd& u
     } else {
       fe = force_buffer_[e];
     }
-    const MatrixXd& k = tangent_buffer_[e];
-    const MatrixXd& ke = is_linear_[e] ? linear_stiffness_[e] : k;
-    const bool rayleigh = alpha_ != 0.0 || beta_ != 0.0;
-    const bool damped = element.has_damping() || rayleigh;
-    if (element.has_damping()) {
-      element.damping(ctx_, ue, c);
-    } else if (rayleigh) {
-      c.setZero(n, n);
-    }
-    if (rayleigh) c += alpha_ * mass_[e] + beta_ * (is_linear_[e] ? linear_stiffness_[e] : k);
+    const MatrixXd& ke = is_linear_[e] ? linear_stiffness_[e] : tangent_buffer_[e];
+    const bool damped = element_damping(e, ue, ke, c);
     if (out.internal_force)
       for (int a = 0; a < n; ++a) (*out.internal_force)(idx[a]) += fe(a);
     if (damped && out.damping_force) {
@@ -118,14 +113,127 @@ void Assembler::assemble(const IntegrationCoefficients& coeff, const VectorXd& u
       eff = coeff.cK * ke;
       if (coeff.cM != 0.0) eff += coeff.cM * mass_[e];
       if (damped && coeff.cC != 0.0) eff += coeff.cC * c;
-      double* values = out.effective->valuePtr();
-      const auto& slot = slots_[e];
-      for (int a = 0; a < n; ++a)
-        for (int b = 0; b <= a; ++b) {
-          const int s = slot[static_cast<std::size_t>(a * n + b)];
-          if (s < 0) continue;
-          values[s] += eff(a, b);
-        }
+      scatter_lower(e, eff, *out.effective);
+    }
+  }
+}
+
+void Assembler::compute_nonlinear_tangents(const VectorXd& u) const {
+  // Tangents of the nonlinear elements (the expensive part: co-rotational shells,
+  // total-Lagrangian bricks) into per-element buffers. Elements are const here and keep no shared
+  // scratch, so the loop is race-free and its results do not depend on the thread count; the
+  // scatter that follows stays serial and deterministic.
+  const int n_nonlinear = static_cast<int>(nonlinear_.size());
+  auto evaluate = [&](int i) {
+    const std::size_t e = nonlinear_[static_cast<std::size_t>(i)];
+    VectorXd ue_local;
+    gather(e, u, ue_local);
+    elements_[e]->tangent(ctx_, ue_local, tangent_buffer_[e], force_buffer_[e]);
+  };
+  if (threading_.parallel) {
+#pragma omp parallel for schedule(dynamic, 8)
+    for (int i = 0; i < n_nonlinear; ++i) evaluate(i);
+    return;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  for (int i = 0; i < n_nonlinear; ++i) evaluate(i);
+  threading_.record_serial_pass(
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+}
+
+void Assembler::TangentThreading::record_serial_pass(double seconds) {
+  if (probes_left == 0) return;
+  fastest_serial_seconds = std::min(fastest_serial_seconds, seconds);
+  if (--probes_left > 0) return;
+  int threads = 1;
+#ifdef _OPENMP
+  threads = omp_get_max_threads();
+#endif
+  parallel = threads > 1 && fastest_serial_seconds >= kMinParallelSeconds;
+}
+
+bool Assembler::element_damping(std::size_t e, const VectorXd& ue, const MatrixXd& k,
+                                MatrixXd& c) const {
+  const Element& element = *elements_[e];
+  const double beta = beta_of(e);  // global BETAD plus the material's MP,DAMP
+  const bool rayleigh = alpha_ != 0.0 || beta != 0.0;
+  if (element.has_damping()) {
+    element.damping(ctx_, ue, c);
+  } else if (rayleigh) {
+    c.setZero(element.n_dofs(), element.n_dofs());
+  } else {
+    return false;
+  }
+  if (rayleigh) c += alpha_ * mass_[e] + beta * k;
+  return true;
+}
+
+void Assembler::scatter_lower(std::size_t e, const MatrixXd& m, SparseMatrix& effective) const {
+  const int n = static_cast<int>(dofs_.element_indices(e).size());
+  double* values = effective.valuePtr();
+  const auto& slot = slots_[e];
+  for (int a = 0; a < n; ++a)
+    for (int b = 0; b <= a; ++b) {
+      const int s = slot[static_cast<std::size_t>(a * n + b)];
+      if (s < 0) continue;
+      values[s] += m(a, b);
+    }
+}
+
+std::vector<int> Assembler::nonlinear_free_dofs() const {
+  std::vector<int> out;
+  for (std::size_t e : nonlinear_)
+    for (int i : dofs_.element_indices(e))
+      if (i < dofs_.n_free()) out.push_back(i);
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+void Assembler::assemble_linear_part(const IntegrationCoefficients& coeff,
+                                     SparseMatrix& effective) const {
+  if (effective.nonZeros() != pattern_.nonZeros()) effective = pattern_;
+  std::fill(effective.valuePtr(), effective.valuePtr() + pattern_.nonZeros(), 0.0);
+  MatrixXd c, eff;
+  for (std::size_t e = 0; e < elements_.size(); ++e) {
+    eff = coeff.cM * mass_[e];
+    if (is_linear_[e]) {
+      eff += coeff.cK * linear_stiffness_[e];
+      VectorXd ue = VectorXd::Zero(elements_[e]->n_dofs());
+      if (coeff.cC != 0.0 && element_damping(e, ue, linear_stiffness_[e], c)) eff += coeff.cC * c;
+    }
+    scatter_lower(e, eff, effective);
+  }
+}
+
+void Assembler::assemble_nonlinear_part(const IntegrationCoefficients& coeff, double w,
+                                        const VectorXd& u, const VectorXd& v,
+                                        const std::vector<int>& position, VectorXd& phi,
+                                        MatrixXd* tangent) const {
+  compute_nonlinear_tangents(u);
+  MatrixXd c;
+  VectorXd ue, ve, fe;
+  for (std::size_t e : nonlinear_) {
+    const auto& idx = dofs_.element_indices(e);
+    const int n = static_cast<int>(idx.size());
+    const MatrixXd& k = tangent_buffer_[e];
+    fe = force_buffer_[e];
+    gather(e, u, ue);
+    const bool damped = element_damping(e, ue, k, c);
+    if (damped) {
+      gather(e, v, ve);
+      fe += c * ve;
+    }
+    for (int a = 0; a < n; ++a) {
+      const int pa = position[static_cast<std::size_t>(idx[a])];
+      if (pa < 0) continue;
+      phi(pa) += w * fe(a);
+      if (!tangent) continue;
+      for (int b = 0; b < n; ++b) {
+        const int pb = position[static_cast<std::size_t>(idx[b])];
+        if (pb < 0) continue;
+        (*tangent)(pa, pb) += coeff.cK * k(a, b) + (damped ? coeff.cC * c(a, b) : 0.0);
+      }
     }
   }
 }
@@ -150,7 +258,8 @@ SparseMatrix Assembler::full_matrix(Which which, const VectorXd& u) const {
         }
         break;
       case Which::Damping: {
-        const bool rayleigh = alpha_ != 0.0 || beta_ != 0.0;
+        const double beta = beta_of(e);
+        const bool rayleigh = alpha_ != 0.0 || beta != 0.0;
         if (!elements_[e]->has_damping() && !rayleigh) continue;
         gather(e, u, ue);
         if (elements_[e]->has_damping()) {
@@ -161,7 +270,7 @@ SparseMatrix Assembler::full_matrix(Which which, const VectorXd& u) const {
         if (rayleigh) {
           MatrixXd ke = linear_stiffness_[e];
           if (!is_linear_[e]) elements_[e]->tangent(ctx_, ue, ke, fe);
-          m += alpha_ * mass_[e] + beta_ * ke;
+          m += alpha_ * mass_[e] + beta * ke;
         }
         break;
       }

@@ -20,6 +20,10 @@ class Assembler {
   Assembler(const std::vector<std::unique_ptr<Element>>& elements, const DofMap& dofs,
             const ElementContext& ctx, double alpha = 0.0, double beta = 0.0);
 
+  /// Stiffness-proportional damping of each element's material (MP,DAMP = BETD: C_e += β_e K_e,
+  /// APDL_MODELING §6.1), added to the global beta; one value per element, in element order.
+  void set_material_stiffness_damping(std::vector<double> beta);
+
   const DofMap& dofs() const { return dofs_; }
   const ElementContext& context() const { return ctx_; }
 
@@ -32,6 +36,20 @@ class Assembler {
   /// u, v: total displacement and velocity over all active DOFs.
   void assemble(const IntegrationCoefficients& coeff, const VectorXd& u, const VectorXd& v,
                 const Output& out) const;
+
+  // ---- the split into a linear part and the nonlinear elements (condensed transient) ---------
+  /// Free DOF indices touched by the nonlinear elements, ascending.
+  std::vector<int> nonlinear_free_dofs() const;
+  /// Effective matrix of the linear part, cK K_L + cC C_L + cM M: the stiffness and damping of
+  /// the linear elements and the mass of every element (free-free lower triangle).
+  void assemble_linear_part(const IntegrationCoefficients& coeff, SparseMatrix& effective) const;
+  /// The nonlinear elements' share of the residual and of the effective tangent, on the DOFs
+  /// numbered by `position` (active index → position, −1 for DOFs left out):
+  /// phi += w (f_int + C v),  tangent += cK K_T + cC C  (C with the Rayleigh terms).
+  void assemble_nonlinear_part(const IntegrationCoefficients& coeff, double w, const VectorXd& u,
+                               const VectorXd& v, const std::vector<int>& position, VectorXd& phi,
+                               MatrixXd* tangent) const;
+  int n_nonlinear_elements() const { return static_cast<int>(nonlinear_.size()); }
 
   /// Mass matrix over all active DOFs (full symmetric storage), for inertia forces M a and the
   /// frame-acceleration load -M r a.
@@ -52,6 +70,10 @@ class Assembler {
  private:
   enum class Which { Stiffness, Mass, Damping };
   SparseMatrix full_matrix(Which which, const VectorXd& u) const;
+  /// Element damping matrix at ue (element dampers + Rayleigh α M_e + β K_e); false when none.
+  bool element_damping(std::size_t e, const VectorXd& ue, const MatrixXd& k, MatrixXd& c) const;
+  /// Adds the lower triangle of an element matrix into the free-free pattern values.
+  void scatter_lower(std::size_t e, const MatrixXd& m, SparseMatrix& effective) const;
 
   const std::vector<std::unique_ptr<Element>>& elements_;
   const DofMap& dofs_;
@@ -64,12 +86,35 @@ class Assembler {
   std::vector<MatrixXd> linear_stiffness_;  // K_e of linear elements (evaluated once)
   std::vector<bool> is_linear_;
   std::vector<std::size_t> nonlinear_;  // indices of the nonlinear elements
-  // Per-element results of the parallel tangent phase of assemble() (scratch, not state).
+  // Per-element results of the tangent phase (scratch, not state).
   mutable std::vector<MatrixXd> tangent_buffer_;
   mutable std::vector<VectorXd> force_buffer_;
+  /// Tangents and internal forces of the nonlinear elements at u into the buffers.
+  void compute_nonlinear_tangents(const VectorXd& u) const;
+
+  /// Whether the tangent phase runs on several threads, decided from its measured cost: a
+  /// parallel region costs a thread wake-up and leaves the workers spinning (libgomp) while the
+  /// serial solve that follows runs, which on small per-step work or a busy machine costs more
+  /// than it saves (issue 11: a 1215-DOF block drop took 4x longer on two threads). So the first
+  /// kProbes passes run serially and are timed; the phase goes parallel only when the fastest of
+  /// them took at least kMinParallelSeconds and more than one thread is allowed. The results are
+  /// the same either way (per-element buffers, serial scatter).
+  struct TangentThreading {
+    static constexpr int kProbes = 3;
+    static constexpr double kMinParallelSeconds = 2.0e-3;
+    int probes_left = kProbes;
+    double fastest_serial_seconds = 1e300;
+    bool parallel = false;
+    void record_serial_pass(double seconds);
+  };
+  mutable TangentThreading threading_;
   bool has_damping_ = false;
-  double alpha_ = 0.0;  // Rayleigh mass coefficient
-  double beta_ = 0.0;   // Rayleigh stiffness coefficient
+  double alpha_ = 0.0;                 // Rayleigh mass coefficient
+  double beta_ = 0.0;                  // Rayleigh stiffness coefficient
+  std::vector<double> material_beta_;  // per element (empty: none)
+  double beta_of(std::size_t e) const {
+    return material_beta_.empty() ? beta_ : beta_ + material_beta_[e];
+  }
 };
 
 }  // namespace impactfe

@@ -253,6 +253,13 @@ struct Job {
   };
   std::vector<Step> steps;
   std::vector<std::string> ignored_commands;  // graphics / print-only commands, listed in the log
+  /// --skip-unknown: each unknown command skipped, how often, and where it first appeared.
+  struct Skipped {
+    std::string name;
+    int count = 0;
+    SourceLocation first;
+  };
+  std::vector<Skipped> skipped_unknown;
 };
 
 }  // namespace impactfe

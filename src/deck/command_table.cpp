@@ -1,8 +1,8 @@
 // The single command table: every handler group registers its commands here once.
 #include <algorithm>
+#include <unordered_map>
 
 #include "deck/deck_context.h"
-#include "deck/language_standin.h"
 
 namespace impactfe::deck {
 
@@ -39,16 +39,40 @@ const std::vector<CommandSpec>& command_table() {
     register_post1_commands(t);
     register_post1_plot_commands(t);
     register_post26_commands(t);
-    register_language_standin_commands(t);  // removed when the language branch merges
+    register_parameter_commands(t);
+    register_array_commands(t);
+    register_output_commands(t);
+    register_database_commands(t);
     return t;
   }();
   return table;
 }
 
 const CommandSpec* find_command(const std::string& name) {
-  for (const auto& spec : command_table())
-    if (name == spec.name) return &spec;
-  return nullptr;
+  // Hashed: loops run the lookup once per command executed.
+  static const std::unordered_map<std::string, const CommandSpec*> index = [] {
+    std::unordered_map<std::string, const CommandSpec*> m;
+    for (const auto& spec : command_table()) m.emplace(spec.name, &spec);  // first one wins
+    return m;
+  }();
+  const auto it = index.find(name);
+  return it == index.end() ? nullptr : it->second;
+}
+
+const CommandSpec* find_command_by_abbreviation(const std::string& name, bool& ambiguous) {
+  ambiguous = false;
+  if (name.size() < 4) return nullptr;  // `/OUT`, `*STA`, `SECT`: four characters at least
+  const CommandSpec* found = nullptr;
+  for (const auto& spec : command_table()) {
+    const std::string candidate = spec.name;
+    if (candidate.size() <= name.size() || candidate.compare(0, name.size(), name) != 0) continue;
+    if (found != nullptr && std::string(found->name) != candidate) {
+      ambiguous = true;
+      return nullptr;
+    }
+    found = &spec;
+  }
+  return found;
 }
 
 namespace {

@@ -14,6 +14,8 @@
 #include "deck/deck_reader.h"
 #include "deck/expression.h"
 #include "deck/lexer.h"
+#include "deck/output.h"
+#include "deck/parameters.h"
 #include "deck/selection.h"
 #include "deck/solution_host.h"
 
@@ -36,9 +38,10 @@ const char* processor_name(unsigned processor);
 /// A command ready for its handler: resolved (upper-case) name and raw field texts.
 struct Command {
   std::string name;
-  std::vector<std::string> fields;  // fields[0] is field 1
-  std::string rest;                 // raw text after the first comma (/TITLE, /COM)
-  bool assignment = false;          // modern `Par = expr`
+  std::vector<std::string> fields;        // fields[0] is field 1
+  std::string rest;                       // raw text after the first comma (/TITLE, /COM)
+  bool assignment = false;                // modern `Par = expr`
+  std::vector<std::string> format_lines;  // the line(s) after *VWRITE / *MSG, verbatim
   SourceLocation where;
   int n_fields() const { return static_cast<int>(fields.size()); }
   /// Field i (1-based), "" when absent.
@@ -80,13 +83,47 @@ void register_post1_plot_commands(std::vector<CommandSpec>& table);
 void register_post26_commands(std::vector<CommandSpec>& table);
 
 struct PostState;
+void register_parameter_commands(std::vector<CommandSpec>& table);
+void register_array_commands(std::vector<CommandSpec>& table);
+void register_output_commands(std::vector<CommandSpec>& table);
+void register_database_commands(std::vector<CommandSpec>& table);
+
+/// Modern dialect (MAPDL): a name of at least four significant characters that begins exactly
+/// one table command is that command (`SECT` → SECTYPE, `NSUBS` → NSUBST). nullptr when none;
+/// `ambiguous` set when several begin with it.
+const CommandSpec* find_command_by_abbreviation(const std::string& name, bool& ambiguous);
+
+/// A file made by *CREATE (kept in memory, APDL_SCRIPTING §A.13): its lines as lexed commands
+/// (with their deck locations, so errors point into the deck) and as text (*LIST).
+struct MacroFile {
+  std::vector<RawCommand> commands;
+  std::vector<std::string> lines;
+};
+
+/// Vector-operation settings (*VFACT, *VMASK, *VLEN, *VCUM, *VABS, *VCOL; APDL_MODELING §10.2):
+/// they apply to the next *V / *M command and are then reset.
+struct VectorSettings {
+  double factor_result = 1.0, factor1 = 1.0, factor2 = 1.0, factor3 = 1.0;  // *VFACT
+  std::string mask;                                                   // *VMASK,Par(i) ("" = none)
+  std::optional<int> n_rows;                                          // *VLEN NROW
+  int row_increment = 1;                                              // *VLEN NINC
+  bool cumulate = false;                                              // *VCUM,1
+  bool abs_result = false, abs1 = false, abs2 = false, abs3 = false;  // *VABS
+  std::optional<int> n_cols1, n_cols2;                                // *VCOL
+};
+
+/// The *CFOPEN command file: *CFWRITE lines and *VWRITE output go there while it is open.
+struct CommandFileState {
+  std::ofstream stream;
+  std::string path;
+};
 
 class DeckReader {
  public:
   DeckReader(const DeckOptions& options, Dialect dialect, const std::string& jobname);
 
   /// Reads and executes a deck file (`where` = the /INPUT command, empty for the main deck).
-  void run_file(const std::string& path, int depth, const SourceLocation& where);
+  void run_file(const std::string& path, const SourceLocation& where);
   /// Executes lexed text (the main deck of read_deck_text).
   void run_text(const std::string& text, const std::string& path);
   /// Closes open blocks at the end of the deck and returns the job.
@@ -97,8 +134,19 @@ class DeckReader {
   double real(const Command& c, int i, double fallback) const;
   std::optional<int> opt_int(const Command& c, int i) const;
   int integer(const Command& c, int i, int fallback) const;
-  /// Upper-cased trimmed label ("" when blank).
+  /// Upper-cased trimmed label ("" when blank). A field naming a character parameter or a CHAR
+  /// array entry gives its text (APDL_SCRIPTING §A.5 rule 2); quotes keep the text as written.
   std::string label(const Command& c, int i) const;
+  /// A text field with its case kept (file names): character parameters substituted, quotes
+  /// removed.
+  std::string text_field(const Command& c, int i) const;
+  /// Field i as a number or a text (expressions evaluated; blank → 0).
+  Value value(const Command& c, int i) const;
+  /// Evaluates an expression with the parameters and the get functions; errors name `c`.
+  double eval(const Command& c, const std::string& expression) const;
+  Value eval_value(const Command& c, const std::string& expression) const;
+  /// `%expr%` substitution (§A.5 rule 3) of one text; `%%` is a literal %.
+  std::string substitute_percent(const Command& c, const std::string& text) const;
   /// ON/OFF/1/0/YES/NO (blank → fallback).
   bool on_off(const Command& c, int i, bool fallback) const;
   [[noreturn]] void fail(const Command& c, const std::string& message) const;
@@ -112,6 +160,10 @@ class DeckReader {
   /// an empty range, or nothing selected) is an error.
   std::vector<int> node_range(const Command& c, int node_field, int end_field, int inc_field);
   void require_node(const Command& c, int id) const;
+  /// Selection state as the get functions (NSEL(n), NODE(x,y,z), NDNEXT, ...) see it: defined
+  /// and selected (NSEL, ESEL, ...).
+  bool node_selected(int id) const;
+  bool element_selected(int id) const;
   /// Checks the node count against the element type and stores the record (repeats allowed).
   void add_element(const Command& c, int id, std::vector<int> nodes);
   /// Checks that every element has the real set / material / section its type needs
@@ -132,8 +184,14 @@ class DeckReader {
   unsigned processor = kBegin;
   Parameters params;
   std::map<std::string, double> increments;               // 4x *SET,Par,VALUE,INC
-  std::map<std::string, std::vector<RawCommand>> macros;  // *BEGIN / *CREATE blocks
+  std::map<std::string, std::vector<RawCommand>> macros;  // 4x *BEGIN blocks
+  std::map<std::string, MacroFile> files;                 // *CREATE files: "NAME.EXT" / "NAME"
   bool jobname_from_option = false;
+  OutputSink output;               // /OUT: every printed line goes through it
+  CommandFileState command_file;   // *CFOPEN
+  VectorSettings vector_settings;  // *VFACT *VMASK *VLEN *VCUM *VABS *VCOL
+  /// --skip-unknown: name → how often skipped, first location (the run summary's table).
+  std::map<std::string, std::pair<int, SourceLocation>> skipped;
 
   // PREP7 attribute pointers and generation memory.
   int current_type = 1;
@@ -174,23 +232,49 @@ class DeckReader {
   std::shared_ptr<PostState> post;
   std::size_t solutions = 0;  // solution requests handed to the host so far
 
+  /// /CLEAR: a new, empty database (model, job, parameters, processor, output to the terminal);
+  /// *CREATE files survive. The solution host closes the current job first.
+  void clear_database(const Command& c);
+  /// Runs a macro (in-memory *CREATE file or macro file on disk) with ARG1..AR19 set from
+  /// `args`; false when no macro of that name exists.
+  bool call_macro(const Command& c, const std::string& name, const std::vector<Value>& args);
+
  private:
-  void run(const std::vector<RawCommand>& cmds, std::size_t begin, std::size_t end, int depth);
-  std::size_t find_block_end(const std::vector<RawCommand>& cmds, std::size_t begin,
-                             std::size_t end, const char* open, const char* close,
-                             const Command& opener) const;
-  void run_do(const std::vector<RawCommand>& cmds, std::size_t& i, std::size_t end, int depth,
-              const Command& c);
-  void run_if(const std::vector<RawCommand>& cmds, std::size_t& i, std::size_t end, int depth,
-              const Command& c);
-  void run_macro(const Command& c, const std::string& name, int depth);
+  struct Program;
+  struct Frame;
+  enum class Flow { Normal, Exit, Cycle, Jump, Stop, EndFile };
+  void run_program(const std::vector<RawCommand>& cmds, const std::string& frame_name,
+                   const SourceLocation& where);
+  Flow run_range(Frame& f, std::size_t begin, std::size_t end);
+  Flow run_do(Frame& f, std::size_t i, const Command& c);
+  Flow run_dowhile(Frame& f, std::size_t i, const Command& c);
+  Flow run_if(Frame& f, std::size_t i, const Command& c);
+  bool if_condition(const Command& c, int first_field, bool& has_second);
+  void run_block_macro(const Command& c, const std::string& name);
+  void repeat_previous(const Command& c);
   Command resolve(const RawCommand& raw);
+  const CommandSpec* lookup(Command& c);
   void dispatch(const Command& c, const CommandSpec& spec);
 
   std::string last_name_;
-  bool eof_ = false;
+  std::optional<Command> last_command_;  // *REPEAT source
+  std::vector<std::string> active_;      // files and macros being run (recursion guard)
+  int nesting_ = 0;                      // executor recursion depth (blocks, files, macros)
+  long long executed_ = 0;               // commands executed (runaway-loop guard)
+  bool stopped_ = false;                 // STOP / /EOF at the top level
+  struct FunctionBridge : FunctionHost {
+    DeckReader* reader = nullptr;  // non-const: results functions (UX, ...) open the results
+    bool call(const std::string& name, const std::vector<double>& args,
+              double& result) const override;
+  } functions_;
 };
 
+/// Reads a whole text file; InputError at `where` (or naming the deck) when it cannot be read.
+std::string read_text_file(const std::string& path, const SourceLocation& where);
+/// /INPUT,Fname,Ext,Dir: the file relative to the including deck (or Dir); without an extension
+/// also Fname.inp and Fname.mac.
+std::string resolve_input(const std::string& includer, const std::string& fname,
+                          const std::string& ext, const std::string& dir = {});
 /// DOF labels of D/M/DDELE: Lab in `lab_field`, extra labels in `extra_first..extra_last`. In 4x a
 /// DOF label in a numeric range field (`end_field`, `inc_field`) starts the extra-label list
 /// (APDL_SUBSET §1.11); the range fields it consumes are set to 0. ALL gives all six DOFs.

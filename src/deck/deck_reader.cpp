@@ -1,5 +1,5 @@
-// Deck reader entry points, the command executor (repeat lines, 4-character names, /INPUT,
-// *DO, *IF, *BEGIN/*CREATE blocks) and the field helpers shared by the handlers.
+// Deck reader entry points, dialect detection and the field helpers shared by the handlers
+// (the executor is control_flow.cpp).
 #include "deck/deck_reader.h"
 
 #include <fmt/format.h>
@@ -11,7 +11,6 @@
 #include <sstream>
 
 #include "deck/deck_context.h"
-#include "deck/language_standin.h"
 #include "deck/post_support.h"
 #include "elements/element_registry.h"
 
@@ -20,43 +19,6 @@ namespace impactfe {
 namespace deck {
 
 namespace {
-
-constexpr int kMaxNesting = 20;
-
-std::string read_file(const std::string& path, const SourceLocation& where) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    if (where.known()) throw InputError(where, fmt::format("cannot open input file '{}'", path));
-    throw InputError(fmt::format("cannot open deck '{}'", path));
-  }
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-std::string directory_of(const std::string& path) {
-  return std::filesystem::path(path).parent_path().string();
-}
-
-std::string join_path(const std::string& dir, const std::string& name) {
-  if (dir.empty() || std::filesystem::path(name).is_absolute()) return name;
-  return (std::filesystem::path(dir) / name).string();
-}
-
-/// /INPUT,Fname,Ext: the file relative to the including deck; without an extension also try
-/// Fname.inp and Fname.mac.
-std::string resolve_input(const std::string& includer, const std::string& fname,
-                          const std::string& ext) {
-  const std::string dir = directory_of(includer);
-  std::string name = ext.empty() ? fname : fname + "." + ext;
-  std::string path = join_path(dir, name);
-  if (!ext.empty() || std::filesystem::exists(path)) return path;
-  for (const char* e : {".inp", ".mac"}) {
-    const std::string alt = join_path(dir, fname + e);
-    if (std::filesystem::exists(alt)) return alt;
-  }
-  return path;
-}
 
 /// Spec §2.3: 4x when the deck uses KAN, KAY, ITER, LWRITE, AFWRITE, /INPUT,27, /STRESS or
 /// *BEGIN (a 4x *DO names a *BEGIN block, so *BEGIN already decides). Included files count.
@@ -68,7 +30,7 @@ bool uses_4x(const std::vector<RawCommand>& cmds, const std::string& path, int d
       return true;
     if (n == "/INPUT" && !c.fields.empty()) {
       if (trim(c.fields[0]) == "27") return true;
-      if (depth < kMaxNesting) {
+      if (depth < 20) {
         const std::string inc =
             resolve_input(path, c.fields[0], c.fields.size() > 1 ? c.fields[1] : std::string());
         std::ifstream in(inc, std::ios::binary);
@@ -102,7 +64,8 @@ int Command::last_given() const {
 // ---- DeckReader -------------------------------------------------------------------------------
 
 DeckReader::DeckReader(const DeckOptions& opts, Dialect d, const std::string& jobname)
-    : options(opts), model(job.model), dialect(d) {
+    : options(opts), model(job.model), dialect(d), output(opts.output) {
+  functions_.reader = this;
   model.dialect = d;
   model.jobname = jobname;
   jobname_from_option = !opts.jobname.empty();
@@ -131,7 +94,11 @@ std::optional<double> DeckReader::opt_real(const Command& c, int i) const {
   if (t.empty()) return std::nullopt;
   if (auto v = parse_fortran_number(t)) return v;
   try {
-    return evaluate(t, params);
+    const Value v = evaluate_value(t, params, &functions_);
+    if (is_text(v))
+      fail(c, fmt::format("field {}: a number is needed, not the text '{}'", i,
+                          std::get<std::string>(v)));
+    return std::get<double>(v);
   } catch (const ExpressionError& e) {
     bool letters = false;
     for (char ch : t) letters = letters || std::isalpha(static_cast<unsigned char>(ch));
@@ -157,7 +124,97 @@ int DeckReader::integer(const Command& c, int i, int fallback) const {
 }
 
 std::string DeckReader::label(const Command& c, int i) const {
-  return to_upper(c.text(i));
+  return to_upper(text_field(c, i));
+}
+
+std::string DeckReader::text_field(const Command& c, int i) const {
+  const std::string& t = c.text(i);
+  if (t.empty()) return t;
+  if (t.size() >= 2 && t.front() == '\'' && t.back() == '\'') return t.substr(1, t.size() - 2);
+  // A whole field naming a character parameter or a CHAR-array entry gives its text (§A.5).
+  if (auto n = split_subscripted_name(t)) {
+    const Param* p = params.find(n->name);
+    if (p != nullptr &&
+        (p->type == ParamType::Text || (p->type == ParamType::CharArray && n->has_parentheses))) {
+      try {
+        const Value v = evaluate_value(t, params, &functions_);
+        if (is_text(v)) {
+          std::string out = std::get<std::string>(v);
+          while (!out.empty() && out.back() == ' ') out.pop_back();
+          return out;
+        }
+      } catch (const ExpressionError& e) {
+        fail(c, fmt::format("field {}: {}", i, e.what()));
+      }
+    }
+  }
+  return t;
+}
+
+Value DeckReader::value(const Command& c, int i) const {
+  const std::string& t = c.text(i);
+  if (t.empty()) return 0.0;
+  if (auto v = parse_fortran_number(t)) return *v;
+  return eval_value(c, t);
+}
+
+Value DeckReader::eval_value(const Command& c, const std::string& expression) const {
+  try {
+    return evaluate_value(expression, params, &functions_);
+  } catch (const ExpressionError& e) {
+    fail(c, fmt::format("bad expression '{}' ({})", expression, e.what()));
+  }
+}
+
+double DeckReader::eval(const Command& c, const std::string& expression) const {
+  if (auto v = parse_fortran_number(trim(expression))) return *v;
+  const Value v = eval_value(c, expression);
+  if (is_text(v))
+    fail(c,
+         fmt::format("'{}' is the text '{}', not a number", expression, std::get<std::string>(v)));
+  return std::get<double>(v);
+}
+
+std::string DeckReader::substitute_percent(const Command& c, const std::string& text) const {
+  std::string out;
+  std::size_t i = 0;
+  while (i < text.size()) {
+    if (text[i] != '%') {
+      out += text[i++];
+      continue;
+    }
+    if (i + 1 < text.size() && text[i + 1] == '%') {  // %% = a literal %
+      out += '%';
+      i += 2;
+      continue;
+    }
+    const std::size_t close = text.find('%', i + 1);
+    if (close == std::string::npos) {
+      out += text.substr(i);
+      break;
+    }
+    const std::string inner = text.substr(i + 1, close - i - 1);
+    const Param* p = params.find(trim(inner));
+    if (p != nullptr && p->type == ParamType::Table)
+      fail(c, fmt::format("%{}% names a TABLE: table-driven loads are not supported (give the "
+                          "value, or interpolate with {}(x))",
+                          trim(inner), trim(inner)));
+    try {
+      const Value v = evaluate_value(inner, params, &functions_);
+      if (is_text(v)) {
+        std::string t = std::get<std::string>(v);
+        while (!t.empty() && t.back() == ' ') t.pop_back();
+        out += t;
+      } else {
+        out += format_number(std::get<double>(v));
+      }
+    } catch (const ExpressionError& e) {
+      warn(c, fmt::format("%{}% left as written ({})", inner, e.what()));
+      out += text.substr(i, close - i + 1);
+    }
+    i = close + 1;
+  }
+  return out;
 }
 
 bool DeckReader::on_off(const Command& c, int i, bool fallback) const {
@@ -288,260 +345,15 @@ std::optional<double> DeckReader::previous_time() const {
   return t;
 }
 
-// ---- executor ---------------------------------------------------------------------------------
-
-Command DeckReader::resolve(const RawCommand& raw) {
-  Command c;
-  c.fields = raw.fields;
-  c.rest = raw.rest;
-  c.assignment = raw.assignment;
-  c.where.file = raw.file;
-  c.where.line = raw.line;
-  if (raw.repeat) {
-    if (last_name_.empty()) {
-      c.where.command = ",";
-      throw InputError(c.where, "repeat line (leading comma) with no previous command to repeat");
-    }
-    c.name = last_name_;
-  } else {
-    c.name = raw.name;
-  }
-  c.where.command = c.name;
-  return c;
-}
-
-void DeckReader::run_file(const std::string& path, int depth, const SourceLocation& where) {
-  if (depth > kMaxNesting)
-    throw InputError(where, fmt::format("/INPUT nesting deeper than {} files", kMaxNesting));
-  const std::string text = read_file(path, where);
-  const auto cmds = lex_text(text, path, dialect);
-  const bool saved_eof = eof_;
-  eof_ = false;
-  run(cmds, 0, cmds.size(), depth);
-  eof_ = saved_eof;
-}
-
-void DeckReader::run_text(const std::string& text, const std::string& path) {
-  const auto cmds = lex_text(text, path, dialect);
-  run(cmds, 0, cmds.size(), 0);
-}
-
-std::size_t DeckReader::find_block_end(const std::vector<RawCommand>& cmds, std::size_t begin,
-                                       std::size_t end, const char* open, const char* close,
-                                       const Command& opener) const {
-  int depth = 0;
-  for (std::size_t j = begin; j < end; ++j) {
-    const std::string& n = cmds[j].name;
-    if (n == open) ++depth;
-    if (n == close) {
-      if (depth == 0) return j;
-      --depth;
-    }
-  }
-  fail(opener, fmt::format("no matching {} for this {}", close, opener.name));
-}
-
-void DeckReader::run_do(const std::vector<RawCommand>& cmds, std::size_t& i, std::size_t end,
-                        int depth, const Command& c) {
-  const std::string first = label(c, 1);
-  if (macros.count(first) != 0 && dialect == Dialect::Classic4x) {
-    // 4x *DO,Block,N1,N2: replay the *BEGIN block once per k = N1..N2; after each pass every
-    // parameter with a *SET increment is incremented (§3.29).
-    const int n1 = integer(c, 2, 1);
-    const int n2 = integer(c, 3, n1);
-    for (int k = n1; k <= n2; ++k) {
-      run_macro(c, first, depth);
-      for (const auto& [name, inc] : increments)
-        params.set(name, params.get(name).value_or(0.0) + inc);
-    }
-    ++i;
-    return;
-  }
-  if (!is_parameter_name(first))
-    fail(c, fmt::format("'{}' is neither a *BEGIN block nor a loop parameter", c.text(1)));
-  if (depth >= kMaxNesting) fail(c, "*DO nesting deeper than 20");
-  const std::size_t close = find_block_end(cmds, i + 1, end, "*DO", "*ENDDO", c);
-  const double ival = real(c, 2, 0.0);
-  const auto fval = opt_real(c, 3);
-  if (!fval) fail(c, "*DO: final value FVAL missing");
-  const double inc = real(c, 4, 1.0);
-  if (inc == 0.0) fail(c, "*DO: increment is zero");
-  const double eps = 1e-10 * std::max(1.0, std::fabs(*fval));
-  for (double v = ival; inc > 0 ? v <= *fval + eps : v >= *fval - eps; v += inc) {
-    params.set(first, v);
-    run(cmds, i + 1, close, depth + 1);
-    if (eof_) return;
-  }
-  i = close + 1;
-}
-
-namespace {
-bool compare(const std::string& op, double a, double b) {
-  constexpr double tol = 1e-10;  // APDL_SCRIPTING S7: absolute tolerance
-  if (op == "EQ") return std::fabs(a - b) <= tol;
-  if (op == "NE") return std::fabs(a - b) > tol;
-  if (op == "LT") return a < b - tol;
-  if (op == "GT") return a > b + tol;
-  if (op == "LE") return a <= b + tol;
-  if (op == "GE") return a >= b - tol;
-  if (op == "ABLT") return std::fabs(a) < std::fabs(b) - tol;
-  if (op == "ABGT") return std::fabs(a) > std::fabs(b) + tol;
-  throw ExpressionError("unknown *IF operator " + op);
-}
-}  // namespace
-
-void DeckReader::run_if(const std::vector<RawCommand>& cmds, std::size_t& i, std::size_t end,
-                        int depth, const Command& c) {
-  // Branch starts: the *IF itself, each *ELSEIF, *ELSE; then *ENDIF (nested *IF..THEN skipped).
-  std::vector<std::size_t> marks{i};
-  std::size_t close = end;
-  int nest = 0;
-  for (std::size_t j = i + 1; j < end; ++j) {
-    const std::string& n = cmds[j].name;
-    if (n == "*IF" && cmds[j].fields.size() >= 4 && to_upper(trim(cmds[j].fields[3])) == "THEN")
-      ++nest;
-    else if (n == "*ENDIF") {
-      if (nest == 0) {
-        close = j;
-        break;
-      }
-      --nest;
-    } else if (nest == 0 && (n == "*ELSEIF" || n == "*ELSE")) {
-      marks.push_back(j);
-    }
-  }
-  if (close == end) fail(c, "no matching *ENDIF for this *IF");
-  marks.push_back(close);
-  for (std::size_t b = 0; b + 1 < marks.size(); ++b) {
-    const RawCommand& head = cmds[marks[b]];
-    bool take = head.name == "*ELSE";
-    if (!take) {
-      Command h = resolve(head);
-      if (label(h, 4) != "THEN")
-        fail(h, "only the block form *IF,VAL1,Oper,VAL2,THEN is supported");
-      try {
-        take = compare(label(h, 2), real(h, 1, 0.0), real(h, 3, 0.0));
-      } catch (const ExpressionError& e) {
-        fail(h, e.what());
-      }
-    }
-    if (take) {
-      run(cmds, marks[b] + 1, marks[b + 1], depth + 1);
-      break;
-    }
-  }
-  i = close + 1;
-}
-
-void DeckReader::run_macro(const Command& c, const std::string& name, int depth) {
-  if (depth >= kMaxNesting) fail(c, "macro nesting deeper than 20");
-  const auto cmds = macros.at(name);  // copy: the macro may redefine itself
-  run(cmds, 0, cmds.size(), depth + 1);
-  eof_ = false;
-}
-
-void DeckReader::run(const std::vector<RawCommand>& cmds, std::size_t begin, std::size_t end,
-                     int depth) {
-  std::size_t i = begin;
-  while (i < end && !eof_) {
-    Command c = resolve(cmds[i]);
-    const CommandSpec* spec = find_command(c.name);
-    if (spec == nullptr && dialect == Dialect::Classic4x) {
-      bool ambiguous = false;
-      spec = find_command_by_prefix(c.name, ambiguous);
-      if (ambiguous) fail(c, "ambiguous command name (4x: only the first four characters count)");
-      if (spec != nullptr) {
-        warn(c, fmt::format("taken as {} (4x: only the first four characters are significant)",
-                            spec->name));
-        c.name = spec->name;
-        c.where.command = c.name;
-      }
-    }
-    if (spec == nullptr) {
-      if (options.skip_unknown) {
-        warn(c, "unknown command skipped (--skip-unknown)");
-        job.ignored_commands.push_back(
-            fmt::format("{}:{}: {} (unknown)", c.where.file, c.where.line, c.name));
-        last_name_ = c.name;
-        ++i;
-        continue;
-      }
-      fail(c, "unknown command");
-    }
-    last_name_ = c.name;
-    // ---- control commands ----
-    if (c.name == "*DO") {
-      run_do(cmds, i, end, depth, c);
-      continue;
-    }
-    if (c.name == "*IF") {
-      run_if(cmds, i, end, depth, c);
-      continue;
-    }
-    if (c.name == "*ENDDO" || c.name == "*ENDIF" || c.name == "*ELSE" || c.name == "*ELSEIF")
-      fail(c, fmt::format("{} without a matching opening command", c.name));
-    if (c.name == "*BEGIN" || c.name == "*CREATE") {
-      const std::string name = label(c, 1);
-      if (name.empty()) fail(c, "block name missing");
-      const std::size_t close = find_block_end(cmds, i + 1, end, c.name.c_str(), "*END", c);
-      macros[name] = std::vector<RawCommand>(cmds.begin() + static_cast<long>(i) + 1,
-                                             cmds.begin() + static_cast<long>(close));
-      Log::info("{}:{}: {}: block {} recorded ({} commands)", c.where.file, c.where.line, c.name,
-                name, close - i - 1);
-      i = close + 1;
-      continue;
-    }
-    if (c.name == "*END") fail(c, "*END without *BEGIN or *CREATE");
-    if (c.name == "*USE") {
-      const std::string name = label(c, 1);
-      if (macros.count(name) == 0)
-        fail(c, fmt::format("macro '{}' is not defined (*CREATE)", name));
-      for (int a = 2; a <= std::min(c.n_fields(), 19); ++a)
-        if (!c.blank(a)) params.set(fmt::format("ARG{}", a - 1), real(c, a, 0.0));
-      run_macro(c, name, depth);
-      ++i;
-      continue;
-    }
-    if (c.name == "*VWRITE") {  // language stand-in: the next line is the format
-      if (i + 1 >= end) fail(c, "format line missing after *VWRITE");
-      const RawCommand& f = cmds[i + 1];
-      standin_vwrite(*this, c, f.name + (f.rest.empty() ? "" : "," + f.rest));
-      i += 2;
-      continue;
-    }
-    if (c.name == "/EOF") {
-      eof_ = true;
-      return;
-    }
-    if (c.name == "/INPUT") {
-      if (c.blank(1)) fail(c, "file name missing");
-      if (dialect == Dialect::Classic4x && trim(c.text(1)) == "27") {
-        run_frozen_analysis(*this, c);
-      } else {
-        const std::string path = resolve_input(c.where.file, c.text(1), c.text(2));
-        run_file(path, depth + 1, c.where);
-      }
-      ++i;
-      continue;
-    }
-    dispatch(c, *spec);
-    ++i;
-  }
-}
-
-void DeckReader::dispatch(const Command& c, const CommandSpec& spec) {
-  if ((spec.processors & processor) == 0) {
-    fail(c, fmt::format("command not valid in {}", processor_name(processor)));
-  }
-  spec.handler(*this, c);
-}
-
 Job DeckReader::finish() {
   if (processor == kStress && !stress_requests.empty()) {
     Log::warn("/STRESS block not closed by END at the end of the deck; expansion requests kept");
     close_stress_block(*this, stress_where);
   }
   if (options.host != nullptr) options.host->finish(job);
+  for (const auto& [name, entry] : skipped)
+    job.skipped_unknown.push_back({name, entry.first, entry.second});
+  output.to_terminal();
   return std::move(job);
 }
 
@@ -567,7 +379,7 @@ Job read_impl(const std::string& text, const std::string& path, const DeckOption
 }  // namespace
 
 Job read_deck(const std::string& path, const DeckOptions& options) {
-  return read_impl(deck::read_file(path, SourceLocation{}), path, options);
+  return read_impl(deck::read_text_file(path, SourceLocation{}), path, options);
 }
 
 Job read_deck_text(const std::string& text, const std::string& virtual_path,

@@ -3,6 +3,7 @@
 /// plus the ordered list of analyses, expansion passes and post-processing commands.
 /// The deck layer only builds; it never solves.
 #include <optional>
+#include <ostream>
 #include <string>
 
 #include "core/model.h"
@@ -20,6 +21,9 @@ struct DeckOptions {
   std::string results_file;
   /// Solves each request as the deck reaches it (null: requests are only collected).
   SolutionHost* host = nullptr;
+  /// Where the deck's printed output goes until /OUT redirects it (*VWRITE, *MSG, *STATUS,
+  /// /COM, PRNSOL, ...). Null: to the log; `impactfe run` passes std::cout.
+  std::ostream* output = nullptr;
 };
 
 /// Parses `path` (following /INPUT files). Throws InputError "FILE:LINE: COMMAND: what".

@@ -1,45 +1,129 @@
+// The APDL expression grammar (APDL_SCRIPTING §A.3) and the built-in functions (§A.4).
 #include "deck/expression.h"
+
+#include <fmt/format.h>
 
 #include <cctype>
 #include <cmath>
 #include <cstring>
 #include <numbers>
-#include <vector>
+#include <random>
 
+#include "core/text.h"
 #include "deck/lexer.h"
 
 namespace impactfe::deck {
 
-void Parameters::set(const std::string& name, double value) {
-  values_[to_upper(name)] = value;
-}
-void Parameters::erase(const std::string& name) {
-  values_.erase(to_upper(name));
-}
-std::optional<double> Parameters::get(const std::string& name) const {
-  auto it = values_.find(to_upper(name));
-  if (it == values_.end()) return std::nullopt;
-  return it->second;
-}
-
-bool is_parameter_name(std::string_view name) {
-  if (name.empty() || name.size() > 32 || !std::isalpha(static_cast<unsigned char>(name[0])))
-    return false;
-  for (char c : name)
-    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_')) return false;
-  return true;
-}
-
 namespace {
 
-/// Recursive-descent parser:  sum := term {(+|-) term};  term := unary {(*|/) unary};
-/// unary := (+|-) unary | power;  power := primary [** unary]  (right-associative).
+double require_number(const Value& v, const char* where) {
+  if (is_text(v))
+    throw ExpressionError(
+        fmt::format("text '{}' used {} (a number is needed)", std::get<std::string>(v), where));
+  return std::get<double>(v);
+}
+
+double finite(double v, const std::string& what) {
+  if (!std::isfinite(v)) throw ExpressionError(what + " gives no finite number");
+  return v;
+}
+
+int subscript(double v, const std::string& name) {
+  if (!std::isfinite(v) || std::fabs(v) > 1e9)
+    throw ExpressionError(fmt::format("bad subscript of {}", name));
+  return static_cast<int>(std::lround(v));
+}
+
+/// Built-in functions (§A.4): name, argument count (-1: two or more), evaluation.
+double call_builtin(const std::string& f, const std::vector<double>& a, const Parameters& p,
+                    bool& known) {
+  known = true;
+  auto need = [&](std::size_t n) {
+    if (a.size() != n)
+      throw ExpressionError(
+          fmt::format("{} takes {} argument{}, {} given", f, n, n == 1 ? "" : "s", a.size()));
+  };
+  const double to_rad = p.degrees ? std::numbers::pi / 180.0 : 1.0;
+  const double from_rad = 1.0 / to_rad;
+  if (f == "MIN" || f == "MAX") {  // program extension (S3)
+    if (a.empty()) throw ExpressionError(f + " needs at least one argument");
+    double v = a[0];
+    for (double x : a) v = f == "MIN" ? std::min(v, x) : std::max(v, x);
+    return v;
+  }
+  if (f == "MOD") {
+    need(2);
+    if (a[1] == 0.0) throw ExpressionError("MOD by zero");
+    return std::fmod(a[0], a[1]);  // Fortran: x - y*int(x/y), sign of x
+  }
+  if (f == "SIGN") {
+    need(2);
+    return a[1] >= 0.0 ? std::fabs(a[0]) : -std::fabs(a[0]);
+  }
+  if (f == "ATAN2") {
+    need(2);
+    return std::atan2(a[0], a[1]) * from_rad;
+  }
+  if (f == "CXABS") {
+    need(2);
+    return std::hypot(a[0], a[1]);
+  }
+  if (f == "RAND") {
+    need(2);
+    return std::uniform_real_distribution<double>(a[0], a[1])(p.random);
+  }
+  if (f == "GDIS") {
+    need(2);
+    if (a[1] < 0.0) throw ExpressionError("GDIS: negative standard deviation");
+    if (a[1] == 0.0) return a[0];
+    return std::normal_distribution<double>(a[0], a[1])(p.random);
+  }
+  static const char* const one_arg[] = {"ABS",  "SQRT", "EXP",  "LOG",  "LOG10",
+                                        "SIN",  "COS",  "TAN",  "ASIN", "ACOS",
+                                        "ATAN", "SINH", "COSH", "TANH", "NINT"};
+  bool unary = false;
+  for (const char* n : one_arg) unary = unary || f == n;
+  if (!unary) {
+    known = false;
+    return 0.0;
+  }
+  need(1);
+  const double x = a[0];
+  if (f == "ABS") return std::fabs(x);
+  if (f == "SQRT") {
+    if (x < 0.0) throw ExpressionError("SQRT of a negative number");
+    return std::sqrt(x);
+  }
+  if (f == "EXP") return finite(std::exp(x), "EXP");
+  if (f == "LOG" || f == "LOG10") {
+    if (x <= 0.0) throw ExpressionError(f + " of a non-positive number");
+    return f == "LOG" ? std::log(x) : std::log10(x);
+  }
+  if (f == "SIN") return std::sin(x * to_rad);
+  if (f == "COS") return std::cos(x * to_rad);
+  if (f == "TAN") return finite(std::tan(x * to_rad), "TAN");
+  if (f == "ASIN" || f == "ACOS") {
+    if (std::fabs(x) > 1.0) throw ExpressionError(f + " of a number outside [-1, 1]");
+    return (f == "ASIN" ? std::asin(x) : std::acos(x)) * from_rad;
+  }
+  if (f == "ATAN") return std::atan(x) * from_rad;
+  if (f == "SINH") return finite(std::sinh(x), "SINH");
+  if (f == "COSH") return finite(std::cosh(x), "COSH");
+  if (f == "TANH") return std::tanh(x);
+  return std::round(x);  // NINT: halves away from zero (Fortran)
+}
+
+/// Recursive-descent parser of §A.3:
+///   cond := additive {(<|>) additive};  additive := unary {(+|-) unary};
+///   unary := (+|-) unary | mult;  mult := power {(*|/) power};  power := primary [** unary].
+/// `A*-B` (a sign after * or /) is accepted as an extension.
 class Parser {
  public:
-  Parser(std::string_view text, const Parameters& params) : s_(text), p_(params) {}
+  Parser(std::string_view text, const Parameters& params, const FunctionHost* host)
+      : s_(text), p_(params), host_(host) {}
 
-  double parse() {
-    const double v = sum();
+  Value parse() {
+    Value v = cond();
     skip();
     if (i_ != s_.size())
       throw ExpressionError("unexpected '" + std::string(s_.substr(i_)) + "' in expression");
@@ -50,6 +134,10 @@ class Parser {
   void skip() {
     while (i_ < s_.size() && (s_[i_] == ' ' || s_[i_] == '\t')) ++i_;
   }
+  bool peek(char c) {
+    skip();
+    return i_ < s_.size() && s_[i_] == c;
+  }
   bool accept(std::string_view tok) {
     skip();
     if (s_.substr(i_, tok.size()) == tok) {
@@ -58,137 +146,223 @@ class Parser {
     }
     return false;
   }
-  double sum() {
-    double v = term();
+  Value cond() {
+    Value v = additive();
     for (;;) {
-      if (accept("+"))
-        v += term();
-      else if (accept("-"))
-        v -= term();
-      else
-        return v;
-    }
-  }
-  double term() {
-    double v = unary();
-    for (;;) {
-      skip();
-      if (s_.substr(i_, 2) == "**") return v;  // handled in power()
-      if (accept("*")) {
-        v *= unary();
-      } else if (accept("/")) {
-        const double d = unary();
-        if (d == 0.0) throw ExpressionError("division by zero");
-        v /= d;
+      if (accept("<")) {
+        const double a = require_number(v, "with <");
+        const double b = require_number(additive(), "with <");
+        v = a < b ? a : b;
+      } else if (accept(">")) {
+        const double a = require_number(v, "with >");
+        const double b = require_number(additive(), "with >");
+        v = a > b ? a : b;
       } else {
         return v;
       }
     }
   }
-  double unary() {
-    if (accept("-")) return -unary();
-    if (accept("+")) return unary();
-    return power();
+  Value additive() {
+    Value v = unary();
+    for (;;) {
+      skip();
+      if (i_ < s_.size() && (s_[i_] == '+' || s_[i_] == '-')) {
+        const char op = s_[i_++];
+        const double a = require_number(v, "in arithmetic");
+        const double b = require_number(unary(), "in arithmetic");
+        v = op == '+' ? a + b : a - b;
+      } else {
+        return v;
+      }
+    }
   }
-  double power() {
-    const double base = primary();
-    if (accept("**")) return std::pow(base, unary());
+  Value unary() {
+    if (accept("-")) return -require_number(unary(), "after a sign");
+    if (accept("+")) return require_number(unary(), "after a sign");
+    return mult();
+  }
+  Value mult() {
+    Value v = power();
+    for (;;) {
+      skip();
+      if (s_.substr(i_, 2) == "**") return v;  // handled in power()
+      if (i_ < s_.size() && (s_[i_] == '*' || s_[i_] == '/')) {
+        const char op = s_[i_++];
+        const double a = require_number(v, "in arithmetic");
+        const double b =
+            require_number(peek('-') || peek('+') ? unary() : power(), "in arithmetic");
+        if (op == '*') {
+          v = a * b;
+        } else {
+          if (b == 0.0) throw ExpressionError("division by zero");
+          v = a / b;
+        }
+      } else {
+        return v;
+      }
+    }
+  }
+  Value power() {
+    Value base = primary();
+    if (accept("**")) {
+      const double a = require_number(base, "with **");
+      const double b = require_number(unary(), "with **");
+      const double r = std::pow(a, b);
+      if (!std::isfinite(r))
+        throw ExpressionError(
+            fmt::format("invalid power {}**{}", format_number(a), format_number(b)));
+      return r;
+    }
     return base;
   }
-  double primary() {
+  Value primary() {
     skip();
     if (i_ >= s_.size()) throw ExpressionError("expression ends unexpectedly");
     const char c = s_[i_];
     if (c == '(') {
       ++i_;
-      const double v = sum();
+      Value v = cond();
       if (!accept(")")) throw ExpressionError("missing ')'");
       return v;
     }
+    if (c == '\'') return quoted();
     if (std::isdigit(static_cast<unsigned char>(c)) || c == '.') return number();
-    if (std::isalpha(static_cast<unsigned char>(c)) || c == '_') {
-      std::size_t j = i_;
-      while (j < s_.size() && (std::isalnum(static_cast<unsigned char>(s_[j])) || s_[j] == '_'))
-        ++j;
-      const std::string name = to_upper(s_.substr(i_, j - i_));
-      i_ = j;
-      skip();
-      if (i_ < s_.size() && s_[i_] == '(') {
-        ++i_;
-        std::vector<double> args{sum()};
-        while (accept(",")) args.push_back(sum());
-        if (!accept(")")) throw ExpressionError("missing ')' after arguments of " + name);
-        return call(name, args);
-      }
-      auto v = p_.get(name);
-      if (!v) throw ExpressionError("'" + name + "' is not a defined parameter");
-      return *v;
-    }
+    if (std::isalpha(static_cast<unsigned char>(c)) || c == '_') return name();
     throw ExpressionError(std::string("unexpected '") + c + "' in expression");
   }
-  double number() {
-    // Longest prefix that parses as a Fortran number (mantissa, optional exponent).
+  Value quoted() {
+    ++i_;
+    std::string text;
+    for (; i_ < s_.size(); ++i_) {
+      if (s_[i_] == '\'') {
+        if (i_ + 1 < s_.size() && s_[i_ + 1] == '\'') {  // '' = one quote
+          text += '\'';
+          ++i_;
+          continue;
+        }
+        ++i_;
+        return text;
+      }
+      text += s_[i_];
+    }
+    throw ExpressionError("unterminated quoted string");
+  }
+  Value name() {
+    std::size_t j = i_;
+    while (j < s_.size() && (std::isalnum(static_cast<unsigned char>(s_[j])) || s_[j] == '_')) ++j;
+    const std::string n = to_upper(s_.substr(i_, j - i_));
+    i_ = j;
+    const Param* param = p_.find(n);
+    if (peek('(')) {
+      ++i_;
+      std::vector<Value> args;
+      if (!peek(')')) {
+        args.push_back(cond());
+        while (accept(",")) args.push_back(cond());
+      }
+      if (!accept(")")) throw ExpressionError("missing ')' after the arguments of " + n);
+      if (param != nullptr && param->is_array()) return element(n, *param, args);
+      if (param != nullptr)
+        throw ExpressionError(fmt::format("'{}' is a scalar parameter, not an array", n));
+      std::vector<double> x;
+      for (const auto& a : args) x.push_back(require_number(a, ("as an argument of " + n).c_str()));
+      bool known = false;
+      const double v = call_builtin(n, x, p_, known);
+      if (known) return v;
+      double result = 0.0;
+      if (host_ != nullptr && host_->call(n, x, result)) return result;
+      throw ExpressionError(fmt::format("'{}' is neither an array parameter nor a function", n));
+    }
+    if (param == nullptr) {
+      if (is_local_name(n)) return 0.0;  // unset macro argument
+      throw ExpressionError("'" + n + "' is not a defined parameter");
+    }
+    switch (param->type) {
+      case ParamType::Number:
+        return param->number;
+      case ParamType::Text:
+        return param->text;
+      default:
+        throw ExpressionError(fmt::format("'{}' is an array: give subscripts, e.g. {}(1)", n, n));
+    }
+  }
+  Value element(const std::string& n, const Param& p, const std::vector<Value>& args) {
+    if (args.empty() || args.size() > 3)
+      throw ExpressionError(fmt::format("{} takes 1 to 3 subscripts, {} given", n, args.size()));
+    std::vector<double> x;
+    for (const auto& a : args) x.push_back(require_number(a, ("as a subscript of " + n).c_str()));
+    if (p.type == ParamType::Table) {
+      // Subscripts are values of the primary variables (§A.7); a missing one takes the first
+      // index value of its dimension.
+      const int k0 = 1;
+      const double y = x.size() > 1 ? x[1] : p.values[p.offset(0, 1, k0)];
+      const double z = x.size() > 2 ? x[2] : p.values[p.offset(0, 0, 1)];
+      return table_lookup(p, x[0], y, z);
+    }
+    int s[3] = {1, 1, 1};
+    for (std::size_t k = 0; k < x.size(); ++k) s[k] = subscript(x[k], n);
+    if (!p.in_range(s[0], s[1], s[2]))
+      throw ExpressionError(
+          fmt::format("subscript ({},{},{}) of {} out of range (dimensions {}x{}x{})", s[0], s[1],
+                      s[2], n, p.imax, p.jmax, p.kmax));
+    return p.entry(s[0], s[1], s[2]);
+  }
+  Value number() {
+    // Mantissa, then an exponent: E/D with optional sign, or MAPDL's `123-002` form (a sign
+    // followed by at least two digits starting with 0, §A.3).
     std::size_t j = i_;
     while (j < s_.size() && (std::isdigit(static_cast<unsigned char>(s_[j])) || s_[j] == '.')) ++j;
+    std::string text(s_.substr(i_, j - i_));
     if (j < s_.size() && std::strchr("eEdD", s_[j]) != nullptr) {
       std::size_t k = j + 1;
       if (k < s_.size() && (s_[k] == '+' || s_[k] == '-')) ++k;
       if (k < s_.size() && std::isdigit(static_cast<unsigned char>(s_[k]))) {
         while (k < s_.size() && std::isdigit(static_cast<unsigned char>(s_[k]))) ++k;
+        text = std::string(s_.substr(i_, k - i_));
         j = k;
       }
+    } else if (j + 2 < s_.size() && (s_[j] == '+' || s_[j] == '-') && s_[j + 1] == '0' &&
+               std::isdigit(static_cast<unsigned char>(s_[j + 2]))) {
+      std::size_t k = j + 1;
+      while (k < s_.size() && std::isdigit(static_cast<unsigned char>(s_[k]))) ++k;
+      text += "E" + std::string(s_.substr(j, k - j));
+      j = k;
     }
-    auto v = parse_fortran_number(s_.substr(i_, j - i_));
+    auto v = parse_fortran_number(text);
     if (!v) throw ExpressionError("bad number '" + std::string(s_.substr(i_, j - i_)) + "'");
     i_ = j;
     return *v;
   }
-  double call(const std::string& f, const std::vector<double>& a) {
-    auto need = [&](std::size_t n) {
-      if (a.size() != n) throw ExpressionError(f + " takes " + std::to_string(n) + " argument(s)");
-    };
-    const double to_rad = p_.degrees ? std::numbers::pi / 180.0 : 1.0;
-    const double from_rad = 1.0 / to_rad;
-    if (f == "MOD") {
-      need(2);
-      if (a[1] == 0.0) throw ExpressionError("MOD by zero");
-      return std::fmod(a[0], a[1]);
-    }
-    need(1);
-    const double x = a[0];
-    if (f == "SIN") return std::sin(x * to_rad);
-    if (f == "COS") return std::cos(x * to_rad);
-    if (f == "TAN") return std::tan(x * to_rad);
-    if (f == "ASIN") return std::asin(x) * from_rad;
-    if (f == "ACOS") return std::acos(x) * from_rad;
-    if (f == "ATAN") return std::atan(x) * from_rad;
-    if (f == "SQRT") {
-      if (x < 0.0) throw ExpressionError("SQRT of a negative number");
-      return std::sqrt(x);
-    }
-    if (f == "ABS") return std::fabs(x);
-    if (f == "EXP") return std::exp(x);
-    if (f == "LOG") {
-      if (x <= 0.0) throw ExpressionError("LOG of a non-positive number");
-      return std::log(x);
-    }
-    if (f == "LOG10") {
-      if (x <= 0.0) throw ExpressionError("LOG10 of a non-positive number");
-      return std::log10(x);
-    }
-    if (f == "NINT") return std::round(x);  // Fortran NINT: halves away from zero
-    throw ExpressionError("unknown function " + f);
-  }
 
   std::string_view s_;
   const Parameters& p_;
+  const FunctionHost* host_;
   std::size_t i_ = 0;
 };
 
 }  // namespace
 
-double evaluate(std::string_view expression, const Parameters& parameters) {
-  return Parser(expression, parameters).parse();
+bool is_builtin_function(const std::string& n) {
+  static const char* const names[] = {"ABS",   "SIGN", "SQRT",  "EXP",  "LOG",  "LOG10",
+                                      "SIN",   "COS",  "TAN",   "ASIN", "ACOS", "ATAN",
+                                      "ATAN2", "SINH", "COSH",  "TANH", "NINT", "MOD",
+                                      "MIN",   "MAX",  "CXABS", "RAND", "GDIS"};
+  for (const char* f : names)
+    if (n == f) return true;
+  return false;
+}
+
+Value evaluate_value(std::string_view expression, const Parameters& parameters,
+                     const FunctionHost* functions) {
+  return Parser(expression, parameters, functions).parse();
+}
+
+double evaluate(std::string_view expression, const Parameters& parameters,
+                const FunctionHost* functions) {
+  const Value v = evaluate_value(expression, parameters, functions);
+  if (is_text(v))
+    throw ExpressionError(fmt::format("'{}' is a text, not a number", std::get<std::string>(v)));
+  return std::get<double>(v);
 }
 
 }  // namespace impactfe::deck

@@ -1,10 +1,13 @@
 #pragma once
-/// Scalar parameters and APDL expressions (APDL_SUBSET §1.9, APDL_SCRIPTING §A.3–A.4).
-#include <map>
-#include <optional>
+/// APDL expressions (APDL_SUBSET §1.9, APDL_SCRIPTING §A.3–A.4, APDL_MODELING §10.3): numbers in
+/// Fortran format, quoted strings, parameters and array elements, table interpolation, the
+/// operators + - * / ** < >, the built-in functions and the get functions of a host.
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <vector>
+
+#include "deck/parameters.h"
 
 namespace impactfe::deck {
 
@@ -14,25 +17,28 @@ class ExpressionError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-/// The scalar parameter table. Names are upper-cased; `*AFUN` selects radians or degrees.
-class Parameters {
+/// Functions the grammar does not know by itself: the get functions (NX(n), NODE(x,y,z), UX(n),
+/// NSEL(n), ...) answered from the deck state. `call` returns false when `name` is not one of
+/// its functions; it throws ExpressionError for a bad use (wrong argument count, missing node).
+class FunctionHost {
  public:
-  void set(const std::string& name, double value);
-  void erase(const std::string& name);
-  std::optional<double> get(const std::string& name) const;
-  bool degrees = false;  // *AFUN,DEG
-  const std::map<std::string, double>& all() const { return values_; }
-
- private:
-  std::map<std::string, double> values_;
+  virtual ~FunctionHost() = default;
+  virtual bool call(const std::string& name, const std::vector<double>& args,
+                    double& result) const = 0;
 };
 
-/// True for a legal parameter name: a letter first, then letters, digits or '_', ≤ 32 chars.
-bool is_parameter_name(std::string_view name);
+/// Evaluates an expression to a number or a text (a quoted string, a character parameter, a
+/// CHAR-array entry). A name followed by parentheses is, in this order: an element of an array
+/// parameter (`F(37,1,1)`, a TABLE interpolated at the subscript values), a built-in function,
+/// a function of `functions`. Throws ExpressionError naming the offending token.
+Value evaluate_value(std::string_view expression, const Parameters& parameters,
+                     const FunctionHost* functions = nullptr);
 
-/// Evaluates `+ - * / **`, parentheses, numbers in Fortran format, parameters and the functions
-/// SIN COS TAN ASIN ACOS ATAN SQRT ABS EXP LOG LOG10 NINT MOD (MOD takes two arguments).
-/// Throws ExpressionError naming the offending token.
-double evaluate(std::string_view expression, const Parameters& parameters);
+/// Same, for a number (a text result is an error).
+double evaluate(std::string_view expression, const Parameters& parameters,
+                const FunctionHost* functions = nullptr);
+
+/// Names of the built-in functions (SIN ... MAX), for *STATUS and name checks.
+bool is_builtin_function(const std::string& upper_name);
 
 }  // namespace impactfe::deck

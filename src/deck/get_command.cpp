@@ -1,11 +1,14 @@
-// *GET and *VGET (APDL_SCRIPTING §B, APDL_MODELING §10.1): model, selection and results data
-// into parameters. Results come from the current POST1 set / the POST26 variables (the results
-// file written by the solution host); a request that cannot be satisfied is an error naming it.
+// *GET (APDL_SCRIPTING §B) and the *GET items of the results, the POST1/POST26 state and the
+// model database beyond get_hooks.cpp's model items: a GetItemProvider, so *VGET (and *GET)
+// reach them through the one item registry. Results come from the current POST1 set / the
+// POST26 variables (the results file written by the solution host); a request that cannot be
+// satisfied is an error naming it.
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
 
+#include "deck/get_hooks.h"
 #include "deck/post26.h"
 #include "deck/post_support.h"
 #include "elements/element_registry.h"
@@ -39,50 +42,23 @@ double real_field(DeckReader& r, const Command& c, const GetRequest& g, const st
   r.fail(c, fmt::format("{} is not supported (known for {}: {})", g.what(), g.entity, known));
 }
 
-int next_selected(const std::vector<int>& selected, int from, bool higher) {
-  if (higher) {
-    const auto it = std::upper_bound(selected.begin(), selected.end(), from);
-    return it == selected.end() ? 0 : *it;
-  }
-  const auto it = std::lower_bound(selected.begin(), selected.end(), from);
-  return it == selected.begin() ? 0 : *std::prev(it);
-}
-
-/// XYZ component index, or -1.
-int xyz(const std::string& comp) {
-  if (comp == "X") return 0;
-  if (comp == "Y") return 1;
-  if (comp == "Z") return 2;
-  return -1;
-}
-
 /// *GET NODE items. `vector`: a *VGET loop, where an absent node gives 0.
 double get_node(DeckReader& r, const Command& c, const GetRequest& g, int n, bool vector) {
   const std::string& i1 = g.item1;
+  // COUNT, NUM MAX/MIN, NSEL, NXTH/NXTL and LOC are get_hooks.cpp's model items.
   if (n == 0) {
-    const auto sel = selected_nodes(r);
-    if (i1 == "COUNT") return static_cast<double>(sel.size());
-    if (i1 == "NUM") {
-      if (g.it1num == "MAX" || g.it1num == "MIN") {
-        if (sel.empty()) return 0.0;
-        return g.it1num == "MAX" ? sel.back() : sel.front();
-      }
-      if (g.it1num == "MAXD" || g.it1num == "MIND") {
-        if (r.model.nodes.empty()) return 0.0;
-        return g.it1num == "MAXD" ? r.model.nodes.rbegin()->first : r.model.nodes.begin()->first;
-      }
+    if (i1 == "NUM" && (g.it1num == "MAXD" || g.it1num == "MIND")) {
+      if (r.model.nodes.empty()) return 0.0;
+      return g.it1num == "MAXD" ? r.model.nodes.rbegin()->first : r.model.nodes.begin()->first;
     }
     unsupported(r, c, g, "ENTNUM 0: COUNT, NUM MAX/MIN/MAXD/MIND");
   }
   const bool defined = r.model.nodes.count(n) != 0;
-  if (i1 == "NSEL") return defined ? (r.selection.nodes.selected(n) ? 1.0 : -1.0) : 0.0;
-  if (i1 == "NXTH" || i1 == "NXTL") return next_selected(selected_nodes(r), n, i1 == "NXTH");
   if (!defined) {
     if (vector) return 0.0;
     r.fail(c, fmt::format("{}: node {} is not defined", g.what(), n));
   }
   const Node& node = r.model.node(n);
-  if (i1 == "LOC" && xyz(g.it1num) >= 0) return node.x[xyz(g.it1num)];
   if (i1 == "ANG") {
     if (g.it1num == "XY") return node.angles_deg[0];
     if (g.it1num == "YZ") return node.angles_deg[1];
@@ -117,41 +93,22 @@ double element_length(const DeckReader& r, const ElementRecord& e) {
 
 double get_element(DeckReader& r, const Command& c, const GetRequest& g, int e, bool vector) {
   const std::string& i1 = g.item1;
-  if (e == 0) {
-    const auto sel = selected_elements(r);
-    if (i1 == "COUNT") return static_cast<double>(sel.size());
-    if (i1 == "NUM" && (g.it1num == "MAX" || g.it1num == "MIN")) {
-      if (sel.empty()) return 0.0;
-      return g.it1num == "MAX" ? sel.back() : sel.front();
-    }
-    unsupported(r, c, g, "ENTNUM 0: COUNT, NUM MAX/MIN");
-  }
+  // COUNT, NUM MAX/MIN, ESEL, NXTH/NXTL, NODE, CENT and ATTR MAT/TYPE/REAL/SECN are
+  // get_hooks.cpp's model items.
+  if (e == 0) unsupported(r, c, g, "ENTNUM 0: COUNT, NUM MAX/MIN");
   const bool defined = r.model.elements.count(e) != 0;
-  if (i1 == "ESEL") return defined ? (r.selection.elements.selected(e) ? 1.0 : -1.0) : 0.0;
-  if (i1 == "NXTH" || i1 == "NXTL") return next_selected(selected_elements(r), e, i1 == "NXTH");
   if (!defined) {
     if (vector) return 0.0;
     r.fail(c, fmt::format("{}: element {} is not defined", g.what(), e));
   }
   const ElementRecord& rec = r.model.elements.at(e);
-  if (i1 == "NODE") {
-    const int k = integer_field(r, c, g, g.it1num);
-    if (k < 1) r.fail(c, fmt::format("{}: node position missing", g.what()));
-    return k <= static_cast<int>(rec.nodes.size()) ? rec.nodes[static_cast<std::size_t>(k - 1)]
-                                                   : 0.0;
-  }
   if (i1 == "ATTR") {
-    if (g.it1num == "MAT") return rec.mat;
-    if (g.it1num == "TYPE") return rec.type;
-    if (g.it1num == "REAL") return rec.real;
-    if (g.it1num == "SECN") return rec.secnum;
     if (g.it1num == "ESYS") return 0.0;
     if (g.it1num == "ENAM") {
       const ElementTypeDescriptor* d = find_element_type(element_type_name(r, e));
       return d != nullptr ? d->number : 0.0;
     }
   }
-  if (i1 == "CENT" && xyz(g.it1num) >= 0) return element_centroid(r, e)[xyz(g.it1num)];
   if (i1 == "LENG") return element_length(r, rec);
   if (i1 == "VOLU" || i1 == "GEOM") {
     const auto v = element_volume(r, c, e);
@@ -275,10 +232,12 @@ double real_field(DeckReader& r, const Command& c, const GetRequest& g, const st
   }
 }
 
-GetValue get_value(DeckReader& r, const Command& c, const GetRequest& g, bool vector) {
+/// The item `g`; nullopt when its entity is none of these (another provider's, or unknown).
+std::optional<GetValue> get_value(DeckReader& r, const Command& c, const GetRequest& g,
+                                  bool vector) {
   const std::string& e = g.entity;
-  if (e == "NODE") return {get_node(r, c, g, integer_field(r, c, g, g.entnum), vector)};
-  if (e == "ELEM") return {get_element(r, c, g, integer_field(r, c, g, g.entnum), vector)};
+  if (e == "NODE") return GetValue{get_node(r, c, g, integer_field(r, c, g, g.entnum), vector)};
+  if (e == "ELEM") return GetValue{get_element(r, c, g, integer_field(r, c, g, g.entnum), vector)};
   if (e == "ACTIVE" || e == "ACTI") return get_active(r, c, g);
   if (e == "ETAB") {
     // *GET,Par,ETAB,col,ELEM,e: column number col (1-based).
@@ -292,7 +251,7 @@ GetValue get_value(DeckReader& r, const Command& c, const GetRequest& g, bool ve
     e2.entnum = g.it1num;
     e2.item1 = "ETAB";
     e2.it1num = ps.etable[static_cast<std::size_t>(col - 1)].label;
-    return {get_element(r, c, e2, integer_field(r, c, g, g.it1num), vector)};
+    return GetValue{get_element(r, c, e2, integer_field(r, c, g, g.it1num), vector)};
   }
   if (e == "MODE") {
     const int m = integer_field(r, c, g, g.entnum);
@@ -305,14 +264,14 @@ GetValue get_value(DeckReader& r, const Command& c, const GetRequest& g, bool ve
     }
     if (m < 1 || m > static_cast<int>(f.size()))
       r.fail(c, fmt::format("{}: mode {} was not computed (modes 1..{})", g.what(), m, f.size()));
-    return {f[static_cast<std::size_t>(m - 1)]};
+    return GetValue{f[static_cast<std::size_t>(m - 1)]};
   }
   if (e == "FSUM") {
     const auto& fsum = post_state(r).fsum;
     if (!fsum) r.fail(c, fmt::format("{}: no FSUM was issued", g.what()));
     static const char* kNames[6] = {"FX", "FY", "FZ", "MX", "MY", "MZ"};
     for (std::size_t k = 0; k < 6; ++k)
-      if (g.item1 == "ITEM" && g.it1num == kNames[k]) return {(*fsum)[k]};
+      if (g.item1 == "ITEM" && g.it1num == kNames[k]) return GetValue{(*fsum)[k]};
     unsupported(r, c, g, "ITEM,FX..MZ");
   }
   if (e == "SSUM") {
@@ -320,80 +279,65 @@ GetValue get_value(DeckReader& r, const Command& c, const GetRequest& g, bool ve
     const auto it = ssum.find(g.it1num);
     if (g.item1 != "ITEM") unsupported(r, c, g, "ITEM,Lab");
     if (it == ssum.end()) r.fail(c, fmt::format("{}: no SSUM of column '{}'", g.what(), g.it1num));
-    return {it->second};
+    return GetValue{it->second};
   }
   if (e == "SORT") {
     const auto& s = post_state(r).sort;
     if (!s) r.fail(c, fmt::format("{}: no NSORT or ESORT was issued", g.what()));
-    if (g.item1 == "MAX") return {s->max};
-    if (g.item1 == "MIN") return {s->min};
-    if (g.item1 == "IMAX") return {static_cast<double>(s->imax)};
-    if (g.item1 == "IMIN") return {static_cast<double>(s->imin)};
+    if (g.item1 == "MAX") return GetValue{s->max};
+    if (g.item1 == "MIN") return GetValue{s->min};
+    if (g.item1 == "IMAX") return GetValue{static_cast<double>(s->imax)};
+    if (g.item1 == "IMIN") return GetValue{static_cast<double>(s->imin)};
     unsupported(r, c, g, "MAX, MIN, IMAX, IMIN");
   }
   if (e == "VARI") {
     const int n = integer_field(r, c, g, g.entnum);
     if (g.item1 == "EXTREM") {
       const Extremes x = post26_extremes(r, c, n);
-      if (g.it1num == "VMAX") return {x.vmax};
-      if (g.it1num == "VMIN") return {x.vmin};
-      if (g.it1num == "TMAX") return {x.tmax};
-      if (g.it1num == "TMIN") return {x.tmin};
-      if (g.it1num == "VLAST") return {x.vlast};
-      if (g.it1num == "TLAST") return {x.tlast};
+      if (g.it1num == "VMAX") return GetValue{x.vmax};
+      if (g.it1num == "VMIN") return GetValue{x.vmin};
+      if (g.it1num == "TMAX") return GetValue{x.tmax};
+      if (g.it1num == "TMIN") return GetValue{x.tmin};
+      if (g.it1num == "VLAST") return GetValue{x.vlast};
+      if (g.it1num == "TLAST") return GetValue{x.tlast};
     }
     if (g.item1 == "REAL" || g.item1 == "RTIME")
-      return {post26_value_at(r, c, n, real_field(r, c, g, g.it1num))};
+      return GetValue{post26_value_at(r, c, n, real_field(r, c, g, g.it1num))};
     if (g.item1 == "RSET") {
       const auto v = post26_values(r, c, n);
       const int k = integer_field(r, c, g, g.it1num);
       if (k < 1 || k > static_cast<int>(v.size()))
         r.fail(c, fmt::format("{}: location {} outside 1..{}", g.what(), k, v.size()));
-      return {v[static_cast<std::size_t>(k - 1)]};
+      return GetValue{v[static_cast<std::size_t>(k - 1)]};
     }
     unsupported(r, c, g, "EXTREM VMAX/VMIN/TMAX/TMIN/VLAST/TLAST, REAL t, RTIME t, RSET k");
-  }
-  if (e == "PARM") {
-    if (g.entnum.empty() || g.entnum == "0") {
-      const auto [all, basic] = parameter_counts(r);
-      if (g.item1 == "MAX") return {static_cast<double>(all)};
-      if (g.item1 == "BASIC") return {static_cast<double>(basic)};
-      unsupported(r, c, g, "ENTNUM 0: MAX, BASIC");
-    }
-    const ParameterInfo info = parameter_info(r, g.entnum);
-    if (g.item1 == "TYPE") return {static_cast<double>(info.type)};
-    if (g.item1 == "DIM" && xyz(g.it1num) >= 0) {
-      if (info.type < 0) r.fail(c, fmt::format("{}: '{}' is not defined", g.what(), g.entnum));
-      return {static_cast<double>(info.dims[xyz(g.it1num)])};
-    }
-    unsupported(r, c, g, "TYPE, DIM X/Y/Z");
   }
   if (e == "ETYP") {
     const int t = integer_field(r, c, g, g.entnum);
     if (t == 0 && g.item1 == "NUM" && g.it1num == "MAX")
-      return {r.model.element_types.empty() ? 0.0 : r.model.element_types.rbegin()->first};
+      return GetValue{r.model.element_types.empty() ? 0.0 : r.model.element_types.rbegin()->first};
     const auto it = r.model.element_types.find(t);
     if (it == r.model.element_types.end())
       r.fail(c, fmt::format("{}: element type {} is not defined", g.what(), t));
     if (g.item1 == "ATTR" && g.it1num == "ENAM") {
       const ElementTypeDescriptor* d = find_element_type(it->second.ansys_name);
-      return {d != nullptr ? d->number : 0.0};
+      return GetValue{d != nullptr ? d->number : 0.0};
     }
     if (g.item1 == "KOPT") {
       const int k = integer_field(r, c, g, g.it1num);
       if (k < 1 || k > 18) r.fail(c, fmt::format("{}: KEYOPT {} outside 1..18", g.what(), k));
-      return {static_cast<double>(it->second.key(k))};
+      return GetValue{static_cast<double>(it->second.key(k))};
     }
     unsupported(r, c, g, "ATTR ENAM, KOPT k, NUM MAX");
   }
   if (e == "RCON") {
     const int s = integer_field(r, c, g, g.entnum);
     if (s == 0 && g.item1 == "NUM" && g.it1num == "MAX")
-      return {r.model.real_sets.empty() ? 0.0 : r.model.real_sets.rbegin()->first};
+      return GetValue{r.model.real_sets.empty() ? 0.0 : r.model.real_sets.rbegin()->first};
     const auto it = r.model.real_sets.find(s);
     if (it == r.model.real_sets.end())
       r.fail(c, fmt::format("{}: real constant set {} is not defined", g.what(), s));
-    if (g.item1 == "CONST") return {it->second.get(integer_field(r, c, g, g.it1num))};
+    if (g.item1 == "CONST") return GetValue{it->second.get(integer_field(r, c, g, g.it1num))};
     unsupported(r, c, g, "CONST k, NUM MAX");
   }
   // Material properties: *GET,Par,MP,Lab,MAT (older: *GET,Par,Lab,MAT,TEMP,t).
@@ -409,68 +353,43 @@ GetValue get_value(DeckReader& r, const Command& c, const GetRequest& g, bool ve
     std::string l = lab == "NUXY" ? "PRXY" : lab;
     if (!it->second.has(l) && lab == "PRXY") l = "NUXY";
     if (!it->second.has(l)) r.fail(c, fmt::format("{}: material {} has no {}", g.what(), mat, lab));
-    return {it->second.get(l, 0.0)};
+    return GetValue{it->second.get(l, 0.0)};
   }
   if (e == "COMM" || e == "COMMON")
     r.fail(c, fmt::format("{}: MAPDL's internal common blocks do not exist in impactfe", g.what()));
-  r.fail(c, fmt::format("*GET entity '{}' is not supported (NODE, ELEM, ETAB, ACTIVE, MODE, "
-                        "FSUM, SSUM, SORT, VARI, PARM, ETYP, RCON, MP or a material label)",
-                        e));
+  return std::nullopt;
 }
 
-GetRequest request_of(DeckReader& r, const Command& c) {
-  GetRequest g{r.label(c, 2), r.label(c, 3), r.label(c, 4),
-               r.label(c, 5), r.label(c, 6), r.label(c, 7)};
-  // Numeric fields (ENTNUM, a node position, a sequence number, a time) may be parameters or
-  // expressions: they are evaluated where the item needs a number (integer_field, real_field);
-  // label fields (X, EQV, MAX, an ETABLE label) are never substituted.
-  if (g.entity.empty()) r.fail(c, "Entity missing");
-  return g;
+/// get_value as a GetItemProvider. Registered before the model items (tried after them), so
+/// its "not supported (known for ...)" errors are the last word on the entities it knows.
+std::optional<Value> results_items(DeckReader& r, const Command& c, const GetItem& q) {
+  const GetRequest g{q.entity, q.entname.empty() ? format_number(q.entnum) : q.entname,
+                     q.item1,  q.it1num,
+                     q.item2,  q.it2num};
+  const auto v = get_value(r, c, g, q.missing_is_zero);
+  if (!v) return std::nullopt;
+  if (v->text) return Value(*v->text);
+  return Value(v->number);
 }
 
 void cmd_get(DeckReader& r, const Command& c) {
   // *GET,Par,Entity,ENTNUM,Item1,IT1NUM,Item2,IT2NUM
   if (c.blank(1)) r.fail(c, "Par missing");
-  const GetRequest g = request_of(r, c);
-  const GetValue v = get_value(r, c, g, false);
-  if (v.text)
-    assign_text_parameter(r, c, c.text(1), *v.text);
+  const Value v = get_item(r, c, read_get_item(r, c, 2));
+  if (is_text(v))
+    assign_text_parameter(r, c, c.text(1), std::get<std::string>(v));
   else
-    assign_parameter(r, c, c.text(1), v.number);
-}
-
-void cmd_vget(DeckReader& r, const Command& c) {
-  // *VGET,ParR,Entity,ENTNUM,Item1,IT1NUM,Item2,IT2NUM,KLOOP: loops ENTNUM upwards.
-  if (c.blank(1)) r.fail(c, "ParR missing");
-  const int kloop = r.integer(c, 8, 0);
-  if (kloop != 0 && kloop != 2)
-    r.fail(c, fmt::format("KLOOP {}: only the loop on ENTNUM (0 or 2) is supported", kloop));
-  GetRequest g = request_of(r, c);
-  if (g.entity != "NODE" && g.entity != "ELEM")
-    r.fail(c, fmt::format("*VGET entity '{}' is not supported (NODE, ELEM)", g.entity));
-  const bool nodes = g.entity == "NODE";
-  std::vector<double> values;
-  if (g.item1 == "NLIST" || g.item1 == "ELIST") {
-    for (int id : nodes ? selected_nodes(r) : selected_elements(r)) values.push_back(id);
-  } else {
-    const int first = std::max(1, integer_field(r, c, g, g.entnum));
-    const int last = nodes ? (r.model.nodes.empty() ? 0 : r.model.nodes.rbegin()->first)
-                           : (r.model.elements.empty() ? 0 : r.model.elements.rbegin()->first);
-    if (last < first)
-      r.fail(c, fmt::format("no {} numbered {} or higher", nodes ? "node" : "element", first));
-    for (int id = first; id <= last; ++id) {
-      g.entnum = std::to_string(id);
-      values.push_back(get_value(r, c, g, true).number);
-    }
-  }
-  assign_vector(r, c, c.text(1), values);
+    assign_parameter(r, c, c.text(1), std::get<double>(v));
 }
 
 }  // namespace
 
 void register_get_commands(std::vector<CommandSpec>& t) {
-  t.push_back({"*GET", cmd_get, kAnywhere});
-  t.push_back({"*VGET", cmd_vget, kAnywhere});
+  t.push_back({"*GET", cmd_get, kAnywhere});  // *VGET / *VPUT: matrix_commands.cpp
+}
+
+void register_results_get_items(std::vector<GetItemProvider>& t) {
+  t.push_back(results_items);
 }
 
 }  // namespace impactfe::deck

@@ -1,19 +1,13 @@
 #pragma once
-/// The get functions of expressions that need the model, the selection or the results
-/// (APDL_MODELING §10.3): NX NY NZ, NODE(x,y,z), NNEAR, ENEARN, DISTND, CENTRX/Y/Z, NELEM,
-/// UX..ROTZ / VX.. / AX.. of the current set, NSEL ESEL, NDNEXT ELNEXT. The expression
-/// evaluator of the language branch calls this through its hook for get functions.
-#include <optional>
-#include <string>
+/// The results group of the get functions (APDL_MODELING §10.3): UX..ROTZ, VX..VZ, AX..AZ of a
+/// node in the current POST1 set. The model and selection group (NX, NODE(x,y,z), NSEL, ...) is
+/// get_hooks.cpp's; both are registered in its table, so expressions reach them all.
 #include <vector>
 
-#include "deck/deck_context.h"
+#include "deck/get_hooks.h"
 
 namespace impactfe::deck {
 
-/// Value of get function `name` (upper case) with `args`; nullopt when `name` is not one of
-/// these functions. A wrong argument count or an undefined entity is an error of `c`.
-std::optional<double> model_get_function(DeckReader& r, const Command& c, const std::string& name,
-                                         const std::vector<double>& args);
+void register_results_get_functions(std::vector<GetFunctionSpec>& table);
 
 }  // namespace impactfe::deck

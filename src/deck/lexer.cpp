@@ -3,6 +3,8 @@
 #include <cctype>
 #include <cstdlib>
 
+#include <fmt/format.h>
+
 namespace impactfe::deck {
 
 std::string trim(std::string_view text) {
@@ -60,7 +62,8 @@ std::string_view strip_comment(std::string_view text) {
   return text;
 }
 
-/// Splits on commas outside single quotes and parentheses (function arguments in expressions).
+}  // namespace
+
 std::vector<std::string> split_fields(std::string_view text) {
   std::vector<std::string> out;
   std::string current;
@@ -80,6 +83,8 @@ std::vector<std::string> split_fields(std::string_view text) {
   out.push_back(trim(current));
   return out;
 }
+
+namespace {
 
 bool is_identifier(std::string_view s) {
   if (s.empty() || !(std::isalpha(static_cast<unsigned char>(s[0])) || s[0] == '_')) return false;
@@ -119,9 +124,14 @@ bool lex_segment(std::string_view raw, const std::string& file, int line, RawCom
   }
   const std::size_t comma = text.find(',');
   const std::size_t equal = text.find('=');
-  if (equal != std::string::npos && (comma == std::string::npos || equal < comma)) {
+  if (equal != std::string::npos && text[0] != '*' && text[0] != '/') {
+    // `Par = expr` or `A(i,j) = v1,v2,...`: the left side is a name, optionally subscripted.
     const std::string lhs = trim(std::string_view(text).substr(0, equal));
-    if (is_identifier(lhs)) {
+    const std::size_t paren = lhs.find('(');
+    const std::string base = trim(std::string_view(lhs).substr(0, paren));
+    const bool subscripted = paren != std::string::npos && lhs.back() == ')';
+    if (is_identifier(base) &&
+        (paren == std::string::npos ? comma == std::string::npos || equal < comma : subscripted)) {
       cmd.name = "*SET";
       cmd.assignment = true;
       cmd.fields = {lhs, trim(std::string_view(text).substr(equal + 1))};
@@ -174,18 +184,56 @@ std::vector<RawCommand> lex_line(std::string_view text, const std::string& file,
   return out;
 }
 
+bool takes_format_line(std::string_view n) {
+  return n.substr(0, 5) == "*VWRI" || n == "*MSG" || n.substr(0, 5) == "*MWRI";
+}
+
 std::vector<RawCommand> lex_text(std::string_view text, const std::string& file, Dialect dialect) {
   std::vector<RawCommand> out;
   int line = 0;
   std::size_t pos = 0;
+  bool format_next = false;  // the previous line ended with *VWRITE / *MSG (or a '&' format line)
   while (pos <= text.size()) {
     std::size_t end = text.find('\n', pos);
     if (end == std::string_view::npos) end = text.size();
     ++line;
-    auto cmds = lex_line(text.substr(pos, end - pos), file, line, dialect);
-    for (auto& c : cmds) out.push_back(std::move(c));
+    std::string_view physical = text.substr(pos, end - pos);
+    if (!physical.empty() && physical.back() == '\r') physical.remove_suffix(1);
+    if (trim(physical).size() > kMaxLineLength) {
+      RawCommand bad;
+      bad.file = file;
+      bad.line = line;
+      const std::string head = trim(physical.substr(0, std::min<std::size_t>(physical.size(), 40)));
+      const std::size_t comma = head.find(',');
+      bad.name =
+          comma != std::string::npos && comma > 0 ? to_upper(head.substr(0, comma)) : "(line)";
+      bad.error = fmt::format("line of {} characters refused (at most {} per line)",
+                              physical.size(), kMaxLineLength);
+      out.push_back(std::move(bad));
+      format_next = false;
+    } else if (format_next) {
+      RawCommand f;
+      f.format_line = true;
+      f.file = file;
+      f.line = line;
+      f.rest = std::string(physical);
+      f.source = f.rest;
+      const std::string t = trim(physical);
+      // A C-style format continues on the next line when it ends with '&' (*MSG, §A.14).
+      format_next = !t.empty() && t[0] != '(' && t.back() == '&';
+      if (format_next) f.rest = t.substr(0, t.size() - 1);
+      out.push_back(std::move(f));
+    } else {
+      auto cmds = lex_line(physical, file, line, dialect);
+      format_next = !cmds.empty() && takes_format_line(cmds.back().name);
+      for (auto& c : cmds) {
+        c.source = std::string(physical);
+        out.push_back(std::move(c));
+      }
+    }
     if (end == text.size()) break;
     pos = end + 1;
+    if (pos == text.size()) break;  // the newline ending the last line opens no further line
   }
   return out;
 }

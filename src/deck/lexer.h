@@ -15,13 +15,20 @@ namespace impactfe::deck {
 /// trimmed field texts, case preserved (handlers upper-case labels; file names keep their case).
 struct RawCommand {
   std::string name;
-  bool repeat = false;      // line started with ',' : re-issue the previous command name
-  bool assignment = false;  // modern `Par = expr`: fields = {Par, expr}
+  bool repeat = false;       // line started with ',' : re-issue the previous command name
+  bool assignment = false;   // `Par = expr` / `A(2,3) = 1,2,3`: fields = {Par, right side}
+  bool format_line = false;  // the format line after *VWRITE / *MSG / *MWRITE (`rest` = text)
   std::vector<std::string> fields;
-  std::string rest;  // raw text after the first comma (for /TITLE and /COM)
+  std::string rest;    // raw text after the first comma (for /TITLE and /COM)
+  std::string error;   // a line the lexer refuses (too long): reported when it is reached
+  std::string source;  // the physical line as written (*CREATE keeps it for *LIST)
   std::string file;
   int line = 0;
 };
+
+/// Longest input line accepted (MAPDL's limit is 640 characters); a longer line is refused
+/// with a message instead of being read.
+inline constexpr std::size_t kMaxLineLength = 640;
 
 /// Strips blanks, tabs and a trailing '\r'.
 std::string trim(std::string_view text);
@@ -35,7 +42,13 @@ std::optional<double> parse_fortran_number(std::string_view text);
 std::vector<RawCommand> lex_line(std::string_view text, const std::string& file, int line,
                                  Dialect dialect);
 
-/// Lexes a whole deck text, line by line.
+/// Splits on commas outside single quotes and parentheses; each field trimmed.
+std::vector<std::string> split_fields(std::string_view text);
+
+/// True for a command whose next physical line is its format line (*VWRITE, *MSG, *MWRITE).
+bool takes_format_line(std::string_view upper_name);
+
+/// Lexes a whole deck text, line by line (format lines after *VWRITE / *MSG kept verbatim).
 std::vector<RawCommand> lex_text(std::string_view text, const std::string& file, Dialect dialect);
 
 }  // namespace impactfe::deck

@@ -81,9 +81,6 @@ struct PostState {
   std::optional<std::pair<double, double>> x_range, y_range;
   bool grid = false;
   int xvar = 1;
-
-  // ---- language stand-in (language_standin.cpp; removed when the language branch merges) --
-  std::shared_ptr<void> language_standin;
 };
 
 }  // namespace impactfe::deck

@@ -7,7 +7,8 @@
 #include <vector>
 
 #include "deck/deck_context.h"
-#include "deck/language_standin.h"  // at merge: deck/parameters.h and the output sink
+#include "deck/output.h"
+#include "deck/parameters.h"
 #include "deck/post_state.h"
 #include "elements/element_registry.h"
 

@@ -24,6 +24,9 @@ class SolutionHost {
   virtual std::string results_for_reading(const Job& job) = 0;
   /// The deck ended: close the open analysis.
   virtual void finish(const Job& job) = 0;
+  /// /CLEAR: the job ends here (the open analysis is closed, the results file complete); the next
+  /// solution starts a new job and a new results file named after the jobname then current.
+  virtual void clear(const Job& job) = 0;
 };
 
 }  // namespace impactfe

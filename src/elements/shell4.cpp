@@ -6,125 +6,34 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 
 #include "core/errors.h"
 #include "core/log.h"
 #include "elements/element_registry.h"
+#include "elements/shell_frame.h"
+#include "elements/so3.h"
 
 namespace impactfe {
 
 namespace {
 
 using Mat3 = Eigen::Matrix3d;
-// Fixed-capacity types (at most 4 corners): the co-rotational kinematics runs dozens of times
-// per element and iteration, so it must not touch the heap.
-using Mat3N = Eigen::Matrix<double, 3, Eigen::Dynamic, Eigen::ColMajor, 3, 12>;
-using RowN = Eigen::Matrix<double, 1, Eigen::Dynamic, Eigen::RowMajor, 1, 12>;
-using Corners = Eigen::Matrix<double, 3, Eigen::Dynamic, Eigen::ColMajor, 3, 4>;
+using so3::spin;
+// Fixed capacity (at most 4 corners, 24 DOFs): no heap in the co-rotational hot path.
+using Mat24 = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, 24, 24>;
 
-Mat3 spin(const Vec3& v) {
-  Mat3 S;
-  S << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
-  return S;
-}
-
-/// Rotation matrix of the rotation vector ψ (Rodrigues).
-Mat3 exp_so3(const Vec3& psi) {
-  const double t = psi.norm();
-  const Mat3 S = spin(psi);
-  double a, b;
-  if (t < 1e-6) {
-    a = 1.0 - t * t / 6.0;
-    b = 0.5 - t * t / 24.0;
-  } else {
-    a = std::sin(t) / t;
-    b = (1.0 - std::cos(t)) / (t * t);
-  }
-  return Mat3::Identity() + a * S + b * S * S;
-}
-
-/// Rotation vector of R, angle in [0, π] (via the quaternion, robust near 0 and π).
-Vec3 log_so3(const Mat3& R) {
-  Eigen::Quaterniond q(R);
-  if (q.w() < 0.0) q.coeffs() *= -1.0;
-  const Vec3 v = q.vec();
-  const double s = v.norm();
-  if (s < 1e-12) return 2.0 * v;
-  return (2.0 * std::atan2(s, q.w()) / s) * v;
-}
-
-/// Left Jacobian T(ψ) of exp: δR Rᵀ = spin(T δψ).
-Mat3 left_jacobian(const Vec3& psi) {
-  const double t = psi.norm();
-  const Mat3 S = spin(psi);
-  double a, b;
-  if (t < 1e-4) {
-    a = 0.5 - t * t / 24.0;
-    b = 1.0 / 6.0 - t * t / 120.0;
-  } else {
-    a = (1.0 - std::cos(t)) / (t * t);
-    b = (t - std::sin(t)) / (t * t * t);
-  }
-  return Mat3::Identity() + a * S + b * S * S;
-}
-
-/// Inverse of the left Jacobian.
-Mat3 left_jacobian_inverse(const Vec3& psi) {
-  const double t = psi.norm();
-  const Mat3 S = spin(psi);
-  double c;
-  if (t < 1e-4)
-    c = 1.0 / 12.0 + t * t / 720.0;
-  else
-    c = 1.0 / (t * t) - (1.0 + std::cos(t)) / (2.0 * t * std::sin(t));
-  return Mat3::Identity() - 0.5 * S + c * S * S;
-}
-
-/// Element frame of corner positions x: e3 along the facet normal ((K−I)×(L−J) for a quad,
-/// i.e. the mean plane; (J−I)×(K−I) for a triangle), e1 along I→J projected on the plane,
-/// e2 = e3×e1; c = centroid of the corners. If G != nullptr it receives the frame spin
-/// δω = G δx (3 × 3n, global components) for corner translation variations δx.
-void element_frame(const Corners& x, Mat3& R, Vec3& c, Mat3N* G) {
-  const int n = static_cast<int>(x.cols());
-  c = x.rowwise().mean();
-  Vec3 a, b;
-  int ia0, ia1, ib0, ib1;  // a = x[ia1] − x[ia0], b = x[ib1] − x[ib0]
-  if (n == 4) {
-    ia0 = 0, ia1 = 2, ib0 = 1, ib1 = 3;
-  } else {
-    ia0 = 0, ia1 = 1, ib0 = 0, ib1 = 2;
-  }
-  a = x.col(ia1) - x.col(ia0);
-  b = x.col(ib1) - x.col(ib0);
-  const Vec3 nvec = a.cross(b);
-  const double nn = nvec.norm();
-  const Vec3 e3 = nvec / nn;
-  const Vec3 v = x.col(1) - x.col(0);
-  const Vec3 p = v - v.dot(e3) * e3;
-  const double pn = p.norm();
-  const Vec3 e1 = p / pn;
-  const Vec3 e2 = e3.cross(e1);
-  R.col(0) = e1;
-  R.col(1) = e2;
-  R.col(2) = e3;
-  if (G == nullptr) return;
-  // d(a×b) = −spin(b) da + spin(a) db, with da, db selecting corner translations.
-  Mat3N Dn = Mat3N::Zero(3, 3 * n);
-  Dn.block<3, 3>(0, 3 * ia1) -= spin(b);
-  Dn.block<3, 3>(0, 3 * ia0) += spin(b);
-  Dn.block<3, 3>(0, 3 * ib1) += spin(a);
-  Dn.block<3, 3>(0, 3 * ib0) -= spin(a);
-  const Mat3N De3 = (Mat3::Identity() - e3 * e3.transpose()) / nn * Dn;
-  const RowN w1 = -e2.transpose() * De3;
-  const RowN w2 = e1.transpose() * De3;
-  RowN dv = RowN::Zero(1, 3 * n);  // e2ᵀ d(x1 − x0)
-  dv.segment<3>(3) += e2.transpose();
-  dv.segment<3>(0) -= e2.transpose();
-  const RowN w3 = (dv - v.dot(e3) * e2.transpose() * De3) / pn;
-  *G = e1 * w1 + e2 * w2 + e3 * w3;
-}
+/// The co-rotational state of an element at a displacement u (Nour-Omid & Rankin 1991;
+/// Felippa & Haugen 2005): the frame of the current corners, and per corner its position r
+/// relative to the centroid, its nodal rotation vector ψ, its deformational rotation
+/// θ = log(Rcᵀ exp(ψ) R0), and the Jacobians T(ψ) and T(θ)⁻¹.
+struct CorotationalState {
+  ShellFrame frame;
+  std::array<Vec3, 4> r, psi, theta;
+  std::array<Mat3, 4> T, Ji;
+};
 
 double von_mises(double sx, double sy, double sxy) {
   return std::sqrt(std::max(0.0, sx * sx - sx * sy + sy * sy + 3.0 * sxy * sxy));
@@ -136,9 +45,11 @@ Shell4::Shell4(int id, const Shell4Data& data, const SourceLocation& where)
     : Element(id), n_(static_cast<int>(data.node_ids.size())), X_(data.positions) {
   for (int node : data.node_ids)
     for (Dof d : kAllDofs) dofs_.push_back(DofKey{node, d});
-  Corners corners(3, n_);
+  ShellCorners corners(3, n_);
   for (int a = 0; a < n_; ++a) corners.col(a) = X_[static_cast<std::size_t>(a)];
-  element_frame(corners, R0_, c0_, nullptr);
+  const ShellFrame frame0 = shell_frame(corners, false);
+  R0_ = frame0.R;
+  c0_ = frame0.c;
   if (!R0_.allFinite())
     throw InputError(where,
                      fmt::format("element {}: zero area (coincident or collinear nodes)", id));
@@ -181,43 +92,153 @@ Shell4::Shell4(int id, const Shell4Data& data, const SourceLocation& where)
   M_cons_ = 0.5 * (M_cons_ + M_cons_.transpose()).eval();
 }
 
+namespace {
+
+/// Co-rotational state at u, and the deformational displacement d (6n): per corner the
+/// corotated position change Rcᵀ r_a − R0ᵀ(X_a − c0) and the deformational rotation θ_a.
+template <class VecD>
+CorotationalState corotate(const std::vector<Vec3>& X, const Mat3& R0, const Vec3& c0,
+                           const Eigen::VectorXd& u, bool with_derivatives, VecD& d) {
+  const int n = static_cast<int>(X.size());
+  ShellCorners x(3, n);
+  for (int a = 0; a < n; ++a) x.col(a) = X[static_cast<std::size_t>(a)] + u.segment<3>(6 * a);
+  CorotationalState s;
+  s.frame = shell_frame(x, with_derivatives);
+  const Mat3& Rc = s.frame.R;
+  d.resize(6 * n);
+  for (int a = 0; a < n; ++a) {
+    const std::size_t i = static_cast<std::size_t>(a);
+    s.r[i] = x.col(a) - s.frame.c;
+    d.template segment<3>(6 * a) = Rc.transpose() * s.r[i] - R0.transpose() * (X[i] - c0);
+    s.psi[i] = u.segment<3>(6 * a + 3);
+    s.theta[i] = so3::log_map(Rc.transpose() * so3::exp_map(s.psi[i]) * R0);
+    d.template segment<3>(6 * a + 3) = s.theta[i];
+    if (!with_derivatives) continue;
+    s.T[i] = so3::left_jacobian(s.psi[i]);
+    s.Ji[i] = so3::left_jacobian_inverse(s.theta[i]);
+  }
+  return s;
+}
+
+/// B = ∂d/∂u: δd_a = Rcᵀ(δx_a − δc + spin(r_a) δω) and δθ_a = T(θ_a)⁻¹ Rcᵀ(T(ψ_a) δψ_a − δω),
+/// δω = G δx (Nour-Omid & Rankin 1991, eqs. 43–49; Crisfield vol. 2, §17.5).
+template <class MatB>
+void kinematic_matrix(const CorotationalState& s, MatB& B) {
+  const int n = s.frame.n;
+  const Mat3& Rc = s.frame.R;
+  const ShellMat3N& G = s.frame.G;
+  B.setZero(6 * n, 6 * n);
+  const ShellMat3N RtG = Rc.transpose() * G;  // 3 × 3n over corner translations
+  for (int a = 0; a < n; ++a) {
+    const std::size_t i = static_cast<std::size_t>(a);
+    const ShellMat3N RsG = Rc.transpose() * spin(s.r[i]) * G;
+    const ShellMat3N JRtG = s.Ji[i] * RtG;
+    for (int b = 0; b < n; ++b) {
+      Mat3 blk = RsG.block<3, 3>(0, 3 * b) - Rc.transpose() / n;
+      if (a == b) blk += Rc.transpose();
+      B.template block<3, 3>(6 * a, 6 * b) = blk;
+      B.template block<3, 3>(6 * a + 3, 6 * b) = -JRtG.block<3, 3>(0, 3 * b);
+    }
+    B.template block<3, 3>(6 * a + 3, 6 * a + 3) = s.Ji[i] * Rc.transpose() * s.T[i];
+  }
+}
+
+/// Adds the geometric stiffness K_G δu = δ(Bᵀ) f_l at fixed local forces f_l = [n_a; m_a].
+///
+/// Bᵀ f_l in global terms (N_a = Rc n_a, M_a = Rc T(θ_a)⁻ᵀ m_a, P the centroid projection):
+///   f_x = P N + Gᵀ w,  w = −Σ_a (r_a × N_a + M_a),   f_ψa = T(ψ_a)ᵀ M_a.
+/// Its variation, with δN_a = δω × N_a, δr_a = δx_a − δc, δθ_a from B and
+/// Z_a = Rc ∂(T(θ_a)⁻ᵀ m_a)/∂θ T(θ_a)⁻¹ Rcᵀ:
+///   δM_a = −spin(M_a) δω + Z_a (T(ψ_a) δψ_a − δω),
+///   δw   = Σ_a spin(N_a − N̄) δx_a + Q δω − Σ_a Z_a T(ψ_a) δψ_a,
+///          Q = Σ_a (spin(r_a) spin(N_a) + spin(M_a) + Z_a),
+///   δf_x = −[spin(N_b − N̄) δω]_b + ∂(Gᵀw)/∂x δx + Gᵀ δw,
+///   δf_ψa = ∂(T(ψ_a)ᵀ M_a)/∂ψ δψ_a + T(ψ_a)ᵀ δM_a.
+/// This is the exact derivative of this formulation's Bᵀ (Nour-Omid & Rankin 1991, §5, and
+/// Felippa & Haugen 2005, §7, derive the same terms as K_GR, K_GP and K_GM; here the frame is
+/// the facet's own, so ∂G/∂x comes from frame_spin_derivative).
+template <class VecF, class MatK>
+void add_geometric_stiffness(const CorotationalState& s, const VecF& f_l, MatK& K) {
+  const int n = s.frame.n;
+  const Mat3& Rc = s.frame.R;
+  const ShellMat3N& G = s.frame.G;
+  std::array<Vec3, 4> N, M;
+  std::array<Mat3, 4> Z;
+  Vec3 N_mean = Vec3::Zero(), w = Vec3::Zero();
+  Mat3 Q = Mat3::Zero();
+  for (int a = 0; a < n; ++a) {
+    const std::size_t i = static_cast<std::size_t>(a);
+    N[i] = Rc * f_l.template segment<3>(6 * a);
+    const Vec3 m = f_l.template segment<3>(6 * a + 3);
+    M[i] = Rc * (s.Ji[i].transpose() * m);
+    Z[i] = Rc * so3::d_left_jacobian_inverse_transpose(s.theta[i], m) * s.Ji[i] * Rc.transpose();
+    N_mean += N[i] / n;
+    w -= s.r[i].cross(N[i]) + M[i];
+    Q += spin(s.r[i]) * spin(N[i]) + spin(M[i]) + Z[i];
+  }
+  // Translations × translations: frame curvature, centroid projection, and Gᵀ δw.
+  ShellMatNN Kxx = frame_spin_derivative(s.frame, w) + G.transpose().lazyProduct(Q * G);
+  for (int a = 0; a < n; ++a) {
+    const Mat3 SN = spin(N[static_cast<std::size_t>(a)] - N_mean);
+    const ShellMat3N SNG = SN * G;
+    Kxx.middleRows<3>(3 * a) -= SNG;              // δ(P N)
+    Kxx.middleCols<3>(3 * a) -= SNG.transpose();  // Gᵀ spin(N_a − N̄) δx_a (= −(SN G)ᵀ)
+  }
+  for (int a = 0; a < n; ++a)
+    for (int b = 0; b < n; ++b)
+      K.template block<3, 3>(6 * a, 6 * b) += Kxx.block<3, 3>(3 * a, 3 * b);
+  // Rotation columns and rows.
+  for (int a = 0; a < n; ++a) {
+    const std::size_t i = static_cast<std::size_t>(a);
+    const Mat3& T = s.T[i];
+    const ShellMat3N Kxpsi_t = -((Z[i] * T).transpose() * G);             // (3n × 3)ᵀ
+    const ShellMat3N Kpsix = -(T.transpose() * (spin(M[i]) + Z[i])) * G;  // 3 × 3n
+    for (int b = 0; b < n; ++b) {
+      K.template block<3, 3>(6 * b, 6 * a + 3) += Kxpsi_t.block<3, 3>(0, 3 * b).transpose();
+      K.template block<3, 3>(6 * a + 3, 6 * b) += Kpsix.block<3, 3>(0, 3 * b);
+    }
+    K.template block<3, 3>(6 * a + 3, 6 * a + 3) +=
+        so3::d_left_jacobian_transpose(s.psi[i], M[i]) + T.transpose() * Z[i] * T;
+  }
+}
+
+/// Material part Bᵀ K̄ B, using the sparsity of B: the column of a nodal rotation ψ_b has only
+/// the 3 × 3 block T(θ_b)⁻¹ Rcᵀ T(ψ_b) in the rows of θ_b (about half the work of dense products).
+template <class MatB>
+void material_stiffness(const MatB& B, const Eigen::MatrixXd& K_bar, Eigen::MatrixXd& K) {
+  const int nd = static_cast<int>(B.rows());
+  Mat24 KB(nd, nd);
+  for (int b = 0; b < nd; b += 6) {
+    KB.middleCols<3>(b).noalias() = K_bar.lazyProduct(B.template middleCols<3>(b));
+    KB.middleCols<3>(b + 3).noalias() =
+        K_bar.middleCols<3>(b + 3) * B.template block<3, 3>(b + 3, b + 3);
+  }
+  K.resize(nd, nd);
+  for (int b = 0; b < nd; b += 6) {
+    K.middleRows<3>(b).noalias() = B.template middleCols<3>(b).transpose().lazyProduct(KB);
+    K.middleRows<3>(b + 3).noalias() =
+        B.template block<3, 3>(b + 3, b + 3).transpose() * KB.middleRows<3>(b + 3);
+  }
+}
+
+}  // namespace
+
 void Shell4::corotational_kinematics(const Eigen::VectorXd& u, Eigen::VectorXd& d,
                                      Eigen::MatrixXd* B) const {
-  const int nd = 6 * n_;
-  Corners x(3, n_);
-  for (int a = 0; a < n_; ++a) x.col(a) = X_[static_cast<std::size_t>(a)] + u.segment<3>(6 * a);
-  Mat3 Rc;
-  Vec3 c;
-  Mat3N G;
-  element_frame(x, Rc, c, B != nullptr ? &G : nullptr);
-  d.resize(nd);
-  if (B != nullptr) B->setZero(nd, nd);
-  for (int a = 0; a < n_; ++a) {
-    const std::size_t s = static_cast<std::size_t>(a);
-    const Vec3 r = x.col(a) - c;
-    d.segment<3>(6 * a) = Rc.transpose() * r - R0_.transpose() * (X_[s] - c0_);
-    const Vec3 psi = u.segment<3>(6 * a + 3);
-    const Vec3 th = log_so3(Rc.transpose() * exp_so3(psi) * R0_);
-    d.segment<3>(6 * a + 3) = th;
-    if (B == nullptr) continue;
-    // δd_a = Rcᵀ(δx_a − δc + spin(r_a) δω);  δθ_a = T(θ_a)⁻¹ Rcᵀ(T(ψ_a) δψ_a − δω), δω = G δx.
-    const Mat3N RtG = Rc.transpose() * G;  // 3 × 3n over corner translations
-    const Mat3N RsG = Rc.transpose() * spin(r) * G;
-    const Mat3 Ji = left_jacobian_inverse(th);
-    const Mat3N JRtG = Ji * RtG;
-    for (int b = 0; b < n_; ++b) {
-      Mat3 blk = RsG.block<3, 3>(0, 3 * b) - Rc.transpose() / n_;
-      if (a == b) blk += Rc.transpose();
-      B->block<3, 3>(6 * a, 6 * b) = blk;
-      B->block<3, 3>(6 * a + 3, 6 * b) = -JRtG.block<3, 3>(0, 3 * b);
-    }
-    B->block<3, 3>(6 * a + 3, 6 * a + 3) = Ji * Rc.transpose() * left_jacobian(psi);
-  }
+  const CorotationalState s = corotate(X_, R0_, c0_, u, B != nullptr, d);
+  if (B != nullptr) kinematic_matrix(s, *B);
+}
+
+void Shell4::corotational_geometric_stiffness(const Eigen::VectorXd& u, const Eigen::VectorXd& f_l,
+                                              Eigen::MatrixXd& K_G) const {
+  Eigen::VectorXd d;
+  const CorotationalState s = corotate(X_, R0_, c0_, u, true, d);
+  K_G.setZero(6 * n_, 6 * n_);
+  add_geometric_stiffness(s, f_l, K_G);
 }
 
 void Shell4::tangent(const ElementContext& ctx, const Eigen::VectorXd& u, Eigen::MatrixXd& K,
                      Eigen::VectorXd& f_int) const {
-  const int nd = 6 * n_;
   if (!ctx.large_deflection) {
     K = K_lin_;
     if (ctx.stress_stiffening) {
@@ -227,29 +248,16 @@ void Shell4::tangent(const ElementContext& ctx, const Eigen::VectorXd& u, Eigen:
     f_int = K * u;
     return;
   }
-  Eigen::VectorXd d;
-  Eigen::MatrixXd B;
-  corotational_kinematics(u, d, &B);
-  const Eigen::VectorXd f_l = K_bar_ * d;
+  // Co-rotational: f_int = Bᵀ K̄ d, K = Bᵀ K̄ B (material) + δ(Bᵀ) K̄ d (geometric, exact).
+  using Vec24 = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, 24, 1>;
+  Vec24 d;
+  const CorotationalState s = corotate(X_, R0_, c0_, u, true, d);
+  Mat24 B;
+  kinematic_matrix(s, B);
+  const Vec24 f_l = K_bar_ * d;
   f_int = B.transpose() * f_l;
-  K = B.transpose() * K_bar_ * B;
-  // Geometric part ∂Bᵀ/∂u · f_l by forward differences of the analytic B (error O(h) + ε/h,
-  // ~1e-7 relative with h = 1e-7 L). Its size relative to the material part is the corotated
-  // strain, so below a strain of 1e-9 it cannot change Newton's convergence and is skipped.
-  double L = 0.0;
-  for (int a = 0; a < n_; ++a) L = std::max(L, (X_[static_cast<std::size_t>(a)] - c0_).norm());
-  const double force_scale = K_bar_.diagonal().cwiseAbs().maxCoeff() * L;
-  if (f_l.cwiseAbs().maxCoeff() <= 1e-9 * force_scale) return;
-  Eigen::VectorXd up = u, dd;
-  Eigen::MatrixXd Bp;
-  const Eigen::VectorXd Btf = B.transpose() * f_l;
-  for (int j = 0; j < nd; ++j) {
-    const double h = (j % 6 < 3 ? L : 1.0) * 1e-7;
-    up(j) = u(j) + h;
-    corotational_kinematics(up, dd, &Bp);
-    up(j) = u(j);
-    K.col(j) += (Bp.transpose() * f_l - Btf) / h;
-  }
+  material_stiffness(B, K_bar_, K);
+  add_geometric_stiffness(s, f_l, K);
 }
 
 void Shell4::mass(const ElementContext& ctx, Eigen::MatrixXd& M) const {

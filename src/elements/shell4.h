@@ -38,7 +38,7 @@ class Shell4 : public Element {
   }
   /// Small deflection: K = K_lin (+ stress stiffness Aᵀ K_g(σ(u)) A with SSTIF), f = K u.
   /// Large deflection: co-rotational f = Bᵀ K̄ d(u), K = Bᵀ K̄ B + ∂Bᵀ/∂u·(K̄ d), with
-  /// B = ∂d/∂u analytic and its derivative by central differences of the analytic B.
+  /// B = ∂d/∂u and the geometric part ∂Bᵀ/∂u·f_l both analytic (shell_frame.h, so3.h).
   void tangent(const ElementContext& ctx, const Eigen::VectorXd& u, Eigen::MatrixXd& K,
                Eigen::VectorXd& f_int) const override;
   void mass(const ElementContext& ctx, Eigen::MatrixXd& M) const override;
@@ -53,6 +53,10 @@ class Shell4 : public Element {
                                Eigen::MatrixXd* B) const;
   /// ∫t dA of the facet.
   std::optional<double> volume() const override { return kernel_->volume(); }
+  /// Geometric stiffness K_G = ∂(B(u)ᵀ f_l)/∂u at a fixed local force vector f_l (6n), the part
+  /// of the large-deflection tangent beyond Bᵀ K̄ B. Exposed for tests.
+  void corotational_geometric_stiffness(const Eigen::VectorXd& u, const Eigen::VectorXd& f_l,
+                                        Eigen::MatrixXd& K_G) const;
   const shell::FlatShellKernel& kernel() const { return *kernel_; }
   int n_nodes() const { return n_; }
 

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <numeric>
 #include <stdexcept>
 
@@ -11,17 +12,83 @@ void silence_errors() {
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
 }
 
+std::string error_detail() {
+  std::string detail;
+  H5Ewalk2(
+      H5E_DEFAULT, H5E_WALK_UPWARD,
+      [](unsigned n, const H5E_error2_t* e, void* data) -> herr_t {
+        auto* out = static_cast<std::string*>(data);
+        // The most specific entry with a text of its own (the first walking upward).
+        if (out->empty() && e->desc != nullptr && e->desc[0] != '\0') *out = e->desc;
+        return 0;
+      },
+      &detail);
+  return detail;
+}
+
+namespace {
+[[noreturn]] void fail(const std::string& what) {
+  const std::string detail = error_detail();
+  H5Eclear2(H5E_DEFAULT);
+  throw std::runtime_error(detail.empty() ? fmt::format("cannot {}", what)
+                                          : fmt::format("cannot {} ({})", what, detail));
+}
+}  // namespace
+
 hid_t check(hid_t id, const std::string& what) {
-  if (id < 0) throw std::runtime_error(fmt::format("cannot {}", what));
+  if (id < 0) fail(what);
   return id;
 }
 
 void check_status(herr_t status, const std::string& what) {
-  if (status < 0) throw std::runtime_error(fmt::format("cannot {}", what));
+  if (status < 0) fail(what);
+}
+
+Handle file_access_checksummed() {
+  // The 1.8 format: checksummed superblock (v2) and object headers (v2). Not 1.10's superblock
+  // v3, which marks a file open for writing so that other processes cannot read it while a run
+  // writes it (without SWMR).
+  Handle fapl(check(H5Pcreate(H5P_FILE_ACCESS), "create file access list"));
+  check_status(H5Pset_libver_bounds(fapl, H5F_LIBVER_V18, H5F_LIBVER_V18),
+               "select the HDF5 1.8 file format");
+  return fapl;
+}
+
+Handle checked_creation_list(const std::vector<hsize_t>& chunk, const double* fill, int level) {
+  Handle dcpl(check(H5Pcreate(H5P_DATASET_CREATE), "create property list"));
+  check_status(H5Pset_chunk(dcpl, static_cast<int>(chunk.size()), chunk.data()), "set chunk");
+  // Shuffle groups the bytes of equal significance, which deflate then compresses well.
+  // Fletcher32 last, so the checksum covers the stored bytes.
+  if (level > 0) {
+    check_status(H5Pset_shuffle(dcpl), "set shuffle filter");
+    check_status(H5Pset_deflate(dcpl, static_cast<unsigned>(level)), "set deflate filter");
+  }
+  check_status(H5Pset_fletcher32(dcpl), "set Fletcher32 filter");
+  if (fill != nullptr)
+    check_status(H5Pset_fill_value(dcpl, H5T_NATIVE_DOUBLE, fill), "set fill value");
+  return dcpl;
 }
 
 bool exists(hid_t loc, const std::string& name) {
   return H5Lexists(loc, name.c_str(), H5P_DEFAULT) > 0;
+}
+
+bool exists_path(hid_t loc, const std::string& path) {
+  std::size_t pos = 0;
+  while (true) {
+    pos = path.find('/', pos + 1);
+    const std::string prefix = path.substr(0, pos);
+    if (!prefix.empty() && !exists(loc, prefix)) return false;
+    if (pos == std::string::npos) return true;
+  }
+}
+
+Handle checksummed_group_creation_list(bool file_creation) {
+  Handle plist(check(H5Pcreate(file_creation ? H5P_FILE_CREATE : H5P_GROUP_CREATE),
+                     "create group property list"));
+  check_status(H5Pset_link_phase_change(plist, 65535, 65535), "keep links compact");
+  check_status(H5Pset_attr_phase_change(plist, 65535, 65535), "keep attributes compact");
+  return plist;
 }
 
 Handle create_group(hid_t loc, const std::string& name) {
@@ -42,6 +109,33 @@ Handle string_type() {
 
 namespace {
 
+/// Fixed-length, NUL-padded UTF-8 string type of `size` bytes (at least 1).
+Handle fixed_string_type(std::size_t size) {
+  Handle t(check(H5Tcopy(H5T_C_S1), "create string type"));
+  check_status(H5Tset_size(t, std::max<std::size_t>(1, size)), "set string size");
+  check_status(H5Tset_strpad(t, H5T_STR_NULLPAD), "set string padding");
+  check_status(H5Tset_cset(t, H5T_CSET_UTF8), "set string charset");
+  return t;
+}
+
+std::size_t longest(const std::vector<std::string>& values) {
+  std::size_t n = 1;
+  for (const auto& v : values) n = std::max(n, v.size());
+  return n;
+}
+
+/// The strings laid out for a fixed-length type of `size` bytes each.
+std::vector<char> fixed_buffer(const std::vector<std::string>& values, std::size_t size) {
+  std::vector<char> buf(values.size() * size, '\0');
+  for (std::size_t i = 0; i < values.size(); ++i)
+    std::copy(values[i].begin(), values[i].end(), buf.begin() + static_cast<long>(i * size));
+  return buf;
+}
+
+}  // namespace
+
+namespace {
+
 void delete_attribute_if_present(hid_t obj, const std::string& name) {
   if (H5Aexists(obj, name.c_str()) > 0) H5Adelete(obj, name.c_str());
 }
@@ -51,12 +145,23 @@ hsize_t product(const std::vector<hsize_t>& dims) {
 }
 
 void write_dataset_raw(hid_t loc, const std::string& name, const std::vector<hsize_t>& dims,
-                       hid_t file_type, hid_t mem_type, const void* data) {
+                       hid_t file_type, hid_t mem_type, const void* data,
+                       Storage storage = Storage::Contiguous) {
   Handle space(check(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr),
                      "create dataspace for " + name));
-  Handle ds(
-      check(H5Dcreate2(loc, name.c_str(), file_type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-            "create dataset " + name));
+  // An empty dataset cannot be chunked (a chunk dimension may not exceed a fixed extent of 0).
+  Handle dcpl;
+  if (storage == Storage::Checked && product(dims) > 0) {
+    // One chunk of at most ~1 MB along the first dimension: the model section is read whole.
+    std::vector<hsize_t> chunk = dims;
+    const hsize_t row = product(dims) / dims[0] * H5Tget_size(file_type);
+    chunk[0] =
+        std::max<hsize_t>(1, std::min<hsize_t>(dims[0], (1u << 20) / std::max<hsize_t>(row, 1)));
+    dcpl = checked_creation_list(chunk);
+  }
+  Handle ds(check(H5Dcreate2(loc, name.c_str(), file_type, space, H5P_DEFAULT,
+                             dcpl.valid() ? dcpl.get() : H5P_DEFAULT, H5P_DEFAULT),
+                  "create dataset " + name));
   if (product(dims) > 0)
     check_status(H5Dwrite(ds, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), "write " + name);
 }
@@ -71,21 +176,48 @@ void write_attribute(hid_t obj, const std::string& name, double value) {
   check_status(H5Awrite(attr, H5T_NATIVE_DOUBLE, &value), "write attribute " + name);
 }
 
-void write_attribute(hid_t obj, const std::string& name, const std::string& value) {
+void write_integer_attribute(hid_t obj, const std::string& name, long long value) {
   delete_attribute_if_present(obj, name);
-  Handle type = string_type();
   Handle space(check(H5Screate(H5S_SCALAR), "create scalar dataspace"));
+  Handle attr(check(H5Acreate2(obj, name.c_str(), H5T_STD_I64LE, space, H5P_DEFAULT, H5P_DEFAULT),
+                    "create attribute " + name));
+  check_status(H5Awrite(attr, H5T_NATIVE_LLONG, &value), "write attribute " + name);
+}
+
+void write_attribute(hid_t obj, const std::string& name, const std::string& value,
+                     StringLayout layout) {
+  delete_attribute_if_present(obj, name);
+  Handle space(check(H5Screate(H5S_SCALAR), "create scalar dataspace"));
+  if (layout == StringLayout::Fixed) {
+    Handle type = fixed_string_type(value.size());
+    Handle attr(check(H5Acreate2(obj, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT),
+                      "create attribute " + name));
+    const std::vector<char> buf = fixed_buffer({value}, std::max<std::size_t>(1, value.size()));
+    check_status(H5Awrite(attr, type, buf.data()), "write attribute " + name);
+    return;
+  }
+  Handle type = string_type();
   Handle attr(check(H5Acreate2(obj, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT),
                     "create attribute " + name));
   const char* p = value.c_str();
   check_status(H5Awrite(attr, type, &p), "write attribute " + name);
 }
 
-void write_attribute(hid_t obj, const std::string& name, const std::vector<std::string>& values) {
+void write_attribute(hid_t obj, const std::string& name, const std::vector<std::string>& values,
+                     StringLayout layout) {
   delete_attribute_if_present(obj, name);
-  Handle type = string_type();
   hsize_t n = values.size();
   Handle space(check(H5Screate_simple(1, &n, nullptr), "create dataspace"));
+  if (layout == StringLayout::Fixed) {
+    const std::size_t size = longest(values);
+    Handle type = fixed_string_type(size);
+    Handle attr(check(H5Acreate2(obj, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT),
+                      "create attribute " + name));
+    const std::vector<char> buf = fixed_buffer(values, size);
+    if (n > 0) check_status(H5Awrite(attr, type, buf.data()), "write attribute " + name);
+    return;
+  }
+  Handle type = string_type();
   Handle attr(check(H5Acreate2(obj, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT),
                     "create attribute " + name));
   std::vector<const char*> ptrs;
@@ -110,6 +242,8 @@ std::vector<std::string> read_string_values(hid_t file_type, hid_t space, hsize_
     std::size_t size = H5Tget_size(file_type);
     Handle mem(check(H5Tcopy(H5T_C_S1), "copy string type"));
     H5Tset_size(mem, size);
+    H5Tset_cset(mem, H5Tget_cset(file_type));  // no conversion between character sets exists
+    H5Tset_strpad(mem, H5T_STR_NULLPAD);       // all `size` bytes may be characters
     std::vector<char> buf(size * n, '\0');
     check_status(read(mem.get(), static_cast<void*>(buf.data())), "read strings");
     for (hsize_t i = 0; i < n; ++i) {
@@ -158,16 +292,24 @@ std::vector<std::string> attribute_names(hid_t obj) {
 }
 
 void write_dataset(hid_t loc, const std::string& name, const std::vector<hsize_t>& dims,
-                   const double* data) {
-  write_dataset_raw(loc, name, dims, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, data);
+                   const double* data, Storage storage) {
+  write_dataset_raw(loc, name, dims, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, data, storage);
 }
 
 void write_dataset(hid_t loc, const std::string& name, const std::vector<hsize_t>& dims,
-                   const int* data) {
-  write_dataset_raw(loc, name, dims, H5T_STD_I32LE, H5T_NATIVE_INT, data);
+                   const int* data, Storage storage) {
+  write_dataset_raw(loc, name, dims, H5T_STD_I32LE, H5T_NATIVE_INT, data, storage);
 }
 
-void write_dataset(hid_t loc, const std::string& name, const std::vector<std::string>& values) {
+void write_dataset(hid_t loc, const std::string& name, const std::vector<std::string>& values,
+                   StringLayout layout) {
+  if (layout == StringLayout::Fixed) {
+    const std::size_t size = longest(values);
+    Handle type = fixed_string_type(size);
+    const std::vector<char> buf = fixed_buffer(values, size);
+    write_dataset_raw(loc, name, {values.size()}, type, type, buf.data(), Storage::Checked);
+    return;
+  }
   Handle type = string_type();
   std::vector<const char*> ptrs;
   for (const auto& v : values) ptrs.push_back(v.c_str());

@@ -40,21 +40,53 @@ class Handle {
 /// Silences the HDF5 error stack printer: libraries never print; failures become exceptions.
 void silence_errors();
 
-/// Throws std::runtime_error("cannot <what>") when id < 0 (callers add the file name).
+/// Throws std::runtime_error("cannot <what> (<HDF5's innermost error>)") when id < 0 (callers
+/// add the file name).
 hid_t check(hid_t id, const std::string& what);
 void check_status(herr_t status, const std::string& what);
+/// The most specific message on HDF5's error stack ("" when empty), e.g. "checksum
+/// verification failed" or "truncated file: eof = 4096, ...".
+std::string error_detail();
+
+/// File access property list of files written in the HDF5 1.8 format, whose superblock and
+/// object headers carry checksums (readable by HDF5 1.8 and later, h5py included).
+Handle file_access_checksummed();
+
+/// How the dataset writers below store strings: variable length (no size limit; the bytes live
+/// in the global heap, which carries no checksum) or fixed length (inline, so checksummed with
+/// the object header or chunk that holds them).
+enum class StringLayout { Variable, Fixed };
+/// How they store numeric datasets: contiguous, or chunked with the shuffle, deflate and
+/// Fletcher32 filters (compressed, and a corrupted chunk fails to read instead of returning
+/// wrong numbers).
+enum class Storage { Contiguous, Checked };
+
+/// Dataset creation list for a chunked, compressed and checksummed dataset (shuffle, deflate at
+/// `level`; level 0: Fletcher32 only); `fill` (optional) is the float64 fill value.
+Handle checked_creation_list(const std::vector<hsize_t>& chunk, const double* fill = nullptr,
+                             int level = 4);
 
 bool exists(hid_t loc, const std::string& name);
+/// Like exists() for a path "a/b/c" whose intermediate groups may be missing too.
+bool exists_path(hid_t loc, const std::string& path);
 
 Handle create_group(hid_t loc, const std::string& name);
+/// Group (or file: `file_creation` for the root group) creation list that keeps links and
+/// attributes in the object header, which carries a checksum, instead of moving them to "dense"
+/// storage past 8 entries (fractal heap blocks without checksums).
+Handle checksummed_group_creation_list(bool file_creation = false);
 Handle open_group(hid_t loc, const std::string& name);
 
 /// Variable-length UTF-8 string datatype.
 Handle string_type();
 
 void write_attribute(hid_t obj, const std::string& name, double value);
-void write_attribute(hid_t obj, const std::string& name, const std::string& value);
-void write_attribute(hid_t obj, const std::string& name, const std::vector<std::string>& values);
+void write_attribute(hid_t obj, const std::string& name, const std::string& value,
+                     StringLayout layout = StringLayout::Variable);
+void write_attribute(hid_t obj, const std::string& name, const std::vector<std::string>& values,
+                     StringLayout layout = StringLayout::Variable);
+/// Integer attribute (int64): counts stay integers.
+void write_integer_attribute(hid_t obj, const std::string& name, long long value);
 
 std::string read_string_attribute(hid_t obj, const std::string& name);
 double read_double_attribute(hid_t obj, const std::string& name);
@@ -64,10 +96,11 @@ std::vector<std::string> attribute_names(hid_t obj);
 
 /// Fixed-size dataset (row-major data, dims as given). Zero-sized datasets are allowed.
 void write_dataset(hid_t loc, const std::string& name, const std::vector<hsize_t>& dims,
-                   const double* data);
+                   const double* data, Storage storage = Storage::Contiguous);
 void write_dataset(hid_t loc, const std::string& name, const std::vector<hsize_t>& dims,
-                   const int* data);
-void write_dataset(hid_t loc, const std::string& name, const std::vector<std::string>& values);
+                   const int* data, Storage storage = Storage::Contiguous);
+void write_dataset(hid_t loc, const std::string& name, const std::vector<std::string>& values,
+                   StringLayout layout = StringLayout::Variable);
 
 /// Current dimensions of a dataset.
 std::vector<hsize_t> dims_of(hid_t dataset);

@@ -5,8 +5,14 @@
 
 #include <Eigen/Dense>
 #include <Eigen/SparseCholesky>
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 namespace impactfe {
 
@@ -14,6 +20,51 @@ namespace {
 
 /// Relative pivot below which a symmetric positive (semi)definite matrix is treated as singular.
 constexpr double kSingularPivot = 1e-11;
+
+/// Adds the wall time of its scope to `total` (solver phase timers of SolverCounters).
+class ScopedTimer {
+ public:
+  explicit ScopedTimer(double& total) : total_(total), start_(std::chrono::steady_clock::now()) {}
+  ~ScopedTimer() {
+    total_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
+  ScopedTimer(const ScopedTimer&) = delete;
+  ScopedTimer& operator=(const ScopedTimer&) = delete;
+
+ private:
+  double& total_;
+  std::chrono::steady_clock::time_point start_;
+};
+
+/// Caps the OpenMP team size for one scope. OpenBLAS (the openmp build the README installs) sizes
+/// every BLAS call by omp_get_max_threads(), so this is how a solver phase chooses its BLAS
+/// threads.
+class ScopedThreadLimit {
+ public:
+  explicit ScopedThreadLimit(int limit) {
+#ifdef _OPENMP
+    saved_ = omp_get_max_threads();
+    omp_set_num_threads(std::max(1, std::min(limit, saved_)));
+#endif
+  }
+  ~ScopedThreadLimit() {
+#ifdef _OPENMP
+    omp_set_num_threads(saved_);
+#endif
+  }
+  ScopedThreadLimit(const ScopedThreadLimit&) = delete;
+  ScopedThreadLimit& operator=(const ScopedThreadLimit&) = delete;
+
+ private:
+  int saved_ = 1;
+};
+
+/// Floating-point operations of a factorization above which its BLAS kernels (dsyrk, dgemm,
+/// dpotrf on the supernodes) may run on several threads. Below it a factorization takes
+/// milliseconds and every threaded kernel call pays a team wake-up that a busy machine turns
+/// into a wait for a core.
+constexpr double kParallelFactorFlops = 2.0e8;
+constexpr int kAllThreads = std::numeric_limits<int>::max();
 
 /// CHOLMOD supernodal LLᵀ, falling back to simplicial LDLᵀ for indefinite (but regular)
 /// effective matrices (e.g. compressive stress stiffening).
@@ -35,6 +86,7 @@ class CholmodSolver final : public LinearSolver {
   std::string name() const override { return "CHOLMOD"; }
 
   void analyze_pattern(const SparseMatrix& lower) override {
+    ScopedTimer timer(counters_.analyze_seconds);
     if (factor_) cholmod_free_factor(&factor_, &common_);
     cholmod_sparse A = view(lower);
     factor_ = cholmod_analyze(&A, &common_);
@@ -45,6 +97,9 @@ class CholmodSolver final : public LinearSolver {
 
   void factorize(const SparseMatrix& lower) override {
     if (!factor_) analyze_pattern(lower);
+    ScopedTimer timer(counters_.factorize_seconds);
+    // common_.fl: flop count of the factorization, from the symbolic analysis.
+    ScopedThreadLimit threads(common_.fl >= kParallelFactorFlops ? kAllThreads : 1);
     cholmod_sparse A = view(lower);
     common_.final_ll = 1;
     cholmod_factorize(&A, factor_, &common_);
@@ -66,10 +121,12 @@ class CholmodSolver final : public LinearSolver {
         throw SingularMatrixError(column, "zero pivot in the factorization");
       }
       check_pivots(lower);
+      record_sizes(lower);
       return;
     }
     // rcond is (min L_jj / max L_jj)^2: only a near-mechanism gets below 1e-13; then diagnose.
     if (cholmod_rcond(factor_, &common_) < 1e-13) check_pivots(lower);
+    record_sizes(lower);
   }
 
   VectorXd solve(const VectorXd& b) override {
@@ -79,6 +136,15 @@ class CholmodSolver final : public LinearSolver {
 
   MatrixXd solve(const MatrixXd& B) override {
     if (!factor_) throw std::runtime_error("CHOLMOD: solve before factorize");
+    ScopedTimer timer(counters_.solve_seconds);
+    // A solve streams the factor once forward and once backward, supernode by supernode, with
+    // one small dgemv/dtrsv (one right-hand side) or dgemm/dtrsm per supernode: memory-bound
+    // work that threads do not speed up, while each threaded call costs a synchronisation (on a
+    // 1215-DOF block drop a two-thread solve was 20x slower on a busy machine). Threads are left
+    // to block solves of many right-hand sides of a large factor (the condensation's Schur
+    // complement).
+    ScopedThreadLimit threads(B.cols() >= 8 && common_.fl >= kParallelFactorFlops ? kAllThreads
+                                                                                  : 1);
     cholmod_dense rhs;
     rhs.nrow = static_cast<size_t>(B.rows());
     rhs.ncol = static_cast<size_t>(B.cols());
@@ -116,6 +182,23 @@ class CholmodSolver final : public LinearSolver {
     return A;
   }
 
+  /// Sizes of the factor just computed. common_.lnz is nnz(L) of the last symbolic analysis
+  /// (set by cholmod_analyze; the LDLᵀ retry re-analyzes). The bytes are what a solve reads:
+  /// the dense supernode blocks and their row indices, or the simplicial columns.
+  void record_sizes(const SparseMatrix& lower) {
+    counters_.matrix_nonzeros = static_cast<long>(lower.nonZeros());
+    counters_.factor_nonzeros = static_cast<long>(common_.lnz);
+    if (factor_->is_super) {
+      counters_.factor_bytes =
+          static_cast<long>(factor_->xsize * sizeof(double) + factor_->ssize * sizeof(int));
+    } else {
+      const int* column_nz = static_cast<const int*>(factor_->nz);
+      long stored = 0;
+      for (size_t j = 0; j < factor_->n; ++j) stored += column_nz[j];
+      counters_.factor_bytes = stored * static_cast<long>(sizeof(double) + sizeof(int));
+    }
+  }
+
   /// A tiny pivot relative to its diagonal means a mechanism: name the weakest equation.
   void check_pivots(const SparseMatrix& lower) {
     const int row = weakest_pivot_row(lower);
@@ -133,9 +216,15 @@ class DenseSolver final : public LinearSolver {
   std::string name() const override { return "dense LDLT"; }
   void analyze_pattern(const SparseMatrix&) override { ++counters_.analyses; }
   void factorize(const SparseMatrix& lower) override {
+    ScopedTimer timer(counters_.factorize_seconds);
     const MatrixXd A = MatrixXd(lower).selfadjointView<Eigen::Lower>();
     ++counters_.factorizations;
     ldlt_.compute(A);
+    // A dense factor: the solves read its lower triangle.
+    const long n = static_cast<long>(A.rows());
+    counters_.matrix_nonzeros = static_cast<long>(lower.nonZeros());
+    counters_.factor_nonzeros = n * (n + 1) / 2;
+    counters_.factor_bytes = counters_.factor_nonzeros * static_cast<long>(sizeof(double));
     const VectorXd d = ldlt_.vectorD();
     double scale = 0.0;
     for (int i = 0; i < A.rows(); ++i) scale = std::max(scale, std::abs(A(i, i)));
@@ -150,10 +239,12 @@ class DenseSolver final : public LinearSolver {
     }
   }
   VectorXd solve(const VectorXd& b) override {
+    ScopedTimer timer(counters_.solve_seconds);
     ++counters_.solves;
     return ldlt_.solve(b);
   }
   MatrixXd solve(const MatrixXd& B) override {
+    ScopedTimer timer(counters_.solve_seconds);
     counters_.solves += B.cols();
     return ldlt_.solve(B);
   }
@@ -163,6 +254,19 @@ class DenseSolver final : public LinearSolver {
 };
 
 }  // namespace
+
+SolverCounters& SolverCounters::operator+=(const SolverCounters& other) {
+  analyses += other.analyses;
+  factorizations += other.factorizations;
+  solves += other.solves;
+  analyze_seconds += other.analyze_seconds;
+  factorize_seconds += other.factorize_seconds;
+  solve_seconds += other.solve_seconds;
+  matrix_nonzeros = std::max(matrix_nonzeros, other.matrix_nonzeros);
+  factor_nonzeros = std::max(factor_nonzeros, other.factor_nonzeros);
+  factor_bytes = std::max(factor_bytes, other.factor_bytes);
+  return *this;
+}
 
 int weakest_pivot_row(const SparseMatrix& lower) {
   Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower> ldlt(lower);

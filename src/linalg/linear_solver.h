@@ -25,6 +25,20 @@ struct SolverCounters {
   long analyses = 0;
   long factorizations = 0;
   long solves = 0;  // right-hand sides solved
+  // Wall time spent in each phase (benchmark figures; the run summary prints them).
+  double analyze_seconds = 0.0;
+  double factorize_seconds = 0.0;
+  double solve_seconds = 0.0;
+  // Sizes of the last factorization: nonzeros of the factored matrix (lower triangle), of the
+  // factor L (structural count, diagonal included), and the bytes of L a solve reads (stored
+  // values and row indices, supernodal padding included). A solve streams L twice (forward and
+  // backward substitution), so 2 * factor_bytes / memory bandwidth is its time floor.
+  long matrix_nonzeros = 0;
+  long factor_nonzeros = 0;
+  long factor_bytes = 0;
+
+  /// Adds counts and times; keeps the largest sizes (the counters of several DOF numberings).
+  SolverCounters& operator+=(const SolverCounters& other);
 };
 
 class LinearSolver {

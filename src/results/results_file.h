@@ -76,6 +76,11 @@ class ResultsWriter {
   /// Free-form scalar attributes of the current analysis (summary numbers, counts).
   void set_attribute(const std::string& name, double value);
   void set_attribute(const std::string& name, const std::string& value);
+  /// Integer attribute of the current analysis (counts: DOFs, factorizations, ...).
+  void set_count(const std::string& name, long long value);
+  /// Replaces the node lists of the given elements in the model section: a superelement's
+  /// nodes (its master nodes) are known only once its file is read.
+  void set_element_nodes(const std::map<int, std::vector<int>>& nodes);
   /// Marks the current analysis as finished (status attribute "complete" or the error text).
   /// An analysis still open when the writer is destroyed is marked "incomplete"; a killed run
   /// leaves "running".

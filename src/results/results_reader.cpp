@@ -60,7 +60,15 @@ struct Analysis {
   std::string group;
   std::vector<double> times;
   std::vector<Family> families;
+  /// Points from this index on are in the staging datasets under recent/ (a file whose analysis
+  /// is being written or was killed); all points are in the main datasets otherwise.
+  std::size_t first_recent_row = std::numeric_limits<std::size_t>::max();
+  /// Sparse reactions (format 2): column of R per (node row, DOF); empty with a dense R.
+  std::map<std::pair<std::size_t, int>, hsize_t> reaction_column;
+  bool sparse_reactions = false;
 };
+
+constexpr int kFormatVersion = 2;
 
 using Series = std::vector<std::pair<double, double>>;
 
@@ -109,30 +117,100 @@ struct ResultsReader::Impl {
     return analyses[static_cast<std::size_t>(a - 1)];
   }
 
-  /// Column `col` of row `index` of dataset (n_t, n, m) over the first n_t rows, NaN-padded
-  /// when the dataset is shorter (a quantity that stopped being written).
-  std::vector<double> column(const Analysis& an, const std::string& dataset, hsize_t index,
-                             hsize_t col) const {
-    std::vector<double> out(an.times.size(), kNaN);
-    std::string name = an.group + "/" + dataset;
-    if (!h5::exists(file, an.group + "/" + dataset.substr(0, dataset.find('/'))) ||
-        !h5::exists(file, name))
-      return out;
-    Handle ds(check(H5Dopen2(file, name.c_str(), H5P_DEFAULT), "open " + name));
-    auto dims = h5::dims_of(ds);
-    hsize_t rows = std::min<hsize_t>(dims[0], out.size());
-    std::vector<hsize_t> start{0}, count{rows};
-    if (dims.size() >= 2) {
-      start.push_back(index);
-      count.push_back(1);
+  /// Datasets stay open for the reader's life, so that their chunk caches keep the blocks read
+  /// last: reading the time points of a block one after the other decompresses it once.
+  mutable std::map<std::string, Handle> open_datasets;
+  hid_t dataset(const std::string& name) const {
+    auto it = open_datasets.find(name);
+    if (it == open_datasets.end())
+      it = open_datasets
+               .emplace(name,
+                        Handle(check(H5Dopen2(file, name.c_str(), H5P_DEFAULT), "open " + name)))
+               .first;
+    return it->second;
+  }
+
+  /// The chunks a read touches must have all their filters applied: the chunk index of the
+  /// HDF5 1.8 format carries no checksum, and a corrupted filter mask there would switch the
+  /// Fletcher32 check (and decompression) off for that chunk.
+  void verify_chunks(hid_t ds, const std::vector<hsize_t>& start,
+                     const std::vector<hsize_t>& count) const {
+    Handle dcpl(check(H5Dget_create_plist(ds), "get dataset creation list"));
+    if (H5Pget_layout(dcpl) != H5D_CHUNKED) return;
+    std::vector<hsize_t> chunk(start.size());
+    if (H5Pget_chunk(dcpl, static_cast<int>(chunk.size()), chunk.data()) !=
+        static_cast<int>(chunk.size()))
+      return;
+    std::vector<hsize_t> first(start.size()), last(start.size()), at(start.size());
+    for (std::size_t d = 0; d < start.size(); ++d) {
+      if (count[d] == 0) return;
+      first[d] = start[d] / chunk[d];
+      last[d] = (start[d] + count[d] - 1) / chunk[d];
+      at[d] = first[d];
     }
-    if (dims.size() >= 3) {
-      start.push_back(col);
-      count.push_back(1);
+    Handle space(check(H5Dget_space(ds), "get dataspace"));
+    while (true) {
+      std::vector<hsize_t> offset(at.size());
+      for (std::size_t d = 0; d < at.size(); ++d) offset[d] = at[d] * chunk[d];
+      unsigned mask = 0;
+      haddr_t addr = HADDR_UNDEF;
+      hsize_t size = 0;
+      if (H5Dget_chunk_info_by_coord(ds, offset.data(), &mask, &addr, &size) >= 0 &&
+          addr != HADDR_UNDEF && mask != 0)
+        throw std::runtime_error("a chunk index entry is corrupted (its filter mask is not 0)");
+      std::size_t d = at.size();
+      while (d > 0) {
+        --d;
+        if (++at[d] <= last[d]) break;
+        at[d] = first[d];
+        if (d == 0) return;
+      }
     }
-    auto v = h5::read_slab(ds, start, count);
-    std::copy(v.begin(), v.end(), out.begin());
+  }
+
+  /// Rows [0, n_t) of the slab (start, count) after the time axis of a per-time-point dataset,
+  /// NaN where absent: the finished points from the main dataset, the recent ones from the
+  /// staging dataset of a file still being written (docs/results_file.md, "Storage").
+  std::vector<double> rows(const Analysis& an, const std::string& dataset,
+                           const std::vector<hsize_t>& start, const std::vector<hsize_t>& count,
+                           std::size_t first, std::size_t n_rows) const {
+    hsize_t per_row = 1;
+    for (auto c : count) per_row *= c;
+    std::vector<double> out(n_rows * per_row, kNaN);
+    if (n_rows == 0 || per_row == 0) return out;
+    const std::string main = an.group + "/" + dataset;
+    const std::string recent = an.group + "/recent/" + dataset;
+    auto read_part = [&](const std::string& name, hsize_t file_first, std::size_t out_first,
+                         std::size_t n) {
+      if (n == 0 || !h5::exists_path(file, name)) return;
+      const hid_t ds = this->dataset(name);
+      const auto dims = h5::dims_of(ds);
+      if (dims.size() != count.size() + 1)
+        throw std::runtime_error(fmt::format("dataset {} has rank {}", name, dims.size()));
+      for (std::size_t i = 0; i < count.size(); ++i)
+        if (start[i] + count[i] > dims[i + 1]) return;  // e.g. a reaction column added later
+      if (file_first >= dims[0]) return;
+      const hsize_t avail = std::min<hsize_t>(n, dims[0] - file_first);
+      std::vector<hsize_t> st{file_first}, ct{avail};
+      st.insert(st.end(), start.begin(), start.end());
+      ct.insert(ct.end(), count.begin(), count.end());
+      verify_chunks(ds, st, ct);
+      const auto v = h5::read_slab(ds, st, ct);
+      std::copy(v.begin(), v.end(), out.begin() + static_cast<long>(out_first * per_row));
+    };
+    const std::size_t end = first + n_rows;
+    const std::size_t split = std::clamp(an.first_recent_row, first, end);
+    read_part(main, first, 0, split - first);
+    if (split < end) read_part(recent, split - an.first_recent_row, split - first, end - split);
     return out;
+  }
+
+  /// Column `col` of row `index` of dataset (n_t, n, m) (or `index` of (n_t, n) when col < 0)
+  /// over the analysis's time points.
+  std::vector<double> column(const Analysis& an, const std::string& dataset, hsize_t index,
+                             long col) const {
+    if (col < 0) return rows(an, dataset, {index}, {1}, 0, an.times.size());
+    return rows(an, dataset, {index, static_cast<hsize_t>(col)}, {1, 1}, 0, an.times.size());
   }
 
   Series collect(const Analysis& an, const std::vector<double>& values) const {
@@ -142,19 +220,56 @@ struct ResultsReader::Impl {
     return s;
   }
 
-  /// Reads a full (n_nodes x 6) row of U/V/A/R or a NaN matrix when absent.
+  /// Time series of DOF column `col` of node row `index` of U, V, A or R.
+  std::vector<double> nodal_column(const Analysis& an, const std::string& dataset, hsize_t index,
+                                   int col) const {
+    if (dataset != "R" || !an.sparse_reactions) return column(an, dataset, index, col);
+    auto it = an.reaction_column.find({static_cast<std::size_t>(index), col});
+    if (it == an.reaction_column.end()) return std::vector<double>(an.times.size(), kNaN);
+    return column(an, "R", it->second, -1);
+  }
+
+  /// Reads a full (n_nodes x 6) row of U/V/A (or a dense format-1 R) or a NaN matrix when absent.
   Eigen::MatrixXd nodal_row(const Analysis& an, const std::string& dataset, int k) const {
-    Eigen::MatrixXd m =
-        Eigen::MatrixXd::Constant(static_cast<Eigen::Index>(node_ids.size()), 6, kNaN);
-    std::string name = an.group + "/" + dataset;
-    if (!h5::exists(file, name)) return m;
-    Handle ds(check(H5Dopen2(file, name.c_str(), H5P_DEFAULT), "open " + name));
-    auto dims = h5::dims_of(ds);
-    if (static_cast<hsize_t>(k) >= dims[0]) return m;
-    auto v = h5::read_slab(ds, {static_cast<hsize_t>(k), 0, 0}, {1, dims[1], dims[2]});
-    for (std::size_t i = 0; i < node_ids.size(); ++i)
+    const auto n = node_ids.size();
+    const auto v = rows(an, dataset, {0, 0}, {n, 6}, static_cast<std::size_t>(k), 1);
+    Eigen::MatrixXd m(static_cast<Eigen::Index>(n), 6);
+    for (std::size_t i = 0; i < n; ++i)
       for (int j = 0; j < 6; ++j) m(static_cast<Eigen::Index>(i), j) = v[i * 6 + j];
     return m;
+  }
+
+  /// The reactions of point k as an n_nodes x 6 table (NaN at unconstrained DOFs).
+  Eigen::MatrixXd reaction_row(const Analysis& an, int k) const {
+    if (!an.sparse_reactions) return nodal_row(an, "R", k);
+    Eigen::MatrixXd m =
+        Eigen::MatrixXd::Constant(static_cast<Eigen::Index>(node_ids.size()), 6, kNaN);
+    if (an.reaction_column.empty()) return m;
+    const auto v = rows(an, "R", {0}, {an.reaction_column.size()}, static_cast<std::size_t>(k), 1);
+    for (const auto& [where, c] : an.reaction_column)
+      m(static_cast<Eigen::Index>(where.first), where.second) = v[c];
+    return m;
+  }
+
+  /// Runs a query; an HDF5 failure (a checksum that does not match, a truncated file) becomes an
+  /// InputError naming the file instead of numbers that are wrong.
+  template <typename F>
+  auto guarded(F f) const {
+    try {
+      return f();
+    } catch (const InputError&) {
+      throw;
+    } catch (const std::runtime_error& e) {
+      damaged(e);
+    }
+  }
+
+  /// Translates an HDF5 failure while reading into the program's words.
+  [[noreturn]] void damaged(const std::exception& e) const {
+    throw InputError(fmt::format(
+        "results file '{}' is damaged or incomplete: {} (a corrupted block fails its checksum; "
+        "re-run the job to rewrite it)",
+        path, e.what()));
   }
 
   void load();
@@ -164,6 +279,13 @@ void ResultsReader::Impl::load() {
   if (H5Aexists(file, "format") <= 0 ||
       h5::read_string_attribute(file, "format") != "impactfe-results")
     throw InputError(fmt::format("'{}' is not an impactfe results file", path));
+  const double version =
+      H5Aexists(file, "format_version") > 0 ? h5::read_double_attribute(file, "format_version") : 1;
+  if (version > kFormatVersion)
+    throw InputError(fmt::format(
+        "results file '{}' has format version {}, written by a newer impactfe; this one reads "
+        "versions 1 to {}",
+        path, version, kFormatVersion));
   title = h5::read_string_attribute(file, "title");
   node_ids = h5::read_ints(file, "model/node_ids");
   auto xyz = h5::read_doubles(file, "model/node_coordinates");
@@ -196,7 +318,8 @@ void ResultsReader::Impl::load() {
     an.info.description = h5::read_string_attribute(g, "description");
     an.info.status = h5::read_string_attribute(g, "status");
     for (const auto& name : h5::attribute_names(g)) {
-      if (name == "kind" || name == "description" || name == "status") continue;
+      if (name == "kind" || name == "description" || name == "status" || name == "block_rows")
+        continue;  // block_rows: a storage detail
       Handle attr(check(H5Aopen(g, name.c_str(), H5P_DEFAULT), "open attribute " + name));
       Handle type(check(H5Aget_type(attr), "get attribute type"));
       const auto cls = H5Tget_class(type);
@@ -214,12 +337,28 @@ void ResultsReader::Impl::load() {
       an.info.time_first = an.times.front();
       an.info.time_last = an.times.back();
     }
+    if (h5::exists(g, "recent") && H5Aexists_by_name(g, "recent", "first_row", H5P_DEFAULT) > 0) {
+      Handle rg(check(H5Gopen2(g, "recent", H5P_DEFAULT), "open group recent"));
+      an.first_recent_row = static_cast<std::size_t>(h5::read_double_attribute(rg, "first_row"));
+    }
+    if (h5::exists(g, "reaction_dofs")) {
+      an.sparse_reactions = true;
+      const auto rd = h5::read_ints(g, "reaction_dofs");
+      for (std::size_t c = 0; c + 1 < rd.size(); c += 2) {
+        auto it = std::lower_bound(node_ids.begin(), node_ids.end(), rd[c]);
+        if (it == node_ids.end() || *it != rd[c] || rd[c + 1] < 0 || rd[c + 1] > 5)
+          throw std::runtime_error("reaction_dofs names a node or DOF the model does not have");
+        an.reaction_column[{static_cast<std::size_t>(it - node_ids.begin()), rd[c + 1]}] = c / 2;
+      }
+    }
     if (h5::exists(g, "gap_forces")) {
       Handle ds(check(H5Dopen2(g, "gap_forces", H5P_DEFAULT), "open gap_forces"));
       an.info.n_gaps = static_cast<int>(h5::dims_of(ds).at(1));
     }
-    if (h5::exists(g, "frequencies"))
-      an.info.n_modes = static_cast<int>(h5::read_doubles(g, "frequencies").size());
+    if (h5::exists(g, "frequencies")) {
+      Handle fds(check(H5Dopen2(g, "frequencies", H5P_DEFAULT), "open frequencies"));
+      an.info.n_modes = static_cast<int>(h5::dims_of(fds).at(0));
+    }
     if (h5::exists(g, "elements")) {
       Handle eg(check(H5Gopen2(g, "elements", H5P_DEFAULT), "open elements group"));
       std::vector<std::string> fam_names;
@@ -266,20 +405,31 @@ ResultsReader::ResultsReader(const std::string& path) : impl_(std::make_unique<I
     throw InputError(fmt::format("'{}' is not an impactfe results file (not HDF5)", path));
   // Default access first: in the same process this shares the file a live ResultsWriter has
   // open. Another process's running job holds the file lock: then read without taking it.
-  hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  // Chunk cache per dataset: a whole block (at most 64 MB for all quantities, see the writer).
+  Handle fapl(check(H5Pcreate(H5P_FILE_ACCESS), "create file access list"));
+  H5Pset_cache(fapl, 0, 4099, 64u << 20, 0.75);
+  hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl);
   if (f < 0) {
-    Handle fapl(check(H5Pcreate(H5P_FILE_ACCESS), "create file access list"));
     H5Pset_file_locking(fapl, false, true);
     f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl);
   }
-  if (f < 0) throw InputError(fmt::format("cannot open results file '{}'", path));
+  if (f < 0) {
+    const std::string detail = h5::error_detail();
+    if (detail.find("truncated") != std::string::npos)
+      throw InputError(fmt::format(
+          "results file '{}' is truncated ({} bytes; HDF5 says: {}): the run that wrote it "
+          "stopped while the file grew, or the file was cut short when copied",
+          path, std::filesystem::file_size(path, ec), detail));
+    throw InputError(
+        fmt::format("cannot open results file '{}'{}", path, detail.empty() ? "" : ": " + detail));
+  }
   impl_->file = Handle(f);
   try {
     impl_->load();
   } catch (const InputError&) {
     throw;
   } catch (const std::exception& e) {
-    throw InputError(fmt::format("results file '{}' is damaged: {}", path, e.what()));
+    impl_->damaged(e);
   }
 }
 
@@ -313,117 +463,130 @@ std::vector<double> ResultsReader::times(int analysis) const {
 
 std::vector<std::pair<double, double>> ResultsReader::nodal_series(int node,
                                                                    const std::string& lab) const {
-  auto where = parse_nodal_label(lab);
-  if (!where)
-    throw InputError(fmt::format(
-        "unknown nodal result label '{}' (expected UX UY UZ ROTX ROTY ROTZ, VX VY VZ, AX AY AZ "
-        "or FX FY FZ MX MY MZ)",
-        lab));
-  const auto index = static_cast<hsize_t>(impl_->node_index(node));
-  Series merged;
-  for (const auto& an : impl_->analyses)
-    merge_into(merged, impl_->collect(an, impl_->column(an, where->dataset, index,
-                                                        static_cast<hsize_t>(where->column))));
-  std::stable_sort(merged.begin(), merged.end(),
-                   [](const auto& a, const auto& b) { return a.first < b.first; });
-  return merged;
+  return impl_->guarded([&] {
+    auto where = parse_nodal_label(lab);
+    if (!where)
+      throw InputError(fmt::format(
+          "unknown nodal result label '{}' (expected UX UY UZ ROTX ROTY ROTZ, VX VY VZ, AX AY AZ "
+          "or FX FY FZ MX MY MZ)",
+          lab));
+    const auto index = static_cast<hsize_t>(impl_->node_index(node));
+    Series merged;
+    for (const auto& an : impl_->analyses)
+      merge_into(merged,
+                 impl_->collect(an, impl_->nodal_column(an, where->dataset, index, where->column)));
+    std::stable_sort(merged.begin(), merged.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
+    return merged;
+  });
 }
 
 std::vector<std::pair<double, double>> ResultsReader::element_series(
     int element, const std::string& item) const {
-  const bool known = std::any_of(impl_->elements.begin(), impl_->elements.end(),
-                                 [&](const ElementInfo& e) { return e.id == element; });
-  if (!known)
-    throw InputError(fmt::format("element {} is not in results file '{}'", element, impl_->path));
-  const std::string it_name = to_upper(item);
-  Series merged;
-  bool found = false;
-  std::vector<std::string> available;
-  for (const auto& an : impl_->analyses) {
-    for (const auto& fam : an.families) {
-      auto e = std::find(fam.element_ids.begin(), fam.element_ids.end(), element);
-      if (e == fam.element_ids.end()) continue;
-      auto i = std::find_if(fam.items.begin(), fam.items.end(),
-                            [&](const std::string& s) { return to_upper(s) == it_name; });
-      if (i == fam.items.end()) {
-        for (const auto& s : fam.items)
-          if (std::find(available.begin(), available.end(), s) == available.end())
-            available.push_back(s);
-        continue;
+  return impl_->guarded([&] {
+    const bool known = std::any_of(impl_->elements.begin(), impl_->elements.end(),
+                                   [&](const ElementInfo& e) { return e.id == element; });
+    if (!known)
+      throw InputError(fmt::format("element {} is not in results file '{}'", element, impl_->path));
+    const std::string it_name = to_upper(item);
+    Series merged;
+    bool found = false;
+    std::vector<std::string> available;
+    for (const auto& an : impl_->analyses) {
+      for (const auto& fam : an.families) {
+        auto e = std::find(fam.element_ids.begin(), fam.element_ids.end(), element);
+        if (e == fam.element_ids.end()) continue;
+        auto i = std::find_if(fam.items.begin(), fam.items.end(),
+                              [&](const std::string& s) { return to_upper(s) == it_name; });
+        if (i == fam.items.end()) {
+          for (const auto& s : fam.items)
+            if (std::find(available.begin(), available.end(), s) == available.end())
+              available.push_back(s);
+          continue;
+        }
+        found = true;
+        merge_into(merged, impl_->collect(
+                               an, impl_->column(an, "elements/" + fam.name + "/values",
+                                                 static_cast<hsize_t>(e - fam.element_ids.begin()),
+                                                 static_cast<long>(i - fam.items.begin()))));
       }
-      found = true;
-      merge_into(merged,
-                 impl_->collect(an, impl_->column(an, "elements/" + fam.name + "/values",
-                                                  static_cast<hsize_t>(e - fam.element_ids.begin()),
-                                                  static_cast<hsize_t>(i - fam.items.begin()))));
     }
-  }
-  if (!found) {
-    if (available.empty())
-      throw InputError(fmt::format("no element results are stored for element {} in '{}'", element,
-                                   impl_->path));
-    std::string list;
-    for (const auto& s : available) list += (list.empty() ? "" : " ") + s;
-    throw InputError(fmt::format("element item '{}' is not stored for element {} (available: {})",
-                                 item, element, list));
-  }
-  std::stable_sort(merged.begin(), merged.end(),
-                   [](const auto& a, const auto& b) { return a.first < b.first; });
-  return merged;
+    if (!found) {
+      if (available.empty())
+        throw InputError(fmt::format("no element results are stored for element {} in '{}'",
+                                     element, impl_->path));
+      std::string list;
+      for (const auto& s : available) list += (list.empty() ? "" : " ") + s;
+      throw InputError(fmt::format("element item '{}' is not stored for element {} (available: {})",
+                                   item, element, list));
+    }
+    std::stable_sort(merged.begin(), merged.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
+    return merged;
+  });
 }
 
 std::vector<std::pair<double, double>> ResultsReader::gap_force_series(int gap) const {
-  Series merged;
-  bool found = false;
-  int max_gaps = 0;
-  for (const auto& an : impl_->analyses) {
-    max_gaps = std::max(max_gaps, an.info.n_gaps);
-    if (gap < 1 || gap > an.info.n_gaps) continue;
-    found = true;
-    merge_into(merged, impl_->collect(
-                           an, impl_->column(an, "gap_forces", static_cast<hsize_t>(gap - 1), 0)));
-  }
-  if (!found)
-    throw InputError(max_gaps == 0
-                         ? fmt::format("no gap forces are stored in '{}'", impl_->path)
-                         : fmt::format("gap {} does not exist (the results file has gaps 1..{})",
-                                       gap, max_gaps));
-  std::stable_sort(merged.begin(), merged.end(),
-                   [](const auto& a, const auto& b) { return a.first < b.first; });
-  return merged;
+  return impl_->guarded([&] {
+    Series merged;
+    bool found = false;
+    int max_gaps = 0;
+    for (const auto& an : impl_->analyses) {
+      max_gaps = std::max(max_gaps, an.info.n_gaps);
+      if (gap < 1 || gap > an.info.n_gaps) continue;
+      found = true;
+      merge_into(merged, impl_->collect(an, impl_->column(an, "gap_forces",
+                                                          static_cast<hsize_t>(gap - 1), -1)));
+    }
+    if (!found)
+      throw InputError(max_gaps == 0
+                           ? fmt::format("no gap forces are stored in '{}'", impl_->path)
+                           : fmt::format("gap {} does not exist (the results file has gaps 1..{})",
+                                         gap, max_gaps));
+    std::stable_sort(merged.begin(), merged.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
+    return merged;
+  });
 }
 
 std::vector<std::pair<int, int>> ResultsReader::load_steps_of(int analysis) const {
-  const Analysis& an = impl_->analysis(analysis);
-  std::vector<std::pair<int, int>> out;
-  if (an.times.empty()) return out;
-  const auto ls = h5::read_ints(impl_->file, an.group + "/load_step");
-  const auto ss = h5::read_ints(impl_->file, an.group + "/substep");
-  for (std::size_t k = 0; k < an.times.size(); ++k) out.emplace_back(ls.at(k), ss.at(k));
-  return out;
+  return impl_->guarded([&] {
+    const Analysis& an = impl_->analysis(analysis);
+    std::vector<std::pair<int, int>> out;
+    if (an.times.empty()) return out;
+    const auto ls = h5::read_ints(impl_->file, an.group + "/load_step");
+    const auto ss = h5::read_ints(impl_->file, an.group + "/substep");
+    for (std::size_t k = 0; k < an.times.size(); ++k) out.emplace_back(ls.at(k), ss.at(k));
+    return out;
+  });
 }
 
 std::vector<double> ResultsReader::frequencies_of(int analysis) const {
-  const Analysis& an = impl_->analysis(analysis);
-  if (an.info.n_modes == 0) return {};
-  return h5::read_doubles(impl_->file, an.group + "/frequencies");
+  return impl_->guarded([&]() -> std::vector<double> {
+    const Analysis& an = impl_->analysis(analysis);
+    if (an.info.n_modes == 0) return {};
+    return h5::read_doubles(impl_->file, an.group + "/frequencies");
+  });
 }
 
 Eigen::MatrixXd ResultsReader::mode_shape_of(int analysis, int mode) const {
-  const Analysis& an = impl_->analysis(analysis);
-  if (an.info.n_modes == 0)
-    throw InputError(fmt::format("analysis {} of '{}' has no mode shapes", analysis, impl_->path));
-  if (mode < 1 || mode > an.info.n_modes)
-    throw InputError(fmt::format("mode {} does not exist (the results file has modes 1..{})", mode,
-                                 an.info.n_modes));
-  std::string name = an.group + "/mode_shapes";
-  Handle ds(check(H5Dopen2(impl_->file, name.c_str(), H5P_DEFAULT), "open " + name));
-  const auto n = impl_->node_ids.size();
-  auto v = h5::read_slab(ds, {static_cast<hsize_t>(mode - 1), 0, 0}, {1, n, 6});
-  Eigen::MatrixXd m(static_cast<Eigen::Index>(n), 6);
-  for (std::size_t i = 0; i < n; ++i)
-    for (int j = 0; j < 6; ++j) m(static_cast<Eigen::Index>(i), j) = v[i * 6 + j];
-  return m;
+  return impl_->guarded([&] {
+    const Analysis& an = impl_->analysis(analysis);
+    if (an.info.n_modes == 0)
+      throw InputError(
+          fmt::format("analysis {} of '{}' has no mode shapes", analysis, impl_->path));
+    if (mode < 1 || mode > an.info.n_modes)
+      throw InputError(fmt::format("mode {} does not exist (the results file has modes 1..{})",
+                                   mode, an.info.n_modes));
+    std::string name = an.group + "/mode_shapes";
+    Handle ds(check(H5Dopen2(impl_->file, name.c_str(), H5P_DEFAULT), "open " + name));
+    const auto n = impl_->node_ids.size();
+    auto v = h5::read_slab(ds, {static_cast<hsize_t>(mode - 1), 0, 0}, {1, n, 6});
+    Eigen::MatrixXd m(static_cast<Eigen::Index>(n), 6);
+    for (std::size_t i = 0; i < n; ++i)
+      for (int j = 0; j < 6; ++j) m(static_cast<Eigen::Index>(i), j) = v[i * 6 + j];
+    return m;
+  });
 }
 
 std::vector<double> ResultsReader::frequencies() const {
@@ -439,60 +602,54 @@ Eigen::MatrixXd ResultsReader::mode_shape(int mode) const {
 }
 
 TimePoint ResultsReader::time_point(int analysis, int k) const {
-  const Analysis& an = impl_->analysis(analysis);
-  if (k < 0 || k >= static_cast<int>(an.times.size()))
-    throw InputError(
-        fmt::format("analysis {} has no time point {} (it has {})", analysis, k, an.times.size()));
-  const hid_t file = impl_->file;
-  const auto row = static_cast<hsize_t>(k);
-  TimePoint p;
-  p.time = an.times[row];
-  p.load_step = h5::read_ints(file, an.group + "/load_step").at(row);
-  p.substep = h5::read_ints(file, an.group + "/substep").at(row);
-  p.displacement = impl_->nodal_row(an, "U", k);
-  p.velocity = impl_->nodal_row(an, "V", k);
-  p.acceleration = impl_->nodal_row(an, "A", k);
-  p.reaction = impl_->nodal_row(an, "R", k);
-  if (an.info.n_gaps > 0) {
-    p.gap_forces = Eigen::VectorXd::Constant(an.info.n_gaps, kNaN);
-    for (int g = 0; g < an.info.n_gaps; ++g)
-      p.gap_forces[g] = impl_->column(an, "gap_forces", static_cast<hsize_t>(g), 0)[row];
-  }
-  if (h5::exists(file, an.group + "/frame_acceleration")) {
-    Handle ds(check(H5Dopen2(file, (an.group + "/frame_acceleration").c_str(), H5P_DEFAULT),
-                    "open frame_acceleration"));
-    if (h5::dims_of(ds)[0] > row) {
-      const auto v = h5::read_slab(ds, {row, 0}, {1, 3});
-      p.frame_acceleration = Eigen::Vector3d(v[0], v[1], v[2]);
+  return impl_->guarded([&] {
+    const Analysis& an = impl_->analysis(analysis);
+    if (k < 0 || k >= static_cast<int>(an.times.size()))
+      throw InputError(fmt::format("analysis {} has no time point {} (it has {})", analysis, k,
+                                   an.times.size()));
+    const hid_t file = impl_->file;
+    const auto row = static_cast<hsize_t>(k);
+    TimePoint p;
+    p.time = an.times[row];
+    auto integer_at = [&](const char* name) {
+      const hid_t ds = impl_->dataset(an.group + "/" + name);
+      return static_cast<int>(h5::read_slab(ds, {row}, {1}).at(0));
+    };
+    p.load_step = integer_at("load_step");
+    p.substep = integer_at("substep");
+    const auto r = static_cast<std::size_t>(k);
+    p.displacement = impl_->nodal_row(an, "U", k);
+    p.velocity = impl_->nodal_row(an, "V", k);
+    p.acceleration = impl_->nodal_row(an, "A", k);
+    p.reaction = impl_->reaction_row(an, k);
+    if (an.info.n_gaps > 0) {
+      const auto n_g = static_cast<hsize_t>(an.info.n_gaps);
+      const auto v = impl_->rows(an, "gap_forces", {0}, {n_g}, r, 1);
+      p.gap_forces = Eigen::Map<const Eigen::VectorXd>(v.data(), an.info.n_gaps);
     }
-  }
-  if (h5::exists(file, an.group + "/energy")) {
-    Handle ds(check(H5Dopen2(file, (an.group + "/energy").c_str(), H5P_DEFAULT), "open energy"));
-    if (h5::dims_of(ds)[0] > row) {
-      auto v = h5::read_slab(ds, {row, 0}, {1, 5});
-      for (int i = 0; i < 5; ++i)
-        if (std::isfinite(v[static_cast<std::size_t>(i)]))
-          p.energy[kEnergyNames[i]] = v[static_cast<std::size_t>(i)];
+    if (h5::exists(file, an.group + "/frame_acceleration")) {
+      const auto v = impl_->rows(an, "frame_acceleration", {0}, {3}, r, 1);
+      if (std::isfinite(v[0])) p.frame_acceleration = Eigen::Vector3d(v[0], v[1], v[2]);
     }
-  }
-  for (const auto& fam : an.families) {
-    ElementResultTable t;
-    t.element_ids = fam.element_ids;
-    t.item_names = fam.items;
-    const auto n_e = fam.element_ids.size(), n_i = fam.items.size();
-    t.values = Eigen::MatrixXd::Constant(static_cast<Eigen::Index>(n_e),
-                                         static_cast<Eigen::Index>(n_i), kNaN);
-    std::string name = an.group + "/elements/" + fam.name + "/values";
-    Handle ds(check(H5Dopen2(file, name.c_str(), H5P_DEFAULT), "open " + name));
-    if (n_e > 0 && n_i > 0 && h5::dims_of(ds)[0] > row) {
-      auto v = h5::read_slab(ds, {row, 0, 0}, {1, n_e, n_i});
+    if (h5::exists(file, an.group + "/energy")) {
+      const auto v = impl_->rows(an, "energy", {0}, {5}, r, 1);
+      for (std::size_t i = 0; i < 5; ++i)
+        if (std::isfinite(v[i])) p.energy[kEnergyNames[i]] = v[i];
+    }
+    for (const auto& fam : an.families) {
+      ElementResultTable t;
+      t.element_ids = fam.element_ids;
+      t.item_names = fam.items;
+      const auto n_e = fam.element_ids.size(), n_i = fam.items.size();
+      const auto v = impl_->rows(an, "elements/" + fam.name + "/values", {0, 0}, {n_e, n_i}, r, 1);
+      t.values.resize(static_cast<Eigen::Index>(n_e), static_cast<Eigen::Index>(n_i));
       for (std::size_t e = 0; e < n_e; ++e)
         for (std::size_t i = 0; i < n_i; ++i)
           t.values(static_cast<Eigen::Index>(e), static_cast<Eigen::Index>(i)) = v[e * n_i + i];
+      p.element_results[fam.name] = std::move(t);
     }
-    p.element_results[fam.name] = std::move(t);
-  }
-  return p;
+    return p;
+  });
 }
 
 }  // namespace impactfe

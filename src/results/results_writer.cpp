@@ -1,11 +1,21 @@
 // ResultsWriter: the model section once, then one extendible dataset per quantity and analysis,
-// appended and flushed one time point at a time (schema: docs/results_file.md).
+// appended one time point at a time (schema and the reasons for it: docs/results_file.md).
+//
+// Storage of a per-time-point quantity (U, V, A, R, energy, element values, ...): the main
+// dataset is chunked in time blocks of `block_rows` points (a node's history then reads one
+// chunk per block), compressed and checksummed. A compressed chunk cannot grow by one row
+// cheaply, so the points of the block being filled are kept in memory and also written, one
+// row per chunk, to a staging dataset under `recent/`; every append is flushed, so a killed run
+// keeps every point. A full block goes to the main dataset in one write; when the analysis
+// closes, the last partial block does, and `recent/` is deleted.
 #include <fmt/format.h>
 
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <limits>
+#include <set>
 #include <stdexcept>
 
 #include "core/errors.h"
@@ -18,84 +28,160 @@ namespace impactfe {
 using h5::check;
 using h5::check_status;
 using h5::Handle;
+using h5::StringLayout;
 
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr int kFormatVersion = 1;
-/// Node-direction chunk size: bounds the chunk to ~200 kB so that reading one node's history
-/// touches one small chunk per time point even on large meshes.
-constexpr hsize_t kNodeChunk = 4096;
+constexpr int kFormatVersion = 2;
+/// Time points per block (main chunk length along time), at most.
+constexpr hsize_t kMaxBlockRows = 256;
+/// Memory for the blocks being filled (all quantities of an analysis), at most.
+constexpr double kBlockMemoryBytes = 64.0 * (1 << 20);
+/// Target size of a main chunk (uncompressed): large enough to compress well, small enough that
+/// a history reads little beyond what it needs.
+constexpr hsize_t kChunkBytes = 256 * 1024;
 
 using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
-/// An extendible float64 dataset of shape (n_t, row_dims...), NaN-filled, growing along axis 0.
-struct Series {
-  Handle ds;
-  std::vector<hsize_t> row_dims;  // dims after the time axis
-  hsize_t row_size() const {
-    hsize_t n = 1;
-    for (auto d : row_dims) n *= d;
-    return n;
-  }
+hsize_t product(const std::vector<hsize_t>& d) {
+  hsize_t n = 1;
+  for (auto x : d) n *= x;
+  return n;
+}
+
+/// Time points per block for a model: 256, fewer when a block of every nodal quantity and
+/// element value would need more than kBlockMemoryBytes.
+hsize_t block_rows_for(std::size_t n_nodes, std::size_t n_elements) {
+  const double row_bytes = 8.0 * (4.0 * 6.0 * static_cast<double>(n_nodes) +
+                                  24.0 * static_cast<double>(n_elements) + 16.0);
+  hsize_t rows = kMaxBlockRows;
+  while (rows > 4 && static_cast<double>(rows) * row_bytes > kBlockMemoryBytes) rows /= 2;
+  return rows;
+}
+
+void write_rows(hid_t ds, hsize_t first, hsize_t n_rows, const std::vector<hsize_t>& row_dims,
+                const double* data) {
+  if (n_rows == 0 || product(row_dims) == 0) return;
+  std::vector<hsize_t> start(row_dims.size() + 1, 0), count{n_rows};
+  start[0] = first;
+  count.insert(count.end(), row_dims.begin(), row_dims.end());
+  Handle file_space(check(H5Dget_space(ds), "get dataspace"));
+  check_status(
+      H5Sselect_hyperslab(file_space, H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr),
+      "select rows");
+  hsize_t n = product(count);
+  Handle mem_space(check(H5Screate_simple(1, &n, nullptr), "create memory dataspace"));
+  check_status(H5Dwrite(ds, H5T_NATIVE_DOUBLE, mem_space, file_space, H5P_DEFAULT, data),
+               "write rows");
+}
+
+void set_extent(hid_t ds, hsize_t rows, const std::vector<hsize_t>& row_dims) {
+  std::vector<hsize_t> d{rows};
+  d.insert(d.end(), row_dims.begin(), row_dims.end());
+  check_status(H5Dset_extent(ds, d.data()), "extend dataset");
+}
+
+/// A float64 quantity of one row per time point (NaN = absent), stored as described at the top.
+struct BlockSeries {
+  std::string name;               // path below the analysis group, e.g. "elements/Spar/values"
+  std::vector<hsize_t> row_dims;  // dimensions after the time axis
+  Handle main;                    // (n_t, row_dims...), chunks (block_rows, ...)
+  Handle recent;                  // (block_rows, row_dims...), one row per chunk
+  std::vector<double> block;      // the block being filled, block_rows x row_size
+  bool written = false;           // a row was given in the current append
+
+  hsize_t row_size() const { return product(row_dims); }
 };
 
-Series create_series(hid_t loc, const std::string& name, std::vector<hsize_t> row_dims,
-                     hsize_t n_rows_now, hid_t file_type = H5T_IEEE_F64LE) {
-  std::vector<hsize_t> dims{0}, maxdims{H5S_UNLIMITED}, chunk{1};
-  for (std::size_t i = 0; i < row_dims.size(); ++i) {
-    dims.push_back(row_dims[i]);
-    maxdims.push_back(row_dims[i]);
-    hsize_t c = std::max<hsize_t>(1, row_dims[i]);
-    if (i == 0 && row_dims.size() > 1) c = std::min(c, kNodeChunk);
+/// Creates both datasets of a series. `growable_columns`: the second dimension may grow (R).
+BlockSeries create_series(hid_t group, hid_t recent_group, const std::string& name,
+                          std::vector<hsize_t> row_dims, hsize_t block_rows, hsize_t main_rows,
+                          bool growable_columns = false) {
+  BlockSeries s;
+  s.name = name;
+  s.row_dims = std::move(row_dims);
+  const double fill = kNaN;  // rows never written read as NaN ("absent")
+  std::vector<hsize_t> dims{main_rows}, maxdims{H5S_UNLIMITED}, chunk{block_rows};
+  // Split the first row dimension so that a chunk holds about kChunkBytes.
+  hsize_t rest = 1;
+  for (std::size_t i = 1; i < s.row_dims.size(); ++i) rest *= std::max<hsize_t>(1, s.row_dims[i]);
+  for (std::size_t i = 0; i < s.row_dims.size(); ++i) {
+    dims.push_back(s.row_dims[i]);
+    const bool grows = growable_columns && i == 0;
+    maxdims.push_back(grows ? H5S_UNLIMITED : s.row_dims[i]);
+    hsize_t c = std::max<hsize_t>(1, s.row_dims[i]);
+    if (i == 0) {
+      const hsize_t fit = std::max<hsize_t>(1, kChunkBytes / (block_rows * rest * 8));
+      c = grows ? std::min<hsize_t>(fit, 64) : std::min(c, fit);
+    }
     chunk.push_back(c);
   }
-  // 1-D series (time, load step): chunks of many points, since one element is tiny.
-  if (row_dims.empty()) chunk[0] = 256;
-  Handle space(check(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), maxdims.data()),
-                     "create dataspace for " + name));
-  Handle dcpl(check(H5Pcreate(H5P_DATASET_CREATE), "create property list"));
-  check_status(H5Pset_chunk(dcpl, static_cast<int>(chunk.size()), chunk.data()), "set chunk");
-  if (H5Tequal(file_type, H5T_IEEE_F64LE) > 0) {
-    double fill = kNaN;  // absent values read back as NaN, also rows created after the fact
-    check_status(H5Pset_fill_value(dcpl, H5T_NATIVE_DOUBLE, &fill), "set fill value");
+  {
+    Handle space(check(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), maxdims.data()),
+                       "create dataspace for " + name));
+    Handle dcpl = h5::checked_creation_list(chunk, &fill);
+    s.main = Handle(check(
+        H5Dcreate2(group, name.c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT),
+        "create dataset " + name));
   }
-  Series s;
-  s.ds =
-      Handle(check(H5Dcreate2(loc, name.c_str(), file_type, space, H5P_DEFAULT, dcpl, H5P_DEFAULT),
-                   "create dataset " + name));
-  s.row_dims = std::move(row_dims);
-  if (n_rows_now > 0) {
-    std::vector<hsize_t> d{n_rows_now};
-    d.insert(d.end(), s.row_dims.begin(), s.row_dims.end());
-    check_status(H5Dset_extent(s.ds, d.data()), "extend " + name);
+  {
+    // Staging: one time point per chunk, so appending a point compresses one row only.
+    std::vector<hsize_t> rdims{block_rows}, rmax{block_rows}, rchunk{1};
+    for (std::size_t i = 0; i < s.row_dims.size(); ++i) {
+      rdims.push_back(s.row_dims[i]);
+      rmax.push_back(growable_columns && i == 0 ? H5S_UNLIMITED : s.row_dims[i]);
+      rchunk.push_back(std::max<hsize_t>(1, std::min<hsize_t>(s.row_dims[i], i == 0 ? 65536 : 64)));
+    }
+    Handle space(check(H5Screate_simple(static_cast<int>(rdims.size()), rdims.data(), rmax.data()),
+                       "create dataspace for recent/" + name));
+    // Checksummed but not compressed: written at every point, and deleted when the analysis
+    // closes (deflate would allocate and clear its ~256 kB state for every row).
+    Handle dcpl = h5::checked_creation_list(rchunk, &fill, 0);
+    Handle lcpl(check(H5Pcreate(H5P_LINK_CREATE), "create link property list"));
+    check_status(H5Pset_create_intermediate_group(lcpl, 1), "set intermediate groups");
+    s.recent = Handle(check(
+        H5Dcreate2(recent_group, name.c_str(), H5T_IEEE_F64LE, space, lcpl, dcpl, H5P_DEFAULT),
+        "create dataset recent/" + name));
   }
+  s.block.assign(block_rows * s.row_size(), kNaN);
   return s;
 }
 
-/// Extends the series to row+1 rows (if needed) and writes row `row` from `data`.
-void write_row(Series& s, hsize_t row, hid_t mem_type, const void* data) {
-  std::vector<hsize_t> dims = h5::dims_of(s.ds);
-  if (dims[0] < row + 1) {
-    dims[0] = row + 1;
-    check_status(H5Dset_extent(s.ds, dims.data()), "extend dataset");
-  }
-  std::vector<hsize_t> start(dims.size(), 0), count{1};
-  start[0] = row;
-  count.insert(count.end(), s.row_dims.begin(), s.row_dims.end());
+/// A 1-D series written straight into its dataset at every append (time, load step, substep):
+/// tiny, and `time` must be complete in the main dataset (its length counts the points).
+struct DirectSeries {
+  Handle ds;
+  hid_t mem_type = H5T_NATIVE_DOUBLE;
+};
+
+DirectSeries create_direct(hid_t group, const std::string& name, bool integer) {
+  hsize_t dims = 0, maxdims = H5S_UNLIMITED, chunk = 1024;
+  Handle space(check(H5Screate_simple(1, &dims, &maxdims), "create dataspace for " + name));
+  const double fill = kNaN;
+  Handle dcpl = h5::checked_creation_list({chunk}, integer ? nullptr : &fill, 0);
+  DirectSeries s;
+  s.ds = Handle(check(H5Dcreate2(group, name.c_str(), integer ? H5T_STD_I32LE : H5T_IEEE_F64LE,
+                                 space, H5P_DEFAULT, dcpl, H5P_DEFAULT),
+                      "create dataset " + name));
+  s.mem_type = integer ? H5T_NATIVE_INT : H5T_NATIVE_DOUBLE;
+  return s;
+}
+
+void write_direct(DirectSeries& s, hsize_t row, const void* value) {
+  hsize_t n = row + 1;
+  check_status(H5Dset_extent(s.ds, &n), "extend dataset");
   Handle file_space(check(H5Dget_space(s.ds), "get dataspace"));
-  check_status(
-      H5Sselect_hyperslab(file_space, H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr),
-      "select row");
-  hsize_t n = s.row_size();
-  Handle mem_space(check(H5Screate_simple(1, &n, nullptr), "create memory dataspace"));
-  check_status(H5Dwrite(s.ds, mem_type, mem_space, file_space, H5P_DEFAULT, data), "write row");
+  hsize_t one = 1;
+  check_status(H5Sselect_hyperslab(file_space, H5S_SELECT_SET, &row, nullptr, &one, nullptr),
+               "select row");
+  Handle mem_space(check(H5Screate_simple(1, &one, nullptr), "create memory dataspace"));
+  check_status(H5Dwrite(s.ds, s.mem_type, mem_space, file_space, H5P_DEFAULT, value), "write row");
 }
 
 struct FamilySeries {
   std::vector<int> element_ids;
   std::vector<std::string> items;
-  Series values;
 };
 
 }  // namespace
@@ -122,50 +208,126 @@ bool same_time(double a, double b) {
   return std::abs(a - b) <= 1e-12 * std::max({1.0, std::abs(a), std::abs(b)});
 }
 
+/// Bytes of raw data the datasets of a file hold (their storage sizes).
+hsize_t stored_bytes(hid_t file) {
+  hsize_t total = 0;
+  H5Ovisit(
+      file, H5_INDEX_NAME, H5_ITER_INC,
+      [](hid_t loc, const char* name, const H5O_info_t* info, void* data) -> herr_t {
+        if (info->type != H5O_TYPE_DATASET) return 0;
+        const hid_t ds = H5Dopen2(loc, name, H5P_DEFAULT);
+        if (ds < 0) return 0;
+        *static_cast<hsize_t*>(data) += H5Dget_storage_size(ds);
+        H5Dclose(ds);
+        return 0;
+      },
+      &total);
+  return total;
+}
+
 struct ResultsWriter::Impl {
   std::string path;
+  std::string title, jobname;
   Handle file;
   std::vector<int> node_ids;
+  std::size_t n_elements = 0;
   int n_analyses = 0;
   // Current analysis (group invalid when none is open).
   Handle group;
+  Handle recent_group;
   hsize_t n_t = 0;
-  std::map<std::string, Series> series;  // time, load_step, substep, U, V, A, R, gaps, energy
+  hsize_t block_rows = kMaxBlockRows;
+  hsize_t block_start = 0;  // time index of the first point of the block being filled
+  std::map<std::string, BlockSeries> series;
+  std::map<std::string, DirectSeries> direct;
   std::map<std::string, FamilySeries> families;
   Handle elements_group;
+  // Sparse reactions: the constrained DOFs (row in node_ids, DOF column 0..5) of R's columns.
+  std::vector<std::pair<int, int>> reaction_dofs;
+  std::map<std::pair<int, int>, std::size_t> reaction_column;
+  Handle reaction_dofs_ds;
 
   hsize_t n_nodes() const { return node_ids.size(); }
+  hsize_t slot() const { return n_t - block_start; }
 
   void require_open(const char* what) const {
-    IMPACTFE_CHECK(!(!group.valid()), fmt::format("ResultsWriter::{}: no analysis is open", what));
+    IMPACTFE_CHECK(group.valid(), fmt::format("ResultsWriter::{}: no analysis is open", what));
   }
 
   void write_model(const Model& model);
+  void write_element_nodes(const std::vector<std::vector<int>>& lists);
   void close_analysis(const std::string& status);
+  BlockSeries& series_for(const std::string& name, const std::vector<hsize_t>& row_dims,
+                          bool growable = false);
+  void put_row(BlockSeries& s, const double* row);
+  void finish_append();
+  void flush_block(hsize_t n_rows);
   void write_nodal(const std::string& name, const Eigen::MatrixXd& m);
+  void write_reactions(const Eigen::MatrixXd& m);
   void write_family(const std::string& family, const ElementResultTable& table);
+  void flush() { check_status(H5Fflush(file, H5F_SCOPE_GLOBAL), "flush " + path); }
+  void compact();
 };
 
-void ResultsWriter::Impl::write_model(const Model& model) {
-  h5::write_attribute(file, "format", std::string("impactfe-results"));
-  h5::write_attribute(file, "format_version", static_cast<double>(kFormatVersion));
-  h5::write_attribute(file, "title", model.title);
-  h5::write_attribute(file, "jobname", model.jobname);
-  Handle g(check(H5Gcreate2(file, "model", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-                 "create group /model"));
+/// The staging datasets freed when an analysis closed leave holes that HDF5 cannot give back
+/// (up to one block of rows, uncompressed). When they are more than a tenth of the file, the
+/// objects are copied (chunks as stored, no recompression) into a fresh file that replaces the
+/// old one; on any failure the old file stays as it is.
+void ResultsWriter::Impl::compact() {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const auto size = fs::file_size(path, ec);
+  if (ec || size < (1u << 20)) return;
+  const double used = static_cast<double>(stored_bytes(file));
+  if (used > 0.9 * static_cast<double>(size)) return;
+  const std::string tmp = path + ".compacting";
+  try {
+    {
+      Handle fapl = h5::file_access_checksummed();
+      Handle fcpl = h5::checksummed_group_creation_list(true);
+      Handle out(check(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, fcpl, fapl), "create " + tmp));
+      constexpr auto kFixed = StringLayout::Fixed;
+      h5::write_attribute(out, "format", std::string("impactfe-results"), kFixed);
+      h5::write_integer_attribute(out, "format_version", kFormatVersion);
+      h5::write_attribute(out, "title", title, kFixed);
+      h5::write_attribute(out, "jobname", jobname, kFixed);
+      std::vector<std::string> names{"model"};
+      for (int k = 1; k <= n_analyses; ++k) names.push_back(fmt::format("analysis_{}", k));
+      for (const auto& name : names)
+        check_status(H5Ocopy(file, name.c_str(), out, name.c_str(), H5P_DEFAULT, H5P_DEFAULT),
+                     "copy " + name);
+      check_status(H5Fflush(out, H5F_SCOPE_GLOBAL), "flush " + tmp);
+    }
+    file.reset();
+    fs::rename(tmp, path);
+  } catch (const std::exception& e) {
+    fs::remove(tmp, ec);
+    Log::debug("results file {} not compacted: {}", path, e.what());
+  }
+}
 
+void ResultsWriter::Impl::write_model(const Model& model) {
+  constexpr auto kFixed = StringLayout::Fixed;
+  h5::write_attribute(file, "format", std::string("impactfe-results"), kFixed);
+  h5::write_integer_attribute(file, "format_version", kFormatVersion);
+  title = model.title;
+  jobname = model.jobname;
+  h5::write_attribute(file, "title", model.title, kFixed);
+  h5::write_attribute(file, "jobname", model.jobname, kFixed);
+  Handle gcpl = h5::checksummed_group_creation_list();
+  Handle g(check(H5Gcreate2(file, "model", H5P_DEFAULT, gcpl, H5P_DEFAULT), "create group /model"));
+  constexpr auto kChecked = h5::Storage::Checked;
   std::vector<double> xyz;
   for (const auto& [id, node] : model.nodes) {
     node_ids.push_back(id);
     xyz.insert(xyz.end(), {node.x.x(), node.x.y(), node.x.z()});
   }
-  h5::write_dataset(g, "node_ids", {n_nodes()}, node_ids.data());
-  h5::write_dataset(g, "node_coordinates", {n_nodes(), 3}, xyz.data());
+  h5::write_dataset(g, "node_ids", {n_nodes()}, node_ids.data(), kChecked);
+  h5::write_dataset(g, "node_coordinates", {n_nodes(), 3}, xyz.data(), kChecked);
 
-  std::size_t width = 8;  // ANSYS elements have at most 8 nodes; superelements may have more
-  for (const auto& [id, e] : model.elements) width = std::max(width, e.nodes.size());
-  std::vector<int> ids, type_ids, mats, reals, nodes;
+  std::vector<int> ids, type_ids, mats, reals;
   std::vector<std::string> names;
+  std::vector<std::vector<int>> lists;
   for (const auto& [id, e] : model.elements) {
     ids.push_back(id);
     type_ids.push_back(e.type);
@@ -173,98 +335,234 @@ void ResultsWriter::Impl::write_model(const Model& model) {
     reals.push_back(e.real);
     auto t = model.element_types.find(e.type);
     names.push_back(t == model.element_types.end() ? std::string() : t->second.ansys_name);
-    for (std::size_t i = 0; i < width; ++i) nodes.push_back(i < e.nodes.size() ? e.nodes[i] : 0);
+    lists.push_back(e.nodes);
   }
+  n_elements = ids.size();
   hsize_t n_e = ids.size();
-  h5::write_dataset(g, "element_ids", {n_e}, ids.data());
-  h5::write_dataset(g, "element_type_names", names);
-  h5::write_dataset(g, "element_types", {n_e}, type_ids.data());
-  h5::write_dataset(g, "element_materials", {n_e}, mats.data());
-  h5::write_dataset(g, "element_reals", {n_e}, reals.data());
-  h5::write_dataset(g, "element_nodes", {n_e, width}, nodes.data());
+  h5::write_dataset(g, "element_ids", {n_e}, ids.data(), kChecked);
+  h5::write_dataset(g, "element_type_names", names, kFixed);
+  h5::write_dataset(g, "element_types", {n_e}, type_ids.data(), kChecked);
+  h5::write_dataset(g, "element_materials", {n_e}, mats.data(), kChecked);
+  h5::write_dataset(g, "element_reals", {n_e}, reals.data(), kChecked);
+  write_element_nodes(lists);
+}
+
+void ResultsWriter::Impl::write_element_nodes(const std::vector<std::vector<int>>& lists) {
+  std::size_t width = 8;  // ANSYS elements have at most 8 nodes; superelements may have more
+  for (const auto& l : lists) width = std::max(width, l.size());
+  std::vector<int> nodes;
+  for (const auto& l : lists)
+    for (std::size_t i = 0; i < width; ++i) nodes.push_back(i < l.size() ? l[i] : 0);
+  Handle g(check(H5Gopen2(file, "model", H5P_DEFAULT), "open group /model"));
+  if (h5::exists(g, "element_nodes")) H5Ldelete(g, "element_nodes", H5P_DEFAULT);
+  h5::write_dataset(g, "element_nodes", {lists.size(), width}, nodes.data(), h5::Storage::Checked);
+}
+
+BlockSeries& ResultsWriter::Impl::series_for(const std::string& name,
+                                             const std::vector<hsize_t>& row_dims, bool growable) {
+  auto it = series.find(name);
+  if (it != series.end()) return it->second;
+  if (!recent_group.valid()) {
+    Handle gcpl = h5::checksummed_group_creation_list();
+    recent_group = Handle(
+        check(H5Gcreate2(group, "recent", H5P_DEFAULT, gcpl, H5P_DEFAULT), "create group recent"));
+    h5::write_integer_attribute(recent_group, "first_row", static_cast<long long>(block_start));
+  }
+  // A quantity that starts later: its main dataset spans the finished blocks already (NaN).
+  BlockSeries s =
+      create_series(group, recent_group, name, row_dims, block_rows, block_start, growable);
+  // Rows of the current block before this one stay NaN in the staging dataset too: write them,
+  // since a reused staging dataset is not, but a new one is all fill.
+  return series.emplace(name, std::move(s)).first->second;
+}
+
+void ResultsWriter::Impl::put_row(BlockSeries& s, const double* row) {
+  const hsize_t n = s.row_size();
+  std::copy(row, row + n, s.block.begin() + static_cast<long>(slot() * n));
+  write_rows(s.recent, slot(), 1, s.row_dims, row);
+  s.written = true;
+}
+
+void ResultsWriter::Impl::flush_block(hsize_t n_rows) {
+  // The finished rows of the block go to the main datasets in one write per quantity.
+  for (auto& [name, s] : series) {
+    set_extent(s.main, block_start + n_rows, s.row_dims);
+    write_rows(s.main, block_start, n_rows, s.row_dims, s.block.data());
+    std::fill(s.block.begin(), s.block.end(), kNaN);
+  }
+}
+
+void ResultsWriter::Impl::finish_append() {
+  // A quantity not given at this point is absent (NaN) there; the staging row may hold a value
+  // of the previous block, so it is overwritten.
+  for (auto& [name, s] : series) {
+    if (!s.written) {
+      const std::vector<double> nan_row(s.row_size(), kNaN);
+      put_row(s, nan_row.data());
+    }
+    s.written = false;
+  }
+  if (slot() + 1 == block_rows) {
+    flush_block(block_rows);
+    // From here on the finished block is read from the main datasets.
+    if (recent_group.valid())
+      h5::write_integer_attribute(recent_group, "first_row",
+                                  static_cast<long long>(block_start + block_rows));
+  }
 }
 
 void ResultsWriter::Impl::close_analysis(const std::string& status) {
   if (!group.valid()) return;
-  h5::write_attribute(group, "status", status);
+  // The staging datasets go first (the last partial block is in memory), so that HDF5 frees
+  // their space now and the main chunks written next reuse it. Both reach the disk together at
+  // the flush below.
+  for (auto& [name, s] : series) s.recent.reset();
+  if (recent_group.valid()) {
+    recent_group.reset();
+    H5Ldelete(group, "recent", H5P_DEFAULT);
+  }
+  if (n_t > block_start) flush_block(n_t - block_start);
+  h5::write_attribute(group, "status", status, StringLayout::Fixed);
   series.clear();
+  direct.clear();
   families.clear();
+  reaction_dofs.clear();
+  reaction_column.clear();
+  reaction_dofs_ds.reset();
   elements_group.reset();
   group.reset();
-  H5Fflush(file, H5F_SCOPE_GLOBAL);
+  flush();
 }
 
 void ResultsWriter::Impl::write_nodal(const std::string& name, const Eigen::MatrixXd& m) {
-  auto it = series.find(name);
-  if (m.size() == 0) {
-    // Nothing computed: the row stays NaN (written when the dataset exists or is created).
-    if (it == series.end()) return;
-    std::vector<double> nan_row(n_nodes() * 6, kNaN);
-    write_row(it->second, n_t, H5T_NATIVE_DOUBLE, nan_row.data());
-    return;
-  }
-  IMPACTFE_CHECK(!(m.rows() != static_cast<Eigen::Index>(n_nodes()) || m.cols() != 6),
+  if (m.size() == 0) return;  // not computed: the row stays NaN (finish_append)
+  IMPACTFE_CHECK(m.rows() == static_cast<Eigen::Index>(n_nodes()) && m.cols() == 6,
                  fmt::format("ResultsWriter::append: {} is {}x{}, expected {}x6", name, m.rows(),
                              m.cols(), n_nodes()));
-  if (it == series.end())
-    it = series.emplace(name, create_series(group, name, {n_nodes(), 6}, n_t)).first;
-  RowMajor r = m;
-  write_row(it->second, n_t, H5T_NATIVE_DOUBLE, r.data());
+  BlockSeries& s = series_for(name, {n_nodes(), 6});
+  const RowMajor r = m;
+  put_row(s, r.data());
+}
+
+void ResultsWriter::Impl::write_reactions(const Eigen::MatrixXd& m) {
+  if (m.size() == 0) return;
+  IMPACTFE_CHECK(m.rows() == static_cast<Eigen::Index>(n_nodes()) && m.cols() == 6,
+                 fmt::format("ResultsWriter::append: R is {}x{}, expected {}x6", m.rows(), m.cols(),
+                             n_nodes()));
+  // Only constrained DOFs carry a reaction: R keeps one column per DOF that ever had one.
+  std::vector<std::pair<int, int>> added;
+  for (int i = 0; i < m.rows(); ++i)
+    for (int j = 0; j < 6; ++j)
+      if (std::isfinite(m(i, j)) && !reaction_column.count({i, j})) {
+        reaction_column[{i, j}] = reaction_dofs.size();
+        reaction_dofs.emplace_back(i, j);
+        added.emplace_back(i, j);
+      }
+  if (reaction_dofs.empty()) return;
+  const hsize_t n_r = reaction_dofs.size();
+  if (!added.empty()) {
+    // reaction_dofs: (n_r, 2) int32 = node id, DOF column (0..5 = UX..ROTZ / FX..MZ).
+    std::vector<int> flat;
+    for (const auto& [row, col] : reaction_dofs) flat.insert(flat.end(), {node_ids[row], col});
+    if (!reaction_dofs_ds.valid()) {
+      hsize_t dims[2] = {0, 2}, maxdims[2] = {H5S_UNLIMITED, 2};
+      Handle space(check(H5Screate_simple(2, dims, maxdims), "create dataspace reaction_dofs"));
+      Handle dcpl = h5::checked_creation_list({256, 2});
+      reaction_dofs_ds = Handle(check(
+          H5Dcreate2(group, "reaction_dofs", H5T_STD_I32LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT),
+          "create dataset reaction_dofs"));
+    }
+    hsize_t dims[2] = {n_r, 2};
+    check_status(H5Dset_extent(reaction_dofs_ds, dims), "extend reaction_dofs");
+    check_status(
+        H5Dwrite(reaction_dofs_ds, H5T_NATIVE_INT, H5S_ALL, H5S_ALL, H5P_DEFAULT, flat.data()),
+        "write reaction_dofs");
+    auto it = series.find("R");
+    if (it == series.end()) {
+      series_for("R", {n_r}, true);
+    } else {
+      // More columns: widen both datasets and the block (old rows keep their columns).
+      BlockSeries& s = it->second;
+      const hsize_t old_n = s.row_dims[0];
+      std::vector<double> block(block_rows * n_r, kNaN);
+      for (hsize_t r = 0; r < block_rows; ++r)
+        std::copy(s.block.begin() + static_cast<long>(r * old_n),
+                  s.block.begin() + static_cast<long>((r + 1) * old_n),
+                  block.begin() + static_cast<long>(r * n_r));
+      s.block = std::move(block);
+      s.row_dims = {n_r};
+      set_extent(s.main, h5::dims_of(s.main)[0], s.row_dims);
+      set_extent(s.recent, block_rows, s.row_dims);
+    }
+  }
+  std::vector<double> row(n_r, kNaN);
+  for (hsize_t c = 0; c < n_r; ++c) row[c] = m(reaction_dofs[c].first, reaction_dofs[c].second);
+  put_row(series.at("R"), row.data());
 }
 
 void ResultsWriter::Impl::write_family(const std::string& family, const ElementResultTable& table) {
-  IMPACTFE_CHECK(!(family.empty() || family.find('/') != std::string::npos || family == "."),
-                 fmt::format("ResultsWriter: bad element family name '{}'", family));
+  IMPACTFE_CHECK(
+      !(family.empty() || family.find('/') != std::string::npos || family == "." || family == ".."),
+      fmt::format("ResultsWriter: bad element family name '{}'", family));
   const auto n_e = table.element_ids.size();
   const auto n_i = table.item_names.size();
-  IMPACTFE_CHECK(!(static_cast<std::size_t>(table.values.rows()) != n_e ||
-                   static_cast<std::size_t>(table.values.cols()) != n_i),
+  IMPACTFE_CHECK(static_cast<std::size_t>(table.values.rows()) == n_e &&
+                     static_cast<std::size_t>(table.values.cols()) == n_i,
                  fmt::format("ResultsWriter::append: element table '{}' is {}x{}, expected {}x{}",
                              family, table.values.rows(), table.values.cols(), n_e, n_i));
   auto it = families.find(family);
   if (it == families.end()) {
     if (!elements_group.valid()) {
       // Track creation order so that the reader lists families in the order they appeared.
-      Handle gcpl(check(H5Pcreate(H5P_GROUP_CREATE), "create group property list"));
+      Handle gcpl = h5::checksummed_group_creation_list();
       H5Pset_link_creation_order(gcpl, H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED);
       elements_group = Handle(check(H5Gcreate2(group, "elements", H5P_DEFAULT, gcpl, H5P_DEFAULT),
                                     "create group elements"));
     }
-    Handle g(
-        check(H5Gcreate2(elements_group, family.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-              "create group elements/" + family));
-    h5::write_dataset(g, "element_ids", {n_e}, table.element_ids.data());
-    FamilySeries fs;
-    fs.element_ids = table.element_ids;
-    fs.items = table.item_names;
-    fs.values = create_series(g, "values", {n_e, n_i}, n_t);
-    h5::write_attribute(g, "items", table.item_names);
-    it = families.emplace(family, std::move(fs)).first;
-  } else
+    Handle fgcpl = h5::checksummed_group_creation_list();
+    Handle g(check(H5Gcreate2(elements_group, family.c_str(), H5P_DEFAULT, fgcpl, H5P_DEFAULT),
+                   "create group elements/" + family));
+    h5::write_dataset(g, "element_ids", {n_e}, table.element_ids.data(), h5::Storage::Checked);
+    h5::write_attribute(g, "items", table.item_names, StringLayout::Fixed);
+    it = families.emplace(family, FamilySeries{table.element_ids, table.item_names}).first;
+  } else {
     IMPACTFE_CHECK(
-        !(it->second.element_ids != table.element_ids || it->second.items != table.item_names),
-        fmt::format(
-            "ResultsWriter::append: element ids or items of family '{}' changed within an analysis",
-            family));
+        it->second.element_ids == table.element_ids && it->second.items == table.item_names,
+        fmt::format("ResultsWriter::append: element ids or items of family '{}' "
+                    "changed within an analysis",
+                    family));
+  }
   if (n_e == 0 || n_i == 0) return;
-  RowMajor r = table.values;
-  write_row(it->second.values, n_t, H5T_NATIVE_DOUBLE, r.data());
+  BlockSeries& s = series_for("elements/" + family + "/values", {n_e, n_i});
+  const RowMajor r = table.values;
+  put_row(s, r.data());
 }
 
 ResultsWriter::ResultsWriter(const std::string& path, const Model& model)
     : impl_(std::make_unique<Impl>()) {
   h5::silence_errors();
   impl_->path = path;
-  hid_t f = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
-  if (f < 0) throw InputError(fmt::format("cannot create results file '{}'", path));
+  Handle fapl = h5::file_access_checksummed();
+  Handle fcpl = h5::checksummed_group_creation_list(true);
+  hid_t f = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, fcpl, fapl);
+  if (f < 0) {
+    const std::string detail = h5::error_detail();
+    throw InputError(fmt::format("cannot create results file '{}'{}", path,
+                                 detail.empty() ? "" : ": " + detail));
+  }
   impl_->file = Handle(f);
-  impl_->write_model(model);
-  H5Fflush(impl_->file, H5F_SCOPE_GLOBAL);
+  try {
+    impl_->write_model(model);
+    impl_->flush();
+  } catch (const std::runtime_error& e) {
+    throw SolutionError(fmt::format("results file '{}': {}", path, e.what()));
+  }
 }
 
 ResultsWriter::~ResultsWriter() {
   try {
     impl_->close_analysis("incomplete");
+    impl_->compact();
   } catch (...) {
     // A destructor must not throw; the status simply stays "running".
   }
@@ -272,16 +570,20 @@ ResultsWriter::~ResultsWriter() {
 
 int ResultsWriter::begin_analysis(ResultsKind kind, const std::string& description) {
   impl_->close_analysis("complete");
-  const int k = ++impl_->n_analyses;
+  Impl& m = *impl_;
+  const int k = ++m.n_analyses;
   const std::string name = fmt::format("analysis_{}", k);
-  impl_->group =
-      Handle(check(H5Gcreate2(impl_->file, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-                   "create group " + name));
-  impl_->n_t = 0;
-  h5::write_attribute(impl_->group, "kind", std::string(results_kind_name(kind)));
-  h5::write_attribute(impl_->group, "description", description);
-  h5::write_attribute(impl_->group, "status", std::string("running"));
-  H5Fflush(impl_->file, H5F_SCOPE_GLOBAL);
+  Handle gcpl = h5::checksummed_group_creation_list();
+  m.group = Handle(check(H5Gcreate2(m.file, name.c_str(), H5P_DEFAULT, gcpl, H5P_DEFAULT),
+                         "create group " + name));
+  m.n_t = 0;
+  m.block_start = 0;
+  m.block_rows = block_rows_for(m.n_nodes(), m.n_elements);
+  h5::write_attribute(m.group, "kind", std::string(results_kind_name(kind)), StringLayout::Fixed);
+  h5::write_attribute(m.group, "description", description, StringLayout::Fixed);
+  h5::write_attribute(m.group, "status", std::string("running"), StringLayout::Fixed);
+  h5::write_integer_attribute(m.group, "block_rows", static_cast<long long>(m.block_rows));
+  m.flush();
   return k;
 }
 
@@ -291,30 +593,18 @@ void ResultsWriter::append(const TimePoint& point) {
   m.write_nodal("U", point.displacement);
   m.write_nodal("V", point.velocity);
   m.write_nodal("A", point.acceleration);
-  m.write_nodal("R", point.reaction);
+  m.write_reactions(point.reaction);
 
-  if (point.gap_forces.size() > 0 || m.series.count("gap_forces")) {
-    auto it = m.series.find("gap_forces");
+  if (point.gap_forces.size() > 0) {
     const auto n_g = static_cast<hsize_t>(point.gap_forces.size());
-    if (it == m.series.end())
-      it = m.series.emplace("gap_forces", create_series(m.group, "gap_forces", {n_g}, m.n_t)).first;
-    if (n_g > 0) {
-      IMPACTFE_CHECK(!(n_g != it->second.row_dims[0]),
-                     fmt::format("ResultsWriter::append: {} gap forces, the analysis has {}", n_g,
-                                 it->second.row_dims[0]));
-      write_row(it->second, m.n_t, H5T_NATIVE_DOUBLE, point.gap_forces.data());
-    }
+    BlockSeries& s = m.series_for("gap_forces", {n_g});
+    IMPACTFE_CHECK(n_g == s.row_dims[0],
+                   fmt::format("ResultsWriter::append: {} gap forces, the analysis has {}", n_g,
+                               s.row_dims[0]));
+    m.put_row(s, point.gap_forces.data());
   }
-
-  if (point.frame_acceleration) {
-    auto it = m.series.find("frame_acceleration");
-    if (it == m.series.end())
-      it = m.series
-               .emplace("frame_acceleration",
-                        create_series(m.group, "frame_acceleration", {3}, m.n_t))
-               .first;
-    write_row(it->second, m.n_t, H5T_NATIVE_DOUBLE, point.frame_acceleration->data());
-  }
+  if (point.frame_acceleration)
+    m.put_row(m.series_for("frame_acceleration", {3}), point.frame_acceleration->data());
 
   if (!point.energy.empty()) {
     double row[5];
@@ -322,66 +612,64 @@ void ResultsWriter::append(const TimePoint& point) {
     for (const auto& [name, value] : point.energy) {
       auto pos = std::find_if(std::begin(kEnergyNames), std::end(kEnergyNames),
                               [&](const char* n) { return name == n; });
-      IMPACTFE_CHECK(!(pos == std::end(kEnergyNames)),
+      IMPACTFE_CHECK(pos != std::end(kEnergyNames),
                      fmt::format("ResultsWriter::append: unknown energy term '{}'", name));
       row[pos - std::begin(kEnergyNames)] = value;
     }
-    auto it = m.series.find("energy");
-    if (it == m.series.end()) {
-      it = m.series.emplace("energy", create_series(m.group, "energy", {5}, m.n_t)).first;
+    const bool is_new = !m.series.count("energy");
+    BlockSeries& s = m.series_for("energy", {5});
+    if (is_new)
       h5::write_attribute(
-          it->second.ds, "columns",
-          std::vector<std::string>(std::begin(kEnergyNames), std::end(kEnergyNames)));
-    }
-    write_row(it->second, m.n_t, H5T_NATIVE_DOUBLE, row);
+          s.main, "columns",
+          std::vector<std::string>(std::begin(kEnergyNames), std::end(kEnergyNames)),
+          StringLayout::Fixed);
+    m.put_row(s, row);
   }
 
   for (const auto& [family, table] : point.element_results) m.write_family(family, table);
+  m.finish_append();
 
   // Counters and time last: a reader takes the length of `time` as the number of complete
   // points, so a run killed in the middle of an append shows only whole points.
   for (const char* name : {"load_step", "substep", "time"}) {
-    auto it = m.series.find(name);
-    if (it == m.series.end()) {
-      const bool integer = std::string(name) != "time";
-      it = m.series
-               .emplace(name, create_series(m.group, name, {}, m.n_t,
-                                            integer ? H5T_STD_I32LE : H5T_IEEE_F64LE))
-               .first;
-    }
-    if (std::string(name) == "time")
-      write_row(it->second, m.n_t, H5T_NATIVE_DOUBLE, &point.time);
+    auto it = m.direct.find(name);
+    const bool is_time = std::string(name) == "time";
+    if (it == m.direct.end())
+      it = m.direct.emplace(name, create_direct(m.group, name, !is_time)).first;
+    if (is_time)
+      write_direct(it->second, m.n_t, &point.time);
     else
-      write_row(it->second, m.n_t, H5T_NATIVE_INT,
-                std::string(name) == "substep" ? &point.substep : &point.load_step);
+      write_direct(it->second, m.n_t,
+                   std::string(name) == "substep" ? &point.substep : &point.load_step);
   }
   ++m.n_t;
-  check_status(H5Fflush(m.file, H5F_SCOPE_GLOBAL), "flush " + m.path);
+  if (m.n_t - m.block_start == m.block_rows) m.block_start = m.n_t;
+  m.flush();
 }
 
 void ResultsWriter::write_modes(const std::vector<double>& frequencies_hz,
                                 const std::vector<Eigen::MatrixXd>& shapes) {
   impl_->require_open("write_modes");
   Impl& m = *impl_;
-  IMPACTFE_CHECK(!(shapes.size() != frequencies_hz.size()),
+  IMPACTFE_CHECK(shapes.size() == frequencies_hz.size(),
                  fmt::format("ResultsWriter::write_modes: {} frequencies, {} shapes",
                              frequencies_hz.size(), shapes.size()));
   const hsize_t n_modes = shapes.size();
   std::vector<double> buf;
   buf.reserve(n_modes * m.n_nodes() * 6);
   for (const auto& s : shapes) {
-    IMPACTFE_CHECK(!(s.rows() != static_cast<Eigen::Index>(m.n_nodes()) || s.cols() != 6),
-                   fmt::format("ResultsWriter::write_modes: shape is {}x{}, "
-                               "expected {}x6",
+    IMPACTFE_CHECK(s.rows() == static_cast<Eigen::Index>(m.n_nodes()) && s.cols() == 6,
+                   fmt::format("ResultsWriter::write_modes: shape is {}x{}, expected {}x6",
                                s.rows(), s.cols(), m.n_nodes()));
-    RowMajor r = s;
+    const RowMajor r = s;
     buf.insert(buf.end(), r.data(), r.data() + r.size());
   }
   for (const char* name : {"frequencies", "mode_shapes"})
     if (h5::exists(m.group, name)) H5Ldelete(m.group, name, H5P_DEFAULT);
-  h5::write_dataset(m.group, "frequencies", {n_modes}, frequencies_hz.data());
-  h5::write_dataset(m.group, "mode_shapes", {n_modes, m.n_nodes(), 6}, buf.data());
-  check_status(H5Fflush(m.file, H5F_SCOPE_GLOBAL), "flush " + m.path);
+  h5::write_dataset(m.group, "frequencies", {n_modes}, frequencies_hz.data(), h5::Storage::Checked);
+  h5::write_dataset(m.group, "mode_shapes", {n_modes, m.n_nodes(), 6}, buf.data(),
+                    h5::Storage::Checked);
+  m.flush();
 }
 
 void ResultsWriter::set_attribute(const std::string& name, double value) {
@@ -391,7 +679,34 @@ void ResultsWriter::set_attribute(const std::string& name, double value) {
 
 void ResultsWriter::set_attribute(const std::string& name, const std::string& value) {
   impl_->require_open("set_attribute");
-  h5::write_attribute(impl_->group, name, value);
+  h5::write_attribute(impl_->group, name, value, StringLayout::Fixed);
+}
+
+void ResultsWriter::set_count(const std::string& name, long long value) {
+  impl_->require_open("set_count");
+  h5::write_integer_attribute(impl_->group, name, value);
+}
+
+void ResultsWriter::set_element_nodes(const std::map<int, std::vector<int>>& nodes) {
+  Impl& m = *impl_;
+  Handle g(check(H5Gopen2(m.file, "model", H5P_DEFAULT), "open group /model"));
+  const std::vector<int> ids = h5::read_ints(g, "element_ids");
+  const std::vector<int> flat = h5::read_ints(g, "element_nodes");
+  const std::size_t width = ids.empty() ? 0 : flat.size() / ids.size();
+  std::vector<std::vector<int>> lists(ids.size());
+  bool changed = false;
+  for (std::size_t e = 0; e < ids.size(); ++e) {
+    for (std::size_t i = 0; i < width; ++i)
+      if (flat[e * width + i] != 0) lists[e].push_back(flat[e * width + i]);
+    auto it = nodes.find(ids[e]);
+    if (it != nodes.end() && it->second != lists[e]) {
+      lists[e] = it->second;
+      changed = true;
+    }
+  }
+  if (!changed) return;
+  m.write_element_nodes(lists);
+  m.flush();
 }
 
 void ResultsWriter::end_analysis(const std::string& status) {

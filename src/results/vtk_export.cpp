@@ -1,165 +1,151 @@
+// VTU + PVD export: one binary VTK XML UnstructuredGrid file per frame, data appended raw and
+// zlib-compressed in blocks (VTK's vtkZLibDataCompressor layout, UInt64 headers), and a ParaView
+// collection listing the frames with their times.
 #include "results/vtk_export.h"
 
 #include <fmt/format.h>
+#include <zlib.h>
 
-#include <algorithm>
-#include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 
 #include "core/errors.h"
-#include "elements/element_registry.h"
+#include "results/vtk_frames.h"
 
 namespace impactfe {
 
 namespace {
 
-constexpr int kVtkPolyVertex = static_cast<int>(VtkCell::PolyVertex);
-constexpr int kVtkTriangle = static_cast<int>(VtkCell::Triangle);
+constexpr std::size_t kBlockSize = 32768;  // VTK's default compression block size
 
-struct Cell {
-  int type = kVtkPolyVertex;
-  std::vector<int> points;  // 0-based point indices
-  int element_id = 0, type_id = 0, mat_id = 0;
+/// One DataArray of the appended section: its XML tag and its compressed bytes.
+struct Appended {
+  std::string xml;      // everything in the DataArray tag but the offset
+  std::string payload;  // header (UInt64 counts) + compressed blocks
 };
 
-/// VTK cell type of an element: the registered cell of its type, a quadrilateral with K = L
-/// drawn as a triangle; a poly-vertex for a type this program does not know.
-int cell_type(const std::string& name, const std::vector<int>& nodes) {
-  const ElementTypeDescriptor* d = find_element_type(name);
-  if (d == nullptr) return kVtkPolyVertex;
-  if (d->vtk_cell == VtkCell::Quad && nodes.size() == 4 && nodes[2] == nodes[3])
-    return kVtkTriangle;
-  return static_cast<int>(d->vtk_cell);
+/// VTK's compressed-data layout: [n_blocks, block_size, last_block_size, compressed sizes...]
+/// followed by each block compressed with zlib.
+std::string compress_blocks(const void* data, std::size_t bytes) {
+  const auto* p = static_cast<const unsigned char*>(data);
+  const std::size_t n_blocks = (bytes + kBlockSize - 1) / kBlockSize;
+  std::vector<std::uint64_t> header{n_blocks, kBlockSize, bytes % kBlockSize};
+  std::string body;
+  for (std::size_t b = 0; b < n_blocks; ++b) {
+    const std::size_t n = std::min(kBlockSize, bytes - b * kBlockSize);
+    uLongf out_size = compressBound(static_cast<uLong>(n));
+    std::string out(out_size, '\0');
+    if (compress2(reinterpret_cast<Bytef*>(out.data()), &out_size, p + b * kBlockSize,
+                  static_cast<uLong>(n), 6) != Z_OK)
+      throw std::runtime_error("zlib compression failed");
+    out.resize(out_size);
+    header.push_back(out_size);
+    body += out;
+  }
+  std::string result(reinterpret_cast<const char*>(header.data()), header.size() * 8);
+  return result + body;
 }
 
-std::vector<Cell> build_cells(const ResultsReader& reader) {
-  const auto& ids = reader.node_ids();
-  std::vector<Cell> cells;
-  for (const auto& e : reader.elements()) {
-    Cell c;
-    c.type = cell_type(e.type_name, e.nodes);
-    std::vector<int> nodes = e.nodes;
-    if (c.type == kVtkTriangle && nodes.size() == 4) nodes.resize(3);  // K = L: drop L
-    bool ok = !nodes.empty();
-    for (int n : nodes) {
-      auto it = std::lower_bound(ids.begin(), ids.end(), n);
-      if (it == ids.end() || *it != n) {
-        ok = false;  // node not in the model section: cannot draw this element
-        break;
-      }
-      c.points.push_back(static_cast<int>(it - ids.begin()));
+template <typename T>
+Appended array(const std::string& vtk_type, const std::string& name, int components,
+               const std::vector<T>& values) {
+  Appended a;
+  a.xml = fmt::format("<DataArray type=\"{}\"{}{} format=\"appended\"", vtk_type,
+                      name.empty() ? "" : " Name=\"" + name + "\"",
+                      components > 1 ? fmt::format(" NumberOfComponents=\"{}\"", components) : "");
+  a.payload = compress_blocks(values.data(), values.size() * sizeof(T));
+  return a;
+}
+
+void write_vtu(const std::filesystem::path& file, const VtkMesh& mesh, const VtkFrameData& data,
+               const std::vector<double>& xyz, const std::vector<std::int64_t>& end_offsets) {
+  std::vector<Appended> point_data, cell_data, points, cells;
+  for (const auto& [name, values] : data.point_arrays)
+    point_data.push_back(array("Float64", name, 3, values));
+  cell_data.push_back(array("Int32", "element_id", 1, mesh.element_ids));
+  cell_data.push_back(array("Int32", "type_id", 1, mesh.type_ids));
+  cell_data.push_back(array("Int32", "mat_id", 1, mesh.mat_ids));
+  for (const auto& [name, values] : data.cell_arrays)
+    cell_data.push_back(array("Float64", name, 1, values));
+  points.push_back(array("Float64", "Points", 3, xyz));
+  std::vector<std::int64_t> connectivity(mesh.connectivity.begin(), mesh.connectivity.end());
+  cells.push_back(array("Int64", "connectivity", 1, connectivity));
+  cells.push_back(array("Int64", "offsets", 1, end_offsets));
+  cells.push_back(array("UInt8", "types", 1, mesh.types));
+
+  std::string xml =
+      "<?xml version=\"1.0\"?>\n"
+      "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
+      "header_type=\"UInt64\" compressor=\"vtkZLibDataCompressor\">\n"
+      "  <UnstructuredGrid>\n";
+  xml += fmt::format("    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n", mesh.n_points(),
+                     mesh.n_cells());
+  std::string appended;
+  auto section = [&](const char* tag, const std::string& attrs, const std::vector<Appended>& v) {
+    xml += fmt::format("      <{}{}>\n", tag, attrs);
+    for (const auto& a : v) {
+      xml += fmt::format("        {} offset=\"{}\"/>\n", a.xml, appended.size());
+      appended += a.payload;
     }
-    if (!ok) continue;
-    c.element_id = e.id;
-    c.type_id = e.type;
-    c.mat_id = e.mat;
-    cells.push_back(std::move(c));
-  }
-  return cells;
-}
-
-double finite_or_zero(double v) {
-  return std::isfinite(v) ? v : 0.0;
-}
-
-void write_vectors(std::ofstream& f, const char* name, const Eigen::MatrixXd& m, int first_col) {
-  f << "        <DataArray type=\"Float64\" Name=\"" << name
-    << "\" NumberOfComponents=\"3\" format=\"ascii\">\n";
-  for (Eigen::Index i = 0; i < m.rows(); ++i)
-    f << fmt::format("          {:.10e} {:.10e} {:.10e}\n", finite_or_zero(m(i, first_col)),
-                     finite_or_zero(m(i, first_col + 1)), finite_or_zero(m(i, first_col + 2)));
-  f << "        </DataArray>\n";
-}
-
-template <typename Get>
-void write_int_array(std::ofstream& f, const char* name, const char* type, std::size_t n, Get get) {
-  f << "        <DataArray type=\"" << type << "\" Name=\"" << name << "\" format=\"ascii\">\n";
-  for (std::size_t i = 0; i < n; ++i)
-    f << (i % 16 == 0 ? "          " : " ") << get(i) << (i % 16 == 15 || i + 1 == n ? "\n" : "");
-  f << "        </DataArray>\n";
-}
-
-void write_vtu(const std::filesystem::path& file, const Eigen::MatrixXd& xyz,
-               const std::vector<Cell>& cells, const TimePoint& p) {
-  std::ofstream f(file);
-  if (!f) throw InputError(fmt::format("cannot write '{}'", file.string()));
-  f << "<?xml version=\"1.0\"?>\n"
-       "<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
-       "  <UnstructuredGrid>\n";
-  f << fmt::format("    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n", xyz.rows(),
-                   cells.size());
-  f << "      <Points>\n"
-       "        <DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
-  for (Eigen::Index i = 0; i < xyz.rows(); ++i)
-    f << fmt::format("          {:.10e} {:.10e} {:.10e}\n", xyz(i, 0), xyz(i, 1), xyz(i, 2));
-  f << "        </DataArray>\n      </Points>\n";
-
-  f << "      <Cells>\n";
-  std::vector<int> connectivity, offsets;
-  for (const auto& c : cells) {
-    connectivity.insert(connectivity.end(), c.points.begin(), c.points.end());
-    offsets.push_back(static_cast<int>(connectivity.size()));
-  }
-  write_int_array(f, "connectivity", "Int32", connectivity.size(),
-                  [&](std::size_t i) { return connectivity[i]; });
-  write_int_array(f, "offsets", "Int32", offsets.size(), [&](std::size_t i) { return offsets[i]; });
-  write_int_array(f, "types", "UInt8", cells.size(), [&](std::size_t i) { return cells[i].type; });
-  f << "      </Cells>\n";
-
-  f << "      <PointData Vectors=\"U\">\n";
-  write_vectors(f, "U", p.displacement, 0);
-  write_vectors(f, "ROT", p.displacement, 3);
-  write_vectors(f, "V", p.velocity, 0);
-  write_vectors(f, "A", p.acceleration, 0);
-  write_vectors(f, "RF", p.reaction, 0);
-  f << "      </PointData>\n";
-
-  f << "      <CellData Scalars=\"element_id\">\n";
-  write_int_array(f, "element_id", "Int32", cells.size(),
-                  [&](std::size_t i) { return cells[i].element_id; });
-  write_int_array(f, "type_id", "Int32", cells.size(),
-                  [&](std::size_t i) { return cells[i].type_id; });
-  write_int_array(f, "mat_id", "Int32", cells.size(),
-                  [&](std::size_t i) { return cells[i].mat_id; });
-  f << "      </CellData>\n";
-  f << "    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n";
+    xml += fmt::format("      </{}>\n", tag);
+  };
+  section("PointData", " Vectors=\"U\"", point_data);
+  section("CellData", " Scalars=\"element_id\"", cell_data);
+  section("Points", "", points);
+  section("Cells", "", cells);
+  xml += "    </Piece>\n  </UnstructuredGrid>\n  <AppendedData encoding=\"raw\">\n   _";
+  std::ofstream f(file, std::ios::binary);
+  f << xml;
+  f.write(appended.data(), static_cast<std::streamsize>(appended.size()));
+  f << "\n  </AppendedData>\n</VTKFile>\n";
   if (!f) throw InputError(fmt::format("cannot write '{}'", file.string()));
 }
 
 }  // namespace
 
-int export_vtu_series(const ResultsReader& reader, const std::string& out_dir,
-                      const std::string& stem) {
+ExportSummary export_vtu_series(const ResultsReader& reader, const std::string& out_dir,
+                                const std::string& stem) {
   namespace fs = std::filesystem;
   std::error_code ec;
   fs::create_directories(out_dir, ec);
   if (ec) throw InputError(fmt::format("cannot create directory '{}': {}", out_dir, ec.message()));
-  const Eigen::MatrixXd xyz = reader.node_coordinates();
-  const std::vector<Cell> cells = build_cells(reader);
+  const VtkMesh mesh = build_vtk_mesh(reader);
+  std::vector<double> xyz(3 * mesh.n_points());
+  for (std::size_t i = 0; i < mesh.n_points(); ++i)
+    for (int c = 0; c < 3; ++c)
+      xyz[3 * i + static_cast<std::size_t>(c)] = mesh.points(static_cast<Eigen::Index>(i), c);
+  const std::vector<std::int64_t> end_offsets(mesh.offsets.begin() + 1, mesh.offsets.end());
 
+  ExportSummary summary;
+  summary.points = mesh.n_points();
+  summary.cells = mesh.n_cells();
+  summary.skipped_elements = mesh.skipped_elements;
+  const fs::path pvd_path = fs::path(out_dir) / (stem + ".pvd");
+  summary.files.push_back(pvd_path.string());
   std::string pvd =
       "<?xml version=\"1.0\"?>\n"
-      "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+      "<VTKFile type=\"Collection\" version=\"1.0\" byte_order=\"LittleEndian\">\n"
       "  <Collection>\n";
-  int written = 0;
-  for (const auto& a : reader.analyses()) {
-    for (int k = 0; k < a.n_time_points; ++k) {
-      const TimePoint p = reader.time_point(a.index, k);
-      const std::string name = fmt::format("{}_a{}_{:05d}.vtu", stem, a.index, k);
-      write_vtu(fs::path(out_dir) / name, xyz, cells, p);
-      pvd += fmt::format(
-          "    <DataSet timestep=\"{:.10e}\" group=\"analysis_{}\" part=\"{}\" file=\"{}\"/>\n",
-          p.time, a.index, a.index - 1, name);
-      ++written;
-    }
+  int k = 0;
+  for (const VtkFrame& frame : vtk_frames(reader)) {  // one frame in memory at a time
+    const std::string name = fmt::format("{}_{:05d}.vtu", stem, k++);
+    const fs::path path = fs::path(out_dir) / name;
+    write_vtu(path, mesh, read_vtk_frame(reader, mesh, frame), xyz, end_offsets);
+    pvd += fmt::format("    <DataSet timestep=\"{:.17g}\" part=\"0\" file=\"{}\"/>\n", frame.time,
+                       name);
+    summary.files.push_back(path.string());
+    summary.bytes += fs::file_size(path, ec);
   }
   pvd += "  </Collection>\n</VTKFile>\n";
-  const fs::path pvd_path = fs::path(out_dir) / (stem + ".pvd");
   std::ofstream f(pvd_path);
   f << pvd;
   if (!f) throw InputError(fmt::format("cannot write '{}'", pvd_path.string()));
-  return written;
+  f.close();
+  summary.frames = k;
+  summary.bytes += fs::file_size(pvd_path, ec);
+  return summary;
 }
 
 }  // namespace impactfe

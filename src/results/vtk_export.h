@@ -1,21 +1,33 @@
 #pragma once
-/// `impactfe export`: ASCII VTK XML unstructured grids (.vtu), one per stored time point, and a
-/// ParaView collection (.pvd) listing them with their times.
+/// `impactfe export`: the results for ParaView, streamed one time point at a time (the whole
+/// history is never in memory). Mesh, frames and the merge of analyses: results/vtk_frames.h;
+/// layouts and how to open them: docs/results_file.md ("ParaView").
 #include <string>
+#include <vector>
 
 #include "results/results_file.h"
 
 namespace impactfe {
 
-/// Writes <out_dir>/<stem>_a<k>_<nnnnn>.vtu for time point nnnnn (0-based) of every analysis k
-/// and <out_dir>/<stem>.pvd (DataSet timestep = time, group = "analysis_<k>", part = k - 1).
-/// Points are the node coordinates (ascending node id); cells come from the element node lists:
-/// vertex (VTK 1) for 1-node elements, line (3) for 2-node elements, triangle (5) for a 4-node
-/// shell with K = L, quad (9), hexahedron (12), poly-vertex (2) for anything else (e.g. MATRIX50).
-/// Point data U, ROT, V, A, RF (reaction force) as 3-vectors; absent values (NaN) are written
-/// as 0 because VTK ASCII readers do not accept NaN. Cell data: element_id, type_id, mat_id.
-/// Creates out_dir if needed; returns the number of .vtu files written.
-int export_vtu_series(const ResultsReader& reader, const std::string& out_dir,
-                      const std::string& stem);
+/// What an export wrote (for the command's message and the tests).
+struct ExportSummary {
+  std::vector<std::string> files;  // main file first (the .vtkhdf or the .pvd)
+  int frames = 0;
+  std::size_t points = 0;
+  std::size_t cells = 0;
+  std::vector<int> skipped_elements;  // elements that could not be drawn (a node is missing)
+  unsigned long long bytes = 0;       // total size of the files written
+};
+
+/// One VTKHDF file (format version 2.0, transient UnstructuredGrid with a `Steps` group): the
+/// mesh once, point data U ROT V A RF RM (3 components) and cell data (every element result
+/// item, plus element_id, type_id, mat_id) per frame, times in Steps/Values. ParaView 5.12+
+/// opens it directly.
+ExportSummary export_vtkhdf(const ResultsReader& reader, const std::string& path);
+
+/// Binary VTK XML files: <out_dir>/<stem>_<nnnnn>.vtu per frame (appended raw data, zlib
+/// compressed) and <out_dir>/<stem>.pvd listing them with their times. Same arrays as above.
+ExportSummary export_vtu_series(const ResultsReader& reader, const std::string& out_dir,
+                                const std::string& stem);
 
 }  // namespace impactfe

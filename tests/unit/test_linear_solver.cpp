@@ -45,6 +45,56 @@ TEST_P(LinearSolverBackends, SolvesAndCounts) {
   EXPECT_EQ(solver->counters().solves, 4);
 }
 
+TEST_P(LinearSolverBackends, ReportsFactorSizesAndTimes) {
+  // A dense SPD matrix cannot fill in: nnz(L) = nnz(lower A) = n(n+1)/2 for any ordering.
+  const int n = 80;
+  MatrixXd dense = MatrixXd::Constant(n, n, 1.0);
+  dense.diagonal().array() += n;
+  const SparseMatrix a = MatrixXd(dense.triangularView<Eigen::Lower>()).sparseView();
+  auto solver = make_linear_solver(n, GetParam());
+  solver->analyze_pattern(a);
+  solver->factorize(a);
+  const VectorXd x = solver->solve(VectorXd(VectorXd::Ones(n)));
+  EXPECT_NEAR(x(0), 1.0 / (2.0 * n), 1e-12);
+  const SolverCounters& c = solver->counters();
+  EXPECT_EQ(c.matrix_nonzeros, n * (n + 1) / 2);
+  EXPECT_EQ(c.factor_nonzeros, n * (n + 1) / 2);
+  // A solve reads at least the values of L, and (dense or supernodal) at most a full square
+  // block of values plus one row index per value.
+  EXPECT_GE(c.factor_bytes, static_cast<long>(sizeof(double)) * c.factor_nonzeros);
+  EXPECT_LE(c.factor_bytes, static_cast<long>(sizeof(double) + sizeof(int)) * n * n);
+  EXPECT_GT(c.factorize_seconds, 0.0);
+  EXPECT_GT(c.solve_seconds, 0.0);
+  EXPECT_GE(c.analyze_seconds, 0.0);
+}
+
+TEST(SolverCounters, SumCountsAndTimesKeepLargestSizes) {
+  SolverCounters a, b;
+  a.analyses = 1;
+  a.factorizations = 2;
+  a.solves = 10;
+  a.factorize_seconds = 0.5;
+  a.factor_nonzeros = 100;
+  a.factor_bytes = 1200;
+  a.matrix_nonzeros = 40;
+  b.factorizations = 3;
+  b.solves = 5;
+  b.factorize_seconds = 0.25;
+  b.solve_seconds = 0.125;
+  b.factor_nonzeros = 300;
+  b.factor_bytes = 1000;
+  b.matrix_nonzeros = 20;
+  a += b;
+  EXPECT_EQ(a.analyses, 1);
+  EXPECT_EQ(a.factorizations, 5);
+  EXPECT_EQ(a.solves, 15);
+  EXPECT_DOUBLE_EQ(a.factorize_seconds, 0.75);
+  EXPECT_DOUBLE_EQ(a.solve_seconds, 0.125);
+  EXPECT_EQ(a.factor_nonzeros, 300);
+  EXPECT_EQ(a.factor_bytes, 1200);
+  EXPECT_EQ(a.matrix_nonzeros, 40);
+}
+
 TEST_P(LinearSolverBackends, NamesTheZeroPivot) {
   // An ungrounded chain is a mechanism (rigid translation): the factorization must fail.
   const int n = 100;

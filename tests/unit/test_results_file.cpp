@@ -9,7 +9,10 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <limits>
+#include <random>
+#include <sstream>
 
 #include "core/errors.h"
 #include "results/results_file.h"
@@ -457,6 +460,238 @@ TEST_F(ResultsFileTest, ModelWithoutElements) {
   ResultsReader r(file("empty.h5"));
   EXPECT_TRUE(r.elements().empty());
   EXPECT_EQ(r.nodal_series(3, "UZ"), (std::vector<std::pair<double, double>>{{0.0, 0.0}}));
+}
+
+/// Bytes this process has read through read()/pread() so far (/proc/self/io rchar).
+long long bytes_read_so_far() {
+  std::ifstream io("/proc/self/io");
+  std::string key;
+  long long value = 0;
+  while (io >> key >> value)
+    if (key == "rchar:") return value;
+  return -1;
+}
+
+/// A 190-node model without elements (the helmet's size class).
+Model nodes_only(int n) {
+  Model m;
+  m.title = "long history";
+  for (int i = 1; i <= n; ++i) {
+    Node node;
+    node.id = i;
+    node.x = Vec3(i, 0, 0);
+    m.nodes[i] = node;
+  }
+  return m;
+}
+
+double history_value(int node_row, int step) {
+  return std::sin(1e-3 * step * (node_row + 1)) + 1e-6 * node_row;
+}
+
+void append_history(ResultsWriter& w, int n_nodes, int first, int last) {
+  for (int k = first; k < last; ++k) {
+    TimePoint p;
+    p.time = 1e-4 * k;
+    p.displacement = Eigen::MatrixXd::Zero(n_nodes, 6);
+    for (int i = 0; i < n_nodes; ++i) p.displacement(i, 2) = history_value(i, k);
+    w.append(p);
+  }
+}
+
+void expect_history(const ResultsReader& r, int node, int n_steps) {
+  const auto s = r.nodal_series(node, "UZ");
+  ASSERT_EQ(s.size(), static_cast<std::size_t>(n_steps));
+  for (int k = 0; k < n_steps; k += 97) EXPECT_EQ(s[k].second, history_value(node - 1, k)) << k;
+  EXPECT_EQ(s.back().second, history_value(node - 1, n_steps - 1));
+}
+
+TEST_F(ResultsFileTest, NodeHistoryOfLongRunReadsFewChunks) {
+  constexpr int kNodes = 190, kSteps = 3000;
+  const std::string path = file("long.h5");
+  {
+    ResultsWriter w(path, nodes_only(kNodes));
+    w.begin_analysis(ResultsKind::Transient, "long");
+    append_history(w, kNodes, 0, kSteps);
+    // Still being written: the last 3000 - 11 x 256 = 184 points are in the staging datasets.
+    expect_history(ResultsReader(path), 95, kSteps);
+    w.end_analysis();
+  }
+  const auto file_size = static_cast<long long>(fs::file_size(path));
+
+  // Chunks of U, and how many of them hold node 95's rows.
+  hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  ASSERT_GE(f, 0);
+  hid_t ds = H5Dopen2(f, "analysis_1/U", H5P_DEFAULT);
+  hid_t space = H5Dget_space(ds);
+  hsize_t n_chunks = 0;
+  ASSERT_GE(H5Dget_num_chunks(ds, space, &n_chunks), 0);
+  hid_t dcpl = H5Dget_create_plist(ds);
+  hsize_t chunk[3] = {0, 0, 0};
+  ASSERT_EQ(H5Pget_chunk(dcpl, 3, chunk), 3);
+  int touched = 0;
+  for (hsize_t c = 0; c < n_chunks; ++c) {
+    hsize_t offset[3];
+    unsigned mask = 0;
+    haddr_t addr = 0;
+    hsize_t size = 0;
+    ASSERT_GE(H5Dget_chunk_info(ds, space, c, offset, &mask, &addr, &size), 0);
+    touched += offset[1] <= 94 && 94 < offset[1] + chunk[1];
+  }
+  H5Pclose(dcpl);
+  H5Sclose(space);
+  H5Dclose(ds);
+  H5Fclose(f);
+  EXPECT_EQ(chunk[0], 256u);                 // time-blocked chunks
+  EXPECT_EQ(touched, (kSteps + 255) / 256);  // 12 chunks, one per block of 256 points
+  EXPECT_GE(n_chunks, 8u * touched);         // of at least 8 times as many
+
+  // Bytes actually read for one history, measured by the kernel.
+  ResultsReader r(path);
+  const long long before = bytes_read_so_far();
+  ASSERT_GE(before, 0);
+  expect_history(r, 95, kSteps);
+  const long long read = bytes_read_so_far() - before;
+  EXPECT_LT(read, file_size / 5) << read << " of " << file_size << " bytes";
+  std::cout << "node history of " << kSteps << " points: read " << read << " of " << file_size
+            << " bytes\n";
+}
+
+/// Byte offset of the first chunk of a dataset.
+haddr_t first_chunk_address(const std::string& path, const std::string& dataset) {
+  hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  hid_t ds = H5Dopen2(f, dataset.c_str(), H5P_DEFAULT);
+  hid_t space = H5Dget_space(ds);
+  hsize_t offset[3];
+  unsigned mask = 0;
+  haddr_t addr = HADDR_UNDEF;
+  hsize_t size = 0;
+  H5Dget_chunk_info(ds, space, 0, offset, &mask, &addr, &size);
+  H5Sclose(space);
+  H5Dclose(ds);
+  H5Fclose(f);
+  return addr;
+}
+
+void overwrite(const std::string& path, long long at, const std::string& bytes) {
+  std::fstream f(path, std::ios::in | std::ios::out | std::ios::binary);
+  f.seekp(at);
+  f.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+}
+
+TEST_F(ResultsFileTest, CorruptedDataIsReportedNotReturned) {
+  {
+    ResultsWriter w(file("c.h5"), small_model());
+    write_three_points(w);
+  }
+  const haddr_t u = first_chunk_address(file("c.h5"), "analysis_1/U");
+  const haddr_t xyz = first_chunk_address(file("c.h5"), "model/node_coordinates");
+  ASSERT_NE(u, HADDR_UNDEF);
+  fs::copy_file(file("c.h5"), file("c_model.h5"));
+  overwrite(file("c.h5"), static_cast<long long>(u) + 20, "\x7f\x13");
+  ResultsReader r(file("c.h5"));
+  expect_input_error([&] { r.nodal_series(2, "UY"); }, "is damaged or incomplete");
+  expect_input_error([&] { r.time_point(1, 0); }, "is damaged or incomplete");
+  // Unharmed quantities still read.
+  EXPECT_EQ(r.element_series(6, "SAXL").size(), 3u);
+  overwrite(file("c_model.h5"), static_cast<long long>(xyz) + 3, "\x01");
+  expect_input_error([&] { ResultsReader bad(file("c_model.h5")); }, "is damaged or incomplete");
+}
+
+/// Everything a reader returns for the file of write_three_points, as text.
+std::string read_everything(const std::string& path) {
+  ResultsReader r(path);
+  std::string out = r.title();
+  for (int n : r.node_ids()) out += " " + std::to_string(n);
+  for (const auto& e : r.elements()) out += " " + e.type_name;
+  for (const auto& a : r.analyses()) {
+    out += " " + a.status + std::to_string(a.n_time_points);
+    for (int k = 0; k < a.n_time_points; ++k) {
+      const TimePoint p = r.time_point(a.index, k);
+      std::ostringstream s;
+      s << p.time << p.load_step << p.substep << p.displacement << p.velocity << p.acceleration
+        << p.reaction << p.gap_forces;
+      for (const auto& [name, t] : p.element_results) s << name << t.values;
+      for (const auto& [name, v] : p.energy) s << name << v;
+      out += s.str();
+    }
+  }
+  for (const char* lab : {"UX", "VY", "FX"}) {
+    for (const auto& [t, v] : r.nodal_series(2, lab)) out += std::to_string(t + v);
+  }
+  return out;
+}
+
+TEST_F(ResultsFileTest, RandomCorruptionNeverGivesWrongNumbersOrACrash) {
+  const std::string path = file("r.h5");
+  {
+    ResultsWriter w(path, small_model());
+    write_three_points(w);
+  }
+  const std::string reference = read_everything(path);
+  const auto size = static_cast<long long>(fs::file_size(path));
+  std::mt19937 rng(12345);
+  int reported = 0, unharmed = 0;
+  constexpr int kTrials = 80;  // ~0.2 s each (a process per trial)
+  for (int trial = 0; trial < kTrials; ++trial) {
+    const std::string bad = file("bad.h5");
+    fs::copy_file(path, bad, fs::copy_options::overwrite_existing);
+    const long long at = std::uniform_int_distribution<long long>(0, size - 8)(rng);
+    std::string bytes(8, '\0');
+    for (auto& b : bytes) b = static_cast<char>(rng());
+    overwrite(bad, at, bytes);
+    // A child process reads, so that a crash is seen as one.
+    pid_t pid = fork();
+    ASSERT_GE(pid, 0);
+    if (pid == 0) {
+      alarm(20);
+      int code = 3;
+      try {
+        code = read_everything(bad) == reference ? 0 : 2;
+      } catch (const InputError&) {
+        code = 1;
+      } catch (...) {
+        code = 3;
+      }
+      _exit(code);
+    }
+    int status = 0;
+    waitpid(pid, &status, 0);
+    ASSERT_TRUE(WIFEXITED(status))
+        << "reader crashed (signal " << WTERMSIG(status) << ") with 8 bytes overwritten at " << at;
+    const int code = WEXITSTATUS(status);
+    EXPECT_NE(code, 2) << "wrong numbers returned with 8 bytes overwritten at " << at
+                       << " (seed trial " << trial << ")";
+    EXPECT_NE(code, 3) << "an exception other than InputError with bytes overwritten at " << at;
+    reported += code == 1;
+    unharmed += code == 0;
+  }
+  std::cout << kTrials << " corrupted copies: " << reported << " reported, " << unharmed
+            << " unharmed (bytes in unused space)\n";
+  EXPECT_GT(reported, kTrials / 5);
+}
+
+TEST_F(ResultsFileTest, TruncatedFileIsReportedNotACrash) {
+  const std::string path = file("t.h5");
+  {
+    ResultsWriter w(path, small_model());
+    write_three_points(w);
+  }
+  const auto size = static_cast<long long>(fs::file_size(path));
+  for (long long keep : {size - 1, size / 2, 2048LL, 100LL}) {
+    fs::copy_file(path, file("cut.h5"), fs::copy_options::overwrite_existing);
+    fs::resize_file(file("cut.h5"), static_cast<std::uintmax_t>(keep));
+    try {
+      read_everything(file("cut.h5"));
+      ADD_FAILURE() << "a file cut to " << keep << " of " << size << " bytes was read";
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      EXPECT_TRUE(what.find("truncated") != std::string::npos ||
+                  what.find("not an impactfe results file") != std::string::npos ||
+                  what.find("damaged") != std::string::npos)
+          << what;
+    }
+  }
 }
 
 TEST(ResultsKindTest, NamesAndSameTime) {

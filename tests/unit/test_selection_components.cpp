@@ -5,7 +5,6 @@
 
 #include "core/errors.h"
 #include "deck/deck_context.h"
-#include "deck/get_functions.h"
 #include "deck/post_support.h"
 
 namespace impactfe::deck {
@@ -128,35 +127,38 @@ TEST(Components, EmptySelectionAndBadNamesAreErrors) {
   }
 }
 
-TEST(GetFunctions, ModelFunctions) {
+TEST(GetFunctions, ModelFunctionsSeeTheSelection) {
   ReadDeck d(std::string(kLine) + "N,10,1.2,0.1\n");
   DeckReader& r = d.reader;
   Command c;
   c.name = "X";
   c.where = {"sel.inp", 1};
-  auto f = [&](const char* name, std::vector<double> args) {
-    return model_get_function(r, c, name, args).value();
-  };
-  EXPECT_DOUBLE_EQ(f("NX", {3}), 2.0);
-  EXPECT_DOUBLE_EQ(f("NY", {10}), 0.1);
-  EXPECT_DOUBLE_EQ(f("NODE", {1.1, 0.0, 0.0}), 2.0);  // nearest of the selected
-  EXPECT_DOUBLE_EQ(f("NNEAR", {2}), 10.0);            // nearest other node
-  EXPECT_DOUBLE_EQ(f("DISTND", {1, 5}), 4.0);
-  EXPECT_DOUBLE_EQ(f("CENTRX", {2}), 1.5);    // element 2 = nodes 2, 3
-  EXPECT_DOUBLE_EQ(f("NELEM", {3, 2}), 4.0);  // second node of element 3
-  EXPECT_DOUBLE_EQ(f("NELEM", {3, 7}), 0.0);  // beyond the node list
-  EXPECT_DOUBLE_EQ(f("ENEARN", {5}), 4.0);
-  r.run_text("NSEL,U,NODE,,2\n", "sel.inp");
-  EXPECT_DOUBLE_EQ(f("NODE", {1.1, 0.0, 0.0}), 10.0);  // 2 is unselected now
-  EXPECT_DOUBLE_EQ(f("NSEL", {2}), -1.0);
-  EXPECT_DOUBLE_EQ(f("NSEL", {3}), 1.0);
-  EXPECT_DOUBLE_EQ(f("NSEL", {99}), 0.0);
-  EXPECT_DOUBLE_EQ(f("NDNEXT", {1}), 3.0);
-  EXPECT_DOUBLE_EQ(f("NDNEXT", {10}), 0.0);
-  EXPECT_DOUBLE_EQ(f("ELNEXT", {2}), 3.0);
-  EXPECT_FALSE(model_get_function(r, c, "NOSUCH", {1}).has_value());
-  EXPECT_THROW(model_get_function(r, c, "NX", {1, 2}), InputError);  // wrong arity
-  EXPECT_THROW(model_get_function(r, c, "NX", {42}), InputError);    // undefined node
+  auto f = [&](const char* expression) { return r.eval(c, expression); };
+  EXPECT_DOUBLE_EQ(f("NX(3)"), 2.0);
+  EXPECT_DOUBLE_EQ(f("NY(10)"), 0.1);
+  EXPECT_DOUBLE_EQ(f("NODE(1.1,0,0)"), 2.0);  // nearest of the selected
+  EXPECT_DOUBLE_EQ(f("NNEAR(2)"), 10.0);      // nearest other node
+  EXPECT_DOUBLE_EQ(f("DISTND(1,5)"), 4.0);
+  EXPECT_DOUBLE_EQ(f("CENTRX(2)"), 1.5);   // element 2 = nodes 2, 3
+  EXPECT_DOUBLE_EQ(f("NELEM(3,2)"), 4.0);  // second node of element 3
+  EXPECT_DOUBLE_EQ(f("NELEM(3,7)"), 0.0);  // beyond the node list
+  EXPECT_DOUBLE_EQ(f("ENEARN(5)"), 4.0);
+  r.run_text("NSEL,U,NODE,,2\nESEL,U,ELEM,,2\n", "sel.inp");
+  EXPECT_DOUBLE_EQ(f("NODE(1.1,0,0)"), 10.0);  // 2 is unselected now
+  EXPECT_DOUBLE_EQ(f("NSEL(2)"), -1.0);
+  EXPECT_DOUBLE_EQ(f("NSEL(3)"), 1.0);
+  EXPECT_DOUBLE_EQ(f("NSEL(99)"), 0.0);
+  EXPECT_DOUBLE_EQ(f("NDNEXT(1)"), 3.0);
+  EXPECT_DOUBLE_EQ(f("NDNEXT(10)"), 0.0);
+  EXPECT_DOUBLE_EQ(f("ESEL(2)"), -1.0);
+  EXPECT_DOUBLE_EQ(f("ELNEXT(1)"), 3.0);
+  // In assignments and with a space before the parenthesis (issue 9).
+  r.run_text("A=2\nB=0\nN1 = NODE (A/2,-B,0 )\n*GET,NC,NODE,0,COUNT\n", "sel.inp");
+  EXPECT_DOUBLE_EQ(f("N1"), 10.0);  // (1,0,0): node 2 is unselected, 10 at (1.2,0.1) nearest
+  EXPECT_DOUBLE_EQ(f("NC"), 5.0);   // 6 nodes, one unselected
+  EXPECT_THROW(f("NOSUCH(1)"), InputError);
+  EXPECT_THROW(f("NX(1,2)"), InputError);  // wrong arity
+  EXPECT_THROW(f("NX(42)"), InputError);   // undefined node
 }
 
 }  // namespace

@@ -1,8 +1,10 @@
 // Static analysis through the job runner: an unrestrained model stops with a message naming the
-// node and DOF (issue 2), and a regular one solves (the verification decks cover the values).
+// node and DOF (issue 2), and a regular one solves (the verification decks cover the values) and
+// reports its linear-solver figures (run summary, results attributes, bench/).
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <sstream>
 
 #include "../support/run_deck.h"
 
@@ -43,6 +45,42 @@ TEST(StaticAnalysis, MassOnlyDofIsSingularInAStaticSolve) {
       "E,1,2\nTYPE,2\nREAL,2\nE,2\nFINISH\n/SOLU\nANTYPE,STATIC\nD,1,ALL\nF,2,FX,10\nSOLVE\n"
       "FINISH\n");
   EXPECT_NE(message.find("node 2 UY"), std::string::npos) << message;
+}
+
+TEST(StaticAnalysis, ReportsLinearSolverFiguresInStatisticsAndResults) {
+  // A chain of n UX springs (k = 100) fixed at node 1, pulled by 10 at node n + 1: n free DOFs,
+  // a tridiagonal K (2n - 1 nonzeros in its lower triangle), tip displacement n * 10 / 100.
+  const int n = 100;
+  std::ostringstream text;
+  text << "/PREP7\nET,1,COMBIN14,,1\nR,1,100\n";
+  for (int i = 1; i <= n + 1; ++i) text << "N," << i << "," << i - 1 << "\n";
+  for (int i = 1; i <= n; ++i) text << "E," << i << "," << i + 1 << "\n";
+  text << "FINISH\n/SOLU\nANTYPE,STATIC\nD,1,ALL\nF," << n + 1 << ",FX,10\nSOLVE\nFINISH\n";
+  const auto dir = testing::fresh_directory("static_solver_figures");
+  const std::string deck = (dir / "chain.inp").string();
+  {
+    std::ofstream out(deck);
+    out << text.str();
+  }
+  const auto run = testing::run_deck_in(deck, dir);
+  ASSERT_EQ(run.statistics.analyses.size(), 1u);
+  const AnalysisStatistics& a = run.statistics.analyses[0];
+  EXPECT_EQ(a.n_dofs, n);
+  EXPECT_EQ(a.n_factorizations, 1);
+  EXPECT_EQ(a.matrix_nonzeros, 2 * n - 1);
+  EXPECT_GE(a.factor_nonzeros, a.matrix_nonzeros);  // fill-in is never negative
+  EXPECT_GE(a.factor_bytes, static_cast<long>(sizeof(double)) * a.factor_nonzeros);
+  EXPECT_GT(a.factorize_seconds, 0.0);
+  EXPECT_GT(a.solve_seconds, 0.0);
+  const auto attributes = run.reader->analyses()[0].numeric_attributes;  // a copy
+  EXPECT_EQ(attributes.at("matrix_nonzeros"), static_cast<double>(a.matrix_nonzeros));
+  EXPECT_EQ(attributes.at("factor_nonzeros"), static_cast<double>(a.factor_nonzeros));
+  EXPECT_EQ(attributes.at("factor_bytes"), static_cast<double>(a.factor_bytes));
+  EXPECT_EQ(attributes.at("solves"), static_cast<double>(a.n_solves));
+  EXPECT_DOUBLE_EQ(attributes.at("factorize_seconds"), a.factorize_seconds);
+  const auto tip = run.reader->nodal_series(n + 1, "UX");
+  ASSERT_FALSE(tip.empty());
+  EXPECT_NEAR(tip.back().second, n * 10.0 / 100.0, 1e-9);
 }
 
 }  // namespace

@@ -1,0 +1,63 @@
+#pragma once
+/// Condensation of the linear part of a transient onto the DOFs its nonlinear elements touch
+/// (thesis eqs. 4-16..4-20; ../shared/DESIGN.md "Performance principles").
+///
+/// With the effective matrix split into the constant linear part A_L = cK K_L + cC C_L + cM M
+/// (the linear elements' stiffness and damping and every element's mass) and the nonlinear
+/// elements' share on the small set c of free DOFs they touch, the equations of a step are
+///   A_L δ + E [φ(δ_c) − φ(0)] = r0,
+/// E selecting the c DOFs and r0 the residual at the predictor. With G = A_L⁻¹ E (one
+/// multi-right-hand-side solve) and the Schur complement S = (Eᵀ G)⁻¹ of A_L onto c, the c part
+/// obeys the small dense system  S (y − δ_c) − [φ(δ_c) − φ(0)] = 0,  y = (A_L⁻¹ r0)_c, whose Newton
+/// tangent is S + (cK K_N + cC C_N). Its residual is the full residual on the c rows with every
+/// other row in balance, so Newton on it makes the iterates of full Newton. The whole field is
+/// recovered once per step: δ = A_L⁻¹ r0 − G S (y − δ_c). A_L is factorized once per set of
+/// integration coefficients (once per Δt).
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "assembly/assembler.h"
+#include "linalg/linear_solver.h"
+
+namespace impactfe {
+
+class LinearPartCondensation {
+ public:
+  /// Largest condensed set accepted, and the largest G (n × m doubles) in bytes.
+  static constexpr int kMaxCondensedDofs = 2000;
+  static constexpr double kMaxTransferBytes = 512.0 * 1024 * 1024;
+
+  /// Why condensation does not apply to this model and DOF numbering, or nullopt when it does.
+  static std::optional<std::string> refusal(const Assembler& assembler);
+
+  explicit LinearPartCondensation(const Assembler& assembler);
+
+  /// Free DOF indices of the condensed set c, ascending.
+  const std::vector<int>& dofs() const { return c_; }
+  int size() const { return static_cast<int>(c_.size()); }
+  /// Active DOF index → position in c (−1 outside c).
+  const std::vector<int>& position() const { return position_; }
+
+  /// Factorizes A_L for these coefficients and forms G and S, unless already done for them.
+  /// Throws SingularMatrixError when A_L is singular (a DOF held only by nonlinear elements).
+  void prepare(const IntegrationCoefficients& coeff);
+  bool prepared_for(const IntegrationCoefficients& coeff) const;
+
+  /// A_L⁻¹ r over the free DOFs.
+  VectorXd solve(const VectorXd& r_free);
+  const MatrixXd& transfer() const { return g_; }  // G = A_L⁻¹ E (n_free × m)
+  const MatrixXd& schur() const { return s_; }     // S = (Eᵀ A_L⁻¹ E)⁻¹ (m × m)
+  const SolverCounters& counters() const { return solver_->counters(); }
+
+ private:
+  const Assembler& assembler_;
+  std::vector<int> c_;
+  std::vector<int> position_;
+  SparseMatrix effective_;
+  std::unique_ptr<LinearSolver> solver_;
+  std::optional<IntegrationCoefficients> prepared_;
+  MatrixXd g_, s_;
+};
+
+}  // namespace impactfe

@@ -1,0 +1,26 @@
+#pragma once
+/// Progress of a running analysis, reported through an observer that the program (the CLI)
+/// implements: libraries never print. Drivers call it after every converged substep.
+#include <string>
+
+namespace impactfe {
+
+struct ProgressEvent {
+  std::string analysis;   // description, e.g. "full transient (Houbolt)"
+  double time = 0.0;      // time reached
+  double time_end = 0.0;  // end time of the load step being solved
+  int load_step = 0;
+  int substep = 0;
+  int substeps = 0;  // substeps of the load step
+  double dt = 0.0;
+  int iterations = 0;      // equilibrium iterations of this substep
+  int status_changes = 0;  // status changes of this substep (-1: not counted)
+};
+
+class ProgressObserver {
+ public:
+  virtual ~ProgressObserver() = default;
+  virtual void substep_done(const ProgressEvent& event) = 0;
+};
+
+}  // namespace impactfe

@@ -1,0 +1,718 @@
+// The command executor (APDL_SCRIPTING §A.10–§A.13): files, macros, *DO / *DOWHILE loops,
+// *IF blocks and one-line *IF actions, *GO / :labels, *EXIT / *CYCLE, *REPEAT, /EOF, and the
+// 4x *BEGIN blocks replayed by *DO. Block structure is matched once per file (or macro) in a
+// linear pass; a structural error (an *IF without *ENDIF, nesting too deep) is raised when
+// execution reaches the offending line, as MAPDL reports it. Recursion is bounded everywhere, so
+// no deck can overflow the stack or loop forever.
+#include <fmt/format.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "deck/deck_context.h"
+
+namespace impactfe::deck {
+
+namespace {
+
+constexpr int kMaxFrames = 20;      // /INPUT files and macros, shared (§A.13)
+constexpr int kMaxDoNesting = 20;   // §A.10
+constexpr int kMaxIfNesting = 100;  // §A.11 asks for at least 20
+constexpr int kMaxRecursion = 400;  // executor depth over all frames
+constexpr long long kMaxTrips = 10'000'000;
+constexpr long long kMaxCommands = 50'000'000;
+constexpr std::size_t kNone = static_cast<std::size_t>(-1);
+
+std::string field_upper(const RawCommand& c, std::size_t i) {
+  return i < c.fields.size() ? to_upper(trim(c.fields[i])) : std::string();
+}
+
+/// *IF,...,THEN (Base1 = THEN, or Base2 = THEN after AND/OR/XOR) opens a block.
+bool is_block_if(const RawCommand& c) {
+  const std::string base1 = field_upper(c, 3);
+  if (base1 == "AND" || base1 == "OR" || base1 == "XOR") return field_upper(c, 7) == "THEN";
+  return base1 == "THEN";
+}
+
+std::string label_key(std::string_view text) {
+  std::string l = to_upper(trim(text));
+  if (!l.empty() && l[0] == ':') l.erase(0, 1);
+  return l.substr(0, 8);  // MAPDL labels: 8 significant characters
+}
+
+SourceLocation location_of(const RawCommand& c) {
+  SourceLocation w;
+  w.file = c.file;
+  w.line = c.line;
+  w.command = c.name.empty() ? std::string(",") : c.name;
+  return w;
+}
+
+std::string directory_of(const std::string& path) {
+  return std::filesystem::path(path).parent_path().string();
+}
+
+std::string join_path(const std::string& dir, const std::string& name) {
+  if (dir.empty() || std::filesystem::path(name).is_absolute()) return name;
+  return (std::filesystem::path(dir) / name).string();
+}
+
+bool compare_numbers(const std::string& op, double a, double b) {
+  constexpr double tol = 1e-10;  // APDL_SCRIPTING S7: absolute tolerance
+  if (op == "EQ") return std::fabs(a - b) <= tol;
+  if (op == "NE") return std::fabs(a - b) > tol;
+  if (op == "LT") return a < b - tol;
+  if (op == "GT") return a > b + tol;
+  if (op == "LE") return a <= b + tol;
+  if (op == "GE") return a >= b - tol;
+  if (op == "ABLT") return std::fabs(a) < std::fabs(b) - tol;
+  if (op == "ABGT") return std::fabs(a) > std::fabs(b) + tol;
+  throw ExpressionError(fmt::format("unknown operator '{}' (EQ NE LT GT LE GE ABLT ABGT)", op));
+}
+
+std::string rtrim(std::string s) {
+  while (!s.empty() && s.back() == ' ') s.pop_back();
+  return s;
+}
+
+/// Counts the executor depth; refuses more than kMaxRecursion levels.
+struct DepthGuard {
+  DepthGuard(int& depth, const DeckReader& r, const Command& c) : depth_(depth) {
+    if (++depth_ > kMaxRecursion) {
+      --depth_;
+      r.fail(c,
+             fmt::format("blocks, files and macros nested deeper than {} levels", kMaxRecursion));
+    }
+  }
+  ~DepthGuard() { --depth_; }
+  int& depth_;
+};
+
+}  // namespace
+
+// ---- files -------------------------------------------------------------------------------------
+
+std::string read_text_file(const std::string& path, const SourceLocation& where) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in || std::filesystem::is_directory(path)) {
+    if (where.known()) throw InputError(where, fmt::format("cannot open input file '{}'", path));
+    throw InputError(fmt::format("cannot open deck '{}'", path));
+  }
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+std::string resolve_input(const std::string& includer, const std::string& fname,
+                          const std::string& ext, const std::string& dir_field) {
+  const std::string dir =
+      dir_field.empty() ? directory_of(includer) : join_path(directory_of(includer), dir_field);
+  const std::string name = ext.empty() ? fname : fname + "." + ext;
+  const std::string path = join_path(dir, name);
+  if (!ext.empty() || std::filesystem::exists(path)) return path;
+  for (const char* e : {".inp", ".mac"}) {
+    const std::string alt = join_path(dir, fname + e);
+    if (std::filesystem::exists(alt)) return alt;
+  }
+  return path;
+}
+
+// ---- block structure
+// -----------------------------------------------------------------------------
+
+struct DeckReader::Program {
+  const std::vector<RawCommand>& cmds;
+  std::vector<std::size_t> match;                            // opener → *ENDDO / *ENDIF / *END
+  std::map<std::size_t, std::vector<std::size_t>> branches;  // *IF block → *ELSEIF / *ELSE
+  std::vector<std::string> error;                            // raised when the line is reached
+  std::vector<int> depth;                                    // block depth of each line
+  std::vector<std::pair<std::string, std::size_t>> labels;
+
+  Program(const std::vector<RawCommand>& c, Dialect dialect)
+      : cmds(c), match(c.size(), kNone), error(c.size()), depth(c.size(), 0) {
+    struct Open {
+      std::size_t at;
+      bool is_do;
+    };
+    std::vector<Open> stack;
+    std::set<std::string> begin_names;  // 4x: *DO,Name replays a *BEGIN block (no *ENDDO)
+    int n_do = 0, n_if = 0;
+    auto close = [&](std::size_t i, bool is_do) {
+      const char* want = is_do ? "*ENDDO" : "*ENDIF";
+      while (!stack.empty() && stack.back().is_do != is_do) {
+        const Open o = stack.back();
+        error[o.at] =
+            fmt::format("no matching {} for this {} ({} at line {} closes an outer block)",
+                        o.is_do ? "*ENDDO" : "*ENDIF", o.is_do ? "*DO" : "*IF", want, cmds[i].line);
+        (o.is_do ? n_do : n_if)--;
+        stack.pop_back();
+      }
+      if (stack.empty()) {
+        error[i] = fmt::format("{} without a matching opening command ({})", want,
+                               is_do ? "*DO or *DOWHILE" : "*IF,...,THEN");
+        return;
+      }
+      match[stack.back().at] = i;
+      (is_do ? n_do : n_if)--;
+      stack.pop_back();
+    };
+    for (std::size_t i = 0; i < cmds.size(); ++i) {
+      const RawCommand& r = cmds[i];
+      depth[i] = static_cast<int>(stack.size());
+      if (r.format_line || r.repeat) continue;
+      const std::string& n = r.name;
+      if (n == "*CREATE" || n == "*BEGIN") {
+        if (n == "*BEGIN") begin_names.insert(field_upper(r, 0));
+        std::size_t j = i + 1;
+        while (j < cmds.size() && !(cmds[j].name == "*END" && !cmds[j].format_line)) ++j;
+        if (j == cmds.size()) {
+          error[i] = fmt::format("no *END for this {}", n);
+          break;  // the rest of the file is its body
+        }
+        match[i] = j;
+        for (std::size_t k = i + 1; k <= j; ++k) depth[k] = depth[i];
+        i = j;
+      } else if (n == "*DO" || n == "*DOWHILE") {
+        if (n == "*DO" && dialect == Dialect::Classic4x && begin_names.count(field_upper(r, 0)))
+          continue;
+        stack.push_back({i, true});
+        if (++n_do > kMaxDoNesting)
+          error[i] = fmt::format("*DO loops nested deeper than {} levels", kMaxDoNesting);
+      } else if (n == "*IF" && is_block_if(r)) {
+        stack.push_back({i, false});
+        if (++n_if > kMaxIfNesting)
+          error[i] = fmt::format("*IF blocks nested deeper than {} levels", kMaxIfNesting);
+      } else if (n == "*ELSEIF" || n == "*ELSE") {
+        if (stack.empty() || stack.back().is_do) {
+          error[i] = fmt::format("{} without a matching opening command (*IF,...,THEN)", n);
+          continue;
+        }
+        auto& b = branches[stack.back().at];
+        if (!b.empty() && cmds[b.back()].name == "*ELSE")  // reported at the *IF, always reached
+          error[stack.back().at] =
+              fmt::format("{} at line {} after the *ELSE of this *IF block", n, cmds[i].line);
+        b.push_back(i);
+      } else if (n == "*ENDDO") {
+        close(i, true);
+      } else if (n == "*ENDIF") {
+        close(i, false);
+      } else if (n == "*END") {
+        error[i] = "*END without *CREATE or *BEGIN";
+      } else if (!n.empty() && n[0] == ':') {
+        labels.emplace_back(label_key(n), i);
+      }
+    }
+    for (const Open& o : stack)
+      if (error[o.at].empty())
+        error[o.at] = o.is_do ? fmt::format("no matching *ENDDO for this {}", cmds[o.at].name)
+                              : "no matching *ENDIF for this *IF";
+  }
+};
+
+struct DeckReader::Frame {
+  const Program& program;
+  int loop_depth = 0;
+  std::string jump_label;
+  std::size_t jump_from = 0;
+  SourceLocation jump_where;
+};
+
+// ---- running files and macros -------------------------------------------------------------------
+
+void DeckReader::run_file(const std::string& path, const SourceLocation& where) {
+  const std::string text = read_text_file(path, where);
+  const auto cmds = lex_text(text, path, dialect);
+  std::error_code ec;
+  const auto canonical = std::filesystem::weakly_canonical(path, ec);
+  run_program(cmds, "file " + (ec ? path : canonical.string()), where);
+}
+
+void DeckReader::run_text(const std::string& text, const std::string& path) {
+  const auto cmds = lex_text(text, path, dialect);
+  std::error_code ec;
+  const auto canonical = std::filesystem::weakly_canonical(path, ec);
+  run_program(cmds, "file " + (ec ? path : canonical.string()), SourceLocation{});
+}
+
+void DeckReader::run_program(const std::vector<RawCommand>& cmds, const std::string& frame_name,
+                             const SourceLocation& where) {
+  if (static_cast<int>(active_.size()) > kMaxFrames)
+    throw InputError(
+        where, fmt::format("/INPUT files and macros nested deeper than {} levels", kMaxFrames));
+  for (const auto& a : active_)
+    if (a == frame_name)
+      throw InputError(where,
+                       fmt::format("recursive call refused: {} is already running", frame_name));
+  const Program program(cmds, dialect);
+  Frame frame{program};
+  active_.push_back(frame_name);
+  try {
+    std::size_t start = 0;
+    for (;;) {
+      const Flow flow = run_range(frame, start, cmds.size());
+      if (flow != Flow::Jump) break;
+      // *GO / *IF,...,:label: the label searched forward first, then from the file start.
+      const std::string want = label_key(frame.jump_label);
+      std::size_t target = kNone;
+      for (const auto& [name, at] : program.labels)
+        if (name == want && at > frame.jump_from && target == kNone) target = at;
+      for (const auto& [name, at] : program.labels)
+        if (name == want && target == kNone) target = at;
+      if (target == kNone)
+        throw InputError(frame.jump_where, fmt::format("label :{} not found in this file", want));
+      if (program.depth[target] > 0)
+        throw InputError(frame.jump_where,
+                         fmt::format("label :{} (line {}) lies inside a *DO or *IF block; a jump "
+                                     "may only reach a label outside blocks",
+                                     want, cmds[target].line));
+      start = target + 1;
+    }
+  } catch (...) {
+    active_.pop_back();
+    throw;
+  }
+  active_.pop_back();
+}
+
+bool DeckReader::call_macro(const Command& c, const std::string& name,
+                            const std::vector<Value>& args) {
+  const std::string key = to_upper(name);
+  std::vector<RawCommand> cmds;
+  std::string frame_name;
+  if (auto it = files.find(key); it != files.end()) {
+    cmds = it->second.commands;  // a copy: the macro may *CREATE itself anew
+    frame_name = "macro " + key;
+  } else if (auto it2 = files.find(key + ".MAC"); it2 != files.end()) {
+    cmds = it2->second.commands;
+    frame_name = "macro " + key + ".MAC";
+  } else {
+    std::string path;
+    const std::string lower = to_lower(name);
+    for (const std::string& dir : {directory_of(c.where.file), std::string()})
+      for (const std::string& candidate :
+           {name, name + ".mac", lower, lower + ".mac", name + ".MAC"}) {
+        const std::string p = join_path(dir, candidate);
+        if (path.empty() && std::filesystem::is_regular_file(p)) path = p;
+      }
+    if (path.empty()) return false;
+    cmds = lex_text(read_text_file(path, c.where), path, dialect);
+    std::error_code ec;
+    const auto canonical = std::filesystem::weakly_canonical(path, ec);
+    frame_name = "file " + (ec ? path : canonical.string());
+  }
+  params.push_level();
+  try {
+    for (std::size_t k = 0; k < args.size() && k < 19; ++k) {
+      const std::string arg = k < 9 ? fmt::format("ARG{}", k + 1) : fmt::format("AR{}", k + 1);
+      if (is_text(args[k]))
+        params.set_text(arg, std::get<std::string>(args[k]));
+      else
+        params.set(arg, std::get<double>(args[k]));
+    }
+    run_program(cmds, frame_name, c.where);
+  } catch (...) {
+    params.pop_level();
+    throw;
+  }
+  params.pop_level();
+  return true;
+}
+
+void DeckReader::run_block_macro(const Command& c, const std::string& name) {
+  const auto cmds = macros.at(name);  // copy: the block may redefine itself
+  run_program(cmds, "block " + name, c.where);
+}
+
+// ---- one command ------------------------------------------------------------------------------
+
+Command DeckReader::resolve(const RawCommand& raw) {
+  Command c;
+  c.fields = raw.fields;
+  c.rest = raw.rest;
+  c.assignment = raw.assignment;
+  c.where.file = raw.file;
+  c.where.line = raw.line;
+  if (raw.repeat) {
+    if (last_name_.empty()) {
+      c.where.command = ",";
+      throw InputError(c.where, "repeat line (leading comma) with no previous command to repeat");
+    }
+    c.name = last_name_;
+  } else {
+    c.name = raw.name;
+  }
+  c.where.command = c.name;
+  // %expr% substitution (§A.5 rule 3); not in the Par field of *SET / *DO / *GET / *DIM.
+  if (c.name.find('%') != std::string::npos) {
+    c.name = to_upper(substitute_percent(c, c.name));
+    c.where.command = c.name;
+  }
+  const bool par_field = c.assignment || c.name == "*SET" || c.name == "*DO" || c.name == "*GET" ||
+                         c.name == "*DIM" || c.name == "*DOWHILE";
+  for (std::size_t k = par_field ? 1 : 0; k < c.fields.size(); ++k)
+    if (c.fields[k].find('%') != std::string::npos)
+      c.fields[k] = substitute_percent(c, c.fields[k]);
+  if (c.rest.find('%') != std::string::npos) c.rest = substitute_percent(c, c.rest);
+  return c;
+}
+
+const CommandSpec* DeckReader::lookup(Command& c) {
+  const CommandSpec* spec = find_command(c.name);
+  if (spec != nullptr) return spec;
+  bool ambiguous = false;
+  if (dialect == Dialect::Classic4x) {
+    spec = find_command_by_prefix(c.name, ambiguous);
+    if (ambiguous) fail(c, "ambiguous command name (4x: only the first four characters count)");
+    if (spec != nullptr)
+      warn(c, fmt::format("taken as {} (4x: only the first four characters are significant)",
+                          spec->name));
+  } else {
+    spec = find_command_by_abbreviation(c.name, ambiguous);
+    if (ambiguous) fail(c, "ambiguous abbreviation (several commands begin with it)");
+    if (spec != nullptr)
+      Log::info("{}:{}: {}: taken as {}", c.where.file, c.where.line, c.name, spec->name);
+  }
+  if (spec != nullptr) {
+    c.name = spec->name;
+    c.where.command = c.name;
+  }
+  return spec;
+}
+
+void DeckReader::dispatch(const Command& c, const CommandSpec& spec) {
+  if ((spec.processors & processor) == 0)
+    fail(c, fmt::format("command not valid in {}", processor_name(processor)));
+  spec.handler(*this, c);
+}
+
+void DeckReader::repeat_previous(const Command& c) {
+  // *REPEAT,NTOT,VINC1,...,VINC11: the previous command NTOT-1 more times, field k advanced by
+  // VINCk each time.
+  if (!last_command_) fail(c, "no previous command to repeat");
+  const int ntot = integer(c, 1, 1);
+  if (ntot < 1 || ntot > kMaxTrips)
+    fail(c, fmt::format("NTOT = {} out of range (1 to {})", ntot, kMaxTrips));
+  const Command base = *last_command_;
+  std::vector<double> inc(11, 0.0);
+  for (int k = 1; k <= 11; ++k) inc[static_cast<std::size_t>(k - 1)] = real(c, k + 1, 0.0);
+  const CommandSpec* spec = find_command(base.name);
+  IMPACTFE_CHECK(spec != nullptr && spec->handler != nullptr, "*REPEAT of a control command");
+  for (int n = 1; n < ntot; ++n) {
+    Command rep = base;
+    rep.where = c.where;
+    rep.where.command = base.name;
+    for (int k = 1; k <= 11; ++k) {
+      const double d = inc[static_cast<std::size_t>(k - 1)];
+      if (d == 0.0) continue;
+      if (rep.fields.size() < static_cast<std::size_t>(k)) rep.fields.resize(k);
+      const double v = base.blank(k) ? 0.0 : real(base, k, 0.0);
+      rep.fields[static_cast<std::size_t>(k - 1)] = format_number(v + n * d);
+    }
+    dispatch(rep, *spec);
+  }
+}
+
+// ---- loops and conditions ----------------------------------------------------------------------
+
+DeckReader::Flow DeckReader::run_do(Frame& f, std::size_t i, const Command& c) {
+  const std::string par = label(c, 1);
+  if (!is_parameter_name(par))
+    fail(c, fmt::format("'{}' is neither a *BEGIN block nor a loop parameter", c.text(1)));
+  const double ival = real(c, 2, 0.0);
+  const auto fval = opt_real(c, 3);
+  if (!fval) fail(c, "final value FVAL missing");
+  const double inc = real(c, 4, 1.0);
+  if (inc == 0.0) fail(c, "increment INC is zero");
+  // Trip count fixed at *DO (§A.10): a body that changes Par does not change it.
+  const double span = (*fval - ival) / inc;
+  const double trips = std::floor(span + 1e-10 * std::max(1.0, std::fabs(span))) + 1.0;
+  if (trips > static_cast<double>(kMaxTrips))
+    fail(c, fmt::format("{:.6g} trips refused (at most {} per loop)", trips, kMaxTrips));
+  const long long n = trips < 0.0 ? 0 : static_cast<long long>(trips);
+  const std::size_t close = f.program.match[i];
+  DepthGuard guard(nesting_, *this, c);
+  ++f.loop_depth;
+  Flow result = Flow::Normal;
+  for (long long t = 0; t < n; ++t) {
+    params.set(par, ival + static_cast<double>(t) * inc);
+    const Flow flow = run_range(f, i + 1, close);
+    if (flow == Flow::Exit) break;
+    if (flow == Flow::Normal || flow == Flow::Cycle) continue;
+    if (flow == Flow::Jump)
+      throw InputError(f.jump_where,
+                       "a jump (*GO, *IF,...,:label) may not leave a *DO loop; "
+                       "use *EXIT");
+    result = flow;
+    break;
+  }
+  --f.loop_depth;
+  return result;
+}
+
+DeckReader::Flow DeckReader::run_dowhile(Frame& f, std::size_t i, const Command& c) {
+  // *DOWHILE,Par: repeat while Par > 0 (Par read before each trip).
+  const std::string par = c.text(1);
+  if (par.empty()) fail(c, "loop parameter missing");
+  const std::size_t close = f.program.match[i];
+  DepthGuard guard(nesting_, *this, c);
+  ++f.loop_depth;
+  Flow result = Flow::Normal;
+  for (long long t = 0;; ++t) {
+    if (eval(c, par) <= 0.0) break;
+    if (t >= kMaxTrips)
+      fail(c, fmt::format("more than {} trips: the loop does not end", kMaxTrips));
+    const Flow flow = run_range(f, i + 1, close);
+    if (flow == Flow::Exit) break;
+    if (flow == Flow::Normal || flow == Flow::Cycle) continue;
+    if (flow == Flow::Jump)
+      throw InputError(f.jump_where,
+                       "a jump (*GO, *IF,...,:label) may not leave a *DO loop; "
+                       "use *EXIT");
+    result = flow;
+    break;
+  }
+  --f.loop_depth;
+  return result;
+}
+
+bool DeckReader::if_condition(const Command& c, int first, bool& has_second) {
+  auto clause = [&](int k) {
+    const std::string op = label(c, k + 1);
+    if (op.empty()) fail(c, fmt::format("field {}: operator missing", k + 1));
+    const Value a = value(c, k);
+    const Value b = value(c, k + 2);
+    if (is_text(a) || is_text(b)) {
+      if (!is_text(a) || !is_text(b)) fail(c, "a text is compared with a number");
+      if (op != "EQ" && op != "NE")
+        fail(c, fmt::format("texts compare only with EQ or NE, not {}", op));
+      const bool same = rtrim(std::get<std::string>(a)) == rtrim(std::get<std::string>(b));
+      return op == "EQ" ? same : !same;
+    }
+    try {
+      return compare_numbers(op, std::get<double>(a), std::get<double>(b));
+    } catch (const ExpressionError& e) {
+      fail(c, e.what());
+    }
+  };
+  const bool first_clause = clause(first);
+  const std::string conj = label(c, first + 3);
+  has_second = conj == "AND" || conj == "OR" || conj == "XOR";
+  if (!has_second) return first_clause;
+  const bool second = clause(first + 4);
+  if (conj == "AND") return first_clause && second;
+  if (conj == "OR") return first_clause || second;
+  return first_clause != second;
+}
+
+DeckReader::Flow DeckReader::run_if(Frame& f, std::size_t i, const Command& c) {
+  bool has_second = false;
+  const bool cond = if_condition(c, 1, has_second);
+  const std::string action = label(c, has_second ? 8 : 4);
+  if (action == "THEN") {
+    DepthGuard guard(nesting_, *this, c);
+    std::vector<std::size_t> heads{i};
+    if (auto it = f.program.branches.find(i); it != f.program.branches.end())
+      heads.insert(heads.end(), it->second.begin(), it->second.end());
+    heads.push_back(f.program.match[i]);
+    for (std::size_t b = 0; b + 1 < heads.size(); ++b) {
+      bool take = cond;
+      if (b > 0) {
+        const RawCommand& head = f.program.cmds[heads[b]];
+        if (head.name == "*ELSE") {
+          take = true;
+        } else {
+          const Command h = resolve(head);
+          bool second = false;
+          take = if_condition(h, 1, second);
+        }
+      }
+      if (take) return run_range(f, heads[b] + 1, heads[b + 1]);
+    }
+    return Flow::Normal;
+  }
+  if (action.empty()) fail(c, "action missing (THEN, EXIT, CYCLE, STOP or :label)");
+  const bool known = action == "EXIT" || action == "CYCLE" || action == "STOP" || action[0] == ':';
+  if (!known)
+    fail(c, fmt::format("unknown action '{}' (THEN, EXIT, CYCLE, STOP or :label)", action));
+  if (!cond) return Flow::Normal;
+  if (action == "STOP") {
+    Log::info("{}:{}: *IF: STOP: the run ends here", c.where.file, c.where.line);
+    stopped_ = true;
+    return Flow::Stop;
+  }
+  if (action == "EXIT" || action == "CYCLE") {
+    if (f.loop_depth == 0) {
+      warn(c, fmt::format("{} outside a *DO loop ignored", action));
+      return Flow::Normal;
+    }
+    return action == "EXIT" ? Flow::Exit : Flow::Cycle;
+  }
+  f.jump_label = action;
+  f.jump_from = i;
+  f.jump_where = c.where;
+  return Flow::Jump;
+}
+
+// ---- the loop over commands
+// ----------------------------------------------------------------------
+
+DeckReader::Flow DeckReader::run_range(Frame& f, std::size_t begin, std::size_t end) {
+  const Program& prog = f.program;
+  const auto& cmds = prog.cmds;
+  std::size_t i = begin;
+  while (i < end) {
+    const RawCommand& raw = cmds[i];
+    if (raw.format_line) {  // consumed by its command; a stray one is skipped
+      ++i;
+      continue;
+    }
+    if (!raw.error.empty()) throw InputError(location_of(raw), raw.error);
+    if (!prog.error[i].empty()) throw InputError(location_of(raw), prog.error[i]);
+    Command c = resolve(raw);
+    std::size_t next = i + 1;
+    while (next < end && cmds[next].format_line) c.format_lines.push_back(cmds[next++].rest);
+    if (++executed_ > kMaxCommands)
+      fail(c,
+           fmt::format("more than {} commands executed: a loop that does not end?", kMaxCommands));
+    if (!c.name.empty() && c.name[0] == ':') {  // a label
+      i = next;
+      continue;
+    }
+    const CommandSpec* spec = lookup(c);
+    if (spec == nullptr) {
+      // MAPDL's unknown-command macro: NAME.MAC (in memory or on disk) run with the fields as
+      // ARG1..AR19.
+      std::vector<Value> args;
+      bool is_macro = files.count(c.name + ".MAC") != 0;
+      if (!is_macro) {
+        const std::string lower = to_lower(c.name) + ".mac";
+        is_macro = std::filesystem::is_regular_file(join_path(directory_of(c.where.file), lower)) ||
+                   std::filesystem::is_regular_file(
+                       join_path(directory_of(c.where.file), c.name + ".MAC")) ||
+                   std::filesystem::is_regular_file(lower);
+      }
+      if (is_macro) {
+        for (int k = 1; k <= c.n_fields() && k <= 19; ++k) args.push_back(value(c, k));
+        last_name_ = c.name;
+        call_macro(c, c.name + ".MAC", args) || call_macro(c, c.name, args);
+        if (stopped_) return Flow::Stop;
+        i = next;
+        continue;
+      }
+      if (options.skip_unknown) {
+        warn(c, "unknown command skipped (--skip-unknown)");
+        job.ignored_commands.push_back(
+            fmt::format("{}:{}: {} (unknown)", c.where.file, c.where.line, c.name));
+        auto& entry = skipped[c.name];
+        if (entry.first++ == 0) entry.second = c.where;
+        last_name_ = c.name;
+        i = next;
+        continue;
+      }
+      fail(c, "unknown command");
+    }
+    last_name_ = c.name;
+    const std::string& n = c.name;
+    if (spec->handler != nullptr) {
+      dispatch(c, *spec);
+      if (n != "*REPEAT") last_command_ = c;
+      i = next;
+      continue;
+    }
+    // ---- control commands ----
+    Flow flow = Flow::Normal;
+    if (n == "*DO") {
+      const std::string first = label(c, 1);
+      if (dialect == Dialect::Classic4x && macros.count(first) != 0) {
+        // 4x *DO,Block,N1,N2: the *BEGIN block once per k = N1..N2; after each pass every
+        // parameter with a *SET increment is incremented (APDL_SUBSET §3.29).
+        const int n1 = integer(c, 2, 1);
+        const int n2 = integer(c, 3, n1);
+        if (static_cast<long long>(n2) - n1 + 1 > kMaxTrips) fail(c, "too many passes");
+        for (int k = n1; k <= n2; ++k) {
+          run_block_macro(c, first);
+          if (stopped_) return Flow::Stop;
+          for (const auto& [name, inc] : increments)
+            params.set(name, params.get(name).value_or(0.0) + inc);
+        }
+        i = next;
+        continue;
+      }
+      flow = run_do(f, i, c);
+    } else if (n == "*DOWHILE") {
+      flow = run_dowhile(f, i, c);
+    } else if (n == "*IF") {
+      flow = run_if(f, i, c);
+    } else if (n == "*EXIT" || n == "*CYCLE") {
+      if (f.loop_depth == 0)
+        warn(c, fmt::format("{} outside a *DO loop ignored", n));
+      else
+        return n == "*EXIT" ? Flow::Exit : Flow::Cycle;
+    } else if (n == "*GO") {
+      const std::string target = label(c, 1);
+      if (target.empty() || target[0] != ':') fail(c, "give the label as :NAME");
+      f.jump_label = target;
+      f.jump_from = i;
+      f.jump_where = c.where;
+      return Flow::Jump;
+    } else if (n == "*BEGIN" || n == "*CREATE") {
+      const std::string name = label(c, 1);
+      if (name.empty()) fail(c, "name missing");
+      if (n == "*CREATE" && f.loop_depth > 0) fail(c, "*CREATE may not appear inside a *DO loop");
+      const std::size_t close = prog.match[i];
+      std::vector<RawCommand> body(cmds.begin() + static_cast<long>(i) + 1,
+                                   cmds.begin() + static_cast<long>(close));
+      if (n == "*BEGIN") {
+        macros[name] = std::move(body);
+      } else {
+        const std::string ext = label(c, 2);
+        MacroFile& file = files[ext.empty() ? name : name + "." + ext];
+        file.lines.clear();
+        int last_line = -1;
+        for (const auto& b : body)
+          if (b.line != last_line) {
+            file.lines.push_back(b.source);
+            last_line = b.line;
+          }
+        file.commands = std::move(body);
+      }
+      Log::info("{}:{}: {}: {} recorded ({} commands)", c.where.file, c.where.line, n, name,
+                close - i - 1);
+      i = close + 1;
+      continue;
+    } else if (n == "*USE") {
+      const std::string name = text_field(c, 1);
+      if (name.empty()) fail(c, "macro name missing");
+      std::vector<Value> args;
+      for (int k = 2; k <= c.n_fields() && k <= 19; ++k) args.push_back(value(c, k));
+      if (!call_macro(c, name, args))
+        fail(c, fmt::format("macro '{}' not found (*CREATE it, or a file {} / {}.mac)", name, name,
+                            to_lower(name)));
+    } else if (n == "/INPUT") {
+      if (c.blank(1)) fail(c, "file name missing");
+      if (dialect == Dialect::Classic4x && trim(c.text(1)) == "27") {
+        run_frozen_analysis(*this, c);
+      } else {
+        if (!c.blank(4) && real(c, 4, 0.0) != 0.0)
+          fail(c, "LINE (start at a line or label) is not supported");
+        run_file(resolve_input(c.where.file, text_field(c, 1), text_field(c, 2), text_field(c, 3)),
+                 c.where);
+      }
+    } else if (n == "/EOF") {
+      return Flow::EndFile;
+    } else if (n == "*REPEAT") {
+      repeat_previous(c);
+    } else {
+      fail(c, fmt::format("{} without a matching opening command", n));
+    }
+    if (stopped_) return Flow::Stop;
+    if (flow != Flow::Normal) return flow;
+    i = prog.match[i] != kNone && n != "*REPEAT" ? prog.match[i] + 1 : next;
+  }
+  return Flow::Normal;
+}
+
+}  // namespace impactfe::deck

@@ -1,0 +1,339 @@
+// /CLEAR, SAVE and RESUME (APDL_SCRIPTING §A.15). SAVE writes the database to a JSON file
+// `<Fname>.<Ext>` (default `<jobname>.db`) in the working directory; the geometry part reuses the
+// superelement file's model text (io/superelement_file.h), the rest is described in
+// docs/deck_reader.md ("Database file").
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "deck/deck_context.h"
+#include "io/superelement_file.h"
+
+namespace impactfe::deck {
+
+using json = nlohmann::json;
+
+void DeckReader::clear_database(const Command& c) {
+  if (options.host != nullptr) options.host->clear(job);
+  std::vector<std::string> ignored = std::move(job.ignored_commands);
+  const std::string jobname = model.jobname;  // /CLEAR keeps the jobname (/FILNAME changes it)
+  job = Job{};
+  job.ignored_commands = std::move(ignored);
+  model.dialect = dialect;
+  model.jobname = jobname;
+  model.options.integrator =
+      dialect == Dialect::Classic4x ? IntegratorKind::Houbolt : IntegratorKind::Newmark;
+  processor = kBegin;
+  params.clear();
+  increments.clear();
+  output.to_terminal();
+  if (command_file.stream.is_open()) command_file.stream.close();
+  command_file.path.clear();
+  vector_settings = VectorSettings{};
+  current_type = current_real = current_mat = 1;
+  current_secnum = dialect == Dialect::Modern ? 1 : 0;
+  secnum_given = false;
+  last_real_set = last_section = 0;
+  defined_by_n.clear();
+  element_order.clear();
+  kan = 0;
+  load_steps_4x.clear();
+  frozen.reset();
+  exec_armed = false;
+  stress_requests.clear();
+  stress_count = 1;
+  stress_t_prev = 0.0;
+  open_analysis.reset();
+  lswrite_steps.clear();
+  expass = false;
+  expansion = ExpansionPassRequest{};
+  seexp.reset();
+  last_solved_time.reset();
+  mdamp_next = 1;
+  last_command_.reset();
+  selection = Selection{};  // everything selected; CM components went with the model
+  post.reset();             // POST1 set, element table, POST26 variables
+  Log::info("{}:{}: /CLEAR: database cleared (a new job begins)", c.where.file, c.where.line);
+}
+
+namespace {
+
+void cmd_clear(DeckReader& r, const Command& c) {
+  const std::string read = r.label(c, 1);
+  if (!read.empty() && read != "START" && read != "NOSTART")
+    r.fail(c, fmt::format("Read '{}': START or NOSTART", read));
+  r.clear_database(c);
+}
+
+std::string database_path(DeckReader& r, const Command& c) {
+  std::string name = r.text_field(c, 1);
+  std::string ext = r.text_field(c, 2);
+  if (name.empty()) name = r.model.jobname;
+  if (ext.empty()) ext = "db";
+  return name + "." + ext;
+}
+
+json opt(const std::optional<double>& v) {
+  return v ? json(*v) : json(nullptr);
+}
+std::optional<double> opt_of(const json& j) {
+  return j.is_null() ? std::nullopt : std::optional<double>(j.get<double>());
+}
+
+json options_json(const AnalysisOptions& o) {
+  json m = json::object();
+  for (const auto& [mode, ratio] : o.modal_damping) m[std::to_string(mode)] = ratio;
+  return {{"type", static_cast<int>(o.type)},
+          {"method", static_cast<int>(o.method)},
+          {"integrator", static_cast<int>(o.integrator)},
+          {"tintp",
+           {opt(o.tintp.gamma), opt(o.tintp.alpha), opt(o.tintp.delta), opt(o.tintp.alpha_f),
+            opt(o.tintp.alpha_m)}},
+          {"large_deflection", o.large_deflection},
+          {"stress_stiffening", o.stress_stiffening},
+          {"lumped_mass", o.lumped_mass},
+          {"convergence",
+           {o.convergence.max_iterations, o.convergence.force_tolerance, o.convergence.force_minref,
+            opt(o.convergence.displacement_tolerance), o.convergence.full_newton}},
+          {"modal",
+           {o.modal.n_modes, opt(o.modal.freq_begin), opt(o.modal.freq_end),
+            o.modal.normalize_to_unity, o.modal.method}},
+          {"msup_modes", o.msup_modes},
+          {"damping_ratio", o.damping_ratio},
+          {"modal_damping", m},
+          {"alpha_damping", o.alpha_damping},
+          {"beta_damping", o.beta_damping},
+          {"superelement_matrices", o.superelement_matrices},
+          {"superelement_name", o.superelement_name},
+          {"total_masters", o.total_masters ? json(*o.total_masters) : json(nullptr)},
+          {"total_masters_exclude_rotations", o.total_masters_exclude_rotations},
+          {"kay", o.kay}};
+}
+
+AnalysisOptions options_of(const json& j) {
+  AnalysisOptions o;
+  o.type = static_cast<AnalysisType>(j.at("type").get<int>());
+  o.method = static_cast<TransientMethod>(j.at("method").get<int>());
+  o.integrator = static_cast<IntegratorKind>(j.at("integrator").get<int>());
+  const json& t = j.at("tintp");
+  o.tintp = {opt_of(t[0]), opt_of(t[1]), opt_of(t[2]), opt_of(t[3]), opt_of(t[4])};
+  o.large_deflection = j.at("large_deflection");
+  o.stress_stiffening = j.at("stress_stiffening");
+  o.lumped_mass = j.at("lumped_mass");
+  const json& cv = j.at("convergence");
+  o.convergence = {cv[0], cv[1], cv[2], opt_of(cv[3]), cv[4]};
+  const json& md = j.at("modal");
+  o.modal = {md[0], opt_of(md[1]), opt_of(md[2]), md[3], md[4]};
+  o.msup_modes = j.at("msup_modes");
+  o.damping_ratio = j.at("damping_ratio");
+  for (const auto& [mode, ratio] : j.at("modal_damping").items())
+    o.modal_damping[std::stoi(mode)] = ratio.get<double>();
+  o.alpha_damping = j.at("alpha_damping");
+  o.beta_damping = j.at("beta_damping");
+  o.superelement_matrices = j.at("superelement_matrices");
+  o.superelement_name = j.at("superelement_name");
+  if (!j.at("total_masters").is_null()) o.total_masters = j.at("total_masters").get<int>();
+  o.total_masters_exclude_rotations = j.at("total_masters_exclude_rotations");
+  o.kay = j.at("kay").get<std::map<std::string, int>>();
+  return o;
+}
+
+json dof_table(const std::map<DofKey, double>& m) {
+  json a = json::array();
+  for (const auto& [k, v] : m) a.push_back({k.node, static_cast<int>(k.dof), v});
+  return a;
+}
+std::map<DofKey, double> dof_table_of(const json& a) {
+  std::map<DofKey, double> m;
+  for (const auto& e : a) m[DofKey{e[0], static_cast<Dof>(e[1].get<int>())}] = e[2];
+  return m;
+}
+
+json load_state_json(const LoadStep& s) {
+  return {{"time_end", opt(s.time_end)},
+          {"dt", opt(s.dt)},
+          {"n_substeps", s.n_substeps ? json(*s.n_substeps) : json(nullptr)},
+          {"output_every", s.output.every},
+          {"stepped", s.stepped},
+          {"reformulation", s.reformulation},
+          {"time_integration", s.time_integration},
+          {"acel", {s.acel(0), s.acel(1), s.acel(2)}},
+          {"constraints", dof_table(s.constraints)},
+          {"forces", dof_table(s.forces)}};
+}
+
+LoadStep load_state_of(const json& j) {
+  LoadStep s;
+  s.time_end = opt_of(j.at("time_end"));
+  s.dt = opt_of(j.at("dt"));
+  if (!j.at("n_substeps").is_null()) s.n_substeps = j.at("n_substeps").get<int>();
+  s.output.every = j.at("output_every");
+  s.stepped = j.at("stepped");
+  s.reformulation = j.at("reformulation");
+  s.time_integration = j.at("time_integration");
+  s.acel = Vec3(j.at("acel")[0], j.at("acel")[1], j.at("acel")[2]);
+  s.constraints = dof_table_of(j.at("constraints"));
+  s.forces = dof_table_of(j.at("forces"));
+  return s;
+}
+
+json param_json(const Param& p) {
+  json j = {{"type", param_type_name(p.type)}};
+  switch (p.type) {
+    case ParamType::Number:
+      j["value"] = p.number;
+      break;
+    case ParamType::Text:
+      j["value"] = p.text;
+      break;
+    case ParamType::CharArray:
+      j["dims"] = {p.imax, p.jmax, p.kmax};
+      j["values"] = p.texts;
+      break;
+    default:
+      j["dims"] = {p.imax, p.jmax, p.kmax};
+      j["values"] = p.values;
+      j["variables"] = p.variables;
+  }
+  return j;
+}
+
+Param param_of(const json& j) {
+  const std::string type = j.at("type");
+  if (type == "SCALAR") return Param::scalar(j.at("value"));
+  if (type == "CHARACTER") return Param::character(j.at("value"));
+  const json& d = j.at("dims");
+  const ParamType t = type == "CHAR"    ? ParamType::CharArray
+                      : type == "TABLE" ? ParamType::Table
+                                        : ParamType::Array;
+  Param p = Param::array(t, d[0], d[1], d[2]);
+  if (t == ParamType::CharArray) {
+    p.texts = j.at("values").get<std::vector<std::string>>();
+    if (p.texts.size() != static_cast<std::size_t>(p.imax) * p.jmax * p.kmax)
+      throw std::runtime_error("array size mismatch");
+  } else {
+    const auto values = j.at("values").get<std::vector<double>>();
+    if (values.size() != p.values.size()) throw std::runtime_error("array size mismatch");
+    p.values = values;
+    p.variables = j.at("variables").get<std::array<std::string, 3>>();
+  }
+  return p;
+}
+
+void cmd_save(DeckReader& r, const Command& c) {
+  // SAVE,Fname,Ext,--,Slab: ALL (default) or MODEL.
+  const std::string slab = r.label(c, 4);
+  if (!slab.empty() && slab != "ALL" && slab != "MODEL")
+    r.fail(c, fmt::format("Slab '{}' is not supported (ALL or MODEL)", slab));
+  const Model& m = r.model;
+  json j;
+  j["format"] = "impactfe-db";
+  j["version"] = 1;
+  j["slab"] = slab.empty() ? "ALL" : slab;
+  j["jobname"] = m.jobname;
+  j["title"] = m.title;
+  j["geometry"] = serialize_generation_model(m, false, false);
+  json se = json::object();
+  for (const auto& [id, e] : m.elements)
+    if (!e.superelement_file.empty()) se[std::to_string(id)] = e.superelement_file;
+  j["superelement_files"] = se;
+  j["attributes"] = {r.current_type, r.current_real, r.current_mat, r.current_secnum,
+                     r.secnum_given};
+  json masters = json::array();
+  for (const auto& k : m.masters) masters.push_back({k.node, static_cast<int>(k.dof)});
+  j["masters"] = masters;
+  json gaps = json::array();
+  for (const auto& g : m.gap_conditions)
+    gaps.push_back({g.node_i, g.node_j, static_cast<int>(g.dof), g.stiffness, g.gap, g.damping});
+  j["gaps"] = gaps;
+  if (j["slab"] == "ALL") {
+    json ic = json::array();
+    for (const auto& [k, v] : m.initial_conditions)
+      ic.push_back({k.node, static_cast<int>(k.dof), v.displacement, v.velocity});
+    j["initial_conditions"] = ic;
+    j["options"] = options_json(m.options);
+    j["loads"] = load_state_json(m.current);
+  }
+  json params = json::object();
+  for (const auto& [name, p] : r.params.all()) params[name] = param_json(p);
+  j["parameters"] = params;
+  const std::string path = database_path(r, c);
+  std::ofstream out(path);
+  if (!out) r.fail(c, fmt::format("cannot write '{}'", path));
+  out << j.dump(1) << '\n';
+  Log::info("{}:{}: SAVE: database written to {}", c.where.file, c.where.line, path);
+}
+
+void cmd_resume(DeckReader& r, const Command& c) {
+  // RESUME,Fname,Ext,--,NOPAR,KNOPLOT: NOPAR 1 keeps the current parameters.
+  const std::string path = database_path(r, c);
+  std::ifstream in(path);
+  if (!in) r.fail(c, fmt::format("no database file '{}' (SAVE writes it)", path));
+  const bool keep_params = r.integer(c, 4, 0) == 1;
+  try {
+    const json j = json::parse(in);
+    if (j.at("format") != "impactfe-db" || j.at("version").get<int>() != 1)
+      r.fail(c, fmt::format("'{}' is not an impactfe database (version 1)", path));
+    bool lumped = false, sstif = false;
+    Model loaded = deserialize_generation_model(j.at("geometry").get<std::string>(), lumped, sstif);
+    Model& m = r.model;
+    m.nodes = std::move(loaded.nodes);
+    m.element_types = std::move(loaded.element_types);
+    m.real_sets = std::move(loaded.real_sets);
+    m.materials = std::move(loaded.materials);
+    m.sections = std::move(loaded.sections);
+    m.elements = std::move(loaded.elements);
+    for (auto& [id, e] : m.elements) e.where = c.where;
+    for (const auto& [id, file] : j.at("superelement_files").items())
+      m.elements.at(std::stoi(id)).superelement_file = file.get<std::string>();
+    for (auto& [id, t] : m.element_types) t.where = c.where;
+    m.title = j.at("title");
+    const json& a = j.at("attributes");
+    r.current_type = a[0];
+    r.current_real = a[1];
+    r.current_mat = a[2];
+    r.current_secnum = a[3];
+    r.secnum_given = a[4];
+    m.masters.clear();
+    for (const auto& k : j.at("masters"))
+      m.masters.push_back({k[0], static_cast<Dof>(k[1].get<int>())});
+    m.gap_conditions.clear();
+    for (const auto& g : j.at("gaps")) {
+      GapCondition gc{g[0], g[1], static_cast<Dof>(g[2].get<int>()), g[3], g[4], g[5], c.where};
+      m.gap_conditions.push_back(gc);
+    }
+    if (j.at("slab") == "ALL") {
+      m.initial_conditions.clear();
+      for (const auto& e : j.at("initial_conditions"))
+        m.initial_conditions[DofKey{e[0], static_cast<Dof>(e[1].get<int>())}] = {e[2], e[3]};
+      m.options = options_of(j.at("options"));
+      m.current = load_state_of(j.at("loads"));
+    }
+    r.element_order.clear();
+    for (const auto& [id, e] : m.elements) r.element_order.push_back(id);
+    r.selection.select_all();  // the database file holds no selection: everything is selected
+    if (!keep_params) {
+      const bool degrees = r.params.degrees;
+      r.params.clear();
+      r.params.degrees = degrees;
+      for (const auto& [name, p] : j.at("parameters").items()) r.params.define(name, param_of(p));
+    }
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::exception& e) {
+    r.fail(c, fmt::format("'{}' is damaged: {}", path, e.what()));
+  }
+  Log::info("{}:{}: RESUME: database read from {}", c.where.file, c.where.line, path);
+}
+
+}  // namespace
+
+void register_database_commands(std::vector<CommandSpec>& t) {
+  t.push_back({"/CLEAR", cmd_clear, kAnywhere});
+  t.push_back({"SAVE", cmd_save, kAnywhere});
+  t.push_back({"RESUME", cmd_resume, kBegin | kPrep7 | kSolu});
+}
+
+}  // namespace impactfe::deck

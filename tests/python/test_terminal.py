@@ -1,0 +1,119 @@
+"""What the CLI says (issue 10): a progress line of `impactfe run` on a terminal
+only, the run summary with the energy balance in the job's log as well as on stdout, and
+`post --freq` on a file without modes as an error."""
+import os
+import pty
+import re
+import select
+import subprocess
+
+from conftest import DECKS, run
+
+# A transient long enough to draw the line more than once (10 lines/s at most), small enough to
+# run in a few seconds: the initial-velocity verification deck at a finer step.
+DECK = os.path.join(DECKS, "..", "verification", "initial_velocity.inp")
+
+
+def _deck(tmp_path, substeps):
+    text = open(DECK).read().replace("DELTIM,1E-3", f"DELTIM,{0.5 / substeps:.6g}")
+    text = text.replace("OUTRES,ALL,ALL", "OUTRES,ALL,LAST")  # progress, not output, is tested
+    path = tmp_path / "progress.inp"
+    path.write_text(text)
+    return str(path)
+
+
+def _run_on_terminal(binary, deck, out):
+    """Runs impactfe with stderr on a pseudo-terminal; returns (exit status, what the terminal got)."""
+    master, slave = pty.openpty()
+    p = subprocess.Popen([binary, "run", deck, "-o", out], stdout=subprocess.DEVNULL,
+                         stderr=slave, stdin=subprocess.DEVNULL)
+    os.close(slave)
+    got = b""
+    while True:
+        ready, _, _ = select.select([master], [], [], 0.2)
+        if ready:
+            try:
+                chunk = os.read(master, 65536)
+            except OSError:  # the child closed the terminal
+                break
+            if not chunk:
+                break
+            got += chunk
+        elif p.poll() is not None:
+            break
+    os.close(master)
+    return p.wait(), got.decode(errors="replace")
+
+
+def test_progress_line_on_a_terminal(binary, tmp_path):
+    deck = _deck(tmp_path, 20000)
+    status, text = _run_on_terminal(binary, deck, str(tmp_path / "tty"))
+    assert status == 0, text
+    lines = [s for s in text.split("\r\x1b[K") if s]
+    assert lines, "nothing drawn on the terminal"
+    pat = re.compile(r"full transient \(Newmark\): t = (\S+) of 0\.5, load step 1, "
+                     r"substep (\d+)/20000, dt 2\.5e-05, (\d+) iter, 0 status changes, "
+                     r"\S+ s elapsed")
+    seen = [pat.match(s) for s in lines]
+    assert all(seen), lines
+    times = [float(m.group(1)) for m in seen]
+    steps = [int(m.group(2)) for m in seen]
+    assert times == sorted(times) and steps == sorted(steps)
+    assert steps[-1] == 20000 and abs(times[-1] - 0.5) < 1e-9  # the last substep is drawn
+    assert all(int(m.group(3)) >= 1 for m in seen)
+    assert any("left in load step" in s for s in lines[:-1])  # an estimate while it runs
+    assert len(lines) <= 200, "the line is redrawn at most 10 times a second"
+    assert text.endswith("\r\x1b[K"), "the line is cleared at the end"
+
+
+def test_progress_line_of_a_reduced_transient(binary, tmp_path):
+    """The reduced (Guyan) transient reports its steps too; it does not count gap status changes,
+    so the line leaves them out rather than printing 0."""
+    deck = os.path.join(DECKS, "modern", "crash1_modern.inp")
+    status, text = _run_on_terminal(binary, deck, str(tmp_path / "reduced"))
+    assert status == 0, text
+    lines = [s for s in text.split("\r\x1b[K") if s.startswith("transient (reduced")]
+    assert lines, text
+    assert all(re.match(r"transient \(reduced, \w+\): t = \S+ of \S+, load step \d+, "
+                        r"substep \d+/\d+, dt \S+, 1 iter, \S+ s elapsed", s) for s in lines), lines
+    assert "status changes" not in "".join(lines)
+
+
+def test_no_progress_line_without_a_terminal(binary, tmp_path):
+    deck = _deck(tmp_path, 2000)
+    p = run([binary, "run", deck, "-o", str(tmp_path / "pipe")])
+    assert "\r" not in p.stderr and "substep" not in p.stderr, p.stderr
+
+
+def test_summary_and_energy_in_the_log(binary, tmp_path):
+    deck = _deck(tmp_path, 500)
+    out = tmp_path / "log"
+    p = run([binary, "run", deck, "-o", str(out)])
+    log = (out / "progress.log").read_text()
+    energy = re.search(r"energy at t = 0\.5: .*", p.stdout).group(0)
+    assert energy in log  # the same line, word for word
+    assert "initial kinetic 50" in energy
+    assert "run summary:" in log and "full transient (Newmark): 1 DOFs" in log
+
+
+def test_post_freq_without_modes_is_an_error(binary, tmp_path):
+    """`post --freq` / `--mode` on a file without a modal analysis: exit 1 and a message, never a
+    bare CSV header with exit 0."""
+    out = tmp_path / "nomodes"
+    run([binary, "run", _deck(tmp_path, 50), "-o", str(out)])
+    results = str(out / "progress.h5")
+    p = run([binary, "post", results, "--freq"], expect=1)
+    assert p.stdout == "" and "holds no modal results" in p.stderr, p.stderr
+    p = run([binary, "post", results, "--mode", "1"], expect=1)
+    assert p.stdout == "" and "no mode shapes" in p.stderr, p.stderr
+
+
+def test_mp_damp_refused_where_it_is_not_applied(binary, tmp_path):
+    """MP,DAMP in a reduced transient (which forms C from ALPHAD/BETAD only) is an input error
+    naming the element's deck line, not a damping silently dropped."""
+    deck = os.path.join(os.path.dirname(os.path.abspath(__file__)), "decks",
+                        "mp_damp_reduced_transient.inp")
+    p = run([binary, "run", deck, "-o", str(tmp_path)], expect=1)
+    assert "mp_damp_reduced_transient.inp:12: E: element 1: its material 1 has MP,DAMP" in p.stderr, \
+        p.stderr
+    assert "BETAD" in p.stderr

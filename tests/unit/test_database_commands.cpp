@@ -1,0 +1,141 @@
+// /CLEAR, SAVE and RESUME (APDL_SCRIPTING §A.15): several jobs in one deck, each with its own
+// results file; the database written and read back.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "../support/run_deck.h"
+#include "analysis/job_session.h"
+#include "deck/deck_reader.h"
+#include "results/results_file.h"
+
+using namespace impactfe;
+
+namespace {
+
+/// A spring (k) fixed at node 1 pulled by F at node 2: UX(2) = F / k.
+std::string spring_job(const std::string& name, double k, double f) {
+  std::ostringstream d;
+  d << "/FILNAME," << name << "\n/PREP7\nET,1,COMBIN14\nR,1," << k
+    << "\nN,1\nN,2,1\nE,1,2\nFINISH\n/SOLU\nANTYPE,STATIC\nD,1,ALL\nF,2,FX," << f
+    << "\nSOLVE\nFINISH\n";
+  return d.str();
+}
+
+struct DeckRunResult {
+  std::string out;
+  std::vector<std::string> files;
+  Job job;
+};
+
+DeckRunResult run_with_session(const std::filesystem::path& dir, const std::string& text) {
+  const auto previous = std::filesystem::current_path();
+  std::filesystem::current_path(dir);
+  DeckRunResult run;
+  std::ostringstream sink;
+  RunStatistics stats;
+  try {
+    JobSession session("deck", RunSettings{}, stats);
+    DeckOptions o;
+    o.host = &session;
+    o.output = &sink;
+    o.dialect = Dialect::Modern;
+    run.job = read_deck_text(text, (dir / "deck.inp").string(), o);
+    run.files = session.results_files();
+  } catch (...) {
+    std::filesystem::current_path(previous);
+    throw;
+  }
+  std::filesystem::current_path(previous);
+  run.out = sink.str();
+  return run;
+}
+
+double final_ux(const std::filesystem::path& file, int node) {
+  ResultsReader reader(file.string());
+  return reader.nodal_series(node, "UX").back().second;
+}
+
+}  // namespace
+
+TEST(DatabaseCommands, ClearStartsANewJobAndResultsFile) {
+  const auto dir = impactfe::testing::fresh_directory("database_clear");
+  const std::string deck = "K0 = 1\n" + spring_job("first", 100.0, 10.0) + "/CLEAR\n" +
+                           spring_job("second", 200.0, 10.0) + "*VWRITE,1\n(F3.0)\n";
+  const DeckRunResult run = run_with_session(dir, deck);
+  ASSERT_EQ(run.files.size(), 2u);
+  EXPECT_EQ(run.files[0], "first.h5");
+  EXPECT_EQ(run.files[1], "second.h5");
+  EXPECT_NEAR(final_ux(dir / "first.h5", 2), 0.1, 1e-12);
+  EXPECT_NEAR(final_ux(dir / "second.h5", 2), 0.05, 1e-12);
+  // The job returned is the one after the last /CLEAR.
+  EXPECT_EQ(run.job.steps.size(), 1u);
+  EXPECT_EQ(run.job.model.real_sets.at(1).values.at(0), 200.0);
+}
+
+TEST(DatabaseCommands, ClearDeletesParametersAndResetsSettings) {
+  const auto dir = impactfe::testing::fresh_directory("database_clear_params");
+  try {
+    run_with_session(dir, "K0 = 1\n*AFUN,DEG\n/CLEAR\nX = K0\n");
+    FAIL() << "parameter survived /CLEAR";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(":4: *SET: bad expression 'K0'"), std::string::npos)
+        << e.what();
+  }
+  const DeckRunResult run =
+      run_with_session(dir,
+                       "*CREATE,KEEP\n/COM,kept\n*END\n*AFUN,DEG\n/OUT,x,txt\n/CLEAR\n*USE,KEEP\n"
+                       "*VWRITE,SIN(30)\n(F6.3)\n");
+  EXPECT_EQ(run.out, " kept\n-0.988\n");  // *CREATE files survive, radians again, terminal again
+}
+
+TEST(DatabaseCommands, SaveAndResume) {
+  const auto dir = impactfe::testing::fresh_directory("database_save");
+  const std::string deck = R"(/PREP7
+ET,1,COMBIN14
+R,1,100
+N,1
+N,2,1
+E,1,2
+M,2,UX
+*DIM,V,,3
+V(1) = 1,2,3
+*DIM,LBL,CHAR,2
+LBL(1) = 'A','B'
+TXT = 'hello'
+D,1,ALL
+F,2,FX,10
+SAVE
+SAVE,model,sav,,MODEL
+/CLEAR
+RESUME
+*VWRITE,V(1),LBL(1)
+(F4.1,1X,A)
+/CLEAR
+RESUME,model,sav
+)";
+  const DeckRunResult run = run_with_session(dir, deck);
+  EXPECT_EQ(run.out, " 1.0 A\n 2.0 B\n 3.0 \n");
+  ASSERT_TRUE(std::filesystem::exists(dir / "deck.db"));
+  EXPECT_EQ(run.job.model.nodes.size(), 2u);
+  EXPECT_EQ(run.job.model.elements.at(1).nodes, (std::vector<int>{1, 2}));
+  EXPECT_EQ(run.job.model.masters.size(), 1u);
+  EXPECT_TRUE(run.job.model.current.forces.empty());  // MODEL: no loads
+  // The full database restores the loads, and a solve after RESUME works.
+  const DeckRunResult solved =
+      run_with_session(dir, "RESUME\n/SOLU\nANTYPE,STATIC\nSOLVE\nFINISH\n");
+  ASSERT_EQ(solved.files.size(), 1u);
+  EXPECT_NEAR(final_ux(dir / solved.files[0], 2), 0.1, 1e-12);
+  // NOPAR = 1 keeps the current parameters.
+  const DeckRunResult kept = run_with_session(dir, "V = 5\nRESUME,,,,1\n*VWRITE,V\n(F3.0)\n");
+  EXPECT_EQ(kept.out, " 5.\n");
+  try {
+    run_with_session(dir, "RESUME,missing\n");
+    FAIL() << "missing database accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("RESUME: no database file 'missing.db'"),
+              std::string::npos);
+  }
+}
