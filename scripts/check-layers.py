@@ -7,7 +7,8 @@ import pathlib
 import re
 import sys
 
-LAYERS = ["core", "linalg", "io", "materials", "elements", "time", "assembly", "nonlinear",
+LAYERS = ["core", "linalg", "io", "materials", "elements", "time", "geometry", "assembly",
+          "nonlinear",
           "reduction", "results", "deck", "analysis", "app"]
 MAX_LINES = 800  # soft cap of ../shared/DESIGN.md, enforced for .cpp and .h files
 

@@ -90,7 +90,13 @@ void DirectSolution::set_constraints(const LoadStep& step) {
 }
 
 VectorXd DirectSolution::external_force(const LoadPoint& at) const {
-  return nodal_forces(*dofs_, at) + frame_load_(frame_acceleration(at));
+  return nodal_forces(*dofs_, at) + frame_load_(frame_acceleration(at)) +
+         pressure_forces(structure_.elements(), *dofs_, ctx_, at, u_);
+}
+
+LoadPoint DirectSolution::load_point(const LoadStep& step, const LoadStep* previous,
+                                     double fraction, double time) const {
+  return LoadPoint{&step, previous, fraction, time, &structure_.model().time_functions};
 }
 
 void DirectSolution::factorize(const IntegrationCoefficients& coeff, const VectorXd& u) {
@@ -169,7 +175,7 @@ void DirectSolution::solve_load_step(const LoadStep& step) {
   if (!previous) {
     // Store the initial state (t = 0) of a transient, so histories start at rest.
     if (transient) {
-      LoadPoint at0{&step, previous, 0.0};
+      const LoadPoint at0 = load_point(step, previous, 0.0, t.t_start);
       u_.tail(dofs_->n_constrained()) =
           prescribed_displacements(*dofs_, at0).tail(dofs_->n_constrained());
       if (dynamic) start_dynamics(at0, t.h);
@@ -182,7 +188,7 @@ void DirectSolution::solve_load_step(const LoadStep& step) {
   }
   if (dynamic) {
     if (!dynamics_started_) {
-      start_dynamics(LoadPoint{&step, previous, 0.0}, t.h);
+      start_dynamics(load_point(step, previous, 0.0, t.t_start), t.h);
     } else if (std::abs(integrator_->step() - t.h) > 1e-12 * t.h) {
       integrator_->set_step(t.h);  // Houbolt re-samples its history (spec §10.2)
       factor_valid_ = false;
@@ -193,7 +199,7 @@ void DirectSolution::solve_load_step(const LoadStep& step) {
   }
   for (int k = 1; k <= t.n_substeps; ++k) {
     const double time = t.t_start + k * t.h;
-    const LoadPoint at{&step, previous, static_cast<double>(k) / t.n_substeps};
+    const LoadPoint at = load_point(step, previous, static_cast<double>(k) / t.n_substeps, time);
     const int iterations_before = stats_.n_iterations;
     const int changes_before = stats_.n_status_changes;
     solve_increment(at, StepLabel{step.number, k, time}, dynamic);
@@ -243,6 +249,16 @@ double DirectSolution::residual(const VectorXd& u, VectorXd& r, double& referenc
   Increment& inc = increment_;
   const int nf = dofs_->n_free();
   if (inc.dynamic) integrator_->kinematics(u, inc.v, inc.a);
+  if (inc.follower) {
+    // Follower pressure (large deflection): the load of the deformed faces at this iterate. Its
+    // load stiffness is left out of the tangent (it is unsymmetric and the solvers are
+    // symmetric), so Newton converges linearly on this part.
+    const VectorXd fp = pressure_forces(structure_.elements(), *dofs_, ctx_, inc.at, u);
+    const VectorXd delta = fp - inc.f_pressure;
+    inc.f_pressure = fp;
+    inc.f_ext += delta;
+    if (inc.dynamic) inc.fixed_terms += inc.weights.external * delta;
+  }
   assembler_->assemble(inc.coeff, u, inc.v, Assembler::Output{nullptr, &inc.f_int, &inc.f_damp});
   if (inc.dynamic) {
     const VectorXd inertia = mass_all_ * inc.a;
@@ -411,6 +427,9 @@ void DirectSolution::solve_increment(const LoadPoint& at, const StepLabel& label
   inc.label = label;
   inc.n_status_changes = 0;
   inc.f_ext = external_force(at);
+  inc.at = at;
+  inc.follower = ctx_.large_deflection && !at.current->pressures.empty();
+  if (inc.follower) inc.f_pressure = pressure_forces(structure_.elements(), *dofs_, ctx_, at, u_);
   inc.v = v_;
   inc.a = a_;
   VectorXd u = dynamic ? integrator_->predict() : u_;
@@ -438,7 +457,10 @@ void DirectSolution::solve_increment(const LoadPoint& at, const StepLabel& label
       assembler_->is_nonlinear() && (ctx_.large_deflection || ctx_.stress_stiffening);
   status_loop_->begin_step();
   NewtonResult result;
-  const bool condensed = dynamic && condensation_ && solve_condensed(u, newton, result);
+  // Follower pressures load the linear part's DOFs through u, which the condensed system does
+  // not see: such steps take full Newton.
+  const bool condensed =
+      dynamic && condensation_ && !inc.follower && solve_condensed(u, newton, result);
   if (!condensed) {
     // Full Newton on all free DOFs (also the fallback when a condensed step left a residual
     // the full criterion does not accept; it starts from the condensed iterate).

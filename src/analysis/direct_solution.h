@@ -40,6 +40,8 @@ class DirectSolution : private NonlinearProblem {
   void set_constraints(const LoadStep& step);
   void start_dynamics(const LoadPoint& at, double h);
   VectorXd external_force(const LoadPoint& at) const;
+  LoadPoint load_point(const LoadStep& step, const LoadStep* previous, double fraction,
+                       double time) const;
   void solve_increment(const LoadPoint& at, const StepLabel& label, bool dynamic);
   /// A dynamic increment on the condensed system; false when the full Newton path must take
   /// over (from the returned state), with `result` holding the condensed iterations.
@@ -95,6 +97,9 @@ class DirectSolution : private NonlinearProblem {
     VectorXd v, a, f_int, f_damp;
     StepLabel label;
     int n_status_changes = 0;
+    LoadPoint at;           // the load point of the increment
+    bool follower = false;  // face pressures that follow the deformation (large deflection)
+    VectorXd f_pressure;    // their load at the latest iterate
   } increment_;
 
   // Factorization bookkeeping: refactor only when the effective matrix can have changed.

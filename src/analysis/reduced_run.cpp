@@ -12,8 +12,12 @@ namespace impactfe {
 
 VectorXd ReducedRunState::external_force(const ReducedPoint& p) const {
   const std::size_t i = static_cast<std::size_t>(p.step_index);
-  const LoadPoint at{&load_steps[i], i > 0 ? &load_steps[i - 1] : nullptr, p.fraction};
-  return nodal_forces(*dofs, at) + frame_load(frame_acceleration(at));
+  const LoadPoint at{&load_steps[i], i > 0 ? &load_steps[i - 1] : nullptr, p.fraction, p.time,
+                     &structure->model().time_functions};
+  // Face pressures of the linear reduced model: on the initial faces.
+  return nodal_forces(*dofs, at) + frame_load(frame_acceleration(at)) +
+         pressure_forces(structure->elements(), *dofs, structure->context(), at,
+                         VectorXd::Zero(dofs->n_active()));
 }
 
 VectorXd ReducedRunState::expand(const VectorXd& gq, const VectorXd* f) const {

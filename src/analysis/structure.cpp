@@ -1,8 +1,10 @@
 #include "analysis/structure.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <limits>
 
+#include "assembly/element_adapters.h"
 #include "core/log.h"
 
 namespace impactfe {
@@ -50,38 +52,42 @@ Structure::Structure(const Model& model, const AnalysisOptions& options,
   context_.lumped_mass = options.lumped_mass;
 
   for (const auto& [id, node] : model.nodes) {
-    if (node.rotated())
-      throw NotImplementedError(fmt::format(
-          "node {}: rotated nodal coordinate systems (THXY/THYZ/THZX) are not implemented yet",
-          id));
     node_row_[id] = static_cast<int>(node_ids_.size());
     node_ids_.push_back(id);
   }
 
   ElementBuildContext build{
       model, [&settings](const ElementRecord& r) { return resolve_superelement(r, settings); }};
+  // Rotated nodes (DOFs in nodal axes) and material damping enter through element adapters.
   for (const auto& [id, record] : model.elements)
-    elements_.push_back(create_element(build, record));
+    elements_.push_back(adapt_element(create_element(build, record), model, record));
 
   // MP,DAMP: stiffness-proportional damping of the element's material, C_e += β K_e (MAPDL's
   // material BETD; APDL_MODELING §6.1, M6). The full (static/transient) solution assembles it
   // element by element; the reduced drivers form C from global ALPHAD/BETAD only, so there it
   // is refused rather than ignored.
-  const ElementRecord* damped = nullptr;  // the first element whose material has DAMP
+  // The same holds for MP,ALPD / MP,BETD (material damping adapter, elements/adapters).
+  const ElementRecord* damped = nullptr;  // the first element whose material is damped
   for (const auto& [id, record] : model.elements) {
     double beta = 0.0;
-    if (auto m = model.materials.find(record.mat); m != model.materials.end())
+    bool material_damping = false;
+    if (auto m = model.materials.find(record.mat); m != model.materials.end()) {
       beta = m->second.get("DAMP", 0.0);
-    if (beta != 0.0 && damped == nullptr) damped = &record;
+      material_damping =
+          beta != 0.0 || m->second.get("ALPD", 0.0) != 0.0 || m->second.get("BETD", 0.0) != 0.0;
+    }
+    if (material_damping && damped == nullptr) damped = &record;
     material_beta_.push_back(beta);
   }
-  if (damped == nullptr) {
+  if (std::all_of(material_beta_.begin(), material_beta_.end(), [](double b) { return b == 0.0; }))
     material_beta_.clear();
-  } else if ((options.type == AnalysisType::Transient && options.method != TransientMethod::Full) ||
-             (options.type == AnalysisType::Substructure && options.superelement_matrices == 3)) {
+  const bool reduced_damping =
+      (options.type == AnalysisType::Transient && options.method != TransientMethod::Full) ||
+      (options.type == AnalysisType::Substructure && options.superelement_matrices == 3);
+  if (damped != nullptr && reduced_damping) {
     throw InputError(
         damped->where,
-        fmt::format("element {}: its material {} has MP,DAMP (material stiffness damping), which "
+        fmt::format("element {}: its material {} has MP,DAMP/ALPD/BETD (material damping), which "
                     "only a full transient applies; for a reduced or mode-superposition transient "
                     "or a superelement damping matrix use BETAD (global beta) or DMPRAT",
                     damped->id, damped->mat));

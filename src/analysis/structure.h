@@ -1,7 +1,9 @@
 #pragma once
-/// The solvable form of a model snapshot: element objects built from the records, the element
-/// context of the analysis, the node table of the results file, and the automatic constraints
-/// of DOFs that carry neither stiffness nor mass (spec §10.1 item 5).
+/// The solvable form of a model snapshot: element objects built from the records (adapted for
+/// rotated nodal axes and material damping, assembly/element_adapters.h), the element context of
+/// the analysis, the node table of the results file, and the automatic constraints of DOFs that
+/// carry neither stiffness nor mass (spec §10.1 item 5). Nodal tables of rotated nodes are in
+/// their nodal axes, as MAPDL reports them.
 #include <functional>
 #include <map>
 #include <memory>

@@ -138,8 +138,14 @@ SuperelementData generate_superelement(const Structure& structure, const Analysi
   for (int k = 0; k < n_ls; ++k) {
     const LoadPoint at{&request.load_steps[static_cast<std::size_t>(k)],
                        k > 0 ? &request.load_steps[static_cast<std::size_t>(k - 1)] : nullptr, 1.0};
-    const VectorXd f =
-        nodal_forces(dofs, at) + inertia_load(elements, dofs, ctx, frame_acceleration(at));
+    if (has_tabular_loads(request.load_steps[static_cast<std::size_t>(k)]))
+      throw NotImplementedError(fmt::format(
+          "load step {}: table (%TABLE%) loads in a superelement generation pass are not "
+          "supported (a superelement load vector is constant)",
+          k + 1));
+    const VectorXd f = nodal_forces(dofs, at) +
+                       inertia_load(elements, dofs, ctx, frame_acceleration(at)) +
+                       pressure_forces(elements, dofs, ctx, at, VectorXd::Zero(dofs.n_active()));
     se.load_vectors.col(k) = cond.reduce_force(f);
     se.load_correction.col(k) = slave_response(f);
   }

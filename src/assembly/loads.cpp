@@ -1,5 +1,7 @@
 #include "assembly/loads.h"
 
+#include <fmt/format.h>
+
 namespace impactfe {
 
 namespace {
@@ -15,13 +17,38 @@ double interpolate(const LoadPoint& at, double previous_value, double current_va
   return previous_value + at.fraction * (current_value - previous_value);
 }
 
+double table_value(const LoadPoint& at, const std::string& name) {
+  IMPACTFE_CHECK(at.tables != nullptr && at.tables->count(name) != 0,
+                 fmt::format("time function {} is not available at the load point", name));
+  return at.tables->at(name).at(at.time);
+}
+
+bool has_tabular_loads(const LoadStep& step) {
+  bool acel = false;
+  for (const auto& t : step.acel_tables) acel = acel || !t.empty();
+  bool pressures = false;
+  for (const auto& [face, load] : step.pressures) pressures = pressures || load.tabular();
+  return acel || pressures || !step.constraint_tables.empty() || !step.force_tables.empty();
+}
+
+namespace {
+/// A DOF load at a load point: its table's value, or the KBC interpolation from the previous step.
+double dof_load(const LoadPoint& at, const std::map<DofKey, double>& values,
+                const std::map<DofKey, std::string>& tables,
+                const std::map<DofKey, double>* previous, const DofKey& key) {
+  const auto t = tables.find(key);
+  if (t != tables.end()) return table_value(at, t->second);
+  return interpolate(at, lookup(previous, key), values.at(key));
+}
+}  // namespace
+
 VectorXd nodal_forces(const DofMap& dofs, const LoadPoint& at) {
   VectorXd f = VectorXd::Zero(dofs.n_active());
   for (const auto& [key, value] : at.current->forces) {
     const int i = dofs.index(key);
     if (i < 0 || i >= dofs.n_free()) continue;
-    const double before = lookup(at.previous ? &at.previous->forces : nullptr, key);
-    f(i) = interpolate(at, before, value);
+    f(i) = dof_load(at, at.current->forces, at.current->force_tables,
+                    at.previous ? &at.previous->forces : nullptr, key);
   }
   return f;
 }
@@ -29,8 +56,44 @@ VectorXd nodal_forces(const DofMap& dofs, const LoadPoint& at) {
 Vec3 frame_acceleration(const LoadPoint& at) {
   const Vec3 before = at.previous ? at.previous->acel : Vec3::Zero();
   Vec3 a;
-  for (int d = 0; d < 3; ++d) a(d) = interpolate(at, before(d), at.current->acel(d));
+  for (int d = 0; d < 3; ++d) {
+    const std::string& table = at.current->acel_tables[static_cast<std::size_t>(d)];
+    a(d) = table.empty() ? interpolate(at, before(d), at.current->acel(d)) : table_value(at, table);
+  }
   return a;
+}
+
+VectorXd pressure_forces(const std::vector<std::unique_ptr<Element>>& elements, const DofMap& dofs,
+                         const ElementContext& ctx, const LoadPoint& at, const VectorXd& u) {
+  VectorXd f = VectorXd::Zero(dofs.n_active());
+  if (at.current->pressures.empty()) return f;
+  std::map<int, std::size_t> index;
+  for (std::size_t e = 0; e < elements.size(); ++e) index[elements[e]->id()] = e;
+  VectorXd ue, fe;
+  for (const auto& [face, load] : at.current->pressures) {
+    const auto it = index.find(face.element);
+    if (it == index.end()) continue;
+    std::array<double, 4> p = load.values;
+    if (load.tabular()) {
+      p.fill(table_value(at, load.table));
+    } else {
+      const SurfaceLoad* before = nullptr;
+      if (at.previous) {
+        const auto prev = at.previous->pressures.find(face);
+        if (prev != at.previous->pressures.end() && !prev->second.tabular()) before = &prev->second;
+      }
+      for (std::size_t k = 0; k < 4; ++k)
+        p[k] = interpolate(at, before ? before->values[k] : 0.0, load.values[k]);
+    }
+    const auto& idx = dofs.element_indices(it->second);
+    ue.resize(static_cast<int>(idx.size()));
+    for (std::size_t a = 0; a < idx.size(); ++a)
+      ue(static_cast<int>(a)) = idx[a] >= 0 ? u(idx[a]) : 0.0;
+    elements[it->second]->pressure_load(ctx, face.face, p, ue, fe);
+    for (std::size_t a = 0; a < idx.size(); ++a)
+      if (idx[a] >= 0) f(idx[a]) += fe(static_cast<int>(a));
+  }
+  return f;
 }
 
 VectorXd inertia_load(const std::vector<std::unique_ptr<Element>>& elements, const DofMap& dofs,
@@ -65,8 +128,8 @@ VectorXd prescribed_displacements(const DofMap& dofs, const LoadPoint& at) {
   for (const auto& [key, value] : at.current->constraints) {
     const int i = dofs.index(key);
     if (i < dofs.n_free()) continue;  // inactive DOFs are -1 < n_free as well
-    const double before = lookup(at.previous ? &at.previous->constraints : nullptr, key);
-    u(i) = interpolate(at, before, value);
+    u(i) = dof_load(at, at.current->constraints, at.current->constraint_tables,
+                    at.previous ? &at.previous->constraints : nullptr, key);
   }
   return u;
 }

@@ -1,8 +1,11 @@
 #pragma once
 /// External loads of a load step at a fraction of its time span: nodal forces (F), the inertia
-/// load of the frame acceleration (ACEL: f = -M r a, spec §3.19) and prescribed displacements
-/// (D), ramped or stepped per KBC (spec §3.20).
+/// load of the frame acceleration (ACEL: f = -M r a, spec §3.19), face pressures (SF/SFE/SFA,
+/// APDL_MODELING §5.1-§5.3) and prescribed displacements (D), ramped or stepped per KBC (spec
+/// §3.20), or given by time functions (`%TABLE%` loads, APDL_MODELING §5.5).
 #include <array>
+#include <map>
+#include <string>
 
 #include "assembly/dof_map.h"
 #include "core/model.h"
@@ -16,10 +19,19 @@ struct LoadPoint {
   const LoadStep* current = nullptr;
   const LoadStep* previous = nullptr;
   double fraction = 1.0;
+  /// Time of the point and the model's time functions (Model::time_functions): a load given as
+  /// a table takes the table's value at this time, whatever KBC says.
+  double time = 0.0;
+  const std::map<std::string, TimeFunction>* tables = nullptr;
 };
 
 /// Value of a DOF entry of a load table at a load point (KBC ramp from the previous value).
 double interpolate(const LoadPoint& at, double previous_value, double current_value);
+/// Value of the time function `name` at the load point's time. Precondition: the table exists
+/// (the deck reader checks it when the load is given).
+double table_value(const LoadPoint& at, const std::string& name);
+/// True when the load step has loads given by time functions.
+bool has_tabular_loads(const LoadStep& step);
 
 /// Nodal forces F over all active DOFs (entries on constrained DOFs are dropped: the constraint
 /// wins).
@@ -44,6 +56,12 @@ class FrameAccelerationLoad {
  private:
   std::array<VectorXd, 3> unit_;
 };
+
+/// Consistent nodal loads of the face pressures over all active DOFs, at displacement u (over
+/// all active DOFs; under large deflection the pressures follow the deformed faces), from each
+/// element's Element::pressure_load. Pressures on elements that no longer exist are skipped.
+VectorXd pressure_forces(const std::vector<std::unique_ptr<Element>>& elements, const DofMap& dofs,
+                         const ElementContext& ctx, const LoadPoint& at, const VectorXd& u);
 
 /// Prescribed displacements: values on constrained DOFs (index >= n_free), zero elsewhere.
 VectorXd prescribed_displacements(const DofMap& dofs, const LoadPoint& at);

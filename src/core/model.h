@@ -11,19 +11,26 @@
 #include <string>
 #include <vector>
 
+#include "core/coordinate_system.h"
 #include "core/dof.h"
 #include "core/errors.h"
+#include "core/load_values.h"
+#include "core/material_table.h"
+#include "core/selection.h"
+#include "core/solid_model.h"
 
 namespace impactfe {
-
-using Vec3 = Eigen::Vector3d;
 
 struct Node {
   int id = 0;
   Vec3 x = Vec3::Zero();
-  /// Nodal-coordinate rotation angles THXY, THYZ, THZX in degrees (N command).
+  /// Nodal-coordinate rotation angles THXY, THYZ, THZX in degrees relative to global Cartesian
+  /// (N command, NROTAT). D, F, IC and the nodal results of a rotated node act in its nodal axes
+  /// (APDL_MODELING §2.6).
   Vec3 angles_deg = Vec3::Zero();
   bool rotated() const { return angles_deg.squaredNorm() > 0.0; }
+  /// Nodal axes (columns) in global components: rotation_from_angles(angles_deg).
+  Mat3 axes() const { return rotation_from_angles(angles_deg); }
 };
 
 /// ET: local type number, ANSYS name (e.g. "LINK8", the name it is registered under in the
@@ -112,7 +119,13 @@ struct LoadStep {
   Vec3 acel = Vec3::Zero();              // ACEL: acceleration of the reference frame
   std::map<DofKey, double> constraints;  // D (value in nodal axes)
   std::map<DofKey, double> forces;       // F (nodal axes)
-  SourceLocation where;                  // command that closed the step (LWRITE/SOLVE/...)
+  // Time-function loads (`%TABLE%`, APDL_MODELING §5.5): the table named here gives the value
+  // at each time (KBC does not apply); the number in constraints/forces is then unused.
+  std::map<DofKey, std::string> constraint_tables;
+  std::map<DofKey, std::string> force_tables;
+  std::array<std::string, 3> acel_tables;    // ACEL components
+  std::map<FaceKey, SurfaceLoad> pressures;  // SF, SFE, SFA (face pressures)
+  SourceLocation where;                      // command that closed the step (LWRITE/SOLVE/...)
 };
 
 /// Initial condition on one DOF (IC).
@@ -233,6 +246,13 @@ struct Model {
   std::vector<GapCondition> gap_conditions;               // GP, in input order
   std::map<DofKey, InitialCondition> initial_conditions;  // IC
   std::map<std::string, Component> components;            // CM, by upper-case name
+
+  // Model building the MAPDL way (APDL_MODELING §1-§6).
+  SolidModel solid;                      // keypoints, lines, areas, volumes, mesh controls
+  CoordinateSystems coordinate_systems;  // CSYS, LOCAL, CLOCAL, working plane
+  ModelSelection selection;              // selected flags of every entity kind
+  std::map<std::string, TimeFunction> time_functions;  // TABLE loads by name (upper case)
+  std::map<std::pair<int, std::string>, MaterialTable> material_tables;  // TB by (MAT, Lab)
 
   /// Current (not yet written) load state and options; LWRITE/LSWRITE/SOLVE snapshot it.
   AnalysisOptions options;

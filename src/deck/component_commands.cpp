@@ -1,14 +1,15 @@
 // Components (APDL_MODELING §1.7-1.9): CM, CMSEL, CMDELE, CMLIST. A component is a frozen list
 // of entity numbers in Model::components; CMSEL applies it to the current selection (S, R, A, U,
 // ALL, NONE), and node / element fields of other commands accept its name (post_support.h:
-// component_members). Kept apart from the select commands (selection_commands.cpp), which the
-// modelling branch's ModelSelection replaces: only r.selection.{nodes,elements} is shared.
+// component_members). The selection is the Model's (core/selection.h, the select commands of
+// mesh_selection_commands.cpp).
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cctype>
 #include <set>
 
+#include "deck/modeling_helpers.h"
 #include "deck/post_support.h"
 
 namespace impactfe::deck {
@@ -35,7 +36,7 @@ std::string component_entity(DeckReader& r, const Command& c, int field) {
   const std::string e = r.label(c, field);
   if (e == "NODE" || e == "ELEM") return e;
   if (e == "KP" || e == "LINE" || e == "AREA" || e == "VOLU")
-    r.fail(c, fmt::format("{} components need the solid model, which this model does not have", e));
+    r.fail(c, fmt::format("{} components are not supported (NODE and ELEM components only)", e));
   r.fail(c, fmt::format("Entity '{}': NODE or ELEM expected", c.text(field)));
 }
 
@@ -62,18 +63,18 @@ void cmd_cmsel(DeckReader& r, const Command& c) {
     const std::string only = r.label(c, 3);
     for (const auto& [name, comp] : r.model.components) {
       if (!only.empty() && comp.entity != only) continue;
-      EntitySelection& sel = comp.entity == "NODE" ? r.selection.nodes : r.selection.elements;
+      Selection& sel = comp.entity == "NODE" ? r.model.selection.nodes : r.model.selection.elements;
       const std::vector<int> defined =
-          comp.entity == "NODE" ? ids_of(r.model.nodes) : ids_of(r.model.elements);
+          comp.entity == "NODE" ? all_ids(r.model.nodes) : all_ids(r.model.elements);
       std::set<int> m(comp.ids.begin(), comp.ids.end());
-      sel.apply(t == "ALL" ? SelectType::A : SelectType::U, defined,
+      sel.apply(t == "ALL" ? SelectType::Also : SelectType::Unselect, defined,
                 [&](int id) { return m.count(id) != 0; });
     }
     return;
   }
   const auto type = parse_select_type(t);
-  if (!type || (*type != SelectType::S && *type != SelectType::R && *type != SelectType::A &&
-                *type != SelectType::U))
+  if (!type || (*type != SelectType::Select && *type != SelectType::Reselect &&
+                *type != SelectType::Also && *type != SelectType::Unselect))
     r.fail(c, fmt::format("Type '{}': S, R, A, U, ALL or NONE expected", c.text(1)));
   const std::string name = r.label(c, 2);
   const auto it = r.model.components.find(name);
@@ -84,11 +85,11 @@ void cmd_cmsel(DeckReader& r, const Command& c) {
     r.fail(c,
            fmt::format("component {} holds {} entities, not {}", name, comp.entity, r.label(c, 3)));
   const bool nodes = comp.entity == "NODE";
-  EntitySelection& sel = nodes ? r.selection.nodes : r.selection.elements;
-  const std::vector<int> defined = nodes ? ids_of(r.model.nodes) : ids_of(r.model.elements);
+  Selection& sel = nodes ? r.model.selection.nodes : r.model.selection.elements;
+  const std::vector<int> defined = nodes ? all_ids(r.model.nodes) : all_ids(r.model.elements);
   std::set<int> m(comp.ids.begin(), comp.ids.end());
   sel.apply(*type, defined, [&](int id) { return m.count(id) != 0; });
-  const std::size_t n = sel.count(defined);
+  const std::size_t n = sel.selected_of(defined).size();
   Log::info("{}:{}: CMSEL: {} {} selected (of {})", c.where.file, c.where.line, n,
             nodes ? "nodes" : "elements", defined.size());
   if (n == 0) r.warn(c, fmt::format("no {} selected", nodes ? "nodes" : "elements"));

@@ -53,8 +53,7 @@ void DeckReader::clear_database(const Command& c) {
   last_solved_time.reset();
   mdamp_next = 1;
   last_command_.reset();
-  selection = Selection{};  // everything selected; CM components went with the model
-  post.reset();             // POST1 set, element table, POST26 variables
+  post.reset();  // POST1 set, element table, POST26 variables
   Log::info("{}:{}: /CLEAR: database cleared (a new job begins)", c.where.file, c.where.line);
 }
 
@@ -313,7 +312,8 @@ void cmd_resume(DeckReader& r, const Command& c) {
     }
     r.element_order.clear();
     for (const auto& [id, e] : m.elements) r.element_order.push_back(id);
-    r.selection.select_all();  // the database file holds no selection: everything is selected
+    r.model.selection
+        .select_everything();  // the database file holds no selection: everything is selected
     if (!keep_params) {
       const bool degrees = r.params.degrees;
       r.params.clear();

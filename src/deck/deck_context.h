@@ -1,7 +1,7 @@
 #pragma once
 /// Internal state of one deck read: the model being built, the current processor, the
 /// parameters, the 4x load-step list and the modern open analysis. Shared by the handler files
-/// (prep7_commands.cpp, solution_commands.cpp, selection_commands.cpp, post1_commands.cpp, ...);
+/// (prep7_commands.cpp, solution_commands.cpp, component_commands.cpp, post1_commands.cpp, ...);
 /// not a public interface.
 #include <map>
 #include <memory>
@@ -14,9 +14,9 @@
 #include "deck/deck_reader.h"
 #include "deck/expression.h"
 #include "deck/lexer.h"
+#include "deck/modeling_state.h"
 #include "deck/output.h"
 #include "deck/parameters.h"
-#include "deck/selection.h"
 #include "deck/solution_host.h"
 
 namespace impactfe::deck {
@@ -75,7 +75,6 @@ void register_prep7_commands(std::vector<CommandSpec>& table);
 void register_generation_commands(std::vector<CommandSpec>& table);
 void register_solution_commands(std::vector<CommandSpec>& table);
 void register_load_commands(std::vector<CommandSpec>& table);
-void register_selection_commands(std::vector<CommandSpec>& table);
 void register_component_commands(std::vector<CommandSpec>& table);
 void register_get_commands(std::vector<CommandSpec>& table);
 void register_post1_commands(std::vector<CommandSpec>& table);
@@ -117,6 +116,16 @@ struct CommandFileState {
   std::ofstream stream;
   std::string path;
 };
+// Model building (APDL_MODELING): registered before the post commands, whose NSEL/ESEL/ALLSEL
+// entries they take over outside /POST1 and /POST26.
+void register_csys_commands(std::vector<CommandSpec>& table);
+void register_solid_model_commands(std::vector<CommandSpec>& table);
+void register_solid_edit_commands(std::vector<CommandSpec>& table);
+void register_mesh_commands(std::vector<CommandSpec>& table);
+void register_entity_selection_commands(std::vector<CommandSpec>& table);
+void register_mesh_selection_commands(std::vector<CommandSpec>& table);
+void register_surface_load_commands(std::vector<CommandSpec>& table);
+void register_material_commands(std::vector<CommandSpec>& table);
 
 class DeckReader {
  public:
@@ -226,9 +235,8 @@ class DeckReader {
   // MDAMP memory.
   int mdamp_next = 1;
 
-  // Selection (NSEL, ESEL, ...; components are in the Model) and post-processing state (the
-  // current POST1 set, element table, plot settings, POST26 variables: deck/post_state.h).
-  Selection selection;
+  // Post-processing state (the current POST1 set, element table, plot settings, POST26
+  // variables: deck/post_state.h). The selection and the components are in the Model.
   std::shared_ptr<PostState> post;
   std::size_t solutions = 0;  // solution requests handed to the host so far
 
@@ -238,6 +246,8 @@ class DeckReader {
   /// Runs a macro (in-memory *CREATE file or macro file on disk) with ARG1..AR19 set from
   /// `args`; false when no macro of that name exists.
   bool call_macro(const Command& c, const std::string& name, const std::vector<Value>& args);
+  // Model-building state that is not model data (MPTEMP table, current TB table, ESYS).
+  ModelingState modeling;
 
  private:
   struct Program;
@@ -280,6 +290,10 @@ std::string resolve_input(const std::string& includer, const std::string& fname,
 /// (APDL_SUBSET §1.11); the range fields it consumes are set to 0. ALL gives all six DOFs.
 std::vector<Dof> parse_dof_labels(DeckReader& r, const Command& c, int lab_field, int& end_field,
                                   int& inc_field, int extra_first, int extra_last);
+
+/// Model building at a solution request (SOLVE, LSWRITE): transfers the solid-model loads to the
+/// mesh and checks that the materials the elements use are supported.
+void prepare_model_for_solution(DeckReader& r, const Command& c);
 
 /// Closes a 4x /STRESS block (END, FINISH or the end of the deck): its requests become an
 /// expansion pass of the preceding reduced transient.

@@ -6,6 +6,8 @@
 #include "deck/deck_context.h"
 #include "deck/post_support.h"
 #include "elements/element_registry.h"
+#include "geometry/line_geometry.h"
+#include "geometry/spacing.h"
 
 namespace impactfe::deck {
 
@@ -14,22 +16,8 @@ namespace {
 /// Fractions 0 < f_1 < ... < f_n < 1 of n interior points; SPACE = ratio of the last division to
 /// the first (1 = uniform), divisions in geometric progression.
 std::vector<double> fill_fractions(int n, double space) {
-  const int divisions = n + 1;
-  std::vector<double> d(static_cast<std::size_t>(divisions), 1.0);
-  if (space > 0.0 && std::fabs(space - 1.0) > 1e-12 && divisions > 1) {
-    const double ratio = std::pow(space, 1.0 / (divisions - 1));
-    for (int k = 1; k < divisions; ++k)
-      d[static_cast<std::size_t>(k)] = d[static_cast<std::size_t>(k - 1)] * ratio;
-  }
-  double total = 0.0;
-  for (double v : d) total += v;
-  std::vector<double> f;
-  double acc = 0.0;
-  for (int k = 0; k < n; ++k) {
-    acc += d[static_cast<std::size_t>(k)];
-    f.push_back(acc / total);
-  }
-  return f;
+  const std::vector<double> f = geometry::division_fractions(n + 1, space);
+  return {f.begin() + 1, f.end() - 1};
 }
 
 void cmd_fill(DeckReader& r, const Command& c) {
@@ -70,7 +58,9 @@ void cmd_fill(DeckReader& r, const Command& c) {
       n.id = nstrt + t * inc + k * ninc;
       if (n.id <= 0) r.fail(c, fmt::format("generated node number {} is not positive", n.id));
       const double s = f[static_cast<std::size_t>(k)];
-      n.x = na.x + s * (nb.x - na.x);
+      // Interpolated in the active coordinate system (an arc in a cylindrical one).
+      n.x = geometry::interpolate_in_system(r.model.coordinate_systems.active_system(), na.x, nb.x,
+                                            s);
       n.angles_deg = na.angles_deg + s * (nb.angles_deg - na.angles_deg);
       r.model.nodes[n.id] = n;
     }
@@ -87,7 +77,8 @@ void cmd_ngen(DeckReader& r, const Command& c) {
   if (inc == 0) r.fail(c, "node number increment INC is zero (copies would overwrite the pattern)");
   std::vector<int> pattern;
   if (r.label(c, 3) == "ALL") {
-    for (const auto& [id, n] : r.model.nodes) pattern.push_back(id);
+    for (const auto& [id, n] : r.model.nodes)
+      if (r.model.selection.nodes.selected(id)) pattern.push_back(id);
   } else {
     const auto first = r.opt_int(c, 3);
     if (!first) r.fail(c, "NODE1 missing");
@@ -102,12 +93,14 @@ void cmd_ngen(DeckReader& r, const Command& c) {
   if (!c.blank(9) && r.real(c, 9, 1.0) != 1.0) r.warn(c, "SPACE ignored (uniform copies)");
   std::vector<Node> source;
   for (int id : pattern) source.push_back(r.model.nodes.at(id));
+  const CoordinateSystem active = r.model.coordinate_systems.active_system();
   for (int k = 1; k < itime; ++k) {
     for (const Node& s : source) {
       Node n = s;
       n.id = s.id + k * inc;
       if (n.id <= 0) r.fail(c, fmt::format("generated node number {} is not positive", n.id));
-      n.x = s.x + static_cast<double>(k) * d;
+      // DX, DY, DZ are increments in the active coordinate system (DR, Dθ, DZ when cylindrical).
+      n.x = active.to_global(active.from_global(s.x) + static_cast<double>(k) * d);
       r.model.nodes[n.id] = n;
     }
   }

@@ -17,11 +17,11 @@ namespace impactfe::deck {
 // -------------------------------------------------------
 
 bool DeckReader::node_selected(int id) const {
-  return model.nodes.count(id) != 0 && selection.nodes.selected(id);
+  return model.nodes.count(id) != 0 && model.selection.nodes.selected(id);
 }
 
 bool DeckReader::element_selected(int id) const {
-  return model.elements.count(id) != 0 && selection.elements.selected(id);
+  return model.elements.count(id) != 0 && model.selection.elements.selected(id);
 }
 
 bool DeckReader::FunctionBridge::call(const std::string& name, const std::vector<double>& args,

@@ -3,7 +3,7 @@
 #include <fmt/format.h>
 
 #include "core/dof.h"
-#include "deck/deck_context.h"
+#include "deck/modeling_helpers.h"
 
 namespace impactfe::deck {
 
@@ -46,10 +46,17 @@ void cmd_d(DeckReader& r, const Command& c) {
   int end_field = 5;
   int inc_field = 6;
   const auto dofs = parse_dof_labels(r, c, 2, end_field, inc_field, 7, 11);
-  const double value = r.real(c, 3, 0.0);
+  const LoadField value = load_field(r, c, 3);  // a number or %TABLE% (APDL_MODELING §5.5)
   if (r.real(c, 4, 0.0) != 0.0) r.warn(c, "VALUE2 (imaginary part) ignored");
+  LoadStep& s = r.model.current;
   for (int node : r.node_range(c, 1, end_field, inc_field))
-    for (Dof d : dofs) r.model.current.constraints[DofKey{node, d}] = value;
+    for (Dof d : dofs) {
+      s.constraints[DofKey{node, d}] = value.value;
+      if (value.table.empty())
+        s.constraint_tables.erase(DofKey{node, d});
+      else
+        s.constraint_tables[DofKey{node, d}] = value.table;
+    }
 }
 
 void cmd_ddele(DeckReader& r, const Command& c) {
@@ -62,7 +69,10 @@ void cmd_ddele(DeckReader& r, const Command& c) {
     dofs = {*d};
   }
   for (int node : r.node_range(c, 1, 3, 4))
-    for (Dof d : dofs) r.model.current.constraints.erase(DofKey{node, d});
+    for (Dof d : dofs) {
+      r.model.current.constraints.erase(DofKey{node, d});
+      r.model.current.constraint_tables.erase(DofKey{node, d});
+    }
 }
 
 void cmd_f(DeckReader& r, const Command& c) {
@@ -70,9 +80,16 @@ void cmd_f(DeckReader& r, const Command& c) {
   const std::string l = r.label(c, 2);
   auto d = parse_force_label(l);
   if (!d) r.fail(c, fmt::format("bad force label '{}' (FX FY FZ MX MY MZ)", c.text(2)));
-  const double value = r.real(c, 3, 0.0);
+  const LoadField value = load_field(r, c, 3);
   if (r.real(c, 4, 0.0) != 0.0) r.warn(c, "VALUE2 (imaginary part) ignored");
-  for (int node : r.node_range(c, 1, 5, 6)) r.model.current.forces[DofKey{node, *d}] = value;
+  LoadStep& s = r.model.current;
+  for (int node : r.node_range(c, 1, 5, 6)) {
+    s.forces[DofKey{node, *d}] = value.value;
+    if (value.table.empty())
+      s.force_tables.erase(DofKey{node, *d});
+    else
+      s.force_tables[DofKey{node, *d}] = value.table;
+  }
 }
 
 void cmd_fdele(DeckReader& r, const Command& c) {
@@ -85,11 +102,19 @@ void cmd_fdele(DeckReader& r, const Command& c) {
     dofs = {*d};
   }
   for (int node : r.node_range(c, 1, 3, 4))
-    for (Dof d : dofs) r.model.current.forces.erase(DofKey{node, d});
+    for (Dof d : dofs) {
+      r.model.current.forces.erase(DofKey{node, d});
+      r.model.current.force_tables.erase(DofKey{node, d});
+    }
 }
 
 void cmd_acel(DeckReader& r, const Command& c) {
-  r.model.current.acel = Vec3(r.real(c, 1, 0.0), r.real(c, 2, 0.0), r.real(c, 3, 0.0));
+  LoadStep& s = r.model.current;
+  for (int k = 0; k < 3; ++k) {
+    const LoadField v = load_field(r, c, k + 1);
+    s.acel(k) = v.value;
+    s.acel_tables[static_cast<std::size_t>(k)] = v.table;
+  }
 }
 
 void cmd_ic(DeckReader& r, const Command& c) {

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "deck/modeling_helpers.h"
 #include "elements/element_registry.h"
 
 namespace impactfe::deck {
@@ -16,11 +17,11 @@ namespace fs = std::filesystem;
 // ---- selection ------------------------------------------------------------------------------
 
 std::vector<int> selected_nodes(const DeckReader& r) {
-  return r.selection.nodes.selected_ids(ids_of(r.model.nodes));
+  return selected_ids(r.model.nodes, r.model.selection.nodes);
 }
 
 std::vector<int> selected_elements(const DeckReader& r) {
-  return r.selection.elements.selected_ids(ids_of(r.model.elements));
+  return selected_ids(r.model.elements, r.model.selection.elements);
 }
 
 std::vector<int> require_selected_nodes(const DeckReader& r, const Command& c) {
@@ -72,7 +73,7 @@ Model solution_model(const DeckReader& r, const Command& c) {
   Model m = r.model;
   std::size_t dropped = 0;
   for (auto it = m.elements.begin(); it != m.elements.end();)
-    if (r.selection.elements.selected(it->first)) {
+    if (r.model.selection.elements.selected(it->first)) {
       ++it;
     } else {
       it = m.elements.erase(it);

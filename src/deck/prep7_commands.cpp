@@ -1,4 +1,4 @@
-// PREP7 model commands: element types, real constants, materials, sections, nodes, elements,
+// PREP7 model commands: element types, real constants, sections, nodes, elements,
 // attribute pointers, master DOFs, gap conditions, superelements and the 4x KAN/KAY keys.
 #include <fmt/format.h>
 
@@ -95,44 +95,6 @@ void cmd_rmodif(DeckReader& r, const Command& c) {
   }
 }
 
-// ---- materials ---------------------------------------------------------------------------------
-
-const std::vector<std::string>& material_labels() {
-  static const std::vector<std::string> labels = {"EX",   "EY",   "EZ",   "NUXY", "NUYZ", "NUXZ",
-                                                  "PRXY", "PRYZ", "PRXZ", "GXY",  "GYZ",  "GXZ",
-                                                  "DENS", "ALPX", "ALPY", "ALPZ", "DAMP"};
-  return labels;
-}
-
-/// Stores Lab for MAT = C0 (C1..C4 temperature coefficients warned and ignored). PRxy is stored
-/// under its own label and under NUxy (isotropic use).
-void set_material(DeckReader& r, const Command& c, const std::string& lab, int mat_field) {
-  if (std::find(material_labels().begin(), material_labels().end(), lab) == material_labels().end())
-    r.fail(c, fmt::format("unknown material property '{}'", lab));
-  const int mat = r.integer(c, mat_field, 1);
-  if (mat <= 0) r.fail(c, fmt::format("material number {} must be positive", mat));
-  const double c0 = r.real(c, mat_field + 1, 0.0);
-  for (int f = mat_field + 2; f <= mat_field + 5; ++f)
-    if (r.real(c, f, 0.0) != 0.0)
-      r.warn(c, "temperature coefficients C1..C4 ignored (no temperature loads)");
-  for (int f = mat_field + 6; f <= c.n_fields(); ++f)
-    if (!c.blank(f)) r.warn(c, fmt::format("field {} ignored", f));
-  Material& m = r.model.materials[mat];
-  m.id = mat;
-  m.props[lab] = c0;
-  if (lab.rfind("PR", 0) == 0) m.props["NU" + lab.substr(2)] = c0;
-  if (lab.rfind("NU", 0) == 0) m.props["PR" + lab.substr(2)] = c0;
-}
-
-void cmd_material(DeckReader& r, const Command& c) {
-  set_material(r, c, c.name, 1);
-}
-
-void cmd_mp(DeckReader& r, const Command& c) {
-  if (c.blank(1)) r.fail(c, "property label missing");
-  set_material(r, c, r.label(c, 1), 2);
-}
-
 // ---- sections ---------------------------------------------------------------------------------
 
 void cmd_sectype(DeckReader& r, const Command& c) {
@@ -174,7 +136,9 @@ void cmd_n(DeckReader& r, const Command& c) {
   if (id <= 0) r.fail(c, fmt::format("node number {} must be positive", id));
   Node n;
   n.id = id;
-  n.x = Vec3(r.real(c, 2, 0.0), r.real(c, 3, 0.0), r.real(c, 4, 0.0));
+  // X, Y, Z in the active coordinate system (APDL_MODELING §2.2); angles relative to global.
+  n.x = r.model.coordinate_systems.active_system().to_global(
+      Vec3(r.real(c, 2, 0.0), r.real(c, 3, 0.0), r.real(c, 4, 0.0)));
   n.angles_deg = Vec3(r.real(c, 5, 0.0), r.real(c, 6, 0.0), r.real(c, 7, 0.0));
   r.model.nodes[id] = n;
   r.defined_by_n.push_back(id);
@@ -376,8 +340,6 @@ void register_prep7_commands(std::vector<CommandSpec>& t) {
   t.push_back({"R", cmd_r, kPrep7});
   t.push_back({"RMORE", cmd_rmore, kPrep7});
   t.push_back({"RMODIF", cmd_rmodif, kPrep7 | kSolu});
-  for (const auto& lab : material_labels()) t.push_back({lab.c_str(), cmd_material, kPrep7});
-  t.push_back({"MP", cmd_mp, kPrep7 | kSolu});
   t.push_back({"SECTYPE", cmd_sectype, kPrep7});
   t.push_back({"SECDATA", cmd_secdata, kPrep7});
   t.push_back({"SECNUM", cmd_secnum, kPrep7});

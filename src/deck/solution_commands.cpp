@@ -419,6 +419,7 @@ AnalysisRequest& open_analysis(DeckReader& r, const Command& c) {
 }
 
 void solve_current(DeckReader& r, const Command& c) {
+  prepare_model_for_solution(r, c);
   AnalysisRequest& a = open_analysis(r, c);
   LoadStep s = snapshot(r, c, static_cast<int>(a.load_steps.size()) + 1);
   check_increasing(r, c, a.load_steps, s);
@@ -467,6 +468,7 @@ void cmd_lswrite(DeckReader& r, const Command& c) {
               r.lswrite_steps.size());
     return;
   }
+  prepare_model_for_solution(r, c);
   const int next = r.lswrite_steps.empty() ? 1 : r.lswrite_steps.rbegin()->first + 1;
   const int n = r.integer(c, 1, next);
   if (n <= 0) r.fail(c, fmt::format("load step number {} must be positive", n));

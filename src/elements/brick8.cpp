@@ -328,6 +328,54 @@ Vector6d Brick8::centroid_stress(const ElementContext& ctx, const Eigen::VectorX
 }
 
 namespace {
+/// Face k + 1 as corner positions with the outward normal by the right-hand rule (SOLID185).
+const std::vector<std::vector<int>> kBrickFaces = {{1, 0, 3, 2}, {0, 1, 5, 4}, {1, 2, 6, 5},
+                                                   {2, 3, 7, 6}, {3, 0, 4, 7}, {4, 5, 6, 7}};
+}  // namespace
+
+void Brick8::pressure_load(const ElementContext& ctx, int face, const std::array<double, 4>& p,
+                           const Eigen::VectorXd& u, Eigen::VectorXd& f) const {
+  if (face < 1 || face > 6)
+    throw ModelError(fmt::format("element {}: brick face {} does not exist (1..6)", id(), face));
+  const auto& corners = kBrickFaces[static_cast<std::size_t>(face - 1)];
+  const Eigen::Matrix<double, 24, 1> uc = to_corners(u);
+  std::array<Vec3, 4> x;
+  for (int a = 0; a < 4; ++a) {
+    const int c = corners[static_cast<std::size_t>(a)];
+    x[static_cast<std::size_t>(a)] = x_[static_cast<std::size_t>(c)];
+    if (ctx.large_deflection) x[static_cast<std::size_t>(a)] += uc.segment<3>(3 * c);
+  }
+  // Bilinear face: x(ξ, η) = Σ N_a x_a with ξ along corner 0 → 1, η along 0 → 3; the
+  // (unnormalised) normal ∂x/∂ξ × ∂x/∂η points outward for the face orders above.
+  static const double g[3] = {-0.7745966692414834, 0.0, 0.7745966692414834};
+  static const double w[3] = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
+  static const double xi_a[4] = {-1, 1, 1, -1}, eta_a[4] = {-1, -1, 1, 1};
+  std::array<Vec3, 4> fa;
+  fa.fill(Vec3::Zero());
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      double n[4];
+      Vec3 dxi = Vec3::Zero(), deta = Vec3::Zero();
+      double pressure = 0.0;
+      for (int a = 0; a < 4; ++a) {
+        n[a] = 0.25 * (1 + xi_a[a] * g[i]) * (1 + eta_a[a] * g[j]);
+        dxi += 0.25 * xi_a[a] * (1 + eta_a[a] * g[j]) * x[static_cast<std::size_t>(a)];
+        deta += 0.25 * eta_a[a] * (1 + xi_a[a] * g[i]) * x[static_cast<std::size_t>(a)];
+        pressure += n[a] * p[static_cast<std::size_t>(a)];
+      }
+      const Vec3 normal = dxi.cross(deta);
+      for (int a = 0; a < 4; ++a)
+        fa[static_cast<std::size_t>(a)] -= w[i] * w[j] * n[a] * pressure * normal;
+    }
+  f.setZero(n_dofs());
+  for (int a = 0; a < 4; ++a) {
+    const int c = corners[static_cast<std::size_t>(a)];
+    f.segment<3>(3 * corner_to_unique_[static_cast<std::size_t>(c)]) +=
+        fa[static_cast<std::size_t>(a)];
+  }
+}
+
+namespace {
 const std::vector<std::string> kBrick8Results = {"SX", "SY", "SZ", "SXY",  "SYZ", "SXZ",
                                                  "S1", "S2", "S3", "SINT", "SEQV"};
 }  // namespace
@@ -413,6 +461,8 @@ ElementTypeDescriptor brick_type(const char* name, int number, bool solid185) {
                                {"S", "3", "S3"},
                                {"S", "INT", "SINT"},
                                {"S", "EQV", "SEQV"}},
+          .faces = kBrickFaces,
+          .sf_faces = 6,
           .create = [solid185](const ElementBuildContext& ctx, const ElementRecord& record) {
             return make_brick8(ctx, record, solid185);
           }};

@@ -38,6 +38,12 @@ class Brick8 final : public Element {
   /// Consistent ρ∫NᵀN dV (trilinear functions, 2x2x2) or HRZ-lumped when ctx.lumped_mass.
   void mass(const ElementContext& ctx, Eigen::MatrixXd& M) const override;
 
+  /// Pressure on face 1..6 (J-I-L-K, I-J-N-M, J-K-O-N, K-L-P-O, L-I-M-P, M-N-O-P, outward
+  /// normals): f_a = −∫ N_a p n dA over the bilinear face, 3x3 Gauss; on the face deformed by u
+  /// under large deflection.
+  void pressure_load(const ElementContext& ctx, int face, const std::array<double, 4>& p,
+                     const Eigen::VectorXd& u, Eigen::VectorXd& f) const override;
+
   /// SX SY SZ SXY SYZ SXZ S1 S2 S3 SINT SEQV at the centroid, global axes (Cauchy stress under
   /// large deflection).
   const std::vector<std::string>& result_names() const override;

@@ -31,4 +31,10 @@ void Element::frame_acceleration_load(const ElementContext& ctx, const Vec3& a,
   f = -(m * ra);
 }
 
+void Element::pressure_load(const ElementContext&, int face, const std::array<double, 4>&,
+                            const Eigen::VectorXd&, Eigen::VectorXd&) const {
+  throw ModelError(fmt::format("element {} ({}) takes no surface loads (face {} pressure)", id(),
+                               family(), face));
+}
+
 }  // namespace impactfe

@@ -3,6 +3,7 @@
 /// scheme or the analysis driver; drivers never know element internals.
 #include <Eigen/Core>
 
+#include <array>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -62,6 +63,14 @@ class Element {
   /// superelement overrides it with the exact reduced vectors −Σ_d a_d g_d (spec §10.6, U25).
   virtual void frame_acceleration_load(const ElementContext& ctx, const Vec3& a,
                                        Eigen::VectorXd& f) const;
+  /// Consistent nodal load of a pressure on face `face` (1-based, the face numbering of the
+  /// element type's registration) with values `p` at the face's nodes (face-node order), over the
+  /// element DOFs in global axes (APDL_MODELING §5.1-§5.3). Positive pressure acts into the face.
+  /// Under large deflection (ctx.large_deflection) the pressure follows the face deformed by u
+  /// (follower load); otherwise it acts on the initial face. Default: the element takes no
+  /// surface loads (ModelError naming it).
+  virtual void pressure_load(const ElementContext& ctx, int face, const std::array<double, 4>& p,
+                             const Eigen::VectorXd& u, Eigen::VectorXd& f) const;
 
   // ---- status elements (gap open/closed, slider stick/slide) --------------------------------
   virtual bool has_status() const { return false; }

@@ -70,6 +70,12 @@ struct ElementTypeDescriptor {
   std::vector<ResultSequence> result_sequences;
   /// True when elements of this type may carry a status (gap open/closed, slider).
   bool has_status = false;
+  /// Faces for surface loads (SF, SFE; APDL_MODELING §5.1): faces[k] lists the node positions
+  /// (0-based in the element's node list) of face k + 1, in the element's face-node order (the
+  /// order of SFE VALUE1..VALUE4). Empty: the type takes no surface loads.
+  std::vector<std::vector<int>> faces;
+  /// Faces that SF (by selected nodes) may load: the first `sf_faces` ones (shells: face 1).
+  int sf_faces = 0;
   /// Logged when ET defines the type (e.g. a kernel substitution worth knowing about).
   std::string note;
   ElementFactory create;

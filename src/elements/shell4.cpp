@@ -269,7 +269,52 @@ void Shell4::mass(const ElementContext& ctx, Eigen::MatrixXd& M) const {
   M = kernel_->lumped_mass();
 }
 
+void Shell4::pressure_load(const ElementContext& ctx, int face, const std::array<double, 4>& p,
+                           const Eigen::VectorXd& u, Eigen::VectorXd& f) const {
+  if (face != 1 && face != 2)
+    throw ModelError(
+        fmt::format("element {}: shell face {} pressure is not supported (faces 1 "
+                    "and 2: bottom and top; in-plane edge pressures 3..6 are not)",
+                    id(), face));
+  const double sign = face == 1 ? 1.0 : -1.0;
+  std::vector<Vec3> x = X_;
+  if (ctx.large_deflection)
+    for (int a = 0; a < n_; ++a) x[static_cast<std::size_t>(a)] += u.segment<3>(6 * a);
+  f.setZero(n_dofs());
+  if (n_ == 3) {
+    // Flat triangle, linear pressure: ∫ N_a p dA = A (2 p_a + p_b + p_c) / 12.
+    const Vec3 area = 0.5 * (x[1] - x[0]).cross(x[2] - x[0]);
+    for (int a = 0; a < 3; ++a) {
+      const double pa = 2.0 * p[static_cast<std::size_t>(a)] +
+                        p[static_cast<std::size_t>((a + 1) % 3)] +
+                        p[static_cast<std::size_t>((a + 2) % 3)];
+      f.segment<3>(6 * a) = sign * pa / 12.0 * area;
+    }
+    return;
+  }
+  // Bilinear surface, 3x3 Gauss; n = ∂x/∂ξ × ∂x/∂η follows I-J-K-L by the right-hand rule.
+  static const double g[3] = {-0.7745966692414834, 0.0, 0.7745966692414834};
+  static const double w[3] = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
+  static const double xi_a[4] = {-1, 1, 1, -1}, eta_a[4] = {-1, -1, 1, 1};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      double n[4];
+      Vec3 dxi = Vec3::Zero(), deta = Vec3::Zero();
+      double pressure = 0.0;
+      for (int a = 0; a < 4; ++a) {
+        n[a] = 0.25 * (1 + xi_a[a] * g[i]) * (1 + eta_a[a] * g[j]);
+        dxi += 0.25 * xi_a[a] * (1 + eta_a[a] * g[j]) * x[static_cast<std::size_t>(a)];
+        deta += 0.25 * eta_a[a] * (1 + xi_a[a] * g[i]) * x[static_cast<std::size_t>(a)];
+        pressure += n[a] * p[static_cast<std::size_t>(a)];
+      }
+      const Vec3 normal = dxi.cross(deta);
+      for (int a = 0; a < 4; ++a)
+        f.segment<3>(6 * a) += sign * w[i] * w[j] * n[a] * pressure * normal;
+    }
+}
+
 namespace {
+const std::vector<std::vector<int>> kShellFaces = {{0, 1, 2, 3}, {0, 1, 2, 3}};
 const std::vector<std::string> kShell4Results = {
     "TX",     "TY",     "TXY",     "MX",     "MY",     "MXY",     "SX_TOP",   "SY_TOP",  "SXY_TOP",
     "SX_MID", "SY_MID", "SXY_MID", "SX_BOT", "SY_BOT", "SXY_BOT", "SEQV_TOP", "SEQV_BOT"};
@@ -418,6 +463,8 @@ ElementTypeDescriptor shell_type(const char* name, int number, bool shell181) {
                            {"SMISC", "4", "MX"},
                            {"SMISC", "5", "MY"},
                            {"SMISC", "6", "MXY"}},
+      .faces = kShellFaces,
+      .sf_faces = 1,
       .note = shell181 ? "SHELL181 is computed with the SHELL63 kernel (thin elastic shell)" : "",
       .create = [shell181](const ElementBuildContext& ctx, const ElementRecord& record) {
         return make_shell4(ctx, record, shell181);

@@ -42,6 +42,11 @@ class Shell4 : public Element {
   void tangent(const ElementContext& ctx, const Eigen::VectorXd& u, Eigen::MatrixXd& K,
                Eigen::VectorXd& f_int) const override;
   void mass(const ElementContext& ctx, Eigen::MatrixXd& M) const override;
+  /// Pressure on face 1 (bottom: positive pushes along +N, the I-J-K-L normal) or face 2 (top:
+  /// along −N); consistent loads on the translations, on the face deformed by u under large
+  /// deflection. In-plane edge faces 3..6 are not supported (ModelError).
+  void pressure_load(const ElementContext& ctx, int face, const std::array<double, 4>& p,
+                     const Eigen::VectorXd& u, Eigen::VectorXd& f) const override;
   const std::vector<std::string>& result_names() const override;
   /// Centroidal resultants and stresses in element axes (rotated by THETA); see result_names.
   void results(const ElementContext& ctx, const Eigen::VectorXd& u, const Eigen::VectorXd& v,

@@ -1,0 +1,119 @@
+#include "assembly/element_adapters.h"
+
+#include <fmt/format.h>
+
+#include <map>
+
+namespace impactfe {
+
+NodalAxesElement::NodalAxesElement(std::unique_ptr<Element> inner, const Model& model,
+                                   const SourceLocation& where)
+    : Element(inner->id()), inner_(std::move(inner)) {
+  const auto& dofs = inner_->dofs();
+  const int n = static_cast<int>(dofs.size());
+  t_ = Eigen::MatrixXd::Identity(n, n);
+  // Positions of each node's DOFs in the element: node -> dof component -> position.
+  std::map<int, std::array<int, 6>> where_is;
+  for (int i = 0; i < n; ++i) {
+    auto [it, fresh] = where_is.try_emplace(dofs[static_cast<std::size_t>(i)].node);
+    if (fresh) it->second.fill(-1);
+    it->second[static_cast<std::size_t>(dofs[static_cast<std::size_t>(i)].dof)] = i;
+  }
+  for (const auto& [node, pos] : where_is) {
+    const auto it = model.nodes.find(node);
+    if (it == model.nodes.end() || !it->second.rotated()) continue;
+    const Mat3 R = it->second.axes();
+    for (int group = 0; group < 2; ++group) {
+      int present = 0;
+      for (int a = 0; a < 3; ++a)
+        present += pos[static_cast<std::size_t>(3 * group + a)] >= 0 ? 1 : 0;
+      if (present == 0) continue;
+      if (present != 3)
+        throw InputError(where, fmt::format("element {} ({}): node {} has a rotated nodal "
+                                            "coordinate system but the element carries only {} "
+                                            "of its {} DOFs",
+                                            id(), inner_->family(), node, present,
+                                            group == 0 ? "UX/UY/UZ" : "ROTX/ROTY/ROTZ"));
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b)
+          t_(pos[static_cast<std::size_t>(3 * group + a)],
+             pos[static_cast<std::size_t>(3 * group + b)]) = R(a, b);
+    }
+  }
+}
+
+void NodalAxesElement::tangent(const ElementContext& ctx, const Eigen::VectorXd& u,
+                               Eigen::MatrixXd& K, Eigen::VectorXd& f_int) const {
+  inner_->tangent(ctx, t_ * u, K, f_int);
+  K = t_.transpose() * K * t_;
+  f_int = t_.transpose() * f_int;
+}
+
+void NodalAxesElement::mass(const ElementContext& ctx, Eigen::MatrixXd& M) const {
+  inner_->mass(ctx, M);
+  M = t_.transpose() * M * t_;
+}
+
+void NodalAxesElement::damping(const ElementContext& ctx, const Eigen::VectorXd& u,
+                               Eigen::MatrixXd& C) const {
+  inner_->damping(ctx, t_ * u, C);
+  C = t_.transpose() * C * t_;
+}
+
+void NodalAxesElement::frame_acceleration_load(const ElementContext& ctx, const Vec3& a,
+                                               Eigen::VectorXd& f) const {
+  inner_->frame_acceleration_load(ctx, a, f);
+  f = t_.transpose() * f;
+}
+
+void NodalAxesElement::pressure_load(const ElementContext& ctx, int face,
+                                     const std::array<double, 4>& p, const Eigen::VectorXd& u,
+                                     Eigen::VectorXd& f) const {
+  inner_->pressure_load(ctx, face, p, t_ * u, f);
+  f = t_.transpose() * f;
+}
+
+void NodalAxesElement::results(const ElementContext& ctx, const Eigen::VectorXd& u,
+                               const Eigen::VectorXd& v, ElementResultValues& out) const {
+  inner_->results(ctx, t_ * u, t_ * v, out);
+}
+
+MaterialDampingElement::MaterialDampingElement(std::unique_ptr<Element> inner, double alpha,
+                                               double beta)
+    : Element(inner->id()), inner_(std::move(inner)), alpha_(alpha), beta_(beta) {}
+
+void MaterialDampingElement::damping(const ElementContext& ctx, const Eigen::VectorXd& u,
+                                     Eigen::MatrixXd& C) const {
+  inner_->damping(ctx, u, C);
+  Eigen::MatrixXd m, k;
+  Eigen::VectorXd f;
+  if (alpha_ != 0.0) {
+    inner_->mass(ctx, m);
+    C += alpha_ * m;
+  }
+  if (beta_ != 0.0) {
+    inner_->tangent(ctx, u, k, f);
+    C += beta_ * k;
+  }
+}
+
+std::unique_ptr<Element> adapt_element(std::unique_ptr<Element> element, const Model& model,
+                                       const ElementRecord& record) {
+  const auto mat = model.materials.find(record.mat);
+  if (mat != model.materials.end()) {
+    const double alpha = mat->second.get("ALPD", 0.0);
+    const double beta = mat->second.get("BETD", 0.0);
+    if (alpha != 0.0 || beta != 0.0)
+      element = std::make_unique<MaterialDampingElement>(std::move(element), alpha, beta);
+  }
+  bool rotated = false;
+  for (const DofKey& k : element->dofs()) {
+    const auto it = model.nodes.find(k.node);
+    rotated = rotated || (it != model.nodes.end() && it->second.rotated());
+  }
+  if (rotated)
+    element = std::make_unique<NodalAxesElement>(std::move(element), model, record.where);
+  return element;
+}
+
+}  // namespace impactfe

@@ -1,0 +1,323 @@
+// Surface loads and loads on solid-model entities (APDL_MODELING §5.1-§5.6): SF, SFE, SFA and
+// their deletion (SFDELE, SFEDELE, SFADELE), DK, DL, DA, FK and their deletion, SBCTRAN (and the
+// automatic transfer at SOLVE), the `%TABLE%` load-value field, and the refusals of SFL, SFGRAD,
+// SFBEAM and FL.
+#include <fmt/format.h>
+
+#include "core/text.h"
+#include "deck/modeling_helpers.h"
+#include "geometry/element_faces.h"
+#include "geometry/load_transfer.h"
+
+namespace impactfe::deck {
+
+namespace {
+
+SolidLoads& solid_loads(DeckReader& r) {
+  return r.model.solid.loads;
+}
+
+void require_pressure(DeckReader& r, const Command& c, int field) {
+  const std::string lab = r.label(c, field);
+  if (lab != "PRES")
+    r.fail(c, fmt::format("surface load '{}' not supported in a structural analysis (PRES)",
+                          c.text(field)));
+}
+
+void refuse_component(DeckReader& r, const Command& c, int field) {
+  const std::string l = r.label(c, field);
+  if (!l.empty() && l != "ALL" && !r.opt_real(c, field))
+    r.fail(c, fmt::format("'{}': component names are not available (use ALL with a selection)",
+                          c.text(field)));
+}
+
+SurfaceLoad uniform(const LoadField& v) {
+  SurfaceLoad s;
+  s.values.fill(v.value);
+  s.table = v.table;
+  return s;
+}
+
+void cmd_sf(DeckReader& r, const Command& c) {
+  // SF,Nlist,Lab,VALUE,VALUE2,MESHFLAG
+  const std::string nlist = r.label(c, 1);
+  if (!nlist.empty() && nlist != "ALL") {
+    refuse_component(r, c, 1);
+    r.fail(c, "Nlist must be ALL (the selected nodes): single node numbers are not allowed");
+  }
+  require_pressure(r, c, 2);
+  const LoadField v = load_field(r, c, 3);
+  if (r.real(c, 4, 0.0) != 0.0) r.fail(c, "VALUE2 (imaginary part) is not supported");
+  const auto faces = faces_on_selected_nodes(r, c);
+  if (faces.empty())
+    r.fail(c,
+           "no element face has all its nodes selected (select the nodes of the loaded "
+           "surface and the elements under it)");
+  for (const FaceKey& f : faces) r.model.current.pressures[f] = uniform(v);
+}
+
+std::vector<int> element_list(DeckReader& r, const Command& c, int field) {
+  refuse_component(r, c, field);
+  return entity_list(r, c, field, 0, 0, r.model.elements, r.model.selection.elements, "element");
+}
+
+void cmd_sfe(DeckReader& r, const Command& c) {
+  // SFE,ELEM,LKEY,Lab,KVAL,VALUE1,VALUE2,VALUE3,VALUE4,MESHFLAG
+  const auto elements = element_list(r, c, 1);
+  const int lkey = r.integer(c, 2, 1);
+  require_pressure(r, c, 3);
+  const int kval = r.integer(c, 4, 0);
+  if (kval == 2) r.fail(c, "KVAL = 2 (imaginary part) is not supported");
+  if (kval != 0 && kval != 1) r.fail(c, fmt::format("KVAL {} must be 0 or 1", kval));
+  const LoadField v1 = load_field(r, c, 5);
+  SurfaceLoad load = uniform(v1);
+  const bool tapered = !c.blank(6) || !c.blank(7) || !c.blank(8);
+  if (tapered && v1.table.empty())
+    for (int k = 1; k < 4; ++k) load.values[static_cast<std::size_t>(k)] = r.real(c, 5 + k, 0.0);
+  for (int e : elements) {
+    const ElementRecord& rec = r.model.elements.at(e);
+    if (geometry::element_face_nodes(r.model, rec, lkey).empty())
+      r.fail(c, fmt::format("element {} ({}) has no face {}", e,
+                            r.model.element_types.count(rec.type) != 0
+                                ? r.model.element_types.at(rec.type).ansys_name
+                                : "undefined type",
+                            lkey));
+    r.model.current.pressures[FaceKey{e, lkey}] = load;
+  }
+}
+
+void cmd_sfdele(DeckReader& r, const Command& c) {
+  // SFDELE,Nlist,Lab
+  const std::string nlist = r.label(c, 1);
+  if (!nlist.empty() && nlist != "ALL") refuse_component(r, c, 1);
+  const std::string lab = r.label(c, 2);
+  if (!lab.empty() && lab != "ALL" && lab != "PRES")
+    r.fail(c, fmt::format("bad label '{}' (PRES, ALL)", c.text(2)));
+  auto& pressures = r.model.current.pressures;
+  const ModelSelection& sel = r.model.selection;
+  for (auto it = pressures.begin(); it != pressures.end();) {
+    const auto e = r.model.elements.find(it->first.element);
+    bool all = e != r.model.elements.end();
+    if (all)
+      for (int n : geometry::element_face_nodes(r.model, e->second, it->first.face))
+        all = all && sel.nodes.selected(n);
+    it = all ? pressures.erase(it) : std::next(it);
+  }
+}
+
+void cmd_sfedele(DeckReader& r, const Command& c) {
+  // SFEDELE,ELEM,LKEY,Lab
+  const auto elements = element_list(r, c, 1);
+  const auto lkey = r.opt_int(c, 2);
+  auto& pressures = r.model.current.pressures;
+  for (int e : elements)
+    for (auto it = pressures.lower_bound(FaceKey{e, 0});
+         it != pressures.end() && it->first.element == e;)
+      it = (!lkey || it->first.face == *lkey) ? pressures.erase(it) : std::next(it);
+}
+
+void cmd_sfa(DeckReader& r, const Command& c) {
+  // SFA,AREA,LKEY,Lab,VALUE,VALUE2
+  const auto areas =
+      entity_list(r, c, 1, 0, 0, r.model.solid.areas, r.model.selection.areas, "area");
+  const int lkey = r.integer(c, 2, 1);
+  require_pressure(r, c, 3);
+  const LoadField v = load_field(r, c, 4);
+  if (r.real(c, 5, 0.0) != 0.0) r.fail(c, "VALUE2 (imaginary part) is not supported");
+  for (int a : areas) solid_loads(r).area_pressures[{a, lkey}] = uniform(v);
+}
+
+void cmd_sfadele(DeckReader& r, const Command& c) {
+  const auto areas =
+      entity_list(r, c, 1, 0, 0, r.model.solid.areas, r.model.selection.areas, "area");
+  const auto lkey = r.opt_int(c, 2);
+  auto& p = solid_loads(r).area_pressures;
+  for (int a : areas)
+    for (auto it = p.begin(); it != p.end();)
+      it = it->first.first == a && (!lkey || it->first.second == *lkey) ? p.erase(it)
+                                                                        : std::next(it);
+}
+
+/// DOF labels of a solid-entity constraint or force: one label (ALL = six DOFs) plus extras.
+std::vector<Dof> dof_labels(DeckReader& r, const Command& c, int first, int extra_first,
+                            int extra_last, bool force) {
+  std::vector<std::string> labels{r.label(c, first)};
+  for (int f = extra_first; f > 0 && f <= extra_last; ++f)
+    if (!c.blank(f)) labels.push_back(r.label(c, f));
+  std::vector<Dof> out;
+  for (const auto& l : labels) {
+    if (l == "ALL" && !force) return {kAllDofs.begin(), kAllDofs.end()};
+    const auto d = force ? parse_force_label(l) : parse_dof_label(l);
+    if (!d)
+      r.fail(c, fmt::format("bad {} label '{}' ({})", force ? "force" : "DOF", l,
+                            force ? "FX FY FZ MX MY MZ" : "UX UY UZ ROTX ROTY ROTZ ALL"));
+    out.push_back(*d);
+  }
+  return out;
+}
+
+SolidDofLoad solid_value(DeckReader& r, const Command& c, int field) {
+  const LoadField v = load_field(r, c, field);
+  return SolidDofLoad{v.value, v.table};
+}
+
+void cmd_dk(DeckReader& r, const Command& c) {
+  // DK,KPOI,Lab,VALUE,VALUE2,KEXPND,Lab2..Lab6
+  const auto kps =
+      entity_list(r, c, 1, 0, 0, r.model.solid.keypoints, r.model.selection.keypoints, "keypoint");
+  if (r.integer(c, 5, 0) == 1)
+    r.fail(c, "KEXPND = 1 (expansion between keypoints) is not supported");
+  const auto dofs = dof_labels(r, c, 2, 6, 10, false);
+  const SolidDofLoad v = solid_value(r, c, 3);
+  for (int k : kps)
+    for (Dof d : dofs) solid_loads(r).keypoint_constraints[{k, d}] = v;
+}
+
+void cmd_fk(DeckReader& r, const Command& c) {
+  const auto kps =
+      entity_list(r, c, 1, 0, 0, r.model.solid.keypoints, r.model.selection.keypoints, "keypoint");
+  const auto dofs = dof_labels(r, c, 2, 0, 0, true);
+  const SolidDofLoad v = solid_value(r, c, 3);
+  for (int k : kps)
+    for (Dof d : dofs) solid_loads(r).keypoint_forces[{k, d}] = v;
+}
+
+void cmd_dl(DeckReader& r, const Command& c) {
+  // DL,LINE,AREA,Lab,Value1,Value2
+  const auto lines =
+      entity_list(r, c, 1, 0, 0, r.model.solid.lines, r.model.selection.lines, "line");
+  const std::string lab = r.label(c, 3);
+  if (!c.blank(2)) r.warn(c, "AREA field: the lowest selected area containing the line is used");
+  if (lab == "SYMM" || lab == "ASYM") {
+    for (int l : lines)
+      solid_loads(r).line_symmetry[l] =
+          lab == "SYMM" ? SymmetryKind::Symmetric : SymmetryKind::Antisymmetric;
+    return;
+  }
+  const auto dofs = dof_labels(r, c, 3, 0, 0, false);
+  const SolidDofLoad v = solid_value(r, c, 4);
+  for (int l : lines)
+    for (Dof d : dofs) solid_loads(r).line_constraints[{l, d}] = v;
+}
+
+void cmd_da(DeckReader& r, const Command& c) {
+  // DA,AREA,Lab,Value1,Value2
+  const auto areas =
+      entity_list(r, c, 1, 0, 0, r.model.solid.areas, r.model.selection.areas, "area");
+  const std::string lab = r.label(c, 2);
+  if (lab == "SYMM" || lab == "ASYM") {
+    for (int a : areas)
+      solid_loads(r).area_symmetry[a] =
+          lab == "SYMM" ? SymmetryKind::Symmetric : SymmetryKind::Antisymmetric;
+    return;
+  }
+  const auto dofs = dof_labels(r, c, 2, 0, 0, false);
+  const SolidDofLoad v = solid_value(r, c, 3);
+  for (int a : areas)
+    for (Dof d : dofs) solid_loads(r).area_constraints[{a, d}] = v;
+}
+
+template <class Map>
+void delete_dof_loads(DeckReader& r, const Command& c, Map& loads, const std::vector<int>& ids,
+                      bool force) {
+  const std::string lab = r.label(c, 2);
+  std::vector<Dof> dofs(kAllDofs.begin(), kAllDofs.end());
+  if (!lab.empty() && lab != "ALL") dofs = dof_labels(r, c, 2, 0, 0, force);
+  for (int id : ids)
+    for (Dof d : dofs) loads.erase({id, d});
+}
+
+void cmd_dkdele(DeckReader& r, const Command& c) {
+  const auto ids =
+      entity_list(r, c, 1, 0, 0, r.model.solid.keypoints, r.model.selection.keypoints, "keypoint");
+  delete_dof_loads(r, c, solid_loads(r).keypoint_constraints, ids, false);
+}
+void cmd_fkdele(DeckReader& r, const Command& c) {
+  const auto ids =
+      entity_list(r, c, 1, 0, 0, r.model.solid.keypoints, r.model.selection.keypoints, "keypoint");
+  delete_dof_loads(r, c, solid_loads(r).keypoint_forces, ids, true);
+}
+void cmd_dldele(DeckReader& r, const Command& c) {
+  const auto ids = entity_list(r, c, 1, 0, 0, r.model.solid.lines, r.model.selection.lines, "line");
+  delete_dof_loads(r, c, solid_loads(r).line_constraints, ids, false);
+  const std::string lab = r.label(c, 2);
+  if (lab.empty() || lab == "ALL" || lab == "SYMM" || lab == "ASYM")
+    for (int id : ids) solid_loads(r).line_symmetry.erase(id);
+}
+void cmd_dadele(DeckReader& r, const Command& c) {
+  const auto ids = entity_list(r, c, 1, 0, 0, r.model.solid.areas, r.model.selection.areas, "area");
+  delete_dof_loads(r, c, solid_loads(r).area_constraints, ids, false);
+  const std::string lab = r.label(c, 2);
+  if (lab.empty() || lab == "ALL" || lab == "SYMM" || lab == "ASYM")
+    for (int id : ids) solid_loads(r).area_symmetry.erase(id);
+}
+
+void cmd_sbctran(DeckReader& r, const Command& c) {
+  for (const auto& note : geometry::transfer_solid_loads(r.model, c.where)) r.warn(c, note);
+}
+
+void cmd_surface_refused(DeckReader& r, const Command& c) {
+  if (c.name == "FL") r.fail(c, "fatigue commands are not supported (FL is not a line force)");
+  r.fail(c, fmt::format("{} is not supported (use SF, SFE or SFA with PRES)", c.name));
+}
+
+}  // namespace
+
+LoadField load_field(DeckReader& r, const Command& c, int i) {
+  const std::string text = trim(c.text(i));
+  if (text.size() >= 2 && text.front() == '%' && text.back() == '%') {
+    const std::string name = to_upper(text.substr(1, text.size() - 2));
+    if (name == "_FIX") r.fail(c, "%_FIX% (hold the current value) is not supported");
+    // Merge point with the TABLE parameters of the scripting layer: a TABLE array whose primary
+    // variable is TIME is made available as Model::time_functions[NAME].
+    if (r.model.time_functions.count(name) == 0)
+      r.fail(c, fmt::format("table %{}% is not defined (a TABLE array with primary variable TIME "
+                            "is needed: *DIM,{},TABLE,n,1,1,TIME)",
+                            name, name));
+    return LoadField{0.0, name};
+  }
+  return LoadField{r.real(c, i, 0.0), {}};
+}
+
+std::vector<FaceKey> faces_on_selected_nodes(const DeckReader& r, const Command&) {
+  const ModelSelection& sel = r.model.selection;
+  return geometry::faces_on_nodes(
+      r.model, [&](int n) { return sel.nodes.selected(n); },
+      [&](int e) { return sel.elements.selected(e); });
+}
+
+void transfer_solid_loads(DeckReader& r, const Command& c) {
+  if (r.model.solid.loads.empty() && r.model.solid.loads.transferred_constraints.empty() &&
+      r.model.solid.loads.transferred_forces.empty() &&
+      r.model.solid.loads.transferred_pressures.empty())
+    return;
+  for (const auto& note : geometry::transfer_solid_loads(r.model, c.where)) r.warn(c, note);
+}
+
+void prepare_model_for_solution(DeckReader& r, const Command& c) {
+  transfer_solid_loads(r, c);
+  check_material_tables(r, c);
+}
+
+void register_surface_load_commands(std::vector<CommandSpec>& t) {
+  t.push_back({"SF", cmd_sf, kPrepSolu});
+  t.push_back({"SFE", cmd_sfe, kPrepSolu});
+  t.push_back({"SFA", cmd_sfa, kPrepSolu});
+  t.push_back({"SFDELE", cmd_sfdele, kPrepSolu});
+  t.push_back({"SFEDELE", cmd_sfedele, kPrepSolu});
+  t.push_back({"SFADELE", cmd_sfadele, kPrepSolu});
+  t.push_back({"DK", cmd_dk, kPrepSolu});
+  t.push_back({"FK", cmd_fk, kPrepSolu});
+  t.push_back({"DL", cmd_dl, kPrepSolu});
+  t.push_back({"DA", cmd_da, kPrepSolu});
+  t.push_back({"DKDELE", cmd_dkdele, kPrepSolu});
+  t.push_back({"FKDELE", cmd_fkdele, kPrepSolu});
+  t.push_back({"DLDELE", cmd_dldele, kPrepSolu});
+  t.push_back({"DADELE", cmd_dadele, kPrepSolu});
+  for (const char* name : {"SBCTRAN", "DTRAN", "FTRAN", "SFTRAN"})
+    t.push_back({name, cmd_sbctran, kPrepSolu});
+  for (const char* name : {"SFL", "SFGRAD", "SFBEAM", "FL"})
+    t.push_back({name, cmd_surface_refused, kAnywhere});
+}
+
+}  // namespace impactfe::deck

@@ -1,0 +1,104 @@
+#pragma once
+/// Meshing of solid-model entities (APDL_MODELING §4): KMESH (point elements), LMESH (line
+/// elements), AMESH (mapped quadrilaterals on 4-sided areas, triangles on 3- and 4-sided areas
+/// with MSHAPE,1), VMESH / VSWEEP (mapped hexahedra on 6-faced volumes) and xCLEAR.
+///
+/// Lower-dimensional boundaries are meshed first and shared: a line or area that already has
+/// nodes is reused, so adjacent regions are conforming. New nodes and elements are numbered
+/// from max(NUMSTR, max + 1) upward; within one command the keypoint nodes come first, then
+/// the line nodes by line number, the area nodes by area number, the interior last (§4.6). Each
+/// entity records the nodes and elements it created (ownership maps, §4.7).
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/errors.h"
+#include "core/model.h"
+
+namespace impactfe {
+struct ElementTypeDescriptor;
+}
+
+namespace impactfe::geometry {
+
+/// The current element attribute pointers (TYPE, MAT, REAL, SECNUM) used for entities without
+/// their own xATT attributes.
+struct MeshPointers {
+  int type = 1;
+  int mat = 1;
+  int real = 1;
+  int secnum = 0;
+};
+
+class Mesher {
+ public:
+  Mesher(Model& model, const MeshPointers& current, const SourceLocation& where);
+
+  void mesh_keypoint(int id);
+  void mesh_line(int id);
+  void mesh_area(int id);
+  /// VMESH (source = target = 0) or VSWEEP (source/target areas of the sweep; 0 = automatic).
+  void mesh_volume(int id, int source = 0, int target = 0);
+
+  /// xCLEAR: deletes the elements of the entity and the nodes it owns that no element uses and
+  /// no other meshed entity needs; boundary entities meshed only for it are cleared too.
+  void clear_keypoint(int id);
+  void clear_line(int id);
+  void clear_area(int id);
+  void clear_volume(int id);
+
+  /// Elements created by this mesher, in creation order.
+  const std::vector<int>& created_elements() const { return created_elements_; }
+  /// Divisions a line would get now (meshed lines: their division count), for LSEL,NDIV.
+  int line_divisions(int id) const;
+
+  // ---- used by the volume mesher (volume_mesher.cpp) ----------------------------------------
+  struct Attributes {
+    int type = 1;
+    int mat = 1;
+    int real = 1;
+    int secnum = 0;
+  };
+  /// The entity's attributes, falling back on the current pointers; checks the element type.
+  Attributes resolve(const EntityAttributes& own) const;
+  const ElementTypeDescriptor& descriptor(int type) const;
+  /// Plans equal divisions for each class of lines (opposite sides of a mapped region):
+  /// fixed counts (meshed lines, LESIZE/L NDIV) must agree; otherwise the largest soft count
+  /// (sizes, ESIZE, DESIZE) is used for all. `what` names the region in errors.
+  void plan_divisions(const std::vector<std::vector<int>>& classes, const std::string& what,
+                      std::optional<double> area_size);
+  /// Creates the nodes of a line (and of its keypoints) when it has none.
+  void line_nodes(int id, std::optional<double> area_size = std::nullopt);
+  /// Creates the nodes of an area (lines first) when it has none; `triangles` asks for the
+  /// triangular lattice on a 3-sided area.
+  void area_nodes(int id, bool triangles);
+  int add_node(const Vec3& x);
+  int add_element(const Attributes& attr, std::vector<int> nodes);
+  /// Signed line joining keypoints a and b inside `lines` (0 when none).
+  int line_joining(const std::vector<int>& lines, int a, int b) const;
+  [[noreturn]] void fail(const std::string& message) const;
+
+ private:
+  int keypoint_node(int id);
+  int soft_divisions(const Line& line, std::optional<double> area_size) const;
+  int fixed_divisions(const Line& line) const;
+  void delete_elements(std::vector<int>& elements);
+  void delete_nodes(std::vector<int> nodes);
+  bool area_needed(int area) const;
+  bool line_needed(int line) const;
+  bool keypoint_needed(int kp) const;
+  void release_line(int id);
+  void release_area(int id);
+  void release_keypoint(int id);
+
+  Model& model_;
+  SolidModel& solid_;
+  MeshPointers current_;
+  SourceLocation where_;
+  std::map<int, int> planned_;  // line -> divisions decided for this command
+  double longest_line_ = 0.0;
+  std::vector<int> created_elements_;
+};
+
+}  // namespace impactfe::geometry

@@ -1,0 +1,304 @@
+// Meshing of solid-model entities (APDL_MODELING §3, §4): element and node counts, positive
+// Jacobians, conforming shared boundaries, BLOCK + VMESH equal to the same model written node by
+// node, spacing ratios, triangles, sweeps, copies, clearing and numbering.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <array>
+#include <cmath>
+#include <map>
+#include <set>
+
+#include "deck/deck_reader.h"
+#include "elements/element.h"
+#include "geometry/mapped_mesh.h"
+
+namespace impactfe {
+namespace {
+
+Model read(const std::string& text) {
+  return read_deck_text(text, "mesh_test.inp", DeckOptions{}).model;
+}
+
+/// A position as an integer key (coordinates rounded to 1e-6).
+std::array<long long, 3> key(const Vec3& x) {
+  return {std::llround(x(0) * 1e6), std::llround(x(1) * 1e6), std::llround(x(2) * 1e6)};
+}
+
+/// Elements as sets of corner positions (connectivity up to numbering).
+std::set<std::set<std::array<long long, 3>>> element_shapes(const Model& m) {
+  std::set<std::set<std::array<long long, 3>>> out;
+  for (const auto& [id, e] : m.elements) {
+    std::set<std::array<long long, 3>> s;
+    for (int n : e.nodes) s.insert(key(m.nodes.at(n).x));
+    out.insert(s);
+  }
+  return out;
+}
+
+/// Number of distinct node positions (equal to the node count when no nodes coincide).
+std::size_t distinct_positions(const Model& m) {
+  std::set<std::array<long long, 3>> s;
+  for (const auto& [id, n] : m.nodes) s.insert(key(n.x));
+  return s.size();
+}
+
+/// Every hexahedron: positive volume and positive corner Jacobians (edge triple products; not
+/// for a disk mapped on four arcs, whose corner elements have a 180° angle), and the element
+/// builds (2x2x2 Gauss Jacobians checked by the element).
+void expect_valid_hexes(const Model& m, bool corners = true) {
+  ElementBuildContext build{m, [](const ElementRecord&) { return std::string(); }};
+  static const int edges[8][3] = {{1, 3, 4}, {2, 0, 5}, {3, 1, 6}, {0, 2, 7},
+                                  {7, 5, 0}, {4, 6, 1}, {5, 7, 2}, {6, 4, 3}};
+  for (const auto& [id, e] : m.elements) {
+    ASSERT_EQ(e.nodes.size(), 8u);
+    std::vector<Vec3> x;
+    for (int n : e.nodes) x.push_back(m.nodes.at(n).x);
+    EXPECT_GT(geometry::hexahedron_volume(x), 0.0) << "element " << id;
+    for (int c = 0; c < 8; ++c) {
+      const Vec3 a = x[static_cast<std::size_t>(edges[c][0])] - x[static_cast<std::size_t>(c)];
+      const Vec3 b = x[static_cast<std::size_t>(edges[c][1])] - x[static_cast<std::size_t>(c)];
+      const Vec3 d = x[static_cast<std::size_t>(edges[c][2])] - x[static_cast<std::size_t>(c)];
+      // The edge lists are ordered so that a right-handed corner gives a positive product.
+      const double j = a.cross(b).dot(d);
+      if (corners) EXPECT_GT(j, 0.0) << "element " << id << " corner " << c;
+    }
+    EXPECT_NO_THROW(create_element(build, e)) << "element " << id;
+  }
+}
+
+const char* kBrick = "/PREP7\nET,1,SOLID185\nMP,EX,1,2.1E5\nMP,PRXY,1,0.3\n";
+
+TEST(Meshing, BlockVmeshCountsAndValidHexahedra) {
+  const Model m = read(std::string(kBrick) +
+                       "BLOCK,0,100,0,20,0,10\nESIZE,5\nMSHKEY,1\nMSHAPE,0,3D\nVMESH,ALL\n");
+  EXPECT_EQ(m.elements.size(), 20u * 4u * 2u);
+  EXPECT_EQ(m.nodes.size(), 21u * 5u * 3u);
+  EXPECT_EQ(distinct_positions(m), m.nodes.size());
+  // Numbering from 1 upward with no gaps (a fresh model).
+  EXPECT_EQ(m.nodes.rbegin()->first, static_cast<int>(m.nodes.size()));
+  EXPECT_EQ(m.elements.rbegin()->first, static_cast<int>(m.elements.size()));
+  expect_valid_hexes(m);
+  // Ownership: every node belongs to exactly one entity of the block.
+  std::size_t owned = 0;
+  for (const auto& [id, k] : m.solid.keypoints) owned += k.node != 0 ? 1 : 0;
+  for (const auto& [id, l] : m.solid.lines) owned += l.nodes.size() - 2;
+  for (const auto& [id, a] : m.solid.areas) owned += a.interior_nodes.size();
+  for (const auto& [id, v] : m.solid.volumes) owned += v.interior_nodes.size();
+  EXPECT_EQ(owned, m.nodes.size());
+  EXPECT_EQ(m.solid.volumes.at(1).elements.size(), m.elements.size());
+}
+
+TEST(Meshing, BlockVmeshEqualsTheNodeByNodeModel) {
+  const Model meshed = read(std::string(kBrick) + "BLOCK,0,100,0,20,0,10\nESIZE,5\nVMESH,1\n");
+  // The same 20 x 4 x 2 bricks with N, FILL, NGEN, E, EGEN.
+  const Model by_node = read(std::string(kBrick) +
+                             "N,1,0,0,0\nN,21,100,0,0\nFILL\nNGEN,5,21,1,21,1,0,5\n"
+                             "NGEN,3,105,1,105,1,0,0,5\nE,1,2,23,22,106,107,128,127\n"
+                             "EGEN,20,1,1\nEGEN,4,21,1,20\nEGEN,2,105,1,80\n");
+  ASSERT_EQ(by_node.elements.size(), meshed.elements.size());
+  ASSERT_EQ(by_node.nodes.size(), meshed.nodes.size());
+  std::set<std::array<long long, 3>> a, b;
+  for (const auto& [id, n] : meshed.nodes) a.insert(key(n.x));
+  for (const auto& [id, n] : by_node.nodes) b.insert(key(n.x));
+  EXPECT_EQ(a, b);
+  EXPECT_EQ(element_shapes(meshed), element_shapes(by_node));
+}
+
+TEST(Meshing, AdjacentBlocksShareTheirFaceAfterMerging) {
+  const std::string two = std::string(kBrick) + "BLOCK,0,1,0,1,0,1\nBLOCK,1,2,0,1,0,1\n";
+  // Without merging the blocks are separate: the touching face is meshed twice.
+  const Model apart = read(two + "ESIZE,0.25\nVMESH,ALL\n");
+  EXPECT_EQ(apart.nodes.size(), 2u * 125u);
+  EXPECT_EQ(distinct_positions(apart), 225u);
+  for (const char* join : {"NUMMRG,KP\n", "VGLUE,1,2\n"}) {
+    const Model m = read(two + join + "ESIZE,0.25\nVMESH,ALL\n");
+    EXPECT_EQ(m.solid.keypoints.size(), 12u) << join;
+    EXPECT_EQ(m.solid.areas.size(), 11u) << join;
+    EXPECT_EQ(m.elements.size(), 128u) << join;
+    EXPECT_EQ(m.nodes.size(), 9u * 5u * 5u) << join;
+    EXPECT_EQ(distinct_positions(m), m.nodes.size()) << join;
+    expect_valid_hexes(m);
+  }
+}
+
+TEST(Meshing, AdjacentAreasAreConforming) {
+  const Model m = read(
+      "/PREP7\nET,1,SHELL181\nMP,EX,1,1E7\nSECTYPE,1,SHELL\nSECDATA,0.1\n"
+      "K,1,0,0\nK,2,1,0\nK,3,3,0\nK,4,0,1\nK,5,1,1\nK,6,3,1\n"
+      "A,1,2,5,4\nA,2,3,6,5\nLESIZE,ALL,,,4\nAMESH,ALL\n");
+  EXPECT_EQ(m.solid.lines.size(), 7u);  // the middle line is shared
+  EXPECT_EQ(m.elements.size(), 32u);
+  EXPECT_EQ(m.nodes.size(), 9u * 5u);
+  EXPECT_EQ(distinct_positions(m), m.nodes.size());
+  // Element normals follow the area (counter-clockwise keypoints: +Z).
+  for (const auto& [id, e] : m.elements) {
+    const Vec3 a = m.nodes.at(e.nodes[0]).x, b = m.nodes.at(e.nodes[1]).x,
+               c = m.nodes.at(e.nodes[2]).x;
+    EXPECT_GT((b - a).cross(c - a).z(), 0.0);
+  }
+}
+
+TEST(Meshing, CylindricalAreaNodesLieOnTheCylinder) {
+  // Lines "straight in CSYS 1" between keypoints of equal radius are arcs.
+  const Model m = read(
+      "/PREP7\nET,1,SHELL63\nR,1,0.1\nMP,EX,1,1E7\nLOCAL,11,1,5,5,0\n"
+      "K,1,10,0,0\nK,2,10,90,0\nK,3,10,90,20\nK,4,10,0,20\nA,1,2,3,4\nESIZE,2\nAMESH,1\n");
+  for (const auto& [id, n] : m.nodes)
+    EXPECT_NEAR(std::hypot(n.x.x() - 5, n.x.y() - 5), 10.0, 1e-9) << "node " << id;
+  // Quarter circumference 15.7 / 2 → 8 divisions; length 20 / 2 → 10.
+  EXPECT_EQ(m.elements.size(), 8u * 10u);
+}
+
+TEST(Meshing, LineSpacingRatio) {
+  // LESIZE SPACE = 8 over 4 divisions: h_i = h_1 2^(i-1), h_1 = 10 / 15.
+  const Model m = read(
+      "/PREP7\nET,1,LINK180\nSECTYPE,1,LINK\nSECDATA,1\nMP,EX,1,1\nK,1\nK,2,10\nL,1,2\n"
+      "LESIZE,1,,,4,8\nLMESH,1\n");
+  ASSERT_EQ(m.elements.size(), 4u);
+  std::vector<double> x;
+  for (int n : m.solid.lines.at(1).nodes) x.push_back(m.nodes.at(n).x.x());
+  const std::vector<double> expected = {0, 10.0 / 15, 30.0 / 15, 70.0 / 15, 10};
+  ASSERT_EQ(x.size(), expected.size());
+  for (std::size_t k = 0; k < x.size(); ++k) EXPECT_NEAR(x[k], expected[k], 1e-12);
+}
+
+TEST(Meshing, TrianglesOnThreeAndFourSidedAreas) {
+  const std::string head = "/PREP7\nET,1,SHELL63\nR,1,0.1\nMP,EX,1,1E7\nMSHAPE,1,2D\nESIZE,,4\n";
+  const Model tri = read(head + "K,1\nK,2,1\nK,3,0,1\nA,1,2,3\nAMESH,1\n");
+  EXPECT_EQ(tri.elements.size(), 16u);  // n² triangles
+  EXPECT_EQ(tri.nodes.size(), 15u);     // (n+1)(n+2)/2
+  for (const auto& [id, e] : tri.elements) EXPECT_EQ(e.nodes[2], e.nodes[3]);
+  const Model quad = read(head + "RECTNG,0,2,0,1\nAMESH,ALL\n");
+  EXPECT_EQ(quad.elements.size(), 2u * 4u * 4u);
+  // Quadrilaterals refuse a 3-sided area.
+  EXPECT_THROW(read("/PREP7\nET,1,SHELL63\nR,1,0.1\nK,1\nK,2,1\nK,3,0,1\nA,1,2,3\nAMESH,1\n"),
+               InputError);
+}
+
+TEST(Meshing, FullCylinderVolume) {
+  const Model m = read(std::string(kBrick) + "CYLIND,1,,0,2,0,360\nESIZE,0.5\nVMESH,ALL\n");
+  // Four 90° arcs of length π/2 → 4 divisions each (4 x 4 grid on each disk), 4 layers.
+  EXPECT_EQ(m.solid.volumes.at(1).areas.size(), 6u);
+  EXPECT_EQ(m.elements.size(), 4u * 4u * 4u);
+  expect_valid_hexes(m, false);
+  for (const auto& [id, n] : m.nodes) EXPECT_LE(std::hypot(n.x.x(), n.x.y()), 1.0 + 1e-9);
+}
+
+TEST(Meshing, ExtrusionOfAMeshedAreaAndRevolution) {
+  const Model ext = read(
+      "/PREP7\nET,1,SHELL181\nET,2,SOLID185\nMP,EX,1,1\nSECTYPE,1,SHELL\nSECDATA,0.1\n"
+      "RECTNG,0,2,0,1\nESIZE,0.5\nAMESH,1\nTYPE,2\nEXTOPT,ESIZE,3\nEXTOPT,ACLEAR,1\n"
+      "VEXT,1,,,0,0,1.5\n");
+  EXPECT_EQ(ext.elements.size(), 4u * 2u * 3u);  // the shells were cleared
+  for (const auto& [id, e] : ext.elements) EXPECT_EQ(e.type, 2);
+  expect_valid_hexes(ext);
+  const Model rev =
+      read(std::string(kBrick) +
+           "K,1,1,0,0\nK,2,2,0,0\nK,3,2,0,1\nK,4,1,0,1\nA,1,2,3,4\n"
+           "K,10,0,0,0\nK,11,0,0,1\nVROTAT,1,,,,,,10,11,180\nESIZE,0.25\nVMESH,ALL\n");
+  EXPECT_EQ(rev.solid.volumes.size(), 2u);  // two 90° segments
+  expect_valid_hexes(rev);
+  for (const auto& [id, n] : rev.nodes) {
+    const double r = std::hypot(n.x.x(), n.x.y());
+    EXPECT_GE(r, 1.0 - 1e-9);
+    EXPECT_LE(r, 2.0 + 1e-9);
+  }
+}
+
+TEST(Meshing, ClearingDeletesTheMeshAndKeepsSharedBoundaries) {
+  Model m = read(std::string(kBrick) +
+                 "BLOCK,0,1,0,1,0,1\nBLOCK,1,2,0,1,0,1\nNUMMRG,KP\nESIZE,0.5\nVMESH,ALL\n"
+                 "VCLEAR,2\n");
+  EXPECT_EQ(m.elements.size(), 8u);
+  EXPECT_EQ(m.nodes.size(), 27u);  // volume 1's nodes, incl. the shared face
+  m = read(std::string(kBrick) + "BLOCK,0,1,0,1,0,1\nESIZE,0.5\nVMESH,ALL\nVCLEAR,ALL\n");
+  EXPECT_TRUE(m.elements.empty());
+  EXPECT_TRUE(m.nodes.empty());
+}
+
+TEST(Meshing, CopiesAndCompressedNumbering) {
+  const Model m = read(
+      "/PREP7\nET,1,SHELL63\nR,1,0.1\nMP,EX,1,1E7\nRECTNG,0,1,0,1\nESIZE,0.5\nAMESH,1\n"
+      "AGEN,3,1,,,2,0,0\n");
+  EXPECT_EQ(m.solid.areas.size(), 3u);
+  EXPECT_EQ(m.elements.size(), 12u);
+  EXPECT_EQ(m.nodes.size(), 27u);
+  const Model moved = read(
+      "/PREP7\nET,1,SHELL63\nR,1,0.1\nMP,EX,1,1E7\nRECTNG,0,1,0,1\nESIZE,0.5\nAMESH,1\n"
+      "AGEN,,1,,,0,0,5,,,1\n");
+  for (const auto& [id, n] : moved.nodes) EXPECT_DOUBLE_EQ(n.x.z(), 5.0);
+  const Model compressed = read("/PREP7\nK,3,1\nK,7,2\nK,10,3\nNUMCMP,KP\n");
+  EXPECT_EQ(compressed.solid.keypoints.size(), 3u);
+  EXPECT_DOUBLE_EQ(compressed.solid.keypoints.at(2).x.x(), 2.0);
+  // KGEN with KINC numbers the copies.
+  const Model kgen = read("/PREP7\nK,1\nK,2,1\nKGEN,3,1,2,1,0,1,0,10\n");
+  EXPECT_EQ(kgen.solid.keypoints.size(), 6u);
+  EXPECT_DOUBLE_EQ(kgen.solid.keypoints.at(22).x.y(), 2.0);
+}
+
+TEST(Meshing, NodesMergeAndElementsFollow) {
+  const Model m = read(std::string(kBrick) +
+                       "BLOCK,0,1,0,1,0,1\nBLOCK,1,2,0,1,0,1\nESIZE,0.5\nVMESH,ALL\n"
+                       "NUMMRG,NODE\nNUMCMP,NODE\n");
+  EXPECT_EQ(m.nodes.size(), 45u);
+  EXPECT_EQ(distinct_positions(m), 45u);
+  EXPECT_EQ(m.nodes.rbegin()->first, 45);
+  for (const auto& [id, e] : m.elements)
+    for (int n : e.nodes) EXPECT_EQ(m.nodes.count(n), 1u);
+  expect_valid_hexes(m);
+}
+
+TEST(Meshing, SelectionOfEntitiesAndTheirNodes) {
+  const Model m = read(std::string(kBrick) +
+                       "BLOCK,0,4,0,2,0,1\nESIZE,1\nVMESH,ALL\n"
+                       "ASEL,S,LOC,X,4\nNSLA,S,1\nNSEL,R,LOC,Z,1\n");
+  // The x = 4 face: 3 x 2 nodes; on it, the z = 1 edge: 3 nodes.
+  int selected = 0;
+  for (const auto& [id, n] : m.nodes) {
+    if (!m.selection.nodes.selected(id)) continue;
+    ++selected;
+    EXPECT_NEAR(n.x.x(), 4.0, 1e-12);
+    EXPECT_NEAR(n.x.z(), 1.0, 1e-12);
+  }
+  EXPECT_EQ(selected, 3);
+  int areas = 0;
+  for (const auto& [id, a] : m.solid.areas) areas += m.selection.areas.selected(id) ? 1 : 0;
+  EXPECT_EQ(areas, 1);
+  const Model lines =
+      read(std::string(kBrick) + "BLOCK,0,4,0,2,0,1\nLSEL,S,LENGTH,,4\nKSLL,S\nLSEL,S,LOC,Z,0.5\n");
+  int n_lines = 0, n_kps = 0;
+  for (const auto& [id, l] : lines.solid.lines) n_lines += lines.selection.lines.selected(id);
+  for (const auto& [id, k] : lines.solid.keypoints) n_kps += lines.selection.keypoints.selected(id);
+  EXPECT_EQ(n_lines, 4);  // the vertical edges (centroid z = 0.5)
+  EXPECT_EQ(n_kps, 8);    // the keypoints of the four 4-long lines
+}
+
+TEST(Meshing, MalformedModellingInputIsAnInputError) {
+  auto message = [](const std::string& text) {
+    try {
+      read(text);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(message("/PREP7\nET,1,SHELL63\nR,1,0.1\nK,1\nK,2,1\nK,3,2,1\nK,4,1,2\nK,5,0,1\n"
+                    "A,1,2,3,4,5\nAMESH,1\n")
+                .find("area 1 has 5 sides"),
+            std::string::npos);
+  EXPECT_NE(message("/PREP7\nESIZE,-1\n").find("must be positive"), std::string::npos);
+  EXPECT_NE(message("/PREP7\nK,1\nK,2,1\nL,1,2\nLESIZE,1,-0.5\n").find("must be positive"),
+            std::string::npos);
+  EXPECT_NE(message("/PREP7\nK,1\nL,1,7\n").find("keypoint 7 is not defined"), std::string::npos);
+  EXPECT_NE(message("/PREP7\nK,1\nK,2,1\nK,3,1,1\nK,4,0,1\nA,1,2,3,4\nK,2,5\n")
+                .find("keypoint 2 is used by line"),
+            std::string::npos);
+  EXPECT_NE(message(std::string(kBrick) + "BLOCK,0,1,0,1,0,1\nMSHAPE,1,3D\nVMESH,1\n")
+                .find("free tetrahedral meshing is not supported"),
+            std::string::npos);
+  EXPECT_NE(message("/PREP7\nBLOCK,0,1,0,1,0,1\nVSBV,1,2\n").find("boolean"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace impactfe
