@@ -1,6 +1,7 @@
 // The thesis's second jobs (pendulum1_post.inp, pendulum2_post.inp, unchanged): POST1 decks that
 // read the results of the analysis deck of the same case and draw Fig. 5-1-2 / 5-1-3, the
 // pendulum's deformed shape at substeps 1, 6, 11, ..., 96 overlaid under /NOERASE.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -127,28 +128,70 @@ TEST(ThesisPostDecks, ResultsOptionAndMissingResults) {
   EXPECT_EQ(legends(read_file(other / "pendulum1_post000.svg")).size(), 20u);
 }
 
-// examples/crash1_post26.inp, the POST26 companion of the thesis car crash (case 1), run against
-// the results of crash1.inp: its target / computed / ratio table against the exact lumped
-// elastic-bar values of REFERENCE §2 (max |UX| of nodes 7 and 1 within 0.5 %, max gap force within
-// 2 %, peak stresses of elements 6 and 1 within 3 %) and its three PLVAR graphs.
-TEST(ThesisPostDecks, Crash1Post26CurvesMatchTheReference) {
-  const fs::path dir = fresh_directory("post_crash1_post26");
-  run_deck_in(deck("crash1.inp"), dir);
-  run_post_deck(std::string(IMPACTFE_TEST_DECKS) + "/../../examples/crash1_post26.inp", dir);
-  std::ifstream table(dir / "crash1_post26.txt");
+// examples/crashN_post26.inp, the POST26 companions of the thesis car crash (Figs. 5-2-5 to
+// 5-2-10), run against the results of crashN.inp: their target / computed / ratio tables against
+// the exact lumped elastic-bar values of REFERENCE §2 (max |UX| of nodes 7 and 1 within 0.5 %,
+// max gap force within 2 %, peak stress of element 6 within 3 %) and their three PLVAR graphs.
+// Element 1 (far end) is carried by the bar's axial modes, which Houbolt damps at the thesis Δt:
+// 2.1 / 5.6 / 12 % low for cases 1 / 2 / 3 (the documented deviation of test_car_crash.cpp),
+// so 3 % for case 1 and 15 % for cases 2 and 3.
+void check_crash_post26(int crash_case) {
+  const std::string name = "crash" + std::to_string(crash_case);
+  const fs::path dir = fresh_directory("post_" + name + "_post26");
+  run_deck_in(deck(name + ".inp"), dir);
+  run_post_deck(std::string(IMPACTFE_TEST_DECKS) + "/../../examples/" + name + "_post26.inp", dir);
+  std::ifstream table(dir / (name + "_post26.txt"));
   ASSERT_TRUE(table.good());
-  const double tolerance[5] = {0.005, 0.005, 0.02, 0.03, 0.03};
+  const double tolerance[5] = {0.005, 0.005, 0.02, 0.03, crash_case == 1 ? 0.03 : 0.15};
   double target = 0.0, computed = 0.0, ratio = 0.0;
   int row = 0;
   while (table >> target >> computed >> ratio) {
     ASSERT_LT(row, 5);
+    EXPECT_NEAR(ratio, computed / target, 1e-6) << name << " row " << row;
+    EXPECT_NEAR(ratio, 1.0, tolerance[row]) << name << " row " << row;
+    ++row;
+  }
+  EXPECT_EQ(row, 5);
+  for (const char* suffix : {"_post26000.svg", "_post26001.svg", "_post26002.svg"})
+    EXPECT_NE(read_file(dir / (name + suffix)).find("<polyline"), std::string::npos) << suffix;
+}
+
+TEST(ThesisPostDecks, Crash1Post26CurvesMatchTheReference) {
+  check_crash_post26(1);
+}
+TEST(ThesisPostDecks, Crash2Post26CurvesMatchTheReference) {
+  check_crash_post26(2);
+}
+TEST(ThesisPostDecks, Crash3Post26CurvesMatchTheReference) {
+  check_crash_post26(3);
+}
+
+// examples/helmet_post26.inp, the POST26 companion of the thesis helmet (superelement case,
+// Figs. 5-3-2 to 5-3-7), run against helmet_segen.inp + helmet_use.inp: crown UZ at its
+// first-impact minimum within 0.1 % of the 1.0 travel of REFERENCE §3, the free-fall velocity
+// just before the ground gap closes (Houbolt integrates constant acceleration exactly), and its
+// six PLVAR graphs.
+TEST(ThesisPostDecks, HelmetPost26CurvesMatchTheReference) {
+  const fs::path dir = fresh_directory("post_helmet_post26");
+  run_deck_in(deck("helmet_segen.inp"), dir);
+  run_deck_in(deck("helmet_use.inp"), dir);
+  run_post_deck(std::string(IMPACTFE_TEST_DECKS) + "/../../examples/helmet_post26.inp", dir);
+  std::ifstream table(dir / "helmet_post26.txt");
+  ASSERT_TRUE(table.good());
+  const double tolerance[2] = {1e-3, 1e-6};
+  double target = 0.0, computed = 0.0, ratio = 0.0;
+  int row = 0;
+  while (table >> target >> computed >> ratio) {
+    ASSERT_LT(row, 2);
     EXPECT_NEAR(ratio, computed / target, 1e-6) << "row " << row;
     EXPECT_NEAR(ratio, 1.0, tolerance[row]) << "row " << row;
     ++row;
   }
-  EXPECT_EQ(row, 5);
-  for (const char* svg : {"crash1_post26000.svg", "crash1_post26001.svg", "crash1_post26002.svg"})
-    EXPECT_NE(read_file(dir / svg).find("<polyline"), std::string::npos) << svg;
+  EXPECT_EQ(row, 2);
+  for (int k = 0; k < 6; ++k)
+    EXPECT_NE(read_file(dir / fmt::format("helmet_post26{:03d}.svg", k)).find("<polyline"),
+              std::string::npos)
+        << k;
 }
 
 }  // namespace
