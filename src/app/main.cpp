@@ -46,6 +46,7 @@ struct RunArgs {
   int threads = 0;  // 0: all cores
   bool skip_unknown = false;
   std::string dialect = "auto";
+  std::string results;
   std::string superelement;
   bool continue_on_nonconvergence = false;
   bool no_condense = false;
@@ -99,6 +100,7 @@ int run_command(const RunArgs& args) {
     std::cerr << "error: deck not found: " << args.deck << "\n";
     return kExitInput;
   }
+  const fs::path start_directory = fs::current_path();  // --results is relative to it
   // The output directory must exist (or be creatable) and take files: else the run could not
   // keep its results, which is exit status 2 like a full disk.
   std::string jobname = args.jobname.empty() ? deck.stem().string() : args.jobname;
@@ -131,6 +133,14 @@ int run_command(const RunArgs& args) {
   DeckOptions options;
   options.skip_unknown = args.skip_unknown;
   options.jobname = args.jobname;
+  if (!args.results.empty()) {
+    const fs::path results = fs::absolute(start_directory / args.results);
+    if (!fs::is_regular_file(results)) {
+      std::cerr << "error: results file not found: " << args.results << "\n";
+      return kExitInput;
+    }
+    options.results_file = results.string();
+  }
   options.output = &std::cout;  // the deck's listings (*VWRITE, *MSG, /COM, ...) until /OUT
   if (args.dialect == "4x") options.dialect = Dialect::Classic4x;
   if (args.dialect == "modern") options.dialect = Dialect::Modern;
@@ -169,11 +179,6 @@ int run_command(const RunArgs& args) {
   }
   if (args.jobname.empty() && !job.model.jobname.empty()) jobname = job.model.jobname;
   for (const auto& ignored : job.ignored_commands) Log::info("ignored: {}", ignored);
-  if (job.steps.empty() && !job.post_commands.empty())
-    Log::warn(
-        "{} POST1/POST26 command(s) recognised and stored; post-processing decks are "
-        "not executed yet (use `impactfe post`)",
-        job.post_commands.size());
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   print_summary(jobname, stats, wall);
@@ -200,6 +205,9 @@ int main(int argc, char** argv) {
   run_cmd->add_flag("--skip-unknown", run.skip_unknown, "warn and skip unknown commands");
   run_cmd->add_option("--dialect", run.dialect, "4x|modern|auto")
       ->check(CLI::IsMember({"4x", "modern", "auto"}));
+  run_cmd->add_option("--results", run.results,
+                      "results file read by the POST1/POST26/*GET commands of a deck that "
+                      "solves nothing");
   run_cmd->add_option("--se", run.superelement, "superelement file for MATRIX50 elements");
   run_cmd->add_flag("--continue-on-nonconvergence", run.continue_on_nonconvergence,
                     "accept non-converged steps with a warning");

@@ -224,11 +224,12 @@ struct ExpansionPassRequest {
   SourceLocation where;
 };
 
-/// A raw deck command kept for a later stage (POST1/POST26 blocks, *DO replays).
-struct StoredCommand {
-  std::string name;
-  std::vector<std::string> fields;
-  SourceLocation where;
+/// CM: a named, frozen list of entity numbers of one kind (APDL_MODELING §1.7). Later
+/// selection changes do not alter it; entities deleted later drop out when it is used.
+struct Component {
+  std::string entity;    // "NODE", "ELEM" (solid-model kinds: "KP", "LINE", "AREA", "VOLU")
+  std::vector<int> ids;  // ascending
+  SourceLocation where;  // the CM command
 };
 
 /// Everything the deck defines. Node and element maps are ordered by user id.
@@ -248,6 +249,7 @@ struct Model {
   std::map<DofKey, SourceLocation> master_where;          // the M command of each master
   std::vector<GapCondition> gap_conditions;               // GP, in input order
   std::map<DofKey, InitialCondition> initial_conditions;  // IC
+  std::map<std::string, Component> components;            // CM, by upper-case name
 
   // Model building the MAPDL way (APDL_MODELING §1-§6).
   SolidModel solid;                      // keypoints, lines, areas, volumes, mesh controls
@@ -264,7 +266,7 @@ struct Model {
   const ElementType& element_type(int id) const;
 };
 
-/// The parsed deck: the final model and the ordered solution/expansion/post requests.
+/// The parsed deck: the final model and the ordered solution and expansion requests.
 struct Job {
   Model model;
   /// In execution order; each entry is either an analysis or an expansion pass.
@@ -274,8 +276,6 @@ struct Job {
     Model model_snapshot;  // model (geometry, elements, masters, gaps) as of this request
   };
   std::vector<Step> steps;
-  /// POST1 / POST26 commands in order (executed by the post-processing stage).
-  std::vector<StoredCommand> post_commands;
   std::vector<std::string> ignored_commands;  // graphics / print-only commands, listed in the log
   /// --skip-unknown: each unknown command skipped, how often, and where it first appeared.
   struct Skipped {

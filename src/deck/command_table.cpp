@@ -33,6 +33,11 @@ const std::vector<CommandSpec>& command_table() {
     register_generation_commands(t);
     register_solution_commands(t);
     register_load_commands(t);
+    register_component_commands(t);
+    register_get_commands(t);
+    register_post1_commands(t);
+    register_post1_plot_commands(t);
+    register_post26_commands(t);
     register_csys_commands(t);
     register_solid_model_commands(t);
     register_solid_edit_commands(t);
@@ -41,7 +46,6 @@ const std::vector<CommandSpec>& command_table() {
     register_mesh_selection_commands(t);
     register_surface_load_commands(t);
     register_material_commands(t);
-    register_post_commands(t);
     register_parameter_commands(t);
     register_array_commands(t);
     register_output_commands(t);

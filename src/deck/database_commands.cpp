@@ -53,6 +53,7 @@ void DeckReader::clear_database(const Command& c) {
   last_solved_time.reset();
   mdamp_next = 1;
   last_command_.reset();
+  post.reset();  // POST1 set, element table, POST26 variables
   Log::info("{}:{}: /CLEAR: database cleared (a new job begins)", c.where.file, c.where.line);
 }
 
@@ -311,6 +312,8 @@ void cmd_resume(DeckReader& r, const Command& c) {
     }
     r.element_order.clear();
     for (const auto& [id, e] : m.elements) r.element_order.push_back(id);
+    r.model.selection
+        .select_everything();  // the database file holds no selection: everything is selected
     if (!keep_params) {
       const bool degrees = r.params.degrees;
       r.params.clear();

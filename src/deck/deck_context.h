@@ -1,9 +1,10 @@
 #pragma once
 /// Internal state of one deck read: the model being built, the current processor, the
 /// parameters, the 4x load-step list and the modern open analysis. Shared by the handler files
-/// (prep7_commands.cpp, solution_commands.cpp, post_commands.cpp, session_commands.cpp); not a
-/// public interface.
+/// (prep7_commands.cpp, solution_commands.cpp, component_commands.cpp, post1_commands.cpp, ...);
+/// not a public interface.
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -74,7 +75,13 @@ void register_prep7_commands(std::vector<CommandSpec>& table);
 void register_generation_commands(std::vector<CommandSpec>& table);
 void register_solution_commands(std::vector<CommandSpec>& table);
 void register_load_commands(std::vector<CommandSpec>& table);
-void register_post_commands(std::vector<CommandSpec>& table);
+void register_component_commands(std::vector<CommandSpec>& table);
+void register_get_commands(std::vector<CommandSpec>& table);
+void register_post1_commands(std::vector<CommandSpec>& table);
+void register_post1_plot_commands(std::vector<CommandSpec>& table);
+void register_post26_commands(std::vector<CommandSpec>& table);
+
+struct PostState;
 void register_parameter_commands(std::vector<CommandSpec>& table);
 void register_array_commands(std::vector<CommandSpec>& table);
 void register_output_commands(std::vector<CommandSpec>& table);
@@ -157,12 +164,13 @@ class DeckReader {
   void ignore(const Command& c);
 
   // ---- model helpers ---------------------------------------------------------------------
-  /// Node numbers NODE..NEND step NINC (field numbers given); NODE may be ALL. Missing nodes in a
-  /// range are skipped; a single missing node (or an empty range) is an error.
+  /// Node numbers NODE..NEND step NINC (field numbers given); NODE may be ALL (the selected
+  /// nodes) or a component name. Missing nodes in a range are skipped; a single missing node (or
+  /// an empty range, or nothing selected) is an error.
   std::vector<int> node_range(const Command& c, int node_field, int end_field, int inc_field);
   void require_node(const Command& c, int id) const;
-  /// Selection state as the get functions (NSEL(n), NODE(x,y,z), NDNEXT, ...) see it; every
-  /// defined entity until selection sets exist (the selection commands replace these).
+  /// Selection state as the get functions (NSEL(n), NODE(x,y,z), NDNEXT, ...) see it: defined
+  /// and selected (NSEL, ESEL, ...).
   bool node_selected(int id) const;
   bool element_selected(int id) const;
   /// Checks the node count against the element type and stores the record (repeats allowed).
@@ -227,6 +235,11 @@ class DeckReader {
   // MDAMP memory.
   int mdamp_next = 1;
 
+  // Post-processing state (the current POST1 set, element table, plot settings, POST26
+  // variables: deck/post_state.h). The selection and the components are in the Model.
+  std::shared_ptr<PostState> post;
+  std::size_t solutions = 0;  // solution requests handed to the host so far
+
   /// /CLEAR: a new, empty database (model, job, parameters, processor, output to the terminal);
   /// *CREATE files survive. The solution host closes the current job first.
   void clear_database(const Command& c);
@@ -260,7 +273,7 @@ class DeckReader {
   long long executed_ = 0;               // commands executed (runaway-loop guard)
   bool stopped_ = false;                 // STOP / /EOF at the top level
   struct FunctionBridge : FunctionHost {
-    const DeckReader* reader = nullptr;
+    DeckReader* reader = nullptr;  // non-const: results functions (UX, ...) open the results
     bool call(const std::string& name, const std::vector<double>& args,
               double& result) const override;
   } functions_;
@@ -272,9 +285,6 @@ std::string read_text_file(const std::string& path, const SourceLocation& where)
 /// also Fname.inp and Fname.mac.
 std::string resolve_input(const std::string& includer, const std::string& fname,
                           const std::string& ext, const std::string& dir = {});
-
-/// Stores a POST1/POST26 command (parameters substituted) into Job::post_commands.
-void store_post_command(DeckReader& r, const Command& c);
 /// DOF labels of D/M/DDELE: Lab in `lab_field`, extra labels in `extra_first..extra_last`. In 4x a
 /// DOF label in a numeric range field (`end_field`, `inc_field`) starts the extra-label list
 /// (APDL_SUBSET §1.11); the range fields it consumes are set to 0. ALL gives all six DOFs.

@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "deck/deck_context.h"
+#include "deck/post_support.h"
 #include "elements/element_registry.h"
 
 namespace impactfe {
@@ -240,14 +241,12 @@ void DeckReader::require_node(const Command& c, int id) const {
 std::vector<int> DeckReader::node_range(const Command& c, int node_field, int end_field,
                                         int inc_field) {
   std::vector<int> out;
-  if (label(c, node_field) == "ALL") {
-    // ALL = the selected nodes (APDL_MODELING §1.0); everything is selected unless a select
-    // command changed it.
-    for (const auto& [id, node] : model.nodes)
-      if (model.selection.nodes.selected(id)) out.push_back(id);
-    if (out.empty())
-      fail(c, model.nodes.empty() ? "ALL: no nodes are defined" : "ALL: no node is selected");
-    return out;
+  // ALL = the selected nodes; a component name = its nodes (APDL_MODELING §1.9).
+  const std::string first_label = label(c, node_field);
+  if (first_label == "ALL") return require_selected_nodes(*this, c);
+  if (auto members = component_members(*this, c, first_label, "NODE")) {
+    if (members->empty()) fail(c, fmt::format("component {} has no existing nodes", first_label));
+    return *members;
   }
   const auto first = opt_int(c, node_field);
   if (!first) fail(c, fmt::format("field {}: node number missing", node_field));
@@ -339,6 +338,7 @@ void DeckReader::validate_elements() {
 }
 
 void DeckReader::solve_step(std::size_t step) {
+  ++solutions;  // results read before this request are out of date
   if (options.host != nullptr) options.host->solve(job, step);
 }
 

@@ -17,6 +17,9 @@ struct DeckOptions {
   std::optional<Dialect> dialect;  // nullopt = auto-detect (spec §2.3)
   bool skip_unknown = false;       // unknown commands become listed warnings
   std::string jobname;             // default: the deck's file stem (or /FILNAME)
+  /// Results file of a post-only deck (`impactfe run --results FILE`); see post_support.h for
+  /// how a deck that solves nothing finds its results otherwise.
+  std::string results_file;
   /// Solves each request as the deck reaches it (null: requests are only collected).
   SolutionHost* host = nullptr;
   /// Most nodes and most elements the deck may define: N, E and the generation commands that

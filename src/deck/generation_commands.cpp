@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "deck/deck_context.h"
+#include "deck/post_support.h"
 #include "elements/element_registry.h"
 #include "geometry/line_geometry.h"
 #include "geometry/spacing.h"
@@ -140,13 +141,14 @@ void cmd_ngen(DeckReader& r, const Command& c) {
   }
 }
 
-/// Pattern IEL1..IEL2 step IEINC (IEL1 = ALL: the selected ones; IEL1 < 0: the last |IEL1| elements
-/// created).
+/// Pattern IEL1..IEL2 step IEINC (IEL1 = ALL: the selected elements; a component name: its
+/// elements; IEL1 < 0: the last |IEL1| elements created).
 std::vector<int> element_pattern(DeckReader& r, const Command& c, int f1) {
   std::vector<int> out;
   if (r.label(c, f1) == "ALL") {
-    for (const auto& [id, e] : r.model.elements)
-      if (r.model.selection.elements.selected(id)) out.push_back(id);
+    out = require_selected_elements(r, c);
+  } else if (auto members = component_members(r, c, r.label(c, f1), "ELEM")) {
+    out = *members;
   } else {
     const auto first = r.opt_int(c, f1);
     if (!first) r.fail(c, "IEL1 missing");

@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "deck/deck_context.h"
+#include "deck/get_functions.h"
 
 namespace impactfe::deck {
 
@@ -16,11 +17,11 @@ namespace impactfe::deck {
 // -------------------------------------------------------
 
 bool DeckReader::node_selected(int id) const {
-  return model.nodes.count(id) != 0;  // every node until selection sets exist
+  return model.nodes.count(id) != 0 && model.selection.nodes.selected(id);
 }
 
 bool DeckReader::element_selected(int id) const {
-  return model.elements.count(id) != 0;
+  return model.elements.count(id) != 0 && model.selection.elements.selected(id);
 }
 
 bool DeckReader::FunctionBridge::call(const std::string& name, const std::vector<double>& args,
@@ -104,27 +105,27 @@ int next_selected(const Map& m, int from, Selected selected, bool higher) {
   return 0;
 }
 
-double f_nx(const DeckReader& r, const std::vector<double>& a) {
+double f_nx(DeckReader& r, const std::vector<double>& a) {
   return node_arg(r, a[0], "NX").x(0);
 }
-double f_ny(const DeckReader& r, const std::vector<double>& a) {
+double f_ny(DeckReader& r, const std::vector<double>& a) {
   return node_arg(r, a[0], "NY").x(1);
 }
-double f_nz(const DeckReader& r, const std::vector<double>& a) {
+double f_nz(DeckReader& r, const std::vector<double>& a) {
   return node_arg(r, a[0], "NZ").x(2);
 }
 
-double f_node(const DeckReader& r, const std::vector<double>& a) {
+double f_node(DeckReader& r, const std::vector<double>& a) {
   const Vec3 p(a[0], a.size() > 1 ? a[1] : 0.0, a.size() > 2 ? a[2] : 0.0);
   return nearest_node(r, p, 0);
 }
 
-double f_nnear(const DeckReader& r, const std::vector<double>& a) {
+double f_nnear(DeckReader& r, const std::vector<double>& a) {
   const Node& n = node_arg(r, a[0], "NNEAR");
   return nearest_node(r, n.x, n.id);
 }
 
-double f_enearn(const DeckReader& r, const std::vector<double>& a) {
+double f_enearn(DeckReader& r, const std::vector<double>& a) {
   const Node& n = node_arg(r, a[0], "ENEARN");
   int best = 0;
   double best_d = std::numeric_limits<double>::infinity();
@@ -139,21 +140,21 @@ double f_enearn(const DeckReader& r, const std::vector<double>& a) {
   return best;
 }
 
-double f_distnd(const DeckReader& r, const std::vector<double>& a) {
+double f_distnd(DeckReader& r, const std::vector<double>& a) {
   return (node_arg(r, a[0], "DISTND").x - node_arg(r, a[1], "DISTND").x).norm();
 }
 
-double f_centrx(const DeckReader& r, const std::vector<double>& a) {
+double f_centrx(DeckReader& r, const std::vector<double>& a) {
   return centroid(r, element_arg(r, a[0], "CENTRX"))(0);
 }
-double f_centry(const DeckReader& r, const std::vector<double>& a) {
+double f_centry(DeckReader& r, const std::vector<double>& a) {
   return centroid(r, element_arg(r, a[0], "CENTRY"))(1);
 }
-double f_centrz(const DeckReader& r, const std::vector<double>& a) {
+double f_centrz(DeckReader& r, const std::vector<double>& a) {
   return centroid(r, element_arg(r, a[0], "CENTRZ"))(2);
 }
 
-double f_nelem(const DeckReader& r, const std::vector<double>& a) {
+double f_nelem(DeckReader& r, const std::vector<double>& a) {
   const ElementRecord& e = element_arg(r, a[0], "NELEM");
   const int pos = id_of(a[1], "position");
   return pos >= 1 && pos <= static_cast<int>(e.nodes.size())
@@ -161,22 +162,22 @@ double f_nelem(const DeckReader& r, const std::vector<double>& a) {
              : 0.0;
 }
 
-double f_nsel(const DeckReader& r, const std::vector<double>& a) {
+double f_nsel(DeckReader& r, const std::vector<double>& a) {
   const int id = id_of(a[0], "node");
   return r.model.nodes.count(id) == 0 ? 0.0 : (r.node_selected(id) ? 1.0 : -1.0);
 }
 
-double f_esel(const DeckReader& r, const std::vector<double>& a) {
+double f_esel(DeckReader& r, const std::vector<double>& a) {
   const int id = id_of(a[0], "element");
   return r.model.elements.count(id) == 0 ? 0.0 : (r.element_selected(id) ? 1.0 : -1.0);
 }
 
-double f_ndnext(const DeckReader& r, const std::vector<double>& a) {
+double f_ndnext(DeckReader& r, const std::vector<double>& a) {
   return next_selected(
       r.model.nodes, id_of(a[0], "node"), [&](int id) { return r.node_selected(id); }, true);
 }
 
-double f_elnext(const DeckReader& r, const std::vector<double>& a) {
+double f_elnext(DeckReader& r, const std::vector<double>& a) {
   return next_selected(
       r.model.elements, id_of(a[0], "element"), [&](int id) { return r.element_selected(id); },
       true);
@@ -258,7 +259,7 @@ std::optional<Value> element_items(DeckReader& r, const Command& c, const GetIte
   if (q.it1num == "TYPE") return static_cast<double>(e.type);
   if (q.it1num == "REAL") return static_cast<double>(e.real);
   if (q.it1num == "SECN") return static_cast<double>(e.secnum);
-  r.fail(c, fmt::format("ELEM,{},ATTR: attribute '{}' (MAT, TYPE, REAL, SECN)", id, q.it1num));
+  return std::nullopt;  // ESYS, ENAM: get_command.cpp's items
 }
 
 std::optional<Value> parm_items(DeckReader& r, const Command& c, const GetItem& q) {
@@ -324,6 +325,7 @@ const std::vector<GetFunctionSpec>& get_function_table() {
   static const std::vector<GetFunctionSpec> table = [] {
     std::vector<GetFunctionSpec> t;
     register_model_get_functions(t);
+    register_results_get_functions(t);  // get_functions.cpp
     return t;
   }();
   return table;
@@ -345,6 +347,7 @@ void register_model_get_items(std::vector<GetItemProvider>& t) {
 const std::vector<GetItemProvider>& get_item_providers() {
   static const std::vector<GetItemProvider> table = [] {
     std::vector<GetItemProvider> t;
+    register_results_get_items(t);  // get_command.cpp; tried after the model items
     register_model_get_items(t);
     return t;
   }();

@@ -24,7 +24,7 @@ struct GetFunctionSpec {
   const char* name;
   int min_args;
   int max_args;
-  double (*evaluate)(const DeckReader& r, const std::vector<double>& args);
+  double (*evaluate)(DeckReader& r, const std::vector<double>& args);
 };
 
 /// Every get function (all groups registered once).
@@ -59,6 +59,9 @@ const std::vector<PutItemProvider>& put_item_providers();
 /// ELEM NODE k, ELEM ATTR MAT/TYPE/REAL/SECN, ELEM CENT X/Y/Z, ELEM ESEL, ELEM NXTH/NXTL,
 /// ELEM NUM MAX/MIN, ELEM COUNT; PARM name TYPE / DIM X|Y|Z.
 void register_model_get_items(std::vector<GetItemProvider>& table);
+/// Results, POST1/POST26 and database items (NODE U/V/A/RF/D/F/ANG, ELEM results/ETAB/VOLU,
+/// ACTIVE, MODE, FSUM, SSUM, SORT, VARI, ETYP, RCON, MP; get_command.cpp).
+void register_results_get_items(std::vector<GetItemProvider>& table);
 
 /// The item of command fields `entity_field`.. (Entity, ENTNUM, Item1, IT1NUM, Item2, IT2NUM):
 /// labels upper-cased (character parameters substituted), ENTNUM evaluated when it is a number

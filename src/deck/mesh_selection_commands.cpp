@@ -242,22 +242,13 @@ void cmd_select_all(DeckReader& r, const Command& c) {
 
 }  // namespace
 
-/// In /POST1 and /POST26 these commands stay stored for the post-processing stage, as before.
-template <Handler handler>
-void model_or_post(DeckReader& r, const Command& c) {
-  if (r.processor & kPost)
-    store_post_command(r, c);
-  else
-    handler(r, c);
-}
-
 void register_mesh_selection_commands(std::vector<CommandSpec>& t) {
   const unsigned where = kPrep7 | kSolu | kPost1;
-  t.push_back({"NSEL", model_or_post<cmd_nsel>, where | kPost});
-  t.push_back({"ESEL", model_or_post<cmd_esel>, where | kPost});
+  t.push_back({"NSEL", cmd_nsel, where | kPost});
+  t.push_back({"ESEL", cmd_esel, where | kPost});
   t.push_back({"NSLE", cmd_nsle, where});
   t.push_back({"ESLN", cmd_esln, where});
-  t.push_back({"ALLSEL", model_or_post<cmd_allsel>, where | kPost});
+  t.push_back({"ALLSEL", cmd_allsel, where | kPost});
   t.push_back({"NALL", cmd_select_all, where});
   t.push_back({"EALL", cmd_select_all, where});
 }

@@ -19,7 +19,6 @@ void cmd_solu(DeckReader& r, const Command&) {
 
 void cmd_post(DeckReader& r, const Command& c) {
   r.processor = c.name == "/POST1" ? kPost1 : kPost26;
-  store_post_command(r, c);
 }
 
 void cmd_finish(DeckReader& r, const Command& c) {
@@ -27,7 +26,6 @@ void cmd_finish(DeckReader& r, const Command& c) {
     r.warn(c, "/STRESS block closed by FINISH without END; expansion requests kept");
     close_stress_block(r, r.stress_where);
   }
-  if (r.processor & kPost) store_post_command(r, c);
   r.processor = kBegin;
 }
 
@@ -44,13 +42,11 @@ void cmd_filname(DeckReader& r, const Command& c) {
   r.model.jobname = c.text(1);
 }
 
-/// Graphics/print-only commands: stored with the POST commands inside /POST1 and /POST26 (the post
-/// stage may use the view settings), ignored (and listed) elsewhere.
+/// Graphics-device and print-only commands with no effect on results or pictures: ignored with a
+/// logged reason (and listed). The plot and print commands of POST1/POST26 and the view settings
+/// a picture needs are handled in post1_plot_commands.cpp and post26_commands.cpp.
 void cmd_graphics(DeckReader& r, const Command& c) {
-  if (r.processor & kPost)
-    store_post_command(r, c);
-  else
-    r.ignore(c);
+  r.ignore(c);
 }
 
 }  // namespace
@@ -69,16 +65,13 @@ void register_session_commands(std::vector<CommandSpec>& t) {
         "*BEGIN", "*END", "*CREATE", "*USE", "/INPUT", "/EOF", "*REPEAT"})
     t.push_back({name, nullptr, kAnywhere});
   for (const char* name :
-       {"/SHOW",   "/DSCALE", "/FOCUS",   "/DIST",   "/NOERASE", "/ERASE", "/INTER",   "/NOPR",
-        "/GOPR",   "/VIEW",   "/PNUM",    "/PBC",    "EPLOT",    "NPLOT",  "/REPLOT",  "/ANGLE",
-        "/AUTO",   "/TRIAD",  "/PLOPTS",  "/WINDOW", "/DEVICE",  "/RGB",   "/CONTOUR", "/EDGE",
-        "/ESHAPE", "/TYPE",   "/USER",    "/ZOOM",   "/HEADER",  "/PAGE",  "/FORMAT",  "/GRAPHICS",
-        "/GFILE",  "/GLINE",  "/GCOLUMN", "/XRANGE", "/YRANGE",  "/GROPT", "/GTHK",    "/WAIT",
-        "/UIS",    "/BATCH",  "/UNITS",   "/VERIFY", "/NERR",    "/GST",   "/CWD",     "/CONFIG",
-        "/SYS",    "/AXLAB",  "NLIST",    "ELIST",   "ETLIST",   "DLIST",  "FLIST",    "MPLIST",
-        "RLIST",   "/STATUS", "PLDISP",   "PLNSOL",  "PLESOL",   "PLETAB", "PLVAR",    "PRVAR",
-        "PRNSOL",  "PRESOL",  "PRRSOL",   "PRETAB",  "PRTIME",   "/PSF",   "/PSYMB",   "GPLOT",
-        "/LINE",   "/COLOR"})
+       {"/INTER",  "/NOPR",   "/GOPR",    "/PNUM",   "/PBC",    "EPLOT",   "NPLOT",    "/REPLOT",
+        "/ANGLE",  "/TRIAD",  "/PLOPTS",  "/WINDOW", "/DEVICE", "/RGB",    "/CONTOUR", "/EDGE",
+        "/ESHAPE", "/TYPE",   "/USER",    "/ZOOM",   "/HEADER", "/PAGE",   "/FORMAT",  "/GRAPHICS",
+        "/GFILE",  "/GLINE",  "/GCOLUMN", "/GROPT",  "/GTHK",   "/WAIT",   "/UIS",     "/BATCH",
+        "/UNITS",  "/VERIFY", "/NERR",    "/GST",    "/CWD",    "/CONFIG", "/SYS",     "NLIST",
+        "ELIST",   "ETLIST",  "DLIST",    "FLIST",   "MPLIST",  "RLIST",   "KLIST",    "LLIST",
+        "/STATUS", "/PSF",    "/PSYMB",   "GPLOT",   "/LINE",   "/COLOR",  "LINES"})
     t.push_back({name, cmd_graphics, kAnywhere});
 }
 

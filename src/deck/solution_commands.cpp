@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "deck/deck_context.h"
+#include "deck/post_support.h"
 
 namespace impactfe::deck {
 
@@ -390,7 +391,7 @@ void cmd_afwrite(DeckReader& r, const Command& c) {
   a.load_steps = r.load_steps_4x;
   a.where = c.where;
   step.analysis = std::move(a);
-  step.model_snapshot = r.model;
+  step.model_snapshot = solution_model(r, c);
   r.frozen = std::move(step);
 }
 
@@ -411,7 +412,7 @@ AnalysisRequest& open_analysis(DeckReader& r, const Command& c) {
     a.options = r.model.options;
     a.where = c.where;
     step.analysis = std::move(a);
-    step.model_snapshot = r.model;
+    step.model_snapshot = solution_model(r, c);
     r.job.steps.push_back(std::move(step));
     r.open_analysis = r.job.steps.size() - 1;
   }

@@ -55,7 +55,7 @@ class Brick8 final : public Element {
   /// True when some of the nodes I..P repeat (prism, pyramid, tetrahedron).
   bool degenerate() const { return n_unique_ < 8; }
   /// Element volume ∫dV (2x2x2 Gauss), in the deck's length unit cubed.
-  double volume() const { return volume_; }
+  std::optional<double> volume() const override { return volume_; }
   /// Cauchy stress (xx, yy, zz, xy, yz, xz) at the centroid for displacement u.
   Vector6d centroid_stress(const ElementContext& ctx, const Eigen::VectorXd& u) const;
 

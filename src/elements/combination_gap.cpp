@@ -216,6 +216,10 @@ const ElementRegistration kCombin40{{.name = "COMBIN40",
                                      .real_constants = RealConstantUse::Required,
                                      .vtk_cell = VtkCell::Line,
                                      .result_names = kCombinationGapResults,
+                                     // STAT: MAPDL counts 1 open, 2 closed, 3 sliding.
+                                     .result_sequences = {{"SMISC", "1", "FORC"},
+                                                          {"NMISC", "2", "STAT", 1.0},
+                                                          {"NMISC", "4", "SLIDE"}},
                                      .has_status = true,
                                      .create = make_combination_gap}};
 

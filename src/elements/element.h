@@ -6,6 +6,7 @@
 #include <array>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -92,6 +93,9 @@ class Element {
   /// Values in result_names() order at displacement u and velocity v.
   virtual void results(const ElementContext& ctx, const Eigen::VectorXd& u,
                        const Eigen::VectorXd& v, ElementResultValues& out) const = 0;
+  /// Undeformed volume (length × area of a spar, ∫t dA of a shell, ∫dV of a brick) for
+  /// *GET ELEM VOLU and ETABLE VOLU; nullopt for elements without one (springs, masses, gaps).
+  virtual std::optional<double> volume() const { return std::nullopt; }
 
  private:
   int id_;

@@ -62,6 +62,19 @@ std::vector<const ElementTypeDescriptor*> registered_element_types() {
   return out;
 }
 
+std::optional<ResultSequence> find_result_sequence(const ElementTypeDescriptor& type,
+                                                   const std::string& item,
+                                                   const std::string& comp) {
+  const std::string i = to_upper(item), c = to_upper(comp);
+  for (const auto& s : type.result_sequences)
+    if (s.item == i && s.comp == c) return s;
+  // A stored result name given directly (program extension: ETABLE,F,FORC).
+  if (c.empty())
+    for (const auto& n : type.result_names)
+      if (n == i) return ResultSequence{i, "", n, 0.0};
+  return std::nullopt;
+}
+
 std::string supported_element_type_names() {
   std::string out;
   for (const auto& [name, d] : registry()) out += (out.empty() ? "" : " ") + name;

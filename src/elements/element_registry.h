@@ -9,6 +9,7 @@
 ///   const ElementRegistration kCombin14{{.name = "COMBIN14", .number = 14, ..., .create = ...}};
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,15 @@ enum class VtkCell : int {
 using ElementFactory =
     std::function<std::unique_ptr<Element>(const ElementBuildContext&, const ElementRecord&)>;
 
+/// How an MAPDL output item of ETABLE / ESOL / *GET ELEM / PRESOL (Item,Comp such as SMISC,1,
+/// LS,1 or S,EQV) reads a stored result of the element: value = stored `name` + offset.
+struct ResultSequence {
+  std::string item;  // SMISC, NMISC, LS, LEPEL, S, EPEL (upper case)
+  std::string comp;  // "1", "X", "EQV" (upper case)
+  std::string name;  // stored result name (one of result_names)
+  double offset = 0.0;
+};
+
 /// What one element type (one ANSYS name) tells the rest of the program.
 struct ElementTypeDescriptor {
   std::string name;    // ANSYS name, upper case: "LINK8"
@@ -56,6 +66,8 @@ struct ElementTypeDescriptor {
   VtkCell vtk_cell = VtkCell::PolyVertex;
   /// Result item names, in the order Element::results() returns them.
   std::vector<std::string> result_names;
+  /// MAPDL item/sequence numbers of the stored results (APDL_SCRIPTING §D.6).
+  std::vector<ResultSequence> result_sequences;
   /// True when elements of this type may carry a status (gap open/closed, slider).
   bool has_status = false;
   /// Faces for surface loads (SF, SFE; APDL_MODELING §5.1): faces[k] lists the node positions
@@ -92,5 +104,10 @@ const ElementTypeDescriptor& element_type_descriptor(const ElementType& type);
 std::vector<const ElementTypeDescriptor*> registered_element_types();
 /// "COMBIN14 COMBIN40 LINK1 ..." for error messages.
 std::string supported_element_type_names();
+/// The stored result that MAPDL's Item,Comp of an element of this type reads (nullopt when the
+/// element has none); Item may also be a stored result name itself (Comp blank).
+std::optional<ResultSequence> find_result_sequence(const ElementTypeDescriptor& type,
+                                                   const std::string& item,
+                                                   const std::string& comp);
 
 }  // namespace impactfe

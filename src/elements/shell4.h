@@ -56,6 +56,8 @@ class Shell4 : public Element {
   /// B != nullptr, its derivative B = ∂d/∂u (co-rotational kinematics). Exposed for tests.
   void corotational_kinematics(const Eigen::VectorXd& u, Eigen::VectorXd& d,
                                Eigen::MatrixXd* B) const;
+  /// ∫t dA of the facet.
+  std::optional<double> volume() const override { return kernel_->volume(); }
   /// Geometric stiffness K_G = ∂(B(u)ᵀ f_l)/∂u at a fixed local force vector f_l (6n), the part
   /// of the large-deflection tangent beyond Bᵀ K̄ B. Exposed for tests.
   void corotational_geometric_stiffness(const Eigen::VectorXd& u, const Eigen::VectorXd& f_l,

@@ -62,6 +62,7 @@ FlatShellKernel::FlatShellKernel(const std::vector<Eigen::Vector2d>& xy, const K
     if (!(detJ > 0.0))
       throw std::invalid_argument("non-positive Jacobian (zero area or bad shape)");
     area_ += detJ * p.w;
+    volume_ += thickness_at(N) * detJ * p.w;
     total_mass_ += (data_.rho * thickness_at(N) + data_.added_mass) * detJ * p.w;
   }
   // DK side coefficients (Batoz et al. 1980 eq. 19 with x_ij = x_i − x_j).

@@ -53,6 +53,8 @@ class FlatShellKernel {
   int n_nodes() const { return n_; }
   int n_dofs() const { return 6 * n_; }
   double area() const { return area_; }
+  /// ∫t dA (the facet's volume).
+  double volume() const { return volume_; }
   /// ∫ (ρt + ADMSUA) dA: the translational mass of the facet.
   double total_mass() const { return total_mass_; }
 
@@ -92,6 +94,7 @@ class FlatShellKernel {
   KernelData data_;
   std::vector<Eigen::Vector2d> xy_;
   double area_ = 0.0;
+  double volume_ = 0.0;
   double total_mass_ = 0.0;
   // DK side coefficients a, b, c, d, e per side k (corner k → corner k+1).
   std::vector<std::array<double, 5>> side_;

@@ -140,6 +140,7 @@ ElementTypeDescriptor spar_type(const char* name, int number, bool planar) {
           .section_types = {"LINK"},
           .vtk_cell = VtkCell::Line,
           .result_names = kSparResults,
+          .result_sequences = {{"SMISC", "1", "FORC"}, {"LS", "1", "SAXL"}, {"LEPEL", "1", "EPEL"}},
           .create = [planar](const ElementBuildContext& ctx, const ElementRecord& record) {
             return make_spar(ctx, record, planar);
           }};

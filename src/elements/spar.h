@@ -28,6 +28,7 @@ class Spar final : public Element {
   void results(const ElementContext& ctx, const Eigen::VectorXd& u, const Eigen::VectorXd& v,
                ElementResultValues& out) const override;
 
+  std::optional<double> volume() const override { return area_ * member_.length; }
   double area() const { return area_; }
   double length() const { return member_.length; }
 

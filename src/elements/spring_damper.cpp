@@ -155,14 +155,16 @@ std::unique_ptr<Element> make_spring_damper(const ElementBuildContext& ctx,
                                         stiffness, damping);
 }
 
-const ElementRegistration kCombin14{{.name = "COMBIN14",
-                                     .number = 14,
-                                     .family = "SpringDamper",
-                                     .n_nodes = 2,
-                                     .real_constants = RealConstantUse::Required,
-                                     .vtk_cell = VtkCell::Line,
-                                     .result_names = kSpringDamperResults,
-                                     .create = make_spring_damper}};
+const ElementRegistration kCombin14{
+    {.name = "COMBIN14",
+     .number = 14,
+     .family = "SpringDamper",
+     .n_nodes = 2,
+     .real_constants = RealConstantUse::Required,
+     .vtk_cell = VtkCell::Line,
+     .result_names = kSpringDamperResults,
+     .result_sequences = {{"SMISC", "1", "FORC"}, {"NMISC", "1", "STRETCH"}},
+     .create = make_spring_damper}};
 
 }  // namespace
 

@@ -38,11 +38,6 @@ std::vector<int> unique_in_order(const std::vector<int>& face) {
 
 }  // namespace
 
-int node_row(const std::vector<int>& node_ids, int node) {
-  auto it = std::lower_bound(node_ids.begin(), node_ids.end(), node);
-  return it == node_ids.end() || *it != node ? -1 : static_cast<int>(it - node_ids.begin());
-}
-
 bool is_gap_type(const std::string& type_name) {
   return type_name == "COMBIN40";
 }

@@ -34,9 +34,6 @@ struct ReportMesh {
 /// of 2-node elements, points of 1-node elements and superelement nodes.
 ReportMesh build_report_mesh(const ResultsReader& reader);
 
-/// Row of `node` in the ascending node ids of a results file; -1 when absent.
-int node_row(const std::vector<int>& node_ids, int node);
-
 /// True for element types that act as gaps (COMBIN40): their nodes are picked for the nodal
 /// figures and they do not join bodies.
 bool is_gap_type(const std::string& type_name);

@@ -53,6 +53,9 @@ inline constexpr const char* kEnergyNames[5] = {"kinetic", "strain", "external_w
 /// Two stored times are the same time point when |a - b| <= 1e-12 * max(1, |a|, |b|).
 bool same_time(double a, double b);
 
+/// Row of `node` in the ascending node ids of a results file; -1 when absent.
+int node_row(const std::vector<int>& node_ids, int node);
+
 /// Writes <jobname>.h5. One file per job; one /analysis_<k> group per analysis in run order.
 class ResultsWriter {
  public:
@@ -130,6 +133,8 @@ class ResultsReader {
   std::vector<AnalysisInfo> analyses() const;
   /// Stored times of analysis a (1-based).
   std::vector<double> times(int analysis) const;
+  /// (load step, substep) of each stored time point of analysis a (1-based).
+  std::vector<std::pair<int, int>> load_steps_of(int analysis) const;
 
   /// Time series of a nodal quantity: lab in UX..ROTZ, VX VY VZ, AX AY AZ, or reaction FX..MZ.
   /// Returns (time, value) pairs over all analyses in order, only where the value exists; at a
@@ -143,6 +148,10 @@ class ResultsReader {
   std::vector<double> frequencies() const;
   /// Mode shape (n_nodes x 6) of mode 1-based `mode` of the last modal analysis.
   Eigen::MatrixXd mode_shape(int mode) const;
+  /// Frequencies (Hz) / mode shape of modal analysis a (1-based); empty / InputError when the
+  /// analysis has no modes.
+  std::vector<double> frequencies_of(int analysis) const;
+  Eigen::MatrixXd mode_shape_of(int analysis, int mode) const;
   /// Full time point k (0-based) of analysis a (1-based). Energies that were not stored are
   /// absent from the map; the element tables hold every family of the analysis.
   TimePoint time_point(int analysis, int k) const;

@@ -390,6 +390,11 @@ void ResultsReader::Impl::load() {
   }
 }
 
+int node_row(const std::vector<int>& node_ids, int node) {
+  auto it = std::lower_bound(node_ids.begin(), node_ids.end(), node);
+  return it == node_ids.end() || *it != node ? -1 : static_cast<int>(it - node_ids.begin());
+}
+
 ResultsReader::ResultsReader(const std::string& path) : impl_(std::make_unique<Impl>()) {
   h5::silence_errors();
   impl_->path = path;
@@ -544,32 +549,56 @@ std::vector<std::pair<double, double>> ResultsReader::gap_force_series(int gap) 
   });
 }
 
-std::vector<double> ResultsReader::frequencies() const {
-  return impl_->guarded([&]() -> std::vector<double> {
-    for (auto it = impl_->analyses.rbegin(); it != impl_->analyses.rend(); ++it)
-      if (it->info.n_modes > 0) return h5::read_doubles(impl_->file, it->group + "/frequencies");
-    return {};
+std::vector<std::pair<int, int>> ResultsReader::load_steps_of(int analysis) const {
+  return impl_->guarded([&] {
+    const Analysis& an = impl_->analysis(analysis);
+    std::vector<std::pair<int, int>> out;
+    if (an.times.empty()) return out;
+    const auto ls = h5::read_ints(impl_->file, an.group + "/load_step");
+    const auto ss = h5::read_ints(impl_->file, an.group + "/substep");
+    for (std::size_t k = 0; k < an.times.size(); ++k) out.emplace_back(ls.at(k), ss.at(k));
+    return out;
   });
 }
 
-Eigen::MatrixXd ResultsReader::mode_shape(int mode) const {
-  return impl_->guarded([&] {
-    for (auto it = impl_->analyses.rbegin(); it != impl_->analyses.rend(); ++it) {
-      if (it->info.n_modes == 0) continue;
-      if (mode < 1 || mode > it->info.n_modes)
-        throw InputError(fmt::format("mode {} does not exist (the results file has modes 1..{})",
-                                     mode, it->info.n_modes));
-      std::string name = it->group + "/mode_shapes";
-      Handle ds(check(H5Dopen2(impl_->file, name.c_str(), H5P_DEFAULT), "open " + name));
-      const auto n = impl_->node_ids.size();
-      auto v = h5::read_slab(ds, {static_cast<hsize_t>(mode - 1), 0, 0}, {1, n, 6});
-      Eigen::MatrixXd m(static_cast<Eigen::Index>(n), 6);
-      for (std::size_t i = 0; i < n; ++i)
-        for (int j = 0; j < 6; ++j) m(static_cast<Eigen::Index>(i), j) = v[i * 6 + j];
-      return m;
-    }
-    throw InputError(fmt::format("no mode shapes are stored in '{}'", impl_->path));
+std::vector<double> ResultsReader::frequencies_of(int analysis) const {
+  return impl_->guarded([&]() -> std::vector<double> {
+    const Analysis& an = impl_->analysis(analysis);
+    if (an.info.n_modes == 0) return {};
+    return h5::read_doubles(impl_->file, an.group + "/frequencies");
   });
+}
+
+Eigen::MatrixXd ResultsReader::mode_shape_of(int analysis, int mode) const {
+  return impl_->guarded([&] {
+    const Analysis& an = impl_->analysis(analysis);
+    if (an.info.n_modes == 0)
+      throw InputError(
+          fmt::format("analysis {} of '{}' has no mode shapes", analysis, impl_->path));
+    if (mode < 1 || mode > an.info.n_modes)
+      throw InputError(fmt::format("mode {} does not exist (the results file has modes 1..{})",
+                                   mode, an.info.n_modes));
+    std::string name = an.group + "/mode_shapes";
+    Handle ds(check(H5Dopen2(impl_->file, name.c_str(), H5P_DEFAULT), "open " + name));
+    const auto n = impl_->node_ids.size();
+    auto v = h5::read_slab(ds, {static_cast<hsize_t>(mode - 1), 0, 0}, {1, n, 6});
+    Eigen::MatrixXd m(static_cast<Eigen::Index>(n), 6);
+    for (std::size_t i = 0; i < n; ++i)
+      for (int j = 0; j < 6; ++j) m(static_cast<Eigen::Index>(i), j) = v[i * 6 + j];
+    return m;
+  });
+}
+
+std::vector<double> ResultsReader::frequencies() const {
+  for (auto it = impl_->analyses.rbegin(); it != impl_->analyses.rend(); ++it)
+    if (it->info.n_modes > 0) return frequencies_of(it->info.index);
+  return {};
+}
+
+Eigen::MatrixXd ResultsReader::mode_shape(int mode) const {
+  for (auto it = impl_->analyses.rbegin(); it != impl_->analyses.rend(); ++it)
+    if (it->info.n_modes > 0) return mode_shape_of(it->info.index, mode);
+  throw InputError(fmt::format("no mode shapes are stored in '{}'", impl_->path));
 }
 
 TimePoint ResultsReader::time_point(int analysis, int k) const {

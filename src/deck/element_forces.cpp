@@ -1,0 +1,93 @@
+#include "deck/element_forces.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "deck/post_support.h"
+#include "elements/element.h"
+
+namespace impactfe::deck {
+
+namespace {
+
+/// Values of a nodal array (U, V or A) of the set at the element's DOFs; absent values are 0.
+Eigen::VectorXd gather(const Eigen::MatrixXd& m, const std::vector<int>& node_ids,
+                       const std::vector<DofKey>& dofs) {
+  Eigen::VectorXd out = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(dofs.size()));
+  for (std::size_t k = 0; k < dofs.size(); ++k) {
+    const int row = node_row(node_ids, dofs[k].node);
+    if (row < 0 || row >= m.rows()) continue;
+    const double v = m(row, static_cast<int>(dofs[k].dof));
+    if (std::isfinite(v)) out[static_cast<Eigen::Index>(k)] = v;
+  }
+  return out;
+}
+
+}  // namespace
+
+std::map<int, NodalForce> element_nodal_forces(DeckReader& r, const Command& c, int element) {
+  const auto rec = r.model.elements.find(element);
+  if (rec == r.model.elements.end()) r.fail(c, fmt::format("element {} is not defined", element));
+  const ResultsReader& reader = results(r, c);
+  const SetData& set = current_set(r, c);
+  const ElementBuildContext build{
+      r.model, [&](const ElementRecord& e) -> std::string {
+        throw InputError(c.where, fmt::format("element {}: nodal forces of a superelement "
+                                              "are not available",
+                                              e.id));
+      }};
+  std::unique_ptr<Element> el;
+  try {
+    el = create_element(build, rec->second);
+  } catch (const InputError& e) {
+    r.fail(c,
+           fmt::format("element {}: nodal forces need the element's data ({})", element, e.what()));
+  }
+  const AnalysisOptions& o = r.model.options;
+  const ElementContext ctx{o.large_deflection, o.stress_stiffening, o.lumped_mass};
+  const auto& ids = reader.node_ids();
+  const Eigen::VectorXd u = gather(set.point.displacement, ids, el->dofs());
+  const Eigen::VectorXd v = gather(set.point.velocity, ids, el->dofs());
+  const Eigen::VectorXd a = gather(set.point.acceleration, ids, el->dofs());
+  const std::string& kind = post_state(r).force_kind;
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(u.size());
+  Eigen::MatrixXd K, M, C;
+  Eigen::VectorXd f_int;
+  if (el->has_status()) el->update_status(ctx, u);  // the status the displacement implies
+  el->tangent(ctx, u, K, f_int);
+  if (kind == "TOTAL" || kind == "STATIC") f += f_int;
+  if (kind == "TOTAL" || kind == "DAMP") {
+    // Element dampers and Rayleigh damping alpha M + beta K (ALPHAD, BETAD).
+    if (el->has_damping()) {
+      el->damping(ctx, u, C);
+      f += C * v;
+    }
+    if (o.alpha_damping != 0.0 || o.beta_damping != 0.0) {
+      el->mass(ctx, M);
+      f += (o.alpha_damping * M + o.beta_damping * K) * v;
+    }
+  }
+  if (kind == "TOTAL" || kind == "INERT") {
+    el->mass(ctx, M);
+    f += M * a;
+  }
+  std::map<int, NodalForce> out;
+  for (std::size_t k = 0; k < el->dofs().size(); ++k) {
+    const DofKey& d = el->dofs()[k];
+    out[d.node][static_cast<std::size_t>(d.dof)] += f[static_cast<Eigen::Index>(k)];
+  }
+  for (int n : rec->second.nodes) out.try_emplace(n, NodalForce{});
+  return out;
+}
+
+std::map<int, NodalForce> nodal_force_sums(DeckReader& r, const Command& c,
+                                           const std::vector<int>& elements) {
+  std::map<int, NodalForce> sums;
+  for (int e : elements)
+    for (const auto& [node, f] : element_nodal_forces(r, c, e))
+      for (std::size_t k = 0; k < 6; ++k) sums[node][k] += f[k];
+  return sums;
+}
+
+}  // namespace impactfe::deck

@@ -1,0 +1,395 @@
+// *GET (APDL_SCRIPTING §B) and the *GET items of the results, the POST1/POST26 state and the
+// model database beyond get_hooks.cpp's model items: a GetItemProvider, so *VGET (and *GET)
+// reach them through the one item registry. Results come from the current POST1 set / the
+// POST26 variables (the results file written by the solution host); a request that cannot be
+// satisfied is an error naming it.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "deck/get_hooks.h"
+#include "deck/post26.h"
+#include "deck/post_support.h"
+#include "elements/element_registry.h"
+
+namespace impactfe::deck {
+
+namespace {
+
+/// The fields of a *GET / *VGET after Par: Entity, ENTNUM, Item1, IT1NUM, Item2, IT2NUM.
+struct GetRequest {
+  std::string entity, entnum, item1, it1num, item2, it2num;
+  std::string what() const {
+    std::string s = entity;
+    for (const auto* f : {&entnum, &item1, &it1num, &item2, &it2num})
+      if (!f->empty()) s += "," + *f;
+    return s;
+  }
+};
+
+/// A result that is a number or a character value (JOBNAM, ETYP names).
+struct GetValue {
+  double number = 0.0;
+  std::optional<std::string> text;
+};
+
+int integer_field(DeckReader& r, const Command& c, const GetRequest& g, const std::string& text);
+double real_field(DeckReader& r, const Command& c, const GetRequest& g, const std::string& text);
+
+[[noreturn]] void unsupported(DeckReader& r, const Command& c, const GetRequest& g,
+                              const std::string& known) {
+  r.fail(c, fmt::format("{} is not supported (known for {}: {})", g.what(), g.entity, known));
+}
+
+/// *GET NODE items. `vector`: a *VGET loop, where an absent node gives 0.
+double get_node(DeckReader& r, const Command& c, const GetRequest& g, int n, bool vector) {
+  const std::string& i1 = g.item1;
+  // COUNT, NUM MAX/MIN, NSEL, NXTH/NXTL and LOC are get_hooks.cpp's model items.
+  if (n == 0) {
+    if (i1 == "NUM" && (g.it1num == "MAXD" || g.it1num == "MIND")) {
+      if (r.model.nodes.empty()) return 0.0;
+      return g.it1num == "MAXD" ? r.model.nodes.rbegin()->first : r.model.nodes.begin()->first;
+    }
+    unsupported(r, c, g, "ENTNUM 0: COUNT, NUM MAX/MIN/MAXD/MIND");
+  }
+  const bool defined = r.model.nodes.count(n) != 0;
+  if (!defined) {
+    if (vector) return 0.0;
+    r.fail(c, fmt::format("{}: node {} is not defined", g.what(), n));
+  }
+  const Node& node = r.model.node(n);
+  if (i1 == "ANG") {
+    if (g.it1num == "XY") return node.angles_deg[0];
+    if (g.it1num == "YZ") return node.angles_deg[1];
+    if (g.it1num == "ZX") return node.angles_deg[2];
+  }
+  if (i1 == "D" || i1 == "F") {
+    const auto dof = i1 == "D" ? parse_dof_label(g.it1num) : parse_force_label(g.it1num);
+    if (dof) {
+      const auto& table = i1 == "D" ? r.model.current.constraints : r.model.current.forces;
+      const auto it = table.find(DofKey{n, *dof});
+      if (it != table.end()) return it->second;
+      return i1 == "D" ? 2e100 : 0.0;  // MAPDL: a huge value for "no constraint"
+    }
+  }
+  const std::string lab = nodal_label_of(i1, g.it1num);
+  if (!lab.empty()) {
+    if (vector) {
+      // *VGET: absent results are 0 rather than errors.
+      const ResultsReader& reader = results(r, c);
+      const int row = node_row(reader.node_ids(), n);
+      const double v = nodal_value(current_set(r, c), row, *parse_nodal_item(lab));
+      return std::isfinite(v) ? v : 0.0;
+    }
+    return nodal_result(r, c, n, lab);
+  }
+  unsupported(r, c, g, "LOC, ANG, U, ROT, V, A, RF, D, F, NSEL, NXTH, NXTL, COUNT, NUM");
+}
+
+double element_length(const DeckReader& r, const ElementRecord& e) {
+  return (r.model.node(e.nodes.back()).x - r.model.node(e.nodes.front()).x).norm();
+}
+
+double get_element(DeckReader& r, const Command& c, const GetRequest& g, int e, bool vector) {
+  const std::string& i1 = g.item1;
+  // COUNT, NUM MAX/MIN, ESEL, NXTH/NXTL, NODE, CENT and ATTR MAT/TYPE/REAL/SECN are
+  // get_hooks.cpp's model items.
+  if (e == 0) unsupported(r, c, g, "ENTNUM 0: COUNT, NUM MAX/MIN");
+  const bool defined = r.model.elements.count(e) != 0;
+  if (!defined) {
+    if (vector) return 0.0;
+    r.fail(c, fmt::format("{}: element {} is not defined", g.what(), e));
+  }
+  const ElementRecord& rec = r.model.elements.at(e);
+  if (i1 == "ATTR") {
+    if (g.it1num == "ESYS") return 0.0;
+    if (g.it1num == "ENAM") {
+      const ElementTypeDescriptor* d = find_element_type(element_type_name(r, e));
+      return d != nullptr ? d->number : 0.0;
+    }
+  }
+  if (i1 == "LENG") return element_length(r, rec);
+  if (i1 == "VOLU" || i1 == "GEOM") {
+    const auto v = element_volume(r, c, e);
+    if (!v) {
+      if (vector) return 0.0;
+      r.fail(c, fmt::format("{}: a {} has no volume", g.what(), element_type_name(r, e)));
+    }
+    return *v;
+  }
+  if (i1 == "ETAB") {
+    const PostState& ps = post_state(r);
+    const auto col = std::find_if(ps.etable.begin(), ps.etable.end(),
+                                  [&](const EtableColumn& x) { return x.label == g.it1num; });
+    if (col == ps.etable.end())
+      r.fail(c, fmt::format("{}: no element-table column '{}'", g.what(), g.it1num));
+    const auto it = col->values.find(e);
+    if (it == col->values.end()) {
+      if (vector) return 0.0;
+      r.fail(c, fmt::format("{}: element {} is not in column {} (not selected when it was filled)",
+                            g.what(), e, g.it1num));
+    }
+    return it->second;
+  }
+  // Element results by MAPDL item: SMISC,n, NMISC,n, LS,n, LEPEL,n (numbers), S,EQV (labels),
+  // or a stored name.
+  const bool numbered = i1 == "SMISC" || i1 == "NMISC" || i1 == "LS" || i1 == "LEPEL";
+  const std::string comp = numbered ? std::to_string(integer_field(r, c, g, g.it1num)) : g.it1num;
+  const auto v = element_result(r, c, e, i1, comp);
+  if (v) {
+    if (std::isfinite(*v)) return *v;
+    if (vector) return 0.0;
+    r.fail(c, fmt::format("{}: element {} has no {} value in the current set{}", g.what(), e, i1,
+                          current_set(r, c).reduced ? " (a reduced run: expand it)" : ""));
+  }
+  unsupported(r, c, g,
+              fmt::format("NODE, ATTR, CENT, LENG, VOLU, ETAB, ESEL, NXTH, NXTL, COUNT, NUM, and "
+                          "the results of a {}",
+                          element_type_name(r, e)));
+}
+
+GetValue get_active(DeckReader& r, const Command& c, const GetRequest& g) {
+  const std::string& i1 = g.item1;
+  if (i1 == "SET") {
+    const SetData& s = current_set(r, c);
+    const PostState& ps = post_state(r);
+    if (g.it1num == "TIME" || g.it1num == "FREQ") return {s.set.time};
+    if (g.it1num == "LSTP") return {static_cast<double>(s.set.load_step)};
+    if (g.it1num == "SBST") return {static_cast<double>(s.set.substep)};
+    if (g.it1num == "NSET") {
+      if (g.item2.empty()) return {static_cast<double>(ps.sets.size())};
+      const int ls = integer_field(r, c, g, g.it2num);
+      double found = 0.0;
+      for (const auto& set : ps.sets)
+        if (set.load_step == ls) {
+          found = set.number;
+          if (g.item2 == "FIRST") break;
+        }
+      return {found};
+    }
+  }
+  if (i1 == "SOLU") {
+    const ResultsReader& reader = results(r, c);
+    const auto analyses = reader.analyses();
+    if (analyses.empty()) r.fail(c, fmt::format("{}: nothing was solved", g.what()));
+    const auto& a = analyses.back();
+    auto attr = [&](const char* name) {
+      const auto it = a.numeric_attributes.find(name);
+      if (it == a.numeric_attributes.end())
+        r.fail(c, fmt::format("{}: '{}' is not recorded for the last analysis", g.what(), name));
+      return it->second;
+    };
+    if (g.it1num == "DTIME") {
+      const auto t = reader.times(a.index);
+      return {t.size() >= 2 ? t[t.size() - 1] - t[t.size() - 2] : 0.0};
+    }
+    if (g.it1num == "NCMLS") {
+      const auto steps = reader.load_steps_of(a.index);
+      return {steps.empty() ? 0.0 : static_cast<double>(steps.back().first)};
+    }
+    if (g.it1num == "NCMSS") return {attr("substeps")};
+    if (g.it1num == "NCMIT") return {attr("iterations")};
+    if (g.it1num == "CNVG") return {a.status == "complete" ? 1.0 : 0.0};
+  }
+  if (i1 == "ANTY") {
+    switch (r.model.options.type) {
+      case AnalysisType::Static:
+        return {0.0};
+      case AnalysisType::Modal:
+        return {2.0};
+      case AnalysisType::Transient:
+        return {4.0};
+      case AnalysisType::Substructure:
+        return {7.0};
+    }
+  }
+  if (i1 == "TYPE") return {static_cast<double>(r.current_type)};
+  if (i1 == "MAT") return {static_cast<double>(r.current_mat)};
+  if (i1 == "REAL") return {static_cast<double>(r.current_real)};
+  if (i1 == "SECT") return {static_cast<double>(r.current_secnum)};
+  if (i1 == "CSYS") return {0.0};
+  if (i1 == "JOBNAM") return {0.0, r.model.jobname};
+  if (i1 == "TITLE") return {0.0, r.model.title};
+  unsupported(r, c, g,
+              "SET TIME/FREQ/LSTP/SBST/NSET, SOLU DTIME/NCMLS/NCMSS/NCMIT/CNVG, ANTY, TYPE, MAT, "
+              "REAL, SECT, CSYS, JOBNAM, TITLE");
+}
+
+int integer_field(DeckReader& r, const Command& c, const GetRequest& g, const std::string& text) {
+  try {
+    return static_cast<int>(std::lround(evaluate(text.empty() ? "0" : text, r.params)));
+  } catch (const ExpressionError& e) {
+    r.fail(c, fmt::format("{}: bad number '{}' ({})", g.what(), text, e.what()));
+  }
+}
+
+double real_field(DeckReader& r, const Command& c, const GetRequest& g, const std::string& text) {
+  try {
+    return evaluate(text.empty() ? "0" : text, r.params);
+  } catch (const ExpressionError& e) {
+    r.fail(c, fmt::format("{}: bad number '{}' ({})", g.what(), text, e.what()));
+  }
+}
+
+/// The item `g`; nullopt when its entity is none of these (another provider's, or unknown).
+std::optional<GetValue> get_value(DeckReader& r, const Command& c, const GetRequest& g,
+                                  bool vector) {
+  const std::string& e = g.entity;
+  if (e == "NODE") return GetValue{get_node(r, c, g, integer_field(r, c, g, g.entnum), vector)};
+  if (e == "ELEM") return GetValue{get_element(r, c, g, integer_field(r, c, g, g.entnum), vector)};
+  if (e == "ACTIVE" || e == "ACTI") return get_active(r, c, g);
+  if (e == "ETAB") {
+    // *GET,Par,ETAB,col,ELEM,e: column number col (1-based).
+    const int col = integer_field(r, c, g, g.entnum);
+    const PostState& ps = post_state(r);
+    if (col < 1 || col > static_cast<int>(ps.etable.size()))
+      r.fail(c, fmt::format("{}: the element table has {} columns", g.what(), ps.etable.size()));
+    if (g.item1 != "ELEM") unsupported(r, c, g, "ELEM,e");
+    GetRequest e2 = g;
+    e2.entity = "ELEM";
+    e2.entnum = g.it1num;
+    e2.item1 = "ETAB";
+    e2.it1num = ps.etable[static_cast<std::size_t>(col - 1)].label;
+    return GetValue{get_element(r, c, e2, integer_field(r, c, g, g.it1num), vector)};
+  }
+  if (e == "MODE") {
+    const int m = integer_field(r, c, g, g.entnum);
+    if (g.item1 != "FREQ") unsupported(r, c, g, "FREQ");
+    std::vector<double> f;
+    try {
+      f = results(r, c).frequencies();
+    } catch (const InputError& err) {
+      r.fail(c, err.what());
+    }
+    if (m < 1 || m > static_cast<int>(f.size()))
+      r.fail(c, fmt::format("{}: mode {} was not computed (modes 1..{})", g.what(), m, f.size()));
+    return GetValue{f[static_cast<std::size_t>(m - 1)]};
+  }
+  if (e == "FSUM") {
+    const auto& fsum = post_state(r).fsum;
+    if (!fsum) r.fail(c, fmt::format("{}: no FSUM was issued", g.what()));
+    static const char* kNames[6] = {"FX", "FY", "FZ", "MX", "MY", "MZ"};
+    for (std::size_t k = 0; k < 6; ++k)
+      if (g.item1 == "ITEM" && g.it1num == kNames[k]) return GetValue{(*fsum)[k]};
+    unsupported(r, c, g, "ITEM,FX..MZ");
+  }
+  if (e == "SSUM") {
+    const auto& ssum = post_state(r).ssum;
+    const auto it = ssum.find(g.it1num);
+    if (g.item1 != "ITEM") unsupported(r, c, g, "ITEM,Lab");
+    if (it == ssum.end()) r.fail(c, fmt::format("{}: no SSUM of column '{}'", g.what(), g.it1num));
+    return GetValue{it->second};
+  }
+  if (e == "SORT") {
+    const auto& s = post_state(r).sort;
+    if (!s) r.fail(c, fmt::format("{}: no NSORT or ESORT was issued", g.what()));
+    if (g.item1 == "MAX") return GetValue{s->max};
+    if (g.item1 == "MIN") return GetValue{s->min};
+    if (g.item1 == "IMAX") return GetValue{static_cast<double>(s->imax)};
+    if (g.item1 == "IMIN") return GetValue{static_cast<double>(s->imin)};
+    unsupported(r, c, g, "MAX, MIN, IMAX, IMIN");
+  }
+  if (e == "VARI") {
+    const int n = integer_field(r, c, g, g.entnum);
+    if (g.item1 == "EXTREM") {
+      const Extremes x = post26_extremes(r, c, n);
+      if (g.it1num == "VMAX") return GetValue{x.vmax};
+      if (g.it1num == "VMIN") return GetValue{x.vmin};
+      if (g.it1num == "TMAX") return GetValue{x.tmax};
+      if (g.it1num == "TMIN") return GetValue{x.tmin};
+      if (g.it1num == "VLAST") return GetValue{x.vlast};
+      if (g.it1num == "TLAST") return GetValue{x.tlast};
+    }
+    if (g.item1 == "REAL" || g.item1 == "RTIME")
+      return GetValue{post26_value_at(r, c, n, real_field(r, c, g, g.it1num))};
+    if (g.item1 == "RSET") {
+      const auto v = post26_values(r, c, n);
+      const int k = integer_field(r, c, g, g.it1num);
+      if (k < 1 || k > static_cast<int>(v.size()))
+        r.fail(c, fmt::format("{}: location {} outside 1..{}", g.what(), k, v.size()));
+      return GetValue{v[static_cast<std::size_t>(k - 1)]};
+    }
+    unsupported(r, c, g, "EXTREM VMAX/VMIN/TMAX/TMIN/VLAST/TLAST, REAL t, RTIME t, RSET k");
+  }
+  if (e == "ETYP") {
+    const int t = integer_field(r, c, g, g.entnum);
+    if (t == 0 && g.item1 == "NUM" && g.it1num == "MAX")
+      return GetValue{r.model.element_types.empty() ? 0.0 : r.model.element_types.rbegin()->first};
+    const auto it = r.model.element_types.find(t);
+    if (it == r.model.element_types.end())
+      r.fail(c, fmt::format("{}: element type {} is not defined", g.what(), t));
+    if (g.item1 == "ATTR" && g.it1num == "ENAM") {
+      const ElementTypeDescriptor* d = find_element_type(it->second.ansys_name);
+      return GetValue{d != nullptr ? d->number : 0.0};
+    }
+    if (g.item1 == "KOPT") {
+      const int k = integer_field(r, c, g, g.it1num);
+      if (k < 1 || k > 18) r.fail(c, fmt::format("{}: KEYOPT {} outside 1..18", g.what(), k));
+      return GetValue{static_cast<double>(it->second.key(k))};
+    }
+    unsupported(r, c, g, "ATTR ENAM, KOPT k, NUM MAX");
+  }
+  if (e == "RCON") {
+    const int s = integer_field(r, c, g, g.entnum);
+    if (s == 0 && g.item1 == "NUM" && g.it1num == "MAX")
+      return GetValue{r.model.real_sets.empty() ? 0.0 : r.model.real_sets.rbegin()->first};
+    const auto it = r.model.real_sets.find(s);
+    if (it == r.model.real_sets.end())
+      r.fail(c, fmt::format("{}: real constant set {} is not defined", g.what(), s));
+    if (g.item1 == "CONST") return GetValue{it->second.get(integer_field(r, c, g, g.it1num))};
+    unsupported(r, c, g, "CONST k, NUM MAX");
+  }
+  // Material properties: *GET,Par,MP,Lab,MAT (older: *GET,Par,Lab,MAT,TEMP,t).
+  const bool mp = e == "MP";
+  const std::string lab = mp ? g.item1 : e;
+  const std::string mat_text = mp ? g.entnum : g.entnum;
+  if (mp || (!lab.empty() && std::any_of(r.model.materials.begin(), r.model.materials.end(),
+                                         [&](const auto& m) { return m.second.has(lab); }))) {
+    const int mat = integer_field(r, c, g, mat_text);
+    const auto it = r.model.materials.find(mat);
+    if (it == r.model.materials.end())
+      r.fail(c, fmt::format("{}: material {} is not defined", g.what(), mat));
+    std::string l = lab == "NUXY" ? "PRXY" : lab;
+    if (!it->second.has(l) && lab == "PRXY") l = "NUXY";
+    if (!it->second.has(l)) r.fail(c, fmt::format("{}: material {} has no {}", g.what(), mat, lab));
+    return GetValue{it->second.get(l, 0.0)};
+  }
+  if (e == "COMM" || e == "COMMON")
+    r.fail(c, fmt::format("{}: MAPDL's internal common blocks do not exist in impactfe", g.what()));
+  return std::nullopt;
+}
+
+/// get_value as a GetItemProvider. Registered before the model items (tried after them), so
+/// its "not supported (known for ...)" errors are the last word on the entities it knows.
+std::optional<Value> results_items(DeckReader& r, const Command& c, const GetItem& q) {
+  const GetRequest g{q.entity, q.entname.empty() ? format_number(q.entnum) : q.entname,
+                     q.item1,  q.it1num,
+                     q.item2,  q.it2num};
+  const auto v = get_value(r, c, g, q.missing_is_zero);
+  if (!v) return std::nullopt;
+  if (v->text) return Value(*v->text);
+  return Value(v->number);
+}
+
+void cmd_get(DeckReader& r, const Command& c) {
+  // *GET,Par,Entity,ENTNUM,Item1,IT1NUM,Item2,IT2NUM
+  if (c.blank(1)) r.fail(c, "Par missing");
+  const Value v = get_item(r, c, read_get_item(r, c, 2));
+  if (is_text(v))
+    assign_text_parameter(r, c, c.text(1), std::get<std::string>(v));
+  else
+    assign_parameter(r, c, c.text(1), std::get<double>(v));
+}
+
+}  // namespace
+
+void register_get_commands(std::vector<CommandSpec>& t) {
+  t.push_back({"*GET", cmd_get, kAnywhere});  // *VGET / *VPUT: matrix_commands.cpp
+}
+
+void register_results_get_items(std::vector<GetItemProvider>& t) {
+  t.push_back(results_items);
+}
+
+}  // namespace impactfe::deck

@@ -1,0 +1,86 @@
+#pragma once
+/// The post-processing state of one deck session (DeckReader::post): the results file being
+/// read, the current POST1 set, the element table, sort order, the last sums, the plot settings
+/// and the POST26 variables. Shared by the POST1 / POST26 / *GET handler files.
+#include <array>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "results/result_sets.h"
+#include "results/results_file.h"
+#include "results/svg_plot.h"
+
+namespace impactfe::deck {
+
+/// One ETABLE column: filled from the set current when it was defined (or at ETABLE,REFL).
+struct EtableColumn {
+  std::string label;
+  std::string item;  // upper case, as given (SMISC, LS, S, VOLU, FORC, ...)
+  std::string comp;
+  std::map<int, double> values;  // element → value, for the elements selected at fill time
+};
+
+/// One POST26 variable over PostState::times.
+struct Post26Variable {
+  std::string name;
+  /// NSOL, ESOL, RFORCE, GAPF (filled from the results: STORE refills them), or the operation
+  /// or FILLDATA / VPUT that computed it.
+  std::string kind;
+  int id = 0;         // node / element / gap
+  std::string label;  // resolved nodal label (UY) or element item (SMISC,1 → stored FORC)
+  std::string item;   // element Item and Comp as given (ESOL)
+  std::string comp;
+  std::vector<double> values;
+};
+
+/// Last NSORT / ESORT (*GET,Par,SORT,0,MAX|MIN|IMAX|IMIN).
+struct SortResult {
+  double max = 0.0, min = 0.0;
+  int imax = 0, imin = 0;
+};
+
+struct PostState {
+  // ---- results file -----------------------------------------------------------------------
+  std::string file_command;  // FILE,Fname,Ext (post-only decks)
+  std::string path;          // the file open in `reader`
+  std::unique_ptr<ResultsReader> reader;
+  std::size_t generation = static_cast<std::size_t>(-1);  // DeckReader::solutions at open
+  std::vector<ResultSet> sets;
+
+  // ---- POST1 ------------------------------------------------------------------------------
+  std::optional<SetData> current;
+  std::size_t current_generation = static_cast<std::size_t>(-1);
+  std::vector<EtableColumn> etable;
+  std::optional<std::vector<int>> node_order;     // NSORT (selected nodes, sorted)
+  std::optional<std::vector<int>> element_order;  // ESORT
+  std::optional<SortResult> sort;
+  std::optional<std::array<double, 6>> fsum;  // FX FY FZ MX MY MZ of the last FSUM
+  std::map<std::string, double> ssum;         // ETABLE label → last SSUM total
+  std::string force_kind = "TOTAL";           // FORCE: TOTAL, STATIC, DAMP, INERT
+
+  // ---- pictures ---------------------------------------------------------------------------
+  PlotView view;
+  std::optional<double> dscale;           // /DSCALE multiplier; nullopt = AUTO
+  bool noerase = false;                   // /NOERASE: the next plot is drawn over the last picture
+  std::string show_name;                  // /SHOW,Fname (picture file base name; default jobname)
+  std::unique_ptr<ModelPicture> picture;  // the picture /NOERASE keeps drawing on
+  std::string picture_path;
+  int n_pictures = 0;
+
+  // ---- POST26 -----------------------------------------------------------------------------
+  int numvar = 10;
+  std::vector<double> times;  // the stored time points inside TIMERANGE
+  std::size_t times_generation = static_cast<std::size_t>(-1);
+  std::map<int, Post26Variable> variables;  // 2..numvar (1 is TIME)
+  std::optional<std::pair<double, double>> timerange;
+  std::optional<std::pair<double, double>> prtime;
+  std::string x_label, y_label;  // /AXLAB
+  std::optional<std::pair<double, double>> x_range, y_range;
+  bool grid = false;
+  int xvar = 1;
+};
+
+}  // namespace impactfe::deck
