@@ -4,8 +4,12 @@
 // SFBEAM and FL.
 #include <fmt/format.h>
 
+#include <optional>
+#include <set>
+
 #include "core/text.h"
 #include "deck/modeling_helpers.h"
+#include "deck/post_support.h"
 #include "geometry/element_faces.h"
 #include "geometry/load_transfer.h"
 
@@ -40,15 +44,25 @@ SurfaceLoad uniform(const LoadField& v) {
 
 void cmd_sf(DeckReader& r, const Command& c) {
   // SF,Nlist,Lab,VALUE,VALUE2,MESHFLAG
+  // Nlist: ALL (the selected nodes) or a node component (APDL_MODELING §1.9, §5.1).
   const std::string nlist = r.label(c, 1);
+  std::optional<std::set<int>> component;
   if (!nlist.empty() && nlist != "ALL") {
-    refuse_component(r, c, 1);
-    r.fail(c, "Nlist must be ALL (the selected nodes): single node numbers are not allowed");
+    const auto members = component_members(r, c, nlist, "NODE");
+    if (!members)
+      r.fail(c,
+             "Nlist must be ALL (the selected nodes) or a node component: single node numbers "
+             "are not allowed");
+    component.emplace(members->begin(), members->end());
   }
   require_pressure(r, c, 2);
   const LoadField v = load_field(r, c, 3);
   if (r.real(c, 4, 0.0) != 0.0) r.fail(c, "VALUE2 (imaginary part) is not supported");
-  const auto faces = faces_on_selected_nodes(r, c);
+  const ModelSelection& sel = r.model.selection;
+  const auto faces = component ? geometry::faces_on_nodes(
+                                     r.model, [&](int n) { return component->count(n) != 0; },
+                                     [&](int e) { return sel.elements.selected(e); })
+                               : faces_on_selected_nodes(r, c);
   if (faces.empty())
     r.fail(c,
            "no element face has all its nodes selected (select the nodes of the loaded "
@@ -57,6 +71,11 @@ void cmd_sf(DeckReader& r, const Command& c) {
 }
 
 std::vector<int> element_list(DeckReader& r, const Command& c, int field) {
+  if (const auto members = component_members(r, c, r.label(c, field), "ELEM")) {
+    if (members->empty())
+      r.fail(c, fmt::format("component {} has no existing elements", c.text(field)));
+    return *members;
+  }
   refuse_component(r, c, field);
   return entity_list(r, c, field, 0, 0, r.model.elements, r.model.selection.elements, "element");
 }

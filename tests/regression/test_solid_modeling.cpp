@@ -69,6 +69,10 @@ TEST(SolidModeling, PressurePlateEqualsTheNodeByNodeDeckAndTheClosedForm) {
   const double w = last(*solid.reader, node_at(*solid.reader, Vec3(0.5, 0.5, 0)), "UZ");
   EXPECT_NEAR(w / w_ref, 1.0, 0.01);
   expect_same_static_results(*nodes.reader, *solid.reader, {"UZ", "ROTX", "ROTY"}, 1e-9 * w_ref);
+  // SF on a node component loads the same faces as SF,ALL on the selected nodes.
+  const auto component = run("plate_solid_component");
+  expect_same_static_results(*solid.reader, *component.reader, {"UZ", "ROTX", "ROTY"},
+                             1e-12 * w_ref);
 }
 
 TEST(SolidModeling, CylinderUnderInternalPressureMeetsTheClosedForm) {
