@@ -306,6 +306,19 @@ int output_frequency(DeckReader& r, const Command& c) {
 }
 
 void cmd_outres(DeckReader& r, const Command& c) {
+  // OUTRES,Item,Freq,Cname: one output frequency for every result item and every node and
+  // element (issue 10 asks for per-item frequencies and components; not built yet). Say so
+  // rather than accept the narrower request silently.
+  const std::string item = r.label(c, 1);
+  if (!item.empty() && item != "ALL" && item != "ERASE" && item != "BASIC")
+    r.warn(c, fmt::format("Item {}: the frequency applies to every result item (impactfe writes "
+                          "all items at one frequency)",
+                          item));
+  const std::string cname = r.label(c, 3);
+  if (!cname.empty() && cname != "ALL")
+    r.fail(c, fmt::format("Cname {}: results are written for every node and element; a "
+                          "component subset is not supported",
+                          c.text(3)));
   r.model.current.output.every = output_frequency(r, c);
 }
 
