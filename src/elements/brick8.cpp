@@ -9,6 +9,7 @@
 #include "core/errors.h"
 #include "core/log.h"
 #include "elements/element_registry.h"
+#include "elements/face_pressure.h"
 
 namespace impactfe {
 
@@ -345,28 +346,10 @@ void Brick8::pressure_load(const ElementContext& ctx, int face, const std::array
     x[static_cast<std::size_t>(a)] = x_[static_cast<std::size_t>(c)];
     if (ctx.large_deflection) x[static_cast<std::size_t>(a)] += uc.segment<3>(3 * c);
   }
-  // Bilinear face: x(ξ, η) = Σ N_a x_a with ξ along corner 0 → 1, η along 0 → 3; the
-  // (unnormalised) normal ∂x/∂ξ × ∂x/∂η points outward for the face orders above.
-  static const double g[3] = {-0.7745966692414834, 0.0, 0.7745966692414834};
-  static const double w[3] = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
-  static const double xi_a[4] = {-1, 1, 1, -1}, eta_a[4] = {-1, -1, 1, 1};
-  std::array<Vec3, 4> fa;
-  fa.fill(Vec3::Zero());
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) {
-      double n[4];
-      Vec3 dxi = Vec3::Zero(), deta = Vec3::Zero();
-      double pressure = 0.0;
-      for (int a = 0; a < 4; ++a) {
-        n[a] = 0.25 * (1 + xi_a[a] * g[i]) * (1 + eta_a[a] * g[j]);
-        dxi += 0.25 * xi_a[a] * (1 + eta_a[a] * g[j]) * x[static_cast<std::size_t>(a)];
-        deta += 0.25 * eta_a[a] * (1 + xi_a[a] * g[i]) * x[static_cast<std::size_t>(a)];
-        pressure += n[a] * p[static_cast<std::size_t>(a)];
-      }
-      const Vec3 normal = dxi.cross(deta);
-      for (int a = 0; a < 4; ++a)
-        fa[static_cast<std::size_t>(a)] -= w[i] * w[j] * n[a] * pressure * normal;
-    }
+  // The face orders above make the normal of the corner order point outward; positive pressure
+  // pushes inward.
+  std::array<Vec3, 4> fa = bilinear_face_pressure_forces(x, p);
+  for (Vec3& fc : fa) fc = -fc;
   f.setZero(n_dofs());
   for (int a = 0; a < 4; ++a) {
     const int c = corners[static_cast<std::size_t>(a)];

@@ -13,6 +13,7 @@
 #include "core/errors.h"
 #include "core/log.h"
 #include "elements/element_registry.h"
+#include "elements/face_pressure.h"
 #include "elements/shell_frame.h"
 #include "elements/so3.h"
 
@@ -292,25 +293,9 @@ void Shell4::pressure_load(const ElementContext& ctx, int face, const std::array
     }
     return;
   }
-  // Bilinear surface, 3x3 Gauss; n = ∂x/∂ξ × ∂x/∂η follows I-J-K-L by the right-hand rule.
-  static const double g[3] = {-0.7745966692414834, 0.0, 0.7745966692414834};
-  static const double w[3] = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
-  static const double xi_a[4] = {-1, 1, 1, -1}, eta_a[4] = {-1, -1, 1, 1};
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) {
-      double n[4];
-      Vec3 dxi = Vec3::Zero(), deta = Vec3::Zero();
-      double pressure = 0.0;
-      for (int a = 0; a < 4; ++a) {
-        n[a] = 0.25 * (1 + xi_a[a] * g[i]) * (1 + eta_a[a] * g[j]);
-        dxi += 0.25 * xi_a[a] * (1 + eta_a[a] * g[j]) * x[static_cast<std::size_t>(a)];
-        deta += 0.25 * eta_a[a] * (1 + xi_a[a] * g[i]) * x[static_cast<std::size_t>(a)];
-        pressure += n[a] * p[static_cast<std::size_t>(a)];
-      }
-      const Vec3 normal = dxi.cross(deta);
-      for (int a = 0; a < 4; ++a)
-        f.segment<3>(6 * a) += sign * w[i] * w[j] * n[a] * pressure * normal;
-    }
+  // Bilinear surface; n = ∂x/∂ξ × ∂x/∂η follows I-J-K-L by the right-hand rule.
+  const std::array<Vec3, 4> fa = bilinear_face_pressure_forces({x[0], x[1], x[2], x[3]}, p);
+  for (int a = 0; a < 4; ++a) f.segment<3>(6 * a) += sign * fa[static_cast<std::size_t>(a)];
 }
 
 namespace {

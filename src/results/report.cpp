@@ -8,33 +8,11 @@
 
 #include "core/errors.h"
 #include "results/report_assets.h"
+#include "results/svg_plot.h"
 
 namespace impactfe {
 
 namespace {
-
-std::string html_escape(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
 
 /// Replaces every occurrence of `placeholder` (none is a build error of the assets). Contents
 /// are inserted in the order STYLE, DATA, SCRIPT and cannot contain a later placeholder.
@@ -62,7 +40,7 @@ std::string report_html(const ResultsReader& reader, const ReportOptions& option
   }
   std::string page(report_assets::kTemplate);
   const std::string title = reader.title().empty() ? reader.path() : reader.title();
-  fill(page, "<!--IMPACTFE:TITLE-->", html_escape(title));
+  fill(page, "<!--IMPACTFE:TITLE-->", xml_escape(title));
   fill(page, "<!--IMPACTFE:STYLE-->", std::string(report_assets::kStyle));
   fill(page, "<!--IMPACTFE:DATA-->", safe);
   fill(page, "<!--IMPACTFE:SCRIPT-->", std::string(report_assets::kScript));

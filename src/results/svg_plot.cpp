@@ -29,29 +29,6 @@ constexpr const char* kBands[9] = {"#0000ff", "#0078ff", "#00d2ff", "#00ffaa", "
 constexpr const char* kCurveColours[10] = {"#1f3fbf", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e",
                                            "#17becf", "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22"};
 
-std::string escape(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
-
 std::string header_svg(double width, double height) {
   return fmt::format(
       "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{0}\" height=\"{1}\" "
@@ -61,7 +38,8 @@ std::string header_svg(double width, double height) {
 }
 
 std::string text_svg(double x, double y, const std::string& text, const char* extra = "") {
-  return fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\"{}>{}</text>\n", x, y, extra, escape(text));
+  return fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\"{}>{}</text>\n", x, y, extra,
+                     xml_escape(text));
 }
 
 /// Short number for labels: %g with 4 significant digits.
@@ -375,7 +353,7 @@ std::string xy_graph_svg(const std::vector<GraphCurve>& curves, const GraphOptio
   out += fmt::format(
       "<text x=\"24\" y=\"{0:.1f}\" text-anchor=\"middle\" transform=\"rotate(-90 24 {0:.1f})\">"
       "{1}</text>\n",
-      top + 0.5 * height, escape(options.y_label));
+      top + 0.5 * height, xml_escape(options.y_label));
   out += fmt::format(
       "<clipPath id=\"graph\"><rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\"/></clipPath>\n",
       left, top, width, height);
@@ -405,6 +383,29 @@ void write_text_file(const std::string& path, const std::string& text) {
   if (!f) throw InputError(fmt::format("cannot write '{}'", path));
   f << text;
   if (!f) throw InputError(fmt::format("cannot write '{}'", path));
+}
+
+std::string xml_escape(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    switch (c) {
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
+    }
+  }
+  return out;
 }
 
 }  // namespace impactfe

@@ -89,4 +89,7 @@ std::vector<double> nice_ticks(double lo, double hi);
 /// Writes `text` to `path` (InputError naming the file when it cannot be written).
 void write_text_file(const std::string& path, const std::string& text);
 
+/// `text` with the characters XML and HTML reserve (& < > ") written as entities.
+std::string xml_escape(const std::string& text);
+
 }  // namespace impactfe
