@@ -282,14 +282,17 @@ double DirectSolution::residual(const VectorXd& u, VectorXd& r, double& referenc
     inc.f_ext += delta;
     if (inc.dynamic) inc.fixed_terms += inc.weights.external * delta;
   }
-  assembler_->assemble(inc.coeff, u, inc.v, Assembler::Output{nullptr, &inc.f_int, &inc.f_damp});
   if (inc.dynamic) {
-    const VectorXd inertia = mass_all_ * inc.a;
-    r = inc.fixed_terms - inc.weights.inertia * inertia -
+    assembler_->assemble(inc.coeff, u, inc.v,
+                         Assembler::Output{nullptr, &inc.f_int, &inc.f_damp, &inc.inertia}, &inc.a);
+    inertia_a_ = inc.a;
+    inertia_ = inc.inertia;
+    r = inc.fixed_terms - inc.weights.inertia * inc.inertia -
         inc.weights.stiffness * (inc.f_int + inc.f_damp);
-    reference =
-        std::max({inc.f_ext.head(nf).norm(), inertia.head(nf).norm(), inc.f_int.head(nf).norm()});
+    reference = std::max(
+        {inc.f_ext.head(nf).norm(), inc.inertia.head(nf).norm(), inc.f_int.head(nf).norm()});
   } else {
+    assembler_->assemble(inc.coeff, u, inc.v, Assembler::Output{nullptr, &inc.f_int, &inc.f_damp});
     r = inc.f_ext - inc.f_int;
     reference = std::max(inc.f_ext.head(nf).norm(), inc.f_int.head(nf).norm());
   }
@@ -416,12 +419,27 @@ bool DirectSolution::solve_condensed(VectorXd& u, const NewtonOptions& newton,
   for (std::size_t k = 0; k < c.size(); ++k) y(static_cast<Eigen::Index>(k)) = x(c[k]);
   CondensedIncrement problem(*assembler_, *condensation_, *status_loop_, inc.label, inc.coeff,
                              inc.weights.stiffness, u, inc.v, y, reference);
-  VectorXd delta = VectorXd::Zero(condensation_->size());
-  result = NewtonRaphson(newton, ConvergenceTest(conv)).solve(problem, delta);
-  inc.n_status_changes += problem.n_status_changes();
-  // The whole field, once: δ = A_L⁻¹ r0 − G S (y − δ_c); on c it is δ_c itself.
+  // δ_c = y, the linear part's own answer, is the exact solution when the nonlinear elements
+  // add no force there (ρ(y) = 0: gaps that stay open) and keep their statuses: then the
+  // correction G S (y − δ_c) vanishes and the step costs the one solve above (free flight).
+  VectorXd delta = y;
+  VectorXd rho;
+  double unused = 0.0;
+  const bool inactive =
+      problem.residual(delta, rho, unused) == 0.0 && !problem.update_status(delta);
   const VectorXd u0 = u;
-  u.head(nf) += x - condensation_->transfer() * (condensation_->schur() * (y - delta));
+  if (inactive) {
+    result = NewtonResult{};
+    result.converged = true;
+    result.iterations = 1;
+    u.head(nf) += x;
+  } else {
+    delta.setZero();
+    result = NewtonRaphson(newton, ConvergenceTest(conv)).solve(problem, delta);
+    // The whole field, once: δ = A_L⁻¹ r0 − G S (y − δ_c); on c it is δ_c itself.
+    u.head(nf) += x - condensation_->transfer() * (condensation_->schur() * (y - delta));
+  }
+  inc.n_status_changes += problem.n_status_changes();
   for (std::size_t k = 0; k < c.size(); ++k)
     u(c[k]) = u0(c[k]) + delta(static_cast<Eigen::Index>(k));
   // The full criterion on the recovered state (this evaluation also gives the forces the step
@@ -466,7 +484,7 @@ void DirectSolution::solve_increment(const LoadPoint& at, const StepLabel& label
   if (dynamic) {
     const ResidualWeights& w = inc.weights;
     inc.fixed_terms = w.external * inc.f_ext + (1.0 - w.external) * f_ext_old_ -
-                      (1.0 - w.inertia) * (mass_all_ * integrator_->a()) -
+                      (1.0 - w.inertia) * inertia_of(integrator_->a()) -
                       (1.0 - w.stiffness) * (f_int_old_ + f_damp_old_);
   }
 
@@ -520,7 +538,7 @@ void DirectSolution::solve_increment(const LoadPoint& at, const StepLabel& label
     u_ = integrator_->u();
     v_ = integrator_->v();
     a_ = integrator_->a();
-    reactions_ = inc.f_int + inc.f_damp + mass_all_ * a_ - inc.f_ext;
+    reactions_ = inc.f_int + inc.f_damp + inertia_of(a_) - inc.f_ext;
   } else {
     u_ = u;
     v_.setZero();
@@ -532,6 +550,14 @@ void DirectSolution::solve_increment(const LoadPoint& at, const StepLabel& label
   f_damp_old_ = inc.f_damp;
   acel_ = frame_acceleration(at);
   time_ = label.time;
+}
+
+const VectorXd& DirectSolution::inertia_of(const VectorXd& a) {
+  if (a.size() != inertia_a_.size() || a != inertia_a_) {
+    inertia_a_ = a;
+    inertia_ = assembler_->inertia_force(a);
+  }
+  return inertia_;
 }
 
 std::string DirectSolution::elements_at(int index) const {

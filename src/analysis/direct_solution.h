@@ -101,7 +101,7 @@ class DirectSolution : private NonlinearProblem {
     ResidualWeights weights;
     VectorXd f_ext;
     VectorXd fixed_terms;  // dynamic: old-state forces and inertia (generalized-α form)
-    VectorXd v, a, f_int, f_damp;
+    VectorXd v, a, f_int, f_damp, inertia;  // inertia = M a
     StepLabel label;
     int n_status_changes = 0;
     LoadPoint at;           // the load point of the increment
@@ -112,6 +112,11 @@ class DirectSolution : private NonlinearProblem {
   // Factorization bookkeeping: refactor only when the effective matrix can have changed.
   bool factor_valid_ = false;
   IntegrationCoefficients factored_{};
+
+  /// M a, from the last residual evaluation when a is the same vector (the accepted step's
+  /// acceleration is needed again for its reactions and the next step's fixed terms).
+  const VectorXd& inertia_of(const VectorXd& a);
+  VectorXd inertia_a_, inertia_;
 
   std::unique_ptr<EnergyBalance> energy_;
   // Condensed transient (linear_part_condensation.h): set up per DOF numbering when it applies.

@@ -63,6 +63,35 @@ Assembler::Assembler(const std::vector<std::unique_ptr<Element>>& elements, cons
     }
     has_damping_ = has_damping_ || elements_[e]->has_damping() || alpha_ != 0.0 || beta_ != 0.0;
   }
+  build_linear_force_matrices();
+}
+
+void Assembler::build_linear_force_matrices() {
+  // The linear elements' damping is constant (the condensed transient's A_L relies on it too),
+  // so it is evaluated once at u = 0 like their stiffness.
+  std::vector<Eigen::Triplet<double, int>> stiffness, damping, mass;
+  MatrixXd c;
+  for (std::size_t e = 0; e < elements_.size(); ++e) {
+    const auto& idx = dofs_.element_indices(e);
+    const int n = static_cast<int>(idx.size());
+    for (int a = 0; a < n; ++a)
+      for (int b = 0; b < n; ++b)
+        if (mass_[e](a, b) != 0.0) mass.emplace_back(idx[a], idx[b], mass_[e](a, b));
+    if (!is_linear_[e]) continue;
+    const MatrixXd& k = linear_stiffness_[e];
+    const bool damped = element_damping(e, VectorXd::Zero(n), k, c);
+    for (int a = 0; a < n; ++a)
+      for (int b = 0; b < n; ++b) {
+        if (k(a, b) != 0.0) stiffness.emplace_back(idx[a], idx[b], k(a, b));
+        if (damped && c(a, b) != 0.0) damping.emplace_back(idx[a], idx[b], c(a, b));
+      }
+  }
+  const int na = dofs_.n_active();
+  SparseMatrix k_all(na, na), c_all(na, na), m_all(na, na);
+  k_all.setFromTriplets(stiffness.begin(), stiffness.end());
+  c_all.setFromTriplets(damping.begin(), damping.end());
+  m_all.setFromTriplets(mass.begin(), mass.end());
+  linear_products_ = SharedPatternProducts({&k_all, &c_all, &m_all});
 }
 
 void Assembler::set_material_stiffness_damping(std::vector<double> beta) {
@@ -70,6 +99,7 @@ void Assembler::set_material_stiffness_damping(std::vector<double> beta) {
                  "material damping: one value per element expected");
   material_beta_ = std::move(beta);
   for (double b : material_beta_) has_damping_ = has_damping_ || b != 0.0;
+  build_linear_force_matrices();
 }
 
 void Assembler::gather(std::size_t e, const VectorXd& global, VectorXd& local) const {
@@ -79,44 +109,54 @@ void Assembler::gather(std::size_t e, const VectorXd& global, VectorXd& local) c
 }
 
 void Assembler::assemble(const IntegrationCoefficients& coeff, const VectorXd& u, const VectorXd& v,
-                         const Output& out) const {
-  if (out.effective) {
-    if (out.effective->nonZeros() != pattern_.nonZeros()) *out.effective = pattern_;
-    std::fill(out.effective->valuePtr(), out.effective->valuePtr() + pattern_.nonZeros(), 0.0);
-  }
-  if (out.internal_force) out.internal_force->setZero(dofs_.n_active());
-  if (out.damping_force) out.damping_force->setZero(dofs_.n_active());
-
+                         const Output& out, const VectorXd* a) const {
   compute_nonlinear_tangents(u);
-
-  // Phase 2, serial: scatter.
+  add_forces(u, v, a, out);
+  if (!out.effective) return;
+  if (out.effective->nonZeros() != pattern_.nonZeros()) *out.effective = pattern_;
+  std::fill(out.effective->valuePtr(), out.effective->valuePtr() + pattern_.nonZeros(), 0.0);
   MatrixXd c, eff;
-  VectorXd ue, ve, fe;
+  VectorXd ue;
   for (std::size_t e = 0; e < elements_.size(); ++e) {
+    const MatrixXd& ke = is_linear_[e] ? linear_stiffness_[e] : tangent_buffer_[e];
+    gather(e, u, ue);
+    const bool damped = coeff.cC != 0.0 && element_damping(e, ue, ke, c);
+    eff = coeff.cK * ke;
+    if (coeff.cM != 0.0) eff += coeff.cM * mass_[e];
+    if (damped) eff += coeff.cC * c;
+    scatter_lower(e, eff, *out.effective);
+  }
+}
+
+void Assembler::add_forces(const VectorXd& u, const VectorXd& v, const VectorXd* a,
+                           const Output& out) const {
+  // The linear elements and the mass from the stored global products; the nonlinear elements
+  // from the buffers of the tangent phase (their damping, which may depend on u, element by
+  // element).
+  IMPACTFE_CHECK(out.inertia_force == nullptr || a != nullptr,
+                 "Assembler: the inertia force needs the acceleration");
+  linear_products_.multiply({&u, &v, a},
+                            {out.internal_force, out.damping_force, out.inertia_force});
+  MatrixXd c;
+  VectorXd ue, ve, fd;
+  for (std::size_t e : nonlinear_) {
     const auto& idx = dofs_.element_indices(e);
     const int n = static_cast<int>(idx.size());
-    gather(e, u, ue);
-    if (is_linear_[e]) {
-      fe.noalias() = linear_stiffness_[e] * ue;
-    } else {
-      fe = force_buffer_[e];
-    }
-    const MatrixXd& ke = is_linear_[e] ? linear_stiffness_[e] : tangent_buffer_[e];
-    const bool damped = element_damping(e, ue, ke, c);
     if (out.internal_force)
-      for (int a = 0; a < n; ++a) (*out.internal_force)(idx[a]) += fe(a);
-    if (damped && out.damping_force) {
-      gather(e, v, ve);
-      const VectorXd fd = c * ve;
-      for (int a = 0; a < n; ++a) (*out.damping_force)(idx[a]) += fd(a);
-    }
-    if (out.effective) {
-      eff = coeff.cK * ke;
-      if (coeff.cM != 0.0) eff += coeff.cM * mass_[e];
-      if (damped && coeff.cC != 0.0) eff += coeff.cC * c;
-      scatter_lower(e, eff, *out.effective);
-    }
+      for (int a = 0; a < n; ++a) (*out.internal_force)(idx[a]) += force_buffer_[e](a);
+    if (!out.damping_force) continue;
+    gather(e, u, ue);
+    if (!element_damping(e, ue, tangent_buffer_[e], c)) continue;
+    gather(e, v, ve);
+    fd.noalias() = c * ve;
+    for (int a = 0; a < n; ++a) (*out.damping_force)(idx[a]) += fd(a);
   }
+}
+
+VectorXd Assembler::inertia_force(const VectorXd& a) const {
+  VectorXd f;
+  linear_products_.multiply({nullptr, nullptr, &a}, {nullptr, nullptr, &f});
+  return f;
 }
 
 void Assembler::compute_nonlinear_tangents(const VectorXd& u) const {

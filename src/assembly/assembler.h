@@ -8,6 +8,7 @@
 
 #include "assembly/dof_map.h"
 #include "elements/element.h"
+#include "linalg/shared_pattern_products.h"
 #include "linalg/sparse.h"
 #include "time/time_integrator.h"
 
@@ -32,10 +33,12 @@ class Assembler {
     SparseMatrix* effective = nullptr;   // free-free lower triangle of cK K + cC C + cM M
     VectorXd* internal_force = nullptr;  // f_int(u) over all active DOFs
     VectorXd* damping_force = nullptr;   // C v over all active DOFs
+    VectorXd* inertia_force = nullptr;   // M a over all active DOFs (needs `a`)
   };
-  /// u, v: total displacement and velocity over all active DOFs.
+  /// u, v, a: total displacement, velocity and acceleration over all active DOFs (a only for
+  /// the inertia force).
   void assemble(const IntegrationCoefficients& coeff, const VectorXd& u, const VectorXd& v,
-                const Output& out) const;
+                const Output& out, const VectorXd* a = nullptr) const;
 
   // ---- the split into a linear part and the nonlinear elements (condensed transient) ---------
   /// Free DOF indices touched by the nonlinear elements, ascending.
@@ -58,6 +61,8 @@ class Assembler {
     threading_.parallel = true;
   }
 
+  /// M a over all active DOFs (the same product as Output::inertia_force).
+  VectorXd inertia_force(const VectorXd& a) const;
   /// Mass matrix over all active DOFs (full symmetric storage), for inertia forces M a and the
   /// frame-acceleration load -M r a.
   SparseMatrix mass_matrix() const;
@@ -81,6 +86,11 @@ class Assembler {
   bool element_damping(std::size_t e, const VectorXd& ue, const MatrixXd& k, MatrixXd& c) const;
   /// Adds the lower triangle of an element matrix into the free-free pattern values.
   void scatter_lower(std::size_t e, const MatrixXd& m, SparseMatrix& effective) const;
+  /// Forms linear_products_ from the element matrices.
+  void build_linear_force_matrices();
+  /// The force outputs after the tangent phase: the linear part from the stored global
+  /// products, the nonlinear elements element by element.
+  void add_forces(const VectorXd& u, const VectorXd& v, const VectorXd* a, const Output& out) const;
 
   const std::vector<std::unique_ptr<Element>>& elements_;
   const DofMap& dofs_;
@@ -93,6 +103,10 @@ class Assembler {
   std::vector<MatrixXd> linear_stiffness_;  // K_e of linear elements (evaluated once)
   std::vector<bool> is_linear_;
   std::vector<std::size_t> nonlinear_;  // indices of the nonlinear elements
+  /// Σ K_e and Σ C_e of the linear elements and Σ M_e of all over the active DOFs, on one
+  /// pattern: the linear part of f_int, C v and M a in one pass per residual instead of an
+  /// element loop (issue 11: a step costs a solve plus O(nnz) vector work).
+  SharedPatternProducts linear_products_;
   // Per-element results of the tangent phase (scratch, not state).
   mutable std::vector<MatrixXd> tangent_buffer_;
   mutable std::vector<VectorXd> force_buffer_;
