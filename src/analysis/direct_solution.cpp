@@ -91,8 +91,16 @@ void DirectSolution::set_constraints(const LoadStep& step) {
 }
 
 VectorXd DirectSolution::external_force(const LoadPoint& at) const {
-  return nodal_forces(*dofs_, at) + frame_load_(frame_acceleration(at)) +
-         pressure_forces(structure_.elements(), *dofs_, ctx_, at, u_);
+  VectorXd f = frame_load_(frame_acceleration(at));
+  if (f.size() != dofs_->n_active()) f = VectorXd::Zero(dofs_->n_active());
+  if (at.current == resolved_step_) {
+    forces_.add_to(at, f);
+  } else {
+    f += nodal_forces(*dofs_, at);
+  }
+  if (!at.current->pressures.empty())
+    f += pressure_forces(structure_.elements(), *dofs_, ctx_, at, u_);
+  return f;
 }
 
 LoadPoint DirectSolution::load_point(const LoadStep& step, const LoadStep* previous,
@@ -201,6 +209,10 @@ void DirectSolution::solve_load_step(const LoadStep& step) {
   const LoadStepTiming t = load_step_timing(step, t_end_, transient);
   structure_.check_load_step(step);
   set_constraints(step);
+  // F and D of this load step resolved to DOF indices once (no map lookups per substep).
+  forces_ = ResolvedDofLoads(*dofs_, step, previous, ResolvedDofLoads::Kind::Forces);
+  prescribed_ = ResolvedDofLoads(*dofs_, step, previous, ResolvedDofLoads::Kind::Constraints);
+  resolved_step_ = &step;
   const bool dynamic = transient && step.time_integration;
   const OutputControl output = output_control_of(step.output);  // OUTRES of this load step
   if (!previous) {
@@ -477,7 +489,11 @@ void DirectSolution::solve_increment(const LoadPoint& at, const StepLabel& label
   inc.v = v_;
   inc.a = a_;
   VectorXd u = dynamic ? integrator_->predict() : u_;
-  u.tail(nc) = prescribed_displacements(*dofs_, at).tail(nc);
+  u.tail(nc).setZero();  // automatically constrained DOFs (no D) stay at 0
+  if (at.current == resolved_step_)
+    prescribed_.add_to(at, u);
+  else
+    u.tail(nc) = prescribed_displacements(*dofs_, at).tail(nc);
   inc.coeff = dynamic ? integrator_->coefficients() : IntegrationCoefficients{1.0, 0.0, 0.0};
   inc.weights = dynamic ? integrator_->weights() : ResidualWeights{};
   if (factor_valid_ && (inc.coeff.cK != factored_.cK || inc.coeff.cC != factored_.cC ||

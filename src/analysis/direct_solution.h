@@ -91,6 +91,9 @@ class DirectSolution : private NonlinearProblem {
   std::optional<LoadStep> previous_;  // the last load step solved (KBC ramps start from it)
   double t_end_ = 0.0;                // end time of the last load step solved
   std::vector<LoadStep> following_;   // load steps known to come after the current one
+  // F and D of the load step being solved, resolved to DOF indices (set per load step).
+  ResolvedDofLoads forces_, prescribed_;
+  const LoadStep* resolved_step_ = nullptr;
 
   // Converged state over all active DOFs, and the force terms of the last converged step.
   VectorXd u_, v_, a_;

@@ -19,13 +19,16 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <limits>
+#include <mutex>
 #include <set>
 #include <stdexcept>
 
 #include "core/errors.h"
 #include "core/log.h"
 #include "io/h5_util.h"
+#include "results/live_writers.h"
 #include "results/results_file.h"
 
 namespace impactfe {
@@ -50,6 +53,8 @@ constexpr hsize_t kChunkBytes = 256 * 1024;
 /// killed run can lose at most, against two flushes (~40 us each) per point.
 constexpr hsize_t kSyncPoints = 64;
 constexpr double kSyncSeconds = 0.1;
+/// Deflate level of the main datasets.
+constexpr int kDeflateLevel = 1;
 
 using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
@@ -97,8 +102,10 @@ struct BlockSeries {
   std::vector<hsize_t> row_dims;  // dimensions after the time axis
   Handle main;                    // (n_t, row_dims...), chunks (block_rows, ...)
   Handle recent;                  // (block_rows, row_dims...), one row per chunk
-  std::vector<double> block;      // the block being filled, block_rows x row_size
-  bool written = false;           // a row was given in the current append
+  // The block being filled, block_rows x row_size, not initialised: a row becomes valid when the
+  // point's values (or NaN, finish_append) are put into it.
+  std::unique_ptr<double[]> block;
+  bool written = false;  // a row was given in the current append
 
   hsize_t row_size() const { return product(row_dims); }
 };
@@ -129,7 +136,9 @@ BlockSeries create_series(hid_t group, hid_t recent_group, const std::string& na
   {
     Handle space(check(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), maxdims.data()),
                        "create dataspace for " + name));
-    Handle dcpl = h5::checked_creation_list(chunk, &fill);
+    // deflate level 1 (deflate_fast): level 4 costs about 3x the CPU for files a few % smaller
+    // (the helmet: docs/benchmarks.md, "Results writer").
+    Handle dcpl = h5::checked_creation_list(chunk, &fill, kDeflateLevel);
     s.main = Handle(check(
         H5Dcreate2(group, name.c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT),
         "create dataset " + name));
@@ -153,7 +162,7 @@ BlockSeries create_series(hid_t group, hid_t recent_group, const std::string& na
         H5Dcreate2(recent_group, name.c_str(), H5T_IEEE_F64LE, space, lcpl, dcpl, H5P_DEFAULT),
         "create dataset recent/" + name));
   }
-  s.block.assign(block_rows * s.row_size(), kNaN);
+  s.block.reset(new double[block_rows * s.row_size()]);
   return s;
 }
 
@@ -194,6 +203,13 @@ struct FamilySeries {
   std::vector<int> element_ids;
   std::vector<std::string> items;
 };
+
+/// The file a path names, for the registry of live writers.
+std::string file_key(const std::string& path) {
+  std::error_code ec;
+  const auto p = std::filesystem::weakly_canonical(std::filesystem::absolute(path), ec);
+  return ec ? path : p.string();
+}
 
 }  // namespace
 
@@ -391,14 +407,15 @@ BlockSeries& ResultsWriter::Impl::series_for(const std::string& name,
   // A quantity that starts later: its main dataset spans the finished blocks already (NaN).
   BlockSeries s =
       create_series(group, recent_group, name, row_dims, block_rows, block_start, growable);
-  // Rows of the current block before this one stay NaN in the staging dataset too: write them,
-  // since a reused staging dataset is not, but a new one is all fill.
+  // Rows of the current block before this point: NaN (written to the new staging dataset at
+  // the next sync like every row of the block).
+  std::fill_n(s.block.get(), slot() * s.row_size(), kNaN);
   return series.emplace(name, std::move(s)).first->second;
 }
 
 double* ResultsWriter::Impl::row_slot(BlockSeries& s) {
   s.written = true;
-  return s.block.data() + slot() * s.row_size();
+  return s.block.get() + slot() * s.row_size();
 }
 
 void ResultsWriter::Impl::put_row(BlockSeries& s, const double* row) {
@@ -409,15 +426,17 @@ void ResultsWriter::Impl::flush_block(hsize_t n_rows) {
   // The finished rows of the block go to the main datasets in one write per quantity.
   for (auto& [name, s] : series) {
     set_extent(s.main, block_start + n_rows, s.row_dims);
-    write_rows(s.main, block_start, n_rows, s.row_dims, s.block.data());
-    std::fill(s.block.begin(), s.block.end(), kNaN);
+    write_rows(s.main, block_start, n_rows, s.row_dims, s.block.get());
   }
 }
 
 void ResultsWriter::Impl::finish_append() {
-  // A quantity not given at this point is absent there: its block row is still NaN (the block
-  // is cleared when it is written out), and the staging rows are written from the block.
-  for (auto& [name, s] : series) s.written = false;
+  // A quantity not given at this point is absent (NaN) there; the staging rows are written from
+  // the block.
+  for (auto& [name, s] : series) {
+    if (!s.written) std::fill_n(row_slot(s), s.row_size(), kNaN);
+    s.written = false;
+  }
 }
 
 void ResultsWriter::Impl::write_pending_counters() {
@@ -454,7 +473,7 @@ void ResultsWriter::Impl::sync(bool block_full) {
   } else {
     const hsize_t first = synced - block_start, n = n_t - synced;
     for (auto& [name, s] : series)
-      write_rows(s.recent, first, n, s.row_dims, s.block.data() + first * s.row_size());
+      write_rows(s.recent, first, n, s.row_dims, s.block.get() + first * s.row_size());
   }
   flush();
   write_pending_counters();
@@ -541,11 +560,12 @@ void ResultsWriter::Impl::write_reactions(const Eigen::MatrixXd& m) {
       // More columns: widen both datasets and the block (old rows keep their columns).
       BlockSeries& s = it->second;
       const hsize_t old_n = s.row_dims[0];
-      std::vector<double> block(block_rows * n_r, kNaN);
-      for (hsize_t r = 0; r < block_rows; ++r)
-        std::copy(s.block.begin() + static_cast<long>(r * old_n),
-                  s.block.begin() + static_cast<long>((r + 1) * old_n),
-                  block.begin() + static_cast<long>(r * n_r));
+      std::unique_ptr<double[]> block(new double[block_rows * n_r]);
+      for (hsize_t r = 0; r < slot(); ++r) {  // the rows of this block so far
+        std::copy(s.block.get() + r * old_n, s.block.get() + (r + 1) * old_n,
+                  block.get() + r * n_r);
+        std::fill(block.get() + r * n_r + old_n, block.get() + (r + 1) * n_r, kNaN);
+      }
       s.block = std::move(block);
       s.row_dims = {n_r};
       set_extent(s.main, h5::dims_of(s.main)[0], s.row_dims);
@@ -596,6 +616,34 @@ void ResultsWriter::Impl::write_family(const std::string& family, const ElementR
       row[static_cast<std::size_t>(i) * n_i + static_cast<std::size_t>(j)] = table.values(i, j);
 }
 
+namespace {
+
+/// Writers open in this process (live_writers.h).
+struct LiveWriters {
+  std::mutex mutex;
+  std::map<std::string, std::pair<const void*, std::function<void()>>> by_file;  // owner, sync
+};
+
+LiveWriters& live_writers() {
+  static LiveWriters w;
+  return w;
+}
+
+}  // namespace
+
+void sync_live_writer(const std::string& path) {
+  LiveWriters& w = live_writers();
+  std::lock_guard<std::mutex> lock(w.mutex);
+  auto it = w.by_file.find(file_key(path));
+  if (it == w.by_file.end()) return;
+  try {
+    it->second.second();
+  } catch (const std::exception& e) {
+    // The writer reports the failure itself at its next append or when it closes.
+    Log::debug("results file {}: sync for a reader failed: {}", path, e.what());
+  }
+}
+
 ResultsWriter::ResultsWriter(const std::string& path, const Model& model)
     : impl_(std::make_unique<Impl>()) {
   h5::silence_errors();
@@ -616,9 +664,19 @@ ResultsWriter::ResultsWriter(const std::string& path, const Model& model)
   } catch (const std::runtime_error& e) {
     throw SolutionError(fmt::format("results file '{}': {}", path, e.what()));
   }
+  LiveWriters& w = live_writers();
+  std::lock_guard<std::mutex> lock(w.mutex);
+  Impl* impl = impl_.get();
+  w.by_file[file_key(path)] = {impl, [impl] { impl->sync(false); }};
 }
 
 ResultsWriter::~ResultsWriter() {
+  {
+    LiveWriters& w = live_writers();
+    std::lock_guard<std::mutex> lock(w.mutex);
+    auto it = w.by_file.find(file_key(impl_->path));
+    if (it != w.by_file.end() && it->second.first == impl_.get()) w.by_file.erase(it);
+  }
   try {
     impl_->close_analysis("incomplete");
     impl_->compact();
