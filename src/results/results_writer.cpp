@@ -19,9 +19,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
-#include <functional>
 #include <limits>
-#include <mutex>
 #include <set>
 #include <stdexcept>
 
@@ -203,13 +201,6 @@ struct FamilySeries {
   std::vector<int> element_ids;
   std::vector<std::string> items;
 };
-
-/// The file a path names, for the registry of live writers.
-std::string file_key(const std::string& path) {
-  std::error_code ec;
-  const auto p = std::filesystem::weakly_canonical(std::filesystem::absolute(path), ec);
-  return ec ? path : p.string();
-}
 
 }  // namespace
 
@@ -616,34 +607,6 @@ void ResultsWriter::Impl::write_family(const std::string& family, const ElementR
       row[static_cast<std::size_t>(i) * n_i + static_cast<std::size_t>(j)] = table.values(i, j);
 }
 
-namespace {
-
-/// Writers open in this process (live_writers.h).
-struct LiveWriters {
-  std::mutex mutex;
-  std::map<std::string, std::pair<const void*, std::function<void()>>> by_file;  // owner, sync
-};
-
-LiveWriters& live_writers() {
-  static LiveWriters w;
-  return w;
-}
-
-}  // namespace
-
-void sync_live_writer(const std::string& path) {
-  LiveWriters& w = live_writers();
-  std::lock_guard<std::mutex> lock(w.mutex);
-  auto it = w.by_file.find(file_key(path));
-  if (it == w.by_file.end()) return;
-  try {
-    it->second.second();
-  } catch (const std::exception& e) {
-    // The writer reports the failure itself at its next append or when it closes.
-    Log::debug("results file {}: sync for a reader failed: {}", path, e.what());
-  }
-}
-
 ResultsWriter::ResultsWriter(const std::string& path, const Model& model)
     : impl_(std::make_unique<Impl>()) {
   h5::silence_errors();
@@ -664,19 +627,12 @@ ResultsWriter::ResultsWriter(const std::string& path, const Model& model)
   } catch (const std::runtime_error& e) {
     throw SolutionError(fmt::format("results file '{}': {}", path, e.what()));
   }
-  LiveWriters& w = live_writers();
-  std::lock_guard<std::mutex> lock(w.mutex);
   Impl* impl = impl_.get();
-  w.by_file[file_key(path)] = {impl, [impl] { impl->sync(false); }};
+  register_live_writer(path, impl, [impl] { impl->sync(false); });
 }
 
 ResultsWriter::~ResultsWriter() {
-  {
-    LiveWriters& w = live_writers();
-    std::lock_guard<std::mutex> lock(w.mutex);
-    auto it = w.by_file.find(file_key(impl_->path));
-    if (it != w.by_file.end() && it->second.first == impl_.get()) w.by_file.erase(it);
-  }
+  unregister_live_writer(impl_->path, impl_.get());
   try {
     impl_->close_analysis("incomplete");
     impl_->compact();

@@ -40,7 +40,8 @@ TEST(OutputSelection, ItemsAndComponentsAccumulateLaterWinning) {
   for (int id : {1, 2, 4, 8, 9}) EXPECT_TRUE(s5.contains(id)) << id;
   for (int id : {5, 6, 7}) EXPECT_FALSE(s5.contains(id)) << id;
   EXPECT_TRUE(at5[OutputItem::STRS].none());
-  const IdSelection& s3 = output_selection(c, 3, 20)[OutputItem::NSOL];
+  const OutputSelection at3 = output_selection(c, 3, 20);
+  const IdSelection& s3 = at3[OutputItem::NSOL];
   for (int id : {8, 9}) EXPECT_TRUE(s3.contains(id)) << id;
   for (int id : {1, 5, 7}) EXPECT_FALSE(s3.contains(id)) << id;
   EXPECT_FALSE(output_selection(c, 3, 20)[OutputItem::VSOL].contains(8));
