@@ -214,7 +214,7 @@ void DirectSolution::solve_load_step(const LoadStep& step) {
   prescribed_ = ResolvedDofLoads(*dofs_, step, previous, ResolvedDofLoads::Kind::Constraints);
   resolved_step_ = &step;
   const bool dynamic = transient && step.time_integration;
-  const OutputControl output = output_control_of(step.output);  // OUTRES of this load step
+  const OutputControl& output = step.output;  // OUTRES of this load step
   if (!previous) {
     // Store the initial state (t = 0) of a transient, so histories start at rest.
     if (transient) {

@@ -165,7 +165,7 @@ void JobSession::run_whole(const Job::Step& step, AnalysisStatistics& stats) {
       // Reduced and MSUP runs store their own output points (NUMEXP/OUTRES frequency of the
       // whole run); OUTRES per item or component is not carried out there, so refuse it.
       for (const LoadStep& ls : request.load_steps)
-        if (!output_control_of(ls.output).uniform())
+        if (!ls.output.uniform())
           throw NotImplementedError(
               ls.where,
               "OUTRES per item or component applies to static and full transient "

@@ -1,16 +1,11 @@
 #pragma once
-/// OUTRES per item, frequency and component (APDL_SCRIPTING §E.8) for a load step.
-///
-/// A load step carries its output frequency in `LoadStep::output.every` (core/model.h): n > 0
-/// every n-th substep and the last, 0 the last substep, -1 none (OUTRES,ALL,NONE). When OUTRES
-/// sets items one by one, `every` holds a code <= -2 naming an OutputControl registered here
-/// (append-only, for the life of the process), so that the widely included model header stays
-/// as it is. docs/results_file.md, "Output control (OUTRES)".
+/// OUTRES per item, frequency and component (APDL_SCRIPTING §E.8): the output settings a load
+/// step carries by value (`LoadStep::output`, core/model.h), so that copies of a load step and
+/// SAVE/RESUME keep them. docs/results_file.md, "Output control (OUTRES)".
+#include <algorithm>
 #include <array>
 #include <string>
 #include <vector>
-
-#include "core/model.h"
 
 namespace impactfe {
 
@@ -28,19 +23,17 @@ struct OutputSpec {
   std::vector<int> ids;   // the component's node or element ids (ascending)
 };
 
-/// The output settings of a load step: `every` for all items, and per item (when not empty)
-/// its specifications in command order, a later one winning for the nodes / elements it covers.
+/// The output settings of a load step (ITER NPOST / OUTRES): `every` for all items (n > 0 every
+/// n-th substep and the last, 0 the last substep, -1 none), and per item (when not empty) its
+/// specifications in command order, a later one winning for the nodes / elements it covers.
 struct OutputControl {
   int every = 0;
   std::array<std::vector<OutputSpec>, kOutputItems> items;
   /// True when no item has specifications of its own.
-  bool uniform() const;
+  bool uniform() const {
+    return std::all_of(items.begin(), items.end(),
+                       [](const std::vector<OutputSpec>& v) { return v.empty(); });
+  }
 };
-
-/// The settings a load step's output frequency stands for.
-OutputControl output_control_of(const OutputFrequency& f);
-/// The output frequency that stands for `control`: its `every` when uniform, else a code of
-/// the registry.
-OutputFrequency output_frequency_of(const OutputControl& control);
 
 }  // namespace impactfe

@@ -8,7 +8,6 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "core/output_control.h"
 #include "deck/deck_context.h"
 #include "io/superelement_file.h"
 
@@ -152,9 +151,9 @@ std::map<DofKey, double> dof_table_of(const json& a) {
 }
 
 /// OUTRES per-item specifications: per item a list of [every, component, ids].
-json output_items_json(const OutputFrequency& f) {
+json output_items_json(const OutputControl& f) {
   json items = json::array();
-  for (const auto& specs : output_control_of(f).items) {
+  for (const auto& specs : f.items) {
     json list = json::array();
     for (const auto& spec : specs) list.push_back({spec.every, spec.component, spec.ids});
     items.push_back(list);
@@ -162,23 +161,18 @@ json output_items_json(const OutputFrequency& f) {
   return items;
 }
 
-/// Registers the per-item specifications again (the code in output_every is only valid in the
-/// process that made it).
-void output_items_of(const json& j, OutputFrequency& f) {
-  OutputControl control;
-  for (std::size_t i = 0; i < control.items.size() && i < j.size(); ++i)
+void output_items_of(const json& j, OutputControl& f) {
+  for (std::size_t i = 0; i < f.items.size() && i < j.size(); ++i)
     for (const auto& spec : j[i])
-      control.items[i].push_back(OutputSpec{spec[0].get<int>(), spec[1].get<std::string>(),
-                                            spec[2].get<std::vector<int>>()});
-  control.every = f.every;  // the frequency of the items without specifications
-  f = output_frequency_of(control);
+      f.items[i].push_back(OutputSpec{spec[0].get<int>(), spec[1].get<std::string>(),
+                                      spec[2].get<std::vector<int>>()});
 }
 
 json load_state_json(const LoadStep& s) {
   return {{"time_end", opt(s.time_end)},
           {"dt", opt(s.dt)},
           {"n_substeps", s.n_substeps ? json(*s.n_substeps) : json(nullptr)},
-          {"output_every", output_control_of(s.output).every},
+          {"output_every", s.output.every},
           {"output_items", output_items_json(s.output)},
           {"stepped", s.stepped},
           {"reformulation", s.reformulation},

@@ -335,7 +335,7 @@ bool nodal_output_item(OutputItem i) {
 void cmd_outres(DeckReader& r, const Command& c) {
   // OUTRES,Item,Freq,Cname: specifications accumulate per item, a later one winning for the
   // nodes / elements it covers (APDL_SCRIPTING §E.8; docs/results_file.md "Output control").
-  OutputControl out = output_control_of(r.model.current.output);
+  OutputControl out = r.model.current.output;
   const std::string item = r.label(c, 1);
   if (item == "STAT") {
     r.output.print(" OUTRES settings of the current load step:");
@@ -346,11 +346,11 @@ void cmd_outres(DeckReader& r, const Command& c) {
   const std::string cname = r.label(c, 3);
   if (item == "ERASE") {
     if (!cname.empty()) r.fail(c, "ERASE takes no Cname");
-    r.model.current.output = OutputFrequency{};
+    r.model.current.output = OutputControl{};
     return;
   }
   if ((item.empty() || item == "ALL") && (cname.empty() || cname == "ALL")) {
-    r.model.current.output = OutputFrequency{};
+    r.model.current.output = OutputControl{};
     r.model.current.output.every = every;
     return;
   }
@@ -389,7 +389,7 @@ void cmd_outres(DeckReader& r, const Command& c) {
     std::erase_if(specs, [&](const OutputSpec& s) { return s.component == spec.component; });
     specs.push_back(spec);
   }
-  r.model.current.output = output_frequency_of(out);
+  r.model.current.output = std::move(out);
 }
 
 void cmd_outpr(DeckReader& r, const Command& c) {

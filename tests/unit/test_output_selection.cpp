@@ -1,10 +1,11 @@
 // OUTRES per item, frequency and component: which substeps and which nodes / elements an item
 // is written for (later specifications win where they overlap), the element-item categories,
-// the masking of a time point, and the registry code a load step carries.
+// the masking of a time point, and the settings a load step carries by value.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
+#include "core/model.h"
 #include "core/output_control.h"
 #include "results/output_selection.h"
 
@@ -80,18 +81,21 @@ TEST(OutputSelection, MaskingSetsWhatIsNotWrittenToNaN) {
   EXPECT_EQ(v(1, 2), 1.0);
 }
 
-TEST(OutputControl, PerItemSettingsTravelAsACode) {
-  const OutputControl uniform = control(4);
-  EXPECT_EQ(output_frequency_of(uniform).every, 4);
-  OutputControl c = control(-1);
-  c.items[static_cast<int>(OutputItem::RSOL)] = {{2, "", {}}};
-  const OutputFrequency f = output_frequency_of(c);
-  EXPECT_LE(f.every, -2);
-  const OutputControl back = output_control_of(f);
-  EXPECT_EQ(back.every, -1);
-  ASSERT_EQ(back.items[static_cast<int>(OutputItem::RSOL)].size(), 1u);
-  EXPECT_EQ(back.items[static_cast<int>(OutputItem::RSOL)][0].every, 2);
-  EXPECT_TRUE(output_control_of(OutputFrequency{-1}).uniform());
+TEST(OutputControl, ALoadStepCarriesItsPerItemSettings) {
+  EXPECT_TRUE(control(4).uniform());
+  LoadStep first;
+  first.output = control(-1);
+  first.output.items[static_cast<int>(OutputItem::RSOL)] = {{2, "", {}}};
+  EXPECT_FALSE(first.output.uniform());
+  LoadStep second = first;  // a copy keeps the settings, independent of the original
+  first.output.items[static_cast<int>(OutputItem::RSOL)].clear();
+  EXPECT_TRUE(first.output.uniform());
+  EXPECT_EQ(second.output.every, -1);
+  ASSERT_EQ(second.output.items[static_cast<int>(OutputItem::RSOL)].size(), 1u);
+  EXPECT_EQ(second.output.items[static_cast<int>(OutputItem::RSOL)][0].every, 2);
+  EXPECT_FALSE(output_selection(second.output, 1, 4)[OutputItem::NSOL].all());
+  EXPECT_FALSE(output_selection(second.output, 1, 4)[OutputItem::RSOL].all());
+  EXPECT_TRUE(output_selection(second.output, 2, 4)[OutputItem::RSOL].all());
 }
 
 }  // namespace
