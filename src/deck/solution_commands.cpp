@@ -91,8 +91,10 @@ void cmd_iter(DeckReader& r, const Command& c) {
     if (r.kan == 4) s.dt.reset();
   }
   const int nprint = r.integer(c, 2, 0);
-  s.output.every = r.integer(c, 3, 0);
-  if (nprint < 0 || s.output.every < 0) r.fail(c, "NPRINT/NPOST must not be negative");
+  const int npost = r.integer(c, 3, 0);
+  if (nprint < 0 || npost < 0) r.fail(c, "NPRINT/NPOST must not be negative");
+  s.output = OutputControl{};  // NPOST is the frequency of every item (no per-item OUTRES)
+  s.output.every = npost;
   if (nprint > 0) log_no_printout(c);
   // Kept as given (n = every n-th substep and the last): under KAN=5 NITTER is not the
   // number of steps, so "NPOST >= NITTER" must not be read as "last only".
