@@ -262,6 +262,11 @@ class Results:
                 columns[f"E{element}_{it.upper()}"] = self._element_points(element, it)
             else:
                 columns[f"GAP{gap}"] = self._gap_points(gap)
+        for name, pts in columns.items():
+            # Not written (OUTRES) or never computed: an error, not an empty column.
+            if not pts:
+                raise ResultsError(f"{name}: no value is stored in '{self.path}' (not written "
+                                   "by OUTRES, or not computed for this node / element)")
         frames = [pd.Series([v for _, v in pts], index=[t for t, _ in pts], name=name,
                             dtype=float) for name, pts in columns.items()]
         df = pd.concat(frames, axis=1) if len(frames) > 1 else frames[0].to_frame()

@@ -91,8 +91,16 @@ void DirectSolution::set_constraints(const LoadStep& step) {
 }
 
 VectorXd DirectSolution::external_force(const LoadPoint& at) const {
-  return nodal_forces(*dofs_, at) + frame_load_(frame_acceleration(at)) +
-         pressure_forces(structure_.elements(), *dofs_, ctx_, at, u_);
+  VectorXd f = frame_load_(frame_acceleration(at));
+  if (f.size() != dofs_->n_active()) f = VectorXd::Zero(dofs_->n_active());
+  if (at.current == resolved_step_) {
+    forces_.add_to(at, f);
+  } else {
+    f += nodal_forces(*dofs_, at);
+  }
+  if (!at.current->pressures.empty())
+    f += pressure_forces(structure_.elements(), *dofs_, ctx_, at, u_);
+  return f;
 }
 
 LoadPoint DirectSolution::load_point(const LoadStep& step, const LoadStep* previous,
@@ -179,8 +187,15 @@ void DirectSolution::start_dynamics(const LoadPoint& at, double h) {
 
 void DirectSolution::run(const std::vector<LoadStep>& steps, bool transient) {
   begin(transient);
-  for (const LoadStep& step : steps) solve_load_step(step);
+  for (std::size_t i = 0; i < steps.size(); ++i) {
+    set_following_steps({steps.begin() + static_cast<long>(i) + 1, steps.end()});
+    solve_load_step(steps[i]);
+  }
   finish();
+}
+
+void DirectSolution::set_following_steps(std::vector<LoadStep> steps) {
+  following_ = std::move(steps);
 }
 
 void DirectSolution::begin(bool transient) {
@@ -194,7 +209,12 @@ void DirectSolution::solve_load_step(const LoadStep& step) {
   const LoadStepTiming t = load_step_timing(step, t_end_, transient);
   structure_.check_load_step(step);
   set_constraints(step);
+  // F and D of this load step resolved to DOF indices once (no map lookups per substep).
+  forces_ = ResolvedDofLoads(*dofs_, step, previous, ResolvedDofLoads::Kind::Forces);
+  prescribed_ = ResolvedDofLoads(*dofs_, step, previous, ResolvedDofLoads::Kind::Constraints);
+  resolved_step_ = &step;
   const bool dynamic = transient && step.time_integration;
+  const OutputControl& output = step.output;  // OUTRES of this load step
   if (!previous) {
     // Store the initial state (t = 0) of a transient, so histories start at rest.
     if (transient) {
@@ -206,7 +226,7 @@ void DirectSolution::solve_load_step(const LoadStep& step) {
       energy_->set_initial_kinetic(0.5 * v_.dot(mass_all_ * v_));
       reactions_ = VectorXd::Zero(dofs_->n_active());
       acel_ = frame_acceleration(at0);
-      store(t_end_, 0, 0, dynamic);
+      store(t_end_, 0, 0, dynamic, output_selection(output, 0, t.n_substeps));
     }
   }
   if (dynamic) {
@@ -220,6 +240,18 @@ void DirectSolution::solve_load_step(const LoadStep& step) {
   } else {
     dynamics_started_ = false;
   }
+  // Substeps and end time of the load steps known to follow (progress estimate of the run); a
+  // step whose timing is invalid is reported when it is solved, not here.
+  long long later_substeps = 0;
+  double run_end = t.t_end;
+  try {
+    for (const LoadStep& next : following_) {
+      const LoadStepTiming tn = load_step_timing(next, run_end, transient);
+      later_substeps += tn.n_substeps;
+      run_end = tn.t_end;
+    }
+  } catch (const std::exception&) {
+  }
   for (int k = 1; k <= t.n_substeps; ++k) {
     const double time = t.t_start + k * t.h;
     const LoadPoint at = load_point(step, previous, static_cast<double>(k) / t.n_substeps, time);
@@ -230,10 +262,11 @@ void DirectSolution::solve_load_step(const LoadStep& step) {
     if (settings_.progress)
       settings_.progress->substep_done({stats_.description, time, t.t_end, step.number, k,
                                         t.n_substeps, t.h, stats_.n_iterations - iterations_before,
-                                        stats_.n_status_changes - changes_before});
-    const bool last = k == t.n_substeps;
-    const int every = step.output.every;
-    if (last || (every > 0 && k % every == 0)) store(time, step.number, k, dynamic);
+                                        stats_.n_status_changes - changes_before,
+                                        t.n_substeps - k + later_substeps, run_end});
+    // OUTRES: the items (and nodes / elements) this substep writes; none: no stored point.
+    const OutputSelection selection = output_selection(output, k, t.n_substeps);
+    if (selection.any()) store(time, step.number, k, dynamic, selection);
   }
   ++stats_.n_load_steps;
   previous_ = step;
@@ -474,7 +507,11 @@ void DirectSolution::solve_increment(const LoadPoint& at, const StepLabel& label
   inc.v = v_;
   inc.a = a_;
   VectorXd u = dynamic ? integrator_->predict() : u_;
-  u.tail(nc) = prescribed_displacements(*dofs_, at).tail(nc);
+  u.tail(nc).setZero();  // automatically constrained DOFs (no D) stay at 0
+  if (at.current == resolved_step_)
+    prescribed_.add_to(at, u);
+  else
+    u.tail(nc) = prescribed_displacements(*dofs_, at).tail(nc);
   inc.coeff = dynamic ? integrator_->coefficients() : IntegrationCoefficients{1.0, 0.0, 0.0};
   inc.weights = dynamic ? integrator_->weights() : ResidualWeights{};
   if (factor_valid_ && (inc.coeff.cK != factored_.cK || inc.coeff.cC != factored_.cC ||
@@ -619,18 +656,23 @@ void DirectSolution::fail_not_finite(const VectorXd& u, const StepLabel& label) 
       label.load_step, label.substep, label.time, where));
 }
 
-void DirectSolution::store(double time, int load_step, int substep, bool dynamic) {
+void DirectSolution::store(double time, int load_step, int substep, bool dynamic,
+                           const OutputSelection& selection) {
   TimePoint point;
   point.time = time;
   point.load_step = load_step;
   point.substep = substep;
-  point.displacement = structure_.nodal_table(*dofs_, u_);
+  // Quantities OUTRES does not write at this point are not computed (absent, NaN in the file).
+  const auto wanted = [&](OutputItem i) { return !selection[i].none(); };
+  if (wanted(OutputItem::NSOL)) point.displacement = structure_.nodal_table(*dofs_, u_);
   if (dynamic || structure_.options().type == AnalysisType::Transient) {
-    point.velocity = structure_.nodal_table(*dofs_, v_);
-    point.acceleration = structure_.nodal_table(*dofs_, a_);
+    if (wanted(OutputItem::VSOL)) point.velocity = structure_.nodal_table(*dofs_, v_);
+    if (wanted(OutputItem::ASOL)) point.acceleration = structure_.nodal_table(*dofs_, a_);
   }
-  point.reaction = structure_.reaction_table(*dofs_, reactions_);
-  point.element_results = structure_.element_results(*assembler_, u_, v_);
+  if (wanted(OutputItem::RSOL)) point.reaction = structure_.reaction_table(*dofs_, reactions_);
+  if (selection.any_element_item())
+    point.element_results = structure_.element_results(*assembler_, u_, v_);
+  apply_output_selection(selection, writer_.node_ids(), point);
   point.energy = energy_->columns(0.5 * v_.dot(mass_all_ * v_));
   point.frame_acceleration = acel_;
   writer_.append(point);

@@ -18,6 +18,7 @@
 #include "linalg/linear_solver.h"
 #include "nonlinear/newton_raphson.h"
 #include "nonlinear/status_loop.h"
+#include "results/output_selection.h"
 #include "results/results_file.h"
 #include "time/time_integrator.h"
 
@@ -34,6 +35,9 @@ class DirectSolution : private NonlinearProblem {
   /// then solve_load_step for each load step in order, then finish.
   void begin(bool transient);
   void solve_load_step(const LoadStep& step);
+  /// The load steps known to come after the one being solved (for the progress estimate of
+  /// the whole run); empty by default.
+  void set_following_steps(std::vector<LoadStep> steps);
   void finish();
 
  private:
@@ -48,7 +52,8 @@ class DirectSolution : private NonlinearProblem {
   /// over (from the returned state), with `result` holding the condensed iterations.
   bool solve_condensed(VectorXd& u, const NewtonOptions& newton, NewtonResult& result);
   void factorize(const IntegrationCoefficients& coeff, const VectorXd& u);
-  void store(double time, int load_step, int substep, bool dynamic);
+  void store(double time, int load_step, int substep, bool dynamic,
+             const OutputSelection& selection);
   void time_step_advice(double h);
   /// "elements 3, 4" carrying active DOF `index` (for messages).
   std::string elements_at(int index) const;
@@ -85,6 +90,10 @@ class DirectSolution : private NonlinearProblem {
   bool dynamics_started_ = false;
   std::optional<LoadStep> previous_;  // the last load step solved (KBC ramps start from it)
   double t_end_ = 0.0;                // end time of the last load step solved
+  std::vector<LoadStep> following_;   // load steps known to come after the current one
+  // F and D of the load step being solved, resolved to DOF indices (set per load step).
+  ResolvedDofLoads forces_, prescribed_;
+  const LoadStep* resolved_step_ = nullptr;
 
   // Converged state over all active DOFs, and the force terms of the last converged step.
   VectorXd u_, v_, a_;

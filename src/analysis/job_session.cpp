@@ -9,6 +9,7 @@
 #include "analysis/direct_solution.h"
 #include "analysis/superelement_expansion.h"
 #include "core/log.h"
+#include "results/output_selection.h"
 
 namespace impactfe {
 
@@ -138,6 +139,8 @@ void JobSession::solve(const Job& job, std::size_t step) {
       const auto& steps = open_step_->analysis->load_steps;
       while (load_steps_solved_ < steps.size()) {
         where_ = steps[load_steps_solved_].where;
+        direct_->set_following_steps(
+            {steps.begin() + static_cast<long>(load_steps_solved_) + 1, steps.end()});
         direct_->solve_load_step(steps[load_steps_solved_++]);
       }
     }
@@ -159,6 +162,14 @@ void JobSession::run_whole(const Job::Step& step, AnalysisStatistics& stats) {
       run_modal_analysis(structure, request, *writer_, settings_, stats);
       break;
     case AnalysisType::Transient:
+      // Reduced and MSUP runs store their own output points (NUMEXP/OUTRES frequency of the
+      // whole run); OUTRES per item or component is not carried out there, so refuse it.
+      for (const LoadStep& ls : request.load_steps)
+        if (!ls.output.uniform())
+          throw NotImplementedError(
+              ls.where,
+              "OUTRES per item or component applies to static and full transient "
+              "analyses; a reduced or mode-superposition transient writes every item");
       if (request.options.method == TransientMethod::Reduced)
         run_reduced_transient(structure, request, *writer_, settings_, stats, reduced_state_);
       else

@@ -15,6 +15,10 @@ struct ProgressEvent {
   double dt = 0.0;
   int iterations = 0;      // equilibrium iterations of this substep
   int status_changes = 0;  // status changes of this substep (-1: not counted)
+  /// Substeps of the analysis still to solve after this one, over every load step known so far
+  /// (later SOLVEs of the deck are not read yet); -1 when not counted.
+  long long substeps_left = -1;
+  double run_time_end = 0.0;  // end time of the last load step known so far
 };
 
 class ProgressObserver {

@@ -245,8 +245,11 @@ void integrate_reduced(ReducedRunState& state, ReducedDynamics& dynamics,
     if (progress) {
       const auto& [end, count] = step_end[p.load_step];
       // One linear solve per step; the GP gap conditions' status changes are not counted (-1).
+      // The whole axis is known here: the estimate covers every load step.
       progress->substep_done({stats.description, p.time, end, p.load_step, p.substep, count,
-                              p.time - state.points[i - 1].time, 1, -1});
+                              p.time - state.points[i - 1].time, 1, -1,
+                              static_cast<long long>(state.points.size() - 1 - i),
+                              state.points.back().time});
     }
   }
   seconds_per_step = n_steps ? integration / n_steps : 0.0;

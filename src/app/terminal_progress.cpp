@@ -21,7 +21,9 @@ TerminalProgress::TerminalProgress()
     : enabled_(isatty(STDERR_FILENO) != 0),
       start_(Clock::now()),
       last_draw_(Clock::time_point{}),
-      step_start_wall_(start_) {}
+      step_start_wall_(start_),
+      analysis_start_wall_(start_),
+      last_event_wall_(start_) {}
 
 void TerminalProgress::substep_done(const ProgressEvent& e) {
   if (!enabled_) return;
@@ -29,7 +31,12 @@ void TerminalProgress::substep_done(const ProgressEvent& e) {
   if (e.analysis != analysis_) {
     analysis_ = e.analysis;
     status_changes_ = 0;
+    analysis_substeps_ = 0;
+    // The first substep's own wall time is not seen: start the clock one substep back.
+    analysis_start_wall_ = last_event_wall_;
   }
+  ++analysis_substeps_;
+  last_event_wall_ = now;
   status_changes_ += std::max(e.status_changes, 0);
   if (e.load_step != load_step_) {  // the estimate is made per load step (its rate and end)
     load_step_ = e.load_step;
@@ -43,8 +50,19 @@ void TerminalProgress::substep_done(const ProgressEvent& e) {
   const double in_step = std::chrono::duration<double>(now - step_start_wall_).count();
   const double done = e.time - step_start_time_;
   std::string left = "";
-  if (done > 0.0 && e.time_end > e.time)
+  if (e.substeps_left >= 0) {
+    // The whole run as far as the deck has been read: the mean wall time per substep of this
+    // analysis (load steps with another dt cost about the same per substep) times the
+    // substeps still to solve.
+    const double per_substep = std::chrono::duration<double>(now - analysis_start_wall_).count() /
+                               static_cast<double>(analysis_substeps_);
+    if (e.substeps_left > 0)
+      left =
+          fmt::format(", ~{} left (to t = {:.6g})",
+                      seconds(per_substep * static_cast<double>(e.substeps_left)), e.run_time_end);
+  } else if (done > 0.0 && e.time_end > e.time) {
     left = fmt::format(", ~{} left in load step", seconds(in_step * (e.time_end - e.time) / done));
+  }
   const std::string line = fmt::format(
       "{}: t = {:.6g} of {:.6g}, load step {}, substep {}/{}, dt {:.3g}, {} iter, {}{} elapsed{}",
       e.analysis, e.time, e.time_end, e.load_step, e.substep, e.substeps, e.dt, e.iterations,

@@ -1,6 +1,8 @@
 #pragma once
 /// The progress line of `impactfe run` on a terminal (stderr): time, load step, substep, Δt,
-/// iterations, status changes, elapsed time and an estimate of the time left in the load step.
+/// iterations, status changes, elapsed time and an estimate of the time left: in the whole
+/// analysis over the load steps known so far (wall time per substep of the analysis times the
+/// substeps still to solve), or in the load step when the driver does not count them.
 /// Nothing is written when stderr is not a terminal.
 #include <chrono>
 #include <string>
@@ -21,7 +23,8 @@ class TerminalProgress final : public ProgressObserver {
   using Clock = std::chrono::steady_clock;
   bool enabled_ = false;
   bool shown_ = false;
-  Clock::time_point start_, last_draw_, step_start_wall_;
+  Clock::time_point start_, last_draw_, step_start_wall_, analysis_start_wall_, last_event_wall_;
+  long long analysis_substeps_ = 0;  // substeps of the current analysis reported so far
   double step_start_time_ = 0.0;
   int load_step_ = -1;
   std::string analysis_;

@@ -31,25 +31,31 @@ bool has_tabular_loads(const LoadStep& step) {
   return acel || pressures || !step.constraint_tables.empty() || !step.force_tables.empty();
 }
 
-namespace {
-/// A DOF load at a load point: its table's value, or the KBC interpolation from the previous step.
-double dof_load(const LoadPoint& at, const std::map<DofKey, double>& values,
-                const std::map<DofKey, std::string>& tables,
-                const std::map<DofKey, double>* previous, const DofKey& key) {
-  const auto t = tables.find(key);
-  if (t != tables.end()) return table_value(at, t->second);
-  return interpolate(at, lookup(previous, key), values.at(key));
+ResolvedDofLoads::ResolvedDofLoads(const DofMap& dofs, const LoadStep& current,
+                                   const LoadStep* previous, Kind kind) {
+  const bool forces = kind == Kind::Forces;
+  const auto& values = forces ? current.forces : current.constraints;
+  const auto& tables = forces ? current.force_tables : current.constraint_tables;
+  const std::map<DofKey, double>* before =
+      previous ? (forces ? &previous->forces : &previous->constraints) : nullptr;
+  for (const auto& [key, value] : values) {
+    const int i = dofs.index(key);
+    // Forces act on free DOFs, prescribed values on constrained ones (inactive DOFs are -1).
+    if (forces ? (i < 0 || i >= dofs.n_free()) : i < dofs.n_free()) continue;
+    const auto t = tables.find(key);
+    entries_.push_back({i, lookup(before, key), value, t == tables.end() ? "" : t->second});
+  }
 }
-}  // namespace
+
+void ResolvedDofLoads::add_to(const LoadPoint& at, VectorXd& v) const {
+  // A table's value at the point's time, else the KBC interpolation from the previous step.
+  for (const Entry& e : entries_)
+    v(e.index) += e.table.empty() ? interpolate(at, e.previous, e.value) : table_value(at, e.table);
+}
 
 VectorXd nodal_forces(const DofMap& dofs, const LoadPoint& at) {
   VectorXd f = VectorXd::Zero(dofs.n_active());
-  for (const auto& [key, value] : at.current->forces) {
-    const int i = dofs.index(key);
-    if (i < 0 || i >= dofs.n_free()) continue;
-    f(i) = dof_load(at, at.current->forces, at.current->force_tables,
-                    at.previous ? &at.previous->forces : nullptr, key);
-  }
+  ResolvedDofLoads(dofs, *at.current, at.previous, ResolvedDofLoads::Kind::Forces).add_to(at, f);
   return f;
 }
 
@@ -125,12 +131,8 @@ VectorXd FrameAccelerationLoad::operator()(const Vec3& acel) const {
 
 VectorXd prescribed_displacements(const DofMap& dofs, const LoadPoint& at) {
   VectorXd u = VectorXd::Zero(dofs.n_active());
-  for (const auto& [key, value] : at.current->constraints) {
-    const int i = dofs.index(key);
-    if (i < dofs.n_free()) continue;  // inactive DOFs are -1 < n_free as well
-    u(i) = dof_load(at, at.current->constraints, at.current->constraint_tables,
-                    at.previous ? &at.previous->constraints : nullptr, key);
-  }
+  ResolvedDofLoads(dofs, *at.current, at.previous, ResolvedDofLoads::Kind::Constraints)
+      .add_to(at, u);
   return u;
 }
 

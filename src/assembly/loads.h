@@ -6,6 +6,7 @@
 #include <array>
 #include <map>
 #include <string>
+#include <vector>
 
 #include "assembly/dof_map.h"
 #include "core/model.h"
@@ -32,6 +33,29 @@ double interpolate(const LoadPoint& at, double previous_value, double current_va
 double table_value(const LoadPoint& at, const std::string& name);
 /// True when the load step has loads given by time functions.
 bool has_tabular_loads(const LoadStep& step);
+
+/// The F or D entries of a load step resolved to active DOF indices once per load step, so that
+/// a substep evaluates them without a map lookup (issue 11: a step costs a solve plus O(n)
+/// vector work). F entries on constrained DOFs are dropped (the constraint wins); D entries on
+/// free or inactive DOFs too.
+class ResolvedDofLoads {
+ public:
+  enum class Kind { Forces, Constraints };
+  ResolvedDofLoads() = default;
+  ResolvedDofLoads(const DofMap& dofs, const LoadStep& current, const LoadStep* previous,
+                   Kind kind);
+  /// Adds the loads at `at` to v (over all active DOFs).
+  void add_to(const LoadPoint& at, VectorXd& v) const;
+
+ private:
+  struct Entry {
+    int index = 0;
+    double previous = 0.0;  // value at the end of the previous load step (KBC ramp start)
+    double value = 0.0;
+    std::string table;  // time function, when the load is given by one
+  };
+  std::vector<Entry> entries_;
+};
 
 /// Nodal forces F over all active DOFs (entries on constrained DOFs are dropped: the constraint
 /// wins).

@@ -16,6 +16,7 @@
 #include "core/errors.h"
 #include "core/load_values.h"
 #include "core/material_table.h"
+#include "core/output_control.h"
 #include "core/selection.h"
 #include "core/solid_model.h"
 
@@ -99,12 +100,6 @@ struct GapCondition {
   SourceLocation where;
 };
 
-/// Result-output frequency of a load step (ITER NPOST / OUTRES).
-/// every == 0: last substep only; every == n > 0: every n-th substep and the last.
-struct OutputFrequency {
-  int every = 0;
-};
-
 /// One load step: the full load state at its end (not deltas) and its options.
 /// Loads are cumulative: a step inherits everything from the previous step unless changed.
 struct LoadStep {
@@ -112,7 +107,7 @@ struct LoadStep {
   std::optional<double> time_end;                // TIME; blank = default (see analysis driver)
   std::optional<double> dt;                      // DTIME / DELTIM
   std::optional<int> n_substeps;                 // ITER NITTER / NSUBST
-  OutputFrequency output;                        // ITER NPOST / OUTRES
+  OutputControl output;                          // ITER NPOST / OUTRES (core/output_control.h)
   bool stepped = false;                          // KBC: false = ramped, true = stepped
   int reformulation = 1;                         // KRF / NROPT: re-form tangent every n iterations
   bool time_integration = true;                  // KAY(5) / TIMINT

@@ -150,11 +150,30 @@ std::map<DofKey, double> dof_table_of(const json& a) {
   return m;
 }
 
+/// OUTRES per-item specifications: per item a list of [every, component, ids].
+json output_items_json(const OutputControl& f) {
+  json items = json::array();
+  for (const auto& specs : f.items) {
+    json list = json::array();
+    for (const auto& spec : specs) list.push_back({spec.every, spec.component, spec.ids});
+    items.push_back(list);
+  }
+  return items;
+}
+
+void output_items_of(const json& j, OutputControl& f) {
+  for (std::size_t i = 0; i < f.items.size() && i < j.size(); ++i)
+    for (const auto& spec : j[i])
+      f.items[i].push_back(OutputSpec{spec[0].get<int>(), spec[1].get<std::string>(),
+                                      spec[2].get<std::vector<int>>()});
+}
+
 json load_state_json(const LoadStep& s) {
   return {{"time_end", opt(s.time_end)},
           {"dt", opt(s.dt)},
           {"n_substeps", s.n_substeps ? json(*s.n_substeps) : json(nullptr)},
           {"output_every", s.output.every},
+          {"output_items", output_items_json(s.output)},
           {"stepped", s.stepped},
           {"reformulation", s.reformulation},
           {"time_integration", s.time_integration},
@@ -169,6 +188,7 @@ LoadStep load_state_of(const json& j) {
   s.dt = opt_of(j.at("dt"));
   if (!j.at("n_substeps").is_null()) s.n_substeps = j.at("n_substeps").get<int>();
   s.output.every = j.at("output_every");
+  if (j.contains("output_items")) output_items_of(j.at("output_items"), s.output);
   s.stepped = j.at("stepped");
   s.reformulation = j.at("reformulation");
   s.time_integration = j.at("time_integration");

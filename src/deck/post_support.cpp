@@ -226,6 +226,11 @@ double nodal_result(DeckReader& r, const Command& c, int node, const std::string
     r.fail(c, fmt::format("{} of node {} was not computed by the reduced run (not a master DOF; "
                           "expand it: EXPASS or /STRESS)",
                           label, node));
+  if (lab->dataset != 'R' && !nodal_row_written(data, lab->dataset, row))
+    r.fail(c,
+           fmt::format("{} of node {} is not in the current set: OUTRES did not write {} of "
+                       "this node at this time (or the node has no DOFs)",
+                       label, node, lab->dataset == 'U' ? "NSOL" : std::string(1, lab->dataset)));
   return 0.0;  // a DOF the node does not have (MAPDL lists 0), or a reaction of a free DOF
 }
 

@@ -8,6 +8,7 @@
 
 #include "deck/deck_context.h"
 #include "deck/post_support.h"
+#include "results/output_selection.h"
 
 namespace impactfe::deck {
 
@@ -90,8 +91,10 @@ void cmd_iter(DeckReader& r, const Command& c) {
     if (r.kan == 4) s.dt.reset();
   }
   const int nprint = r.integer(c, 2, 0);
-  s.output.every = r.integer(c, 3, 0);
-  if (nprint < 0 || s.output.every < 0) r.fail(c, "NPRINT/NPOST must not be negative");
+  const int npost = r.integer(c, 3, 0);
+  if (nprint < 0 || npost < 0) r.fail(c, "NPRINT/NPOST must not be negative");
+  s.output = OutputControl{};  // NPOST is the frequency of every item (no per-item OUTRES)
+  s.output.every = npost;
   if (nprint > 0) log_no_printout(c);
   // Kept as given (n = every n-th substep and the last): under KAN=5 NITTER is not the
   // number of steps, so "NPOST >= NITTER" must not be read as "last only".
@@ -285,7 +288,7 @@ void cmd_mxpand(DeckReader& r, const Command& c) {
             c.where.line);
 }
 
-/// OUTRES/OUTPR frequency: n, ALL (1), LAST (0), NONE (0 + warning); blank: every substep for a
+/// OUTRES/OUTPR frequency: n, ALL (1), LAST (0), NONE (-1); blank: every substep for a
 /// transient, the last otherwise.
 int output_frequency(DeckReader& r, const Command& c) {
   const std::string f = r.label(c, 2);
@@ -293,10 +296,7 @@ int output_frequency(DeckReader& r, const Command& c) {
   if (f.empty()) return r.model.options.type == AnalysisType::Transient ? 1 : 0;
   if (f == "ALL") return 1;
   if (f == "LAST") return 0;
-  if (f == "NONE") {
-    r.warn(c, "NONE: the last substep of each load step is still written");
-    return 0;
-  }
+  if (f == "NONE") return -1;
   const int n = r.integer(c, 2, 1);
   if (n < 0) {
     r.warn(c, "-n (auto time stepping) taken as every substep");
@@ -305,21 +305,93 @@ int output_frequency(DeckReader& r, const Command& c) {
   return n;
 }
 
+/// The OUTRES items an Item label stands for (APDL_SCRIPTING §E.8); empty for an item impactfe
+/// writes no results of (warned), an error for a label OUTRES does not know.
+std::vector<OutputItem> output_items(DeckReader& r, const Command& c, const std::string& item) {
+  using I = OutputItem;
+  if (item == "NSOL") return {I::NSOL};
+  if (item == "V" || item == "VSOL") return {I::VSOL};
+  if (item == "A" || item == "ASOL") return {I::ASOL};
+  if (item == "RSOL") return {I::RSOL};
+  if (item == "ESOL") return {I::STRS, I::EPEL, I::MISC};
+  if (item == "STRS") return {I::STRS};
+  if (item == "EPEL") return {I::EPEL};
+  if (item == "MISC" || item == "NLOAD") return {I::MISC};
+  if (item == "BASIC") return {I::NSOL, I::RSOL, I::STRS};
+  for (const char* other : {"EPPL", "EPTH", "EPCR", "EPDI", "FGRAD", "FFLUX", "LOCI", "SVAR",
+                            "VENG", "CINT", "FSOL", "NAR", "CONT", "ETMP", "SRFS"})
+    if (item == other) {
+      r.warn(c, fmt::format("Item {}: impactfe writes no such results; nothing to control", item));
+      return {};
+    }
+  r.fail(c, fmt::format("unknown Item {} (ALL, BASIC, NSOL, V, A, RSOL, ESOL, STRS, EPEL, MISC, "
+                        "NLOAD, ERASE, STAT)",
+                        c.text(1)));
+}
+
+bool nodal_output_item(OutputItem i) {
+  return i == OutputItem::NSOL || i == OutputItem::VSOL || i == OutputItem::ASOL ||
+         i == OutputItem::RSOL;
+}
+
 void cmd_outres(DeckReader& r, const Command& c) {
-  // OUTRES,Item,Freq,Cname: one output frequency for every result item and every node and
-  // element (issue 10 asks for per-item frequencies and components; not built yet). Say so
-  // rather than accept the narrower request silently.
+  // OUTRES,Item,Freq,Cname: specifications accumulate per item, a later one winning for the
+  // nodes / elements it covers (APDL_SCRIPTING §E.8; docs/results_file.md "Output control").
+  OutputControl out = r.model.current.output;
   const std::string item = r.label(c, 1);
-  if (!item.empty() && item != "ALL" && item != "ERASE" && item != "BASIC")
-    r.warn(c, fmt::format("Item {}: the frequency applies to every result item (impactfe writes "
-                          "all items at one frequency)",
-                          item));
+  if (item == "STAT") {
+    r.output.print(" OUTRES settings of the current load step:");
+    for (const auto& line : describe_output(out)) r.output.print("   " + line);
+    return;
+  }
+  const int every = output_frequency(r, c);
   const std::string cname = r.label(c, 3);
-  if (!cname.empty() && cname != "ALL")
-    r.fail(c, fmt::format("Cname {}: results are written for every node and element; a "
-                          "component subset is not supported",
-                          c.text(3)));
-  r.model.current.output.every = output_frequency(r, c);
+  if (item == "ERASE") {
+    if (!cname.empty()) r.fail(c, "ERASE takes no Cname");
+    r.model.current.output = OutputControl{};
+    return;
+  }
+  if ((item.empty() || item == "ALL") && (cname.empty() || cname == "ALL")) {
+    r.model.current.output = OutputControl{};
+    r.model.current.output.every = every;
+    return;
+  }
+  std::vector<OutputItem> items =
+      item.empty() || item == "ALL"
+          ? std::vector<OutputItem>{OutputItem::NSOL, OutputItem::VSOL, OutputItem::ASOL,
+                                    OutputItem::RSOL, OutputItem::STRS, OutputItem::EPEL,
+                                    OutputItem::MISC}
+          : output_items(r, c, item);
+  OutputSpec spec{every, {}, {}};
+  if (!cname.empty() && cname != "ALL") {
+    const auto it = r.model.components.find(cname);
+    if (it == r.model.components.end())
+      r.fail(c, fmt::format("Cname {}: no such component (CM)", c.text(3)));
+    const Component& comp = it->second;
+    if (comp.entity != "NODE" && comp.entity != "ELEM")
+      r.fail(c, fmt::format("Cname {} is a {} component; OUTRES takes a node or element component",
+                            c.text(3), comp.entity));
+    // A node component restricts the nodal items of Item, an element component its element
+    // items; the other items keep their settings.
+    const bool nodal = comp.entity == "NODE";
+    std::erase_if(items, [&](OutputItem i) { return nodal_output_item(i) != nodal; });
+    if (items.empty())
+      r.fail(c, fmt::format("Cname {} is a {} component, Item {} has only {} results", c.text(3),
+                            nodal ? "node" : "element", item, nodal ? "element" : "nodal"));
+    spec.component = cname;
+    spec.ids = comp.ids;
+  }
+  for (OutputItem i : items) {
+    auto& specs = out.items[static_cast<std::size_t>(i)];
+    if (spec.component.empty()) {
+      specs.assign(1, spec);  // covers every node / element: replaces what came before
+      continue;
+    }
+    if (specs.empty()) specs.push_back(OutputSpec{out.every, {}, {}});
+    std::erase_if(specs, [&](const OutputSpec& s) { return s.component == spec.component; });
+    specs.push_back(spec);
+  }
+  r.model.current.output = std::move(out);
 }
 
 void cmd_outpr(DeckReader& r, const Command& c) {
@@ -432,13 +504,18 @@ AnalysisRequest& open_analysis(DeckReader& r, const Command& c) {
   return *r.job.steps[*r.open_analysis].analysis;
 }
 
-void solve_current(DeckReader& r, const Command& c) {
+/// Appends the current load state as the next load step of the open analysis (not solved yet).
+void append_current(DeckReader& r, const Command& c) {
   prepare_model_for_solution(r, c);
   AnalysisRequest& a = open_analysis(r, c);
   LoadStep s = snapshot(r, c, static_cast<int>(a.load_steps.size()) + 1);
   check_increasing(r, c, a.load_steps, s);
   a.load_steps.push_back(std::move(s));
   if (a.load_steps.back().time_end) r.last_solved_time = a.load_steps.back().time_end;
+}
+
+void solve_current(DeckReader& r, const Command& c) {
+  append_current(r, c);
   r.solve_step(*r.open_analysis);
 }
 
@@ -499,8 +576,11 @@ void cmd_lssolve(DeckReader& r, const Command& c) {
     if (it == r.lswrite_steps.end())
       r.fail(c, fmt::format("load step {} was not written (LSWRITE)", n));
     r.model.current = it->second;
-    solve_current(r, c);
+    append_current(r, c);
   }
+  // All the load steps at once: the solver knows what follows (the progress estimate covers
+  // them) and solves them in order, as one SOLVE each would.
+  r.solve_step(*r.open_analysis);
 }
 
 // ---- expansion passes ---------------------------------------------------------------------------

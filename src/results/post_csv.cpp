@@ -122,6 +122,13 @@ std::string post_csv(const ResultsReader& reader, const std::vector<PostRequest>
   std::string out = "time";
   for (const auto& r : requests) {
     series.push_back(post_series(reader, r));
+    // A quantity stored at no time point (OUTRES did not write it, or it was never computed)
+    // is an error, not an empty column.
+    if (series.back().empty())
+      throw InputError(
+          fmt::format("{}: no value is stored in '{}' (not written by OUTRES, or "
+                      "not computed for this node / element)",
+                      post_column_name(r), reader.path()));
     out += ',';
     out += post_column_name(r);
   }

@@ -196,6 +196,16 @@ double nodal_value(const SetData& data, int row, const NodalLabel& label) {
   return any ? std::sqrt(sum) : kNaN;
 }
 
+bool nodal_row_written(const SetData& data, char dataset, int row) {
+  const Eigen::MatrixXd& m = dataset == 'U'   ? data.point.displacement
+                             : dataset == 'V' ? data.point.velocity
+                                              : data.point.acceleration;
+  if (m.size() == 0 || row < 0 || row >= m.rows()) return dataset != 'U';
+  if (m.row(row).array().isFinite().any()) return true;
+  if (dataset == 'U') return false;
+  return !m.array().isFinite().any();  // V and A are absent altogether in a static set
+}
+
 std::optional<double> element_item(const SetData& data, int element, const std::string& type_name,
                                    const std::string& item, const std::string& comp) {
   const ElementTypeDescriptor* type = find_element_type(type_name);

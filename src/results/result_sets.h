@@ -43,6 +43,11 @@ struct SetData {
   std::map<int, std::pair<std::string, int>> element_rows;
 };
 
+/// False when OUTRES did not write the nodal array `dataset` ('U', 'V', 'A') of node row `row`
+/// at this set: the row is all NaN while another node of the array has a value, or U is
+/// absent altogether (a node that has DOFs always has a finite displacement when written).
+bool nodal_row_written(const SetData& data, char dataset, int row);
+
 /// Reads one set.
 SetData read_set(const ResultsReader& reader, const ResultSet& set);
 /// Linear interpolation between two sets at time t (APDL_SCRIPTING §D.1: items missing from

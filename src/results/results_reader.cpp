@@ -11,6 +11,7 @@
 #include "core/errors.h"
 #include "core/text.h"
 #include "io/h5_util.h"
+#include "results/live_writers.h"
 #include "results/results_file.h"
 
 namespace impactfe {
@@ -401,6 +402,8 @@ ResultsReader::ResultsReader(const std::string& path) : impl_(std::make_unique<I
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
     throw InputError(fmt::format("results file '{}' does not exist", path));
+  // A writer of this process syncs first: its buffered points are part of the file.
+  sync_live_writer(path);
   if (H5Fis_hdf5(path.c_str()) <= 0)
     throw InputError(fmt::format("'{}' is not an impactfe results file (not HDF5)", path));
   // Default access first: in the same process this shares the file a live ResultsWriter has

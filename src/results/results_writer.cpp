@@ -5,13 +5,18 @@
 // dataset is chunked in time blocks of `block_rows` points (a node's history then reads one
 // chunk per block), compressed and checksummed. A compressed chunk cannot grow by one row
 // cheaply, so the points of the block being filled are kept in memory and also written, one
-// row per chunk, to a staging dataset under `recent/`; every append is flushed, so a killed run
-// keeps every point. A full block goes to the main dataset in one write; when the analysis
-// closes, the last partial block does, and `recent/` is deleted.
+// row per chunk, to a staging dataset under `recent/`. Appending a point only copies its rows
+// into the block in memory (no HDF5 call, no allocation once the series exist): the points
+// since the last sync reach the staging datasets in one write per quantity, and `time` after
+// them, at a sync — every kSyncPoints points or kSyncSeconds of wall time, whichever comes
+// first — so a killed run keeps every point up to the last sync. A full block goes to the main
+// dataset in one write; when the analysis closes, the last partial block does, and `recent/`
+// is deleted.
 #include <fmt/format.h>
 
 #include <Eigen/Core>
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -21,6 +26,7 @@
 #include "core/errors.h"
 #include "core/log.h"
 #include "io/h5_util.h"
+#include "results/live_writers.h"
 #include "results/results_file.h"
 
 namespace impactfe {
@@ -41,6 +47,12 @@ constexpr double kBlockMemoryBytes = 64.0 * (1 << 20);
 /// Target size of a main chunk (uncompressed): large enough to compress well, small enough that
 /// a history reads little beyond what it needs.
 constexpr hsize_t kChunkBytes = 256 * 1024;
+/// A sync (staging rows, then `time`, each flushed) after this many points or seconds: what a
+/// killed run can lose at most, against two flushes (~40 us each) per point.
+constexpr hsize_t kSyncPoints = 64;
+constexpr double kSyncSeconds = 0.1;
+/// Deflate level of the main datasets.
+constexpr int kDeflateLevel = 1;
 
 using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
@@ -88,8 +100,10 @@ struct BlockSeries {
   std::vector<hsize_t> row_dims;  // dimensions after the time axis
   Handle main;                    // (n_t, row_dims...), chunks (block_rows, ...)
   Handle recent;                  // (block_rows, row_dims...), one row per chunk
-  std::vector<double> block;      // the block being filled, block_rows x row_size
-  bool written = false;           // a row was given in the current append
+  // The block being filled, block_rows x row_size, not initialised: a row becomes valid when the
+  // point's values (or NaN, finish_append) are put into it.
+  std::unique_ptr<double[]> block;
+  bool written = false;  // a row was given in the current append
 
   hsize_t row_size() const { return product(row_dims); }
 };
@@ -120,7 +134,9 @@ BlockSeries create_series(hid_t group, hid_t recent_group, const std::string& na
   {
     Handle space(check(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), maxdims.data()),
                        "create dataspace for " + name));
-    Handle dcpl = h5::checked_creation_list(chunk, &fill);
+    // deflate level 1 (deflate_fast): level 4 costs about 3x the CPU for files a few % smaller
+    // (the helmet: docs/benchmarks.md, "Results writer").
+    Handle dcpl = h5::checked_creation_list(chunk, &fill, kDeflateLevel);
     s.main = Handle(check(
         H5Dcreate2(group, name.c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT),
         "create dataset " + name));
@@ -144,7 +160,7 @@ BlockSeries create_series(hid_t group, hid_t recent_group, const std::string& na
         H5Dcreate2(recent_group, name.c_str(), H5T_IEEE_F64LE, space, lcpl, dcpl, H5P_DEFAULT),
         "create dataset recent/" + name));
   }
-  s.block.assign(block_rows * s.row_size(), kNaN);
+  s.block.reset(new double[block_rows * s.row_size()]);
   return s;
 }
 
@@ -168,15 +184,17 @@ DirectSeries create_direct(hid_t group, const std::string& name, bool integer) {
   return s;
 }
 
-void write_direct(DirectSeries& s, hsize_t row, const void* value) {
-  hsize_t n = row + 1;
-  check_status(H5Dset_extent(s.ds, &n), "extend dataset");
+/// Writes rows [first, first + n) of a 1-D series (n values at `values`).
+void write_direct(DirectSeries& s, hsize_t first, hsize_t n, const void* values) {
+  if (n == 0) return;
+  hsize_t end = first + n;
+  check_status(H5Dset_extent(s.ds, &end), "extend dataset");
   Handle file_space(check(H5Dget_space(s.ds), "get dataspace"));
-  hsize_t one = 1;
-  check_status(H5Sselect_hyperslab(file_space, H5S_SELECT_SET, &row, nullptr, &one, nullptr),
-               "select row");
-  Handle mem_space(check(H5Screate_simple(1, &one, nullptr), "create memory dataspace"));
-  check_status(H5Dwrite(s.ds, s.mem_type, mem_space, file_space, H5P_DEFAULT, value), "write row");
+  check_status(H5Sselect_hyperslab(file_space, H5S_SELECT_SET, &first, nullptr, &n, nullptr),
+               "select rows");
+  Handle mem_space(check(H5Screate_simple(1, &n, nullptr), "create memory dataspace"));
+  check_status(H5Dwrite(s.ds, s.mem_type, mem_space, file_space, H5P_DEFAULT, values),
+               "write rows");
 }
 
 struct FamilySeries {
@@ -240,6 +258,11 @@ struct ResultsWriter::Impl {
   hsize_t block_start = 0;  // time index of the first point of the block being filled
   std::map<std::string, BlockSeries> series;
   std::map<std::string, DirectSeries> direct;
+  // Points appended since the last sync: [synced, n_t); their time, load step and substep.
+  hsize_t synced = 0;
+  std::vector<double> pending_time;
+  std::vector<int> pending_load_step, pending_substep;
+  std::chrono::steady_clock::time_point last_sync;
   std::map<std::string, FamilySeries> families;
   Handle elements_group;
   // Sparse reactions: the constrained DOFs (row in node_ids, DOF column 0..5) of R's columns.
@@ -260,7 +283,11 @@ struct ResultsWriter::Impl {
   BlockSeries& series_for(const std::string& name, const std::vector<hsize_t>& row_dims,
                           bool growable = false);
   void put_row(BlockSeries& s, const double* row);
+  /// The block row of the current point (row_size values), marked written.
+  double* row_slot(BlockSeries& s);
   void finish_append();
+  void sync(bool block_full);
+  void write_pending_counters();
   void flush_block(hsize_t n_rows);
   void write_nodal(const std::string& name, const Eigen::MatrixXd& m);
   void write_reactions(const Eigen::MatrixXd& m);
@@ -371,44 +398,78 @@ BlockSeries& ResultsWriter::Impl::series_for(const std::string& name,
   // A quantity that starts later: its main dataset spans the finished blocks already (NaN).
   BlockSeries s =
       create_series(group, recent_group, name, row_dims, block_rows, block_start, growable);
-  // Rows of the current block before this one stay NaN in the staging dataset too: write them,
-  // since a reused staging dataset is not, but a new one is all fill.
+  // Rows of the current block before this point: NaN (written to the new staging dataset at
+  // the next sync like every row of the block).
+  std::fill_n(s.block.get(), slot() * s.row_size(), kNaN);
   return series.emplace(name, std::move(s)).first->second;
 }
 
-void ResultsWriter::Impl::put_row(BlockSeries& s, const double* row) {
-  const hsize_t n = s.row_size();
-  std::copy(row, row + n, s.block.begin() + static_cast<long>(slot() * n));
-  write_rows(s.recent, slot(), 1, s.row_dims, row);
+double* ResultsWriter::Impl::row_slot(BlockSeries& s) {
   s.written = true;
+  return s.block.get() + slot() * s.row_size();
+}
+
+void ResultsWriter::Impl::put_row(BlockSeries& s, const double* row) {
+  std::copy(row, row + s.row_size(), row_slot(s));
 }
 
 void ResultsWriter::Impl::flush_block(hsize_t n_rows) {
   // The finished rows of the block go to the main datasets in one write per quantity.
   for (auto& [name, s] : series) {
     set_extent(s.main, block_start + n_rows, s.row_dims);
-    write_rows(s.main, block_start, n_rows, s.row_dims, s.block.data());
-    std::fill(s.block.begin(), s.block.end(), kNaN);
+    write_rows(s.main, block_start, n_rows, s.row_dims, s.block.get());
   }
 }
 
 void ResultsWriter::Impl::finish_append() {
-  // A quantity not given at this point is absent (NaN) there; the staging row may hold a value
-  // of the previous block, so it is overwritten.
+  // A quantity not given at this point is absent (NaN) there; the staging rows are written from
+  // the block.
   for (auto& [name, s] : series) {
-    if (!s.written) {
-      const std::vector<double> nan_row(s.row_size(), kNaN);
-      put_row(s, nan_row.data());
-    }
+    if (!s.written) std::fill_n(row_slot(s), s.row_size(), kNaN);
     s.written = false;
   }
-  if (slot() + 1 == block_rows) {
+}
+
+void ResultsWriter::Impl::write_pending_counters() {
+  const hsize_t n = pending_time.size();
+  const std::pair<const char*, const void*> columns[] = {
+      {"load_step", pending_load_step.data()},
+      {"substep", pending_substep.data()},
+      {"time", pending_time.data()}};  // last: its length counts the complete points
+  for (const auto& [name, data] : columns) {
+    auto it = direct.find(name);
+    if (it == direct.end())
+      it = direct.emplace(name, create_direct(group, name, std::string(name) != "time")).first;
+    write_direct(it->second, synced, n, data);
+  }
+  synced += n;
+  pending_time.clear();
+  pending_load_step.clear();
+  pending_substep.clear();
+}
+
+/// Makes the points appended since the last sync complete in the file: their rows first (to the
+/// staging datasets, or to the main ones when the block is full), flushed, then `time` and the
+/// counters, flushed. HDF5 writes dirty chunks and metadata in an order of its own at a flush
+/// (or a cache eviction), so with one flush a run killed during it could leave `time` longer
+/// than the rows on disk (CrashSafety.KilledExpansionPassKeepsCompletedSteps).
+void ResultsWriter::Impl::sync(bool block_full) {
+  if (pending_time.empty()) return;
+  if (block_full) {
     flush_block(block_rows);
     // From here on the finished block is read from the main datasets.
     if (recent_group.valid())
       h5::write_integer_attribute(recent_group, "first_row",
                                   static_cast<long long>(block_start + block_rows));
+  } else {
+    const hsize_t first = synced - block_start, n = n_t - synced;
+    for (auto& [name, s] : series)
+      write_rows(s.recent, first, n, s.row_dims, s.block.get() + first * s.row_size());
   }
+  flush();
+  write_pending_counters();
+  flush();
+  last_sync = std::chrono::steady_clock::now();
 }
 
 void ResultsWriter::Impl::close_analysis(const std::string& status) {
@@ -422,6 +483,10 @@ void ResultsWriter::Impl::close_analysis(const std::string& status) {
     H5Ldelete(group, "recent", H5P_DEFAULT);
   }
   if (n_t > block_start) flush_block(n_t - block_start);
+  if (!pending_time.empty()) {
+    flush();  // the rows before `time` grows (see sync)
+    write_pending_counters();
+  }
   h5::write_attribute(group, "status", status, StringLayout::Fixed);
   series.clear();
   direct.clear();
@@ -440,8 +505,10 @@ void ResultsWriter::Impl::write_nodal(const std::string& name, const Eigen::Matr
                  fmt::format("ResultsWriter::append: {} is {}x{}, expected {}x6", name, m.rows(),
                              m.cols(), n_nodes()));
   BlockSeries& s = series_for(name, {n_nodes(), 6});
-  const RowMajor r = m;
-  put_row(s, r.data());
+  double* row = row_slot(s);  // row-major copy, straight into the block
+  const Eigen::Index n = m.rows();
+  for (Eigen::Index j = 0; j < 6; ++j)
+    for (Eigen::Index i = 0; i < n; ++i) row[i * 6 + j] = m(i, j);
 }
 
 void ResultsWriter::Impl::write_reactions(const Eigen::MatrixXd& m) {
@@ -484,20 +551,20 @@ void ResultsWriter::Impl::write_reactions(const Eigen::MatrixXd& m) {
       // More columns: widen both datasets and the block (old rows keep their columns).
       BlockSeries& s = it->second;
       const hsize_t old_n = s.row_dims[0];
-      std::vector<double> block(block_rows * n_r, kNaN);
-      for (hsize_t r = 0; r < block_rows; ++r)
-        std::copy(s.block.begin() + static_cast<long>(r * old_n),
-                  s.block.begin() + static_cast<long>((r + 1) * old_n),
-                  block.begin() + static_cast<long>(r * n_r));
+      std::unique_ptr<double[]> block(new double[block_rows * n_r]);
+      for (hsize_t r = 0; r < slot(); ++r) {  // the rows of this block so far
+        std::copy(s.block.get() + r * old_n, s.block.get() + (r + 1) * old_n,
+                  block.get() + r * n_r);
+        std::fill(block.get() + r * n_r + old_n, block.get() + (r + 1) * n_r, kNaN);
+      }
       s.block = std::move(block);
       s.row_dims = {n_r};
       set_extent(s.main, h5::dims_of(s.main)[0], s.row_dims);
       set_extent(s.recent, block_rows, s.row_dims);
     }
   }
-  std::vector<double> row(n_r, kNaN);
+  double* row = row_slot(series.at("R"));
   for (hsize_t c = 0; c < n_r; ++c) row[c] = m(reaction_dofs[c].first, reaction_dofs[c].second);
-  put_row(series.at("R"), row.data());
 }
 
 void ResultsWriter::Impl::write_family(const std::string& family, const ElementResultTable& table) {
@@ -534,8 +601,10 @@ void ResultsWriter::Impl::write_family(const std::string& family, const ElementR
   }
   if (n_e == 0 || n_i == 0) return;
   BlockSeries& s = series_for("elements/" + family + "/values", {n_e, n_i});
-  const RowMajor r = table.values;
-  put_row(s, r.data());
+  double* row = row_slot(s);
+  for (Eigen::Index j = 0; j < table.values.cols(); ++j)
+    for (Eigen::Index i = 0; i < table.values.rows(); ++i)
+      row[static_cast<std::size_t>(i) * n_i + static_cast<std::size_t>(j)] = table.values(i, j);
 }
 
 ResultsWriter::ResultsWriter(const std::string& path, const Model& model)
@@ -558,9 +627,12 @@ ResultsWriter::ResultsWriter(const std::string& path, const Model& model)
   } catch (const std::runtime_error& e) {
     throw SolutionError(fmt::format("results file '{}': {}", path, e.what()));
   }
+  Impl* impl = impl_.get();
+  register_live_writer(path, impl, [impl] { impl->sync(false); });
 }
 
 ResultsWriter::~ResultsWriter() {
+  unregister_live_writer(impl_->path, impl_.get());
   try {
     impl_->close_analysis("incomplete");
     impl_->compact();
@@ -579,6 +651,8 @@ int ResultsWriter::begin_analysis(ResultsKind kind, const std::string& descripti
                          "create group " + name));
   m.n_t = 0;
   m.block_start = 0;
+  m.synced = 0;
+  m.last_sync = std::chrono::steady_clock::now();
   m.block_rows = block_rows_for(m.n_nodes(), m.n_elements);
   h5::write_attribute(m.group, "kind", std::string(results_kind_name(kind)), StringLayout::Fixed);
   h5::write_attribute(m.group, "description", description, StringLayout::Fixed);
@@ -629,28 +703,16 @@ void ResultsWriter::append(const TimePoint& point) {
 
   for (const auto& [family, table] : point.element_results) m.write_family(family, table);
   m.finish_append();
-  // The rows reach the file before `time` grows: HDF5 writes dirty chunks and metadata in an
-  // order of its own at a flush (or a cache eviction), so with one flush per point a run killed
-  // during that flush could leave `time` one point longer than the rows on disk (NaN read
-  // back for a point the file claims; CrashSafety.KilledExpansionPassKeepsCompletedSteps).
-  m.flush();
-
-  // Counters and time last: a reader takes the length of `time` as the number of complete
-  // points, so a run killed in the middle of an append shows only whole points.
-  for (const char* name : {"load_step", "substep", "time"}) {
-    auto it = m.direct.find(name);
-    const bool is_time = std::string(name) == "time";
-    if (it == m.direct.end())
-      it = m.direct.emplace(name, create_direct(m.group, name, !is_time)).first;
-    if (is_time)
-      write_direct(it->second, m.n_t, &point.time);
-    else
-      write_direct(it->second, m.n_t,
-                   std::string(name) == "substep" ? &point.substep : &point.load_step);
-  }
+  m.pending_time.push_back(point.time);
+  m.pending_load_step.push_back(point.load_step);
+  m.pending_substep.push_back(point.substep);
   ++m.n_t;
-  if (m.n_t - m.block_start == m.block_rows) m.block_start = m.n_t;
-  m.flush();
+  const bool block_full = m.n_t - m.block_start == m.block_rows;
+  if (block_full || m.n_t - m.synced >= kSyncPoints ||
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - m.last_sync).count() >=
+          kSyncSeconds)
+    m.sync(block_full);
+  if (block_full) m.block_start = m.n_t;
 }
 
 void ResultsWriter::write_modes(const std::vector<double>& frequencies_hz,

@@ -61,9 +61,25 @@ def test_progress_line_on_a_terminal(binary, tmp_path):
     assert times == sorted(times) and steps == sorted(steps)
     assert steps[-1] == 20000 and abs(times[-1] - 0.5) < 1e-9  # the last substep is drawn
     assert all(int(m.group(3)) >= 1 for m in seen)
-    assert any("left in load step" in s for s in lines[:-1])  # an estimate while it runs
+    assert any("left (to t = 0.5)" in s for s in lines[:-1])  # an estimate while it runs
     assert len(lines) <= 200, "the line is redrawn at most 10 times a second"
     assert text.endswith("\r\x1b[K"), "the line is cleared at the end"
+
+
+def test_progress_estimate_covers_every_known_load_step(binary, tmp_path):
+    """LSSOLVE hands its load steps over at once: while load step 1 runs, the time left is
+    estimated to the end of load step 2."""
+    text = open(_deck(tmp_path, 20000)).read()
+    text = text.replace("TIME,0.5\n", "TIME,0.25\n").replace(
+        "SOLVE\n", "LSWRITE,1\nTIME,0.5\nLSWRITE,2\nLSSOLVE,1,2\n")
+    deck = tmp_path / "lssolve.inp"
+    deck.write_text(text)
+    status, text = _run_on_terminal(binary, str(deck), str(tmp_path / "ls"))
+    assert status == 0, text
+    lines = [s for s in text.split("\r\x1b[K") if s]
+    first = [s for s in lines if "load step 1," in s and "left" in s]
+    assert first, lines
+    assert all("left (to t = 0.5)" in s for s in first), first
 
 
 def test_progress_line_of_a_reduced_transient(binary, tmp_path):

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "../support/run_deck.h"
@@ -138,4 +139,54 @@ RESUME,model,sav
     EXPECT_NE(std::string(e.what()).find("RESUME: no database file 'missing.db'"),
               std::string::npos);
   }
+}
+
+TEST(DatabaseCommands, SaveAndResumeKeepOutresPerItem) {
+  const auto dir = impactfe::testing::fresh_directory("database_outres");
+  const std::string deck = R"(/PREP7
+ET,1,COMBIN14
+R,1,100
+N,1
+N,2,1
+N,3,2
+E,1,2
+E,2,3
+NSEL,S,NODE,,2,3
+CM,TIP,NODE
+ALLSEL
+FINISH
+/SOLU
+ANTYPE,TRANS
+OUTRES,ALL,NONE
+OUTRES,NSOL,5,TIP
+OUTRES,RSOL,2
+SAVE
+/CLEAR
+RESUME
+)";
+  const DeckRunResult run = run_with_session(dir, deck);
+  const OutputControl& out = run.job.model.current.output;
+  EXPECT_EQ(out.every, -1);
+  const auto& nsol = out.items[static_cast<int>(OutputItem::NSOL)];
+  ASSERT_EQ(nsol.size(), 2u);  // NONE for every node, then every 5th for TIP
+  EXPECT_EQ(nsol[0].every, -1);
+  EXPECT_TRUE(nsol[0].component.empty());
+  EXPECT_EQ(nsol[1].every, 5);
+  EXPECT_EQ(nsol[1].component, "TIP");
+  EXPECT_EQ(nsol[1].ids, (std::vector<int>{2, 3}));
+  const auto& rsol = out.items[static_cast<int>(OutputItem::RSOL)];
+  ASSERT_EQ(rsol.size(), 1u);
+  EXPECT_EQ(rsol[0].every, 2);
+  EXPECT_TRUE(out.items[static_cast<int>(OutputItem::VSOL)].empty());
+  // A database written before OUTRES per item (no output_items) resumes with its frequency.
+  {
+    std::ifstream in(dir / "deck.db");
+    nlohmann::json j = nlohmann::json::parse(in);
+    ASSERT_TRUE(j.at("loads").contains("output_items"));
+    j["loads"].erase("output_items");
+    std::ofstream(dir / "old.db") << j.dump(1) << '\n';
+  }
+  const DeckRunResult old = run_with_session(dir, "RESUME,old,db\n");
+  EXPECT_EQ(old.job.model.current.output.every, -1);
+  EXPECT_TRUE(old.job.model.current.output.uniform());
 }

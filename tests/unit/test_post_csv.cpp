@@ -154,8 +154,15 @@ TEST_F(PostTest, CsvExactFormat) {
             "time,E6_SAXL\n"
             "5.0000000000e-01,1.2345000000e+04\n"
             "1.0000000000e+00,-3.0000000000e+00\n");
-  // A node without stored values gives the header only.
-  EXPECT_EQ(post_csv(r, {parse_nsol("5,UY")}), "time,N5_UY\n");
+  // A quantity stored at no time point (not written: OUTRES, or never computed) is an error,
+  // not an empty column.
+  try {
+    post_csv(r, {parse_nsol("5,UY")});
+    ADD_FAILURE() << "no error for a node without stored values";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("N5_UY: no value is stored"), std::string::npos)
+        << e.what();
+  }
   // Unknown entities are errors, not empty columns.
   EXPECT_THROW(post_csv(r, {parse_nsol("3,UX")}), InputError);
   EXPECT_THROW(post_csv(r, {parse_gapf("2")}), InputError);

@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "core/errors.h"
+#include "results/live_writers.h"
 #include "results/results_file.h"
 
 namespace impactfe {
@@ -272,7 +273,9 @@ void expect_three_points(const std::string& path) {
 TEST_F(ResultsFileTest, AppendedPointsAreOnDiskBeforeClose) {
   ResultsWriter w(file("live.h5"), small_model());
   write_three_points(w);
-  // The writer is still open: a byte copy of the file must already be a complete file.
+  // The writer is still open: after a sync (every 64 points or 0.1 s, or when a reader of this
+  // process opens the file) a byte copy of the file must already be a complete file.
+  sync_live_writer(file("live.h5"));
   fs::copy_file(file("live.h5"), file("copy.h5"));
   expect_three_points(file("copy.h5"));
   // A reader in the same process (post stage while the writer lives) sees the same points.
@@ -288,7 +291,9 @@ TEST_F(ResultsFileTest, KilledRunKeepsAppendedPoints) {
   if (pid == 0) {
     ResultsWriter w(path, small_model());
     write_three_points(w);
-    raise(SIGKILL);  // no destructors, no HDF5 shutdown
+    sync_live_writer(path);
+    w.append(make_point(1.5, 2, 2));  // after the last sync: lost, never half there
+    raise(SIGKILL);                   // no destructors, no HDF5 shutdown
     _exit(3);
   }
   int status = 0;
@@ -308,6 +313,7 @@ TEST_F(ResultsFileTest, ReaderOpensFileOfRunningJobInAnotherProcess) {
     alarm(30);                             // never outlive a broken parent
     ResultsWriter w(path, small_model());  // holds the HDF5 file lock while it lives
     write_three_points(w);
+    sync_live_writer(path);  // what the writer does every 64 points or 0.1 s
     char c = 1;
     if (write(ready[1], &c, 1) != 1) _exit(2);
     pause();  // keep the file open until killed
