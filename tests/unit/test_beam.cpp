@@ -347,6 +347,19 @@ TEST(Beam188, ResultsAreSectionForcesAndFibreStresses) {
   const auto seq = find_result_sequence(*d, "SMISC", "16");
   ASSERT_TRUE(seq.has_value());
   EXPECT_EQ(seq->name, "MZ_J");
+  EXPECT_EQ(find_result_sequence(*d, "SMISC", "36")->name, "SDIR_J");
+  // BEAM4 / BEAM3 numbers (APDL_MODELING §8.2).
+  const ElementTypeDescriptor* b4 = find_element_type("4");
+  ASSERT_NE(b4, nullptr);
+  EXPECT_EQ(b4->name, "BEAM4");
+  EXPECT_EQ(find_result_sequence(*b4, "NMISC", "1")->name, "SMAX_I");
+  EXPECT_EQ(find_result_sequence(*b4, "LS", "6")->name, "SDIR_J");
+  EXPECT_EQ(find_result_sequence(*b4, "SMISC", "5")->name, "MY_I");
+  const ElementTypeDescriptor* b3 = find_element_type("BEAM3");
+  ASSERT_NE(b3, nullptr);
+  EXPECT_EQ(find_result_sequence(*b3, "SMISC", "12")->name, "MZ_J");
+  EXPECT_EQ(find_result_sequence(*b3, "LS", "5")->name, "SBYT_J");
+  EXPECT_FALSE(find_result_sequence(*b3, "SMISC", "3").has_value());
 }
 
 TEST(Beam188, InputErrors) {
