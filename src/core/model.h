@@ -72,10 +72,9 @@ struct Material {
 /// values, APDL_MODELING §7.2; elements/beam_section.h computes the properties).
 struct Section {
   int id = 0;
-  std::string type;  // "LINK", "SHELL", "BEAM"
+  std::string type;     // "LINK", "SHELL", "BEAM"
+  std::string subtype;  // BEAM: "RECT", "CSOLID", "CTUBE", "I", "HREC", "ASEC"
   std::vector<double> data;
-  // BEAM: "RECT", "CSOLID", "CTUBE", "I", "HREC", "ASEC" (last, so Section{id, type, data} holds)
-  std::string subtype;
 };
 
 /// An element as defined in the deck. Node list may contain repeats (degenerate shapes).
