@@ -69,10 +69,12 @@ struct Material {
   }
 };
 
-/// SECTYPE/SECDATA: LINK (area) and SHELL (thickness) sections.
+/// SECTYPE/SECDATA: LINK (area), SHELL (thickness) and BEAM sections (subtype and SECDATA
+/// values, APDL_MODELING §7.2; elements/beam_section.h computes the properties).
 struct Section {
   int id = 0;
-  std::string type;  // "LINK", "SHELL"
+  std::string type;     // "LINK", "SHELL", "BEAM"
+  std::string subtype;  // BEAM: "RECT", "CSOLID", "CTUBE", "I", "HREC", "ASEC"
   std::vector<double> data;
 };
 

@@ -3,9 +3,12 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <stdexcept>
 
 #include "core/dof.h"
+#include "core/log.h"
 #include "deck/deck_context.h"
+#include "elements/beam_section.h"
 #include "elements/element_registry.h"
 
 namespace impactfe::deck {
@@ -101,11 +104,17 @@ void cmd_sectype(DeckReader& r, const Command& c) {
   const int id = r.integer(c, 1, 0);
   if (id <= 0) r.fail(c, "section id missing or not positive");
   const std::string type = r.label(c, 2);
-  if (type != "LINK" && type != "SHELL")
-    r.fail(c, fmt::format("section type '{}' not supported (LINK or SHELL)", c.text(2)));
+  if (type != "LINK" && type != "SHELL" && type != "BEAM")
+    r.fail(c, fmt::format("section type '{}' not supported (LINK, SHELL or BEAM)", c.text(2)));
   Section s;
   s.id = id;
   s.type = type;
+  if (type == "BEAM") {
+    s.subtype = c.blank(3) ? "RECT" : r.label(c, 3);
+    if (!is_supported_beam_subtype(s.subtype))
+      r.fail(c, fmt::format("beam subtype {} not supported (RECT, CSOLID, CTUBE, I, HREC, ASEC)",
+                            s.subtype));
+  }
   r.model.sections[id] = s;
   r.last_section = id;
 }
@@ -114,11 +123,41 @@ void cmd_secdata(DeckReader& r, const Command& c) {
   auto it = r.model.sections.find(r.last_section);
   if (it == r.model.sections.end()) r.fail(c, "SECDATA without a preceding SECTYPE");
   Section& s = it->second;
+  if (s.type == "BEAM") {
+    // Beam: the subtype's dimensions (APDL_MODELING §7.2); the properties go to the log.
+    s.data.clear();
+    for (int f = 1; f <= std::min(c.last_given(), 12); ++f) s.data.push_back(r.real(c, f, 0.0));
+    try {
+      const BeamSectionProperties p = beam_section_properties(s.subtype, s.data);
+      Log::info("{}:{}: SECDATA: beam section {} ({}): {}", c.where.file, c.where.line, s.id,
+                s.subtype, describe_beam_section(p));
+    } catch (const std::invalid_argument& e) {
+      r.fail(c, e.what());
+    }
+    return;
+  }
   if (!s.data.empty()) r.fail(c, "only one SECDATA (a single homogeneous layer) is supported");
   const int n = std::max(1, c.last_given());
   for (int f = 1; f <= n; ++f) s.data.push_back(r.real(c, f, 0.0));
   if (s.data[0] <= 0.0)
     r.fail(c, fmt::format("{} must be positive", s.type == "LINK" ? "area" : "thickness"));
+}
+
+// SECOFFSET,Location: beams CENT (node on the centroid, the only placement impactfe computes);
+// shells MID. Other locations would move the nodes off the section's reference and are refused
+// (APDL_MODELING §7.4).
+void cmd_secoffset(DeckReader& r, const Command& c) {
+  auto it = r.model.sections.find(r.last_section);
+  if (it == r.model.sections.end()) r.fail(c, "SECOFFSET without a preceding SECTYPE");
+  const std::string loc = c.blank(1) ? "" : r.label(c, 1);
+  const std::string& type = it->second.type;
+  if (type == "BEAM" && (loc.empty() || loc == "CENT")) return;
+  if (type == "SHELL" && (loc.empty() || loc == "MID")) return;
+  r.fail(c,
+         fmt::format("location '{}' is not supported for a {} section ({} only)", c.text(1), type,
+                     type == "BEAM"    ? "CENT"
+                     : type == "SHELL" ? "MID"
+                                       : "none"));
 }
 
 void cmd_secnum(DeckReader& r, const Command& c) {
@@ -347,6 +386,7 @@ void register_prep7_commands(std::vector<CommandSpec>& t) {
   t.push_back({"SECTYPE", cmd_sectype, kPrep7});
   t.push_back({"SECDATA", cmd_secdata, kPrep7});
   t.push_back({"SECNUM", cmd_secnum, kPrep7});
+  t.push_back({"SECOFFSET", cmd_secoffset, kPrep7});
   t.push_back({"N", cmd_n, kPrep7});
   t.push_back({"E", cmd_e, kPrep7});
   t.push_back({"EN", cmd_en, kPrep7});

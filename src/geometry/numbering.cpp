@@ -359,7 +359,8 @@ int merge_sections(Model& model, double toler) {
   return merge_definitions(
       model, model.sections,
       [&](const Section& a, const Section& b) {
-        if (a.type != b.type || a.data.size() != b.data.size()) return false;
+        if (a.type != b.type || a.subtype != b.subtype || a.data.size() != b.data.size())
+          return false;
         for (std::size_t i = 0; i < a.data.size(); ++i)
           if (!close(a.data[i], b.data[i], toler)) return false;
         return true;

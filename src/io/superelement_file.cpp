@@ -205,7 +205,9 @@ std::string serialize_generation_model(const Model& model, bool lumped_mass,
     o << '\n';
   }
   for (const auto& [id, s] : model.sections) {
-    o << "section " << id << ' ' << s.type << ' ' << s.data.size();
+    o << "section " << id << ' ' << s.type;
+    if (s.type == "BEAM") o << ' ' << s.subtype;  // only beam sections have a subtype
+    o << ' ' << s.data.size();
     for (double v : s.data) o << ' ' << v;
     o << '\n';
   }
@@ -274,7 +276,9 @@ Model deserialize_generation_model(const std::string& text, bool& lumped_mass,
     } else if (tag == "section") {
       Section sec;
       std::size_t n = 0;
-      s >> sec.id >> sec.type >> n;
+      s >> sec.id >> sec.type;
+      if (sec.type == "BEAM") s >> sec.subtype;
+      s >> n;
       sec.data.resize(n);
       for (auto& v : sec.data) s >> v;
       model.sections[sec.id] = sec;

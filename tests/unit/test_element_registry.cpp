@@ -127,6 +127,10 @@ Model one_element_model(const std::string& type) {
   ElementRecord r;
   r.id = 1;
   for (int i = 0; i < d.n_nodes; ++i) r.nodes.push_back(i + 1);
+  if (d.accepts_section("BEAM")) {
+    m.sections[1] = Section{1, "BEAM", "RECT", {0.1, 0.1}};
+    r.secnum = 1;
+  }
   m.elements[1] = r;
   return m;
 }
@@ -144,7 +148,8 @@ TEST(ElementRegistry, EveryBuiltInTypeMatchesItsElementClass) {
     EXPECT_GE(d->number, 1);
     ++checked;
   }
-  EXPECT_EQ(checked, 10);  // LINK1 LINK8 LINK180 COMBIN14 MASS21 COMBIN40 SHELL63/181 SOLID45/185
+  // LINK1 LINK8 LINK180 COMBIN14 MASS21 COMBIN40 SHELL63/181 SOLID45/185 BEAM188 BEAM4 BEAM3
+  EXPECT_EQ(checked, 13);
 }
 
 }  // namespace

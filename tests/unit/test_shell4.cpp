@@ -153,7 +153,7 @@ TEST(Shell4, TriangleFromRepeatedNodeHasEighteenDofs) {
   et181.id = 2;
   et181.ansys_name = "SHELL181";
   m.element_types[2] = et181;
-  m.sections[5] = Section{5, "SHELL", {0.1}};
+  m.sections[5] = Section{5, "SHELL", "", {0.1}};
   ElementRecord rec181 = rec;
   rec181.type = 2;
   rec181.real = 99;  // not defined: the section must be used

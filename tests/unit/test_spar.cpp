@@ -287,7 +287,7 @@ TEST(Spar, CorotationalStretchGivesEngineeringStrainForce) {
 TEST(Spar, Link180TakesAreaFromLinkSection) {
   Model m = spar_model(Vec3(0, 0, 0), Vec3(10, 0, 0), "LINK180");
   m.real_sets.clear();
-  m.sections[3] = Section{3, "LINK", {0.25}};
+  m.sections[3] = Section{3, "LINK", "", {0.25}};
   ElementRecord r = spar_record();
   r.secnum = 3;
   auto e = create_element(ElementBuildContext{m, {}}, r);

@@ -1,0 +1,326 @@
+#include "elements/beam.h"
+
+#include <fmt/format.h>
+
+#include <Eigen/Geometry>
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/errors.h"
+#include "elements/so3.h"
+
+namespace impactfe {
+
+namespace {
+
+using Mat3 = Eigen::Matrix3d;
+
+/// Hermite (cubic) consistent mass of one bending plane on (w1, φ1, w2, φ2) with φ = w'
+/// (translational ρA and rotary ρI parts; Przemieniecki §11.3, eqs. 11.34 and 11.40).
+Eigen::Matrix4d hermite_mass(double rho_a, double rho_i, double L) {
+  Eigen::Matrix4d t, r;
+  t << 156, 22 * L, 54, -13 * L, 22 * L, 4 * L * L, 13 * L, -3 * L * L, 54, 13 * L, 156, -22 * L,
+      -13 * L, -3 * L * L, -22 * L, 4 * L * L;
+  r << 36, 3 * L, -36, 3 * L, 3 * L, 4 * L * L, -3 * L, -L * L, -36, -3 * L, 36, -3 * L, 3 * L,
+      -L * L, -3 * L, 4 * L * L;
+  return rho_a * L / 420.0 * t + rho_i / (30.0 * L) * r;
+}
+
+}  // namespace
+
+Beam::Beam(int id, BeamData data) : Element(id), data_(std::move(data)) {
+  length_ = (data_.xj - data_.xi).norm();
+  for (int k : data_.active)
+    dofs_.push_back(DofKey{k < 6 ? data_.node_i : data_.node_j, static_cast<Dof>(k % 6)});
+  const BeamSectionProperties& p = data_.section;
+  const double E = data_.youngs_modulus, G = data_.shear_modulus, L = length_;
+  torsion_stiffness_ = G * p.torsion;
+  // Residual bending flexibility (MacNeal): 1/S = 1/(G kA) + L²/(12 EI); kA = 0 → rigid shear.
+  auto shear = [&](double shear_area, double ei) {
+    const double bending = L * L / (12.0 * ei);
+    return 1.0 / (bending + (shear_area > 0.0 ? 1.0 / (G * shear_area) : 0.0));
+  };
+  Eigen::Vector3d s;
+  Eigen::Matrix3d D;
+  section_response(Eigen::Vector3d::Zero(), s, D);
+  shear_y_ = shear(p.shear_area_y, D(2, 2));  // bending in the x-y plane: E Izz
+  shear_z_ = shear(p.shear_area_z, D(1, 1));  // x-z plane: E Iyy
+  (void)E;
+  Vec12 f;
+  local_response(Vec12::Zero(), false, f, &K_linear_);
+}
+
+void Beam::section_response(const Eigen::Vector3d& e, Eigen::Vector3d& s,
+                            Eigen::Matrix3d& D) const {
+  // Elastic fibres; a fibre material law (plasticity) plugs in here.
+  const double E = data_.youngs_modulus;
+  integrate_fibres(
+      data_.section.fibres, e,
+      [E](int, double strain, double& stress, double& tangent) {
+        stress = E * strain;
+        tangent = E;
+      },
+      s, D);
+}
+
+void Beam::local_response(const Vec12& d, bool stiffening, Vec12& f, Mat12* K) const {
+  const double L = length_;
+  // Generalised strains at mid-length: rows ε0, κy, κz, twist, γy, γz.
+  Eigen::Matrix<double, 6, 12> B = Eigen::Matrix<double, 6, 12>::Zero();
+  B(0, 0) = -1 / L, B(0, 6) = 1 / L;
+  B(1, 4) = -1 / L, B(1, 10) = 1 / L;
+  B(2, 5) = -1 / L, B(2, 11) = 1 / L;
+  B(3, 3) = -1 / L, B(3, 9) = 1 / L;
+  B(4, 1) = -1 / L, B(4, 7) = 1 / L, B(4, 5) = -0.5, B(4, 11) = -0.5;
+  B(5, 2) = -1 / L, B(5, 8) = 1 / L, B(5, 4) = 0.5, B(5, 10) = 0.5;
+  Eigen::Matrix<double, 6, 1> e = B * d;
+  const double dv = d(7) - d(1), dw = d(8) - d(2);
+  if (stiffening) {
+    e(0) += (dv * dv + dw * dw) / (2 * L * L);
+    B(0, 1) = -dv / (L * L), B(0, 7) = dv / (L * L);
+    B(0, 2) = -dw / (L * L), B(0, 8) = dw / (L * L);
+  }
+  Eigen::Vector3d s_ab;
+  Eigen::Matrix3d D_ab;
+  section_response(e.head<3>(), s_ab, D_ab);
+  const double N0 = data_.youngs_modulus * data_.section.area * data_.initial_strain;
+  Eigen::Matrix<double, 6, 1> s;
+  s << s_ab(0) + N0, s_ab(1), s_ab(2), torsion_stiffness_ * e(3), shear_y_ * e(4), shear_z_ * e(5);
+  f = L * B.transpose() * s;
+  if (K == nullptr) return;
+  Eigen::Matrix<double, 6, 6> D = Eigen::Matrix<double, 6, 6>::Zero();
+  D.topLeftCorner<3, 3>() = D_ab;
+  D(3, 3) = torsion_stiffness_;
+  D(4, 4) = shear_y_;
+  D(5, 5) = shear_z_;
+  *K = L * B.transpose() * D * B;
+  if (stiffening) {
+    const double g = s(0) / L;  // L · N · ∂²ε0/∂d² = (N/L) blk(1)
+    for (int c : {1, 2}) {
+      (*K)(c, c) += g, (*K)(c + 6, c + 6) += g;
+      (*K)(c, c + 6) -= g, (*K)(c + 6, c) -= g;
+    }
+  }
+}
+
+Beam::Mat12 Beam::rotation() const {
+  Mat12 T = Mat12::Zero();
+  for (int b = 0; b < 4; ++b) T.block<3, 3>(3 * b, 3 * b) = data_.frame.transpose();
+  return T;
+}
+
+Beam::Vec12 Beam::expand(const Eigen::VectorXd& u) const {
+  Vec12 U = Vec12::Zero();
+  for (std::size_t k = 0; k < data_.active.size(); ++k)
+    U(data_.active[k]) = u(static_cast<Eigen::Index>(k));
+  return U;
+}
+
+void Beam::restrict(const Vec12& f, const Mat12& K, Eigen::VectorXd& f_out,
+                    Eigen::MatrixXd& K_out) const {
+  const auto n = static_cast<Eigen::Index>(data_.active.size());
+  f_out.resize(n);
+  K_out.resize(n, n);
+  for (Eigen::Index a = 0; a < n; ++a) {
+    f_out(a) = f(data_.active[static_cast<std::size_t>(a)]);
+    for (Eigen::Index b = 0; b < n; ++b)
+      K_out(a, b) =
+          K(data_.active[static_cast<std::size_t>(a)], data_.active[static_cast<std::size_t>(b)]);
+  }
+}
+
+Beam::Corotated Beam::corotate(const Vec12& u, Mat12* B) const {
+  const Mat3& R0 = data_.frame;
+  const Vec3 chord = data_.xj + u.segment<3>(6) - data_.xi - u.segment<3>(0);
+  const double ln = chord.norm();
+  if (!(ln > 1e-12 * length_))
+    throw ElementSolutionError(
+        id(), fmt::format("element {} (beam) collapsed to zero length under large deflection; "
+                          "use a smaller time step or more substeps, or check the loads",
+                          id()));
+  const Vec3 psi1 = u.segment<3>(3), psi2 = u.segment<3>(9);
+  const Mat3 R1 = so3::exp_map(psi1), R2 = so3::exp_map(psi2);
+  const Vec3 r1 = chord / ln;
+  const Vec3 q1 = R1 * R0.col(1), q2 = R2 * R0.col(1), q = 0.5 * (q1 + q2);
+  Vec3 r3 = r1.cross(q);
+  if (!(r3.norm() > 1e-8))
+    throw ElementSolutionError(
+        id(), fmt::format("element {} (beam): the nodal triads twisted by 90 degrees or more "
+                          "relative to the chord within one increment; use smaller increments",
+                          id()));
+  r3.normalize();
+  Corotated c;
+  c.Rr.col(0) = r1;
+  c.Rr.col(1) = r3.cross(r1);
+  c.Rr.col(2) = r3;
+  const Vec3 th1 = so3::log_map(c.Rr.transpose() * R1 * R0);
+  const Vec3 th2 = so3::log_map(c.Rr.transpose() * R2 * R0);
+  c.d.setZero();
+  c.d(6) = ln - length_;
+  c.d.segment<3>(3) = th1;
+  c.d.segment<3>(9) = th2;
+  if (B == nullptr) return c;
+
+  // Spin of the frame, δω (local components) = Gl Eᵀ δp, δp = [δx1, δw1, δx2, δw2] (spatial
+  // spins δw = T(ψ) δψ); Gl from r3·q = 0 and the chord (Battini & Pacoste 2002, eq. 33).
+  const Mat3 Rt = c.Rr.transpose();
+  const Vec3 ql = Rt * q, q1l = Rt * q1, q2l = Rt * q2;
+  const double eta = ql(0) / ql(1);
+  Eigen::Matrix<double, 3, 12> Gl = Eigen::Matrix<double, 3, 12>::Zero();
+  Gl(0, 2) = eta / ln, Gl(0, 3) = 0.5 * q1l(1) / ql(1), Gl(0, 4) = -0.5 * q1l(0) / ql(1);
+  Gl(0, 8) = -eta / ln, Gl(0, 9) = 0.5 * q2l(1) / ql(1), Gl(0, 10) = -0.5 * q2l(0) / ql(1);
+  Gl(1, 2) = 1 / ln, Gl(1, 8) = -1 / ln;
+  Gl(2, 1) = -1 / ln, Gl(2, 7) = 1 / ln;
+  Eigen::Matrix<double, 3, 12> W;
+  for (int b = 0; b < 4; ++b) W.middleCols<3>(3 * b) = Gl.middleCols<3>(3 * b) * Rt;
+  // δū = r1·(δx2 − δx1); δθ̄_a = T(θ̄_a)⁻¹ (Rrᵀ δw_a − δω).
+  Mat12 Bp = Mat12::Zero();
+  Bp.block<1, 3>(6, 0) = -r1.transpose();
+  Bp.block<1, 3>(6, 6) = r1.transpose();
+  for (int a = 0; a < 2; ++a) {
+    Eigen::Matrix<double, 3, 12> A = -W;
+    A.middleCols<3>(6 * a + 3) += Rt;
+    Bp.middleRows<3>(6 * a + 3) = so3::left_jacobian_inverse(a == 0 ? th1 : th2) * A;
+  }
+  *B = Bp;
+  B->middleCols<3>(3) = Bp.middleCols<3>(3) * so3::left_jacobian(psi1);
+  B->middleCols<3>(9) = Bp.middleCols<3>(9) * so3::left_jacobian(psi2);
+  return c;
+}
+
+bool Beam::is_nonlinear(const ElementContext& ctx) const {
+  return ctx.large_deflection || ctx.stress_stiffening;
+}
+
+void Beam::tangent(const ElementContext& ctx, const Eigen::VectorXd& u, Eigen::MatrixXd& K,
+                   Eigen::VectorXd& f_int) const {
+  const Vec12 U = expand(u);
+  Vec12 f;
+  Mat12 Kg;
+  if (!ctx.large_deflection) {
+    const Mat12 T = rotation();
+    Mat12 Kl;
+    local_response(T * U, ctx.stress_stiffening, f, &Kl);
+    f = T.transpose() * f;
+    Kg = T.transpose() * Kl * T;
+  } else {
+    Mat12 B;
+    const Corotated c = corotate(U, &B);
+    Vec12 fl;
+    local_response(c.d, false, fl, nullptr);
+    f = B.transpose() * fl;
+    // Geometric part ∂(Bᵀ f_l)/∂u at fixed f_l, by central differences of B.
+    Mat12 KG;
+    for (int j = 0; j < 12; ++j) {
+      const double h = 1e-6 * (j % 6 < 3 ? std::max(length_, U.segment<3>(j - j % 6).norm()) : 1.0);
+      Vec12 up = U, um = U;
+      up(j) += h;
+      um(j) -= h;
+      Mat12 Bp, Bm;
+      corotate(up, &Bp);
+      corotate(um, &Bm);
+      KG.col(j) = (Bp - Bm).transpose() * fl / (2 * h);
+    }
+    Kg = B.transpose() * K_linear_ * B + KG;
+    // The assembler stores one triangle: use the symmetric part (the co-rotational tangent with
+    // additive rotation vectors is symmetric only at equilibrium).
+    Kg = (0.5 * (Kg + Kg.transpose())).eval();
+  }
+  restrict(f, Kg, f_int, K);
+}
+
+void Beam::mass(const ElementContext& ctx, Eigen::MatrixXd& M) const {
+  const BeamSectionProperties& p = data_.section;
+  const double rho = data_.density, L = length_;
+  const double rho_a = rho * p.area + data_.added_mass;
+  Mat12 Ml = Mat12::Zero();
+  if (ctx.lumped_mass || data_.lumped_mass) {
+    for (int n = 0; n < 2; ++n) {
+      for (int c = 0; c < 3; ++c) Ml(6 * n + c, 6 * n + c) = 0.5 * rho_a * L;
+      Ml(6 * n + 3, 6 * n + 3) = 0.5 * rho * (p.iyy + p.izz) * L;
+      Ml(6 * n + 4, 6 * n + 4) = 0.5 * rho * p.iyy * L;
+      Ml(6 * n + 5, 6 * n + 5) = 0.5 * rho * p.izz * L;
+    }
+  } else {
+    auto linear = [&](int a, double m) {
+      Ml(a, a) += m / 3, Ml(a + 6, a + 6) += m / 3;
+      Ml(a, a + 6) += m / 6, Ml(a + 6, a) += m / 6;
+    };
+    linear(0, rho_a * L);
+    linear(3, rho * (p.iyy + p.izz) * L);
+    // x-y plane (v, θz = v'), x-z plane (w, θy = −w').
+    const std::array<int, 4> xy{1, 5, 7, 11}, xz{2, 4, 8, 10};
+    const Eigen::Matrix4d mxy = hermite_mass(rho_a, rho * p.izz, L);
+    Eigen::Matrix4d mxz = hermite_mass(rho_a, rho * p.iyy, L);
+    const Eigen::Vector4d sgn(1, -1, 1, -1);
+    mxz = sgn.asDiagonal() * mxz * sgn.asDiagonal();
+    for (int a = 0; a < 4; ++a)
+      for (int b = 0; b < 4; ++b) {
+        Ml(xy[a], xy[b]) += mxy(a, b);
+        Ml(xz[a], xz[b]) += mxz(a, b);
+      }
+  }
+  const Mat12 T = rotation();
+  const Mat12 Mg = T.transpose() * Ml * T;
+  Eigen::VectorXd unused;
+  restrict(Vec12::Zero(), Mg, unused, M);
+}
+
+Beam::Vec12 Beam::local_forces(const ElementContext& ctx, const Eigen::VectorXd& u) const {
+  const Vec12 U = expand(u);
+  Vec12 fl;
+  if (ctx.large_deflection)
+    local_response(corotate(U, nullptr).d, false, fl, nullptr);
+  else
+    local_response(rotation() * U, ctx.stress_stiffening, fl, nullptr);
+  return fl;
+}
+
+const std::vector<std::string>& beam_result_names() {
+  static const std::vector<std::string> names = {
+      "FX_I",   "MY_I",   "MZ_I",   "TQ_I",   "SFZ_I",  "SFY_I",  "FX_J",   "MY_J",   "MZ_J",
+      "TQ_J",   "SFZ_J",  "SFY_J",  "SDIR_I", "SBYT_I", "SBYB_I", "SBZT_I", "SBZB_I", "SDIR_J",
+      "SBYT_J", "SBYB_J", "SBZT_J", "SBZB_J", "SMAX_I", "SMIN_I", "SMAX_J", "SMIN_J"};
+  return names;
+}
+
+const std::vector<std::string>& Beam::result_names() const {
+  return beam_result_names();
+}
+
+void Beam::results(const ElementContext& ctx, const Eigen::VectorXd& u, const Eigen::VectorXd&,
+                   ElementResultValues& out) const {
+  const Vec12 fl = local_forces(ctx, u);
+  const BeamSectionProperties& p = data_.section;
+  const double E = data_.youngs_modulus;
+  Eigen::Vector3d s0;
+  Eigen::Matrix3d D;
+  section_response(Eigen::Vector3d::Zero(), s0, D);
+  out.assign(beam_result_names().size(), 0.0);
+  for (int end = 0; end < 2; ++end) {
+    // Section forces: −f at I, +f at J (N tension positive; My, Mz, T about the element axes).
+    const double sg = end == 0 ? -1.0 : 1.0;
+    const Eigen::Matrix<double, 6, 1> r = sg * fl.segment<6>(6 * end);
+    const double N = r(0), Vy = r(1), Vz = r(2), Tq = r(3), My = r(4), Mz = r(5);
+    const std::size_t o = 6 * static_cast<std::size_t>(end);
+    out[o + 0] = N, out[o + 1] = My, out[o + 2] = Mz, out[o + 3] = Tq, out[o + 4] = Vz,
+            out[o + 5] = Vy;
+    // Section strains of these resultants, then σ = E (ε0 + z κy − y κz) at the extreme fibres.
+    const Eigen::Vector3d e = D.ldlt().solve(Eigen::Vector3d(N, My, Mz));
+    const double sdir = E * e(0);
+    const double sbyt = -E * p.y_max * e(2), sbyb = -E * p.y_min * e(2);
+    const double sbzt = E * p.z_max * e(1), sbzb = E * p.z_min * e(1);
+    const std::size_t so = 12 + 5 * static_cast<std::size_t>(end);
+    out[so + 0] = sdir, out[so + 1] = sbyt, out[so + 2] = sbyb, out[so + 3] = sbzt,
+             out[so + 4] = sbzb;
+    out[22 + 2 * static_cast<std::size_t>(end)] =
+        sdir + std::max(sbyt, sbyb) + std::max(sbzt, sbzb);
+    out[23 + 2 * static_cast<std::size_t>(end)] =
+        sdir + std::min(sbyt, sbyb) + std::min(sbzt, sbzb);
+  }
+}
+
+}  // namespace impactfe
