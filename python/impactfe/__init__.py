@@ -27,7 +27,7 @@ NODAL_LABELS = {
     "FX": ("R", 0), "FY": ("R", 1), "FZ": ("R", 2),
     "MX": ("R", 3), "MY": ("R", 4), "MZ": ("R", 5),
 }
-ENERGY_COLUMNS = ["kinetic", "strain", "external_work", "gap_work", "dissipation"]
+ENERGY_COLUMNS = ["kinetic", "strain", "external_work", "gap_work", "dissipation", "plastic_work"]
 DOF_COLUMNS = ["UX", "UY", "UZ", "ROTX", "ROTY", "ROTZ"]
 
 
@@ -275,20 +275,24 @@ class Results:
 
     def energy(self):
         """Energy balance over time (full static and transient analyses): kinetic, strain,
-        external_work, gap_work, dissipation and the numerical dissipation that remains."""
+        external_work, gap_work, dissipation, plastic_work and the numerical dissipation that
+        remains."""
         parts = []
         for a in self._analyses:
             values = a.rows("energy")
             if values is None:
                 continue
-            df = pd.DataFrame(values, columns=ENERGY_COLUMNS, index=a.times)
+            # Files written before plastic_work existed have 5 columns.
+            df = pd.DataFrame(values, columns=ENERGY_COLUMNS[:values.shape[1]], index=a.times)
             df.insert(0, "analysis", a.index)
             parts.append(df)
         if not parts:
             raise ResultsError(f"no energy balance is stored in '{self.path}'")
         df = pd.concat(parts)
+        if "plastic_work" not in df:
+            df["plastic_work"] = np.nan
         df["numerical"] = (df["external_work"] - df["kinetic"] - df["strain"] - df["gap_work"]
-                           - df["dissipation"])
+                           - df["dissipation"] - df["plastic_work"].fillna(0.0))
         df.index.name = "time"
         return df
 

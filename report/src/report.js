@@ -16,7 +16,8 @@ const ENERGY_LABELS = {
   external_work: 'External work W',
   gap_work: 'Gap work Wg',
   dissipation: 'Damping dissipation D',
-  numerical_dissipation: 'Numerical dissipation W − (T+U+Wg+D)',
+  plastic_work: 'Plastic work Wp',
+  numerical_dissipation: 'Numerical dissipation W − (T+U+Wg+D+Wp)',
 };
 
 const ATTRIBUTE_LABELS = {

@@ -115,6 +115,17 @@ void DirectSolution::factorize(const IntegrationCoefficients& coeff, const Vecto
     solver_->factorize(effective_);
   } catch (const SingularMatrixError& e) {
     const std::string dof = structure_.describe_dof(*dofs_, e.column());
+    // With plasticity a tangent that was regular before (the count includes this attempt) can
+    // lose its stiffness: perfectly plastic (Et = 0) parts forming a mechanism, i.e. a load
+    // above the collapse load.
+    if (status_loop_->has_history() && solver_->counters().factorizations > 1)
+      throw SolutionError(fmt::format(
+          "load step {} substep {} (t = {:g}): the tangent stiffness became singular at {} "
+          "({}): the plastic elements form a mechanism (the load exceeds the collapse load, or "
+          "perfectly plastic parts (Et = 0) yield together in one iteration); use smaller load "
+          "increments (NSUBST) or a hardening tangent modulus",
+          increment_.label.load_step, increment_.label.substep, increment_.label.time, dof,
+          elements_at(e.column())));
     if (coeff.cM != 0.0)
       throw ModelError(fmt::format(
           "the effective matrix K + cC C + cM M of the time step is singular at {} (zero pivot, "
@@ -525,14 +536,16 @@ void DirectSolution::solve_increment(const LoadPoint& at, const StepLabel& label
                       (1.0 - w.stiffness) * (f_int_old_ + f_damp_old_);
   }
 
-  // The tangent varies with u under large deflection or stress stiffening: full Newton re-forms
-  // it every `reformulation` iterations (KRF / NROPT); otherwise only a status change does.
+  // The tangent varies with u under large deflection, stress stiffening or plasticity: full
+  // Newton re-forms it every `reformulation` iterations (KRF / NROPT); otherwise only a status
+  // change does.
   NewtonOptions newton;
   newton.max_iterations = conv.max_iterations;
   newton.full_newton = conv.full_newton;
   newton.reform_every = at.current->reformulation;
   newton.tangent_varies =
-      assembler_->is_nonlinear() && (ctx_.large_deflection || ctx_.stress_stiffening);
+      assembler_->is_nonlinear() &&
+      (ctx_.large_deflection || ctx_.stress_stiffening || status_loop_->has_history());
   status_loop_->begin_step();
   NewtonResult result;
   // Follower pressures load the linear part's DOFs through u, which the condensed system does

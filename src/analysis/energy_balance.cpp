@@ -6,8 +6,10 @@ namespace impactfe {
 
 EnergyBalance::EnergyBalance(const std::vector<std::unique_ptr<Element>>& elements)
     : elements_(elements) {
-  for (std::size_t e = 0; e < elements_.size(); ++e)
+  for (std::size_t e = 0; e < elements_.size(); ++e) {
     if (elements_[e]->has_status()) status_elements_.push_back(e);
+    if (elements_[e]->has_history()) history_elements_.push_back(e);
+  }
   status_force_old_.resize(status_elements_.size());
 }
 
@@ -32,16 +34,26 @@ void EnergyBalance::add_step(const Assembler& assembler, const VectorXd& u_old,
   internal_work_ += 0.5 * (f.internal_new + f.internal_old).dot(du);
 }
 
+double EnergyBalance::plastic_work() const {
+  double sum = 0.0;
+  for (std::size_t e : history_elements_) sum += elements_[e]->plastic_work();
+  return sum;
+}
+
 std::map<std::string, double> EnergyBalance::columns(double kinetic) const {
-  return {{"kinetic", kinetic},
-          {"strain", strain_energy()},
-          {"external_work", external_work_},
-          {"gap_work", gap_work_},
-          {"dissipation", damping_work_}};
+  std::map<std::string, double> out = {{"kinetic", kinetic},
+                                       {"strain", strain_energy()},
+                                       {"external_work", external_work_},
+                                       {"gap_work", gap_work_},
+                                       {"dissipation", damping_work_}};
+  if (!history_elements_.empty()) out["plastic_work"] = plastic_work();
+  return out;
 }
 
 double EnergyBalance::numerical_dissipation(double kinetic) const {
-  return initial_kinetic_ + external_work_ - kinetic - strain_energy() - gap_work_ - damping_work_;
+  // strain_energy() already excludes the plastic work: strain + plastic = internal − gap.
+  return initial_kinetic_ + external_work_ - kinetic - strain_energy() - plastic_work() -
+         gap_work_ - damping_work_;
 }
 
 std::optional<std::string> EnergyBalance::balance_warning(double kinetic) const {
@@ -66,8 +78,11 @@ std::optional<std::string> EnergyBalance::balance_warning(double kinetic) const 
 std::string EnergyBalance::summary(double time, double kinetic) const {
   return fmt::format(
       "energy at t = {:.6g}: kinetic {:.6g}, strain {:.6g}, gap work {:.6g}, damping {:.6g}, "
-      "external work {:.6g}{}, numerical dissipation {:.6g}",
-      time, kinetic, strain_energy(), gap_work_, damping_work_, external_work_,
+      "{}external work {:.6g}{}, numerical dissipation {:.6g}",
+      time, kinetic, strain_energy(), gap_work_, damping_work_,
+      history_elements_.empty() ? std::string()
+                                : fmt::format("plastic work {:.6g}, ", plastic_work()),
+      external_work_,
       initial_kinetic_ != 0.0 ? fmt::format(", initial kinetic {:.6g}", initial_kinetic_) : "",
       numerical_dissipation(kinetic));
 }

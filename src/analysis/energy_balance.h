@@ -2,8 +2,10 @@
 /// Work and energy bookkeeping of a static or transient run on all DOFs: external work, internal
 /// (strain) work, the work done on status elements (gaps: energy stored in or dissipated by the
 /// contact springs), damping dissipation, each by the trapezoidal rule over the converged steps;
-/// kinetic energy from M v. The remainder external − kinetic − strain − gap − damping is the time
-/// integrator's numerical dissipation (Houbolt damps high modes; Bathe §9.4).
+/// the plastic work ∫σ:dε_p dV the elements with plasticity accumulate in their committed history
+/// (also trapezoidal per integration point); kinetic energy from M v. The remainder external −
+/// kinetic − strain − gap − damping − plastic is the time integrator's numerical dissipation
+/// (Houbolt damps high modes; Bathe §9.4).
 #include <map>
 #include <memory>
 #include <optional>
@@ -37,10 +39,14 @@ class EnergyBalance {
   double external_work() const { return external_work_; }
   double gap_work() const { return gap_work_; }
   double damping_work() const { return damping_work_; }
-  /// Internal work minus the work on status elements.
-  double strain_energy() const { return internal_work_ - gap_work_; }
+  /// Plastic work of the committed element histories (0 without plasticity).
+  double plastic_work() const;
+  /// Internal work minus the work on status elements and the plastic work: the elastic strain
+  /// energy (plus the energy stored by kinematic hardening).
+  double strain_energy() const { return internal_work_ - gap_work_ - plastic_work(); }
   /// The results-file energy columns ("kinetic", "strain", "external_work", "gap_work",
-  /// "dissipation") for the given kinetic energy.
+  /// "dissipation", and "plastic_work" when elements have a history) for the given kinetic
+  /// energy.
   std::map<std::string, double> columns(double kinetic) const;
   /// What was not accounted for: initial kinetic + external − kinetic − strain − gap − damping.
   double numerical_dissipation(double kinetic) const;
@@ -54,6 +60,7 @@ class EnergyBalance {
  private:
   const std::vector<std::unique_ptr<Element>>& elements_;
   std::vector<std::size_t> status_elements_;
+  std::vector<std::size_t> history_elements_;
   std::vector<VectorXd> status_force_old_;  // element forces of the status elements, last step
   double initial_kinetic_ = 0.0;
   double external_work_ = 0.0, internal_work_ = 0.0, gap_work_ = 0.0, damping_work_ = 0.0;

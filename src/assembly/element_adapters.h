@@ -36,6 +36,11 @@ class NodalAxesElement final : public Element {
                                Eigen::VectorXd& f) const override;
   void pressure_load(const ElementContext& ctx, int face, const std::array<double, 4>& p,
                      const Eigen::VectorXd& u, Eigen::VectorXd& f) const override;
+  bool has_history() const override { return inner_->has_history(); }
+  double plastic_work() const override { return inner_->plastic_work(); }
+  void commit_history(const ElementContext& ctx, const Eigen::VectorXd& u) override {
+    inner_->commit_history(ctx, t_ * u);
+  }
   bool has_status() const override { return inner_->has_status(); }
   bool update_status(const ElementContext& ctx, const Eigen::VectorXd& u) override {
     return inner_->update_status(ctx, t_ * u);
@@ -80,6 +85,11 @@ class MaterialDampingElement final : public Element {
   void pressure_load(const ElementContext& ctx, int face, const std::array<double, 4>& p,
                      const Eigen::VectorXd& u, Eigen::VectorXd& f) const override {
     inner_->pressure_load(ctx, face, p, u, f);
+  }
+  bool has_history() const override { return inner_->has_history(); }
+  double plastic_work() const override { return inner_->plastic_work(); }
+  void commit_history(const ElementContext& ctx, const Eigen::VectorXd& u) override {
+    inner_->commit_history(ctx, u);
   }
   bool has_status() const override { return inner_->has_status(); }
   bool update_status(const ElementContext& ctx, const Eigen::VectorXd& u) override {

@@ -8,6 +8,7 @@
 #include <set>
 
 #include "deck/modeling_helpers.h"
+#include "elements/element_registry.h"
 
 namespace impactfe::deck {
 
@@ -295,15 +296,23 @@ void cmd_tbdele(DeckReader& r, const Command& c) {
 }  // namespace
 
 void check_material_tables(DeckReader& r, const Command& c) {
+  // The laws themselves (BISO, BKIN, MISO) are checked when the elements are built
+  // (plasticity_of, at the TB command); here: element types that take no plasticity.
   for (const auto& [key, table] : r.model.material_tables) {
     if (!is_plasticity(table.label)) continue;
-    for (const auto& [id, e] : r.model.elements)
-      if (e.mat == key.first)
-        r.fail(c, fmt::format("material {} has TB,{}{} plasticity (TB at {}:{}), which is not "
-                              "implemented yet; element {} uses it",
-                              key.first, table.label,
-                              table.label == "PLAS" ? ",,,," + table.option : std::string(),
-                              table.where.file, table.where.line, id));
+    for (const auto& [id, e] : r.model.elements) {
+      if (e.mat != key.first) continue;
+      const auto et = r.model.element_types.find(e.type);
+      const ElementTypeDescriptor* type =
+          et == r.model.element_types.end() ? nullptr : find_element_type(et->second.ansys_name);
+      if (!type || type->plasticity || !type->needs_material) continue;
+      r.fail(c, fmt::format("material {} has TB,{}{} plasticity (TB at {}:{}), but element {} "
+                            "({}) is elastic only; plasticity is available for LINK1, LINK8, "
+                            "LINK180, SOLID45, SOLID185 and SHELL181",
+                            key.first, table.label,
+                            table.label == "PLAS" ? ",,,," + table.option : std::string(),
+                            table.where.file, table.where.line, id, type->name));
+    }
   }
 }
 

@@ -48,8 +48,9 @@ Eigen::Matrix3d voigt_to_tensor(const Vector6d& s) {
 }  // namespace
 
 Brick8::Brick8(int id, const std::array<int, 8>& nodes, const std::array<Vec3, 8>& x,
-               const IsotropicElasticity& material, bool extra_shapes, const SourceLocation& where)
-    : Element(id), nodes_(nodes), x_(x) {
+               const IsotropicElasticity& material, bool extra_shapes, const SourceLocation& where,
+               std::optional<J2Plasticity> plasticity)
+    : Element(id), nodes_(nodes), x_(x), plasticity_(std::move(plasticity)) {
   // Distinct nodes in order of first appearance; coincident corners share DOFs.
   std::vector<int> unique;
   for (int c = 0; c < 8; ++c) {
@@ -120,6 +121,11 @@ Brick8::Brick8(int id, const std::array<int, 8>& nodes, const std::array<Vec3, 8
     }
     volume_ += det;
   }
+  mean_dilatation_.setZero();
+  for (const GaussPoint& gp : gauss_)
+    for (int a = 0; a < 8; ++a)
+      mean_dilatation_.segment<3>(3 * a) +=
+          (gp.dv / volume_) * gp.grad.col(a).head<3>().transpose();
 
   // Small-strain stiffness (q = 0 in the total-Lagrangian sum), condensed once.
   const int nf = extra_shapes_ ? kFunctions : 8;
@@ -268,12 +274,110 @@ void Brick8::tangent_large(const Eigen::Matrix<double, 24, 1>& uc, Eigen::Matrix
   fc = fq.head<24>() - kau.transpose() * kaa_ldlt.solve(fq.tail<9>());
 }
 
+void Brick8::plastic_sum(int nf, const Eigen::VectorXd& q, Eigen::MatrixXd& k, Eigen::VectorXd& f,
+                         PointStates* updated) const {
+  const int nq = 3 * nf;
+  k.setZero(nq, nq);
+  f.setZero(nq);
+  Eigen::Matrix<double, 6, Eigen::Dynamic> b(6, nq);
+  for (int p = 0; p < kGauss; ++p) {
+    const GaussPoint& gp = gauss_[static_cast<std::size_t>(p)];
+    const auto grad = gp.grad.leftCols(nf);
+    b.setZero();
+    for (int a = 0; a < nf; ++a) {  // small-strain B (Bathe 5.3), engineering shear
+      const double g0 = grad(0, a), g1 = grad(1, a), g2 = grad(2, a);
+      b(0, 3 * a) = g0;
+      b(1, 3 * a + 1) = g1;
+      b(2, 3 * a + 2) = g2;
+      b(3, 3 * a) = g1;
+      b(3, 3 * a + 1) = g0;
+      b(4, 3 * a + 1) = g2;
+      b(4, 3 * a + 2) = g1;
+      b(5, 3 * a) = g2;
+      b(5, 3 * a + 2) = g0;
+    }
+    if (nf == 8) {
+      // B-bar (mean dilatation, Hughes 1980; SOLID185 KEYOPT(2) = 0): the volumetric strain of
+      // every point is replaced by the element mean, so plastic (isochoric) flow does not lock.
+      Eigen::Matrix<double, 1, 24> vol;
+      for (int a = 0; a < 8; ++a) vol.segment<3>(3 * a) = grad.col(a).transpose();
+      const Eigen::Matrix<double, 1, 24> shift = (mean_dilatation_ - vol) / 3.0;
+      for (int i = 0; i < 3; ++i) b.row(i) += shift;
+    }
+    const Vector6d eps = b * q;
+    const PlasticResponse r =
+        plasticity_->solid(committed_[static_cast<std::size_t>(p)], eps,
+                           updated ? &(*updated)[static_cast<std::size_t>(p)] : nullptr);
+    f.noalias() += gp.dv * (b.transpose() * r.stress);
+    k.noalias() += gp.dv * (b.transpose() * r.tangent * b);
+  }
+}
+
+void Brick8::tangent_plastic(const Eigen::Matrix<double, 24, 1>& uc, Eigen::MatrixXd& kc,
+                             Eigen::VectorXd& fc, PointStates* updated) const {
+  if (!extra_shapes_) {
+    plastic_sum(8, uc, kc, fc, updated);
+    return;
+  }
+  // The mode amplitudes α are internal: f_α(u, α) = ∫B_αᵀσ dV = 0 is solved by Newton from the
+  // elastic prediction (each evaluation returns every point from its committed state, so this
+  // stays a function of (committed state, u)); then K = K_uu − K_uα K_αα⁻¹ K_αu, exact at f_α = 0
+  // (Simo & Rifai 1990 for the enhanced-strain analogue).
+  Eigen::VectorXd q(3 * kFunctions);
+  q.head<24>() = uc;
+  q.tail<9>() = mode_recovery_ * uc;
+  Eigen::MatrixXd kq;
+  Eigen::VectorXd fq;
+  const double scale = std::max(uc.lpNorm<Eigen::Infinity>(), 1e-300);
+  for (int iter = 0; iter < 25; ++iter) {
+    plastic_sum(kFunctions, q, kq, fq, nullptr);
+    const Eigen::Matrix<double, 9, 1> step =
+        -kq.bottomRightCorner<9, 9>().ldlt().solve(fq.tail<9>());
+    q.tail<9>() += step;
+    if (step.lpNorm<Eigen::Infinity>() <=
+        1e-12 * std::max(scale, q.tail<9>().lpNorm<Eigen::Infinity>()))
+      break;
+  }
+  // A residual f_α left by an unconverged local iteration is condensed consistently below.
+  plastic_sum(kFunctions, q, kq, fq, updated);
+  const Eigen::Matrix<double, 9, 24> kau = kq.bottomLeftCorner<9, 24>();
+  const auto kaa_ldlt = kq.bottomRightCorner<9, 9>().ldlt();
+  kc = kq.topLeftCorner<24, 24>() - kau.transpose() * kaa_ldlt.solve(kau);
+  kc = 0.5 * (kc + kc.transpose()).eval();
+  fc = fq.head<24>() - kau.transpose() * kaa_ldlt.solve(fq.tail<9>());
+}
+
+void Brick8::commit_history(const ElementContext& ctx, const Eigen::VectorXd& u) {
+  if (!plasticity_) return;
+  Eigen::MatrixXd kc;
+  Eigen::VectorXd fc;
+  PointStates next = committed_;
+  tangent_plastic(to_corners(u), kc, fc, &next);
+  committed_ = next;
+}
+
+double Brick8::plastic_work() const {
+  double w = 0.0;
+  for (int p = 0; p < kGauss; ++p)
+    w += committed_[static_cast<std::size_t>(p)].plastic_work *
+         gauss_[static_cast<std::size_t>(p)].dv;
+  return w;
+}
+
 void Brick8::tangent(const ElementContext& ctx, const Eigen::VectorXd& u, Eigen::MatrixXd& K,
                      Eigen::VectorXd& f_int) const {
   const Eigen::Matrix<double, 24, 1> uc = to_corners(u);
   Eigen::MatrixXd kc;
   Eigen::VectorXd fc;
-  if (ctx.large_deflection)
+  if (plasticity_) {
+    if (ctx.large_deflection || ctx.stress_stiffening)
+      throw ElementSolutionError(
+          id(), fmt::format("element {}: brick plasticity is small-strain; large deflection "
+                            "(NLGEOM) and stress stiffening with a TB plasticity material are "
+                            "not implemented for bricks",
+                            id()));
+    tangent_plastic(uc, kc, fc, nullptr);
+  } else if (ctx.large_deflection)
     tangent_large(uc, kc, fc);
   else
     tangent_linear(ctx, uc, kc, fc);
@@ -359,8 +463,9 @@ void Brick8::pressure_load(const ElementContext& ctx, int face, const std::array
 }
 
 namespace {
-const std::vector<std::string> kBrick8Results = {"SX", "SY", "SZ", "SXY",  "SYZ", "SXZ",
-                                                 "S1", "S2", "S3", "SINT", "SEQV"};
+const std::vector<std::string> kBrick8Results = {
+    "SX",    "SY",    "SZ",    "SXY",    "SYZ",    "SXZ",    "S1",   "S2",   "S3",   "SINT", "SEQV",
+    "EPPLX", "EPPLY", "EPPLZ", "EPPLXY", "EPPLYZ", "EPPLXZ", "EPEQ", "SEPL", "SRAT", "PLWK"};
 }  // namespace
 
 const std::vector<std::string>& Brick8::result_names() const {
@@ -369,14 +474,57 @@ const std::vector<std::string>& Brick8::result_names() const {
 
 void Brick8::results(const ElementContext& ctx, const Eigen::VectorXd& u, const Eigen::VectorXd& v,
                      ElementResultValues& out) const {
-  const Vector6d s = centroid_stress(ctx, u);
+  Vector6d s;
+  Vector6d plastic_strain = Vector6d::Zero();
+  double epeq = 0.0, sepl = 0.0, srat = 0.0, plwk = 0.0;
+  if (plasticity_ && !ctx.large_deflection && !ctx.stress_stiffening) {
+    // The states at u (the committed ones after a converged step), averaged over the volume.
+    Eigen::MatrixXd kc;
+    Eigen::VectorXd fc;
+    PointStates at = committed_;
+    tangent_plastic(to_corners(u), kc, fc, &at);
+    s.setZero();
+    for (int p = 0; p < kGauss; ++p) {
+      const PlasticState& st = at[static_cast<std::size_t>(p)];
+      const double w = gauss_[static_cast<std::size_t>(p)].dv / volume_;
+      s += w * st.stress;
+      plastic_strain += w * st.plastic_strain;
+      epeq += w * st.alpha;
+      plwk += w * st.plastic_work;
+      srat = std::max(srat,
+                      von_mises(st.stress - st.back_stress) / plasticity_->flow_stress(st.alpha));
+    }
+    sepl = plasticity_->flow_stress(epeq);
+  } else {
+    s = centroid_stress(ctx, u);
+  }
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(voigt_to_tensor(s),
                                                           Eigen::EigenvaluesOnly);
   const Eigen::Vector3d pr = es.eigenvalues();  // ascending
   const double s1 = pr(2), s2 = pr(1), s3 = pr(0);
   const double seqv =
       std::sqrt(0.5 * ((s1 - s2) * (s1 - s2) + (s2 - s3) * (s2 - s3) + (s3 - s1) * (s3 - s1)));
-  out = {s(0), s(1), s(2), s(3), s(4), s(5), s1, s2, s3, s1 - s3, seqv};
+  out = {s(0),
+         s(1),
+         s(2),
+         s(3),
+         s(4),
+         s(5),
+         s1,
+         s2,
+         s3,
+         s1 - s3,
+         seqv,
+         plastic_strain(0),
+         plastic_strain(1),
+         plastic_strain(2),
+         plastic_strain(3),
+         plastic_strain(4),
+         plastic_strain(5),
+         epeq,
+         sepl,
+         srat,
+         plwk};
 }
 
 namespace {
@@ -422,7 +570,8 @@ std::unique_ptr<Element> make_brick8(const ElementBuildContext& ctx, const Eleme
   }
   const IsotropicElasticity material =
       read_isotropic_elasticity(model, record.mat, record.id, record.where);
-  return std::make_unique<Brick8>(record.id, nodes, x, material, extra, record.where);
+  return std::make_unique<Brick8>(record.id, nodes, x, material, extra, record.where,
+                                  plasticity_of(model, record, material.young, material.poisson));
 }
 
 ElementTypeDescriptor brick_type(const char* name, int number, bool solid185) {
@@ -433,17 +582,15 @@ ElementTypeDescriptor brick_type(const char* name, int number, bool solid185) {
           .needs_material = true,
           .vtk_cell = VtkCell::Hexahedron,
           .result_names = kBrick8Results,
-          .result_sequences = {{"S", "X", "SX"},
-                               {"S", "Y", "SY"},
-                               {"S", "Z", "SZ"},
-                               {"S", "XY", "SXY"},
-                               {"S", "YZ", "SYZ"},
-                               {"S", "XZ", "SXZ"},
-                               {"S", "1", "S1"},
-                               {"S", "2", "S2"},
-                               {"S", "3", "S3"},
-                               {"S", "INT", "SINT"},
-                               {"S", "EQV", "SEQV"}},
+          .result_sequences =
+              {{"S", "X", "SX"},         {"S", "Y", "SY"},         {"S", "Z", "SZ"},
+               {"S", "XY", "SXY"},       {"S", "YZ", "SYZ"},       {"S", "XZ", "SXZ"},
+               {"S", "1", "S1"},         {"S", "2", "S2"},         {"S", "3", "S3"},
+               {"S", "INT", "SINT"},     {"S", "EQV", "SEQV"},     {"EPPL", "X", "EPPLX"},
+               {"EPPL", "Y", "EPPLY"},   {"EPPL", "Z", "EPPLZ"},   {"EPPL", "XY", "EPPLXY"},
+               {"EPPL", "YZ", "EPPLYZ"}, {"EPPL", "XZ", "EPPLXZ"}, {"NL", "EPEQ", "EPEQ"},
+               {"NL", "SEPL", "SEPL"},   {"NL", "SRAT", "SRAT"},   {"NL", "PLWK", "PLWK"}},
+          .plasticity = true,
           .faces = kBrickFaces,
           .sf_faces = 6,
           .create = [solid185](const ElementBuildContext& ctx, const ElementRecord& record) {

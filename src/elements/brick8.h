@@ -4,14 +4,23 @@
 /// modification (extra shapes), degenerate prism / pyramid / tetrahedron by repeated nodes,
 /// consistent or HRZ-lumped mass, linear stress stiffening and a total-Lagrangian large-deflection
 /// formulation (Green-Lagrange strain, 2nd Piola-Kirchhoff stress, St. Venant-Kirchhoff).
+/// With a TB plasticity table: small-strain J2 plasticity at the 8 Gauss points (committed
+/// states per point); the incompatible modes, when active, stay in the strain and their
+/// amplitudes are solved per element for each u (local Newton, then static condensation of the
+/// consistent tangent) — the enhanced-mode treatment of SOLID185 KEYOPT(2) = 3 and SOLID45.
+/// Without extra shapes the plastic brick uses B-bar (mean dilatation, as MAPDL's SOLID185
+/// KEYOPT(2) = 0), so isochoric plastic flow does not lock; the elastic brick without TB keeps
+/// full integration (docs/elements/solid45.md).
 #include <Eigen/Core>
 
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "elements/element.h"
 #include "materials/isotropic_elasticity.h"
+#include "materials/j2_plasticity.h"
 
 namespace impactfe {
 
@@ -23,13 +32,19 @@ class Brick8 final : public Element {
   /// `extra_shapes` requests the incompatible modes; they are dropped when nodes repeat.
   /// Throws InputError at `where` for a zero or negative Jacobian at a Gauss point.
   Brick8(int id, const std::array<int, 8>& nodes, const std::array<Vec3, 8>& x,
-         const IsotropicElasticity& material, bool extra_shapes, const SourceLocation& where = {});
+         const IsotropicElasticity& material, bool extra_shapes, const SourceLocation& where = {},
+         std::optional<J2Plasticity> plasticity = std::nullopt);
 
   const char* family() const override { return "Brick8"; }
   const std::vector<DofKey>& dofs() const override { return dofs_; }
   bool is_nonlinear(const ElementContext& ctx) const override {
-    return ctx.large_deflection || ctx.stress_stiffening;
+    return ctx.large_deflection || ctx.stress_stiffening || plasticity_.has_value();
   }
+  bool has_history() const override { return plasticity_.has_value(); }
+  double plastic_work() const override;
+  void commit_history(const ElementContext& ctx, const Eigen::VectorXd& u) override;
+  /// Committed state of Gauss point p (0..7, order of the corners' signs).
+  const PlasticState& gauss_state(int p) const { return committed_[static_cast<std::size_t>(p)]; }
   /// Linear: K = condensed ∫BᵀDB dV, f_int = K u (+ K_σ u with stress stiffening, K_σ from the
   /// stress of u, so that the converged state solves (K + K_σ(u)) u = F as ANSYS SSTIF does).
   /// Large deflection: total-Lagrangian f_int = ∫ B_Lᵀ S dV0 and its exact derivative.
@@ -45,7 +60,10 @@ class Brick8 final : public Element {
                      const Eigen::VectorXd& u, Eigen::VectorXd& f) const override;
 
   /// SX SY SZ SXY SYZ SXZ S1 S2 S3 SINT SEQV at the centroid, global axes (Cauchy stress under
-  /// large deflection).
+  /// large deflection); with plasticity the volume average of the Gauss-point stresses, and
+  /// EPPLX..EPPLXZ (plastic strain, engineering shear), EPEQ (equivalent plastic strain), SEPL
+  /// (yield stress at EPEQ), SRAT (equivalent stress / SEPL, largest point), PLWK (plastic work
+  /// per volume), volume averages of the points; zeros without plasticity.
   const std::vector<std::string>& result_names() const override;
   void results(const ElementContext& ctx, const Eigen::VectorXd& u, const Eigen::VectorXd& v,
                ElementResultValues& out) const override;
@@ -80,6 +98,15 @@ class Brick8 final : public Element {
                       Eigen::MatrixXd& kc, Eigen::VectorXd& fc) const;
   void tangent_large(const Eigen::Matrix<double, 24, 1>& uc, Eigen::MatrixXd& kc,
                      Eigen::VectorXd& fc) const;
+  using PointStates = std::array<PlasticState, 8>;
+  /// Small-strain elastic-plastic K_T and f_int on the corners: the Gauss points return from
+  /// the committed states; with extra shapes the mode amplitudes are solved for equilibrium
+  /// first (Newton) and condensed out. `updated` receives the states at u when given.
+  void tangent_plastic(const Eigen::Matrix<double, 24, 1>& uc, Eigen::MatrixXd& kc,
+                       Eigen::VectorXd& fc, PointStates* updated) const;
+  /// ∫BᵀC_alg B dV, ∫Bᵀσ dV over the first nf functions at generalised displacements q.
+  void plastic_sum(int nf, const Eigen::VectorXd& q, Eigen::MatrixXd& k, Eigen::VectorXd& f,
+                   PointStates* updated) const;
   /// Scalar (one direction) mass matrix over the distinct nodes, consistent.
   Eigen::MatrixXd scalar_mass() const;
 
@@ -93,9 +120,12 @@ class Brick8 final : public Element {
   bool extra_shapes_ = false;
   double volume_ = 0.0;
   std::array<GaussPoint, kGauss> gauss_;
-  Eigen::Matrix<double, 3, 8> grad_centre_;     // d/dX of the trilinear functions at ξ = 0
-  Eigen::Matrix<double, 24, 24> k_linear_;      // condensed small-strain stiffness (corners)
-  Eigen::Matrix<double, 9, 24> mode_recovery_;  // α = mode_recovery_ * u_c (linear)
+  Eigen::Matrix<double, 3, 8> grad_centre_;       // d/dX of the trilinear functions at ξ = 0
+  Eigen::Matrix<double, 24, 24> k_linear_;        // condensed small-strain stiffness (corners)
+  Eigen::Matrix<double, 9, 24> mode_recovery_;    // α = mode_recovery_ * u_c (linear)
+  Eigen::Matrix<double, 1, 24> mean_dilatation_;  // (1/V) ∫ ∂u_i/∂x_i row over the corners
+  std::optional<J2Plasticity> plasticity_;
+  PointStates committed_{};
 };
 
 }  // namespace impactfe

@@ -72,6 +72,18 @@ class Element {
   virtual void pressure_load(const ElementContext& ctx, int face, const std::array<double, 4>& p,
                              const Eigen::VectorXd& u, Eigen::VectorXd& f) const;
 
+  // ---- history (plasticity) -----------------------------------------------------------------
+  /// True when the element carries a material history (plastic strain per integration point).
+  /// tangent() and results() stay pure functions of (committed history, u): they compute the
+  /// trial state by return mapping from the committed one. The drivers call commit_history on
+  /// every element with a history when a step has converged (StatusLoop::commit), and revert()
+  /// when a step is restarted. Such an element must also report is_nonlinear() == true.
+  virtual bool has_history() const { return false; }
+  /// Accepts the converged step at u: the material state at u becomes the committed one.
+  virtual void commit_history(const ElementContext& ctx, const Eigen::VectorXd& u) {}
+  /// Plastic work ∫σ:dε_p dV of the committed history (energy balance); 0 without plasticity.
+  virtual double plastic_work() const { return 0.0; }
+
   // ---- status elements (gap open/closed, slider stick/slide) --------------------------------
   virtual bool has_status() const { return false; }
   /// Re-evaluates the status from the latest iterate u; returns true when it changed (the

@@ -70,6 +70,9 @@ struct ElementTypeDescriptor {
   std::vector<ResultSequence> result_sequences;
   /// True when elements of this type may carry a status (gap open/closed, slider).
   bool has_status = false;
+  /// True when the element applies a TB plasticity law of its material (BISO, BKIN, MISO:
+  /// materials/j2_plasticity.h); a SOLVE refuses such a material on other types.
+  bool plasticity = false;
   /// Faces for surface loads (SF, SFE; APDL_MODELING §5.1): faces[k] lists the node positions
   /// (0-based in the element's node list) of face k + 1, in the element's face-node order (the
   /// order of SFE VALUE1..VALUE4). Empty: the type takes no surface loads.

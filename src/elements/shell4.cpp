@@ -43,7 +43,10 @@ double von_mises(double sx, double sy, double sxy) {
 }  // namespace
 
 Shell4::Shell4(int id, const Shell4Data& data, const SourceLocation& where)
-    : Element(id), n_(static_cast<int>(data.node_ids.size())), X_(data.positions) {
+    : Element(id),
+      n_(static_cast<int>(data.node_ids.size())),
+      X_(data.positions),
+      plasticity_(data.plasticity) {
   for (int node : data.node_ids)
     for (Dof d : kAllDofs) dofs_.push_back(DofKey{node, d});
   ShellCorners corners(3, n_);
@@ -91,6 +94,7 @@ Shell4::Shell4(int id, const Shell4Data& data, const SourceLocation& where)
   K_bar_ = W_.transpose() * kernel_->stiffness() * W_;
   M_cons_ = A_.transpose() * kernel_->consistent_mass() * A_;
   M_cons_ = 0.5 * (M_cons_ + M_cons_.transpose()).eval();
+  if (plasticity_) committed_.resize(static_cast<std::size_t>(kernel_->n_material_points()));
 }
 
 namespace {
@@ -238,8 +242,56 @@ void Shell4::corotational_geometric_stiffness(const Eigen::VectorXd& u, const Ei
   add_geometric_stiffness(s, f_l, K_G);
 }
 
+void Shell4::plastic_tangent(
+    const ElementContext& ctx, const Eigen::VectorXd& u, Eigen::MatrixXd& K, Eigen::VectorXd& f_int,
+    std::vector<PlasticState>* updated, shell::Resultants* mean,
+    std::array<Eigen::Vector3d, shell::FlatShellKernel::kLayers>* layers) const {
+  Eigen::MatrixXd k_l;
+  Eigen::VectorXd f_l;
+  if (!ctx.large_deflection) {
+    if (ctx.stress_stiffening)
+      throw ElementSolutionError(
+          id(), fmt::format("element {}: stress stiffening without large deflection is not "
+                            "implemented for SHELL181 with plasticity (use NLGEOM,ON)",
+                            id()));
+    kernel_->plastic_response(*plasticity_, committed_, A_ * u, k_l, f_l, updated, mean, layers);
+    K = A_.transpose() * k_l * A_;
+    K = 0.5 * (K + K.transpose()).eval();
+    f_int = A_.transpose() * f_l;
+    return;
+  }
+  // Co-rotational (see tangent()) with the elastic-plastic local response in place of K̄ d.
+  using Vec24 = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, 24, 1>;
+  Vec24 d;
+  const CorotationalState s = corotate(X_, R0_, c0_, u, true, d);
+  Mat24 B;
+  kinematic_matrix(s, B);
+  kernel_->plastic_response(*plasticity_, committed_, W_ * d, k_l, f_l, updated, mean, layers);
+  const Eigen::VectorXd f_bar = W_.transpose() * f_l;
+  f_int = B.transpose() * f_bar;
+  material_stiffness(B, W_.transpose() * k_l * W_, K);
+  add_geometric_stiffness(s, f_bar, K);
+}
+
+void Shell4::commit_history(const ElementContext& ctx, const Eigen::VectorXd& u) {
+  if (!plasticity_) return;
+  Eigen::MatrixXd K;
+  Eigen::VectorXd f;
+  std::vector<PlasticState> next = committed_;
+  plastic_tangent(ctx, u, K, f, &next);
+  committed_ = std::move(next);
+}
+
+double Shell4::plastic_work() const {
+  return plasticity_ ? kernel_->plastic_work(committed_) : 0.0;
+}
+
 void Shell4::tangent(const ElementContext& ctx, const Eigen::VectorXd& u, Eigen::MatrixXd& K,
                      Eigen::VectorXd& f_int) const {
+  if (plasticity_) {
+    plastic_tangent(ctx, u, K, f_int, nullptr);
+    return;
+  }
   if (!ctx.large_deflection) {
     K = K_lin_;
     if (ctx.stress_stiffening) {
@@ -301,8 +353,9 @@ void Shell4::pressure_load(const ElementContext& ctx, int face, const std::array
 namespace {
 const std::vector<std::vector<int>> kShellFaces = {{0, 1, 2, 3}, {0, 1, 2, 3}};
 const std::vector<std::string> kShell4Results = {
-    "TX",     "TY",     "TXY",     "MX",     "MY",     "MXY",     "SX_TOP",   "SY_TOP",  "SXY_TOP",
-    "SX_MID", "SY_MID", "SXY_MID", "SX_BOT", "SY_BOT", "SXY_BOT", "SEQV_TOP", "SEQV_BOT"};
+    "TX",      "TY",       "TXY",      "MX",     "MY",      "MXY",    "SX_TOP",
+    "SY_TOP",  "SXY_TOP",  "SX_MID",   "SY_MID", "SXY_MID", "SX_BOT", "SY_BOT",
+    "SXY_BOT", "SEQV_TOP", "SEQV_BOT", "EPEQ",   "SRAT",    "PLWK"};
 }  // namespace
 
 const std::vector<std::string>& Shell4::result_names() const {
@@ -319,7 +372,24 @@ Eigen::VectorXd Shell4::local_displacement(const ElementContext& ctx,
 
 void Shell4::results(const ElementContext& ctx, const Eigen::VectorXd& u, const Eigen::VectorXd&,
                      ElementResultValues& out) const {
-  const shell::Resultants r = kernel_->resultants(local_displacement(ctx, u));
+  shell::Resultants r;
+  std::array<Eigen::Vector3d, shell::FlatShellKernel::kLayers> layers;
+  double epeq = 0.0, srat = 0.0, plwk = 0.0;
+  if (plasticity_) {
+    // The states at u (the committed ones after a converged step).
+    Eigen::MatrixXd K;
+    Eigen::VectorXd f;
+    std::vector<PlasticState> at = committed_;
+    plastic_tangent(ctx, u, K, f, &at, &r, &layers);
+    for (const PlasticState& s : at) {
+      epeq = std::max(epeq, s.alpha);
+      srat = std::max(
+          srat, impactfe::von_mises(s.stress - s.back_stress) / plasticity_->flow_stress(s.alpha));
+    }
+    plwk = kernel_->plastic_work(at) / kernel_->volume();
+  } else {
+    r = kernel_->resultants(local_displacement(ctx, u));
+  }
   // Rotate the in-plane tensors to the THETA axes.
   const double cs = std::cos(theta_), sn = std::sin(theta_);
   auto rot = [&](const Eigen::Vector3d& s) {
@@ -328,9 +398,12 @@ void Shell4::results(const ElementContext& ctx, const Eigen::VectorXd& u, const 
                            (s(1) - s(0)) * sn * cs + s(2) * (cs * cs - sn * sn));
   };
   const Eigen::Vector3d N = rot(r.N), Mm = rot(r.M);
-  const Eigen::Vector3d mid = N / r.t;
-  const Eigen::Vector3d top = mid + 6.0 * Mm / (r.t * r.t);
-  const Eigen::Vector3d bot = mid - 6.0 * Mm / (r.t * r.t);
+  // Elastic: linear through the thickness; plastic: the layer stresses (surfaces and middle).
+  const Eigen::Vector3d mid = plasticity_ ? rot(layers[2]) : Eigen::Vector3d(N / r.t);
+  const Eigen::Vector3d top =
+      plasticity_ ? rot(layers[4]) : Eigen::Vector3d(mid + 6.0 * Mm / (r.t * r.t));
+  const Eigen::Vector3d bot =
+      plasticity_ ? rot(layers[0]) : Eigen::Vector3d(mid - 6.0 * Mm / (r.t * r.t));
   out = {N(0),
          N(1),
          N(2),
@@ -347,7 +420,10 @@ void Shell4::results(const ElementContext& ctx, const Eigen::VectorXd& u, const 
          bot(1),
          bot(2),
          von_mises(top(0), top(1), top(2)),
-         von_mises(bot(0), bot(1), bot(2))};
+         von_mises(bot(0), bot(1), bot(2)),
+         epeq,
+         srat,
+         plwk};
 }
 
 namespace {
@@ -422,38 +498,45 @@ std::unique_ptr<Element> make_shell4(const ElementBuildContext& ctx, const Eleme
   k.bending = type.key(1) != 1;
   k.extra_shapes = type.key(3) != 2;
   k.rotary_inertia = type.key(7) != 1;
+  // SHELL181 takes TB plasticity; SHELL63 is elastic (the SOLVE check refuses it there).
+  if (shell181) data.plasticity = plasticity_of(model, record, k.E, k.nu);
   return std::make_unique<Shell4>(record.id, data, record.where);
 }
 
 ElementTypeDescriptor shell_type(const char* name, int number, bool shell181) {
-  return {
-      .name = name,
-      .number = number,
-      .family = "Shell4",
-      .n_nodes = 4,
-      .min_nodes = 3,
-      .real_constants = RealConstantUse::UnlessSection,
-      .needs_material = true,
-      .section_types = {"SHELL"},
-      .vtk_cell = VtkCell::Quad,
-      .result_names = kShell4Results,
-      // S at the top surface (MAPDL's default shell location); SMISC 1-6 = T and M resultants.
-      .result_sequences = {{"S", "X", "SX_TOP"},
-                           {"S", "Y", "SY_TOP"},
-                           {"S", "XY", "SXY_TOP"},
-                           {"S", "EQV", "SEQV_TOP"},
-                           {"SMISC", "1", "TX"},
-                           {"SMISC", "2", "TY"},
-                           {"SMISC", "3", "TXY"},
-                           {"SMISC", "4", "MX"},
-                           {"SMISC", "5", "MY"},
-                           {"SMISC", "6", "MXY"}},
-      .faces = kShellFaces,
-      .sf_faces = 1,
-      .note = shell181 ? "SHELL181 is computed with the SHELL63 kernel (thin elastic shell)" : "",
-      .create = [shell181](const ElementBuildContext& ctx, const ElementRecord& record) {
-        return make_shell4(ctx, record, shell181);
-      }};
+  return {.name = name,
+          .number = number,
+          .family = "Shell4",
+          .n_nodes = 4,
+          .min_nodes = 3,
+          .real_constants = RealConstantUse::UnlessSection,
+          .needs_material = true,
+          .section_types = {"SHELL"},
+          .vtk_cell = VtkCell::Quad,
+          .result_names = kShell4Results,
+          // S at the top surface (MAPDL's default shell location); SMISC 1-6 = T and M resultants.
+          .result_sequences = {{"S", "X", "SX_TOP"},
+                               {"S", "Y", "SY_TOP"},
+                               {"S", "XY", "SXY_TOP"},
+                               {"S", "EQV", "SEQV_TOP"},
+                               {"SMISC", "1", "TX"},
+                               {"SMISC", "2", "TY"},
+                               {"SMISC", "3", "TXY"},
+                               {"SMISC", "4", "MX"},
+                               {"SMISC", "5", "MY"},
+                               {"SMISC", "6", "MXY"},
+                               {"NL", "EPEQ", "EPEQ"},
+                               {"NL", "SRAT", "SRAT"},
+                               {"NL", "PLWK", "PLWK"}},
+          .plasticity = shell181,
+          .faces = kShellFaces,
+          .sf_faces = 1,
+          .note = shell181 ? "SHELL181 is computed with the SHELL63 kernel (thin Kirchhoff shell; "
+                             "layered J2 plasticity with a TB table)"
+                           : "",
+          .create = [shell181](const ElementBuildContext& ctx, const ElementRecord& record) {
+            return make_shell4(ctx, record, shell181);
+          }};
 }
 
 const ElementRegistration kShell63{shell_type("SHELL63", 63, false)};

@@ -24,6 +24,8 @@ struct Shell4Data {
   shell::KernelData kernel;     // material, thickness, options
   double theta_deg = 0.0;       // THETA: result axes rotated about the normal
   bool shell181 = false;
+  /// SHELL181 with a TB plasticity table: layered J2 plasticity (shell_kernel.h).
+  std::optional<J2Plasticity> plasticity;
 };
 
 class Shell4 : public Element {
@@ -34,8 +36,11 @@ class Shell4 : public Element {
   const char* family() const override { return "Shell4"; }
   const std::vector<DofKey>& dofs() const override { return dofs_; }
   bool is_nonlinear(const ElementContext& ctx) const override {
-    return ctx.large_deflection || ctx.stress_stiffening;
+    return ctx.large_deflection || ctx.stress_stiffening || plasticity_.has_value();
   }
+  bool has_history() const override { return plasticity_.has_value(); }
+  double plastic_work() const override;
+  void commit_history(const ElementContext& ctx, const Eigen::VectorXd& u) override;
   /// Small deflection: K = K_lin (+ stress stiffness Aᵀ K_g(σ(u)) A with SSTIF), f = K u.
   /// Large deflection: co-rotational f = Bᵀ K̄ d(u), K = Bᵀ K̄ B + ∂Bᵀ/∂u·(K̄ d), with
   /// B = ∂d/∂u and the geometric part ∂Bᵀ/∂u·f_l both analytic (shell_frame.h, so3.h).
@@ -67,6 +72,12 @@ class Shell4 : public Element {
 
  private:
   Eigen::VectorXd local_displacement(const ElementContext& ctx, const Eigen::VectorXd& u) const;
+  /// Elastic-plastic tangent and force (small deflection, or co-rotational on the local
+  /// response); `updated`, `mean`, `layers` as in FlatShellKernel::plastic_response.
+  void plastic_tangent(
+      const ElementContext& ctx, const Eigen::VectorXd& u, Eigen::MatrixXd& K,
+      Eigen::VectorXd& f_int, std::vector<PlasticState>* updated, shell::Resultants* mean = nullptr,
+      std::array<Eigen::Vector3d, shell::FlatShellKernel::kLayers>* layers = nullptr) const;
 
   int n_ = 0;
   std::vector<DofKey> dofs_;
@@ -81,6 +92,8 @@ class Shell4 : public Element {
   Eigen::MatrixXd M_cons_;  // Aᵀ M_l A
   double theta_ = 0.0;      // rad
   std::unique_ptr<shell::FlatShellKernel> kernel_;
+  std::optional<J2Plasticity> plasticity_;
+  std::vector<PlasticState> committed_;  // in-plane point × layer
 };
 
 }  // namespace impactfe

@@ -81,7 +81,10 @@ FlatShellKernel::FlatShellKernel(const std::vector<Eigen::Vector2d>& xy, const K
   build_membrane();
   build_bending();
   if (data_.efs > 0.0)
-    for (int a = 0; a < n_; ++a) K_(6 * a + 2, 6 * a + 2) += data_.efs * area_ / n_;
+    for (int a = 0; a < n_; ++a) {
+      K_(6 * a + 2, 6 * a + 2) += data_.efs * area_ / n_;
+      K_elastic_extra_(6 * a + 2, 6 * a + 2) += data_.efs * area_ / n_;
+    }
   build_mass();
 }
 
@@ -263,6 +266,9 @@ void FlatShellKernel::build_membrane() {
     Kd += data_.drill_factor * G * t * r.transpose() * r * wgt;
   }
   if (incompatible) Kuu -= Kua * Kaa.ldlt().solve(Kua.transpose());
+  n_modes_ = incompatible ? 4 : 0;
+  detJ0_ = detJ0;
+  J0i_ = J0i;
   if (data_.membrane) {
     for (int a = 0; a < n_; ++a)
       for (int b = 0; b < n_; ++b)
@@ -272,10 +278,13 @@ void FlatShellKernel::build_membrane() {
   // The drilling term also stiffens θz when the membrane is switched off, so the element stays
   // regular; it still vanishes for rigid in-plane rotations.
   const int map[3] = {0, 1, 5};
+  K_elastic_extra_.setZero(6 * n_, 6 * n_);
   for (int a = 0; a < n_; ++a)
     for (int b = 0; b < n_; ++b)
       for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) K_(6 * a + map[i], 6 * b + map[j]) += Kd(3 * a + i, 3 * b + j);
+        for (int j = 0; j < 3; ++j)
+          K_elastic_extra_(6 * a + map[i], 6 * b + map[j]) += Kd(3 * a + i, 3 * b + j);
+  K_ += K_elastic_extra_;
 }
 
 void FlatShellKernel::build_bending() {

@@ -17,6 +17,8 @@
 #include <array>
 #include <vector>
 
+#include "materials/j2_plasticity.h"
+
 namespace impactfe::shell {
 
 /// Material, section and option data of one facet.
@@ -73,6 +75,26 @@ class FlatShellKernel {
   /// Centroidal resultants of the local displacement d.
   Resultants resultants(const Eigen::VectorXd& d) const;
 
+  // ---- elastic-plastic response (SHELL181 with a TB plasticity table) ------------------------
+  /// Layers through the thickness at each in-plane Gauss point: 5-point Gauss–Lobatto
+  /// (z = ±t/2, ±√(3/7) t/2, 0; layer 0 at the bottom, 4 at the top).
+  static constexpr int kLayers = 5;
+  /// Number of material points: in-plane points × layers (state vector size).
+  int n_material_points() const;
+  /// Local stiffness and internal force of the local displacement d with J2 plasticity at every
+  /// layer point (plane stress σzz = 0, strain e + z κ; transverse shear is not part of the
+  /// Kirchhoff DK kernel): N = ∫σ dz, M = ∫zσ dz, tangent [A B; B D] from the consistent
+  /// plane-stress tangent. The quad's incompatible membrane modes are solved for equilibrium per
+  /// call (local Newton) and condensed. Drilling penalty and foundation stay elastic. `updated`
+  /// receives the states at d; `mean`, the resultants averaged over the area, and `layers`, the
+  /// area-averaged layer stresses (σx, σy, σxy) bottom → top.
+  void plastic_response(const J2Plasticity& law, const std::vector<PlasticState>& committed,
+                        const Eigen::VectorXd& d, Eigen::MatrixXd& K, Eigen::VectorXd& f,
+                        std::vector<PlasticState>* updated, Resultants* mean = nullptr,
+                        std::array<Eigen::Vector3d, kLayers>* layers = nullptr) const;
+  /// ∫ (plastic work per volume) dV of the given states.
+  double plastic_work(const std::vector<PlasticState>& states) const;
+
   /// DK rotation fields βx = Hx·U, βy = Hy·U (β = −∇w at the Kirchhoff points) at natural
   /// point (ξ, η) for the bending DOFs U = (w, θx, θy) per node; exposed for tests.
   void dk_rotations(double xi, double eta, Eigen::VectorXd& Hx, Eigen::VectorXd& Hy) const;
@@ -89,6 +111,13 @@ class FlatShellKernel {
   void build_membrane();
   void build_bending();
   void build_mass();
+  /// Membrane B (3 × (2n + 4): compatible, then the 4 incompatible modes of a quad) at a point.
+  Eigen::MatrixXd membrane_b(const Point& p) const;
+  /// One pass over the points at membrane (2n + modes) and bending (3n) coordinates.
+  void plastic_sum(const J2Plasticity& law, const std::vector<PlasticState>& committed,
+                   const Eigen::VectorXd& qm, const Eigen::VectorXd& qb, Eigen::MatrixXd& K,
+                   Eigen::VectorXd& f, std::vector<PlasticState>* updated, Resultants* mean,
+                   std::array<Eigen::Vector3d, kLayers>* layers) const;
 
   int n_;
   KernelData data_;
@@ -99,6 +128,10 @@ class FlatShellKernel {
   // DK side coefficients a, b, c, d, e per side k (corner k → corner k+1).
   std::vector<std::array<double, 5>> side_;
   Eigen::MatrixXd K_, M_;
+  Eigen::MatrixXd K_elastic_extra_;  // drilling penalty + foundation (6n × 6n)
+  int n_modes_ = 0;                  // incompatible membrane modes (4 for a quad, else 0)
+  double detJ0_ = 0.0;
+  Eigen::Matrix2d J0i_ = Eigen::Matrix2d::Identity();
   Eigen::MatrixXd Bm0_;  // centroidal membrane strain of (u, v) of all nodes, 3 × 2n
   Eigen::MatrixXd Bb0_;  // centroidal curvature of (w, θx, θy), 3 × 3n
 };

@@ -14,14 +14,15 @@ using corotational::AxialKinematics;
 using corotational::AxialMember;
 
 Spar::Spar(int id, std::vector<DofKey> dofs, AxialMember member, double area, double youngs_modulus,
-           double density, double initial_strain)
+           double density, double initial_strain, std::optional<J2Plasticity> plasticity)
     : Element(id),
       dofs_(std::move(dofs)),
       member_(std::move(member)),
       area_(area),
       youngs_modulus_(youngs_modulus),
       density_(density),
-      initial_strain_(initial_strain) {}
+      initial_strain_(initial_strain),
+      plasticity_(std::move(plasticity)) {}
 
 AxialKinematics Spar::kinematics(const ElementContext& ctx) const {
   if (ctx.large_deflection) return AxialKinematics::Corotational;
@@ -30,14 +31,41 @@ AxialKinematics Spar::kinematics(const ElementContext& ctx) const {
 }
 
 bool Spar::is_nonlinear(const ElementContext& ctx) const {
-  return ctx.large_deflection || ctx.stress_stiffening;
+  return ctx.large_deflection || ctx.stress_stiffening || plasticity_.has_value();
+}
+
+corotational::AxialState Spar::respond(const ElementContext& ctx, const Eigen::VectorXd& u,
+                                       Eigen::MatrixXd& K, Eigen::VectorXd& f,
+                                       UniaxialPlasticState* updated) const {
+  const double ea = youngs_modulus_ * area_;
+  const double length = member_.length;
+  if (!plasticity_)
+    return corotational::axial_response(member_, kinematics(ctx), ea / length, ea * initial_strain_,
+                                        u, K, f, id());
+  // Plastic: the axial response N = k e + N0 is linear in the extension e of the kinematics, so
+  // the kinematics give e (k = 1, N0 = 0), the material gives σ(ε) and dσ/dε at ε = e/L + ISTRN,
+  // and the member is evaluated again with the tangent k = A (dσ/dε) / L and N0 = Aσ − k e: the
+  // same N and the consistent K_T (material + geometric part N/ℓ).
+  const auto kin = corotational::axial_response(member_, kinematics(ctx), 1.0, 0.0, u, K, f, id());
+  const UniaxialResponse m =
+      plasticity_->uniaxial(committed_, kin.extension / length + initial_strain_, updated);
+  const double k = area_ * m.tangent / length;
+  return corotational::axial_response(member_, kinematics(ctx), k,
+                                      area_ * m.stress - k * kin.extension, u, K, f, id());
 }
 
 void Spar::tangent(const ElementContext& ctx, const Eigen::VectorXd& u, Eigen::MatrixXd& K,
                    Eigen::VectorXd& f_int) const {
-  const double ea = youngs_modulus_ * area_;
-  corotational::axial_response(member_, kinematics(ctx), ea / member_.length, ea * initial_strain_,
-                               u, K, f_int, id());
+  respond(ctx, u, K, f_int, nullptr);
+}
+
+void Spar::commit_history(const ElementContext& ctx, const Eigen::VectorXd& u) {
+  if (!plasticity_) return;
+  Eigen::MatrixXd K;
+  Eigen::VectorXd f;
+  UniaxialPlasticState next;
+  respond(ctx, u, K, f, &next);
+  committed_ = next;
 }
 
 void Spar::mass(const ElementContext& ctx, Eigen::MatrixXd& M) const {
@@ -56,7 +84,8 @@ void Spar::mass(const ElementContext& ctx, Eigen::MatrixXd& M) const {
 }
 
 namespace {
-const std::vector<std::string> kSparResults = {"FORC", "SAXL", "EPEL", "LENGTH"};
+const std::vector<std::string> kSparResults = {"FORC", "SAXL", "EPEL", "LENGTH", "EPPL",
+                                               "EPEQ", "SEPL", "SRAT", "PLWK"};
 }  // namespace
 
 const std::vector<std::string>& Spar::result_names() const {
@@ -67,10 +96,18 @@ void Spar::results(const ElementContext& ctx, const Eigen::VectorXd& u, const Ei
                    ElementResultValues& out) const {
   Eigen::MatrixXd K;
   Eigen::VectorXd f;
-  const double ea = youngs_modulus_ * area_;
-  const auto s = corotational::axial_response(member_, kinematics(ctx), ea / member_.length,
-                                              ea * initial_strain_, u, K, f, id());
-  out = {s.force, s.force / area_, s.force / ea, s.current_length};
+  UniaxialPlasticState state;  // the state at u (the committed one after a converged step)
+  const auto s = respond(ctx, u, K, f, plasticity_ ? &state : nullptr);
+  const double sigma = s.force / area_;
+  out = {s.force, sigma, sigma / youngs_modulus_, s.current_length, 0.0, 0.0, 0.0, 0.0, 0.0};
+  if (plasticity_) {
+    const double flow = plasticity_->flow_stress(state.alpha);
+    out[4] = state.plastic_strain;
+    out[5] = state.alpha;
+    out[6] = flow;
+    out[7] = std::abs(sigma - state.back_stress) / flow;
+    out[8] = state.plastic_work;
+  }
 }
 
 namespace {
@@ -118,6 +155,7 @@ std::unique_ptr<Element> make_spar(const ElementBuildContext& ctx, const Element
                      fmt::format("element {} ({}): AREA is missing or not positive (real set {})",
                                  record.id, family, record.real));
   const ElasticMaterial mat = elastic_material(model, record, family);
+  auto plasticity = plasticity_of(model, record, mat.youngs_modulus, mat.poisson_ratio);
 
   const int d = planar ? 2 : 3;
   AxialMember member;
@@ -127,7 +165,8 @@ std::unique_ptr<Element> make_spar(const ElementBuildContext& ctx, const Element
   for (int node : {ni.id, nj.id})
     for (int c = 0; c < d; ++c) dofs.push_back(DofKey{node, static_cast<Dof>(c)});
   return std::make_unique<Spar>(record.id, std::move(dofs), std::move(member), area,
-                                mat.youngs_modulus, mat.density, initial_strain);
+                                mat.youngs_modulus, mat.density, initial_strain,
+                                std::move(plasticity));
 }
 
 ElementTypeDescriptor spar_type(const char* name, int number, bool planar) {
@@ -140,7 +179,15 @@ ElementTypeDescriptor spar_type(const char* name, int number, bool planar) {
           .section_types = {"LINK"},
           .vtk_cell = VtkCell::Line,
           .result_names = kSparResults,
-          .result_sequences = {{"SMISC", "1", "FORC"}, {"LS", "1", "SAXL"}, {"LEPEL", "1", "EPEL"}},
+          .result_sequences = {{"SMISC", "1", "FORC"},
+                               {"LS", "1", "SAXL"},
+                               {"LEPEL", "1", "EPEL"},
+                               {"LEPPL", "1", "EPPL"},
+                               {"NL", "EPEQ", "EPEQ"},
+                               {"NL", "SEPL", "SEPL"},
+                               {"NL", "SRAT", "SRAT"},
+                               {"NL", "PLWK", "PLWK"}},
+          .plasticity = true,
           .create = [planar](const ElementBuildContext& ctx, const ElementRecord& record) {
             return make_spar(ctx, record, planar);
           }};

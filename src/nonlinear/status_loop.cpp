@@ -9,8 +9,11 @@ namespace impactfe {
 StatusLoop::StatusLoop(const std::vector<std::unique_ptr<Element>>& elements,
                        const Assembler& assembler, int chatter_limit)
     : elements_(elements), assembler_(assembler), chatter_limit_(chatter_limit) {
-  for (std::size_t e = 0; e < elements_.size(); ++e)
+  for (std::size_t e = 0; e < elements_.size(); ++e) {
     if (elements_[e]->has_status()) members_.push_back(e);
+    if (elements_[e]->has_status() || elements_[e]->has_history()) committed_.push_back(e);
+    has_history_ |= elements_[e]->has_history();
+  }
 }
 
 void StatusLoop::begin_step() {
@@ -42,10 +45,15 @@ void StatusLoop::end_step() {
 }
 
 void StatusLoop::commit(const VectorXd& u) {
-  for (std::size_t e : members_) {
+  for (std::size_t e : committed_) {
     assembler_.gather(e, u, ue_);
-    elements_[e]->commit(ue_);
+    if (elements_[e]->has_status()) elements_[e]->commit(ue_);
+    if (elements_[e]->has_history()) elements_[e]->commit_history(assembler_.context(), ue_);
   }
+}
+
+void StatusLoop::revert() {
+  for (std::size_t e : committed_) elements_[e]->revert();
 }
 
 std::string StatusLoop::chatter_report() const {

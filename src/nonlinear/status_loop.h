@@ -38,8 +38,14 @@ class StatusLoop {
   int update(const VectorXd& u, const StepLabel& where);
   /// Ends a step: unfreezes the elements frozen in it.
   void end_step();
-  /// Accepts the converged step at u for every status element.
+  /// Accepts the converged step at u for every status element and every element with a
+  /// material history (Element::has_history: plastic strains at u become the committed ones).
   void commit(const VectorXd& u);
+  /// Returns every status and history element to its committed state (a step is restarted).
+  void revert();
+  /// True when some element carries a material history: its tangent changes with u even in
+  /// small deflection, so Newton must re-form it.
+  bool has_history() const { return has_history_; }
 
   /// " 12(3x) 14(2x)": elements that changed status at least twice in this step.
   std::string chatter_report() const;
@@ -50,7 +56,9 @@ class StatusLoop {
   const std::vector<std::unique_ptr<Element>>& elements_;
   const Assembler& assembler_;
   int chatter_limit_;
-  std::vector<std::size_t> members_;  // indices of the elements that carry a status
+  std::vector<std::size_t> members_;    // indices of the elements that carry a status
+  std::vector<std::size_t> committed_;  // ... that carry a status or a history
+  bool has_history_ = false;
   std::map<std::size_t, int> flips_;  // element index -> status changes in this step
   int n_changes_ = 0;
   VectorXd ue_;  // scratch

@@ -246,12 +246,12 @@ Pass scan_time_points(const ResultsReader& reader, const std::vector<FrameRef>& 
         pass.frames[it->second] = std::move(p);
     }
     if (t.empty()) continue;
-    // Numerical dissipation: the remainder of the balance, W_ext - (T + U + W_gap + D), the
+    // Numerical dissipation: the remainder of the balance, W_ext - (T + U + W_gap + D + W_p), the
     // energy the integrator removed (Houbolt damps the high modes; thesis Fig. 3-4).
     std::vector<double> remainder(t.size());
     for (std::size_t k = 0; k < t.size(); ++k) {
       double sum = 0.0;
-      for (const char* name : {"kinetic", "strain", "gap_work", "dissipation"})
+      for (const char* name : {"kinetic", "strain", "gap_work", "dissipation", "plastic_work"})
         if (std::isfinite(energy[name][k])) sum += energy[name][k];
       remainder[k] = energy["external_work"][k] - sum;
     }
@@ -259,7 +259,7 @@ Pass scan_time_points(const ResultsReader& reader, const std::vector<FrameRef>& 
     json e = {{"analysis", a.index}, {"description", a.description}, {"curves", json::array()}};
     json final_values = json::object();
     for (const auto& name : {"kinetic", "strain", "external_work", "gap_work", "dissipation",
-                             "numerical_dissipation"}) {
+                             "plastic_work", "numerical_dissipation"}) {
       Series s;
       for (std::size_t k = 0; k < t.size(); ++k)
         if (std::isfinite(energy[name][k])) s.emplace_back(t[k], energy[name][k]);

@@ -37,7 +37,8 @@ struct TimePoint {
   /// Frame acceleration (ACEL) acting at this time point, when the analysis records it (full
   /// runs): a superelement expansion applies its static correction from it.
   std::optional<Eigen::Vector3d> frame_acceleration;
-  /// Energy balance: "kinetic", "strain", "external_work", "gap_work", "dissipation".
+  /// Energy balance: "kinetic", "strain", "external_work", "gap_work", "dissipation",
+  /// "plastic_work".
   std::map<std::string, double> energy;
 };
 
@@ -47,8 +48,9 @@ enum class ResultsKind { Static, Modal, Transient, ReducedTransient, Expansion, 
 const char* results_kind_name(ResultsKind kind);
 
 /// Energy columns of the per-analysis `energy` dataset, in stored order (docs/results_file.md).
-inline constexpr const char* kEnergyNames[5] = {"kinetic", "strain", "external_work", "gap_work",
-                                                "dissipation"};
+/// "plastic_work" came last (files written before it have 5 columns).
+inline constexpr const char* kEnergyNames[6] = {"kinetic",  "strain",      "external_work",
+                                                "gap_work", "dissipation", "plastic_work"};
 
 /// Two stored times are the same time point when |a - b| <= 1e-12 * max(1, |a|, |b|).
 bool same_time(double a, double b);

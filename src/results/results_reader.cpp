@@ -638,6 +638,9 @@ TimePoint ResultsReader::time_point(int analysis, int k) const {
       const auto v = impl_->rows(an, "energy", {0}, {5}, r, 1);
       for (std::size_t i = 0; i < 5; ++i)
         if (std::isfinite(v[i])) p.energy[kEnergyNames[i]] = v[i];
+      // Column 6 (plastic_work) is absent (NaN) in files written before it existed.
+      const auto w = impl_->rows(an, "energy", {5}, {1}, r, 1);
+      if (std::isfinite(w[0])) p.energy[kEnergyNames[5]] = w[0];
     }
     for (const auto& fam : an.families) {
       ElementResultTable t;

@@ -682,8 +682,9 @@ void ResultsWriter::append(const TimePoint& point) {
     m.put_row(m.series_for("frame_acceleration", {3}), point.frame_acceleration->data());
 
   if (!point.energy.empty()) {
-    double row[5];
-    std::fill(row, row + 5, kNaN);
+    constexpr std::size_t n_energy = std::size(kEnergyNames);
+    double row[n_energy];
+    std::fill(row, row + n_energy, kNaN);
     for (const auto& [name, value] : point.energy) {
       auto pos = std::find_if(std::begin(kEnergyNames), std::end(kEnergyNames),
                               [&](const char* n) { return name == n; });
@@ -692,7 +693,7 @@ void ResultsWriter::append(const TimePoint& point) {
       row[pos - std::begin(kEnergyNames)] = value;
     }
     const bool is_new = !m.series.count("energy");
-    BlockSeries& s = m.series_for("energy", {5});
+    BlockSeries& s = m.series_for("energy", {n_energy});
     if (is_new)
       h5::write_attribute(
           s.main, "columns",
