@@ -13,6 +13,7 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <filesystem>
 #include <limits>
 #include <set>
@@ -41,6 +42,11 @@ constexpr double kBlockMemoryBytes = 64.0 * (1 << 20);
 /// Target size of a main chunk (uncompressed): large enough to compress well, small enough that
 /// a history reads little beyond what it needs.
 constexpr hsize_t kChunkBytes = 256 * 1024;
+/// Disk space reserved before every write beyond the data it stores (object headers, chunk
+/// index nodes, free-space rounding), and the factor on the data (checksums, chunk padding,
+/// deflate that does not shrink); see Impl::Guard.
+constexpr double kReserveSlack = 64.0 * 1024;
+constexpr double kReserveFactor = 2.0;
 
 using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
@@ -62,18 +68,10 @@ hsize_t block_rows_for(std::size_t n_nodes, std::size_t n_elements) {
 
 void write_rows(hid_t ds, hsize_t first, hsize_t n_rows, const std::vector<hsize_t>& row_dims,
                 const double* data) {
-  if (n_rows == 0 || product(row_dims) == 0) return;
   std::vector<hsize_t> start(row_dims.size() + 1, 0), count{n_rows};
   start[0] = first;
   count.insert(count.end(), row_dims.begin(), row_dims.end());
-  Handle file_space(check(H5Dget_space(ds), "get dataspace"));
-  check_status(
-      H5Sselect_hyperslab(file_space, H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr),
-      "select rows");
-  hsize_t n = product(count);
-  Handle mem_space(check(H5Screate_simple(1, &n, nullptr), "create memory dataspace"));
-  check_status(H5Dwrite(ds, H5T_NATIVE_DOUBLE, mem_space, file_space, H5P_DEFAULT, data),
-               "write rows");
+  h5::write_slab(ds, start, count, data);
 }
 
 void set_extent(hid_t ds, hsize_t rows, const std::vector<hsize_t>& row_dims) {
@@ -247,8 +245,41 @@ struct ResultsWriter::Impl {
   std::map<std::pair<int, int>, std::size_t> reaction_column;
   Handle reaction_dofs_ds;
 
+  /// A write failed: the file is left in its last flushed state and never written again.
+  bool failed = false;
+
   hsize_t n_nodes() const { return node_ids.size(); }
   hsize_t slot() const { return n_t - block_start; }
+
+  /// Every public write holds a guard: the disk space it may need (`bytes` of data) is
+  /// reserved first, so that a full disk stops the run before HDF5 writes anything; when
+  /// anything fails after all, the file is abandoned in its last flushed state (docs/
+  /// results_file.md, "Crash safety").
+  struct Guard {
+    Impl& m;
+    const int exceptions = std::uncaught_exceptions();
+    Guard(Impl& impl, double bytes) : m(impl) {
+      if (m.failed)
+        throw std::runtime_error(
+            fmt::format("cannot write {} any more: an earlier write failed", m.path));
+      try {
+        h5::reserve_space(m.file, m.path, kReserveFactor * bytes + kReserveSlack);
+      } catch (...) {
+        m.abandon();
+        throw;
+      }
+    }
+    ~Guard() {
+      if (std::uncaught_exceptions() > exceptions) m.abandon();
+    }
+  };
+  void abandon();
+  /// Bytes of the rows of the current block (all quantities), the data of a block flush.
+  double block_bytes(hsize_t n_rows) const {
+    double n = 0;
+    for (const auto& [name, s] : series) n += static_cast<double>(n_rows * s.row_size());
+    return 8.0 * n;
+  }
 
   void require_open(const char* what) const {
     IMPACTFE_CHECK(group.valid(), fmt::format("ResultsWriter::{}: no analysis is open", what));
@@ -304,6 +335,16 @@ void ResultsWriter::Impl::compact() {
     fs::remove(tmp, ec);
     Log::debug("results file {} not compacted: {}", path, e.what());
   }
+}
+
+void ResultsWriter::Impl::abandon() {
+  failed = true;
+  for (auto& [name, s] : series) {
+    s.main.abandon();
+    s.recent.abandon();
+  }
+  for (auto& [name, d] : direct) d.ds.abandon();
+  for (Handle* h : {&reaction_dofs_ds, &elements_group, &recent_group, &group, &file}) h->abandon();
 }
 
 void ResultsWriter::Impl::write_model(const Model& model) {
@@ -371,6 +412,9 @@ BlockSeries& ResultsWriter::Impl::series_for(const std::string& name,
   // A quantity that starts later: its main dataset spans the finished blocks already (NaN).
   BlockSeries s =
       create_series(group, recent_group, name, row_dims, block_rows, block_start, growable);
+  // Its finished blocks are written as NaN, so that every chunk exists (all_chunks_written).
+  for (hsize_t b = 0; b < block_start; b += block_rows)
+    write_rows(s.main, b, std::min(block_rows, block_start - b), s.row_dims, s.block.data());
   // Rows of the current block before this one stay NaN in the staging dataset too: write them,
   // since a reused staging dataset is not, but a new one is all fill.
   return series.emplace(name, std::move(s)).first->second;
@@ -492,6 +536,11 @@ void ResultsWriter::Impl::write_reactions(const Eigen::MatrixXd& m) {
       s.block = std::move(block);
       s.row_dims = {n_r};
       set_extent(s.main, h5::dims_of(s.main)[0], s.row_dims);
+      // The new columns of the finished blocks: NaN, written (all_chunks_written).
+      const std::vector<double> nan_rows(block_rows * (n_r - old_n), kNaN);
+      for (hsize_t b = 0; b < block_start; b += block_rows)
+        h5::write_slab(s.main, {b, old_n}, {std::min(block_rows, block_start - b), n_r - old_n},
+                       nan_rows.data());
       set_extent(s.recent, block_rows, s.row_dims);
     }
   }
@@ -561,6 +610,7 @@ ResultsWriter::ResultsWriter(const std::string& path, const Model& model)
 }
 
 ResultsWriter::~ResultsWriter() {
+  if (impl_->failed) return;  // the file keeps its last flushed state
   try {
     impl_->close_analysis("incomplete");
     impl_->compact();
@@ -570,8 +620,9 @@ ResultsWriter::~ResultsWriter() {
 }
 
 int ResultsWriter::begin_analysis(ResultsKind kind, const std::string& description) {
-  impl_->close_analysis("complete");
   Impl& m = *impl_;
+  const Impl::Guard guard(m, m.block_bytes(m.n_t - m.block_start));
+  m.close_analysis("complete");
   const int k = ++m.n_analyses;
   const std::string name = fmt::format("analysis_{}", k);
   Handle gcpl = h5::checksummed_group_creation_list();
@@ -584,6 +635,7 @@ int ResultsWriter::begin_analysis(ResultsKind kind, const std::string& descripti
   h5::write_attribute(m.group, "description", description, StringLayout::Fixed);
   h5::write_attribute(m.group, "status", std::string("running"), StringLayout::Fixed);
   h5::write_integer_attribute(m.group, "block_rows", static_cast<long long>(m.block_rows));
+  h5::write_integer_attribute(m.group, "all_chunks_written", 1);  // see series_for
   m.flush();
   return k;
 }
@@ -591,6 +643,15 @@ int ResultsWriter::begin_analysis(ResultsKind kind, const std::string& descripti
 void ResultsWriter::append(const TimePoint& point) {
   impl_->require_open("append");
   Impl& m = *impl_;
+  double values = static_cast<double>(point.displacement.size() + point.velocity.size() +
+                                      point.acceleration.size() + point.reaction.size() +
+                                      point.gap_forces.size()) +
+                  16.0;
+  for (const auto& [family, table] : point.element_results)
+    values += static_cast<double>(table.values.size() + table.element_ids.size());
+  // A row of every quantity, and the whole block when this point completes it.
+  const Impl::Guard guard(
+      m, 8.0 * values + (m.slot() + 1 == m.block_rows ? m.block_bytes(m.block_rows) : 0.0));
   m.write_nodal("U", point.displacement);
   m.write_nodal("V", point.velocity);
   m.write_nodal("A", point.acceleration);
@@ -611,8 +672,7 @@ void ResultsWriter::append(const TimePoint& point) {
     double row[5];
     std::fill(row, row + 5, kNaN);
     for (const auto& [name, value] : point.energy) {
-      auto pos = std::find_if(std::begin(kEnergyNames), std::end(kEnergyNames),
-                              [&](const char* n) { return name == n; });
+      auto pos = std::find(std::begin(kEnergyNames), std::end(kEnergyNames), name);
       IMPACTFE_CHECK(pos != std::end(kEnergyNames),
                      fmt::format("ResultsWriter::append: unknown energy term '{}'", name));
       row[pos - std::begin(kEnergyNames)] = value;
@@ -657,6 +717,7 @@ void ResultsWriter::write_modes(const std::vector<double>& frequencies_hz,
                                 const std::vector<Eigen::MatrixXd>& shapes) {
   impl_->require_open("write_modes");
   Impl& m = *impl_;
+  const Impl::Guard guard(m, 8.0 * static_cast<double>((shapes.size() + 1) * m.n_nodes() * 6));
   IMPACTFE_CHECK(shapes.size() == frequencies_hz.size(),
                  fmt::format("ResultsWriter::write_modes: {} frequencies, {} shapes",
                              frequencies_hz.size(), shapes.size()));
@@ -680,16 +741,19 @@ void ResultsWriter::write_modes(const std::vector<double>& frequencies_hz,
 
 void ResultsWriter::set_attribute(const std::string& name, double value) {
   impl_->require_open("set_attribute");
+  const Impl::Guard guard(*impl_, 0.0);
   h5::write_attribute(impl_->group, name, value);
 }
 
 void ResultsWriter::set_attribute(const std::string& name, const std::string& value) {
   impl_->require_open("set_attribute");
+  const Impl::Guard guard(*impl_, static_cast<double>(value.size()));
   h5::write_attribute(impl_->group, name, value, StringLayout::Fixed);
 }
 
 void ResultsWriter::set_count(const std::string& name, long long value) {
   impl_->require_open("set_count");
+  const Impl::Guard guard(*impl_, 0.0);
   h5::write_integer_attribute(impl_->group, name, value);
 }
 
@@ -711,13 +775,16 @@ void ResultsWriter::set_element_nodes(const std::map<int, std::vector<int>>& nod
     }
   }
   if (!changed) return;
+  const Impl::Guard guard(m, 8.0 * static_cast<double>(flat.size() + nodes.size() * 8));
   m.write_element_nodes(lists);
   m.flush();
 }
 
 void ResultsWriter::end_analysis(const std::string& status) {
   impl_->require_open("end_analysis");
-  impl_->close_analysis(status);
+  Impl& m = *impl_;
+  const Impl::Guard guard(m, m.block_bytes(m.n_t - m.block_start));
+  m.close_analysis(status);
 }
 
 const std::vector<int>& ResultsWriter::node_ids() const {
