@@ -11,7 +11,10 @@ $SUDO apt-get install -y --no-install-recommends \
   libcli11-dev libfmt-dev libhdf5-dev libopenblas0-openmp zlib1g-dev \
   libgtest-dev libgmock-dev libbenchmark-dev \
   clang-format python3 nlohmann-json3-dev chromium fonts-dejavu-core \
-  python3-numpy python3-h5py python3-pandas python3-pytest python3-vtk9
+  python3-numpy python3-h5py python3-pandas python3-pytest python3-vtk9 \
+  clang-14 libclang-rt-14-dev libomp-14-dev
+# clang-14 with compiler-rt (libFuzzer, AddressSanitizer, UBSan) and its OpenMP runtime: the
+# sanitizer build of scripts/test-sanitizers.sh and scripts/fuzz.sh (scripts/sanitizer-build.sh).
 # node and npm fetch the report page's libraries at build time (report/package-lock.json); the
 # machine image may already carry a newer node, which is kept.
 if ! command -v node >/dev/null 2>&1 || ! command -v npm >/dev/null 2>&1; then

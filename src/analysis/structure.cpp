@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "assembly/element_adapters.h"
+#include "core/files.h"
 #include "core/log.h"
 
 namespace impactfe {
@@ -26,7 +27,7 @@ std::string resolve_superelement(const ElementRecord& record, const RunSettings&
     candidates.push_back(name + ".sub.h5");
   }
   for (const auto& c : candidates)
-    if (fs::exists(c)) return c;
+    if (file_exists(c, true)) return c;
   std::vector<std::string> found;
   for (const auto& entry : fs::directory_iterator(fs::current_path())) {
     const std::string file = entry.path().filename().string();

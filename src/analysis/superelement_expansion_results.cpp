@@ -9,6 +9,7 @@
 
 #include "analysis/superelement_expansion.h"
 #include "core/errors.h"
+#include "core/files.h"
 #include "core/log.h"
 #include "time/time_axis.h"
 
@@ -19,7 +20,7 @@ namespace {
 std::string existing_file(const std::string& name, const char* extension,
                           const SourceLocation& where, const char* what) {
   for (const std::string& candidate : {name + extension, name})
-    if (std::filesystem::is_regular_file(candidate)) return candidate;
+    if (file_exists(candidate)) return candidate;
   throw InputError(where,
                    fmt::format("{} '{}' not found (looked for {}{} and {} in {})", what, name, name,
                                extension, name, std::filesystem::current_path().string()));

@@ -12,6 +12,7 @@
 #include <set>
 #include <sstream>
 
+#include "core/files.h"
 #include "deck/deck_context.h"
 
 namespace impactfe::deck {
@@ -112,10 +113,10 @@ std::string resolve_input(const std::string& includer, const std::string& fname,
       dir_field.empty() ? directory_of(includer) : join_path(directory_of(includer), dir_field);
   const std::string name = ext.empty() ? fname : fname + "." + ext;
   const std::string path = join_path(dir, name);
-  if (!ext.empty() || std::filesystem::exists(path)) return path;
+  if (!ext.empty() || file_exists(path, true)) return path;
   for (const char* e : {".inp", ".mac"}) {
     const std::string alt = join_path(dir, fname + e);
-    if (std::filesystem::exists(alt)) return alt;
+    if (file_exists(alt, true)) return alt;
   }
   return path;
 }
@@ -295,7 +296,7 @@ bool DeckReader::call_macro(const Command& c, const std::string& name,
       for (const std::string& candidate :
            {name, name + ".mac", lower, lower + ".mac", name + ".MAC"}) {
         const std::string p = join_path(dir, candidate);
-        if (path.empty() && std::filesystem::is_regular_file(p)) path = p;
+        if (path.empty() && file_exists(p)) path = p;
       }
     if (path.empty()) return false;
     cmds = lex_text(read_text_file(path, c.where), path, dialect);
@@ -589,10 +590,9 @@ DeckReader::Flow DeckReader::run_range(Frame& f, std::size_t begin, std::size_t 
       bool is_macro = files.count(c.name + ".MAC") != 0;
       if (!is_macro) {
         const std::string lower = to_lower(c.name) + ".mac";
-        is_macro = std::filesystem::is_regular_file(join_path(directory_of(c.where.file), lower)) ||
-                   std::filesystem::is_regular_file(
-                       join_path(directory_of(c.where.file), c.name + ".MAC")) ||
-                   std::filesystem::is_regular_file(lower);
+        is_macro = file_exists(join_path(directory_of(c.where.file), lower)) ||
+                   file_exists(join_path(directory_of(c.where.file), c.name + ".MAC")) ||
+                   file_exists(lower);
       }
       if (is_macro) {
         for (int k = 1; k <= c.n_fields() && k <= 19; ++k) args.push_back(value(c, k));

@@ -372,7 +372,8 @@ void cmd_vrotat(DeckReader& r, const Command& c) {
 }  // namespace
 
 geometry::MeshPointers mesh_pointers(const DeckReader& r) {
-  return geometry::MeshPointers{r.current_type, r.current_mat, r.current_real, r.current_secnum};
+  return geometry::MeshPointers{r.current_type,   r.current_mat,       r.current_real,
+                                r.current_secnum, r.options.max_nodes, r.options.max_elements};
 }
 
 void record_created_elements(DeckReader& r, const geometry::Mesher& mesher) {

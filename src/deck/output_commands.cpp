@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "core/files.h"
 #include "deck/deck_context.h"
 #include "deck/output_format.h"
 
@@ -211,8 +212,7 @@ void cmd_list(DeckReader& r, const Command& c) {
   }
   std::string path = name;
   const std::string beside = resolve_input(c.where.file, name, "");
-  if (!std::filesystem::is_regular_file(path) && std::filesystem::is_regular_file(beside))
-    path = beside;
+  if (!file_exists(path) && file_exists(beside)) path = beside;
   std::ifstream in(path);
   if (!in) r.fail(c, fmt::format("file '{}' not found", name));
   for (std::string line; std::getline(in, line);) r.output.print(line);

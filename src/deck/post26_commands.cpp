@@ -53,7 +53,8 @@ Series series_of(DeckReader& r, const Command& c, const Post26Variable& v) {
         } catch (const InputError&) {
           continue;
         }
-        for (const auto& [t, x] : s) {
+        for (const auto& [time, x] : s) {
+          const double t = time;  // clang 14 cannot capture a structured binding
           auto it = std::find_if(sum.begin(), sum.end(),
                                  [&](const auto& p) { return same_time(p.first, t); });
           if (it == sum.end())

@@ -1,5 +1,6 @@
 // Shared helpers of the selection, POST1, POST26 and *GET handlers (see post_support.h).
 #include "deck/post_support.h"
+#include "core/files.h"
 
 #include <fmt/format.h>
 
@@ -123,7 +124,7 @@ std::string locate_results(DeckReader& r, const Command& c) {
     tried.push_back(job.substr(0, job.size() - 5) + ".h5");
   tried.push_back(job + ".h5");
   for (const auto& t : tried)
-    if (fs::is_regular_file(t)) return t;
+    if (file_exists(t)) return t;
   const auto here = results_files_here();
   if (here.size() == 1) return here.front();
   std::string list;

@@ -16,9 +16,16 @@ namespace impactfe::geometry {
 
 namespace {
 
-/// ceil(x) that does not round 4.0000000001 up to 5 (lengths from quadrature).
+/// Largest division count of one line: beyond any node limit, still far from int overflow.
+constexpr double kMaxDivisions = 1e9;
+
+/// ceil(x) that does not round 4.0000000001 up to 5 (lengths from quadrature). A count beyond
+/// kMaxDivisions (a SIZE of 1e-30, or NaN) gives kMaxDivisions, which the node limit refuses
+/// (a plain cast to int would be undefined behaviour).
 int ceil_divisions(double x) {
-  return std::max(1, static_cast<int>(std::ceil(x - 1e-9 * std::max(1.0, x))));
+  const double n = std::ceil(x - 1e-9 * std::max(1.0, x));
+  if (!(n <= kMaxDivisions)) return static_cast<int>(kMaxDivisions);
+  return std::max(1, static_cast<int>(n));
 }
 
 /// Topological dimension of an element type's cell: 0 point, 1 line, 2 area, 3 volume.
@@ -70,9 +77,22 @@ const ElementTypeDescriptor& Mesher::descriptor(int type) const {
   return element_type_descriptor(model_.element_types.at(type));
 }
 
+void Mesher::check_new_nodes(double n, const std::string& what) const {
+  // A double: the product of three division counts may exceed any integer type.
+  const double total = static_cast<double>(model_.nodes.size()) + n;
+  if (n > 0 && total > static_cast<double>(current_.max_nodes))
+    fail(
+        fmt::format("meshing {} would make {:.0f} nodes, more than the limit of {} (check "
+                    "the divisions: LESIZE, ESIZE, KESIZE, DESIZE)",
+                    what, total, current_.max_nodes));
+}
+
 int Mesher::add_node(const Vec3& x) {
-  const int last = model_.nodes.empty() ? 0 : model_.nodes.rbegin()->first;
-  const int id = std::max(solid_.numstr.node, last + 1);
+  check_new_nodes(1, "this entity");
+  const long long last = model_.nodes.empty() ? 0 : model_.nodes.rbegin()->first;
+  if (last >= kMaxMeshNumber)
+    fail(fmt::format("the next node number would be {}, beyond {}", last + 1, kMaxMeshNumber));
+  const int id = std::max(solid_.numstr.node, static_cast<int>(last + 1));
   Node n;
   n.id = id;
   n.x = x;
@@ -84,8 +104,13 @@ int Mesher::add_node(const Vec3& x) {
 int Mesher::add_element(const Attributes& attr, std::vector<int> nodes) {
   const ElementTypeDescriptor& d = descriptor(attr.type);
   while (static_cast<int>(nodes.size()) < d.n_nodes) nodes.push_back(nodes.back());
-  const int last = model_.elements.empty() ? 0 : model_.elements.rbegin()->first;
-  const int id = std::max(solid_.numstr.elem, last + 1);
+  const long long last = model_.elements.empty() ? 0 : model_.elements.rbegin()->first;
+  if (last >= kMaxMeshNumber)
+    fail(fmt::format("the next element number would be {}, beyond {}", last + 1, kMaxMeshNumber));
+  if (model_.elements.size() >= current_.max_elements)
+    fail(fmt::format("meshing would make more than the limit of {} elements",
+                     current_.max_elements));
+  const int id = std::max(solid_.numstr.elem, static_cast<int>(last + 1));
   ElementRecord e;
   e.id = id;
   e.type = attr.type;
@@ -176,6 +201,7 @@ void Mesher::line_nodes(int id, std::optional<double> area_size) {
   const auto planned = planned_.find(id);
   int n = planned != planned_.end() ? planned->second : fixed_divisions(line);
   if (n <= 0) n = soft_divisions(line, area_size);
+  check_new_nodes(n - 1.0, fmt::format("line {} into {} divisions", id, n));
   double space = line.space;
   const bool line_sized = line.ndiv > 0 || line.size || line.angle;
   const auto s1 = solid_.keypoints.at(line.kp1).size;
@@ -251,6 +277,8 @@ void Mesher::area_nodes(int id, bool triangles) {
           fmt::format("area {} is not mappable: opposite lines have different divisions ({}/{} "
                       "and {}/{})",
                       id, n1, chain[2].size() - 1, n2, chain[3].size() - 1));
+    check_new_nodes((n1 - 1.0) * (n2 - 1.0),
+                    fmt::format("area {} ({} x {} divisions)", id, n1, n2));
     std::vector<int> top(chain[2].rbegin(), chain[2].rend());
     std::vector<int> left(chain[3].rbegin(), chain[3].rend());
     const auto xyz =
@@ -274,6 +302,7 @@ void Mesher::area_nodes(int id, bool triangles) {
       }
   } else {
     const int n = static_cast<int>(chain[0].size()) - 1;
+    check_new_nodes((n - 1.0) * (n - 2.0) / 2, fmt::format("area {} ({} divisions)", id, n));
     const auto xyz =
         triangle_lattice(positions(chain[0]), positions(chain[1]), positions(chain[2]));
     grid.n1 = grid.n2 = n;

@@ -22,6 +22,9 @@ struct ElementTypeDescriptor;
 
 namespace impactfe::geometry {
 
+/// Largest node or element number meshing may give (the deck's kMaxEntityNumber).
+inline constexpr long long kMaxMeshNumber = 2'000'000'000;
+
 /// The current element attribute pointers (TYPE, MAT, REAL, SECNUM) used for entities without
 /// their own xATT attributes.
 struct MeshPointers {
@@ -29,6 +32,10 @@ struct MeshPointers {
   int mat = 1;
   int real = 1;
   int secnum = 0;
+  /// Most nodes and elements the model may hold (DeckOptions::max_nodes / max_elements): a
+  /// mesh that would exceed them is refused before it is built (issue 12, resource bounds).
+  std::size_t max_nodes = 10'000'000;
+  std::size_t max_elements = 10'000'000;
 };
 
 class Mesher {
@@ -78,6 +85,8 @@ class Mesher {
   /// Signed line joining keypoints a and b inside `lines` (0 when none).
   int line_joining(const std::vector<int>& lines, int a, int b) const;
   [[noreturn]] void fail(const std::string& message) const;
+  /// Fails when `n` more nodes would exceed MeshPointers::max_nodes (`what`: for the message).
+  void check_new_nodes(double n, const std::string& what) const;
 
  private:
   int keypoint_node(int id);

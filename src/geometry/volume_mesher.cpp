@@ -137,6 +137,8 @@ void Mesher::mesh_volume(int id, int source, int target) {
   auto divisions = [&](int l) { return static_cast<int>(solid_.lines.at(l).nodes.size()) - 1; };
   const int n1 = divisions(classes[0][0]), n2 = divisions(classes[1][0]),
             n3 = divisions(classes[2][0]);
+  check_new_nodes((n1 - 1.0) * (n2 - 1.0) * (n3 - 1.0),
+                  fmt::format("volume {} ({} x {} x {} divisions)", id, n1, n2, n3));
   const int s1 = n1 + 1, s2 = n2 + 1;
   auto index = [&](int i, int j, int k) { return static_cast<std::size_t>(i + s1 * (j + s2 * k)); };
   std::vector<int> ids(static_cast<std::size_t>(s1 * s2 * (n3 + 1)), 0);

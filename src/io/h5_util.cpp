@@ -2,7 +2,12 @@
 
 #include <fmt/format.h>
 
+#include <fcntl.h>
+#include <sys/resource.h>
+
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <numeric>
 #include <stdexcept>
 
@@ -64,6 +69,70 @@ hid_t check(hid_t id, const std::string& what) {
 
 void check_status(herr_t status, const std::string& what) {
   if (status < 0) fail(what);
+}
+
+void reserve_space(hid_t file, const std::string& path, double bytes) {
+  hsize_t size = 0;  // max(end of file, end of allocation)
+  check_status(H5Fget_filesize(file, &size), "get the size of " + path);
+  const double target = static_cast<double>(size) + std::max(0.0, bytes);
+  int error = 0;
+  rlimit limit{};
+  if (getrlimit(RLIMIT_FSIZE, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY &&
+      target > static_cast<double>(limit.rlim_cur))
+    error = EFBIG;
+  void* handle = nullptr;
+  if (error == 0 && H5Fget_vfd_handle(file, H5P_DEFAULT, &handle) >= 0 && handle != nullptr) {
+    const int fd = *static_cast<int*>(handle);  // the sec2 driver's descriptor
+    if (fallocate(fd, FALLOC_FL_KEEP_SIZE, 0, static_cast<off_t>(target)) != 0 &&
+        errno != EOPNOTSUPP && errno != ENOSYS)
+      error = errno;
+  }
+  H5Eclear2(H5E_DEFAULT);
+  if (error != 0)
+    throw std::runtime_error(fmt::format("cannot write {}: {}", path, std::strerror(error)));
+}
+
+void verify_chunk_index(hid_t dataset, const std::vector<hsize_t>& start,
+                        const std::vector<hsize_t>& count, bool require_all) {
+  Handle dcpl(check(H5Dget_create_plist(dataset), "get dataset creation list"));
+  if (H5Pget_layout(dcpl) != H5D_CHUNKED) return;
+  const auto rank = start.size();
+  std::vector<hsize_t> chunk(rank);
+  if (H5Pget_chunk(dcpl, static_cast<int>(rank), chunk.data()) != static_cast<int>(rank)) return;
+  std::vector<hsize_t> first(rank), last(rank), at(rank), offset(rank);
+  for (std::size_t d = 0; d < rank; ++d) {
+    if (count[d] == 0) return;
+    first[d] = start[d] / chunk[d];
+    last[d] = (start[d] + count[d] - 1) / chunk[d];
+    at[d] = first[d];
+  }
+  auto name = [&] {
+    std::string n(256, '\0');
+    const auto len = H5Iget_name(dataset, n.data(), n.size());
+    n.resize(len > 0 ? std::min<std::size_t>(static_cast<std::size_t>(len), n.size()) : 0);
+    return n;
+  };
+  while (true) {
+    for (std::size_t d = 0; d < rank; ++d) offset[d] = at[d] * chunk[d];
+    unsigned mask = 0;
+    haddr_t addr = HADDR_UNDEF;
+    hsize_t size = 0;
+    const bool found = H5Dget_chunk_info_by_coord(dataset, offset.data(), &mask, &addr, &size) >= 0;
+    H5Eclear2(H5E_DEFAULT);
+    if (found && addr != HADDR_UNDEF && mask != 0)
+      throw std::runtime_error(
+          fmt::format("a chunk index entry of {} is corrupted (its filter mask is not 0)", name()));
+    if (require_all && (!found || addr == HADDR_UNDEF))
+      throw std::runtime_error(
+          fmt::format("a chunk index entry of {} is corrupted (a chunk is missing)", name()));
+    std::size_t d = rank;
+    while (d > 0) {
+      --d;
+      if (++at[d] <= last[d]) break;
+      at[d] = first[d];
+      if (d == 0) return;
+    }
+  }
 }
 
 Handle file_access_checksummed() {
@@ -352,6 +421,8 @@ std::vector<T> read_all(hid_t loc, const std::string& name, hid_t mem_type) {
   Handle ds(check(H5Dopen2(loc, name.c_str(), H5P_DEFAULT), "open dataset " + name));
   auto dims = dims_of(ds);
   std::vector<T> out(product(dims));
+  // Every chunk of a dataset read whole was written (model sections, time axes, modes).
+  if (!out.empty()) verify_chunk_index(ds, std::vector<hsize_t>(dims.size(), 0), dims, true);
   if (!out.empty())
     check_status(H5Dread(ds, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()),
                  "read dataset " + name);
@@ -391,9 +462,23 @@ std::vector<std::string> read_strings(hid_t loc, const std::string& name) {
   Handle type(check(H5Dget_type(ds), "get dataset type"));
   Handle space(check(H5Dget_space(ds), "get dataset space"));
   hssize_t n = H5Sget_simple_extent_npoints(space);
+  if (n > 0) verify_chunk_index(ds, {0}, {static_cast<hsize_t>(n)}, true);
   return read_string_values(type, space, static_cast<hsize_t>(n), [&](hid_t mem, void* buf) {
     return H5Dread(ds, mem, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf);
   });
+}
+
+void write_slab(hid_t dataset, const std::vector<hsize_t>& start, const std::vector<hsize_t>& count,
+                const double* data) {
+  hsize_t n = product(count);
+  if (n == 0) return;
+  Handle file_space(check(H5Dget_space(dataset), "get dataspace"));
+  check_status(
+      H5Sselect_hyperslab(file_space, H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr),
+      "select hyperslab");
+  Handle mem_space(check(H5Screate_simple(1, &n, nullptr), "create memory dataspace"));
+  check_status(H5Dwrite(dataset, H5T_NATIVE_DOUBLE, mem_space, file_space, H5P_DEFAULT, data),
+               "write hyperslab");
 }
 
 std::vector<double> read_slab(hid_t dataset, const std::vector<hsize_t>& start,

@@ -33,6 +33,9 @@ class Handle {
     if (id_ >= 0) H5Idec_ref(id_);
     id_ = -1;
   }
+  /// Gives the identifier up without releasing it: a file whose write failed must not be
+  /// closed, since closing flushes metadata that points at data the disk did not take.
+  void abandon() { id_ = -1; }
 
  private:
   hid_t id_ = -1;
@@ -50,6 +53,23 @@ void check_status(herr_t status, const std::string& what);
 /// a system call failed ("No space left on device"), else the most specific message on the
 /// stack, e.g. "checksum verification failed" or "truncated file: eof = 4096, ...".
 std::string error_detail();
+
+/// Makes sure the disk takes `bytes` more beyond the end of `file` (its HDF5 end of
+/// allocation) before they are written: the blocks are allocated (fallocate, file size kept)
+/// and the process's file size limit is checked. Throws std::runtime_error "cannot write
+/// <path>: <reason>" (File too large, No space left on device) when it cannot, so that a write
+/// never fails half-way through a flush (HDF5 would still rewrite the superblock with the new
+/// end of file, leaving the file unreadable). Filesystems without fallocate: no reservation.
+void reserve_space(hid_t file, const std::string& path, double bytes);
+
+/// Checks the index entries of the chunks holding the slab (start, count) of a chunked dataset
+/// (no-op for other layouts). The chunk index of the HDF5 1.8 format (a v1 B-tree) carries no
+/// checksum: a corrupted filter mask would switch the Fletcher32 check (and decompression) off
+/// for its chunk, and corrupted chunk coordinates would lose the chunk, whose values would then
+/// read as fill values. `require_all`: every chunk of the slab must exist (datasets whose every
+/// chunk is written). Throws std::runtime_error naming the dataset.
+void verify_chunk_index(hid_t dataset, const std::vector<hsize_t>& start,
+                        const std::vector<hsize_t>& count, bool require_all);
 
 /// File access property list of files written in the HDF5 1.8 format, whose superblock and
 /// object headers carry checksums (readable by HDF5 1.8 and later, h5py included).
@@ -114,6 +134,11 @@ Eigen::MatrixXd read_matrix(hid_t loc, const std::string& name);
 void write_matrix(hid_t loc, const std::string& name, const Eigen::MatrixXd& m);
 std::vector<int> read_ints(hid_t loc, const std::string& name);
 std::vector<std::string> read_strings(hid_t loc, const std::string& name);
+
+/// Writes the hyperslab (start, count) of a float64 dataset from `data` (row-major); nothing
+/// when the slab is empty.
+void write_slab(hid_t dataset, const std::vector<hsize_t>& start, const std::vector<hsize_t>& count,
+                const double* data);
 
 /// Reads the hyperslab [start, start+count) of a dataset into a dense row-major buffer.
 std::vector<double> read_slab(hid_t dataset, const std::vector<hsize_t>& start,

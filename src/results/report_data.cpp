@@ -126,7 +126,10 @@ struct Field {
 std::vector<Field> element_fields(const std::vector<TimePoint>& samples) {
   std::vector<Field> fields = {{"SEQV", {}}, {"SAXL", {}}, {"FORC", {}}, {"STAT", {}}};
   for (const auto& p : samples)
-    for (const auto& [family, table] : p.element_results) {
+    for (const auto& entry : p.element_results) {
+      // Not a structured binding: clang 14 cannot capture one in the lambda below.
+      const std::string& family = entry.first;
+      const auto& table = entry.second;
       auto col = [&](const char* name) {
         auto it = std::find(table.item_names.begin(), table.item_names.end(), name);
         return it == table.item_names.end() ? -1 : static_cast<int>(it - table.item_names.begin());

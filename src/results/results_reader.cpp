@@ -67,6 +67,9 @@ struct Analysis {
   /// Sparse reactions (format 2): column of R per (node row, DOF); empty with a dense R.
   std::map<std::pair<std::size_t, int>, hsize_t> reaction_column;
   bool sparse_reactions = false;
+  /// Every chunk of the main datasets is written (attribute all_chunks_written): a chunk the
+  /// index does not find is a corrupted index entry, not values never given.
+  bool all_chunks_written = false;
 };
 
 constexpr int kFormatVersion = 2;
@@ -131,44 +134,6 @@ struct ResultsReader::Impl {
     return it->second;
   }
 
-  /// The chunks a read touches must have all their filters applied: the chunk index of the
-  /// HDF5 1.8 format carries no checksum, and a corrupted filter mask there would switch the
-  /// Fletcher32 check (and decompression) off for that chunk.
-  void verify_chunks(hid_t ds, const std::vector<hsize_t>& start,
-                     const std::vector<hsize_t>& count) const {
-    Handle dcpl(check(H5Dget_create_plist(ds), "get dataset creation list"));
-    if (H5Pget_layout(dcpl) != H5D_CHUNKED) return;
-    std::vector<hsize_t> chunk(start.size());
-    if (H5Pget_chunk(dcpl, static_cast<int>(chunk.size()), chunk.data()) !=
-        static_cast<int>(chunk.size()))
-      return;
-    std::vector<hsize_t> first(start.size()), last(start.size()), at(start.size());
-    for (std::size_t d = 0; d < start.size(); ++d) {
-      if (count[d] == 0) return;
-      first[d] = start[d] / chunk[d];
-      last[d] = (start[d] + count[d] - 1) / chunk[d];
-      at[d] = first[d];
-    }
-    Handle space(check(H5Dget_space(ds), "get dataspace"));
-    while (true) {
-      std::vector<hsize_t> offset(at.size());
-      for (std::size_t d = 0; d < at.size(); ++d) offset[d] = at[d] * chunk[d];
-      unsigned mask = 0;
-      haddr_t addr = HADDR_UNDEF;
-      hsize_t size = 0;
-      if (H5Dget_chunk_info_by_coord(ds, offset.data(), &mask, &addr, &size) >= 0 &&
-          addr != HADDR_UNDEF && mask != 0)
-        throw std::runtime_error("a chunk index entry is corrupted (its filter mask is not 0)");
-      std::size_t d = at.size();
-      while (d > 0) {
-        --d;
-        if (++at[d] <= last[d]) break;
-        at[d] = first[d];
-        if (d == 0) return;
-      }
-    }
-  }
-
   /// Rows [0, n_t) of the slab (start, count) after the time axis of a per-time-point dataset,
   /// NaN where absent: the finished points from the main dataset, the recent ones from the
   /// staging dataset of a file still being written (docs/results_file.md, "Storage").
@@ -195,7 +160,9 @@ struct ResultsReader::Impl {
       std::vector<hsize_t> st{file_first}, ct{avail};
       st.insert(st.end(), start.begin(), start.end());
       ct.insert(ct.end(), count.begin(), count.end());
-      verify_chunks(ds, st, ct);
+      // Writers since chunk-index verification write every chunk of a main dataset (NaN
+      // where absent); the staging rows of a block are written one by one.
+      h5::verify_chunk_index(ds, st, ct, an.all_chunks_written && name == main);
       const auto v = h5::read_slab(ds, st, ct);
       std::copy(v.begin(), v.end(), out.begin() + static_cast<long>(out_first * per_row));
     };
@@ -319,8 +286,9 @@ void ResultsReader::Impl::load() {
     an.info.description = h5::read_string_attribute(g, "description");
     an.info.status = h5::read_string_attribute(g, "status");
     for (const auto& name : h5::attribute_names(g)) {
-      if (name == "kind" || name == "description" || name == "status" || name == "block_rows")
-        continue;  // block_rows: a storage detail
+      if (name == "kind" || name == "description" || name == "status" || name == "block_rows" ||
+          name == "all_chunks_written")
+        continue;  // storage details
       Handle attr(check(H5Aopen(g, name.c_str(), H5P_DEFAULT), "open attribute " + name));
       Handle type(check(H5Aget_type(attr), "get attribute type"));
       const auto cls = H5Tget_class(type);
@@ -332,6 +300,7 @@ void ResultsReader::Impl::load() {
         an.info.numeric_attributes[name] = v;
       }
     }
+    an.all_chunks_written = H5Aexists(g, "all_chunks_written") > 0;
     if (h5::exists(g, "time")) an.times = h5::read_doubles(g, "time");
     an.info.n_time_points = static_cast<int>(an.times.size());
     if (!an.times.empty()) {
@@ -584,7 +553,9 @@ Eigen::MatrixXd ResultsReader::mode_shape_of(int analysis, int mode) const {
     std::string name = an.group + "/mode_shapes";
     Handle ds(check(H5Dopen2(impl_->file, name.c_str(), H5P_DEFAULT), "open " + name));
     const auto n = impl_->node_ids.size();
-    auto v = h5::read_slab(ds, {static_cast<hsize_t>(mode - 1), 0, 0}, {1, n, 6});
+    const std::vector<hsize_t> start{static_cast<hsize_t>(mode - 1), 0, 0}, count{1, n, 6};
+    h5::verify_chunk_index(ds, start, count, true);  // written whole
+    auto v = h5::read_slab(ds, start, count);
     Eigen::MatrixXd m(static_cast<Eigen::Index>(n), 6);
     for (std::size_t i = 0; i < n; ++i)
       for (int j = 0; j < 6; ++j) m(static_cast<Eigen::Index>(i), j) = v[i * 6 + j];
@@ -616,6 +587,7 @@ TimePoint ResultsReader::time_point(int analysis, int k) const {
     p.time = an.times[row];
     auto integer_at = [&](const char* name) {
       const hid_t ds = impl_->dataset(an.group + "/" + name);
+      h5::verify_chunk_index(ds, {row}, {1}, true);  // written at every point
       return static_cast<int>(h5::read_slab(ds, {row}, {1}).at(0));
     };
     p.load_step = integer_at("load_step");

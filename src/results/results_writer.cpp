@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <exception>
 #include <filesystem>
 #include <limits>
 #include <set>
@@ -27,6 +28,7 @@
 #include "core/log.h"
 #include "io/h5_util.h"
 #include "results/live_writers.h"
+#include "results/result_series.h"
 #include "results/results_file.h"
 
 namespace impactfe {
@@ -35,167 +37,30 @@ using h5::check;
 using h5::check_status;
 using h5::Handle;
 using h5::StringLayout;
+using result_series::block_rows_for;
+using result_series::BlockSeries;
+using result_series::create_direct;
+using result_series::create_series;
+using result_series::DirectSeries;
+using result_series::kNaN;
+using result_series::set_extent;
+using result_series::write_direct;
+using result_series::write_rows;
 
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr int kFormatVersion = 2;
-/// Time points per block (main chunk length along time), at most.
-constexpr hsize_t kMaxBlockRows = 256;
-/// Memory for the blocks being filled (all quantities of an analysis), at most.
-constexpr double kBlockMemoryBytes = 64.0 * (1 << 20);
-/// Target size of a main chunk (uncompressed): large enough to compress well, small enough that
-/// a history reads little beyond what it needs.
-constexpr hsize_t kChunkBytes = 256 * 1024;
 /// A sync (staging rows, then `time`, each flushed) after this many points or seconds: what a
 /// killed run can lose at most, against two flushes (~40 us each) per point.
 constexpr hsize_t kSyncPoints = 64;
 constexpr double kSyncSeconds = 0.1;
-/// Deflate level of the main datasets.
-constexpr int kDeflateLevel = 1;
+/// Disk space reserved before every write beyond the data it stores (object headers, chunk
+/// index nodes, free-space rounding), and the factor on the data (checksums, chunk padding,
+/// deflate that does not shrink); see Impl::Guard.
+constexpr double kReserveSlack = 64.0 * 1024;
+constexpr double kReserveFactor = 2.0;
 
 using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-
-hsize_t product(const std::vector<hsize_t>& d) {
-  hsize_t n = 1;
-  for (auto x : d) n *= x;
-  return n;
-}
-
-/// Time points per block for a model: 256, fewer when a block of every nodal quantity and
-/// element value would need more than kBlockMemoryBytes.
-hsize_t block_rows_for(std::size_t n_nodes, std::size_t n_elements) {
-  const double row_bytes = 8.0 * (4.0 * 6.0 * static_cast<double>(n_nodes) +
-                                  24.0 * static_cast<double>(n_elements) + 16.0);
-  hsize_t rows = kMaxBlockRows;
-  while (rows > 4 && static_cast<double>(rows) * row_bytes > kBlockMemoryBytes) rows /= 2;
-  return rows;
-}
-
-void write_rows(hid_t ds, hsize_t first, hsize_t n_rows, const std::vector<hsize_t>& row_dims,
-                const double* data) {
-  if (n_rows == 0 || product(row_dims) == 0) return;
-  std::vector<hsize_t> start(row_dims.size() + 1, 0), count{n_rows};
-  start[0] = first;
-  count.insert(count.end(), row_dims.begin(), row_dims.end());
-  Handle file_space(check(H5Dget_space(ds), "get dataspace"));
-  check_status(
-      H5Sselect_hyperslab(file_space, H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr),
-      "select rows");
-  hsize_t n = product(count);
-  Handle mem_space(check(H5Screate_simple(1, &n, nullptr), "create memory dataspace"));
-  check_status(H5Dwrite(ds, H5T_NATIVE_DOUBLE, mem_space, file_space, H5P_DEFAULT, data),
-               "write rows");
-}
-
-void set_extent(hid_t ds, hsize_t rows, const std::vector<hsize_t>& row_dims) {
-  std::vector<hsize_t> d{rows};
-  d.insert(d.end(), row_dims.begin(), row_dims.end());
-  check_status(H5Dset_extent(ds, d.data()), "extend dataset");
-}
-
-/// A float64 quantity of one row per time point (NaN = absent), stored as described at the top.
-struct BlockSeries {
-  std::string name;               // path below the analysis group, e.g. "elements/Spar/values"
-  std::vector<hsize_t> row_dims;  // dimensions after the time axis
-  Handle main;                    // (n_t, row_dims...), chunks (block_rows, ...)
-  Handle recent;                  // (block_rows, row_dims...), one row per chunk
-  // The block being filled, block_rows x row_size, not initialised: a row becomes valid when the
-  // point's values (or NaN, finish_append) are put into it.
-  std::unique_ptr<double[]> block;
-  bool written = false;  // a row was given in the current append
-
-  hsize_t row_size() const { return product(row_dims); }
-};
-
-/// Creates both datasets of a series. `growable_columns`: the second dimension may grow (R).
-BlockSeries create_series(hid_t group, hid_t recent_group, const std::string& name,
-                          std::vector<hsize_t> row_dims, hsize_t block_rows, hsize_t main_rows,
-                          bool growable_columns = false) {
-  BlockSeries s;
-  s.name = name;
-  s.row_dims = std::move(row_dims);
-  const double fill = kNaN;  // rows never written read as NaN ("absent")
-  std::vector<hsize_t> dims{main_rows}, maxdims{H5S_UNLIMITED}, chunk{block_rows};
-  // Split the first row dimension so that a chunk holds about kChunkBytes.
-  hsize_t rest = 1;
-  for (std::size_t i = 1; i < s.row_dims.size(); ++i) rest *= std::max<hsize_t>(1, s.row_dims[i]);
-  for (std::size_t i = 0; i < s.row_dims.size(); ++i) {
-    dims.push_back(s.row_dims[i]);
-    const bool grows = growable_columns && i == 0;
-    maxdims.push_back(grows ? H5S_UNLIMITED : s.row_dims[i]);
-    hsize_t c = std::max<hsize_t>(1, s.row_dims[i]);
-    if (i == 0) {
-      const hsize_t fit = std::max<hsize_t>(1, kChunkBytes / (block_rows * rest * 8));
-      c = grows ? std::min<hsize_t>(fit, 64) : std::min(c, fit);
-    }
-    chunk.push_back(c);
-  }
-  {
-    Handle space(check(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), maxdims.data()),
-                       "create dataspace for " + name));
-    // deflate level 1 (deflate_fast): level 4 costs about 3x the CPU for files a few % smaller
-    // (the helmet: docs/benchmarks.md, "Results writer").
-    Handle dcpl = h5::checked_creation_list(chunk, &fill, kDeflateLevel);
-    s.main = Handle(check(
-        H5Dcreate2(group, name.c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT),
-        "create dataset " + name));
-  }
-  {
-    // Staging: one time point per chunk, so appending a point compresses one row only.
-    std::vector<hsize_t> rdims{block_rows}, rmax{block_rows}, rchunk{1};
-    for (std::size_t i = 0; i < s.row_dims.size(); ++i) {
-      rdims.push_back(s.row_dims[i]);
-      rmax.push_back(growable_columns && i == 0 ? H5S_UNLIMITED : s.row_dims[i]);
-      rchunk.push_back(std::max<hsize_t>(1, std::min<hsize_t>(s.row_dims[i], i == 0 ? 65536 : 64)));
-    }
-    Handle space(check(H5Screate_simple(static_cast<int>(rdims.size()), rdims.data(), rmax.data()),
-                       "create dataspace for recent/" + name));
-    // Checksummed but not compressed: written at every point, and deleted when the analysis
-    // closes (deflate would allocate and clear its ~256 kB state for every row).
-    Handle dcpl = h5::checked_creation_list(rchunk, &fill, 0);
-    Handle lcpl(check(H5Pcreate(H5P_LINK_CREATE), "create link property list"));
-    check_status(H5Pset_create_intermediate_group(lcpl, 1), "set intermediate groups");
-    s.recent = Handle(check(
-        H5Dcreate2(recent_group, name.c_str(), H5T_IEEE_F64LE, space, lcpl, dcpl, H5P_DEFAULT),
-        "create dataset recent/" + name));
-  }
-  s.block.reset(new double[block_rows * s.row_size()]);
-  return s;
-}
-
-/// A 1-D series written straight into its dataset at every append (time, load step, substep):
-/// tiny, and `time` must be complete in the main dataset (its length counts the points).
-struct DirectSeries {
-  Handle ds;
-  hid_t mem_type = H5T_NATIVE_DOUBLE;
-};
-
-DirectSeries create_direct(hid_t group, const std::string& name, bool integer) {
-  hsize_t dims = 0, maxdims = H5S_UNLIMITED, chunk = 1024;
-  Handle space(check(H5Screate_simple(1, &dims, &maxdims), "create dataspace for " + name));
-  const double fill = kNaN;
-  Handle dcpl = h5::checked_creation_list({chunk}, integer ? nullptr : &fill, 0);
-  DirectSeries s;
-  s.ds = Handle(check(H5Dcreate2(group, name.c_str(), integer ? H5T_STD_I32LE : H5T_IEEE_F64LE,
-                                 space, H5P_DEFAULT, dcpl, H5P_DEFAULT),
-                      "create dataset " + name));
-  s.mem_type = integer ? H5T_NATIVE_INT : H5T_NATIVE_DOUBLE;
-  return s;
-}
-
-/// Writes rows [first, first + n) of a 1-D series (n values at `values`).
-void write_direct(DirectSeries& s, hsize_t first, hsize_t n, const void* values) {
-  if (n == 0) return;
-  hsize_t end = first + n;
-  check_status(H5Dset_extent(s.ds, &end), "extend dataset");
-  Handle file_space(check(H5Dget_space(s.ds), "get dataspace"));
-  check_status(H5Sselect_hyperslab(file_space, H5S_SELECT_SET, &first, nullptr, &n, nullptr),
-               "select rows");
-  Handle mem_space(check(H5Screate_simple(1, &n, nullptr), "create memory dataspace"));
-  check_status(H5Dwrite(s.ds, s.mem_type, mem_space, file_space, H5P_DEFAULT, values),
-               "write rows");
-}
 
 struct FamilySeries {
   std::vector<int> element_ids;
@@ -270,8 +135,41 @@ struct ResultsWriter::Impl {
   std::map<std::pair<int, int>, std::size_t> reaction_column;
   Handle reaction_dofs_ds;
 
+  /// A write failed: the file is left in its last flushed state and never written again.
+  bool failed = false;
+
   hsize_t n_nodes() const { return node_ids.size(); }
   hsize_t slot() const { return n_t - block_start; }
+
+  /// Every public write holds a guard: the disk space it may need (`bytes` of data) is
+  /// reserved first, so that a full disk stops the run before HDF5 writes anything; when
+  /// anything fails after all, the file is abandoned in its last flushed state (docs/
+  /// results_file.md, "Crash safety").
+  struct Guard {
+    Impl& m;
+    const int exceptions = std::uncaught_exceptions();
+    Guard(Impl& impl, double bytes) : m(impl) {
+      if (m.failed)
+        throw std::runtime_error(
+            fmt::format("cannot write {} any more: an earlier write failed", m.path));
+      try {
+        h5::reserve_space(m.file, m.path, kReserveFactor * bytes + kReserveSlack);
+      } catch (...) {
+        m.abandon();
+        throw;
+      }
+    }
+    ~Guard() {
+      if (std::uncaught_exceptions() > exceptions) m.abandon();
+    }
+  };
+  void abandon();
+  /// Bytes of the rows of the current block (all quantities), the data of a block flush.
+  double block_bytes(hsize_t n_rows) const {
+    double n = 0;
+    for (const auto& [name, s] : series) n += static_cast<double>(n_rows * s.row_size());
+    return 8.0 * n;
+  }
 
   void require_open(const char* what) const {
     IMPACTFE_CHECK(group.valid(), fmt::format("ResultsWriter::{}: no analysis is open", what));
@@ -331,6 +229,16 @@ void ResultsWriter::Impl::compact() {
     fs::remove(tmp, ec);
     Log::debug("results file {} not compacted: {}", path, e.what());
   }
+}
+
+void ResultsWriter::Impl::abandon() {
+  failed = true;
+  for (auto& [name, s] : series) {
+    s.main.abandon();
+    s.recent.abandon();
+  }
+  for (auto& [name, d] : direct) d.ds.abandon();
+  for (Handle* h : {&reaction_dofs_ds, &elements_group, &recent_group, &group, &file}) h->abandon();
 }
 
 void ResultsWriter::Impl::write_model(const Model& model) {
@@ -398,9 +306,12 @@ BlockSeries& ResultsWriter::Impl::series_for(const std::string& name,
   // A quantity that starts later: its main dataset spans the finished blocks already (NaN).
   BlockSeries s =
       create_series(group, recent_group, name, row_dims, block_rows, block_start, growable);
-  // Rows of the current block before this point: NaN (written to the new staging dataset at
-  // the next sync like every row of the block).
-  std::fill_n(s.block.get(), slot() * s.row_size(), kNaN);
+  // The whole block starts NaN: its finished blocks are written from it, so that every chunk
+  // exists (all_chunks_written), and the rows of the current block before this point stay NaN
+  // (written to the new staging dataset at the next sync like every row of the block).
+  std::fill_n(s.block.get(), block_rows * s.row_size(), kNaN);
+  for (hsize_t b = 0; b < block_start; b += block_rows)
+    write_rows(s.main, b, std::min(block_rows, block_start - b), s.row_dims, s.block.get());
   return series.emplace(name, std::move(s)).first->second;
 }
 
@@ -560,6 +471,11 @@ void ResultsWriter::Impl::write_reactions(const Eigen::MatrixXd& m) {
       s.block = std::move(block);
       s.row_dims = {n_r};
       set_extent(s.main, h5::dims_of(s.main)[0], s.row_dims);
+      // The new columns of the finished blocks: NaN, written (all_chunks_written).
+      const std::vector<double> nan_rows(block_rows * (n_r - old_n), kNaN);
+      for (hsize_t b = 0; b < block_start; b += block_rows)
+        h5::write_slab(s.main, {b, old_n}, {std::min(block_rows, block_start - b), n_r - old_n},
+                       nan_rows.data());
       set_extent(s.recent, block_rows, s.row_dims);
     }
   }
@@ -628,11 +544,16 @@ ResultsWriter::ResultsWriter(const std::string& path, const Model& model)
     throw SolutionError(fmt::format("results file '{}': {}", path, e.what()));
   }
   Impl* impl = impl_.get();
-  register_live_writer(path, impl, [impl] { impl->sync(false); });
+  register_live_writer(path, impl, [impl] {
+    if (impl->failed) return;  // the file keeps its last flushed state
+    const Impl::Guard guard(*impl, impl->block_bytes(impl->n_t - impl->synced));
+    impl->sync(false);
+  });
 }
 
 ResultsWriter::~ResultsWriter() {
   unregister_live_writer(impl_->path, impl_.get());
+  if (impl_->failed) return;  // the file keeps its last flushed state
   try {
     impl_->close_analysis("incomplete");
     impl_->compact();
@@ -642,8 +563,9 @@ ResultsWriter::~ResultsWriter() {
 }
 
 int ResultsWriter::begin_analysis(ResultsKind kind, const std::string& description) {
-  impl_->close_analysis("complete");
   Impl& m = *impl_;
+  const Impl::Guard guard(m, m.block_bytes(m.n_t - m.block_start));
+  m.close_analysis("complete");
   const int k = ++m.n_analyses;
   const std::string name = fmt::format("analysis_{}", k);
   Handle gcpl = h5::checksummed_group_creation_list();
@@ -658,6 +580,7 @@ int ResultsWriter::begin_analysis(ResultsKind kind, const std::string& descripti
   h5::write_attribute(m.group, "description", description, StringLayout::Fixed);
   h5::write_attribute(m.group, "status", std::string("running"), StringLayout::Fixed);
   h5::write_integer_attribute(m.group, "block_rows", static_cast<long long>(m.block_rows));
+  h5::write_integer_attribute(m.group, "all_chunks_written", 1);  // see series_for
   m.flush();
   return k;
 }
@@ -665,6 +588,17 @@ int ResultsWriter::begin_analysis(ResultsKind kind, const std::string& descripti
 void ResultsWriter::append(const TimePoint& point) {
   impl_->require_open("append");
   Impl& m = *impl_;
+  double values = static_cast<double>(point.displacement.size() + point.velocity.size() +
+                                      point.acceleration.size() + point.reaction.size() +
+                                      point.gap_forces.size()) +
+                  16.0;
+  for (const auto& [family, table] : point.element_results)
+    values += static_cast<double>(table.values.size() + table.element_ids.size());
+  // A row of every quantity, the rows a sync after it writes, and the whole block when this
+  // point completes it.
+  const Impl::Guard guard(m,
+                          8.0 * values + m.block_bytes(m.n_t - m.synced) +
+                              (m.slot() + 1 == m.block_rows ? m.block_bytes(m.block_rows) : 0.0));
   m.write_nodal("U", point.displacement);
   m.write_nodal("V", point.velocity);
   m.write_nodal("A", point.acceleration);
@@ -686,8 +620,7 @@ void ResultsWriter::append(const TimePoint& point) {
     double row[n_energy];
     std::fill(row, row + n_energy, kNaN);
     for (const auto& [name, value] : point.energy) {
-      auto pos = std::find_if(std::begin(kEnergyNames), std::end(kEnergyNames),
-                              [&](const char* n) { return name == n; });
+      auto pos = std::find(std::begin(kEnergyNames), std::end(kEnergyNames), name);
       IMPACTFE_CHECK(pos != std::end(kEnergyNames),
                      fmt::format("ResultsWriter::append: unknown energy term '{}'", name));
       row[pos - std::begin(kEnergyNames)] = value;
@@ -720,6 +653,7 @@ void ResultsWriter::write_modes(const std::vector<double>& frequencies_hz,
                                 const std::vector<Eigen::MatrixXd>& shapes) {
   impl_->require_open("write_modes");
   Impl& m = *impl_;
+  const Impl::Guard guard(m, 8.0 * static_cast<double>((shapes.size() + 1) * m.n_nodes() * 6));
   IMPACTFE_CHECK(shapes.size() == frequencies_hz.size(),
                  fmt::format("ResultsWriter::write_modes: {} frequencies, {} shapes",
                              frequencies_hz.size(), shapes.size()));
@@ -743,16 +677,19 @@ void ResultsWriter::write_modes(const std::vector<double>& frequencies_hz,
 
 void ResultsWriter::set_attribute(const std::string& name, double value) {
   impl_->require_open("set_attribute");
+  const Impl::Guard guard(*impl_, 0.0);
   h5::write_attribute(impl_->group, name, value);
 }
 
 void ResultsWriter::set_attribute(const std::string& name, const std::string& value) {
   impl_->require_open("set_attribute");
+  const Impl::Guard guard(*impl_, static_cast<double>(value.size()));
   h5::write_attribute(impl_->group, name, value, StringLayout::Fixed);
 }
 
 void ResultsWriter::set_count(const std::string& name, long long value) {
   impl_->require_open("set_count");
+  const Impl::Guard guard(*impl_, 0.0);
   h5::write_integer_attribute(impl_->group, name, value);
 }
 
@@ -774,13 +711,16 @@ void ResultsWriter::set_element_nodes(const std::map<int, std::vector<int>>& nod
     }
   }
   if (!changed) return;
+  const Impl::Guard guard(m, 8.0 * static_cast<double>(flat.size() + nodes.size() * 8));
   m.write_element_nodes(lists);
   m.flush();
 }
 
 void ResultsWriter::end_analysis(const std::string& status) {
   impl_->require_open("end_analysis");
-  impl_->close_analysis(status);
+  Impl& m = *impl_;
+  const Impl::Guard guard(m, m.block_bytes(m.n_t - m.block_start));
+  m.close_analysis(status);
 }
 
 const std::vector<int>& ResultsWriter::node_ids() const {

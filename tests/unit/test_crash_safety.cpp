@@ -224,16 +224,20 @@ TEST(CrashSafety, FileSizeLimitEndsWithExitTwoAndAClearMessage) {
   EXPECT_NE(err.find("results up to the failure are kept"), std::string::npos) << err;
 }
 
-// Known gap (issue 12, left open): when a write fails half-way with EFBIG (RLIMIT_FSIZE), HDF5
-// has already rewritten the superblock with the new end of file, so the file is refused as
-// truncated. A full disk (ENOSPC, FullTmpfsEndsWithExitTwoAndKeepsResults) keeps the file
-// readable. Enable this test when the writer restores the last flushed state after a failure.
-TEST(CrashSafety, DISABLED_FileSizeLimitKeepsResultsReadable) {
-  const fs::path dir = testing::fresh_directory("file_size_limit") / "out";
-  fs::create_directories(dir);
-  std::string err;
-  ASSERT_EQ(run_helmet(dir, 150 * 1024, err), 2) << err;
-  expect_partial_results_readable(dir / "helmet_full.h5");
+// A write past the limit fails half-way through the run: the writer reserves the space of
+// every write first (h5::reserve_space), so the failure comes before HDF5 touches the file and
+// every point flushed before it reads back (before the reservation, HDF5 had already rewritten
+// the superblock with the new end of file, and the file was refused as truncated).
+TEST(CrashSafety, FileSizeLimitKeepsResultsReadable) {
+  for (rlim_t limit : {150 * 1024, 400 * 1024, 1024 * 1024}) {
+    const fs::path dir =
+        testing::fresh_directory("file_size_limit_" + std::to_string(limit)) / "out";
+    fs::create_directories(dir);
+    std::string err;
+    ASSERT_EQ(run_helmet(dir, limit, err), 2) << err;
+    EXPECT_NE(err.find("File too large"), std::string::npos) << err;
+    expect_partial_results_readable(dir / "helmet_full.h5");
+  }
 }
 
 /// Mounts a tmpfs of `size` at `dir` (root with CAP_SYS_ADMIN only); false when not allowed.

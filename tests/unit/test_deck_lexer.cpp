@@ -1,4 +1,5 @@
 // Lexer, numbers, expressions and name matching of the deck reader (APDL_SUBSET §1).
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -161,5 +162,27 @@ TEST(DeckLexer, SkipUnknownListsTheCommand) {
     FAIL() << "unknown command accepted";
   } catch (const InputError& e) {
     EXPECT_STREQ(e.what(), "mem.inp:2: FOO: unknown command");
+  }
+}
+
+TEST(DeckLexer, LineOfMegabytesIsRefusedWithItsLocation) {
+  // Issue 12, resource bounds: a line of 8 MB (a deck written by a broken program, or a binary
+  // file given as a deck) is refused with FILE:LINE at the documented limit (kMaxLineLength,
+  // docs/deck_reader.md), without building fields or parameters from it. The text of the line
+  // is numbers, so that only the length can be what refuses it.
+  const std::string huge(8u << 20, '1');
+  for (const std::string& line : {"N,1," + huge, huge, "X = " + huge}) {
+    try {
+      parse("/PREP7\n" + line + "\nN,2\n");
+      FAIL() << "a line of " << line.size() << " characters was accepted";
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      EXPECT_EQ(what.rfind("mem.inp:2: ", 0), 0u) << what.substr(0, 200);
+      EXPECT_NE(what.find(fmt::format("line of {} characters refused (at most {} per line)",
+                                      line.size(), kMaxLineLength)),
+                std::string::npos)
+          << what.substr(0, 200);
+      EXPECT_LT(what.size(), 200u);  // the message quotes the command name, not the line
+    }
   }
 }

@@ -1,0 +1,59 @@
+#pragma once
+/// The datasets of a results file's time series (used by ResultsWriter; layout and reasons in
+/// the header comment of results_writer.cpp and in docs/results_file.md): a block series (main
+/// dataset chunked in time blocks plus its staging dataset under `recent/`) and a direct 1-D
+/// series (time, load step, substep).
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "io/h5_util.h"
+
+namespace impactfe::result_series {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+hsize_t product(const std::vector<hsize_t>& d);
+
+/// Time points per block for a model: 256, fewer when a block of every nodal quantity and
+/// element value would need more than 64 MB.
+hsize_t block_rows_for(std::size_t n_nodes, std::size_t n_elements);
+
+/// Writes rows [first, first + n_rows) of a dataset of rows `row_dims`.
+void write_rows(hid_t ds, hsize_t first, hsize_t n_rows, const std::vector<hsize_t>& row_dims,
+                const double* data);
+void set_extent(hid_t ds, hsize_t rows, const std::vector<hsize_t>& row_dims);
+
+/// A float64 quantity of one row per time point (NaN = absent).
+struct BlockSeries {
+  std::string name;               // path below the analysis group, e.g. "elements/Spar/values"
+  std::vector<hsize_t> row_dims;  // dimensions after the time axis
+  h5::Handle main;                // (n_t, row_dims...), chunks (block_rows, ...)
+  h5::Handle recent;              // (block_rows, row_dims...), one row per chunk
+  // The block being filled, block_rows x row_size, not initialised: a row becomes valid when the
+  // point's values (or NaN, finish_append) are put into it.
+  std::unique_ptr<double[]> block;
+  bool written = false;  // a row was given in the current append
+
+  hsize_t row_size() const { return product(row_dims); }
+};
+
+/// Creates both datasets of a series. `growable_columns`: the second dimension may grow (R).
+BlockSeries create_series(hid_t group, hid_t recent_group, const std::string& name,
+                          std::vector<hsize_t> row_dims, hsize_t block_rows, hsize_t main_rows,
+                          bool growable_columns = false);
+
+/// A 1-D series written straight into its dataset at every sync (time, load step, substep):
+/// tiny, and `time` must be complete in the main dataset (its length counts the points).
+struct DirectSeries {
+  h5::Handle ds;
+  hid_t mem_type = H5T_NATIVE_DOUBLE;
+};
+
+DirectSeries create_direct(hid_t group, const std::string& name, bool integer);
+
+/// Writes rows [first, first + n) of a 1-D series (n values at `values`).
+void write_direct(DirectSeries& s, hsize_t first, hsize_t n, const void* values);
+
+}  // namespace impactfe::result_series
