@@ -10,8 +10,6 @@ using h5::Handle;
 
 namespace {
 
-/// Time points per block (main chunk length along time), at most.
-constexpr hsize_t kMaxBlockRows = 256;
 /// Memory for the blocks being filled (all quantities of an analysis), at most.
 constexpr double kBlockMemoryBytes = 64.0 * (1 << 20);
 /// Target size of a main chunk (uncompressed): large enough to compress well, small enough that

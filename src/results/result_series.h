@@ -13,6 +13,8 @@
 namespace impactfe::result_series {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+/// Time points per block (main chunk length along time), at most.
+constexpr hsize_t kMaxBlockRows = 256;
 
 hsize_t product(const std::vector<hsize_t>& d);
 

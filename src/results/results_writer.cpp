@@ -8,7 +8,7 @@
 // row per chunk, to a staging dataset under `recent/`. Appending a point only copies its rows
 // into the block in memory (no HDF5 call, no allocation once the series exist): the points
 // since the last sync reach the staging datasets in one write per quantity, and `time` after
-// them, at a sync — every kSyncPoints points or kSyncSeconds of wall time, whichever comes
+// them, at a sync — every kSyncPoints points, kSyncBytes or kSyncSeconds, whichever comes
 // first — so a killed run keeps every point up to the last sync. A full block goes to the main
 // dataset in one write; when the analysis closes, the last partial block does, and `recent/`
 // is deleted.
@@ -42,6 +42,7 @@ using result_series::BlockSeries;
 using result_series::create_direct;
 using result_series::create_series;
 using result_series::DirectSeries;
+using result_series::kMaxBlockRows;
 using result_series::kNaN;
 using result_series::set_extent;
 using result_series::write_direct;
@@ -54,6 +55,10 @@ constexpr int kFormatVersion = 2;
 /// killed run can lose at most, against two flushes (~40 us each) per point.
 constexpr hsize_t kSyncPoints = 64;
 constexpr double kSyncSeconds = 0.1;
+/// ... or once the points since the last sync hold this many bytes: a big model syncs more
+/// often, so that a full disk finds the earlier points synced (and the space a sync reserves,
+/// see Impl::Guard, stays bounded).
+constexpr double kSyncBytes = 1024.0 * 1024;
 /// Disk space reserved before every write beyond the data it stores (object headers, chunk
 /// index nodes, free-space rounding), and the factor on the data (checksums, chunk padding,
 /// deflate that does not shrink); see Impl::Guard.
@@ -149,14 +154,16 @@ struct ResultsWriter::Impl {
     Impl& m;
     const int exceptions = std::uncaught_exceptions();
     Guard(Impl& impl, double bytes) : m(impl) {
+      // A full disk is a failure of the run, not of the input (exit 2, "results up to the
+      // failure are kept"), also when it comes at the close after the last step.
       if (m.failed)
-        throw std::runtime_error(
+        throw SolutionError(
             fmt::format("cannot write {} any more: an earlier write failed", m.path));
       try {
         h5::reserve_space(m.file, m.path, kReserveFactor * bytes + kReserveSlack);
-      } catch (...) {
+      } catch (const std::runtime_error& e) {
         m.abandon();
-        throw;
+        throw SolutionError(e.what());
       }
     }
     ~Guard() {
@@ -594,11 +601,17 @@ void ResultsWriter::append(const TimePoint& point) {
                   16.0;
   for (const auto& [family, table] : point.element_results)
     values += static_cast<double>(table.values.size() + table.element_ids.size());
-  // A row of every quantity, the rows a sync after it writes, and the whole block when this
-  // point completes it.
-  const Impl::Guard guard(m,
-                          8.0 * values + m.block_bytes(m.n_t - m.synced) +
-                              (m.slot() + 1 == m.block_rows ? m.block_bytes(m.block_rows) : 0.0));
+  // Whether a sync follows this point (decided now, so that the space reserved covers it): a
+  // row of every quantity, the rows a sync writes, and the whole block when this point
+  // completes it.
+  const bool completes_block = m.slot() + 1 == m.block_rows;
+  const double pending_bytes = m.block_bytes(m.n_t + 1 - m.synced);
+  const bool sync_after =
+      completes_block || m.n_t + 1 - m.synced >= kSyncPoints || pending_bytes >= kSyncBytes ||
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - m.last_sync).count() >=
+          kSyncSeconds;
+  const Impl::Guard guard(m, 8.0 * values + (sync_after ? pending_bytes : 0.0) +
+                                 (completes_block ? m.block_bytes(m.block_rows) : 0.0));
   m.write_nodal("U", point.displacement);
   m.write_nodal("V", point.velocity);
   m.write_nodal("A", point.acceleration);
@@ -642,10 +655,7 @@ void ResultsWriter::append(const TimePoint& point) {
   m.pending_substep.push_back(point.substep);
   ++m.n_t;
   const bool block_full = m.n_t - m.block_start == m.block_rows;
-  if (block_full || m.n_t - m.synced >= kSyncPoints ||
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - m.last_sync).count() >=
-          kSyncSeconds)
-    m.sync(block_full);
+  if (sync_after || block_full) m.sync(block_full);
   if (block_full) m.block_start = m.n_t;
 }
 

@@ -229,7 +229,7 @@ TEST(CrashSafety, FileSizeLimitEndsWithExitTwoAndAClearMessage) {
 // every point flushed before it reads back (before the reservation, HDF5 had already rewritten
 // the superblock with the new end of file, and the file was refused as truncated).
 TEST(CrashSafety, FileSizeLimitKeepsResultsReadable) {
-  for (rlim_t limit : {150 * 1024, 400 * 1024, 1024 * 1024}) {
+  for (rlim_t limit : {2560 * 1024, 3 * 1024 * 1024, 4 * 1024 * 1024}) {
     const fs::path dir =
         testing::fresh_directory("file_size_limit_" + std::to_string(limit)) / "out";
     fs::create_directories(dir);
@@ -248,7 +248,7 @@ bool mount_tmpfs(const fs::path& dir, const std::string& options) {
 
 TEST(CrashSafety, FullTmpfsEndsWithExitTwoAndKeepsResults) {
   const fs::path dir = testing::fresh_directory("full_tmpfs") / "mnt";
-  if (!mount_tmpfs(dir, "size=256k"))
+  if (!mount_tmpfs(dir, "size=3m"))
     GTEST_SKIP() << "mounting a tmpfs is not permitted here (RLIMIT_FSIZE test covers it)";
   std::string err;
   const int status = run_helmet(dir, 0, err);
