@@ -124,6 +124,21 @@ std::string resolve_input(const std::string& includer, const std::string& fname,
 // ---- block structure
 // -----------------------------------------------------------------------------
 
+namespace {
+
+/// A command name as the executor resolves it (exact, then the dialect's abbreviation rule),
+/// or the name itself when it is not a known command or is ambiguous.
+std::string block_name(const std::string& name, Dialect dialect) {
+  if (name.empty() || name[0] != '*' || find_command(name) != nullptr) return name;
+  bool ambiguous = false;
+  const CommandSpec* spec = dialect == Dialect::Classic4x
+                                ? find_command_by_prefix(name, ambiguous)
+                                : find_command_by_abbreviation(name, ambiguous);
+  return spec != nullptr && !ambiguous ? spec->name : name;
+}
+
+}  // namespace
+
 struct DeckReader::Program {
   const std::vector<RawCommand>& cmds;
   std::vector<std::size_t> match;                            // opener → *ENDDO / *ENDIF / *END
@@ -164,7 +179,9 @@ struct DeckReader::Program {
       const RawCommand& r = cmds[i];
       depth[i] = static_cast<int>(stack.size());
       if (r.format_line || r.repeat) continue;
-      const std::string& n = r.name;
+      // The name the command runs as: abbreviations resolve like DeckReader::lookup does, so
+      // that e.g. a 4x *BEGINELEMENTS opens the block it runs as (*BEGIN).
+      const std::string n = block_name(r.name, dialect);
       if (n == "*CREATE" || n == "*BEGIN") {
         if (n == "*BEGIN") begin_names.insert(field_upper(r, 0));
         std::size_t j = i + 1;
@@ -663,6 +680,7 @@ DeckReader::Flow DeckReader::run_range(Frame& f, std::size_t begin, std::size_t 
       if (name.empty()) fail(c, "name missing");
       if (n == "*CREATE" && f.loop_depth > 0) fail(c, "*CREATE may not appear inside a *DO loop");
       const std::size_t close = prog.match[i];
+      IMPACTFE_CHECK(close != kNone, "a *CREATE or *BEGIN block without its matched *END");
       std::vector<RawCommand> body(cmds.begin() + static_cast<long>(i) + 1,
                                    cmds.begin() + static_cast<long>(close));
       if (n == "*BEGIN") {
