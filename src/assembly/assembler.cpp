@@ -143,13 +143,13 @@ void Assembler::add_forces(const VectorXd& u, const VectorXd& v, const VectorXd*
     const auto& idx = dofs_.element_indices(e);
     const int n = static_cast<int>(idx.size());
     if (out.internal_force)
-      for (int a = 0; a < n; ++a) (*out.internal_force)(idx[a]) += force_buffer_[e](a);
+      for (int k = 0; k < n; ++k) (*out.internal_force)(idx[k]) += force_buffer_[e](k);
     if (!out.damping_force) continue;
     gather(e, u, ue);
     if (!element_damping(e, ue, tangent_buffer_[e], c)) continue;
     gather(e, v, ve);
     fd.noalias() = c * ve;
-    for (int a = 0; a < n; ++a) (*out.damping_force)(idx[a]) += fd(a);
+    for (int k = 0; k < n; ++k) (*out.damping_force)(idx[k]) += fd(k);
   }
 }
 
