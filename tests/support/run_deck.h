@@ -3,9 +3,13 @@
 /// a fresh directory and opens the results file.
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <memory>
 #include <string>
+
+#include <gtest/gtest.h>
 
 #include "analysis/job_session.h"
 #include "deck/deck_reader.h"
@@ -62,6 +66,27 @@ inline DeckRun run_deck_in(const std::string& deck, const std::filesystem::path&
 inline DeckRun run_deck(const std::string& deck, const std::string& tag,
                         const RunSettings& settings = {}) {
   return run_deck_in(deck, fresh_directory(tag), settings);
+}
+
+/// Writes `text` as <tag>.inp into a fresh directory named after `tag` and runs it there.
+inline DeckRun run_deck_text(const std::string& tag, const std::string& text,
+                             const RunSettings& settings = {}) {
+  const std::filesystem::path dir = fresh_directory(tag);
+  const std::string deck = (dir / (tag + ".inp")).string();
+  {
+    std::ofstream out(deck);
+    out << text;
+  }
+  return run_deck_in(deck, dir, settings);
+}
+
+/// The value of a (time, value) series stored at time t (within 1e-9); a test failure and NaN
+/// when no point was stored there.
+inline double value_stored_at(const std::vector<std::pair<double, double>>& series, double t) {
+  for (const auto& [time, v] : series)
+    if (std::abs(time - t) < 1e-9) return v;
+  ADD_FAILURE() << "no value at t = " << t;
+  return NAN;
 }
 
 /// Linear interpolation of a (time, value) series at time t (clamped to its ends).

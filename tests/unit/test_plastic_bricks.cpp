@@ -7,7 +7,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <fstream>
 #include <sstream>
 
 #include "../support/run_deck.h"
@@ -103,16 +102,6 @@ TEST(PlasticBricks, ElementTangentMatchesFiniteDifferences) {
   }
 }
 
-testing::DeckRun run_text(const std::string& tag, const std::string& text) {
-  const auto dir = testing::fresh_directory(tag);
-  const std::string deck = (dir / (tag + ".inp")).string();
-  {
-    std::ofstream out(deck);
-    out << text;
-  }
-  return testing::run_deck_in(deck, dir);
-}
-
 TEST(PlasticBricks, PatchOfDistortedBricksUnderHomogeneousPlasticStrain) {
   // 2×2×2 bricks on the unit cube with the centre node moved off-centre; every boundary node
   // follows u = H x, the centre node is free. Load steps H, 2H, −H. The centre node must land on
@@ -152,7 +141,7 @@ TEST(PlasticBricks, PatchOfDistortedBricksUnderHomogeneousPlasticStrain) {
       deck << "SOLVE\n";
     }
     deck << "FINISH\n";
-    const auto run = run_text(std::string("patch_") + type, deck.str());
+    const auto run = testing::run_deck_text(std::string("patch_") + type, deck.str());
     PlasticState point;
     for (std::size_t s = 0; s < scales.size(); ++s) {
       const Eigen::Matrix3d h = gradient(scales[s]);
@@ -247,9 +236,9 @@ TEST(PlasticBricks, ThickCylinderFirstYield) {
   const double g =
       std::sqrt(0.5 * ((sr - st) * (sr - st) + (st - sz) * (st - sz) + (sz - sr) * (sz - sr)));
   const double p_yield = kSy / g;
-  const auto run =
-      run_text("cylinder_first_yield",
-               thick_cylinder("SOLID185", kEt, {0.98 * p_yield, 1.02 * p_yield}, 16, 1.15));
+  const auto run = testing::run_deck_text(
+      "cylinder_first_yield",
+      thick_cylinder("SOLID185", kEt, {0.98 * p_yield, 1.02 * p_yield}, 16, 1.15));
   EXPECT_EQ(max_over_elements(run, "EPEQ", 1.0), 0.0);
   EXPECT_GT(max_over_elements(run, "EPEQ", 2.0), 0.0);
   const double srat = max_over_elements(run, "SRAT", 1.0);  // σ_eq/σy at 0.98 p_y
@@ -264,10 +253,10 @@ TEST(PlasticBricks, ThickCylinderApproachesTheLimitPressure) {
   // plastic zone spreading through most of the wall; 1.03 p_L has no equilibrium.
   const double p_limit = 2.0 * kSy / std::sqrt(3.0) * std::log(2.0);
   for (const char* type : {"SOLID185", "SOLID45"}) {
-    const auto run =
-        run_text(std::string("cylinder_limit_") + type,
-                 thick_cylinder(type, 0.0,
-                                {0.6 * p_limit, 0.8 * p_limit, 0.9 * p_limit, 0.97 * p_limit}, 12));
+    const auto run = testing::run_deck_text(
+        std::string("cylinder_limit_") + type,
+        thick_cylinder(type, 0.0, {0.6 * p_limit, 0.8 * p_limit, 0.9 * p_limit, 0.97 * p_limit},
+                       12));
     // Radial displacement at the bore grows faster than linearly as the wall yields through.
     const auto ux = run.reader->nodal_series(1, "UX");
     ASSERT_GE(ux.size(), 4u);
@@ -286,9 +275,10 @@ TEST(PlasticBricks, ThickCylinderApproachesTheLimitPressure) {
       for (const auto& [t, v] : run.reader->element_series(info.id, "EPEQ"))
         if (std::abs(t - 4.0) < 1e-9 && v > 0.0) ++plastic;
     EXPECT_GE(plastic, 8 * 8) << type;
-    EXPECT_THROW(run_text(std::string("cylinder_collapse_") + type,
-                          thick_cylinder(type, 0.0, {0.9 * p_limit, 1.03 * p_limit}, 12)),
-                 SolutionError)
+    EXPECT_THROW(
+        testing::run_deck_text(std::string("cylinder_collapse_") + type,
+                               thick_cylinder(type, 0.0, {0.9 * p_limit, 1.03 * p_limit}, 12)),
+        SolutionError)
         << type;
   }
 }

@@ -6,7 +6,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <fstream>
 #include <map>
 #include <sstream>
 
@@ -17,23 +16,6 @@ namespace impactfe {
 namespace {
 
 constexpr double kE = 200e3, kSy = 250.0, kEt = 20e3;
-
-testing::DeckRun run_text(const std::string& tag, const std::string& text) {
-  const auto dir = testing::fresh_directory(tag);
-  const std::string deck = (dir / (tag + ".inp")).string();
-  {
-    std::ofstream out(deck);
-    out << text;
-  }
-  return testing::run_deck_in(deck, dir);
-}
-
-double value_at(const std::vector<std::pair<double, double>>& series, double t) {
-  for (const auto& [time, v] : series)
-    if (std::abs(time - t) < 1e-9) return v;
-  ADD_FAILURE() << "no value at t = " << t;
-  return NAN;
-}
 
 void cyclic_bar(const char* law, bool kinematic) {
   // Two LINK180 in series (L = 10 each), node 3 pulled by D,UX load steps along a cyclic path;
@@ -49,13 +31,14 @@ void cyclic_bar(const char* law, bool kinematic) {
   for (std::size_t k = 0; k < path.size(); ++k)
     deck << "TIME," << k + 1 << "\nD,3,UX," << path[k] * 2 * length << "\nSOLVE\n";
   deck << "FINISH\n";
-  const auto run = run_text(std::string("cyclic_") + law, deck.str());
+  const auto run = testing::run_deck_text(std::string("cyclic_") + law, deck.str());
   const auto expected = testing::bilinear_closed_form(path, kE, kSy, kEt, kinematic);
   for (int element : {1, 2}) {
     const auto saxl = run.reader->element_series(element, "SAXL");
     double max_error = 0.0;
     for (std::size_t k = 0; k < path.size(); ++k)
-      max_error = std::max(max_error, std::abs(value_at(saxl, k + 1.0) - expected[k]));
+      max_error =
+          std::max(max_error, std::abs(testing::value_stored_at(saxl, k + 1.0) - expected[k]));
     // Point by point: Newton converges to round-off on the piecewise-linear response.
     EXPECT_LT(max_error, 1e-6 * kSy) << law << " element " << element;
   }
@@ -95,27 +78,30 @@ TEST(PlasticLinks, ThreeBarTrussFirstYieldContainedFlowAndCollapse) {
   const double p_yield = kSy * (1.0 + 2.0 * c * c * c), p_collapse = kSy * (1.0 + 2.0 * c);
   const std::vector<double> loads = {0.99 * p_yield, 1.01 * p_yield, 0.9 * p_collapse,
                                      0.99 * p_collapse};
-  const auto run = run_text("three_bar", three_bar_truss(loads));
+  const auto run = testing::run_deck_text("three_bar", three_bar_truss(loads));
   const auto uy = run.reader->nodal_series(4, "UY");
   const auto epeq = run.reader->element_series(2, "EPEQ");
   // Elastic below P_y: δ = P L / (E (1 + 2c³)).
   const double elastic = loads[0] * length / (kE * (1.0 + 2.0 * c * c * c));
-  EXPECT_NEAR(-value_at(uy, 1.0), elastic, 1e-6 * elastic);
-  EXPECT_EQ(value_at(epeq, 1.0), 0.0);
-  EXPECT_GT(value_at(epeq, 2.0), 0.0);
+  EXPECT_NEAR(-testing::value_stored_at(uy, 1.0), elastic, 1e-6 * elastic);
+  EXPECT_EQ(testing::value_stored_at(epeq, 1.0), 0.0);
+  EXPECT_GT(testing::value_stored_at(epeq, 2.0), 0.0);
   for (int k = 1; k < 4; ++k) {
     const double p = loads[static_cast<std::size_t>(k)];
     const double delta = (p - kSy) * length / (2.0 * kE * c * c * c);
     // Newton stops at a force residual of 1e-9 of the load: δ to 1e-5 relative.
-    EXPECT_NEAR(-value_at(uy, k + 1.0), delta, 1e-5 * delta) << "P = " << p;
+    EXPECT_NEAR(-testing::value_stored_at(uy, k + 1.0), delta, 1e-5 * delta) << "P = " << p;
   }
-  EXPECT_NEAR(value_at(run.reader->element_series(2, "SAXL"), 4.0), kSy, 1e-6 * kSy);
-  EXPECT_EQ(value_at(run.reader->element_series(1, "EPEQ"), 4.0), 0.0);  // side bars elastic
+  EXPECT_NEAR(testing::value_stored_at(run.reader->element_series(2, "SAXL"), 4.0), kSy,
+              1e-6 * kSy);
+  EXPECT_EQ(testing::value_stored_at(run.reader->element_series(1, "EPEQ"), 4.0),
+            0.0);  // side bars elastic
 
   // Above P_c there is no equilibrium: the step fails (exit status 2) and says why.
   try {
-    run_text("three_bar_collapse",
-             three_bar_truss({0.9 * p_collapse, 0.99 * p_collapse, 1.02 * p_collapse}));
+    testing::run_deck_text(
+        "three_bar_collapse",
+        three_bar_truss({0.9 * p_collapse, 0.99 * p_collapse, 1.02 * p_collapse}));
     ADD_FAILURE() << "a load above the collapse load was accepted";
   } catch (const SolutionError& e) {
     EXPECT_NE(std::string(e.what()).find("load step 3"), std::string::npos) << e.what();
@@ -137,7 +123,7 @@ testing::DeckRun car_crash(const std::string& tag, double dt) {
           "TINTP,,0.25,0.5\nLUMPM,ON\nD,ALL,UY\nD,ALL,UZ\nD,20,UX\n";
   for (int i = 1; i <= 11; ++i) deck << "IC," << i << ",UX,0,2.0\n";
   deck << "TIME,0.5\nDELTIM," << dt << "\nOUTRES,ALL,ALL\nSOLVE\nFINISH\n";
-  return run_text(tag, deck.str());
+  return testing::run_deck_text(tag, deck.str());
 }
 
 struct CrashFigures {

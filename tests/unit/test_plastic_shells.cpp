@@ -5,7 +5,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <fstream>
 #include <sstream>
 
 #include "../support/bilinear_closed_form.h"
@@ -16,23 +15,6 @@ namespace impactfe {
 namespace {
 
 constexpr double kE = 200e3, kSy = 250.0, kEt = 20e3;
-
-testing::DeckRun run_text(const std::string& tag, const std::string& text) {
-  const auto dir = testing::fresh_directory(tag);
-  const std::string deck = (dir / (tag + ".inp")).string();
-  {
-    std::ofstream out(deck);
-    out << text;
-  }
-  return testing::run_deck_in(deck, dir);
-}
-
-double at(const std::vector<std::pair<double, double>>& series, double t) {
-  for (const auto& [time, v] : series)
-    if (std::abs(time - t) < 1e-9) return v;
-  ADD_FAILURE() << "no value at t = " << t;
-  return NAN;
-}
 
 TEST(PlasticShells, ElementTangentMatchesFiniteDifferences) {
   // A skewed quad (incompatible membrane modes active) and a triangle, loaded into membrane +
@@ -91,17 +73,19 @@ TEST(PlasticShells, MembraneCycleFollowsTheBkinLoop) {
   for (std::size_t k = 0; k < path.size(); ++k)
     deck << "TIME," << k + 1 << "\nD,2,UX," << path[k] << "\nD,3,UX," << path[k] << "\nSOLVE\n";
   deck << "FINISH\n";
-  const auto run = run_text("shell_membrane_cycle", deck.str());
+  const auto run = testing::run_deck_text("shell_membrane_cycle", deck.str());
   const auto expected = testing::bilinear_closed_form(path, kE, kSy, kEt, true);
   const auto f2 = run.reader->nodal_series(2, "FX"), f3 = run.reader->nodal_series(3, "FX");
   double max_error = 0.0;
   for (std::size_t k = 0; k < path.size(); ++k) {
-    const double sx = (at(f2, k + 1.0) + at(f3, k + 1.0)) / t;
+    const double sx =
+        (testing::value_stored_at(f2, k + 1.0) + testing::value_stored_at(f3, k + 1.0)) / t;
     max_error = std::max(max_error, std::abs(sx - expected[k]));
   }
   // The reaction at a prescribed DOF is the internal force there: +σx t at the pulled edge.
   EXPECT_LT(max_error, 1e-6 * kSy);
-  EXPECT_GT(at(run.reader->element_series(1, "EPEQ"), 1.0 * path.size()), 5.0 * ey);
+  EXPECT_GT(testing::value_stored_at(run.reader->element_series(1, "EPEQ"), 1.0 * path.size()),
+            5.0 * ey);
 }
 
 TEST(PlasticShells, StripInCylindricalBendingYieldsAndReachesTheSectionLimit) {
@@ -133,13 +117,16 @@ TEST(PlasticShells, StripInCylindricalBendingYieldsAndReachesTheSectionLimit) {
     deck << "TIME," << k + 1 << "\nD,5,ROTY," << -rotations[k] << "\nD,10,ROTY," << -rotations[k]
          << "\nSOLVE\n";
   deck << "FINISH\n";
-  const auto run = run_text("shell_strip_bending", deck.str());
+  const auto run = testing::run_deck_text("shell_strip_bending", deck.str());
   const auto m1 = run.reader->nodal_series(1, "MY"), m6 = run.reader->nodal_series(6, "MY");
-  auto moment = [&](double time) { return std::abs(at(m1, time) + at(m6, time)); };
+  auto moment = [&](double time) {
+    return std::abs(testing::value_stored_at(m1, time) + testing::value_stored_at(m6, time));
+  };
   const double elastic = kE * t * t * t / (12.0 * (1.0 - nu * nu)) * rotations[0] / length;
   EXPECT_NEAR(moment(1.0), elastic, 1e-6 * elastic);  // uniform curvature: exact
-  EXPECT_EQ(at(run.reader->element_series(2, "EPEQ"), 1.0), 0.0);
-  EXPECT_GT(at(run.reader->element_series(2, "EPEQ"), 2.0), 0.0);  // 1.1 θ_y > θ_1
+  EXPECT_EQ(testing::value_stored_at(run.reader->element_series(2, "EPEQ"), 1.0), 0.0);
+  EXPECT_GT(testing::value_stored_at(run.reader->element_series(2, "EPEQ"), 2.0),
+            0.0);  // 1.1 θ_y > θ_1
   const double m_p = 2.0 / std::sqrt(3.0) * kSy * t * t / 4.0;
   const double rule_limit = 2.0 * (2.0 / std::sqrt(3.0)) * kSy * 0.25 * t * t *
                             (0.1 + 49.0 / 90.0 * std::sqrt(3.0 / 7.0));

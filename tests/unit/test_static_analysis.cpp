@@ -12,14 +12,8 @@ namespace impactfe {
 namespace {
 
 std::string run_text_expecting_error(const std::string& text) {
-  const auto dir = testing::fresh_directory("static_singular");
-  const std::string deck = (dir / "singular.inp").string();
-  {
-    std::ofstream out(deck);
-    out << text;
-  }
   try {
-    testing::run_deck_in(deck, dir);
+    testing::run_deck_text("static_singular", text);
   } catch (const ModelError& e) {
     return e.what();
   }
