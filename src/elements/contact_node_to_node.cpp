@@ -104,7 +104,7 @@ std::unique_ptr<Element> make_node_to_node_contact(const ElementBuildContext& ct
 }
 
 const ElementRegistration kConta178{{.name = "CONTA178",
-                                     .number = 0,
+                                     .number = 178,
                                      .family = kFamily,
                                      .n_nodes = 2,
                                      .real_constants = RealConstantUse::Required,

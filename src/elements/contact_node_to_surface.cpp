@@ -128,7 +128,7 @@ std::unique_ptr<Element> make_node_to_surface_contact(const ElementBuildContext&
 }
 
 const ElementRegistration kConta175{{.name = "CONTA175",
-                                     .number = 0,
+                                     .number = 175,
                                      .family = kFamily,
                                      .n_nodes = 1,
                                      .real_constants = RealConstantUse::Required,

@@ -253,7 +253,7 @@ std::unique_ptr<Element> make_rigid_target(const ElementBuildContext& ctx,
 }
 
 const ElementRegistration kTarge170{{.name = "TARGE170",
-                                     .number = 0,
+                                     .number = 170,
                                      .family = kFamily,
                                      .n_nodes = 4,
                                      .min_nodes = 1,

@@ -11,6 +11,7 @@
 
 #include "core/errors.h"
 #include "elements/element.h"
+#include "elements/element_registry.h"
 #include "elements/target_surface.h"
 
 namespace impactfe {
@@ -282,6 +283,22 @@ TEST(Conta175, NeedsAPilotAndATarget) {
   n.elements[4].real = 4;
   n.real_sets[4] = n.real_sets[3];
   EXPECT_THROW(build(n, 4), InputError);
+}
+
+TEST(Contact, ElementsMatchTheirRegistration) {
+  const Model a = conta178_model();
+  const Model b = conta175_model(Vec3(1.0, 0.0, 0.9));
+  const std::vector<std::pair<const Model*, int>> cases = {{&a, 7}, {&b, 4}, {&b, 1}, {&b, 2}};
+  for (const auto& [m, id] : cases) {
+    const auto e = build(*m, id);
+    const ElementTypeDescriptor& d =
+        element_type_descriptor(m->element_types.at(m->elements.at(id).type));
+    SCOPED_TRACE(d.name);
+    EXPECT_EQ(e->result_names(), d.result_names);
+    EXPECT_EQ(e->family(), d.family);
+    EXPECT_EQ(e->has_status(), d.has_status);
+    EXPECT_GE(d.number, 1);
+  }
 }
 
 }  // namespace
