@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "analysis/contact_summary.h"
 #include "analysis/time_step_advice.h"
 #include "core/log.h"
 #include "time/time_axis.h"
@@ -280,6 +281,9 @@ void DirectSolution::solve_load_step(const LoadStep& step) {
     if (selection.any()) store(time, step.number, k, dynamic, selection);
   }
   ++stats_.n_load_steps;
+  if (const auto contact =
+          contact_summary(structure_.elements(), *assembler_, u_, step.number, t.t_end))
+    Log::info("{}", *contact);
   previous_ = step;
   t_end_ = t.t_end;
   update_counters();

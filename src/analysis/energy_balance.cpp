@@ -72,6 +72,16 @@ std::optional<std::string> EnergyBalance::balance_warning(double kinetic) const 
         "the energy balance is off by {:.1f} % of the energy put in (energy created: {:.4g} of "
         "{:.4g}): use a smaller time step (DELTIM/DTIME or more substeps)",
         -100.0 * lost, -numerical_dissipation(kinetic), input);
+  // Gaps and contacts store energy while closed and dissipate it by friction: their work is
+  // never negative, except through status changes inside steps that do not resolve them.
+  if (gap_work_ < -0.01 * input)
+    return fmt::format(
+        "the gap/contact elements gave back {:.4g} more energy than they took ({:.1f} % of the "
+        "{:.4g} put in): contact created energy by closing and opening inside time steps that "
+        "do not resolve it (chatter). Use a time step that resolves the contact period (the "
+        "time-step advice above), a softer contact stiffness, and for impacts the penalty "
+        "method (CONTA KEYOPT(2) = 1)",
+        -gap_work_, -100.0 * gap_work_ / input, input);
   return std::nullopt;
 }
 

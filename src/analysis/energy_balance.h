@@ -52,7 +52,9 @@ class EnergyBalance {
   double numerical_dissipation(double kinetic) const;
   /// A warning when the time integrator lost more than 5 % of the energy put in (external work
   /// plus initial kinetic energy: numerical dissipation) or the balance is off the other way by
-  /// more than 1 % (energy created), with the remedy; nothing otherwise.
+  /// more than 1 % (energy created), or the gap/contact elements gave back more than 1 % of it
+  /// (negative gap work: contact chatter inside unresolved steps), with the remedy; nothing
+  /// otherwise.
   std::optional<std::string> balance_warning(double kinetic) const;
   /// One line for the run summary.
   std::string summary(double time, double kinetic) const;

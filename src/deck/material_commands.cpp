@@ -47,10 +47,8 @@ void store_property(DeckReader& r, const Command& c, const std::string& lab, int
     r.warn(c, fmt::format("{} is a structural damping quantity of harmonic analyses: stored, not "
                           "used by impactfe's static and transient analyses",
                           lab));
-  if (lab == "MU")
-    r.warn(c,
-           "MU is stored for contact elements; the gap elements of impactfe (COMBIN40) take "
-           "their friction from real constants");
+  // MU: the Coulomb coefficient of the contact elements (CONTA175, CONTA178) of this MAT;
+  // COMBIN40 takes its slider force from real constants.
 }
 
 /// MP,Lab,MAT,C0,C1..C4 and the 4x form Lab,MAT,C0,C1..C4.

@@ -139,6 +139,9 @@ TEST(ElementRegistry, EveryBuiltInTypeMatchesItsElementClass) {
   int checked = 0;
   for (const ElementTypeDescriptor* d : registered_element_types()) {
     if (d->defined_by_file || d->name == "TSPRING") continue;  // MATRIX50 needs a file
+    // Contact pairs need a partner (a target, a pilot, stiffness at the nodes): built and
+    // checked against their registration in test_contact.cpp.
+    if (d->name == "CONTA175" || d->name == "CONTA178" || d->name == "TARGE170") continue;
     SCOPED_TRACE(d->name);
     const Model m = one_element_model(d->name);
     const auto e = create_element(ElementBuildContext{m, {}}, m.elements.at(1));

@@ -1,0 +1,246 @@
+#include "elements/contact_point.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+
+#include "elements/element_registry.h"
+
+namespace impactfe {
+
+ContactPoint::ContactPoint(int id, int node_i, int node_j, const ContactLawData& data)
+    : Element(id), data_(data) {
+  for (int node : {node_i, node_j})
+    for (Dof d : {Dof::UX, Dof::UY, Dof::UZ}) dofs_.push_back({node, d});
+}
+
+void ContactPoint::initialize() {
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(6);
+  trial_ = State{};
+  const bool in_range = locate(zero);
+  if (data_.behaviour == ContactBehaviour::BondedInitial) {
+    // Bonded when the nodes start in contact, never in contact otherwise.
+    if (in_range && data_.gap0 <= 0.0)
+      data_.behaviour = ContactBehaviour::BondedAlways;
+    else
+      trial_.never = true;
+  }
+  if (always_tied()) trial_.tied = true;
+  if (data_.start > 0) trial_.status = Contact::Stick;
+  if (data_.start == 0 || trial_.tied) trial_ = next_state(zero, in_range);
+  committed_ = trial_;
+}
+
+bool ContactPoint::always_tied() const {
+  return data_.behaviour == ContactBehaviour::NoSeparationAlways ||
+         data_.behaviour == ContactBehaviour::BondedAlways;
+}
+
+bool ContactPoint::bonded() const {
+  return data_.behaviour == ContactBehaviour::Bonded ||
+         data_.behaviour == ContactBehaviour::BondedAlways;
+}
+
+bool ContactPoint::frictionless() const {
+  if (data_.behaviour == ContactBehaviour::NoSeparation ||
+      data_.behaviour == ContactBehaviour::NoSeparationAlways)
+    return true;
+  return data_.mu == 0.0 && data_.behaviour == ContactBehaviour::Standard;
+}
+
+bool ContactPoint::never_slides() const {
+  return bonded() || data_.behaviour == ContactBehaviour::Rough;
+}
+
+Vec3 ContactPoint::relative(const Eigen::VectorXd& u) const {
+  return Vec3(u(3) - u(0), u(4) - u(1), u(5) - u(2));
+}
+
+ContactPoint::Response ContactPoint::response(const State& s, const Eigen::VectorXd& u) const {
+  Response r;
+  const Vec3 d = relative(u);
+  const double dn = data_.normal.dot(d);
+  r.gap = data_.gap0 + dn;
+  r.ut = d - dn * data_.normal;
+  if (s.status == Contact::Open) return r;
+  r.pn = s.lambda - data_.kn * r.gap;
+  r.kn = data_.kn;
+  if (frictionless()) return r;
+  const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - data_.normal * data_.normal.transpose();
+  const Vec3 xi = data_.kt * (r.ut - committed_.slip);
+  if (s.status == Contact::Stick) {
+    r.ft = xi;
+    r.kt = data_.kt * P;
+    return r;
+  }
+  const double norm = xi.norm();
+  const double limit = data_.mu * std::max(r.pn, 0.0);
+  if (norm > 0.0) {
+    const Vec3 dir = xi / norm;
+    r.ft = limit * dir;
+    r.kt = (limit * data_.kt / norm) * (P - dir * dir.transpose());
+  }
+  return r;
+}
+
+ContactPoint::State ContactPoint::next_state(const Eigen::VectorXd& u, bool in_range) const {
+  State s = trial_;
+  if (s.never) return s;
+  const Vec3 d = relative(u);
+  const double gap = data_.gap0 + data_.normal.dot(d);
+  bool closed;
+  if (s.tied)
+    closed = true;
+  else if (!in_range)
+    closed = false;
+  else if (s.status == Contact::Open)
+    closed = gap <= 0.0;
+  else
+    closed = s.lambda - data_.kn * gap >= 0.0;
+  if (!closed) {
+    s.status = Contact::Open;
+    s.lambda = 0.0;
+    return s;
+  }
+  if (data_.behaviour == ContactBehaviour::NoSeparation ||
+      data_.behaviour == ContactBehaviour::Bonded)
+    s.tied = true;
+  if (frictionless()) {
+    s.status = Contact::Slide;
+    return s;
+  }
+  if (never_slides()) {
+    s.status = Contact::Stick;
+    return s;
+  }
+  const double pn = std::max(s.lambda - data_.kn * gap, 0.0);
+  const Vec3 ut = d - data_.normal.dot(d) * data_.normal;
+  const Vec3 xi = data_.kt * (ut - committed_.slip);
+  s.status = xi.norm() <= data_.mu * pn ? Contact::Stick : Contact::Slide;
+  return s;
+}
+
+void ContactPoint::tangent(const ElementContext&, const Eigen::VectorXd& u, Eigen::MatrixXd& K,
+                           Eigen::VectorXd& f_int) const {
+  const Response r = response(trial_, u);
+  const Eigen::Matrix3d k = r.kn * data_.normal * data_.normal.transpose() + r.kt;
+  K.resize(6, 6);
+  K << k, -k, -k, k;
+  // f_int on J: −p n + f_t (the contact pushes J along +n); on I the opposite.
+  const Vec3 fj = -r.pn * data_.normal + r.ft;
+  f_int.resize(6);
+  f_int << -fj, fj;
+}
+
+bool ContactPoint::update_status(const ElementContext&, const Eigen::VectorXd& u) {
+  if (frozen_) return false;
+  const bool in_range = locate(u);
+  State next = next_state(u, in_range);
+  bool changed = next.status != trial_.status;
+  if (!changed && next.status != Contact::Open && data_.augmented &&
+      next.augmentations < kMaxAugmentations) {
+    const Response r = response(next, u);
+    // A closed contact with a gap (g > 0: the multiplier pushes the nodes apart) is as wrong as
+    // one with a penetration: both update λ, which stays compressive unless the contact is tied.
+    const double error = std::abs(r.gap);
+    // Tolerance: TOLN when given, else 1 % of the penetration of the pure penalty method.
+    const double tol = data_.toln > 0.0 ? data_.toln : 0.01 * std::abs(r.pn) / data_.kn;
+    if (error > tol) {
+      next.lambda = next.tied ? r.pn : std::max(r.pn, 0.0);  // λ ← λ − k_n g
+      ++next.augmentations;
+      changed = true;
+    }
+  }
+  trial_ = next;
+  return changed;
+}
+
+void ContactPoint::commit(const Eigen::VectorXd& u) {
+  const Response r = response(trial_, u);
+  if (trial_.status == Contact::Open) {
+    // The tangential spring is relaxed while open: a re-closure sticks where it lands.
+    trial_.slip = r.ut;
+  } else if (trial_.status == Contact::Slide) {
+    const Vec3 slip = data_.kt > 0.0 ? Vec3(r.ut - r.ft / data_.kt) : Vec3(r.ut);
+    trial_.slide += (slip - committed_.slip).norm();
+    trial_.slip = slip;
+  }
+  trial_.augmentations = 0;
+  committed_ = trial_;
+  frozen_ = false;
+}
+
+void ContactPoint::revert() {
+  trial_ = committed_;
+  frozen_ = false;
+}
+
+GapStatus ContactPoint::status() const {
+  switch (trial_.status) {
+    case Contact::Open:
+      return GapStatus::Open;
+    case Contact::Stick:
+      return GapStatus::Closed;
+    default:
+      return GapStatus::Sliding;
+  }
+}
+
+const std::vector<std::string>& ContactPoint::names() {
+  static const std::vector<std::string> n = {"STAT", "FN", "PENE", "GAP", "FT", "SLIDE"};
+  return n;
+}
+
+void ContactPoint::results(const ElementContext&, const Eigen::VectorXd& u, const Eigen::VectorXd&,
+                           ElementResultValues& out) const {
+  const Response r = response(trial_, u);
+  const bool closed = trial_.status != Contact::Open;
+  double slide = committed_.slide;
+  if (trial_.status == Contact::Slide && data_.kt > 0.0)
+    slide += (r.ut - r.ft / data_.kt - committed_.slip).norm();
+  const double stat = !closed ? 0.0 : trial_.status == Contact::Slide ? 2.0 : 3.0;
+  out = {stat, r.pn, closed ? std::max(-r.gap, 0.0) : 0.0, r.gap, r.ft.norm(), slide};
+}
+
+double attached_stiffness(const ElementBuildContext& ctx, int node, const Vec3& n) {
+  double s = 0.0;
+  const ElementContext ectx;
+  for (const auto& [id, rec] : ctx.model.elements) {
+    if (std::find(rec.nodes.begin(), rec.nodes.end(), node) == rec.nodes.end()) continue;
+    const auto type = ctx.model.element_types.find(rec.type);
+    if (type == ctx.model.element_types.end()) continue;
+    const ElementTypeDescriptor& d = element_type_descriptor(type->second);
+    if (d.has_status || d.defined_by_file) continue;
+    const std::unique_ptr<Element> el = d.create(ctx, rec);
+    Eigen::MatrixXd K;
+    Eigen::VectorXd f;
+    el->tangent(ectx, Eigen::VectorXd::Zero(el->n_dofs()), K, f);
+    Eigen::VectorXd w = Eigen::VectorXd::Zero(el->n_dofs());
+    for (int a = 0; a < el->n_dofs(); ++a) {
+      const DofKey& k = el->dofs()[static_cast<std::size_t>(a)];
+      const int c = static_cast<int>(k.dof);
+      if (k.node == node && c < 3) w(a) = n(c);
+    }
+    s += w.dot(K * w);
+  }
+  return s;
+}
+
+double attached_depth(const ElementBuildContext& ctx, int node) {
+  double sum = 0.0;
+  int count = 0;
+  for (const auto& [id, rec] : ctx.model.elements) {
+    if (std::find(rec.nodes.begin(), rec.nodes.end(), node) == rec.nodes.end()) continue;
+    const auto type = ctx.model.element_types.find(rec.type);
+    if (type == ctx.model.element_types.end()) continue;
+    const ElementTypeDescriptor& d = element_type_descriptor(type->second);
+    if (d.has_status || d.defined_by_file) continue;
+    if (const auto v = d.create(ctx, rec)->volume(); v && *v > 0.0) {
+      sum += *v;
+      ++count;
+    }
+  }
+  return count > 0 ? std::cbrt(sum / count) : 0.0;
+}
+
+}  // namespace impactfe

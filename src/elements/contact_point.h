@@ -1,0 +1,139 @@
+#pragma once
+/// The point contact law shared by CONTA178 (node to node) and CONTA175 (node to a rigid
+/// target surface), APDL_MODELING §8.4. Two points I (for CONTA175: the target's pilot node) and
+/// J (the contact node), each with UX, UY, UZ; a contact normal n pointing from the I side to the
+/// J side and the gap g = g0 + n·(u_J − u_I), closed when g ≤ 0 (penetration −g). CONTA178 has
+/// a fixed n and g0; CONTA175 re-finds them by the contact search before each status update
+/// (the locate() hook), so its DOF list - and the assembly pattern - never changes.
+///
+/// Normal contact (Wriggers, Computational Contact Mechanics, 2nd ed., §5.2 penalty, §5.3 and
+/// §10.3.4 augmented Lagrange): compressive force p = λ − k_n g while closed. KEYOPT(2) = 1 is
+/// the pure penalty method (λ = 0); KEYOPT(2) = 0 (default) is augmented Lagrange: after an
+/// iteration that leaves the status unchanged with a penetration above the tolerance, the
+/// multiplier is updated λ ← λ − k_n g (Uzawa step) and the iteration is declared unconverged,
+/// at most kMaxAugmentations times per substep; λ is committed with the step and carried into
+/// the next one, so a lasting contact converges to the exact constraint over the substeps.
+///
+/// Tangential contact: Coulomb friction with elastic slip (Wriggers §5.2.3; the return map of
+/// the COMBIN40 slider in 3-D): trial force ξ = k_t (u_t − s) with the relative tangential
+/// displacement u_t = (I − n nᵀ)(u_J − u_I) and the committed slip s; sticking when |ξ| ≤ μ p,
+/// sliding with force μ p ξ/|ξ| otherwise. The sliding tangent keeps the symmetric part
+/// μ p k_t/|ξ| (P − d dᵀ) and drops the non-symmetric coupling μ k_n d nᵀ (the linear solvers
+/// are symmetric): Newton converges linearly while sliding, the residual is exact.
+///
+/// Behaviour (KEYOPT(12)): 0 standard, 1 rough (no sliding, separation allowed), 2 no separation
+/// once closed (frictionless), 3 bonded once closed, 4 no separation always, 5 bonded always,
+/// 6 bonded when initially closed (never in contact when initially open).
+#include <string>
+#include <vector>
+
+#include "core/coordinate_system.h"
+#include "elements/element.h"
+
+namespace impactfe {
+
+enum class ContactBehaviour {
+  Standard = 0,
+  Rough = 1,
+  NoSeparation = 2,
+  Bonded = 3,
+  NoSeparationAlways = 4,
+  BondedAlways = 5,
+  BondedInitial = 6
+};
+
+struct ContactLawData {
+  Vec3 normal = Vec3::UnitX();  // unit, from the I side towards J
+  double gap0 = 0.0;            // gap at u = 0 along the normal (negative: interference)
+  double kn = 0.0;              // normal penalty stiffness, force/length
+  double kt = 0.0;              // sticking stiffness, force/length
+  double mu = 0.0;              // Coulomb coefficient (MP,MU of the element's MAT)
+  bool augmented = true;        // KEYOPT(2) = 0
+  double toln = 0.0;            // absolute penetration tolerance; 0: relative rule (1 %)
+  ContactBehaviour behaviour = ContactBehaviour::Standard;
+  int start = 0;  // > 0 initially closed, < 0 initially open, 0 from the gap
+};
+
+class ContactPoint : public Element {
+ public:
+  /// Augmented-Lagrange updates per substep; with the closing flip this stays below the status
+  /// loop's chatter limit (4), so augmentation alone never freezes an element.
+  static constexpr int kMaxAugmentations = 2;
+
+  ContactPoint(int id, int node_i, int node_j, const ContactLawData& data);
+
+  const std::vector<DofKey>& dofs() const override { return dofs_; }
+  bool is_nonlinear(const ElementContext&) const override { return true; }
+  void tangent(const ElementContext& ctx, const Eigen::VectorXd& u, Eigen::MatrixXd& K,
+               Eigen::VectorXd& f_int) const override;
+  void mass(const ElementContext&, Eigen::MatrixXd& M) const override { M.setZero(6, 6); }
+
+  bool has_status() const override { return true; }
+  bool update_status(const ElementContext& ctx, const Eigen::VectorXd& u) override;
+  void commit(const Eigen::VectorXd& u) override;
+  void revert() override;
+  void freeze_status(bool frozen) override { frozen_ = frozen; }
+  GapStatus status() const override;
+  double contact_stiffness() const override { return data_.kn; }
+
+  /// STAT (0 open, 2 sliding, 3 sticking: MAPDL contact codes), FN (normal force, compression
+  /// positive), PENE, GAP, FT (friction force), SLIDE (accumulated sliding distance).
+  static const std::vector<std::string>& names();
+  const std::vector<std::string>& result_names() const override { return names(); }
+  void results(const ElementContext& ctx, const Eigen::VectorXd& u, const Eigen::VectorXd& v,
+               ElementResultValues& out) const override;
+
+  const ContactLawData& law() const { return data_; }
+
+ protected:
+  /// Contact search hook, called before each status update at u: sets data_.normal and
+  /// data_.gap0 for the current closest target point and returns false when no target is
+  /// within reach (the contact is then open). Node to node: fixed geometry, always true.
+  virtual bool locate(const Eigen::VectorXd& u) { return true; }
+  /// Sets the initial status from the geometry (call at the end of a derived constructor when
+  /// locate() found the initial normal).
+  void initialize();
+
+  ContactLawData data_;
+
+ private:
+  enum class Contact { Open, Stick, Slide };
+  struct State {
+    Contact status = Contact::Open;
+    double lambda = 0.0;       // augmented-Lagrange multiplier (compressive force)
+    Vec3 slip = Vec3::Zero();  // slip s of the tangential spring
+    double slide = 0.0;        // accumulated sliding distance
+    bool tied = false;         // no separation / bonded: closed for good
+    bool never = false;        // bonded-initial contact that started open
+    int augmentations = 0;     // multiplier updates in this substep
+  };
+  struct Response {
+    double gap = 0.0, pn = 0.0, kn = 0.0;
+    Vec3 ut = Vec3::Zero(), ft = Vec3::Zero();
+    Eigen::Matrix3d kt = Eigen::Matrix3d::Zero();
+  };
+
+  bool always_tied() const;
+  bool bonded() const;
+  bool frictionless() const;
+  bool never_slides() const;
+  Vec3 relative(const Eigen::VectorXd& u) const;
+  Response response(const State& s, const Eigen::VectorXd& u) const;
+  /// The status the contact rules give at u, starting from the trial status.
+  State next_state(const Eigen::VectorXd& u, bool in_range) const;
+
+  std::vector<DofKey> dofs_;
+  State committed_;
+  State trial_;
+  bool frozen_ = false;
+};
+
+/// Stiffness of the elements attached to `node` along n (Σ nᵀ K_nn n of their translational
+/// blocks at u = 0): the base that a positive FKN scales. Status elements (gaps, contact) and
+/// superelements are skipped; 0 when nothing stiff is attached.
+double attached_stiffness(const ElementBuildContext& ctx, int node, const Vec3& n);
+/// Contact depth of `node`: the cube root of the mean volume of the attached elements that
+/// have one (bricks); 0 when none has a volume.
+double attached_depth(const ElementBuildContext& ctx, int node);
+
+}  // namespace impactfe

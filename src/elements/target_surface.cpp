@@ -1,0 +1,267 @@
+/// TARGE170 rigid target facets and pilot nodes, and the shared target surface with its bucket
+/// grid (elements/target_surface.h).
+#include "elements/target_surface.h"
+
+#include <fmt/format.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "elements/element_registry.h"
+#include "elements/line_element_data.h"
+
+namespace impactfe {
+
+TargetSurface::TargetSurface(int pilot, std::vector<Triangle> triangles)
+    : pilot_(pilot), triangles_(std::move(triangles)) {
+  // Bucket size: the mean facet extent, but at least a quarter of the largest one, so that a
+  // facet covers at most 5³ buckets.
+  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::max()), hi = -lo;
+  double mean = 0.0, largest = 0.0;
+  for (const Triangle& t : triangles_) {
+    const Vec3 tlo = t.a.cwiseMin(t.b).cwiseMin(t.c), thi = t.a.cwiseMax(t.b).cwiseMax(t.c);
+    lo = lo.cwiseMin(tlo);
+    hi = hi.cwiseMax(thi);
+    const double extent = (thi - tlo).maxCoeff();
+    mean += extent;
+    largest = std::max(largest, extent);
+  }
+  mean /= static_cast<double>(std::max<std::size_t>(triangles_.size(), 1));
+  cell_ = std::max({mean, 0.25 * largest, 1e-12 * std::max(1.0, (hi - lo).norm())});
+  origin_ = lo;
+  for (std::size_t f = 0; f < triangles_.size(); ++f) {
+    const Triangle& t = triangles_[f];
+    Eigen::Vector3i a, b;
+    cell_range(t.a.cwiseMin(t.b).cwiseMin(t.c), t.a.cwiseMax(t.b).cwiseMax(t.c), a, b);
+    for (int i = a(0); i <= b(0); ++i)
+      for (int j = a(1); j <= b(1); ++j)
+        for (int k = a(2); k <= b(2); ++k) buckets_[key(i, j, k)].push_back(static_cast<int>(f));
+  }
+}
+
+long long TargetSurface::key(long long i, long long j, long long k) const {
+  constexpr long long off = 1 << 20;
+  return ((i + off) << 42) | ((j + off) << 21) | (k + off);
+}
+
+void TargetSurface::cell_range(const Vec3& lo, const Vec3& hi, Eigen::Vector3i& a,
+                               Eigen::Vector3i& b) const {
+  // Clamped to ±2^20 buckets around the surface: farther points find nothing anyway.
+  constexpr double limit = 1 << 20;
+  for (int d = 0; d < 3; ++d) {
+    a(d) = static_cast<int>(std::clamp(std::floor((lo(d) - origin_(d)) / cell_), -limit, limit));
+    b(d) = static_cast<int>(std::clamp(std::floor((hi(d) - origin_(d)) / cell_), -limit, limit));
+  }
+}
+
+std::optional<TargetSurface::Hit> TargetSurface::closest(const Vec3& y, double reach) const {
+  Eigen::Vector3i a, b;
+  cell_range(y - Vec3::Constant(reach), y + Vec3::Constant(reach), a, b);
+  const Eigen::Vector3i span = b - a + Eigen::Vector3i::Ones();
+  const double n_cells = static_cast<double>(span(0)) * span(1) * span(2);
+  std::optional<Hit> best;
+  const auto test = [&](const Triangle& t) {
+    const double gap = (y - t.a).dot(t.normal);
+    if (std::abs(gap) > reach || (best && std::abs(gap) >= std::abs(best->gap))) return;
+    // Barycentric coordinates of the projection (Ericson, Real-Time Collision Detection §3.4).
+    const Vec3 p = y - gap * t.normal;
+    const Vec3 v0 = t.b - t.a, v1 = t.c - t.a, v2 = p - t.a;
+    const double d00 = v0.dot(v0), d01 = v0.dot(v1), d11 = v1.dot(v1);
+    const double d20 = v2.dot(v0), d21 = v2.dot(v1);
+    const double den = d00 * d11 - d01 * d01;
+    const double v = (d11 * d20 - d01 * d21) / den, w = (d00 * d21 - d01 * d20) / den;
+    constexpr double eps = 1e-9;
+    if (v < -eps || w < -eps || v + w > 1.0 + eps) return;
+    best = Hit{t.normal, gap};
+  };
+  if (n_cells > static_cast<double>(triangles_.size())) {
+    for (const Triangle& t : triangles_) test(t);
+    return best;
+  }
+  for (int i = a(0); i <= b(0); ++i)
+    for (int j = a(1); j <= b(1); ++j)
+      for (int k = a(2); k <= b(2); ++k) {
+        const auto it = buckets_.find(key(i, j, k));
+        if (it == buckets_.end()) continue;
+        for (int f : it->second) test(triangles_[static_cast<std::size_t>(f)]);
+      }
+  return best;
+}
+
+namespace {
+
+constexpr const char* kFamily = "RigidTarget";
+
+/// Distinct nodes of a record in order (E repeats the last node of a short node list).
+std::vector<int> distinct_nodes(const ElementRecord& record) {
+  std::vector<int> out;
+  for (int n : record.nodes)
+    if (std::find(out.begin(), out.end(), n) == out.end()) out.push_back(n);
+  return out;
+}
+
+bool is_target(const Model& model, const ElementRecord& record) {
+  const auto type = model.element_types.find(record.type);
+  return type != model.element_types.end() && type->second.ansys_name == "TARGE170";
+}
+
+/// The last target built (the elements of a model are built in one pass, so consecutive
+/// contact elements of a set share it), with what it was built from to detect a stale entry.
+struct TargetCache {
+  const Model* model = nullptr;
+  int real = 0;
+  std::size_t n_elements = 0;
+  std::vector<std::pair<ElementRecord, std::vector<Vec3>>> records;
+  std::shared_ptr<const TargetSurface> surface;
+};
+
+bool cache_valid(const TargetCache& c, const Model& model, int real) {
+  if (!c.surface || c.model != &model || c.real != real || c.n_elements != model.elements.size())
+    return false;
+  for (const auto& [rec, x] : c.records) {
+    const auto it = model.elements.find(rec.id);
+    if (it == model.elements.end() || it->second.nodes != rec.nodes ||
+        it->second.type != rec.type || it->second.real != rec.real)
+      return false;
+    for (std::size_t k = 0; k < rec.nodes.size(); ++k) {
+      const auto n = model.nodes.find(rec.nodes[k]);
+      if (n == model.nodes.end() || n->second.x != x[k]) return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
+std::shared_ptr<const TargetSurface> rigid_target(const ElementBuildContext& ctx,
+                                                  const ElementRecord& record) {
+  static thread_local TargetCache cache;
+  const Model& model = ctx.model;
+  if (cache_valid(cache, model, record.real)) return cache.surface;
+  TargetCache built;
+  built.model = &model;
+  built.real = record.real;
+  built.n_elements = model.elements.size();
+  std::vector<TargetSurface::Triangle> triangles;
+  int pilot = 0;
+  for (const auto& [id, rec] : model.elements) {
+    if (rec.real != record.real || !is_target(model, rec)) continue;
+    std::vector<Vec3> x;
+    for (std::size_t k = 0; k < rec.nodes.size(); ++k)
+      x.push_back(line_data::node(model, rec, k, rec.nodes.size(), kFamily).x);
+    built.records.emplace_back(rec, x);
+    const std::vector<int> nodes = distinct_nodes(rec);
+    if (nodes.size() == 1) {
+      if (pilot != 0 && pilot != nodes[0])
+        throw InputError(rec.where, fmt::format("element {} (TARGE170): a second pilot node ({}; "
+                                                "the first is node {}) in real set {}",
+                                                id, nodes[0], pilot, rec.real));
+      pilot = nodes[0];
+      continue;
+    }
+    std::vector<Vec3> p;
+    for (int n : nodes) p.push_back(model.nodes.at(n).x);
+    const auto add = [&](const Vec3& a, const Vec3& b, const Vec3& c) {
+      const Vec3 normal = (b - a).cross(c - a);
+      if (!(normal.norm() > 0.0))
+        throw InputError(rec.where,
+                         fmt::format("element {} (TARGE170): degenerate target facet", id));
+      triangles.push_back({a, b, c, normal.normalized()});
+    };
+    add(p[0], p[1], p[2]);
+    if (p.size() == 4) add(p[0], p[2], p[3]);
+  }
+  const auto fail = [&](const std::string& what) {
+    return InputError(record.where, fmt::format("element {}: {}", record.id, what));
+  };
+  if (triangles.empty())
+    throw fail(
+        fmt::format("no TARGE170 target facets share its real constant set {} (a contact "
+                    "pair is a target and a contact type with the same REAL)",
+                    record.real));
+  if (pilot == 0)
+    throw fail(
+        fmt::format("the rigid target of real set {} has no pilot node (a TARGE170 "
+                    "element with one node, E,pilot, in the same REAL): impactfe targets "
+                    "are rigid and move with their pilot",
+                    record.real));
+  built.surface = std::make_shared<const TargetSurface>(pilot, std::move(triangles));
+  cache = std::move(built);
+  return cache.surface;
+}
+
+namespace {
+
+/// A TARGE170 element carries nothing itself: its facets act through the contact elements of
+/// its real set, which take the pilot node's DOFs. Its nodes' UX, UY, UZ are listed so that the
+/// element is well formed; without stiffness or mass they are constrained automatically (the
+/// target is rigid), unless the pilot.
+class RigidTargetElement final : public Element {
+ public:
+  RigidTargetElement(int id, const std::vector<int>& nodes) : Element(id) {
+    for (int n : nodes)
+      for (Dof d : {Dof::UX, Dof::UY, Dof::UZ}) dofs_.push_back({n, d});
+  }
+  const char* family() const override { return kFamily; }
+  const std::vector<DofKey>& dofs() const override { return dofs_; }
+  bool is_nonlinear(const ElementContext&) const override { return false; }
+  void tangent(const ElementContext&, const Eigen::VectorXd&, Eigen::MatrixXd& K,
+               Eigen::VectorXd& f_int) const override {
+    K.setZero(n_dofs(), n_dofs());
+    f_int.setZero(n_dofs());
+  }
+  void mass(const ElementContext&, Eigen::MatrixXd& M) const override {
+    M.setZero(n_dofs(), n_dofs());
+  }
+  static const std::vector<std::string>& names() {
+    static const std::vector<std::string> n;
+    return n;
+  }
+  const std::vector<std::string>& result_names() const override { return names(); }
+  void results(const ElementContext&, const Eigen::VectorXd&, const Eigen::VectorXd&,
+               ElementResultValues& out) const override {
+    out.clear();
+  }
+
+ private:
+  std::vector<DofKey> dofs_;
+};
+
+std::unique_ptr<Element> make_rigid_target(const ElementBuildContext& ctx,
+                                           const ElementRecord& record) {
+  const Model& model = ctx.model;
+  const ElementType& type = line_data::element_type(model, record);
+  for (int k = 1; k < static_cast<int>(type.keyopt.size()); ++k)
+    if (type.key(k) != 0 && !(k == 2 && type.key(k) == 1))
+      throw InputError(record.where,
+                       fmt::format("element {} (TARGE170): KEYOPT({}) = {} is not supported "
+                                   "(KEYOPT(2) 0 or 1; the others 0)",
+                                   record.id, k, type.key(k)));
+  const std::vector<int> nodes = distinct_nodes(record);
+  for (std::size_t k = 0; k < nodes.size(); ++k) line_data::node(model, record, k, 1, kFamily);
+  if (nodes.size() == 2)
+    throw InputError(record.where,
+                     fmt::format("element {} (TARGE170): two distinct nodes: give a pilot (one "
+                                 "node), a triangle (three) or a quadrilateral (four)",
+                                 record.id));
+  line_data::real_set(model, record, kFamily);
+  // Builds the target once to report a bad target at its first element.
+  rigid_target(ctx, record);
+  return std::make_unique<RigidTargetElement>(record.id, nodes);
+}
+
+const ElementRegistration kTarge170{{.name = "TARGE170",
+                                     .number = 170,
+                                     .family = kFamily,
+                                     .n_nodes = 4,
+                                     .min_nodes = 1,
+                                     .real_constants = RealConstantUse::Required,
+                                     .vtk_cell = VtkCell::Quad,
+                                     .result_names = RigidTargetElement::names(),
+                                     .create = make_rigid_target}};
+
+}  // namespace
+
+}  // namespace impactfe
