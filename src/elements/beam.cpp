@@ -43,8 +43,10 @@ Beam::Beam(int id, BeamData data) : Element(id), data_(std::move(data)) {
     const double bending = L * L / (12.0 * ei);
     return 1.0 / (bending + (shear_area > 0.0 ? 1.0 / (G * shear_area) : 0.0));
   };
+  // Virgin fibres: the response at zero strain is elastic.
+  if (data_.plasticity) committed_.assign(p.fibres.size(), UniaxialPlasticState{});
   Eigen::Vector3d s;
-  Eigen::Matrix3d D;
+  Eigen::Matrix3d& D = D_elastic_;
   section_response(Eigen::Vector3d::Zero(), s, D);
   shear_y_ = shear(p.shear_area_y, D(2, 2));  // bending in the x-y plane: E Izz
   shear_z_ = shear(p.shear_area_z, D(1, 1));  // x-z plane: E Iyy
@@ -53,20 +55,37 @@ Beam::Beam(int id, BeamData data) : Element(id), data_(std::move(data)) {
   local_response(Vec12::Zero(), false, f, &K_linear_);
 }
 
-void Beam::section_response(const Eigen::Vector3d& e, Eigen::Vector3d& s,
-                            Eigen::Matrix3d& D) const {
-  // Elastic fibres; a fibre material law (plasticity) plugs in here.
-  const double E = data_.youngs_modulus;
+void Beam::section_response(const Eigen::Vector3d& e, Eigen::Vector3d& s, Eigen::Matrix3d& D,
+                            std::vector<UniaxialPlasticState>* updated) const {
+  if (!data_.plasticity) {
+    const double E = data_.youngs_modulus;
+    integrate_fibres(
+        data_.section.fibres, e,
+        [E](int, double strain, double& stress, double& tangent) {
+          stress = E * strain;
+          tangent = E;
+        },
+        s, D);
+    return;
+  }
+  // Plastic fibres: the 1-D return of each fibre from its committed state (pure function of the
+  // committed state and the strain), its consistent tangent into D.
+  const J2Plasticity& law = *data_.plasticity;
+  if (updated) updated->resize(committed_.size());
   integrate_fibres(
       data_.section.fibres, e,
-      [E](int, double strain, double& stress, double& tangent) {
-        stress = E * strain;
-        tangent = E;
+      [&](int k, double strain, double& stress, double& tangent) {
+        const auto f = static_cast<std::size_t>(k);
+        const UniaxialResponse r =
+            law.uniaxial(committed_[f], strain, updated ? &(*updated)[f] : nullptr);
+        stress = r.stress;
+        tangent = r.tangent;
       },
       s, D);
 }
 
-void Beam::local_response(const Vec12& d, bool stiffening, Vec12& f, Mat12* K) const {
+void Beam::local_response(const Vec12& d, bool stiffening, Vec12& f, Mat12* K,
+                          std::vector<UniaxialPlasticState>* updated) const {
   const double L = length_;
   // Generalised strains at mid-length: rows ε0, κy, κz, twist, γy, γz.
   Eigen::Matrix<double, 6, 12> B = Eigen::Matrix<double, 6, 12>::Zero();
@@ -85,7 +104,7 @@ void Beam::local_response(const Vec12& d, bool stiffening, Vec12& f, Mat12* K) c
   }
   Eigen::Vector3d s_ab;
   Eigen::Matrix3d D_ab;
-  section_response(e.head<3>(), s_ab, D_ab);
+  section_response(e.head<3>(), s_ab, D_ab, updated);
   const double N0 = data_.youngs_modulus * data_.section.area * data_.initial_strain;
   Eigen::Matrix<double, 6, 1> s;
   s << s_ab(0) + N0, s_ab(1), s_ab(2), torsion_stiffness_ * e(3), shear_y_ * e(4), shear_z_ * e(5);
@@ -192,7 +211,7 @@ Beam::Corotated Beam::corotate(const Vec12& u, Mat12* B) const {
 }
 
 bool Beam::is_nonlinear(const ElementContext& ctx) const {
-  return ctx.large_deflection || ctx.stress_stiffening;
+  return ctx.large_deflection || ctx.stress_stiffening || data_.plasticity.has_value();
 }
 
 void Beam::tangent(const ElementContext& ctx, const Eigen::VectorXd& u, Eigen::MatrixXd& K,
@@ -210,7 +229,9 @@ void Beam::tangent(const ElementContext& ctx, const Eigen::VectorXd& u, Eigen::M
     Mat12 B;
     const Corotated c = corotate(U, &B);
     Vec12 fl;
-    local_response(c.d, false, fl, nullptr);
+    Mat12 Kl;
+    local_response(c.d, false, fl, data_.plasticity ? &Kl : nullptr);
+    if (!data_.plasticity) Kl = K_linear_;  // elastic: the local stiffness is constant
     f = B.transpose() * fl;
     // Geometric part ∂(Bᵀ f_l)/∂u at fixed f_l, by central differences of B.
     Mat12 KG;
@@ -224,7 +245,7 @@ void Beam::tangent(const ElementContext& ctx, const Eigen::VectorXd& u, Eigen::M
       corotate(um, &Bm);
       KG.col(j) = (Bp - Bm).transpose() * fl / (2 * h);
     }
-    Kg = B.transpose() * K_linear_ * B + KG;
+    Kg = B.transpose() * Kl * B + KG;
     // The assembler stores one triangle: use the symmetric part (the co-rotational tangent with
     // additive rotation vectors is symmetric only at equilibrium).
     Kg = (0.5 * (Kg + Kg.transpose())).eval();
@@ -269,21 +290,39 @@ void Beam::mass(const ElementContext& ctx, Eigen::MatrixXd& M) const {
   restrict(Vec12::Zero(), Mg, unused, M);
 }
 
-Beam::Vec12 Beam::local_forces(const ElementContext& ctx, const Eigen::VectorXd& u) const {
-  const Vec12 U = expand(u);
+Beam::Vec12 Beam::local_displacement(const ElementContext& ctx, const Vec12& U) const {
+  return ctx.large_deflection ? corotate(U, nullptr).d : Vec12(rotation() * U);
+}
+
+Beam::Vec12 Beam::local_forces(const ElementContext& ctx, const Eigen::VectorXd& u,
+                               std::vector<UniaxialPlasticState>* states) const {
   Vec12 fl;
-  if (ctx.large_deflection)
-    local_response(corotate(U, nullptr).d, false, fl, nullptr);
-  else
-    local_response(rotation() * U, ctx.stress_stiffening, fl, nullptr);
+  local_response(local_displacement(ctx, expand(u)), ctx.stress_stiffening && !ctx.large_deflection,
+                 fl, nullptr, states);
   return fl;
+}
+
+void Beam::commit_history(const ElementContext& ctx, const Eigen::VectorXd& u) {
+  if (!data_.plasticity) return;
+  std::vector<UniaxialPlasticState> next;
+  local_forces(ctx, u, &next);
+  committed_ = std::move(next);
+}
+
+double Beam::plastic_work() const {
+  // ∫σ dε_p dV = Σ_f w_f a_f L (one section point for the whole length).
+  double w = 0.0;
+  for (std::size_t k = 0; k < committed_.size(); ++k)
+    w += committed_[k].plastic_work * data_.section.fibres[k].area;
+  return w * length_;
 }
 
 const std::vector<std::string>& beam_result_names() {
   static const std::vector<std::string> names = {
-      "FX_I",   "MY_I",   "MZ_I",   "TQ_I",   "SFZ_I",  "SFY_I",  "FX_J",   "MY_J",   "MZ_J",
-      "TQ_J",   "SFZ_J",  "SFY_J",  "SDIR_I", "SBYT_I", "SBYB_I", "SBZT_I", "SBZB_I", "SDIR_J",
-      "SBYT_J", "SBYB_J", "SBZT_J", "SBZB_J", "SMAX_I", "SMIN_I", "SMAX_J", "SMIN_J"};
+      "FX_I",   "MY_I",   "MZ_I",   "TQ_I",   "SFZ_I",  "SFY_I",  "FX_J",   "MY_J",
+      "MZ_J",   "TQ_J",   "SFZ_J",  "SFY_J",  "SDIR_I", "SBYT_I", "SBYB_I", "SBZT_I",
+      "SBZB_I", "SDIR_J", "SBYT_J", "SBYB_J", "SBZT_J", "SBZB_J", "SMAX_I", "SMIN_I",
+      "SMAX_J", "SMIN_J", "EPEQ",   "SRAT",   "PLWK"};
   return names;
 }
 
@@ -293,12 +332,11 @@ const std::vector<std::string>& Beam::result_names() const {
 
 void Beam::results(const ElementContext& ctx, const Eigen::VectorXd& u, const Eigen::VectorXd&,
                    ElementResultValues& out) const {
-  const Vec12 fl = local_forces(ctx, u);
+  std::vector<UniaxialPlasticState> states;  // at u (the committed ones after a converged step)
+  const Vec12 fl = local_forces(ctx, u, data_.plasticity ? &states : nullptr);
   const BeamSectionProperties& p = data_.section;
   const double E = data_.youngs_modulus;
-  Eigen::Vector3d s0;
-  Eigen::Matrix3d D;
-  section_response(Eigen::Vector3d::Zero(), s0, D);
+  const Eigen::Matrix3d& D = D_elastic_;
   out.assign(beam_result_names().size(), 0.0);
   for (int end = 0; end < 2; ++end) {
     // Section forces: −f at I, +f at J (N tension positive; My, Mz, T about the element axes).
@@ -308,7 +346,9 @@ void Beam::results(const ElementContext& ctx, const Eigen::VectorXd& u, const Ei
     const std::size_t o = 6 * static_cast<std::size_t>(end);
     out[o + 0] = N, out[o + 1] = My, out[o + 2] = Mz, out[o + 3] = Tq, out[o + 4] = Vz,
             out[o + 5] = Vy;
-    // Section strains of these resultants, then σ = E (ε0 + z κy − y κz) at the extreme fibres.
+    // Section strains of these resultants, then σ = E (ε0 + z κy − y κz) at the extreme fibres:
+    // the elastic (nominal) stresses of the end resultants, also for a plastic beam, whose fibre
+    // stresses stay on the yield surface (EPEQ and SRAT below say where it yields).
     const Eigen::Vector3d e = D.ldlt().solve(Eigen::Vector3d(N, My, Mz));
     const double sdir = E * e(0);
     const double sbyt = -E * p.y_max * e(2), sbyb = -E * p.y_min * e(2);
@@ -321,6 +361,16 @@ void Beam::results(const ElementContext& ctx, const Eigen::VectorXd& u, const Ei
     out[23 + 2 * static_cast<std::size_t>(end)] =
         sdir + std::min(sbyt, sbyb) + std::min(sbzt, sbzb);
   }
+  if (!data_.plasticity) return;
+  double epeq = 0.0, srat = 0.0, work = 0.0;
+  for (std::size_t k = 0; k < states.size(); ++k) {
+    const UniaxialPlasticState& st = states[k];
+    epeq = std::max(epeq, st.alpha);
+    srat = std::max(srat,
+                    std::abs(st.stress - st.back_stress) / data_.plasticity->flow_stress(st.alpha));
+    work += st.plastic_work * p.fibres[k].area;
+  }
+  out[26] = epeq, out[27] = srat, out[28] = work / p.area;
 }
 
 }  // namespace impactfe

@@ -112,7 +112,7 @@ TEST(BeamSection, PropertiesMatchClosedForms) {
   EXPECT_NEAR(t.iyy, it, 1e-12 * it);
   EXPECT_NEAR(t.izz, it, 1e-12 * it);
   EXPECT_NEAR(t.torsion, 2 * it, 1e-12 * it);
-  EXPECT_EQ(t.fibres.size(), 24u);
+  EXPECT_EQ(t.fibres.size(), 36u);  // 12 sectors × 3 Simpson points (Ri, mid, Ro)
 
   // I (vm134 proportions, unequal flanges to move the centroid): parallel-axis sums by hand.
   const double w1 = 10, w2 = 6, w3 = 12, t1 = 1, t2 = 2, t3 = 0.5;
