@@ -4,7 +4,9 @@
 // co-rotational; BISO, BKIN, MISO; RECT, CTUBE, I, HREC, CSOLID), a beam fibre cycled with
 // BKIN hardening point by point against the closed-form loop, and through the deck reader and
 // the drivers: a cantilever under a tip moment (first yield, moment–curvature, no equilibrium
-// above Mp) and a fixed-fixed beam under a central load approaching its collapse load 8 Mp / L.
+// above Mp), a fixed-fixed beam under a central load approaching its collapse load 8 Mp / L,
+// and a bar of beams striking a wall through a gap (transient: equals the LINK180 bar, energy
+// balance with plastic work).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -343,6 +345,59 @@ TEST(PlasticBeams, AsecWithAPlasticityTableIsRefused) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("ASEC"), std::string::npos) << e.what();
   }
+}
+
+/// A bar of 10 elements (L = 10, A = 1, ρ = 1, E = 1e4, BISO σy = 100, Et = 1000) moving at
+/// v0 = 2 toward a rigid wall through a COMBIN40 gap (GAP = 0.01, K1 = 1e5): the LINK180 deck of
+/// test_plastic_links with BEAM188 (RECT 1 × 1, one cell: 9 fibres) in its place, transverse
+/// DOFs held. Trapezoidal Newmark, lumped mass, Δt = 5e-4, 0.5 s.
+testing::DeckRun bar_strike(const std::string& tag, bool beam) {
+  std::ostringstream deck;
+  deck << "/PREP7\n"
+       << (beam ? "ET,1,BEAM188\nSECTYPE,1,BEAM,RECT\nSECDATA,1,1,1,1\n"
+                : "ET,1,LINK180\nSECTYPE,1,LINK\nSECDATA,1.0\n")
+       << "ET,2,COMBIN40,,,1\nMP,EX,1,1E4\nMP,PRXY,1,0.3\nMP,DENS,1,1.0\nTB,BISO,1\n"
+          "TBDATA,1,100,1000\nR,2,1E5,,,0.01\n";
+  for (int i = 0; i <= 10; ++i) deck << "N," << i + 1 << "," << i << "\n";
+  deck << "N,20,11\nTYPE,1\n";
+  for (int i = 1; i <= 10; ++i) deck << "E," << i << "," << i + 1 << "\n";
+  deck << "TYPE,2\nREAL,2\nE,11,20\nFINISH\n/SOLU\nANTYPE,TRANS\nTRNOPT,FULL\n"
+          "TINTP,,0.25,0.5\nLUMPM,ON\nD,ALL,UY\nD,ALL,UZ\nD,20,UX\n"
+       << (beam ? "D,ALL,ROTX\nD,ALL,ROTY\nD,ALL,ROTZ\n" : "");
+  for (int i = 1; i <= 11; ++i) deck << "IC," << i << ",UX,0,2.0\n";
+  deck << "TIME,0.5\nDELTIM,5E-4\nOUTRES,ALL,ALL\nSOLVE\nFINISH\n";
+  return run_text(tag, deck.str());
+}
+
+TEST(PlasticBeams, BarOfBeamsStrikingAWallEqualsTheLinkBarAndBalancesItsEnergy) {
+  const auto beam = bar_strike("beam_bar_strike", true);
+  const auto link = bar_strike("link_bar_strike", false);
+  const int n = beam.reader->analyses()[0].n_time_points;
+  ASSERT_EQ(n, link.reader->analyses()[0].n_time_points);
+  // Uniform fibres under axial strain are the link's material point: same motion, same set.
+  const double set_beam = beam.reader->nodal_series(11, "UX").back().second -
+                          beam.reader->nodal_series(1, "UX").back().second;
+  const double set_link = link.reader->nodal_series(11, "UX").back().second -
+                          link.reader->nodal_series(1, "UX").back().second;
+  const auto e_beam = beam.reader->time_point(1, n - 1).energy;
+  const auto e_link = link.reader->time_point(1, n - 1).energy;
+  EXPECT_NEAR(e_beam.at("plastic_work"), e_link.at("plastic_work"),
+              1e-6 * e_link.at("plastic_work"));
+  EXPECT_GT(e_beam.at("plastic_work"), 0.2 * 20.0);
+  double epeq_beam = 0.0, epeq_link = 0.0;
+  for (int e = 1; e <= 10; ++e) {
+    epeq_beam = std::max(epeq_beam, beam.reader->element_series(e, "EPEQ").back().second);
+    epeq_link = std::max(epeq_link, link.reader->element_series(e, "EPEQ").back().second);
+  }
+  EXPECT_NEAR(epeq_beam, epeq_link, 1e-9);
+  // Balance: ½ ρ A L v0² = 20 = kinetic + strain + plastic + gap work, within 1 %.
+  const double accounted = e_beam.at("kinetic") + e_beam.at("strain") + e_beam.at("plastic_work") +
+                           e_beam.at("gap_work");
+  EXPECT_NEAR(accounted, 20.0, 0.2);
+  RecordProperty("beam_bar_length_change", std::to_string(set_beam));
+  RecordProperty("link_bar_length_change", std::to_string(set_link));
+  RecordProperty("beam_plastic_work", std::to_string(e_beam.at("plastic_work")));
+  EXPECT_NEAR(set_beam, set_link, 1e-6 * std::abs(set_link) + 1e-12);
 }
 
 }  // namespace
