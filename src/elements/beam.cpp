@@ -204,10 +204,101 @@ Beam::Corotated Beam::corotate(const Vec12& u, Mat12* B) const {
     A.middleCols<3>(6 * a + 3) += Rt;
     Bp.middleRows<3>(6 * a + 3) = so3::left_jacobian_inverse(a == 0 ? th1 : th2) * A;
   }
+  c.Bp = Bp;
+  c.W = W;
+  c.q1l = q1l;
+  c.q2l = q2l;
+  c.ln = ln;
   *B = Bp;
   B->middleCols<3>(3) = Bp.middleCols<3>(3) * so3::left_jacobian(psi1);
   B->middleCols<3>(9) = Bp.middleCols<3>(9) * so3::left_jacobian(psi2);
   return c;
+}
+
+Beam::Mat12 Beam::corotational_geometric(const Vec12& u, const Corotated& c,
+                                         const Vec12& fl) const {
+  // f = Sᵀ Bpᵀ f_l with S = diag(I, T(ψ1), I, T(ψ2)); g = Bpᵀ f_l (δp space) is
+  //   g = N (−r1, 0, r1, 0) + Σ_a E_aᵀ h_a − Wᵀ H,  h_a = T(θ̄_a)⁻ᵀ m_a,  H = h_1 + h_2,
+  // E_a = Rrᵀ on the spin of node a. Its derivative at fixed f_l (Battini & Pacoste 2002,
+  // §3.3, with the frame of eq. 33): δRr = Rr spin(W δp), δr1 = (I − r1 r1ᵀ)(δx2 − δx1)/ln,
+  // δq_al = spin(q_al)(W − E_a) δp, and δh_a = ∂(T⁻ᵀm)/∂θ̄ · Bp_a δp (so3 derivatives).
+  using so3::spin;
+  const Mat3& Rr = c.Rr;
+  const Mat3 Rt = Rr.transpose();
+  const Vec3 r1 = Rr.col(0);
+  const double ln = c.ln, N = fl(6);
+  const Eigen::Matrix<double, 3, 12>& W = c.W;
+  auto E = [&](int a) {
+    Eigen::Matrix<double, 3, 12> e = Eigen::Matrix<double, 3, 12>::Zero();
+    e.middleCols<3>(6 * a + 3) = Rt;
+    return e;
+  };
+  Mat12 K = Mat12::Zero();
+  // Axial: N δ(−r1, r1).
+  const Mat3 A = (Mat3::Identity() - r1 * r1.transpose()) * (N / ln);
+  K.block<3, 3>(0, 0) += A, K.block<3, 3>(0, 6) -= A;
+  K.block<3, 3>(6, 0) -= A, K.block<3, 3>(6, 6) += A;
+  // Moments: h_a, their variations Dh_a = ∂h_a/∂p.
+  Vec3 h[2], H = Vec3::Zero();
+  Eigen::Matrix<double, 3, 12> Dh[2], DH = Eigen::Matrix<double, 3, 12>::Zero();
+  for (int a = 0; a < 2; ++a) {
+    const Vec3 th = c.d.segment<3>(6 * a + 3), m = fl.segment<3>(6 * a + 3);
+    h[a] = so3::left_jacobian_inverse(th).transpose() * m;
+    Dh[a] = so3::d_left_jacobian_inverse_transpose(th, m) * c.Bp.middleRows<3>(6 * a + 3);
+    H += h[a];
+    DH += Dh[a];
+    // δ(Rr h_a) on the spin rows of node a.
+    K.middleRows<3>(6 * a + 3) += -Rr * spin(h[a]) * W + Rr * Dh[a];
+  }
+  // −δ(Wᵀ H): block b of Wᵀ H is Rr γ_b with γ = Glᵀ H (local), Gl of corotate().
+  const Vec3 ql = 0.5 * (c.q1l + c.q2l);
+  const double eta = ql(0) / ql(1);
+  using Row = Eigen::Matrix<double, 1, 12>;
+  Row d_ln = Row::Zero();
+  d_ln.segment<3>(0) = -r1.transpose(), d_ln.segment<3>(6) = r1.transpose();
+  const Row d_inv = -d_ln / (ln * ln);
+  const Eigen::Matrix<double, 3, 12> dq1 = spin(c.q1l) * (W - E(0)), dq2 = spin(c.q2l) * (W - E(1));
+  const Eigen::Matrix<double, 3, 12> dq = 0.5 * (dq1 + dq2);
+  const Row d_eta = (dq.row(0) - eta * dq.row(1)) / ql(1);
+  Vec12 gamma = Vec12::Zero();
+  Eigen::Matrix<double, 12, 12> dgamma = Eigen::Matrix<double, 12, 12>::Zero();
+  gamma(1) = -H(2) / ln, dgamma.row(1) = -H(2) * d_inv;
+  gamma(2) = (eta * H(0) + H(1)) / ln;
+  dgamma.row(2) = H(0) * (d_eta / ln + eta * d_inv) + H(1) * d_inv;
+  gamma(7) = -gamma(1), dgamma.row(7) = -dgamma.row(1);
+  gamma(8) = -gamma(2), dgamma.row(8) = -dgamma.row(2);
+  const Vec3* qa[2] = {&c.q1l, &c.q2l};
+  const Eigen::Matrix<double, 3, 12>* dqa[2] = {&dq1, &dq2};
+  for (int a = 0; a < 2; ++a) {
+    const Vec3& q = *qa[a];
+    const Eigen::Matrix<double, 3, 12>& dqq = *dqa[a];
+    const int j = 6 * a + 3;
+    gamma(j) = 0.5 * q(1) / ql(1) * H(0);
+    gamma(j + 1) = -0.5 * q(0) / ql(1) * H(0);
+    dgamma.row(j) = 0.5 * H(0) * (dqq.row(1) / ql(1) - q(1) * dq.row(1) / (ql(1) * ql(1)));
+    dgamma.row(j + 1) = -0.5 * H(0) * (dqq.row(0) / ql(1) - q(0) * dq.row(1) / (ql(1) * ql(1)));
+  }
+  // The H-variation part of δ(Wᵀ H) is Wᵀ δH = Wᵀ DH; γ's part through Gl (at fixed H).
+  const Eigen::Matrix<double, 3, 12> Gl = [&] {
+    Eigen::Matrix<double, 3, 12> g;
+    for (int b = 0; b < 4; ++b) g.middleCols<3>(3 * b) = W.middleCols<3>(3 * b) * Rr;
+    return g;
+  }();
+  for (int b = 0; b < 4; ++b) {
+    const Vec3 gb = gamma.segment<3>(3 * b);
+    K.middleRows<3>(3 * b) -= -Rr * spin(gb) * W + Rr * dgamma.middleRows<3>(3 * b) +
+                              Rr * Gl.middleCols<3>(3 * b).transpose() * DH;
+  }
+  // S-factors: f_ψa = T(ψ_a)ᵀ g_wa, so K_u = Sᵀ K S + diag(∂(Tᵀ g_wa)/∂ψ_a).
+  const Vec12 g = c.Bp.transpose() * fl;
+  Mat12 S = Mat12::Identity();
+  for (int a = 0; a < 2; ++a)
+    S.block<3, 3>(6 * a + 3, 6 * a + 3) = so3::left_jacobian(u.segment<3>(6 * a + 3));
+  Mat12 Ku = S.transpose() * K * S;
+  for (int a = 0; a < 2; ++a)
+    Ku.block<3, 3>(6 * a + 3, 6 * a + 3) +=
+        so3::d_left_jacobian_transpose(u.segment<3>(6 * a + 3), g.segment<3>(6 * a + 3));
+  return Ku;
 }
 
 bool Beam::is_nonlinear(const ElementContext& ctx) const {
@@ -233,18 +324,7 @@ void Beam::tangent(const ElementContext& ctx, const Eigen::VectorXd& u, Eigen::M
     local_response(c.d, false, fl, data_.plasticity ? &Kl : nullptr);
     if (!data_.plasticity) Kl = K_linear_;  // elastic: the local stiffness is constant
     f = B.transpose() * fl;
-    // Geometric part ∂(Bᵀ f_l)/∂u at fixed f_l, by central differences of B.
-    Mat12 KG;
-    for (int j = 0; j < 12; ++j) {
-      const double h = 1e-6 * (j % 6 < 3 ? std::max(length_, U.segment<3>(j - j % 6).norm()) : 1.0);
-      Vec12 up = U, um = U;
-      up(j) += h;
-      um(j) -= h;
-      Mat12 Bp, Bm;
-      corotate(up, &Bp);
-      corotate(um, &Bm);
-      KG.col(j) = (Bp - Bm).transpose() * fl / (2 * h);
-    }
+    const Mat12 KG = corotational_geometric(U, c, fl);
     Kg = B.transpose() * Kl * B + KG;
     // The assembler stores one triangle: use the symmetric part (the co-rotational tangent with
     // additive rotation vectors is symmetric only at equilibrium).
