@@ -43,8 +43,10 @@ Beam::Beam(int id, BeamData data) : Element(id), data_(std::move(data)) {
     const double bending = L * L / (12.0 * ei);
     return 1.0 / (bending + (shear_area > 0.0 ? 1.0 / (G * shear_area) : 0.0));
   };
+  // Virgin fibres: the response at zero strain is elastic.
+  if (data_.plasticity) committed_.assign(p.fibres.size(), UniaxialPlasticState{});
   Eigen::Vector3d s;
-  Eigen::Matrix3d D;
+  Eigen::Matrix3d& D = D_elastic_;
   section_response(Eigen::Vector3d::Zero(), s, D);
   shear_y_ = shear(p.shear_area_y, D(2, 2));  // bending in the x-y plane: E Izz
   shear_z_ = shear(p.shear_area_z, D(1, 1));  // x-z plane: E Iyy
@@ -53,20 +55,37 @@ Beam::Beam(int id, BeamData data) : Element(id), data_(std::move(data)) {
   local_response(Vec12::Zero(), false, f, &K_linear_);
 }
 
-void Beam::section_response(const Eigen::Vector3d& e, Eigen::Vector3d& s,
-                            Eigen::Matrix3d& D) const {
-  // Elastic fibres; a fibre material law (plasticity) plugs in here.
-  const double E = data_.youngs_modulus;
+void Beam::section_response(const Eigen::Vector3d& e, Eigen::Vector3d& s, Eigen::Matrix3d& D,
+                            std::vector<UniaxialPlasticState>* updated) const {
+  if (!data_.plasticity) {
+    const double E = data_.youngs_modulus;
+    integrate_fibres(
+        data_.section.fibres, e,
+        [E](int, double strain, double& stress, double& tangent) {
+          stress = E * strain;
+          tangent = E;
+        },
+        s, D);
+    return;
+  }
+  // Plastic fibres: the 1-D return of each fibre from its committed state (pure function of the
+  // committed state and the strain), its consistent tangent into D.
+  const J2Plasticity& law = *data_.plasticity;
+  if (updated) updated->resize(committed_.size());
   integrate_fibres(
       data_.section.fibres, e,
-      [E](int, double strain, double& stress, double& tangent) {
-        stress = E * strain;
-        tangent = E;
+      [&](int k, double strain, double& stress, double& tangent) {
+        const auto f = static_cast<std::size_t>(k);
+        const UniaxialResponse r =
+            law.uniaxial(committed_[f], strain, updated ? &(*updated)[f] : nullptr);
+        stress = r.stress;
+        tangent = r.tangent;
       },
       s, D);
 }
 
-void Beam::local_response(const Vec12& d, bool stiffening, Vec12& f, Mat12* K) const {
+void Beam::local_response(const Vec12& d, bool stiffening, Vec12& f, Mat12* K,
+                          std::vector<UniaxialPlasticState>* updated) const {
   const double L = length_;
   // Generalised strains at mid-length: rows ε0, κy, κz, twist, γy, γz.
   Eigen::Matrix<double, 6, 12> B = Eigen::Matrix<double, 6, 12>::Zero();
@@ -85,7 +104,7 @@ void Beam::local_response(const Vec12& d, bool stiffening, Vec12& f, Mat12* K) c
   }
   Eigen::Vector3d s_ab;
   Eigen::Matrix3d D_ab;
-  section_response(e.head<3>(), s_ab, D_ab);
+  section_response(e.head<3>(), s_ab, D_ab, updated);
   const double N0 = data_.youngs_modulus * data_.section.area * data_.initial_strain;
   Eigen::Matrix<double, 6, 1> s;
   s << s_ab(0) + N0, s_ab(1), s_ab(2), torsion_stiffness_ * e(3), shear_y_ * e(4), shear_z_ * e(5);
@@ -185,14 +204,105 @@ Beam::Corotated Beam::corotate(const Vec12& u, Mat12* B) const {
     A.middleCols<3>(6 * a + 3) += Rt;
     Bp.middleRows<3>(6 * a + 3) = so3::left_jacobian_inverse(a == 0 ? th1 : th2) * A;
   }
+  c.Bp = Bp;
+  c.W = W;
+  c.q1l = q1l;
+  c.q2l = q2l;
+  c.ln = ln;
   *B = Bp;
   B->middleCols<3>(3) = Bp.middleCols<3>(3) * so3::left_jacobian(psi1);
   B->middleCols<3>(9) = Bp.middleCols<3>(9) * so3::left_jacobian(psi2);
   return c;
 }
 
+Beam::Mat12 Beam::corotational_geometric(const Vec12& u, const Corotated& c,
+                                         const Vec12& fl) const {
+  // f = Sᵀ Bpᵀ f_l with S = diag(I, T(ψ1), I, T(ψ2)); g = Bpᵀ f_l (δp space) is
+  //   g = N (−r1, 0, r1, 0) + Σ_a E_aᵀ h_a − Wᵀ H,  h_a = T(θ̄_a)⁻ᵀ m_a,  H = h_1 + h_2,
+  // E_a = Rrᵀ on the spin of node a. Its derivative at fixed f_l (Battini & Pacoste 2002,
+  // §3.3, with the frame of eq. 33): δRr = Rr spin(W δp), δr1 = (I − r1 r1ᵀ)(δx2 − δx1)/ln,
+  // δq_al = spin(q_al)(W − E_a) δp, and δh_a = ∂(T⁻ᵀm)/∂θ̄ · Bp_a δp (so3 derivatives).
+  using so3::spin;
+  const Mat3& Rr = c.Rr;
+  const Mat3 Rt = Rr.transpose();
+  const Vec3 r1 = Rr.col(0);
+  const double ln = c.ln, N = fl(6);
+  const Eigen::Matrix<double, 3, 12>& W = c.W;
+  auto E = [&](int a) {
+    Eigen::Matrix<double, 3, 12> e = Eigen::Matrix<double, 3, 12>::Zero();
+    e.middleCols<3>(6 * a + 3) = Rt;
+    return e;
+  };
+  Mat12 K = Mat12::Zero();
+  // Axial: N δ(−r1, r1).
+  const Mat3 A = (Mat3::Identity() - r1 * r1.transpose()) * (N / ln);
+  K.block<3, 3>(0, 0) += A, K.block<3, 3>(0, 6) -= A;
+  K.block<3, 3>(6, 0) -= A, K.block<3, 3>(6, 6) += A;
+  // Moments: h_a, their variations Dh_a = ∂h_a/∂p.
+  Vec3 h[2], H = Vec3::Zero();
+  Eigen::Matrix<double, 3, 12> Dh[2], DH = Eigen::Matrix<double, 3, 12>::Zero();
+  for (int a = 0; a < 2; ++a) {
+    const Vec3 th = c.d.segment<3>(6 * a + 3), m = fl.segment<3>(6 * a + 3);
+    h[a] = so3::left_jacobian_inverse(th).transpose() * m;
+    Dh[a] = so3::d_left_jacobian_inverse_transpose(th, m) * c.Bp.middleRows<3>(6 * a + 3);
+    H += h[a];
+    DH += Dh[a];
+    // δ(Rr h_a) on the spin rows of node a.
+    K.middleRows<3>(6 * a + 3) += -Rr * spin(h[a]) * W + Rr * Dh[a];
+  }
+  // −δ(Wᵀ H): block b of Wᵀ H is Rr γ_b with γ = Glᵀ H (local), Gl of corotate().
+  const Vec3 ql = 0.5 * (c.q1l + c.q2l);
+  const double eta = ql(0) / ql(1);
+  using Row = Eigen::Matrix<double, 1, 12>;
+  Row d_ln = Row::Zero();
+  d_ln.segment<3>(0) = -r1.transpose(), d_ln.segment<3>(6) = r1.transpose();
+  const Row d_inv = -d_ln / (ln * ln);
+  const Eigen::Matrix<double, 3, 12> dq1 = spin(c.q1l) * (W - E(0)), dq2 = spin(c.q2l) * (W - E(1));
+  const Eigen::Matrix<double, 3, 12> dq = 0.5 * (dq1 + dq2);
+  const Row d_eta = (dq.row(0) - eta * dq.row(1)) / ql(1);
+  Vec12 gamma = Vec12::Zero();
+  Eigen::Matrix<double, 12, 12> dgamma = Eigen::Matrix<double, 12, 12>::Zero();
+  gamma(1) = -H(2) / ln, dgamma.row(1) = -H(2) * d_inv;
+  gamma(2) = (eta * H(0) + H(1)) / ln;
+  dgamma.row(2) = H(0) * (d_eta / ln + eta * d_inv) + H(1) * d_inv;
+  gamma(7) = -gamma(1), dgamma.row(7) = -dgamma.row(1);
+  gamma(8) = -gamma(2), dgamma.row(8) = -dgamma.row(2);
+  const Vec3* qa[2] = {&c.q1l, &c.q2l};
+  const Eigen::Matrix<double, 3, 12>* dqa[2] = {&dq1, &dq2};
+  for (int a = 0; a < 2; ++a) {
+    const Vec3& q = *qa[a];
+    const Eigen::Matrix<double, 3, 12>& dqq = *dqa[a];
+    const int j = 6 * a + 3;
+    gamma(j) = 0.5 * q(1) / ql(1) * H(0);
+    gamma(j + 1) = -0.5 * q(0) / ql(1) * H(0);
+    dgamma.row(j) = 0.5 * H(0) * (dqq.row(1) / ql(1) - q(1) * dq.row(1) / (ql(1) * ql(1)));
+    dgamma.row(j + 1) = -0.5 * H(0) * (dqq.row(0) / ql(1) - q(0) * dq.row(1) / (ql(1) * ql(1)));
+  }
+  // The H-variation part of δ(Wᵀ H) is Wᵀ δH = Wᵀ DH; γ's part through Gl (at fixed H).
+  const Eigen::Matrix<double, 3, 12> Gl = [&] {
+    Eigen::Matrix<double, 3, 12> g;
+    for (int b = 0; b < 4; ++b) g.middleCols<3>(3 * b) = W.middleCols<3>(3 * b) * Rr;
+    return g;
+  }();
+  for (int b = 0; b < 4; ++b) {
+    const Vec3 gb = gamma.segment<3>(3 * b);
+    K.middleRows<3>(3 * b) -= -Rr * spin(gb) * W + Rr * dgamma.middleRows<3>(3 * b) +
+                              Rr * Gl.middleCols<3>(3 * b).transpose() * DH;
+  }
+  // S-factors: f_ψa = T(ψ_a)ᵀ g_wa, so K_u = Sᵀ K S + diag(∂(Tᵀ g_wa)/∂ψ_a).
+  const Vec12 g = c.Bp.transpose() * fl;
+  Mat12 S = Mat12::Identity();
+  for (int a = 0; a < 2; ++a)
+    S.block<3, 3>(6 * a + 3, 6 * a + 3) = so3::left_jacobian(u.segment<3>(6 * a + 3));
+  Mat12 Ku = S.transpose() * K * S;
+  for (int a = 0; a < 2; ++a)
+    Ku.block<3, 3>(6 * a + 3, 6 * a + 3) +=
+        so3::d_left_jacobian_transpose(u.segment<3>(6 * a + 3), g.segment<3>(6 * a + 3));
+  return Ku;
+}
+
 bool Beam::is_nonlinear(const ElementContext& ctx) const {
-  return ctx.large_deflection || ctx.stress_stiffening;
+  return ctx.large_deflection || ctx.stress_stiffening || data_.plasticity.has_value();
 }
 
 void Beam::tangent(const ElementContext& ctx, const Eigen::VectorXd& u, Eigen::MatrixXd& K,
@@ -210,21 +320,12 @@ void Beam::tangent(const ElementContext& ctx, const Eigen::VectorXd& u, Eigen::M
     Mat12 B;
     const Corotated c = corotate(U, &B);
     Vec12 fl;
-    local_response(c.d, false, fl, nullptr);
+    Mat12 Kl;
+    local_response(c.d, false, fl, data_.plasticity ? &Kl : nullptr);
+    if (!data_.plasticity) Kl = K_linear_;  // elastic: the local stiffness is constant
     f = B.transpose() * fl;
-    // Geometric part ∂(Bᵀ f_l)/∂u at fixed f_l, by central differences of B.
-    Mat12 KG;
-    for (int j = 0; j < 12; ++j) {
-      const double h = 1e-6 * (j % 6 < 3 ? std::max(length_, U.segment<3>(j - j % 6).norm()) : 1.0);
-      Vec12 up = U, um = U;
-      up(j) += h;
-      um(j) -= h;
-      Mat12 Bp, Bm;
-      corotate(up, &Bp);
-      corotate(um, &Bm);
-      KG.col(j) = (Bp - Bm).transpose() * fl / (2 * h);
-    }
-    Kg = B.transpose() * K_linear_ * B + KG;
+    const Mat12 KG = corotational_geometric(U, c, fl);
+    Kg = B.transpose() * Kl * B + KG;
     // The assembler stores one triangle: use the symmetric part (the co-rotational tangent with
     // additive rotation vectors is symmetric only at equilibrium).
     Kg = (0.5 * (Kg + Kg.transpose())).eval();
@@ -269,21 +370,39 @@ void Beam::mass(const ElementContext& ctx, Eigen::MatrixXd& M) const {
   restrict(Vec12::Zero(), Mg, unused, M);
 }
 
-Beam::Vec12 Beam::local_forces(const ElementContext& ctx, const Eigen::VectorXd& u) const {
-  const Vec12 U = expand(u);
+Beam::Vec12 Beam::local_displacement(const ElementContext& ctx, const Vec12& U) const {
+  return ctx.large_deflection ? corotate(U, nullptr).d : Vec12(rotation() * U);
+}
+
+Beam::Vec12 Beam::local_forces(const ElementContext& ctx, const Eigen::VectorXd& u,
+                               std::vector<UniaxialPlasticState>* states) const {
   Vec12 fl;
-  if (ctx.large_deflection)
-    local_response(corotate(U, nullptr).d, false, fl, nullptr);
-  else
-    local_response(rotation() * U, ctx.stress_stiffening, fl, nullptr);
+  local_response(local_displacement(ctx, expand(u)), ctx.stress_stiffening && !ctx.large_deflection,
+                 fl, nullptr, states);
   return fl;
+}
+
+void Beam::commit_history(const ElementContext& ctx, const Eigen::VectorXd& u) {
+  if (!data_.plasticity) return;
+  std::vector<UniaxialPlasticState> next;
+  local_forces(ctx, u, &next);
+  committed_ = std::move(next);
+}
+
+double Beam::plastic_work() const {
+  // ∫σ dε_p dV = Σ_f w_f a_f L (one section point for the whole length).
+  double w = 0.0;
+  for (std::size_t k = 0; k < committed_.size(); ++k)
+    w += committed_[k].plastic_work * data_.section.fibres[k].area;
+  return w * length_;
 }
 
 const std::vector<std::string>& beam_result_names() {
   static const std::vector<std::string> names = {
-      "FX_I",   "MY_I",   "MZ_I",   "TQ_I",   "SFZ_I",  "SFY_I",  "FX_J",   "MY_J",   "MZ_J",
-      "TQ_J",   "SFZ_J",  "SFY_J",  "SDIR_I", "SBYT_I", "SBYB_I", "SBZT_I", "SBZB_I", "SDIR_J",
-      "SBYT_J", "SBYB_J", "SBZT_J", "SBZB_J", "SMAX_I", "SMIN_I", "SMAX_J", "SMIN_J"};
+      "FX_I",   "MY_I",   "MZ_I",   "TQ_I",   "SFZ_I",  "SFY_I",  "FX_J",   "MY_J",
+      "MZ_J",   "TQ_J",   "SFZ_J",  "SFY_J",  "SDIR_I", "SBYT_I", "SBYB_I", "SBZT_I",
+      "SBZB_I", "SDIR_J", "SBYT_J", "SBYB_J", "SBZT_J", "SBZB_J", "SMAX_I", "SMIN_I",
+      "SMAX_J", "SMIN_J", "EPEQ",   "SRAT",   "PLWK"};
   return names;
 }
 
@@ -293,12 +412,11 @@ const std::vector<std::string>& Beam::result_names() const {
 
 void Beam::results(const ElementContext& ctx, const Eigen::VectorXd& u, const Eigen::VectorXd&,
                    ElementResultValues& out) const {
-  const Vec12 fl = local_forces(ctx, u);
+  std::vector<UniaxialPlasticState> states;  // at u (the committed ones after a converged step)
+  const Vec12 fl = local_forces(ctx, u, data_.plasticity ? &states : nullptr);
   const BeamSectionProperties& p = data_.section;
   const double E = data_.youngs_modulus;
-  Eigen::Vector3d s0;
-  Eigen::Matrix3d D;
-  section_response(Eigen::Vector3d::Zero(), s0, D);
+  const Eigen::Matrix3d& D = D_elastic_;
   out.assign(beam_result_names().size(), 0.0);
   for (int end = 0; end < 2; ++end) {
     // Section forces: −f at I, +f at J (N tension positive; My, Mz, T about the element axes).
@@ -308,7 +426,9 @@ void Beam::results(const ElementContext& ctx, const Eigen::VectorXd& u, const Ei
     const std::size_t o = 6 * static_cast<std::size_t>(end);
     out[o + 0] = N, out[o + 1] = My, out[o + 2] = Mz, out[o + 3] = Tq, out[o + 4] = Vz,
             out[o + 5] = Vy;
-    // Section strains of these resultants, then σ = E (ε0 + z κy − y κz) at the extreme fibres.
+    // Section strains of these resultants, then σ = E (ε0 + z κy − y κz) at the extreme fibres:
+    // the elastic (nominal) stresses of the end resultants, also for a plastic beam, whose fibre
+    // stresses stay on the yield surface (EPEQ and SRAT below say where it yields).
     const Eigen::Vector3d e = D.ldlt().solve(Eigen::Vector3d(N, My, Mz));
     const double sdir = E * e(0);
     const double sbyt = -E * p.y_max * e(2), sbyb = -E * p.y_min * e(2);
@@ -321,6 +441,16 @@ void Beam::results(const ElementContext& ctx, const Eigen::VectorXd& u, const Ei
     out[23 + 2 * static_cast<std::size_t>(end)] =
         sdir + std::min(sbyt, sbyb) + std::min(sbzt, sbzb);
   }
+  if (!data_.plasticity) return;
+  double epeq = 0.0, srat = 0.0, work = 0.0;
+  for (std::size_t k = 0; k < states.size(); ++k) {
+    const UniaxialPlasticState& st = states[k];
+    epeq = std::max(epeq, st.alpha);
+    srat = std::max(srat,
+                    std::abs(st.stress - st.back_stress) / data_.plasticity->flow_stress(st.alpha));
+    work += st.plastic_work * p.fibres[k].area;
+  }
+  out[26] = epeq, out[27] = srat, out[28] = work / p.area;
 }
 
 }  // namespace impactfe

@@ -11,6 +11,16 @@
 /// Analysis, §5.6, with Φ = 12EI/(kGAL²)); kA = 0 gives the Euler–Bernoulli beam (S = 12EI/L²).
 /// Axial force and bending moments come from the section's fibres (elements/beam_section.h).
 ///
+/// Plasticity (BEAM188 with a TB BISO / BKIN / MISO table): every fibre of the section at the
+/// integration point is a uniaxial J2 material point (J2Plasticity::uniaxial, Simo & Hughes
+/// Box 3.1) driven by its axial strain ε = ε0 + z κy − y κz; the section tangent is the fibre sum
+/// of the consistent fibre tangents, so K_T is exact. Torsion (GJ) and transverse shear (S) stay
+/// elastic, and so does the residual bending flexibility in S (the linear part of the curvature
+/// of the one-point element): as in MAPDL's linear BEAM188, plastic flow is evaluated at the one
+/// integration point at mid-length, so a plastic hinge at a node is felt by the elements beside
+/// it half an element away (docs/plasticity.md: mesh finely where hinges form). Fibre states are
+/// committed on converged steps (commit_history); tangent() returns from the committed ones.
+///
 /// Mass: consistent = linear interpolation for the axial and torsional inertia and the cubic
 /// (Hermite) interpolation for the bending translations and rotary inertia (Przemieniecki
 /// §11.3); lumped = ρAL/2 per translation and ρIL/2 per rotation.
@@ -23,15 +33,18 @@
 /// and the mean of the nodal triads (Battini & Pacoste 2002, CMAME 191, §3: r1 along the chord,
 /// r3 ∝ r1 × q, q = (R1 + R2) R0 e2 / 2); local deformational rotations θ̄ = log(Rrᵀ R R0) as in
 /// the co-rotational shell. f_int = Bᵀ f_l; K = Bᵀ K_l B + ∂(Bᵀ f_l)/∂u|f_l, the second (geometric)
-/// term by central differences of the analytic B (step 1e-6 relative; its error, ~1e-10
-/// relative, keeps Newton's convergence quadratic to the tolerances used).
+/// term analytic (Battini & Pacoste 2002, §3.3: variations of the chord, of the frame through
+/// its spin δω = W δp, of T(θ̄)⁻ᵀ and T(ψ)ᵀ through the so3 derivatives); it equals a central
+/// difference of f_int to 3e-11 relative (test_beam), and the tangent is then symmetrised.
 #include <Eigen/Core>
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "elements/beam_section.h"
 #include "elements/element.h"
+#include "materials/j2_plasticity.h"
 
 namespace impactfe {
 
@@ -51,10 +64,14 @@ struct BeamData {
   double added_mass = 0.0;      // mass per length (BEAM3/BEAM4 ADDMAS)
   double initial_strain = 0.0;  // ISTRN (BEAM3/BEAM4)
   bool lumped_mass = false;     // BEAM4 KEYOPT(2) = 1
+  /// BEAM188 with a TB plasticity table: the law of every fibre (geometric sections only).
+  std::optional<J2Plasticity> plasticity;
 };
 
 /// Result names of every beam type: section forces at I and J (FX MY MZ TQ SFZ SFY), extreme-fibre
-/// stresses at I and J (SDIR SBYT SBYB SBZT SBZB), and SMAX/SMIN at I and J.
+/// stresses at I and J (SDIR SBYT SBYB SBZT SBZB), SMAX/SMIN at I and J, and the plastic items of
+/// the section point (EPEQ: largest fibre equivalent plastic strain, SRAT: largest fibre
+/// |σ − β| / k(α), 1 on the yield surface, PLWK: plastic work per volume; 0 when elastic).
 const std::vector<std::string>& beam_result_names();
 
 class Beam final : public Element {
@@ -75,28 +92,49 @@ class Beam final : public Element {
                ElementResultValues& out) const override;
   std::optional<double> volume() const override { return data_.section.area * length_; }
 
+  bool has_history() const override { return data_.plasticity.has_value(); }
+  double plastic_work() const override;
+  void commit_history(const ElementContext& ctx, const Eigen::VectorXd& u) override;
+  /// Committed fibre states (one per section fibre; empty for an elastic beam).
+  const std::vector<UniaxialPlasticState>& fibre_states() const { return committed_; }
+  const BeamSectionProperties& section() const { return data_.section; }
+
   double length() const { return length_; }
   /// Shear stiffnesses S_y, S_z after the residual-bending-flexibility correction.
   double shear_stiffness_y() const { return shear_y_; }
   double shear_stiffness_z() const { return shear_z_; }
   /// Local element force vector (element axes, 12 components: node I then J, forces then
   /// moments) at u; the section forces are −f at I and +f at J.
-  Vec12 local_forces(const ElementContext& ctx, const Eigen::VectorXd& u) const;
+  /// With `states`, the fibre states at u (returned from the committed ones) are stored there.
+  Vec12 local_forces(const ElementContext& ctx, const Eigen::VectorXd& u,
+                     std::vector<UniaxialPlasticState>* states = nullptr) const;
 
  private:
   struct Corotated {
     Eigen::Matrix3d Rr;
     Vec12 d;  // local deformational displacements (ū at 6, θ̄1 at 3..5, θ̄2 at 9..11)
+    // With B: what the analytic geometric stiffness needs (δp = [δx1, δw1, δx2, δw2]).
+    Mat12 Bp;                        // δd = Bp δp (before the T(ψ) factors)
+    Eigen::Matrix<double, 3, 12> W;  // frame spin, local components: δω = W δp
+    Vec3 q1l, q2l;                   // R_a R0 e2 in the frame
+    double ln = 0.0;                 // current chord length
   };
   Vec12 expand(const Eigen::VectorXd& u) const;
   void restrict(const Vec12& f, const Mat12& K, Eigen::VectorXd& f_out,
                 Eigen::MatrixXd& K_out) const;
-  /// Section resultants (N, My, Mz) and tangent at (ε0, κy, κz) through the fibres.
-  void section_response(const Eigen::Vector3d& e, Eigen::Vector3d& s, Eigen::Matrix3d& D) const;
+  /// Section resultants (N, My, Mz) and tangent at (ε0, κy, κz) through the fibres; plastic
+  /// fibres return from their committed states (`updated` receives the new ones).
+  void section_response(const Eigen::Vector3d& e, Eigen::Vector3d& s, Eigen::Matrix3d& D,
+                        std::vector<UniaxialPlasticState>* updated = nullptr) const;
   /// Local response at local displacement d (element axes): f_l and K_l; `stiffening` adds the
   /// moderate-rotation axial strain.
-  void local_response(const Vec12& d, bool stiffening, Vec12& f, Mat12* K) const;
+  void local_response(const Vec12& d, bool stiffening, Vec12& f, Mat12* K,
+                      std::vector<UniaxialPlasticState>* updated = nullptr) const;
+  /// Local deformational displacements at global U (co-rotated under large deflection).
+  Vec12 local_displacement(const ElementContext& ctx, const Vec12& U) const;
   Corotated corotate(const Vec12& u, Mat12* B) const;
+  /// ∂(Bᵀ f_l)/∂u at fixed f_l (the geometric part of the co-rotational tangent), analytic.
+  Mat12 corotational_geometric(const Vec12& u, const Corotated& c, const Vec12& fl) const;
   Mat12 rotation() const;  // T: local = T global
 
   BeamData data_;
@@ -104,7 +142,9 @@ class Beam final : public Element {
   double length_ = 0.0;
   double torsion_stiffness_ = 0.0;  // GJ
   double shear_y_ = 0.0, shear_z_ = 0.0;
-  Mat12 K_linear_;  // local linear stiffness
+  Mat12 K_linear_;             // local linear stiffness
+  Eigen::Matrix3d D_elastic_;  // elastic section stiffness (nominal stresses of the results)
+  std::vector<UniaxialPlasticState> committed_;  // per fibre (plastic beams)
 };
 
 }  // namespace impactfe

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 
 namespace impactfe {
 
@@ -29,34 +30,38 @@ int count_field(const std::vector<double>& d, std::size_t i, int fallback,
   return static_cast<int>(v);
 }
 
-/// Rectangle [y0, y1] × [z0, z1] as ny × nz cells with 2 × 2 Gauss points each (exact for the
-/// area and the first and second moments).
-void add_rectangle(std::vector<BeamFibre>& f, double y0, double y1, double z0, double z1, int ny,
-                   int nz) {
-  const double hy = (y1 - y0) / ny, hz = (z1 - z0) / nz;
-  const double g = 0.5 / std::sqrt(3.0);
-  for (int i = 0; i < ny; ++i)
-    for (int j = 0; j < nz; ++j) {
-      const double yc = y0 + (i + 0.5) * hy, zc = z0 + (j + 0.5) * hz;
-      for (double sy : {-g, g})
-        for (double sz : {-g, g}) f.push_back({yc + sy * hy, zc + sz * hz, 0.25 * hy * hz});
-    }
+/// Points and weights of the composite Simpson rule on [a, b] with n cells (2n + 1 points; the
+/// cell ends are shared). Exact for cubics on every cell, and its end points lie on the boundary,
+/// so a section's outermost fibres sit on its surface (first yield of a plastic section is exact).
+std::vector<std::pair<double, double>> simpson(double a, double b, int n) {
+  const double h = (b - a) / n;
+  std::vector<std::pair<double, double>> p;
+  for (int k = 0; k <= 2 * n; ++k) {
+    const double w = (k == 0 || k == 2 * n) ? 1.0 : (k % 2 == 1 ? 4.0 : 2.0);
+    p.emplace_back(a + 0.5 * h * k, w * h / 6.0);
+  }
+  return p;
 }
 
-/// Annulus ri ≤ r ≤ ro as n sectors (midpoint in θ) × nr rings (2 Gauss points in r each):
-/// exact for the area and the second moments when n ≥ 3.
+/// Rectangle [y0, y1] × [z0, z1] as ny × nz cells, 3 × 3 Simpson points per cell (exact for the
+/// area and the first and second moments; fully plastic moments exact when no cell straddles the
+/// neutral axis, since |z| is then linear on every cell).
+void add_rectangle(std::vector<BeamFibre>& f, double y0, double y1, double z0, double z1, int ny,
+                   int nz) {
+  for (const auto& [y, wy] : simpson(y0, y1, ny))
+    for (const auto& [z, wz] : simpson(z0, z1, nz)) f.push_back({y, z, wy * wz});
+}
+
+/// Annulus ri ≤ r ≤ ro as n sectors (midpoint rule in θ, points at θ = 2πk/n, so that for n a
+/// multiple of 4 the points at ±y and ±z lie on the outer surface) × nr rings (Simpson in r on
+/// the integrand r, r³: exact for the area and the second moments when n ≥ 3). The centre point of
+/// a solid circle has zero weight and is skipped.
 void add_annulus(std::vector<BeamFibre>& f, double ri, double ro, int n, int nr) {
-  const double dth = 2.0 * kPi / n, dr = (ro - ri) / nr;
-  const double g = 0.5 / std::sqrt(3.0);
+  const double dth = 2.0 * kPi / n;
   for (int k = 0; k < n; ++k) {
-    const double th = (k + 0.5) * dth;
-    for (int j = 0; j < nr; ++j) {
-      const double rc = ri + (j + 0.5) * dr;
-      for (double s : {-g, g}) {
-        const double r = rc + s * dr;
-        f.push_back({r * std::cos(th), r * std::sin(th), 0.5 * dr * r * dth});
-      }
-    }
+    const double th = k * dth;
+    for (const auto& [r, w] : simpson(ri, ro, nr))
+      if (r > 0.0) f.push_back({r * std::cos(th), r * std::sin(th), w * r * dth});
   }
 }
 

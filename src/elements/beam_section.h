@@ -7,10 +7,11 @@
 /// D = Σ_f E_t,f a_f g_f g_fᵀ with g_f = (1, z_f, −y_f) and the resultants (N, My, Mz) =
 /// Σ_f σ_f a_f g_f, so a per-fibre uniaxial material law (plasticity) replaces the elastic one
 /// without touching the element (Spacone, Filippou & Taucer 1996, EESD 25, the fibre section).
-/// The fibre rules are exact for the second moments of the supported geometric shapes (2 × 2
-/// Gauss points per rectangular cell; sectors with a midpoint rule in θ, which integrates
-/// cos²θ exactly for N ≥ 3, and 2 Gauss points in r), so the elastic fibre stiffness equals the
-/// closed form to round-off.
+/// The fibre rules are exact for the second moments of the supported geometric shapes (3 × 3
+/// Simpson points per rectangular cell; sectors with a midpoint rule in θ, which integrates
+/// cos²θ exactly for N ≥ 3, and Simpson in r), so the elastic fibre stiffness equals the closed
+/// form to round-off; the Simpson points include the section's surface, so a plastic section
+/// (elements/beam.h) yields first exactly where the closed form says.
 #include <Eigen/Core>
 
 #include <functional>

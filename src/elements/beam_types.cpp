@@ -124,6 +124,17 @@ std::unique_ptr<Element> make_beam188(const ElementBuildContext& ctx, const Elem
   } catch (const std::invalid_argument& e) {
     throw element_error(record, name, fmt::format("section {}: {}", record.secnum, e.what()));
   }
+  // TB plasticity: a law per fibre of the section (docs/plasticity.md). ASEC has properties but
+  // no geometry, so there is nothing to integrate the stresses over (its 4 fibres only reproduce
+  // A and the second moments): refused rather than yielding at made-up points.
+  d.plasticity = plasticity_of(model, record, d.youngs_modulus, nu);
+  if (d.plasticity && d.section.subtype == "ASEC")
+    throw element_error(
+        record, name,
+        fmt::format("section {} is ASEC (properties only, no geometry to integrate stresses over): "
+                    "material {} has a TB plasticity table, which BEAM188 supports only for the "
+                    "RECT, CSOLID, CTUBE, I and HREC subtypes",
+                    record.secnum, record.mat));
   return std::make_unique<Beam>(record.id, std::move(d));
 }
 
@@ -212,7 +223,9 @@ const ElementRegistration kBeam188{
                  numbered("SMISC", 14, {"FX_J", "MY_J", "MZ_J", "TQ_J", "SFZ_J", "SFY_J"}),
                  numbered("SMISC", 31,
                           {"SDIR_I", "SBYT_I", "SBYB_I", "SBZT_I", "SBZB_I", "SDIR_J", "SBYT_J",
-                           "SBYB_J", "SBZT_J", "SBZB_J"})}),
+                           "SBYB_J", "SBZT_J", "SBZB_J"}),
+                 {{"NL", "EPEQ", "EPEQ"}, {"NL", "SRAT", "SRAT"}, {"NL", "PLWK", "PLWK"}}}),
+     .plasticity = true,
      .note = "BEAM188: KEYOPT(3) = 0, 2, 3 give one element (exact stiffness for nodal loads, "
              "cubic mass); KEYOPT(2) not used (rigid cross section under NLGEOM)",
      .create = make_beam188}};
