@@ -111,6 +111,11 @@ void JobSession::solve(const Job& job, std::size_t step) {
   where_ = location_of(s);
   try {
     if (!open_) {
+      const auto& restart = SolutionControls::instance().restart;
+      if (restart && (!s.analysis || !solves_incrementally(s.analysis->options)))
+        throw InputError(restart->where,
+                         "ANTYPE,,RESTART continues a static or full transient analysis only "
+                         "(reduced and mode-superposition transients solve as a whole)");
       stats_.analyses.emplace_back();
       AnalysisStatistics& current = stats_.analyses.back();
       ResultsWriter& writer = writer_for(job, step);

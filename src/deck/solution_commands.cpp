@@ -67,6 +67,10 @@ void cmd_dtime(DeckReader& r, const Command& c) {
   StepControl& sc = SolutionControls::instance().current;
   sc.n_max.reset();
   sc.n_min.reset();
+  sc.dt_min.reset();
+  sc.dt_max.reset();
+  sc.carry = false;
+  if (c.name != "DELTIM") return;  // 4.2 DTIME has the step only
   sc.dt_min = r.opt_real(c, 2);
   sc.dt_max = r.opt_real(c, 3);
   if (sc.dt_min && !(*sc.dt_min > 0.0))
