@@ -5,8 +5,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "analysis/contact_summary.h"
-#include "analysis/time_step_advice.h"
 #include "core/log.h"
 #include "time/time_axis.h"
 
@@ -78,6 +76,10 @@ void DirectSolution::set_constraints(const LoadStep& step) {
   factor_valid_ = false;
   stats_.n_dofs = dofs_->n_free();
   condensation_.reset();
+  contact_frequency_.reset();
+  if (!status_loop_->empty())
+    contact_frequency_ =
+        std::make_unique<ContactFrequencyEstimator>(structure_.elements(), *dofs_, mass_all_);
   if (transient_ && settings_.condense && assembler_->n_nonlinear_elements() > 0) {
     if (const auto why = LinearPartCondensation::refusal(*assembler_)) {
       condensation_note_ = "condensed transient not used: " + *why;
@@ -213,80 +215,7 @@ void DirectSolution::set_following_steps(std::vector<LoadStep> steps) {
 void DirectSolution::begin(bool transient) {
   transient_ = transient;
   if (transient) integrator_ = make_time_integrator(structure_.options());
-}
-
-void DirectSolution::solve_load_step(const LoadStep& step) {
-  const bool transient = transient_;
-  const LoadStep* previous = previous_ ? &*previous_ : nullptr;
-  const LoadStepTiming t = load_step_timing(step, t_end_, transient);
-  structure_.check_load_step(step);
-  set_constraints(step);
-  // F and D of this load step resolved to DOF indices once (no map lookups per substep).
-  forces_ = ResolvedDofLoads(*dofs_, step, previous, ResolvedDofLoads::Kind::Forces);
-  prescribed_ = ResolvedDofLoads(*dofs_, step, previous, ResolvedDofLoads::Kind::Constraints);
-  resolved_step_ = &step;
-  const bool dynamic = transient && step.time_integration;
-  const OutputControl& output = step.output;  // OUTRES of this load step
-  if (!previous) {
-    // Store the initial state (t = 0) of a transient, so histories start at rest.
-    if (transient) {
-      const LoadPoint at0 = load_point(step, previous, 0.0, t.t_start);
-      u_.tail(dofs_->n_constrained()) =
-          prescribed_displacements(*dofs_, at0).tail(dofs_->n_constrained());
-      if (dynamic) start_dynamics(at0, t.h);
-      // Initial velocities (IC) bring kinetic energy that the balance must count as put in.
-      energy_->set_initial_kinetic(0.5 * v_.dot(mass_all_ * v_));
-      reactions_ = VectorXd::Zero(dofs_->n_active());
-      acel_ = frame_acceleration(at0);
-      store(t_end_, 0, 0, dynamic, output_selection(output, 0, t.n_substeps));
-    }
-  }
-  if (dynamic) {
-    if (!dynamics_started_) {
-      start_dynamics(load_point(step, previous, 0.0, t.t_start), t.h);
-    } else if (std::abs(integrator_->step() - t.h) > 1e-12 * t.h) {
-      integrator_->set_step(t.h);  // Houbolt re-samples its history (spec §10.2)
-      factor_valid_ = false;
-    }
-    time_step_advice(t.h);
-  } else {
-    dynamics_started_ = false;
-  }
-  // Substeps and end time of the load steps known to follow (progress estimate of the run); a
-  // step whose timing is invalid is reported when it is solved, not here.
-  long long later_substeps = 0;
-  double run_end = t.t_end;
-  try {
-    for (const LoadStep& next : following_) {
-      const LoadStepTiming tn = load_step_timing(next, run_end, transient);
-      later_substeps += tn.n_substeps;
-      run_end = tn.t_end;
-    }
-  } catch (const std::exception&) {
-  }
-  for (int k = 1; k <= t.n_substeps; ++k) {
-    const double time = t.t_start + k * t.h;
-    const LoadPoint at = load_point(step, previous, static_cast<double>(k) / t.n_substeps, time);
-    const int iterations_before = stats_.n_iterations;
-    const int changes_before = stats_.n_status_changes;
-    solve_increment(at, StepLabel{step.number, k, time}, dynamic);
-    ++stats_.n_substeps;
-    if (settings_.progress)
-      settings_.progress->substep_done({stats_.description, time, t.t_end, step.number, k,
-                                        t.n_substeps, t.h, stats_.n_iterations - iterations_before,
-                                        stats_.n_status_changes - changes_before,
-                                        t.n_substeps - k + later_substeps, run_end});
-    // OUTRES: the items (and nodes / elements) this substep writes; none: no stored point.
-    const OutputSelection selection = output_selection(output, k, t.n_substeps);
-    if (selection.any()) store(time, step.number, k, dynamic, selection);
-  }
-  ++stats_.n_load_steps;
-  if (const auto contact =
-          contact_summary(structure_.elements(), *assembler_, u_, step.number, t.t_end))
-    Log::info("{}", *contact);
-  previous_ = step;
-  t_end_ = t.t_end;
-  update_counters();
+  take_restart_request();
 }
 
 void DirectSolution::finish() {
@@ -506,7 +435,8 @@ bool DirectSolution::solve_condensed(VectorXd& u, const NewtonOptions& newton,
   return true;
 }
 
-void DirectSolution::solve_increment(const LoadPoint& at, const StepLabel& label, bool dynamic) {
+bool DirectSolution::solve_increment(const LoadPoint& at, const StepLabel& label, bool dynamic,
+                                     bool may_cut) {
   const AnalysisOptions& options = structure_.options();
   const ConvergenceOptions& conv = options.convergence;
   const int nc = dofs_->n_constrained();
@@ -552,22 +482,58 @@ void DirectSolution::solve_increment(const LoadPoint& at, const StepLabel& label
       (ctx_.large_deflection || ctx_.stress_stiffening || status_loop_->has_history());
   status_loop_->begin_step();
   NewtonResult result;
-  // Follower pressures load the linear part's DOFs through u, which the condensed system does
-  // not see: such steps take full Newton.
-  const bool condensed =
-      dynamic && condensation_ && !inc.follower && solve_condensed(u, newton, result);
-  if (!condensed) {
-    // Full Newton on all free DOFs (also the fallback when a condensed step left a residual
-    // the full criterion does not accept; it starts from the condensed iterate).
-    const int before = result.iterations;
-    result = NewtonRaphson(newton, ConvergenceTest(conv)).solve(*this, u);
-    result.iterations += before;
+  try {
+    // Follower pressures load the linear part's DOFs through u, which the condensed system
+    // does not see: such steps take full Newton.
+    const bool condensed =
+        dynamic && condensation_ && !inc.follower && solve_condensed(u, newton, result);
+    if (!condensed) {
+      // Full Newton on all free DOFs (also the fallback when a condensed step left a residual
+      // the full criterion does not accept; it starts from the condensed iterate).
+      const int before = result.iterations;
+      result = NewtonRaphson(newton, ConvergenceTest(conv)).solve(*this, u);
+      result.iterations += before;
+    }
+  } catch (const SolutionError& e) {  // e.g. a plastic mechanism: a smaller step may pass
+    status_loop_->end_step();
+    if (!may_cut) throw;
+    cut_reason_ = e.what();
+    status_loop_->revert();
+    factor_valid_ = false;
+    return false;
   }
   status_loop_->end_step();
   stats_.n_iterations += result.iterations;
   stats_.n_status_changes += inc.n_status_changes;
 
-  if (!result.finite || !u.head(dofs_->n_free()).allFinite()) fail_not_finite(u, label);
+  const bool finite = result.finite && u.head(dofs_->n_free()).allFinite();
+  // A contact that opened or closed within a step longer than the impact limit (T/30 of the
+  // contact frequency): the impact is not resolved, so the step is cut like a failed one.
+  const double h = dynamic ? integrator_->step() : 0.0;
+  const bool unresolved_impact = may_cut && inc.n_status_changes > 0 && impact_step_limit_ > 0.0 &&
+                                 h > impact_step_limit_ * (1 + 1e-9);
+  if (may_cut && (!finite || !result.converged || status_loop_->chattered() || unresolved_impact)) {
+    // Automatic time stepping (APDL_MODELING §9.3 item 2): the step is cut instead; the
+    // elements return to their committed states, the integrator was not advanced.
+    const std::string chatter = status_loop_->chatter_report();
+    if (!finite)
+      cut_reason_ = "the solution is not a finite number";
+    else if (!result.converged)
+      cut_reason_ = fmt::format(
+          "no convergence in {} iterations (force residual {:.3e} > {:g} x reference {:.3e}){}",
+          conv.max_iterations, result.residual_norm, conv.force_tolerance, result.reference,
+          chatter.empty() ? "" : "; status changes:" + chatter);
+    else if (status_loop_->chattered())
+      cut_reason_ = "contact status chatter (open/closed changes in the iterations):" + chatter;
+    else
+      cut_reason_ = fmt::format(
+          "{} status change(s) in a step longer than {:.4g} (T/30 of the contact frequency)",
+          inc.n_status_changes, impact_step_limit_);
+    status_loop_->revert();
+    factor_valid_ = false;
+    return false;
+  }
+  if (!finite) fail_not_finite(u, label);
   if (!result.converged) {
     const std::string chatter = status_loop_->chatter_report();
     const std::string message = fmt::format(
@@ -604,6 +570,7 @@ void DirectSolution::solve_increment(const LoadPoint& at, const StepLabel& label
   f_damp_old_ = inc.f_damp;
   acel_ = frame_acceleration(at);
   time_ = label.time;
+  return true;
 }
 
 const VectorXd& DirectSolution::inertia_of(const VectorXd& a) {
@@ -694,25 +661,6 @@ void DirectSolution::store(double time, int load_step, int substep, bool dynamic
   point.frame_acceleration = acel_;
   writer_.append(point);
   ++stats_.n_stored;
-}
-
-void DirectSolution::time_step_advice(double h) {
-  const auto contact = highest_contact_frequency(structure_.elements(), *dofs_, mass_all_);
-  if (!contact) return;
-  const double period = contact->period();
-  const double hz = contact->omega / (2.0 * M_PI);
-  if (!advice_given_) {
-    stats_.notes.push_back(fmt::format(
-        "time-step advice: highest contact frequency {:.4g} Hz (element {} closed), T = {:.4g} s, "
-        "suggested dt = T/30 = {:.4g} s",
-        hz, contact->element, period, period / 30.0));
-    advice_given_ = true;
-  }
-  if (h > period / 10.0)
-    Log::warn(
-        "dt = {:.4g} s is coarser than T/10 = {:.4g} s of the contact frequency {:.4g} Hz "
-        "(element {} closed); suggested dt = T/30 = {:.4g} s",
-        h, period / 10.0, hz, contact->element, period / 30.0);
 }
 
 }  // namespace impactfe

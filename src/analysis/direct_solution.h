@@ -12,14 +12,17 @@
 
 #include "analysis/energy_balance.h"
 #include "analysis/linear_part_condensation.h"
+#include "analysis/restart_file.h"
 #include "analysis/run_statistics.h"
 #include "analysis/structure.h"
+#include "analysis/time_step_advice.h"
 #include "assembly/loads.h"
 #include "linalg/linear_solver.h"
 #include "nonlinear/newton_raphson.h"
 #include "nonlinear/status_loop.h"
 #include "results/output_selection.h"
 #include "results/results_file.h"
+#include "time/step_control.h"
 #include "time/time_integrator.h"
 
 namespace impactfe {
@@ -47,7 +50,29 @@ class DirectSolution : private NonlinearProblem {
   VectorXd external_force(const LoadPoint& at) const;
   LoadPoint load_point(const LoadStep& step, const LoadStep* previous, double fraction,
                        double time) const;
-  void solve_increment(const LoadPoint& at, const StepLabel& label, bool dynamic);
+  /// Solves one increment and accepts it. `may_cut` (automatic time stepping): a failure
+  /// (no convergence, status chatter, a non-finite or singular solution) returns false with
+  /// `cut_reason_` set and the state untouched, instead of the SolutionError.
+  bool solve_increment(const LoadPoint& at, const StepLabel& label, bool dynamic,
+                       bool may_cut = false);
+  /// The substeps of a load step at constant Δt, or under AUTOTS (direct_solution_steps.cpp).
+  struct StepContext {
+    const LoadStep& step;
+    const LoadStep* previous;
+    const LoadStepTiming& timing;
+    bool dynamic;
+    long long later_substeps;
+    double run_end;
+  };
+  void solve_constant_steps(const StepContext& c);
+  void solve_automatic_steps(const StepContext& c, const AutoStepPlan& plan);
+  /// Gives the integrator step h (Houbolt re-samples its history on a change).
+  void change_step(double h);
+  // Restart points (direct_solution_restart.cpp): ANTYPE,,RESTART read in begin(), applied at
+  // the first load step (after its DOF numbering); RESCONTROL points written after substeps.
+  void take_restart_request();
+  void apply_restart(const LoadStep& step);
+  void save_restart_point(const LoadStep& step, int substep, bool last, double t_start);
   /// A dynamic increment on the condensed system; false when the full Newton path must take
   /// over (from the returned state), with `result` holding the condensed iterations.
   bool solve_condensed(VectorXd& u, const NewtonOptions& newton, NewtonResult& result);
@@ -132,6 +157,19 @@ class DirectSolution : private NonlinearProblem {
   std::unique_ptr<LinearPartCondensation> condensation_;
   std::string condensation_note_;
   long condensed_steps_ = 0, full_fallback_steps_ = 0;
+  // Automatic time stepping: the contact frequency of the closed gaps (the step ceiling), the
+  // reason of the last failed attempt, the last step size (Carry).
+  std::unique_ptr<ContactFrequencyEstimator> contact_frequency_;
+  std::string cut_reason_;
+  double impact_step_limit_ = 0.0;  // AUTOTS: a status change in a longer step cuts it (0: off)
+  std::optional<double> last_dt_;
+  // Continuing from a restart point: the point (until applied), the load-step numbers and the
+  // first substep of the continued load step.
+  std::unique_ptr<RestartPoint> restart_;
+  int load_step_offset_ = 0;
+  int first_substep_ = 1;
+  bool restarted_ = false;
+  bool restart_history_warned_ = false;
   bool advice_given_ = false;           // the time-step advice note is given once per analysis
   bool negative_pivot_warned_ = false;  // the negative-pivot warning is given once per analysis
 };

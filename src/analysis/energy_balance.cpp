@@ -97,4 +97,34 @@ std::string EnergyBalance::summary(double time, double kinetic) const {
       numerical_dissipation(kinetic));
 }
 
+std::vector<double> EnergyBalance::state() const {
+  std::vector<double> s{initial_kinetic_, external_work_,
+                        internal_work_,   gap_work_,
+                        damping_work_,    static_cast<double>(status_force_old_.size())};
+  for (const VectorXd& f : status_force_old_) {
+    s.push_back(static_cast<double>(f.size()));
+    s.insert(s.end(), f.data(), f.data() + f.size());
+  }
+  return s;
+}
+
+void EnergyBalance::restore(const std::vector<double>& s) {
+  IMPACTFE_CHECK(s.size() >= 6, "EnergyBalance::restore: state too short");
+  initial_kinetic_ = s[0];
+  external_work_ = s[1];
+  internal_work_ = s[2];
+  gap_work_ = s[3];
+  damping_work_ = s[4];
+  status_force_old_.assign(static_cast<std::size_t>(s[5]), VectorXd());
+  std::size_t i = 6;
+  for (VectorXd& f : status_force_old_) {
+    IMPACTFE_CHECK(i < s.size(), "EnergyBalance::restore: state too short");
+    const auto n = static_cast<Eigen::Index>(s[i++]);
+    IMPACTFE_CHECK(i + static_cast<std::size_t>(n) <= s.size(),
+                   "EnergyBalance::restore: state too short");
+    f = Eigen::Map<const VectorXd>(s.data() + i, n);
+    i += static_cast<std::size_t>(n);
+  }
+}
+
 }  // namespace impactfe

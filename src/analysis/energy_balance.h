@@ -59,6 +59,11 @@ class EnergyBalance {
   /// One line for the run summary.
   std::string summary(double time, double kinetic) const;
 
+  /// The accumulated works and the last step's status-element forces, flattened (restart
+  /// files); `restore` takes what `state` gave for the same elements.
+  std::vector<double> state() const;
+  void restore(const std::vector<double>& state);
+
  private:
   const std::vector<std::unique_ptr<Element>>& elements_;
   std::vector<std::size_t> status_elements_;

@@ -3,12 +3,14 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <map>
 
 #include "analysis/analyses.h"
 #include "analysis/direct_solution.h"
 #include "analysis/superelement_expansion.h"
 #include "core/log.h"
+#include "core/solution_control.h"
 #include "results/output_selection.h"
 
 namespace impactfe {
@@ -89,7 +91,13 @@ ResultsWriter& JobSession::writer_for(const Job& job, std::size_t step) {
             "{}: the results file of the job before /CLEAR is replaced (give the new job "
             "its own name with /FILNAME)",
             old);
-    owned_writer_ = std::make_unique<ResultsWriter>(jobname_ + ".h5", results_model(job, step));
+    // A run continued from a restart point (ANTYPE,,RESTART) adds its analysis to the results
+    // file of the run it continues.
+    const std::string path = jobname_ + ".h5";
+    if (SolutionControls::instance().restart && std::filesystem::exists(path))
+      owned_writer_ = std::make_unique<ResultsWriter>(path, ResultsWriter::Append{});
+    else
+      owned_writer_ = std::make_unique<ResultsWriter>(path, results_model(job, step));
     writer_ = owned_writer_.get();
   }
   return *writer_;
@@ -103,6 +111,11 @@ void JobSession::solve(const Job& job, std::size_t step) {
   where_ = location_of(s);
   try {
     if (!open_) {
+      const auto& restart = SolutionControls::instance().restart;
+      if (restart && (!s.analysis || !solves_incrementally(s.analysis->options)))
+        throw InputError(restart->where,
+                         "ANTYPE,,RESTART continues a static or full transient analysis only "
+                         "(reduced and mode-superposition transients solve as a whole)");
       stats_.analyses.emplace_back();
       AnalysisStatistics& current = stats_.analyses.back();
       ResultsWriter& writer = writer_for(job, step);
@@ -207,6 +220,8 @@ void JobSession::close_open() {
   writer_->set_count("substeps", static_cast<long long>(current.n_substeps));
   writer_->set_count("iterations", static_cast<long long>(current.n_iterations));
   writer_->set_count("status_changes", static_cast<long long>(current.n_status_changes));
+  if (current.n_cuts > 0)
+    writer_->set_count("time_step_cuts", static_cast<long long>(current.n_cuts));
   if (current.factor_nonzeros > 0) {  // linear solver figures (docs/results_file.md)
     writer_->set_count("solves", static_cast<long long>(current.n_solves));
     writer_->set_attribute("analyze_seconds", current.analyze_seconds);

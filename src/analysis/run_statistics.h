@@ -25,6 +25,7 @@ struct AnalysisStatistics {
   long factor_nonzeros = 0;  // nnz(L)
   long factor_bytes = 0;     // bytes of L a solve reads
   int n_status_changes = 0;
+  int n_cuts = 0;  // automatic time stepping: substeps cut (bisected) and retried
   double wall_seconds = 0.0;
   std::vector<std::string> notes;  // time-step advice, energy balance, ...
 };

@@ -10,9 +10,10 @@ double ContactFrequency::period() const {
   return 2.0 * M_PI / omega;
 }
 
-std::optional<ContactFrequency> highest_contact_frequency(
+ContactFrequencyEstimator::ContactFrequencyEstimator(
     const std::vector<std::unique_ptr<Element>>& elements, const DofMap& dofs,
-    const SparseMatrix& mass_all) {
+    const SparseMatrix& mass_all)
+    : elements_(elements) {
   // Bodies: nodes joined through elements without a status (union-find on node ids).
   std::map<int, int> parent;
   std::function<int(int)> find = [&](int n) {
@@ -32,10 +33,8 @@ std::optional<ContactFrequency> highest_contact_frequency(
     const DofKey& key = dofs.key(i);
     body_mass[{find(key.node), static_cast<int>(key.dof)}] += row_sum(i);
   }
-  std::optional<ContactFrequency> highest;
   for (std::size_t e = 0; e < elements.size(); ++e) {
-    const double k = elements[e]->contact_stiffness();
-    if (!elements[e]->has_status() || k <= 0.0) continue;
+    if (!elements[e]->has_status()) continue;
     double flexibility = 0.0;  // 1/m_I + 1/m_J
     for (int index : dofs.element_indices(e)) {
       if (index >= dofs.n_free()) continue;  // ground
@@ -43,11 +42,27 @@ std::optional<ContactFrequency> highest_contact_frequency(
       const double m = body_mass[{find(key.node), static_cast<int>(key.dof)}];
       if (m > 0.0) flexibility += 1.0 / m;
     }
-    const double omega = std::sqrt(k * flexibility);
-    if (flexibility > 0.0 && (!highest || omega > highest->omega))
-      highest = ContactFrequency{omega, elements[e]->id()};
+    if (flexibility > 0.0) members_.push_back({e, flexibility});
+  }
+}
+
+std::optional<ContactFrequency> ContactFrequencyEstimator::highest(bool closed_only) const {
+  std::optional<ContactFrequency> highest;
+  for (const Member& m : members_) {
+    if (closed_only && elements_[m.element]->status() == GapStatus::Open) continue;
+    const double k = elements_[m.element]->contact_stiffness();
+    if (k <= 0.0) continue;
+    const double omega = std::sqrt(k * m.flexibility);
+    if (!highest || omega > highest->omega)
+      highest = ContactFrequency{omega, elements_[m.element]->id()};
   }
   return highest;
+}
+
+std::optional<ContactFrequency> highest_contact_frequency(
+    const std::vector<std::unique_ptr<Element>>& elements, const DofMap& dofs,
+    const SparseMatrix& mass_all) {
+  return ContactFrequencyEstimator(elements, dofs, mass_all).highest(false);
 }
 
 }  // namespace impactfe

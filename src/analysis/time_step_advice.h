@@ -20,6 +20,25 @@ struct ContactFrequency {
   double period() const;
 };
 
+/// The bodies and their masses, found once per DOF numbering, so that the frequency of the
+/// contacts closed now costs a loop over the status elements (automatic time stepping asks
+/// after every substep). `elements`, `dofs` outlive it.
+class ContactFrequencyEstimator {
+ public:
+  ContactFrequencyEstimator(const std::vector<std::unique_ptr<Element>>& elements,
+                            const DofMap& dofs, const SparseMatrix& mass_all);
+  /// The highest contact frequency (`closed_only`: of the contacts not open now), or nullopt.
+  std::optional<ContactFrequency> highest(bool closed_only) const;
+
+ private:
+  const std::vector<std::unique_ptr<Element>>& elements_;
+  struct Member {
+    std::size_t element;
+    double flexibility;  // 1/m_I + 1/m_J of the bodies its free DOFs belong to
+  };
+  std::vector<Member> members_;  // the status elements
+};
+
 /// The highest contact frequency of the model, or nullopt when no element has a contact
 /// stiffness. `mass_all`: mass matrix over the active DOFs of `dofs`.
 std::optional<ContactFrequency> highest_contact_frequency(

@@ -1,5 +1,6 @@
-// /CLEAR, SAVE and RESUME (APDL_SCRIPTING §A.15). SAVE writes the database to a JSON file
-// `<Fname>.<Ext>` (default `<jobname>.db`) in the working directory; the geometry part reuses the
+// /CLEAR, SAVE, RESUME and RESCONTROL (APDL_SCRIPTING §A.15, APDL_MODELING §9.5). SAVE writes
+// the database to a JSON file `<Fname>.<Ext>` (default `<jobname>.db`) in the working
+// directory; the geometry part reuses the
 // superelement file's model text (io/superelement_file.h), the rest is described in
 // docs/deck_reader.md ("Database file").
 #include <fmt/format.h>
@@ -8,6 +9,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "core/solution_control.h"
 #include "deck/deck_context.h"
 #include "io/superelement_file.h"
 
@@ -20,6 +22,7 @@ void DeckReader::clear_database(const Command& c) {
   std::vector<std::string> ignored = std::move(job.ignored_commands);
   const std::string jobname = model.jobname;  // /CLEAR keeps the jobname (/FILNAME changes it)
   job = Job{};
+  SolutionControls::instance().clear();
   job.ignored_commands = std::move(ignored);
   model.dialect = dialect;
   model.jobname = jobname;
@@ -348,12 +351,71 @@ void cmd_resume(DeckReader& r, const Command& c) {
   Log::info("{}:{}: RESUME: database read from {}", c.where.file, c.where.line, path);
 }
 
+/// RESCONTROL,Action,Ldstep,Frequency (APDL_MODELING §9.5): DEFINE (default) sets the load
+/// steps (ALL, LAST, N, NONE) and substeps (LAST, N, NONE) that keep a restart point; NONE as
+/// Ldstep turns restart files off; STATUS / FILE_SUMMARY print; NORESTART / LINEAR are noted.
+void cmd_rescontrol(DeckReader& r, const Command& c) {
+  const std::string action = r.label(c, 1);
+  RestartControl& rc = SolutionControls::instance().restart_control;
+  if (action == "STATUS" || action == "FILE_SUMMARY" || action == "FILE") {
+    Log::info("{}:{}: RESCONTROL: restart points at load steps {} and substeps {}", c.where.file,
+              c.where.line,
+              rc.load_steps < 0    ? "NONE"
+              : rc.load_steps == 0 ? "LAST"
+                                   : fmt::format("every {}", rc.load_steps),
+              rc.frequency < 0    ? "NONE"
+              : rc.frequency == 0 ? "LAST"
+                                  : fmt::format("every {}", rc.frequency));
+    return;
+  }
+  if (action == "NORESTART") {
+    rc.defined = false;
+    return;
+  }
+  if (action == "LINEAR") {
+    r.warn(c, "RESCONTROL,LINEAR ignored (restart points are kept for linear runs alike)");
+    return;
+  }
+  if (!action.empty() && action != "DEFINE")
+    r.fail(c, fmt::format("bad action '{}' (DEFINE, NONE, STATUS, FILE_SUMMARY, NORESTART)",
+                          c.text(1)));
+  rc.defined = true;
+  const std::string ls = r.label(c, 2);
+  if (ls == "ALL")
+    rc.load_steps = 1;
+  else if (ls == "LAST" || ls.empty())
+    rc.load_steps = 0;
+  else if (ls == "NONE")
+    rc.load_steps = -1;
+  else {
+    const int n = r.integer(c, 2, 0);
+    if (n == 0) r.fail(c, fmt::format("bad Ldstep '{}' (ALL, LAST, NONE, N)", c.text(2)));
+    rc.load_steps = std::abs(n);  // -N: every N-th load step, as N
+  }
+  const std::string f = r.label(c, 3);
+  if (f == "LAST" || f.empty())
+    rc.frequency = 0;
+  else if (f == "NONE")
+    rc.frequency = -1;
+  else if (f == "ALL")
+    rc.frequency = 1;
+  else {
+    const int n = r.integer(c, 3, 0);
+    if (n <= 0)
+      r.fail(c, fmt::format("Frequency '{}' not supported (LAST, NONE, N > 0)", c.text(3)));
+    rc.frequency = n;
+  }
+  if (!c.blank(4) && r.integer(c, 4, -1) != -1)
+    r.warn(c, "MAXFILES ignored: every requested restart point is kept in <jobname>.rst.h5");
+}
+
 }  // namespace
 
 void register_database_commands(std::vector<CommandSpec>& t) {
   t.push_back({"/CLEAR", cmd_clear, kAnywhere});
   t.push_back({"SAVE", cmd_save, kAnywhere});
   t.push_back({"RESUME", cmd_resume, kBegin | kPrep7 | kSolu});
+  t.push_back({"RESCONTROL", cmd_rescontrol, kPrepSolu});
 }
 
 }  // namespace impactfe::deck

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/solution_control.h"
 #include "deck/deck_context.h"
 #include "deck/post_support.h"
 #include "results/output_selection.h"
@@ -61,12 +62,24 @@ void cmd_dtime(DeckReader& r, const Command& c) {
   // DTIME/DELTIM and NSUBST/ITER are alternatives: the last one given wins (KAN=5 keeps both;
   // its NITTER is not used for the step size).
   if (!(r.dialect == Dialect::Classic4x && r.kan == 5)) s.n_substeps.reset();
-  if (c.name == "DELTIM")
-    for (int f = 2; f <= 4; ++f)
-      if (!c.blank(f)) {
-        r.warn(c, "DTMIN/DTMAX/Carry ignored (constant time steps)");
-        break;
-      }
+  // DELTIM,DTIME,DTMIN,DTMAX,Carry: the limits of automatic time stepping (APDL_MODELING
+  // §9.1); they replace those of an earlier NSUBST (the last of the two wins).
+  StepControl& sc = SolutionControls::instance().current;
+  sc.n_max.reset();
+  sc.n_min.reset();
+  sc.dt_min.reset();
+  sc.dt_max.reset();
+  sc.carry = false;
+  if (c.name != "DELTIM") return;  // 4.2 DTIME has the step only
+  sc.dt_min = r.opt_real(c, 2);
+  sc.dt_max = r.opt_real(c, 3);
+  if (sc.dt_min && !(*sc.dt_min > 0.0))
+    r.fail(c, fmt::format("DTMIN {} must be positive", *sc.dt_min));
+  if (sc.dt_max && *sc.dt_max < *dt)
+    r.fail(c, fmt::format("DTMAX {} is smaller than the time step {}", *sc.dt_max, *dt));
+  if (sc.dt_min && *sc.dt_min > *dt)
+    r.fail(c, fmt::format("DTMIN {} is larger than the time step {}", *sc.dt_min, *dt));
+  sc.carry = r.on_off(c, 4, false);
 }
 
 void cmd_nsubst(DeckReader& r, const Command& c) {
@@ -75,6 +88,18 @@ void cmd_nsubst(DeckReader& r, const Command& c) {
   if (*n <= 0) r.fail(c, fmt::format("number of substeps {} must be positive", *n));
   r.model.current.n_substeps = *n;
   r.model.current.dt.reset();
+  // NSUBST,NSBSTP,NSBMX,NSBMN,Carry: NSBMX substeps give the smallest step, NSBMN the largest
+  // (APDL_MODELING §9.1); they replace the limits of an earlier DELTIM.
+  StepControl& sc = SolutionControls::instance().current;
+  sc.dt_min.reset();
+  sc.dt_max.reset();
+  sc.n_max = r.opt_int(c, 2);
+  sc.n_min = r.opt_int(c, 3);
+  if (sc.n_max && *sc.n_max < *n)
+    r.fail(c, fmt::format("NSBMX {} (most substeps) is smaller than NSBSTP {}", *sc.n_max, *n));
+  if (sc.n_min && (*sc.n_min <= 0 || *sc.n_min > *n))
+    r.fail(c, fmt::format("NSBMN {} (fewest substeps) must be in 1..NSBSTP ({})", *sc.n_min, *n));
+  sc.carry = r.on_off(c, 4, false);
 }
 
 void cmd_iter(DeckReader& r, const Command& c) {
@@ -102,9 +127,12 @@ void cmd_iter(DeckReader& r, const Command& c) {
 
 void cmd_autots(DeckReader& r, const Command& c) {
   const std::string l = r.label(c, 1);
-  if (l == "ON" || l == "AUTO" || l == "1")
-    r.warn(c, "automatic time stepping is not supported; constant steps are used (AUTOTS,OFF)");
-  else if (!(l == "OFF" || l == "0" || l.empty()))
+  // AUTOTS,ON / AUTO: bisection and step growth (APDL_MODELING §9.1, §9.3); blank = ON.
+  if (l == "ON" || l == "AUTO" || l == "1" || l.empty())
+    SolutionControls::instance().current.automatic = true;
+  else if (l == "OFF" || l == "0")
+    SolutionControls::instance().current.automatic = false;
+  else
     r.fail(c, fmt::format("bad key '{}' (ON, OFF, AUTO)", c.text(1)));
 }
 
@@ -203,9 +231,29 @@ void cmd_antype(DeckReader& r, const Command& c) {
     r.fail(c, fmt::format("analysis type '{}' not supported (STATIC, MODAL, TRANS, SUBSTR)",
                           c.text(1)));
   const std::string status = r.label(c, 2);
-  if (!status.empty() && status != "NEW")
-    r.fail(c, fmt::format("ANTYPE status '{}' not supported (only NEW)", c.text(2)));
-  if (type != r.model.options.type) r.open_analysis.reset();
+  const bool restart = status == "REST" || status == "RESTART";
+  if (!status.empty() && status != "NEW" && !restart)
+    r.fail(c, fmt::format("ANTYPE status '{}' not supported (NEW, RESTART)", c.text(2)));
+  if (restart) {
+    // Multiframe restart (APDL_MODELING §9.5): the next SOLVE continues the run saved in
+    // <jobname>.rst.h5 from the point LDSTEP, SUBSTEP (blank: the last one saved).
+    if (type != AnalysisType::Transient && type != AnalysisType::Static)
+      r.fail(c, "RESTART needs a static or full transient analysis (ANTYPE,TRANS or STATIC)");
+    const std::string action = r.label(c, 5);
+    if (!action.empty() && action != "CONT" && action != "CONTINUE")
+      r.fail(c, fmt::format("restart action '{}' not supported (CONTINUE)", c.text(5)));
+    RestartRequest q;
+    q.load_step = r.opt_int(c, 3);
+    q.substep = r.opt_int(c, 4);
+    if ((q.load_step && *q.load_step <= 0) || (q.substep && *q.substep <= 0))
+      r.fail(c, "LDSTEP and SUBSTEP must be positive");
+    q.where = c.where;
+    SolutionControls::instance().restart = q;
+    r.open_analysis.reset();  // the restarted run is an analysis of its own
+  } else {
+    SolutionControls::instance().restart.reset();
+    if (type != r.model.options.type) r.open_analysis.reset();
+  }
   r.model.options.type = type;
 }
 
@@ -435,6 +483,7 @@ LoadStep snapshot(DeckReader& r, const Command& c, int number) {
   LoadStep s = r.model.current;
   s.number = number;
   s.where = c.where;
+  SolutionControls::instance().record(s.where, number);
   return s;
 }
 

@@ -28,6 +28,15 @@ NewtonResult NewtonRaphson::solve(NonlinearProblem& problem, VectorXd& u) const 
     // accepted on a relative criterion alone.
     if (!unsettled && test_.force_converged(residual_norm, reference) &&
         (iteration > 0 || residual_norm == 0.0 || n == 0)) {
+      // A predictor in exact balance (free flight) is accepted only with the statuses it has:
+      // otherwise a gap it penetrates would stay open (no correction, so no status update,
+      // would follow). A change re-evaluates the residual at the same iterate.
+      if (iteration == 0 && n > 0 && problem.update_status(u)) {
+        unsettled = true;
+        result.history.clear();
+        --iteration;
+        continue;
+      }
       result.converged = true;
       break;
     }

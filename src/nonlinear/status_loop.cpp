@@ -29,11 +29,13 @@ int StatusLoop::update(const VectorXd& u, const StepLabel& where) {
     ++n_changes_;
     if (++flips_[e] == chatter_limit_) {
       elements_[e]->freeze_status(true);
-      Log::warn(
-          "load step {} substep {} (t = {:g}): element {} changed status {} times (open/closed "
-          "chatter); status frozen for the rest of the step. A smaller time step (DELTIM / DTIME) "
-          "resolves the contact",
-          where.load_step, where.substep, where.time, elements_[e]->id(), chatter_limit_);
+      if (!quiet_freeze_)
+        Log::warn(
+            "load step {} substep {} (t = {:g}): element {} changed status {} times (open/closed "
+            "chatter); status frozen for the rest of the step. A smaller time step (DELTIM / "
+            "DTIME) "
+            "resolves the contact",
+            where.load_step, where.substep, where.time, elements_[e]->id(), chatter_limit_);
     }
   }
   return changed;
@@ -54,6 +56,12 @@ void StatusLoop::commit(const VectorXd& u) {
 
 void StatusLoop::revert() {
   for (std::size_t e : committed_) elements_[e]->revert();
+}
+
+bool StatusLoop::chattered() const {
+  for (const auto& [e, count] : flips_)
+    if (count >= chatter_limit_) return true;
+  return false;
 }
 
 std::string StatusLoop::chatter_report() const {

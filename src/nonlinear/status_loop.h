@@ -47,6 +47,11 @@ class StatusLoop {
   /// small deflection, so Newton must re-form it.
   bool has_history() const { return has_history_; }
 
+  /// True when some element reached the chatter limit in this step (automatic time stepping
+  /// cuts the step instead of accepting it with a frozen status).
+  bool chattered() const;
+  /// Automatic time stepping reports the cut, not the freeze: no warning when freezing.
+  void set_quiet_freeze(bool quiet) { quiet_freeze_ = quiet; }
   /// " 12(3x) 14(2x)": elements that changed status at least twice in this step.
   std::string chatter_report() const;
   /// Status changes since construction.
@@ -61,6 +66,7 @@ class StatusLoop {
   bool has_history_ = false;
   std::map<std::size_t, int> flips_;  // element index -> status changes in this step
   int n_changes_ = 0;
+  bool quiet_freeze_ = false;
   VectorXd ue_;  // scratch
 };
 

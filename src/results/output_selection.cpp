@@ -84,6 +84,21 @@ OutputSelection output_selection(const OutputControl& f, int substep, int n_subs
   return out;
 }
 
+OutputSelection output_selection_between(const OutputControl& f) {
+  // k = -1 is neither the initial state, nor the last substep, nor a multiple of any n > 1:
+  // only the specifications of frequency 1 (ALL) fire.
+  return output_selection(f, -1, 0);
+}
+
+std::vector<int> output_strides(const OutputControl& f) {
+  std::vector<int> strides;
+  if (f.every > 1) strides.push_back(f.every);
+  for (const auto& specs : f.items)
+    for (const OutputSpec& spec : specs)
+      if (spec.every > 1) strides.push_back(spec.every);
+  return strides;
+}
+
 OutputItem element_item_category(const std::string& name) {
   if (starts_with(name, "EPEL")) return OutputItem::EPEL;
   for (const char* stress : {"SX", "SY", "SZ", "S1", "S2", "S3", "SINT", "SEQV", "SAXL"})

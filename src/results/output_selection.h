@@ -35,6 +35,14 @@ struct OutputSelection {
 /// transient, written for every item that is not NONE.
 OutputSelection output_selection(const OutputControl& control, int substep, int n_substeps);
 
+/// Automatic time stepping (docs/solution_control.md): a substep the step control took between
+/// the requested times writes only the items of frequency ALL (every substep taken); the
+/// requested times themselves (the nominal grid j·Δt₀, j a multiple of a frequency n > 1, and
+/// the load-step end) use output_selection with the grid index j.
+OutputSelection output_selection_between(const OutputControl& control);
+/// The OUTRES frequencies n > 1 of a load step (the strides of its requested times).
+std::vector<int> output_strides(const OutputControl& control);
+
 /// OUTRES item of an element result column, by its name: EPEL... → EPEL; stresses (SX.., SY..,
 /// SZ.., S1 S2 S3, SINT, SEQV.., SAXL) → STRS; everything else (forces, moments per length,
 /// status, deflections, lengths) → MISC.

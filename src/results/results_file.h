@@ -63,6 +63,10 @@ class ResultsWriter {
  public:
   /// Creates (truncates) the file and writes the model section (nodes, elements, title).
   ResultsWriter(const std::string& path, const Model& model);
+  /// Opens an existing results file to add analyses after those in it (a run continued from a
+  /// restart point, docs/solution_control.md): its model section is kept as written.
+  struct Append {};
+  ResultsWriter(const std::string& path, Append);
   ~ResultsWriter();
   ResultsWriter(const ResultsWriter&) = delete;
   ResultsWriter& operator=(const ResultsWriter&) = delete;

@@ -558,6 +558,36 @@ ResultsWriter::ResultsWriter(const std::string& path, const Model& model)
   });
 }
 
+ResultsWriter::ResultsWriter(const std::string& path, Append) : impl_(std::make_unique<Impl>()) {
+  h5::silence_errors();
+  Impl& m = *impl_;
+  m.path = path;
+  Handle fapl = h5::file_access_checksummed();
+  const hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDWR, fapl);
+  if (f < 0) {
+    const std::string detail = h5::error_detail();
+    throw SolutionError(fmt::format("cannot open results file '{}' to continue it{}", path,
+                                    detail.empty() ? "" : ": " + detail));
+  }
+  m.file = Handle(f);
+  try {
+    m.title = h5::read_string_attribute(m.file, "title");
+    m.jobname = h5::read_string_attribute(m.file, "jobname");
+    Handle g = h5::open_group(m.file, "model");
+    m.node_ids = h5::read_ints(g, "node_ids");
+    m.n_elements = h5::read_ints(g, "element_ids").size();
+    while (h5::exists(m.file, fmt::format("analysis_{}", m.n_analyses + 1))) ++m.n_analyses;
+  } catch (const std::runtime_error& e) {
+    throw SolutionError(fmt::format("results file '{}': {}", path, e.what()));
+  }
+  Impl* impl = impl_.get();
+  register_live_writer(path, impl, [impl] {
+    if (impl->failed) return;
+    const Impl::Guard guard(*impl, impl->block_bytes(impl->n_t - impl->synced));
+    impl->sync(false);
+  });
+}
+
 ResultsWriter::~ResultsWriter() {
   unregister_live_writer(impl_->path, impl_.get());
   if (impl_->failed) return;  // the file keeps its last flushed state

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/errors.h"
+#include "time/integrator_history.h"
 #include "time/time_integrator.h"
 
 namespace impactfe {
@@ -35,7 +36,7 @@ GeneralizedAlphaParameters GeneralizedAlphaParameters::hht(double alpha_f, doubl
 
 namespace {
 
-class GeneralizedAlpha final : public TimeIntegrator {
+class GeneralizedAlpha final : public TimeIntegrator, public IntegratorHistory {
  public:
   explicit GeneralizedAlpha(const GeneralizedAlphaParameters& p) : p_(p) {
     if (!(p.beta > 0.0)) {
@@ -110,6 +111,16 @@ class GeneralizedAlpha final : public TimeIntegrator {
   const Eigen::VectorXd& u() const override { return u_; }
   const Eigen::VectorXd& v() const override { return v_; }
   const Eigen::VectorXd& a() const override { return a_; }
+
+  std::vector<Eigen::VectorXd> history() const override { return {u_, v_, a_}; }
+  void restore(const std::vector<Eigen::VectorXd>& s, double h) override {
+    IMPACTFE_CHECK(s.size() == 3 && h > 0.0, "GeneralizedAlpha::restore: expected u, v, a, h > 0");
+    h_ = h;
+    u_ = s[0];
+    v_ = s[1];
+    a_ = s[2];
+    started_ = true;
+  }
 
   const GeneralizedAlphaParameters& parameters() const { return p_; }
 

@@ -5,6 +5,7 @@
 
 #include "core/errors.h"
 #include "core/log.h"
+#include "time/integrator_history.h"
 #include "time/time_integrator.h"
 
 namespace impactfe {
@@ -17,7 +18,7 @@ void require_positive_step(double h) {
   }
 }
 
-class Houbolt final : public TimeIntegrator {
+class Houbolt final : public TimeIntegrator, public IntegratorHistory {
  public:
   std::string name() const override { return "Houbolt"; }
 
@@ -85,6 +86,19 @@ class Houbolt final : public TimeIntegrator {
   const Eigen::VectorXd& u() const override { return u_; }
   const Eigen::VectorXd& v() const override { return v_; }
   const Eigen::VectorXd& a() const override { return a_; }
+
+  std::vector<Eigen::VectorXd> history() const override { return {u_, v_, a_, u_m1_, u_m2_}; }
+  void restore(const std::vector<Eigen::VectorXd>& s, double h) override {
+    require_positive_step(h);
+    IMPACTFE_CHECK(s.size() == 5, "Houbolt::restore: expected u, v, a, u_{n-1}, u_{n-2}");
+    h_ = h;
+    u_ = s[0];
+    v_ = s[1];
+    a_ = s[2];
+    u_m1_ = s[3];
+    u_m2_ = s[4];
+    started_ = true;
+  }
 
  private:
   void require_started() const {
