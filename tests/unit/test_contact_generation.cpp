@@ -124,6 +124,10 @@ ALLSEL
     if (e.type != 3 && e.type != 4) continue;
     const auto element = create_element(ctx, e);
     EXPECT_EQ(element->n_dofs(), e.type == 3 ? 6 : 15);
+    const ElementTypeDescriptor& d = element_type_descriptor(m.element_types.at(e.type));
+    EXPECT_EQ(element->result_names(), d.result_names);
+    EXPECT_EQ(element->family(), d.family);
+    EXPECT_EQ(element->has_status(), d.has_status);
     (e.type == 3 ? k175 : k174) += element->contact_stiffness();
   }
   EXPECT_GT(k175, 0.0);
