@@ -42,6 +42,7 @@ const std::vector<CommandSpec>& command_table() {
     register_solid_model_commands(t);
     register_solid_edit_commands(t);
     register_mesh_commands(t);
+    register_contact_commands(t);
     register_entity_selection_commands(t);
     register_mesh_selection_commands(t);
     register_surface_load_commands(t);

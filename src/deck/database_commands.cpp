@@ -36,6 +36,7 @@ void DeckReader::clear_database(const Command& c) {
   command_file.path.clear();
   vector_settings = VectorSettings{};
   current_type = current_real = current_mat = 1;
+  modeling.target_shape.clear();
   current_secnum = dialect == Dialect::Modern ? 1 : 0;
   secnum_given = false;
   last_real_set = last_section = 0;

@@ -122,6 +122,7 @@ void register_csys_commands(std::vector<CommandSpec>& table);
 void register_solid_model_commands(std::vector<CommandSpec>& table);
 void register_solid_edit_commands(std::vector<CommandSpec>& table);
 void register_mesh_commands(std::vector<CommandSpec>& table);
+void register_contact_commands(std::vector<CommandSpec>& table);
 void register_entity_selection_commands(std::vector<CommandSpec>& table);
 void register_mesh_selection_commands(std::vector<CommandSpec>& table);
 void register_surface_load_commands(std::vector<CommandSpec>& table);
@@ -301,6 +302,9 @@ inline constexpr long long kMaxEntityNumber = 2'000'000'000;
 /// duplicates: an upper bound).
 void check_model_size(const DeckReader& r, const Command& c, long long new_nodes,
                       long long new_elements);
+/// Fails at `c` when the active type is TARGE170 and `nodes` (E/EN fields) do not make the shape
+/// the last TSHAP set (APDL_MODELING §8.4; deck/contact_commands.cpp).
+void check_target_shape(DeckReader& r, const Command& c, const std::vector<int>& nodes);
 /// Fails at `c` when a generated node or element number is outside 1..kMaxEntityNumber.
 int checked_number(const DeckReader& r, const Command& c, long long number, const char* what);
 

@@ -14,6 +14,8 @@ struct ModelingState {
   std::optional<std::pair<int, std::string>> table;
   std::size_t table_temperature = 0;
   int esys = 0;  // ESYS pointer
+  /// TSHAP shape of the TARGE170 elements that E/EN define next ("" = from the node count).
+  std::string target_shape;
 };
 
 }  // namespace impactfe::deck

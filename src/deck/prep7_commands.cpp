@@ -228,7 +228,9 @@ void cmd_e(DeckReader& r, const Command& c) {
   }
   if (c.last_given() == 0) r.fail(c, "node list missing");
   check_model_size(r, c, 0, 1);
-  r.add_element(c, next_element_id(r), node_fields(r, c, 1));
+  std::vector<int> nodes = node_fields(r, c, 1);
+  check_target_shape(r, c, nodes);
+  r.add_element(c, next_element_id(r), std::move(nodes));
 }
 
 void cmd_en(DeckReader& r, const Command& c) {
@@ -236,7 +238,9 @@ void cmd_en(DeckReader& r, const Command& c) {
   if (!id) r.fail(c, "element number missing");
   if (c.last_given() < 2) r.fail(c, "node list missing");
   if (r.model.elements.count(*id) == 0) check_model_size(r, c, 0, 1);
-  r.add_element(c, *id, node_fields(r, c, 2));
+  std::vector<int> nodes = node_fields(r, c, 2);
+  check_target_shape(r, c, nodes);
+  r.add_element(c, *id, std::move(nodes));
 }
 
 void cmd_se(DeckReader& r, const Command& c) {

@@ -192,6 +192,103 @@ std::shared_ptr<const TargetSurface> rigid_target(const ElementBuildContext& ctx
   return cache.surface;
 }
 
+RigidTargetPoint::RigidTargetPoint(const char* family, int id, int node, const Vec3& x,
+                                   std::shared_ptr<const TargetSurface> target, double reach,
+                                   double offset, const ContactLawData& data)
+    : ContactPoint(id, target->pilot(), node, data),
+      family_(family),
+      x_(x),
+      target_(std::move(target)),
+      reach_(reach),
+      offset_(offset) {
+  initialize();
+}
+
+bool RigidTargetPoint::locate(const Eigen::VectorXd& u) {
+  const Vec3 d(u(3) - u(0), u(4) - u(1), u(5) - u(2));
+  const auto hit = target_->closest(x_ + d, reach_);
+  if (!hit) return false;
+  data_.normal = hit->normal;
+  data_.gap0 = hit->gap - offset_ - hit->normal.dot(d);
+  return true;
+}
+
+std::unique_ptr<RigidTargetPoint> rigid_target_point(const ElementBuildContext& ctx,
+                                                     const ElementRecord& record, const Node& node,
+                                                     const char* family, const char* name,
+                                                     double share, double area) {
+  const Model& model = ctx.model;
+  const ElementType& type = line_data::element_type(model, record);
+  const auto fail = [&](const std::string& what) {
+    return InputError(record.where, fmt::format("element {} ({}): {}", record.id, name, what));
+  };
+  for (int k = 1; k < static_cast<int>(type.keyopt.size()); ++k) {
+    const int v = type.key(k);
+    const bool ok = v == 0 || (k == 2 && v == 1) || (k == 4 && v <= 3) || (k == 10 && v <= 2) ||
+                    (k == 12 && v <= 6);
+    if (!ok || v < 0)
+      throw fail(
+          fmt::format("KEYOPT({}) = {} is not supported (KEYOPT(2) 0 augmented "
+                      "Lagrange / 1 penalty, KEYOPT(4) 0-3 (nodal detection), KEYOPT(10) "
+                      "0-2 (constant stiffness), KEYOPT(12) 0-6; the others 0)",
+                      k, v));
+  }
+  ContactLawData data;
+  data.augmented = type.key(2) == 0;
+  data.behaviour = static_cast<ContactBehaviour>(type.key(12));
+
+  const RealSet& real = line_data::real_set(model, record, family);
+  // 3 FKN, 4 FTOLN, 6 PINB, 10 CNOF, 12 FKT are read; 14 and beyond are thermal (ignored).
+  for (int i : {1, 2, 5, 7, 8, 9, 11, 13})
+    if (real.get(i) != 0.0)
+      throw fail(
+          fmt::format("real constant {} of set {} is not supported (impactfe reads 3 FKN, "
+                      "4 FTOLN, 6 PINB, 10 CNOF, 12 FKT)",
+                      i, record.real));
+  std::shared_ptr<const TargetSurface> target = rigid_target(ctx, record);
+  if (target->pilot() == node.id) throw fail("the contact node is the target's pilot node");
+
+  const double depth = attached_depth(ctx, node.id);
+  const auto length = [&](double value, double fallback, const char* what) {
+    const double v = value != 0.0 ? value : fallback;
+    if (v < 0.0) return -v;
+    if (!(depth > 0.0))
+      throw fail(
+          fmt::format("{} is a factor on the depth of the underlying elements, and none "
+                      "with a volume is attached to node {}: give it as a negative "
+                      "(absolute) value",
+                      what, node.id));
+    return v * depth;
+  };
+  const double reach = length(real.get(6), 2.0, "PINB (real constant 6)");
+  data.toln = real.get(4) < 0.0 || depth > 0.0 ? length(real.get(4), 0.1, "FTOLN") : 0.0;
+
+  // The initial normal: the nearest facet within the pinball, else the first facet.
+  const auto hit = target->closest(node.x, reach);
+  const Vec3 n0 = hit ? hit->normal : target->triangles().front().normal;
+  // Absolute stiffnesses: force/length per node, or force/length³ over the tributary area.
+  const double per = area > 0.0 ? area : 1.0;
+  const double fkn = real.get(3) != 0.0 ? real.get(3) : 1.0;
+  if (fkn < 0.0) {
+    data.kn = -fkn * per;
+  } else {
+    const double base = attached_stiffness(ctx, node.id, n0);
+    if (!(base > 0.0))
+      throw fail(
+          fmt::format("FKN > 0 is a factor on the stiffness at node {}, and no element "
+                      "with stiffness is attached: give a negative (absolute) FKN",
+                      node.id));
+    data.kn = fkn * base * share;
+  }
+  const double fkt = real.get(12) != 0.0 ? real.get(12) : 1.0;
+  data.kt = fkt < 0.0 ? -fkt * per : fkt * data.kn;
+  const auto mat = model.materials.find(record.mat);
+  data.mu = mat == model.materials.end() ? 0.0 : mat->second.get("MU", 0.0);
+  if (data.mu < 0.0) throw fail(fmt::format("MU of material {} is negative", record.mat));
+  return std::make_unique<RigidTargetPoint>(family, record.id, node.id, node.x, std::move(target),
+                                            reach, real.get(10), data);
+}
+
 namespace {
 
 /// A TARGE170 element carries nothing itself: its facets act through the contact elements of

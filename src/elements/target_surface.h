@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/coordinate_system.h"
+#include "elements/contact_point.h"
 #include "elements/element.h"
 
 namespace impactfe {
@@ -50,5 +51,40 @@ class TargetSurface {
 /// InputError at `record`'s location when the set has no target facets or no single pilot.
 std::shared_ptr<const TargetSurface> rigid_target(const ElementBuildContext& ctx,
                                                   const ElementRecord& record);
+
+/// One contact node against the rigid target of its real set (CONTA175, and each face node of a
+/// CONTA174): the point law of elements/contact_point.h with I = the target's pilot node and
+/// J = the contact node. Before each status update the search finds the facet nearest to
+/// y = X + u_node − u_pilot (the node in the target's frame) and sets the normal and
+/// g₀ = distance − CNOF − n·(u_node − u_pilot).
+class RigidTargetPoint final : public ContactPoint {
+ public:
+  RigidTargetPoint(const char* family, int id, int node, const Vec3& x,
+                   std::shared_ptr<const TargetSurface> target, double reach, double offset,
+                   const ContactLawData& data);
+  const char* family() const override { return family_; }
+
+ protected:
+  bool locate(const Eigen::VectorXd& u) override;
+
+ private:
+  const char* family_;
+  Vec3 x_;
+  std::shared_ptr<const TargetSurface> target_;
+  double reach_;   // pinball radius
+  double offset_;  // CNOF
+};
+
+/// The law of contact node `node` of `record` (a CONTA175, or a CONTA174 face node) against the
+/// rigid target of its real set, from its type's KEYOPTs, its real constants (3 FKN, 4 FTOLN,
+/// 6 PINB, 10 CNOF, 12 FKT) and MP,MU of its MAT (docs/elements/conta175.md). A positive FKN
+/// scales the stiffness attached to the node along the initial normal, times `share` (the
+/// node's part of it that this element carries); a negative FKN or FKT is absolute: force/length
+/// when `area` = 0 (CONTA175), force/length³ times `area` (a CONTA174 node's tributary area).
+/// InputError names `record` and `name` for unsupported KEYOPTs or real constants.
+std::unique_ptr<RigidTargetPoint> rigid_target_point(const ElementBuildContext& ctx,
+                                                     const ElementRecord& record, const Node& node,
+                                                     const char* family, const char* name,
+                                                     double share, double area);
 
 }  // namespace impactfe

@@ -1,0 +1,142 @@
+// Contact-pair generation (APDL_MODELING §4.5 ESURF, §8.4 contact pairs): ESURF overlays target
+// facets (TARGE170), contact faces (CONTA174) or contact nodes (CONTA175) of the current
+// TYPE/REAL/MAT on the exterior
+// faces of the selected elements; TSHAP sets the shape of the TARGE170 elements E defines next.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "deck/deck_context.h"
+#include "elements/element_registry.h"
+#include "geometry/element_faces.h"
+
+namespace impactfe::deck {
+
+namespace {
+
+int next_element_number(const DeckReader& r) {
+  return r.model.elements.empty() ? 1 : r.model.elements.rbegin()->first + 1;
+}
+
+const std::string& current_type_name(DeckReader& r, const Command& c) {
+  const auto it = r.model.element_types.find(r.current_type);
+  if (it == r.model.element_types.end())
+    r.fail(c,
+           fmt::format("element type {} is not defined (ET missing before TYPE)", r.current_type));
+  return it->second.ansys_name;
+}
+
+/// ESURF,XNODE,Tlab,Shape (APDL_MODELING §4.5): the exterior faces of the selected elements whose
+/// nodes are all selected (the SF,ALL face rule: a face shared by two selected elements is
+/// interior) get elements of the current TYPE/REAL/MAT/SECNUM:
+/// * TARGE170: one target facet per face, in the face-node order of the underlying element, whose
+///   right-hand-rule normal points out of a solid (brick faces) — towards the contact bodies of a
+///   target meshed on the top of a ground body [A]; Tlab = BOTTOM reverses it;
+/// * CONTA174: one contact face per face, nodes as for TARGE170;
+/// * CONTA175: one contact element per node of those faces, each node once, skipping nodes that
+///   already carry a CONTA175 element of the current TYPE and REAL (a repeated ESURF adds none).
+void cmd_esurf(DeckReader& r, const Command& c) {
+  if (!c.blank(1)) r.fail(c, "XNODE (field 1) is not supported: leave it blank");
+  if (!c.blank(3)) r.fail(c, "Shape (field 3) is not supported: leave it blank");
+  const std::string tlab = r.label(c, 2);
+  if (!tlab.empty() && tlab != "TOP" && tlab != "BOTTOM")
+    r.fail(c, fmt::format("Tlab must be TOP (default) or BOTTOM, not {}", c.text(2)));
+  const std::string name = current_type_name(r, c);
+  const bool target = name == "TARGE170", surface = name == "CONTA174";
+  if (!target && !surface && name != "CONTA175")
+    r.fail(c, fmt::format("the current TYPE {} is {}: ESURF generates TARGE170 target facets, "
+                          "CONTA174 contact faces or CONTA175 contact nodes",
+                          r.current_type, name));
+  const ModelSelection& sel = r.model.selection;
+  const auto faces = geometry::faces_on_nodes(
+      r.model, [&](int n) { return sel.nodes.selected(n); },
+      [&](int e) { return sel.elements.selected(e); });
+  if (faces.empty())
+    r.fail(c,
+           "no exterior face of the selected elements has all its nodes selected (select the "
+           "nodes of the surface and the elements under it, e.g. NSEL then ESLN,S,0)");
+
+  std::vector<std::vector<int>> created;
+  if (target || surface) {
+    for (const FaceKey& f : faces) {
+      std::vector<int> nodes;
+      for (int n : geometry::element_face_nodes(r.model, r.model.elements.at(f.element), f.face))
+        if (std::find(nodes.begin(), nodes.end(), n) == nodes.end()) nodes.push_back(n);
+      if (tlab == "BOTTOM") std::reverse(nodes.begin(), nodes.end());
+      created.push_back(std::move(nodes));
+    }
+  } else {
+    std::set<int> nodes;
+    for (const FaceKey& f : faces)
+      for (int n : geometry::element_face_nodes(r.model, r.model.elements.at(f.element), f.face))
+        nodes.insert(n);
+    for (const auto& [id, e] : r.model.elements)
+      if (e.type == r.current_type && e.real == r.current_real && e.nodes.size() == 1)
+        nodes.erase(e.nodes.front());
+    for (int n : nodes) created.push_back({n});
+  }
+  if (created.empty()) {
+    r.warn(c, fmt::format("every node of the {} selected faces already carries a {} of TYPE {} "
+                          "and REAL {}: no element generated",
+                          faces.size(), name, r.current_type, r.current_real));
+    return;
+  }
+  check_model_size(r, c, 0, static_cast<long long>(created.size()));
+  const int first = next_element_number(r);
+  checked_number(r, c, static_cast<long long>(first) + static_cast<long long>(created.size()) - 1,
+                 "element");
+  for (std::size_t k = 0; k < created.size(); ++k)
+    r.add_element(c, first + static_cast<int>(k), created[k]);
+  Log::info("{}:{}: ESURF: {} {} elements {} to {} (TYPE {}, REAL {}, MAT {}) on {} faces",
+            c.where.file, c.where.line, created.size(), name, first,
+            first + static_cast<int>(created.size()) - 1, r.current_type, r.current_real,
+            r.current_mat, faces.size());
+}
+
+/// TSHAP,Shape (APDL_MODELING §8.4): the shape of the TARGE170 elements that E/EN define next.
+/// impactfe's targets are rigid and faceted: TRIA (3 nodes), QUAD (4) and PILO (the pilot node,
+/// 1) [A: the spec rejects PILO; impactfe targets move with their pilot node, so accepting it is
+/// what MAPDL decks need]. Blank: back to the shape from the node count.
+void cmd_tshap(DeckReader& r, const Command& c) {
+  const std::string shape = r.label(c, 1);
+  if (shape.empty() || shape == "TRIA" || shape == "QUAD" || shape == "PILO") {
+    r.modeling.target_shape = shape;
+    return;
+  }
+  if (shape == "LINE" || shape == "PARA" || shape == "ARC" || shape == "CARC" || shape == "CIRC")
+    r.fail(c, fmt::format("{} is a 2-D (TARGE169) target shape: 2-D contact is not implemented",
+                          shape));
+  if (shape == "TRI6" || shape == "QUA8")
+    r.fail(c, fmt::format("{}: higher-order target facets are not implemented (use TRIA or QUAD)",
+                          shape));
+  if (shape == "CYLI" || shape == "CONE" || shape == "SPHE" || shape == "POINT")
+    r.fail(c, fmt::format("{}: analytic rigid primitives are not implemented (mesh the target "
+                          "with TRIA or QUAD facets and a PILO node)",
+                          shape));
+  r.fail(c, fmt::format("unknown target shape {} (TRIA, QUAD or PILO)", c.text(1)));
+}
+
+}  // namespace
+
+void check_target_shape(DeckReader& r, const Command& c, const std::vector<int>& nodes) {
+  const std::string& shape = r.modeling.target_shape;
+  if (shape.empty()) return;
+  const auto it = r.model.element_types.find(r.current_type);
+  if (it == r.model.element_types.end() || it->second.ansys_name != "TARGE170") return;
+  std::size_t given = nodes.size();
+  while (given > 0 && nodes[given - 1] == 0) --given;
+  const std::size_t wanted = shape == "PILO" ? 1 : shape == "TRIA" ? 3 : 4;
+  if (given != wanted)
+    r.fail(c, fmt::format("TSHAP,{} makes a TARGE170 of {} node{}, {} given", shape, wanted,
+                          wanted == 1 ? "" : "s", given));
+}
+
+void register_contact_commands(std::vector<CommandSpec>& t) {
+  t.push_back({"ESURF", cmd_esurf, kPrep7});
+  t.push_back({"TSHAP", cmd_tshap, kPrep7});
+}
+
+}  // namespace impactfe::deck

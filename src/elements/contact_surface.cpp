@@ -1,0 +1,201 @@
+/// CONTA174 surface contact against a rigid TARGE170 target (APDL_MODELING §8.4) with detection
+/// at the corner nodes of its face [A: the spec names Gauss-point detection as MAPDL's default;
+/// impactfe detects at the nodes for every KEYOPT(4)]: each distinct corner node is a contact
+/// point of CONTA175's law (elements/target_surface.h RigidTargetPoint: penalty / augmented
+/// Lagrange, Coulomb friction, KEYOPT(12)) against the target of the element's real set.
+///
+/// Stiffness per point: the face's tributary area of the node, a = A/n (A the face area, n its
+/// corner count — the lumped nodal weights of a bilinear face). A positive FKN scales the
+/// stiffness attached to the node by a / Σa, the sum over the CONTA174 elements of the same TYPE
+/// and REAL at that node, so a node shared by several faces carries in total exactly the
+/// stiffness a CONTA175 at that node would (the same answer as CONTA175 on the same nodes); a
+/// negative FKN is MAPDL's absolute force/length³, times a. Midside nodes (8-node faces) are not
+/// supported.
+#include <fmt/format.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+
+#include "elements/element_registry.h"
+#include "elements/line_element_data.h"
+#include "elements/target_surface.h"
+
+namespace impactfe {
+
+namespace {
+
+constexpr const char* kFamily = "SurfaceContact";
+
+/// Distinct corner nodes (the first four positions; E repeats the last node of a short list).
+std::vector<int> corners(const ElementRecord& record) {
+  std::vector<int> out;
+  for (std::size_t k = 0; k < std::min<std::size_t>(4, record.nodes.size()); ++k)
+    if (std::find(out.begin(), out.end(), record.nodes[k]) == out.end())
+      out.push_back(record.nodes[k]);
+  return out;
+}
+
+/// Area of the face through `nodes` (a triangle, or a quadrilateral from its diagonals).
+double face_area(const Model& model, const std::vector<int>& nodes) {
+  std::vector<Vec3> x;
+  for (int n : nodes) x.push_back(model.nodes.at(n).x);
+  if (x.size() == 3) return 0.5 * (x[1] - x[0]).cross(x[2] - x[0]).norm();
+  return 0.5 * (x[2] - x[0]).cross(x[3] - x[1]).norm();
+}
+
+class SurfaceContact final : public Element {
+ public:
+  SurfaceContact(int id, int pilot, std::vector<std::unique_ptr<RigidTargetPoint>> points)
+      : Element(id), points_(std::move(points)) {
+    for (Dof d : {Dof::UX, Dof::UY, Dof::UZ}) dofs_.push_back({pilot, d});
+    for (const auto& p : points_)
+      for (Dof d : {Dof::UX, Dof::UY, Dof::UZ}) dofs_.push_back({p->dofs()[3].node, d});
+  }
+  const char* family() const override { return kFamily; }
+  const std::vector<DofKey>& dofs() const override { return dofs_; }
+  bool is_nonlinear(const ElementContext&) const override { return true; }
+
+  void tangent(const ElementContext& ctx, const Eigen::VectorXd& u, Eigen::MatrixXd& K,
+               Eigen::VectorXd& f_int) const override {
+    K.setZero(n_dofs(), n_dofs());
+    f_int.setZero(n_dofs());
+    Eigen::MatrixXd k;
+    Eigen::VectorXd f;
+    for (std::size_t p = 0; p < points_.size(); ++p) {
+      points_[p]->tangent(ctx, local(u, p), k, f);
+      const int j = 3 + 3 * static_cast<int>(p);
+      for (int a = 0; a < 2; ++a) {
+        const int ra = a == 0 ? 0 : j;
+        f_int.segment<3>(ra) += f.segment<3>(3 * a);
+        for (int b = 0; b < 2; ++b)
+          K.block<3, 3>(ra, b == 0 ? 0 : j) += k.block<3, 3>(3 * a, 3 * b);
+      }
+    }
+  }
+  void mass(const ElementContext&, Eigen::MatrixXd& M) const override {
+    M.setZero(n_dofs(), n_dofs());
+  }
+
+  bool has_status() const override { return true; }
+  bool update_status(const ElementContext& ctx, const Eigen::VectorXd& u) override {
+    bool changed = false;
+    for (std::size_t p = 0; p < points_.size(); ++p)
+      changed = points_[p]->update_status(ctx, local(u, p)) || changed;
+    return changed;
+  }
+  void commit(const Eigen::VectorXd& u) override {
+    for (std::size_t p = 0; p < points_.size(); ++p) points_[p]->commit(local(u, p));
+  }
+  void revert() override {
+    for (auto& p : points_) p->revert();
+  }
+  void freeze_status(bool frozen) override {
+    for (auto& p : points_) p->freeze_status(frozen);
+  }
+  /// Sliding when a point slides, else closed when a point is closed, else open.
+  GapStatus status() const override {
+    GapStatus s = GapStatus::Open;
+    for (const auto& p : points_) {
+      const GapStatus q = p->status();
+      if (q == GapStatus::Sliding) return q;
+      if (q == GapStatus::Closed) s = q;
+    }
+    return s;
+  }
+  double contact_stiffness() const override {
+    double k = 0.0;
+    for (const auto& p : points_) k += p->contact_stiffness();
+    return k;
+  }
+
+  const std::vector<std::string>& result_names() const override { return ContactPoint::names(); }
+  /// Over the points: STAT the largest (3 sticking > 2 sliding > 0 open), FN and FT the sums,
+  /// PENE the largest, GAP the smallest, SLIDE the largest.
+  void results(const ElementContext& ctx, const Eigen::VectorXd& u, const Eigen::VectorXd& v,
+               ElementResultValues& out) const override {
+    ElementResultValues r;
+    for (std::size_t p = 0; p < points_.size(); ++p) {
+      points_[p]->results(ctx, local(u, p), local(v, p), r);
+      if (p == 0) {
+        out = r;
+        continue;
+      }
+      out[0] = std::max(out[0], r[0]);
+      out[1] += r[1];
+      out[2] = std::max(out[2], r[2]);
+      out[3] = std::min(out[3], r[3]);
+      out[4] += r[4];
+      out[5] = std::max(out[5], r[5]);
+    }
+  }
+
+ private:
+  /// The (pilot, node p) DOFs of point p.
+  static Eigen::VectorXd local(const Eigen::VectorXd& u, std::size_t p) {
+    Eigen::VectorXd out(6);
+    out << u.head<3>(), u.segment<3>(3 + 3 * static_cast<Eigen::Index>(p));
+    return out;
+  }
+
+  std::vector<DofKey> dofs_;
+  std::vector<std::unique_ptr<RigidTargetPoint>> points_;
+};
+
+std::unique_ptr<Element> make_surface_contact(const ElementBuildContext& ctx,
+                                              const ElementRecord& record) {
+  const Model& model = ctx.model;
+  const auto fail = [&](const std::string& what) {
+    return InputError(record.where, fmt::format("element {} (CONTA174): {}", record.id, what));
+  };
+  for (std::size_t k = 0; k < record.nodes.size(); ++k)
+    line_data::node(model, record, k, record.nodes.size(), kFamily);
+  const std::vector<int> nodes = corners(record);
+  for (std::size_t k = 4; k < record.nodes.size(); ++k)
+    if (std::find(nodes.begin(), nodes.end(), record.nodes[k]) == nodes.end())
+      throw fail(
+          "midside nodes (8-node faces) are not supported: give the 3 or 4 corner nodes "
+          "(E,I,J,K,L) or generate the elements with ESURF on linear elements");
+  if (nodes.size() < 3) throw fail("a contact face needs 3 or 4 distinct corner nodes");
+  const double area = face_area(model, nodes);
+  if (!(area > 0.0)) throw fail("degenerate contact face (zero area)");
+  const double tributary = area / static_cast<double>(nodes.size());
+
+  std::vector<std::unique_ptr<RigidTargetPoint>> points;
+  for (int n : nodes) {
+    // Σ of the tributary areas at n over the CONTA174 faces of this TYPE and REAL.
+    double total = 0.0;
+    for (const auto& [id, other] : model.elements) {
+      if (other.type != record.type || other.real != record.real) continue;
+      const std::vector<int> c = corners(other);
+      if (c.size() < 3 || std::find(c.begin(), c.end(), n) == c.end()) continue;
+      total += face_area(model, c) / static_cast<double>(c.size());
+    }
+    const Node& node = model.nodes.at(n);
+    points.push_back(rigid_target_point(ctx, record, node, kFamily, "CONTA174",
+                                        tributary / std::max(total, tributary), tributary));
+  }
+  const int pilot = points.front()->dofs().front().node;
+  return std::make_unique<SurfaceContact>(record.id, pilot, std::move(points));
+}
+
+const ElementRegistration kConta174{{.name = "CONTA174",
+                                     .number = 174,
+                                     .family = kFamily,
+                                     .n_nodes = 8,
+                                     .min_nodes = 3,
+                                     .real_constants = RealConstantUse::Required,
+                                     .vtk_cell = VtkCell::Quad,
+                                     .result_names = ContactPoint::names(),
+                                     .result_sequences = {{"CONT", "STAT", "STAT"},
+                                                          {"CONT", "PRES", "FN"},
+                                                          {"CONT", "PENE", "PENE"},
+                                                          {"CONT", "GAP", "GAP"},
+                                                          {"CONT", "SFRIC", "FT"},
+                                                          {"CONT", "SLIDE", "SLIDE"}},
+                                     .has_status = true,
+                                     .create = make_surface_contact}};
+
+}  // namespace
+
+}  // namespace impactfe
