@@ -163,11 +163,13 @@ std::shared_ptr<const TargetSurface> rigid_target(const ElementBuildContext& ctx
     }
     std::vector<Vec3> p;
     for (int n : nodes) p.push_back(model.nodes.at(n).x);
-    const auto add = [&](const Vec3& a, const Vec3& b, const Vec3& c) {
+    // Named copies: clang 14 (the sanitizer build) cannot capture structured bindings.
+    const auto add = [&, where = rec.where, element = id](const Vec3& a, const Vec3& b,
+                                                          const Vec3& c) {
       const Vec3 normal = (b - a).cross(c - a);
       if (!(normal.norm() > 0.0))
-        throw InputError(rec.where,
-                         fmt::format("element {} (TARGE170): degenerate target facet", id));
+        throw InputError(where,
+                         fmt::format("element {} (TARGE170): degenerate target facet", element));
       triangles.push_back({a, b, c, normal.normalized()});
     };
     add(p[0], p[1], p[2]);
