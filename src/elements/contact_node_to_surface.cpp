@@ -1,7 +1,9 @@
-/// CONTA175 node-to-surface contact against a rigid TARGE170 target (APDL_MODELING §8.4): one
-/// contact node paired, through the shared real-constant set, with the rigid target of that set
-/// (elements/target_surface.h). The element's DOFs are the pilot node's and the contact node's
-/// UX, UY, UZ, fixed for the whole run, so the assembly pattern stays static. Before each status
+/// CONTA175 node-to-surface contact against a TARGE170 target (APDL_MODELING §8.4): one contact
+/// node paired, through the shared real-constant set, with the target of that set
+/// (elements/target_surface.h). Rigid target: the element's DOFs are the pilot node's and the
+/// contact node's UX, UY, UZ. Deformable target (no pilot): the contact node's, then those of the
+/// nodes of the facets within its pinball at setup (small sliding). Either list is fixed for the
+/// whole run, so the assembly pattern stays static. Before each status
 /// update the contact search finds the nearest target facet the node projects into (bucket
 /// grid, within the pinball) and sets the normal and gap of the point law
 /// (elements/contact_point.h: penalty / augmented Lagrange, Coulomb friction, KEYOPT(12)).
@@ -20,7 +22,7 @@ constexpr const char* kFamily = "NodeToSurfaceContact";
 std::unique_ptr<Element> make_node_to_surface_contact(const ElementBuildContext& ctx,
                                                       const ElementRecord& record) {
   const Node& node = line_data::node(ctx.model, record, 0, 1, kFamily);
-  return rigid_target_point(ctx, record, node, kFamily, "CONTA175", 1.0, 0.0);
+  return target_point(ctx, record, node, kFamily, "CONTA175", 1.0, 0.0);
 }
 
 const ElementRegistration kConta175{{.name = "CONTA175",

@@ -14,13 +14,31 @@ ContactPoint::ContactPoint(int id, int node_i, int node_j, const ContactLawData&
     for (Dof d : {Dof::UX, Dof::UY, Dof::UZ}) dofs_.push_back({node, d});
 }
 
+ContactPoint::ContactPoint(int id, std::vector<DofKey> dofs, const ContactLawData& data)
+    : Element(id), data_(data), dofs_(std::move(dofs)) {}
+
+ContactKinematics ContactPoint::kinematics(const Eigen::VectorXd& u) const {
+  ContactKinematics k;
+  const Vec3 d(u(3) - u(0), u(4) - u(1), u(5) - u(2));
+  const Vec3& n = data_.normal;
+  k.normal = n;
+  k.gap = data_.gap0 + n.dot(d);
+  k.ut = d - n.dot(d) * n;
+  k.G.resize(6);
+  k.G << -n, n;
+  const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - n * n.transpose();
+  k.T.resize(3, 6);
+  k.T << -P, P;
+  return k;
+}
+
 void ContactPoint::initialize() {
-  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(6);
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n_dofs());
   trial_ = State{};
   const bool in_range = locate(zero);
   if (data_.behaviour == ContactBehaviour::BondedInitial) {
     // Bonded when the nodes start in contact, never in contact otherwise.
-    if (in_range && data_.gap0 <= 0.0)
+    if (in_range && kinematics(zero).gap <= 0.0)
       data_.behaviour = ContactBehaviour::BondedAlways;
     else
       trial_.never = true;
@@ -52,21 +70,15 @@ bool ContactPoint::never_slides() const {
   return bonded() || data_.behaviour == ContactBehaviour::Rough;
 }
 
-Vec3 ContactPoint::relative(const Eigen::VectorXd& u) const {
-  return Vec3(u(3) - u(0), u(4) - u(1), u(5) - u(2));
-}
-
-ContactPoint::Response ContactPoint::response(const State& s, const Eigen::VectorXd& u) const {
+ContactPoint::Response ContactPoint::response(const State& s, const ContactKinematics& kin) const {
   Response r;
-  const Vec3 d = relative(u);
-  const double dn = data_.normal.dot(d);
-  r.gap = data_.gap0 + dn;
-  r.ut = d - dn * data_.normal;
+  r.gap = kin.gap;
+  r.ut = kin.ut;
   if (s.status == Contact::Open) return r;
   r.pn = s.lambda - data_.kn * r.gap;
   r.kn = data_.kn;
   if (frictionless()) return r;
-  const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - data_.normal * data_.normal.transpose();
+  const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - kin.normal * kin.normal.transpose();
   const Vec3 xi = data_.kt * (r.ut - committed_.slip);
   if (s.status == Contact::Stick) {
     r.ft = xi;
@@ -86,8 +98,8 @@ ContactPoint::Response ContactPoint::response(const State& s, const Eigen::Vecto
 ContactPoint::State ContactPoint::next_state(const Eigen::VectorXd& u, bool in_range) const {
   State s = trial_;
   if (s.never) return s;
-  const Vec3 d = relative(u);
-  const double gap = data_.gap0 + data_.normal.dot(d);
+  const ContactKinematics kin = kinematics(u);
+  const double gap = kin.gap;
   bool closed;
   if (s.tied)
     closed = true;
@@ -114,22 +126,21 @@ ContactPoint::State ContactPoint::next_state(const Eigen::VectorXd& u, bool in_r
     return s;
   }
   const double pn = std::max(s.lambda - data_.kn * gap, 0.0);
-  const Vec3 ut = d - data_.normal.dot(d) * data_.normal;
-  const Vec3 xi = data_.kt * (ut - committed_.slip);
+  const Vec3 xi = data_.kt * (kin.ut - committed_.slip);
   s.status = xi.norm() <= data_.mu * pn ? Contact::Stick : Contact::Slide;
   return s;
 }
 
 void ContactPoint::tangent(const ElementContext&, const Eigen::VectorXd& u, Eigen::MatrixXd& K,
                            Eigen::VectorXd& f_int) const {
-  const Response r = response(trial_, u);
-  const Eigen::Matrix3d k = r.kn * data_.normal * data_.normal.transpose() + r.kt;
-  K.resize(6, 6);
-  K << k, -k, -k, k;
-  // f_int on J: −p n + f_t (the contact pushes J along +n); on I the opposite.
-  const Vec3 fj = -r.pn * data_.normal + r.ft;
-  f_int.resize(6);
-  f_int << -fj, fj;
+  const ContactKinematics kin = kinematics(u);
+  const Response r = response(trial_, kin);
+  // f = −p G + Tᵀ f_t (the contact pushes the node along +n), K = k_n G Gᵀ − p H + Tᵀ K_t T.
+  K.noalias() = r.kn * kin.G * kin.G.transpose();
+  if (r.pn != 0.0 && kin.H.size() > 0) K -= r.pn * kin.H;
+  if (!r.kt.isZero(0.0)) K.noalias() += kin.T.transpose() * r.kt * kin.T;
+  f_int = -r.pn * kin.G;
+  if (!r.ft.isZero(0.0)) f_int.noalias() += kin.T.transpose() * r.ft;
 }
 
 bool ContactPoint::update_status(const ElementContext&, const Eigen::VectorXd& u) {
@@ -139,7 +150,7 @@ bool ContactPoint::update_status(const ElementContext&, const Eigen::VectorXd& u
   bool changed = next.status != trial_.status;
   if (!changed && next.status != Contact::Open && data_.augmented &&
       next.augmentations < kMaxAugmentations) {
-    const Response r = response(next, u);
+    const Response r = response(next, kinematics(u));
     // A closed contact with a gap (g > 0: the multiplier pushes the nodes apart) is as wrong as
     // one with a penetration: both update λ, which stays compressive unless the contact is tied.
     const double error = std::abs(r.gap);
@@ -156,7 +167,7 @@ bool ContactPoint::update_status(const ElementContext&, const Eigen::VectorXd& u
 }
 
 void ContactPoint::commit(const Eigen::VectorXd& u) {
-  const Response r = response(trial_, u);
+  const Response r = response(trial_, kinematics(u));
   if (trial_.status == Contact::Open) {
     // The tangential spring is relaxed while open: a re-closure sticks where it lands.
     trial_.slip = r.ut;
@@ -193,7 +204,7 @@ const std::vector<std::string>& ContactPoint::names() {
 
 void ContactPoint::results(const ElementContext&, const Eigen::VectorXd& u, const Eigen::VectorXd&,
                            ElementResultValues& out) const {
-  const Response r = response(trial_, u);
+  const Response r = response(trial_, kinematics(u));
   const bool closed = trial_.status != Contact::Open;
   double slide = committed_.slide;
   if (trial_.status == Contact::Slide && data_.kt > 0.0)

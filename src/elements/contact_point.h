@@ -21,6 +21,15 @@
 /// μ p k_t/|ξ| (P − d dᵀ) and drops the non-symmetric coupling μ k_n d nᵀ (the linear solvers
 /// are symmetric): Newton converges linearly while sliding, the residual is exact.
 ///
+/// Kinematics (ContactKinematics): the law sees the gap g(u), its gradient G = ∂g/∂u, its Hessian
+/// H = ∂²g/∂u² and the tangential relative displacement u_t(u) with T = ∂u_t/∂u over the element's
+/// DOFs. A point pair (CONTA178, a rigid target) has G = [−n; n], T = [−P, P] and H = 0; a node
+/// against a deformable facet (elements/target_surface.h DeformableTargetPoint) has the facet
+/// nodes in its DOFs and H ≠ 0 (the variation of the normal and of the projection point). With
+/// the compressive force p the element force is f = −p G + Tᵀ f_t and the tangent
+/// K = k_n G Gᵀ − p H + Tᵀ K_t T (Wriggers §4.2, eq. 4.36 and §9.3 for the node-to-segment case):
+/// consistent for normal contact, symmetric; the tangential part drops ∂T/∂u · f_t.
+///
 /// Behaviour (KEYOPT(12)): 0 standard, 1 rough (no sliding, separation allowed), 2 no separation
 /// once closed (frictionless), 3 bonded once closed, 4 no separation always, 5 bonded always,
 /// 6 bonded when initially closed (never in contact when initially open).
@@ -54,6 +63,16 @@ struct ContactLawData {
   int start = 0;  // > 0 initially closed, < 0 initially open, 0 from the gap
 };
 
+/// The geometry of the contact point at u (see above), over the element's DOFs.
+struct ContactKinematics {
+  double gap = 0.0;             // g(u), CNOF included (negative: penetration)
+  Vec3 normal = Vec3::UnitX();  // unit, from the target towards the contact node
+  Vec3 ut = Vec3::Zero();       // tangential relative displacement u_t
+  Eigen::VectorXd G;            // ∂g/∂u
+  Eigen::MatrixXd T;            // ∂u_t/∂u (3 × n_dofs)
+  Eigen::MatrixXd H;            // ∂²g/∂u² (empty: zero)
+};
+
 class ContactPoint : public Element {
  public:
   /// Augmented-Lagrange updates per substep; with the closing flip this stays below the status
@@ -61,12 +80,16 @@ class ContactPoint : public Element {
   static constexpr int kMaxAugmentations = 2;
 
   ContactPoint(int id, int node_i, int node_j, const ContactLawData& data);
+  /// A point with its own DOF list (UX, UY, UZ of each node; a deformable target's facet nodes).
+  ContactPoint(int id, std::vector<DofKey> dofs, const ContactLawData& data);
 
   const std::vector<DofKey>& dofs() const override { return dofs_; }
   bool is_nonlinear(const ElementContext&) const override { return true; }
   void tangent(const ElementContext& ctx, const Eigen::VectorXd& u, Eigen::MatrixXd& K,
                Eigen::VectorXd& f_int) const override;
-  void mass(const ElementContext&, Eigen::MatrixXd& M) const override { M.setZero(6, 6); }
+  void mass(const ElementContext&, Eigen::MatrixXd& M) const override {
+    M.setZero(n_dofs(), n_dofs());
+  }
 
   bool has_status() const override { return true; }
   bool update_status(const ElementContext& ctx, const Eigen::VectorXd& u) override;
@@ -90,6 +113,9 @@ class ContactPoint : public Element {
   /// data_.gap0 for the current closest target point and returns false when no target is
   /// within reach (the contact is then open). Node to node: fixed geometry, always true.
   virtual bool locate(const Eigen::VectorXd& u) { return true; }
+  /// The geometry at u. Default: the pair I, J of the first constructor with the located normal
+  /// and gap0: g = g0 + n·(u_J − u_I), u_t = P (u_J − u_I).
+  virtual ContactKinematics kinematics(const Eigen::VectorXd& u) const;
   /// Sets the initial status from the geometry (call at the end of a derived constructor when
   /// locate() found the initial normal).
   void initialize();
@@ -108,7 +134,7 @@ class ContactPoint : public Element {
     int augmentations = 0;     // multiplier updates in this substep
   };
   struct Response {
-    double gap = 0.0, pn = 0.0, kn = 0.0;
+    double gap = 0.0, pn = 0.0, kn = 0.0;  // gap, compressive force, its stiffness
     Vec3 ut = Vec3::Zero(), ft = Vec3::Zero();
     Eigen::Matrix3d kt = Eigen::Matrix3d::Zero();
   };
@@ -117,8 +143,7 @@ class ContactPoint : public Element {
   bool bonded() const;
   bool frictionless() const;
   bool never_slides() const;
-  Vec3 relative(const Eigen::VectorXd& u) const;
-  Response response(const State& s, const Eigen::VectorXd& u) const;
+  Response response(const State& s, const ContactKinematics& kin) const;
   /// The status the contact rules give at u, starting from the trial status.
   State next_state(const Eigen::VectorXd& u, bool in_range) const;
 

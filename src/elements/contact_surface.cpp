@@ -1,8 +1,9 @@
-/// CONTA174 surface contact against a rigid TARGE170 target (APDL_MODELING §8.4) with detection
-/// at the corner nodes of its face [A: the spec names Gauss-point detection as MAPDL's default;
-/// impactfe detects at the nodes for every KEYOPT(4)]: each distinct corner node is a contact
-/// point of CONTA175's law (elements/target_surface.h RigidTargetPoint: penalty / augmented
-/// Lagrange, Coulomb friction, KEYOPT(12)) against the target of the element's real set.
+/// CONTA174 surface contact against a TARGE170 target (APDL_MODELING §8.4), rigid (pilot) or
+/// deformable (small sliding), with detection at the corner nodes of its face [A: the spec names
+/// Gauss-point detection as MAPDL's default; impactfe detects at the nodes for every KEYOPT(4)]:
+/// each distinct corner node is a contact point of CONTA175's law (elements/target_surface.h
+/// target_point: penalty / augmented Lagrange, Coulomb friction, KEYOPT(12)) against the target
+/// of the element's real set. The element's DOFs are the union of its points' DOFs.
 ///
 /// Stiffness per point: the face's tributary area of the node, a = A/n (A the face area, n its
 /// corner count — the lumped nodal weights of a bilinear face). A positive FKN scales the
@@ -46,11 +47,18 @@ double face_area(const Model& model, const std::vector<int>& nodes) {
 
 class SurfaceContact final : public Element {
  public:
-  SurfaceContact(int id, int pilot, std::vector<std::unique_ptr<RigidTargetPoint>> points)
+  explicit SurfaceContact(int id, std::vector<std::unique_ptr<ContactPoint>> points)
       : Element(id), points_(std::move(points)) {
-    for (Dof d : {Dof::UX, Dof::UY, Dof::UZ}) dofs_.push_back({pilot, d});
-    for (const auto& p : points_)
-      for (Dof d : {Dof::UX, Dof::UY, Dof::UZ}) dofs_.push_back({p->dofs()[3].node, d});
+    for (const auto& p : points_) {
+      std::vector<int> map;
+      for (const DofKey& k : p->dofs()) {
+        auto it = std::find_if(dofs_.begin(), dofs_.end(),
+                               [&](const DofKey& d) { return d.node == k.node && d.dof == k.dof; });
+        if (it == dofs_.end()) it = dofs_.insert(dofs_.end(), k);
+        map.push_back(static_cast<int>(it - dofs_.begin()));
+      }
+      maps_.push_back(std::move(map));
+    }
   }
   const char* family() const override { return kFamily; }
   const std::vector<DofKey>& dofs() const override { return dofs_; }
@@ -64,12 +72,11 @@ class SurfaceContact final : public Element {
     Eigen::VectorXd f;
     for (std::size_t p = 0; p < points_.size(); ++p) {
       points_[p]->tangent(ctx, local(u, p), k, f);
-      const int j = 3 + 3 * static_cast<int>(p);
-      for (int a = 0; a < 2; ++a) {
-        const int ra = a == 0 ? 0 : j;
-        f_int.segment<3>(ra) += f.segment<3>(3 * a);
-        for (int b = 0; b < 2; ++b)
-          K.block<3, 3>(ra, b == 0 ? 0 : j) += k.block<3, 3>(3 * a, 3 * b);
+      const std::vector<int>& m = maps_[p];
+      for (std::size_t a = 0; a < m.size(); ++a) {
+        f_int(m[a]) += f(static_cast<Eigen::Index>(a));
+        for (std::size_t b = 0; b < m.size(); ++b)
+          K(m[a], m[b]) += k(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(b));
       }
     }
   }
@@ -131,15 +138,17 @@ class SurfaceContact final : public Element {
   }
 
  private:
-  /// The (pilot, node p) DOFs of point p.
-  static Eigen::VectorXd local(const Eigen::VectorXd& u, std::size_t p) {
-    Eigen::VectorXd out(6);
-    out << u.head<3>(), u.segment<3>(3 + 3 * static_cast<Eigen::Index>(p));
+  /// The DOFs of point p out of the element's.
+  Eigen::VectorXd local(const Eigen::VectorXd& u, std::size_t p) const {
+    const std::vector<int>& m = maps_[p];
+    Eigen::VectorXd out(static_cast<Eigen::Index>(m.size()));
+    for (std::size_t a = 0; a < m.size(); ++a) out(static_cast<Eigen::Index>(a)) = u(m[a]);
     return out;
   }
 
   std::vector<DofKey> dofs_;
-  std::vector<std::unique_ptr<RigidTargetPoint>> points_;
+  std::vector<std::unique_ptr<ContactPoint>> points_;
+  std::vector<std::vector<int>> maps_;  // point DOF → element DOF
 };
 
 std::unique_ptr<Element> make_surface_contact(const ElementBuildContext& ctx,
@@ -161,7 +170,7 @@ std::unique_ptr<Element> make_surface_contact(const ElementBuildContext& ctx,
   if (!(area > 0.0)) throw fail("degenerate contact face (zero area)");
   const double tributary = area / static_cast<double>(nodes.size());
 
-  std::vector<std::unique_ptr<RigidTargetPoint>> points;
+  std::vector<std::unique_ptr<ContactPoint>> points;
   for (int n : nodes) {
     // Σ of the tributary areas at n over the CONTA174 faces of this TYPE and REAL.
     double total = 0.0;
@@ -172,11 +181,10 @@ std::unique_ptr<Element> make_surface_contact(const ElementBuildContext& ctx,
       total += face_area(model, c) / static_cast<double>(c.size());
     }
     const Node& node = model.nodes.at(n);
-    points.push_back(rigid_target_point(ctx, record, node, kFamily, "CONTA174",
-                                        tributary / std::max(total, tributary), tributary));
+    points.push_back(target_point(ctx, record, node, kFamily, "CONTA174",
+                                  tributary / std::max(total, tributary), tributary));
   }
-  const int pilot = points.front()->dofs().front().node;
-  return std::make_unique<SurfaceContact>(record.id, pilot, std::move(points));
+  return std::make_unique<SurfaceContact>(record.id, std::move(points));
 }
 
 const ElementRegistration kConta174{{.name = "CONTA174",

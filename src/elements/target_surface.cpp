@@ -1,5 +1,5 @@
-/// TARGE170 rigid target facets and pilot nodes, and the shared target surface with its bucket
-/// grid (elements/target_surface.h).
+/// TARGE170 target facets and pilot nodes, the shared target surface with its bucket grid, and
+/// the contact point against a rigid target (elements/target_surface.h).
 #include "elements/target_surface.h"
 
 #include <fmt/format.h>
@@ -90,6 +90,36 @@ std::optional<TargetSurface::Hit> TargetSurface::closest(const Vec3& y, double r
   return best;
 }
 
+std::vector<int> TargetSurface::near(const Vec3& y, double reach) const {
+  std::vector<int> out;
+  const Vec3 lo = y - Vec3::Constant(reach), hi = y + Vec3::Constant(reach);
+  const auto test = [&](int f) {
+    const Triangle& t = triangles_[static_cast<std::size_t>(f)];
+    const Vec3 tlo = t.a.cwiseMin(t.b).cwiseMin(t.c), thi = t.a.cwiseMax(t.b).cwiseMax(t.c);
+    if ((tlo.array() > hi.array()).any() || (thi.array() < lo.array()).any()) return;
+    if (std::abs((y - t.a).dot(t.normal)) > reach) return;
+    out.push_back(f);
+  };
+  Eigen::Vector3i a, b;
+  cell_range(lo, hi, a, b);
+  const Eigen::Vector3i span = b - a + Eigen::Vector3i::Ones();
+  if (static_cast<double>(span(0)) * span(1) * span(2) > static_cast<double>(triangles_.size())) {
+    for (std::size_t f = 0; f < triangles_.size(); ++f) test(static_cast<int>(f));
+    return out;
+  }
+  std::vector<int> seen;
+  for (int i = a(0); i <= b(0); ++i)
+    for (int j = a(1); j <= b(1); ++j)
+      for (int k = a(2); k <= b(2); ++k) {
+        const auto it = buckets_.find(key(i, j, k));
+        if (it != buckets_.end()) seen.insert(seen.end(), it->second.begin(), it->second.end());
+      }
+  std::sort(seen.begin(), seen.end());
+  seen.erase(std::unique(seen.begin(), seen.end()), seen.end());
+  for (int f : seen) test(f);
+  return out;
+}
+
 namespace {
 
 constexpr const char* kFamily = "RigidTarget";
@@ -135,8 +165,8 @@ bool cache_valid(const TargetCache& c, const Model& model, int real) {
 
 }  // namespace
 
-std::shared_ptr<const TargetSurface> rigid_target(const ElementBuildContext& ctx,
-                                                  const ElementRecord& record) {
+std::shared_ptr<const TargetSurface> contact_target(const ElementBuildContext& ctx,
+                                                    const ElementRecord& record) {
   static thread_local TargetCache cache;
   const Model& model = ctx.model;
   if (cache_valid(cache, model, record.real)) return cache.surface;
@@ -161,19 +191,17 @@ std::shared_ptr<const TargetSurface> rigid_target(const ElementBuildContext& ctx
       pilot = nodes[0];
       continue;
     }
-    std::vector<Vec3> p;
-    for (int n : nodes) p.push_back(model.nodes.at(n).x);
     // Named copies: clang 14 (the sanitizer build) cannot capture structured bindings.
-    const auto add = [&, where = rec.where, element = id](const Vec3& a, const Vec3& b,
-                                                          const Vec3& c) {
+    const auto add = [&, where = rec.where, element = id](int i, int j, int k) {
+      const Vec3 &a = model.nodes.at(i).x, &b = model.nodes.at(j).x, &c = model.nodes.at(k).x;
       const Vec3 normal = (b - a).cross(c - a);
       if (!(normal.norm() > 0.0))
         throw InputError(where,
                          fmt::format("element {} (TARGE170): degenerate target facet", element));
-      triangles.push_back({a, b, c, normal.normalized()});
+      triangles.push_back({a, b, c, normal.normalized(), {i, j, k}});
     };
-    add(p[0], p[1], p[2]);
-    if (p.size() == 4) add(p[0], p[2], p[3]);
+    add(nodes[0], nodes[1], nodes[2]);
+    if (nodes.size() == 4) add(nodes[0], nodes[2], nodes[3]);
   }
   const auto fail = [&](const std::string& what) {
     return InputError(record.where, fmt::format("element {}: {}", record.id, what));
@@ -183,12 +211,28 @@ std::shared_ptr<const TargetSurface> rigid_target(const ElementBuildContext& ctx
         fmt::format("no TARGE170 target facets share its real constant set {} (a contact "
                     "pair is a target and a contact type with the same REAL)",
                     record.real));
-  if (pilot == 0)
-    throw fail(
-        fmt::format("the rigid target of real set {} has no pilot node (a TARGE170 "
-                    "element with one node, E,pilot, in the same REAL): impactfe targets "
-                    "are rigid and move with their pilot",
-                    record.real));
+  if (pilot == 0) {
+    // Deformable target: its facet nodes must move with a body (else they would be constrained
+    // automatically and the "deformable" target would silently be a fixed one).
+    std::vector<int> body;
+    for (const auto& [id, rec] : model.elements) {
+      const auto t = model.element_types.find(rec.type);
+      if (t == model.element_types.end()) continue;
+      const std::string& name = t->second.ansys_name;
+      if (name.rfind("TARGE", 0) == 0 || name.rfind("CONTA", 0) == 0) continue;
+      body.insert(body.end(), rec.nodes.begin(), rec.nodes.end());
+    }
+    std::sort(body.begin(), body.end());
+    for (const auto& t : triangles)
+      for (int n : t.nodes)
+        if (!std::binary_search(body.begin(), body.end(), n))
+          throw fail(
+              fmt::format("the target of real set {} has no pilot node, so it is deformable, "
+                          "but its facet node {} belongs to no body element: mesh the target "
+                          "on a deformable body, or give a rigid target a pilot (a TARGE170 "
+                          "element with one node, E,pilot, in the same REAL)",
+                          record.real, n));
+  }
   built.surface = std::make_shared<const TargetSurface>(pilot, std::move(triangles));
   cache = std::move(built);
   return cache.surface;
@@ -215,10 +259,10 @@ bool RigidTargetPoint::locate(const Eigen::VectorXd& u) {
   return true;
 }
 
-std::unique_ptr<RigidTargetPoint> rigid_target_point(const ElementBuildContext& ctx,
-                                                     const ElementRecord& record, const Node& node,
-                                                     const char* family, const char* name,
-                                                     double share, double area) {
+std::unique_ptr<ContactPoint> target_point(const ElementBuildContext& ctx,
+                                           const ElementRecord& record, const Node& node,
+                                           const char* family, const char* name, double share,
+                                           double area) {
   const Model& model = ctx.model;
   const ElementType& type = line_data::element_type(model, record);
   const auto fail = [&](const std::string& what) {
@@ -247,8 +291,9 @@ std::unique_ptr<RigidTargetPoint> rigid_target_point(const ElementBuildContext& 
           fmt::format("real constant {} of set {} is not supported (impactfe reads 3 FKN, "
                       "4 FTOLN, 6 PINB, 10 CNOF, 12 FKT)",
                       i, record.real));
-  std::shared_ptr<const TargetSurface> target = rigid_target(ctx, record);
+  std::shared_ptr<const TargetSurface> target = contact_target(ctx, record);
   if (target->pilot() == node.id) throw fail("the contact node is the target's pilot node");
+  std::vector<int> candidates;
 
   const double depth = attached_depth(ctx, node.id);
   const auto length = [&](double value, double fallback, const char* what) {
@@ -267,7 +312,17 @@ std::unique_ptr<RigidTargetPoint> rigid_target_point(const ElementBuildContext& 
 
   // The initial normal: the nearest facet within the pinball, else the first facet.
   const auto hit = target->closest(node.x, reach);
-  const Vec3 n0 = hit ? hit->normal : target->triangles().front().normal;
+  Vec3 n0 = hit ? hit->normal : target->triangles().front().normal;
+  if (target->deformable()) {
+    // Small sliding: the candidates within the pinball, never a facet on the node itself.
+    for (int f : target->near(node.x, reach)) {
+      const auto& t = target->triangles()[static_cast<std::size_t>(f)];
+      if (std::find(t.nodes.begin(), t.nodes.end(), node.id) == t.nodes.end())
+        candidates.push_back(f);
+    }
+    if (!hit && !candidates.empty())
+      n0 = target->triangles()[static_cast<std::size_t>(candidates.front())].normal;
+  }
   // Absolute stiffnesses: force/length per node, or force/length³ over the tributary area.
   const double per = area > 0.0 ? area : 1.0;
   const double fkn = real.get(3) != 0.0 ? real.get(3) : 1.0;
@@ -287,16 +342,26 @@ std::unique_ptr<RigidTargetPoint> rigid_target_point(const ElementBuildContext& 
   const auto mat = model.materials.find(record.mat);
   data.mu = mat == model.materials.end() ? 0.0 : mat->second.get("MU", 0.0);
   if (data.mu < 0.0) throw fail(fmt::format("MU of material {} is negative", record.mat));
-  return std::make_unique<RigidTargetPoint>(family, record.id, node.id, node.x, std::move(target),
-                                            reach, real.get(10), data);
+  if (!target->deformable())
+    return std::make_unique<RigidTargetPoint>(family, record.id, node.id, node.x, std::move(target),
+                                              reach, real.get(10), data);
+  std::vector<int> nodes = {node.id};
+  for (int f : candidates)
+    for (int n : target->triangles()[static_cast<std::size_t>(f)].nodes)
+      if (std::find(nodes.begin(), nodes.end(), n) == nodes.end()) nodes.push_back(n);
+  std::vector<Vec3> x;
+  for (int n : nodes) x.push_back(model.nodes.at(n).x);
+  return std::make_unique<DeformableTargetPoint>(family, record.id, std::move(nodes), std::move(x),
+                                                 std::move(target), std::move(candidates), reach,
+                                                 real.get(10), data);
 }
 
 namespace {
 
 /// A TARGE170 element carries nothing itself: its facets act through the contact elements of
-/// its real set, which take the pilot node's DOFs. Its nodes' UX, UY, UZ are listed so that the
-/// element is well formed; without stiffness or mass they are constrained automatically (the
-/// target is rigid), unless the pilot.
+/// its real set, which take the pilot node's DOFs (rigid target) or the facet nodes' (deformable
+/// target). Its nodes' UX, UY, UZ are listed so that the element is well formed; on a rigid
+/// target, without stiffness or mass, they are constrained automatically, unless the pilot.
 class RigidTargetElement final : public Element {
  public:
   RigidTargetElement(int id, const std::vector<int>& nodes) : Element(id) {
@@ -347,7 +412,7 @@ std::unique_ptr<Element> make_rigid_target(const ElementBuildContext& ctx,
                                  record.id));
   line_data::real_set(model, record, kFamily);
   // Builds the target once to report a bad target at its first element.
-  rigid_target(ctx, record);
+  contact_target(ctx, record);
   return std::make_unique<RigidTargetElement>(record.id, nodes);
 }
 

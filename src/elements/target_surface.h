@@ -1,10 +1,13 @@
 #pragma once
-/// Rigid contact targets (TARGE170, APDL_MODELING §8.4): the target facets of one real-constant
-/// set (triangles and quadrilaterals, a quadrilateral as two triangles, so it should be planar)
-/// moving rigidly with their pilot node (a one-node TARGE170; translations only: the pilot's
-/// rotations do not turn the target). A spatial bucket grid over the facets in their initial
-/// position answers the closest-facet query of the contact nodes (CONTA175); the target only
-/// translates, so the grid is built once and queried in the target's own frame.
+/// Contact targets (TARGE170, APDL_MODELING §8.4): the target facets of one real-constant set
+/// (triangles and quadrilaterals, a quadrilateral as two triangles, so it should be planar).
+/// Either **rigid**, moving with their pilot node (a one-node TARGE170; translations only: the
+/// pilot's rotations do not turn the target), or, without a pilot, **deformable**: the facets are
+/// meshed on a deformable body and move with its nodes. A spatial bucket grid over the facets in
+/// their initial position answers the closest-facet query of the rigid case (the target only
+/// translates, so the grid is built once and queried in the target's own frame) and the
+/// candidate query of the deformable case (small sliding, DeformableTargetPoint).
+#include <array>
 #include <memory>
 #include <optional>
 #include <unordered_map>
@@ -21,6 +24,7 @@ class TargetSurface {
   struct Triangle {
     Vec3 a, b, c;
     Vec3 normal;  // unit, right-hand rule of the node order: towards the contact side
+    std::array<int, 3> nodes{};  // node numbers of a, b, c
   };
   struct Hit {
     Vec3 normal;
@@ -29,11 +33,16 @@ class TargetSurface {
 
   TargetSurface(int pilot, std::vector<Triangle> triangles);
 
+  /// The pilot node of a rigid target; 0 for a deformable one.
   int pilot() const { return pilot_; }
+  bool deformable() const { return pilot_ == 0; }
   const std::vector<Triangle>& triangles() const { return triangles_; }
   /// The facet whose plane is nearest to y (in the target's initial frame) among the facets
   /// that y projects into and that lie within `reach` of it; nullopt when none does.
   std::optional<Hit> closest(const Vec3& y, double reach) const;
+  /// The facets (indices into triangles()) whose bounding box comes within `reach` of y and
+  /// whose plane is within `reach` of y: the candidates of a deformable target's contact node.
+  std::vector<int> near(const Vec3& y, double reach) const;
 
  private:
   long long key(long long i, long long j, long long k) const;
@@ -46,11 +55,13 @@ class TargetSurface {
   std::unordered_map<long long, std::vector<int>> buckets_;
 };
 
-/// The rigid target of real-constant set `real`: every TARGE170 element of that set (exactly one
-/// of them a one-node pilot). Built once per model and set and shared by the contact elements.
-/// InputError at `record`'s location when the set has no target facets or no single pilot.
-std::shared_ptr<const TargetSurface> rigid_target(const ElementBuildContext& ctx,
-                                                  const ElementRecord& record);
+/// The target of real-constant set `real`: every TARGE170 element of that set. With one
+/// one-node pilot element the target is rigid; without a pilot it is deformable, and every facet
+/// node must belong to a body element (one that is neither a target nor a contact element). Built
+/// once per model and set and shared by the contact elements. InputError at `record`'s location
+/// when the set has no target facets, two pilots, or a pilot-less facet on no body.
+std::shared_ptr<const TargetSurface> contact_target(const ElementBuildContext& ctx,
+                                                    const ElementRecord& record);
 
 /// One contact node against the rigid target of its real set (CONTA175, and each face node of a
 /// CONTA174): the point law of elements/contact_point.h with I = the target's pilot node and
@@ -75,16 +86,68 @@ class RigidTargetPoint final : public ContactPoint {
   double offset_;  // CNOF
 };
 
+/// One contact node against a deformable target (no pilot), small sliding [A] (MAPDL's small
+/// sliding option, which keeps the assembly pattern static): at setup the node's candidate facets
+/// are those near() its initial position within the pinball, and its DOFs are the contact node's
+/// then the candidate facet nodes' UX, UY, UZ. Before each status update the search picks, among
+/// the candidates in their current (deformed) position, the facet the node projects into with the
+/// smallest |gap|; a node in none of them (the gap between the projections on two facets meeting
+/// at a convex edge) takes the nearest one when it lies beyond an edge shared with another
+/// candidate. A node that leaves the candidates across an edge shared with a non-candidate facet
+/// only, within the pinball, is an ElementSolutionError telling the user to enlarge PINB.
+///
+/// Kinematics on the chosen facet (a triangle x₁ x₂ x₃, current positions): n = e₁×e₂/|e₁×e₂|,
+/// e_α = x_{α+1} − x₁; the projection x_p = Σ N_a x_a with N = (1−ξ₁−ξ₂, ξ₁, ξ₂) solving
+/// e_α·(x_s − x_p) = 0; g = n·(x_s − x₁) − CNOF. Its variation δg = n·(δx_s − Σ N_a δx_a) and
+/// the Hessian from Δn = (I − nnᵀ)(Δe₁×e₂ + e₁×Δe₂)/|e₁×e₂| and
+/// Δξ = M⁻¹[e_α·Δr + g n·Δe_α], M_αβ = e_α·e_β (Wriggers §9.3 / Laursen §5.2, node-to-segment):
+/// Δδg = Δn·δr − Δξ_α n·δe_α. The tangential relative displacement is u_t = P (u_s − Σ N_a u_a)
+/// (the slip of the node over the facet's material since the start, for small sliding) with its
+/// exact first derivative T.
+class DeformableTargetPoint final : public ContactPoint {
+ public:
+  /// `facets`: the candidate facet indices; `nodes`: the contact node then the distinct nodes of
+  /// the candidates (the element's DOF order), with `x` their initial positions.
+  DeformableTargetPoint(const char* family, int id, std::vector<int> nodes, std::vector<Vec3> x,
+                        std::shared_ptr<const TargetSurface> target, std::vector<int> facets,
+                        double reach, double offset, const ContactLawData& data);
+  const char* family() const override { return family_; }
+  /// The candidate facet in use (index into the target's triangles), -1 without candidates.
+  int facet() const { return facets_.empty() ? -1 : facets_[static_cast<std::size_t>(current_)]; }
+
+ protected:
+  bool locate(const Eigen::VectorXd& u) override;
+  ContactKinematics kinematics(const Eigen::VectorXd& u) const override;
+
+ private:
+  struct Candidate {
+    std::array<int, 3> local{};  // positions of the facet's nodes in nodes_
+    // The edge opposite vertex a: 0 a free edge of the target, 1 shared with another candidate,
+    // 2 shared with a non-candidate facet only.
+    std::array<int, 3> edge{};
+  };
+  const char* family_;
+  std::vector<int> nodes_;
+  std::vector<Vec3> x_;
+  std::shared_ptr<const TargetSurface> target_;
+  std::vector<int> facets_;
+  std::vector<Candidate> candidates_;
+  int current_ = 0;
+  double reach_;
+  double offset_;
+};
+
 /// The law of contact node `node` of `record` (a CONTA175, or a CONTA174 face node) against the
-/// rigid target of its real set, from its type's KEYOPTs, its real constants (3 FKN, 4 FTOLN,
-/// 6 PINB, 10 CNOF, 12 FKT) and MP,MU of its MAT (docs/elements/conta175.md). A positive FKN
-/// scales the stiffness attached to the node along the initial normal, times `share` (the
-/// node's part of it that this element carries); a negative FKN or FKT is absolute: force/length
-/// when `area` = 0 (CONTA175), force/length³ times `area` (a CONTA174 node's tributary area).
-/// InputError names `record` and `name` for unsupported KEYOPTs or real constants.
-std::unique_ptr<RigidTargetPoint> rigid_target_point(const ElementBuildContext& ctx,
-                                                     const ElementRecord& record, const Node& node,
-                                                     const char* family, const char* name,
-                                                     double share, double area);
+/// target of its real set (rigid: RigidTargetPoint; deformable: DeformableTargetPoint), from its
+/// type's KEYOPTs, its real constants (3 FKN, 4 FTOLN, 6 PINB, 10 CNOF, 12 FKT) and MP,MU of its
+/// MAT (docs/elements/conta175.md). A positive FKN scales the stiffness attached to the node
+/// along the initial normal, times `share` (the node's part of it that this element carries); a
+/// negative FKN or FKT is absolute: force/length when `area` = 0 (CONTA175), force/length³ times
+/// `area` (a CONTA174 node's tributary area). InputError names `record` and `name` for
+/// unsupported KEYOPTs or real constants.
+std::unique_ptr<ContactPoint> target_point(const ElementBuildContext& ctx,
+                                           const ElementRecord& record, const Node& node,
+                                           const char* family, const char* name, double share,
+                                           double area);
 
 }  // namespace impactfe

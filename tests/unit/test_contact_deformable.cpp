@@ -1,0 +1,191 @@
+// Contact against a deformable TARGE170 target (issue 16, small sliding): the element's DOFs are
+// the contact node's and the candidate facets' nodes', its node-to-segment tangent equals finite
+// differences of its force (frictionless: consistent and symmetric), forces and moments balance,
+// the search follows the node over the candidates, and a node that slides out of them is a
+// clear solution error.
+#include <gtest/gtest.h>
+
+#include "../support/element_checks.h"
+
+#include <Eigen/Dense>
+#include <random>
+
+#include "core/errors.h"
+#include "elements/element.h"
+#include "elements/element_registry.h"
+
+namespace impactfe {
+namespace {
+
+ElementType type(int id, const char* name, int k2 = 0) {
+  ElementType et;
+  et.id = id;
+  et.ansys_name = name;
+  et.keyopt[2] = k2;
+  return et;
+}
+
+ElementRecord record(int id, int type_id, int real, int mat, std::vector<int> nodes) {
+  ElementRecord r;
+  r.id = id;
+  r.type = type_id;
+  r.real = real;
+  r.mat = mat;
+  r.nodes = std::move(nodes);
+  r.where = SourceLocation{"deformable.inp", 10 + id, "E"};
+  return r;
+}
+
+/// Target body: two unit SOLID185 bricks side by side, x ∈ [0, 2], y ∈ [0, 1], z ∈ [−1, 0]; its
+/// top faces are the TARGE170 facets (normal +Z, no pilot). CONTA175 (element 20) on node 100 at
+/// `x100`; FKN = −1000 (absolute), FTOLN = −1e-6, PINB = −0.5 (absolute).
+Model model(const Vec3& x100, int keyopt2 = 1, double mu = 0.0) {
+  Model m;
+  int id = 1;
+  for (double z : {-1.0, 0.0})
+    for (double y : {0.0, 1.0})
+      for (double x : {0.0, 1.0, 2.0}) m.nodes[id] = Node{id, Vec3(x, y, z)}, ++id;
+  // Bottom layer 1..6, top layer 7..12: node(i, j, k) = 1 + i + 3 j + 6 k.
+  m.nodes[100] = Node{100, x100};
+  m.element_types[1] = type(1, "SOLID185");
+  m.element_types[2] = type(2, "TARGE170");
+  m.element_types[3] = type(3, "CONTA175", keyopt2);
+  Material mat;
+  mat.id = 1;
+  mat.props["EX"] = 1000.0;
+  mat.props["PRXY"] = 0.3;
+  mat.props["MU"] = mu;
+  m.materials[1] = mat;
+  m.real_sets[3] = RealSet{3, {0.0, 0.0, -1000.0, -1e-6, 0.0, -0.5}};
+  m.elements[1] = record(1, 1, 1, 1, {1, 2, 5, 4, 7, 8, 11, 10});
+  m.elements[2] = record(2, 1, 1, 1, {2, 3, 6, 5, 8, 9, 12, 11});
+  m.elements[3] = record(3, 2, 3, 1, {7, 8, 11, 10});
+  m.elements[4] = record(4, 2, 3, 1, {8, 9, 12, 11});
+  m.elements[20] = record(20, 3, 3, 1, {100});
+  return m;
+}
+
+std::unique_ptr<Element> build(const Model& m, int id) {
+  return create_element(ElementBuildContext{m, {}}, m.elements.at(id));
+}
+
+/// Current positions of the element's nodes (UX, UY, UZ triples in DOF order).
+std::vector<Vec3> positions(const Model& m, const Element& e, const Eigen::VectorXd& u) {
+  std::vector<Vec3> x;
+  for (int a = 0; a < e.n_dofs(); a += 3)
+    x.push_back(m.nodes.at(e.dofs()[static_cast<std::size_t>(a)].node).x + u.segment<3>(a));
+  return x;
+}
+
+/// A penetrating contact node over the first facet pair and a randomly distorted target.
+Eigen::VectorXd distorted(const Element& e, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> r(-0.05, 0.05);
+  Eigen::VectorXd u(e.n_dofs());
+  for (int a = 0; a < e.n_dofs(); ++a) u(a) = r(rng);
+  return u;
+}
+
+TEST(DeformableTarget, DofsAreTheContactNodeAndTheCandidateFacetNodes) {
+  const Model m = model(Vec3(0.4, 0.3, -0.05));
+  const auto e = build(m, 20);
+  // PINB 0.5 around (0.4, 0.3) reaches the first quad only (x ≤ 1): nodes 7, 8, 11, 10.
+  ASSERT_EQ(e->n_dofs(), 15);
+  EXPECT_EQ(e->dofs().front().node, 100);
+  std::vector<int> nodes;
+  for (int a = 3; a < 15; a += 3) nodes.push_back(e->dofs()[static_cast<std::size_t>(a)].node);
+  std::sort(nodes.begin(), nodes.end());
+  EXPECT_EQ(nodes, (std::vector<int>{7, 8, 10, 11}));
+}
+
+TEST(DeformableTarget, FrictionlessTangentIsConsistentSymmetricAndBalanced) {
+  const Model m = model(Vec3(0.4, 0.3, -0.05));
+  auto e = build(m, 20);
+  const ElementContext ctx;
+  for (unsigned seed : {1u, 2u, 3u}) {
+    SCOPED_TRACE(seed);
+    Eigen::VectorXd u = distorted(*e, seed);
+    u(2) -= 0.1;  // the contact node 0.05 … 0.2 into the distorted facet
+    e->update_status(ctx, u);
+    ASSERT_NE(e->status(), GapStatus::Open);
+    Eigen::MatrixXd K;
+    Eigen::VectorXd f;
+    e->tangent(ctx, u, K, f);
+    ASSERT_GT(f.norm(), 1.0);
+    const Eigen::MatrixXd fd = testing::fd_tangent(*e, ctx, u, 1e-6);
+    EXPECT_LT((K - fd).norm(), 1e-6 * K.norm());
+    EXPECT_LT((K - K.transpose()).norm(), 1e-12 * K.norm());
+    // The geometric part −p H is there: the tangent is not just k_n G Gᵀ (rank one).
+    Eigen::JacobiSVD<Eigen::MatrixXd> svd(K);
+    EXPECT_GT(svd.singularValues()(1), 1e-3 * svd.singularValues()(0));
+    // Σ f = 0 and Σ x × f = 0 in the current configuration.
+    const std::vector<Vec3> x = positions(m, *e, u);
+    Vec3 force = Vec3::Zero(), moment = Vec3::Zero();
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      const Vec3 fi = f.segment<3>(3 * static_cast<Eigen::Index>(i));
+      force += fi;
+      moment += x[i].cross(fi);
+    }
+    EXPECT_LT(force.norm(), 1e-12 * f.norm());
+    EXPECT_LT(moment.norm(), 1e-12 * f.norm());
+    // A rigid translation of everything changes nothing.
+    Eigen::VectorXd shifted = u;
+    for (int a = 0; a < u.size(); ++a) shifted(a) += a % 3 == 0 ? 0.2 : (a % 3 == 1 ? -0.1 : 0.05);
+    Eigen::MatrixXd K2;
+    Eigen::VectorXd f2;
+    e->tangent(ctx, shifted, K2, f2);
+    EXPECT_LT((f2 - f).norm(), 1e-10 * f.norm());
+  }
+}
+
+TEST(DeformableTarget, StickingForcesBalanceAndTheNormalPartIsConsistent) {
+  const Model m = model(Vec3(0.4, 0.3, -0.05), 1, 0.5);
+  auto e = build(m, 20);
+  const ElementContext ctx;
+  Eigen::VectorXd u = distorted(*e, 7) * 0.1;
+  u(0) += 0.01;  // a small tangential offset of the contact node: sticking (|f_t| < μ p)
+  e->update_status(ctx, u);
+  ASSERT_EQ(e->status(), GapStatus::Closed);
+  Eigen::MatrixXd K;
+  Eigen::VectorXd f;
+  e->tangent(ctx, u, K, f);
+  Vec3 force = Vec3::Zero();
+  for (int a = 0; a < e->n_dofs(); a += 3) force += f.segment<3>(a);
+  EXPECT_LT(force.norm(), 1e-12 * f.norm());
+  EXPECT_GT(std::abs(f(0)), 1.0);  // the sticking force is there
+  // The dropped term ∂T/∂u · f_t is of the order of f_t / (facet size): small against k_t here.
+  const Eigen::MatrixXd fd = testing::fd_tangent(*e, ctx, u, 1e-6);
+  EXPECT_LT((K - fd).norm(), 0.05 * K.norm());
+  EXPECT_LT((K - K.transpose()).norm(), 1e-12 * K.norm());
+}
+
+TEST(DeformableTarget, SearchFollowsTheNodeAndReportsSlidingOutOfTheCandidates) {
+  const Model m = model(Vec3(0.4, 0.3, -0.05));
+  auto e = build(m, 20);
+  const ElementContext ctx;
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(e->n_dofs());
+  e->update_status(ctx, u);
+  ASSERT_NE(e->status(), GapStatus::Open);
+  // Over the other triangle of the quad (x < y): still closed, the gap follows a lifted node.
+  u(0) = -0.3;
+  u(1) = 0.6;  // node at (0.1, 0.9)
+  e->update_status(ctx, u);
+  EXPECT_NE(e->status(), GapStatus::Open);
+  // Off the free edge x = 0: open, no error.
+  u(0) = -0.6;
+  u(1) = 0.0;
+  e->update_status(ctx, u);
+  EXPECT_EQ(e->status(), GapStatus::Open);
+  // Across the edge x = 1 onto the second quad, which was not within the pinball: error.
+  u(0) = 0.8;
+  EXPECT_THROW(e->update_status(ctx, u), SolutionError);
+}
+
+TEST(DeformableTarget, FacetsOnNoBodyNeedAPilot) {
+  Model m = model(Vec3(0.4, 0.3, -0.05));
+  m.elements.erase(2);  // nodes 9 and 12 of the second facet now belong to no body
+  EXPECT_THROW(build(m, 20), InputError);
+}
+
+}  // namespace
+}  // namespace impactfe
