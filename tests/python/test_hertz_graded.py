@@ -2,8 +2,8 @@
 faceted sphere (R = 8) pressed into an elastic block (E = 1000, nu = 0.3, quarter model) through
 CONTA175, tests/decks/bench/hertz_graded.inp run at its CI size (the parameter lines replaced:
 fine elements HF = 0.1 up to 0.5, then 9 growing by 1.9: block 68 wide and deep = 170 a; one
-load step, indentation d = 0.02, a = 0.4 = 4 fine elements), with augmented Lagrange (the deck's
-FTOLN 1e-4 = 0.5 % of d) and with penalty (FKN 10).
+load step, indentation d = 0.02, a = 0.4 = 4 fine elements), with the deck's penalty (FKN 10)
+and with augmented Lagrange (FKN 1, FTOLN 1e-4 = 0.5 % of d).
 
 Closed form (rigid sphere on a half-space): F = 4/3 E* sqrt(R) d^1.5, E* = E / (1 - nu^2),
 a = sqrt(R d); the quarter carries F/4 = the sum of the contact forces FN. The contact radius is
@@ -24,8 +24,8 @@ E, NU, R = 1000.0, 0.3, 8.0
 E_STAR = E / (1.0 - NU**2)
 CI = {"HF": "0.1", "NF": "5", "NG": "9", "GR": "1.9", "NS": "1", "DD": "0.02", "RC": "0.6"}
 VARIANTS = {
-    "augmented": {},
-    "penalty": {"ET,3,CONTA175,,0": "ET,3,CONTA175,,1", "R,3,,,1.0,-1E-4": "R,3,,,10.0"},
+    "penalty": {},
+    "augmented": {"ET,3,CONTA175,,1": "ET,3,CONTA175,,0", "R,3,,,10.0": "R,3,,,1.0,-1E-4"},
 }
 
 
