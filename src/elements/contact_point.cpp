@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "elements/element_build_cache.h"
 #include "elements/element_registry.h"
 
 namespace impactfe {
@@ -216,8 +217,8 @@ void ContactPoint::results(const ElementContext&, const Eigen::VectorXd& u, cons
 double attached_stiffness(const ElementBuildContext& ctx, int node, const Vec3& n) {
   double s = 0.0;
   const ElementContext ectx;
-  for (const auto& [id, rec] : ctx.model.elements) {
-    if (std::find(rec.nodes.begin(), rec.nodes.end(), node) == rec.nodes.end()) continue;
+  for (const int id : elements_at_node(ctx, node)) {
+    const ElementRecord& rec = ctx.model.elements.at(id);
     const auto type = ctx.model.element_types.find(rec.type);
     if (type == ctx.model.element_types.end()) continue;
     const ElementTypeDescriptor& d = element_type_descriptor(type->second);
@@ -240,8 +241,8 @@ double attached_stiffness(const ElementBuildContext& ctx, int node, const Vec3& 
 double attached_depth(const ElementBuildContext& ctx, int node) {
   double sum = 0.0;
   int count = 0;
-  for (const auto& [id, rec] : ctx.model.elements) {
-    if (std::find(rec.nodes.begin(), rec.nodes.end(), node) == rec.nodes.end()) continue;
+  for (const int id : elements_at_node(ctx, node)) {
+    const ElementRecord& rec = ctx.model.elements.at(id);
     const auto type = ctx.model.element_types.find(rec.type);
     if (type == ctx.model.element_types.end()) continue;
     const ElementTypeDescriptor& d = element_type_descriptor(type->second);

@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "elements/element_build_cache.h"
 #include "elements/element_registry.h"
 #include "elements/line_element_data.h"
 #include "elements/target_surface.h"
@@ -174,7 +175,8 @@ std::unique_ptr<Element> make_surface_contact(const ElementBuildContext& ctx,
   for (int n : nodes) {
     // Σ of the tributary areas at n over the CONTA174 faces of this TYPE and REAL.
     double total = 0.0;
-    for (const auto& [id, other] : model.elements) {
+    for (const int id : elements_at_node(ctx, n)) {
+      const ElementRecord& other = model.elements.at(id);
       if (other.type != record.type || other.real != record.real) continue;
       const std::vector<int> c = corners(other);
       if (c.size() < 3 || std::find(c.begin(), c.end(), n) == c.end()) continue;

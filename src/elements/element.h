@@ -113,11 +113,17 @@ class Element {
   int id_;
 };
 
+struct ElementBuildCache;  // elements/element_build_cache.h
+
 /// What an element constructor gets: the model, its record, and a resolver for superelement
 /// files (MATRIX50), which are found only when the model is solved.
 struct ElementBuildContext {
   const Model& model;
   std::function<std::string(const ElementRecord&)> resolve_superelement_file;
+  /// What the elements of one build pass share, made on first use (element_build_cache.h):
+  /// the elements at each node and the contact targets. Without it every contact element
+  /// would scan the whole model, and setting up n contact nodes would cost O(n × elements).
+  mutable std::shared_ptr<ElementBuildCache> cache = nullptr;
 };
 
 /// Builds the element of a record. Throws InputError (with the element's source location) for

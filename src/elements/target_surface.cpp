@@ -9,6 +9,7 @@
 #include <cmath>
 #include <limits>
 
+#include "elements/element_build_cache.h"
 #include "elements/element_registry.h"
 #include "elements/line_element_data.h"
 
@@ -137,51 +138,20 @@ bool is_target(const Model& model, const ElementRecord& record) {
   return type != model.element_types.end() && type->second.ansys_name == "TARGE170";
 }
 
-/// The last target built (the elements of a model are built in one pass, so consecutive
-/// contact elements of a set share it), with what it was built from to detect a stale entry.
-struct TargetCache {
-  const Model* model = nullptr;
-  int real = 0;
-  std::size_t n_elements = 0;
-  std::vector<std::pair<ElementRecord, std::vector<Vec3>>> records;
-  std::shared_ptr<const TargetSurface> surface;
-};
-
-bool cache_valid(const TargetCache& c, const Model& model, int real) {
-  if (!c.surface || c.model != &model || c.real != real || c.n_elements != model.elements.size())
-    return false;
-  for (const auto& [rec, x] : c.records) {
-    const auto it = model.elements.find(rec.id);
-    if (it == model.elements.end() || it->second.nodes != rec.nodes ||
-        it->second.type != rec.type || it->second.real != rec.real)
-      return false;
-    for (std::size_t k = 0; k < rec.nodes.size(); ++k) {
-      const auto n = model.nodes.find(rec.nodes[k]);
-      if (n == model.nodes.end() || n->second.x != x[k]) return false;
-    }
-  }
-  return true;
-}
-
 }  // namespace
 
 std::shared_ptr<const TargetSurface> contact_target(const ElementBuildContext& ctx,
                                                     const ElementRecord& record) {
-  static thread_local TargetCache cache;
+  // Built once per set and build pass: every contact element of the set shares it.
+  std::shared_ptr<const TargetSurface>& shared = build_cache(ctx).targets[record.real];
+  if (shared) return shared;
   const Model& model = ctx.model;
-  if (cache_valid(cache, model, record.real)) return cache.surface;
-  TargetCache built;
-  built.model = &model;
-  built.real = record.real;
-  built.n_elements = model.elements.size();
   std::vector<TargetSurface::Triangle> triangles;
   int pilot = 0;
   for (const auto& [id, rec] : model.elements) {
     if (rec.real != record.real || !is_target(model, rec)) continue;
-    std::vector<Vec3> x;
-    for (std::size_t k = 0; k < rec.nodes.size(); ++k)
-      x.push_back(line_data::node(model, rec, k, rec.nodes.size(), kFamily).x);
-    built.records.emplace_back(rec, x);
+    for (std::size_t k = 0; k < rec.nodes.size(); ++k)  // every node defined (InputError)
+      line_data::node(model, rec, k, rec.nodes.size(), kFamily);
     const std::vector<int> nodes = distinct_nodes(rec);
     if (nodes.size() == 1) {
       if (pilot != 0 && pilot != nodes[0])
@@ -233,9 +203,8 @@ std::shared_ptr<const TargetSurface> contact_target(const ElementBuildContext& c
                           "element with one node, E,pilot, in the same REAL)",
                           record.real, n));
   }
-  built.surface = std::make_shared<const TargetSurface>(pilot, std::move(triangles));
-  cache = std::move(built);
-  return cache.surface;
+  shared = std::make_shared<const TargetSurface>(pilot, std::move(triangles));
+  return shared;
 }
 
 RigidTargetPoint::RigidTargetPoint(const char* family, int id, int node, const Vec3& x,

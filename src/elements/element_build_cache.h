@@ -1,0 +1,30 @@
+#pragma once
+/// Lookups shared by the elements of one build pass (ElementBuildContext::cache): made on the
+/// first request and dropped with the context, so they never outlive the model state they were
+/// made from (a deck may change the model between two solutions).
+#include <map>
+#include <memory>
+#include <unordered_map>
+#include <vector>
+
+#include "elements/element.h"
+
+namespace impactfe {
+
+class TargetSurface;
+
+struct ElementBuildCache {
+  /// node → the ids of the elements that reference it, ascending (filled on first use).
+  std::unordered_map<int, std::vector<int>> elements_at_node;
+  bool node_index_built = false;
+  /// real-constant set → its contact target (elements/target_surface.h).
+  std::map<int, std::shared_ptr<const TargetSurface>> targets;
+};
+
+/// The cache of `ctx`, made on first use.
+ElementBuildCache& build_cache(const ElementBuildContext& ctx);
+
+/// The ids of the elements that reference `node`, ascending (model order); empty for none.
+const std::vector<int>& elements_at_node(const ElementBuildContext& ctx, int node);
+
+}  // namespace impactfe
