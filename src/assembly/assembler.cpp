@@ -195,12 +195,15 @@ void Assembler::compute_nonlinear_tangents(const VectorXd& u) const {
     return;
   }
   const auto start = std::chrono::steady_clock::now();
-  bool reused = false;
-  for (int i = 0; i < n_nonlinear; ++i) reused = !evaluate(i) || reused;
-  // A pass that reused buffers says nothing about the cost of a full one.
-  if (!reused)
+  int evaluated = 0;
+  for (int i = 0; i < n_nonlinear; ++i) evaluated += evaluate(i) ? 1 : 0;
+  // The probes estimate a full pass: a pass that reused some buffers is scaled to all elements
+  // (elements that never move, e.g. on constrained nodes, reuse theirs at every pass), and one
+  // that evaluated nothing is no probe.
+  if (evaluated > 0)
     threading_.record_serial_pass(
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() *
+        n_nonlinear / evaluated);
 }
 
 bool Assembler::evaluate_tangent(std::size_t e, const VectorXd& u) const {
