@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstring>
 #include <exception>
 
 #ifdef _OPENMP
@@ -36,6 +37,8 @@ Assembler::Assembler(const std::vector<std::unique_ptr<Element>>& elements, cons
   is_linear_.assign(elements_.size(), false);
   tangent_buffer_.resize(elements_.size());
   force_buffer_.resize(elements_.size());
+  tangent_at_.resize(elements_.size());
+  reusable_.assign(elements_.size(), false);
   for (std::size_t e = 0; e < elements_.size(); ++e) {
     const auto& idx = dofs_.element_indices(e);
     const int n = static_cast<int>(idx.size());
@@ -60,6 +63,7 @@ Assembler::Assembler(const std::vector<std::unique_ptr<Element>>& elements, cons
       is_linear_[e] = true;
     } else {
       nonlinear_.push_back(e);
+      reusable_[e] = !elements_[e]->has_status() && !elements_[e]->has_history();
     }
     has_damping_ = has_damping_ || elements_[e]->has_damping() || alpha_ != 0.0 || beta_ != 0.0;
   }
@@ -166,10 +170,7 @@ void Assembler::compute_nonlinear_tangents(const VectorXd& u) const {
   // scatter that follows stays serial and deterministic.
   const int n_nonlinear = static_cast<int>(nonlinear_.size());
   auto evaluate = [&](int i) {
-    const std::size_t e = nonlinear_[static_cast<std::size_t>(i)];
-    VectorXd ue_local;
-    gather(e, u, ue_local);
-    elements_[e]->tangent(ctx_, ue_local, tangent_buffer_[e], force_buffer_[e]);
+    return evaluate_tangent(nonlinear_[static_cast<std::size_t>(i)], u);
   };
   if (threading_.parallel) {
     // An exception must not leave the parallel region (that would terminate the program): the
@@ -194,9 +195,28 @@ void Assembler::compute_nonlinear_tangents(const VectorXd& u) const {
     return;
   }
   const auto start = std::chrono::steady_clock::now();
-  for (int i = 0; i < n_nonlinear; ++i) evaluate(i);
-  threading_.record_serial_pass(
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  int evaluated = 0;
+  for (int i = 0; i < n_nonlinear; ++i) evaluated += evaluate(i) ? 1 : 0;
+  // The probes estimate a full pass: a pass that reused some buffers is scaled to all elements
+  // (elements that never move, e.g. on constrained nodes, reuse theirs at every pass), and one
+  // that evaluated nothing is no probe.
+  if (evaluated > 0)
+    threading_.record_serial_pass(
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() *
+        n_nonlinear / evaluated);
+}
+
+bool Assembler::evaluate_tangent(std::size_t e, const VectorXd& u) const {
+  VectorXd ue;
+  gather(e, u, ue);
+  VectorXd& at = tangent_at_[e];
+  if (reusable_[e] && at.size() == ue.size() &&
+      std::memcmp(at.data(), ue.data(), sizeof(double) * static_cast<std::size_t>(ue.size())) == 0)
+    return false;
+  at.resize(0);  // the buffers are not reusable until the evaluation has succeeded
+  elements_[e]->tangent(ctx_, ue, tangent_buffer_[e], force_buffer_[e]);
+  if (reusable_[e]) at = std::move(ue);
+  return true;
 }
 
 void Assembler::TangentThreading::record_serial_pass(double seconds) {

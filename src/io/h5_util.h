@@ -84,8 +84,13 @@ enum class StringLayout { Variable, Fixed };
 /// wrong numbers).
 enum class Storage { Contiguous, Checked };
 
+/// Chunks smaller than this (values) are not deflated whatever the level (see
+/// checked_creation_list): 4096 values = 32 kB of float64.
+inline constexpr hsize_t kMinDeflateChunkElements = 4096;
+
 /// Dataset creation list for a chunked, compressed and checksummed dataset (shuffle, deflate at
-/// `level`; level 0: Fletcher32 only); `fill` (optional) is the float64 fill value.
+/// `level` for chunks of at least kMinDeflateChunkElements values; otherwise, and at level 0:
+/// Fletcher32 only); `fill` (optional) is the float64 fill value.
 Handle checked_creation_list(const std::vector<hsize_t>& chunk, const double* fill = nullptr,
                              int level = 4);
 

@@ -177,5 +177,85 @@ TEST(Assembler, ElementFailureInParallelTangentPhaseIsRethrownForTheFirstElement
 #endif
 }
 
+/// A nonlinear spring between two nodes' UX (f = k (u2 − u1)³ / 3 per node pair) that counts
+/// its tangent evaluations; with `status` it reports a status like a gap.
+class CountingSpring final : public Element {
+ public:
+  CountingSpring(int id, int n1, int n2, bool status)
+      : Element(id), dofs_{{n1, Dof::UX}, {n2, Dof::UX}}, status_(status) {}
+  const char* family() const override { return "CountingSpring"; }
+  const std::vector<DofKey>& dofs() const override { return dofs_; }
+  bool is_nonlinear(const ElementContext&) const override { return true; }
+  bool has_status() const override { return status_; }
+  void tangent(const ElementContext&, const Eigen::VectorXd& u, Eigen::MatrixXd& K,
+               Eigen::VectorXd& f) const override {
+    ++evaluations;
+    const double d = u(1) - u(0);
+    K.resize(2, 2);
+    K << d * d, -d * d, -d * d, d * d;
+    f.resize(2);
+    f << -d * d * d / 3.0, d * d * d / 3.0;
+  }
+  void mass(const ElementContext&, Eigen::MatrixXd& M) const override {
+    M = Eigen::MatrixXd::Identity(2, 2);
+  }
+  const std::vector<std::string>& result_names() const override { return names_; }
+  void results(const ElementContext&, const Eigen::VectorXd&, const Eigen::VectorXd&,
+               ElementResultValues& out) const override {
+    out.clear();
+  }
+  mutable int evaluations = 0;
+
+ private:
+  std::vector<DofKey> dofs_;
+  std::vector<std::string> names_;
+  bool status_;
+};
+
+TEST(Assembler, TangentPhaseReusesBuffersOnlyForStatelessElementsAtTheSameDofValues) {
+  // Residual and tangent of a Newton iteration assemble at the same u: an element without
+  // status or history is evaluated once, a status element (gap) every time; an element whose
+  // own DOF values changed is evaluated again, the others not; the outputs are those of a fresh
+  // evaluation.
+  std::vector<std::unique_ptr<Element>> elements;
+  elements.push_back(std::make_unique<CountingSpring>(1, 1, 2, false));
+  elements.push_back(std::make_unique<CountingSpring>(2, 2, 3, false));
+  elements.push_back(std::make_unique<CountingSpring>(3, 3, 4, true));
+  const DofMap dofs(elements, {{1, Dof::UX}});
+  const Assembler assembler(elements, dofs, ElementContext{});
+  const auto count = [&](int e) {
+    return static_cast<const CountingSpring&>(*elements[static_cast<std::size_t>(e)]).evaluations;
+  };
+  VectorXd u = VectorXd::LinSpaced(dofs.n_active(), 0.0, 0.3);
+  const VectorXd v = VectorXd::Zero(dofs.n_active());
+  const IntegrationCoefficients coeff{1.0, 0.0, 0.0};
+  VectorXd f_first, f_second;
+  SparseMatrix eff;
+  assembler.assemble(coeff, u, v, Assembler::Output{nullptr, &f_first, nullptr});
+  assembler.assemble(coeff, u, v, Assembler::Output{&eff, &f_second, nullptr});
+  EXPECT_EQ(count(0), 1);
+  EXPECT_EQ(count(1), 1);
+  EXPECT_EQ(count(2), 2);
+  EXPECT_EQ(f_first, f_second);
+  // Move node 4 only: element 3 (nodes 3-4) changes, elements 1 and 2 keep their buffers.
+  u(dofs.index(DofKey{4, Dof::UX})) += 0.05;
+  assembler.assemble(coeff, u, v, Assembler::Output{nullptr, &f_second, nullptr});
+  EXPECT_EQ(count(0), 1);
+  EXPECT_EQ(count(1), 1);
+  EXPECT_EQ(count(2), 3);
+  // Move node 3: elements 2 and 3 are evaluated again; the forces equal a fresh assembler's.
+  u(dofs.index(DofKey{3, Dof::UX})) -= 0.02;
+  assembler.assemble(coeff, u, v, Assembler::Output{&eff, &f_second, nullptr});
+  EXPECT_EQ(count(0), 1);
+  EXPECT_EQ(count(1), 2);
+  EXPECT_EQ(count(2), 4);
+  const Assembler fresh(elements, dofs, ElementContext{});
+  VectorXd f_fresh;
+  SparseMatrix eff_fresh;
+  fresh.assemble(coeff, u, v, Assembler::Output{&eff_fresh, &f_fresh, nullptr});
+  EXPECT_EQ(f_second, f_fresh);
+  EXPECT_EQ(MatrixXd(eff), MatrixXd(eff_fresh));
+}
+
 }  // namespace
 }  // namespace impactfe
