@@ -61,8 +61,9 @@ struct RunArgs {
 /// Under `--solver mumps` every rank runs the deck (SPMD, docs/scaling.md); this is the one
 /// place that decides which process writes output. Rank 0 writes results, log and terminal
 /// output as a one-process run does; any other rank runs in a private scratch directory, removed
-/// at the end, with its terminal output discarded, so no file or print anywhere else needs to
-/// know about ranks.
+/// at the end, that starts with a copy of the output directory's HDF5 files (the inputs a deck
+/// may read from there), with its terminal output discarded, so no file or print anywhere else
+/// needs to know about ranks.
 class RankOutput {
  public:
   explicit RankOutput(RunArgs& args) {
@@ -79,6 +80,12 @@ class RankOutput {
           fmt::format("rank {}: cannot create a scratch directory", process_rank()));
     scratch_ = pattern;
     args.out_dir = scratch_.string();
+    // What a deck may read from its working directory: superelement files of an earlier
+    // generation pass (*.sub.h5) and results files (restart, POST1/POST26 of an earlier run).
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(real_out, ec))
+      if (entry.is_regular_file() && entry.path().extension() == ".h5")
+        fs::copy_file(entry.path(), scratch_ / entry.path().filename());
     if (!std::freopen("/dev/null", "w", stdout) || !std::freopen("/dev/null", "w", stderr))
       throw std::runtime_error("cannot silence the terminal output of a rank other than 0");
   }
