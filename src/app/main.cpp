@@ -350,6 +350,10 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
 
   try {
+    if (*run_cmd && run.solver != "mumps" && (run.mumps_ooc || !run.mumps_ooc_dir.empty())) {
+      std::cerr << "error: --mumps-ooc and --mumps-ooc-dir need --solver mumps\n";
+      return kExitInput;
+    }
     if (*run_cmd && run.solver == "mumps") return run_distributed(run);
     if (*run_cmd) return run_command(run);
     if (*post_cmd) {
