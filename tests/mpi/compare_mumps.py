@@ -92,9 +92,11 @@ def main():
     name = os.path.splitext(os.path.basename(deck))[0]
     root = os.path.join(out, name + ("_" + "_".join(a.strip("-") for a in extra) if extra else ""))
     reference_dir = os.path.join(root, "cholmod")
+    # The MUMPS options (--mumps-ooc, ...) are for the MUMPS runs only.
+    common = [a for a in extra if not a.startswith("--mumps")]
     if pre:
-        run([binary, "run", pre, "-o", reference_dir] + extra, reference_dir)
-    run([binary, "run", deck, "-o", reference_dir] + extra, reference_dir, fresh=pre is None)
+        run([binary, "run", pre, "-o", reference_dir] + common, reference_dir)
+    run([binary, "run", deck, "-o", reference_dir] + common, reference_dir, fresh=pre is None)
     reference = datasets(os.path.join(reference_dir, name + ".h5"))
     superelements = sorted(f for f in os.listdir(reference_dir) if f.endswith(".sub.h5"))
     for f in superelements:
