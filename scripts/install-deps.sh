@@ -12,7 +12,9 @@ $SUDO apt-get install -y --no-install-recommends \
   libgtest-dev libgmock-dev libbenchmark-dev \
   clang-format python3 nlohmann-json3-dev chromium fonts-dejavu-core \
   python3-numpy python3-h5py python3-pandas python3-pytest python3-vtk9 \
-  clang-14 libclang-rt-14-dev libomp-14-dev
+  clang-14 libclang-rt-14-dev libomp-14-dev \
+  libmumps-dev libopenmpi-dev openmpi-bin
+# MUMPS and Open MPI: the distributed solver (`--solver mumps`, docs/scaling.md).
 # clang-14 with compiler-rt (libFuzzer, AddressSanitizer, UBSan) and its OpenMP runtime: the
 # sanitizer build of scripts/test-sanitizers.sh and scripts/fuzz.sh (scripts/sanitizer-build.sh).
 # node and npm fetch the report page's libraries at build time (report/package-lock.json); the

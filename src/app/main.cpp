@@ -5,6 +5,8 @@
 
 #include <cerrno>
 #include <chrono>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -15,6 +17,7 @@
 #include "core/errors.h"
 #include "core/log.h"
 #include "deck/deck_reader.h"
+#include "linalg/parallel_backend.h"
 #include "results/post_csv.h"
 #include "results/report.h"
 #include "results/results_file.h"
@@ -50,6 +53,53 @@ struct RunArgs {
   std::string superelement;
   bool continue_on_nonconvergence = false;
   bool no_condense = false;
+  std::string solver = "cholmod";  // cholmod | mumps (MPI, docs/scaling.md)
+  bool mumps_ooc = false;
+  std::string mumps_ooc_dir;
+};
+
+/// Under `--solver mumps` every rank runs the deck (SPMD, docs/scaling.md); this is the one
+/// place that decides which process writes output. Rank 0 writes results, log and terminal
+/// output as a one-process run does; any other rank runs in a private scratch directory, removed
+/// at the end, that starts with a copy of the output directory's HDF5 files (the inputs a deck
+/// may read from there), with its terminal output discarded, so no file or print anywhere else
+/// needs to know about ranks.
+class RankOutput {
+ public:
+  explicit RankOutput(RunArgs& args) {
+    if (process_rank() == 0) return;
+    const fs::path real_out = fs::absolute(args.out_dir);
+    // A relative --se names a file of the real output directory, which this rank does not use.
+    if (!args.superelement.empty() && fs::path(args.superelement).is_relative())
+      args.superelement = (real_out / args.superelement).string();
+    std::string pattern =
+        (fs::temp_directory_path() / fmt::format("impactfe-rank{}-XXXXXX", process_rank()))
+            .string();
+    if (!mkdtemp(pattern.data()))
+      throw std::runtime_error(
+          fmt::format("rank {}: cannot create a scratch directory", process_rank()));
+    scratch_ = pattern;
+    args.out_dir = scratch_.string();
+    // What a deck may read from its working directory: superelement files of an earlier
+    // generation pass (*.sub.h5) and results files (restart, POST1/POST26 of an earlier run).
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(real_out, ec))
+      if (entry.is_regular_file() && entry.path().extension() == ".h5")
+        fs::copy_file(entry.path(), scratch_ / entry.path().filename());
+    if (!std::freopen("/dev/null", "w", stdout) || !std::freopen("/dev/null", "w", stderr))
+      throw std::runtime_error("cannot silence the terminal output of a rank other than 0");
+  }
+  ~RankOutput() {
+    if (scratch_.empty()) return;
+    std::error_code ec;
+    fs::current_path(scratch_.parent_path(), ec);
+    fs::remove_all(scratch_, ec);
+  }
+  RankOutput(const RankOutput&) = delete;
+  RankOutput& operator=(const RankOutput&) = delete;
+
+ private:
+  fs::path scratch_;
 };
 
 /// The run summary, printed and written to the log (energy balance included).
@@ -182,10 +232,35 @@ int run_command(const RunArgs& args) {
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   print_summary(jobname, stats, wall);
+  if (parallel_backend_active()) {
+    const std::string line =
+        fmt::format("  sparse solver: MUMPS on {} MPI rank(s)", process_count());
+    std::cout << line << "\n";
+    Log::info("{}", line.substr(2));
+  }
   print_skipped(job);
   for (const auto& file : session.results_files())
     std::cout << fmt::format("  results: {}\n", (fs::current_path() / file).string());
   return kExitOk;
+}
+
+/// `--solver mumps`: MPI up (the module loaded only now), the deck run on every rank, one exit
+/// status for all, MPI down.
+int run_distributed(RunArgs args) {
+  if (!args.mumps_ooc_dir.empty()) args.mumps_ooc = true;  // a directory implies --mumps-ooc
+  start_parallel_backend({args.mumps_ooc, args.mumps_ooc_dir});
+  // One thread per rank unless --threads says otherwise: the ranks share the cores.
+  if (args.threads == 0 && process_count() > 1) args.threads = 1;
+  int status = kExitOk;
+  {
+    RankOutput output(args);
+    status = run_command(args);
+  }
+  // Every rank reaches here after the same solver calls (the same deck, the same errors), so the
+  // ranks can agree on the status; stop_parallel_backend then finalises MPI.
+  status = max_over_ranks(status);
+  stop_parallel_backend();
+  return status;
 }
 
 }  // namespace
@@ -213,6 +288,15 @@ int main(int argc, char** argv) {
                     "accept non-converged steps with a warning");
   run_cmd->add_flag("--no-condense", run.no_condense,
                     "full Newton on all DOFs in a transient, never the condensed linear part");
+  run_cmd
+      ->add_option("--solver", run.solver,
+                   "sparse direct solver: cholmod (default, one process) or mumps (MPI: "
+                   "mpirun -n N impactfe run DECK --solver mumps)")
+      ->check(CLI::IsMember({"cholmod", "mumps"}));
+  run_cmd->add_flag("--mumps-ooc", run.mumps_ooc,
+                    "MUMPS out-of-core: factors on disk (for factors larger than memory)");
+  run_cmd->add_option("--mumps-ooc-dir", run.mumps_ooc_dir,
+                      "directory of the out-of-core factor files (default $TMPDIR or /tmp)");
 
   std::string post_file;
   std::vector<std::string> nsol, esol, gapf;
@@ -266,6 +350,11 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
 
   try {
+    if (*run_cmd && run.solver != "mumps" && (run.mumps_ooc || !run.mumps_ooc_dir.empty())) {
+      std::cerr << "error: --mumps-ooc and --mumps-ooc-dir need --solver mumps\n";
+      return kExitInput;
+    }
+    if (*run_cmd && run.solver == "mumps") return run_distributed(run);
     if (*run_cmd) return run_command(run);
     if (*post_cmd) {
       ResultsReader reader(post_file);

@@ -15,7 +15,8 @@ namespace impactfe {
 
 namespace {
 
-/// (K − σM)⁻¹ x through the project's LinearSolver (CHOLMOD).
+/// (K − σM)⁻¹ x through the project's sparse LinearSolver (CHOLMOD, or MUMPS under
+/// `--solver mumps`: every rank runs the same Lanczos iteration in lockstep).
 class ShiftInvertOperator {
  public:
   using Scalar = double;
@@ -24,7 +25,7 @@ class ShiftInvertOperator {
   Eigen::Index cols() const { return k_.cols(); }
   void set_shift(double sigma) {
     const SparseMatrix a = (k_ - sigma * m_).pruned();
-    solver_ = make_linear_solver(static_cast<int>(a.rows()), LinearSolverKind::Cholmod);
+    solver_ = make_linear_solver(static_cast<int>(a.rows()));
     solver_->analyze_pattern(a);
     solver_->factorize(a);
   }

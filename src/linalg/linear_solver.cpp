@@ -327,9 +327,18 @@ int weakest_pivot_row(const SparseMatrix& lower) {
   return worst;
 }
 
+namespace {
+SparseSolverFactory sparse_solver_factory = nullptr;
+}  // namespace
+
+void set_sparse_solver_factory(SparseSolverFactory factory) {
+  sparse_solver_factory = factory;
+}
+
 std::unique_ptr<LinearSolver> make_linear_solver(int n, LinearSolverKind kind) {
   if (kind == LinearSolverKind::Dense || (kind == LinearSolverKind::Auto && n <= 64))
     return std::make_unique<DenseSolver>();
+  if (kind == LinearSolverKind::Auto && sparse_solver_factory) return sparse_solver_factory();
   return std::make_unique<CholmodSolver>();
 }
 

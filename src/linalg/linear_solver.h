@@ -66,9 +66,15 @@ class LinearSolver {
 enum class LinearSolverKind { Auto, Cholmod, Dense };
 
 /// Auto: CHOLMOD supernodal Cholesky (METIS ordering) for sparse systems, dense LDLᵀ for tiny
-/// ones (n <= 64), where sparse bookkeeping costs more than it saves.
+/// ones (n <= 64), where sparse bookkeeping costs more than it saves. With a sparse solver
+/// factory set (the MUMPS backend, linalg/parallel_backend.h), Auto's sparse systems go to it.
 std::unique_ptr<LinearSolver> make_linear_solver(int n,
                                                  LinearSolverKind kind = LinearSolverKind::Auto);
+
+/// Replaces CHOLMOD for LinearSolverKind::Auto's sparse systems process-wide (nullptr restores
+/// CHOLMOD). Every process of a distributed run sets the same factory.
+using SparseSolverFactory = std::unique_ptr<LinearSolver> (*)();
+void set_sparse_solver_factory(SparseSolverFactory factory);
 
 /// Finds the equation with the smallest relative pivot of a symmetric matrix (diagnosis of a
 /// singular model): returns the 0-based row with D_jj / A_jj smallest, via a simplicial LDLᵀ.

@@ -1,0 +1,115 @@
+#include "linalg/parallel_backend.h"
+
+#include <dlfcn.h>
+#include <fmt/format.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <memory>
+#include <stdexcept>
+#include <vector>
+
+#include "linalg/linear_solver.h"
+#include "linalg/mumps/mumps_module_api.h"
+
+namespace impactfe {
+
+namespace {
+
+/// The module's entry points (linalg/mumps/mumps_module_api.h).
+struct Module {
+  void* handle = nullptr;
+  decltype(&impactfe_mumps_start) start = nullptr;
+  decltype(&impactfe_mumps_rank) rank = nullptr;
+  decltype(&impactfe_mumps_size) size = nullptr;
+  decltype(&impactfe_mumps_create) create = nullptr;
+  decltype(&impactfe_mumps_max_int) max_int = nullptr;
+  decltype(&impactfe_mumps_abort) abort = nullptr;
+  decltype(&impactfe_mumps_stop) stop = nullptr;
+  MumpsModuleOptions options;
+};
+Module module;
+
+/// Where the module may be: $IMPACTFE_MUMPS_MODULE, next to the executable (the build tree),
+/// then ../lib/impactfe relative to it (an installation).
+std::vector<std::filesystem::path> module_candidates() {
+  std::vector<std::filesystem::path> out;
+  if (const char* env = std::getenv("IMPACTFE_MUMPS_MODULE")) out.emplace_back(env);
+  std::error_code ec;
+  const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    out.push_back(exe.parent_path() / "libimpactfe_mumps.so");
+    out.push_back(exe.parent_path().parent_path() / "lib" / "impactfe" / "libimpactfe_mumps.so");
+  }
+  return out;
+}
+
+template <typename F>
+void bind(F& f, const char* name) {
+  f = reinterpret_cast<F>(dlsym(module.handle, name));
+  if (!f) throw std::runtime_error(fmt::format("--solver mumps: the module lacks {}", name));
+}
+
+std::unique_ptr<LinearSolver> make_mumps_solver() {
+  return std::unique_ptr<LinearSolver>(module.create(&module.options));
+}
+
+}  // namespace
+
+void start_parallel_backend(const ParallelSettings& settings) {
+  if (module.handle) return;
+  std::string errors;
+  for (const auto& path : module_candidates()) {
+    if (!std::filesystem::exists(path)) continue;
+    // RTLD_GLOBAL: Open MPI's own plugins resolve libmpi's symbols through the global scope.
+    module.handle = dlopen(path.c_str(), RTLD_NOW | RTLD_GLOBAL);
+    if (module.handle) break;
+    errors += fmt::format("\n  {}: {}", path.string(), dlerror());
+  }
+  if (!module.handle)
+    throw std::runtime_error(fmt::format(
+        "--solver mumps: cannot load libimpactfe_mumps.so (impactfe was built without MUMPS, or "
+        "the MPI/MUMPS libraries are missing: scripts/install-deps.sh installs them){}",
+        errors));
+  bind(module.start, "impactfe_mumps_start");
+  bind(module.rank, "impactfe_mumps_rank");
+  bind(module.size, "impactfe_mumps_size");
+  bind(module.create, "impactfe_mumps_create");
+  bind(module.max_int, "impactfe_mumps_max_int");
+  bind(module.abort, "impactfe_mumps_abort");
+  bind(module.stop, "impactfe_mumps_stop");
+  module.options.out_of_core = settings.out_of_core;
+  fmt::format_to_n(module.options.ooc_directory, sizeof(module.options.ooc_directory) - 1, "{}",
+                   settings.ooc_directory);
+  if (module.start() != 0) throw std::runtime_error("--solver mumps: MPI_Init failed");
+  set_sparse_solver_factory(&make_mumps_solver);
+}
+
+bool parallel_backend_active() {
+  return module.handle != nullptr && module.stop != nullptr;
+}
+
+int process_rank() {
+  return parallel_backend_active() ? module.rank() : 0;
+}
+int process_count() {
+  return parallel_backend_active() ? module.size() : 1;
+}
+
+int max_over_ranks(int value) {
+  return parallel_backend_active() ? module.max_int(value) : value;
+}
+
+void abort_all_ranks(int code) {
+  if (parallel_backend_active()) module.abort(code);
+  std::exit(code);
+}
+
+void stop_parallel_backend() {
+  if (!parallel_backend_active()) return;
+  set_sparse_solver_factory(nullptr);
+  module.stop();
+  module.stop = nullptr;  // the module stays mapped (Open MPI does not support unloading)
+}
+
+}  // namespace impactfe

@@ -1,0 +1,162 @@
+#!/usr/bin/python3
+"""Runs a deck with the default CHOLMOD (one process) and with `--solver mumps` under mpirun on
+1, 2 and 4 ranks (docs/scaling.md), each MUMPS run twice, and checks that
+- every stored floating-point result equals CHOLMOD's to 1e-10 relative to the peak of its array
+  (accelerations to ACCELERATION_TOLERANCE: a_{n+1} = (u_{n+1} - u~)/(beta dt^2) amplifies the
+  round-off of u by 1/(beta dt^2), whichever solver produced it),
+- the two runs on the same rank count are bitwise equal,
+- the run summary names MUMPS and the rank count, and only rank 0 wrote files.
+Exit 77 (CTest: skipped) when mpirun or the MUMPS module is missing.
+
+With --pre DECK0, DECK0 (a superelement generation pass) runs first in the same output directory,
+with the same solver and rank count, and DECK (the use pass) reads what it wrote; the
+superelement files (*.sub.h5) are then compared to 1e-10 as well. --tolerance replaces 1e-10 for
+DECK's results (a gap impact amplifies round-off: docs/scaling.md).
+
+usage: compare_mumps.py IMPACTFE DECK OUTDIR [--ranks 1,2,4] [--pre DECK0] [--tolerance T]
+                        [-- extra impactfe arguments]"""
+import os
+import shutil
+import subprocess
+import sys
+
+import h5py
+import numpy as np
+
+TOLERANCE = 1e-10
+ACCELERATION_TOLERANCE = 1e-7
+SKIP = 77
+
+# Open MPI on one CI machine, possibly as root in a container: allow root, more ranks than
+# cores (waiting ranks yield the core instead of spinning), and no cross-memory-attach (ptrace
+# is often not permitted there).
+MPI_ENV = {
+    "OMPI_ALLOW_RUN_AS_ROOT": "1",
+    "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1",
+    "OMPI_MCA_rmaps_base_oversubscribe": "1",
+    "OMPI_MCA_btl_vader_single_copy_mechanism": "none",
+    "OMPI_MCA_mpi_yield_when_idle": "1",
+    "OMP_NUM_THREADS": "1",
+}
+
+
+def run(command, outdir, fresh=True):
+    if fresh:
+        shutil.rmtree(outdir, ignore_errors=True)
+        os.makedirs(outdir)
+    env = dict(os.environ, **MPI_ENV)
+    p = subprocess.run(command, capture_output=True, text=True, env=env, timeout=900)
+    if p.returncode != 0:
+        sys.exit(f"FAIL {' '.join(command)}: exit {p.returncode}\n{p.stdout}\n{p.stderr}")
+    return p.stdout
+
+
+def datasets(path):
+    out = {}
+    with h5py.File(path, "r") as f:
+        def visit(name, obj):
+            if isinstance(obj, h5py.Dataset) and obj.dtype.kind == "f":
+                out[name] = obj[()]
+        f.visititems(visit)
+    return out
+
+
+def main():
+    args = sys.argv[1:]
+    extra = []
+    if "--" in args:
+        extra = args[args.index("--") + 1:]
+        args = args[:args.index("--")]
+    ranks = [1, 2, 4]
+    if "--ranks" in args:
+        i = args.index("--ranks")
+        ranks = [int(r) for r in args[i + 1].split(",")]
+        del args[i:i + 2]
+    tolerance = TOLERANCE
+    if "--tolerance" in args:
+        i = args.index("--tolerance")
+        tolerance = float(args[i + 1])
+        del args[i:i + 2]
+    pre = None
+    if "--pre" in args:
+        i = args.index("--pre")
+        pre = os.path.abspath(args[i + 1])
+        del args[i:i + 2]
+    binary, deck, out = args[0], os.path.abspath(args[1]), args[2]
+    mpirun = shutil.which("mpirun")
+    module = os.path.join(os.path.dirname(os.path.abspath(binary)), "libimpactfe_mumps.so")
+    if not mpirun or not os.path.exists(module):
+        print(f"SKIP: {'mpirun' if not mpirun else module} not found "
+              "(scripts/install-deps.sh installs libmumps-dev, libopenmpi-dev, openmpi-bin)")
+        sys.exit(SKIP)
+    name = os.path.splitext(os.path.basename(deck))[0]
+    root = os.path.join(out, name + ("_" + "_".join(a.strip("-") for a in extra) if extra else ""))
+    reference_dir = os.path.join(root, "cholmod")
+    # The MUMPS options (--mumps-ooc, ...) are for the MUMPS runs only.
+    common = [a for a in extra if not a.startswith("--mumps")]
+    if pre:
+        run([binary, "run", pre, "-o", reference_dir] + common, reference_dir)
+    run([binary, "run", deck, "-o", reference_dir] + common, reference_dir, fresh=pre is None)
+    reference = datasets(os.path.join(reference_dir, name + ".h5"))
+    superelements = sorted(f for f in os.listdir(reference_dir) if f.endswith(".sub.h5"))
+    for f in superelements:
+        reference.update({f + ":" + k: v for k, v in
+                          datasets(os.path.join(reference_dir, f)).items()})
+    failures = []
+    for n in ranks:
+        results = []
+        for attempt in (1, 2):
+            outdir = os.path.join(root, f"mumps{n}_{attempt}")
+            mumps = [mpirun, "-n", str(n), binary, "run"]
+            if pre:
+                run(mumps + [pre, "-o", outdir, "--solver", "mumps"] + extra, outdir)
+            stdout = run(mumps + [deck, "-o", outdir, "--solver", "mumps"] + extra, outdir,
+                         fresh=pre is None)
+            if f"MUMPS on {n} MPI rank(s)" not in stdout:
+                failures.append(f"{n} ranks: the summary does not name MUMPS on {n} ranks")
+            result = datasets(os.path.join(outdir, name + ".h5"))
+            for f in superelements:
+                result.update({f + ":" + k: v for k, v in
+                               datasets(os.path.join(outdir, f)).items()})
+            results.append(result)
+            # Only rank 0 writes into the output directory: the files of a one-process run.
+            if sorted(os.listdir(outdir)) != sorted(os.listdir(reference_dir)):
+                failures.append(f"{n} ranks: files {sorted(os.listdir(outdir))} instead of "
+                                f"{sorted(os.listdir(reference_dir))}")
+        a, b = results
+        worst = worst_superelement = 0.0
+        for path, y in reference.items():
+            x = a.get(path)
+            if x is None or x.shape != y.shape:
+                failures.append(f"{n} ranks: {path} missing or of another shape")
+                continue
+            if not np.array_equal(x, b[path], equal_nan=True):
+                failures.append(f"{n} ranks: {path} differs between two identical runs")
+            if not np.array_equal(np.isfinite(x), np.isfinite(y)):
+                failures.append(f"{n} ranks: {path} NaN pattern differs")
+                continue
+            both = np.isfinite(y)
+            if not both.any():
+                continue
+            peak = np.max(np.abs(y[both]))
+            diff = np.max(np.abs(x[both] - y[both]))
+            rel = diff / peak if peak > 0 else diff
+            limit = TOLERANCE if ".sub.h5:" in path else tolerance
+            if path.endswith("/A"):
+                limit = max(limit, ACCELERATION_TOLERANCE)
+            if ".sub.h5:" in path:
+                worst_superelement = max(worst_superelement, rel)
+            elif not path.endswith("/A"):
+                worst = max(worst, rel)
+            if rel > limit:
+                failures.append(f"{n} ranks: {path} {rel:.2e} relative (limit {limit:g})")
+        print(f"{name} {' '.join(extra)}: {n} rank(s): {len(reference)} arrays, largest relative "
+              f"difference to CHOLMOD {worst:.2e} (accelerations excluded)"
+              + (f", superelement files {worst_superelement:.2e}" if superelements else "")
+              + ", repeat bitwise equal")
+    if failures:
+        sys.exit("FAIL " + name + ": " + "; ".join(failures))
+    print("OK")
+
+
+main()
