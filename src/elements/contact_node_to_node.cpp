@@ -110,14 +110,7 @@ const ElementRegistration kConta178{{.name = "CONTA178",
                                      .real_constants = RealConstantUse::Required,
                                      .vtk_cell = VtkCell::Line,
                                      .result_names = ContactPoint::names(),
-                                     // The CONT items of ETABLE / ESOL (APDL_MODELING §8.4); PRES
-                                     // of a node-to-node contact is its normal force.
-                                     .result_sequences = {{"CONT", "STAT", "STAT"},
-                                                          {"CONT", "PRES", "FN"},
-                                                          {"CONT", "PENE", "PENE"},
-                                                          {"CONT", "GAP", "GAP"},
-                                                          {"CONT", "SFRIC", "FT"},
-                                                          {"CONT", "SLIDE", "SLIDE"}},
+                                     .result_sequences = ContactPoint::sequences(),
                                      .has_status = true,
                                      .create = make_node_to_node_contact}};
 

@@ -32,12 +32,7 @@ const ElementRegistration kConta175{{.name = "CONTA175",
                                      .real_constants = RealConstantUse::Required,
                                      .vtk_cell = VtkCell::Vertex,
                                      .result_names = ContactPoint::names(),
-                                     .result_sequences = {{"CONT", "STAT", "STAT"},
-                                                          {"CONT", "PRES", "FN"},
-                                                          {"CONT", "PENE", "PENE"},
-                                                          {"CONT", "GAP", "GAP"},
-                                                          {"CONT", "SFRIC", "FT"},
-                                                          {"CONT", "SLIDE", "SLIDE"}},
+                                     .result_sequences = ContactPoint::sequences(),
                                      .has_status = true,
                                      .create = make_node_to_surface_contact}};
 

@@ -203,6 +203,13 @@ const std::vector<std::string>& ContactPoint::names() {
   return n;
 }
 
+const std::vector<ResultSequence>& ContactPoint::sequences() {
+  static const std::vector<ResultSequence> s = {
+      {"CONT", "STAT", "STAT"}, {"CONT", "PRES", "FN"},  {"CONT", "PENE", "PENE"},
+      {"CONT", "GAP", "GAP"},   {"CONT", "SFRIC", "FT"}, {"CONT", "SLIDE", "SLIDE"}};
+  return s;
+}
+
 void ContactPoint::results(const ElementContext&, const Eigen::VectorXd& u, const Eigen::VectorXd&,
                            ElementResultValues& out) const {
   const Response r = response(trial_, kinematics(u));

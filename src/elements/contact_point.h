@@ -41,6 +41,8 @@
 
 namespace impactfe {
 
+struct ResultSequence;  // elements/element_registry.h
+
 enum class ContactBehaviour {
   Standard = 0,
   Rough = 1,
@@ -102,6 +104,10 @@ class ContactPoint : public Element {
   /// STAT (0 open, 2 sliding, 3 sticking: MAPDL contact codes), FN (normal force, compression
   /// positive), PENE, GAP, FT (friction force), SLIDE (accumulated sliding distance).
   static const std::vector<std::string>& names();
+  /// The CONT items of ETABLE / ESOL / *GET (APDL_MODELING §8.4) on names(): STAT, PRES (the
+  /// normal force FN of a contact point), PENE, GAP, SFRIC (FT), SLIDE; shared by every
+  /// contact element type's registration.
+  static const std::vector<ResultSequence>& sequences();
   const std::vector<std::string>& result_names() const override { return names(); }
   void results(const ElementContext& ctx, const Eigen::VectorXd& u, const Eigen::VectorXd& v,
                ElementResultValues& out) const override;

@@ -197,12 +197,7 @@ const ElementRegistration kConta174{{.name = "CONTA174",
                                      .real_constants = RealConstantUse::Required,
                                      .vtk_cell = VtkCell::Quad,
                                      .result_names = ContactPoint::names(),
-                                     .result_sequences = {{"CONT", "STAT", "STAT"},
-                                                          {"CONT", "PRES", "FN"},
-                                                          {"CONT", "PENE", "PENE"},
-                                                          {"CONT", "GAP", "GAP"},
-                                                          {"CONT", "SFRIC", "FT"},
-                                                          {"CONT", "SLIDE", "SLIDE"}},
+                                     .result_sequences = ContactPoint::sequences(),
                                      .has_status = true,
                                      .create = make_surface_contact}};
 
