@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "../support/element_checks.h"
+#include "../support/model_records.h"
 
 #include <Eigen/Dense>
 #include <cmath>
@@ -17,24 +18,8 @@
 namespace impactfe {
 namespace {
 
-ElementType type(int id, const char* name, int k2 = 0, int k12 = 0) {
-  ElementType et;
-  et.id = id;
-  et.ansys_name = name;
-  et.keyopt[2] = k2;
-  et.keyopt[12] = k12;
-  return et;
-}
-
 ElementRecord record(int id, int type_id, int real, int mat, std::vector<int> nodes) {
-  ElementRecord r;
-  r.id = id;
-  r.type = type_id;
-  r.real = real;
-  r.mat = mat;
-  r.nodes = std::move(nodes);
-  r.where = SourceLocation{"contact.inp", 10 + id, "E"};
-  return r;
+  return testing::element_record(id, type_id, real, mat, std::move(nodes), "contact.inp");
 }
 
 /// Two coincident nodes, contact normal +Y, penalty FKN = 1000 (absolute), FKS = 500, MU = 0.3.
@@ -42,7 +27,7 @@ Model conta178_model(int keyopt2 = 1, int keyopt12 = 0, double mu = 0.3) {
   Model m;
   m.nodes[1] = Node{1, Vec3::Zero()};
   m.nodes[2] = Node{2, Vec3::Zero()};
-  m.element_types[1] = type(1, "CONTA178", keyopt2, keyopt12);
+  m.element_types[1] = testing::element_type(1, "CONTA178", keyopt2, keyopt12);
   m.real_sets[1] = RealSet{1, {-1000.0, 0.0, 0.0, 500.0, 0.0, 0.0, 1.0, 0.0}};
   Material mat;
   mat.id = 1;
@@ -232,8 +217,8 @@ Model conta175_model(const Vec3& x1) {
   m.nodes[54] = Node{54, Vec3(-2, 2, 2)};
   m.nodes[55] = Node{55, Vec3(2, -2, 2)};
   m.nodes[56] = Node{56, Vec3(2, 2, 2)};
-  m.element_types[1] = type(1, "TARGE170");
-  m.element_types[2] = type(2, "CONTA175", 1);
+  m.element_types[1] = testing::element_type(1, "TARGE170");
+  m.element_types[2] = testing::element_type(2, "CONTA175", 1);
   // FKN = -1000 (absolute), PINB = -1 (absolute), FTOLN = -1e-6.
   m.real_sets[3] = RealSet{3, {0.0, 0.0, -1000.0, -1e-6, 0.0, -1.0}};
   m.elements[1] = record(1, 1, 3, 1, {50, 50, 50, 50});

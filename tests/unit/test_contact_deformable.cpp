@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "../support/element_checks.h"
+#include "../support/model_records.h"
 
 #include <Eigen/Dense>
 #include <random>
@@ -17,23 +18,8 @@
 namespace impactfe {
 namespace {
 
-ElementType type(int id, const char* name, int k2 = 0) {
-  ElementType et;
-  et.id = id;
-  et.ansys_name = name;
-  et.keyopt[2] = k2;
-  return et;
-}
-
 ElementRecord record(int id, int type_id, int real, int mat, std::vector<int> nodes) {
-  ElementRecord r;
-  r.id = id;
-  r.type = type_id;
-  r.real = real;
-  r.mat = mat;
-  r.nodes = std::move(nodes);
-  r.where = SourceLocation{"deformable.inp", 10 + id, "E"};
-  return r;
+  return testing::element_record(id, type_id, real, mat, std::move(nodes), "deformable.inp");
 }
 
 /// Target body: two unit SOLID185 bricks side by side, x ∈ [0, 2], y ∈ [0, 1], z ∈ [−1, 0]; its
@@ -47,9 +33,9 @@ Model model(const Vec3& x100, int keyopt2 = 1, double mu = 0.0) {
       for (double x : {0.0, 1.0, 2.0}) m.nodes[id] = Node{id, Vec3(x, y, z)}, ++id;
   // Bottom layer 1..6, top layer 7..12: node(i, j, k) = 1 + i + 3 j + 6 k.
   m.nodes[100] = Node{100, x100};
-  m.element_types[1] = type(1, "SOLID185");
-  m.element_types[2] = type(2, "TARGE170");
-  m.element_types[3] = type(3, "CONTA175", keyopt2);
+  m.element_types[1] = testing::element_type(1, "SOLID185");
+  m.element_types[2] = testing::element_type(2, "TARGE170");
+  m.element_types[3] = testing::element_type(3, "CONTA175", keyopt2);
   Material mat;
   mat.id = 1;
   mat.props["EX"] = 1000.0;
