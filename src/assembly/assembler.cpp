@@ -17,19 +17,9 @@ Assembler::Assembler(const std::vector<std::unique_ptr<Element>>& elements, cons
                      const ElementContext& ctx, double alpha, double beta)
     : elements_(elements), dofs_(dofs), ctx_(ctx), alpha_(alpha), beta_(beta) {
   const int nf = dofs_.n_free();
-  // Pattern: every pair of free DOFs that share an element (lower triangle).
-  std::vector<Eigen::Triplet<double, int>> triplets;
-  for (std::size_t e = 0; e < elements_.size(); ++e) {
-    const auto& idx = dofs_.element_indices(e);
-    for (int a : idx)
-      for (int b : idx)
-        if (a < nf && b < nf && a >= b) triplets.emplace_back(a, b, 0.0);
-  }
-  for (int i = 0; i < nf; ++i) triplets.emplace_back(i, i, 0.0);  // keep every diagonal
-  pattern_.resize(nf, nf);
-  pattern_.setFromTriplets(triplets.begin(), triplets.end());
-  pattern_.makeCompressed();
-  std::fill(pattern_.valuePtr(), pattern_.valuePtr() + pattern_.nonZeros(), 0.0);
+  graph_ = std::make_unique<DofGraph>(dofs_, elements_.size());
+  // Pattern: every pair of free DOFs that share an element (lower triangle), every diagonal.
+  pattern_ = graph_->lower_pattern(nf);
 
   slots_.resize(elements_.size());
   mass_.resize(elements_.size());
@@ -72,35 +62,35 @@ Assembler::Assembler(const std::vector<std::unique_ptr<Element>>& elements, cons
 
 void Assembler::build_linear_force_matrices() {
   // The linear elements' damping is constant (the condensed transient's A_L relies on it too),
-  // so it is evaluated once at u = 0 like their stiffness.
-  std::vector<Eigen::Triplet<double, int>> stiffness, damping, mass;
+  // so it is evaluated once at u = 0 like their stiffness. Entries are summed on the DOF graph
+  // in element order (the order of the triplet assembly this replaced: same values bitwise).
+  GraphMatrix stiffness(*graph_), damping(*graph_), mass(*graph_);
   MatrixXd c;
+  std::vector<int> slots;
   for (std::size_t e = 0; e < elements_.size(); ++e) {
-    const auto& idx = dofs_.element_indices(e);
-    const int n = static_cast<int>(idx.size());
-    for (int a = 0; a < n; ++a)
-      for (int b = 0; b < n; ++b)
-        if (mass_[e](a, b) != 0.0) mass.emplace_back(idx[a], idx[b], mass_[e](a, b));
+    const int n = static_cast<int>(dofs_.element_indices(e).size());
+    graph_->element_slots(dofs_.element_indices(e), slots);
+    mass.add(slots, mass_[e], false);
     if (!is_linear_[e]) continue;
     const MatrixXd& k = linear_stiffness_[e];
-    const bool damped = element_damping(e, VectorXd::Zero(n), k, c);
-    for (int a = 0; a < n; ++a)
-      for (int b = 0; b < n; ++b) {
-        if (k(a, b) != 0.0) stiffness.emplace_back(idx[a], idx[b], k(a, b));
-        if (damped && c(a, b) != 0.0) damping.emplace_back(idx[a], idx[b], c(a, b));
-      }
+    stiffness.add(slots, k, false);
+    if (element_damping(e, VectorXd::Zero(n), k, c)) damping.add(slots, c, false);
   }
-  const int na = dofs_.n_active();
-  SparseMatrix k_all(na, na), c_all(na, na), m_all(na, na);
-  k_all.setFromTriplets(stiffness.begin(), stiffness.end());
-  c_all.setFromTriplets(damping.begin(), damping.end());
-  m_all.setFromTriplets(mass.begin(), mass.end());
-  linear_products_ = SharedPatternProducts({&k_all, &c_all, &m_all});
+  std::vector<unsigned char> kept(mass.touched);
+  for (std::size_t s = 0; s < kept.size(); ++s)
+    kept[s] = static_cast<unsigned char>(kept[s] | stiffness.touched[s] | damping.touched[s]);
+  auto values = [](const GraphMatrix& m) { return m.empty ? nullptr : &m.value; };
+  linear_products_ = SharedPatternProducts(graph_->row_start(), graph_->column(), kept,
+                                           {values(stiffness), values(damping), values(mass)});
 }
 
 void Assembler::set_material_stiffness_damping(std::vector<double> beta) {
   IMPACTFE_CHECK(beta.empty() || beta.size() == elements_.size(),
                  "material damping: one value per element expected");
+  // All zero (no MP,DAMP): nothing changes, and the linear products need no second build.
+  if (std::all_of(beta.begin(), beta.end(), [](double b) { return b == 0.0; }) &&
+      material_beta_.empty())
+    return;
   material_beta_ = std::move(beta);
   for (double b : material_beta_) has_damping_ = has_damping_ || b != 0.0;
   build_linear_force_matrices();
@@ -317,19 +307,21 @@ void Assembler::assemble_nonlinear_part(const IntegrationCoefficients& coeff, do
 }
 
 SparseMatrix Assembler::full_matrix(Which which, const VectorXd& u) const {
-  std::vector<Eigen::Triplet<double, int>> triplets;
+  GraphMatrix out(*graph_);
+  std::vector<int> slots;
   MatrixXd m;
   VectorXd ue, fe;
   for (std::size_t e = 0; e < elements_.size(); ++e) {
     const auto& idx = dofs_.element_indices(e);
     const int n = static_cast<int>(idx.size());
+    const MatrixXd* element_matrix = &m;  // the stored matrix where there is one (no copy)
     switch (which) {
       case Which::Mass:
-        m = mass_[e];
+        element_matrix = &mass_[e];
         break;
       case Which::Stiffness:
         if (is_linear_[e]) {
-          m = linear_stiffness_[e];
+          element_matrix = &linear_stiffness_[e];
         } else {
           gather(e, u, ue);
           elements_[e]->tangent(ctx_, ue, m, fe);
@@ -353,13 +345,10 @@ SparseMatrix Assembler::full_matrix(Which which, const VectorXd& u) const {
         break;
       }
     }
-    for (int a = 0; a < n; ++a)
-      for (int b = 0; b < n; ++b)
-        if (m(a, b) != 0.0) triplets.emplace_back(idx[a], idx[b], m(a, b));
+    graph_->element_slots(idx, slots);
+    out.add(slots, *element_matrix, true);
   }
-  SparseMatrix out(dofs_.n_active(), dofs_.n_active());
-  out.setFromTriplets(triplets.begin(), triplets.end());
-  return out;
+  return out.to_sparse(*graph_);
 }
 
 bool Assembler::is_nonlinear() const {

@@ -6,6 +6,7 @@
 #include <memory>
 #include <vector>
 
+#include "assembly/dof_graph.h"
 #include "assembly/dof_map.h"
 #include "elements/element.h"
 #include "linalg/shared_pattern_products.h"
@@ -95,6 +96,7 @@ class Assembler {
   const std::vector<std::unique_ptr<Element>>& elements_;
   const DofMap& dofs_;
   ElementContext ctx_;
+  std::unique_ptr<DofGraph> graph_;  // DOF adjacency over the active DOFs
   SparseMatrix pattern_;
   /// For each element, the value slot of each (a, b) pair with a >= b in the lower pattern
   /// (-1 when a DOF is constrained): scatter is a plain indexed add.

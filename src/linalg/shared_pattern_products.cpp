@@ -44,6 +44,37 @@ SharedPatternProducts::SharedPatternProducts(const std::vector<const SparseMatri
   }
 }
 
+SharedPatternProducts::SharedPatternProducts(const std::vector<int>& row_start,
+                                             const std::vector<int>& column,
+                                             const std::vector<unsigned char>& kept,
+                                             const std::vector<const std::vector<double>*>& values)
+    : n_matrices_(static_cast<int>(values.size())) {
+  IMPACTFE_CHECK(n_matrices_ >= 1 && n_matrices_ <= kMaxMatrices,
+                 "SharedPatternProducts: 1 to 3 matrices expected");
+  IMPACTFE_CHECK(!row_start.empty() && kept.size() == column.size(),
+                 "SharedPatternProducts: inconsistent pattern");
+  const std::size_t n = row_start.size() - 1;
+  row_start_.assign(n + 1, 0);
+  column_.clear();
+  for (std::size_t i = 0; i < n; ++i) {
+    for (auto k = static_cast<std::size_t>(row_start[i]);
+         k < static_cast<std::size_t>(row_start[i + 1]); ++k)
+      if (kept[k]) column_.push_back(column[k]);
+    row_start_[i + 1] = static_cast<int>(column_.size());
+  }
+  for (int m = 0; m < n_matrices_; ++m) {
+    const auto sm = static_cast<std::size_t>(m);
+    const std::vector<double>* from = values[sm];
+    nonzero_[sm] = from != nullptr;
+    if (from == nullptr) continue;
+    IMPACTFE_CHECK(from->size() == column.size(), "SharedPatternProducts: values of another size");
+    std::vector<double>& to = value_[sm];
+    to.reserve(column_.size());
+    for (std::size_t k = 0; k < column.size(); ++k)
+      if (kept[k]) to.push_back((*from)[k]);
+  }
+}
+
 namespace {
 
 /// y_m(i) = Σ_k A_m(i, col k) x_m(col k) for N matrices with values a[m].

@@ -20,6 +20,11 @@ class SharedPatternProducts {
   SharedPatternProducts() = default;
   /// Square matrices of one size (an empty matrix, 0 × 0 or without nonzeros, is a zero).
   explicit SharedPatternProducts(const std::vector<const SparseMatrix*>& matrices);
+  /// From entry values on one row-compressed pattern (`row_start`, `column`, columns ascending):
+  /// keeps the entries whose `kept` flag is set; `values[m]` null for a zero matrix.
+  SharedPatternProducts(const std::vector<int>& row_start, const std::vector<int>& column,
+                        const std::vector<unsigned char>& kept,
+                        const std::vector<const std::vector<double>*>& values);
 
   int rows() const { return static_cast<int>(row_start_.size()) - 1; }
   long long nonzeros() const { return static_cast<long long>(column_.size()); }
