@@ -34,7 +34,8 @@ class DofMap {
 
  private:
   std::vector<DofKey> keys_;
-  std::map<DofKey, int> index_;
+  std::vector<DofKey> sorted_;     // the active DOFs in DofKey order
+  std::vector<int> sorted_index_;  // sorted_index_[k]: the index of sorted_[k]
   std::vector<std::vector<int>> element_indices_;
   int n_free_ = 0;
 };
