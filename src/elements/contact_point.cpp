@@ -223,24 +223,17 @@ void ContactPoint::results(const ElementContext&, const Eigen::VectorXd& u, cons
 
 double attached_stiffness(const ElementBuildContext& ctx, int node, const Vec3& n) {
   double s = 0.0;
-  const ElementContext ectx;
   for (const int id : elements_at_node(ctx, node)) {
-    const ElementRecord& rec = ctx.model.elements.at(id);
-    const auto type = ctx.model.element_types.find(rec.type);
-    if (type == ctx.model.element_types.end()) continue;
-    const ElementTypeDescriptor& d = element_type_descriptor(type->second);
-    if (d.has_status || d.defined_by_file) continue;
-    const std::unique_ptr<Element> el = d.create(ctx, rec);
-    Eigen::MatrixXd K;
-    Eigen::VectorXd f;
-    el->tangent(ectx, Eigen::VectorXd::Zero(el->n_dofs()), K, f);
-    Eigen::VectorXd w = Eigen::VectorXd::Zero(el->n_dofs());
-    for (int a = 0; a < el->n_dofs(); ++a) {
-      const DofKey& k = el->dofs()[static_cast<std::size_t>(a)];
+    const AttachedElement* attached = attached_element(ctx, id);
+    if (attached == nullptr) continue;
+    const int n_dofs = static_cast<int>(attached->dofs.size());
+    Eigen::VectorXd w = Eigen::VectorXd::Zero(n_dofs);
+    for (int a = 0; a < n_dofs; ++a) {
+      const DofKey& k = attached->dofs[static_cast<std::size_t>(a)];
       const int c = static_cast<int>(k.dof);
       if (k.node == node && c < 3) w(a) = n(c);
     }
-    s += w.dot(K * w);
+    s += w.dot(attached->stiffness * w);
   }
   return s;
 }
@@ -249,12 +242,9 @@ double attached_depth(const ElementBuildContext& ctx, int node) {
   double sum = 0.0;
   int count = 0;
   for (const int id : elements_at_node(ctx, node)) {
-    const ElementRecord& rec = ctx.model.elements.at(id);
-    const auto type = ctx.model.element_types.find(rec.type);
-    if (type == ctx.model.element_types.end()) continue;
-    const ElementTypeDescriptor& d = element_type_descriptor(type->second);
-    if (d.has_status || d.defined_by_file) continue;
-    if (const auto v = d.create(ctx, rec)->volume(); v && *v > 0.0) {
+    const AttachedElement* attached = attached_element(ctx, id);
+    if (attached == nullptr) continue;
+    if (const auto v = attached->volume; v && *v > 0.0) {
       sum += *v;
       ++count;
     }

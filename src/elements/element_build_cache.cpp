@@ -1,5 +1,7 @@
 #include "elements/element_build_cache.h"
 
+#include "elements/element_registry.h"
+
 namespace impactfe {
 
 ElementBuildCache& build_cache(const ElementBuildContext& ctx) {
@@ -22,6 +24,25 @@ const std::vector<int>& elements_at_node(const ElementBuildContext& ctx, int nod
   static const std::vector<int> none;
   const auto it = cache.elements_at_node.find(node);
   return it == cache.elements_at_node.end() ? none : it->second;
+}
+
+const AttachedElement* attached_element(const ElementBuildContext& ctx, int id) {
+  auto& attached = build_cache(ctx).attached;
+  const auto found = attached.find(id);
+  if (found != attached.end()) return found->second.get();
+  std::unique_ptr<AttachedElement>& slot = attached[id];
+  const ElementRecord& rec = ctx.model.elements.at(id);
+  const auto type = ctx.model.element_types.find(rec.type);
+  if (type == ctx.model.element_types.end()) return nullptr;
+  const ElementTypeDescriptor& d = element_type_descriptor(type->second);
+  if (d.has_status || d.defined_by_file) return nullptr;
+  const std::unique_ptr<Element> element = d.create(ctx, rec);
+  slot = std::make_unique<AttachedElement>();
+  slot->dofs = element->dofs();
+  slot->volume = element->volume();
+  Eigen::VectorXd f;
+  element->tangent(ElementContext{}, Eigen::VectorXd::Zero(element->n_dofs()), slot->stiffness, f);
+  return slot.get();
 }
 
 }  // namespace impactfe
