@@ -159,6 +159,31 @@ void DirectSolution::factorize(const IntegrationCoefficients& coeff, const Vecto
   factored_ = coeff;
 }
 
+namespace {
+
+/// M a = r on the DOFs that carry mass. A large block goes to the run's sparse solver (CHOLMOD
+/// supernodal, or MUMPS): Eigen's simplicial LDLᵀ on a 10⁵-DOF consistent mass took as long as
+/// the first factorization of the effective matrix (issue 11). A small one keeps the simplicial
+/// LDLᵀ (cheaper than a supernodal analysis, and its a0 bit for bit what it was), as does a block
+/// the Cholesky factorization finds singular (LDLᵀ still solves a semidefinite one).
+VectorXd solve_mass_block(const SparseMatrix& mm, const VectorXd& r) {
+  constexpr int kSupernodalRows = 4096;
+  if (mm.rows() > kSupernodalRows) {
+    const SparseMatrix lower = mm.triangularView<Eigen::Lower>();
+    const auto solver = make_linear_solver(static_cast<int>(mm.rows()));
+    try {
+      solver->analyze_pattern(lower);
+      solver->factorize(lower);
+      return solver->solve(r);
+    } catch (const SingularMatrixError&) {
+    }
+  }
+  Eigen::SimplicialLDLT<SparseMatrix> ldlt(mm);
+  return ldlt.solve(r);
+}
+
+}  // namespace
+
 void DirectSolution::start_dynamics(const LoadPoint& at, double h) {
   // a0 from equilibrium at the start: M a0 = f(0) - C v0 - f_int(u0), on DOFs that carry mass
   // (spec §10.2); massless DOFs get a0 = 0.
@@ -187,8 +212,7 @@ void DirectSolution::start_dynamics(const LoadPoint& at, double h) {
     mm.setFromTriplets(triplets.begin(), triplets.end());
     VectorXd r(nm);
     for (int k = 0; k < nm; ++k) r(k) = rhs(massive[k]);
-    Eigen::SimplicialLDLT<SparseMatrix> ldlt(mm);
-    const VectorXd am = ldlt.solve(r);
+    const VectorXd am = solve_mass_block(mm, r);
     for (int k = 0; k < nm; ++k) a_(massive[k]) = am(k);
   }
   integrator_->start(u_, v_, a_, h);
