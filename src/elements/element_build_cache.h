@@ -12,6 +12,7 @@
 namespace impactfe {
 
 class TargetSurface;
+struct SegmentFacets;
 
 struct ElementBuildCache {
   /// node → the ids of the elements that reference it, ascending (filled on first use).
@@ -19,6 +20,8 @@ struct ElementBuildCache {
   bool node_index_built = false;
   /// real-constant set → its contact target (elements/target_surface.h).
   std::map<int, std::shared_ptr<const TargetSurface>> targets;
+  /// real-constant set → its facets unsplit, for CONTA174 segment-to-segment (contact_segment.cpp).
+  std::map<int, std::shared_ptr<const SegmentFacets>> segment_facets;
 };
 
 /// The cache of `ctx`, made on first use.
