@@ -89,8 +89,17 @@ Eigen::VectorXd pushed(const Element& e, double delta) {
   return u;
 }
 
+void uniform_pressure(int keyopt4);
+
 TEST(SegmentContact, UniformPressureGoesToTheNodesByTheBilinearShapeFunctions) {
-  const Model m = model();
+  for (int keyopt4 : {0, 3}) {  // Gauss-point and surface-projection detection
+    SCOPED_TRACE(keyopt4);
+    uniform_pressure(keyopt4);
+  }
+}
+
+void uniform_pressure(int keyopt4) {
+  const Model m = model(keyopt4);
   auto e = build(m, 20);
   ASSERT_EQ(e->n_dofs(), 30);  // the face's 4 nodes and the 6 nodes of the two facets
   const ElementContext ctx;
