@@ -1,23 +1,27 @@
 /// CONTA174 surface contact against a TARGE170 target (APDL_MODELING §8.4), rigid (pilot) or
-/// deformable (small sliding), with detection at the corner nodes of its face [A: the spec names
-/// Gauss-point detection as MAPDL's default; impactfe detects at the nodes for every KEYOPT(4)]:
-/// each distinct corner node is a contact point of CONTA175's law (elements/target_surface.h
+/// deformable (small sliding). KEYOPT(4) selects the detection as MAPDL does: 0 (the default,
+/// Gauss points) and 3 (surface projection) integrate the contact pressure over the face,
+/// segment to segment (elements/contact_segment.h); 1 and 2 detect at the corner nodes: each
+/// distinct corner node is a contact point of CONTA175's law (elements/target_surface.h
 /// target_point: penalty / augmented Lagrange, Coulomb friction, KEYOPT(12)) against the target
-/// of the element's real set. The element's DOFs are the union of its points' DOFs.
+/// of the element's real set. Either way the element is a set of ContactPoints and its DOFs are
+/// the union of theirs.
 ///
-/// Stiffness per point: the face's tributary area of the node, a = A/n (A the face area, n its
+/// Stiffness per node: the face's tributary area of the node, a = A/n (A the face area, n its
 /// corner count — the lumped nodal weights of a bilinear face). A positive FKN scales the
 /// stiffness attached to the node by a / Σa, the sum over the CONTA174 elements of the same TYPE
 /// and REAL at that node, so a node shared by several faces carries in total exactly the
 /// stiffness a CONTA175 at that node would (the same answer as CONTA175 on the same nodes); a
-/// negative FKN is MAPDL's absolute force/length³, times a. Midside nodes (8-node faces) are not
-/// supported.
+/// negative FKN is MAPDL's absolute force/length³, times a. Segment to segment, the face's
+/// stiffness per area is Σ k_node / A, times each integration point's weight. Midside nodes
+/// (8-node faces) are not supported.
 #include <fmt/format.h>
 
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 
+#include "elements/contact_segment.h"
 #include "elements/element_build_cache.h"
 #include "elements/element_registry.h"
 #include "elements/line_element_data.h"
@@ -186,6 +190,11 @@ std::unique_ptr<Element> make_surface_contact(const ElementBuildContext& ctx,
     points.push_back(target_point(ctx, record, node, kFamily, "CONTA174",
                                   tributary / std::max(total, tributary), tributary));
   }
+  // KEYOPT(4) = 0 (MAPDL's default, Gauss-point detection) and 3 (surface-projection based):
+  // segment-to-segment integration over the face (elements/contact_segment.h); 1 and 2: nodal.
+  const int detection = line_data::element_type(model, record).key(4);
+  if (detection == 0 || detection == 3)
+    points = segment_points(ctx, record, nodes, points, kFamily);
   return std::make_unique<SurfaceContact>(record.id, std::move(points));
 }
 

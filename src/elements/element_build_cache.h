@@ -13,6 +13,7 @@
 namespace impactfe {
 
 class TargetSurface;
+struct SegmentFacets;
 
 /// What contact elements need of a body element at their node (contact_point.h: the default
 /// penalty stiffness and depth), computed once per element instead of once per contact node.
@@ -31,6 +32,8 @@ struct ElementBuildCache {
   /// element id → its AttachedElement; nullptr for elements that are no body (unknown type,
   /// status elements such as gaps and contact, superelements).
   std::unordered_map<int, std::unique_ptr<AttachedElement>> attached;
+  /// real-constant set → its facets unsplit, for CONTA174 segment-to-segment (contact_segment.cpp).
+  std::map<int, std::shared_ptr<const SegmentFacets>> segment_facets;
 };
 
 /// The cache of `ctx`, made on first use.

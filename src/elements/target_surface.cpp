@@ -244,7 +244,7 @@ std::unique_ptr<ContactPoint> target_point(const ElementBuildContext& ctx,
     if (!ok || v < 0)
       throw fail(
           fmt::format("KEYOPT({}) = {} is not supported (KEYOPT(2) 0 augmented "
-                      "Lagrange / 1 penalty, KEYOPT(4) 0-3 (nodal detection), KEYOPT(10) "
+                      "Lagrange / 1 penalty, KEYOPT(4) 0-3 (detection), KEYOPT(10) "
                       "0-2 (constant stiffness), KEYOPT(12) 0-6; the others 0)",
                       k, v));
   }

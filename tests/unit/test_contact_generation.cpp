@@ -257,12 +257,13 @@ E,2
 E,3
 E,4
 )"));
-  // CONTA174 on the block's bottom face: one face, so each corner carries all of its node's
-  // stiffness: the same law as the four CONTA175.
+  // CONTA174 on the block's bottom face with nodal detection (KEYOPT(4) = 1; the default 0 is
+  // segment-to-segment, test_contact_segment.cpp): one face, so each corner carries all of its
+  // node's stiffness: the same law as the four CONTA175.
   const auto faces = testing::run_deck_text("esurf_drop_174", drop_deck(R"(NSEL,S,LOC,Z,0
 ESLN,S,0
 ESURF
-ET,4,CONTA174
+ET,4,CONTA174,,,,1
 TYPE,4
 MAT,2
 NSEL,S,LOC,Z,0.05
