@@ -11,10 +11,14 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <memory>
+#include <optional>
 
 #include "analysis/job_session.h"
+#include "app/rank_output.h"
 #include "app/terminal_progress.h"
 #include "core/errors.h"
+#include "core/files.h"
 #include "core/log.h"
 #include "deck/deck_reader.h"
 #include "linalg/parallel_backend.h"
@@ -56,50 +60,7 @@ struct RunArgs {
   std::string solver = "cholmod";  // cholmod | mumps (MPI, docs/scaling.md)
   bool mumps_ooc = false;
   std::string mumps_ooc_dir;
-};
-
-/// Under `--solver mumps` every rank runs the deck (SPMD, docs/scaling.md); this is the one
-/// place that decides which process writes output. Rank 0 writes results, log and terminal
-/// output as a one-process run does; any other rank runs in a private scratch directory, removed
-/// at the end, that starts with a copy of the output directory's HDF5 files (the inputs a deck
-/// may read from there), with its terminal output discarded, so no file or print anywhere else
-/// needs to know about ranks.
-class RankOutput {
- public:
-  explicit RankOutput(RunArgs& args) {
-    if (process_rank() == 0) return;
-    const fs::path real_out = fs::absolute(args.out_dir);
-    // A relative --se names a file of the real output directory, which this rank does not use.
-    if (!args.superelement.empty() && fs::path(args.superelement).is_relative())
-      args.superelement = (real_out / args.superelement).string();
-    std::string pattern =
-        (fs::temp_directory_path() / fmt::format("impactfe-rank{}-XXXXXX", process_rank()))
-            .string();
-    if (!mkdtemp(pattern.data()))
-      throw std::runtime_error(
-          fmt::format("rank {}: cannot create a scratch directory", process_rank()));
-    scratch_ = pattern;
-    args.out_dir = scratch_.string();
-    // What a deck may read from its working directory: superelement files of an earlier
-    // generation pass (*.sub.h5) and results files (restart, POST1/POST26 of an earlier run).
-    std::error_code ec;
-    for (const auto& entry : fs::directory_iterator(real_out, ec))
-      if (entry.is_regular_file() && entry.path().extension() == ".h5")
-        fs::copy_file(entry.path(), scratch_ / entry.path().filename());
-    if (!std::freopen("/dev/null", "w", stdout) || !std::freopen("/dev/null", "w", stderr))
-      throw std::runtime_error("cannot silence the terminal output of a rank other than 0");
-  }
-  ~RankOutput() {
-    if (scratch_.empty()) return;
-    std::error_code ec;
-    fs::current_path(scratch_.parent_path(), ec);
-    fs::remove_all(scratch_, ec);
-  }
-  RankOutput(const RankOutput&) = delete;
-  RankOutput& operator=(const RankOutput&) = delete;
-
- private:
-  fs::path scratch_;
+  bool mumps_no_refine = false;
 };
 
 /// The run summary, printed and written to the log (energy balance included).
@@ -146,7 +107,7 @@ int run_command(const RunArgs& args) {
   const auto start = std::chrono::steady_clock::now();
   if (args.threads > 0) omp_set_num_threads(args.threads);
   const fs::path deck = fs::absolute(args.deck);
-  if (!fs::exists(deck)) {
+  if (!file_exists(deck.string(), true)) {  // rank 0's disk under MPI (core/files.h)
     std::cerr << "error: deck not found: " << args.deck << "\n";
     return kExitInput;
   }
@@ -211,6 +172,7 @@ int run_command(const RunArgs& args) {
     job = read_deck(deck.string(), options);
     progress.clear();
   } catch (const SolutionError& e) {
+    note_local_failure();  // under MPI: the solvers go without collective clean-up
     progress.clear();
     std::cerr << "error: " << e.what() << "\n";
     if (!session.results_path().empty())
@@ -219,9 +181,11 @@ int run_command(const RunArgs& args) {
     Log::write(LogLevel::Error, e.what());
     return kExitSolution;
   } catch (const InternalError& e) {
+    note_local_failure();
     progress.clear();
     return report_internal_error(e);
   } catch (const std::exception& e) {
+    note_local_failure();
     progress.clear();
     std::cerr << "error: " << e.what() << "\n";
     Log::write(LogLevel::Error, e.what());
@@ -244,23 +208,39 @@ int run_command(const RunArgs& args) {
   return kExitOk;
 }
 
+/// How long a failing rank waits for the others at the exit agreement before it decides that
+/// it failed alone and aborts them all. Ranks that fail together (the same deck, the same
+/// matrices) arrive within the time of the work between two collective calls; a rank that
+/// failed alone is waited for by the others inside a collective call, forever.
+constexpr double kFailureWaitSeconds = 3.0;
+
 /// `--solver mumps`: MPI up (the module loaded only now), the deck run on every rank, one exit
-/// status for all, MPI down.
+/// status for all, MPI down. A failure on one rank only ends every rank with that rank's status
+/// and its message printed once (docs/scaling.md, Errors).
 int run_distributed(RunArgs args) {
   if (!args.mumps_ooc_dir.empty()) args.mumps_ooc = true;  // a directory implies --mumps-ooc
-  start_parallel_backend({args.mumps_ooc, args.mumps_ooc_dir});
+  start_parallel_backend({args.mumps_ooc, args.mumps_ooc_dir, !args.mumps_no_refine});
   // One thread per rank unless --threads says otherwise: the ranks share the cores.
   if (args.threads == 0 && process_count() > 1) args.threads = 1;
   int status = kExitOk;
-  {
-    RankOutput output(args);
+  std::unique_ptr<RankOutput> output;
+  try {
+    output = std::make_unique<RankOutput>(
+        RankPaths{args.deck, args.out_dir, args.superelement, args.results});
     status = run_command(args);
+  } catch (const std::exception& e) {  // the set-up of this rank (run_command catches its own)
+    note_local_failure();
+    std::cerr << "error: " << e.what() << "\n";
+    status = kExitInput;
   }
-  // Every rank reaches here after the same solver calls (the same deck, the same errors), so the
-  // ranks can agree on the status; stop_parallel_backend then finalises MPI.
-  status = max_over_ranks(status);
+  const std::optional<int> agreed = agree_exit_status(status, kFailureWaitSeconds);
+  if (!agreed) {
+    if (output) output->report_failure_alone(status);
+    abort_all_ranks(status);
+  }
+  output.reset();
   stop_parallel_backend();
-  return status;
+  return *agreed;
 }
 
 }  // namespace
@@ -297,6 +277,9 @@ int main(int argc, char** argv) {
                     "MUMPS out-of-core: factors on disk (for factors larger than memory)");
   run_cmd->add_option("--mumps-ooc-dir", run.mumps_ooc_dir,
                       "directory of the out-of-core factor files (default $TMPDIR or /tmp)");
+  run_cmd->add_flag("--mumps-no-refine", run.mumps_no_refine,
+                    "MUMPS on several ranks: no double-double refinement of the solves (faster; "
+                    "results then agree to round-off but are not bitwise repeatable)");
 
   std::string post_file;
   std::vector<std::string> nsol, esol, gapf;
@@ -350,8 +333,10 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
 
   try {
-    if (*run_cmd && run.solver != "mumps" && (run.mumps_ooc || !run.mumps_ooc_dir.empty())) {
-      std::cerr << "error: --mumps-ooc and --mumps-ooc-dir need --solver mumps\n";
+    if (*run_cmd && run.solver != "mumps" &&
+        (run.mumps_ooc || !run.mumps_ooc_dir.empty() || run.mumps_no_refine)) {
+      std::cerr << "error: --mumps-ooc, --mumps-ooc-dir and --mumps-no-refine need --solver "
+                   "mumps\n";
       return kExitInput;
     }
     if (*run_cmd && run.solver == "mumps") return run_distributed(run);
