@@ -54,9 +54,11 @@ void bind(F& f, const char* name) {
   if (!f) throw std::runtime_error(fmt::format("--solver mumps: the module lacks {}", name));
 }
 
-void broadcast_raw(void* data, long long bytes) {
-  if (module.broadcast(data, bytes) != 0)
-    throw std::runtime_error("MPI: a broadcast from rank 0 failed");
+bool files_shared = false;  // share_rank0_files(true) in force
+
+void broadcast_raw(void* data, long long bytes, int root = 0) {
+  if (module.broadcast(data, bytes, root) != 0)
+    throw std::runtime_error(fmt::format("MPI: a broadcast from rank {} failed", root));
 }
 
 /// core/files.h hooks of share_rank0_files: rank 0 asks its disk, every rank gets the answer.
@@ -150,18 +152,36 @@ void note_local_failure() {
 }
 
 void broadcast_from_rank0(std::string& data) {
+  broadcast_from_rank(data, 0);
+}
+
+void broadcast_from_rank(std::string& data, int root) {
   if (!parallel_backend_active() || process_count() == 1) return;
   long long size = static_cast<long long>(data.size());
-  broadcast_raw(&size, sizeof(size));
+  broadcast_raw(&size, sizeof(size), root);
   data.resize(static_cast<std::size_t>(size));
-  broadcast_raw(data.data(), size);
+  broadcast_raw(data.data(), size, root);
 }
 
 void share_rank0_files(bool on) {
-  if (on && parallel_backend_active() && process_count() > 1)
+  files_shared = on && parallel_backend_active() && process_count() > 1;
+  if (files_shared)
     set_file_hooks(&shared_file_exists, &shared_read_file);
   else
     set_file_hooks(nullptr, nullptr);
+}
+
+RankLocalWork::RankLocalWork(bool alone)
+    : active_(alone && parallel_backend_active()), files_shared_(files_shared) {
+  if (!active_) return;
+  set_sparse_solver_factory(nullptr);
+  set_file_hooks(nullptr, nullptr);
+}
+
+RankLocalWork::~RankLocalWork() {
+  if (!active_) return;
+  set_sparse_solver_factory(&make_mumps_solver);
+  if (files_shared_) set_file_hooks(&shared_file_exists, &shared_read_file);
 }
 
 void stop_parallel_backend() {

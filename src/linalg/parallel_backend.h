@@ -36,11 +36,29 @@ std::optional<int> agree_exit_status(int status, double wait_seconds);
 void note_local_failure();
 /// Rank 0's `data` on every rank (collective; no-op without the backend or on one rank).
 void broadcast_from_rank0(std::string& data);
+/// Rank `root`'s `data` on every rank (collective; no-op without the backend or on one rank).
+void broadcast_from_rank(std::string& data, int root);
 /// Deck-level file reads (core/files.h) answered by rank 0's disk on every rank: rank 0 looks
 /// the file up and broadcasts what it found, so the other ranks need not see the files (a deck
 /// on a disk only rank 0 sees). Collective: every rank asks the same questions in the same
 /// order, as SPMD guarantees. `on` false goes back to each rank's own disk.
 void share_rank0_files(bool on);
+/// Work this rank does alone while the others do something else (a superelement generation
+/// owned by this rank, docs/scaling.md): for its lifetime the sparse solver is CHOLMOD on this
+/// process and file lookups go to this process's disk, so nothing in it is collective.
+/// `alone` false: nothing changes (one rank runs everything collectively anyway).
+class RankLocalWork {
+ public:
+  explicit RankLocalWork(bool alone = true);
+  ~RankLocalWork();
+  RankLocalWork(const RankLocalWork&) = delete;
+  RankLocalWork& operator=(const RankLocalWork&) = delete;
+
+ private:
+  bool active_;
+  bool files_shared_;
+};
+
 /// MPI_Finalize; every solver must be destroyed before.
 void stop_parallel_backend();
 

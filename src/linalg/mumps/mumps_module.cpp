@@ -416,13 +416,13 @@ int impactfe_mumps_start(void) {
   return 0;
 }
 
-int impactfe_mumps_broadcast(void* data, long long bytes) {
+int impactfe_mumps_broadcast(void* data, long long bytes, int root) {
   // In pieces of at most 1 GiB: MPI counts are int.
   constexpr long long kPiece = 1LL << 30;
   auto* p = static_cast<char*>(data);
   for (long long done = 0; done < bytes; done += kPiece) {
     const int count = static_cast<int>(std::min(kPiece, bytes - done));
-    if (MPI_Bcast(p + done, count, MPI_BYTE, 0, MPI_COMM_WORLD) != MPI_SUCCESS) return -1;
+    if (MPI_Bcast(p + done, count, MPI_BYTE, root, MPI_COMM_WORLD) != MPI_SUCCESS) return -1;
   }
   return 0;
 }

@@ -24,8 +24,8 @@ impactfe::LinearSolver* impactfe_mumps_create(const impactfe::MumpsModuleOptions
 /// The largest of `value` over all ranks (the ranks agree on the exit status).
 int impactfe_mumps_max_int(int value);
 void impactfe_mumps_abort(int code);
-/// Broadcasts `bytes` bytes at `data` from rank 0 to every rank (collective); 0 on success.
-int impactfe_mumps_broadcast(void* data, long long bytes);
+/// Broadcasts `bytes` bytes at `data` from rank `root` to every rank (collective); 0 on success.
+int impactfe_mumps_broadcast(void* data, long long bytes, int root);
 /// The exit agreement (its own communicator, so it never matches another collective): the
 /// largest status over all ranks in *agreed and 0 once every rank has arrived. A rank with
 /// status 0 waits as long as it takes; a failing rank waits at most `wait_seconds` and returns 1
