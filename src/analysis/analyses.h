@@ -53,8 +53,13 @@ void run_expansion_pass(const ExpansionPassRequest& request, ReducedSolutionStat
 void run_superelement_expansion(const ExpansionPassRequest& request, ResultsWriter& writer,
                                 AnalysisStatistics& stats);
 /// Superelement generation (KAN,7 / ANTYPE,SUBSTR; spec §10.6): writes <jobname>.sub.h5.
+/// Under MPI with several ranks, one rank generates it (round-robin over the passes, docs/
+/// scaling.md) and the others only record it until share_generated_superelements.
 void run_substructure_generation(Structure& structure, const AnalysisRequest& request,
                                  ResultsWriter& writer, const RunSettings& settings,
                                  AnalysisStatistics& stats, const std::string& jobname);
+/// Copies the superelement files generated so far by one rank each to every rank (collective
+/// under MPI; nothing to do otherwise). Before a pass that may read them and at the end of a run.
+void share_generated_superelements();
 
 }  // namespace impactfe

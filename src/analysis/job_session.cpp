@@ -45,6 +45,15 @@ void record_file_defined_nodes(const Structure& structure, ResultsWriter& writer
   if (!lists.empty()) writer.set_element_nodes(lists);
 }
 
+/// Whether a pass may read superelement files that another MPI rank generated: anything but a
+/// generation pass whose model has no superelement itself (the generations run concurrently,
+/// one per rank, until such a pass, docs/scaling.md).
+bool needs_generated_superelements(const Job& job, const Job::Step& step) {
+  if (!step.analysis || step.analysis->options.type != AnalysisType::Substructure) return true;
+  return std::any_of(job.model.elements.begin(), job.model.elements.end(),
+                     [](const auto& e) { return !e.second.superelement_file.empty(); });
+}
+
 }  // namespace
 
 Model results_model(const Job& job, std::size_t step) {
@@ -110,6 +119,7 @@ void JobSession::solve(const Job& job, std::size_t step) {
   const auto start = std::chrono::steady_clock::now();
   where_ = location_of(s);
   try {
+    if (!open_ && needs_generated_superelements(job, s)) share_generated_superelements();
     if (!open_) {
       const auto& restart = SolutionControls::instance().restart;
       if (restart && (!s.analysis || !solves_incrementally(s.analysis->options)))
@@ -285,6 +295,11 @@ std::string JobSession::results_for_reading(const Job&) {
 
 void JobSession::finish(const Job&) {
   close_open();
+}
+
+void JobSession::complete() {
+  close_open();
+  share_generated_superelements();
 }
 
 std::vector<std::string> JobSession::results_files() const {

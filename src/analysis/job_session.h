@@ -35,6 +35,9 @@ class JobSession final : public SolutionHost {
   void solve(const Job& job, std::size_t step) override;
   std::string results_for_reading(const Job& job) override;
   void finish(const Job& job) override;
+  /// The end of the run: the open analysis closed, and under MPI the superelement files that
+  /// other ranks generated copied here (share_generated_superelements).
+  void complete();
   /// /CLEAR: closes the open analysis and the results file; the next solution starts a new
   /// results file (named after the jobname then current). A session appending to a writer it was
   /// given keeps appending to it.

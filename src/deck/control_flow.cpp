@@ -97,14 +97,12 @@ struct DepthGuard {
 // ---- files -------------------------------------------------------------------------------------
 
 std::string read_text_file(const std::string& path, const SourceLocation& where) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in || std::filesystem::is_directory(path)) {
+  std::optional<std::string> text = read_file(path);  // rank 0's disk under MPI (core/files.h)
+  if (!text) {
     if (where.known()) throw InputError(where, fmt::format("cannot open input file '{}'", path));
     throw InputError(fmt::format("cannot open deck '{}'", path));
   }
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
+  return std::move(*text);
 }
 
 std::string resolve_input(const std::string& includer, const std::string& fname,

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "core/files.h"
 #include "core/solution_control.h"
 #include "deck/deck_context.h"
 #include "io/superelement_file.h"
@@ -292,11 +293,11 @@ void cmd_save(DeckReader& r, const Command& c) {
 void cmd_resume(DeckReader& r, const Command& c) {
   // RESUME,Fname,Ext,--,NOPAR,KNOPLOT: NOPAR 1 keeps the current parameters.
   const std::string path = database_path(r, c);
-  std::ifstream in(path);
+  const auto in = read_file(path);  // rank 0's disk under MPI (core/files.h)
   if (!in) r.fail(c, fmt::format("no database file '{}' (SAVE writes it)", path));
   const bool keep_params = r.integer(c, 4, 0) == 1;
   try {
-    const json j = json::parse(in);
+    const json j = json::parse(*in);
     if (j.at("format") != "impactfe-db" || j.at("version").get<int>() != 1)
       r.fail(c, fmt::format("'{}' is not an impactfe database (version 1)", path));
     bool lumped = false, sstif = false;

@@ -11,6 +11,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "core/files.h"
 #include "core/solution_control.h"
 #include "deck/deck_context.h"
 #include "deck/post_support.h"
@@ -35,12 +36,8 @@ bool uses_4x(const std::vector<RawCommand>& cmds, const std::string& path, int d
       if (depth < 20) {
         const std::string inc =
             resolve_input(path, c.fields[0], c.fields.size() > 1 ? c.fields[1] : std::string());
-        std::ifstream in(inc, std::ios::binary);
-        if (in) {
-          std::ostringstream ss;
-          ss << in.rdbuf();
-          if (uses_4x(lex_text(ss.str(), inc, Dialect::Modern), inc, depth + 1)) return true;
-        }
+        if (const auto text = read_file(inc))
+          if (uses_4x(lex_text(*text, inc, Dialect::Modern), inc, depth + 1)) return true;
       }
     }
   }

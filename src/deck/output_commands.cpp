@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include "core/files.h"
 #include "deck/deck_context.h"
@@ -213,8 +214,9 @@ void cmd_list(DeckReader& r, const Command& c) {
   std::string path = name;
   const std::string beside = resolve_input(c.where.file, name, "");
   if (!file_exists(path) && file_exists(beside)) path = beside;
-  std::ifstream in(path);
-  if (!in) r.fail(c, fmt::format("file '{}' not found", name));
+  const auto text = read_file(path);
+  if (!text) r.fail(c, fmt::format("file '{}' not found", name));
+  std::istringstream in(*text);
   for (std::string line; std::getline(in, line);) r.output.print(line);
 }
 

@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "core/files.h"
 #include "linalg/linear_solver.h"
 #include "linalg/mumps/mumps_module_api.h"
 
@@ -26,6 +27,9 @@ struct Module {
   decltype(&impactfe_mumps_max_int) max_int = nullptr;
   decltype(&impactfe_mumps_abort) abort = nullptr;
   decltype(&impactfe_mumps_stop) stop = nullptr;
+  decltype(&impactfe_mumps_broadcast) broadcast = nullptr;
+  decltype(&impactfe_mumps_agree) agree = nullptr;
+  decltype(&impactfe_mumps_set_failing) set_failing = nullptr;
   MumpsModuleOptions options;
 };
 Module module;
@@ -48,6 +52,33 @@ template <typename F>
 void bind(F& f, const char* name) {
   f = reinterpret_cast<F>(dlsym(module.handle, name));
   if (!f) throw std::runtime_error(fmt::format("--solver mumps: the module lacks {}", name));
+}
+
+bool files_shared = false;  // share_rank0_files(true) in force
+
+void broadcast_raw(void* data, long long bytes, int root = 0) {
+  if (module.broadcast(data, bytes, root) != 0)
+    throw std::runtime_error(fmt::format("MPI: a broadcast from rank {} failed", root));
+}
+
+/// core/files.h hooks of share_rank0_files: rank 0 asks its disk, every rank gets the answer.
+bool shared_file_exists(const std::string& path, bool exists_only) {
+  int found = process_rank() == 0 ? local_file_exists(path, exists_only) : 0;
+  broadcast_raw(&found, sizeof(found));
+  return found != 0;
+}
+std::optional<std::string> shared_read_file(const std::string& path) {
+  std::optional<std::string> text;
+  long long size = -1;
+  if (process_rank() == 0) {
+    text = local_read_file(path);
+    if (text) size = static_cast<long long>(text->size());
+  }
+  broadcast_raw(&size, sizeof(size));
+  if (size < 0) return std::nullopt;
+  if (!text) text.emplace(static_cast<std::size_t>(size), '\0');
+  broadcast_raw(text->data(), size);
+  return text;
 }
 
 std::unique_ptr<LinearSolver> make_mumps_solver() {
@@ -78,6 +109,10 @@ void start_parallel_backend(const ParallelSettings& settings) {
   bind(module.max_int, "impactfe_mumps_max_int");
   bind(module.abort, "impactfe_mumps_abort");
   bind(module.stop, "impactfe_mumps_stop");
+  bind(module.broadcast, "impactfe_mumps_broadcast");
+  bind(module.agree, "impactfe_mumps_agree");
+  bind(module.set_failing, "impactfe_mumps_set_failing");
+  module.options.refine = settings.refine;
   module.options.out_of_core = settings.out_of_core;
   fmt::format_to_n(module.options.ooc_directory, sizeof(module.options.ooc_directory) - 1, "{}",
                    settings.ooc_directory);
@@ -105,8 +140,53 @@ void abort_all_ranks(int code) {
   std::exit(code);
 }
 
+std::optional<int> agree_exit_status(int status, double wait_seconds) {
+  if (!parallel_backend_active()) return status;
+  int agreed = status;
+  if (module.agree(status, wait_seconds, &agreed) != 0) return std::nullopt;
+  return agreed;
+}
+
+void note_local_failure() {
+  if (parallel_backend_active()) module.set_failing();
+}
+
+void broadcast_from_rank0(std::string& data) {
+  broadcast_from_rank(data, 0);
+}
+
+void broadcast_from_rank(std::string& data, int root) {
+  if (!parallel_backend_active() || process_count() == 1) return;
+  long long size = static_cast<long long>(data.size());
+  broadcast_raw(&size, sizeof(size), root);
+  data.resize(static_cast<std::size_t>(size));
+  broadcast_raw(data.data(), size, root);
+}
+
+void share_rank0_files(bool on) {
+  files_shared = on && parallel_backend_active() && process_count() > 1;
+  if (files_shared)
+    set_file_hooks(&shared_file_exists, &shared_read_file);
+  else
+    set_file_hooks(nullptr, nullptr);
+}
+
+RankLocalWork::RankLocalWork(bool alone)
+    : active_(alone && parallel_backend_active()), files_shared_(files_shared) {
+  if (!active_) return;
+  set_sparse_solver_factory(nullptr);
+  set_file_hooks(nullptr, nullptr);
+}
+
+RankLocalWork::~RankLocalWork() {
+  if (!active_) return;
+  set_sparse_solver_factory(&make_mumps_solver);
+  if (files_shared_) set_file_hooks(&shared_file_exists, &shared_read_file);
+}
+
 void stop_parallel_backend() {
   if (!parallel_backend_active()) return;
+  share_rank0_files(false);
   set_sparse_solver_factory(nullptr);
   module.stop();
   module.stop = nullptr;  // the module stays mapped (Open MPI does not support unloading)

@@ -19,9 +19,12 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
+#include <exception>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "linalg/linear_solver.h"
@@ -32,6 +35,33 @@ namespace impactfe {
 namespace {
 
 constexpr int kUseCommWorld = -987654;  // MUMPS: the Fortran handle of MPI_COMM_WORLD
+
+/// The communicator of the exit agreement only (impactfe_mumps_agree), duplicated at start.
+MPI_Comm exit_comm = MPI_COMM_NULL;
+/// Set when this rank has failed (impactfe_mumps_set_failing): no more collective clean-up.
+bool failing = false;
+
+/// Test hook (docs/scaling.md, tests/mpi/fail_one_rank.py): IMPACTFE_TEST_FAIL_RANK=r makes
+/// rank r alone fail at its first factorization, as a failure the other ranks cannot see
+/// (a full disk, a lost file) would: they are inside the MUMPS factorization waiting for it.
+/// A plain runtime_error, which no driver catches (a SingularMatrixError would be, and the
+/// driver's diagnosis would call MUMPS again on this rank alone).
+/// Honoured only here, in the MPI module, so a one-process run never looks at it.
+void test_failure_hook(int rank) {
+  const char* env = std::getenv("IMPACTFE_TEST_FAIL_RANK");
+  if (env && *env && std::atoi(env) == rank) {
+    failing = true;
+    throw std::runtime_error("test failure on rank " + std::to_string(rank) +
+                             " only (IMPACTFE_TEST_FAIL_RANK)");
+  }
+}
+
+/// After this rank has failed, no more collective MUMPS calls: a driver that retries (a
+/// bisection after a failed step) would call MUMPS on this rank alone, mismatching the
+/// collective calls the other ranks are in.
+void check_not_failing() {
+  if (failing) throw std::runtime_error("MUMPS: this rank has failed, no further solver calls");
+}
 
 int world_rank() {
   int rank = 0;
@@ -126,6 +156,7 @@ class MumpsSolver final : public LinearSolver {
   std::string name() const override { return "MUMPS"; }
 
   void analyze_pattern(const SparseMatrix& lower) override {
+    check_not_failing();
     const auto start = std::chrono::steady_clock::now();
     n_ = static_cast<int>(lower.rows());
     Graph g = adjacency(lower);
@@ -151,7 +182,9 @@ class MumpsSolver final : public LinearSolver {
   }
 
   void factorize(const SparseMatrix& lower) override {
+    check_not_failing();
     if (!initialized_ || lower.nonZeros() != pattern_nonzeros_) analyze_pattern(lower);
+    test_failure_hook(rank_);
     const auto start = std::chrono::steady_clock::now();
     run_factorization(lower);
     // A matrix that is not positive definite (compressive stress stiffening, a shift above the
@@ -164,7 +197,7 @@ class MumpsSolver final : public LinearSolver {
     }
     ++counters_.factorizations;
     counters_.factorize_seconds += seconds_since(start);
-    if (size_ > 1) factored_ = lower;  // the residuals of refine() are of this matrix
+    if (size_ > 1 && options_.refine) factored_ = lower;  // refine()'s residuals are of it
     if (id_.infog[0] == -10) throw SingularMatrixError(-1, "zero pivot in the factorization");
     check(id_.infog[0], "factorization");
     // Null pivots (ICNTL(24)): the first one's 0-based row, from rank 0 to every rank.
@@ -188,11 +221,12 @@ class MumpsSolver final : public LinearSolver {
 
   MatrixXd solve(const MatrixXd& B) override {
     if (!initialized_) throw std::logic_error("MUMPS: solve before factorize");
+    check_not_failing();
     const auto start = std::chrono::steady_clock::now();
     // Centralised right-hand sides and solution (ICNTL(20) = ICNTL(21) = 0) on rank 0. Every
     // rank holds B (SPMD); rank 0's copy is the one MUMPS reads.
     MatrixXd X = mumps_solve(B);
-    if (size_ > 1) X = refine(B, X);
+    if (size_ > 1 && options_.refine) X = refine(B, X);
     counters_.solves += B.cols();
     counters_.solve_seconds += seconds_since(start);
     return X;
@@ -201,6 +235,15 @@ class MumpsSolver final : public LinearSolver {
  private:
   void terminate() {
     if (!initialized_) return;
+    // JOB = -2 is collective. Unwinding an exception, or after this rank failed, the other
+    // ranks may be elsewhere (a failure only this rank saw): release nothing rather than wait
+    // for them (the process ends soon: abort or MPI_Finalize; ranks that fail together all
+    // skip it alike). A solver dropped inside a catch handler (a fallback after a singular
+    // matrix, which every rank takes) is released normally.
+    if (failing || std::uncaught_exceptions() > 0) {
+      initialized_ = false;
+      return;
+    }
     id_.job = -2;
     dmumps_c(&id_);
     initialized_ = false;
@@ -367,7 +410,50 @@ int impactfe_mumps_start(void) {
   int started = 0;
   MPI_Initialized(&started);
   if (!started && MPI_Init(nullptr, nullptr) != MPI_SUCCESS) return -1;
+  if (impactfe::exit_comm == MPI_COMM_NULL &&
+      MPI_Comm_dup(MPI_COMM_WORLD, &impactfe::exit_comm) != MPI_SUCCESS)
+    return -1;
   return 0;
+}
+
+int impactfe_mumps_broadcast(void* data, long long bytes, int root) {
+  // In pieces of at most 1 GiB: MPI counts are int.
+  constexpr long long kPiece = 1LL << 30;
+  auto* p = static_cast<char*>(data);
+  for (long long done = 0; done < bytes; done += kPiece) {
+    const int count = static_cast<int>(std::min(kPiece, bytes - done));
+    if (MPI_Bcast(p + done, count, MPI_BYTE, root, MPI_COMM_WORLD) != MPI_SUCCESS) return -1;
+  }
+  return 0;
+}
+
+int impactfe_mumps_agree(int status, double wait_seconds, int* agreed) {
+  // Static buffers: a request abandoned after the time-out must not point into a dead frame.
+  static int send = 0, receive = 0;
+  static MPI_Request request;
+  send = status;
+  receive = status;
+  MPI_Iallreduce(&send, &receive, 1, MPI_INT, MPI_MAX, impactfe::exit_comm, &request);
+  if (status == 0) {
+    MPI_Wait(&request, MPI_STATUS_IGNORE);
+    *agreed = receive;
+    return 0;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  for (;;) {
+    int done = 0;
+    MPI_Test(&request, &done, MPI_STATUS_IGNORE);
+    if (done) {
+      *agreed = receive;
+      return 0;
+    }
+    if (impactfe::seconds_since(start) > wait_seconds) return 1;  // the request is abandoned
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+}
+
+void impactfe_mumps_set_failing(void) {
+  impactfe::failing = true;
 }
 
 int impactfe_mumps_rank(void) {
@@ -394,7 +480,9 @@ void impactfe_mumps_abort(int code) {
 void impactfe_mumps_stop(void) {
   int finished = 0;
   MPI_Finalized(&finished);
-  if (!finished) MPI_Finalize();
+  if (finished) return;
+  if (impactfe::exit_comm != MPI_COMM_NULL) MPI_Comm_free(&impactfe::exit_comm);
+  MPI_Finalize();
 }
 
 }  // extern "C"

@@ -9,6 +9,7 @@ class LinearSolver;
 struct MumpsModuleOptions {
   bool out_of_core = false;      // ICNTL(22) = 1: factors written to disk
   char ooc_directory[256] = {};  // where (empty: MUMPS's default, $TMPDIR or /tmp)
+  bool refine = true;            // on several ranks: double-double refinement (bitwise repeatable)
 };
 
 }  // namespace impactfe
@@ -23,6 +24,17 @@ impactfe::LinearSolver* impactfe_mumps_create(const impactfe::MumpsModuleOptions
 /// The largest of `value` over all ranks (the ranks agree on the exit status).
 int impactfe_mumps_max_int(int value);
 void impactfe_mumps_abort(int code);
+/// Broadcasts `bytes` bytes at `data` from rank `root` to every rank (collective); 0 on success.
+int impactfe_mumps_broadcast(void* data, long long bytes, int root);
+/// The exit agreement (its own communicator, so it never matches another collective): the
+/// largest status over all ranks in *agreed and 0 once every rank has arrived. A rank with
+/// status 0 waits as long as it takes; a failing rank waits at most `wait_seconds` and returns 1
+/// when some rank has not arrived (it is elsewhere, e.g. inside a MUMPS call waiting for this
+/// one): the caller then aborts all ranks.
+int impactfe_mumps_agree(int status, double wait_seconds, int* agreed);
+/// This rank has failed: MUMPS instances destroyed from now on are released without the
+/// collective JOB = -2 (the other ranks may not be there to take part).
+void impactfe_mumps_set_failing(void);
 /// MPI_Finalize (after every solver is destroyed).
 void impactfe_mumps_stop(void);
 }
