@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "core/errors.h"
+#include "elements/hyper_dual.h"
 #include "elements/target_surface.h"
 
 namespace impactfe {
@@ -59,6 +60,33 @@ Projection project(const Vec3& xs, const Vec3& x1, const Vec3& x2, const Vec3& x
   p.xi = p.Minv * Eigen::Vector2d(p.e1.dot(d), p.e2.dot(d));
   p.N = {1.0 - p.xi(0) - p.xi(1), p.xi(0), p.xi(1)};
   return p;
+}
+
+/// u_t = (I − n nᵀ)(u_s − Σ N_a u_a) on the triangle x₁ x₂ x₃ as a function of the 12
+/// displacements (u_s, u₁, u₂, u₃), for its exact second derivatives (the same construction as
+/// project() and DeformableTargetPoint::kinematics, in second-order dual numbers).
+ad::V3<12> tangential_displacement(const std::array<Vec3, 4>& x0,
+                                   const Eigen::Matrix<double, 12, 1>& u) {
+  using D = ad::Dual2<12>;
+  using V = ad::V3<12>;
+  std::array<V, 4> du, x;
+  for (int i = 0; i < 4; ++i) {
+    du[static_cast<std::size_t>(i)] = ad::variables<12>(Vec3::Zero(), u, 3 * i);
+    x[static_cast<std::size_t>(i)] =
+        ad::constant<12>(x0[static_cast<std::size_t>(i)]) + du[static_cast<std::size_t>(i)];
+  }
+  const V e1 = x[2] - x[1], e2 = x[3] - x[1], d = x[0] - x[1];
+  const V a = ad::cross(e1, e2);
+  const D inv_norm = ad::inverse(ad::sqrt(ad::dot(a, a)));
+  const V n = inv_norm * a;
+  // ξ = M⁻¹ (e_α·d), M_αβ = e_α·e_β (Cramer's rule).
+  const D m11 = ad::dot(e1, e1), m12 = ad::dot(e1, e2), m22 = ad::dot(e2, e2);
+  const D r1 = ad::dot(e1, d), r2 = ad::dot(e2, d);
+  const D inv_det = ad::inverse(m11 * m22 - m12 * m12);
+  const D xi1 = inv_det * (m22 * r1 - m12 * r2), xi2 = inv_det * (m11 * r2 - m12 * r1);
+  const D n1 = D(1.0) - xi1 - xi2;
+  const V w = du[0] - n1 * du[1] - xi1 * du[2] - xi2 * du[3];
+  return w - ad::dot(n, w) * n;
 }
 
 }  // namespace
@@ -225,6 +253,30 @@ ContactKinematics DeformableTargetPoint::kinematics(const Eigen::VectorXd& u) co
       k.H.block<3, 3>(gi, 3 * at[static_cast<std::size_t>(j)]) += H.block<3, 3>(3 * i, 3 * j);
   }
   return k;
+}
+
+}  // namespace impactfe
+
+namespace impactfe {
+
+void DeformableTargetPoint::add_friction_curvature(const Eigen::VectorXd& u, const Vec3& ft,
+                                                   Eigen::MatrixXd& K) const {
+  if (facets_.empty()) return;
+  const Candidate& c = candidates_[static_cast<std::size_t>(current_)];
+  const std::array<int, 4> at = {0, c.local[0], c.local[1], c.local[2]};
+  std::array<Vec3, 4> x0;
+  Eigen::Matrix<double, 12, 1> ul;
+  for (std::size_t i = 0; i < 4; ++i) {
+    x0[i] = x_[static_cast<std::size_t>(at[i])];
+    ul.segment<3>(3 * static_cast<Eigen::Index>(i)) = u.segment<3>(3 * at[i]);
+  }
+  const ad::V3<12> ut = tangential_displacement(x0, ul);
+  Eigen::Matrix<double, 12, 12> h = Eigen::Matrix<double, 12, 12>::Zero();
+  for (int k = 0; k < 3; ++k) h += ft(k) * ut[static_cast<std::size_t>(k)].h;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j)
+      K.block<3, 3>(3 * at[static_cast<std::size_t>(i)], 3 * at[static_cast<std::size_t>(j)]) +=
+          h.block<3, 3>(3 * i, 3 * j);
 }
 
 }  // namespace impactfe

@@ -15,8 +15,8 @@
 
 namespace impactfe {
 
-TargetSurface::TargetSurface(int pilot, std::vector<Triangle> triangles)
-    : pilot_(pilot), triangles_(std::move(triangles)) {
+TargetSurface::TargetSurface(int pilot, std::vector<Triangle> triangles, bool rotates)
+    : pilot_(pilot), rotates_(rotates), triangles_(std::move(triangles)) {
   // Bucket size: the mean facet extent, but at least a quarter of the largest one, so that a
   // facet covers at most 5³ buckets.
   Vec3 lo = Vec3::Constant(std::numeric_limits<double>::max()), hi = -lo;
@@ -203,29 +203,24 @@ std::shared_ptr<const TargetSurface> contact_target(const ElementBuildContext& c
                           "element with one node, E,pilot, in the same REAL)",
                           record.real, n));
   }
-  shared = std::make_shared<const TargetSurface>(pilot, std::move(triangles));
+  // MAPDL activates the pilot's rotations only when something acts on them [A: here an
+  // element with rotational DOFs at the pilot, e.g. MASS21 with rotary inertia, a beam or a
+  // shell]; then the target turns with them.
+  bool rotates = false;
+  if (pilot != 0)
+    for (const int id : elements_at_node(ctx, pilot)) {
+      const ElementRecord& rec = model.elements.at(id);
+      const auto t = model.element_types.find(rec.type);
+      if (t == model.element_types.end()) continue;
+      const std::string& name = t->second.ansys_name;
+      if (name.rfind("TARGE", 0) == 0 || name.rfind("CONTA", 0) == 0) continue;
+      const ElementTypeDescriptor& d = element_type_descriptor(t->second);
+      if (d.defined_by_file) continue;
+      for (const DofKey& k : d.create(ctx, rec)->dofs())
+        rotates = rotates || (k.node == pilot && static_cast<int>(k.dof) >= 3);
+    }
+  shared = std::make_shared<const TargetSurface>(pilot, std::move(triangles), rotates);
   return shared;
-}
-
-RigidTargetPoint::RigidTargetPoint(const char* family, int id, int node, const Vec3& x,
-                                   std::shared_ptr<const TargetSurface> target, double reach,
-                                   double offset, const ContactLawData& data)
-    : ContactPoint(id, target->pilot(), node, data),
-      family_(family),
-      x_(x),
-      target_(std::move(target)),
-      reach_(reach),
-      offset_(offset) {
-  initialize();
-}
-
-bool RigidTargetPoint::locate(const Eigen::VectorXd& u) {
-  const Vec3 d(u(3) - u(0), u(4) - u(1), u(5) - u(2));
-  const auto hit = target_->closest(x_ + d, reach_);
-  if (!hit) return false;
-  data_.normal = hit->normal;
-  data_.gap0 = hit->gap - offset_ - hit->normal.dot(d);
-  return true;
 }
 
 std::unique_ptr<ContactPoint> target_point(const ElementBuildContext& ctx,
@@ -312,7 +307,8 @@ std::unique_ptr<ContactPoint> target_point(const ElementBuildContext& ctx,
   data.mu = mat == model.materials.end() ? 0.0 : mat->second.get("MU", 0.0);
   if (data.mu < 0.0) throw fail(fmt::format("MU of material {} is negative", record.mat));
   if (!target->deformable())
-    return std::make_unique<RigidTargetPoint>(family, record.id, node.id, node.x, std::move(target),
+    return std::make_unique<RigidTargetPoint>(family, record.id, node.id, node.x,
+                                              model.nodes.at(target->pilot()).x, std::move(target),
                                               reach, real.get(10), data);
   std::vector<int> nodes = {node.id};
   for (int f : candidates)

@@ -1,11 +1,11 @@
 #pragma once
 /// Contact targets (TARGE170, APDL_MODELING §8.4): the target facets of one real-constant set
 /// (triangles and quadrilaterals, a quadrilateral as two triangles, so it should be planar).
-/// Either **rigid**, moving with their pilot node (a one-node TARGE170; translations only: the
-/// pilot's rotations do not turn the target), or, without a pilot, **deformable**: the facets are
+/// Either **rigid**, moving with their pilot node (a one-node TARGE170; turning with the pilot's
+/// rotations when the pilot carries rotational DOFs), or, without a pilot, **deformable**: the facets are
 /// meshed on a deformable body and move with its nodes. A spatial bucket grid over the facets in
-/// their initial position answers the closest-facet query of the rigid case (the target only
-/// translates, so the grid is built once and queried in the target's own frame) and the
+/// their initial position answers the closest-facet query of the rigid case (the target moves
+/// rigidly, so the grid is built once and queried in the target's own frame) and the
 /// candidate query of the deformable case (small sliding, DeformableTargetPoint).
 #include <array>
 #include <memory>
@@ -31,10 +31,13 @@ class TargetSurface {
     double gap = 0.0;  // signed distance from the facet plane along the normal
   };
 
-  TargetSurface(int pilot, std::vector<Triangle> triangles);
+  /// `rotates`: the pilot carries rotations (an element with ROTX..ROTZ is attached to it).
+  TargetSurface(int pilot, std::vector<Triangle> triangles, bool rotates = false);
 
   /// The pilot node of a rigid target; 0 for a deformable one.
   int pilot() const { return pilot_; }
+  /// A rigid target that turns with its pilot's rotations (RigidTargetPoint).
+  bool rotates() const { return rotates_; }
   bool deformable() const { return pilot_ == 0; }
   const std::vector<Triangle>& triangles() const { return triangles_; }
   /// The facet whose plane is nearest to y (in the target's initial frame) among the facets
@@ -49,6 +52,7 @@ class TargetSurface {
   void cell_range(const Vec3& lo, const Vec3& hi, Eigen::Vector3i& a, Eigen::Vector3i& b) const;
 
   int pilot_;
+  bool rotates_;
   std::vector<Triangle> triangles_;
   Vec3 origin_ = Vec3::Zero();
   double cell_ = 1.0;
@@ -68,22 +72,41 @@ std::shared_ptr<const TargetSurface> contact_target(const ElementBuildContext& c
 /// J = the contact node. Before each status update the search finds the facet nearest to
 /// y = X + u_node − u_pilot (the node in the target's frame) and sets the normal and
 /// g₀ = distance − CNOF − n·(u_node − u_pilot).
+///
+/// A rotating target (TargetSurface::rotates(): the pilot carries ROTX, ROTY, ROTZ) turns with
+/// the pilot's rotation vector ψ (the rotation DOFs are a rotation vector, as for the
+/// co-rotational shell, elements/so3.h): a target point moves to x = x_P + R(ψ)(X − X_P). The
+/// DOFs are then the pilot's UX, UY, UZ, the node's, then the pilot's ROTX, ROTY, ROTZ; the search
+/// runs on y = X_P + R(ψ)ᵀ(x_s − x_P) (the node in the target's initial frame), the gap is
+/// g = n₀·y − c₀ − CNOF (n₀, c₀ the facet's initial plane) and the tangential displacement is
+/// that of the node against the target's material point that started at X_s,
+/// u_t = (I − n nᵀ)(x_s − x_P − R(X_s − X_P)), n = R n₀. Their exact first and second
+/// derivatives (elements/hyper_dual.h) give the force, the moment conjugate to ψ and the
+/// consistent tangent with the rotation terms.
 class RigidTargetPoint final : public ContactPoint {
  public:
-  RigidTargetPoint(const char* family, int id, int node, const Vec3& x,
+  /// `pilot_x`: the pilot's initial position (used by a rotating target only).
+  RigidTargetPoint(const char* family, int id, int node, const Vec3& x, const Vec3& pilot_x,
                    std::shared_ptr<const TargetSurface> target, double reach, double offset,
                    const ContactLawData& data);
   const char* family() const override { return family_; }
 
  protected:
   bool locate(const Eigen::VectorXd& u) override;
+  ContactKinematics kinematics(const Eigen::VectorXd& u) const override;
+  void add_friction_curvature(const Eigen::VectorXd& u, const Vec3& ft,
+                              Eigen::MatrixXd& K) const override;
 
  private:
   const char* family_;
   Vec3 x_;
+  Vec3 pilot_x_;
   std::shared_ptr<const TargetSurface> target_;
   double reach_;   // pinball radius
   double offset_;  // CNOF
+  bool rotating_;
+  Vec3 n0_ = Vec3::UnitZ();  // rotating: the located facet's normal and plane n₀·X = c₀
+  double c0_ = 0.0;
 };
 
 /// One contact node against a deformable target (no pilot), small sliding [A] (MAPDL's small
@@ -118,6 +141,9 @@ class DeformableTargetPoint final : public ContactPoint {
  protected:
   bool locate(const Eigen::VectorXd& u) override;
   ContactKinematics kinematics(const Eigen::VectorXd& u) const override;
+  /// Σ_k f_t,k ∂²u_t,k/∂u² on the facet in use, by second-order automatic differentiation.
+  void add_friction_curvature(const Eigen::VectorXd& u, const Vec3& ft,
+                              Eigen::MatrixXd& K) const override;
 
  private:
   struct Candidate {
