@@ -1,6 +1,7 @@
-/// A contact node against a deformable TARGE170 target, small sliding
-/// (elements/target_surface.h DeformableTargetPoint): candidate facets fixed at setup, the search
-/// among them, and the node-to-segment kinematics with their exact first and second variations.
+/// A contact node against a deformable TARGE170 target (elements/target_surface.h
+/// DeformableTargetPoint): candidate facets (fixed at setup with small sliding, re-found between
+/// steps with large sliding), the search among them, and the node-to-segment kinematics with
+/// their exact first and second variations.
 #include <fmt/format.h>
 
 #include <Eigen/Dense>
@@ -95,7 +96,7 @@ DeformableTargetPoint::DeformableTargetPoint(const char* family, int id, std::ve
                                              std::vector<Vec3> x,
                                              std::shared_ptr<const TargetSurface> target,
                                              std::vector<int> facets, double reach, double offset,
-                                             const ContactLawData& data)
+                                             const ContactLawData& data, bool large_sliding)
     : ContactPoint(id, node_dofs(nodes), data),
       family_(family),
       nodes_(std::move(nodes)),
@@ -103,19 +104,18 @@ DeformableTargetPoint::DeformableTargetPoint(const char* family, int id, std::ve
       target_(std::move(target)),
       facets_(std::move(facets)),
       reach_(reach),
-      offset_(offset) {
+      offset_(offset),
+      large_sliding_(large_sliding) {
+  classify();
+  initialize();
+}
+
+void DeformableTargetPoint::classify() {
   const auto& tris = target_->triangles();
   const auto is_candidate = [&](int f) {
     return std::find(facets_.begin(), facets_.end(), f) != facets_.end();
   };
-  // The facets that may share an edge with a candidate: within the pinball plus the largest
-  // candidate's extent.
-  double extent = 0.0;
-  for (int f : facets_) {
-    const auto& t = tris[static_cast<std::size_t>(f)];
-    extent = std::max({extent, (t.b - t.a).norm(), (t.c - t.a).norm(), (t.c - t.b).norm()});
-  }
-  const std::vector<int> around = target_->near(x_.front(), reach_ + extent);
+  candidates_.clear();
   for (int f : facets_) {
     const auto& t = tris[static_cast<std::size_t>(f)];
     Candidate c;
@@ -123,6 +123,10 @@ DeformableTargetPoint::DeformableTargetPoint(const char* family, int id, std::ve
       c.local[static_cast<std::size_t>(a)] = static_cast<int>(
           std::find(nodes_.begin(), nodes_.end(), t.nodes[static_cast<std::size_t>(a)]) -
           nodes_.begin());
+    // The facets sharing an edge with f lie within f's extent of its centroid (initial
+    // configuration: the adjacency does not change with the deformation).
+    const double extent = std::max({(t.b - t.a).norm(), (t.c - t.a).norm(), (t.c - t.b).norm()});
+    const std::vector<int> around = target_->near((t.a + t.b + t.c) / 3.0, extent);
     for (std::size_t a = 0; a < 3; ++a) {
       const int i = t.nodes[(a + 1) % 3], j = t.nodes[(a + 2) % 3];
       for (int g : around) {
@@ -135,7 +139,45 @@ DeformableTargetPoint::DeformableTargetPoint(const char* family, int id, std::ve
     }
     candidates_.push_back(c);
   }
-  initialize();
+}
+
+bool DeformableTargetPoint::refresh_dofs(const Eigen::VectorXd& u,
+                                         const NodePositions& positions) {
+  if (!large_sliding_) return false;
+  const int self = nodes_.front();
+  const Vec3 xs = positions.at(self);
+  const auto usable = [&](int f) {
+    const auto& n = target_->triangles()[static_cast<std::size_t>(f)].nodes;
+    return std::find(n.begin(), n.end(), self) == n.end();
+  };
+  bool covered = true;
+  for (int f : target_->near_current(xs, reach_, positions))
+    if (usable(f) && std::find(facets_.begin(), facets_.end(), f) == facets_.end()) covered = false;
+  if (covered) return false;
+  // Re-found over the margin, with the facet in use kept (its contact state continues on it).
+  std::vector<int> facets;
+  if (!facets_.empty()) facets.push_back(facet());
+  for (int f : target_->near_current(xs, kLargeSlidingMargin * reach_, positions))
+    if (usable(f) && std::find(facets.begin(), facets.end(), f) == facets.end())
+      facets.push_back(f);
+  std::vector<int> nodes = {self};
+  std::vector<Vec3> x = {x_.front()};
+  for (int f : facets) {
+    const auto& t = target_->triangles()[static_cast<std::size_t>(f)];
+    for (std::size_t k = 0; k < 3; ++k)
+      if (std::find(nodes.begin(), nodes.end(), t.nodes[k]) == nodes.end()) {
+        nodes.push_back(t.nodes[k]);
+        x.push_back(k == 0 ? t.a : k == 1 ? t.b : t.c);
+      }
+  }
+  (void)u;
+  nodes_ = std::move(nodes);
+  x_ = std::move(x);
+  facets_ = std::move(facets);
+  current_ = 0;
+  classify();
+  set_dofs(node_dofs(nodes_));
+  return true;
 }
 
 bool DeformableTargetPoint::locate(const Eigen::VectorXd& u) {
@@ -187,6 +229,13 @@ bool DeformableTargetPoint::locate(const Eigen::VectorXd& u) {
       current_ = least;
       return true;
     }
+    if (c.edge[a] == 2 && large_sliding_)
+      throw ElementSolutionError(
+          id(), fmt::format("element {}: contact node {} slid across all its candidate target "
+                            "facets within one substep (large sliding re-finds them between "
+                            "substeps, over {} times the pinball): use smaller substeps "
+                            "(NSUBST / DELTIM) or a larger pinball (real constant 6 PINB)",
+                            id(), nodes_.front(), kLargeSlidingMargin));
     if (c.edge[a] == 2)
       throw ElementSolutionError(
           id(),

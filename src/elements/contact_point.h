@@ -132,6 +132,9 @@ class ContactPoint : public Element {
   /// Sets the initial status from the geometry (call at the end of a derived constructor when
   /// locate() found the initial normal).
   void initialize();
+  /// A new DOF list (large sliding on a deformable target, between steps); the contact state
+  /// (status, multiplier, slip) is the point's and stays.
+  void set_dofs(std::vector<DofKey> dofs) { dofs_ = std::move(dofs); }
 
   ContactLawData data_;
 

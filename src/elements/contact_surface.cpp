@@ -46,10 +46,25 @@ double face_area(const Model& model, const std::vector<int>& nodes) {
   return 0.5 * (x[2] - x[0]).cross(x[3] - x[1]).norm();
 }
 
-class SurfaceContact final : public Element {
+class SurfaceContact final : public Element, public ConnectivityUpdate {
  public:
   explicit SurfaceContact(int id, std::vector<std::unique_ptr<ContactPoint>> points)
       : Element(id), points_(std::move(points)) {
+    map_points();
+  }
+  /// Large sliding on a deformable target: the points' DOF lists, then the union again.
+  bool refresh_dofs(const Eigen::VectorXd& u, const NodePositions& positions) override {
+    bool changed = false;
+    for (std::size_t p = 0; p < points_.size(); ++p)
+      if (auto* c = dynamic_cast<ConnectivityUpdate*>(points_[p].get()))
+        changed = c->refresh_dofs(local(u, p), positions) || changed;
+    if (changed) map_points();
+    return changed;
+  }
+  /// dofs_ (the union of the points' DOFs) and maps_.
+  void map_points() {
+    dofs_.clear();
+    maps_.clear();
     for (const auto& p : points_) {
       std::vector<int> map;
       for (const DofKey& k : p->dofs()) {

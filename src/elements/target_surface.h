@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/coordinate_system.h"
+#include "elements/connectivity.h"
 #include "elements/contact_point.h"
 #include "elements/element.h"
 
@@ -46,11 +47,21 @@ class TargetSurface {
   /// The facets (indices into triangles()) whose bounding box comes within `reach` of y and
   /// whose plane is within `reach` of y: the candidates of a deformable target's contact node.
   std::vector<int> near(const Vec3& y, double reach) const;
+  /// The same in the current configuration of a deformable target (large sliding): the facets
+  /// whose current bounding box and plane come within `reach` of x. A bucket grid over the
+  /// current facets is rebuilt only when a target node has moved more than a quarter of `reach`
+  /// since the last build (checked once per refresh pass); in between a query widens its reach
+  /// by the largest such movement and tests the current geometry, so it misses nothing.
+  std::vector<int> near_current(const Vec3& x, double reach, const NodePositions& at) const;
+  /// How many times near_current() built its grid (the first build included).
+  int current_grid_builds() const;
 
  private:
   long long key(long long i, long long j, long long k) const;
   void cell_range(const Vec3& lo, const Vec3& hi, Eigen::Vector3i& a, Eigen::Vector3i& b) const;
 
+  struct Current;  // near_current()'s grid over the deformed facets
+  mutable std::shared_ptr<Current> current_;
   int pilot_;
   bool rotates_;
   std::vector<Triangle> triangles_;
@@ -109,15 +120,25 @@ class RigidTargetPoint final : public ContactPoint {
   double c0_ = 0.0;
 };
 
-/// One contact node against a deformable target (no pilot), small sliding [A] (MAPDL's small
-/// sliding option, which keeps the assembly pattern static): at setup the node's candidate facets
-/// are those near() its initial position within the pinball, and its DOFs are the contact node's
-/// then the candidate facet nodes' UX, UY, UZ. Before each status update the search picks, among
-/// the candidates in their current (deformed) position, the facet the node projects into with the
-/// smallest |gap|; a node in none of them (the gap between the projections on two facets meeting
-/// at a convex edge) takes the nearest one when it lies beyond an edge shared with another
-/// candidate. A node that leaves the candidates across an edge shared with a non-candidate facet
-/// only, within the pinball, is an ElementSolutionError telling the user to enlarge PINB.
+/// One contact node against a deformable target (no pilot). Its DOFs are the contact node's
+/// then the nodes of its **candidate** facets, UX, UY, UZ; before each status update the search
+/// picks, among the candidates in their current (deformed) position, the facet the node projects
+/// into with the smallest |gap|; a node in none of them (the gap between the projections on two
+/// facets meeting at a convex edge) takes the nearest one when it lies beyond an edge shared with
+/// another candidate. The candidates are fixed within a step (a static assembly pattern while
+/// Newton iterates) and found:
+///
+/// * **large sliding** (the default, MAPDL's): after each accepted step (refresh_dofs) the node
+///   checks the facets within its pinball in the current configuration
+///   (TargetSurface::near_current); when one of them is not a candidate, the candidates become
+///   the facets within kLargeSlidingMargin × the pinball (plus the facet in use) and the driver
+///   renumbers. The margin keeps the set valid while the node slides another half pinball, so the
+///   DOF lists change once per half pinball of travel, not every step. A node that still leaves
+///   its candidates within one step is an ElementSolutionError asking for smaller steps.
+/// * **small sliding** [A] (KEYOPT(18) = 1): the candidates are those near() the node's initial
+///   position within the pinball, for the whole run; a node that leaves them across an edge
+///   shared with a non-candidate facet within the pinball is an ElementSolutionError telling
+///   the user to enlarge PINB.
 ///
 /// Kinematics on the chosen facet (a triangle x₁ x₂ x₃, current positions): n = e₁×e₂/|e₁×e₂|,
 /// e_α = x_{α+1} − x₁; the projection x_p = Σ N_a x_a with N = (1−ξ₁−ξ₂, ξ₁, ξ₂) solving
@@ -125,18 +146,24 @@ class RigidTargetPoint final : public ContactPoint {
 /// the Hessian from Δn = (I − nnᵀ)(Δe₁×e₂ + e₁×Δe₂)/|e₁×e₂| and
 /// Δξ = M⁻¹[e_α·Δr + g n·Δe_α], M_αβ = e_α·e_β (Wriggers §9.3 / Laursen §5.2, node-to-segment):
 /// Δδg = Δn·δr − Δξ_α n·δe_α. The tangential relative displacement is u_t = P (u_s − Σ N_a u_a)
-/// (the slip of the node over the facet's material since the start, for small sliding) with its
-/// exact first derivative T.
-class DeformableTargetPoint final : public ContactPoint {
+/// = P (Σ N_a X_a − X_s) (x_s − x_p = g n): the tangential distance of the target's material
+/// point under the node from the node's initial place, continuous from facet to facet, so it
+/// also measures the slip of large sliding; T its exact first derivative.
+class DeformableTargetPoint final : public ContactPoint, public ConnectivityUpdate {
  public:
+  /// The candidate set is re-found over this multiple of the pinball (large sliding).
+  static constexpr double kLargeSlidingMargin = 1.5;
   /// `facets`: the candidate facet indices; `nodes`: the contact node then the distinct nodes of
   /// the candidates (the element's DOF order), with `x` their initial positions.
   DeformableTargetPoint(const char* family, int id, std::vector<int> nodes, std::vector<Vec3> x,
                         std::shared_ptr<const TargetSurface> target, std::vector<int> facets,
-                        double reach, double offset, const ContactLawData& data);
+                        double reach, double offset, const ContactLawData& data,
+                        bool large_sliding = false);
   const char* family() const override { return family_; }
   /// The candidate facet in use (index into the target's triangles), -1 without candidates.
   int facet() const { return facets_.empty() ? -1 : facets_[static_cast<std::size_t>(current_)]; }
+  const std::vector<int>& candidates() const { return facets_; }
+  bool refresh_dofs(const Eigen::VectorXd& u, const NodePositions& positions) override;
 
  protected:
   bool locate(const Eigen::VectorXd& u) override;
@@ -152,6 +179,8 @@ class DeformableTargetPoint final : public ContactPoint {
     // 2 shared with a non-candidate facet only.
     std::array<int, 3> edge{};
   };
+  /// candidates_ from nodes_ and facets_ (edge neighbours found in the initial configuration).
+  void classify();
   const char* family_;
   std::vector<int> nodes_;
   std::vector<Vec3> x_;
@@ -161,6 +190,7 @@ class DeformableTargetPoint final : public ContactPoint {
   int current_ = 0;
   double reach_;
   double offset_;
+  bool large_sliding_;
 };
 
 /// The law of contact node `node` of `record` (a CONTA175, or a CONTA174 face node) against the

@@ -183,6 +183,48 @@ TEST(DeformableTarget, SlidingTangentIsConsistentButForTheNonSymmetricCoupling) 
   }
 }
 
+/// Newton on the element with every DOF on a ground spring k_s and a load on the contact node
+/// (sticking, inside the friction cone): the residual norms of each iteration.
+std::vector<double> sticking_newton(Element& e, const Eigen::VectorXd& load, double ks) {
+  const ElementContext ctx;
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(e.n_dofs());
+  u(2) = -0.02;  // start closed
+  std::vector<double> norms;
+  for (int it = 0; it < 30; ++it) {
+    e.update_status(ctx, u);
+    Eigen::MatrixXd K;
+    Eigen::VectorXd f;
+    e.tangent(ctx, u, K, f);
+    const Eigen::VectorXd r = f + ks * u - load;
+    norms.push_back(r.norm());
+    if (r.norm() < 1e-10 * load.norm()) break;
+    K.diagonal().array() += ks;
+    u -= K.lu().solve(r);
+  }
+  return norms;
+}
+
+TEST(DeformableTarget, StickingNewtonConvergesQuadratically) {
+  // A soft target (ground springs k_s = 20 on its nodes) under a node pushed down and sideways
+  // inside the friction cone: the facet tilts and stretches, so T varies and the curvature term
+  // Σ f_t,k ∂²u_t,k/∂u² matters (f_t / facet size against k_t). With it the iteration is Newton's:
+  // the residual falls quadratically (r_{k+1} ≤ C r_k² on the last iterations).
+  const Model m = model(Vec3(0.4, 0.3, -0.01), 1, 0.8);
+  auto e = build(m, 20);
+  Eigen::VectorXd load = Eigen::VectorXd::Zero(e->n_dofs());
+  load(0) = 4.0;
+  load(1) = -2.0;
+  load(2) = -10.0;
+  const std::vector<double> r = sticking_newton(*e, load, 20.0);
+  ASSERT_EQ(e->status(), GapStatus::Closed);
+  ASSERT_LT(r.back(), 1e-10 * load.norm());
+  EXPECT_LE(r.size(), 8u);
+  // Quadratic: the last full step squares the error (with a generous constant).
+  const std::size_t n = r.size();
+  ASSERT_GE(n, 4u);
+  EXPECT_LT(r[n - 2], 1e3 * r[n - 3] * r[n - 3] / load.norm());
+}
+
 TEST(DeformableTarget, SearchFollowsTheNodeAndReportsSlidingOutOfTheCandidates) {
   const Model m = model(Vec3(0.4, 0.3, -0.05));
   auto e = build(m, 20);
