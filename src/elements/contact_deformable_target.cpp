@@ -141,8 +141,7 @@ void DeformableTargetPoint::classify() {
   }
 }
 
-bool DeformableTargetPoint::refresh_dofs(const Eigen::VectorXd& u,
-                                         const NodePositions& positions) {
+bool DeformableTargetPoint::refresh_dofs(const Eigen::VectorXd& u, const NodePositions& positions) {
   if (!large_sliding_) return false;
   const int self = nodes_.front();
   const Vec3 xs = positions.at(self);

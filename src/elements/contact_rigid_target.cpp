@@ -50,9 +50,8 @@ RotatingGeometry rotating_geometry(const Eigen::VectorXd& u, const Vec3& xs0, co
 }  // namespace
 
 RigidTargetPoint::RigidTargetPoint(const char* family, int id, int node, const Vec3& x,
-                                   const Vec3& pilot_x,
-                                   std::shared_ptr<const TargetSurface> target, double reach,
-                                   double offset, const ContactLawData& data)
+                                   const Vec3& pilot_x, std::shared_ptr<const TargetSurface> target,
+                                   double reach, double offset, const ContactLawData& data)
     : ContactPoint(id,
                    target->rotates() ? rotating_dofs(target->pilot(), node)
                                      : std::vector<DofKey>{{target->pilot(), Dof::UX},

@@ -147,7 +147,8 @@ std::vector<int> TargetSurface::near_current(const Vec3& x, double reach,
       t.c = at.at(t.nodes[2]);
       const Vec3 normal = (t.b - t.a).cross(t.c - t.a);
       if (normal.norm() > 0.0) t.normal = normal.normalized();
-      for (std::size_t k = 0; k < 3; ++k) c.built_at[t.nodes[k]] = k == 0 ? t.a : k == 1 ? t.b : t.c;
+      for (std::size_t k = 0; k < 3; ++k)
+        c.built_at[t.nodes[k]] = k == 0 ? t.a : k == 1 ? t.b : t.c;
     }
     c.grid = std::make_unique<TargetSurface>(0, std::move(now));
     c.moved = 0.0;
@@ -167,7 +168,9 @@ std::vector<int> TargetSurface::near_current(const Vec3& x, double reach,
   return out;
 }
 
-int TargetSurface::current_grid_builds() const { return current_ ? current_->builds : 0; }
+int TargetSurface::current_grid_builds() const {
+  return current_ ? current_->builds : 0;
+}
 
 namespace {
 
@@ -330,8 +333,8 @@ std::unique_ptr<ContactPoint> target_point(const ElementBuildContext& ctx,
     // The candidates within the pinball (large sliding: over its margin), never a facet on the
     // node itself.
     const bool large = type.key(18) == 0;
-    for (int f : target->near(
-             node.x, large ? DeformableTargetPoint::kLargeSlidingMargin * reach : reach)) {
+    for (int f :
+         target->near(node.x, large ? DeformableTargetPoint::kLargeSlidingMargin * reach : reach)) {
       const auto& t = target->triangles()[static_cast<std::size_t>(f)];
       if (std::find(t.nodes.begin(), t.nodes.end(), node.id) == t.nodes.end())
         candidates.push_back(f);

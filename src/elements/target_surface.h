@@ -2,10 +2,10 @@
 /// Contact targets (TARGE170, APDL_MODELING §8.4): the target facets of one real-constant set
 /// (triangles and quadrilaterals, a quadrilateral as two triangles, so it should be planar).
 /// Either **rigid**, moving with their pilot node (a one-node TARGE170; turning with the pilot's
-/// rotations when the pilot carries rotational DOFs), or, without a pilot, **deformable**: the facets are
-/// meshed on a deformable body and move with its nodes. A spatial bucket grid over the facets in
-/// their initial position answers the closest-facet query of the rigid case (the target moves
-/// rigidly, so the grid is built once and queried in the target's own frame) and the
+/// rotations when the pilot carries rotational DOFs), or, without a pilot, **deformable**: the
+/// facets are meshed on a deformable body and move with its nodes. A spatial bucket grid over the
+/// facets in their initial position answers the closest-facet query of the rigid case (the target
+/// moves rigidly, so the grid is built once and queried in the target's own frame) and the
 /// candidate query of the deformable case (small sliding, DeformableTargetPoint).
 #include <array>
 #include <memory>

@@ -14,6 +14,7 @@
 #include "core/errors.h"
 #include "elements/element.h"
 #include "elements/element_registry.h"
+#include "elements/target_surface.h"
 
 namespace impactfe {
 namespace {
@@ -25,7 +26,7 @@ ElementRecord record(int id, int type_id, int real, int mat, std::vector<int> no
 /// Target body: two unit SOLID185 bricks side by side, x ∈ [0, 2], y ∈ [0, 1], z ∈ [−1, 0]; its
 /// top faces are the TARGE170 facets (normal +Z, no pilot). CONTA175 (element 20) on node 100 at
 /// `x100`; FKN = −1000 (absolute), FTOLN = −1e-6, PINB = −0.5 (absolute).
-Model model(const Vec3& x100, int keyopt2 = 1, double mu = 0.0) {
+Model model(const Vec3& x100, int keyopt2 = 1, double mu = 0.0, int keyopt18 = 0) {
   Model m;
   int id = 1;
   for (double z : {-1.0, 0.0})
@@ -36,6 +37,7 @@ Model model(const Vec3& x100, int keyopt2 = 1, double mu = 0.0) {
   m.element_types[1] = testing::element_type(1, "SOLID185");
   m.element_types[2] = testing::element_type(2, "TARGE170");
   m.element_types[3] = testing::element_type(3, "CONTA175", keyopt2);
+  m.element_types[3].keyopt[18] = keyopt18;  // 1: small sliding
   Material mat;
   mat.id = 1;
   mat.props["EX"] = 1000.0;
@@ -73,7 +75,7 @@ Eigen::VectorXd distorted(const Element& e, unsigned seed) {
 }
 
 TEST(DeformableTarget, DofsAreTheContactNodeAndTheCandidateFacetNodes) {
-  const Model m = model(Vec3(0.4, 0.3, -0.05));
+  const Model m = model(Vec3(0.4, 0.3, -0.05), 1, 0.0, 1);  // small sliding
   const auto e = build(m, 20);
   // PINB 0.5 around (0.4, 0.3) reaches the first quad only (x ≤ 1): nodes 7, 8, 11, 10.
   ASSERT_EQ(e->n_dofs(), 15);
@@ -226,7 +228,7 @@ TEST(DeformableTarget, StickingNewtonConvergesQuadratically) {
 }
 
 TEST(DeformableTarget, SearchFollowsTheNodeAndReportsSlidingOutOfTheCandidates) {
-  const Model m = model(Vec3(0.4, 0.3, -0.05));
+  const Model m = model(Vec3(0.4, 0.3, -0.05), 1, 0.0, 1);  // small sliding
   auto e = build(m, 20);
   const ElementContext ctx;
   Eigen::VectorXd u = Eigen::VectorXd::Zero(e->n_dofs());
@@ -245,6 +247,46 @@ TEST(DeformableTarget, SearchFollowsTheNodeAndReportsSlidingOutOfTheCandidates) 
   // Across the edge x = 1 onto the second quad, which was not within the pinball: error.
   u(0) = 0.8;
   EXPECT_THROW(e->update_status(ctx, u), SolutionError);
+}
+
+TEST(DeformableTarget, LargeSlidingRefindsTheCandidatesAsTheNodeSlides) {
+  // PINB 0.5, margin 1.5: around (0.2, 0.3) the facets within 0.75 are the first quad only.
+  const Model m = model(Vec3(0.2, 0.3, -0.05));
+  auto e = build(m, 20);
+  auto* refresh = dynamic_cast<ConnectivityUpdate*>(e.get());
+  ASSERT_NE(refresh, nullptr);
+  ASSERT_EQ(e->n_dofs(), 15);
+  const ElementContext ctx;
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(e->n_dofs());
+  // The node's displacement; the target does not move.
+  Vec3 d(0.0, 0.0, 0.0);
+  long long pass = 0;
+  const auto positions = [&]() {
+    return NodePositions{
+        [&](int n) { return n == 100 ? Vec3(Vec3(0.2, 0.3, -0.05) + d) : m.nodes.at(n).x; },
+        ++pass};
+  };
+  e->update_status(ctx, u);
+  ASSERT_NE(e->status(), GapStatus::Open);
+  EXPECT_FALSE(refresh->refresh_dofs(u, positions()));  // still covered
+  // Slid to x = 0.7: the second quad comes within the pinball: re-found, 6 facet nodes more.
+  d = Vec3(0.5, 0.0, 0.0);
+  EXPECT_TRUE(refresh->refresh_dofs(u, positions()));
+  ASSERT_EQ(e->n_dofs(), 3 * 7);
+  // The new list is consistent: the node over the second quad at x = 1.6 is closed on it, no
+  // PINB error (small sliding would throw here).
+  u = Eigen::VectorXd::Zero(e->n_dofs());
+  u(0) = 1.4;
+  e->update_status(ctx, u);
+  EXPECT_NE(e->status(), GapStatus::Open);
+  auto* point = dynamic_cast<DeformableTargetPoint*>(e.get());
+  ASSERT_NE(point, nullptr);
+  EXPECT_GE(point->facet(), 2);  // a triangle of the second quad (facets 2 and 3)
+  // Slid on to x = 1.9: everything within the pinball is a candidate already, so the list
+  // stays (a stale candidate costs nothing; a change costs a renumbering).
+  d = Vec3(1.7, 0.0, 0.0);
+  EXPECT_FALSE(refresh->refresh_dofs(u, positions()));
+  EXPECT_EQ(e->n_dofs(), 3 * 7);
 }
 
 TEST(DeformableTarget, FacetsOnNoBodyNeedAPilot) {

@@ -45,8 +45,7 @@ Model model(double mu = 0.0, int mass_keyopt3 = 0) {
   mat.props["MU"] = mu;
   m.materials[1] = mat;
   m.real_sets[1] = RealSet{1, {1.0, 1.0, 1.0, 1.0, 1.0, 1.0}};
-  m.real_sets[3] =
-      RealSet{3, {0.0, 0.0, -kKn, -1e-6, 0.0, -1.0, 0.0, 0.0, 0.0, 0.0, 0.0, -500.0}};
+  m.real_sets[3] = RealSet{3, {0.0, 0.0, -kKn, -1e-6, 0.0, -1.0, 0.0, 0.0, 0.0, 0.0, 0.0, -500.0}};
   m.elements[1] = record(1, 1, 1, 1, {1});
   m.elements[2] = record(2, 2, 3, 1, {1});
   m.elements[3] = record(3, 2, 3, 1, {2, 3, 4, 5});
@@ -103,8 +102,8 @@ TEST(RotatingTarget, GapAndMomentOfAPlateTurnedAboutThePilot) {
     ASSERT_NE(e->status(), GapStatus::Open);
     ElementResultValues r;
     e->results(ctx, u, Eigen::VectorXd::Zero(9), r);
-    EXPECT_NEAR(r[3], g, 1e-12);          // GAP
-    EXPECT_NEAR(r[1], -kKn * g, 1e-9);    // FN
+    EXPECT_NEAR(r[3], g, 1e-12);        // GAP
+    EXPECT_NEAR(r[1], -kKn * g, 1e-9);  // FN
     Eigen::MatrixXd K;
     Eigen::VectorXd f;
     e->tangent(ctx, u, K, f);
@@ -167,9 +166,9 @@ TEST(RotatingTarget, FrictionTangentWithRotationsStickingAndSliding) {
     e->results(ctx, u, Eigen::VectorXd::Zero(9), r);
     const double p = r[1];
     ASSERT_GT(r[4], 1e-3 * p);  // a friction force is there
-    const Eigen::MatrixXd dropped = offset < 0.01 ? Eigen::MatrixXd::Zero(9, 9)
-                                                  : Eigen::MatrixXd(kKn * (f - f0) *
-                                                                    f0.transpose() / (p * p));
+    const Eigen::MatrixXd dropped =
+        offset < 0.01 ? Eigen::MatrixXd::Zero(9, 9)
+                      : Eigen::MatrixXd(kKn * (f - f0) * f0.transpose() / (p * p));
     const Eigen::MatrixXd fd = testing::fd_tangent(*e, ctx, u, 1e-7);
     EXPECT_LT((K + dropped - fd).norm(), 1e-6 * K.norm());
     EXPECT_LT((K - K.transpose()).norm(), 1e-10 * K.norm());
