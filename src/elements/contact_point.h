@@ -4,7 +4,8 @@
 /// J (the contact node), each with UX, UY, UZ; a contact normal n pointing from the I side to the
 /// J side and the gap g = g0 + n·(u_J − u_I), closed when g ≤ 0 (penetration −g). CONTA178 has
 /// a fixed n and g0; CONTA175 re-finds them by the contact search before each status update
-/// (the locate() hook), so its DOF list - and the assembly pattern - never changes.
+/// (the locate() hook), so its DOF list - and the assembly pattern - does not change within a
+/// step (large sliding on a deformable target changes it between steps, connectivity.h).
 ///
 /// Normal contact (Wriggers, Computational Contact Mechanics, 2nd ed., §5.2 penalty, §5.3 and
 /// §10.3.4 augmented Lagrange): compressive force p = λ − k_n g while closed. KEYOPT(2) = 1 is
@@ -18,7 +19,7 @@
 /// the COMBIN40 slider in 3-D): trial force ξ = k_t (u_t − s) with the relative tangential
 /// displacement u_t = (I − n nᵀ)(u_J − u_I) and the committed slip s; sticking when |ξ| ≤ μ p,
 /// sliding with force μ p ξ/|ξ| otherwise. The sliding tangent keeps the symmetric part
-/// μ p k_t/|ξ| (P − d dᵀ) and drops the non-symmetric coupling μ k_n d nᵀ (the linear solvers
+/// μ p k_t/|ξ| (I − d dᵀ) and drops the non-symmetric coupling μ k_n d nᵀ (the linear solvers
 /// are symmetric): Newton converges linearly while sliding, the residual is exact.
 ///
 /// Kinematics (ContactKinematics): the law sees the gap g(u), its gradient G = ∂g/∂u, its Hessian
