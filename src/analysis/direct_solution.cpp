@@ -37,6 +37,10 @@ DirectSolution::DirectSolution(Structure& structure, ResultsWriter& writer,
 void DirectSolution::set_constraints(const LoadStep& step) {
   std::set<DofKey> wanted = structure_.constraints_of(step);
   if (dofs_ && wanted == constrained_) return;
+  renumber(std::move(wanted), false);
+}
+
+void DirectSolution::renumber(std::set<DofKey> wanted, bool keep_dynamics) {
   auto dofs = std::make_unique<DofMap>(structure_.elements(), wanted);
   if (dofs_) {
     u_ = remap(u_, *dofs_, *dofs);
@@ -45,7 +49,12 @@ void DirectSolution::set_constraints(const LoadStep& step) {
     f_ext_old_ = remap(f_ext_old_, *dofs_, *dofs);
     f_int_old_ = remap(f_int_old_, *dofs_, *dofs);
     f_damp_old_ = remap(f_damp_old_, *dofs_, *dofs);
-    dynamics_started_ = false;  // the integrator history belongs to the old numbering
+    reactions_ = remap(reactions_, *dofs_, *dofs);
+    inertia_a_ = VectorXd();  // the cached M a belongs to the old numbering
+    if (keep_dynamics && dynamics_started_ && integrator_)
+      remap_integrator(*dofs_, *dofs);
+    else
+      dynamics_started_ = false;  // the integrator history belongs to the old numbering
   } else {
     u_ = VectorXd::Zero(dofs->n_active());
     v_ = VectorXd::Zero(dofs->n_active());
@@ -254,6 +263,11 @@ void DirectSolution::finish() {
     stats_.notes.push_back(energy_->summary(time_, kinetic));
     if (const auto warning = energy_->balance_warning(kinetic)) Log::warn("{}", *warning);
   }
+  if (renumberings_ > 0)
+    stats_.notes.push_back(fmt::format(
+        "large sliding: the contact DOF lists changed after {} of {} accepted steps (DOFs "
+        "renumbered then)",
+        renumberings_, refresh_passes_));
   update_counters();
 }
 
@@ -594,6 +608,7 @@ bool DirectSolution::solve_increment(const LoadPoint& at, const StepLabel& label
   f_damp_old_ = inc.f_damp;
   acel_ = frame_acceleration(at);
   time_ = label.time;
+  refresh_connectivity();
   return true;
 }
 

@@ -46,6 +46,16 @@ class DirectSolution : private NonlinearProblem {
  private:
   void update_counters();
   void set_constraints(const LoadStep& step);
+  /// A new DOF numbering (DofMap, Assembler, status loop, solver, condensation) for the
+  /// constraint set `wanted`, the state remapped by DOF key. `keep_dynamics`: the integrator
+  /// continues (its history remapped) instead of restarting (direct_solution_connectivity.cpp).
+  void renumber(std::set<DofKey> wanted, bool keep_dynamics);
+  /// After an accepted step: elements whose DOFs follow the deformation (contact on deformable
+  /// targets with large sliding, elements/connectivity.h) re-find them; renumbers when one
+  /// changed (direct_solution_connectivity.cpp).
+  void refresh_connectivity();
+  /// The integrator's history vectors from numbering `from` to `to` (by DOF key).
+  void remap_integrator(const DofMap& from, const DofMap& to);
   void start_dynamics(const LoadPoint& at, double h);
   VectorXd external_force(const LoadPoint& at) const;
   LoadPoint load_point(const LoadStep& step, const LoadStep* previous, double fraction,
@@ -119,6 +129,12 @@ class DirectSolution : private NonlinearProblem {
   // F and D of the load step being solved, resolved to DOF indices (set per load step).
   ResolvedDofLoads forces_, prescribed_;
   const LoadStep* resolved_step_ = nullptr;
+  const LoadStep* resolved_previous_ = nullptr;
+  // Elements with a DOF list that follows the deformation (indices; found once), the refresh
+  // passes made and the renumberings they caused.
+  std::optional<std::vector<std::size_t>> connectivity_;
+  long long refresh_passes_ = 0;
+  int renumberings_ = 0;
 
   // Converged state over all active DOFs, and the force terms of the last converged step.
   VectorXd u_, v_, a_;

@@ -57,6 +57,8 @@ void DirectSolution::apply_restart(const LoadStep& step) {
   acel_ = p.acel;
   time_ = p.time;
   energy_->restore(p.energy);
+  // Contact on deformable targets with large sliding: the DOF lists for the saved positions.
+  refresh_connectivity();
   // Element statuses: re-evaluated from the saved displacements and committed, then checked
   // against the saved codes (an element whose state is more than its status, such as the slip
   // of a sliding COMBIN40, would differ: refused rather than continued wrongly).

@@ -39,6 +39,7 @@ void DirectSolution::solve_load_step(const LoadStep& given) {
   forces_ = ResolvedDofLoads(*dofs_, step, previous, ResolvedDofLoads::Kind::Forces);
   prescribed_ = ResolvedDofLoads(*dofs_, step, previous, ResolvedDofLoads::Kind::Constraints);
   resolved_step_ = &step;
+  resolved_previous_ = previous;
   const bool dynamic = transient && step.time_integration;
   const AutoStepPlan plan =
       auto_step_plan(step, step_control, t, transient, kAutotsDefault, last_dt_);

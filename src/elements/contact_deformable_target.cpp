@@ -1,6 +1,7 @@
-/// A contact node against a deformable TARGE170 target, small sliding
-/// (elements/target_surface.h DeformableTargetPoint): candidate facets fixed at setup, the search
-/// among them, and the node-to-segment kinematics with their exact first and second variations.
+/// A contact node against a deformable TARGE170 target (elements/target_surface.h
+/// DeformableTargetPoint): candidate facets (fixed at setup with small sliding, re-found between
+/// steps with large sliding), the search among them, and the node-to-segment kinematics with
+/// their exact first and second variations.
 #include <fmt/format.h>
 
 #include <Eigen/Dense>
@@ -8,6 +9,7 @@
 #include <cmath>
 
 #include "core/errors.h"
+#include "elements/hyper_dual.h"
 #include "elements/target_surface.h"
 
 namespace impactfe {
@@ -61,13 +63,40 @@ Projection project(const Vec3& xs, const Vec3& x1, const Vec3& x2, const Vec3& x
   return p;
 }
 
+/// u_t = (I − n nᵀ)(u_s − Σ N_a u_a) on the triangle x₁ x₂ x₃ as a function of the 12
+/// displacements (u_s, u₁, u₂, u₃), for its exact second derivatives (the same construction as
+/// project() and DeformableTargetPoint::kinematics, in second-order dual numbers).
+ad::V3<12> tangential_displacement(const std::array<Vec3, 4>& x0,
+                                   const Eigen::Matrix<double, 12, 1>& u) {
+  using D = ad::Dual2<12>;
+  using V = ad::V3<12>;
+  std::array<V, 4> du, x;
+  for (int i = 0; i < 4; ++i) {
+    du[static_cast<std::size_t>(i)] = ad::variables<12>(Vec3::Zero(), u, 3 * i);
+    x[static_cast<std::size_t>(i)] =
+        ad::constant<12>(x0[static_cast<std::size_t>(i)]) + du[static_cast<std::size_t>(i)];
+  }
+  const V e1 = x[2] - x[1], e2 = x[3] - x[1], d = x[0] - x[1];
+  const V a = ad::cross(e1, e2);
+  const D inv_norm = ad::inverse(ad::sqrt(ad::dot(a, a)));
+  const V n = inv_norm * a;
+  // ξ = M⁻¹ (e_α·d), M_αβ = e_α·e_β (Cramer's rule).
+  const D m11 = ad::dot(e1, e1), m12 = ad::dot(e1, e2), m22 = ad::dot(e2, e2);
+  const D r1 = ad::dot(e1, d), r2 = ad::dot(e2, d);
+  const D inv_det = ad::inverse(m11 * m22 - m12 * m12);
+  const D xi1 = inv_det * (m22 * r1 - m12 * r2), xi2 = inv_det * (m11 * r2 - m12 * r1);
+  const D n1 = D(1.0) - xi1 - xi2;
+  const V w = du[0] - n1 * du[1] - xi1 * du[2] - xi2 * du[3];
+  return w - ad::dot(n, w) * n;
+}
+
 }  // namespace
 
 DeformableTargetPoint::DeformableTargetPoint(const char* family, int id, std::vector<int> nodes,
                                              std::vector<Vec3> x,
                                              std::shared_ptr<const TargetSurface> target,
                                              std::vector<int> facets, double reach, double offset,
-                                             const ContactLawData& data)
+                                             const ContactLawData& data, bool large_sliding)
     : ContactPoint(id, node_dofs(nodes), data),
       family_(family),
       nodes_(std::move(nodes)),
@@ -75,19 +104,18 @@ DeformableTargetPoint::DeformableTargetPoint(const char* family, int id, std::ve
       target_(std::move(target)),
       facets_(std::move(facets)),
       reach_(reach),
-      offset_(offset) {
+      offset_(offset),
+      large_sliding_(large_sliding) {
+  classify();
+  initialize();
+}
+
+void DeformableTargetPoint::classify() {
   const auto& tris = target_->triangles();
   const auto is_candidate = [&](int f) {
     return std::find(facets_.begin(), facets_.end(), f) != facets_.end();
   };
-  // The facets that may share an edge with a candidate: within the pinball plus the largest
-  // candidate's extent.
-  double extent = 0.0;
-  for (int f : facets_) {
-    const auto& t = tris[static_cast<std::size_t>(f)];
-    extent = std::max({extent, (t.b - t.a).norm(), (t.c - t.a).norm(), (t.c - t.b).norm()});
-  }
-  const std::vector<int> around = target_->near(x_.front(), reach_ + extent);
+  candidates_.clear();
   for (int f : facets_) {
     const auto& t = tris[static_cast<std::size_t>(f)];
     Candidate c;
@@ -95,6 +123,10 @@ DeformableTargetPoint::DeformableTargetPoint(const char* family, int id, std::ve
       c.local[static_cast<std::size_t>(a)] = static_cast<int>(
           std::find(nodes_.begin(), nodes_.end(), t.nodes[static_cast<std::size_t>(a)]) -
           nodes_.begin());
+    // The facets sharing an edge with f lie within f's extent of its centroid (initial
+    // configuration: the adjacency does not change with the deformation).
+    const double extent = std::max({(t.b - t.a).norm(), (t.c - t.a).norm(), (t.c - t.b).norm()});
+    const std::vector<int> around = target_->near((t.a + t.b + t.c) / 3.0, extent);
     for (std::size_t a = 0; a < 3; ++a) {
       const int i = t.nodes[(a + 1) % 3], j = t.nodes[(a + 2) % 3];
       for (int g : around) {
@@ -107,7 +139,44 @@ DeformableTargetPoint::DeformableTargetPoint(const char* family, int id, std::ve
     }
     candidates_.push_back(c);
   }
-  initialize();
+}
+
+bool DeformableTargetPoint::refresh_dofs(const Eigen::VectorXd& u, const NodePositions& positions) {
+  if (!large_sliding_) return false;
+  const int self = nodes_.front();
+  const Vec3 xs = positions.at(self);
+  const auto usable = [&](int f) {
+    const auto& n = target_->triangles()[static_cast<std::size_t>(f)].nodes;
+    return std::find(n.begin(), n.end(), self) == n.end();
+  };
+  bool covered = true;
+  for (int f : target_->near_current(xs, reach_, positions))
+    if (usable(f) && std::find(facets_.begin(), facets_.end(), f) == facets_.end()) covered = false;
+  if (covered) return false;
+  // Re-found over the margin, with the facet in use kept (its contact state continues on it).
+  std::vector<int> facets;
+  if (!facets_.empty()) facets.push_back(facet());
+  for (int f : target_->near_current(xs, kLargeSlidingMargin * reach_, positions))
+    if (usable(f) && std::find(facets.begin(), facets.end(), f) == facets.end())
+      facets.push_back(f);
+  std::vector<int> nodes = {self};
+  std::vector<Vec3> x = {x_.front()};
+  for (int f : facets) {
+    const auto& t = target_->triangles()[static_cast<std::size_t>(f)];
+    for (std::size_t k = 0; k < 3; ++k)
+      if (std::find(nodes.begin(), nodes.end(), t.nodes[k]) == nodes.end()) {
+        nodes.push_back(t.nodes[k]);
+        x.push_back(k == 0 ? t.a : k == 1 ? t.b : t.c);
+      }
+  }
+  (void)u;
+  nodes_ = std::move(nodes);
+  x_ = std::move(x);
+  facets_ = std::move(facets);
+  current_ = 0;
+  classify();
+  set_dofs(node_dofs(nodes_));
+  return true;
 }
 
 bool DeformableTargetPoint::locate(const Eigen::VectorXd& u) {
@@ -159,6 +228,13 @@ bool DeformableTargetPoint::locate(const Eigen::VectorXd& u) {
       current_ = least;
       return true;
     }
+    if (c.edge[a] == 2 && large_sliding_)
+      throw ElementSolutionError(
+          id(), fmt::format("element {}: contact node {} slid across all its candidate target "
+                            "facets within one substep (large sliding re-finds them between "
+                            "substeps, over {} times the pinball): use smaller substeps "
+                            "(NSUBST / DELTIM) or a larger pinball (real constant 6 PINB)",
+                            id(), nodes_.front(), kLargeSlidingMargin));
     if (c.edge[a] == 2)
       throw ElementSolutionError(
           id(),
@@ -225,6 +301,30 @@ ContactKinematics DeformableTargetPoint::kinematics(const Eigen::VectorXd& u) co
       k.H.block<3, 3>(gi, 3 * at[static_cast<std::size_t>(j)]) += H.block<3, 3>(3 * i, 3 * j);
   }
   return k;
+}
+
+}  // namespace impactfe
+
+namespace impactfe {
+
+void DeformableTargetPoint::add_friction_curvature(const Eigen::VectorXd& u, const Vec3& ft,
+                                                   Eigen::MatrixXd& K) const {
+  if (facets_.empty()) return;
+  const Candidate& c = candidates_[static_cast<std::size_t>(current_)];
+  const std::array<int, 4> at = {0, c.local[0], c.local[1], c.local[2]};
+  std::array<Vec3, 4> x0;
+  Eigen::Matrix<double, 12, 1> ul;
+  for (std::size_t i = 0; i < 4; ++i) {
+    x0[i] = x_[static_cast<std::size_t>(at[i])];
+    ul.segment<3>(3 * static_cast<Eigen::Index>(i)) = u.segment<3>(3 * at[i]);
+  }
+  const ad::V3<12> ut = tangential_displacement(x0, ul);
+  Eigen::Matrix<double, 12, 12> h = Eigen::Matrix<double, 12, 12>::Zero();
+  for (int k = 0; k < 3; ++k) h += ft(k) * ut[static_cast<std::size_t>(k)].h;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j)
+      K.block<3, 3>(3 * at[static_cast<std::size_t>(i)], 3 * at[static_cast<std::size_t>(j)]) +=
+          h.block<3, 3>(3 * i, 3 * j);
 }
 
 }  // namespace impactfe

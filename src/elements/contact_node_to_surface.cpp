@@ -1,9 +1,11 @@
 /// CONTA175 node-to-surface contact against a TARGE170 target (APDL_MODELING §8.4): one contact
 /// node paired, through the shared real-constant set, with the target of that set
 /// (elements/target_surface.h). Rigid target: the element's DOFs are the pilot node's and the
-/// contact node's UX, UY, UZ. Deformable target (no pilot): the contact node's, then those of the
-/// nodes of the facets within its pinball at setup (small sliding). Either list is fixed for the
-/// whole run, so the assembly pattern stays static. Before each status
+/// contact node's UX, UY, UZ (and the pilot's ROTX..ROTZ when it carries rotations). Deformable
+/// target (no pilot): the contact node's, then those of the nodes of its candidate facets —
+/// re-found between steps as it slides (large sliding, the default) or fixed at setup (small
+/// sliding, KEYOPT(18) = 1). Within a step the list is fixed, so the pattern is static while
+/// Newton iterates. Before each status
 /// update the contact search finds the nearest target facet the node projects into (bucket
 /// grid, within the pinball) and sets the normal and gap of the point law
 /// (elements/contact_point.h: penalty / augmented Lagrange, Coulomb friction, KEYOPT(12)).

@@ -79,11 +79,14 @@ ContactPoint::Response ContactPoint::response(const State& s, const ContactKinem
   r.pn = s.lambda - data_.kn * r.gap;
   r.kn = data_.kn;
   if (frictionless()) return r;
-  const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - kin.normal * kin.normal.transpose();
+  // K_t = ∂f_t/∂u_t in full: with T = [−P, P] (a point pair) Tᵀ K_t T is the same with P K_t P,
+  // but a deformable or rotating target's T has a normal part (the variation of P), which the
+  // consistent tangent needs.
+  const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
   const Vec3 xi = data_.kt * (r.ut - committed_.slip);
   if (s.status == Contact::Stick) {
     r.ft = xi;
-    r.kt = data_.kt * P;
+    r.kt = data_.kt * I;
     return r;
   }
   const double norm = xi.norm();
@@ -91,7 +94,7 @@ ContactPoint::Response ContactPoint::response(const State& s, const ContactKinem
   if (norm > 0.0) {
     const Vec3 dir = xi / norm;
     r.ft = limit * dir;
-    r.kt = (limit * data_.kt / norm) * (P - dir * dir.transpose());
+    r.kt = (limit * data_.kt / norm) * (I - dir * dir.transpose());
   }
   return r;
 }
@@ -141,7 +144,10 @@ void ContactPoint::tangent(const ElementContext&, const Eigen::VectorXd& u, Eige
   if (r.pn != 0.0 && kin.H.size() > 0) K -= r.pn * kin.H;
   if (!r.kt.isZero(0.0)) K.noalias() += kin.T.transpose() * r.kt * kin.T;
   f_int = -r.pn * kin.G;
-  if (!r.ft.isZero(0.0)) f_int.noalias() += kin.T.transpose() * r.ft;
+  if (!r.ft.isZero(0.0)) {
+    f_int.noalias() += kin.T.transpose() * r.ft;
+    add_friction_curvature(u, r.ft, K);
+  }
 }
 
 bool ContactPoint::update_status(const ElementContext&, const Eigen::VectorXd& u) {

@@ -4,7 +4,8 @@
 /// J (the contact node), each with UX, UY, UZ; a contact normal n pointing from the I side to the
 /// J side and the gap g = g0 + n·(u_J − u_I), closed when g ≤ 0 (penetration −g). CONTA178 has
 /// a fixed n and g0; CONTA175 re-finds them by the contact search before each status update
-/// (the locate() hook), so its DOF list - and the assembly pattern - never changes.
+/// (the locate() hook), so its DOF list - and the assembly pattern - does not change within a
+/// step (large sliding on a deformable target changes it between steps, connectivity.h).
 ///
 /// Normal contact (Wriggers, Computational Contact Mechanics, 2nd ed., §5.2 penalty, §5.3 and
 /// §10.3.4 augmented Lagrange): compressive force p = λ − k_n g while closed. KEYOPT(2) = 1 is
@@ -18,7 +19,7 @@
 /// the COMBIN40 slider in 3-D): trial force ξ = k_t (u_t − s) with the relative tangential
 /// displacement u_t = (I − n nᵀ)(u_J − u_I) and the committed slip s; sticking when |ξ| ≤ μ p,
 /// sliding with force μ p ξ/|ξ| otherwise. The sliding tangent keeps the symmetric part
-/// μ p k_t/|ξ| (P − d dᵀ) and drops the non-symmetric coupling μ k_n d nᵀ (the linear solvers
+/// μ p k_t/|ξ| (I − d dᵀ) and drops the non-symmetric coupling μ k_n d nᵀ (the linear solvers
 /// are symmetric): Newton converges linearly while sliding, the residual is exact.
 ///
 /// Kinematics (ContactKinematics): the law sees the gap g(u), its gradient G = ∂g/∂u, its Hessian
@@ -27,8 +28,10 @@
 /// against a deformable facet (elements/target_surface.h DeformableTargetPoint) has the facet
 /// nodes in its DOFs and H ≠ 0 (the variation of the normal and of the projection point). With
 /// the compressive force p the element force is f = −p G + Tᵀ f_t and the tangent
-/// K = k_n G Gᵀ − p H + Tᵀ K_t T (Wriggers §4.2, eq. 4.36 and §9.3 for the node-to-segment case):
-/// consistent for normal contact, symmetric; the tangential part drops ∂T/∂u · f_t.
+/// K = k_n G Gᵀ − p H + Tᵀ K_t T + Σ_k f_t,k ∂²u_t,k/∂u² (Wriggers §4.2, eq. 4.36 and §9.3 for
+/// the node-to-segment case): consistent, and symmetric for normal contact and sticking; K_t is
+/// ∂f_t/∂u_t in full (k_t I sticking, μ p k_t/|ξ| (I − d dᵀ) sliding), since on a deformable or
+/// rotating target T also has components along n. Sliding still drops μ k_n Tᵀ d Gᵀ (above).
 ///
 /// Behaviour (KEYOPT(12)): 0 standard, 1 rough (no sliding, separation allowed), 2 no separation
 /// once closed (frictionless), 3 bonded once closed, 4 no separation always, 5 bonded always,
@@ -122,9 +125,17 @@ class ContactPoint : public Element {
   /// The geometry at u. Default: the pair I, J of the first constructor with the located normal
   /// and gap0: g = g0 + n·(u_J − u_I), u_t = P (u_J − u_I).
   virtual ContactKinematics kinematics(const Eigen::VectorXd& u) const;
+  /// Adds Σ_k f_t,k ∂²u_t,k/∂u² at u for the friction force f_t (held fixed): the part of the
+  /// friction tangent ∂(Tᵀ f_t)/∂u that comes from the variation of T itself. Default: none (a
+  /// point pair's T = [−P, P] is constant between two searches).
+  virtual void add_friction_curvature(const Eigen::VectorXd& u, const Vec3& ft,
+                                      Eigen::MatrixXd& K) const {}
   /// Sets the initial status from the geometry (call at the end of a derived constructor when
   /// locate() found the initial normal).
   void initialize();
+  /// A new DOF list (large sliding on a deformable target, between steps); the contact state
+  /// (status, multiplier, slip) is the point's and stays.
+  void set_dofs(std::vector<DofKey> dofs) { dofs_ = std::move(dofs); }
 
   ContactLawData data_;
 

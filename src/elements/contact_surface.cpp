@@ -1,5 +1,5 @@
 /// CONTA174 surface contact against a TARGE170 target (APDL_MODELING §8.4), rigid (pilot) or
-/// deformable (small sliding). KEYOPT(4) selects the detection as MAPDL does: 0 (the default,
+/// deformable (large or small sliding, docs/elements/targe170.md). KEYOPT(4) selects the detection as MAPDL does: 0 (the default,
 /// Gauss points) and 3 (surface projection) integrate the contact pressure over the face,
 /// segment to segment (elements/contact_segment.h); 1 and 2 detect at the corner nodes: each
 /// distinct corner node is a contact point of CONTA175's law (elements/target_surface.h
@@ -50,10 +50,25 @@ double face_area(const Model& model, const std::vector<int>& nodes) {
   return 0.5 * (x[2] - x[0]).cross(x[3] - x[1]).norm();
 }
 
-class SurfaceContact final : public Element {
+class SurfaceContact final : public Element, public ConnectivityUpdate {
  public:
   explicit SurfaceContact(int id, std::vector<std::unique_ptr<ContactPoint>> points)
       : Element(id), points_(std::move(points)) {
+    map_points();
+  }
+  /// Large sliding on a deformable target: the points' DOF lists, then the union again.
+  bool refresh_dofs(const Eigen::VectorXd& u, const NodePositions& positions) override {
+    bool changed = false;
+    for (std::size_t p = 0; p < points_.size(); ++p)
+      if (auto* c = dynamic_cast<ConnectivityUpdate*>(points_[p].get()))
+        changed = c->refresh_dofs(local(u, p), positions) || changed;
+    if (changed) map_points();
+    return changed;
+  }
+  /// dofs_ (the union of the points' DOFs) and maps_.
+  void map_points() {
+    dofs_.clear();
+    maps_.clear();
     for (const auto& p : points_) {
       std::vector<int> map;
       for (const DofKey& k : p->dofs()) {

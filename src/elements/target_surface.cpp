@@ -15,8 +15,8 @@
 
 namespace impactfe {
 
-TargetSurface::TargetSurface(int pilot, std::vector<Triangle> triangles)
-    : pilot_(pilot), triangles_(std::move(triangles)) {
+TargetSurface::TargetSurface(int pilot, std::vector<Triangle> triangles, bool rotates)
+    : pilot_(pilot), rotates_(rotates), triangles_(std::move(triangles)) {
   // Bucket size: the mean facet extent, but at least a quarter of the largest one, so that a
   // facet covers at most 5³ buckets.
   Vec3 lo = Vec3::Constant(std::numeric_limits<double>::max()), hi = -lo;
@@ -121,6 +121,57 @@ std::vector<int> TargetSurface::near(const Vec3& y, double reach) const {
   return out;
 }
 
+struct TargetSurface::Current {
+  std::unique_ptr<TargetSurface> grid;     // over the facets as they were at the last build
+  std::unordered_map<int, Vec3> built_at;  // node positions at the last build
+  long long pass = -1;                     // the refresh pass `moved` belongs to
+  double moved = 0.0;                      // largest node movement since the build
+  int builds = 0;
+};
+
+std::vector<int> TargetSurface::near_current(const Vec3& x, double reach,
+                                             const NodePositions& at) const {
+  if (!current_) current_ = std::make_shared<Current>();
+  Current& c = *current_;
+  if (c.grid && c.pass != at.pass) {
+    c.moved = 0.0;
+    for (const auto& [n, p] : c.built_at) c.moved = std::max(c.moved, (at.at(n) - p).norm());
+  }
+  c.pass = at.pass;
+  if (!c.grid || c.moved > 0.25 * reach) {
+    std::vector<Triangle> now = triangles_;
+    c.built_at.clear();
+    for (Triangle& t : now) {
+      t.a = at.at(t.nodes[0]);
+      t.b = at.at(t.nodes[1]);
+      t.c = at.at(t.nodes[2]);
+      const Vec3 normal = (t.b - t.a).cross(t.c - t.a);
+      if (normal.norm() > 0.0) t.normal = normal.normalized();
+      for (std::size_t k = 0; k < 3; ++k)
+        c.built_at[t.nodes[k]] = k == 0 ? t.a : k == 1 ? t.b : t.c;
+    }
+    c.grid = std::make_unique<TargetSurface>(0, std::move(now));
+    c.moved = 0.0;
+    ++c.builds;
+  }
+  std::vector<int> out;
+  const Vec3 lo = x - Vec3::Constant(reach), hi = x + Vec3::Constant(reach);
+  for (int f : c.grid->near(x, reach + c.moved)) {
+    const Triangle& t = triangles_[static_cast<std::size_t>(f)];
+    const Vec3 a = at.at(t.nodes[0]), b = at.at(t.nodes[1]), d = at.at(t.nodes[2]);
+    const Vec3 tlo = a.cwiseMin(b).cwiseMin(d), thi = a.cwiseMax(b).cwiseMax(d);
+    if ((tlo.array() > hi.array()).any() || (thi.array() < lo.array()).any()) continue;
+    const Vec3 normal = (b - a).cross(d - a);
+    if (normal.norm() > 0.0 && std::abs((x - a).dot(normal.normalized())) > reach) continue;
+    out.push_back(f);
+  }
+  return out;
+}
+
+int TargetSurface::current_grid_builds() const {
+  return current_ ? current_->builds : 0;
+}
+
 namespace {
 
 constexpr const char* kFamily = "RigidTarget";
@@ -203,29 +254,24 @@ std::shared_ptr<const TargetSurface> contact_target(const ElementBuildContext& c
                           "element with one node, E,pilot, in the same REAL)",
                           record.real, n));
   }
-  shared = std::make_shared<const TargetSurface>(pilot, std::move(triangles));
+  // MAPDL activates the pilot's rotations only when something acts on them [A: here an
+  // element with rotational DOFs at the pilot, e.g. MASS21 with rotary inertia, a beam or a
+  // shell]; then the target turns with them.
+  bool rotates = false;
+  if (pilot != 0)
+    for (const int id : elements_at_node(ctx, pilot)) {
+      const ElementRecord& rec = model.elements.at(id);
+      const auto t = model.element_types.find(rec.type);
+      if (t == model.element_types.end()) continue;
+      const std::string& name = t->second.ansys_name;
+      if (name.rfind("TARGE", 0) == 0 || name.rfind("CONTA", 0) == 0) continue;
+      const ElementTypeDescriptor& d = element_type_descriptor(t->second);
+      if (d.defined_by_file) continue;
+      for (const DofKey& k : d.create(ctx, rec)->dofs())
+        rotates = rotates || (k.node == pilot && static_cast<int>(k.dof) >= 3);
+    }
+  shared = std::make_shared<const TargetSurface>(pilot, std::move(triangles), rotates);
   return shared;
-}
-
-RigidTargetPoint::RigidTargetPoint(const char* family, int id, int node, const Vec3& x,
-                                   std::shared_ptr<const TargetSurface> target, double reach,
-                                   double offset, const ContactLawData& data)
-    : ContactPoint(id, target->pilot(), node, data),
-      family_(family),
-      x_(x),
-      target_(std::move(target)),
-      reach_(reach),
-      offset_(offset) {
-  initialize();
-}
-
-bool RigidTargetPoint::locate(const Eigen::VectorXd& u) {
-  const Vec3 d(u(3) - u(0), u(4) - u(1), u(5) - u(2));
-  const auto hit = target_->closest(x_ + d, reach_);
-  if (!hit) return false;
-  data_.normal = hit->normal;
-  data_.gap0 = hit->gap - offset_ - hit->normal.dot(d);
-  return true;
 }
 
 std::unique_ptr<ContactPoint> target_point(const ElementBuildContext& ctx,
@@ -240,12 +286,13 @@ std::unique_ptr<ContactPoint> target_point(const ElementBuildContext& ctx,
   for (int k = 1; k < static_cast<int>(type.keyopt.size()); ++k) {
     const int v = type.key(k);
     const bool ok = v == 0 || (k == 2 && v == 1) || (k == 4 && v <= 3) || (k == 10 && v <= 2) ||
-                    (k == 12 && v <= 6);
+                    (k == 12 && v <= 6) || (k == 18 && v == 1);
     if (!ok || v < 0)
       throw fail(
           fmt::format("KEYOPT({}) = {} is not supported (KEYOPT(2) 0 augmented "
                       "Lagrange / 1 penalty, KEYOPT(4) 0-3 (detection), KEYOPT(10) "
-                      "0-2 (constant stiffness), KEYOPT(12) 0-6; the others 0)",
+                      "0-2 (constant stiffness), KEYOPT(12) 0-6, KEYOPT(18) 0 large / 1 small "
+                      "sliding on a deformable target; the others 0)",
                       k, v));
   }
   ContactLawData data;
@@ -283,8 +330,11 @@ std::unique_ptr<ContactPoint> target_point(const ElementBuildContext& ctx,
   const auto hit = target->closest(node.x, reach);
   Vec3 n0 = hit ? hit->normal : target->triangles().front().normal;
   if (target->deformable()) {
-    // Small sliding: the candidates within the pinball, never a facet on the node itself.
-    for (int f : target->near(node.x, reach)) {
+    // The candidates within the pinball (large sliding: over its margin), never a facet on the
+    // node itself.
+    const bool large = type.key(18) == 0;
+    for (int f :
+         target->near(node.x, large ? DeformableTargetPoint::kLargeSlidingMargin * reach : reach)) {
       const auto& t = target->triangles()[static_cast<std::size_t>(f)];
       if (std::find(t.nodes.begin(), t.nodes.end(), node.id) == t.nodes.end())
         candidates.push_back(f);
@@ -312,7 +362,8 @@ std::unique_ptr<ContactPoint> target_point(const ElementBuildContext& ctx,
   data.mu = mat == model.materials.end() ? 0.0 : mat->second.get("MU", 0.0);
   if (data.mu < 0.0) throw fail(fmt::format("MU of material {} is negative", record.mat));
   if (!target->deformable())
-    return std::make_unique<RigidTargetPoint>(family, record.id, node.id, node.x, std::move(target),
+    return std::make_unique<RigidTargetPoint>(family, record.id, node.id, node.x,
+                                              model.nodes.at(target->pilot()).x, std::move(target),
                                               reach, real.get(10), data);
   std::vector<int> nodes = {node.id};
   for (int f : candidates)
@@ -322,7 +373,7 @@ std::unique_ptr<ContactPoint> target_point(const ElementBuildContext& ctx,
   for (int n : nodes) x.push_back(model.nodes.at(n).x);
   return std::make_unique<DeformableTargetPoint>(family, record.id, std::move(nodes), std::move(x),
                                                  std::move(target), std::move(candidates), reach,
-                                                 real.get(10), data);
+                                                 real.get(10), data, type.key(18) == 0);
 }
 
 namespace {
