@@ -1,11 +1,11 @@
 /// CONTA174 surface contact against a TARGE170 target (APDL_MODELING §8.4), rigid (pilot) or
-/// deformable (large or small sliding, docs/elements/targe170.md). KEYOPT(4) selects the detection as MAPDL does: 0 (the default,
-/// Gauss points) and 3 (surface projection) integrate the contact pressure over the face,
-/// segment to segment (elements/contact_segment.h); 1 and 2 detect at the corner nodes: each
-/// distinct corner node is a contact point of CONTA175's law (elements/target_surface.h
-/// target_point: penalty / augmented Lagrange, Coulomb friction, KEYOPT(12)) against the target
-/// of the element's real set. Either way the element is a set of ContactPoints and its DOFs are
-/// the union of theirs.
+/// deformable (large or small sliding, docs/elements/targe170.md). KEYOPT(4) selects the
+/// detection as MAPDL does: 0 (the default, Gauss points) and 3 (surface projection) integrate
+/// the contact pressure over the face, segment to segment (elements/contact_segment.h); 1 and 2
+/// detect at the corner nodes: each distinct corner node is a contact point of CONTA175's law
+/// (elements/target_surface.h target_point: penalty / augmented Lagrange, Coulomb friction,
+/// KEYOPT(12)) against the target of the element's real set. Either way the element is a set of
+/// ContactPoints and its DOFs are the union of theirs.
 ///
 /// Stiffness per node: the face's tributary area of the node, a = A/n (A the face area, n its
 /// corner count — the lumped nodal weights of a bilinear face). A positive FKN scales the
