@@ -82,7 +82,9 @@ class DirectSolution : private NonlinearProblem {
   // the first load step (after its DOF numbering); RESCONTROL points written after substeps.
   void take_restart_request();
   void apply_restart(const LoadStep& step);
-  void save_restart_point(const LoadStep& step, int substep, bool last, double t_start);
+  /// `control`: the step controller of an AUTOTS load step (its state is part of the point).
+  void save_restart_point(const LoadStep& step, int substep, bool last, double t_start,
+                          const StepController* control = nullptr);
   /// A dynamic increment on the condensed system; false when the full Newton path must take
   /// over (from the returned state), with `result` holding the condensed iterations.
   bool solve_condensed(VectorXd& u, const NewtonOptions& newton, NewtonResult& result);
@@ -185,7 +187,9 @@ class DirectSolution : private NonlinearProblem {
   int load_step_offset_ = 0;
   int first_substep_ = 1;
   bool restarted_ = false;
-  bool restart_history_warned_ = false;
+  // The AUTOTS controller state of a point inside an AUTOTS load step (until the step resumes).
+  std::optional<StepController::State> resume_autots_;
+  double resume_autots_t_end_ = 0.0;
   bool advice_given_ = false;           // the time-step advice note is given once per analysis
   bool negative_pivot_warned_ = false;  // the negative-pivot warning is given once per analysis
 };

@@ -5,7 +5,6 @@
 
 #include "analysis/direct_solution.h"
 #include "core/log.h"
-#include "core/solution_control.h"
 #include "time/integrator_history.h"
 
 namespace impactfe {
@@ -27,10 +26,9 @@ VectorXd remap_saved(const VectorXd& saved, const std::vector<DofKey>& from, con
 }  // namespace
 
 void DirectSolution::take_restart_request() {
-  SolutionControls& controls = SolutionControls::instance();
-  if (!controls.restart) return;
-  const RestartRequest q = *controls.restart;
-  controls.restart.reset();  // one analysis continues the run
+  // The deck hands ANTYPE,,RESTART to one analysis (AnalysisOptions::restart).
+  if (!structure_.options().restart) return;
+  const RestartRequest q = *structure_.options().restart;
   restart_ = std::make_unique<RestartPoint>(
       read_restart_point(restart_path(writer_.path()), q.load_step, q.substep, q.where));
   if (restart_->dynamic && !transient_)
@@ -43,10 +41,6 @@ void DirectSolution::apply_restart(const LoadStep& step) {
   const RestartPoint p = std::move(*restart_);
   restart_.reset();
   set_constraints(step);
-  if (status_loop_->has_history())
-    throw NotImplementedError(
-        "continuing from a restart point: elements with a material history (plasticity) "
-        "cannot restore their plastic state from a restart file yet");
   u_ = remap_saved(p.u, p.dofs, *dofs_);
   v_ = remap_saved(p.v, p.dofs, *dofs_);
   a_ = remap_saved(p.a, p.dofs, *dofs_);
@@ -59,27 +53,40 @@ void DirectSolution::apply_restart(const LoadStep& step) {
   energy_->restore(p.energy);
   // Contact on deformable targets with large sliding: the DOF lists for the saved positions.
   refresh_connectivity();
-  // Element statuses: re-evaluated from the saved displacements and committed, then checked
-  // against the saved codes (an element whose state is more than its status, such as the slip
-  // of a sliding COMBIN40, would differ: refused rather than continued wrongly).
+  // Committed element states (plastic history, slider slip, status): restored as saved. A
+  // status element without a saved state is re-evaluated from the saved displacements and
+  // committed. Either way its status is then checked against the saved code (a model that does
+  // not match the run continued is refused rather than continued wrongly).
   std::map<int, int> saved;
   for (std::size_t i = 0; i < p.status_ids.size(); ++i)
     saved[p.status_ids[i]] = p.status_codes.at(i);
   VectorXd ue;
   const auto& elements = structure_.elements();
   for (std::size_t e = 0; e < elements.size(); ++e) {
+    const auto state = p.element_states.find(elements[e]->id());
+    const std::size_t expected = elements[e]->history_state().size();
+    const std::size_t given = state == p.element_states.end() ? 0 : state->second.size();
+    if (given != expected)
+      throw InputError(step.where,
+                       fmt::format("continuing from the restart point of load step {} substep "
+                                   "{}: element {} has a committed state of {} values there but "
+                                   "{} in this model (not the model of the run continued)",
+                                   p.load_step, p.substep, elements[e]->id(), given, expected));
+    if (given > 0) elements[e]->restore_history_state(state->second);
     if (!elements[e]->has_status()) continue;
-    assembler_->gather(e, u_, ue);
-    elements[e]->revert();
-    elements[e]->update_status(ctx_, ue);
-    elements[e]->commit(ue);
+    if (given == 0) {
+      assembler_->gather(e, u_, ue);
+      elements[e]->revert();
+      elements[e]->update_status(ctx_, ue);
+      elements[e]->commit(ue);
+    }
     const auto it = saved.find(elements[e]->id());
     const int code = static_cast<int>(elements[e]->status());
     if (it == saved.end() || it->second != code)
       throw InputError(step.where,
                        fmt::format("continuing from the restart point of load step {} substep "
-                                   "{}: element {} has status {} there but {} from the saved "
-                                   "displacements (its state cannot be restored)",
+                                   "{}: element {} has status {} there but {} here (its state "
+                                   "cannot be restored)",
                                    p.load_step, p.substep, elements[e]->id(),
                                    it == saved.end() ? -1 : it->second, code));
   }
@@ -110,6 +117,8 @@ void DirectSolution::apply_restart(const LoadStep& step) {
     previous_.reset();
   }
   last_dt_ = p.last_dt;
+  resume_autots_ = p.last ? std::nullopt : p.autots;
+  resume_autots_t_end_ = p.autots_t_end;
   restarted_ = true;
   const std::string note =
       fmt::format("continued from the restart point of load step {} substep {} (t = {:g}) in {}",
@@ -119,19 +128,11 @@ void DirectSolution::apply_restart(const LoadStep& step) {
 }
 
 void DirectSolution::save_restart_point(const LoadStep& step, int substep, bool last,
-                                        double t_start) {
-  const RestartControl& rc = SolutionControls::instance().restart_control;
+                                        double t_start, const StepController* control) {
+  const RestartControl& rc = step.rescontrol;
   if (!rc.defined || rc.load_steps < 0 || rc.frequency < 0) return;
   if (rc.load_steps > 0 && step.number % rc.load_steps != 0) return;
   if (!last && !(rc.frequency > 0 && substep % rc.frequency == 0)) return;
-  if (status_loop_->has_history()) {
-    if (!restart_history_warned_)
-      Log::warn(
-          "RESCONTROL: no restart points written: elements with a material history "
-          "(plasticity) cannot save their plastic state in a restart file yet");
-    restart_history_warned_ = true;
-    return;
-  }
   RestartPoint p;
   p.load_step = step.number;
   p.substep = substep;
@@ -155,9 +156,15 @@ void DirectSolution::save_restart_point(const LoadStep& step, int substep, bool 
       p.history = history->history();
   p.energy = energy_->state();
   for (const auto& element : structure_.elements()) {
+    std::vector<double> state = element->history_state();
+    if (!state.empty()) p.element_states[element->id()] = std::move(state);
     if (!element->has_status()) continue;
     p.status_ids.push_back(element->id());
     p.status_codes.push_back(static_cast<int>(element->status()));
+  }
+  if (control != nullptr && !last) {
+    p.autots = control->state();
+    p.autots_t_end = control->plan().t_end;
   }
   p.step_forces = step.forces;
   p.step_constraints = step.constraints;

@@ -8,7 +8,6 @@
 #include "analysis/contact_summary.h"
 #include "analysis/direct_solution.h"
 #include "core/log.h"
-#include "core/solution_control.h"
 #include "time/time_axis.h"
 
 namespace impactfe {
@@ -21,7 +20,6 @@ constexpr bool kAutotsDefault = false;
 }  // namespace
 
 void DirectSolution::solve_load_step(const LoadStep& given) {
-  const StepControl step_control = SolutionControls::instance().step(given.where, given.number);
   if (restart_) apply_restart(given);  // continuing a run: its state, time and numbering
   // After a restart the load steps are numbered on from the run continued.
   LoadStep renumbered;
@@ -42,12 +40,24 @@ void DirectSolution::solve_load_step(const LoadStep& given) {
   resolved_previous_ = previous;
   const bool dynamic = transient && step.time_integration;
   const AutoStepPlan plan =
-      auto_step_plan(step, step_control, t, transient, kAutotsDefault, last_dt_);
-  if (plan.automatic && first_substep_ > 1)
-    throw NotImplementedError(fmt::format(
-        "load step {}: continuing a load step with automatic time stepping from a restart point "
-        "inside it (substep {}); restart from the end of a load step (RESCONTROL,DEFINE,,LAST)",
-        step.number, first_substep_ - 1));
+      auto_step_plan(step, step.control, t, transient, kAutotsDefault, last_dt_);
+  // A restart point inside a load step continues it with the same kind of substeps: the state
+  // of the step controller is part of a point inside an AUTOTS load step.
+  if (first_substep_ > 1 && plan.automatic != resume_autots_.has_value())
+    throw InputError(step.where,
+                     fmt::format("load step {}: the restart point (substep {}) is inside a load "
+                                 "step solved {}; continue it with AUTOTS,{} as it was solved",
+                                 step.number, first_substep_ - 1,
+                                 resume_autots_ ? "with automatic time stepping"
+                                                : "with constant "
+                                                  "steps",
+                                 resume_autots_ ? "ON" : "OFF"));
+  if (resume_autots_ &&
+      std::abs(resume_autots_t_end_ - plan.t_end) > 1e-12 * std::max(std::abs(plan.t_end), 1.0))
+    throw InputError(step.where,
+                     fmt::format("load step {}: the restart point is inside a load step ending at "
+                                 "t = {:g}, but this load step ends at t = {:g} (repeat its TIME)",
+                                 step.number, resume_autots_t_end_, plan.t_end));
   const double h0 = plan.automatic ? plan.dt_first : t.h;  // the first step
   if (!previous && !restarted_) {
     // Store the initial state (t = 0) of a transient, so histories start at rest.
@@ -66,8 +76,8 @@ void DirectSolution::solve_load_step(const LoadStep& given) {
   if (dynamic) {
     if (!dynamics_started_) {
       start_dynamics(load_point(step, previous, 0.0, t.t_start), h0);
-    } else {
-      change_step(h0);
+    } else if (!resume_autots_) {
+      change_step(h0);  // (continuing inside an AUTOTS step: the controller gives the step)
     }
     time_step_advice(h0);
   } else {
@@ -133,6 +143,12 @@ void DirectSolution::solve_automatic_steps(const StepContext& c, const AutoStepP
   const LoadStep& step = c.step;
   const LoadStepTiming& t = c.timing;
   StepController control(plan, output_strides(step.output));
+  int k = 0, cuts = 0, ceiling_steps = 0;
+  if (resume_autots_) {  // continuing from a restart point inside this load step
+    control.restore(*resume_autots_);
+    resume_autots_.reset();
+    k = first_substep_ - 1;
+  }
   const int easy_iterations = std::max(1, structure_.options().convergence.max_iterations / 4);
   status_loop_->set_quiet_freeze(true);  // chatter cuts the step; the cut is what is logged
   // Impacts are resolved at T/30 of the highest contact frequency of the model (the time-step
@@ -141,7 +157,6 @@ void DirectSolution::solve_automatic_steps(const StepContext& c, const AutoStepP
   if (c.dynamic && contact_frequency_)
     if (const auto contact = contact_frequency_->highest(false))
       impact_step_limit_ = std::max(contact->period() / 30.0, plan.dt_min);
-  int k = 0, cuts = 0, ceiling_steps = 0;
   double h_min = std::numeric_limits<double>::infinity(), h_max = 0.0;
   Log::info(
       "load step {}: automatic time stepping from t = {:g} to {:g}: first dt = {:g}, min {:g}, "
@@ -201,8 +216,9 @@ void DirectSolution::solve_automatic_steps(const StepContext& c, const AutoStepP
     const OutputSelection selection = grid > 0 ? output_selection(step.output, grid, plan.n_nominal)
                                                : output_selection_between(step.output);
     if (selection.any()) store(time, step.number, k, c.dynamic, selection);
-    save_restart_point(step, k, control.done(), t.t_start);
+    save_restart_point(step, k, control.done(), t.t_start, &control);
   }
+  first_substep_ = 1;
   status_loop_->set_quiet_freeze(false);
   impact_step_limit_ = 0.0;
   last_dt_ = control.desired();

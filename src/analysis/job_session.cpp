@@ -10,7 +10,6 @@
 #include "analysis/direct_solution.h"
 #include "analysis/superelement_expansion.h"
 #include "core/log.h"
-#include "core/solution_control.h"
 #include "results/output_selection.h"
 
 namespace impactfe {
@@ -103,7 +102,8 @@ ResultsWriter& JobSession::writer_for(const Job& job, std::size_t step) {
     // A run continued from a restart point (ANTYPE,,RESTART) adds its analysis to the results
     // file of the run it continues.
     const std::string path = jobname_ + ".h5";
-    if (SolutionControls::instance().restart && std::filesystem::exists(path))
+    const Job::Step& s = job.steps.at(step);
+    if (s.analysis && s.analysis->options.restart && std::filesystem::exists(path))
       owned_writer_ = std::make_unique<ResultsWriter>(path, ResultsWriter::Append{});
     else
       owned_writer_ = std::make_unique<ResultsWriter>(path, results_model(job, step));
@@ -121,8 +121,8 @@ void JobSession::solve(const Job& job, std::size_t step) {
   try {
     if (!open_ && needs_generated_superelements(job, s)) share_generated_superelements();
     if (!open_) {
-      const auto& restart = SolutionControls::instance().restart;
-      if (restart && (!s.analysis || !solves_incrementally(s.analysis->options)))
+      const auto& restart = s.analysis ? s.analysis->options.restart : std::nullopt;
+      if (restart && !solves_incrementally(s.analysis->options))
         throw InputError(restart->where,
                          "ANTYPE,,RESTART continues a static or full transient analysis only "
                          "(reduced and mode-superposition transients solve as a whole)");

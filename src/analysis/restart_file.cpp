@@ -122,6 +122,32 @@ void write_restart_point(const std::string& path, const RestartPoint& p,
     h5::write_dataset(g, "energy", {p.energy.size()}, p.energy.data());
     h5::write_dataset(g, "status_ids", {p.status_ids.size()}, p.status_ids.data());
     h5::write_dataset(g, "status_codes", {p.status_codes.size()}, p.status_codes.data());
+    // Committed element states: ids, offsets (n + 1) into one array of values.
+    std::vector<int> state_ids;
+    std::vector<long long> offsets{0};
+    std::vector<double> values;
+    for (const auto& [id, state] : p.element_states) {
+      state_ids.push_back(id);
+      values.insert(values.end(), state.begin(), state.end());
+      offsets.push_back(static_cast<long long>(values.size()));
+    }
+    std::vector<double> offsets_d(offsets.begin(), offsets.end());
+    h5::write_dataset(g, "element_state_ids", {state_ids.size()}, state_ids.data());
+    h5::write_dataset(g, "element_state_offsets", {offsets_d.size()}, offsets_d.data());
+    h5::write_dataset(g, "element_state_values", {values.size()}, values.data());
+    // The AUTOTS step controller of a point inside an AUTOTS load step.
+    h5::write_integer_attribute(g, "autots", p.autots ? 1 : 0);
+    if (p.autots) {
+      const StepController::State& s = *p.autots;
+      const std::vector<double> a{s.time,
+                                  s.dt,
+                                  s.ceiling ? 1.0 : 0.0,
+                                  s.ceiling.value_or(0.0),
+                                  static_cast<double>(s.easy),
+                                  s.done ? 1.0 : 0.0,
+                                  p.autots_t_end};
+      h5::write_dataset(g, "autots_state", {a.size()}, a.data());
+    }
     write_table(g, "step_forces", p.step_forces);
     write_table(g, "step_constraints", p.step_constraints);
     write_vec3(g, "step_acel", p.step_acel);
@@ -194,6 +220,31 @@ RestartPoint read_restart_point(const std::string& path, std::optional<int> load
     p.energy = h5::read_doubles(g, "energy");
     p.status_ids = h5::read_ints(g, "status_ids");
     p.status_codes = h5::read_ints(g, "status_codes");
+    const std::vector<int> state_ids = h5::read_ints(g, "element_state_ids");
+    const std::vector<double> offsets = h5::read_doubles(g, "element_state_offsets");
+    const std::vector<double> values = h5::read_doubles(g, "element_state_values");
+    if (offsets.size() != state_ids.size() + 1)
+      throw std::runtime_error("element states: offsets do not match the ids");
+    for (std::size_t i = 0; i < state_ids.size(); ++i) {
+      const auto begin = static_cast<std::size_t>(offsets[i]);
+      const auto end = static_cast<std::size_t>(offsets[i + 1]);
+      if (begin > end || end > values.size())
+        throw std::runtime_error("element states: offsets out of range");
+      p.element_states[state_ids[i]].assign(values.begin() + static_cast<std::ptrdiff_t>(begin),
+                                            values.begin() + static_cast<std::ptrdiff_t>(end));
+    }
+    if (h5::read_double_attribute(g, "autots") != 0.0) {
+      const std::vector<double> a = h5::read_doubles(g, "autots_state");
+      if (a.size() != 7) throw std::runtime_error("autots_state: 7 values expected");
+      StepController::State s;
+      s.time = a[0];
+      s.dt = a[1];
+      if (a[2] != 0.0) s.ceiling = a[3];
+      s.easy = static_cast<int>(a[4]);
+      s.done = a[5] != 0.0;
+      p.autots = s;
+      p.autots_t_end = a[6];
+    }
     p.step_forces = read_table(g, "step_forces");
     p.step_constraints = read_table(g, "step_constraints");
     p.step_acel = read_vec3(g, "step_acel");

@@ -11,6 +11,7 @@
 #include "core/dof.h"
 #include "core/errors.h"
 #include "linalg/sparse.h"
+#include "time/step_control.h"
 
 namespace impactfe {
 
@@ -30,6 +31,13 @@ struct RestartPoint {
   std::vector<double> energy;     // EnergyBalance::state
   std::vector<int> status_ids;    // status elements and their status codes (GapStatus)
   std::vector<int> status_codes;
+  // Committed element states (Element::history_state: plastic history, slider slip, contact
+  // state) of the elements that have one, by element id.
+  std::map<int, std::vector<double>> element_states;
+  // A point inside a load step solved with AUTOTS: the step controller's state and the span of
+  // the load step it was planned for.
+  std::optional<StepController::State> autots;
+  double autots_t_end = 0.0;
   // Loads the next load step ramps from (KBC 0): those of this point's load step, and those
   // of the load step before it (for a point inside its load step).
   std::map<DofKey, double> step_forces, step_constraints;

@@ -38,6 +38,10 @@ class NodalAxesElement final : public Element {
                      const Eigen::VectorXd& u, Eigen::VectorXd& f) const override;
   bool has_history() const override { return inner_->has_history(); }
   double plastic_work() const override { return inner_->plastic_work(); }
+  std::vector<double> history_state() const override { return inner_->history_state(); }
+  void restore_history_state(const std::vector<double>& state) override {
+    inner_->restore_history_state(state);
+  }
   void commit_history(const ElementContext& ctx, const Eigen::VectorXd& u) override {
     inner_->commit_history(ctx, t_ * u);
   }
@@ -88,6 +92,10 @@ class MaterialDampingElement final : public Element {
   }
   bool has_history() const override { return inner_->has_history(); }
   double plastic_work() const override { return inner_->plastic_work(); }
+  std::vector<double> history_state() const override { return inner_->history_state(); }
+  void restore_history_state(const std::vector<double>& state) override {
+    inner_->restore_history_state(state);
+  }
   void commit_history(const ElementContext& ctx, const Eigen::VectorXd& u) override {
     inner_->commit_history(ctx, u);
   }

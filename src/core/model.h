@@ -102,6 +102,32 @@ struct GapCondition {
   SourceLocation where;
 };
 
+/// Automatic time stepping of a load step (AUTOTS; NSUBST NSBMX/NSBMN, DELTIM DTMIN/DTMAX,
+/// Carry; APDL_MODELING §9.1, docs/solution_control.md).
+struct StepControl {
+  std::optional<bool> automatic;         // AUTOTS ON/AUTO (true), OFF (false); unset: default
+  std::optional<double> dt_min, dt_max;  // DELTIM DTMIN / DTMAX (time units)
+  std::optional<int> n_max, n_min;       // NSUBST NSBMX (smallest step) / NSBMN (largest step)
+  bool carry = false;                    // Carry ON: start with the last step of the previous
+};
+
+/// RESCONTROL,DEFINE (APDL_MODELING §9.5): the converged substeps that keep a restart point in
+/// <jobname>.rst.h5 (none unless RESCONTROL was given, [A]).
+/// Load steps: 0 LAST (default), n > 0 every n-th (ALL = 1), -1 NONE; substeps: 0 LAST
+/// (default), n > 0 every n-th and the last, -1 NONE.
+struct RestartControl {
+  bool defined = false;  // RESCONTROL,DEFINE given: restart points are written
+  int load_steps = 0;
+  int frequency = 0;
+};
+
+/// ANTYPE,,RESTART,LDSTEP,SUBSTEP: continue from a restart point (blank: the last one saved).
+struct RestartRequest {
+  std::optional<int> load_step;
+  std::optional<int> substep;
+  SourceLocation where;  // the ANTYPE command
+};
+
 /// One load step: the full load state at its end (not deltas) and its options.
 /// Loads are cumulative: a step inherits everything from the previous step unless changed.
 struct LoadStep {
@@ -123,6 +149,8 @@ struct LoadStep {
   std::map<DofKey, std::string> force_tables;
   std::array<std::string, 3> acel_tables;    // ACEL components
   std::map<FaceKey, SurfaceLoad> pressures;  // SF, SFE, SFA (face pressures)
+  StepControl control;                       // AUTOTS and the DELTIM / NSUBST limits
+  RestartControl rescontrol;                 // RESCONTROL in force when the step is solved
   SourceLocation where;                      // command that closed the step (LWRITE/SOLVE/...)
 };
 
@@ -195,6 +223,9 @@ struct AnalysisOptions {
   std::optional<int> total_masters;     // TOTAL NTOT (automatic masters)
   bool total_masters_exclude_rotations = false;
   std::map<std::string, int> kay;  // raw KAY values as given (logged)
+  /// ANTYPE,,RESTART: the analysis continues from this restart point. The deck hands it to the
+  /// next analysis it opens and then forgets it (one analysis continues the run).
+  std::optional<RestartRequest> restart;
 };
 
 /// One analysis the deck asks to run (4x: /INPUT,27; modern: the SOLVEs of one ANTYPE),

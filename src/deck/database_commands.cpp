@@ -10,7 +10,6 @@
 #include <nlohmann/json.hpp>
 
 #include "core/files.h"
-#include "core/solution_control.h"
 #include "deck/deck_context.h"
 #include "io/superelement_file.h"
 
@@ -23,7 +22,6 @@ void DeckReader::clear_database(const Command& c) {
   std::vector<std::string> ignored = std::move(job.ignored_commands);
   const std::string jobname = model.jobname;  // /CLEAR keeps the jobname (/FILNAME changes it)
   job = Job{};
-  SolutionControls::instance().clear();
   job.ignored_commands = std::move(ignored);
   model.dialect = dialect;
   model.jobname = jobname;
@@ -173,6 +171,37 @@ void output_items_of(const json& j, OutputControl& f) {
                                       spec[2].get<std::vector<int>>()});
 }
 
+json opt_int(const std::optional<int>& v) {
+  return v ? json(*v) : json(nullptr);
+}
+std::optional<int> opt_int_of(const json& j) {
+  return j.is_null() ? std::nullopt : std::optional<int>(j.get<int>());
+}
+
+/// AUTOTS, the DELTIM / NSUBST limits (StepControl) and RESCONTROL of the current load state.
+json step_control_json(const LoadStep& s) {
+  const StepControl& c = s.control;
+  const RestartControl& rc = s.rescontrol;
+  return {{"autots", c.automatic ? json(*c.automatic) : json(nullptr)},
+          {"dt_min", opt(c.dt_min)},
+          {"dt_max", opt(c.dt_max)},
+          {"n_max", opt_int(c.n_max)},
+          {"n_min", opt_int(c.n_min)},
+          {"carry", c.carry},
+          {"rescontrol", {rc.defined, rc.load_steps, rc.frequency}}};
+}
+void step_control_of(const json& j, LoadStep& s) {
+  StepControl& c = s.control;
+  if (!j.at("autots").is_null()) c.automatic = j.at("autots").get<bool>();
+  c.dt_min = opt_of(j.at("dt_min"));
+  c.dt_max = opt_of(j.at("dt_max"));
+  c.n_max = opt_int_of(j.at("n_max"));
+  c.n_min = opt_int_of(j.at("n_min"));
+  c.carry = j.at("carry");
+  const json& rc = j.at("rescontrol");
+  s.rescontrol = {rc[0].get<bool>(), rc[1].get<int>(), rc[2].get<int>()};
+}
+
 json load_state_json(const LoadStep& s) {
   return {{"time_end", opt(s.time_end)},
           {"dt", opt(s.dt)},
@@ -184,7 +213,8 @@ json load_state_json(const LoadStep& s) {
           {"time_integration", s.time_integration},
           {"acel", {s.acel(0), s.acel(1), s.acel(2)}},
           {"constraints", dof_table(s.constraints)},
-          {"forces", dof_table(s.forces)}};
+          {"forces", dof_table(s.forces)},
+          {"step_control", step_control_json(s)}};
 }
 
 LoadStep load_state_of(const json& j) {
@@ -200,6 +230,7 @@ LoadStep load_state_of(const json& j) {
   s.acel = Vec3(j.at("acel")[0], j.at("acel")[1], j.at("acel")[2]);
   s.constraints = dof_table_of(j.at("constraints"));
   s.forces = dof_table_of(j.at("forces"));
+  if (j.contains("step_control")) step_control_of(j.at("step_control"), s);  // older files: none
   return s;
 }
 
@@ -358,7 +389,7 @@ void cmd_resume(DeckReader& r, const Command& c) {
 /// Ldstep turns restart files off; STATUS / FILE_SUMMARY print; NORESTART / LINEAR are noted.
 void cmd_rescontrol(DeckReader& r, const Command& c) {
   const std::string action = r.label(c, 1);
-  RestartControl& rc = SolutionControls::instance().restart_control;
+  RestartControl& rc = r.model.current.rescontrol;
   if (action == "STATUS" || action == "FILE_SUMMARY" || action == "FILE") {
     Log::info("{}:{}: RESCONTROL: restart points at load steps {} and substeps {}", c.where.file,
               c.where.line,

@@ -12,7 +12,6 @@
 #include <sstream>
 
 #include "core/files.h"
-#include "core/solution_control.h"
 #include "deck/deck_context.h"
 #include "deck/post_support.h"
 #include "elements/element_registry.h"
@@ -65,7 +64,6 @@ int Command::last_given() const {
 DeckReader::DeckReader(const DeckOptions& opts, Dialect d, const std::string& jobname)
     : options(opts), model(job.model), dialect(d), output(opts.output) {
   functions_.reader = this;
-  SolutionControls::instance().clear();  // AUTOTS / RESCONTROL of an earlier deck
   model.dialect = d;
   model.jobname = jobname;
   jobname_from_option = !opts.jobname.empty();

@@ -6,7 +6,6 @@
 #include <cmath>
 #include <limits>
 
-#include "core/solution_control.h"
 #include "deck/deck_context.h"
 #include "deck/post_support.h"
 #include "results/output_selection.h"
@@ -64,7 +63,7 @@ void cmd_dtime(DeckReader& r, const Command& c) {
   if (!(r.dialect == Dialect::Classic4x && r.kan == 5)) s.n_substeps.reset();
   // DELTIM,DTIME,DTMIN,DTMAX,Carry: the limits of automatic time stepping (APDL_MODELING
   // §9.1); they replace those of an earlier NSUBST (the last of the two wins).
-  StepControl& sc = SolutionControls::instance().current;
+  StepControl& sc = r.model.current.control;
   sc.n_max.reset();
   sc.n_min.reset();
   sc.dt_min.reset();
@@ -90,7 +89,7 @@ void cmd_nsubst(DeckReader& r, const Command& c) {
   r.model.current.dt.reset();
   // NSUBST,NSBSTP,NSBMX,NSBMN,Carry: NSBMX substeps give the smallest step, NSBMN the largest
   // (APDL_MODELING §9.1); they replace the limits of an earlier DELTIM.
-  StepControl& sc = SolutionControls::instance().current;
+  StepControl& sc = r.model.current.control;
   sc.dt_min.reset();
   sc.dt_max.reset();
   sc.n_max = r.opt_int(c, 2);
@@ -129,9 +128,9 @@ void cmd_autots(DeckReader& r, const Command& c) {
   const std::string l = r.label(c, 1);
   // AUTOTS,ON / AUTO: bisection and step growth (APDL_MODELING §9.1, §9.3); blank = ON.
   if (l == "ON" || l == "AUTO" || l == "1" || l.empty())
-    SolutionControls::instance().current.automatic = true;
+    r.model.current.control.automatic = true;
   else if (l == "OFF" || l == "0")
-    SolutionControls::instance().current.automatic = false;
+    r.model.current.control.automatic = false;
   else
     r.fail(c, fmt::format("bad key '{}' (ON, OFF, AUTO)", c.text(1)));
 }
@@ -248,10 +247,10 @@ void cmd_antype(DeckReader& r, const Command& c) {
     if ((q.load_step && *q.load_step <= 0) || (q.substep && *q.substep <= 0))
       r.fail(c, "LDSTEP and SUBSTEP must be positive");
     q.where = c.where;
-    SolutionControls::instance().restart = q;
+    r.model.options.restart = q;
     r.open_analysis.reset();  // the restarted run is an analysis of its own
   } else {
-    SolutionControls::instance().restart.reset();
+    r.model.options.restart.reset();
     if (type != r.model.options.type) r.open_analysis.reset();
   }
   r.model.options.type = type;
@@ -483,7 +482,6 @@ LoadStep snapshot(DeckReader& r, const Command& c, int number) {
   LoadStep s = r.model.current;
   s.number = number;
   s.where = c.where;
-  SolutionControls::instance().record(s.where, number);
   return s;
 }
 
@@ -544,6 +542,7 @@ AnalysisRequest& open_analysis(DeckReader& r, const Command& c) {
     Job::Step step;
     AnalysisRequest a;
     a.options = r.model.options;
+    r.model.options.restart.reset();  // ANTYPE,,RESTART is taken by this analysis only
     a.where = c.where;
     step.analysis = std::move(a);
     step.model_snapshot = solution_model(r, c);
@@ -624,7 +623,9 @@ void cmd_lssolve(DeckReader& r, const Command& c) {
     auto it = r.lswrite_steps.find(static_cast<int>(n));
     if (it == r.lswrite_steps.end())
       r.fail(c, fmt::format("load step {} was not written (LSWRITE)", n));
+    const RestartControl rescontrol = r.model.current.rescontrol;  // not a load-step option
     r.model.current = it->second;
+    r.model.current.rescontrol = rescontrol;
     append_current(r, c);
   }
   // All the load steps at once: the solver knows what follows (the progress estimate covers

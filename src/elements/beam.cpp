@@ -389,6 +389,18 @@ void Beam::commit_history(const ElementContext& ctx, const Eigen::VectorXd& u) {
   committed_ = std::move(next);
 }
 
+std::vector<double> Beam::history_state() const {
+  std::vector<double> out;
+  for (const UniaxialPlasticState& s : committed_) append_state(out, s);  // per fibre
+  return out;
+}
+
+void Beam::restore_history_state(const std::vector<double>& state) {
+  std::size_t pos = 0;
+  for (UniaxialPlasticState& s : committed_) read_state(state, pos, s);
+  IMPACTFE_CHECK(pos == state.size(), "BEAM: saved state of the wrong length");
+}
+
 double Beam::plastic_work() const {
   // ∫σ dε_p dV = Σ_f w_f a_f L (one section point for the whole length).
   double w = 0.0;

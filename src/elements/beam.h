@@ -95,6 +95,8 @@ class Beam final : public Element {
   bool has_history() const override { return data_.plasticity.has_value(); }
   double plastic_work() const override;
   void commit_history(const ElementContext& ctx, const Eigen::VectorXd& u) override;
+  std::vector<double> history_state() const override;
+  void restore_history_state(const std::vector<double>& state) override;
   /// Committed fibre states (one per section fibre; empty for an elastic beam).
   const std::vector<UniaxialPlasticState>& fibre_states() const { return committed_; }
   const BeamSectionProperties& section() const { return data_.section; }

@@ -356,6 +356,20 @@ void Brick8::commit_history(const ElementContext& ctx, const Eigen::VectorXd& u)
   committed_ = next;
 }
 
+std::vector<double> Brick8::history_state() const {
+  std::vector<double> out;
+  if (plasticity_)
+    for (const PlasticState& s : committed_) append_state(out, s);  // per Gauss point
+  return out;
+}
+
+void Brick8::restore_history_state(const std::vector<double>& state) {
+  std::size_t pos = 0;
+  if (plasticity_)
+    for (PlasticState& s : committed_) read_state(state, pos, s);
+  IMPACTFE_CHECK(pos == state.size(), "SOLID: saved state of the wrong length");
+}
+
 double Brick8::plastic_work() const {
   double w = 0.0;
   for (int p = 0; p < kGauss; ++p)

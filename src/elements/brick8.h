@@ -43,6 +43,8 @@ class Brick8 final : public Element {
   bool has_history() const override { return plasticity_.has_value(); }
   double plastic_work() const override;
   void commit_history(const ElementContext& ctx, const Eigen::VectorXd& u) override;
+  std::vector<double> history_state() const override;
+  void restore_history_state(const std::vector<double>& state) override;
   /// Committed state of Gauss point p (0..7, order of the corners' signs).
   const PlasticState& gauss_state(int p) const { return committed_[static_cast<std::size_t>(p)]; }
   /// Linear: K = condensed ∫BᵀDB dV, f_int = K u (+ K_σ u with stress stiffening, K_σ from the

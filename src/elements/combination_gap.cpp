@@ -150,6 +150,24 @@ void CombinationGap::revert() {
   frozen_ = false;
 }
 
+std::vector<double> CombinationGap::history_state() const {
+  if (!has_status()) return {};
+  const State& s = committed_;
+  return {static_cast<double>(s.status), s.slip, s.direction, s.broken ? 1.0 : 0.0};
+}
+
+void CombinationGap::restore_history_state(const std::vector<double>& state) {
+  IMPACTFE_CHECK(state.size() == (has_status() ? 4u : 0u),
+                 "COMBIN40: saved state of the wrong length");
+  if (state.empty()) return;
+  committed_.status = static_cast<GapStatus>(static_cast<int>(state[0]));
+  committed_.slip = state[1];
+  committed_.direction = state[2];
+  committed_.broken = state[3] != 0.0;
+  trial_ = committed_;
+  frozen_ = false;
+}
+
 namespace {
 const std::vector<std::string> kCombinationGapResults = {"FORC", "F1",    "F2",
                                                          "STAT", "DELTA", "SLIDE"};

@@ -52,6 +52,8 @@ class CombinationGap final : public Element {
   void commit(const Eigen::VectorXd& u) override;
   /// Back to the committed state; also clears a freeze.
   void revert() override;
+  std::vector<double> history_state() const override;
+  void restore_history_state(const std::vector<double>& state) override;
   void freeze_status(bool frozen) override { frozen_ = frozen; }
   GapStatus status() const override { return trial_.status; }
   double contact_stiffness() const override { return data_.k1 + data_.k2; }

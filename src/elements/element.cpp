@@ -15,6 +15,12 @@ std::unique_ptr<Element> create_element(const ElementBuildContext& ctx,
   return element_type_descriptor(type_it->second).create(ctx, record);
 }
 
+void Element::restore_history_state(const std::vector<double>& state) {
+  IMPACTFE_CHECK(state.empty(),
+                 fmt::format("element {}: a saved state of {} values for an element without one",
+                             id(), state.size()));
+}
+
 void Element::damping(const ElementContext&, const Eigen::VectorXd&, Eigen::MatrixXd& C) const {
   C.setZero(n_dofs(), n_dofs());
 }

@@ -84,6 +84,16 @@ class Element {
   /// Plastic work ∫σ:dε_p dV of the committed history (energy balance); 0 without plasticity.
   virtual double plastic_work() const { return 0.0; }
 
+  // ---- committed state for restart files (RESCONTROL / ANTYPE,,RESTART) ---------------------
+  /// Everything the element has committed beyond the displacements (material history of
+  /// every integration point or fibre, slider slip, gap / contact status) as a flat vector;
+  /// empty for an element without one. A restart file keeps it so that a continued run equals
+  /// the uninterrupted one to round-off.
+  virtual std::vector<double> history_state() const { return {}; }
+  /// Makes `state` (from history_state() of the same element of the same model) the committed
+  /// and the trial state. Throws (internal error) when the length does not fit.
+  virtual void restore_history_state(const std::vector<double>& state);
+
   // ---- status elements (gap open/closed, slider stick/slide) --------------------------------
   virtual bool has_status() const { return false; }
   /// Re-evaluates the status from the latest iterate u; returns true when it changed (the

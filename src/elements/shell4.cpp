@@ -282,6 +282,20 @@ void Shell4::commit_history(const ElementContext& ctx, const Eigen::VectorXd& u)
   committed_ = std::move(next);
 }
 
+std::vector<double> Shell4::history_state() const {
+  std::vector<double> out;
+  if (plasticity_)
+    for (const PlasticState& s : committed_) append_state(out, s);  // point × layer
+  return out;
+}
+
+void Shell4::restore_history_state(const std::vector<double>& state) {
+  std::size_t pos = 0;
+  if (plasticity_)
+    for (PlasticState& s : committed_) read_state(state, pos, s);
+  IMPACTFE_CHECK(pos == state.size(), "SHELL: saved state of the wrong length");
+}
+
 double Shell4::plastic_work() const {
   return plasticity_ ? kernel_->plastic_work(committed_) : 0.0;
 }

@@ -41,6 +41,8 @@ class Shell4 : public Element {
   bool has_history() const override { return plasticity_.has_value(); }
   double plastic_work() const override;
   void commit_history(const ElementContext& ctx, const Eigen::VectorXd& u) override;
+  std::vector<double> history_state() const override;
+  void restore_history_state(const std::vector<double>& state) override;
   /// Small deflection: K = K_lin (+ stress stiffness Aᵀ K_g(σ(u)) A with SSTIF), f = K u.
   /// Large deflection: co-rotational f = Bᵀ K̄ d(u), K = Bᵀ K̄ B + ∂Bᵀ/∂u·(K̄ d), with
   /// B = ∂d/∂u and the geometric part ∂Bᵀ/∂u·f_l both analytic (shell_frame.h, so3.h).

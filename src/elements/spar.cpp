@@ -68,6 +68,18 @@ void Spar::commit_history(const ElementContext& ctx, const Eigen::VectorXd& u) {
   committed_ = next;
 }
 
+std::vector<double> Spar::history_state() const {
+  std::vector<double> out;
+  if (plasticity_) append_state(out, committed_);
+  return out;
+}
+
+void Spar::restore_history_state(const std::vector<double>& state) {
+  std::size_t pos = 0;
+  if (plasticity_) read_state(state, pos, committed_);
+  IMPACTFE_CHECK(pos == state.size(), "LINK: saved state of the wrong length");
+}
+
 void Spar::mass(const ElementContext& ctx, Eigen::MatrixXd& M) const {
   const int d = member_.dim();
   const double total = density_ * area_ * member_.length;

@@ -39,6 +39,8 @@ class Spar final : public Element {
   bool has_history() const override { return plasticity_.has_value(); }
   double plastic_work() const override { return committed_.plastic_work * *volume(); }
   void commit_history(const ElementContext& ctx, const Eigen::VectorXd& u) override;
+  std::vector<double> history_state() const override;
+  void restore_history_state(const std::vector<double>& state) override;
 
   std::optional<double> volume() const override { return area_ * member_.length; }
   double area() const { return area_; }

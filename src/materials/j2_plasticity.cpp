@@ -317,4 +317,38 @@ std::optional<J2Plasticity> plasticity_of(const Model& model, const ElementRecor
   return J2Plasticity::multilinear(young, poisson, std::move(curve));
 }
 
+// ---- flat forms of the committed states (restart files) ----------------------------------------
+
+void append_state(std::vector<double>& out, const UniaxialPlasticState& s) {
+  out.insert(out.end(), {s.plastic_strain, s.back_stress, s.alpha, s.plastic_work, s.stress});
+}
+
+void append_state(std::vector<double>& out, const PlasticState& s) {
+  out.insert(out.end(), s.plastic_strain.data(), s.plastic_strain.data() + 6);
+  out.insert(out.end(), s.back_stress.data(), s.back_stress.data() + 6);
+  out.insert(out.end(), {s.alpha, s.plastic_work, s.thickness_strain});
+  out.insert(out.end(), s.stress.data(), s.stress.data() + 6);
+}
+
+void read_state(const std::vector<double>& in, std::size_t& pos, UniaxialPlasticState& s) {
+  IMPACTFE_CHECK(pos + 5 <= in.size(), "saved uniaxial plastic state too short");
+  s.plastic_strain = in[pos];
+  s.back_stress = in[pos + 1];
+  s.alpha = in[pos + 2];
+  s.plastic_work = in[pos + 3];
+  s.stress = in[pos + 4];
+  pos += 5;
+}
+
+void read_state(const std::vector<double>& in, std::size_t& pos, PlasticState& s) {
+  IMPACTFE_CHECK(pos + 21 <= in.size(), "saved plastic state too short");
+  for (int i = 0; i < 6; ++i) s.plastic_strain(i) = in[pos + static_cast<std::size_t>(i)];
+  for (int i = 0; i < 6; ++i) s.back_stress(i) = in[pos + 6 + static_cast<std::size_t>(i)];
+  s.alpha = in[pos + 12];
+  s.plastic_work = in[pos + 13];
+  s.thickness_strain = in[pos + 14];
+  for (int i = 0; i < 6; ++i) s.stress(i) = in[pos + 15 + static_cast<std::size_t>(i)];
+  pos += 21;
+}
+
 }  // namespace impactfe

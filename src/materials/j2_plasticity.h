@@ -51,6 +51,13 @@ struct PlasticState {
   Vector6d stress = Vector6d::Zero();  ///< σ at the committed state
 };
 
+/// Flat forms of the committed states (restart files, Element::history_state): append to
+/// `out`, or read from `in` at `pos` (advanced past what was read; throws when too short).
+void append_state(std::vector<double>& out, const UniaxialPlasticState& s);
+void append_state(std::vector<double>& out, const PlasticState& s);
+void read_state(const std::vector<double>& in, std::size_t& pos, UniaxialPlasticState& s);
+void read_state(const std::vector<double>& in, std::size_t& pos, PlasticState& s);
+
 struct UniaxialResponse {
   double stress = 0.0;
   double tangent = 0.0;  ///< dσ/dε (consistent)

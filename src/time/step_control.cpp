@@ -132,6 +132,14 @@ bool StepController::cut() {
   return true;
 }
 
+void StepController::restore(const State& s) {
+  t_ = s.time;
+  dt_ = s.dt;
+  ceiling_ = s.ceiling;
+  easy_ = s.easy;
+  done_ = s.done;
+}
+
 void StepController::set_ceiling(std::optional<double> ceiling) {
   ceiling_ = ceiling;
   // Growth after the ceiling is lifted starts from the step taken under it.

@@ -9,7 +9,6 @@
 #include <vector>
 
 #include "core/model.h"
-#include "core/solution_control.h"
 #include "time/time_axis.h"
 
 namespace impactfe {
@@ -66,6 +65,20 @@ class StepController {
   const AutoStepPlan& plan() const { return plan_; }
   /// The step size the controller wants (before landing and ceiling).
   double desired() const { return dt_; }
+
+  /// Everything the controller has learnt in its load step so far (restart points inside an
+  /// AUTOTS load step): time reached, the step it wants, the ceiling, the easy-step streak.
+  /// The next landing (output) time follows from the time reached and the plan.
+  struct State {
+    double time = 0.0;
+    double dt = 0.0;
+    std::optional<double> ceiling;
+    int easy = 0;
+    bool done = false;
+  };
+  State state() const { return {t_, dt_, ceiling_, easy_, done_}; }
+  /// Continues from `s` (a state() of a controller of the same plan).
+  void restore(const State& s);
 
  private:
   struct Proposal {

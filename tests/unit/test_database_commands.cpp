@@ -190,3 +190,56 @@ RESUME
   EXPECT_EQ(old.job.model.current.output.every, -1);
   EXPECT_TRUE(old.job.model.current.output.uniform());
 }
+
+// Solution controls belong to the model (issue 16): AUTOTS, the DELTIM / NSUBST limits and
+// RESCONTROL are part of the load state, saved and resumed with it, reset by /CLEAR, and not
+// shared between two decks read in one process.
+TEST(DatabaseCommands, SolutionControlsAreSavedResumedAndCleared) {
+  const auto dir = impactfe::testing::fresh_directory("database_controls");
+  const std::string model = "/PREP7\nET,1,COMBIN14\nR,1,100\nN,1\nN,2,1\nE,1,2\nFINISH\n";
+  const std::string deck = model +
+                           "/SOLU\nANTYPE,TRANS\nAUTOTS,ON\nDELTIM,0.01,1E-4,0.02,ON\n"
+                           "RESCONTROL,DEFINE,ALL,5\nTIME,1\nSAVE,ctl,db\n/CLEAR\n" +
+                           "RESUME,ctl,db\n/SOLU\nANTYPE,TRANS\nLSWRITE,1\n";
+  DeckOptions o;
+  o.dialect = Dialect::Modern;
+  const auto previous = std::filesystem::current_path();
+  std::filesystem::current_path(dir);
+  Job resumed, cleared, other;
+  try {
+    resumed = read_deck_text(deck, "deck.inp", o);
+    // /CLEAR drops them: the job after it has the defaults.
+    cleared = read_deck_text(model + "/SOLU\nAUTOTS,ON\nNSUBST,10,100,2\nRESCONTROL\n/CLEAR\n" +
+                                 model + "/SOLU\nLSWRITE,1\n",
+                             "cleared.inp", o);
+    other = read_deck_text(model + "/SOLU\nLSWRITE,1\n", "other.inp", o);
+  } catch (...) {
+    std::filesystem::current_path(previous);
+    throw;
+  }
+  std::filesystem::current_path(previous);
+  const LoadStep& s = resumed.model.current;
+  ASSERT_TRUE(s.control.automatic.has_value());
+  EXPECT_TRUE(*s.control.automatic);
+  EXPECT_EQ(s.control.dt_min, 1e-4);
+  EXPECT_EQ(s.control.dt_max, 0.02);
+  EXPECT_TRUE(s.control.carry);
+  EXPECT_FALSE(s.control.n_max.has_value());
+  EXPECT_TRUE(s.rescontrol.defined);
+  EXPECT_EQ(s.rescontrol.load_steps, 1);
+  EXPECT_EQ(s.rescontrol.frequency, 5);
+  EXPECT_EQ(s.dt, 0.01);
+  EXPECT_EQ(s.time_end, 1.0);
+  for (const Job* j : {&cleared, &other}) {
+    const LoadStep& d = j->model.current;
+    EXPECT_FALSE(d.control.automatic.has_value());
+    EXPECT_FALSE(d.control.dt_min || d.control.dt_max || d.control.n_max || d.control.n_min);
+    EXPECT_FALSE(d.control.carry);
+    EXPECT_FALSE(d.rescontrol.defined);
+  }
+  // The saved file lists them (docs/deck_reader.md, "Database file").
+  std::ifstream in(dir / "ctl.db");
+  const auto j = nlohmann::json::parse(in);
+  EXPECT_EQ(j.at("loads").at("step_control").at("autots"), true);
+  EXPECT_EQ(j.at("loads").at("step_control").at("rescontrol")[2], 5);
+}

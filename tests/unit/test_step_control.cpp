@@ -8,7 +8,6 @@
 #include <vector>
 
 #include "core/model.h"
-#include "core/solution_control.h"
 #include "time/integrator_history.h"
 #include "time/step_control.h"
 #include "time/time_integrator.h"
@@ -95,6 +94,38 @@ TEST(StepControl, GrowsAfterTwoEasySubstepsUpToTheMaximum) {
   c.accept(false);
   c.accept(true);
   EXPECT_NEAR(c.desired(), 0.03, 1e-15);
+}
+
+// A restart point inside an AUTOTS load step keeps state(); a new controller of the same plan
+// restored from it proposes exactly the steps the original goes on with (cuts, growth streak,
+// ceiling, landing on the output times).
+TEST(StepControl, RestoredStateContinuesTheSameSteps) {
+  const AutoStepPlan p = plan(0.01, 1e-4, 0.04, 1.0);
+  StepController a(p, {25});
+  a.accept(true);
+  a.cut();
+  a.accept(true);  // half of the easy streak
+  a.set_ceiling(0.007);
+  const StepController::State s = a.state();
+  StepController b(p, {25});
+  b.restore(s);
+  for (int i = 0; i < 2000 && !a.done(); ++i) {
+    ASSERT_EQ(a.next_step(), b.next_step()) << i;
+    ASSERT_EQ(a.next_time(), b.next_time()) << i;
+    ASSERT_EQ(a.next_grid_index(), b.next_grid_index()) << i;
+    if (i == 3) {
+      a.set_ceiling(std::nullopt);
+      b.set_ceiling(std::nullopt);
+    }
+    if (i % 11 == 5) {
+      ASSERT_EQ(a.cut(), b.cut());
+      continue;
+    }
+    a.accept(i % 5 != 0);
+    b.accept(i % 5 != 0);
+    ASSERT_EQ(a.done(), b.done());
+  }
+  EXPECT_TRUE(a.done()) << a.time() << " " << a.desired() << " " << a.next_step();
 }
 
 TEST(StepControl, CeilingBoundsTheStepButNotBelowTheMinimum) {
