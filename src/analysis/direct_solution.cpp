@@ -75,6 +75,11 @@ void DirectSolution::renumber(std::set<DofKey> wanted, bool keep_dynamics) {
                                            structure_.options().beta_damping);
   assembler_->set_material_stiffness_damping(structure_.material_stiffness_damping());
   status_loop_ = std::make_unique<StatusLoop>(structure_.elements(), *assembler_);
+  penetration_checks_.clear();
+  for (std::size_t e = 0; e < structure_.elements().size(); ++e)
+    if (const auto* check = dynamic_cast<const PenetrationCheck*>(structure_.elements()[e].get());
+        check != nullptr && check->checks_penetration())
+      penetration_checks_.emplace_back(e, check);
   mass_all_ = assembler_->mass_matrix();
   frame_load_ = FrameAccelerationLoad(structure_.elements(), *dofs_, ctx_);
   // Keep the work of the previous numbering in the counts.
@@ -192,6 +197,25 @@ VectorXd solve_mass_block(const SparseMatrix& mm, const VectorXd& r) {
 }
 
 }  // namespace
+
+std::string DirectSolution::excessive_penetration(const VectorXd& u) const {
+  double worst = 1.0;
+  std::size_t at = 0;
+  VectorXd ue, start;
+  for (const auto& [e, check] : penetration_checks_) {
+    assembler_->gather(e, u, ue);
+    assembler_->gather(e, u_, start);
+    const double ratio = check->penetration_ratio(start, ue);
+    if (ratio > worst) {
+      worst = ratio;
+      at = e;
+    }
+  }
+  if (worst <= 1.0) return {};
+  return fmt::format(
+      "contact element {} penetrated {:.3g} x FTOLN x depth further in one substep (KEYOPT(7) = 1)",
+      structure_.elements()[at]->id(), worst);
+}
 
 void DirectSolution::start_dynamics(const LoadPoint& at, double h) {
   // a0 from equilibrium at the start: M a0 = f(0) - C v0 - f_int(u0), on DOFs that carry mass
@@ -550,7 +574,13 @@ bool DirectSolution::solve_increment(const LoadPoint& at, const StepLabel& label
   const double h = dynamic ? integrator_->step() : 0.0;
   const bool unresolved_impact = may_cut && inc.n_status_changes > 0 && impact_step_limit_ > 0.0 &&
                                  h > impact_step_limit_ * (1 + 1e-9);
-  if (may_cut && (!finite || !result.converged || status_loop_->chattered() || unresolved_impact)) {
+  // KEYOPT(7) = 1 contact (APDL_MODELING §9.3 item 2): penetration > FTOLN·depth cuts too.
+  const std::string penetration =
+      may_cut && finite && result.converged && !status_loop_->chattered() && !unresolved_impact
+          ? excessive_penetration(u)
+          : std::string();
+  if (may_cut && (!finite || !result.converged || status_loop_->chattered() || unresolved_impact ||
+                  !penetration.empty())) {
     // Automatic time stepping (APDL_MODELING §9.3 item 2): the step is cut instead; the
     // elements return to their committed states, the integrator was not advanced.
     const std::string chatter = status_loop_->chatter_report();
@@ -563,10 +593,12 @@ bool DirectSolution::solve_increment(const LoadPoint& at, const StepLabel& label
           chatter.empty() ? "" : "; status changes:" + chatter);
     else if (status_loop_->chattered())
       cut_reason_ = "contact status chatter (open/closed changes in the iterations):" + chatter;
-    else
+    else if (unresolved_impact)
       cut_reason_ = fmt::format(
           "{} status change(s) in a step longer than {:.4g} (T/30 of the contact frequency)",
           inc.n_status_changes, impact_step_limit_);
+    else
+      cut_reason_ = penetration;
     status_loop_->revert();
     factor_valid_ = false;
     return false;

@@ -17,6 +17,7 @@
 #include "analysis/structure.h"
 #include "analysis/time_step_advice.h"
 #include "assembly/loads.h"
+#include "elements/penetration_check.h"
 #include "linalg/linear_solver.h"
 #include "nonlinear/newton_raphson.h"
 #include "nonlinear/status_loop.h"
@@ -180,6 +181,12 @@ class DirectSolution : private NonlinearProblem {
   std::unique_ptr<ContactFrequencyEstimator> contact_frequency_;
   std::string cut_reason_;
   double impact_step_limit_ = 0.0;  // AUTOTS: a status change in a longer step cuts it (0: off)
+  // Contact elements with KEYOPT(7) = 1 (elements/penetration_check.h), per DOF numbering: their
+  // index and interface; under AUTOTS a converged substep with too much penetration is cut.
+  std::vector<std::pair<std::size_t, const PenetrationCheck*>> penetration_checks_;
+  /// The cut reason when a KEYOPT(7) contact penetrates more than FTOLN·depth at u and the
+  /// substep from u_ added more than that (PenetrationCheck); empty if none.
+  std::string excessive_penetration(const VectorXd& u) const;
   std::optional<double> last_dt_;
   // Continuing from a restart point: the point (until applied), the load-step numbers and the
   // first substep of the continued load step.

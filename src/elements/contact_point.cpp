@@ -1,5 +1,7 @@
 #include "elements/contact_point.h"
 
+#include <fmt/format.h>
+
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
@@ -189,6 +191,43 @@ void ContactPoint::commit(const Eigen::VectorXd& u) {
 }
 
 void ContactPoint::revert() {
+  trial_ = committed_;
+  frozen_ = false;
+}
+
+double ContactPoint::penetration_ratio(const Eigen::VectorXd& start,
+                                       const Eigen::VectorXd& u) const {
+  if (!data_.bisect_on_penetration || trial_.status == Contact::Open || !(data_.toln > 0.0))
+    return 0.0;
+  const double now = std::max(-kinematics(u).gap, 0.0);
+  if (now <= data_.toln) return 0.0;
+  return (now - std::max(-kinematics(start).gap, 0.0)) / data_.toln;
+}
+
+std::vector<double> ContactPoint::history_state() const {
+  const State& s = committed_;
+  return {static_cast<double>(static_cast<int>(s.status)),
+          s.lambda,
+          s.slip.x(),
+          s.slip.y(),
+          s.slip.z(),
+          s.slide,
+          s.tied ? 1.0 : 0.0,
+          s.never ? 1.0 : 0.0};
+}
+
+void ContactPoint::restore_history_state(const std::vector<double>& state) {
+  IMPACTFE_CHECK(state.size() == kStateSize,
+                 fmt::format("contact element {}: a saved state of {} values, {} expected", id(),
+                             state.size(), kStateSize));
+  State s;
+  s.status = static_cast<Contact>(static_cast<int>(state[0]));
+  s.lambda = state[1];
+  s.slip = Vec3(state[2], state[3], state[4]);
+  s.slide = state[5];
+  s.tied = state[6] != 0.0;
+  s.never = state[7] != 0.0;
+  committed_ = s;
   trial_ = committed_;
   frozen_ = false;
 }

@@ -41,6 +41,7 @@
 
 #include "core/coordinate_system.h"
 #include "elements/element.h"
+#include "elements/penetration_check.h"
 
 namespace impactfe {
 
@@ -64,6 +65,9 @@ struct ContactLawData {
   double mu = 0.0;              // Coulomb coefficient (MP,MU of the element's MAT)
   bool augmented = true;        // KEYOPT(2) = 0
   double toln = 0.0;            // absolute penetration tolerance; 0: relative rule (1 %)
+  /// KEYOPT(7) = 1: under AUTOTS a converged substep with a penetration above toln is cut
+  /// (elements/penetration_check.h).
+  bool bisect_on_penetration = false;
   ContactBehaviour behaviour = ContactBehaviour::Standard;
   int start = 0;  // > 0 initially closed, < 0 initially open, 0 from the gap
 };
@@ -78,7 +82,7 @@ struct ContactKinematics {
   Eigen::MatrixXd H;            // ∂²g/∂u² (empty: zero)
 };
 
-class ContactPoint : public Element {
+class ContactPoint : public Element, public PenetrationCheck {
  public:
   /// Augmented-Lagrange updates per substep; with the closing flip this stays below the status
   /// loop's chatter limit (4), so augmentation alone never freezes an element.
@@ -102,6 +106,17 @@ class ContactPoint : public Element {
   void revert() override;
   void freeze_status(bool frozen) override { frozen_ = frozen; }
   GapStatus status() const override;
+  /// The committed contact state for restart files: status, augmented-Lagrange multiplier, the
+  /// slip of the tangential spring (the stick anchor), the accumulated sliding distance and the
+  /// no-separation / bonded flags — kStateSize values. Without them a continued run would
+  /// re-derive the anchor and the sliding distance from the displacements alone.
+  static constexpr std::size_t kStateSize = 8;
+  bool checks_penetration() const override { return data_.bisect_on_penetration; }
+  /// (p(u) − p(start)) / toln where p(u) = max(−g(u), 0) > toln, for a closed contact with
+  /// KEYOPT(7) = 1 and a tolerance (both gaps on the facet located at u); else 0.
+  double penetration_ratio(const Eigen::VectorXd& start, const Eigen::VectorXd& u) const override;
+  std::vector<double> history_state() const override;
+  void restore_history_state(const std::vector<double>& state) override;
   double contact_stiffness() const override { return data_.kn; }
 
   /// STAT (0 open, 2 sliding, 3 sticking: MAPDL contact codes), FN (normal force, compression

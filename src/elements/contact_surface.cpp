@@ -50,7 +50,7 @@ double face_area(const Model& model, const std::vector<int>& nodes) {
   return 0.5 * (x[2] - x[0]).cross(x[3] - x[1]).norm();
 }
 
-class SurfaceContact final : public Element, public ConnectivityUpdate {
+class SurfaceContact final : public Element, public ConnectivityUpdate, public PenetrationCheck {
  public:
   explicit SurfaceContact(int id, std::vector<std::unique_ptr<ContactPoint>> points)
       : Element(id), points_(std::move(points)) {
@@ -105,6 +105,35 @@ class SurfaceContact final : public Element, public ConnectivityUpdate {
   }
 
   bool has_status() const override { return true; }
+  bool checks_penetration() const override {
+    return std::any_of(points_.begin(), points_.end(),
+                       [](const auto& p) { return p->checks_penetration(); });
+  }
+  double penetration_ratio(const Eigen::VectorXd& start, const Eigen::VectorXd& u) const override {
+    double worst = 0.0;
+    for (std::size_t p = 0; p < points_.size(); ++p)
+      worst = std::max(worst, points_[p]->penetration_ratio(local(start, p), local(u, p)));
+    return worst;
+  }
+  /// The points' committed states, one after the other (ContactPoint::kStateSize each).
+  std::vector<double> history_state() const override {
+    std::vector<double> state;
+    for (const auto& p : points_) {
+      const std::vector<double> s = p->history_state();
+      state.insert(state.end(), s.begin(), s.end());
+    }
+    return state;
+  }
+  void restore_history_state(const std::vector<double>& state) override {
+    constexpr std::size_t n = ContactPoint::kStateSize;
+    IMPACTFE_CHECK(state.size() == n * points_.size(),
+                   fmt::format("CONTA174 element {}: a saved state of {} values, {} expected", id(),
+                               state.size(), n * points_.size()));
+    for (std::size_t p = 0; p < points_.size(); ++p)
+      points_[p]->restore_history_state(
+          std::vector<double>(state.begin() + static_cast<std::ptrdiff_t>(n * p),
+                              state.begin() + static_cast<std::ptrdiff_t>(n * (p + 1))));
+  }
   bool update_status(const ElementContext& ctx, const Eigen::VectorXd& u) override {
     bool changed = false;
     for (std::size_t p = 0; p < points_.size(); ++p)

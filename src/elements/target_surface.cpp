@@ -285,12 +285,13 @@ std::unique_ptr<ContactPoint> target_point(const ElementBuildContext& ctx,
   };
   for (int k = 1; k < static_cast<int>(type.keyopt.size()); ++k) {
     const int v = type.key(k);
-    const bool ok = v == 0 || (k == 2 && v == 1) || (k == 4 && v <= 3) || (k == 10 && v <= 2) ||
-                    (k == 12 && v <= 6) || (k == 18 && v == 1);
+    const bool ok = v == 0 || (k == 2 && v == 1) || (k == 4 && v <= 3) || (k == 7 && v == 1) ||
+                    (k == 10 && v <= 2) || (k == 12 && v <= 6) || (k == 18 && v == 1);
     if (!ok || v < 0)
       throw fail(
           fmt::format("KEYOPT({}) = {} is not supported (KEYOPT(2) 0 augmented "
-                      "Lagrange / 1 penalty, KEYOPT(4) 0-3 (detection), KEYOPT(10) "
+                      "Lagrange / 1 penalty, KEYOPT(4) 0-3 (detection), KEYOPT(7) 0 / 1 "
+                      "(bisection on penetration > FTOLN x depth under AUTOTS), KEYOPT(10) "
                       "0-2 (constant stiffness), KEYOPT(12) 0-6, KEYOPT(18) 0 large / 1 small "
                       "sliding on a deformable target; the others 0)",
                       k, v));
@@ -298,6 +299,7 @@ std::unique_ptr<ContactPoint> target_point(const ElementBuildContext& ctx,
   ContactLawData data;
   data.augmented = type.key(2) == 0;
   data.behaviour = static_cast<ContactBehaviour>(type.key(12));
+  data.bisect_on_penetration = type.key(7) == 1;
 
   const RealSet& real = line_data::real_set(model, record, family);
   // 3 FKN, 4 FTOLN, 6 PINB, 10 CNOF, 12 FKT are read; 14 and beyond are thermal (ignored).

@@ -78,3 +78,98 @@ def test_autots_matches_fine_constant_steps(binary, runs):
             # The constant steps it started from are far off (the test can fail).
             coarse = _error(binary, runs["constant_h5"], runs["ref_h5"], node, item)
             assert coarse > 0.04 * scale, f"N{node} {item}: constant steps {coarse:.4g}"
+
+
+_DROP = """/FILNAME,drop
+/PREP7
+ET,1,SOLID185
+ET,2,TARGE170
+ET,3,CONTA175
+KEYOPT,3,7,{keyopt7}
+MP,EX,1,1.0E8
+MP,PRXY,1,0.3
+MP,DENS,1,1000
+R,3,,,1.0,-2E-5
+N,1,0,0,0.002
+N,2,1,0,0.002
+N,3,1,1,0.002
+N,4,0,1,0.002
+N,5,0,0,0.202
+N,6,1,0,0.202
+N,7,1,1,0.202
+N,8,0,1,0.202
+N,100,0,0,-1
+N,101,-2,-2,0
+N,102,3,-2,0
+N,103,3,3,0
+N,104,-2,3,0
+TYPE,1
+MAT,1
+E,1,2,3,4,5,6,7,8
+TYPE,2
+REAL,3
+E,100
+E,101,102,103,104
+TYPE,3
+REAL,3
+E,1
+E,2
+E,3
+E,4
+FINISH
+/SOLU
+ANTYPE,TRANS
+TRNOPT,FULL
+D,100,UX,0,,,,UY,UZ
+D,1,UX,0,,,,UY
+D,2,UY
+D,4,UX
+IC,1,UZ,0,-2.0
+IC,2,UZ,0,-2.0
+IC,3,UZ,0,-2.0
+IC,4,UZ,0,-2.0
+IC,5,UZ,0,-2.0
+IC,6,UZ,0,-2.0
+IC,7,UZ,0,-2.0
+IC,8,UZ,0,-2.0
+AUTOTS,ON
+DELTIM,1E-3,1E-7,1E-3
+TIME,0.004
+OUTRES,ALL,ALL
+SOLVE
+FINISH
+"""
+
+
+def _drop(binary, tmp_path, keyopt7):
+    """The largest penetration one accepted substep added where the penetration exceeds FTOLN
+    (every substep is stored: OUTRES,ALL,ALL), over the four contact elements, and the log."""
+    d = tmp_path / f"k{keyopt7}"
+    d.mkdir()
+    deck = d / "drop.inp"
+    deck.write_text(_DROP.format(keyopt7=keyopt7))
+    run([binary, "run", str(deck), "-o", str(d)])
+    pene = post(binary, str(d / "drop.h5"), *[a for e in (4, 5, 6, 7) for a in ("--esol", f"{e},PENE")])
+    p = pene.values
+    added = np.where(p[1:] > FTOLN, p[1:] - p[:-1], 0.0)
+    return added.max(), len(p), open(d / "drop.log").read()
+
+
+FTOLN = 2e-5
+
+
+def test_keyopt7_cuts_steps_on_excessive_penetration(binary, tmp_path):
+    """A brick dropped at 2 on a rigid plane through augmented-Lagrange CONTA175 contact with an
+    absolute FTOLN of 2e-5, under AUTOTS (APDL_MODELING §9.3 item 2: penetration > FTOLN x depth
+    is a cutback trigger with KEYOPT(7) >= 1; impactfe counts the penetration a substep adds,
+    docs/solution_control.md). Without KEYOPT(7) the substeps under the contact-frequency ceiling
+    still drive the contacts up to ~12 x FTOLN further in one substep; with KEYOPT(7) = 1 those
+    substeps are cut (the log names the element) until no accepted substep adds more than FTOLN
+    beyond it."""
+    plain, n_plain, _ = _drop(binary, tmp_path, 0)
+    checked, n_checked, log = _drop(binary, tmp_path, 1)
+    print(f"largest penetration added by one substep: KEYOPT(7) = 0 {plain:.3e} ({n_plain} "
+          f"points), KEYOPT(7) = 1 {checked:.3e} ({n_checked} points); FTOLN {FTOLN:g}")
+    assert plain > 5 * FTOLN  # the check matters here
+    assert checked <= FTOLN * (1 + 1e-9)
+    assert re.search(r"cut to \S+: contact element \d+ penetrated", log)

@@ -10,6 +10,8 @@ committed at the point, not only the displacements:
   COMBIN40 gap: plastic strain, back stress, equivalent plastic strain per point or fibre;
 - Coulomb friction through a COMBIN40 slider (tests/verification/coulomb_friction.inp): the
   slip of the slider and its sliding direction;
+- a brick sliding down a rigid incline on CONTA175 contact with friction: the stick anchor,
+  the sliding distance and the status of each contact point;
 - two masses landing through gaps with AUTOTS (tests/decks/autots/two_mass_impact.inp): the step
   controller's time, step, growth streak and ceiling, continued inside the load step with the
   same substep history.
@@ -152,6 +154,33 @@ def test_slider_restarted_equals_uninterrupted(binary, tmp_path):
     at = np.argmin(np.abs(ref.index.values - 0.25))
     assert ref["E2_STAT"].values[at] == ref["E2_STAT"].values[1]  # sliding, as in load step 1
     assert slide[at] < -0.5 and abs(slide[at] - slide[at - 1]) > 1e-4
+
+
+def _incline_model():
+    """tests/verification/conta175_incline_slide.inp (a brick on four CONTA175 nodes sliding down
+    a rigid plane inclined at 40 deg, MU = 0.5) up to its load steps, and its two load steps with
+    the slide shortened to t = 0.301."""
+    with open(os.path.join(ROOT, "tests", "verification", "conta175_incline_slide.inp")) as f:
+        text = f.read()
+    cut = text.index("KBC,1")
+    steps = text[cut:text.index("FINISH", cut)].replace("TIME,1.001", "TIME,0.301")
+    split = steps.index("TIMINT,ON")
+    # KBC,1 again in load step 2: a deck that continues in a new process starts from the default
+    # KBC,0, and the down-slope ACEL is a step change.
+    return text[:cut], steps[:split], "KBC,1\n" + steps[split:]
+
+
+def test_frictional_contact_restarted_equals_uninterrupted(binary, tmp_path):
+    """Surface contact with Coulomb friction (CONTA175 on a rigid target): the contact elements'
+    committed state (stick anchor, sliding distance, status) is part of the restart point. The
+    block sticks in load step 1 and slides in load step 2; continued from t = 0.2."""
+    model, ls1, ls2 = _incline_model()
+    ref = _stopped_and_continued(binary, tmp_path, model, ls1, ls2, 100, 200,
+                                 ["1,UX", "1,VX", "5,UX"],
+                                 ["4,SLIDE", "4,STAT", "4,FT", "6,SLIDE", "6,FN"])
+    at = np.argmin(np.abs(ref.index.values - 0.2))
+    assert ref["E4_STAT"].values[at] == 2  # sliding at the restart point
+    assert ref["E4_SLIDE"].values[at] > 0.01  # ... with a sliding distance to carry on
 
 
 def _autots_model(scheme):
