@@ -10,6 +10,7 @@
 
 #include "core/errors.h"
 #include "elements/hyper_dual.h"
+#include "elements/so3.h"
 #include "elements/target_surface.h"
 
 namespace impactfe {
@@ -21,19 +22,6 @@ namespace {
 /// that deforms with it (two blocks of the same width) sits on the edge to round-off and would
 /// otherwise chatter open and closed.
 constexpr double kEdgeTolerance = 0.01;
-
-std::vector<DofKey> node_dofs(const std::vector<int>& nodes) {
-  std::vector<DofKey> out;
-  for (int n : nodes)
-    for (Dof d : {Dof::UX, Dof::UY, Dof::UZ}) out.push_back({n, d});
-  return out;
-}
-
-Eigen::Matrix3d skew(const Vec3& v) {
-  Eigen::Matrix3d s;
-  s << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
-  return s;
-}
 
 /// The projection of x_s on the plane of the triangle x₁ x₂ x₃: barycentric N and the signed
 /// distance along the unit normal.
@@ -97,7 +85,7 @@ DeformableTargetPoint::DeformableTargetPoint(const char* family, int id, std::ve
                                              std::shared_ptr<const TargetSurface> target,
                                              std::vector<int> facets, double reach, double offset,
                                              const ContactLawData& data, bool large_sliding)
-    : ContactPoint(id, node_dofs(nodes), data),
+    : ContactPoint(id, translation_dofs(nodes), data),
       family_(family),
       nodes_(std::move(nodes)),
       x_(std::move(x)),
@@ -175,7 +163,7 @@ bool DeformableTargetPoint::refresh_dofs(const Eigen::VectorXd& u, const NodePos
   facets_ = std::move(facets);
   current_ = 0;
   classify();
-  set_dofs(node_dofs(nodes_));
+  set_dofs(translation_dofs(nodes_));
   return true;
 }
 
@@ -274,7 +262,7 @@ ContactKinematics DeformableTargetPoint::kinematics(const Eigen::VectorXd& u) co
   E1 << Eigen::Matrix3d::Zero(), -I, I, Eigen::Matrix3d::Zero();
   E2 << Eigen::Matrix3d::Zero(), -I, Eigen::Matrix3d::Zero(), I;
   // Δn = (I − nnᵀ)(Δe₁ × e₂ + e₁ × Δe₂)/|e₁ × e₂|.
-  const M3x12 DN = P * (-skew(p.e2) * E1 + skew(p.e1) * E2) / p.area2;
+  const M3x12 DN = P * (-so3::spin(p.e2) * E1 + so3::spin(p.e1) * E2) / p.area2;
   // Δξ = M⁻¹ [e_α·Δr + g n·Δe_α] (differentiated projection condition e_α·(x_s − x_p) = 0).
   Eigen::Matrix<double, 2, 12> B;
   B.row(0) = p.e1.transpose() * R + p.gap * nn.transpose() * E1;

@@ -266,6 +266,13 @@ void ContactPoint::results(const ElementContext&, const Eigen::VectorXd& u, cons
   out = {stat, r.pn, closed ? std::max(-r.gap, 0.0) : 0.0, r.gap, r.ft.norm(), slide};
 }
 
+std::vector<DofKey> translation_dofs(const std::vector<int>& nodes) {
+  std::vector<DofKey> out;
+  for (int n : nodes)
+    for (Dof d : {Dof::UX, Dof::UY, Dof::UZ}) out.push_back({n, d});
+  return out;
+}
+
 double attached_stiffness(const ElementBuildContext& ctx, int node, const Vec3& n) {
   double s = 0.0;
   for (const int id : elements_at_node(ctx, node)) {

@@ -189,6 +189,9 @@ class ContactPoint : public Element, public PenetrationCheck {
 /// blocks at u = 0): the base that a positive FKN scales. Status elements (gaps, contact) and
 /// superelements are skipped; 0 when nothing stiff is attached.
 double attached_stiffness(const ElementBuildContext& ctx, int node, const Vec3& n);
+
+/// UX, UY, UZ of each node in order: the DOF list of a contact point over `nodes`.
+std::vector<DofKey> translation_dofs(const std::vector<int>& nodes);
 /// Contact depth of `node`: the cube root of the mean volume of the attached elements that
 /// have one (bricks); 0 when none has a volume.
 double attached_depth(const ElementBuildContext& ctx, int node);

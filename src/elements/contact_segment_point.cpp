@@ -9,6 +9,7 @@
 
 #include "core/errors.h"
 #include "elements/contact_segment.h"
+#include "elements/so3.h"
 #include "elements/target_surface.h"
 
 namespace impactfe {
@@ -19,19 +20,6 @@ namespace {
 /// facet and still touch it, as for a contact node (contact_deformable_target.cpp): a point on
 /// the rim of a target that deforms with it sits on the edge to round-off.
 constexpr double kEdgeTolerance = 0.01;
-
-std::vector<DofKey> node_dofs(const std::vector<int>& nodes) {
-  std::vector<DofKey> out;
-  for (int n : nodes)
-    for (Dof d : {Dof::UX, Dof::UY, Dof::UZ}) out.push_back({n, d});
-  return out;
-}
-
-Eigen::Matrix3d skew(const Vec3& v) {
-  Eigen::Matrix3d s;
-  s << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
-  return s;
-}
 
 /// The closest point of x_s on the facet through x (m nodes): Newton on the projection condition
 /// F_α = (x_s − x(ξ))·a_α = 0 with the Jacobian A_αβ = a_α·a_β − r·a_α,β (Wriggers §4.1,
@@ -137,7 +125,7 @@ SegmentPoint::SegmentPoint(const char* family, int id, std::vector<int> nodes, s
                            int n_face, std::vector<double> phi,
                            std::vector<SegmentCandidate> candidates, int current, double reach,
                            double offset, const ContactLawData& data)
-    : ContactPoint(id, node_dofs(nodes), data),
+    : ContactPoint(id, translation_dofs(nodes), data),
       family_(family),
       nodes_(std::move(nodes)),
       x_(std::move(x)),
@@ -258,7 +246,7 @@ ContactKinematics SegmentPoint::kinematics(const Eigen::VectorXd& u) const {
   // Δn = P (Δa₁ × a₂ + a₁ × Δa₂)/|a₁ × a₂| with the total Δa₁ = E₁ Δx + a_12 Δη and
   // Δa₂ = E₂ Δx + a_12 Δξ (a_1,1 = a_2,2 = 0 on a bilinear facet).
   const Eigen::MatrixXd DA1 = E1 + p.a12 * Xi.row(1), DA2 = E2 + p.a12 * Xi.row(0);
-  const Eigen::MatrixXd DN = P * (-skew(p.a2) * DA1 + skew(p.a1) * DA2) / p.len;
+  const Eigen::MatrixXd DN = P * (-so3::spin(p.a2) * DA1 + so3::spin(p.a1) * DA2) / p.len;
   // δg = n·δr̃ and Δδg = Δn·δr̃ − (n·δa_β) Δξ^β (Wriggers §4.3 / §9.3 for the node-to-segment
   // case; here x_s = Σ φ_i x_i at fixed φ).
   k.G = R.transpose() * nn;
@@ -283,7 +271,7 @@ RigidGaussPoint::RigidGaussPoint(const char* family, int id, int pilot,
                                  std::vector<double> phi,
                                  std::shared_ptr<const TargetSurface> target, double reach,
                                  double offset, const ContactLawData& data)
-    : ContactPoint(id, node_dofs(with_pilot(pilot, corners)), data),
+    : ContactPoint(id, translation_dofs(with_pilot(pilot, corners)), data),
       family_(family),
       xs_(xs),
       phi_(std::move(phi)),
