@@ -8,6 +8,7 @@
 #include "assembly/element_adapters.h"
 #include "core/files.h"
 #include "core/log.h"
+#include "elements/element_build_cache.h"
 
 namespace impactfe {
 
@@ -134,8 +135,13 @@ Structure::Structure(const Model& model, const AnalysisOptions& options,
   ElementBuildContext build{
       model, [&settings](const ElementRecord& r) { return resolve_superelement(r, settings); }};
   // Rotated nodes (DOFs in nodal axes) and material damping enter through element adapters.
-  for (const auto& [id, record] : model.elements)
-    elements_.push_back(adapt_element(create_element(build, record), model, record));
+  // Each element made is also handed to the build pass's cache: contact elements read their
+  // body elements' stiffness and depth from it instead of making them again.
+  for (const auto& [id, record] : model.elements) {
+    std::unique_ptr<Element> element = create_element(build, record);
+    build_cache(build).built[id] = element.get();
+    elements_.push_back(adapt_element(std::move(element), model, record));
+  }
 
   // MP,DAMP: stiffness-proportional damping of the element's material, C_e += β K_e (MAPDL's
   // material BETD; APDL_MODELING §6.1, M6). The full (static/transient) solution assembles it

@@ -36,7 +36,10 @@ const AttachedElement* attached_element(const ElementBuildContext& ctx, int id) 
   if (type == ctx.model.element_types.end()) return nullptr;
   const ElementTypeDescriptor& d = element_type_descriptor(type->second);
   if (d.has_status || d.defined_by_file) return nullptr;
-  const std::unique_ptr<Element> element = d.create(ctx, rec);
+  const auto built = build_cache(ctx).built.find(id);
+  std::unique_ptr<Element> made;
+  if (built == build_cache(ctx).built.end()) made = d.create(ctx, rec);
+  const Element* element = made ? made.get() : built->second;
   slot = std::make_unique<AttachedElement>();
   slot->dofs = element->dofs();
   slot->volume = element->volume();

@@ -32,6 +32,9 @@ struct ElementBuildCache {
   /// element id → its AttachedElement; nullptr for elements that are no body (unknown type,
   /// status elements such as gaps and contact, superelements).
   std::unordered_map<int, std::unique_ptr<AttachedElement>> attached;
+  /// element id → the element the build pass already made for the model (owned by the caller,
+  /// which outlives the pass), so an AttachedElement need not make it again.
+  std::unordered_map<int, const Element*> built;
   /// real-constant set → its facets unsplit, for CONTA174 segment-to-segment (contact_segment.cpp).
   std::map<int, std::shared_ptr<const SegmentFacets>> segment_facets;
 };
