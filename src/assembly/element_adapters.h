@@ -14,10 +14,11 @@
 
 #include "core/model.h"
 #include "elements/element.h"
+#include "elements/penetration_check.h"
 
 namespace impactfe {
 
-class NodalAxesElement final : public Element {
+class NodalAxesElement final : public Element, public PenetrationCheck {
  public:
   /// Throws InputError (at the element's record location) when a rotated node carries only part
   /// of a translation or rotation triad in this element (the rotation would mix DOFs it lacks).
@@ -61,12 +62,21 @@ class NodalAxesElement final : public Element {
   /// u_global = T u_nodal over the element DOFs.
   const Eigen::MatrixXd& transformation() const { return t_; }
 
+  /// A contact element's KEYOPT(7) check (elements/penetration_check.h) on global displacements.
+  bool checks_penetration() const override {
+    const auto* check = dynamic_cast<const PenetrationCheck*>(inner_.get());
+    return check != nullptr && check->checks_penetration();
+  }
+  double penetration_ratio(const Eigen::VectorXd& start, const Eigen::VectorXd& u) const override {
+    return dynamic_cast<const PenetrationCheck&>(*inner_).penetration_ratio(t_ * start, t_ * u);
+  }
+
  private:
   std::unique_ptr<Element> inner_;
   Eigen::MatrixXd t_;
 };
 
-class MaterialDampingElement final : public Element {
+class MaterialDampingElement final : public Element, public PenetrationCheck {
  public:
   MaterialDampingElement(std::unique_ptr<Element> inner, double alpha, double beta);
 
@@ -108,6 +118,13 @@ class MaterialDampingElement final : public Element {
   void freeze_status(bool frozen) override { inner_->freeze_status(frozen); }
   GapStatus status() const override { return inner_->status(); }
   double contact_stiffness() const override { return inner_->contact_stiffness(); }
+  bool checks_penetration() const override {
+    const auto* check = dynamic_cast<const PenetrationCheck*>(inner_.get());
+    return check != nullptr && check->checks_penetration();
+  }
+  double penetration_ratio(const Eigen::VectorXd& start, const Eigen::VectorXd& u) const override {
+    return dynamic_cast<const PenetrationCheck&>(*inner_).penetration_ratio(start, u);
+  }
   const std::vector<std::string>& result_names() const override { return inner_->result_names(); }
   void results(const ElementContext& ctx, const Eigen::VectorXd& u, const Eigen::VectorXd& v,
                ElementResultValues& out) const override {

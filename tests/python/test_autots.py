@@ -141,13 +141,19 @@ FINISH
 """
 
 
-def _drop(binary, tmp_path, keyopt7):
+def _drop(binary, tmp_path, keyopt7, rotated=False):
     """The largest penetration one accepted substep added where the penetration exceeds FTOLN
-    (every substep is stored: OUTRES,ALL,ALL), over the four contact elements, and the log."""
-    d = tmp_path / f"k{keyopt7}"
+    (every substep is stored: OUTRES,ALL,ALL), over the four contact elements, and the log.
+    `rotated`: the contact nodes in nodal axes turned 30 deg about Z (the contact elements then
+    enter the equations through the nodal-axes adapter)."""
+    d = tmp_path / f"k{keyopt7}{'r' if rotated else ''}"
     d.mkdir()
     deck = d / "drop.inp"
-    deck.write_text(_DROP.format(keyopt7=keyopt7))
+    text = _DROP.format(keyopt7=keyopt7)
+    if rotated:
+        for n, (x, y) in {1: (0, 0), 2: (1, 0), 3: (1, 1), 4: (0, 1)}.items():
+            text = text.replace(f"N,{n},{x},{y},0.002\n", f"N,{n},{x},{y},0.002,30\n")
+    deck.write_text(text)
     run([binary, "run", str(deck), "-o", str(d)])
     pene = post(binary, str(d / "drop.h5"), *[a for e in (4, 5, 6, 7) for a in ("--esol", f"{e},PENE")])
     p = pene.values
@@ -172,4 +178,9 @@ def test_keyopt7_cuts_steps_on_excessive_penetration(binary, tmp_path):
           f"points), KEYOPT(7) = 1 {checked:.3e} ({n_checked} points); FTOLN {FTOLN:g}")
     assert plain > 5 * FTOLN  # the check matters here
     assert checked <= FTOLN * (1 + 1e-9)
+    assert re.search(r"cut to \S+: contact element \d+ penetrated", log)
+    # The same with the contact nodes in rotated nodal axes: the check reaches the contact
+    # elements through the nodal-axes adapter.
+    rotated, n_rotated, log = _drop(binary, tmp_path, 1, rotated=True)
+    assert rotated <= FTOLN * (1 + 1e-9) and n_rotated == n_checked
     assert re.search(r"cut to \S+: contact element \d+ penetrated", log)
