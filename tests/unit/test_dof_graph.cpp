@@ -7,6 +7,7 @@
 #include <random>
 #include <set>
 
+#include "../support/model_records.h"
 #include "assembly/dof_graph.h"
 #include "linalg/shared_pattern_products.h"
 
@@ -28,10 +29,7 @@ Net random_net(unsigned seed) {
   std::uniform_real_distribution<double> coord(0.0, 10.0);
   for (int i = 1; i <= 40; ++i)
     m.nodes[i] = Node{i, Vec3(coord(rng), coord(rng), 0.0), Vec3::Zero()};
-  ElementType t;
-  t.id = 1;
-  t.ansys_name = "LINK1";
-  m.element_types[1] = t;
+  m.element_types[1] = testing::element_type(1, "LINK1");
   m.real_sets[1] = RealSet{1, {2.0}};
   Material mat;
   mat.id = 1;
