@@ -87,6 +87,9 @@ void DirectSolution::renumber(std::set<DofKey> wanted, bool keep_dynamics) {
   if (condensation_) retired_ += condensation_->counters();
   solver_ = make_linear_solver(dofs_->n_free());
   effective_ = assembler_->pattern();
+  // A solver that reads only some columns on this rank (MUMPS on several ranks): the assembler
+  // then evaluates only the elements at them (docs/scaling.md, "Element assembly split by rank").
+  assembler_->distribute(solver_->column_owners(effective_));
   factor_valid_ = false;
   stats_.n_dofs = dofs_->n_free();
   condensation_.reset();
@@ -287,6 +290,7 @@ void DirectSolution::finish() {
     stats_.notes.push_back(energy_->summary(time_, kinetic));
     if (const auto warning = energy_->balance_warning(kinetic)) Log::warn("{}", *warning);
   }
+  if (solver_ && solver_->name() == "MUMPS") stats_.notes.push_back(assembler_->assembly_summary());
   if (renumberings_ > 0)
     stats_.notes.push_back(fmt::format(
         "large sliding: the contact DOF lists changed after {} of {} accepted steps (DOFs "

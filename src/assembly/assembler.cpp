@@ -3,13 +3,17 @@
 #include <algorithm>
 #include <chrono>
 #include <cstring>
+#include <ctime>
 #include <exception>
 
 #ifdef _OPENMP
 #include <omp.h>
 #endif
 
+#include <fmt/format.h>
+
 #include "core/errors.h"
+#include "linalg/parallel_backend.h"
 
 namespace impactfe {
 
@@ -102,28 +106,124 @@ void Assembler::gather(std::size_t e, const VectorXd& global, VectorXd& local) c
   for (std::size_t a = 0; a < idx.size(); ++a) local(static_cast<int>(a)) = global(idx[a]);
 }
 
-void Assembler::assemble(const IntegrationCoefficients& coeff, const VectorXd& u, const VectorXd& v,
-                         const Output& out, const VectorXd* a) const {
-  compute_nonlinear_tangents(u);
-  add_forces(u, v, a, out);
-  if (!out.effective) return;
-  if (out.effective->nonZeros() != pattern_.nonZeros()) *out.effective = pattern_;
-  std::fill(out.effective->valuePtr(), out.effective->valuePtr() + pattern_.nonZeros(), 0.0);
-  MatrixXd c, eff;
-  VectorXd ue;
-  for (std::size_t e = 0; e < elements_.size(); ++e) {
-    const MatrixXd& ke = is_linear_[e] ? linear_stiffness_[e] : tangent_buffer_[e];
-    gather(e, u, ue);
-    const bool damped = coeff.cC != 0.0 && element_damping(e, ue, ke, c);
-    eff = coeff.cK * ke;
-    if (coeff.cM != 0.0) eff += coeff.cM * mass_[e];
-    if (damped) eff += coeff.cC * c;
-    scatter_lower(e, eff, *out.effective);
+void Assembler::distribute(const std::vector<int>& column_owner) {
+  dof_owner_.clear();
+  element_owner_.clear();
+  evaluate_matrix_.clear();
+  evaluate_vectors_.clear();
+  rank_ = process_rank();
+  ranks_ = process_count();
+  if (column_owner.empty() || ranks_ <= 1) return;
+  const int nf = dofs_.n_free();
+  IMPACTFE_CHECK(static_cast<int>(column_owner.size()) == nf,
+                 "distributed assembly: one owner per free DOF expected");
+  const std::size_t ne = elements_.size();
+  // Deterministic from the solver's partition alone, so every rank derives the same maps.
+  element_owner_.assign(ne, -1);
+  dof_owner_.assign(static_cast<std::size_t>(dofs_.n_active()), -1);
+  for (int i = 0; i < nf; ++i)
+    dof_owner_[static_cast<std::size_t>(i)] = column_owner[static_cast<std::size_t>(i)];
+  for (std::size_t e = 0; e < ne; ++e) {
+    int lowest = nf;
+    for (int i : dofs_.element_indices(e)) lowest = std::min(lowest, i);
+    if (lowest < nf) element_owner_[e] = column_owner[static_cast<std::size_t>(lowest)];
+  }
+  // A constrained DOF goes with the lowest-numbered element at it that has a free DOF (its
+  // reaction is summed where most of its elements are evaluated anyway), else to rank 0.
+  for (std::size_t e = 0; e < ne; ++e)
+    for (int i : dofs_.element_indices(e))
+      if (element_owner_[e] >= 0 && dof_owner_[static_cast<std::size_t>(i)] < 0)
+        dof_owner_[static_cast<std::size_t>(i)] = element_owner_[e];
+  for (int& o : dof_owner_) o = std::max(o, 0);
+  evaluate_matrix_.assign(ne, 0);
+  evaluate_vectors_.assign(ne, 0);
+  for (std::size_t e = 0; e < ne; ++e) {
+    const auto& idx = dofs_.element_indices(e);
+    if (element_owner_[e] < 0)
+      element_owner_[e] =
+          idx.empty()
+              ? 0
+              : dof_owner_[static_cast<std::size_t>(*std::min_element(idx.begin(), idx.end()))];
+    for (int i : idx) {
+      const bool mine = dof_owner_[static_cast<std::size_t>(i)] == rank_;
+      evaluate_vectors_[e] = static_cast<char>(evaluate_vectors_[e] || mine);
+      evaluate_matrix_[e] = static_cast<char>(evaluate_matrix_[e] || (mine && i < nf));
+    }
   }
 }
 
+std::string Assembler::assembly_summary() const {
+  // Wall clock and CPU time: on an oversubscribed machine the ranks' wall clocks include the
+  // time they wait for a core, their CPU time is the work.
+  const std::vector<double> seconds = values_of_all_ranks(element_seconds_);
+  const std::vector<double> cpu = values_of_all_ranks(element_cpu_seconds_);
+  if (dof_owner_.empty())
+    return fmt::format(
+        "element assembly on {} MPI rank(s), not split: {} elements, {:.4f} s ({:.4f} s CPU)",
+        ranks_, elements_.size(), seconds.front(), cpu.front());
+  auto count = [&](const std::vector<char>& flags) {
+    return static_cast<double>(std::count(flags.begin(), flags.end(), 1));
+  };
+  const std::vector<double> owned = values_of_all_ranks(
+      static_cast<double>(std::count(element_owner_.begin(), element_owner_.end(), rank_)));
+  const std::vector<double> evaluated = values_of_all_ranks(count(evaluate_vectors_));
+  const std::vector<double> matrix = values_of_all_ranks(count(evaluate_matrix_));
+  auto join = [](const std::vector<double>& x, const char* format) {
+    std::string out;
+    for (std::size_t r = 0; r < x.size(); ++r)
+      out += (r > 0 ? " + " : "") + fmt::format(fmt::runtime(format), x[r]);
+    return out;
+  };
+  double total = 0.0;
+  for (double o : owned) total += o;
+  return fmt::format(
+      "element assembly split over {} MPI ranks (METIS column partition): owned {} = {:.0f} of "
+      "{} elements; evaluated for the matrix {}, for the force vectors {} (owned plus "
+      "neighbours); element assembly seconds per rank {} (CPU {})",
+      ranks_, join(owned, "{:.0f}"), total, elements_.size(), join(matrix, "{:.0f}"),
+      join(evaluated, "{:.0f}"), join(seconds, "{:.4f}"), join(cpu, "{:.4f}"));
+}
+
+void Assembler::assemble(const IntegrationCoefficients& coeff, const VectorXd& u, const VectorXd& v,
+                         const Output& out, const VectorXd* a) const {
+  const auto start = std::chrono::steady_clock::now();
+  const std::clock_t cpu_start = std::clock();
+  const bool split = !dof_owner_.empty();
+  const bool vectors = out.internal_force || out.damping_force || out.inertia_force;
+  const std::vector<char>* only = !split    ? nullptr
+                                  : vectors ? &evaluate_vectors_
+                                            : &evaluate_matrix_;
+  compute_nonlinear_tangents(u, only);
+  add_forces(u, v, a, out, only);
+  if (out.effective) {
+    if (out.effective->nonZeros() != pattern_.nonZeros()) *out.effective = pattern_;
+    std::fill(out.effective->valuePtr(), out.effective->valuePtr() + pattern_.nonZeros(), 0.0);
+    MatrixXd c, eff;
+    VectorXd ue;
+    for (std::size_t e = 0; e < elements_.size(); ++e) {
+      // Distributed: only the elements at this rank's columns (the rest is never read).
+      if (split && !evaluate_matrix_[e]) continue;
+      const MatrixXd& ke = is_linear_[e] ? linear_stiffness_[e] : tangent_buffer_[e];
+      gather(e, u, ue);
+      const bool damped = coeff.cC != 0.0 && element_damping(e, ue, ke, c);
+      eff = coeff.cK * ke;
+      if (coeff.cM != 0.0) eff += coeff.cM * mass_[e];
+      if (damped) eff += coeff.cC * c;
+      scatter_lower(e, eff, *out.effective);
+    }
+  }
+  element_seconds_ +=
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  element_cpu_seconds_ += static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
+  // The nonlinear elements' share of the vectors was summed by the owner of each entry only
+  // (the linear part and M a come from the global products, the same on every rank).
+  if (!split || nonlinear_.empty()) return;
+  for (VectorXd* f : {out.internal_force, out.damping_force})
+    if (f) share_owned_values(f->data(), static_cast<int>(f->size()), dof_owner_);
+}
+
 void Assembler::add_forces(const VectorXd& u, const VectorXd& v, const VectorXd* a,
-                           const Output& out) const {
+                           const Output& out, const std::vector<char>* only) const {
   // The linear elements and the mass from the stored global products; the nonlinear elements
   // from the buffers of the tangent phase (their damping, which may depend on u, element by
   // element).
@@ -134,6 +234,7 @@ void Assembler::add_forces(const VectorXd& u, const VectorXd& v, const VectorXd*
   MatrixXd c;
   VectorXd ue, ve, fd;
   for (std::size_t e : nonlinear_) {
+    if (only && !(*only)[e]) continue;
     const auto& idx = dofs_.element_indices(e);
     const int n = static_cast<int>(idx.size());
     if (out.internal_force)
@@ -153,14 +254,15 @@ VectorXd Assembler::inertia_force(const VectorXd& a) const {
   return f;
 }
 
-void Assembler::compute_nonlinear_tangents(const VectorXd& u) const {
+void Assembler::compute_nonlinear_tangents(const VectorXd& u, const std::vector<char>* only) const {
   // Tangents of the nonlinear elements (the expensive part: co-rotational shells,
   // total-Lagrangian bricks) into per-element buffers. Elements are const here and keep no shared
   // scratch, so the loop is race-free and its results do not depend on the thread count; the
   // scatter that follows stays serial and deterministic.
   const int n_nonlinear = static_cast<int>(nonlinear_.size());
+  auto needed = [&](int i) { return !only || (*only)[nonlinear_[static_cast<std::size_t>(i)]]; };
   auto evaluate = [&](int i) {
-    return evaluate_tangent(nonlinear_[static_cast<std::size_t>(i)], u);
+    return needed(i) && evaluate_tangent(nonlinear_[static_cast<std::size_t>(i)], u);
   };
   if (threading_.parallel) {
     // An exception must not leave the parallel region (that would terminate the program): the
@@ -185,15 +287,18 @@ void Assembler::compute_nonlinear_tangents(const VectorXd& u) const {
     return;
   }
   const auto start = std::chrono::steady_clock::now();
-  int evaluated = 0;
-  for (int i = 0; i < n_nonlinear; ++i) evaluated += evaluate(i) ? 1 : 0;
-  // The probes estimate a full pass: a pass that reused some buffers is scaled to all elements
-  // (elements that never move, e.g. on constrained nodes, reuse theirs at every pass), and one
-  // that evaluated nothing is no probe.
+  int evaluated = 0, wanted = 0;
+  for (int i = 0; i < n_nonlinear; ++i) {
+    wanted += needed(i) ? 1 : 0;
+    evaluated += evaluate(i) ? 1 : 0;
+  }
+  // The probes estimate a full pass: a pass that reused some buffers is scaled to all the
+  // elements it wanted (elements that never move, e.g. on constrained nodes, reuse theirs at
+  // every pass), and one that evaluated nothing is no probe.
   if (evaluated > 0)
     threading_.record_serial_pass(
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() *
-        n_nonlinear / evaluated);
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() * wanted /
+        evaluated);
 }
 
 bool Assembler::evaluate_tangent(std::size_t e, const VectorXd& u) const {

@@ -4,6 +4,7 @@
 /// element force vectors on all active DOFs, in one pass over the elements
 /// (the OpenSees/Chrono contract: the integrator supplies the coefficients).
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "assembly/dof_graph.h"
@@ -28,6 +29,23 @@ class Assembler {
 
   const DofMap& dofs() const { return dofs_; }
   const ElementContext& context() const { return ctx_; }
+
+  /// Distributed assembly (MUMPS on several ranks, docs/scaling.md "Element assembly split by
+  /// rank"): `column_owner` is the rank that hands each free column of the effective matrix to
+  /// the solver (LinearSolver::column_owners; empty: not distributed, the default). Every
+  /// active DOF then has an owner rank (a free one its column's; a constrained one the owner of
+  /// the lowest-numbered element at it that has a free DOF), every element too (the owner of its
+  /// lowest free DOF), and this rank's assemble() evaluates only the elements at DOFs it owns
+  /// (owned elements plus a one-element layer of neighbours): the effective matrix is right
+  /// only in this rank's columns (the only ones its solver reads), and each force vector entry
+  /// is computed by its owner, in element order as one process sums it, and copied to every
+  /// rank, so the vectors are the one-process vectors bit for bit whatever the rank count.
+  /// Elements' status and history are untouched (their updates stay on every rank). Collective
+  /// from then on: every rank calls assemble() in lockstep (SPMD).
+  void distribute(const std::vector<int>& column_owner);
+  /// One line for the run summary: elements owned and evaluated and the seconds spent in
+  /// element assembly on each rank (collective when distributed).
+  std::string assembly_summary() const;
 
   /// What one pass computes. Pointers left null are skipped.
   struct Output {
@@ -91,7 +109,18 @@ class Assembler {
   void build_linear_force_matrices();
   /// The force outputs after the tangent phase: the linear part from the stored global
   /// products, the nonlinear elements element by element.
-  void add_forces(const VectorXd& u, const VectorXd& v, const VectorXd* a, const Output& out) const;
+  void add_forces(const VectorXd& u, const VectorXd& v, const VectorXd* a, const Output& out,
+                  const std::vector<char>* only) const;
+
+  // ---- distributed assembly (distribute) ----
+  std::vector<int> dof_owner_;          // owner rank of each active DOF (empty: one process)
+  std::vector<int> element_owner_;      // owner rank of each element
+  std::vector<char> evaluate_matrix_;   // element at a free column this rank owns
+  std::vector<char> evaluate_vectors_;  // element at an active DOF this rank owns
+  int rank_ = 0;
+  int ranks_ = 1;
+  mutable double element_seconds_ = 0.0;      // time in assemble() (the vector exchange excluded)
+  mutable double element_cpu_seconds_ = 0.0;  // the same in process CPU time
 
   const std::vector<std::unique_ptr<Element>>& elements_;
   const DofMap& dofs_;
@@ -122,8 +151,9 @@ class Assembler {
   /// always evaluated. `tangent_at_[e]` is empty while the buffers hold nothing reusable.
   std::vector<bool> reusable_;
   mutable std::vector<VectorXd> tangent_at_;
-  /// Tangents and internal forces of the nonlinear elements at u into the buffers.
-  void compute_nonlinear_tangents(const VectorXd& u) const;
+  /// Tangents and internal forces of the nonlinear elements at u into the buffers (only those
+  /// with (*only)[e] set when `only` is given: distributed assembly).
+  void compute_nonlinear_tangents(const VectorXd& u, const std::vector<char>* only = nullptr) const;
   /// One element's tangent phase; false when the buffers were reused (no evaluation).
   bool evaluate_tangent(std::size_t e, const VectorXd& u) const;
 

@@ -4,6 +4,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "linalg/sparse.h"
 
@@ -56,6 +57,11 @@ class LinearSolver {
   /// 0-based row of the (unpermuted) matrix where the first one is (-1 when none).
   int negative_pivots() const { return negative_pivots_; }
   int first_negative_pivot_row() const { return first_negative_row_; }
+  /// Distributed input (MUMPS on N > 1 ranks, docs/scaling.md): the rank whose entries of each
+  /// column of `lower`'s pattern this process's solver hands on. A caller may then fill on each
+  /// rank only the columns that rank owns (the values elsewhere are never read). Empty: every
+  /// column is read on this process (every other solver, and MUMPS on one rank).
+  virtual std::vector<int> column_owners(const SparseMatrix& /*lower*/) const { return {}; }
 
  protected:
   SolverCounters counters_;

@@ -30,6 +30,8 @@ struct Module {
   decltype(&impactfe_mumps_broadcast) broadcast = nullptr;
   decltype(&impactfe_mumps_agree) agree = nullptr;
   decltype(&impactfe_mumps_set_failing) set_failing = nullptr;
+  decltype(&impactfe_mumps_share_owned) share_owned = nullptr;
+  decltype(&impactfe_mumps_all_doubles) all_doubles = nullptr;
   MumpsModuleOptions options;
 };
 Module module;
@@ -112,6 +114,8 @@ void start_parallel_backend(const ParallelSettings& settings) {
   bind(module.broadcast, "impactfe_mumps_broadcast");
   bind(module.agree, "impactfe_mumps_agree");
   bind(module.set_failing, "impactfe_mumps_set_failing");
+  bind(module.share_owned, "impactfe_mumps_share_owned");
+  bind(module.all_doubles, "impactfe_mumps_all_doubles");
   module.options.refine = settings.refine;
   module.options.out_of_core = settings.out_of_core;
   fmt::format_to_n(module.options.ooc_directory, sizeof(module.options.ooc_directory) - 1, "{}",
@@ -133,6 +137,20 @@ int process_count() {
 
 int max_over_ranks(int value) {
   return parallel_backend_active() ? module.max_int(value) : value;
+}
+
+void share_owned_values(double* values, int n, const std::vector<int>& owner) {
+  if (!parallel_backend_active() || process_count() == 1) return;
+  if (static_cast<int>(owner.size()) != n || module.share_owned(values, n, owner.data()) != 0)
+    throw std::runtime_error("MPI: sharing the owned entries of a vector failed");
+}
+
+std::vector<double> values_of_all_ranks(double value) {
+  if (!parallel_backend_active() || process_count() == 1) return {value};
+  std::vector<double> out(static_cast<std::size_t>(process_count()));
+  if (module.all_doubles(value, out.data()) != 0)
+    throw std::runtime_error("MPI: gathering a value from every rank failed");
+  return out;
 }
 
 void abort_all_ranks(int code) {

@@ -6,6 +6,7 @@
 /// collectively by all ranks in lockstep.
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace impactfe {
 
@@ -25,6 +26,12 @@ int process_rank();
 int process_count();
 /// The largest `value` over all ranks (identity without the backend).
 int max_over_ranks(int value);
+/// values[i] := rank owner[i]'s values[i] on every rank (collective; the same n and owner on
+/// every rank). A copy, no arithmetic: the result does not depend on the rank count beyond what
+/// each owner computed (distributed assembly, docs/scaling.md). No-op without the backend.
+void share_owned_values(double* values, int n, const std::vector<int>& owner);
+/// Every rank's `value` in rank order (collective; {value} without the backend).
+std::vector<double> values_of_all_ranks(double value);
 /// MPI_Abort: ends every rank (a failure on one rank that the others cannot see).
 [[noreturn]] void abort_all_ranks(int code);
 /// The exit status every rank agrees on (the largest), once all ranks have finished the run.

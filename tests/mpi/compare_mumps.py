@@ -17,6 +17,7 @@ DECK's results (a gap impact amplifies round-off: docs/scaling.md).
 usage: compare_mumps.py IMPACTFE DECK OUTDIR [--ranks 1,2,4] [--pre DECK0] [--tolerance T]
                         [-- extra impactfe arguments]"""
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -62,6 +63,42 @@ def datasets(path):
     return out
 
 
+def n_elements(directory, name):
+    with h5py.File(os.path.join(directory, name + ".h5"), "r") as f:
+        return len(f["model/element_ids"])
+
+
+SPLIT = re.compile(r"element assembly split over (\d+) MPI ranks \(METIS column partition\): "
+                   r"owned ([\d + ]+) = (\d+) of (\d+) elements; evaluated for the matrix "
+                   r"([\d + ]+), for the force vectors ([\d + ]+) \(owned plus neighbours\); "
+                   r"element assembly seconds per rank ([\d.+ ]+) \(CPU ([\d.+ ]+)\)")
+
+
+def check_split(stdout, n, elements):
+    """The summary line of the split: every rank owned a non-empty proper subset of the
+    elements, the owned sets add up to the model's elements, and each rank evaluated fewer
+    elements than the model has (its own and a layer of neighbours)."""
+    lines = SPLIT.findall(stdout)
+    if not lines:
+        return [f"{n} ranks: no 'element assembly split' line in the summary"]
+    out = []
+    for ranks, owned, total, count, matrix, vectors, seconds, cpu in lines:
+        owned = [int(x) for x in owned.split(" + ")]
+        evaluated = [int(x) for x in vectors.split(" + ")]
+        matrix = [int(x) for x in matrix.split(" + ")]
+        print(f"  {n} ranks: elements owned {owned}, evaluated {evaluated} (matrix {matrix}) of "
+              f"{elements}; element assembly s per rank {seconds} (CPU {cpu})")
+        if int(ranks) != n or len(owned) != n or len(evaluated) != n:
+            out.append(f"{n} ranks: split over {ranks} ranks")
+        if sum(owned) != elements or int(total) != elements or int(count) != elements:
+            out.append(f"{n} ranks: owned elements {owned} do not add up to {elements}")
+        if any(o <= 0 or o >= elements for o in owned):
+            out.append(f"{n} ranks: a rank owned no element or all of them: {owned}")
+        if any(not (o <= v and m <= v < elements) for o, m, v in zip(owned, matrix, evaluated)):
+            out.append(f"{n} ranks: evaluated {matrix} / {evaluated} elements, owned {owned}")
+    return out
+
+
 def main():
     args = sys.argv[1:]
     extra = []
@@ -78,6 +115,11 @@ def main():
         i = args.index("--tolerance")
         tolerance = float(args[i + 1])
         del args[i:i + 2]
+    # The deck's element assembly must be split by rank (docs/scaling.md, "Element assembly split
+    # by rank"): on n > 1 ranks the summary's per-rank element counts are checked.
+    expect_split = "--expect-split" in args
+    if expect_split:
+        args.remove("--expect-split")
     pre = None
     if "--pre" in args:
         i = args.index("--pre")
@@ -118,6 +160,8 @@ def main():
                          fresh=pre is None)
             if f"MUMPS on {n} MPI rank(s)" not in stdout:
                 failures.append(f"{n} ranks: the summary does not name MUMPS on {n} ranks")
+            if expect_split and n > 1:
+                failures += check_split(stdout, n, n_elements(reference_dir, name))
             # Several generation passes in the deck: the log names the rank of each.
             if superelements and not pre and n > 1:
                 with open(os.path.join(outdir, name + ".log")) as log:

@@ -107,7 +107,7 @@ Graph adjacency(const SparseMatrix& lower) {
 
 /// Owner rank of each column: a METIS k-way partition of the matrix graph (fixed seed, so every
 /// rank computes the same one), or all on rank 0 for one rank.
-std::vector<int> column_owners(const SparseMatrix& lower, Graph& g, int parts) {
+std::vector<int> partition_columns(const SparseMatrix& lower, Graph& g, int parts) {
   const int n = static_cast<int>(lower.rows());
   std::vector<int> owner(static_cast<std::size_t>(n), 0);
   if (parts <= 1 || n < parts) return owner;
@@ -160,7 +160,8 @@ class MumpsSolver final : public LinearSolver {
     const auto start = std::chrono::steady_clock::now();
     n_ = static_cast<int>(lower.rows());
     Graph g = adjacency(lower);
-    const std::vector<int> owner = column_owners(lower, g, size_);
+    owner_ = partition_columns(lower, g, size_);
+    const std::vector<int>& owner = owner_;
     // This rank's entries (1-based) and their positions in the value array of `lower`.
     rows_.clear();
     cols_.clear();
@@ -197,7 +198,9 @@ class MumpsSolver final : public LinearSolver {
     }
     ++counters_.factorizations;
     counters_.factorize_seconds += seconds_since(start);
-    if (size_ > 1 && options_.refine) factored_ = lower;  // refine()'s residuals are of it
+    // refine()'s residuals are of the whole matrix; this rank may hold only its own columns
+    // (distributed assembly: column_owners), so each column comes from its owner.
+    if (size_ > 1 && options_.refine) factored_ = gather_columns(lower);
     if (id_.infog[0] == -10) throw SingularMatrixError(-1, "zero pivot in the factorization");
     check(id_.infog[0], "factorization");
     // Null pivots (ICNTL(24)): the first one's 0-based row, from rank 0 to every rank.
@@ -212,6 +215,12 @@ class MumpsSolver final : public LinearSolver {
     counters_.factor_nonzeros =
         static_cast<long>(id_.infog[28] < 0 ? -id_.infog[28] * 1000000L : id_.infog[28]);
     counters_.factor_bytes = counters_.factor_nonzeros * static_cast<long>(sizeof(double));
+  }
+
+  std::vector<int> column_owners(const SparseMatrix& lower) const override {
+    if (size_ <= 1) return {};
+    Graph g = adjacency(lower);
+    return partition_columns(lower, g, size_);
   }
 
   VectorXd solve(const VectorXd& b) override {
@@ -300,6 +309,29 @@ class MumpsSolver final : public LinearSolver {
     check(id_.infog[0], "solve");
     MPI_Bcast(X.data(), static_cast<int>(X.size()), MPI_DOUBLE, 0, MPI_COMM_WORLD);
     return X;
+  }
+
+  /// `lower` with every column's values from the rank that owns it (values_ holds this rank's,
+  /// in column order): the matrix every rank handed MUMPS a part of.
+  SparseMatrix gather_columns(const SparseMatrix& lower) const {
+    const int* start = lower.outerIndexPtr();
+    std::vector<int> counts(static_cast<std::size_t>(size_), 0), first(counts);
+    for (int j = 0; j < n_; ++j)
+      counts[static_cast<std::size_t>(owner_[static_cast<std::size_t>(j)])] +=
+          start[j + 1] - start[j];
+    for (int r = 1; r < size_; ++r)
+      first[static_cast<std::size_t>(r)] =
+          first[static_cast<std::size_t>(r - 1)] + counts[static_cast<std::size_t>(r - 1)];
+    std::vector<double> all(static_cast<std::size_t>(lower.nonZeros()));
+    MPI_Allgatherv(values_.data(), static_cast<int>(values_.size()), MPI_DOUBLE, all.data(),
+                   counts.data(), first.data(), MPI_DOUBLE, MPI_COMM_WORLD);
+    SparseMatrix out = lower;
+    for (int j = 0; j < n_; ++j) {
+      int& next = first[static_cast<std::size_t>(owner_[static_cast<std::size_t>(j)])];
+      for (int k = start[j]; k < start[j + 1]; ++k)
+        out.valuePtr()[k] = all[static_cast<std::size_t>(next++)];
+    }
+    return out;
   }
 
   /// On several ranks MUMPS is not bitwise repeatable: the order in which contribution blocks
@@ -396,6 +428,7 @@ class MumpsSolver final : public LinearSolver {
   int n_ = 0;
   long pattern_nonzeros_ = -1;
   std::vector<int> rows_, cols_, slots_, permutation_;
+  std::vector<int> owner_;  // owner rank of each column (analyze_pattern)
   std::vector<double> values_;
   SparseMatrix factored_;  // the matrix last factored (on several ranks, for refine())
 };
@@ -465,6 +498,31 @@ int impactfe_mumps_size(void) {
 
 impactfe::LinearSolver* impactfe_mumps_create(const impactfe::MumpsModuleOptions* options) {
   return new impactfe::MumpsSolver(*options);
+}
+
+int impactfe_mumps_share_owned(double* values, int n, const int* owner) {
+  const int size = impactfe::world_size(), rank = impactfe::world_rank();
+  std::vector<int> counts(static_cast<std::size_t>(size), 0), first(counts);
+  for (int i = 0; i < n; ++i) ++counts[static_cast<std::size_t>(owner[i])];
+  for (int r = 1; r < size; ++r)
+    first[static_cast<std::size_t>(r)] =
+        first[static_cast<std::size_t>(r - 1)] + counts[static_cast<std::size_t>(r - 1)];
+  std::vector<double> mine, all(static_cast<std::size_t>(n));
+  mine.reserve(static_cast<std::size_t>(counts[static_cast<std::size_t>(rank)]));
+  for (int i = 0; i < n; ++i)
+    if (owner[i] == rank) mine.push_back(values[i]);
+  if (MPI_Allgatherv(mine.data(), static_cast<int>(mine.size()), MPI_DOUBLE, all.data(),
+                     counts.data(), first.data(), MPI_DOUBLE, MPI_COMM_WORLD) != MPI_SUCCESS)
+    return -1;
+  for (int i = 0; i < n; ++i)
+    values[i] = all[static_cast<std::size_t>(first[static_cast<std::size_t>(owner[i])]++)];
+  return 0;
+}
+
+int impactfe_mumps_all_doubles(double value, double* out) {
+  return MPI_Allgather(&value, 1, MPI_DOUBLE, out, 1, MPI_DOUBLE, MPI_COMM_WORLD) == MPI_SUCCESS
+             ? 0
+             : -1;
 }
 
 int impactfe_mumps_max_int(int value) {

@@ -21,6 +21,11 @@ int impactfe_mumps_rank(void);
 int impactfe_mumps_size(void);
 /// A new MUMPS solver; every rank creates its own and calls it in lockstep.
 impactfe::LinearSolver* impactfe_mumps_create(const impactfe::MumpsModuleOptions* options);
+/// values[i] from rank owner[i] on every rank (collective; n and owner the same on all ranks):
+/// each rank sends the entries it owns (MPI_Allgatherv), no arithmetic. 0 on success.
+int impactfe_mumps_share_owned(double* values, int n, const int* owner);
+/// Every rank's `value`, in rank order, into out[0 .. size) (collective). 0 on success.
+int impactfe_mumps_all_doubles(double value, double* out);
 /// The largest of `value` over all ranks (the ranks agree on the exit status).
 int impactfe_mumps_max_int(int value);
 void impactfe_mumps_abort(int code);
