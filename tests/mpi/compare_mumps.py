@@ -63,6 +63,38 @@ def datasets(path):
     return out
 
 
+FIGURES = ("n_masters", "n_slaves", "n_constrained", "n_load_vectors", "matrices",
+           "total_mass_x", "total_mass_y", "total_mass_z", "master_mass_x", "master_mass_y",
+           "master_mass_z")
+
+
+def generation_figures(directory):
+    """The summary figures of every superelement generation pass in the results files of a
+    directory: {(file, group): {attribute: value}}."""
+    out = {}
+    for f in sorted(os.listdir(directory)):
+        if not f.endswith(".h5") or f.endswith(".sub.h5"):
+            continue
+        with h5py.File(os.path.join(directory, f), "r") as h:
+            for group in h:
+                attrs = h[group].attrs
+                if group.startswith("analysis_") and "superelement_name" in attrs:
+                    out[(f, group)] = {k: float(attrs[k]) for k in FIGURES if k in attrs}
+    return out
+
+
+def check_figures(reference, result, n):
+    """Rank 0's results file holds the figures of every generation pass, also of those another
+    rank ran (docs/scaling.md, "Substructures in parallel")."""
+    out = []
+    for key, want in reference.items():
+        got = result.get(key, {})
+        for k, v in want.items():
+            if k not in got or abs(got[k] - v) > 1e-10 * max(1.0, abs(v)):
+                out.append(f"{n} ranks: {key[0]} {key[1]} {k} = {got.get(k)} instead of {v}")
+    return out
+
+
 def n_elements(directory, name):
     with h5py.File(os.path.join(directory, name + ".h5"), "r") as f:
         return len(f["model/element_ids"])
@@ -169,6 +201,9 @@ def main():
                 if generated < len(superelements):
                     failures.append(f"{n} ranks: the log names the generating rank of "
                                     f"{generated} of {len(superelements)} superelements")
+            if superelements:
+                failures += check_figures(generation_figures(reference_dir),
+                                          generation_figures(outdir), n)
             result = datasets(os.path.join(outdir, name + ".h5"))
             for f in superelements:
                 result.update({f + ":" + k: v for k, v in
