@@ -226,6 +226,49 @@ void material_stiffness(const MatB& B, const Eigen::MatrixXd& K_bar, Eigen::Matr
   }
 }
 
+/// material_stiffness with fixed-size operands for ND = 6n DOFs (B and K̄ are ND × ND, stored
+/// contiguously), written as column operations that vectorize: K̄ B as sums of columns of K̄
+/// (dense translation columns of B, the 3 × 3 rotation block otherwise), then Bᵀ (K̄ B) as dot
+/// products of contiguous columns. Same terms per entry as material_stiffness; the rounding of
+/// the vectorized partial sums may differ in the last bits.
+template <int ND>
+void material_stiffness_fixed(const double* B_data, const double* K_bar_data, Eigen::MatrixXd& K) {
+  using MatD = Eigen::Matrix<double, ND, ND>;
+  using VecD = Eigen::Matrix<double, ND, 1>;
+  const Eigen::Map<const MatD> B(B_data), K_bar(K_bar_data);
+  MatD KB;
+  for (int b = 0; b < ND; b += 6) {
+    for (int j = b; j < b + 3; ++j) {
+      VecD acc = K_bar.col(0) * B(0, j);
+      for (int k = 1; k < ND; ++k) acc += K_bar.col(k) * B(k, j);
+      KB.col(j) = acc;
+    }
+    for (int j = b + 3; j < b + 6; ++j)
+      KB.col(j) = K_bar.col(b + 3) * B(b + 3, j) + K_bar.col(b + 4) * B(b + 4, j) +
+                  K_bar.col(b + 5) * B(b + 5, j);
+  }
+  K.resize(ND, ND);
+  for (int c = 0; c < ND; ++c)
+    for (int b = 0; b < ND; b += 6) {
+      for (int r = b; r < b + 3; ++r) K(r, c) = B.col(r).dot(KB.col(c));
+      K.template block<3, 1>(b + 3, c).noalias() =
+          B.template block<3, 3>(b + 3, b + 3).transpose() * KB.col(c).template segment<3>(b + 3);
+    }
+}
+
+template <class MatB>
+void material_stiffness_any(const MatB& B, const Eigen::MatrixXd& K_bar, Eigen::MatrixXd& K) {
+  const auto nd = B.rows();
+  if (B.cols() != nd || K_bar.rows() != nd || K_bar.cols() != nd)
+    material_stiffness(B, K_bar, K);
+  else if (nd == 24)  // quadrilateral
+    material_stiffness_fixed<24>(B.data(), K_bar.data(), K);
+  else if (nd == 18)  // triangle
+    material_stiffness_fixed<18>(B.data(), K_bar.data(), K);
+  else
+    material_stiffness(B, K_bar, K);
+}
+
 }  // namespace
 
 void Shell4::corotational_kinematics(const Eigen::VectorXd& u, Eigen::VectorXd& d,
@@ -269,7 +312,7 @@ void Shell4::plastic_tangent(
   kernel_->plastic_response(*plasticity_, committed_, W_ * d, k_l, f_l, updated, mean, layers);
   const Eigen::VectorXd f_bar = W_.transpose() * f_l;
   f_int = B.transpose() * f_bar;
-  material_stiffness(B, W_.transpose() * k_l * W_, K);
+  material_stiffness_any(B, Eigen::MatrixXd(W_.transpose() * k_l * W_), K);
   add_geometric_stiffness(s, f_bar, K);
 }
 
@@ -323,7 +366,7 @@ void Shell4::tangent(const ElementContext& ctx, const Eigen::VectorXd& u, Eigen:
   kinematic_matrix(s, B);
   const Vec24 f_l = K_bar_ * d;
   f_int = B.transpose() * f_l;
-  material_stiffness(B, K_bar_, K);
+  material_stiffness_any(B, K_bar_, K);
   add_geometric_stiffness(s, f_l, K);
 }
 
