@@ -162,11 +162,12 @@ void kinematic_matrix(const CorotationalState& s, MatB& B) {
 /// This is the exact derivative of this formulation's Bᵀ (Nour-Omid & Rankin 1991, §5, and
 /// Felippa & Haugen 2005, §7, derive the same terms as K_GR, K_GP and K_GM; here the frame is
 /// the facet's own, so ∂G/∂x comes from frame_spin_derivative).
-template <class VecF, class MatK>
-void add_geometric_stiffness(const CorotationalState& s, const VecF& f_l, MatK& K) {
-  const int n = s.frame.n;
+template <int n, class VecF, class MatK>
+void add_geometric_stiffness_n(const CorotationalState& s, const VecF& f_l, MatK& K) {
+  // Fixed corner count: the 3 × 3n operands are maps of the frame's fixed-capacity matrices.
+  using Mat3N = Eigen::Matrix<double, 3, 3 * n>;
   const Mat3& Rc = s.frame.R;
-  const ShellMat3N& G = s.frame.G;
+  const Eigen::Map<const Mat3N> G(s.frame.G.data());
   std::array<Vec3, 4> N, M;
   std::array<Mat3, 4> Z;
   Vec3 N_mean = Vec3::Zero(), w = Vec3::Zero();
@@ -182,29 +183,40 @@ void add_geometric_stiffness(const CorotationalState& s, const VecF& f_l, MatK& 
     Q += spin(s.r[i]) * spin(N[i]) + spin(M[i]) + Z[i];
   }
   // Translations × translations: frame curvature, centroid projection, and Gᵀ δw.
-  ShellMatNN Kxx = frame_spin_derivative(s.frame, w) + G.transpose().lazyProduct(Q * G);
+  const Mat3N QG = Q * G;
+  Eigen::Matrix<double, 3 * n, 3 * n> Kxx = frame_spin_derivative(s.frame, w);
+  Kxx.noalias() += G.transpose().lazyProduct(QG);
   for (int a = 0; a < n; ++a) {
     const Mat3 SN = spin(N[static_cast<std::size_t>(a)] - N_mean);
-    const ShellMat3N SNG = SN * G;
-    Kxx.middleRows<3>(3 * a) -= SNG;              // δ(P N)
-    Kxx.middleCols<3>(3 * a) -= SNG.transpose();  // Gᵀ spin(N_a − N̄) δx_a (= −(SN G)ᵀ)
+    const Mat3N SNG = SN * G;
+    Kxx.template middleRows<3>(3 * a) -= SNG;              // δ(P N)
+    Kxx.template middleCols<3>(3 * a) -= SNG.transpose();  // Gᵀ spin(N_a − N̄) δx_a (= −(SN G)ᵀ)
   }
   for (int a = 0; a < n; ++a)
     for (int b = 0; b < n; ++b)
-      K.template block<3, 3>(6 * a, 6 * b) += Kxx.block<3, 3>(3 * a, 3 * b);
+      K.template block<3, 3>(6 * a, 6 * b) += Kxx.template block<3, 3>(3 * a, 3 * b);
   // Rotation columns and rows.
   for (int a = 0; a < n; ++a) {
     const std::size_t i = static_cast<std::size_t>(a);
     const Mat3& T = s.T[i];
-    const ShellMat3N Kxpsi_t = -((Z[i] * T).transpose() * G);             // (3n × 3)ᵀ
-    const ShellMat3N Kpsix = -(T.transpose() * (spin(M[i]) + Z[i])) * G;  // 3 × 3n
+    const Mat3N Kxpsi_t = -((Z[i] * T).transpose() * G);             // (3n × 3)ᵀ
+    const Mat3N Kpsix = -(T.transpose() * (spin(M[i]) + Z[i])) * G;  // 3 × 3n
     for (int b = 0; b < n; ++b) {
-      K.template block<3, 3>(6 * b, 6 * a + 3) += Kxpsi_t.block<3, 3>(0, 3 * b).transpose();
-      K.template block<3, 3>(6 * a + 3, 6 * b) += Kpsix.block<3, 3>(0, 3 * b);
+      K.template block<3, 3>(6 * b, 6 * a + 3) +=
+          Kxpsi_t.template block<3, 3>(0, 3 * b).transpose();
+      K.template block<3, 3>(6 * a + 3, 6 * b) += Kpsix.template block<3, 3>(0, 3 * b);
     }
     K.template block<3, 3>(6 * a + 3, 6 * a + 3) +=
         so3::d_left_jacobian_transpose(s.psi[i], M[i]) + T.transpose() * Z[i] * T;
   }
+}
+
+template <class VecF, class MatK>
+void add_geometric_stiffness(const CorotationalState& s, const VecF& f_l, MatK& K) {
+  if (s.frame.n == 4)
+    add_geometric_stiffness_n<4>(s, f_l, K);
+  else
+    add_geometric_stiffness_n<3>(s, f_l, K);
 }
 
 /// Material part Bᵀ K̄ B, using the sparsity of B: the column of a nodal rotation ψ_b has only
