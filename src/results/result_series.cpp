@@ -17,13 +17,6 @@ constexpr double kBlockMemoryBytes = 64.0 * (1 << 20);
 constexpr hsize_t kChunkBytes = 256 * 1024;
 /// Deflate level of the main datasets.
 constexpr int kDeflateLevel = 1;
-/// Main datasets whose time point (row) holds fewer values are stored without deflate. Deflate
-/// level 1 + shuffle costs ~18 ms of CPU per MB and saves about 30 % of the bytes of a block of
-/// results (the helmet: 3.1 MB instead of 4.5 MB, 13 % of its instructions). For a model this
-/// small (4096 values: U of 680 nodes) the whole file is a few MB and the compression a large
-/// share of the run; larger models keep deflate, where the file size matters and the solve
-/// dwarfs it (docs/benchmarks.md, issue 11).
-constexpr hsize_t kMinDeflateRowElements = 4096;
 
 }  // namespace
 
@@ -81,9 +74,8 @@ BlockSeries create_series(hid_t group, hid_t recent_group, const std::string& na
     Handle space(check(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), maxdims.data()),
                        "create dataspace for " + name));
     // deflate level 1 (deflate_fast): level 4 costs about 3x the CPU for files a few % smaller
-    // (docs/benchmarks.md, "Results writer"); none for the rows of a small model.
-    const int level = product(s.row_dims) >= kMinDeflateRowElements ? kDeflateLevel : 0;
-    Handle dcpl = h5::checked_creation_list(chunk, &fill, level);
+    // (the helmet: docs/benchmarks.md, "Results writer").
+    Handle dcpl = h5::checked_creation_list(chunk, &fill, kDeflateLevel);
     s.main = Handle(check(
         H5Dcreate2(group, name.c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT),
         "create dataset " + name));
