@@ -128,18 +128,18 @@ Brick8::Brick8(int id, const std::array<int, 8>& nodes, const std::array<Vec3, 8
           (gp.dv / volume_) * gp.grad.col(a).head<3>().transpose();
 
   // Small-strain stiffness (q = 0 in the total-Lagrangian sum), condensed once.
-  const int nf = extra_shapes_ ? kFunctions : 8;
-  Eigen::MatrixXd kfull;
-  Eigen::VectorXd ffull;
-  tl_sum(nf, Eigen::VectorXd::Zero(3 * nf), kfull, ffull);
   mode_recovery_.setZero();
   if (extra_shapes_) {
-    const Eigen::MatrixXd kaa = kfull.bottomRightCorner(9, 9);
-    mode_recovery_ = -kaa.ldlt().solve(kfull.bottomLeftCorner(9, 24));
-    k_linear_ = kfull.topLeftCorner(24, 24) + kfull.topRightCorner(24, 9) * mode_recovery_;
+    Eigen::Matrix<double, 3 * kFunctions, 3 * kFunctions> kfull;
+    Eigen::Matrix<double, 3 * kFunctions, 1> ffull;
+    tl_sum<kFunctions>(Eigen::Matrix<double, 3 * kFunctions, 1>::Zero(), kfull, ffull);
+    const Eigen::Matrix<double, 9, 9> kaa = kfull.bottomRightCorner<9, 9>();
+    mode_recovery_ = -kaa.ldlt().solve(kfull.bottomLeftCorner<9, 24>());
+    k_linear_ = kfull.topLeftCorner<24, 24>() + kfull.topRightCorner<24, 9>() * mode_recovery_;
     k_linear_ = 0.5 * (k_linear_ + k_linear_.transpose()).eval();
   } else {
-    k_linear_ = kfull;
+    Eigen::Matrix<double, 24, 1> ffull;
+    tl_sum<8>(Eigen::Matrix<double, 24, 1>::Zero(), k_linear_, ffull);
   }
 }
 
@@ -168,44 +168,50 @@ void Brick8::from_corners(const Eigen::MatrixXd& kc, const Eigen::VectorXd& fc, 
   }
 }
 
-void Brick8::tl_sum(int nf, const Eigen::VectorXd& q, Eigen::MatrixXd& k,
-                    Eigen::VectorXd& f) const {
-  const int nq = 3 * nf;
-  k.setZero(nq, nq);
-  f.setZero(nq);
-  Eigen::Matrix<double, 6, Eigen::Dynamic> b(6, nq);
+template <int NF>
+void Brick8::tl_sum(const Eigen::Matrix<double, 3 * NF, 1>& q,
+                    Eigen::Matrix<double, 3 * NF, 3 * NF>& k,
+                    Eigen::Matrix<double, 3 * NF, 1>& f) const {
+  // St. Venant-Kirchhoff with this element's isotropic D (S = λ tr(E) I + 2μ E). With
+  // h_a = F ∇N_a, the variation of the Green strain by function a in direction i is
+  // δE = sym(Fᵀ e_i ⊗ ∇N_a); with C = λ I ⊗ I + 2μ 𝕀 the Voigt sum B_Lᵀ D B_L + Gᵀ S G of
+  // Bathe §6.2.3 has the 3 × 3 blocks
+  //   K_ab = λ h_a h_bᵀ + μ (h_b h_aᵀ + (∇N_a · ∇N_b) F Fᵀ) + (∇N_aᵀ S ∇N_b) I,
+  // and f_a = F S ∇N_a (first Piola-Kirchhoff stress on the gradient), all times dV0: the same
+  // sums as the Voigt products with a general D, without the 6 × 3NF matrices.
+  const double lambda = d_(0, 1), mu = d_(3, 3);
+  k.setZero();
+  f.setZero();
+  // q and f as 3 × NF (column a = function a).
+  const Eigen::Map<const Eigen::Matrix<double, 3, NF>> q_mat(q.data());
+  Eigen::Map<Eigen::Matrix<double, 3, NF>> f_mat(f.data());
   for (const GaussPoint& gp : gauss_) {
-    const auto grad = gp.grad.leftCols(nf);
+    const auto grad = gp.grad.template leftCols<NF>();
     // Deformation gradient F = I + Σ q_a ⊗ ∇N_a (Bathe 6.2.3).
-    Eigen::Matrix3d f_grad = Eigen::Matrix3d::Identity();
-    for (int a = 0; a < nf; ++a) f_grad += q.segment<3>(3 * a) * grad.col(a).transpose();
+    const Eigen::Matrix3d f_grad =
+        Eigen::Matrix3d::Identity() + q_mat.lazyProduct(grad.transpose());
     const Eigen::Matrix3d e = 0.5 * (f_grad.transpose() * f_grad - Eigen::Matrix3d::Identity());
-    Vector6d e_voigt;
-    e_voigt << e(0, 0), e(1, 1), e(2, 2), 2.0 * e(0, 1), 2.0 * e(1, 2), 2.0 * e(0, 2);
-    const Vector6d s = d_ * e_voigt;  // 2nd Piola-Kirchhoff, St. Venant-Kirchhoff
-    // B_L: variation of the Green strain, δE = B_L δq (reduces to the small-strain B at F = I).
-    for (int a = 0; a < nf; ++a) {
-      const double g0 = grad(0, a), g1 = grad(1, a), g2 = grad(2, a);
-      for (int i = 0; i < 3; ++i) {
-        const int col = 3 * a + i;
-        b(0, col) = f_grad(i, 0) * g0;
-        b(1, col) = f_grad(i, 1) * g1;
-        b(2, col) = f_grad(i, 2) * g2;
-        b(3, col) = f_grad(i, 0) * g1 + f_grad(i, 1) * g0;
-        b(4, col) = f_grad(i, 1) * g2 + f_grad(i, 2) * g1;
-        b(5, col) = f_grad(i, 0) * g2 + f_grad(i, 2) * g0;
+    // 2nd Piola-Kirchhoff stress times dV0.
+    Eigen::Matrix3d s_dv = (2.0 * mu * gp.dv) * e;
+    s_dv.diagonal().array() += lambda * gp.dv * e.trace();
+    f_mat.noalias() += (f_grad * s_dv).lazyProduct(grad);
+    const Eigen::Matrix<double, 3, NF> h = f_grad.lazyProduct(grad);
+    const Eigen::Matrix<double, 3, NF> h_lambda = (lambda * gp.dv) * h;
+    const Eigen::Matrix<double, 3, NF> h_mu = (mu * gp.dv) * h;
+    const Eigen::Matrix3d c_mu = (mu * gp.dv) * (f_grad * f_grad.transpose());
+    const Eigen::Matrix<double, NF, NF> gram = grad.transpose().lazyProduct(grad);
+    const Eigen::Matrix<double, NF, NF> gsg = grad.transpose().lazyProduct(s_dv * grad);
+    // Blocks a ≤ b here; the lower triangle is mirrored after the sum.
+    for (int b = 0; b < NF; ++b)
+      for (int a = 0; a <= b; ++a) {
+        Eigen::Matrix3d blk = h_lambda.col(a) * h.col(b).transpose() +
+                              h_mu.col(b) * h.col(a).transpose() + gram(a, b) * c_mu;
+        blk.diagonal().array() += gsg(a, b);
+        k.template block<3, 3>(3 * a, 3 * b) += blk;
       }
-    }
-    f.noalias() += gp.dv * (b.transpose() * s);
-    k.noalias() += gp.dv * (b.transpose() * d_ * b);
-    if (s.squaredNorm() > 0.0) {
-      // Geometric stiffness ∫ ∇N_aᵀ S ∇N_b dV0 on each displacement component.
-      const Eigen::MatrixXd gs = gp.dv * (grad.transpose() * voigt_to_tensor(s) * grad);
-      for (int a = 0; a < nf; ++a)
-        for (int c = 0; c < nf; ++c)
-          for (int i = 0; i < 3; ++i) k(3 * a + i, 3 * c + i) += gs(a, c);
-    }
   }
+  for (int c = 0; c < 3 * NF; ++c)
+    for (int r = c + 1; r < 3 * NF; ++r) k(r, c) = k(c, r);
 }
 
 void Brick8::tangent_linear(const ElementContext& ctx, const Eigen::Matrix<double, 24, 1>& uc,
@@ -239,21 +245,26 @@ void Brick8::tangent_linear(const ElementContext& ctx, const Eigen::Matrix<doubl
 void Brick8::tangent_large(const Eigen::Matrix<double, 24, 1>& uc, Eigen::MatrixXd& kc,
                            Eigen::VectorXd& fc) const {
   if (!extra_shapes_) {
-    tl_sum(8, uc, kc, fc);
+    Eigen::Matrix<double, 24, 24> k8;
+    Eigen::Matrix<double, 24, 1> f8;
+    tl_sum<8>(uc, k8, f8);
+    kc = k8;
+    fc = f8;
     return;
   }
   // Incompatible modes in the deformation gradient: the bubble amplitudes α are internal, so
   // solve ∂Π/∂α = f_α(u, α) = 0 by Newton for this u, then condense the consistent tangent:
   // K = K_uu - K_uα K_αα⁻¹ K_αu (exact at f_α = 0).
-  Eigen::VectorXd q = Eigen::VectorXd::Zero(3 * kFunctions);
+  constexpr int kNq = 3 * kFunctions;
+  Eigen::Matrix<double, kNq, 1> q;
   q.head<24>() = uc;
   q.tail<9>() = mode_recovery_ * uc;  // small-strain prediction
-  Eigen::MatrixXd kq;
-  Eigen::VectorXd fq;
+  Eigen::Matrix<double, kNq, kNq> kq;
+  Eigen::Matrix<double, kNq, 1> fq;
   const double scale = std::max(uc.lpNorm<Eigen::Infinity>(), 1e-300);
   bool converged = false;
   for (int iter = 0; iter < 30; ++iter) {
-    tl_sum(kFunctions, q, kq, fq);
+    tl_sum<kFunctions>(q, kq, fq);
     const Eigen::Matrix<double, 9, 1> step =
         -kq.bottomRightCorner<9, 9>().ldlt().solve(fq.tail<9>());
     q.tail<9>() += step;
@@ -265,7 +276,7 @@ void Brick8::tangent_large(const Eigen::Matrix<double, 24, 1>& uc, Eigen::Matrix
   }
   if (!converged)
     Log::warn("element {}: incompatible-mode amplitudes did not converge (large deflection)", id());
-  tl_sum(kFunctions, q, kq, fq);
+  tl_sum<kFunctions>(q, kq, fq);
   const Eigen::Matrix<double, 9, 9> kaa = kq.bottomRightCorner<9, 9>();
   const Eigen::Matrix<double, 9, 24> kau = kq.bottomLeftCorner<9, 24>();
   const auto kaa_ldlt = kaa.ldlt();

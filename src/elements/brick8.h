@@ -92,10 +92,14 @@ class Brick8 final : public Element {
   Eigen::Matrix<double, 24, 1> to_corners(const Eigen::VectorXd& u) const;
   void from_corners(const Eigen::MatrixXd& kc, const Eigen::VectorXd& fc, Eigen::MatrixXd& k,
                     Eigen::VectorXd& f) const;
-  /// ∫ B_Lᵀ S dV0 and ∫ (B_Lᵀ D B_L + G ᵀ S G) dV0 over the first nf functions at the
-  /// generalised displacements q (3 nf: corners then bubble amplitudes). q = 0 gives the
+  /// ∫ B_Lᵀ S dV0 and ∫ (B_Lᵀ D B_L + G ᵀ S G) dV0 over the first NF functions at the
+  /// generalised displacements q (3 NF: corners then bubble amplitudes). q = 0 gives the
   /// linear stiffness.
-  void tl_sum(int nf, const Eigen::VectorXd& q, Eigen::MatrixXd& k, Eigen::VectorXd& f) const;
+  /// NF = 8 (corners) or 11 (with the bubbles); fixed-size operands (6 × 3NF B_L), so the
+  /// products are unrolled instead of going through the blocked dynamic-size GEMM.
+  template <int NF>
+  void tl_sum(const Eigen::Matrix<double, 3 * NF, 1>& q, Eigen::Matrix<double, 3 * NF, 3 * NF>& k,
+              Eigen::Matrix<double, 3 * NF, 1>& f) const;
   void tangent_linear(const ElementContext& ctx, const Eigen::Matrix<double, 24, 1>& uc,
                       Eigen::MatrixXd& kc, Eigen::VectorXd& fc) const;
   void tangent_large(const Eigen::Matrix<double, 24, 1>& uc, Eigen::MatrixXd& kc,

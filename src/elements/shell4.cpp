@@ -162,11 +162,12 @@ void kinematic_matrix(const CorotationalState& s, MatB& B) {
 /// This is the exact derivative of this formulation's Bᵀ (Nour-Omid & Rankin 1991, §5, and
 /// Felippa & Haugen 2005, §7, derive the same terms as K_GR, K_GP and K_GM; here the frame is
 /// the facet's own, so ∂G/∂x comes from frame_spin_derivative).
-template <class VecF, class MatK>
-void add_geometric_stiffness(const CorotationalState& s, const VecF& f_l, MatK& K) {
-  const int n = s.frame.n;
+template <int n, class VecF, class MatK>
+void add_geometric_stiffness_n(const CorotationalState& s, const VecF& f_l, MatK& K) {
+  // Fixed corner count: the 3 × 3n operands are maps of the frame's fixed-capacity matrices.
+  using Mat3N = Eigen::Matrix<double, 3, 3 * n>;
   const Mat3& Rc = s.frame.R;
-  const ShellMat3N& G = s.frame.G;
+  const Eigen::Map<const Mat3N> G(s.frame.G.data());
   std::array<Vec3, 4> N, M;
   std::array<Mat3, 4> Z;
   Vec3 N_mean = Vec3::Zero(), w = Vec3::Zero();
@@ -182,29 +183,40 @@ void add_geometric_stiffness(const CorotationalState& s, const VecF& f_l, MatK& 
     Q += spin(s.r[i]) * spin(N[i]) + spin(M[i]) + Z[i];
   }
   // Translations × translations: frame curvature, centroid projection, and Gᵀ δw.
-  ShellMatNN Kxx = frame_spin_derivative(s.frame, w) + G.transpose().lazyProduct(Q * G);
+  const Mat3N QG = Q * G;
+  Eigen::Matrix<double, 3 * n, 3 * n> Kxx = frame_spin_derivative(s.frame, w);
+  Kxx.noalias() += G.transpose().lazyProduct(QG);
   for (int a = 0; a < n; ++a) {
     const Mat3 SN = spin(N[static_cast<std::size_t>(a)] - N_mean);
-    const ShellMat3N SNG = SN * G;
-    Kxx.middleRows<3>(3 * a) -= SNG;              // δ(P N)
-    Kxx.middleCols<3>(3 * a) -= SNG.transpose();  // Gᵀ spin(N_a − N̄) δx_a (= −(SN G)ᵀ)
+    const Mat3N SNG = SN * G;
+    Kxx.template middleRows<3>(3 * a) -= SNG;              // δ(P N)
+    Kxx.template middleCols<3>(3 * a) -= SNG.transpose();  // Gᵀ spin(N_a − N̄) δx_a (= −(SN G)ᵀ)
   }
   for (int a = 0; a < n; ++a)
     for (int b = 0; b < n; ++b)
-      K.template block<3, 3>(6 * a, 6 * b) += Kxx.block<3, 3>(3 * a, 3 * b);
+      K.template block<3, 3>(6 * a, 6 * b) += Kxx.template block<3, 3>(3 * a, 3 * b);
   // Rotation columns and rows.
   for (int a = 0; a < n; ++a) {
     const std::size_t i = static_cast<std::size_t>(a);
     const Mat3& T = s.T[i];
-    const ShellMat3N Kxpsi_t = -((Z[i] * T).transpose() * G);             // (3n × 3)ᵀ
-    const ShellMat3N Kpsix = -(T.transpose() * (spin(M[i]) + Z[i])) * G;  // 3 × 3n
+    const Mat3N Kxpsi_t = -((Z[i] * T).transpose() * G);             // (3n × 3)ᵀ
+    const Mat3N Kpsix = -(T.transpose() * (spin(M[i]) + Z[i])) * G;  // 3 × 3n
     for (int b = 0; b < n; ++b) {
-      K.template block<3, 3>(6 * b, 6 * a + 3) += Kxpsi_t.block<3, 3>(0, 3 * b).transpose();
-      K.template block<3, 3>(6 * a + 3, 6 * b) += Kpsix.block<3, 3>(0, 3 * b);
+      K.template block<3, 3>(6 * b, 6 * a + 3) +=
+          Kxpsi_t.template block<3, 3>(0, 3 * b).transpose();
+      K.template block<3, 3>(6 * a + 3, 6 * b) += Kpsix.template block<3, 3>(0, 3 * b);
     }
     K.template block<3, 3>(6 * a + 3, 6 * a + 3) +=
         so3::d_left_jacobian_transpose(s.psi[i], M[i]) + T.transpose() * Z[i] * T;
   }
+}
+
+template <class VecF, class MatK>
+void add_geometric_stiffness(const CorotationalState& s, const VecF& f_l, MatK& K) {
+  if (s.frame.n == 4)
+    add_geometric_stiffness_n<4>(s, f_l, K);
+  else
+    add_geometric_stiffness_n<3>(s, f_l, K);
 }
 
 /// Material part Bᵀ K̄ B, using the sparsity of B: the column of a nodal rotation ψ_b has only
@@ -224,6 +236,49 @@ void material_stiffness(const MatB& B, const Eigen::MatrixXd& K_bar, Eigen::Matr
     K.middleRows<3>(b + 3).noalias() =
         B.template block<3, 3>(b + 3, b + 3).transpose() * KB.middleRows<3>(b + 3);
   }
+}
+
+/// material_stiffness with fixed-size operands for ND = 6n DOFs (B and K̄ are ND × ND, stored
+/// contiguously), written as column operations that vectorize: K̄ B as sums of columns of K̄
+/// (dense translation columns of B, the 3 × 3 rotation block otherwise), then Bᵀ (K̄ B) as dot
+/// products of contiguous columns. Same terms per entry as material_stiffness; the rounding of
+/// the vectorized partial sums may differ in the last bits.
+template <int ND>
+void material_stiffness_fixed(const double* B_data, const double* K_bar_data, Eigen::MatrixXd& K) {
+  using MatD = Eigen::Matrix<double, ND, ND>;
+  using VecD = Eigen::Matrix<double, ND, 1>;
+  const Eigen::Map<const MatD> B(B_data), K_bar(K_bar_data);
+  MatD KB;
+  for (int b = 0; b < ND; b += 6) {
+    for (int j = b; j < b + 3; ++j) {
+      VecD acc = K_bar.col(0) * B(0, j);
+      for (int k = 1; k < ND; ++k) acc += K_bar.col(k) * B(k, j);
+      KB.col(j) = acc;
+    }
+    for (int j = b + 3; j < b + 6; ++j)
+      KB.col(j) = K_bar.col(b + 3) * B(b + 3, j) + K_bar.col(b + 4) * B(b + 4, j) +
+                  K_bar.col(b + 5) * B(b + 5, j);
+  }
+  K.resize(ND, ND);
+  for (int c = 0; c < ND; ++c)
+    for (int b = 0; b < ND; b += 6) {
+      for (int r = b; r < b + 3; ++r) K(r, c) = B.col(r).dot(KB.col(c));
+      K.template block<3, 1>(b + 3, c).noalias() =
+          B.template block<3, 3>(b + 3, b + 3).transpose() * KB.col(c).template segment<3>(b + 3);
+    }
+}
+
+template <class MatB>
+void material_stiffness_any(const MatB& B, const Eigen::MatrixXd& K_bar, Eigen::MatrixXd& K) {
+  const auto nd = B.rows();
+  if (B.cols() != nd || K_bar.rows() != nd || K_bar.cols() != nd)
+    material_stiffness(B, K_bar, K);
+  else if (nd == 24)  // quadrilateral
+    material_stiffness_fixed<24>(B.data(), K_bar.data(), K);
+  else if (nd == 18)  // triangle
+    material_stiffness_fixed<18>(B.data(), K_bar.data(), K);
+  else
+    material_stiffness(B, K_bar, K);
 }
 
 }  // namespace
@@ -269,7 +324,7 @@ void Shell4::plastic_tangent(
   kernel_->plastic_response(*plasticity_, committed_, W_ * d, k_l, f_l, updated, mean, layers);
   const Eigen::VectorXd f_bar = W_.transpose() * f_l;
   f_int = B.transpose() * f_bar;
-  material_stiffness(B, W_.transpose() * k_l * W_, K);
+  material_stiffness_any(B, Eigen::MatrixXd(W_.transpose() * k_l * W_), K);
   add_geometric_stiffness(s, f_bar, K);
 }
 
@@ -323,7 +378,7 @@ void Shell4::tangent(const ElementContext& ctx, const Eigen::VectorXd& u, Eigen:
   kinematic_matrix(s, B);
   const Vec24 f_l = K_bar_ * d;
   f_int = B.transpose() * f_l;
-  material_stiffness(B, K_bar_, K);
+  material_stiffness_any(B, K_bar_, K);
   add_geometric_stiffness(s, f_l, K);
 }
 

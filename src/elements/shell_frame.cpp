@@ -87,15 +87,37 @@ ShellFrame shell_frame(const ShellCorners& x, bool with_derivatives) {
   return f;
 }
 
+// The Hessians below run once per element and Newton iterate (the geometric tangent): they are
+// written for a fixed corner count (N3 = 3n = 9 or 12) on maps of the frame's fixed-capacity
+// matrices (3 × 3n, stored contiguously), so Eigen unrolls the small products.
+namespace {
+
+template <int N3>
+using Mat3N = Eigen::Matrix<double, 3, N3>;
+template <int N3>
+using MatNN = Eigen::Matrix<double, N3, N3>;
+template <int N3>
+using VecN = Eigen::Matrix<double, N3, 1>;
+
+template <int N3>
+Eigen::Map<const Mat3N<N3>> fixed(const ShellMat3N& m) {
+  return Eigen::Map<const Mat3N<N3>>(m.data());
+}
+
 // y·e3 = φ(n_vec) with n_vec = a × b bilinear in x:
 //   H = Dnᵀ (∂²φ/∂n²) Dn + ∂²(g·(a×b))/∂x², g = ∂φ/∂n = (I − e3e3ᵀ) y / |n|,
 // and g·(δa × δ'b + δ'a × δb) = δxᵀ (Sbᵀ spin(g) Sa − Saᵀ spin(g) Sb) δ'x.
-ShellMatNN normal_hessian(const ShellFrame& f, const Vec3& y) {
+template <int N3>
+MatNN<N3> normal_hessian_n(const ShellFrame& f, const Vec3& y) {
+  const auto Dn = fixed<N3>(f.Dn), Sa = fixed<N3>(f.Sa), Sb = fixed<N3>(f.Sb);
   const Vec3 e3 = f.e3();
   const Vec3 g = (y - e3 * e3.dot(y)) / f.n_norm;
   const Mat3 Sg = spin(g);
-  ShellMatNN H = f.Dn.transpose().lazyProduct(unit_vector_hessian(e3, f.n_norm, y) * f.Dn);
-  H += f.Sb.transpose().lazyProduct(Sg * f.Sa) - f.Sa.transpose().lazyProduct(Sg * f.Sb);
+  const Mat3N<N3> HDn = unit_vector_hessian(e3, f.n_norm, y) * Dn;
+  const Mat3N<N3> SgSa = Sg * Sa;
+  const Mat3N<N3> SgSb = Sg * Sb;
+  MatNN<N3> H = Dn.transpose().lazyProduct(HDn);
+  H += Sb.transpose().lazyProduct(SgSa) - Sa.transpose().lazyProduct(SgSb);
   return H;
 }
 
@@ -103,33 +125,58 @@ ShellMatNN normal_hessian(const ShellFrame& f, const Vec3& y) {
 //   H = Dpᵀ (∂²φ/∂p²) Dp + ∂²(g·p)/∂x² at g = (I − e1e1ᵀ) y / |p| fixed, where
 //   g·p = g·v − α β (β = g·e3, g·v linear) and
 //   ∂²(αβ) = ∇α∇βᵀ + ∇β∇αᵀ + β (Svᵀ De3 + De3ᵀ Sv) + ∂²((β v + α g)·e3)  (v, g held fixed).
-ShellMatNN side_hessian(const ShellFrame& f, const Vec3& y) {
+template <int N3>
+MatNN<N3> side_hessian_n(const ShellFrame& f, const Vec3& y) {
+  const auto Sv = fixed<N3>(f.Sv), De3 = fixed<N3>(f.De3), Dp = fixed<N3>(f.Dp);
   const Vec3 e1 = f.e1(), e3 = f.e3();
   const Vec3 g = (y - e1 * e1.dot(y)) / f.p_norm;
   const double alpha = f.v.dot(e3), beta = g.dot(e3);
-  const ShellVecN grad_alpha = f.Sv.transpose() * e3 + f.De3.transpose() * f.v;
-  const ShellVecN grad_beta = f.De3.transpose() * g;
-  const ShellMatNN SvDe3 = f.Sv.transpose().lazyProduct(f.De3);
-  ShellMatNN H = f.Dp.transpose().lazyProduct(unit_vector_hessian(e1, f.p_norm, y) * f.Dp);
+  const VecN<N3> grad_alpha = Sv.transpose() * e3 + De3.transpose() * f.v;
+  const VecN<N3> grad_beta = De3.transpose() * g;
+  const MatNN<N3> SvDe3 = Sv.transpose().lazyProduct(De3);
+  const Mat3N<N3> HDp = unit_vector_hessian(e1, f.p_norm, y) * Dp;
+  MatNN<N3> H = Dp.transpose().lazyProduct(HDp);
   H -=
       grad_alpha.lazyProduct(grad_beta.transpose()) + grad_beta.lazyProduct(grad_alpha.transpose());
   H -= beta * (SvDe3 + SvDe3.transpose());
-  H -= normal_hessian(f, beta * f.v + alpha * g);
+  H -= normal_hessian_n<N3>(f, beta * f.v + alpha * g);
   return H;
 }
 
 // Gᵀ w = De3ᵀ (−s1 e2 + s2 e1) + s3 De1ᵀ e2 with s_i = e_i·w. At fixed w its variation has
 // three parts: δs_i = (e_i × w)·δω gives Gᵀ spin(w) G; δe_j = δω × e_j = −spin(e_j) G δx in the
 // vectors multiplying De3, De1; and the Hessians of e3 and e1 along those vectors.
-ShellMatNN frame_spin_derivative(const ShellFrame& f, const Vec3& w) {
+template <int N3>
+MatNN<N3> frame_spin_derivative_n(const ShellFrame& f, const Vec3& w) {
+  const auto G = fixed<N3>(f.G), De3 = fixed<N3>(f.De3), De1 = fixed<N3>(f.De1);
   const Vec3 e1 = f.e1(), e2 = f.e2(), e3 = f.e3();
   const double s1 = e1.dot(w), s2 = e2.dot(w), s3 = e3.dot(w);
-  ShellMatNN H = f.G.transpose().lazyProduct(spin(w) * f.G);
-  H += f.De3.transpose().lazyProduct((s1 * spin(e2) - s2 * spin(e1)) * f.G);
-  H -= f.De1.transpose().lazyProduct((s3 * spin(e2)) * f.G);
-  H += normal_hessian(f, -s1 * e2 + s2 * e1);
-  H += side_hessian(f, s3 * e2);
+  const Mat3N<N3> WG = spin(w) * G;
+  const Mat3N<N3> E3G = (s1 * spin(e2) - s2 * spin(e1)) * G;
+  const Mat3N<N3> E1G = (s3 * spin(e2)) * G;
+  MatNN<N3> H = G.transpose().lazyProduct(WG);
+  H += De3.transpose().lazyProduct(E3G);
+  H -= De1.transpose().lazyProduct(E1G);
+  H += normal_hessian_n<N3>(f, -s1 * e2 + s2 * e1);
+  H += side_hessian_n<N3>(f, s3 * e2);
   return H;
+}
+
+}  // namespace
+
+ShellMatNN normal_hessian(const ShellFrame& f, const Vec3& y) {
+  if (f.n == 4) return normal_hessian_n<12>(f, y);
+  return normal_hessian_n<9>(f, y);
+}
+
+ShellMatNN side_hessian(const ShellFrame& f, const Vec3& y) {
+  if (f.n == 4) return side_hessian_n<12>(f, y);
+  return side_hessian_n<9>(f, y);
+}
+
+ShellMatNN frame_spin_derivative(const ShellFrame& f, const Vec3& w) {
+  if (f.n == 4) return frame_spin_derivative_n<12>(f, w);
+  return frame_spin_derivative_n<9>(f, w);
 }
 
 }  // namespace impactfe
