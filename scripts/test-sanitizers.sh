@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Runs the whole test suite under AddressSanitizer + UndefinedBehaviorSanitizer: the sanitizer
-# build (scripts/sanitizer-build.sh: clang-14 -O1, build-asan/, shared with scripts/fuzz.sh),
+# build (scripts/sanitizer-build.sh: clang-14 -O2, build-asan/, shared with scripts/fuzz.sh),
 # then ctest there. A sanitizer report exits with status 86, which no test expects (the
 # malformed and verification decks expect 0, 1 or 2), so a report always fails its test.
 # Tests left out are listed in EXCLUDE with the reason.
@@ -11,9 +11,17 @@ cmake --build "$sanitizer_build" -j "$(nproc)"
 
 export ASAN_OPTIONS="detect_leaks=1:exitcode=86:abort_on_error=0:strict_string_checks=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:exitcode=86"
-# EXCLUDE: ctest regular expression of the tests left out, with the reason:
+# EXCLUDE: ctest regular expression of the tests left out, with the reason (none today).
 EXCLUDE="${EXCLUDE-}"
+# Tests that start Open MPI (the MUMPS module) run without LeakSanitizer: Open MPI's components,
+# loaded with dlopen and closed at MPI_Finalize, keep allocations until exit, and their stacks
+# lose the module names, so no suppression can match them. Address and UB checks stay on.
+MPI_TESTS='^(mpi\.|MumpsSolver\.)'
 args=(--test-dir "$sanitizer_build" --output-on-failure -j "$(nproc)")
-if [ -n "$EXCLUDE" ]; then args+=(-E "$EXCLUDE"); fi
-ctest "${args[@]}"
+exclude="$MPI_TESTS"
+if [ -n "$EXCLUDE" ]; then exclude="$exclude|$EXCLUDE"; fi
+ctest "${args[@]}" -E "$exclude"
+mpi_args=(-R "$MPI_TESTS")
+if [ -n "$EXCLUDE" ]; then mpi_args+=(-E "$EXCLUDE"); fi
+ASAN_OPTIONS="${ASAN_OPTIONS/detect_leaks=1/detect_leaks=0}" ctest "${args[@]}" "${mpi_args[@]}"
 echo "sanitizers: ok"

@@ -267,7 +267,10 @@ std::shared_ptr<const TargetSurface> contact_target(const ElementBuildContext& c
       if (name.rfind("TARGE", 0) == 0 || name.rfind("CONTA", 0) == 0) continue;
       const ElementTypeDescriptor& d = element_type_descriptor(t->second);
       if (d.defined_by_file) continue;
-      for (const DofKey& k : d.create(ctx, rec)->dofs())
+      // Keep the element alive for the loop: dofs() refers into it (a temporary in the range
+      // expression would be destroyed before the loop runs; AddressSanitizer found it).
+      const std::unique_ptr<Element> element = d.create(ctx, rec);
+      for (const DofKey& k : element->dofs())
         rotates = rotates || (k.node == pilot && static_cast<int>(k.dof) >= 3);
     }
   shared = std::make_shared<const TargetSurface>(pilot, std::move(triangles), rotates);
