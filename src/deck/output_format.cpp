@@ -47,9 +47,9 @@ void significant_digits(double ax, int sig, std::string& digits, int& p) {
     p = -1;
     return;
   }
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*e", sig - 1, ax);
-  const std::string s(buf);
+  // fmt sizes the text to the digits asked for: a format may ask for up to 9999 decimals
+  // (E18.68 overflowed a fixed 64-byte buffer; the fuzzer found it).
+  const std::string s = fmt::format("{:.{}e}", ax, sig - 1);
   const std::size_t e = s.find('e');
   digits.clear();
   for (std::size_t i = 0; i < e; ++i)
@@ -417,17 +417,19 @@ void parse_c_style(const std::string& s, std::vector<OutputFormat::Edit>& out) {
 std::string c_number(const OutputFormat::Edit& e, double x) {
   std::string spec = "%" + e.text;
   if (e.width >= 0) spec += std::to_string(e.width);
-  if (e.code == 'i') {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, (spec + "lld").c_str(),
-                  std::isfinite(x) && std::fabs(x) < 9e18 ? std::llround(x) : 0LL);
-    return buf;
-  }
+  // Widths and precisions go up to 9999: the text is sized by a first snprintf, never cut.
+  const auto print = [](const std::string& format, auto value) {
+    const int n = std::snprintf(nullptr, 0, format.c_str(), value);
+    std::string text(static_cast<std::size_t>(std::max(n, 0)) + 1, '\0');
+    std::snprintf(text.data(), text.size(), format.c_str(), value);
+    text.pop_back();
+    return text;
+  };
+  if (e.code == 'i')
+    return print(spec + "lld", std::isfinite(x) && std::fabs(x) < 9e18 ? std::llround(x) : 0LL);
   if (e.digits >= 0) spec += "." + std::to_string(e.digits);
   spec += e.code;
-  char buf[512];
-  std::snprintf(buf, sizeof buf, spec.c_str(), x);
-  return buf;
+  return print(spec, x);
 }
 
 std::string c_text(const OutputFormat::Edit& e, const std::string& t) {

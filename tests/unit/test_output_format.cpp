@@ -45,6 +45,9 @@ TEST(OutputFormat, ExponentialWithNegativeAndLargeExponents) {
   EXPECT_EQ(fortran_e(1.5e-3, 12, 5, -1, 1), " 1.50000E-03");  // 1PE12.5
   EXPECT_EQ(fortran_e(1.5e-3, 12, 5, -1, 0, 'D'), " 0.15000D-02");
   EXPECT_EQ(fortran_e(1.5e-3, 8, 5), "********");
+  // More decimals than a double has, and more than fit the field (the fuzzer's E18.68).
+  EXPECT_EQ(fortran_e(3.110, 18, 68), std::string(18, '*'));
+  EXPECT_EQ(fortran_e(0.5, 77, 70), " 0.5" + std::string(69, '0') + "E+00");
   EXPECT_EQ(fortran_es(12345.0, 12, 4), "  1.2345E+04");
   EXPECT_EQ(fortran_es(-0.00012, 11, 2), "  -1.20E-04");
 }
