@@ -456,15 +456,13 @@ bool DirectSolution::solve_condensed(VectorXd& u, const NewtonOptions& newton,
   VectorXd r0;
   double reference = 0.0;
   residual(u, r0, reference);  // also v(u0) into inc.v
-  const VectorXd x = condensation_->solve(VectorXd(r0.head(nf)));
+  const VectorXd y = condensation_->condense(VectorXd(r0.head(nf)));
   const auto& c = condensation_->dofs();
-  VectorXd y(condensation_->size());
-  for (std::size_t k = 0; k < c.size(); ++k) y(static_cast<Eigen::Index>(k)) = x(c[k]);
   CondensedIncrement problem(*assembler_, *condensation_, *status_loop_, inc.label, inc.coeff,
                              inc.weights.stiffness, u, inc.v, y, reference);
   // δ_c = y, the linear part's own answer, is the exact solution when the nonlinear elements
-  // add no force there (ρ(y) = 0: gaps that stay open) and keep their statuses: then the
-  // correction G S (y − δ_c) vanishes and the step costs the one solve above (free flight).
+  // add no force there (ρ(y) = 0: gaps that stay open) and keep their statuses: then the step is
+  // the linear part's solve alone (free flight).
   VectorXd delta = y;
   VectorXd rho;
   double unused = 0.0;
@@ -475,13 +473,12 @@ bool DirectSolution::solve_condensed(VectorXd& u, const NewtonOptions& newton,
     result = NewtonResult{};
     result.converged = true;
     result.iterations = 1;
-    u.head(nf) += x;
   } else {
     delta.setZero();
     result = NewtonRaphson(newton, ConvergenceTest(conv)).solve(problem, delta);
-    // The whole field, once: δ = A_L⁻¹ r0 − G S (y − δ_c); on c it is δ_c itself.
-    u.head(nf) += x - condensation_->transfer() * (condensation_->schur() * (y - delta));
   }
+  // The whole field, once: δ_c on c, the linear part's rows in balance elsewhere.
+  u.head(nf) += condensation_->recover(delta);
   inc.n_status_changes += problem.n_status_changes();
   for (std::size_t k = 0; k < c.size(); ++k)
     u(c[k]) = u0(c[k]) + delta(static_cast<Eigen::Index>(k));

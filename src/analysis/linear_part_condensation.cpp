@@ -2,8 +2,6 @@
 
 #include <fmt/format.h>
 
-#include <Eigen/Cholesky>
-
 namespace impactfe {
 
 std::optional<std::string> LinearPartCondensation::refusal(const Assembler& assembler) {
@@ -15,7 +13,7 @@ std::optional<std::string> LinearPartCondensation::refusal(const Assembler& asse
   // the DOFs (any share below all of them in a small model).
   if (m >= n || m > kMaxCondensedDofs || (m > 0.25 * n && n > 256))
     return fmt::format("the nonlinear elements touch {:.0f} of {} free DOFs", m, n);
-  if (8.0 * n * m > kMaxTransferBytes)
+  if (sparse_solver_replaced() && 8.0 * n * m > kMaxTransferBytes)
     return fmt::format("the transfer matrix would take {:.0f} MB", 8.0 * n * m / 1048576.0);
   return std::nullopt;
 }
@@ -24,7 +22,7 @@ LinearPartCondensation::LinearPartCondensation(const Assembler& assembler)
     : assembler_(assembler),
       c_(assembler.nonlinear_free_dofs()),
       position_(static_cast<std::size_t>(assembler.dofs().n_active()), -1),
-      solver_(make_linear_solver(assembler.dofs().n_free())) {
+      solver_(make_schur_solver(assembler.dofs().n_free(), c_)) {
   for (std::size_t k = 0; k < c_.size(); ++k)
     position_[static_cast<std::size_t>(c_[k])] = static_cast<int>(k);
 }
@@ -40,23 +38,7 @@ void LinearPartCondensation::prepare(const IntegrationCoefficients& coeff) {
   assembler_.assemble_linear_part(coeff, effective_);
   if (solver_->counters().analyses == 0) solver_->analyze_pattern(effective_);
   solver_->factorize(effective_);
-  const int n = assembler_.dofs().n_free();
-  const int m = size();
-  MatrixXd e = MatrixXd::Zero(n, m);
-  for (int k = 0; k < m; ++k) e(c_[static_cast<std::size_t>(k)], k) = 1.0;
-  g_ = solver_->solve(e);
-  // H = Eᵀ A_L⁻¹ E is symmetric positive definite when A_L is; S = H⁻¹ by its Cholesky factor.
-  MatrixXd h(m, m);
-  for (int k = 0; k < m; ++k) h.row(k) = g_.row(c_[static_cast<std::size_t>(k)]);
-  h = 0.5 * (h + h.transpose());
-  const Eigen::LDLT<MatrixXd> ldlt(h);
-  s_ = ldlt.solve(MatrixXd::Identity(m, m));
-  s_ = 0.5 * (s_ + s_.transpose());
   prepared_ = coeff;
-}
-
-VectorXd LinearPartCondensation::solve(const VectorXd& r_free) {
-  return solver_->solve(r_free);
 }
 
 }  // namespace impactfe

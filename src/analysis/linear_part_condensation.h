@@ -6,25 +6,28 @@
 /// (the linear elements' stiffness and damping and every element's mass) and the nonlinear
 /// elements' share on the small set c of free DOFs they touch, the equations of a step are
 ///   A_L δ + E [φ(δ_c) − φ(0)] = r0,
-/// E selecting the c DOFs and r0 the residual at the predictor. With G = A_L⁻¹ E (one
-/// multi-right-hand-side solve) and the Schur complement S = (Eᵀ G)⁻¹ of A_L onto c, the c part
-/// obeys the small dense system  S (y − δ_c) − [φ(δ_c) − φ(0)] = 0,  y = (A_L⁻¹ r0)_c, whose Newton
-/// tangent is S + (cK K_N + cC C_N). Its residual is the full residual on the c rows with every
-/// other row in balance, so Newton on it makes the iterates of full Newton. The whole field is
-/// recovered once per step: δ = A_L⁻¹ r0 − G S (y − δ_c). A_L is factorized once per set of
-/// integration coefficients (once per Δt).
+/// E selecting the c DOFs and r0 the residual at the predictor. With the Schur complement
+/// S = (Eᵀ A_L⁻¹ E)⁻¹ of A_L onto c, the c part obeys the small dense system
+/// S (y − δ_c) − [φ(δ_c) − φ(0)] = 0,  y = (A_L⁻¹ r0)_c, whose Newton tangent is
+/// S + (cK K_N + cC C_N). Its residual is the full residual on the c rows with every other row in
+/// balance, so Newton on it makes the iterates of full Newton. The whole field is recovered once
+/// per step from the other rows: δ_i = A_L,ii⁻¹ (r0_i − A_L,ic δ_c). linalg/schur_solver.h does
+/// the linear algebra (with CHOLMOD: c ordered last in the factorization, so a step costs one
+/// forward and one back substitution and nothing of size n × m is stored). A_L is factorized
+/// once per set of integration coefficients (once per Δt).
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "assembly/assembler.h"
-#include "linalg/linear_solver.h"
+#include "linalg/schur_solver.h"
 
 namespace impactfe {
 
 class LinearPartCondensation {
  public:
-  /// Largest condensed set accepted, and the largest G (n × m doubles) in bytes.
+  /// Largest condensed set accepted (S is m × m, and its Newton tangent is factorized densely),
+  /// and the largest G (n × m doubles) in bytes where the solver stores one (a distributed run).
   static constexpr int kMaxCondensedDofs = 2000;
   static constexpr double kMaxTransferBytes = 512.0 * 1024 * 1024;
 
@@ -44,10 +47,12 @@ class LinearPartCondensation {
   void prepare(const IntegrationCoefficients& coeff);
   bool prepared_for(const IntegrationCoefficients& coeff) const;
 
-  /// A_L⁻¹ r over the free DOFs.
-  VectorXd solve(const VectorXd& r_free);
-  const MatrixXd& transfer() const { return g_; }  // G = A_L⁻¹ E (n_free × m)
-  const MatrixXd& schur() const { return s_; }     // S = (Eᵀ A_L⁻¹ E)⁻¹ (m × m)
+  /// y = (A_L⁻¹ r0)_c for the residual r0 over the free DOFs (the step's first half).
+  VectorXd condense(const VectorXd& r0_free) { return solver_->condense(r0_free); }
+  /// δ over the free DOFs: δ_c on c, the other rows of A_L δ = r0 − E Δφ satisfied (the r0 of
+  /// the last `condense`).
+  VectorXd recover(const VectorXd& delta_c) { return solver_->recover(delta_c); }
+  const MatrixXd& schur() const { return solver_->schur(); }  // S (m × m)
   const SolverCounters& counters() const { return solver_->counters(); }
 
  private:
@@ -55,9 +60,8 @@ class LinearPartCondensation {
   std::vector<int> c_;
   std::vector<int> position_;
   SparseMatrix effective_;
-  std::unique_ptr<LinearSolver> solver_;
+  std::unique_ptr<SchurSolver> solver_;
   std::optional<IntegrationCoefficients> prepared_;
-  MatrixXd g_, s_;
 };
 
 }  // namespace impactfe

@@ -6,68 +6,21 @@
 #include <Eigen/Dense>
 #include <Eigen/SparseCholesky>
 #include <algorithm>
-#include <chrono>
 #include <cmath>
-#include <limits>
 #include <new>
 
 #include "core/errors.h"
-
-#ifdef _OPENMP
-#include <omp.h>
-#endif
+#include "linalg/solver_support.h"
 
 namespace impactfe {
 
 namespace {
 
-/// Relative pivot below which a symmetric positive (semi)definite matrix is treated as singular.
-constexpr double kSingularPivot = 1e-11;
-
-/// Adds the wall time of its scope to `total` (solver phase timers of SolverCounters).
-class ScopedTimer {
- public:
-  explicit ScopedTimer(double& total) : total_(total), start_(std::chrono::steady_clock::now()) {}
-  ~ScopedTimer() {
-    total_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-  }
-  ScopedTimer(const ScopedTimer&) = delete;
-  ScopedTimer& operator=(const ScopedTimer&) = delete;
-
- private:
-  double& total_;
-  std::chrono::steady_clock::time_point start_;
-};
-
-/// Caps the OpenMP team size for one scope. OpenBLAS (the openmp build the README installs) sizes
-/// every BLAS call by omp_get_max_threads(), so this is how a solver phase chooses its BLAS
-/// threads.
-class ScopedThreadLimit {
- public:
-  explicit ScopedThreadLimit(int limit) {
-#ifdef _OPENMP
-    saved_ = omp_get_max_threads();
-    omp_set_num_threads(std::max(1, std::min(limit, saved_)));
-#endif
-  }
-  ~ScopedThreadLimit() {
-#ifdef _OPENMP
-    omp_set_num_threads(saved_);
-#endif
-  }
-  ScopedThreadLimit(const ScopedThreadLimit&) = delete;
-  ScopedThreadLimit& operator=(const ScopedThreadLimit&) = delete;
-
- private:
-  int saved_ = 1;
-};
-
-/// Floating-point operations of a factorization above which its BLAS kernels (dsyrk, dgemm,
-/// dpotrf on the supernodes) may run on several threads. Below it a factorization takes
-/// milliseconds and every threaded kernel call pays a team wake-up that a busy machine turns
-/// into a wait for a core.
-constexpr double kParallelFactorFlops = 2.0e8;
-constexpr int kAllThreads = std::numeric_limits<int>::max();
+using solver_support::kAllThreads;
+using solver_support::kParallelFactorFlops;
+using solver_support::kSingularPivot;
+using solver_support::ScopedThreadLimit;
+using solver_support::ScopedTimer;
 
 /// CHOLMOD supernodal LLᵀ, falling back to simplicial LDLᵀ for indefinite (but regular)
 /// effective matrices (e.g. compressive stress stiffening).
@@ -330,6 +283,10 @@ int weakest_pivot_row(const SparseMatrix& lower) {
 namespace {
 SparseSolverFactory sparse_solver_factory = nullptr;
 }  // namespace
+
+bool sparse_solver_replaced() {
+  return sparse_solver_factory != nullptr;
+}
 
 void set_sparse_solver_factory(SparseSolverFactory factory) {
   sparse_solver_factory = factory;

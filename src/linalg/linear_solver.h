@@ -81,6 +81,8 @@ std::unique_ptr<LinearSolver> make_linear_solver(int n,
 /// CHOLMOD). Every process of a distributed run sets the same factory.
 using SparseSolverFactory = std::unique_ptr<LinearSolver> (*)();
 void set_sparse_solver_factory(SparseSolverFactory factory);
+/// Whether a sparse solver factory is set (a distributed run's MUMPS).
+bool sparse_solver_replaced();
 
 /// Finds the equation with the smallest relative pivot of a symmetric matrix (diagnosis of a
 /// singular model): returns the 0-based row with D_jj / A_jj smallest, via a simplicial LDLᵀ.
