@@ -629,6 +629,13 @@ DeckReader::Flow DeckReader::run_range(Frame& f, std::size_t begin, std::size_t 
       }
       fail(c, "unknown command");
     }
+    // A repeat line re-issues a command's name with new fields; a block or control command
+    // (*BEGIN, *DO, *IF, ...) takes its structure from the lines around it, which a repeat line
+    // does not have.
+    if (raw.repeat && spec->handler == nullptr)
+      fail(c, fmt::format("a repeat line (leading comma) cannot repeat the control command {}; "
+                          "write the command out",
+                          c.name));
     last_name_ = c.name;
     const std::string& n = c.name;
     if (spec->handler != nullptr) {
