@@ -23,10 +23,16 @@ double field(const std::vector<double>& d, std::size_t i, double fallback = 0.0)
   return i < d.size() && d[i] != 0.0 ? d[i] : fallback;
 }
 
+/// Most cells of a section along one direction: the fibres of a rectangle are (2 Nb + 1)(2 Nh + 1)
+/// and every integration point of every element visits each one, so 100 × 100 cells (40 401
+/// fibres) is already far finer than a section needs.
+constexpr double kMaxCells = 100.0;
+
 int count_field(const std::vector<double>& d, std::size_t i, int fallback,
                 const std::string& what) {
   const double v = field(d, i, fallback);
   if (v != std::floor(v) || v < 1.0) bad(fmt::format("{} must be a positive integer", what));
+  if (v > kMaxCells) bad(fmt::format("{} = {:g} cells: at most {:g}", what, v, kMaxCells));
   return static_cast<int>(v);
 }
 
