@@ -394,10 +394,17 @@ class CondensedIncrement final : public NonlinearProblem {
     VectorXd phi = VectorXd::Zero(n_unknowns());
     assembler_.assemble_nonlinear_part(coeff_, wk_, u_, v_, condensation_.position(), phi,
                                        &tangent);
-    tangent_.compute(tangent);
+    // S + K_N is positive definite unless a nonlinear element's tangent is negative enough:
+    // blocked Cholesky (Eigen's LDLᵀ is unblocked: 0.17 s against 0.09 s at m = 1681), LDLᵀ when
+    // Cholesky fails.
+    tangent_llt_.compute(tangent);
+    positive_definite_ = tangent_llt_.info() == Eigen::Success;
+    if (!positive_definite_) tangent_ldlt_.compute(tangent);
     stale_ = false;
   }
-  VectorXd solve(const VectorXd& r) override { return tangent_.solve(r); }
+  VectorXd solve(const VectorXd& r) override {
+    return positive_definite_ ? VectorXd(tangent_llt_.solve(r)) : VectorXd(tangent_ldlt_.solve(r));
+  }
   bool update_status(const VectorXd& delta) override {
     set_state(delta);
     n_status_changes_ += status_loop_.update(u_, label_);
@@ -430,7 +437,9 @@ class CondensedIncrement final : public NonlinearProblem {
   VectorXd y_;
   double reference_;
   VectorXd phi0_;
-  Eigen::LDLT<MatrixXd> tangent_;
+  Eigen::LLT<MatrixXd> tangent_llt_;
+  Eigen::LDLT<MatrixXd> tangent_ldlt_;
+  bool positive_definite_ = true;
   bool stale_ = true;
   int n_status_changes_ = 0, reported_ = 0;
 };
