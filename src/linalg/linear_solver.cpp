@@ -16,6 +16,7 @@ namespace impactfe {
 
 namespace {
 
+using solver_support::cholmod_lower_view;
 using solver_support::kAllThreads;
 using solver_support::kParallelFactorFlops;
 using solver_support::kSingularPivot;
@@ -44,7 +45,7 @@ class CholmodSolver final : public LinearSolver {
   void analyze_pattern(const SparseMatrix& lower) override {
     ScopedTimer timer(counters_.analyze_seconds);
     if (factor_) cholmod_free_factor(&factor_, &common_);
-    cholmod_sparse A = view(lower);
+    cholmod_sparse A = cholmod_lower_view(lower);
     factor_ = cholmod_analyze(&A, &common_);
     if (!factor_) {
       if (common_.status == CHOLMOD_OUT_OF_MEMORY) throw std::bad_alloc();
@@ -60,7 +61,7 @@ class CholmodSolver final : public LinearSolver {
     ScopedTimer timer(counters_.factorize_seconds);
     // common_.fl: flop count of the factorization, from the symbolic analysis.
     ScopedThreadLimit threads(common_.fl >= kParallelFactorFlops ? kAllThreads : 1);
-    cholmod_sparse A = view(lower);
+    cholmod_sparse A = cholmod_lower_view(lower);
     common_.final_ll = 1;
     cholmod_factorize(&A, factor_, &common_);
     ++counters_.factorizations;
@@ -131,25 +132,6 @@ class CholmodSolver final : public LinearSolver {
   }
 
  private:
-  static cholmod_sparse view(const SparseMatrix& lower) {
-    cholmod_sparse A;
-    A.nrow = static_cast<size_t>(lower.rows());
-    A.ncol = static_cast<size_t>(lower.cols());
-    A.nzmax = static_cast<size_t>(lower.nonZeros());
-    A.p = const_cast<int*>(lower.outerIndexPtr());
-    A.i = const_cast<int*>(lower.innerIndexPtr());
-    A.nz = nullptr;
-    A.x = const_cast<double*>(lower.valuePtr());
-    A.z = nullptr;
-    A.stype = -1;  // lower triangle stored
-    A.itype = CHOLMOD_INT;
-    A.xtype = CHOLMOD_REAL;
-    A.dtype = CHOLMOD_DOUBLE;
-    A.sorted = 1;
-    A.packed = 1;
-    return A;
-  }
-
   /// Counts the negative entries of D in a simplicial LDLᵀ factor (the diagonal is the first
   /// entry of each column) and maps the first to its unpermuted row.
   void count_negative_pivots() {

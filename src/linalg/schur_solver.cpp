@@ -15,6 +15,7 @@ namespace impactfe {
 
 namespace {
 
+using solver_support::cholmod_lower_view;
 using solver_support::kAllThreads;
 using solver_support::kParallelFactorFlops;
 using solver_support::ScopedThreadLimit;
@@ -74,7 +75,8 @@ class CholmodSchurSolver final : public SchurSolver {
         if (const int r = local[static_cast<std::size_t>(it.row())]; r >= 0) row_index.push_back(r);
       column_start.push_back(static_cast<int>(row_index.size()));
     }
-    cholmod_sparse a_ii = pattern_view(ni, column_start, row_index);
+    cholmod_sparse a_ii = cholmod_lower_view(static_cast<std::size_t>(ni), row_index.size(),
+                                             column_start.data(), row_index.data(), nullptr);
     cholmod_factor* ordering = cholmod_analyze(&a_ii, &common_);
     check_analysis(ordering);
     std::vector<int> perm(static_cast<std::size_t>(n_));
@@ -90,7 +92,7 @@ class CholmodSchurSolver final : public SchurSolver {
     common_.nmethods = 1;
     common_.method[0].ordering = CHOLMOD_GIVEN;
     common_.postorder = 0;
-    cholmod_sparse a = view(lower);
+    cholmod_sparse a = cholmod_lower_view(lower);
     factor_ = cholmod_analyze_p(&a, perm.data(), nullptr, 0, &common_);
     common_.nmethods = 0;
     common_.postorder = 1;
@@ -106,7 +108,7 @@ class CholmodSchurSolver final : public SchurSolver {
     if (!factor_) analyze_pattern(lower);
     ScopedTimer timer(counters_.factorize_seconds);
     ScopedThreadLimit threads(common_.fl >= kParallelFactorFlops ? kAllThreads : 1);
-    cholmod_sparse a = view(lower);
+    cholmod_sparse a = cholmod_lower_view(lower);
     cholmod_factorize(&a, factor_, &common_);
     ++counters_.factorizations;
     if (common_.status == CHOLMOD_OUT_OF_MEMORY) throw std::bad_alloc();
@@ -159,39 +161,6 @@ class CholmodSchurSolver final : public SchurSolver {
   }
 
  private:
-  static cholmod_sparse view(const SparseMatrix& lower) {
-    cholmod_sparse a{};
-    a.nrow = static_cast<size_t>(lower.rows());
-    a.ncol = static_cast<size_t>(lower.cols());
-    a.nzmax = static_cast<size_t>(lower.nonZeros());
-    a.p = const_cast<int*>(lower.outerIndexPtr());
-    a.i = const_cast<int*>(lower.innerIndexPtr());
-    a.x = const_cast<double*>(lower.valuePtr());
-    a.stype = -1;  // lower triangle stored
-    a.itype = CHOLMOD_INT;
-    a.xtype = CHOLMOD_REAL;
-    a.dtype = CHOLMOD_DOUBLE;
-    a.sorted = 1;
-    a.packed = 1;
-    return a;
-  }
-
-  static cholmod_sparse pattern_view(int n, std::vector<int>& column_start,
-                                     std::vector<int>& row_index) {
-    cholmod_sparse a{};
-    a.nrow = a.ncol = static_cast<size_t>(n);
-    a.nzmax = row_index.size();
-    a.p = column_start.data();
-    a.i = row_index.data();
-    a.stype = -1;
-    a.itype = CHOLMOD_INT;
-    a.xtype = CHOLMOD_PATTERN;
-    a.dtype = CHOLMOD_DOUBLE;
-    a.sorted = 1;
-    a.packed = 1;
-    return a;
-  }
-
   void check_analysis(const cholmod_factor* f) const {
     if (f) return;
     if (common_.status == CHOLMOD_OUT_OF_MEMORY) throw std::bad_alloc();

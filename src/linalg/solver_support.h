@@ -1,6 +1,9 @@
 #pragma once
 /// Helpers shared by the sparse solver back ends of src/linalg (CHOLMOD's LinearSolver and
-/// SchurSolver): phase timers, the BLAS thread cap of a solver phase, and the pivot thresholds.
+/// SchurSolver): phase timers, the BLAS thread cap of a solver phase, the pivot thresholds and
+/// CHOLMOD views of Eigen matrices.
+#include <cholmod.h>
+
 #include <algorithm>
 #include <chrono>
 #include <limits>
@@ -8,6 +11,8 @@
 #ifdef _OPENMP
 #include <omp.h>
 #endif
+
+#include "linalg/sparse.h"
 
 namespace impactfe::solver_support {
 
@@ -60,5 +65,31 @@ class ScopedThreadLimit {
  private:
   int saved_ = 1;
 };
+
+/// A CHOLMOD view (no copy) of a symmetric matrix stored as its lower triangle in compressed
+/// columns; without values (x == nullptr) the pattern only.
+inline cholmod_sparse cholmod_lower_view(std::size_t n, std::size_t nonzeros,
+                                         const int* column_start, const int* row_index,
+                                         const double* x) {
+  cholmod_sparse a{};
+  a.nrow = a.ncol = n;
+  a.nzmax = nonzeros;
+  a.p = const_cast<int*>(column_start);
+  a.i = const_cast<int*>(row_index);
+  a.x = const_cast<double*>(x);
+  a.stype = -1;  // lower triangle stored
+  a.itype = CHOLMOD_INT;
+  a.xtype = x != nullptr ? CHOLMOD_REAL : CHOLMOD_PATTERN;
+  a.dtype = CHOLMOD_DOUBLE;
+  a.sorted = 1;
+  a.packed = 1;
+  return a;
+}
+
+inline cholmod_sparse cholmod_lower_view(const SparseMatrix& lower) {
+  return cholmod_lower_view(static_cast<std::size_t>(lower.rows()),
+                            static_cast<std::size_t>(lower.nonZeros()), lower.outerIndexPtr(),
+                            lower.innerIndexPtr(), lower.valuePtr());
+}
 
 }  // namespace impactfe::solver_support
