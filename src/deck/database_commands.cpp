@@ -317,7 +317,9 @@ void cmd_save(DeckReader& r, const Command& c) {
   const std::string path = database_path(r, c);
   std::ofstream out(path);
   if (!out) r.fail(c, fmt::format("cannot write '{}'", path));
-  out << j.dump(1) << '\n';
+  // JSON strings are UTF-8: a title or string parameter with other bytes (Latin-1 text, or
+  // garbage) is written with U+FFFD in their place rather than refused.
+  out << j.dump(1, ' ', false, json::error_handler_t::replace) << '\n';
   Log::info("{}:{}: SAVE: database written to {}", c.where.file, c.where.line, path);
 }
 

@@ -141,6 +141,16 @@ RESUME,model,sav
   }
 }
 
+TEST(DatabaseCommands, SaveAndResumeATitleThatIsNotUtf8) {
+  // Bytes that are not UTF-8 (here Latin-1 "ß" and a stray 0x8A) come back as U+FFFD (found by
+  // the fuzzer: the JSON library threw "invalid UTF-8 byte" out of SAVE).
+  const auto dir = impactfe::testing::fresh_directory("database_latin1");
+  const DeckRunResult run =
+      run_with_session(dir, "/TITLE,Sto\xdf \x8a test\n/PREP7\nN,1\nSAVE\n/CLEAR\nRESUME\n");
+  EXPECT_EQ(run.job.model.title, "Sto\xef\xbf\xbd \xef\xbf\xbd test");
+  EXPECT_EQ(run.job.model.nodes.size(), 1u);
+}
+
 TEST(DatabaseCommands, SaveAndResumeKeepOutresPerItem) {
   const auto dir = impactfe::testing::fresh_directory("database_outres");
   const std::string deck = R"(/PREP7
