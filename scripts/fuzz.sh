@@ -33,6 +33,7 @@ if [ "$seconds" -gt 0 ]; then limits+=(-max_total_time="$seconds"); fi
 export OMP_NUM_THREADS=1
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
+export LSAN_OPTIONS="suppressions=$(pwd)/scripts/lsan-suppressions.txt"
 # shellcheck disable=SC2086
 "$build/tests/fuzz/fuzz_deck" "${limits[@]}" ${FUZZ_ARGS:-} "$build/fuzz-corpus" "$build/fuzz-seeds"
 echo "fuzz: ok (no crash, no timeout)"

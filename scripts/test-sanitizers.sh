@@ -11,6 +11,8 @@ cmake --build "$sanitizer_build" -j "$(nproc)"
 
 export ASAN_OPTIONS="detect_leaks=1:exitcode=86:abort_on_error=0:strict_string_checks=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:exitcode=86"
+# HDF5's own lost free-list blocks (scripts/lsan-suppressions.txt says why).
+export LSAN_OPTIONS="suppressions=$(pwd)/scripts/lsan-suppressions.txt"
 # EXCLUDE: ctest regular expression of the tests left out, with the reason (none today).
 EXCLUDE="${EXCLUDE-}"
 # Tests that start Open MPI (the MUMPS module) run without LeakSanitizer: Open MPI's components,
