@@ -32,6 +32,7 @@ Assembler::Assembler(const std::vector<std::unique_ptr<Element>>& elements, cons
   tangent_buffer_.resize(elements_.size());
   force_buffer_.resize(elements_.size());
   tangent_at_.resize(elements_.size());
+  tangent_valid_.assign(elements_.size(), 0);
   reusable_.assign(elements_.size(), false);
   for (std::size_t e = 0; e < elements_.size(); ++e) {
     const auto& idx = dofs_.element_indices(e);
@@ -193,7 +194,7 @@ void Assembler::assemble(const IntegrationCoefficients& coeff, const VectorXd& u
   const std::vector<char>* only = !split    ? nullptr
                                   : vectors ? &evaluate_vectors_
                                             : &evaluate_matrix_;
-  compute_nonlinear_tangents(u, only);
+  compute_nonlinear_tangents(u, out.effective != nullptr, only);
   add_forces(u, v, a, out, only);
   if (out.effective) {
     if (out.effective->nonZeros() != pattern_.nonZeros()) *out.effective = pattern_;
@@ -254,7 +255,8 @@ VectorXd Assembler::inertia_force(const VectorXd& a) const {
   return f;
 }
 
-void Assembler::compute_nonlinear_tangents(const VectorXd& u, const std::vector<char>* only) const {
+void Assembler::compute_nonlinear_tangents(const VectorXd& u, bool with_tangent,
+                                           const std::vector<char>* only) const {
   // Tangents of the nonlinear elements (the expensive part: co-rotational shells,
   // total-Lagrangian bricks) into per-element buffers. Elements are const here and keep no shared
   // scratch, so the loop is race-free and its results do not depend on the thread count; the
@@ -262,7 +264,7 @@ void Assembler::compute_nonlinear_tangents(const VectorXd& u, const std::vector<
   const int n_nonlinear = static_cast<int>(nonlinear_.size());
   auto needed = [&](int i) { return !only || (*only)[nonlinear_[static_cast<std::size_t>(i)]]; };
   auto evaluate = [&](int i) {
-    return needed(i) && evaluate_tangent(nonlinear_[static_cast<std::size_t>(i)], u);
+    return needed(i) && evaluate_tangent(nonlinear_[static_cast<std::size_t>(i)], u, with_tangent);
   };
   if (threading_.parallel) {
     // An exception must not leave the parallel region (that would terminate the program): the
@@ -294,22 +296,29 @@ void Assembler::compute_nonlinear_tangents(const VectorXd& u, const std::vector<
   }
   // The probes estimate a full pass: a pass that reused some buffers is scaled to all the
   // elements it wanted (elements that never move, e.g. on constrained nodes, reuse theirs at
-  // every pass), and one that evaluated nothing is no probe.
-  if (evaluated > 0)
+  // every pass), and one that evaluated nothing is no probe; nor is one of forces alone.
+  if (evaluated > 0 && with_tangent)
     threading_.record_serial_pass(
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() * wanted /
         evaluated);
 }
 
-bool Assembler::evaluate_tangent(std::size_t e, const VectorXd& u) const {
+bool Assembler::evaluate_tangent(std::size_t e, const VectorXd& u, bool with_tangent) const {
   VectorXd ue;
   gather(e, u, ue);
   VectorXd& at = tangent_at_[e];
-  if (reusable_[e] && at.size() == ue.size() &&
+  if (reusable_[e] && (tangent_valid_[e] || !with_tangent) && at.size() == ue.size() &&
       std::memcmp(at.data(), ue.data(), sizeof(double) * static_cast<std::size_t>(ue.size())) == 0)
     return false;
   at.resize(0);  // the buffers are not reusable until the evaluation has succeeded
-  elements_[e]->tangent(ctx_, ue, tangent_buffer_[e], force_buffer_[e]);
+  // Rayleigh β K_e damping forces read the tangent: such elements always form it.
+  const bool tangent =
+      with_tangent || beta_of(e) != 0.0 || !elements_[e]->separate_internal_force(ctx_);
+  if (tangent)
+    elements_[e]->tangent(ctx_, ue, tangent_buffer_[e], force_buffer_[e]);
+  else
+    elements_[e]->internal_force(ctx_, ue, force_buffer_[e]);
+  tangent_valid_[e] = static_cast<char>(tangent);
   if (reusable_[e]) at = std::move(ue);
   return true;
 }
@@ -337,7 +346,11 @@ bool Assembler::element_damping(std::size_t e, const VectorXd& ue, const MatrixX
   } else {
     return false;
   }
-  if (rayleigh) c += alpha_ * mass_[e] + beta * k;
+  // k is read only with β ≠ 0 (a forces-only pass leaves the tangent buffer stale).
+  if (beta != 0.0)
+    c += alpha_ * mass_[e] + beta * k;
+  else if (rayleigh)
+    c += alpha_ * mass_[e];
   return true;
 }
 
@@ -383,7 +396,7 @@ void Assembler::assemble_nonlinear_part(const IntegrationCoefficients& coeff, do
                                         const VectorXd& u, const VectorXd& v,
                                         const std::vector<int>& position, VectorXd& phi,
                                         MatrixXd* tangent) const {
-  compute_nonlinear_tangents(u);
+  compute_nonlinear_tangents(u, tangent != nullptr);
   MatrixXd c;
   VectorXd ue, ve, fe;
   for (std::size_t e : nonlinear_) {

@@ -142,20 +142,28 @@ class Assembler {
   mutable std::vector<MatrixXd> tangent_buffer_;
   mutable std::vector<VectorXd> force_buffer_;
   /// Reuse of the buffers: a Newton iteration evaluates the residual and then factors the
-  /// tangent at the same iterate, i.e. two tangent phases at one u. An element without status
+  /// tangent at the same iterate, i.e. two element phases at one u. An element without status
   /// and without history (the co-rotational shell, the large-deflection brick) is a pure
   /// function of its DOF values (ctx_ is fixed for the assembler's life), so when its gathered
   /// values are bitwise those of its last evaluation the buffers are already its answer: the
-  /// results are bitwise the same and the helmet's shell tangents run once per iteration
-  /// instead of twice. Elements with a status (gaps, contact) or history (plasticity) are
-  /// always evaluated. `tangent_at_[e]` is empty while the buffers hold nothing reusable.
+  /// results are bitwise the same. Elements with a status (gaps, contact) or history
+  /// (plasticity) are always evaluated. `tangent_at_[e]` is empty while the buffers hold
+  /// nothing reusable.
+  ///
+  /// The tangent is formed only when asked for: a residual evaluates the internal forces
+  /// alone (Element::internal_force), and the factorization that follows at the same iterate
+  /// adds the tangent. The evaluation that finds an iterate converged (one per step) thus
+  /// never forms a tangent; the helmet's shells spent 44 % of their tangents there.
+  /// `tangent_valid_[e]`: the tangent buffer belongs to tangent_at_[e] too.
   std::vector<bool> reusable_;
   mutable std::vector<VectorXd> tangent_at_;
-  /// Tangents and internal forces of the nonlinear elements at u into the buffers (only those
-  /// with (*only)[e] set when `only` is given: distributed assembly).
-  void compute_nonlinear_tangents(const VectorXd& u, const std::vector<char>* only = nullptr) const;
-  /// One element's tangent phase; false when the buffers were reused (no evaluation).
-  bool evaluate_tangent(std::size_t e, const VectorXd& u) const;
+  mutable std::vector<char> tangent_valid_;
+  /// Internal forces (and tangents when `with_tangent`) of the nonlinear elements at u into the
+  /// buffers (only those with (*only)[e] set when `only` is given: distributed assembly).
+  void compute_nonlinear_tangents(const VectorXd& u, bool with_tangent,
+                                  const std::vector<char>* only = nullptr) const;
+  /// One element's phase; false when the buffers were reused (no evaluation).
+  bool evaluate_tangent(std::size_t e, const VectorXd& u, bool with_tangent) const;
 
   /// Whether the tangent phase runs on several threads, decided from its measured cost: a
   /// parallel region costs a thread wake-up and leaves the workers spinning (libgomp) while the

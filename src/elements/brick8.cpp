@@ -132,14 +132,14 @@ Brick8::Brick8(int id, const std::array<int, 8>& nodes, const std::array<Vec3, 8
   if (extra_shapes_) {
     Eigen::Matrix<double, 3 * kFunctions, 3 * kFunctions> kfull;
     Eigen::Matrix<double, 3 * kFunctions, 1> ffull;
-    tl_sum<kFunctions>(Eigen::Matrix<double, 3 * kFunctions, 1>::Zero(), kfull, ffull);
+    tl_sum<kFunctions>(Eigen::Matrix<double, 3 * kFunctions, 1>::Zero(), &kfull, ffull);
     const Eigen::Matrix<double, 9, 9> kaa = kfull.bottomRightCorner<9, 9>();
     mode_recovery_ = -kaa.ldlt().solve(kfull.bottomLeftCorner<9, 24>());
     k_linear_ = kfull.topLeftCorner<24, 24>() + kfull.topRightCorner<24, 9>() * mode_recovery_;
     k_linear_ = 0.5 * (k_linear_ + k_linear_.transpose()).eval();
   } else {
     Eigen::Matrix<double, 24, 1> ffull;
-    tl_sum<8>(Eigen::Matrix<double, 24, 1>::Zero(), k_linear_, ffull);
+    tl_sum<8>(Eigen::Matrix<double, 24, 1>::Zero(), &k_linear_, ffull);
   }
 }
 
@@ -170,7 +170,7 @@ void Brick8::from_corners(const Eigen::MatrixXd& kc, const Eigen::VectorXd& fc, 
 
 template <int NF>
 void Brick8::tl_sum(const Eigen::Matrix<double, 3 * NF, 1>& q,
-                    Eigen::Matrix<double, 3 * NF, 3 * NF>& k,
+                    Eigen::Matrix<double, 3 * NF, 3 * NF>* k_out,
                     Eigen::Matrix<double, 3 * NF, 1>& f) const {
   // St. Venant-Kirchhoff with this element's isotropic D (S = λ tr(E) I + 2μ E). With
   // h_a = F ∇N_a, the variation of the Green strain by function a in direction i is
@@ -180,7 +180,7 @@ void Brick8::tl_sum(const Eigen::Matrix<double, 3 * NF, 1>& q,
   // and f_a = F S ∇N_a (first Piola-Kirchhoff stress on the gradient), all times dV0: the same
   // sums as the Voigt products with a general D, without the 6 × 3NF matrices.
   const double lambda = d_(0, 1), mu = d_(3, 3);
-  k.setZero();
+  if (k_out) k_out->setZero();
   f.setZero();
   // q and f as 3 × NF (column a = function a).
   const Eigen::Map<const Eigen::Matrix<double, 3, NF>> q_mat(q.data());
@@ -195,6 +195,8 @@ void Brick8::tl_sum(const Eigen::Matrix<double, 3 * NF, 1>& q,
     Eigen::Matrix3d s_dv = (2.0 * mu * gp.dv) * e;
     s_dv.diagonal().array() += lambda * gp.dv * e.trace();
     f_mat.noalias() += (f_grad * s_dv).lazyProduct(grad);
+    if (!k_out) continue;
+    auto& k = *k_out;
     const Eigen::Matrix<double, 3, NF> h = f_grad.lazyProduct(grad);
     const Eigen::Matrix<double, 3, NF> h_lambda = (lambda * gp.dv) * h;
     const Eigen::Matrix<double, 3, NF> h_mu = (mu * gp.dv) * h;
@@ -210,6 +212,8 @@ void Brick8::tl_sum(const Eigen::Matrix<double, 3 * NF, 1>& q,
         k.template block<3, 3>(3 * a, 3 * b) += blk;
       }
   }
+  if (!k_out) return;
+  auto& k = *k_out;
   for (int c = 0; c < 3 * NF; ++c)
     for (int r = c + 1; r < 3 * NF; ++r) k(r, c) = k(c, r);
 }
@@ -247,7 +251,7 @@ void Brick8::tangent_large(const Eigen::Matrix<double, 24, 1>& uc, Eigen::Matrix
   if (!extra_shapes_) {
     Eigen::Matrix<double, 24, 24> k8;
     Eigen::Matrix<double, 24, 1> f8;
-    tl_sum<8>(uc, k8, f8);
+    tl_sum<8>(uc, &k8, f8);
     kc = k8;
     fc = f8;
     return;
@@ -264,7 +268,7 @@ void Brick8::tangent_large(const Eigen::Matrix<double, 24, 1>& uc, Eigen::Matrix
   const double scale = std::max(uc.lpNorm<Eigen::Infinity>(), 1e-300);
   bool converged = false;
   for (int iter = 0; iter < 30; ++iter) {
-    tl_sum<kFunctions>(q, kq, fq);
+    tl_sum<kFunctions>(q, &kq, fq);
     const Eigen::Matrix<double, 9, 1> step =
         -kq.bottomRightCorner<9, 9>().ldlt().solve(fq.tail<9>());
     q.tail<9>() += step;
@@ -276,7 +280,7 @@ void Brick8::tangent_large(const Eigen::Matrix<double, 24, 1>& uc, Eigen::Matrix
   }
   if (!converged)
     Log::warn("element {}: incompatible-mode amplitudes did not converge (large deflection)", id());
-  tl_sum<kFunctions>(q, kq, fq);
+  tl_sum<kFunctions>(q, &kq, fq);
   const Eigen::Matrix<double, 9, 9> kaa = kq.bottomRightCorner<9, 9>();
   const Eigen::Matrix<double, 9, 24> kau = kq.bottomLeftCorner<9, 24>();
   const auto kaa_ldlt = kaa.ldlt();
@@ -407,6 +411,25 @@ void Brick8::tangent(const ElementContext& ctx, const Eigen::VectorXd& u, Eigen:
   else
     tangent_linear(ctx, uc, kc, fc);
   from_corners(kc, fc, K, f_int);
+}
+
+void Brick8::internal_force(const ElementContext& ctx, const Eigen::VectorXd& u,
+                            Eigen::VectorXd& f_int) const {
+  // The bubble amplitudes of extra shapes are solved with the stiffness; plasticity and the
+  // small-strain forms cost little beside their tangent: those take the full evaluation.
+  if (!separate_internal_force(ctx)) {
+    Element::internal_force(ctx, u, f_int);
+    return;
+  }
+  Eigen::Matrix<double, 24, 1> fc;
+  tl_sum<8>(to_corners(u), nullptr, fc);
+  if (n_unique_ == 8) {  // as from_corners
+    f_int = fc;
+    return;
+  }
+  const int n = 3 * n_unique_;
+  f_int.setZero(n);
+  for (int a = 0; a < 8; ++a) f_int.segment<3>(3 * corner_to_unique_[a]) += fc.segment<3>(3 * a);
 }
 
 Eigen::MatrixXd Brick8::scalar_mass() const {

@@ -53,6 +53,13 @@ class Brick8 final : public Element {
   void tangent(const ElementContext& ctx, const Eigen::VectorXd& u, Eigen::MatrixXd& K,
                Eigen::VectorXd& f_int) const override;
   /// Consistent ρ∫NᵀN dV (trilinear functions, 2x2x2) or HRZ-lumped when ctx.lumped_mass.
+  /// f_int of tangent() alone; under large deflection without extra shapes the
+  /// total-Lagrangian sum skips the stiffness blocks.
+  void internal_force(const ElementContext& ctx, const Eigen::VectorXd& u,
+                      Eigen::VectorXd& f_int) const override;
+  bool separate_internal_force(const ElementContext& ctx) const override {
+    return ctx.large_deflection && !plasticity_ && !extra_shapes_;
+  }
   void mass(const ElementContext& ctx, Eigen::MatrixXd& M) const override;
 
   /// Pressure on face 1..6 (J-I-L-K, I-J-N-M, J-K-O-N, K-L-P-O, L-I-M-P, M-N-O-P, outward
@@ -97,8 +104,9 @@ class Brick8 final : public Element {
   /// linear stiffness.
   /// NF = 8 (corners) or 11 (with the bubbles); fixed-size operands (6 × 3NF B_L), so the
   /// products are unrolled instead of going through the blocked dynamic-size GEMM.
+  /// `k` == nullptr: f alone (the same operations, so bitwise the same f).
   template <int NF>
-  void tl_sum(const Eigen::Matrix<double, 3 * NF, 1>& q, Eigen::Matrix<double, 3 * NF, 3 * NF>& k,
+  void tl_sum(const Eigen::Matrix<double, 3 * NF, 1>& q, Eigen::Matrix<double, 3 * NF, 3 * NF>* k,
               Eigen::Matrix<double, 3 * NF, 1>& f) const;
   void tangent_linear(const ElementContext& ctx, const Eigen::Matrix<double, 24, 1>& uc,
                       Eigen::MatrixXd& kc, Eigen::VectorXd& fc) const;

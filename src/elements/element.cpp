@@ -21,6 +21,12 @@ void Element::restore_history_state(const std::vector<double>& state) {
                              id(), state.size()));
 }
 
+void Element::internal_force(const ElementContext& ctx, const Eigen::VectorXd& u,
+                             Eigen::VectorXd& f_int) const {
+  Eigen::MatrixXd K;
+  tangent(ctx, u, K, f_int);
+}
+
 void Element::damping(const ElementContext&, const Eigen::VectorXd&, Eigen::MatrixXd& C) const {
   C.setZero(n_dofs(), n_dofs());
 }

@@ -52,6 +52,15 @@ class Element {
   /// force f_int at total displacement u (element DOF order). For a linear element f_int = K u.
   virtual void tangent(const ElementContext& ctx, const Eigen::VectorXd& u, Eigen::MatrixXd& K,
                        Eigen::VectorXd& f_int) const = 0;
+  /// Internal force f_int at u alone, bitwise the f_int of tangent(): for a residual that
+  /// needs no tangent (the evaluation that finds a Newton iterate converged; issue 11). The
+  /// default runs tangent() and drops K.
+  virtual void internal_force(const ElementContext& ctx, const Eigen::VectorXd& u,
+                              Eigen::VectorXd& f_int) const;
+  /// True when internal_force() costs much less than tangent() here (co-rotational shell,
+  /// total-Lagrangian brick): a residual then evaluates the force alone and the tangent only
+  /// when a factorization asks for it. False (default): one tangent() serves both.
+  virtual bool separate_internal_force(const ElementContext& ctx) const { return false; }
   /// Mass matrix (consistent, or lumped when ctx.lumped_mass or the element is inherently lumped).
   virtual void mass(const ElementContext& ctx, Eigen::MatrixXd& M) const = 0;
   /// Viscous damping matrix at u (COMBIN40: only while closed). Default: none.

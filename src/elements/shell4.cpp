@@ -382,6 +382,22 @@ void Shell4::tangent(const ElementContext& ctx, const Eigen::VectorXd& u, Eigen:
   add_geometric_stiffness(s, f_l, K);
 }
 
+void Shell4::internal_force(const ElementContext& ctx, const Eigen::VectorXd& u,
+                            Eigen::VectorXd& f_int) const {
+  if (!separate_internal_force(ctx)) {
+    Element::internal_force(ctx, u, f_int);
+    return;
+  }
+  // tangent()'s f_int = Bᵀ K̄ d (the same operations) without Bᵀ K̄ B and the geometric part.
+  using Vec24 = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, 24, 1>;
+  Vec24 d;
+  const CorotationalState s = corotate(X_, R0_, c0_, u, true, d);
+  Mat24 B;
+  kinematic_matrix(s, B);
+  const Vec24 f_l = K_bar_ * d;
+  f_int = B.transpose() * f_l;
+}
+
 void Shell4::mass(const ElementContext& ctx, Eigen::MatrixXd& M) const {
   if (!ctx.lumped_mass) {
     M = M_cons_;

@@ -48,6 +48,12 @@ class Shell4 : public Element {
   /// B = ∂d/∂u and the geometric part ∂Bᵀ/∂u·f_l both analytic (shell_frame.h, so3.h).
   void tangent(const ElementContext& ctx, const Eigen::VectorXd& u, Eigen::MatrixXd& K,
                Eigen::VectorXd& f_int) const override;
+  /// f_int of tangent() alone (large deflection: Bᵀ K̄ d, no stiffness products).
+  void internal_force(const ElementContext& ctx, const Eigen::VectorXd& u,
+                      Eigen::VectorXd& f_int) const override;
+  bool separate_internal_force(const ElementContext& ctx) const override {
+    return ctx.large_deflection && !plasticity_;
+  }
   void mass(const ElementContext& ctx, Eigen::MatrixXd& M) const override;
   /// Pressure on face 1 (bottom: positive pushes along +N, the I-J-K-L normal) or face 2 (top:
   /// along −N); consistent loads on the translations, on the face deformed by u under large

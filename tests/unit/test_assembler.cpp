@@ -212,6 +212,82 @@ class CountingSpring final : public Element {
   bool status_;
 };
 
+/// The same spring with a force of its own (Element::separate_internal_force), counting the
+/// force-only evaluations apart from the tangents.
+class SeparatingSpring final : public Element {
+ public:
+  SeparatingSpring(int id, int n1, int n2) : Element(id), spring_(id, n1, n2, false) {}
+  const char* family() const override { return "SeparatingSpring"; }
+  const std::vector<DofKey>& dofs() const override { return spring_.dofs(); }
+  bool is_nonlinear(const ElementContext&) const override { return true; }
+  void tangent(const ElementContext& ctx, const Eigen::VectorXd& u, Eigen::MatrixXd& K,
+               Eigen::VectorXd& f) const override {
+    spring_.tangent(ctx, u, K, f);
+  }
+  void internal_force(const ElementContext& ctx, const Eigen::VectorXd& u,
+                      Eigen::VectorXd& f) const override {
+    ++force_evaluations;
+    Eigen::MatrixXd K;
+    spring_.tangent(ctx, u, K, f);
+    --spring_.evaluations;  // not a tangent
+  }
+  bool separate_internal_force(const ElementContext&) const override { return true; }
+  void mass(const ElementContext& ctx, Eigen::MatrixXd& M) const override { spring_.mass(ctx, M); }
+  const std::vector<std::string>& result_names() const override { return spring_.result_names(); }
+  void results(const ElementContext& ctx, const Eigen::VectorXd& u, const Eigen::VectorXd& v,
+               ElementResultValues& out) const override {
+    spring_.results(ctx, u, v, out);
+  }
+  int tangents() const { return spring_.evaluations; }
+  mutable int force_evaluations = 0;
+
+ private:
+  CountingSpring spring_;
+};
+
+TEST(Assembler, ResidualsFormNoTangentForElementsWithAForceOfTheirOwn) {
+  // A residual evaluates the force alone; the factorization at the same u then adds the
+  // tangent, and a second one at that u reuses it. The outputs are a fresh assembler's.
+  std::vector<std::unique_ptr<Element>> elements;
+  elements.push_back(std::make_unique<SeparatingSpring>(1, 1, 2));
+  elements.push_back(std::make_unique<SeparatingSpring>(2, 2, 3));
+  const DofMap dofs(elements, {{1, Dof::UX}});
+  const Assembler assembler(elements, dofs, ElementContext{});
+  const auto& spring = [&](int e) -> const SeparatingSpring& {
+    return static_cast<const SeparatingSpring&>(*elements[static_cast<std::size_t>(e)]);
+  };
+  VectorXd u = VectorXd::LinSpaced(dofs.n_active(), 0.0, 0.3);
+  const VectorXd v = VectorXd::Zero(dofs.n_active());
+  const IntegrationCoefficients coeff{1.0, 0.0, 0.0};
+  VectorXd f_residual, f_tangent;
+  SparseMatrix eff;
+  assembler.assemble(coeff, u, v, Assembler::Output{nullptr, &f_residual, nullptr});
+  EXPECT_EQ(spring(0).force_evaluations, 1);
+  EXPECT_EQ(spring(0).tangents(), 0);
+  assembler.assemble(coeff, u, v, Assembler::Output{&eff, &f_tangent, nullptr});
+  EXPECT_EQ(spring(0).force_evaluations, 1);
+  EXPECT_EQ(spring(0).tangents(), 1);
+  EXPECT_EQ(f_residual, f_tangent);
+  assembler.assemble(coeff, u, v, Assembler::Output{nullptr, &f_residual, nullptr});
+  assembler.assemble(coeff, u, v, Assembler::Output{&eff, nullptr, nullptr});
+  EXPECT_EQ(spring(0).force_evaluations, 1);  // both reuse the buffers of that u
+  EXPECT_EQ(spring(0).tangents(), 1);
+  // A new iterate: a residual, the converged check, forms no tangent.
+  u(dofs.index(DofKey{3, Dof::UX})) += 0.05;
+  assembler.assemble(coeff, u, v, Assembler::Output{nullptr, &f_residual, nullptr});
+  EXPECT_EQ(spring(0).force_evaluations, 1);  // element 1 (nodes 1-2) did not move
+  EXPECT_EQ(spring(1).force_evaluations, 2);
+  EXPECT_EQ(spring(1).tangents(), 1);
+  const Assembler fresh(elements, dofs, ElementContext{});
+  VectorXd f_fresh;
+  SparseMatrix eff_fresh;
+  fresh.assemble(coeff, u, v, Assembler::Output{&eff_fresh, &f_fresh, nullptr});
+  EXPECT_EQ(f_residual, f_fresh);
+  assembler.assemble(coeff, u, v, Assembler::Output{&eff, nullptr, nullptr});
+  EXPECT_EQ(spring(1).tangents(), 3);  // the fresh assembler's and this one's
+  EXPECT_EQ(MatrixXd(eff), MatrixXd(eff_fresh));
+}
+
 TEST(Assembler, TangentPhaseReusesBuffersOnlyForStatelessElementsAtTheSameDofValues) {
   // Residual and tangent of a Newton iteration assemble at the same u: an element without
   // status or history is evaluated once, a status element (gap) every time; an element whose

@@ -425,6 +425,30 @@ TEST(Brick8, TotalLagrangianTangentMatchesFiniteDifference) {
   }
 }
 
+TEST(Brick8, InternalForceAloneIsBitwiseTheForceOfTheTangent) {
+  // Element::internal_force serves the residuals that need no tangent (issue 11): the same
+  // numbers as tangent()'s f_int, in every form of the element.
+  ElementContext small, tl;
+  tl.large_deflection = true;
+  std::vector<std::unique_ptr<Brick8>> bricks;
+  for (bool extra : {false, true})
+    bricks.push_back(std::make_unique<Brick8>(1, kDistinct, distorted(), steel(), extra));
+  for (const Shape& s : degenerate_shapes())
+    bricks.push_back(std::make_unique<Brick8>(1, s.nodes, s.x, steel(), true));
+  for (const auto& brick : bricks)
+    for (const ElementContext& ctx : {small, tl}) {
+      const Brick8& e = *brick;
+      const Eigen::VectorXd u = large_displacement(e.n_dofs());
+      Eigen::VectorXd f;
+      e.internal_force(ctx, u, f);
+      EXPECT_EQ(f, internal_force(e, ctx, u));
+    }
+  // The force has a path of its own only where it saves the stiffness sums.
+  EXPECT_TRUE(bricks[0]->separate_internal_force(tl));
+  EXPECT_FALSE(bricks[0]->separate_internal_force(small));
+  EXPECT_FALSE(bricks[1]->separate_internal_force(tl));  // extra shapes: bubbles solved with K
+}
+
 TEST(Brick8, TotalLagrangianReducesToLinearAtZeroDisplacement) {
   ElementContext tl;
   tl.large_deflection = true;

@@ -462,6 +462,25 @@ TEST(Shell4, CorotationalTangentMatchesFiniteDifferences) {
   }
 }
 
+TEST(Shell4, InternalForceAloneIsBitwiseTheForceOfTheTangent) {
+  // Element::internal_force serves the residuals that need no tangent (issue 11).
+  ElementContext small, large;
+  large.large_deflection = true;
+  for (const CorotationalCase& c : corotational_cases()) {
+    const auto e = make_case_shell(c);
+    const Eigen::VectorXd u = corotational_state(c);
+    for (const ElementContext& ctx : {small, large}) {
+      Eigen::MatrixXd K;
+      Eigen::VectorXd f_tangent, f;
+      e->tangent(ctx, u, K, f_tangent);
+      e->internal_force(ctx, u, f);
+      EXPECT_EQ(f, f_tangent) << c.name;
+    }
+    EXPECT_TRUE(e->separate_internal_force(large));
+    EXPECT_FALSE(e->separate_internal_force(small));
+  }
+}
+
 TEST(Shell4, CorotationalGeometricStiffnessIsTheDerivativeOfBTransposed) {
   // K_G = ∂(B(u)ᵀ f)/∂u at a fixed f of order one: independent of the strain level, so it checks
   // the geometric part exactly even in the tiny-strain cases, where it is invisible in K.
