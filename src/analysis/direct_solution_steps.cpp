@@ -28,6 +28,8 @@ void DirectSolution::solve_load_step(const LoadStep& given) {
     renumbered.number += load_step_offset_;
   }
   const LoadStep& step = load_step_offset_ != 0 ? renumbered : given;
+  // OUTRES the same for every item: each stored point is complete (no NaN rows to compress).
+  writer_.set_sparse_output(!step.output.uniform());
   const bool transient = transient_;
   const LoadStep* previous = previous_ ? &*previous_ : nullptr;
   const LoadStepTiming t = load_step_timing(step, t_end_, transient);

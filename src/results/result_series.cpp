@@ -13,8 +13,9 @@ namespace {
 /// Memory for the blocks being filled (all quantities of an analysis), at most.
 constexpr double kBlockMemoryBytes = 64.0 * (1 << 20);
 /// Target size of a main chunk (uncompressed): large enough to compress well, small enough that
-/// a history reads little beyond what it needs.
-constexpr hsize_t kChunkBytes = 256 * 1024;
+/// a history reads little beyond what it needs (with kMaxBlockRows points, a chunk spans the
+/// columns of 21 nodes of U).
+constexpr hsize_t kChunkBytes = 64 * 1024;
 /// Deflate level of the main datasets.
 constexpr int kDeflateLevel = 1;
 
@@ -50,7 +51,7 @@ void set_extent(hid_t ds, hsize_t rows, const std::vector<hsize_t>& row_dims) {
 
 BlockSeries create_series(hid_t group, hid_t recent_group, const std::string& name,
                           std::vector<hsize_t> row_dims, hsize_t block_rows, hsize_t main_rows,
-                          bool growable_columns) {
+                          bool growable_columns, bool compress) {
   BlockSeries s;
   s.name = name;
   s.row_dims = std::move(row_dims);
@@ -75,7 +76,7 @@ BlockSeries create_series(hid_t group, hid_t recent_group, const std::string& na
                        "create dataspace for " + name));
     // deflate level 1 (deflate_fast): level 4 costs about 3x the CPU for files a few % smaller
     // (the helmet: docs/benchmarks.md, "Results writer").
-    Handle dcpl = h5::checked_creation_list(chunk, &fill, kDeflateLevel);
+    Handle dcpl = h5::checked_creation_list(chunk, &fill, compress ? kDeflateLevel : 0);
     s.main = Handle(check(
         H5Dcreate2(group, name.c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT),
         "create dataset " + name));

@@ -13,8 +13,14 @@
 namespace impactfe::result_series {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-/// Time points per block (main chunk length along time), at most.
-constexpr hsize_t kMaxBlockRows = 256;
+/// Time points per block (main chunk length along time), at most. An uncompressed main chunk
+/// stores the unwritten rows of its last block too (as NaN): 64 bounds that waste, and a
+/// history of n points still reads n / 64 chunks.
+constexpr hsize_t kMaxBlockRows = 64;
+/// A main dataset is compressed (shuffle + deflate) when its time point holds at least this many
+/// values, or when the output is sparse (ResultsWriter::set_sparse_output). Below it a file of a
+/// few MB is not worth the CPU: deflate was ~20 % of the thesis helmet run (issue 11).
+constexpr hsize_t kMinCompressedPointValues = 4096;
 
 hsize_t product(const std::vector<hsize_t>& d);
 
@@ -42,9 +48,10 @@ struct BlockSeries {
 };
 
 /// Creates both datasets of a series. `growable_columns`: the second dimension may grow (R).
+/// `compress`: the main dataset is deflated (the staging one never is).
 BlockSeries create_series(hid_t group, hid_t recent_group, const std::string& name,
                           std::vector<hsize_t> row_dims, hsize_t block_rows, hsize_t main_rows,
-                          bool growable_columns = false);
+                          bool growable_columns, bool compress);
 
 /// A 1-D series written straight into its dataset at every sync (time, load step, substep):
 /// tiny, and `time` must be complete in the main dataset (its length counts the points).

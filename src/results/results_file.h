@@ -76,6 +76,12 @@ class ResultsWriter {
   int begin_analysis(ResultsKind kind, const std::string& description);
   /// Appends one time point to the current analysis and flushes the file.
   void append(const TimePoint& point);
+  /// Whether the points that follow may leave quantities, nodes or elements absent (OUTRES per
+  /// item or component, reduced runs): their NaN rows and columns only vanish when compressed,
+  /// so every main dataset created from then on is. Dense output (every quantity of every node
+  /// and element at every stored point) compresses only datasets of at least
+  /// result_series::kMinCompressedPointValues values per point. Default: sparse.
+  void set_sparse_output(bool sparse);
   /// Modal results of the current analysis: frequencies (Hz) and mode shapes (each n_nodes x 6).
   void write_modes(const std::vector<double>& frequencies_hz,
                    const std::vector<Eigen::MatrixXd>& shapes);

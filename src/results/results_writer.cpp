@@ -53,7 +53,7 @@ namespace {
 constexpr int kFormatVersion = 2;
 /// A sync (staging rows, then `time`, each flushed) after this many points or seconds: what a
 /// killed run can lose at most, against two flushes (~40 us each) per point.
-constexpr hsize_t kSyncPoints = 64;
+constexpr hsize_t kSyncPoints = 32;
 constexpr double kSyncSeconds = 0.1;
 /// ... or once the points since the last sync hold this many bytes: a big model syncs more
 /// often, so that a full disk finds the earlier points synced (and the space a sync reserves,
@@ -142,6 +142,7 @@ struct ResultsWriter::Impl {
 
   /// A write failed: the file is left in its last flushed state and never written again.
   bool failed = false;
+  bool sparse_output = true;  // set_sparse_output
 
   hsize_t n_nodes() const { return node_ids.size(); }
   hsize_t slot() const { return n_t - block_start; }
@@ -311,8 +312,10 @@ BlockSeries& ResultsWriter::Impl::series_for(const std::string& name,
     h5::write_integer_attribute(recent_group, "first_row", static_cast<long long>(block_start));
   }
   // A quantity that starts later: its main dataset spans the finished blocks already (NaN).
-  BlockSeries s =
-      create_series(group, recent_group, name, row_dims, block_rows, block_start, growable);
+  const bool compress =
+      sparse_output || result_series::product(row_dims) >= result_series::kMinCompressedPointValues;
+  BlockSeries s = create_series(group, recent_group, name, row_dims, block_rows, block_start,
+                                growable, compress);
   // The whole block starts NaN: its finished blocks are written from it, so that every chunk
   // exists (all_chunks_written), and the rows of the current block before this point stay NaN
   // (written to the new staging dataset at the next sync like every row of the block).
@@ -620,6 +623,10 @@ int ResultsWriter::begin_analysis(ResultsKind kind, const std::string& descripti
   h5::write_integer_attribute(m.group, "all_chunks_written", 1);  // see series_for
   m.flush();
   return k;
+}
+
+void ResultsWriter::set_sparse_output(bool sparse) {
+  impl_->sparse_output = sparse;
 }
 
 void ResultsWriter::append(const TimePoint& point) {

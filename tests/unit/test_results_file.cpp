@@ -16,6 +16,7 @@
 
 #include "core/errors.h"
 #include "results/live_writers.h"
+#include "results/result_series.h"
 #include "results/results_file.h"
 
 namespace impactfe {
@@ -525,7 +526,8 @@ TEST_F(ResultsFileTest, NodeHistoryOfLongRunReadsFewChunks) {
     ResultsWriter w(path, nodes_only(kNodes));
     w.begin_analysis(ResultsKind::Transient, "long");
     append_history(w, kNodes, 0, kSteps);
-    // Still being written: the last 3000 - 11 x 256 = 184 points are in the staging datasets.
+    // Still being written: the last points (3000 mod the block rows) are in the staging
+    // datasets.
     expect_history(ResultsReader(path), 95, kSteps);
     w.end_analysis();
   }
@@ -554,9 +556,10 @@ TEST_F(ResultsFileTest, NodeHistoryOfLongRunReadsFewChunks) {
   H5Sclose(space);
   H5Dclose(ds);
   H5Fclose(f);
-  EXPECT_EQ(chunk[0], 256u);                 // time-blocked chunks
-  EXPECT_EQ(touched, (kSteps + 255) / 256);  // 12 chunks, one per block of 256 points
-  EXPECT_GE(n_chunks, 8u * touched);         // of at least 8 times as many
+  constexpr hsize_t kBlock = result_series::kMaxBlockRows;
+  EXPECT_EQ(chunk[0], kBlock);                         // time-blocked chunks
+  EXPECT_EQ(touched, (kSteps + kBlock - 1) / kBlock);  // one per block of kBlock points
+  EXPECT_GE(n_chunks, 8u * touched);                   // of at least 8 times as many
 
   // Bytes actually read for one history, measured by the kernel.
   ResultsReader r(path);
