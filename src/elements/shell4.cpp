@@ -95,6 +95,12 @@ Shell4::Shell4(int id, const Shell4Data& data, const SourceLocation& where)
   M_cons_ = A_.transpose() * kernel_->consistent_mass() * A_;
   M_cons_ = 0.5 * (M_cons_ + M_cons_.transpose()).eval();
   if (plasticity_) committed_.resize(static_cast<std::size_t>(kernel_->n_material_points()));
+  // A triangle is flat (no warping links): its co-rotational kinematics have closed forms in
+  // its own frame (corotational_triangle.h), valid while the kernel keeps membrane and bending
+  // apart, as the elastic one does.
+  if (n_ == 3 && !plasticity_ && CorotationalTriangle::uncoupled(kernel_->stiffness()))
+    triangle_ = std::make_unique<CorotationalTriangle>(std::array<Vec3, 3>{X_[0], X_[1], X_[2]},
+                                                       R0_, c0_, kernel_->stiffness());
 }
 
 namespace {
@@ -370,6 +376,15 @@ void Shell4::tangent(const ElementContext& ctx, const Eigen::VectorXd& u, Eigen:
     f_int = K * u;
     return;
   }
+  if (triangle_) {
+    triangle_->tangent(u, K, f_int);
+    return;
+  }
+  corotational_tangent_general(u, K, f_int);
+}
+
+void Shell4::corotational_tangent_general(const Eigen::VectorXd& u, Eigen::MatrixXd& K,
+                                          Eigen::VectorXd& f_int) const {
   // Co-rotational: f_int = Bᵀ K̄ d, K = Bᵀ K̄ B (material) + δ(Bᵀ) K̄ d (geometric, exact).
   using Vec24 = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, 24, 1>;
   Vec24 d;
@@ -386,6 +401,10 @@ void Shell4::internal_force(const ElementContext& ctx, const Eigen::VectorXd& u,
                             Eigen::VectorXd& f_int) const {
   if (!separate_internal_force(ctx)) {
     Element::internal_force(ctx, u, f_int);
+    return;
+  }
+  if (triangle_) {
+    triangle_->internal_force(u, f_int);
     return;
   }
   // tangent()'s f_int = Bᵀ K̄ d (the same operations) without Bᵀ K̄ B and the geometric part.

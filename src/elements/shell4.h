@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "elements/corotational_triangle.h"
 #include "elements/element.h"
 #include "elements/shell_kernel.h"
 
@@ -75,6 +76,13 @@ class Shell4 : public Element {
   /// of the large-deflection tangent beyond Bᵀ K̄ B. Exposed for tests.
   void corotational_geometric_stiffness(const Eigen::VectorXd& u, const Eigen::VectorXd& f_l,
                                         Eigen::MatrixXd& K_G) const;
+  /// The element-independent co-rotational tangent and force (the quadrilaterals' path) also
+  /// for a triangle, which tangent() otherwise takes through CorotationalTriangle. For tests.
+  void corotational_tangent_general(const Eigen::VectorXd& u, Eigen::MatrixXd& K,
+                                    Eigen::VectorXd& f_int) const;
+  /// True when tangent() and internal_force() take the triangle's fast path under large
+  /// deflection (an elastic triangle).
+  bool fast_triangle() const { return triangle_ != nullptr; }
   const shell::FlatShellKernel& kernel() const { return *kernel_; }
   int n_nodes() const { return n_; }
 
@@ -100,6 +108,7 @@ class Shell4 : public Element {
   Eigen::MatrixXd M_cons_;  // Aᵀ M_l A
   double theta_ = 0.0;      // rad
   std::unique_ptr<shell::FlatShellKernel> kernel_;
+  std::unique_ptr<CorotationalTriangle> triangle_;  // elastic triangle: the fast path
   std::optional<J2Plasticity> plasticity_;
   std::vector<PlasticState> committed_;  // in-plane point × layer
 };

@@ -18,8 +18,9 @@ struct RodriguesCoefficients {
 // < t⁸/6e5 ≈ 1e-11 relative); above it the closed forms lose at most ~1e-11 to cancellation.
 constexpr double kSeriesAngle = 0.3;
 
-/// T(ψ): α = (1 − cos t)/t², β = (t − sin t)/t³.
-RodriguesCoefficients left_jacobian_coefficients(double t) {
+/// T(ψ): α = (1 − cos t)/t², β = (t − sin t)/t³; the derivative coefficients only when asked
+/// for (the maps alone are evaluated at every corner and iterate).
+RodriguesCoefficients left_jacobian_coefficients(double t, bool derivatives = true) {
   RodriguesCoefficients k;
   if (t < 1e-4) {
     k.alpha = 0.5 - t * t / 24.0;
@@ -28,6 +29,7 @@ RodriguesCoefficients left_jacobian_coefficients(double t) {
     k.alpha = (1.0 - std::cos(t)) / (t * t);
     k.beta = (t - std::sin(t)) / (t * t * t);
   }
+  if (!derivatives) return k;
   const double t2 = t * t;
   if (t < kSeriesAngle) {
     k.d_alpha = -1.0 / 12.0 + t2 * (1.0 / 180.0 + t2 * (-1.0 / 6720.0 + t2 / 453600.0));
@@ -41,13 +43,14 @@ RodriguesCoefficients left_jacobian_coefficients(double t) {
 }
 
 /// T(ψ)⁻¹: α = −1/2, β = 1/t² − (1 + cos t)/(2 t sin t) = 1/t² − cot(t/2)/(2t).
-RodriguesCoefficients left_jacobian_inverse_coefficients(double t) {
+RodriguesCoefficients left_jacobian_inverse_coefficients(double t, bool derivatives = true) {
   RodriguesCoefficients k;
   k.alpha = -0.5;
   if (t < 1e-4)
     k.beta = 1.0 / 12.0 + t * t / 720.0;
   else
     k.beta = 1.0 / (t * t) - (1.0 + std::cos(t)) / (2.0 * t * std::sin(t));
+  if (!derivatives) return k;
   const double t2 = t * t;
   if (t < kSeriesAngle) {
     k.d_beta = 1.0 / 360.0 + t2 * (1.0 / 7560.0 + t2 * (1.0 / 201600.0 + t2 / 5987520.0));
@@ -96,6 +99,31 @@ Mat3 exp_map(const Vec3& psi) {
   return Mat3::Identity() + a * S + b * S * S;
 }
 
+void exp_map_and_left_jacobian(const Vec3& psi, Mat3& R, Mat3& T) {
+  // exp_map and left_jacobian (the same expressions, bitwise) from one sin and cos of t.
+  const double t = psi.norm();
+  const Mat3 S = spin(psi);
+  const double sin_t = std::sin(t), cos_t = std::cos(t);
+  double a, b;
+  if (t < 1e-6) {
+    a = 1.0 - t * t / 6.0;
+    b = 0.5 - t * t / 24.0;
+  } else {
+    a = sin_t / t;
+    b = (1.0 - cos_t) / (t * t);
+  }
+  R = Mat3::Identity() + a * S + b * S * S;
+  RodriguesCoefficients k;
+  if (t < 1e-4) {
+    k.alpha = 0.5 - t * t / 24.0;
+    k.beta = 1.0 / 6.0 - t * t / 120.0;
+  } else {
+    k.alpha = (1.0 - cos_t) / (t * t);
+    k.beta = (t - sin_t) / (t * t * t);
+  }
+  T = Mat3::Identity() + k.alpha * S + k.beta * S * S;
+}
+
 Vec3 log_map(const Mat3& R) {
   Eigen::Quaterniond q(R);
   if (q.w() < 0.0) q.coeffs() *= -1.0;
@@ -106,11 +134,11 @@ Vec3 log_map(const Mat3& R) {
 }
 
 Mat3 left_jacobian(const Vec3& psi) {
-  return rodrigues(psi, left_jacobian_coefficients(psi.norm()));
+  return rodrigues(psi, left_jacobian_coefficients(psi.norm(), false));
 }
 
 Mat3 left_jacobian_inverse(const Vec3& psi) {
-  return rodrigues(psi, left_jacobian_inverse_coefficients(psi.norm()));
+  return rodrigues(psi, left_jacobian_inverse_coefficients(psi.norm(), false));
 }
 
 Mat3 d_left_jacobian_transpose(const Vec3& psi, const Vec3& v) {

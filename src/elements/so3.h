@@ -21,6 +21,9 @@ Mat3 spin(const Vec3& v);
 /// Rotation matrix of the rotation vector ψ (Rodrigues: α = sin t / t, β = (1 − cos t)/t²).
 Mat3 exp_map(const Vec3& psi);
 
+/// exp_map(ψ) and left_jacobian(ψ) together (one sin and cos), bitwise the same values.
+void exp_map_and_left_jacobian(const Vec3& psi, Mat3& R, Mat3& T);
+
 /// Rotation vector of R, angle in [0, π] (via the quaternion, robust near 0 and π).
 Vec3 log_map(const Mat3& R);
 

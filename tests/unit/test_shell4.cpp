@@ -481,6 +481,40 @@ TEST(Shell4, InternalForceAloneIsBitwiseTheForceOfTheTangent) {
   }
 }
 
+TEST(Shell4, TriangleFastPathEqualsTheGeneralCorotationalPath) {
+  // CorotationalTriangle works in the facet's frame with the triangle's closed forms; it must
+  // give the element-independent path's tangent and force to round-off, at rigid rotations up
+  // to π/2, large deformational rotations, tiny strains and ψ = 0.
+  ElementContext large;
+  large.large_deflection = true;
+  std::vector<CorotationalCase> cases;
+  for (const CorotationalCase& c : corotational_cases())
+    if (c.x.size() == 3) cases.push_back(c);
+  const Vec3 axis = Vec3(-0.3, 0.5, 1.0).normalized();
+  cases.push_back({"triangle near pi/2, tiny strain", kTri, M_PI / 2 - 1e-3, axis, 1e-6, 1e-6});
+  cases.push_back({"triangle, large deformational rotation", kTri, 1.2, axis, 0.05, 0.5});
+  cases.push_back({"triangle, strain only", kTri, 0.0, axis, 0.03, 0.0});
+  for (const CorotationalCase& c : cases) {
+    const auto e = make_case_shell(c);
+    ASSERT_TRUE(e->fast_triangle()) << c.name;
+    const Eigen::VectorXd u = corotational_state(c);
+    Eigen::MatrixXd K, K_general;
+    Eigen::VectorXd f, f_general, f_alone;
+    e->tangent(large, u, K, f);
+    e->corotational_tangent_general(u, K_general, f_general);
+    e->internal_force(large, u, f_alone);
+    EXPECT_EQ(f_alone, f) << c.name;
+    // Round-off of f: d = Rcᵀ r − R0ᵀ(X − c0) cancels coordinates of order L to a deformation
+    // of order strain·L, so f carries ~ε |K| L of noise, the whole of f at tiny strains.
+    const double L = (c.x[1] - c.x[0]).norm();
+    const double f_scale = f_general.norm() + 1e-3 * K_general.norm() * L;
+    EXPECT_LE((f - f_general).norm(), 1e-11 * f_scale) << c.name;
+    EXPECT_LE((K - K_general).norm(), 1e-11 * K_general.norm()) << c.name;
+    std::printf("%-40s |K - K_general| / |K| = %.2e, |f - f_general| / |f| = %.2e\n", c.name,
+                (K - K_general).norm() / K_general.norm(), (f - f_general).norm() / f_scale);
+  }
+}
+
 TEST(Shell4, CorotationalGeometricStiffnessIsTheDerivativeOfBTransposed) {
   // K_G = ∂(B(u)ᵀ f)/∂u at a fixed f of order one: independent of the strain level, so it checks
   // the geometric part exactly even in the tiny-strain cases, where it is invisible in K.

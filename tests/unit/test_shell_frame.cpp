@@ -75,6 +75,11 @@ TEST(So3, ExpAndLogAreInverseAndTIsTheLeftJacobian) {
     EXPECT_LE((so3::left_jacobian(psi) * so3::left_jacobian_inverse(psi) - Mat3::Identity()).norm(),
               1e-13)
         << psi.norm();
+    // Both maps at once: bitwise the two calls.
+    Mat3 R_both, T_both;
+    so3::exp_map_and_left_jacobian(psi, R_both, T_both);
+    EXPECT_EQ(R_both, R) << psi.norm();
+    EXPECT_EQ(T_both, so3::left_jacobian(psi)) << psi.norm();
   }
 }
 
