@@ -11,6 +11,7 @@
 
 #include "core/errors.h"
 #include "linalg/solver_support.h"
+#include "linalg/supernodal_factor.h"
 
 namespace impactfe {
 
@@ -23,8 +24,14 @@ using solver_support::kSingularPivot;
 using solver_support::ScopedThreadLimit;
 using solver_support::ScopedTimer;
 
-/// CHOLMOD supernodal LLᵀ, falling back to simplicial LDLᵀ for indefinite (but regular)
-/// effective matrices (e.g. compressive stress stiffening).
+/// Factorizations up to this many flops (CHOLMOD's count from the symbolic analysis) take
+/// SupernodalFactor's inline kernels: below it CHOLMOD's bookkeeping and BLAS call overheads
+/// dominate (issue 11, docs/benchmarks.md).
+constexpr double kInlineFactorFlops = 5.0e7;
+
+/// CHOLMOD supernodal LLᵀ (SupernodalFactor's kernels for small factors), falling back to
+/// simplicial LDLᵀ for indefinite (but regular) effective matrices (e.g. compressive stress
+/// stiffening).
 class CholmodSolver final : public LinearSolver {
  public:
   CholmodSolver() {
@@ -54,11 +61,32 @@ class CholmodSolver final : public LinearSolver {
     }
     ++counters_.analyses;
     n_ = static_cast<int>(lower.rows());
+    inline_.reset();
+    if (common_.fl <= kInlineFactorFlops) {
+      // Its own (supernodal) analysis must not change the figures of the one above.
+      const double fl = common_.fl, lnz = common_.lnz;
+      auto factor = std::make_unique<SupernodalFactor>();
+      if (factor->analyze(lower, common_)) inline_ = std::move(factor);
+      common_.fl = fl;
+      common_.lnz = lnz;
+    }
   }
 
   void factorize(const SparseMatrix& lower) override {
     if (!factor_) analyze_pattern(lower);
     ScopedTimer timer(counters_.factorize_seconds);
+    if (inline_ && inline_->factorize(lower)) {
+      ++counters_.factorizations;
+      negative_pivots_ = 0;
+      first_negative_row_ = -1;
+      if (inline_->rcond() < 1e-13) check_pivots(lower);
+      counters_.matrix_nonzeros = static_cast<long>(lower.nonZeros());
+      counters_.factor_nonzeros = static_cast<long>(common_.lnz);
+      counters_.factor_bytes = inline_->stored_bytes();
+      return;
+    }
+    // Not positive definite (or a factor too large for the inline kernels): CHOLMOD's LLᵀ,
+    // then its LDLᵀ, which tells an indefinite matrix from a singular one.
     // common_.fl: flop count of the factorization, from the symbolic analysis.
     ScopedThreadLimit threads(common_.fl >= kParallelFactorFlops ? kAllThreads : 1);
     cholmod_sparse A = cholmod_lower_view(lower);
@@ -95,6 +123,11 @@ class CholmodSolver final : public LinearSolver {
   }
 
   VectorXd solve(const VectorXd& b) override {
+    if (inline_ && inline_->valid()) {
+      ScopedTimer timer(counters_.solve_seconds);
+      ++counters_.solves;
+      return inline_->solve(b);
+    }
     MatrixXd B = b;
     return solve(B).col(0);
   }
@@ -102,6 +135,10 @@ class CholmodSolver final : public LinearSolver {
   MatrixXd solve(const MatrixXd& B) override {
     IMPACTFE_CHECK(factor_ != nullptr, "CHOLMOD: solve before factorize");
     ScopedTimer timer(counters_.solve_seconds);
+    if (inline_ && inline_->valid()) {
+      counters_.solves += B.cols();
+      return inline_->solve(B);
+    }
     // A solve streams the factor once forward and once backward, supernode by supernode, with
     // one small dgemv/dtrsv (one right-hand side) or dgemm/dtrsm per supernode: memory-bound
     // work that threads do not speed up, while each threaded call costs a synchronisation (on a
@@ -170,6 +207,7 @@ class CholmodSolver final : public LinearSolver {
 
   cholmod_common common_{};
   cholmod_factor* factor_ = nullptr;
+  std::unique_ptr<SupernodalFactor> inline_;  // small factors: the inline kernels
   int n_ = 0;
 };
 
