@@ -20,7 +20,9 @@
 #include "core/errors.h"
 #include "core/files.h"
 #include "core/log.h"
+#include "core/thread_pool.h"
 #include "deck/deck_reader.h"
+#include "linalg/blas_library.h"
 #include "linalg/parallel_backend.h"
 #include "results/post_csv.h"
 #include "results/report.h"
@@ -105,7 +107,10 @@ void print_skipped(const Job& job) {
 
 int run_command(const RunArgs& args) {
   const auto start = std::chrono::steady_clock::now();
-  if (args.threads > 0) omp_set_num_threads(args.threads);
+  if (args.threads > 0) {
+    threads::set_max_threads(args.threads);
+    blas::set_threads(args.threads);
+  }
   const fs::path deck = fs::absolute(args.deck);
   if (!file_exists(deck.string(), true)) {  // rank 0's disk under MPI (core/files.h)
     std::cerr << "error: deck not found: " << args.deck << "\n";

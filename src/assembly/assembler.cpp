@@ -6,13 +6,10 @@
 #include <ctime>
 #include <exception>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
-
 #include <fmt/format.h>
 
 #include "core/errors.h"
+#include "core/thread_pool.h"
 #include "linalg/parallel_backend.h"
 
 namespace impactfe {
@@ -267,25 +264,9 @@ void Assembler::compute_nonlinear_tangents(const VectorXd& u, bool with_tangent,
     return needed(i) && evaluate_tangent(nonlinear_[static_cast<std::size_t>(i)], u, with_tangent);
   };
   if (threading_.parallel) {
-    // An exception must not leave the parallel region (that would terminate the program): the
-    // one of the lowest element index is kept (deterministic whatever the threads, and the one
-    // the serial loop would throw) and rethrown after it, e.g. an element that collapsed under
-    // large deflection (ElementSolutionError).
-    std::exception_ptr failure;
-    int failed_at = n_nonlinear;
-#pragma omp parallel for schedule(dynamic, 8)
-    for (int i = 0; i < n_nonlinear; ++i) {
-      try {
-        evaluate(i);
-      } catch (...) {
-#pragma omp critical(impactfe_assembly_failure)
-        if (i < failed_at) {
-          failed_at = i;
-          failure = std::current_exception();
-        }
-      }
-    }
-    if (failure) std::rethrow_exception(failure);
+    // An element's exception (e.g. one that collapsed under large deflection) comes back from
+    // the loop as the one of the lowest element index, the one the serial loop would throw.
+    threads::parallel_for(n_nonlinear, 8, [&](int i) { evaluate(i); });
     return;
   }
   const auto start = std::chrono::steady_clock::now();
@@ -327,11 +308,7 @@ void Assembler::TangentThreading::record_serial_pass(double seconds) {
   if (probes_left == 0) return;
   fastest_serial_seconds = std::min(fastest_serial_seconds, seconds);
   if (--probes_left > 0) return;
-  int threads = 1;
-#ifdef _OPENMP
-  threads = omp_get_max_threads();
-#endif
-  parallel = threads > 1 && fastest_serial_seconds >= kMinParallelSeconds;
+  parallel = threads::max_threads() > 1 && fastest_serial_seconds >= kMinParallelSeconds;
 }
 
 bool Assembler::element_damping(std::size_t e, const VectorXd& ue, const MatrixXd& k,

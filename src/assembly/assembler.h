@@ -165,10 +165,9 @@ class Assembler {
   /// One element's phase; false when the buffers were reused (no evaluation).
   bool evaluate_tangent(std::size_t e, const VectorXd& u, bool with_tangent) const;
 
-  /// Whether the tangent phase runs on several threads, decided from its measured cost: a
-  /// parallel region costs a thread wake-up and leaves the workers spinning (libgomp) while the
-  /// serial solve that follows runs, which on small per-step work or a busy machine costs more
-  /// than it saves (issue 11: a 1215-DOF block drop took 4x longer on two threads). So the first
+  /// Whether the tangent phase runs on several threads (core/thread_pool.h), decided from its
+  /// measured cost: a parallel loop costs a wake-up of the workers, which on small per-step
+  /// work or a busy machine costs more than it saves (issue 11). So the first
   /// kProbes passes run serially and are timed; the phase goes parallel only when the fastest of
   /// them took at least kMinParallelSeconds and more than one thread is allowed. The results are
   /// the same either way (per-element buffers, serial scatter).

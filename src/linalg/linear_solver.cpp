@@ -59,6 +59,7 @@ class CholmodSolver final : public LinearSolver {
       throw std::runtime_error(fmt::format(
           "the sparse solver's symbolic analysis failed (CHOLMOD status {})", common_.status));
     }
+    solver_support::require_blas_for(factor_);
     ++counters_.analyses;
     n_ = static_cast<int>(lower.rows());
     inline_.reset();

@@ -97,6 +97,7 @@ class CholmodSchurSolver final : public SchurSolver {
     common_.nmethods = 0;
     common_.postorder = 1;
     check_analysis(factor_);
+    solver_support::require_blas_for(factor_);
     const auto* used = static_cast<const int*>(factor_->Perm);
     for (int k = 0; k < n_; ++k)
       IMPACTFE_CHECK(used[k] == perm[static_cast<std::size_t>(k)],

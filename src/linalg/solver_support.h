@@ -7,11 +7,10 @@
 #include <algorithm>
 #include <chrono>
 #include <limits>
+#include <stdexcept>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
-
+#include "core/errors.h"
+#include "linalg/blas_library.h"
 #include "linalg/sparse.h"
 
 namespace impactfe::solver_support {
@@ -41,30 +40,31 @@ class ScopedTimer {
   std::chrono::steady_clock::time_point start_;
 };
 
-/// Caps the OpenMP team size for one scope. OpenBLAS (the openmp build the README installs) sizes
-/// every BLAS call by omp_get_max_threads(), so this is how a solver phase chooses its BLAS
-/// threads.
+/// Caps the BLAS threads (blas_library.h) for one scope: how a solver phase chooses them.
 class ScopedThreadLimit {
  public:
-  explicit ScopedThreadLimit(int limit) {
-#ifdef _OPENMP
-    saved_ = omp_get_max_threads();
-    omp_set_num_threads(std::max(1, std::min(limit, saved_)));
-#else
-    (void)limit;
-#endif
+  explicit ScopedThreadLimit(int limit) : saved_(blas::threads()) {
+    blas::set_threads(std::max(1, std::min(limit, saved_)));
   }
-  ~ScopedThreadLimit() {
-#ifdef _OPENMP
-    omp_set_num_threads(saved_);
-#endif
-  }
+  ~ScopedThreadLimit() { blas::set_threads(saved_); }
   ScopedThreadLimit(const ScopedThreadLimit&) = delete;
   ScopedThreadLimit& operator=(const ScopedThreadLimit&) = delete;
 
  private:
   int saved_ = 1;
 };
+
+/// Loads BLAS and LAPACK before a supernodal CHOLMOD factor is computed or used (its kernels
+/// call them; a simplicial factor needs neither). A missing library is a solution failure
+/// naming it (exit status 2), not a crash inside CHOLMOD.
+inline void require_blas_for(const cholmod_factor* factor) {
+  if (factor == nullptr || !factor->is_super) return;
+  try {
+    blas::require();
+  } catch (const std::runtime_error& e) {
+    throw SolutionError(e.what());
+  }
+}
 
 /// A CHOLMOD view (no copy) of a symmetric matrix stored as its lower triangle in compressed
 /// columns; without values (x == nullptr) the pattern only.

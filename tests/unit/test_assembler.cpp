@@ -4,13 +4,13 @@
 #include <gtest/gtest.h>
 
 #ifdef _OPENMP
-#include <omp.h>
 #endif
 
 #include "../support/dense_assembly.h"
 #include "assembly/assembler.h"
 #include "assembly/loads.h"
 #include "core/errors.h"
+#include "core/thread_pool.h"
 
 namespace impactfe {
 namespace {
@@ -149,10 +149,8 @@ TEST(Assembler, ElementFailureInParallelTangentPhaseIsRethrownForTheFirstElement
   const Assembler assembler(elements, dofs, ctx);
   ASSERT_EQ(assembler.n_nonlinear_elements(), n);
   assembler.force_parallel_tangents();
-#ifdef _OPENMP
-  const int threads_before = omp_get_max_threads();
-  omp_set_num_threads(4);
-#endif
+  const int threads_before = threads::max_threads();
+  threads::set_max_threads(4);
   VectorXd u = VectorXd::Zero(dofs.n_active());
   for (int e : {150, 37}) u(dofs.index(DofKey{2 * e, Dof::UX})) = -1.0;
   const VectorXd v = VectorXd::Zero(dofs.n_active());
@@ -172,9 +170,7 @@ TEST(Assembler, ElementFailureInParallelTangentPhaseIsRethrownForTheFirstElement
   u(dofs.index(DofKey{2 * 37, Dof::UX})) = -0.5;
   assembler.assemble({1.0, 0.0, 0.0}, u, v, Assembler::Output{nullptr, &f_int, nullptr});
   EXPECT_NEAR(f_int(dofs.index(DofKey{2 * 37, Dof::UX})), -5.0, 1e-12);
-#ifdef _OPENMP
-  omp_set_num_threads(threads_before);
-#endif
+  threads::set_max_threads(threads_before);
 }
 
 /// A nonlinear spring between two nodes' UX (f = k (u2 − u1)³ / 3 per node pair) that counts
