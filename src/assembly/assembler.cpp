@@ -96,6 +96,7 @@ void Assembler::set_material_stiffness_damping(std::vector<double> beta) {
   material_beta_ = std::move(beta);
   for (double b : material_beta_) has_damping_ = has_damping_ || b != 0.0;
   build_linear_force_matrices();
+  constant_effective_.clear();  // the linear elements' damping changed
 }
 
 void Assembler::gather(std::size_t e, const VectorXd& global, VectorXd& local) const {
@@ -156,9 +157,12 @@ std::string Assembler::assembly_summary() const {
   const std::vector<double> seconds = values_of_all_ranks(element_seconds_);
   const std::vector<double> cpu = values_of_all_ranks(element_cpu_seconds_);
   if (dof_owner_.empty())
-    return fmt::format(
-        "element assembly on {} MPI rank(s), not split: {} elements, {:.4f} s ({:.4f} s CPU)",
-        ranks_, elements_.size(), seconds.front(), cpu.front());
+    return ranks_ > 1 ? fmt::format(
+                            "element assembly on {} MPI ranks, not split: {} elements, "
+                            "{:.4f} s ({:.4f} s CPU)",
+                            ranks_, elements_.size(), seconds.front(), cpu.front())
+                      : fmt::format("element assembly on 1 MPI rank: {} elements, {:.4f} s",
+                                    elements_.size(), seconds.front());
   auto count = [&](const std::vector<char>& flags) {
     return static_cast<double>(std::count(flags.begin(), flags.end(), 1));
   };
@@ -185,7 +189,9 @@ std::string Assembler::assembly_summary() const {
 void Assembler::assemble(const IntegrationCoefficients& coeff, const VectorXd& u, const VectorXd& v,
                          const Output& out, const VectorXd* a) const {
   const auto start = std::chrono::steady_clock::now();
-  const std::clock_t cpu_start = std::clock();
+  // The CPU clock is a system call (not a vDSO read): only an MPI run reports it.
+  const bool timed = ranks_ > 1;
+  const std::clock_t cpu_start = timed ? std::clock() : 0;
   const bool split = !dof_owner_.empty();
   const bool vectors = out.internal_force || out.damping_force || out.inertia_force;
   const std::vector<char>* only = !split    ? nullptr
@@ -195,24 +201,42 @@ void Assembler::assemble(const IntegrationCoefficients& coeff, const VectorXd& u
   add_forces(u, v, a, out, only);
   if (out.effective) {
     if (out.effective->nonZeros() != pattern_.nonZeros()) *out.effective = pattern_;
-    std::fill(out.effective->valuePtr(), out.effective->valuePtr() + pattern_.nonZeros(), 0.0);
-    MatrixXd c, eff;
+    double* values = out.effective->valuePtr();
     VectorXd ue;
-    for (std::size_t e = 0; e < elements_.size(); ++e) {
-      // Distributed: only the elements at this rank's columns (the rest is never read).
-      if (split && !evaluate_matrix_[e]) continue;
-      const MatrixXd& ke = is_linear_[e] ? linear_stiffness_[e] : tangent_buffer_[e];
-      gather(e, u, ue);
-      const bool damped = coeff.cC != 0.0 && element_damping(e, ue, ke, c);
-      eff = coeff.cK * ke;
-      if (coeff.cM != 0.0) eff += coeff.cM * mass_[e];
-      if (damped) eff += coeff.cC * c;
-      scatter_lower(e, eff, *out.effective);
+    MatrixXd c;
+    if (!split) {
+      // The part that does not change within a time step (the linear elements' cK K + cC C and
+      // every element's cM M) from its cache, then the nonlinear elements' cK K_T (+ cC C).
+      const std::vector<double>& constant = constant_effective(coeff);
+      std::copy(constant.begin(), constant.end(), values);
+      for (std::size_t e : nonlinear_) {
+        const MatrixXd& ke = tangent_buffer_[e];
+        bool damped = false;
+        if (coeff.cC != 0.0) {
+          gather(e, u, ue);
+          damped = element_damping(e, ue, ke, c);
+        }
+        scatter_lower(e, coeff.cK, ke, damped ? coeff.cC : 0.0, damped ? &c : nullptr, values);
+      }
+    } else {
+      std::fill(values, values + pattern_.nonZeros(), 0.0);
+      MatrixXd eff;
+      for (std::size_t e = 0; e < elements_.size(); ++e) {
+        // Distributed: only the elements at this rank's columns (the rest is never read).
+        if (!evaluate_matrix_[e]) continue;
+        const MatrixXd& ke = is_linear_[e] ? linear_stiffness_[e] : tangent_buffer_[e];
+        gather(e, u, ue);
+        const bool damped = coeff.cC != 0.0 && element_damping(e, ue, ke, c);
+        eff = coeff.cK * ke;
+        if (coeff.cM != 0.0) eff += coeff.cM * mass_[e];
+        if (damped) eff += coeff.cC * c;
+        scatter_lower(e, eff, *out.effective);
+      }
     }
   }
   element_seconds_ +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  element_cpu_seconds_ += static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
+  if (timed) element_cpu_seconds_ += static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
   // The nonlinear elements' share of the vectors was summed by the owner of each entry only
   // (the linear part and M a come from the global products, the same on every rank).
   if (!split || nonlinear_.empty()) return;
@@ -329,6 +353,45 @@ bool Assembler::element_damping(std::size_t e, const VectorXd& ue, const MatrixX
   else if (rayleigh)
     c += alpha_ * mass_[e];
   return true;
+}
+
+const std::vector<double>& Assembler::constant_effective(
+    const IntegrationCoefficients& coeff) const {
+  if (!constant_effective_.empty() && constant_coeff_.cK == coeff.cK &&
+      constant_coeff_.cC == coeff.cC && constant_coeff_.cM == coeff.cM)
+    return constant_effective_;
+  constant_effective_.assign(static_cast<std::size_t>(pattern_.nonZeros()), 0.0);
+  MatrixXd c;
+  for (std::size_t e = 0; e < elements_.size(); ++e) {
+    if (is_linear_[e]) {
+      // A linear element's damping is constant (build_linear_force_matrices).
+      const bool damped =
+          coeff.cC != 0.0 &&
+          element_damping(e, VectorXd::Zero(elements_[e]->n_dofs()), linear_stiffness_[e], c);
+      scatter_lower(e, coeff.cK, linear_stiffness_[e], damped ? coeff.cC : 0.0,
+                    damped ? &c : nullptr, constant_effective_.data());
+    }
+    if (coeff.cM != 0.0)
+      scatter_lower(e, coeff.cM, mass_[e], 0.0, nullptr, constant_effective_.data());
+  }
+  constant_coeff_ = coeff;
+  return constant_effective_;
+}
+
+void Assembler::scatter_lower(std::size_t e, double a_factor, const MatrixXd& a, double b_factor,
+                              const MatrixXd* b, double* values) const {
+  const int n = static_cast<int>(dofs_.element_indices(e).size());
+  const int* slot = slots_[e].data();
+  for (int j = 0; j < n; ++j) {
+    const double* aj = a.data() + static_cast<std::ptrdiff_t>(j) * n;
+    const double* bj = b ? b->data() + static_cast<std::ptrdiff_t>(j) * n : nullptr;
+    // Column j of the element matrix, rows i >= j (contiguous), into the slots of (i, j).
+    for (int i = j; i < n; ++i) {
+      const int s = slot[i * n + j];
+      if (s < 0) continue;
+      values[s] += bj ? a_factor * aj[i] + b_factor * bj[i] : a_factor * aj[i];
+    }
+  }
 }
 
 void Assembler::scatter_lower(std::size_t e, const MatrixXd& m, SparseMatrix& effective) const {

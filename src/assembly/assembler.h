@@ -105,6 +105,15 @@ class Assembler {
   bool element_damping(std::size_t e, const VectorXd& ue, const MatrixXd& k, MatrixXd& c) const;
   /// Adds the lower triangle of an element matrix into the free-free pattern values.
   void scatter_lower(std::size_t e, const MatrixXd& m, SparseMatrix& effective) const;
+  /// values += the lower triangle of a_factor·a (+ b_factor·b when b is given), element e.
+  void scatter_lower(std::size_t e, double a_factor, const MatrixXd& a, double b_factor,
+                     const MatrixXd* b, double* values) const;
+  /// The effective matrix's values that are constant for the coefficients: the linear
+  /// elements' cK K + cC C and every element's cM M, formed once per coefficient set (a
+  /// Newton iteration then adds only the nonlinear elements' tangents).
+  const std::vector<double>& constant_effective(const IntegrationCoefficients& coeff) const;
+  mutable std::vector<double> constant_effective_;
+  mutable IntegrationCoefficients constant_coeff_{};
   /// Forms linear_products_ from the element matrices.
   void build_linear_force_matrices();
   /// The force outputs after the tangent phase: the linear part from the stored global

@@ -79,8 +79,7 @@ bool CorotationalTriangle::uncoupled(const Eigen::MatrixXd& K_local) {
   return true;
 }
 
-CorotationalTriangle::State CorotationalTriangle::corotate(const Eigen::VectorXd& u,
-                                                           bool with_tangent) const {
+CorotationalTriangle::State CorotationalTriangle::corotate(const Eigen::VectorXd& u) const {
   State s;
   std::array<Vec3, 3> x;
   for (int a = 0; a < 3; ++a)
@@ -111,9 +110,19 @@ CorotationalTriangle::State CorotationalTriangle::corotate(const Eigen::VectorXd
     s.theta[a] = so3::log_map(s.Rc.transpose() * Q * R0_);
     s.Ji[a] = so3::left_jacobian_inverse(s.theta[a]);
   }
-  (void)with_tangent;
-  local_forces(s);
   return s;
+}
+
+Eigen::VectorXd CorotationalTriangle::deformation(const Eigen::VectorXd& u) const {
+  const State s = corotate(u);
+  Eigen::VectorXd d = Eigen::VectorXd::Zero(18);
+  for (std::size_t a = 0; a < 3; ++a) {
+    const int i = 6 * static_cast<int>(a);
+    d(i) = s.xi[a] - xi0_[a];
+    d(i + 1) = s.eta[a] - eta0_[a];
+    d.segment<3>(i + 3) = s.theta[a];
+  }
+  return d;
 }
 
 void CorotationalTriangle::local_forces(State& s) const {
@@ -149,7 +158,8 @@ void CorotationalTriangle::local_forces(State& s) const {
 }
 
 void CorotationalTriangle::internal_force(const Eigen::VectorXd& u, Eigen::VectorXd& f) const {
-  const State s = corotate(u, false);
+  State s = corotate(u);
+  local_forces(s);
   f.resize(18);
   for (std::size_t a = 0; a < 3; ++a) {
     const int i = 6 * static_cast<int>(a);
@@ -160,7 +170,8 @@ void CorotationalTriangle::internal_force(const Eigen::VectorXd& u, Eigen::Vecto
 
 void CorotationalTriangle::tangent(const Eigen::VectorXd& u, Eigen::MatrixXd& K,
                                    Eigen::VectorXd& f) const {
-  const State s = corotate(u, true);
+  State s = corotate(u);
+  local_forces(s);
   // Variations in the frame, per corner b: δξ̂ = (δx̂_b, δφ̂_b) with δx̂ = Rcᵀ δx and
   // δφ̂ = Rcᵀ T(ψ) δψ (column 6b + k). The deformation δd = B̂ δξ̂ over the 15 rows
   // (u, v, θx, θy, θz of corner a at 5a + k):

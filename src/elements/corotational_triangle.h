@@ -39,10 +39,13 @@ class CorotationalTriangle {
   void internal_force(const Eigen::VectorXd& u, Eigen::VectorXd& f) const;
   /// Consistent tangent and internal force at u.
   void tangent(const Eigen::VectorXd& u, Eigen::MatrixXd& K, Eigen::VectorXd& f) const;
+  /// The deformational displacement d(u) in the flat kernel's local DOFs (w = 0): what its
+  /// stresses are recovered from.
+  Eigen::VectorXd deformation(const Eigen::VectorXd& u) const;
 
  private:
   struct State;
-  State corotate(const Eigen::VectorXd& u, bool with_tangent) const;
+  State corotate(const Eigen::VectorXd& u) const;
   /// Local forces n̂, M̂ (frame components), ŵ and the frame-component internal force f̂.
   void local_forces(State& s) const;
 

@@ -469,6 +469,7 @@ const std::vector<std::string>& Shell4::result_names() const {
 Eigen::VectorXd Shell4::local_displacement(const ElementContext& ctx,
                                            const Eigen::VectorXd& u) const {
   if (!ctx.large_deflection) return A_ * u;
+  if (triangle_) return triangle_->deformation(u);
   Eigen::VectorXd d;
   corotational_kinematics(u, d, nullptr);
   return W_ * d;

@@ -71,25 +71,38 @@ void check_status(herr_t status, const std::string& what) {
   if (status < 0) fail(what);
 }
 
-void reserve_space(hid_t file, const std::string& path, double bytes) {
+void reserve_space(hid_t file, const std::string& path, double bytes, double& reserved_end) {
   hsize_t size = 0;  // max(end of file, end of allocation)
   check_status(H5Fget_filesize(file, &size), "get the size of " + path);
   const double target = static_cast<double>(size) + std::max(0.0, bytes);
+  if (target <= reserved_end) return;
   int error = 0;
+  double ahead = target + std::max(1024.0 * 1024.0, 0.25 * target);
   rlimit limit{};
-  if (getrlimit(RLIMIT_FSIZE, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY &&
-      target > static_cast<double>(limit.rlim_cur))
-    error = EFBIG;
+  if (getrlimit(RLIMIT_FSIZE, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY) {
+    const double most = static_cast<double>(limit.rlim_cur);
+    if (target > most) error = EFBIG;
+    ahead = std::min(ahead, most);
+  }
   void* handle = nullptr;
+  double reached = 0.0;
   if (error == 0 && H5Fget_vfd_handle(file, H5P_DEFAULT, &handle) >= 0 && handle != nullptr) {
     const int fd = *static_cast<int*>(handle);  // the sec2 driver's descriptor
-    if (fallocate(fd, FALLOC_FL_KEEP_SIZE, 0, static_cast<off_t>(target)) != 0 &&
-        errno != EOPNOTSUPP && errno != ENOSYS)
+    // The margin first; on a disk too full for it, the need alone.
+    for (const double end : {ahead, target}) {
+      if (fallocate(fd, FALLOC_FL_KEEP_SIZE, 0, static_cast<off_t>(end)) == 0) {
+        reached = end;
+        break;
+      }
+      if (errno == EOPNOTSUPP || errno == ENOSYS) break;  // nothing to reserve with
       error = errno;
+    }
+    if (reached > 0.0) error = 0;
   }
   H5Eclear2(H5E_DEFAULT);
   if (error != 0)
     throw std::runtime_error(fmt::format("cannot write {}: {}", path, std::strerror(error)));
+  reserved_end = reached;
 }
 
 void verify_chunk_index(hid_t dataset, const std::vector<hsize_t>& start,

@@ -60,7 +60,11 @@ std::string error_detail();
 /// <path>: <reason>" (File too large, No space left on device) when it cannot, so that a write
 /// never fails half-way through a flush (HDF5 would still rewrite the superblock with the new
 /// end of file, leaving the file unreadable). Filesystems without fallocate: no reservation.
-void reserve_space(hid_t file, const std::string& path, double bytes);
+/// `reserved_end` (in/out, 0 at first) is the end of what was allocated before: a write that
+/// fits in it costs no system call, and a new allocation reaches a quarter (at least 1 MB)
+/// beyond the need, within the file size limit (a small model's run made 208 fallocate and
+/// 209 getrlimit calls, one per stored point; issue 11).
+void reserve_space(hid_t file, const std::string& path, double bytes, double& reserved_end);
 
 /// Checks the index entries of the chunks holding the slab (start, count) of a chunked dataset
 /// (no-op for other layouts). The chunk index of the HDF5 1.8 format (a v1 B-tree) carries no

@@ -143,6 +143,7 @@ struct ResultsWriter::Impl {
   /// A write failed: the file is left in its last flushed state and never written again.
   bool failed = false;
   bool sparse_output = true;  // set_sparse_output
+  double reserved_end = 0.0;  // disk space allocated ahead (h5::reserve_space)
 
   hsize_t n_nodes() const { return node_ids.size(); }
   hsize_t slot() const { return n_t - block_start; }
@@ -161,7 +162,7 @@ struct ResultsWriter::Impl {
         throw SolutionError(
             fmt::format("cannot write {} any more: an earlier write failed", m.path));
       try {
-        h5::reserve_space(m.file, m.path, kReserveFactor * bytes + kReserveSlack);
+        h5::reserve_space(m.file, m.path, kReserveFactor * bytes + kReserveSlack, m.reserved_end);
       } catch (const std::runtime_error& e) {
         m.abandon();
         throw SolutionError(e.what());
