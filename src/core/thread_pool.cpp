@@ -43,13 +43,18 @@ class Pool {
     failed_at_ = n;
     failure_ = nullptr;
     helpers_ = threads - 1;
-    active_ = helpers_;
+    joined_ = 0;
+    open_ = true;
     ++generation_;
     lock.unlock();
     start_.notify_all();
     claim();
+    // Every chunk is claimed: close the loop to workers that have not joined it yet (a busy
+    // machine may not run them for milliseconds; the loop never waits for them), and wait only
+    // for those finishing a chunk.
     lock.lock();
-    done_.wait(lock, [this] { return active_ == 0; });
+    open_ = false;
+    done_.wait(lock, [this] { return joined_ == 0; });
     body_ = nullptr;
     if (failure_) std::rethrow_exception(failure_);
   }
@@ -62,7 +67,8 @@ class Pool {
     new (&start_) std::condition_variable;
     new (&done_) std::condition_variable;
     workers_ = new std::vector<std::thread>;
-    active_ = 0;
+    joined_ = 0;
+    open_ = false;
   }
 
  private:
@@ -76,13 +82,15 @@ class Pool {
     for (;;) {
       start_.wait(lock, [&] { return generation_ != seen; });
       seen = generation_;
-      if (index >= helpers_) continue;  // fewer threads wanted for this loop
+      // Too late (the caller finished the loop alone), or fewer threads wanted for it.
+      if (!open_ || index >= helpers_) continue;
+      ++joined_;
       lock.unlock();
       inside_loop = true;
       claim();
       inside_loop = false;
       lock.lock();
-      if (--active_ == 0) done_.notify_one();
+      if (--joined_ == 0 && !open_) done_.notify_one();
     }
   }
 
@@ -114,7 +122,8 @@ class Pool {
   std::atomic<int> next_{0};
   unsigned long generation_ = 0;
   int helpers_ = 0;
-  int active_ = 0;
+  int joined_ = 0;     // workers inside the current loop
+  bool open_ = false;  // the current loop still takes workers
   std::mutex failure_mutex_;
   int failed_at_ = 0;
   std::exception_ptr failure_;
