@@ -107,8 +107,7 @@ CorotationalTriangle::State CorotationalTriangle::corotate(const Eigen::VectorXd
     s.psi[a] = u.segment<3>(6 * static_cast<int>(a) + 3);
     Mat3 Q;
     so3::exp_map_and_left_jacobian(s.psi[a], Q, s.T[a]);
-    s.theta[a] = so3::log_map(s.Rc.transpose() * Q * R0_);
-    s.Ji[a] = so3::left_jacobian_inverse(s.theta[a]);
+    s.theta[a] = so3::log_map_and_left_jacobian_inverse(s.Rc.transpose() * Q * R0_, s.Ji[a]);
   }
   return s;
 }

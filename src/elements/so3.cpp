@@ -133,6 +133,21 @@ Vec3 log_map(const Mat3& R) {
   return (2.0 * std::atan2(s, q.w()) / s) * v;
 }
 
+Vec3 log_map_and_left_jacobian_inverse(const Mat3& R, Mat3& Ji) {
+  Eigen::Quaterniond q(R);
+  if (q.w() < 0.0) q.coeffs() *= -1.0;
+  const Vec3 v = q.vec();
+  const double s = v.norm(), w = q.w();  // sin(t/2), cos(t/2) of the angle t
+  const Vec3 theta = s < 1e-12 ? Vec3(2.0 * v) : Vec3((2.0 * std::atan2(s, w) / s) * v);
+  // T(θ)⁻¹'s β = 1/t² − (1 + cos t)/(2 t sin t) = 1/t² − w/(2 t s), as 1 + cos t = 2w² and
+  // sin t = 2ws: no trigonometric call beyond the angle's.
+  const double t = theta.norm();
+  const double beta = t < 1e-4 ? 1.0 / 12.0 + t * t / 720.0 : 1.0 / (t * t) - w / (2.0 * t * s);
+  const Mat3 S = spin(theta);
+  Ji = Mat3::Identity() - 0.5 * S + beta * S * S;
+  return theta;
+}
+
 Mat3 left_jacobian(const Vec3& psi) {
   return rodrigues(psi, left_jacobian_coefficients(psi.norm(), false));
 }

@@ -27,6 +27,11 @@ void exp_map_and_left_jacobian(const Vec3& psi, Mat3& R, Mat3& T);
 /// Rotation vector of R, angle in [0, π] (via the quaternion, robust near 0 and π).
 Vec3 log_map(const Mat3& R);
 
+/// log_map(R) and T(θ)⁻¹ at that θ from one quaternion: the inverse Jacobian's coefficient
+/// from the half-angle's sine and cosine (equal to left_jacobian_inverse(log_map(R)) to
+/// round-off).
+Vec3 log_map_and_left_jacobian_inverse(const Mat3& R, Mat3& Ji);
+
 /// Left Jacobian T(ψ) of exp: δR Rᵀ = spin(T(ψ) δψ); α = (1 − cos t)/t², β = (t − sin t)/t³.
 Mat3 left_jacobian(const Vec3& psi);
 

@@ -6,6 +6,13 @@
 
 namespace impactfe {
 
+namespace {
+
+/// Rows per group at most (a shell node's 6 DOFs, with room for a little more).
+constexpr int kMaxGroupRows = 8;
+
+}  // namespace
+
 SharedPatternProducts::SharedPatternProducts(const std::vector<const SparseMatrix*>& matrices)
     : n_matrices_(static_cast<int>(matrices.size())) {
   IMPACTFE_CHECK(n_matrices_ >= 1 && n_matrices_ <= kMaxMatrices,
@@ -26,22 +33,25 @@ SharedPatternProducts::SharedPatternProducts(const std::vector<const SparseMatri
   Eigen::SparseMatrix<double, Eigen::RowMajor, int> pattern(n, n);
   pattern.setFromTriplets(ones.begin(), ones.end());
   pattern.makeCompressed();
-  row_start_.assign(pattern.outerIndexPtr(), pattern.outerIndexPtr() + n + 1);
-  column_.assign(pattern.innerIndexPtr(), pattern.innerIndexPtr() + pattern.nonZeros());
+  const std::vector<int> row_start(pattern.outerIndexPtr(), pattern.outerIndexPtr() + n + 1);
+  const std::vector<int> column(pattern.innerIndexPtr(),
+                                pattern.innerIndexPtr() + pattern.nonZeros());
+  std::vector<std::vector<double>> values(static_cast<std::size_t>(n_matrices_));
   for (int m = 0; m < n_matrices_; ++m) {
     const SparseMatrix& a = *matrices[static_cast<std::size_t>(m)];
-    std::vector<double>& value = value_[static_cast<std::size_t>(m)];
-    if (a.nonZeros() > 0) value.assign(column_.size(), 0.0);
+    std::vector<double>& value = values[static_cast<std::size_t>(m)];
+    if (a.nonZeros() > 0) value.assign(column.size(), 0.0);
     for (int j = 0; j < a.outerSize(); ++j)
       for (SparseMatrix::InnerIterator it(a, j); it; ++it) {
         const int row = static_cast<int>(it.row());
-        const int* begin = column_.data() + row_start_[static_cast<std::size_t>(row)];
-        const int* end = column_.data() + row_start_[static_cast<std::size_t>(row) + 1];
+        const int* begin = column.data() + row_start[static_cast<std::size_t>(row)];
+        const int* end = column.data() + row_start[static_cast<std::size_t>(row) + 1];
         const auto k =
-            static_cast<std::size_t>(std::lower_bound(begin, end, it.col()) - column_.data());
+            static_cast<std::size_t>(std::lower_bound(begin, end, it.col()) - column.data());
         value[k] += it.value();
       }
   }
+  build(row_start, column, values);
 }
 
 SharedPatternProducts::SharedPatternProducts(const std::vector<int>& row_start,
@@ -54,40 +64,131 @@ SharedPatternProducts::SharedPatternProducts(const std::vector<int>& row_start,
   IMPACTFE_CHECK(!row_start.empty() && kept.size() == column.size(),
                  "SharedPatternProducts: inconsistent pattern");
   const std::size_t n = row_start.size() - 1;
-  row_start_.assign(n + 1, 0);
-  column_.clear();
+  std::vector<int> kept_start(n + 1, 0), kept_column;
   for (std::size_t i = 0; i < n; ++i) {
     for (auto k = static_cast<std::size_t>(row_start[i]);
          k < static_cast<std::size_t>(row_start[i + 1]); ++k)
-      if (kept[k]) column_.push_back(column[k]);
-    row_start_[i + 1] = static_cast<int>(column_.size());
+      if (kept[k]) kept_column.push_back(column[k]);
+    kept_start[i + 1] = static_cast<int>(kept_column.size());
   }
+  std::vector<std::vector<double>> kept_values(static_cast<std::size_t>(n_matrices_));
   for (int m = 0; m < n_matrices_; ++m) {
     const auto sm = static_cast<std::size_t>(m);
     const std::vector<double>* from = values[sm];
     nonzero_[sm] = from != nullptr;
     if (from == nullptr) continue;
     IMPACTFE_CHECK(from->size() == column.size(), "SharedPatternProducts: values of another size");
-    std::vector<double>& to = value_[sm];
-    to.reserve(column_.size());
+    std::vector<double>& to = kept_values[sm];
+    to.reserve(kept_column.size());
     for (std::size_t k = 0; k < column.size(); ++k)
       if (kept[k]) to.push_back((*from)[k]);
+  }
+  build(kept_start, kept_column, kept_values);
+}
+
+void SharedPatternProducts::build(const std::vector<int>& row_start, const std::vector<int>& column,
+                                  const std::vector<std::vector<double>>& values) {
+  n_rows_ = static_cast<int>(row_start.size()) - 1;
+  nonzeros_ = static_cast<long long>(column.size());
+  const auto columns_of = [&](int i) {
+    return std::make_pair(column.begin() + row_start[static_cast<std::size_t>(i)],
+                          column.begin() + row_start[static_cast<std::size_t>(i) + 1]);
+  };
+  groups_.clear();
+  column_.clear();
+  for (int m = 0; m < kMaxMatrices; ++m) value_[static_cast<std::size_t>(m)].clear();
+  long long value_start = 0;
+  for (int i = 0; i < n_rows_;) {
+    const auto [begin, end] = columns_of(i);
+    int rows = 1;
+    while (rows < kMaxGroupRows && i + rows < n_rows_) {
+      const auto [b, e] = columns_of(i + rows);
+      if (!std::equal(begin, end, b, e)) break;
+      ++rows;
+    }
+    RowGroup g;
+    g.first_row = i;
+    g.rows = rows;
+    g.column_start = static_cast<int>(column_.size());
+    g.columns = static_cast<int>(end - begin);
+    g.value_start = value_start;
+    column_.insert(column_.end(), begin, end);
+    for (int m = 0; m < n_matrices_; ++m) {
+      const std::vector<double>& from = values[static_cast<std::size_t>(m)];
+      if (from.empty()) continue;
+      std::vector<double>& to = value_[static_cast<std::size_t>(m)];
+      for (int k = 0; k < g.columns; ++k)
+        for (int r = 0; r < rows; ++r)
+          to.push_back(
+              from[static_cast<std::size_t>(row_start[static_cast<std::size_t>(i + r)] + k)]);
+    }
+    value_start += static_cast<long long>(g.columns) * rows;
+    groups_.push_back(g);
+    i += rows;
   }
 }
 
 namespace {
 
-/// y_m(i) = Σ_k A_m(i, col k) x_m(col k) for N matrices with values a[m].
-template <int N>
-void multiply_rows(int rows, const int* row_start, const int* column, const double* const* a,
-                   const double* const* x, double* const* y) {
-  for (int i = 0; i < rows; ++i) {
-    double sum[N] = {};
-    for (int k = row_start[i]; k < row_start[i + 1]; ++k) {
-      const int j = column[k];
-      for (int m = 0; m < N; ++m) sum[m] += a[m][k] * x[m][j];
+using RowGroup = SharedPatternProducts::RowGroup;
+
+/// y_m(i) = Σ_k A_m(i, col k) x_m(col k) for the G rows of a group and N matrices; each row's
+/// terms are summed in column order.
+template <int N, int G>
+void multiply_group(const RowGroup& g, const int* column, const double* const* a,
+                    const double* const* x, double* const* y) {
+  double sum[N][G] = {};
+  const int* col = column + g.column_start;
+  for (int k = 0; k < g.columns; ++k) {
+    const int j = col[k];
+    for (int m = 0; m < N; ++m) {
+      const double xj = x[m][j];
+      const double* v = a[m] + g.value_start + static_cast<long long>(k) * G;
+      for (int r = 0; r < G; ++r) sum[m][r] += v[r] * xj;
     }
-    for (int m = 0; m < N; ++m) y[m][i] = sum[m];
+  }
+  for (int m = 0; m < N; ++m)
+    for (int r = 0; r < G; ++r) y[m][g.first_row + r] = sum[m][r];
+}
+
+template <int N>
+void multiply_any(const RowGroup& g, const int* column, const double* const* a,
+                  const double* const* x, double* const* y) {
+  double sum[N][kMaxGroupRows] = {};
+  const int* col = column + g.column_start;
+  for (int k = 0; k < g.columns; ++k) {
+    const int j = col[k];
+    for (int m = 0; m < N; ++m) {
+      const double xj = x[m][j];
+      const double* v = a[m] + g.value_start + static_cast<long long>(k) * g.rows;
+      for (int r = 0; r < g.rows; ++r) sum[m][r] += v[r] * xj;
+    }
+  }
+  for (int m = 0; m < N; ++m)
+    for (int r = 0; r < g.rows; ++r) y[m][g.first_row + r] = sum[m][r];
+}
+
+template <int N>
+void multiply_groups(const std::vector<RowGroup>& groups, const int* column, const double* const* a,
+                     const double* const* x, double* const* y) {
+  for (const RowGroup& g : groups) {
+    switch (g.rows) {
+      case 1:
+        multiply_group<N, 1>(g, column, a, x, y);
+        break;
+      case 2:
+        multiply_group<N, 2>(g, column, a, x, y);
+        break;
+      case 3:
+        multiply_group<N, 3>(g, column, a, x, y);
+        break;
+      case 6:
+        multiply_group<N, 6>(g, column, a, x, y);
+        break;
+      default:
+        multiply_any<N>(g, column, a, x, y);
+        break;
+    }
   }
 }
 
@@ -114,17 +215,16 @@ void SharedPatternProducts::multiply(const std::array<const VectorXd*, kMaxMatri
     ys[count] = y[s]->data();
     ++count;
   }
-  const int* rs = row_start_.data();
   const int* col = column_.data();
   switch (count) {
     case 1:
-      multiply_rows<1>(n, rs, col, as, xs, ys);
+      multiply_groups<1>(groups_, col, as, xs, ys);
       break;
     case 2:
-      multiply_rows<2>(n, rs, col, as, xs, ys);
+      multiply_groups<2>(groups_, col, as, xs, ys);
       break;
     case 3:
-      multiply_rows<3>(n, rs, col, as, xs, ys);
+      multiply_groups<3>(groups_, col, as, xs, ys);
       break;
     default:
       break;

@@ -50,6 +50,45 @@ TEST(SharedPatternProducts, EachProductEqualsItsOwnMatrixProduct) {
   EXPECT_EQ(ku_cv[1], cv);
 }
 
+/// A matrix with node blocks: `dofs` rows per node share their columns (a mesh's pattern).
+SparseMatrix node_blocked(int nodes, int dofs, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> value(-1.0, 1.0);
+  std::vector<Eigen::Triplet<double, int>> t;
+  for (int a = 0; a < nodes; ++a)
+    for (int b : {a - 2, a - 1, a, a + 1, a + 5})
+      if (b >= 0 && b < nodes)
+        for (int i = 0; i < dofs; ++i)
+          for (int j = 0; j < dofs; ++j) t.emplace_back(dofs * a + i, dofs * b + j, value(rng));
+  SparseMatrix m(nodes * dofs, nodes * dofs);
+  m.setFromTriplets(t.begin(), t.end());
+  return m;
+}
+
+TEST(SharedPatternProducts, NodeBlocksShareTheirColumnsAndSumInRowOrder) {
+  for (int dofs : {1, 2, 3, 5, 6, 7, 9}) {
+    const int nodes = 40, n = nodes * dofs;
+    const SparseMatrix k = node_blocked(nodes, dofs, 11), m = node_blocked(nodes, dofs, 12);
+    const SharedPatternProducts products({&k, &m});
+    // One group per node (9 rows are two groups: at most 8 rows share a list).
+    EXPECT_EQ(products.row_groups(), dofs <= 8 ? nodes : 2 * nodes) << dofs;
+    const VectorXd u = VectorXd::Random(n), a = VectorXd::Random(n);
+    VectorXd ku, ma;
+    products.multiply({&u, &a, nullptr}, {&ku, &ma, nullptr});
+    // The row-by-row sums in column order, exactly.
+    const Eigen::SparseMatrix<double, Eigen::RowMajor, int> kr = k, mr = m;
+    for (int i = 0; i < n; ++i) {
+      double sk = 0.0, sm = 0.0;
+      for (Eigen::SparseMatrix<double, Eigen::RowMajor, int>::InnerIterator it(kr, i); it; ++it)
+        sk += it.value() * u(it.col());
+      for (Eigen::SparseMatrix<double, Eigen::RowMajor, int>::InnerIterator it(mr, i); it; ++it)
+        sm += it.value() * a(it.col());
+      ASSERT_EQ(ku(i), sk) << "dofs " << dofs << " row " << i;
+      ASSERT_EQ(ma(i), sm) << "dofs " << dofs << " row " << i;
+    }
+  }
+}
+
 TEST(SharedPatternProducts, ZeroMatrixGivesZeroVector) {
   const int n = 50;
   const SparseMatrix k = random_sparse(n, 4, 7);

@@ -75,6 +75,11 @@ TEST(So3, ExpAndLogAreInverseAndTIsTheLeftJacobian) {
     EXPECT_LE((so3::left_jacobian(psi) * so3::left_jacobian_inverse(psi) - Mat3::Identity()).norm(),
               1e-13)
         << psi.norm();
+    // log and T(θ)⁻¹ from one quaternion: the two calls to round-off.
+    Mat3 Ji;
+    const Vec3 theta = so3::log_map_and_left_jacobian_inverse(R, Ji);
+    EXPECT_LE((theta - so3::log_map(R)).norm(), 1e-15 * std::max(1.0, psi.norm()));
+    EXPECT_LE(rel_err(Ji, so3::left_jacobian_inverse(so3::log_map(R))), 1e-12) << psi.norm();
     // Both maps at once: bitwise the two calls.
     Mat3 R_both, T_both;
     so3::exp_map_and_left_jacobian(psi, R_both, T_both);
