@@ -278,12 +278,20 @@ void DirectSolution::begin(bool transient) {
   take_restart_request();
 }
 
+std::string DirectSolution::condensed_tangent_note() const {
+  if (!condensation_) return "";
+  const UpdatableDenseFactor& f = condensation_->tangent_factor();
+  if (f.full_factorizations() == 0) return "";
+  return fmt::format("; the condensed tangent: {} factorization(s), {} rank-one update(s)",
+                     f.full_factorizations(), f.rank_one_updates());
+}
+
 void DirectSolution::finish() {
   if (!condensation_note_.empty())
     stats_.notes.push_back(condensed_steps_ + full_fallback_steps_ > 0
-                               ? fmt::format("{}; {} steps condensed, {} finished by full Newton",
+                               ? fmt::format("{}; {} steps condensed, {} finished by full Newton{}",
                                              condensation_note_, condensed_steps_,
-                                             full_fallback_steps_)
+                                             full_fallback_steps_, condensed_tangent_note())
                                : condensation_note_);
   if (transient_) {
     const double kinetic = 0.5 * v_.dot(mass_all_ * v_);
@@ -394,17 +402,12 @@ class CondensedIncrement final : public NonlinearProblem {
     VectorXd phi = VectorXd::Zero(n_unknowns());
     assembler_.assemble_nonlinear_part(coeff_, wk_, u_, v_, condensation_.position(), phi,
                                        &tangent);
-    // S + K_N is positive definite unless a nonlinear element's tangent is negative enough:
-    // blocked Cholesky (Eigen's LDLᵀ is unblocked: 0.17 s against 0.09 s at m = 1681), LDLᵀ when
-    // Cholesky fails.
-    tangent_llt_.compute(tangent);
-    positive_definite_ = tangent_llt_.info() == Eigen::Success;
-    if (!positive_definite_) tangent_ldlt_.compute(tangent);
+    // From the factor of the last tangent (earlier in the step or in an earlier step): a gap
+    // that opened or closed changes it on its own DOFs only.
+    condensation_.tangent_factor().factorize(tangent);
     stale_ = false;
   }
-  VectorXd solve(const VectorXd& r) override {
-    return positive_definite_ ? VectorXd(tangent_llt_.solve(r)) : VectorXd(tangent_ldlt_.solve(r));
-  }
+  VectorXd solve(const VectorXd& r) override { return condensation_.tangent_factor().solve(r); }
   bool update_status(const VectorXd& delta) override {
     set_state(delta);
     n_status_changes_ += status_loop_.update(u_, label_);
@@ -437,9 +440,6 @@ class CondensedIncrement final : public NonlinearProblem {
   VectorXd y_;
   double reference_;
   VectorXd phi0_;
-  Eigen::LLT<MatrixXd> tangent_llt_;
-  Eigen::LDLT<MatrixXd> tangent_ldlt_;
-  bool positive_definite_ = true;
   bool stale_ = true;
   int n_status_changes_ = 0, reported_ = 0;
 };

@@ -43,6 +43,8 @@ class DirectSolution : private NonlinearProblem {
   /// the whole run); empty by default.
   void set_following_steps(std::vector<LoadStep> steps);
   void finish();
+  /// "; the condensed tangent: N factorization(s), M rank-one update(s)" (run summary).
+  std::string condensed_tangent_note() const;
 
  private:
   void update_counters();

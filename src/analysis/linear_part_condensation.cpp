@@ -35,6 +35,7 @@ bool LinearPartCondensation::prepared_for(const IntegrationCoefficients& coeff) 
 void LinearPartCondensation::prepare(const IntegrationCoefficients& coeff) {
   if (prepared_for(coeff)) return;
   prepared_.reset();
+  tangent_.reset();  // S changes with the coefficients
   assembler_.assemble_linear_part(coeff, effective_);
   if (solver_->counters().analyses == 0) solver_->analyze_pattern(effective_);
   solver_->factorize(effective_);

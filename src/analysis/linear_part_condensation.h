@@ -21,6 +21,7 @@
 
 #include "assembly/assembler.h"
 #include "linalg/schur_solver.h"
+#include "linalg/updatable_dense_factor.h"
 
 namespace impactfe {
 
@@ -54,6 +55,9 @@ class LinearPartCondensation {
   VectorXd recover(const VectorXd& delta_c) { return solver_->recover(delta_c); }
   const MatrixXd& schur() const { return solver_->schur(); }  // S (m × m)
   const SolverCounters& counters() const { return solver_->counters(); }
+  /// The factor of the condensed Newton tangent S + cK K_N + cC C_N, kept from step to step so
+  /// that a status change updates it (rank one per changed DOF) instead of factoring anew.
+  UpdatableDenseFactor& tangent_factor() { return tangent_; }
 
  private:
   const Assembler& assembler_;
@@ -62,6 +66,7 @@ class LinearPartCondensation {
   SparseMatrix effective_;
   std::unique_ptr<SchurSolver> solver_;
   std::optional<IntegrationCoefficients> prepared_;
+  UpdatableDenseFactor tangent_;
 };
 
 }  // namespace impactfe
