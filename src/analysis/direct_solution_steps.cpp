@@ -2,6 +2,7 @@
 // (AUTOTS; APDL_MODELING §9.1, §9.3; docs/solution_control.md) with bisection, growth, the
 // contact-frequency ceiling and landing on the requested output times.
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 
@@ -98,10 +99,13 @@ void DirectSolution::solve_load_step(const LoadStep& given) {
   } catch (const std::exception&) {
   }
   const StepContext context{step, previous, t, dynamic, later_substeps, run_end};
+  const auto stepping_start = std::chrono::steady_clock::now();
   if (plan.automatic)
     solve_automatic_steps(context, plan);
   else
     solve_constant_steps(context);
+  stats_.stepping_seconds +=
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - stepping_start).count();
   ++stats_.n_load_steps;
   if (const auto contact =
           contact_summary(structure_.elements(), *assembler_, u_, step.number, t.t_end))

@@ -27,6 +27,9 @@ struct AnalysisStatistics {
   int n_status_changes = 0;
   int n_cuts = 0;  // automatic time stepping: substeps cut (bisected) and retried
   double wall_seconds = 0.0;
+  /// Wall time of the substeps alone (a direct solution's stepping loops, factorizations in
+  /// them included; 0 for the other drivers): the benchmark's time per step.
+  double stepping_seconds = 0.0;
   std::vector<std::string> notes;  // time-step advice, energy balance, ...
 };
 

@@ -80,6 +80,10 @@ void print_summary(const std::string& jobname, const RunStatistics& stats, doubl
           "factorize {:.6f} s, solve {:.6f} s\n",
           a.matrix_nonzeros, a.factor_nonzeros, a.factor_bytes / 1.0e6, a.analyze_seconds,
           a.factorize_seconds, a.solve_seconds);
+    if (a.stepping_seconds > 0.0 && a.n_substeps > 0)
+      text +=
+          fmt::format("    stepping: {:.3f} s, {:.4f} ms per substep (factorizations included)\n",
+                      a.stepping_seconds, 1e3 * a.stepping_seconds / a.n_substeps);
     for (const auto& note : a.notes) text += "    " + note + "\n";
   }
   if (!Log::warnings().empty())

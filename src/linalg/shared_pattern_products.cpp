@@ -1,6 +1,7 @@
 #include "linalg/shared_pattern_products.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "core/errors.h"
 
@@ -90,6 +91,28 @@ void SharedPatternProducts::build(const std::vector<int>& row_start, const std::
                                   const std::vector<std::vector<double>>& values) {
   n_rows_ = static_cast<int>(row_start.size()) - 1;
   nonzeros_ = static_cast<long long>(column.size());
+  // Symmetry of every matrix to round-off: the pattern of a DOF graph is symmetric, and the
+  // element matrices are up to the order of their products ((s n_i) n_j against (s n_j) n_i
+  // of a consistent mass). The upper triangle's values then stand for both.
+  symmetric_ = true;
+  for (int i = 0; i < n_rows_ && symmetric_; ++i)
+    for (int k = row_start[static_cast<std::size_t>(i)];
+         k < row_start[static_cast<std::size_t>(i) + 1] && symmetric_; ++k) {
+      const int j = column[static_cast<std::size_t>(k)];
+      if (j <= i) continue;
+      const int* begin = column.data() + row_start[static_cast<std::size_t>(j)];
+      const int* end = column.data() + row_start[static_cast<std::size_t>(j) + 1];
+      const int* at = std::lower_bound(begin, end, i);
+      if (at == end || *at != i) {
+        symmetric_ = false;
+        break;
+      }
+      const auto kt = static_cast<std::size_t>(at - column.data());
+      for (const auto& v : values)
+        if (!v.empty() && std::abs(v[static_cast<std::size_t>(k)] - v[kt]) >
+                              1e-13 * (std::abs(v[static_cast<std::size_t>(k)]) + std::abs(v[kt])))
+          symmetric_ = false;
+    }
   const auto columns_of = [&](int i) {
     return std::make_pair(column.begin() + row_start[static_cast<std::size_t>(i)],
                           column.begin() + row_start[static_cast<std::size_t>(i) + 1]);
@@ -106,21 +129,26 @@ void SharedPatternProducts::build(const std::vector<int>& row_start, const std::
       if (!std::equal(begin, end, b, e)) break;
       ++rows;
     }
+    // Symmetric storage: from the group's first row on (its own block in full).
+    const auto first = symmetric_ ? std::lower_bound(begin, end, i) : begin;
     RowGroup g;
     g.first_row = i;
     g.rows = rows;
     g.column_start = static_cast<int>(column_.size());
-    g.columns = static_cast<int>(end - begin);
+    g.columns = static_cast<int>(end - first);
+    g.own_columns =
+        symmetric_ ? static_cast<int>(std::lower_bound(first, end, i + rows) - first) : g.columns;
     g.value_start = value_start;
-    column_.insert(column_.end(), begin, end);
+    column_.insert(column_.end(), first, end);
+    const int skipped = static_cast<int>(first - begin);
     for (int m = 0; m < n_matrices_; ++m) {
       const std::vector<double>& from = values[static_cast<std::size_t>(m)];
       if (from.empty()) continue;
       std::vector<double>& to = value_[static_cast<std::size_t>(m)];
       for (int k = 0; k < g.columns; ++k)
         for (int r = 0; r < rows; ++r)
-          to.push_back(
-              from[static_cast<std::size_t>(row_start[static_cast<std::size_t>(i + r)] + k)]);
+          to.push_back(from[static_cast<std::size_t>(row_start[static_cast<std::size_t>(i + r)] +
+                                                     skipped + k)]);
     }
     value_start += static_cast<long long>(g.columns) * rows;
     groups_.push_back(g);
@@ -166,6 +194,55 @@ void multiply_any(const RowGroup& g, const int* column, const double* const* a,
   }
   for (int m = 0; m < N; ++m)
     for (int r = 0; r < g.rows; ++r) y[m][g.first_row + r] = sum[m][r];
+}
+
+/// Symmetric storage: the group's own columns as above, then each later column j applied to
+/// the group's rows (y_i += a_ij x_j) and to row j (y_j += Σ_i a_ij x_i). y starts at zero;
+/// the scattered terms of earlier groups are in y_i when the group adds its own sums.
+template <int N, int G>
+void multiply_group_symmetric(const RowGroup& g, const int* column, const double* const* a,
+                              const double* const* x, double* const* y, int rows) {
+  constexpr int kRows = G > 0 ? G : kMaxGroupRows;
+  const int n = G > 0 ? G : rows;
+  double sum[N][kRows] = {};
+  double xi[N][kRows];
+  for (int m = 0; m < N; ++m)
+    for (int r = 0; r < n; ++r) xi[m][r] = x[m][g.first_row + r];
+  const int* col = column + g.column_start;
+  for (int k = 0; k < g.columns; ++k) {
+    const int j = col[k];
+    for (int m = 0; m < N; ++m) {
+      const double xj = x[m][j];
+      const double* v = a[m] + g.value_start + static_cast<long long>(k) * n;
+      for (int r = 0; r < n; ++r) sum[m][r] += v[r] * xj;
+      if (k < g.own_columns) continue;
+      double t = 0.0;
+      for (int r = 0; r < n; ++r) t += v[r] * xi[m][r];
+      y[m][j] += t;
+    }
+  }
+  for (int m = 0; m < N; ++m)
+    for (int r = 0; r < n; ++r) y[m][g.first_row + r] += sum[m][r];
+}
+
+template <int N>
+void multiply_groups_symmetric(const std::vector<RowGroup>& groups, const int* column,
+                               const double* const* a, const double* const* x, double* const* y,
+                               int n_rows) {
+  for (int m = 0; m < N; ++m) std::fill(y[m], y[m] + n_rows, 0.0);
+  for (const RowGroup& g : groups) {
+    switch (g.rows) {
+      case 3:
+        multiply_group_symmetric<N, 3>(g, column, a, x, y, 3);
+        break;
+      case 6:
+        multiply_group_symmetric<N, 6>(g, column, a, x, y, 6);
+        break;
+      default:
+        multiply_group_symmetric<N, 0>(g, column, a, x, y, g.rows);
+        break;
+    }
+  }
 }
 
 template <int N>
@@ -216,6 +293,22 @@ void SharedPatternProducts::multiply(const std::array<const VectorXd*, kMaxMatri
     ++count;
   }
   const int* col = column_.data();
+  if (symmetric_) {
+    switch (count) {
+      case 1:
+        multiply_groups_symmetric<1>(groups_, col, as, xs, ys, n);
+        break;
+      case 2:
+        multiply_groups_symmetric<2>(groups_, col, as, xs, ys, n);
+        break;
+      case 3:
+        multiply_groups_symmetric<3>(groups_, col, as, xs, ys, n);
+        break;
+      default:
+        break;
+    }
+    return;
+  }
   switch (count) {
     case 1:
       multiply_groups<1>(groups_, col, as, xs, ys);

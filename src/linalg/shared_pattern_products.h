@@ -31,6 +31,10 @@ class SharedPatternProducts {
   /// Groups of consecutive rows with one column list (a node's DOFs): the pass reads each
   /// column index once per group.
   int row_groups() const { return static_cast<int>(groups_.size()); }
+  /// True when every matrix is symmetric (to 1e-13 relative per entry): only the entries of
+  /// each group's rows at its own and later columns are stored, the later ones applied to both
+  /// rows and columns (half the memory traffic of a pass, which bounds it on large models).
+  bool symmetric() const { return symmetric_; }
 
   /// y[m] = A_m x[m] for each m with both pointers non-null; y[m] is resized. A zero matrix
   /// gives a zero vector without a pass.
@@ -46,6 +50,7 @@ class SharedPatternProducts {
     int rows = 0;
     int column_start = 0;  // into column_
     int columns = 0;
+    int own_columns = 0;        // symmetric storage: the leading columns inside the group's rows
     long long value_start = 0;  // into value_[m]: columns × rows, column-major by group
   };
 
@@ -56,6 +61,7 @@ class SharedPatternProducts {
 
   int n_matrices_ = 0;
   int n_rows_ = 0;
+  bool symmetric_ = false;
   long long nonzeros_ = 0;
   std::array<bool, kMaxMatrices> nonzero_{};
   std::vector<RowGroup> groups_;

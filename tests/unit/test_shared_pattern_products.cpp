@@ -2,6 +2,7 @@
 // Eigen's sparse product to round-off, with zero matrices and omitted products handled.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 #include "linalg/shared_pattern_products.h"
@@ -86,6 +87,34 @@ TEST(SharedPatternProducts, NodeBlocksShareTheirColumnsAndSumInRowOrder) {
       ASSERT_EQ(ku(i), sk) << "dofs " << dofs << " row " << i;
       ASSERT_EQ(ma(i), sm) << "dofs " << dofs << " row " << i;
     }
+  }
+}
+
+TEST(SharedPatternProducts, SymmetricMatricesStoreHalfAndGiveTheSameProducts) {
+  for (int dofs : {1, 3, 6, 9}) {
+    const int nodes = 50, n = nodes * dofs;
+    const SparseMatrix kb = node_blocked(nodes, dofs, 21), mb = node_blocked(nodes, dofs, 22);
+    const SparseMatrix k = SparseMatrix(kb.transpose()) + kb;  // exactly symmetric
+    const SparseMatrix m = SparseMatrix(mb.transpose()) + mb;
+    const SharedPatternProducts half({&k, &m});
+    EXPECT_TRUE(half.symmetric());
+    const VectorXd u = VectorXd::Random(n), a = VectorXd::Random(n);
+    VectorXd ku, ma;
+    half.multiply({&u, &a, nullptr}, {&ku, &ma, nullptr});
+    EXPECT_LT(relative_difference(ku, k * u), 1e-14) << dofs;
+    EXPECT_LT(relative_difference(ma, m * a), 1e-14) << dofs;
+    // One entry off its mirror by an ulp counts as symmetric (round-off of element products),
+    // by 1e-9 it does not: the full pass.
+    SparseMatrix k_ulp = k;
+    k_ulp.coeffRef(dofs, 0) = std::nextafter(k_ulp.coeff(dofs, 0), 1e300);
+    EXPECT_TRUE(SharedPatternProducts({&k_ulp}).symmetric());
+    SparseMatrix k_off = k;
+    k_off.coeffRef(dofs, 0) *= 1.0 + 1e-9;
+    const SharedPatternProducts full({&k_off});
+    EXPECT_FALSE(full.symmetric());
+    VectorXd ku_off;
+    full.multiply({&u, nullptr, nullptr}, {&ku_off, nullptr, nullptr});
+    EXPECT_LT(relative_difference(ku_off, k_off * u), 1e-14) << dofs;
   }
 }
 
