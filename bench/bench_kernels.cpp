@@ -16,6 +16,8 @@
 #include "assembly/dof_map.h"
 #include "deck/deck_reader.h"
 #include "linalg/linear_solver.h"
+#include "linalg/solver_support.h"
+#include "linalg/supernodal_substitution.h"
 
 namespace impactfe {
 namespace {
@@ -260,6 +262,79 @@ void BM_CholmodSolve(benchmark::State& state) {
   }
   state.counters["free_dofs"] = static_cast<double>(p.K.rows());
 }
+/// One forward and one back substitution with the plate's supernodal LLᵀ factor: CHOLMOD's own
+/// solve (range(1) = 0: cholmod_solve2 with kept workspaces, BLAS threads as configured)
+/// against supernodal_substitution.h (1; 2: the forward substitution only, 3: the back one);
+/// 4 reads the factor's values twice and solves nothing (the bandwidth floor measured on the
+/// same memory). bytes_per_second counts the factor twice in every mode.
+void BM_SupernodalSolve(benchmark::State& state) {
+  PlateSystem p(static_cast<int>(state.range(0)));
+  cholmod_common common;
+  cholmod_start(&common);
+  common.supernodal = CHOLMOD_SUPERNODAL;
+  common.final_ll = 1;
+  cholmod_sparse a = solver_support::cholmod_lower_view(p.K);
+  cholmod_factor* factor = cholmod_analyze(&a, &common);
+  cholmod_factorize(&a, factor, &common);
+  const auto n = static_cast<size_t>(p.K.rows());
+  VectorXd rhs = VectorXd::Ones(p.K.rows());
+  cholmod_dense b{};
+  b.nrow = b.nzmax = b.d = n;
+  b.ncol = 1;
+  b.x = rhs.data();
+  b.xtype = CHOLMOD_REAL;
+  b.dtype = CHOLMOD_DOUBLE;
+  cholmod_dense *x = nullptr, *y = nullptr, *e = nullptr;
+  const SupernodalLayout layout = solver_support::supernodal_layout(factor);
+  std::vector<double> work;
+  VectorXd z = rhs;
+  for (auto _ : state) {
+    if (state.range(1) == 0) {
+      cholmod_solve2(CHOLMOD_L, factor, &b, nullptr, &x, nullptr, &y, &e, &common);
+      cholmod_solve2(CHOLMOD_Lt, factor, &b, nullptr, &x, nullptr, &y, &e, &common);
+      benchmark::DoNotOptimize(x->x);
+    } else if (state.range(1) == 4) {
+      // The floor: the factor's values read twice, four partial sums (no solve).
+      const auto* v = static_cast<const double*>(factor->x);
+      double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
+      for (int pass = 0; pass < 2; ++pass)
+        for (size_t i = 0; i + 3 < factor->xsize; i += 4) {
+          s0 += v[i];
+          s1 += v[i + 1];
+          s2 += v[i + 2];
+          s3 += v[i + 3];
+        }
+      double sum = s0 + s1 + s2 + s3;
+      benchmark::DoNotOptimize(sum);
+    } else {
+      z = rhs;
+      if (state.range(1) != 3) forward_substitution(layout, z.data(), work);
+      if (state.range(1) != 2) back_substitution(layout, z.data(), work);
+      benchmark::DoNotOptimize(z.data());
+    }
+  }
+  const double bytes = static_cast<double>(factor->xsize * sizeof(double) + factor->ssize * 4);
+  state.SetBytesProcessed(static_cast<int64_t>(2.0 * bytes) *
+                          static_cast<int64_t>(state.iterations()));
+  state.counters["factor_MB"] = bytes / 1e6;
+  for (cholmod_dense** d : {&x, &y, &e})
+    if (*d) cholmod_free_dense(d, &common);
+  cholmod_free_factor(&factor, &common);
+  cholmod_finish(&common);
+}
+BENCHMARK(BM_SupernodalSolve)
+    ->Args({40, 0})
+    ->Args({40, 1})
+    ->Args({80, 0})
+    ->Args({80, 1})
+    ->Args({80, 4})
+    ->Args({160, 0})
+    ->Args({160, 1})
+    ->Args({160, 2})
+    ->Args({160, 3})
+    ->Args({160, 4})
+    ->Unit(benchmark::kMillisecond);
+
 BENCHMARK(BM_CholmodAnalyze)->Arg(20)->Arg(40)->Arg(80)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CholmodFactorize)->Arg(20)->Arg(40)->Arg(80)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CholmodSolve)->Arg(20)->Arg(40)->Arg(80)->Unit(benchmark::kMillisecond);

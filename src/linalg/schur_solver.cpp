@@ -43,8 +43,6 @@ class CholmodSchurSolver final : public SchurSolver {
     common_.quick_return_if_not_posdef = 1;
   }
   ~CholmodSchurSolver() override {
-    for (cholmod_dense** d : {&solution_, &work_y_, &work_e_})
-      if (*d) cholmod_free_dense(d, &common_);
     if (factor_) cholmod_free_factor(&factor_, &common_);
     cholmod_finish(&common_);
   }
@@ -194,32 +192,22 @@ class CholmodSchurSolver final : public SchurSolver {
     }
   }
 
-  /// b ← L⁻¹ b (CHOLMOD_L) or L⁻ᵀ b (CHOLMOD_Lt), in the permuted order. cholmod_solve2 keeps
-  /// its result and workspaces between calls: a step allocates nothing.
+  /// b ← L⁻¹ b (CHOLMOD_L) or L⁻ᵀ b (CHOLMOD_Lt), in the permuted order: the streaming
+  /// substitutions of supernodal_substitution.h on CHOLMOD's supernodes (no allocation).
   void substitute(int system, VectorXd& b) {
-    cholmod_dense rhs{};
-    rhs.nrow = rhs.nzmax = rhs.d = static_cast<size_t>(n_);
-    rhs.ncol = 1;
-    rhs.x = b.data();
-    rhs.xtype = CHOLMOD_REAL;
-    rhs.dtype = CHOLMOD_DOUBLE;
-    if (!cholmod_solve2(system, factor_, &rhs, nullptr, &solution_, nullptr, &work_y_, &work_e_,
-                        &common_)) {
-      if (common_.status == CHOLMOD_OUT_OF_MEMORY) throw std::bad_alloc();
-      throw std::runtime_error(
-          fmt::format("the sparse solver's solve failed (CHOLMOD status {})", common_.status));
-    }
-    b = Eigen::Map<const VectorXd>(static_cast<const double*>(solution_->x), n_);
+    const SupernodalLayout layout = solver_support::supernodal_layout(factor_);
+    if (system == CHOLMOD_L)
+      forward_substitution(layout, b.data(), work_);
+    else
+      back_substitution(layout, b.data(), work_);
   }
 
   int n_;
   cholmod_common common_{};
   cholmod_factor* factor_ = nullptr;
-  MatrixXd l_cc_;                      // trailing block of L (m × m, lower)
-  VectorXd z_;                         // L⁻¹ P r of the last condense
-  cholmod_dense* solution_ = nullptr;  // cholmod_solve2's result and workspaces
-  cholmod_dense* work_y_ = nullptr;
-  cholmod_dense* work_e_ = nullptr;
+  MatrixXd l_cc_;             // trailing block of L (m × m, lower)
+  VectorXd z_;                // L⁻¹ P r of the last condense
+  std::vector<double> work_;  // the substitutions' gathered rows
 };
 
 /// Over any LinearSolver (the distributed MUMPS): G = A⁻¹ E by one solve with m right-hand

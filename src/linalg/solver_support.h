@@ -12,6 +12,7 @@
 #include "core/errors.h"
 #include "linalg/blas_library.h"
 #include "linalg/sparse.h"
+#include "linalg/supernodal_substitution.h"
 
 namespace impactfe::solver_support {
 
@@ -90,6 +91,18 @@ inline cholmod_sparse cholmod_lower_view(const SparseMatrix& lower) {
   return cholmod_lower_view(static_cast<std::size_t>(lower.rows()),
                             static_cast<std::size_t>(lower.nonZeros()), lower.outerIndexPtr(),
                             lower.innerIndexPtr(), lower.valuePtr());
+}
+
+/// The substitution layout of a supernodal CHOLMOD factor (LLᵀ; its arrays, no copy).
+inline SupernodalLayout supernodal_layout(const cholmod_factor* factor) {
+  SupernodalLayout layout;
+  layout.n_super = static_cast<int>(factor->nsuper);
+  layout.super = static_cast<const int*>(factor->super);
+  layout.row_start = static_cast<const int*>(factor->pi);
+  layout.value_start = static_cast<const int*>(factor->px);
+  layout.rows = static_cast<const int*>(factor->s);
+  layout.values = static_cast<const double*>(factor->x);
+  return layout;
 }
 
 }  // namespace impactfe::solver_support

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "linalg/solver_support.h"
+#include "linalg/supernodal_substitution.h"
 
 namespace impactfe {
 
@@ -185,40 +186,15 @@ bool SupernodalFactor::factorize(const SparseMatrix& lower) {
 VectorXd SupernodalFactor::solve(const VectorXd& b) const {
   VectorXd y(n_);
   for (int k = 0; k < n_; ++k) y(k) = b(perm_[static_cast<std::size_t>(k)]);
-  // Forward, L y = P b, supernode by supernode: the diagonal block's triangular solve, then
-  // the rows below leave the entries they name.
-  for (int s = 0; s < n_super_; ++s) {
-    const std::size_t si = static_cast<std::size_t>(s);
-    const int first = super_[si], n_cols = super_[si + 1] - first;
-    const int n_rows = row_start_[si + 1] - row_start_[si];
-    const int n_below = n_rows - n_cols;
-    const ConstBlock block(x_.data() + value_start_[si], n_rows, n_cols,
-                           Eigen::OuterStride<>(n_rows));
-    auto ys = y.segment(first, n_cols);
-    block.topRows(n_cols).triangularView<Eigen::Lower>().solveInPlace(ys);
-    if (n_below == 0) continue;
-    Eigen::Map<VectorXd> t(work_.data(), n_below);
-    t.noalias() = block.bottomRows(n_below) * ys;
-    const int* r = rows_.data() + row_start_[si] + n_cols;
-    for (int i = 0; i < n_below; ++i) y(r[i]) -= t(i);
-  }
-  // Backward, Lᵀ x = y.
-  for (int s = n_super_ - 1; s >= 0; --s) {
-    const std::size_t si = static_cast<std::size_t>(s);
-    const int first = super_[si], n_cols = super_[si + 1] - first;
-    const int n_rows = row_start_[si + 1] - row_start_[si];
-    const int n_below = n_rows - n_cols;
-    const ConstBlock block(x_.data() + value_start_[si], n_rows, n_cols,
-                           Eigen::OuterStride<>(n_rows));
-    auto ys = y.segment(first, n_cols);
-    if (n_below > 0) {
-      Eigen::Map<VectorXd> t(work_.data(), n_below);
-      const int* r = rows_.data() + row_start_[si] + n_cols;
-      for (int i = 0; i < n_below; ++i) t(i) = y(r[i]);
-      ys.noalias() -= block.bottomRows(n_below).transpose() * t;
-    }
-    block.topRows(n_cols).triangularView<Eigen::Lower>().transpose().solveInPlace(ys);
-  }
+  SupernodalLayout layout;
+  layout.n_super = n_super_;
+  layout.super = super_.data();
+  layout.row_start = row_start_.data();
+  layout.value_start = value_start_.data();
+  layout.rows = rows_.data();
+  layout.values = x_.data();
+  forward_substitution(layout, y.data(), work_);  // L y = P b
+  back_substitution(layout, y.data(), work_);     // Lᵀ (P x) = y
   VectorXd x(n_);
   for (int k = 0; k < n_; ++k) x(perm_[static_cast<std::size_t>(k)]) = y(k);
   return x;
