@@ -52,8 +52,11 @@ namespace {
 
 constexpr int kFormatVersion = 2;
 /// A sync (staging rows, then `time`, each flushed) after this many points or seconds: what a
-/// killed run can lose at most, against two flushes (~40 us each) per point.
-constexpr hsize_t kSyncPoints = 32;
+/// killed run can lose at most. A sync costs about a millisecond whatever it writes (two
+/// flushes of the file's metadata and chunk cache): syncing every 32 points, a fast run spent a
+/// quarter of its time there (the thesis superelement use pass, 190 points: 29 -> 22 ms with
+/// 128; docs/benchmarks.md).
+constexpr hsize_t kSyncPoints = 128;
 constexpr double kSyncSeconds = 0.1;
 /// ... or once the points since the last sync hold this many bytes: a big model syncs more
 /// often, so that a full disk finds the earlier points synced (and the space a sync reserves,
