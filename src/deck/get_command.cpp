@@ -87,7 +87,10 @@ double get_node(DeckReader& r, const Command& c, const GetRequest& g, int n, boo
   unsupported(r, c, g, "LOC, ANG, U, ROT, V, A, RF, D, F, NSEL, NXTH, NXTL, COUNT, NUM");
 }
 
+/// LENG: the distance between an element's first and last node; 0 for a point element
+/// (MASS21) and for one whose nodes come from elsewhere (a MATRIX50 read from its file).
 double element_length(const DeckReader& r, const ElementRecord& e) {
+  if (e.nodes.size() < 2) return 0.0;
   return (r.model.node(e.nodes.back()).x - r.model.node(e.nodes.front()).x).norm();
 }
 

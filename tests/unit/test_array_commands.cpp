@@ -307,6 +307,17 @@ TEST(ArrayCommands, VgetFromTheModelAndAssignmentInterface) {
 }
 
 // The assignment interface the *GET / POST26 handlers of the post branch store through.
+TEST(ArrayCommands, ElementLengthOfLineAndPointElements) {
+  // LENG of a point element is 0 (found by the fuzzer: a MATRIX50 record, whose nodes come from
+  // its file, has none, and LENG read past its empty node list).
+  Session s;
+  s.run(
+      "/PREP7\nET,1,LINK180\nET,2,MASS21\nN,1,0,0,0\nN,2,3,4,0\nE,1,2\nTYPE,2\nE,2\n"
+      "*GET,L1,ELEM,1,LENG\n*GET,L2,ELEM,2,LENG\n");
+  EXPECT_DOUBLE_EQ(s.num("L1"), 5.0);
+  EXPECT_DOUBLE_EQ(s.num("L2"), 0.0);
+}
+
 TEST(ArrayCommands, AssignmentInterface) {
   Session s;
   s.run("*DIM,A,ARRAY,4,2\n*DIM,L,CHAR,2\nT = 'AB'\n");
