@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <type_traits>
 
 #include "core/errors.h"
 
@@ -225,6 +227,60 @@ void multiply_group_symmetric(const RowGroup& g, const int* column, const double
     for (int r = 0; r < n; ++r) y[m][g.first_row + r] += sum[m][r];
 }
 
+/// Two doubles in one register (SSE2 / NEON): GCC leaves the transposed product's reduction
+/// over a group's rows scalar; with the rows as pairs it is three multiplies and a horizontal
+/// add for a node's six DOFs (the 155 522-DOF shell dome: ~12 ms of scalar code per step).
+typedef double Pair __attribute__((vector_size(16)));
+
+inline Pair load_pair(const double* p) {
+  Pair v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+
+/// multiply_group_symmetric for a fixed group of G rows: G / 2 row pairs and a remainder row.
+template <int N, int G>
+void multiply_group_symmetric_pairs(const RowGroup& g, const int* column, const double* const* a,
+                                    const double* const* x, double* const* y) {
+  constexpr int P = G / 2;
+  constexpr bool odd = G % 2 != 0;
+  Pair sum[N][P] = {}, xi[N][P];
+  double sum_last[N] = {}, xi_last[N] = {};
+  for (int m = 0; m < N; ++m) {
+    for (int p = 0; p < P; ++p) xi[m][p] = load_pair(x[m] + g.first_row + 2 * p);
+    if constexpr (odd) xi_last[m] = x[m][g.first_row + G - 1];
+  }
+  const int* col = column + g.column_start;
+  const auto add_column = [&](int k, auto transposed) {
+    const int j = col[k];
+    for (int m = 0; m < N; ++m) {
+      const double xj = x[m][j];
+      const double* v = a[m] + g.value_start + static_cast<long long>(k) * G;
+      Pair t = {};
+      for (int p = 0; p < P; ++p) {
+        const Pair vp = load_pair(v + 2 * p);
+        sum[m][p] += vp * xj;
+        if constexpr (decltype(transposed)::value) t += vp * xi[m][p];
+      }
+      if constexpr (odd) sum_last[m] += v[G - 1] * xj;
+      if constexpr (decltype(transposed)::value) {
+        double tj = t[0] + t[1];
+        if constexpr (odd) tj += v[G - 1] * xi_last[m];
+        y[m][j] += tj;
+      }
+    }
+  };
+  for (int k = 0; k < g.own_columns; ++k) add_column(k, std::false_type{});
+  for (int k = g.own_columns; k < g.columns; ++k) add_column(k, std::true_type{});
+  for (int m = 0; m < N; ++m) {
+    for (int p = 0; p < P; ++p) {
+      y[m][g.first_row + 2 * p] += sum[m][p][0];
+      y[m][g.first_row + 2 * p + 1] += sum[m][p][1];
+    }
+    if constexpr (odd) y[m][g.first_row + G - 1] += sum_last[m];
+  }
+}
+
 template <int N>
 void multiply_groups_symmetric(const std::vector<RowGroup>& groups, const int* column,
                                const double* const* a, const double* const* x, double* const* y,
@@ -233,10 +289,10 @@ void multiply_groups_symmetric(const std::vector<RowGroup>& groups, const int* c
   for (const RowGroup& g : groups) {
     switch (g.rows) {
       case 3:
-        multiply_group_symmetric<N, 3>(g, column, a, x, y, 3);
+        multiply_group_symmetric_pairs<N, 3>(g, column, a, x, y);
         break;
       case 6:
-        multiply_group_symmetric<N, 6>(g, column, a, x, y, 6);
+        multiply_group_symmetric_pairs<N, 6>(g, column, a, x, y);
         break;
       default:
         multiply_group_symmetric<N, 0>(g, column, a, x, y, g.rows);
