@@ -20,12 +20,11 @@ inline Pair load_pair(const double* p) {
 /// Columns of L per pass over a supernode's rows. One column at a time reads the supernode's
 /// values as one sequential stream (its columns are contiguous), which the hardware prefetcher
 /// follows best: measured on columns of 12 to 1000 rows, 18-25 GB/s against 7-20 GB/s for
-/// passes over 4 or 8 columns side by side. Longer columns make the gathered rows of the
-/// right-hand side (8 bytes each, loaded and stored per value) leave the L1 cache; there
-/// kBlock columns per pass load them once per kBlock values of L (20 against 13 GB/s at 4000
-/// rows).
+/// passes over 4 or 8 columns side by side. Longer columns (SupernodalLayout::long_column)
+/// make the gathered rows of the right-hand side (8 bytes each, loaded and stored per value)
+/// leave the L1 cache; there kBlock columns per pass load them once per kBlock values of L (20
+/// against 13 GB/s at 4000 rows).
 constexpr int kBlock = 8;
-constexpr int kLongColumn = 1024;
 
 struct Supernode {
   int first_column, columns, rows;  // rows: its own columns' rows first, then those below
@@ -113,9 +112,9 @@ inline void add_dots(const double* const* column, const double* __restrict x, in
 
 /// One column: read from its last row to its first, because the back substitution visits the
 /// columns from the last: the whole pass is then one descending stream (ascending runs within
-/// descending columns defeat the prefetcher: 41 against 17 ms for the 306 MB factor of
-/// BM_SupernodalSolve/160). Four partial sums, so that the additions' latency does not bound
-/// the stream.
+/// descending columns defeat the prefetcher: 41 against 25 ms for the back substitution with
+/// the 306 MB factor of BM_SupernodalSolve/160). Four partial sums, so that the additions' latency
+/// does not bound the stream.
 template <>
 inline void add_dots<1>(const double* const* column, const double* __restrict x, int begin, int end,
                         double* dot) {
@@ -148,15 +147,6 @@ struct AddDots {
 
 }  // namespace
 
-int largest_update(const SupernodalLayout& f) {
-  int largest = 0;
-  for (int s = 0; s < f.n_super; ++s) {
-    const Supernode node = supernode(f, s);
-    largest = std::max(largest, node.rows - node.columns);
-  }
-  return largest;
-}
-
 void forward_substitution(const SupernodalLayout& f, double* y, std::vector<double>& work) {
   for (int s = 0; s < f.n_super; ++s) {
     const Supernode node = supernode(f, s);
@@ -168,7 +158,7 @@ void forward_substitution(const SupernodalLayout& f, double* y, std::vector<doub
     double* ys = y + node.first_column;
     std::copy(ys, ys + node.columns, t);
     std::fill(t + node.columns, t + node.rows, 0.0);
-    const int block = node.rows > kLongColumn ? kBlock : 1;
+    const int block = node.rows > f.long_column ? kBlock : 1;
     for (int j = 0; j < node.columns; j += block) {
       const int w = std::min(block, node.columns - j);
       const double* column[kBlock];
@@ -199,7 +189,7 @@ void back_substitution(const SupernodalLayout& f, double* y, std::vector<double>
     const int* row = node.row;
     for (int i = node.columns; i < node.rows; ++i) x[i] = y[row[i]];
     // Column blocks from the last: every row after a block is final when the block is solved.
-    const int block = node.rows > kLongColumn ? kBlock : 1;
+    const int block = node.rows > f.long_column ? kBlock : 1;
     const int last_block = ((node.columns - 1) / block) * block;
     for (int j = last_block; j >= 0; j -= block) {
       const int w = std::min(block, node.columns - j);

@@ -8,10 +8,11 @@
 /// is bounded by the memory bandwidth: it cannot take less than 2 × bytes(L) / bandwidth (L is
 /// read once forward and once backward). CHOLMOD's supernodal solve makes a dtrsv and a dgemv
 /// call per supernode, through a gathered workspace copy of the right-hand side; most supernodes
-/// of a finite-element factor are small, so that costs about twice the floor (issue 11,
-/// docs/benchmarks.md). Here each supernode is one pass over its values, column by column in
-/// storage order, four columns at a time so that the rows below the diagonal block are read
-/// once per four columns of the right-hand side (George & Liu 1981 §6; Davis 2006 §4.2).
+/// of a finite-element factor are small, so that costs 4–5 times the floor on a shell factor
+/// (docs/benchmarks.md). Here each supernode is one pass over its values in storage order,
+/// with its rows of the right-hand side gathered side by side: column by column (one sequential
+/// stream, which the hardware prefetcher follows), or eight columns at a time where columns are
+/// long (George & Liu 1981 §6; Davis 2006 §4.2).
 #include <vector>
 
 namespace impactfe {
@@ -23,13 +24,14 @@ struct SupernodalLayout {
   const int* value_start = nullptr;  // n_super + 1 starts in values
   const int* rows = nullptr;
   const double* values = nullptr;
+  /// Supernodes with more rows than this take their columns eight at a time (see the .cpp;
+  /// the tests lower it to reach that path with small factors).
+  int long_column = 1024;
 };
 
 /// y ← L⁻¹ y, in the factor's (permuted) order. `work` is scratch (resized as needed).
 void forward_substitution(const SupernodalLayout& factor, double* y, std::vector<double>& work);
 /// y ← L⁻ᵀ y, in the factor's (permuted) order.
 void back_substitution(const SupernodalLayout& factor, double* y, std::vector<double>& work);
-/// The longest run of rows below a supernode's diagonal block (the size `work` needs).
-int largest_update(const SupernodalLayout& factor);
 
 }  // namespace impactfe
