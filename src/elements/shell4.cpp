@@ -78,22 +78,6 @@ Shell4::Shell4(int id, const Shell4Data& data, const SourceLocation& where)
         id, warp);
   theta_ = data.theta_deg * M_PI / 180.0;
 
-  const int nd = 6 * n_;
-  W_.setIdentity(nd, nd);
-  Eigen::MatrixXd T = Eigen::MatrixXd::Zero(nd, nd);
-  for (int a = 0; a < n_; ++a) {
-    // Flat corner = actual corner − h e3, rigidly linked: u_f = u − h θy, v_f = v + h θx.
-    W_(6 * a, 6 * a + 4) = -h_[static_cast<std::size_t>(a)];
-    W_(6 * a + 1, 6 * a + 3) = h_[static_cast<std::size_t>(a)];
-    T.block<3, 3>(6 * a, 6 * a) = R0_.transpose();
-    T.block<3, 3>(6 * a + 3, 6 * a + 3) = R0_.transpose();
-  }
-  A_ = W_ * T;
-  K_lin_ = A_.transpose() * kernel_->stiffness() * A_;
-  K_lin_ = 0.5 * (K_lin_ + K_lin_.transpose()).eval();
-  K_bar_ = W_.transpose() * kernel_->stiffness() * W_;
-  M_cons_ = A_.transpose() * kernel_->consistent_mass() * A_;
-  M_cons_ = 0.5 * (M_cons_ + M_cons_.transpose()).eval();
   if (plasticity_) committed_.resize(static_cast<std::size_t>(kernel_->n_material_points()));
   // A triangle is flat (no warping links): its co-rotational kinematics have closed forms in
   // its own frame (corotational_triangle.h), valid while the kernel keeps membrane and bending
@@ -101,6 +85,34 @@ Shell4::Shell4(int id, const Shell4Data& data, const SourceLocation& where)
   if (n_ == 3 && !plasticity_ && CorotationalTriangle::uncoupled(kernel_->stiffness()))
     triangle_ = std::make_unique<CorotationalTriangle>(std::array<Vec3, 3>{X_[0], X_[1], X_[2]},
                                                        R0_, c0_, kernel_->stiffness());
+  const bool warped = std::any_of(h_.begin(), h_.end(), [](double h) { return h != 0.0; });
+  if (warped && !triangle_) {
+    const Eigen::MatrixXd W = rigid_links();
+    K_bar_ = W.transpose() * kernel_->stiffness() * W;
+  }
+}
+
+Eigen::MatrixXd Shell4::rigid_links() const {
+  Eigen::MatrixXd W = Eigen::MatrixXd::Identity(6 * n_, 6 * n_);
+  for (int a = 0; a < n_; ++a) {
+    // Flat corner = actual corner − h e3, rigidly linked: u_f = u − h θy, v_f = v + h θx.
+    W(6 * a, 6 * a + 4) = -h_[static_cast<std::size_t>(a)];
+    W(6 * a + 1, 6 * a + 3) = h_[static_cast<std::size_t>(a)];
+  }
+  return W;
+}
+
+Eigen::MatrixXd Shell4::to_local() const {
+  Eigen::MatrixXd T = Eigen::MatrixXd::Zero(6 * n_, 6 * n_);
+  for (int a = 0; a < n_; ++a) {
+    T.block<3, 3>(6 * a, 6 * a) = R0_.transpose();
+    T.block<3, 3>(6 * a + 3, 6 * a + 3) = R0_.transpose();
+  }
+  return rigid_links() * T;
+}
+
+const Eigen::MatrixXd& Shell4::corotational_stiffness() const {
+  return K_bar_.size() > 0 ? K_bar_ : kernel_->stiffness();
 }
 
 namespace {
@@ -315,10 +327,11 @@ void Shell4::plastic_tangent(
           id(), fmt::format("element {}: stress stiffening without large deflection is not "
                             "implemented for SHELL181 with plasticity (use NLGEOM,ON)",
                             id()));
-    kernel_->plastic_response(*plasticity_, committed_, A_ * u, k_l, f_l, updated, mean, layers);
-    K = A_.transpose() * k_l * A_;
+    const Eigen::MatrixXd A = to_local();
+    kernel_->plastic_response(*plasticity_, committed_, A * u, k_l, f_l, updated, mean, layers);
+    K = A.transpose() * k_l * A;
     K = 0.5 * (K + K.transpose()).eval();
-    f_int = A_.transpose() * f_l;
+    f_int = A.transpose() * f_l;
     return;
   }
   // Co-rotational (see tangent()) with the elastic-plastic local response in place of K̄ d.
@@ -327,10 +340,11 @@ void Shell4::plastic_tangent(
   const CorotationalState s = corotate(X_, R0_, c0_, u, true, d);
   Mat24 B;
   kinematic_matrix(s, B);
-  kernel_->plastic_response(*plasticity_, committed_, W_ * d, k_l, f_l, updated, mean, layers);
-  const Eigen::VectorXd f_bar = W_.transpose() * f_l;
+  const Eigen::MatrixXd W = rigid_links();
+  kernel_->plastic_response(*plasticity_, committed_, W * d, k_l, f_l, updated, mean, layers);
+  const Eigen::VectorXd f_bar = W.transpose() * f_l;
   f_int = B.transpose() * f_bar;
-  material_stiffness_any(B, Eigen::MatrixXd(W_.transpose() * k_l * W_), K);
+  material_stiffness_any(B, Eigen::MatrixXd(W.transpose() * k_l * W), K);
   add_geometric_stiffness(s, f_bar, K);
 }
 
@@ -368,10 +382,12 @@ void Shell4::tangent(const ElementContext& ctx, const Eigen::VectorXd& u, Eigen:
     return;
   }
   if (!ctx.large_deflection) {
-    K = K_lin_;
+    const Eigen::MatrixXd A = to_local();
+    K = A.transpose() * kernel_->stiffness() * A;
+    K = 0.5 * (K + K.transpose()).eval();
     if (ctx.stress_stiffening) {
-      const Eigen::VectorXd d = A_ * u;
-      K += A_.transpose() * kernel_->geometric_stiffness(d) * A_;
+      const Eigen::VectorXd d = A * u;
+      K += A.transpose() * kernel_->geometric_stiffness(d) * A;
     }
     f_int = K * u;
     return;
@@ -391,9 +407,9 @@ void Shell4::corotational_tangent_general(const Eigen::VectorXd& u, Eigen::Matri
   const CorotationalState s = corotate(X_, R0_, c0_, u, true, d);
   Mat24 B;
   kinematic_matrix(s, B);
-  const Vec24 f_l = K_bar_ * d;
+  const Vec24 f_l = corotational_stiffness() * d;
   f_int = B.transpose() * f_l;
-  material_stiffness_any(B, K_bar_, K);
+  material_stiffness_any(B, corotational_stiffness(), K);
   add_geometric_stiffness(s, f_l, K);
 }
 
@@ -413,13 +429,15 @@ void Shell4::internal_force(const ElementContext& ctx, const Eigen::VectorXd& u,
   const CorotationalState s = corotate(X_, R0_, c0_, u, true, d);
   Mat24 B;
   kinematic_matrix(s, B);
-  const Vec24 f_l = K_bar_ * d;
+  const Vec24 f_l = corotational_stiffness() * d;
   f_int = B.transpose() * f_l;
 }
 
 void Shell4::mass(const ElementContext& ctx, Eigen::MatrixXd& M) const {
   if (!ctx.lumped_mass) {
-    M = M_cons_;
+    const Eigen::MatrixXd A = to_local();
+    M = A.transpose() * kernel_->consistent_mass() * A;
+    M = 0.5 * (M + M.transpose()).eval();
     return;
   }
   // Lumped: ρtA/n on each translation, no rotary inertia; isotropic, so no transformation.
@@ -468,11 +486,11 @@ const std::vector<std::string>& Shell4::result_names() const {
 
 Eigen::VectorXd Shell4::local_displacement(const ElementContext& ctx,
                                            const Eigen::VectorXd& u) const {
-  if (!ctx.large_deflection) return A_ * u;
+  if (!ctx.large_deflection) return to_local() * u;
   if (triangle_) return triangle_->deformation(u);
   Eigen::VectorXd d;
   corotational_kinematics(u, d, nullptr);
-  return W_ * d;
+  return rigid_links() * d;
 }
 
 void Shell4::results(const ElementContext& ctx, const Eigen::VectorXd& u, const Eigen::VectorXd&,

@@ -100,13 +100,18 @@ class Shell4 : public Element {
   std::vector<Vec3> X_;
   Eigen::Matrix3d R0_;
   Vec3 c0_ = Vec3::Zero();
-  std::vector<double> h_;   // warping offsets of the corners from the mean plane
-  Eigen::MatrixXd W_;       // rigid links corner → mean plane, local axes (6n × 6n)
-  Eigen::MatrixXd A_;       // W · (global → local)
-  Eigen::MatrixXd K_lin_;   // Aᵀ K_l A
-  Eigen::MatrixXd K_bar_;   // Wᵀ K_l W (co-rotational, local axes)
-  Eigen::MatrixXd M_cons_;  // Aᵀ M_l A
-  double theta_ = 0.0;      // rad
+  /// W: the rigid links corner → mean plane in local axes (6n × 6n; the identity but for the
+  /// warping offsets h), and A = W · (global → local). Both are formed when used rather than
+  /// kept, as are Aᵀ K_l A and Aᵀ M_l A: a large model holds thousands of shells, and these
+  /// 24 × 24 matrices were most of its memory (docs/benchmarks.md, stop 25).
+  Eigen::MatrixXd rigid_links() const;
+  Eigen::MatrixXd to_local() const;
+  /// K̄ = Wᵀ K_l W, the co-rotational local stiffness: K_l itself for a flat element.
+  const Eigen::MatrixXd& corotational_stiffness() const;
+
+  std::vector<double> h_;  // warping offsets of the corners from the mean plane
+  Eigen::MatrixXd K_bar_;  // Wᵀ K_l W of a warped quadrilateral without the triangle path
+  double theta_ = 0.0;     // rad
   std::unique_ptr<shell::FlatShellKernel> kernel_;
   std::unique_ptr<CorotationalTriangle> triangle_;  // elastic triangle: the fast path
   std::optional<J2Plasticity> plasticity_;
