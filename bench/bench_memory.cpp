@@ -18,6 +18,8 @@
 #include <iostream>
 #include <vector>
 
+#include "stream_sum.h"
+
 namespace {
 
 struct Arrays {
@@ -44,15 +46,7 @@ void stream_read(benchmark::State& state, Arrays* arrays) {
   const std::size_t n = arrays->b.size();
   const double* p = arrays->b.data();
   for (auto _ : state) {
-    // Four partial sums so the loop is limited by loads, not by the add latency.
-    double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
-    for (std::size_t i = 0; i + 3 < n; i += 4) {
-      s0 += p[i];
-      s1 += p[i + 1];
-      s2 += p[i + 2];
-      s3 += p[i + 3];
-    }
-    double sum = s0 + s1 + s2 + s3;
+    double sum = impactfe::bench::stream_sum(p, n);
     benchmark::DoNotOptimize(sum);
   }
   state.SetBytesProcessed(static_cast<int64_t>(state.iterations()) *

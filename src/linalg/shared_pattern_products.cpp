@@ -201,13 +201,12 @@ void multiply_any(const RowGroup& g, const int* column, const double* const* a,
 /// Symmetric storage: the group's own columns as above, then each later column j applied to
 /// the group's rows (y_i += a_ij x_j) and to row j (y_j += Σ_i a_ij x_i). y starts at zero;
 /// the scattered terms of earlier groups are in y_i when the group adds its own sums.
-template <int N, int G>
-void multiply_group_symmetric(const RowGroup& g, const int* column, const double* const* a,
-                              const double* const* x, double* const* y, int rows) {
-  constexpr int kRows = G > 0 ? G : kMaxGroupRows;
-  const int n = G > 0 ? G : rows;
-  double sum[N][kRows] = {};
-  double xi[N][kRows];
+template <int N>
+void multiply_any_symmetric(const RowGroup& g, const int* column, const double* const* a,
+                            const double* const* x, double* const* y) {
+  const int n = g.rows;
+  double sum[N][kMaxGroupRows] = {};
+  double xi[N][kMaxGroupRows];
   for (int m = 0; m < N; ++m)
     for (int r = 0; r < n; ++r) xi[m][r] = x[m][g.first_row + r];
   const int* col = column + g.column_start;
@@ -238,13 +237,14 @@ inline Pair load_pair(const double* p) {
   return v;
 }
 
-/// multiply_group_symmetric for a fixed group of G rows: G / 2 row pairs and a remainder row.
+/// multiply_any_symmetric for a fixed group of G rows: G / 2 row pairs and a remainder row.
 template <int N, int G>
-void multiply_group_symmetric_pairs(const RowGroup& g, const int* column, const double* const* a,
-                                    const double* const* x, double* const* y) {
+void multiply_group_symmetric(const RowGroup& g, const int* column, const double* const* a,
+                              const double* const* x, double* const* y) {
   constexpr int P = G / 2;
   constexpr bool odd = G % 2 != 0;
-  Pair sum[N][P] = {}, xi[N][P];
+  constexpr int kPairs = P > 0 ? P : 1;  // no zero-length arrays for a group of one row
+  Pair sum[N][kPairs] = {}, xi[N][kPairs];
   double sum_last[N] = {}, xi_last[N] = {};
   for (int m = 0; m < N; ++m) {
     for (int p = 0; p < P; ++p) xi[m][p] = load_pair(x[m] + g.first_row + 2 * p);
@@ -288,14 +288,20 @@ void multiply_groups_symmetric(const std::vector<RowGroup>& groups, const int* c
   for (int m = 0; m < N; ++m) std::fill(y[m], y[m] + n_rows, 0.0);
   for (const RowGroup& g : groups) {
     switch (g.rows) {
+      case 1:
+        multiply_group_symmetric<N, 1>(g, column, a, x, y);
+        break;
+      case 2:
+        multiply_group_symmetric<N, 2>(g, column, a, x, y);
+        break;
       case 3:
-        multiply_group_symmetric_pairs<N, 3>(g, column, a, x, y);
+        multiply_group_symmetric<N, 3>(g, column, a, x, y);
         break;
       case 6:
-        multiply_group_symmetric_pairs<N, 6>(g, column, a, x, y);
+        multiply_group_symmetric<N, 6>(g, column, a, x, y);
         break;
       default:
-        multiply_group_symmetric<N, 0>(g, column, a, x, y, g.rows);
+        multiply_any_symmetric<N>(g, column, a, x, y);
         break;
     }
   }
