@@ -24,7 +24,6 @@ constexpr int kMaxDoNesting = 20;   // §A.10
 constexpr int kMaxIfNesting = 100;  // §A.11 asks for at least 20
 constexpr int kMaxRecursion = 400;  // executor depth over all frames
 constexpr long long kMaxTrips = 10'000'000;
-constexpr long long kMaxCommands = 50'000'000;
 constexpr std::size_t kNone = static_cast<std::size_t>(-1);
 
 std::string field_upper(const RawCommand& c, std::size_t i) {
@@ -404,6 +403,15 @@ void DeckReader::dispatch(const Command& c, const CommandSpec& spec) {
   spec.handler(*this, c);
 }
 
+void DeckReader::count_executed(const Command& c) {
+  // Loop trips and repetitions count as well as commands: two nested empty *DO loops of 10⁷
+  // trips each execute only two commands per outer trip but 10¹⁴ trips in all.
+  if (++executed_ > options.max_commands)
+    fail(c, fmt::format("more than {} commands and loop trips executed: a loop that does not "
+                        "end?",
+                        options.max_commands));
+}
+
 void DeckReader::repeat_previous(const Command& c) {
   // *REPEAT,NTOT,VINC1,...,VINC11: the previous command NTOT-1 more times, field k advanced by
   // VINCk each time.
@@ -417,6 +425,7 @@ void DeckReader::repeat_previous(const Command& c) {
   const CommandSpec* spec = find_command(base.name);
   IMPACTFE_CHECK(spec != nullptr && spec->handler != nullptr, "*REPEAT of a control command");
   for (int n = 1; n < ntot; ++n) {
+    count_executed(c);
     Command rep = base;
     rep.where = c.where;
     rep.where.command = base.name;
@@ -453,6 +462,7 @@ DeckReader::Flow DeckReader::run_do(Frame& f, std::size_t i, const Command& c) {
   ++f.loop_depth;
   Flow result = Flow::Normal;
   for (long long t = 0; t < n; ++t) {
+    count_executed(c);
     params.set(par, ival + static_cast<double>(t) * inc);
     const Flow flow = run_range(f, i + 1, close);
     if (flow == Flow::Exit) break;
@@ -480,6 +490,7 @@ DeckReader::Flow DeckReader::run_dowhile(Frame& f, std::size_t i, const Command&
     if (eval(c, par) <= 0.0) break;
     if (t >= kMaxTrips)
       fail(c, fmt::format("more than {} trips: the loop does not end", kMaxTrips));
+    count_executed(c);
     const Flow flow = run_range(f, i + 1, close);
     if (flow == Flow::Exit) break;
     if (flow == Flow::Normal || flow == Flow::Cycle) continue;
@@ -590,9 +601,7 @@ DeckReader::Flow DeckReader::run_range(Frame& f, std::size_t begin, std::size_t 
     Command c = resolve(raw);
     std::size_t next = i + 1;
     while (next < end && cmds[next].format_line) c.format_lines.push_back(cmds[next++].rest);
-    if (++executed_ > kMaxCommands)
-      fail(c,
-           fmt::format("more than {} commands executed: a loop that does not end?", kMaxCommands));
+    count_executed(c);
     if (!c.name.empty() && c.name[0] == ':') {  // a label
       i = next;
       continue;
@@ -655,6 +664,7 @@ DeckReader::Flow DeckReader::run_range(Frame& f, std::size_t begin, std::size_t 
         const int n2 = integer(c, 3, n1);
         if (static_cast<long long>(n2) - n1 + 1 > kMaxTrips) fail(c, "too many passes");
         for (int k = n1; k <= n2; ++k) {
+          count_executed(c);
           run_block_macro(c, first);
           if (stopped_) return Flow::Stop;
           for (const auto& [name, inc] : increments)

@@ -263,6 +263,9 @@ class DeckReader {
   bool if_condition(const Command& c, int first_field, bool& has_second);
   void run_block_macro(const Command& c, const std::string& name);
   void repeat_previous(const Command& c);
+  /// Counts one unit of interpreted work at `c` (a command, a loop trip, a *REPEAT repetition,
+  /// a block pass) and fails past DeckOptions::max_commands.
+  void count_executed(const Command& c);
   Command resolve(const RawCommand& raw);
   const CommandSpec* lookup(Command& c);
   void dispatch(const Command& c, const CommandSpec& spec);
@@ -271,7 +274,7 @@ class DeckReader {
   std::optional<Command> last_command_;  // *REPEAT source
   std::vector<std::string> active_;      // files and macros being run (recursion guard)
   int nesting_ = 0;                      // executor recursion depth (blocks, files, macros)
-  long long executed_ = 0;               // commands executed (runaway-loop guard)
+  long long executed_ = 0;               // interpreted work so far (runaway-loop guard)
   bool stopped_ = false;                 // STOP / /EOF at the top level
   struct FunctionBridge : FunctionHost {
     DeckReader* reader = nullptr;  // non-const: results functions (UX, ...) open the results

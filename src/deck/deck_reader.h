@@ -26,6 +26,9 @@ struct DeckOptions {
   /// would go beyond are refused up front (never attempted until memory runs out).
   std::size_t max_nodes = 10'000'000;
   std::size_t max_elements = 10'000'000;
+  /// Most interpreted work: commands executed plus loop trips, *REPEAT repetitions and *DO
+  /// block passes (each at most 10⁷ per loop); beyond, the deck fails as a runaway loop.
+  long long max_commands = 50'000'000;
   /// Where the deck's printed output goes until /OUT redirects it (*VWRITE, *MSG, *STATUS,
   /// /COM, PRNSOL, ...). Null: to the log; `impactfe run` passes std::cout.
   std::ostream* output = nullptr;

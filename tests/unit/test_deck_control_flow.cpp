@@ -266,6 +266,44 @@ TEST(DeckControlFlow, PercentSubstitution) {
   EXPECT_EQ(d.model.current.constraints.count(DofKey{1, Dof::UY}), 1u);
 }
 
+/// The error of `text` read with at most `budget` commands and loop trips ("" if none).
+std::string error_within(const std::string& text, long long budget,
+                         Dialect dialect = Dialect::Modern) {
+  DeckOptions o;
+  o.dialect = dialect;
+  o.max_commands = budget;
+  std::ostringstream sink;
+  o.output = &sink;
+  try {
+    read_deck_text(text, "mem.inp", o);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(DeckControlFlow, InterpretedWorkIsBounded) {
+  // A loop of 10 trips with one command: the *DO, 10 trips and 10 commands = 21 units.
+  const std::string loop = "*DO,I,1,10\nA=I\n*ENDDO\n";
+  EXPECT_EQ(error_within(loop, 21), "");
+  EXPECT_NE(error_within(loop, 20).find("mem.inp:2: *SET: more than 20 commands and loop trips"),
+            std::string::npos);
+  // Empty loops count their trips: nested 10⁷ × 10⁷ trips stop at the budget, not in days.
+  EXPECT_NE(error_within("*DO,I,1,1E7\n*DO,J,1,1E7\n*ENDDO\n*ENDDO\n", 1000)
+                .find("mem.inp:2: *DO: more than 1000 commands and loop trips executed"),
+            std::string::npos);
+  // *REPEAT counts its repetitions.
+  EXPECT_NE(error_within("/PREP7\nN,1\n*DO,I,1,1E7\n*REPEAT,1E7\n*ENDDO\n", 1000)
+                .find("mem.inp:4: *REPEAT: more than 1000"),
+            std::string::npos);
+  // *DOWHILE trips, and 4x *DO block passes over an empty block.
+  EXPECT_NE(error_within("N=1\n*DOWHILE,N\n*ENDDO\n", 1000).find("mem.inp:2: *DOWHILE: more"),
+            std::string::npos);
+  EXPECT_NE(error_within("*BEGIN,EMPTY\n*END\n*DO,EMPTY,1,100000\n", 1000, Dialect::Classic4x)
+                .find("mem.inp:3: *DO: more than 1000"),
+            std::string::npos);
+}
+
 TEST(DeckControlFlow, FourXBlocksStillReplay) {
   // Thesis decks: *SET,NJIT,1,5 then *DO,MARC,1,3 over a *BEGIN block (APDL_SUBSET §3.29).
   std::string out;
