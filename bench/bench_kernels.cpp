@@ -153,6 +153,18 @@ void BM_Shell4Mass(benchmark::State& s) {
 void BM_Brick8Tangent(benchmark::State& s) {
   element_tangent(s, kBrickDeck, false);
 }
+// Large deflection (total Lagrangian), with the incompatible modes and without them (SOLID45
+// KEYOPT(1) = 1, the helmet's bricks).
+void BM_Brick8TangentLarge(benchmark::State& s) {
+  std::string deck = kBrickDeck;
+  deck.replace(deck.find("ET,1,SOLID185"), 13, "ET,1,45");
+  element_tangent(s, deck, true);
+}
+void BM_Brick8TangentLargeNoExtraShapes(benchmark::State& s) {
+  std::string deck = kBrickDeck;
+  deck.replace(deck.find("ET,1,SOLID185"), 13, "ET,1,45,1");
+  element_tangent(s, deck, true);
+}
 void BM_Brick8Mass(benchmark::State& s) {
   element_mass(s, kBrickDeck);
 }
@@ -170,6 +182,8 @@ BENCHMARK(BM_Shell4TangentLarge);
 BENCHMARK(BM_Shell4TangentLargeRotated);
 BENCHMARK(BM_Shell4Mass);
 BENCHMARK(BM_Brick8Tangent);
+BENCHMARK(BM_Brick8TangentLarge);
+BENCHMARK(BM_Brick8TangentLargeNoExtraShapes);
 BENCHMARK(BM_Brick8Mass);
 BENCHMARK(BM_SparTangentSmall);
 BENCHMARK(BM_SparTangentLarge);

@@ -180,12 +180,22 @@ void Brick8::tl_sum(const Eigen::Matrix<double, 3 * NF, 1>& q,
   // and f_a = F S ∇N_a (first Piola-Kirchhoff stress on the gradient), all times dV0: the same
   // sums as the Voigt products with a general D, without the 6 × 3NF matrices.
   const double lambda = d_(0, 1), mu = d_(3, 3);
-  if (k_out) k_out->setZero();
   f.setZero();
   // q and f as 3 × NF (column a = function a).
   const Eigen::Map<const Eigen::Matrix<double, 3, NF>> q_mat(q.data());
   Eigen::Map<Eigen::Matrix<double, 3, NF>> f_mat(f.data());
-  for (const GaussPoint& gp : gauss_) {
+  // For K, the Gauss-point terms are gathered as columns and summed by products after the loop
+  // (vectorised, instead of 3 × 3 blocks per point): h of point p as column p of h_all and
+  // dV0 h in hw_all (Σ dV0 vec(h) vec(h)ᵀ holds the λ and μ h h terms); ∇N_a · ∇N_b for a ≤ b
+  // as column p of gram_all and the 6 distinct entries of μ dV0 F Fᵀ as row p of c_all (their
+  // product holds the μ (∇N_a · ∇N_b) F Fᵀ term); and Σ ∇Nᵀ S dV0 ∇N.
+  constexpr int kPairs = NF * (NF + 1) / 2;  // (a, b), a ≤ b, at b (b + 1) / 2 + a
+  Eigen::Matrix<double, 3 * NF, kGauss> h_all, hw_all;
+  Eigen::Matrix<double, kPairs, kGauss> gram_all;
+  Eigen::Matrix<double, kGauss, 6> c_all;
+  Eigen::Matrix<double, NF, NF> gsg = Eigen::Matrix<double, NF, NF>::Zero();
+  for (int p = 0; p < kGauss; ++p) {
+    const GaussPoint& gp = gauss_[static_cast<std::size_t>(p)];
     const auto grad = gp.grad.template leftCols<NF>();
     // Deformation gradient F = I + Σ q_a ⊗ ∇N_a (Bathe 6.2.3).
     const Eigen::Matrix3d f_grad =
@@ -196,24 +206,28 @@ void Brick8::tl_sum(const Eigen::Matrix<double, 3 * NF, 1>& q,
     s_dv.diagonal().array() += lambda * gp.dv * e.trace();
     f_mat.noalias() += (f_grad * s_dv).lazyProduct(grad);
     if (!k_out) continue;
-    auto& k = *k_out;
-    const Eigen::Matrix<double, 3, NF> h = f_grad.lazyProduct(grad);
-    const Eigen::Matrix<double, 3, NF> h_lambda = (lambda * gp.dv) * h;
-    const Eigen::Matrix<double, 3, NF> h_mu = (mu * gp.dv) * h;
+    Eigen::Map<Eigen::Matrix<double, 3, NF>>(h_all.col(p).data()) = f_grad.lazyProduct(grad);
+    hw_all.col(p) = gp.dv * h_all.col(p);
+    for (int b = 0, ab = 0; b < NF; ++b)
+      for (int a = 0; a <= b; ++a, ++ab) gram_all(ab, p) = grad.col(a).dot(grad.col(b));
     const Eigen::Matrix3d c_mu = (mu * gp.dv) * (f_grad * f_grad.transpose());
-    const Eigen::Matrix<double, NF, NF> gram = grad.transpose().lazyProduct(grad);
-    const Eigen::Matrix<double, NF, NF> gsg = grad.transpose().lazyProduct(s_dv * grad);
-    // Blocks a ≤ b here; the lower triangle is mirrored after the sum.
-    for (int b = 0; b < NF; ++b)
-      for (int a = 0; a <= b; ++a) {
-        Eigen::Matrix3d blk = h_lambda.col(a) * h.col(b).transpose() +
-                              h_mu.col(b) * h.col(a).transpose() + gram(a, b) * c_mu;
-        blk.diagonal().array() += gsg(a, b);
-        k.template block<3, 3>(3 * a, 3 * b) += blk;
-      }
+    c_all.row(p) << c_mu(0, 0), c_mu(1, 1), c_mu(2, 2), c_mu(0, 1), c_mu(1, 2), c_mu(0, 2);
+    gsg.noalias() += grad.transpose().lazyProduct(s_dv * grad);
   }
   if (!k_out) return;
+  const Eigen::Matrix<double, 3 * NF, 3 * NF> hh = hw_all.lazyProduct(h_all.transpose());
+  const Eigen::Matrix<double, kPairs, 6> gram_c = gram_all.lazyProduct(c_all);
+  // Blocks a ≤ b, then the lower triangle mirrored. hh is symmetric: hh(3b+i, 3a+j) =
+  // hh(3a+j, 3b+i), the μ h_b h_aᵀ term.
+  static constexpr int kVoigt[3][3] = {{0, 3, 5}, {3, 1, 4}, {5, 4, 2}};
   auto& k = *k_out;
+  for (int b = 0, ab = 0; b < NF; ++b)
+    for (int a = 0; a <= b; ++a, ++ab)
+      for (int j = 0; j < 3; ++j)
+        for (int i = 0; i < 3; ++i)
+          k(3 * a + i, 3 * b + j) = lambda * hh(3 * a + i, 3 * b + j) +
+                                    mu * hh(3 * a + j, 3 * b + i) + gram_c(ab, kVoigt[i][j]) +
+                                    (i == j ? gsg(a, b) : 0.0);
   for (int c = 0; c < 3 * NF; ++c)
     for (int r = c + 1; r < 3 * NF; ++r) k(r, c) = k(c, r);
 }
