@@ -168,7 +168,7 @@ void Brick8::from_corners(const Eigen::MatrixXd& kc, const Eigen::VectorXd& fc, 
   }
 }
 
-template <int NF>
+template <int NF, int K0>
 void Brick8::tl_sum(const Eigen::Matrix<double, 3 * NF, 1>& q,
                     Eigen::Matrix<double, 3 * NF, 3 * NF>* k_out,
                     Eigen::Matrix<double, 3 * NF, 1>& f) const {
@@ -179,6 +179,8 @@ void Brick8::tl_sum(const Eigen::Matrix<double, 3 * NF, 1>& q,
   //   K_ab = λ h_a h_bᵀ + μ (h_b h_aᵀ + (∇N_a · ∇N_b) F Fᵀ) + (∇N_aᵀ S ∇N_b) I,
   // and f_a = F S ∇N_a (first Piola-Kirchhoff stress on the gradient), all times dV0: the same
   // sums as the Voigt products with a general D, without the 6 × 3NF matrices.
+  static_assert(0 <= K0 && K0 < NF);
+  constexpr int NK = NF - K0;  // functions of the K block formed
   const double lambda = d_(0, 1), mu = d_(3, 3);
   f.setZero();
   // q and f as 3 × NF (column a = function a).
@@ -188,12 +190,12 @@ void Brick8::tl_sum(const Eigen::Matrix<double, 3 * NF, 1>& q,
   // (vectorised, instead of 3 × 3 blocks per point): h of point p as column p of h_all and
   // dV0 h in hw_all (Σ dV0 vec(h) vec(h)ᵀ holds the λ and μ h h terms); ∇N_a · ∇N_b for a ≤ b
   // as column p of gram_all and the 6 distinct entries of μ dV0 F Fᵀ as row p of c_all (their
-  // product holds the μ (∇N_a · ∇N_b) F Fᵀ term); and Σ ∇Nᵀ S dV0 ∇N.
-  constexpr int kPairs = NF * (NF + 1) / 2;  // (a, b), a ≤ b, at b (b + 1) / 2 + a
-  Eigen::Matrix<double, 3 * NF, kGauss> h_all, hw_all;
+  // product holds the μ (∇N_a · ∇N_b) F Fᵀ term); and Σ ∇Nᵀ S dV0 ∇N. Functions K0.. only.
+  constexpr int kPairs = NK * (NK + 1) / 2;  // (a, b), a ≤ b, at b (b + 1) / 2 + a
+  Eigen::Matrix<double, 3 * NK, kGauss> h_all, hw_all;
   Eigen::Matrix<double, kPairs, kGauss> gram_all;
   Eigen::Matrix<double, kGauss, 6> c_all;
-  Eigen::Matrix<double, NF, NF> gsg = Eigen::Matrix<double, NF, NF>::Zero();
+  Eigen::Matrix<double, NK, NK> gsg = Eigen::Matrix<double, NK, NK>::Zero();
   for (int p = 0; p < kGauss; ++p) {
     const GaussPoint& gp = gauss_[static_cast<std::size_t>(p)];
     const auto grad = gp.grad.template leftCols<NF>();
@@ -206,30 +208,31 @@ void Brick8::tl_sum(const Eigen::Matrix<double, 3 * NF, 1>& q,
     s_dv.diagonal().array() += lambda * gp.dv * e.trace();
     f_mat.noalias() += (f_grad * s_dv).lazyProduct(grad);
     if (!k_out) continue;
-    Eigen::Map<Eigen::Matrix<double, 3, NF>>(h_all.col(p).data()) = f_grad.lazyProduct(grad);
+    const auto grad_k = gp.grad.template middleCols<NK>(K0);
+    Eigen::Map<Eigen::Matrix<double, 3, NK>>(h_all.col(p).data()) = f_grad.lazyProduct(grad_k);
     hw_all.col(p) = gp.dv * h_all.col(p);
-    for (int b = 0, ab = 0; b < NF; ++b)
-      for (int a = 0; a <= b; ++a, ++ab) gram_all(ab, p) = grad.col(a).dot(grad.col(b));
+    for (int b = 0, ab = 0; b < NK; ++b)
+      for (int a = 0; a <= b; ++a, ++ab) gram_all(ab, p) = grad_k.col(a).dot(grad_k.col(b));
     const Eigen::Matrix3d c_mu = (mu * gp.dv) * (f_grad * f_grad.transpose());
     c_all.row(p) << c_mu(0, 0), c_mu(1, 1), c_mu(2, 2), c_mu(0, 1), c_mu(1, 2), c_mu(0, 2);
-    gsg.noalias() += grad.transpose().lazyProduct(s_dv * grad);
+    gsg.noalias() += grad_k.transpose().lazyProduct(s_dv * grad_k);
   }
   if (!k_out) return;
-  const Eigen::Matrix<double, 3 * NF, 3 * NF> hh = hw_all.lazyProduct(h_all.transpose());
+  const Eigen::Matrix<double, 3 * NK, 3 * NK> hh = hw_all.lazyProduct(h_all.transpose());
   const Eigen::Matrix<double, kPairs, 6> gram_c = gram_all.lazyProduct(c_all);
   // Blocks a ≤ b, then the lower triangle mirrored. hh is symmetric: hh(3b+i, 3a+j) =
   // hh(3a+j, 3b+i), the μ h_b h_aᵀ term.
   static constexpr int kVoigt[3][3] = {{0, 3, 5}, {3, 1, 4}, {5, 4, 2}};
-  auto& k = *k_out;
-  for (int b = 0, ab = 0; b < NF; ++b)
+  auto k = k_out->template bottomRightCorner<3 * NK, 3 * NK>();
+  for (int b = 0, ab = 0; b < NK; ++b)
     for (int a = 0; a <= b; ++a, ++ab)
       for (int j = 0; j < 3; ++j)
         for (int i = 0; i < 3; ++i)
           k(3 * a + i, 3 * b + j) = lambda * hh(3 * a + i, 3 * b + j) +
                                     mu * hh(3 * a + j, 3 * b + i) + gram_c(ab, kVoigt[i][j]) +
                                     (i == j ? gsg(a, b) : 0.0);
-  for (int c = 0; c < 3 * NF; ++c)
-    for (int r = c + 1; r < 3 * NF; ++r) k(r, c) = k(c, r);
+  for (int c = 0; c < 3 * NK; ++c)
+    for (int r = c + 1; r < 3 * NK; ++r) k(r, c) = k(c, r);
 }
 
 void Brick8::tangent_linear(const ElementContext& ctx, const Eigen::Matrix<double, 24, 1>& uc,
@@ -282,7 +285,7 @@ void Brick8::tangent_large(const Eigen::Matrix<double, 24, 1>& uc, Eigen::Matrix
   const double scale = std::max(uc.lpNorm<Eigen::Infinity>(), 1e-300);
   bool converged = false;
   for (int iter = 0; iter < 30; ++iter) {
-    tl_sum<kFunctions>(q, &kq, fq);
+    tl_sum<kFunctions, 8>(q, &kq, fq);  // f and the bubbles' block K_αα only
     const Eigen::Matrix<double, 9, 1> step =
         -kq.bottomRightCorner<9, 9>().ldlt().solve(fq.tail<9>());
     q.tail<9>() += step;

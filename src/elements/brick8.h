@@ -105,7 +105,9 @@ class Brick8 final : public Element {
   /// NF = 8 (corners) or 11 (with the bubbles); fixed-size operands (6 × 3NF B_L), so the
   /// products are unrolled instead of going through the blocked dynamic-size GEMM.
   /// `k` == nullptr: f alone (the same operations, so bitwise the same f).
-  template <int NF>
+  /// K0 > 0: only the block of K over the functions K0..NF-1 is formed (the rest of `k` is left
+  /// as it was): the bubble block that the Newton iterations on their amplitudes need.
+  template <int NF, int K0 = 0>
   void tl_sum(const Eigen::Matrix<double, 3 * NF, 1>& q, Eigen::Matrix<double, 3 * NF, 3 * NF>* k,
               Eigen::Matrix<double, 3 * NF, 1>& f) const;
   void tangent_linear(const ElementContext& ctx, const Eigen::Matrix<double, 24, 1>& uc,
