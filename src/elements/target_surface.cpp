@@ -212,6 +212,11 @@ std::shared_ptr<const TargetSurface> contact_target(const ElementBuildContext& c
       pilot = nodes[0];
       continue;
     }
+    if (nodes.size() < 3)  // two distinct nodes: neither a pilot nor a facet
+      throw InputError(rec.where,
+                       fmt::format("element {} (TARGE170): a target facet needs 3 or 4 distinct "
+                                   "nodes (a pilot node 1); {} given",
+                                   id, nodes.size()));
     // Named copies: clang 14 (the sanitizer build) cannot capture structured bindings.
     const auto add = [&, where = rec.where, element = id](int i, int j, int k) {
       const Vec3 &a = model.nodes.at(i).x, &b = model.nodes.at(j).x, &c = model.nodes.at(k).x;
