@@ -102,8 +102,8 @@ class Brick8 final : public Element {
   /// ∫ B_Lᵀ S dV0 and ∫ (B_Lᵀ D B_L + G ᵀ S G) dV0 over the first NF functions at the
   /// generalised displacements q (3 NF: corners then bubble amplitudes). q = 0 gives the
   /// linear stiffness.
-  /// NF = 8 (corners) or 11 (with the bubbles); fixed-size operands (6 × 3NF B_L), so the
-  /// products are unrolled instead of going through the blocked dynamic-size GEMM.
+  /// NF = 8 (corners) or 11 (with the bubbles); fixed-size operands, and K summed over the
+  /// Gauss points by two small products after the point loop (see the definition).
   /// `k` == nullptr: f alone (the same operations, so bitwise the same f).
   /// K0 > 0: only the block of K over the functions K0..NF-1 is formed (the rest of `k` is left
   /// as it was): the bubble block that the Newton iterations on their amplitudes need.
