@@ -24,7 +24,6 @@ Assembler::Assembler(const std::vector<std::unique_ptr<Element>>& elements, cons
 
   slots_.resize(elements_.size());
   mass_.resize(elements_.size());
-  linear_stiffness_.resize(elements_.size());
   is_linear_.assign(elements_.size(), false);
   tangent_buffer_.resize(elements_.size());
   force_buffer_.resize(elements_.size());
@@ -32,6 +31,17 @@ Assembler::Assembler(const std::vector<std::unique_ptr<Element>>& elements, cons
   tangent_valid_.assign(elements_.size(), 0);
   reusable_.assign(elements_.size(), false);
   for (std::size_t e = 0; e < elements_.size(); ++e) {
+    has_damping_ = has_damping_ || elements_[e]->has_damping() || alpha_ != 0.0 || beta_ != 0.0;
+    // Linear elements: K_e, C_e and M_e go into the global products once
+    // (build_linear_force_matrices) and from there into every effective matrix. The nonlinear
+    // elements keep M_e (their Rayleigh α M_e) and the slots their tangents are scattered to.
+    if (!elements_[e]->is_nonlinear(ctx_)) {
+      is_linear_[e] = true;
+      continue;
+    }
+    nonlinear_.push_back(e);
+    reusable_[e] = !elements_[e]->has_status() && !elements_[e]->has_history();
+    elements_[e]->mass(ctx_, mass_[e]);
     const auto& idx = dofs_.element_indices(e);
     const int n = static_cast<int>(idx.size());
     auto& slot = slots_[e];
@@ -47,36 +57,36 @@ Assembler::Assembler(const std::vector<std::unique_ptr<Element>>& elements, cons
         const int* it = std::lower_bound(begin, end, row);
         slot[static_cast<std::size_t>(a * n + b)] = static_cast<int>(it - pattern_.innerIndexPtr());
       }
-    elements_[e]->mass(ctx_, mass_[e]);
-    // Linear elements: the stiffness is evaluated once; f_int = K_e u_e afterwards.
-    if (!elements_[e]->is_nonlinear(ctx_)) {
-      VectorXd zero = VectorXd::Zero(n), f;
-      elements_[e]->tangent(ctx_, zero, linear_stiffness_[e], f);
-      is_linear_[e] = true;
-    } else {
-      nonlinear_.push_back(e);
-      reusable_[e] = !elements_[e]->has_status() && !elements_[e]->has_history();
-    }
-    has_damping_ = has_damping_ || elements_[e]->has_damping() || alpha_ != 0.0 || beta_ != 0.0;
   }
   build_linear_force_matrices();
 }
 
+void Assembler::linear_element_matrices(std::size_t e, MatrixXd& k, MatrixXd& m) const {
+  const VectorXd zero = VectorXd::Zero(elements_[e]->n_dofs());
+  VectorXd f;
+  elements_[e]->tangent(ctx_, zero, k, f);
+  elements_[e]->mass(ctx_, m);
+}
+
 void Assembler::build_linear_force_matrices() {
-  // The linear elements' damping is constant (the condensed transient's A_L relies on it too),
-  // so it is evaluated once at u = 0 like their stiffness. Entries are summed on the DOF graph
-  // in element order (the order of the triplet assembly this replaced: same values bitwise).
+  // The linear elements' stiffness and damping are constant (the condensed transient's A_L
+  // relies on it too): evaluated at u = 0, summed on the DOF graph in element order (the order
+  // of the triplet assembly this replaced: same values bitwise) and not kept element by element
+  // (issue 11: the products are the model's only copy of them; 236 MB of element matrices on
+  // the 155 522-DOF shell dome).
   GraphMatrix stiffness(*graph_), damping(*graph_), mass(*graph_);
-  MatrixXd c;
+  MatrixXd k, m, c;
   std::vector<int> slots;
   for (std::size_t e = 0; e < elements_.size(); ++e) {
-    const int n = static_cast<int>(dofs_.element_indices(e).size());
     graph_->element_slots(dofs_.element_indices(e), slots);
-    mass.add(slots, mass_[e], false);
-    if (!is_linear_[e]) continue;
-    const MatrixXd& k = linear_stiffness_[e];
+    if (!is_linear_[e]) {
+      mass.add(slots, mass_[e], false);
+      continue;
+    }
+    linear_element_matrices(e, k, m);
+    mass.add(slots, m, false);
     stiffness.add(slots, k, false);
-    if (element_damping(e, VectorXd::Zero(n), k, c)) damping.add(slots, c, false);
+    if (element_damping(e, VectorXd::Zero(k.rows()), k, m, c)) damping.add(slots, c, false);
   }
   std::vector<unsigned char> kept(mass.touched);
   for (std::size_t s = 0; s < kept.size(); ++s)
@@ -204,34 +214,20 @@ void Assembler::assemble(const IntegrationCoefficients& coeff, const VectorXd& u
     double* values = out.effective->valuePtr();
     VectorXd ue;
     MatrixXd c;
-    if (!split) {
-      // The part that does not change within a time step (the linear elements' cK K + cC C and
-      // every element's cM M) from its cache, then the nonlinear elements' cK K_T (+ cC C).
-      const std::vector<double>& constant = constant_effective(coeff);
-      std::copy(constant.begin(), constant.end(), values);
-      for (std::size_t e : nonlinear_) {
-        const MatrixXd& ke = tangent_buffer_[e];
-        bool damped = false;
-        if (coeff.cC != 0.0) {
-          gather(e, u, ue);
-          damped = element_damping(e, ue, ke, c);
-        }
-        scatter_lower(e, coeff.cK, ke, damped ? coeff.cC : 0.0, damped ? &c : nullptr, values);
-      }
-    } else {
-      std::fill(values, values + pattern_.nonZeros(), 0.0);
-      MatrixXd eff;
-      for (std::size_t e = 0; e < elements_.size(); ++e) {
-        // Distributed: only the elements at this rank's columns (the rest is never read).
-        if (!evaluate_matrix_[e]) continue;
-        const MatrixXd& ke = is_linear_[e] ? linear_stiffness_[e] : tangent_buffer_[e];
+    // The part that does not change within a time step (the linear elements' cK K + cC C and
+    // every element's cM M) from its cache, then the nonlinear elements' cK K_T (+ cC C);
+    // distributed, only those at this rank's columns (the other columns are never read).
+    const std::vector<double>& constant = constant_effective(coeff);
+    std::copy(constant.begin(), constant.end(), values);
+    for (std::size_t e : nonlinear_) {
+      if (split && !evaluate_matrix_[e]) continue;
+      const MatrixXd& ke = tangent_buffer_[e];
+      bool damped = false;
+      if (coeff.cC != 0.0) {
         gather(e, u, ue);
-        const bool damped = coeff.cC != 0.0 && element_damping(e, ue, ke, c);
-        eff = coeff.cK * ke;
-        if (coeff.cM != 0.0) eff += coeff.cM * mass_[e];
-        if (damped) eff += coeff.cC * c;
-        scatter_lower(e, eff, *out.effective);
+        damped = element_damping(e, ue, ke, mass_[e], c);
       }
+      scatter_lower(e, coeff.cK, ke, damped ? coeff.cC : 0.0, damped ? &c : nullptr, values);
     }
   }
   element_seconds_ +=
@@ -263,7 +259,7 @@ void Assembler::add_forces(const VectorXd& u, const VectorXd& v, const VectorXd*
       for (int k = 0; k < n; ++k) (*out.internal_force)(idx[k]) += force_buffer_[e](k);
     if (!out.damping_force) continue;
     gather(e, u, ue);
-    if (!element_damping(e, ue, tangent_buffer_[e], c)) continue;
+    if (!element_damping(e, ue, tangent_buffer_[e], mass_[e], c)) continue;
     gather(e, v, ve);
     fd.noalias() = c * ve;
     for (int k = 0; k < n; ++k) (*out.damping_force)(idx[k]) += fd(k);
@@ -336,7 +332,7 @@ void Assembler::TangentThreading::record_serial_pass(double seconds) {
 }
 
 bool Assembler::element_damping(std::size_t e, const VectorXd& ue, const MatrixXd& k,
-                                MatrixXd& c) const {
+                                const MatrixXd& m, MatrixXd& c) const {
   const Element& element = *elements_[e];
   const double beta = beta_of(e);  // global BETAD plus the material's MP,DAMP
   const bool rayleigh = alpha_ != 0.0 || beta != 0.0;
@@ -349,9 +345,9 @@ bool Assembler::element_damping(std::size_t e, const VectorXd& ue, const MatrixX
   }
   // k is read only with β ≠ 0 (a forces-only pass leaves the tangent buffer stale).
   if (beta != 0.0)
-    c += alpha_ * mass_[e] + beta * k;
+    c += alpha_ * m + beta * k;
   else if (rayleigh)
-    c += alpha_ * mass_[e];
+    c += alpha_ * m;
   return true;
 }
 
@@ -360,20 +356,39 @@ const std::vector<double>& Assembler::constant_effective(
   if (!constant_effective_.empty() && constant_coeff_.cK == coeff.cK &&
       constant_coeff_.cC == coeff.cC && constant_coeff_.cM == coeff.cM)
     return constant_effective_;
+  // cK K_L + cC C_L + cM M from the global products (the element matrices are not kept), into
+  // the free-free lower pattern. Symmetric storage: the stored (r, j) with r <= j is the lower
+  // entry (j, r); a row's columns ascend, as do column r's rows in the pattern, so the slots are
+  // found by one merge per row. Otherwise the stored lower entries (r >= j) by binary search.
   constant_effective_.assign(static_cast<std::size_t>(pattern_.nonZeros()), 0.0);
-  MatrixXd c;
-  for (std::size_t e = 0; e < elements_.size(); ++e) {
-    if (is_linear_[e]) {
-      // A linear element's damping is constant (build_linear_force_matrices).
-      const bool damped =
-          coeff.cC != 0.0 &&
-          element_damping(e, VectorXd::Zero(elements_[e]->n_dofs()), linear_stiffness_[e], c);
-      scatter_lower(e, coeff.cK, linear_stiffness_[e], damped ? coeff.cC : 0.0,
-                    damped ? &c : nullptr, constant_effective_.data());
+  const int nf = dofs_.n_free();
+  const int* outer = pattern_.outerIndexPtr();
+  const int* inner = pattern_.innerIndexPtr();
+  const double factor[3] = {coeff.cK, coeff.cC, coeff.cM};
+  const bool symmetric = linear_products_.symmetric();
+  int merge_row = -1, at = 0;
+  linear_products_.for_each_stored_entry([&](int r, int j, const double* v) {
+    if (r >= nf || j >= nf) return;
+    int column = j, row = r;
+    if (symmetric) {
+      if (r > j) return;
+      column = r;
+      row = j;
+      if (merge_row != r) {
+        merge_row = r;
+        at = outer[r];
+      }
+      while (inner[at] < row) ++at;
+    } else {
+      if (r < j) return;
+      at = static_cast<int>(
+          std::lower_bound(inner + outer[column], inner + outer[column + 1], row) - inner);
     }
-    if (coeff.cM != 0.0)
-      scatter_lower(e, coeff.cM, mass_[e], 0.0, nullptr, constant_effective_.data());
-  }
+    IMPACTFE_CHECK(at < outer[column + 1] && inner[at] == row,
+                   "Assembler: a product entry outside the element pattern");
+    constant_effective_[static_cast<std::size_t>(at)] +=
+        factor[0] * v[0] + factor[1] * v[1] + factor[2] * v[2];
+  });
   constant_coeff_ = coeff;
   return constant_effective_;
 }
@@ -394,18 +409,6 @@ void Assembler::scatter_lower(std::size_t e, double a_factor, const MatrixXd& a,
   }
 }
 
-void Assembler::scatter_lower(std::size_t e, const MatrixXd& m, SparseMatrix& effective) const {
-  const int n = static_cast<int>(dofs_.element_indices(e).size());
-  double* values = effective.valuePtr();
-  const auto& slot = slots_[e];
-  for (int a = 0; a < n; ++a)
-    for (int b = 0; b <= a; ++b) {
-      const int s = slot[static_cast<std::size_t>(a * n + b)];
-      if (s < 0) continue;
-      values[s] += m(a, b);
-    }
-}
-
 std::vector<int> Assembler::nonlinear_free_dofs() const {
   std::vector<int> out;
   for (std::size_t e : nonlinear_)
@@ -419,17 +422,8 @@ std::vector<int> Assembler::nonlinear_free_dofs() const {
 void Assembler::assemble_linear_part(const IntegrationCoefficients& coeff,
                                      SparseMatrix& effective) const {
   if (effective.nonZeros() != pattern_.nonZeros()) effective = pattern_;
-  std::fill(effective.valuePtr(), effective.valuePtr() + pattern_.nonZeros(), 0.0);
-  MatrixXd c, eff;
-  for (std::size_t e = 0; e < elements_.size(); ++e) {
-    eff = coeff.cM * mass_[e];
-    if (is_linear_[e]) {
-      eff += coeff.cK * linear_stiffness_[e];
-      VectorXd ue = VectorXd::Zero(elements_[e]->n_dofs());
-      if (coeff.cC != 0.0 && element_damping(e, ue, linear_stiffness_[e], c)) eff += coeff.cC * c;
-    }
-    scatter_lower(e, eff, effective);
-  }
+  const std::vector<double>& constant = constant_effective(coeff);
+  std::copy(constant.begin(), constant.end(), effective.valuePtr());
 }
 
 void Assembler::assemble_nonlinear_part(const IntegrationCoefficients& coeff, double w,
@@ -445,7 +439,7 @@ void Assembler::assemble_nonlinear_part(const IntegrationCoefficients& coeff, do
     const MatrixXd& k = tangent_buffer_[e];
     fe = force_buffer_[e];
     gather(e, u, ue);
-    const bool damped = element_damping(e, ue, k, c);
+    const bool damped = element_damping(e, ue, k, mass_[e], c);
     if (damped) {
       gather(e, v, ve);
       fe += c * ve;
@@ -465,9 +459,13 @@ void Assembler::assemble_nonlinear_part(const IntegrationCoefficients& coeff, do
 }
 
 SparseMatrix Assembler::full_matrix(Which which, const VectorXd& u) const {
+  // The linear elements' matrices are evaluated again here (the assembler keeps only their
+  // global products): these matrices are asked for once per analysis (energies, reduction,
+  // mode superposition), and element by element they keep the structure and the values of
+  // the element-order sum bit for bit.
   GraphMatrix out(*graph_);
   std::vector<int> slots;
-  MatrixXd m;
+  MatrixXd m, k, mass;
   VectorXd ue, fe;
   for (std::size_t e = 0; e < elements_.size(); ++e) {
     const auto& idx = dofs_.element_indices(e);
@@ -475,11 +473,14 @@ SparseMatrix Assembler::full_matrix(Which which, const VectorXd& u) const {
     const MatrixXd* element_matrix = &m;  // the stored matrix where there is one (no copy)
     switch (which) {
       case Which::Mass:
-        element_matrix = &mass_[e];
+        if (is_linear_[e])
+          elements_[e]->mass(ctx_, m);
+        else
+          element_matrix = &mass_[e];
         break;
       case Which::Stiffness:
         if (is_linear_[e]) {
-          element_matrix = &linear_stiffness_[e];
+          linear_element_matrices(e, m, mass);
         } else {
           gather(e, u, ue);
           elements_[e]->tangent(ctx_, ue, m, fe);
@@ -496,9 +497,13 @@ SparseMatrix Assembler::full_matrix(Which which, const VectorXd& u) const {
           m.setZero(n, n);
         }
         if (rayleigh) {
-          MatrixXd ke = linear_stiffness_[e];
-          if (!is_linear_[e]) elements_[e]->tangent(ctx_, ue, ke, fe);
-          m += alpha_ * mass_[e] + beta * ke;
+          if (is_linear_[e]) {
+            linear_element_matrices(e, k, mass);
+          } else {
+            elements_[e]->tangent(ctx_, ue, k, fe);
+            mass = mass_[e];
+          }
+          m += alpha_ * mass + beta * k;
         }
         break;
       }

@@ -101,10 +101,12 @@ class Assembler {
  private:
   enum class Which { Stiffness, Mass, Damping };
   SparseMatrix full_matrix(Which which, const VectorXd& u) const;
-  /// Element damping matrix at ue (element dampers + Rayleigh α M_e + β K_e); false when none.
-  bool element_damping(std::size_t e, const VectorXd& ue, const MatrixXd& k, MatrixXd& c) const;
-  /// Adds the lower triangle of an element matrix into the free-free pattern values.
-  void scatter_lower(std::size_t e, const MatrixXd& m, SparseMatrix& effective) const;
+  /// Element damping matrix at ue (element dampers + Rayleigh α M_e + β K_e, with K_e = k and
+  /// M_e = m); false when none.
+  bool element_damping(std::size_t e, const VectorXd& ue, const MatrixXd& k, const MatrixXd& m,
+                       MatrixXd& c) const;
+  /// A linear element's stiffness (at u = 0) and mass, evaluated (they are not stored).
+  void linear_element_matrices(std::size_t e, MatrixXd& k, MatrixXd& m) const;
   /// values += the lower triangle of a_factor·a (+ b_factor·b when b is given), element e.
   void scatter_lower(std::size_t e, double a_factor, const MatrixXd& a, double b_factor,
                      const MatrixXd* b, double* values) const;
@@ -136,11 +138,12 @@ class Assembler {
   ElementContext ctx_;
   std::unique_ptr<DofGraph> graph_;  // DOF adjacency over the active DOFs
   SparseMatrix pattern_;
-  /// For each element, the value slot of each (a, b) pair with a >= b in the lower pattern
-  /// (-1 when a DOF is constrained): scatter is a plain indexed add.
+  /// For each nonlinear element (empty for the linear ones), the value slot of each (a, b) pair
+  /// with a >= b in the lower pattern (-1 when a DOF is constrained): scatter is an indexed add.
   std::vector<std::vector<int>> slots_;
-  std::vector<MatrixXd> mass_;              // constant element mass matrices
-  std::vector<MatrixXd> linear_stiffness_;  // K_e of linear elements (evaluated once)
+  /// Constant mass matrices of the nonlinear elements (empty for the linear ones, whose K_e,
+  /// C_e and M_e are only in linear_products_).
+  std::vector<MatrixXd> mass_;
   std::vector<bool> is_linear_;
   std::vector<std::size_t> nonlinear_;  // indices of the nonlinear elements
   /// Σ K_e and Σ C_e of the linear elements and Σ M_e of all over the active DOFs, on one

@@ -41,6 +41,27 @@ class SharedPatternProducts {
   void multiply(const std::array<const VectorXd*, kMaxMatrices>& x,
                 const std::array<VectorXd*, kMaxMatrices>& y) const;
 
+  /// Calls visit(row, column, values) once for each stored entry, row by row and, within a
+  /// row, by ascending column; values[m] is matrix m's entry (0 for a zero matrix). Symmetric
+  /// storage holds each row's entries from its group's first row on: all of the upper triangle
+  /// and, inside a group's own block, the entries left of the diagonal too (the assembler forms
+  /// the lower triangle of an effective matrix from the products with this).
+  template <class Visit>
+  void for_each_stored_entry(Visit&& visit) const {
+    double values[kMaxMatrices] = {};
+    for (const RowGroup& g : groups_)
+      for (int r = 0; r < g.rows; ++r)
+        for (int k = 0; k < g.columns; ++k) {
+          const long long at = g.value_start + static_cast<long long>(k) * g.rows + r;
+          for (int m = 0; m < n_matrices_; ++m)
+            values[m] = nonzero_[static_cast<std::size_t>(m)]
+                            ? value_[static_cast<std::size_t>(m)][static_cast<std::size_t>(at)]
+                            : 0.0;
+          visit(g.first_row + r, column_[static_cast<std::size_t>(g.column_start + k)],
+                static_cast<const double*>(values));
+        }
+  }
+
   /// Rows with one column list, stored together: the `rows` values of each column side by side,
   /// so that one index load serves them all and their sums vectorize (a brick mesh's node has
   /// 3 such rows, a shell's 6). Each row's sum runs over its columns in order: the products are

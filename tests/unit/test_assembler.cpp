@@ -98,6 +98,92 @@ TEST(Assembler, EffectiveMatrixEqualsDenseSum) {
   EXPECT_NEAR(f_acel.sum(), -total * 386.4, 1e-9);
 }
 
+/// A 3 x 2 SHELL63 plate (consistent mass) with a COMBIN14 damper at one corner and a COMBIN40
+/// gap (UZ, nonlinear; GAP -1e-4: closed) from ground node 100 to node 6, the edge x = 0 clamped.
+Model shell_plate_with_gap() {
+  Model m;
+  for (int j = 0; j <= 2; ++j)
+    for (int i = 0; i <= 3; ++i) {
+      const int id = 1 + i + 4 * j;
+      m.nodes[id] = Node{id, Vec3(0.5 * i, 0.4 * j, 0.02 * i * j), Vec3::Zero()};
+    }
+  m.nodes[100] = Node{100, Vec3(0.5, 0.4, -1.0), Vec3::Zero()};
+  m.nodes[101] = Node{101, Vec3(1.5, 0.8, 1.0), Vec3::Zero()};
+  auto type = [&](int id, const char* name, int keyopt3) {
+    ElementType t;
+    t.id = id;
+    t.ansys_name = name;
+    t.keyopt[3] = keyopt3;
+    m.element_types[id] = t;
+  };
+  type(1, "SHELL63", 0);
+  type(2, "COMBIN14", 0);
+  type(3, "COMBIN40", 3);  // UZ
+  m.real_sets[1] = RealSet{1, {0.05}};
+  m.real_sets[2] = RealSet{2, {300.0, 2.5}};
+  m.real_sets[3] = RealSet{3, {5000.0, 0.0, 0.0, -1e-4}};
+  Material mat;
+  mat.id = 1;
+  mat.props = {{"EX", 3.0e7}, {"NUXY", 0.3}, {"DENS", 7.3e-4}};
+  m.materials[1] = mat;
+  int id = 1;
+  auto add = [&](int type_id, int real, std::vector<int> nodes) {
+    ElementRecord r;
+    r.id = id++;
+    r.type = type_id;
+    r.real = real;
+    r.mat = 1;
+    r.nodes = std::move(nodes);
+    m.elements[r.id] = r;
+  };
+  for (int j = 0; j < 2; ++j)
+    for (int i = 0; i < 3; ++i) {
+      const int n1 = 1 + i + 4 * j;
+      add(1, 1, {n1, n1 + 1, n1 + 5, n1 + 4});
+    }
+  add(2, 2, {12, 101});
+  add(3, 3, {100, 6});
+  return m;
+}
+
+TEST(Assembler, EffectiveMatrixFromTheProductsEqualsTheElementSum) {
+  // The linear elements' K, C and M are kept only as global products; the constant part of
+  // every effective matrix is formed from them. It must equal the element-by-element sum
+  // (stiffness_matrix etc. evaluate the elements again) on the free DOFs, with Rayleigh damping,
+  // a damper, constrained DOFs and a nonlinear (closed) gap.
+  const Model m = shell_plate_with_gap();
+  const auto elements = build(m);
+  std::set<DofKey> fixed;
+  for (int node : {1, 5, 9, 100, 101})
+    for (Dof d : {Dof::UX, Dof::UY, Dof::UZ, Dof::ROTX, Dof::ROTY, Dof::ROTZ})
+      fixed.insert({node, d});
+  const DofMap dofs(elements, fixed);
+  const Assembler assembler(elements, dofs, ElementContext{}, 0.3, 2e-4);
+  ASSERT_EQ(assembler.n_nonlinear_elements(), 1);
+  const IntegrationCoefficients coeff{1.0, 2.0e3, 4.0e6};
+  const int nf = dofs.n_free();
+  const VectorXd u = VectorXd::LinSpaced(dofs.n_active(), -1e-3, 2e-3);
+  SparseMatrix eff, linear;
+  assembler.assemble(coeff, u, u, Assembler::Output{&eff, nullptr, nullptr});
+  assembler.assemble_linear_part(coeff, linear);
+  const MatrixXd sum = coeff.cK * MatrixXd(assembler.stiffness_matrix(u)) +
+                       coeff.cC * MatrixXd(assembler.damping_matrix(u)) +
+                       coeff.cM * MatrixXd(assembler.mass_matrix());
+  const MatrixXd lower = MatrixXd(eff), linear_lower = MatrixXd(linear);
+  const double scale = sum.cwiseAbs().maxCoeff();
+  const int gap_dof = dofs.index(DofKey{6, Dof::UZ});
+  for (int i = 0; i < nf; ++i)
+    for (int j = 0; j <= i; ++j) {
+      EXPECT_NEAR(lower(i, j), sum(i, j), 1e-13 * scale)
+          << describe(dofs.key(i)) << " / " << describe(dofs.key(j));
+      // The linear part lacks only the closed gap's cK k + cC β k on its DOF.
+      const double gap = (i == gap_dof && j == gap_dof) ? 5000.0 * (1.0 + 2e3 * 2e-4) : 0.0;
+      EXPECT_NEAR(linear_lower(i, j) + gap, sum(i, j), 1e-13 * scale)
+          << describe(dofs.key(i)) << " / " << describe(dofs.key(j));
+    }
+  EXPECT_EQ(MatrixXd(lower.triangularView<Eigen::StrictlyUpper>()).norm(), 0.0);
+}
+
 TEST(Assembler, PatternIsBuiltOnceAndReused) {
   const Model m = truss();
   const auto elements = build(m);
