@@ -134,6 +134,7 @@ Structure::Structure(const Model& model, const AnalysisOptions& options,
 
   ElementBuildContext build{
       model, [&settings](const ElementRecord& r) { return resolve_superelement(r, settings); }};
+  build.large_deflection = options.large_deflection;
   // Rotated nodes (DOFs in nodal axes) and material damping enter through element adapters.
   // Each element made is also handed to the build pass's cache: contact elements read their
   // body elements' stiffness and depth from it instead of making them again.

@@ -143,6 +143,10 @@ struct ElementBuildContext {
   /// the elements at each node and the contact targets. Without it every contact element
   /// would scan the whole model, and setting up n contact nodes would cost O(n × elements).
   mutable std::shared_ptr<ElementBuildCache> cache = nullptr;
+  /// The elements are built for large-deflection kinematics (NLGEOM): an element may keep what
+  /// its co-rotational tangent reads at every iteration. Without it such matrices are formed
+  /// when asked (a linear model asks once per element; the assembler keeps the global sums).
+  bool large_deflection = false;
 };
 
 /// Builds the element of a record. Throws InputError (with the element's source location) for

@@ -82,14 +82,14 @@ Shell4::Shell4(int id, const Shell4Data& data, const SourceLocation& where)
   // A triangle is flat (no warping links): its co-rotational kinematics have closed forms in
   // its own frame (corotational_triangle.h), valid while the kernel keeps membrane and bending
   // apart, as the elastic one does.
-  if (n_ == 3 && !plasticity_ && CorotationalTriangle::uncoupled(kernel_->stiffness()))
-    triangle_ = std::make_unique<CorotationalTriangle>(std::array<Vec3, 3>{X_[0], X_[1], X_[2]},
-                                                       R0_, c0_, kernel_->stiffness());
-  const bool warped = std::any_of(h_.begin(), h_.end(), [](double h) { return h != 0.0; });
-  if (warped && !triangle_) {
-    const Eigen::MatrixXd W = rigid_links();
-    K_bar_ = W.transpose() * kernel_->stiffness() * W;
+  if (n_ == 3 && !plasticity_) {
+    const Eigen::MatrixXd K_l = kernel_->stiffness();
+    if (CorotationalTriangle::uncoupled(K_l))
+      triangle_ = std::make_unique<CorotationalTriangle>(std::array<Vec3, 3>{X_[0], X_[1], X_[2]},
+                                                         R0_, c0_, K_l);
   }
+  if (data.keep_corotational_stiffness && !triangle_ && !plasticity_)
+    K_bar_ = form_corotational_stiffness();
 }
 
 Eigen::MatrixXd Shell4::rigid_links() const {
@@ -111,8 +111,17 @@ Eigen::MatrixXd Shell4::to_local() const {
   return rigid_links() * T;
 }
 
-const Eigen::MatrixXd& Shell4::corotational_stiffness() const {
-  return K_bar_.size() > 0 ? K_bar_ : kernel_->stiffness();
+Eigen::MatrixXd Shell4::form_corotational_stiffness() const {
+  const bool warped = std::any_of(h_.begin(), h_.end(), [](double h) { return h != 0.0; });
+  if (!warped) return kernel_->stiffness();
+  const Eigen::MatrixXd W = rigid_links();
+  return W.transpose() * kernel_->stiffness() * W;
+}
+
+const Eigen::MatrixXd& Shell4::corotational_stiffness(Eigen::MatrixXd& scratch) const {
+  if (K_bar_.size() > 0) return K_bar_;
+  scratch = form_corotational_stiffness();
+  return scratch;
 }
 
 namespace {
@@ -407,9 +416,11 @@ void Shell4::corotational_tangent_general(const Eigen::VectorXd& u, Eigen::Matri
   const CorotationalState s = corotate(X_, R0_, c0_, u, true, d);
   Mat24 B;
   kinematic_matrix(s, B);
-  const Vec24 f_l = corotational_stiffness() * d;
+  Eigen::MatrixXd scratch;
+  const Eigen::MatrixXd& K_bar = corotational_stiffness(scratch);
+  const Vec24 f_l = K_bar * d;
   f_int = B.transpose() * f_l;
-  material_stiffness_any(B, corotational_stiffness(), K);
+  material_stiffness_any(B, K_bar, K);
   add_geometric_stiffness(s, f_l, K);
 }
 
@@ -429,7 +440,8 @@ void Shell4::internal_force(const ElementContext& ctx, const Eigen::VectorXd& u,
   const CorotationalState s = corotate(X_, R0_, c0_, u, true, d);
   Mat24 B;
   kinematic_matrix(s, B);
-  const Vec24 f_l = corotational_stiffness() * d;
+  Eigen::MatrixXd scratch;
+  const Vec24 f_l = corotational_stiffness(scratch) * d;
   f_int = B.transpose() * f_l;
 }
 
@@ -564,6 +576,7 @@ std::unique_ptr<Element> make_shell4(const ElementBuildContext& ctx, const Eleme
   const ElementType& type = type_it->second;
   Shell4Data data;
   data.shell181 = shell181;
+  data.keep_corotational_stiffness = ctx.large_deflection;
 
   // Nodes: I, J, K, L; K = L (or three nodes) gives the triangle.
   std::vector<int> ids = record.nodes;

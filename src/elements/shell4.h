@@ -27,6 +27,9 @@ struct Shell4Data {
   bool shell181 = false;
   /// SHELL181 with a TB plasticity table: layered J2 plasticity (shell_kernel.h).
   std::optional<J2Plasticity> plasticity;
+  /// Built for large deflection (ElementBuildContext::large_deflection): keep the co-rotational
+  /// local stiffness K̄, which every iteration reads; otherwise it is formed when asked.
+  bool keep_corotational_stiffness = false;
 };
 
 class Shell4 : public Element {
@@ -106,12 +109,17 @@ class Shell4 : public Element {
   /// 24 × 24 matrices were most of its memory (docs/benchmarks.md, stop 25).
   Eigen::MatrixXd rigid_links() const;
   Eigen::MatrixXd to_local() const;
-  /// K̄ = Wᵀ K_l W, the co-rotational local stiffness: K_l itself for a flat element.
-  const Eigen::MatrixXd& corotational_stiffness() const;
+  /// K̄ = Wᵀ K_l W, the co-rotational local stiffness (K_l itself for a flat element): the kept
+  /// one, else formed into `scratch`.
+  const Eigen::MatrixXd& corotational_stiffness(Eigen::MatrixXd& scratch) const;
+  Eigen::MatrixXd form_corotational_stiffness() const;
 
   std::vector<double> h_;  // warping offsets of the corners from the mean plane
-  Eigen::MatrixXd K_bar_;  // Wᵀ K_l W of a warped quadrilateral without the triangle path
-  double theta_ = 0.0;     // rad
+  /// K̄ kept for large deflection (the elastic triangle's fast path keeps its own), empty
+  /// otherwise. Kept always, with the kernel's K_l, M_l and drilling matrix (now formed when
+  /// asked), these 24 × 24 matrices held 471 MB on the 25 600-shell dome (benchmarks.md, stop 27).
+  Eigen::MatrixXd K_bar_;
+  double theta_ = 0.0;  // rad
   std::unique_ptr<shell::FlatShellKernel> kernel_;
   std::unique_ptr<CorotationalTriangle> triangle_;  // elastic triangle: the fast path
   std::optional<J2Plasticity> plasticity_;

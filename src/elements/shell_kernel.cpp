@@ -75,17 +75,58 @@ FlatShellKernel::FlatShellKernel(const std::vector<Eigen::Vector2d>& xy, const K
         -d.x() / l2, 0.75 * d.x() * d.y() / l2, (0.25 * d.x() * d.x() - 0.5 * d.y() * d.y()) / l2,
         -d.y() / l2, (0.25 * d.y() * d.y() - 0.5 * d.x() * d.x()) / l2};
   }
-  K_.setZero(6 * n_, 6 * n_);
+  set_centroid_data();
+}
+
+void FlatShellKernel::set_centroid_data() {
+  Eigen::VectorXd N;
+  Eigen::MatrixXd dN;
+  double detJ = 0.0;
+  const double c = n_ == 3 ? 1.0 / 3.0 : 0.0;
+  shape(c, c, N, dN, detJ);
   Bm0_.setZero(3, 2 * n_);
-  Bb0_.setZero(3, 3 * n_);
-  build_membrane();
-  build_bending();
+  for (int a = 0; a < n_; ++a) {
+    Bm0_(0, 2 * a) = dN(0, a);
+    Bm0_(1, 2 * a + 1) = dN(1, a);
+    Bm0_(2, 2 * a) = dN(1, a);
+    Bm0_(2, 2 * a + 1) = dN(0, a);
+  }
+  dk_curvature(c, c, Bb0_, detJ);
+  n_modes_ = n_ == 4 && data_.extra_shapes ? 4 : 0;
+  if (n_modes_ == 0) return;
+  shape(0.0, 0.0, N, dN, detJ0_);
+  // J0⁻¹ from the bilinear map at the centre (Taylor, Beresford & Wilson 1976).
+  Eigen::Matrix2d J0 = Eigen::Matrix2d::Zero();
+  for (int i = 0; i < 4; ++i) {
+    J0(0, 0) += 0.25 * kXiQ[i] * xy_[static_cast<std::size_t>(i)].x();
+    J0(0, 1) += 0.25 * kXiQ[i] * xy_[static_cast<std::size_t>(i)].y();
+    J0(1, 0) += 0.25 * kEtaQ[i] * xy_[static_cast<std::size_t>(i)].x();
+    J0(1, 1) += 0.25 * kEtaQ[i] * xy_[static_cast<std::size_t>(i)].y();
+  }
+  J0i_ = J0.inverse();
+}
+
+Eigen::MatrixXd FlatShellKernel::stiffness() const {
+  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(6 * n_, 6 * n_);
+  if (data_.membrane) add_membrane(K);
+  // The drilling term also stiffens θz when the membrane is switched off, so the element stays
+  // regular; it still vanishes for rigid in-plane rotations.
+  add_drilling(K);
+  if (data_.bending) add_bending(K);
+  add_foundation(K);
+  return K;
+}
+
+Eigen::MatrixXd FlatShellKernel::elastic_extra() const {
+  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(6 * n_, 6 * n_);
+  add_drilling(K);
+  add_foundation(K);
+  return K;
+}
+
+void FlatShellKernel::add_foundation(Eigen::MatrixXd& K) const {
   if (data_.efs > 0.0)
-    for (int a = 0; a < n_; ++a) {
-      K_(6 * a + 2, 6 * a + 2) += data_.efs * area_ / n_;
-      K_elastic_extra_(6 * a + 2, 6 * a + 2) += data_.efs * area_ / n_;
-    }
-  build_mass();
+    for (int a = 0; a < n_; ++a) K(6 * a + 2, 6 * a + 2) += data_.efs * area_ / n_;
 }
 
 std::vector<FlatShellKernel::Point> FlatShellKernel::points() const {
@@ -200,8 +241,7 @@ void FlatShellKernel::dk_curvature(double xi, double eta, Eigen::MatrixXd& B, do
   B.row(2) = Hx_y + Hy_x;
 }
 
-void FlatShellKernel::build_membrane() {
-  const double c_xi = n_ == 3 ? 1.0 / 3.0 : 0.0;
+void FlatShellKernel::add_membrane(Eigen::MatrixXd& K) const {
   Eigen::VectorXd N;
   Eigen::MatrixXd dN;
   double detJ = 0.0;
@@ -215,30 +255,9 @@ void FlatShellKernel::build_membrane() {
     }
     return B;
   };
-  shape(c_xi, c_xi, N, dN, detJ);
-  Bm0_ = compatible_B(dN);
-  const double G = data_.E / (2.0 * (1.0 + data_.nu));
-
   Eigen::MatrixXd Kuu = Eigen::MatrixXd::Zero(2 * n_, 2 * n_);
-  const bool incompatible = n_ == 4 && data_.extra_shapes;
+  const bool incompatible = n_modes_ > 0;
   Eigen::MatrixXd Kua = Eigen::MatrixXd::Zero(2 * n_, 4), Kaa = Eigen::MatrixXd::Zero(4, 4);
-  double detJ0 = 0.0;
-  Eigen::Matrix2d J0i = Eigen::Matrix2d::Identity();
-  if (incompatible) {
-    Eigen::VectorXd N0;
-    Eigen::MatrixXd dN0;
-    shape(0.0, 0.0, N0, dN0, detJ0);
-    // J0⁻¹ from the bilinear map at the centre (Taylor, Beresford & Wilson 1976).
-    Eigen::Matrix2d J0 = Eigen::Matrix2d::Zero();
-    for (int i = 0; i < 4; ++i) {
-      J0(0, 0) += 0.25 * kXiQ[i] * xy_[static_cast<std::size_t>(i)].x();
-      J0(0, 1) += 0.25 * kXiQ[i] * xy_[static_cast<std::size_t>(i)].y();
-      J0(1, 0) += 0.25 * kEtaQ[i] * xy_[static_cast<std::size_t>(i)].x();
-      J0(1, 1) += 0.25 * kEtaQ[i] * xy_[static_cast<std::size_t>(i)].y();
-    }
-    J0i = J0.inverse();
-  }
-  Eigen::MatrixXd Kd = Eigen::MatrixXd::Zero(3 * n_, 3 * n_);  // drilling: (u, v, θz) per node
   for (const auto& p : points()) {
     shape(p.xi, p.eta, N, dN, detJ);
     const double t = thickness_at(N);
@@ -249,14 +268,32 @@ void FlatShellKernel::build_membrane() {
     if (incompatible) {
       // Modified incompatible modes: derivatives with J0 and the factor detJ0/detJ so that
       // ∫ B_inc dA = 0 on any quad, i.e. the patch test is passed.
-      Eigen::Vector2d d1 = (detJ0 / detJ) * J0i * Eigen::Vector2d(-2.0 * p.xi, 0.0);
-      Eigen::Vector2d d2 = (detJ0 / detJ) * J0i * Eigen::Vector2d(0.0, -2.0 * p.eta);
+      Eigen::Vector2d d1 = (detJ0_ / detJ) * J0i_ * Eigen::Vector2d(-2.0 * p.xi, 0.0);
+      Eigen::Vector2d d2 = (detJ0_ / detJ) * J0i_ * Eigen::Vector2d(0.0, -2.0 * p.eta);
       Eigen::Matrix<double, 3, 4> Bi;
       Bi << d1.x(), d2.x(), 0.0, 0.0, 0.0, 0.0, d1.y(), d2.y(), d1.y(), d2.y(), d1.x(), d2.x();
       Kua += B.transpose() * D * Bi * wgt;
       Kaa += Bi.transpose() * D * Bi * wgt;
     }
-    // Hughes–Brezzi drilling penalty on r = θz − ½(∂v/∂x − ∂u/∂y).
+  }
+  if (incompatible) Kuu -= Kua * Kaa.ldlt().solve(Kua.transpose());
+  for (int a = 0; a < n_; ++a)
+    for (int b = 0; b < n_; ++b)
+      for (int i = 0; i < 2; ++i)
+        for (int j = 0; j < 2; ++j) K(6 * a + i, 6 * b + j) += Kuu(2 * a + i, 2 * b + j);
+}
+
+void FlatShellKernel::add_drilling(Eigen::MatrixXd& K) const {
+  // Hughes–Brezzi drilling penalty on r = θz − ½(∂v/∂x − ∂u/∂y), on (u, v, θz) per node.
+  const double G = data_.E / (2.0 * (1.0 + data_.nu));
+  Eigen::VectorXd N;
+  Eigen::MatrixXd dN;
+  double detJ = 0.0;
+  Eigen::MatrixXd Kd = Eigen::MatrixXd::Zero(3 * n_, 3 * n_);
+  for (const auto& p : points()) {
+    shape(p.xi, p.eta, N, dN, detJ);
+    const double t = thickness_at(N);
+    const double wgt = detJ * p.w;
     Eigen::RowVectorXd r = Eigen::RowVectorXd::Zero(3 * n_);
     for (int a = 0; a < n_; ++a) {
       r(3 * a) = 0.5 * dN(1, a);
@@ -265,35 +302,16 @@ void FlatShellKernel::build_membrane() {
     }
     Kd += data_.drill_factor * G * t * r.transpose() * r * wgt;
   }
-  if (incompatible) Kuu -= Kua * Kaa.ldlt().solve(Kua.transpose());
-  n_modes_ = incompatible ? 4 : 0;
-  detJ0_ = detJ0;
-  J0i_ = J0i;
-  if (data_.membrane) {
-    for (int a = 0; a < n_; ++a)
-      for (int b = 0; b < n_; ++b)
-        for (int i = 0; i < 2; ++i)
-          for (int j = 0; j < 2; ++j) K_(6 * a + i, 6 * b + j) += Kuu(2 * a + i, 2 * b + j);
-  }
-  // The drilling term also stiffens θz when the membrane is switched off, so the element stays
-  // regular; it still vanishes for rigid in-plane rotations.
   const int map[3] = {0, 1, 5};
-  K_elastic_extra_.setZero(6 * n_, 6 * n_);
   for (int a = 0; a < n_; ++a)
     for (int b = 0; b < n_; ++b)
       for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j)
-          K_elastic_extra_(6 * a + map[i], 6 * b + map[j]) += Kd(3 * a + i, 3 * b + j);
-  K_ += K_elastic_extra_;
+        for (int j = 0; j < 3; ++j) K(6 * a + map[i], 6 * b + map[j]) += Kd(3 * a + i, 3 * b + j);
 }
 
-void FlatShellKernel::build_bending() {
+void FlatShellKernel::add_bending(Eigen::MatrixXd& K) const {
   Eigen::MatrixXd B;
   double detJ = 0.0;
-  const double c = n_ == 3 ? 1.0 / 3.0 : 0.0;
-  dk_curvature(c, c, B, detJ);
-  Bb0_ = B;
-  if (!data_.bending) return;
   Eigen::MatrixXd Kb = Eigen::MatrixXd::Zero(3 * n_, 3 * n_);
   Eigen::VectorXd N;
   Eigen::MatrixXd dN;
@@ -308,11 +326,11 @@ void FlatShellKernel::build_bending() {
   for (int a = 0; a < n_; ++a)
     for (int b = 0; b < n_; ++b)
       for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) K_(6 * a + 2 + i, 6 * b + 2 + j) += Kb(3 * a + i, 3 * b + j);
+        for (int j = 0; j < 3; ++j) K(6 * a + 2 + i, 6 * b + 2 + j) += Kb(3 * a + i, 3 * b + j);
 }
 
-void FlatShellKernel::build_mass() {
-  M_.setZero(6 * n_, 6 * n_);
+Eigen::MatrixXd FlatShellKernel::consistent_mass() const {
+  Eigen::MatrixXd M = Eigen::MatrixXd::Zero(6 * n_, 6 * n_);
   Eigen::VectorXd N;
   Eigen::MatrixXd dN;
   double detJ = 0.0;
@@ -325,11 +343,12 @@ void FlatShellKernel::build_mass() {
       for (int b = 0; b < n_; ++b) {
         const double nn = N(a) * N(b);
         for (int i = 0; i < 3; ++i) {
-          M_(6 * a + i, 6 * b + i) += m * nn;
-          M_(6 * a + 3 + i, 6 * b + 3 + i) += r * nn;
+          M(6 * a + i, 6 * b + i) += m * nn;
+          M(6 * a + 3 + i, 6 * b + 3 + i) += r * nn;
         }
       }
   }
+  return M;
 }
 
 Eigen::MatrixXd FlatShellKernel::lumped_mass() const {

@@ -60,11 +60,13 @@ class FlatShellKernel {
   /// ∫ (ρt + ADMSUA) dA: the translational mass of the facet.
   double total_mass() const { return total_mass_; }
 
-  /// Linear stiffness, 6n × 6n, local DOF order (precomputed).
-  const Eigen::MatrixXd& stiffness() const { return K_; }
+  /// Linear stiffness, 6n × 6n, local DOF order. Formed at each call (the kernel keeps no
+  /// 6n × 6n matrices: a linear model asks once per element and keeps the global products; a
+  /// co-rotational element keeps the one it reads at every iteration, shell4.h).
+  Eigen::MatrixXd stiffness() const;
   /// Consistent mass: (ρt + ADMSUA) ∫NᵀN on u, v, w with the bilinear/linear N, plus rotary
-  /// inertia ρt³/12 ∫NᵀN on θx, θy, θz unless rotary inertia is off.
-  const Eigen::MatrixXd& consistent_mass() const { return M_; }
+  /// inertia ρt³/12 ∫NᵀN on θx, θy, θz unless rotary inertia is off. Formed at each call.
+  Eigen::MatrixXd consistent_mass() const;
   /// Lumped mass: total_mass()/n on each translation, nothing on rotations.
   Eigen::MatrixXd lumped_mass() const;
 
@@ -108,9 +110,15 @@ class FlatShellKernel {
   void dk_curvature(double xi, double eta, Eigen::MatrixXd& B, double& detJ) const;
   double thickness_at(const Eigen::VectorXd& N) const;
   std::vector<Point> points() const;
-  void build_membrane();
-  void build_bending();
-  void build_mass();
+  /// Centroidal strain operators and the incompatible modes' centre Jacobian.
+  void set_centroid_data();
+  /// The parts of the linear stiffness, added into K (6n × 6n, local DOF order).
+  void add_membrane(Eigen::MatrixXd& K) const;
+  void add_drilling(Eigen::MatrixXd& K) const;
+  void add_bending(Eigen::MatrixXd& K) const;
+  void add_foundation(Eigen::MatrixXd& K) const;
+  /// Drilling penalty and foundation (6n × 6n): the parts that stay elastic under plasticity.
+  Eigen::MatrixXd elastic_extra() const;
   /// Membrane B (3 × (2n + 4): compatible, then the 4 incompatible modes of a quad) at a point.
   Eigen::MatrixXd membrane_b(const Point& p) const;
   /// One pass over the points at membrane (2n + modes) and bending (3n) coordinates.
@@ -127,9 +135,7 @@ class FlatShellKernel {
   double total_mass_ = 0.0;
   // DK side coefficients a, b, c, d, e per side k (corner k → corner k+1).
   std::vector<std::array<double, 5>> side_;
-  Eigen::MatrixXd K_, M_;
-  Eigen::MatrixXd K_elastic_extra_;  // drilling penalty + foundation (6n × 6n)
-  int n_modes_ = 0;                  // incompatible membrane modes (4 for a quad, else 0)
+  int n_modes_ = 0;  // incompatible membrane modes (4 for a quad, else 0)
   double detJ0_ = 0.0;
   Eigen::Matrix2d J0i_ = Eigen::Matrix2d::Identity();
   Eigen::MatrixXd Bm0_;  // centroidal membrane strain of (u, v) of all nodes, 3 × 2n

@@ -35,7 +35,7 @@ Eigen::MatrixXd FlatShellKernel::membrane_b(const Point& p) const {
     B(2, 2 * a + 1) = dN(0, a);
   }
   if (n_modes_ > 0) {
-    // The modified incompatible modes of build_membrane (Taylor, Beresford & Wilson 1976).
+    // The modified incompatible modes of add_membrane (Taylor, Beresford & Wilson 1976).
     const Eigen::Vector2d d1 = (detJ0_ / detJ) * J0i_ * Eigen::Vector2d(-2.0 * p.xi, 0.0);
     const Eigen::Vector2d d2 = (detJ0_ / detJ) * J0i_ * Eigen::Vector2d(0.0, -2.0 * p.eta);
     const int c = 2 * n_;
@@ -175,8 +175,8 @@ void FlatShellKernel::plastic_response(const J2Plasticity& law,
     dof[static_cast<std::size_t>(2 * a + 1)] = 6 * a + 1;
     for (int i = 0; i < 3; ++i) dof[static_cast<std::size_t>(nc + 3 * a + i)] = 6 * a + 2 + i;
   }
-  K = K_elastic_extra_;
-  f = K_elastic_extra_ * d;
+  K = elastic_extra();
+  f = K * d;
   for (int i = 0; i < nr; ++i) {
     f(dof[static_cast<std::size_t>(i)]) += fr(i);
     for (int j = 0; j < nr; ++j)

@@ -482,6 +482,38 @@ TEST(Shell4, InternalForceAloneIsBitwiseTheForceOfTheTangent) {
   }
 }
 
+TEST(Shell4, KeptCorotationalStiffnessGivesTheSameAnswersAsFormedOnDemand) {
+  // Built for large deflection a shell keeps K̄ = Wᵀ K_l W; otherwise it forms K̄ (and K_l, M_l)
+  // at each call (issue 11: memory). Both must give the same tangent, force and mass bitwise.
+  ElementContext small, large;
+  large.large_deflection = true;
+  for (const CorotationalCase& c : corotational_cases()) {
+    Shell4Data d;
+    d.node_ids = c.x.size() == 3 ? std::vector<int>{1, 2, 3} : std::vector<int>{1, 2, 3, 4};
+    d.positions = c.x;
+    d.kernel = plate_data(2.0e5, 0.3, 0.05);
+    const Shell4 formed(1, d, SourceLocation{"test", 1, "E"});
+    d.keep_corotational_stiffness = true;
+    const Shell4 kept(1, d, SourceLocation{"test", 1, "E"});
+    const Eigen::VectorXd u = corotational_state(c);
+    for (const ElementContext& ctx : {small, large}) {
+      Eigen::MatrixXd K_formed, K_kept, M_formed, M_kept;
+      Eigen::VectorXd f_formed, f_kept, g_formed, g_kept;
+      formed.tangent(ctx, u, K_formed, f_formed);
+      kept.tangent(ctx, u, K_kept, f_kept);
+      formed.internal_force(ctx, u, g_formed);
+      kept.internal_force(ctx, u, g_kept);
+      formed.mass(ctx, M_formed);
+      kept.mass(ctx, M_kept);
+      EXPECT_EQ(K_formed, K_kept) << c.name;
+      EXPECT_EQ(f_formed, f_kept) << c.name;
+      EXPECT_EQ(g_formed, g_kept) << c.name;
+      EXPECT_EQ(M_formed, M_kept) << c.name;
+      EXPECT_GT(K_kept.norm(), 0.0) << c.name;
+    }
+  }
+}
+
 TEST(Shell4, TriangleFastPathEqualsTheGeneralCorotationalPath) {
   // CorotationalTriangle works in the facet's frame with the triangle's closed forms; it must
   // give the element-independent path's tangent and force to round-off, at rigid rotations up
