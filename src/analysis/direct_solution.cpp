@@ -80,7 +80,6 @@ void DirectSolution::renumber(std::set<DofKey> wanted, bool keep_dynamics) {
     if (const auto* check = dynamic_cast<const PenetrationCheck*>(structure_.elements()[e].get());
         check != nullptr && check->checks_penetration())
       penetration_checks_.emplace_back(e, check);
-  mass_all_ = assembler_->mass_matrix();
   frame_load_ = FrameAccelerationLoad(structure_.elements(), *dofs_, ctx_);
   // Keep the work of the previous numbering in the counts.
   if (solver_) retired_ += solver_->counters();
@@ -95,8 +94,9 @@ void DirectSolution::renumber(std::set<DofKey> wanted, bool keep_dynamics) {
   condensation_.reset();
   contact_frequency_.reset();
   if (!status_loop_->empty())
-    contact_frequency_ =
-        std::make_unique<ContactFrequencyEstimator>(structure_.elements(), *dofs_, mass_all_);
+    contact_frequency_ = std::make_unique<ContactFrequencyEstimator>(
+        structure_.elements(), *dofs_,
+        assembler_->inertia_force(VectorXd::Ones(dofs_->n_active())));
   if (transient_ && settings_.condense && assembler_->n_nonlinear_elements() > 0) {
     if (const auto why = LinearPartCondensation::refusal(*assembler_)) {
       condensation_note_ = "condensed transient not used: " + *why;
@@ -178,19 +178,18 @@ void DirectSolution::factorize(const IntegrationCoefficients& coeff, const Vecto
 
 namespace {
 
-/// M a = r on the DOFs that carry mass. A large block goes to the run's sparse solver (CHOLMOD
-/// supernodal, or MUMPS): Eigen's simplicial LDLᵀ on a 10⁵-DOF consistent mass took as long as
-/// the first factorization of the effective matrix (issue 11). A small one keeps the simplicial
-/// LDLᵀ (cheaper than a supernodal analysis, and its a0 bit for bit what it was), as does a block
+/// M a = r on the DOFs that carry mass (`mm`: the lower triangle). A large block goes to the
+/// run's sparse solver (CHOLMOD supernodal, or MUMPS): Eigen's simplicial LDLᵀ on a 10⁵-DOF
+/// consistent mass took as long as the first factorization of the effective matrix (issue 11).
+/// A small one keeps the simplicial LDLᵀ (cheaper than a supernodal analysis), as does a block
 /// the Cholesky factorization finds singular (LDLᵀ still solves a semidefinite one).
 VectorXd solve_mass_block(const SparseMatrix& mm, const VectorXd& r) {
   constexpr int kSupernodalRows = 4096;
   if (mm.rows() > kSupernodalRows) {
-    const SparseMatrix lower = mm.triangularView<Eigen::Lower>();
     const auto solver = make_linear_solver(static_cast<int>(mm.rows()));
     try {
-      solver->analyze_pattern(lower);
-      solver->factorize(lower);
+      solver->analyze_pattern(mm);
+      solver->factorize(mm);
       return solver->solve(r);
     } catch (const SingularMatrixError&) {
     }
@@ -229,23 +228,15 @@ void DirectSolution::start_dynamics(const LoadPoint& at, double h) {
   const VectorXd f0 = external_force(at);
   const VectorXd rhs = f0 - f_int - f_damp;
   std::vector<int> massive;
+  const VectorXd mass_diagonal = assembler_->mass_diagonal();
   for (int i = 0; i < nf; ++i)
-    if (mass_all_.coeff(i, i) > 0.0) massive.push_back(i);
+    if (mass_diagonal(i) > 0.0) massive.push_back(i);
   a_.setZero();
   if (!massive.empty()) {
     const int nm = static_cast<int>(massive.size());
     std::vector<int> position(static_cast<std::size_t>(nf), -1);
     for (int k = 0; k < nm; ++k) position[static_cast<std::size_t>(massive[k])] = k;
-    std::vector<Eigen::Triplet<double, int>> triplets;
-    for (int col = 0; col < nf; ++col) {
-      if (position[static_cast<std::size_t>(col)] < 0) continue;
-      for (SparseMatrix::InnerIterator it(mass_all_, col); it; ++it)
-        if (it.row() < nf && position[static_cast<std::size_t>(it.row())] >= 0)
-          triplets.emplace_back(position[static_cast<std::size_t>(it.row())],
-                                position[static_cast<std::size_t>(col)], it.value());
-    }
-    SparseMatrix mm(nm, nm);
-    mm.setFromTriplets(triplets.begin(), triplets.end());
+    const SparseMatrix mm = assembler_->mass_block_lower(position, nm);
     VectorXd r(nm);
     for (int k = 0; k < nm; ++k) r(k) = rhs(massive[k]);
     const VectorXd am = solve_mass_block(mm, r);
@@ -294,7 +285,7 @@ void DirectSolution::finish() {
                                              full_fallback_steps_, condensed_tangent_note())
                                : condensation_note_);
   if (transient_) {
-    const double kinetic = 0.5 * v_.dot(mass_all_ * v_);
+    const double kinetic = kinetic_energy();
     stats_.notes.push_back(energy_->summary(time_, kinetic));
     if (const auto warning = energy_->balance_warning(kinetic)) Log::warn("{}", *warning);
   }
@@ -738,7 +729,7 @@ void DirectSolution::store(double time, int load_step, int substep, bool dynamic
   if (selection.any_element_item())
     point.element_results = structure_.element_results(*assembler_, u_, v_);
   apply_output_selection(selection, writer_.node_ids(), point);
-  point.energy = energy_->columns(0.5 * v_.dot(mass_all_ * v_));
+  point.energy = energy_->columns(kinetic_energy());
   point.frame_acceleration = acel_;
   writer_.append(point);
   ++stats_.n_stored;

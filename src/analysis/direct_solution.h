@@ -122,7 +122,8 @@ class DirectSolution : private NonlinearProblem {
   std::unique_ptr<LinearSolver> solver_;
   SolverCounters retired_;  // counts of solvers replaced when the constraint set changed
   std::set<DofKey> constrained_;
-  SparseMatrix mass_all_;
+  /// ½ vᵀ M v from the assembler's global products (no copy of M is kept).
+  double kinetic_energy() const { return 0.5 * v_.dot(assembler_->inertia_force(v_)); }
   FrameAccelerationLoad frame_load_;  // -M r a, assembled once per DOF numbering
   SparseMatrix effective_;
   std::unique_ptr<TimeIntegrator> integrator_;

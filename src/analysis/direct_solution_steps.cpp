@@ -70,7 +70,7 @@ void DirectSolution::solve_load_step(const LoadStep& given) {
           prescribed_displacements(*dofs_, at0).tail(dofs_->n_constrained());
       if (dynamic) start_dynamics(at0, h0);
       // Initial velocities (IC) bring kinetic energy that the balance must count as put in.
-      energy_->set_initial_kinetic(0.5 * v_.dot(mass_all_ * v_));
+      energy_->set_initial_kinetic(kinetic_energy());
       reactions_ = VectorXd::Zero(dofs_->n_active());
       acel_ = frame_acceleration(at0);
       store(t_end_, 0, 0, dynamic, output_selection(step.output, 0, t.n_substeps));

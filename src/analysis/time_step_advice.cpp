@@ -12,7 +12,7 @@ double ContactFrequency::period() const {
 
 ContactFrequencyEstimator::ContactFrequencyEstimator(
     const std::vector<std::unique_ptr<Element>>& elements, const DofMap& dofs,
-    const SparseMatrix& mass_all)
+    const VectorXd& mass_row_sums)
     : elements_(elements) {
   // Bodies: nodes joined through elements without a status (union-find on node ids).
   std::map<int, int> parent;
@@ -28,10 +28,9 @@ ContactFrequencyEstimator::ContactFrequencyEstimator(
   }
   // Body mass per direction: row sums of M (exact for lumped, total mass for consistent).
   std::map<std::pair<int, int>, double> body_mass;
-  const VectorXd row_sum = mass_all * VectorXd::Ones(dofs.n_active());
   for (int i = 0; i < dofs.n_active(); ++i) {
     const DofKey& key = dofs.key(i);
-    body_mass[{find(key.node), static_cast<int>(key.dof)}] += row_sum(i);
+    body_mass[{find(key.node), static_cast<int>(key.dof)}] += mass_row_sums(i);
   }
   for (std::size_t e = 0; e < elements.size(); ++e) {
     if (!elements[e]->has_status()) continue;
@@ -57,12 +56,6 @@ std::optional<ContactFrequency> ContactFrequencyEstimator::highest(bool closed_o
       highest = ContactFrequency{omega, elements_[m.element]->id()};
   }
   return highest;
-}
-
-std::optional<ContactFrequency> highest_contact_frequency(
-    const std::vector<std::unique_ptr<Element>>& elements, const DofMap& dofs,
-    const SparseMatrix& mass_all) {
-  return ContactFrequencyEstimator(elements, dofs, mass_all).highest(false);
 }
 
 }  // namespace impactfe

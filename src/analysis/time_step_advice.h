@@ -25,8 +25,9 @@ struct ContactFrequency {
 /// after every substep). `elements`, `dofs` outlive it.
 class ContactFrequencyEstimator {
  public:
+  /// `mass_row_sums`: M·1 over the active DOFs of `dofs` (Assembler::inertia_force of ones).
   ContactFrequencyEstimator(const std::vector<std::unique_ptr<Element>>& elements,
-                            const DofMap& dofs, const SparseMatrix& mass_all);
+                            const DofMap& dofs, const VectorXd& mass_row_sums);
   /// The highest contact frequency (`closed_only`: of the contacts not open now), or nullopt.
   std::optional<ContactFrequency> highest(bool closed_only) const;
 
@@ -38,11 +39,5 @@ class ContactFrequencyEstimator {
   };
   std::vector<Member> members_;  // the status elements
 };
-
-/// The highest contact frequency of the model, or nullopt when no element has a contact
-/// stiffness. `mass_all`: mass matrix over the active DOFs of `dofs`.
-std::optional<ContactFrequency> highest_contact_frequency(
-    const std::vector<std::unique_ptr<Element>>& elements, const DofMap& dofs,
-    const SparseMatrix& mass_all);
 
 }  // namespace impactfe

@@ -351,39 +351,46 @@ bool Assembler::element_damping(std::size_t e, const VectorXd& ue, const MatrixX
   return true;
 }
 
+template <class Visit>
+void Assembler::for_each_lower_product_entry(Visit&& visit) const {
+  // Symmetric storage keeps each row from its group's first row on: the stored (r, j) with
+  // r <= j is the lower entry (j, r), visited by rows r, i.e. column by column of the lower
+  // triangle (the mirrored entries inside a group's own block are skipped). Otherwise every
+  // entry is stored and the lower ones (r >= j) are visited row by row.
+  const bool symmetric = linear_products_.symmetric();
+  linear_products_.for_each_stored_entry([&](int r, int j, const double* v) {
+    if (symmetric ? r > j : r < j) return;
+    if (symmetric)
+      visit(j, r, v);
+    else
+      visit(r, j, v);
+  });
+}
+
 const std::vector<double>& Assembler::constant_effective(
     const IntegrationCoefficients& coeff) const {
   if (!constant_effective_.empty() && constant_coeff_.cK == coeff.cK &&
       constant_coeff_.cC == coeff.cC && constant_coeff_.cM == coeff.cM)
     return constant_effective_;
   // cK K_L + cC C_L + cM M from the global products (the element matrices are not kept), into
-  // the free-free lower pattern. Symmetric storage: the stored (r, j) with r <= j is the lower
-  // entry (j, r); a row's columns ascend, as do column r's rows in the pattern, so the slots are
-  // found by one merge per row. Otherwise the stored lower entries (r >= j) by binary search.
+  // the free-free lower pattern. Within a column the rows ascend, as in the pattern, so a slot
+  // is found by continuing the previous one's search; a new column starts a binary search.
   constant_effective_.assign(static_cast<std::size_t>(pattern_.nonZeros()), 0.0);
   const int nf = dofs_.n_free();
   const int* outer = pattern_.outerIndexPtr();
   const int* inner = pattern_.innerIndexPtr();
   const double factor[3] = {coeff.cK, coeff.cC, coeff.cM};
-  const bool symmetric = linear_products_.symmetric();
-  int merge_row = -1, at = 0;
-  linear_products_.for_each_stored_entry([&](int r, int j, const double* v) {
-    if (r >= nf || j >= nf) return;
-    int column = j, row = r;
-    if (symmetric) {
-      if (r > j) return;
-      column = r;
-      row = j;
-      if (merge_row != r) {
-        merge_row = r;
-        at = outer[r];
-      }
-      while (inner[at] < row) ++at;
+  int last_row = -1, last_column = -1, at = 0;
+  for_each_lower_product_entry([&](int row, int column, const double* v) {
+    if (row >= nf) return;  // column <= row: free too
+    if (column == last_column && row > last_row) {
+      while (at < outer[column + 1] && inner[at] < row) ++at;
     } else {
-      if (r < j) return;
       at = static_cast<int>(
           std::lower_bound(inner + outer[column], inner + outer[column + 1], row) - inner);
     }
+    last_row = row;
+    last_column = column;
     IMPACTFE_CHECK(at < outer[column + 1] && inner[at] == row,
                    "Assembler: a product entry outside the element pattern");
     constant_effective_[static_cast<std::size_t>(at)] +=
@@ -391,6 +398,32 @@ const std::vector<double>& Assembler::constant_effective(
   });
   constant_coeff_ = coeff;
   return constant_effective_;
+}
+
+VectorXd Assembler::mass_diagonal() const {
+  VectorXd d = VectorXd::Zero(dofs_.n_active());
+  for_each_lower_product_entry([&](int row, int column, const double* v) {
+    if (row == column) d(row) = v[2];
+  });
+  return d;
+}
+
+SparseMatrix Assembler::mass_block_lower(const std::vector<int>& position, int size) const {
+  const auto position_of = [&](int i) {
+    return static_cast<std::size_t>(i) < position.size() ? position[static_cast<std::size_t>(i)]
+                                                         : -1;
+  };
+  std::vector<Eigen::Triplet<double, int>> triplets;
+  for_each_lower_product_entry([&](int row, int column, const double* v) {
+    if (v[2] == 0.0) return;
+    const int pr = position_of(row), pc = position_of(column);
+    if (pr < 0 || pc < 0) return;
+    // Renumbering may turn an entry over the diagonal: keep it in the lower triangle.
+    triplets.emplace_back(std::max(pr, pc), std::min(pr, pc), v[2]);
+  });
+  SparseMatrix block(size, size);
+  block.setFromTriplets(triplets.begin(), triplets.end());
+  return block;
 }
 
 void Assembler::scatter_lower(std::size_t e, double a_factor, const MatrixXd& a, double b_factor,

@@ -82,6 +82,14 @@ class Assembler {
 
   /// M a over all active DOFs (the same product as Output::inertia_force).
   VectorXd inertia_force(const VectorXd& a) const;
+  /// The mass matrix's diagonal over all active DOFs (from the global products).
+  VectorXd mass_diagonal() const;
+  /// Lower triangle (column-compressed) of the mass matrix on the DOFs i with position[i] >= 0
+  /// (indices past the end of `position` count as -1), numbered by position (`size` of them),
+  /// from the global products. Exact zeros are left out: the products keep M on the union
+  /// pattern of K, C and M, and a consistent shell mass, which couples only like components,
+  /// then factors to a sixth of K's factor instead of all of it.
+  SparseMatrix mass_block_lower(const std::vector<int>& position, int size) const;
   /// Mass matrix over all active DOFs (full symmetric storage), for inertia forces M a and the
   /// frame-acceleration load -M r a.
   SparseMatrix mass_matrix() const;
@@ -118,6 +126,11 @@ class Assembler {
   mutable IntegrationCoefficients constant_coeff_{};
   /// Forms linear_products_ from the element matrices.
   void build_linear_force_matrices();
+  /// Calls visit(row, column, values) once for each entry of the global products' lower
+  /// triangle (row >= column; values: K, C, M there). With symmetric storage the entries come
+  /// column by column, rows ascending within a column.
+  template <class Visit>
+  void for_each_lower_product_entry(Visit&& visit) const;
   /// The force outputs after the tangent phase: the linear part from the stored global
   /// products, the nonlinear elements element by element.
   void add_forces(const VectorXd& u, const VectorXd& v, const VectorXd* a, const Output& out,

@@ -184,6 +184,47 @@ TEST(Assembler, EffectiveMatrixFromTheProductsEqualsTheElementSum) {
   EXPECT_EQ(MatrixXd(lower.triangularView<Eigen::StrictlyUpper>()).norm(), 0.0);
 }
 
+TEST(Assembler, MassDiagonalAndMassBlockFromTheProductsEqualTheElementSum) {
+  // The initial acceleration reads M from the global products (no copy of M is kept): its
+  // diagonal, and its lower triangle on the massive free DOFs, renumbered (here in reverse, so
+  // that entries turn over the diagonal), without the exact zeros of the union pattern.
+  const Model m = shell_plate_with_gap();
+  const auto elements = build(m);
+  std::set<DofKey> fixed;
+  for (int node : {1, 5, 9, 100, 101})
+    for (Dof d : {Dof::UX, Dof::UY, Dof::UZ, Dof::ROTX, Dof::ROTY, Dof::ROTZ})
+      fixed.insert({node, d});
+  const DofMap dofs(elements, fixed);
+  const Assembler assembler(elements, dofs, ElementContext{});
+  const MatrixXd mass = MatrixXd(assembler.mass_matrix());
+  const VectorXd diagonal = assembler.mass_diagonal();
+  ASSERT_EQ(diagonal.size(), dofs.n_active());
+  EXPECT_EQ(diagonal, mass.diagonal());
+  const int nf = dofs.n_free();
+  std::vector<int> position(static_cast<std::size_t>(nf), -1), massive;
+  for (int i = 0; i < nf; ++i)
+    if (diagonal(i) > 0.0) massive.push_back(i);
+  const int nm = static_cast<int>(massive.size());
+  ASSERT_GT(nm, 10);
+  for (int k = 0; k < nm; ++k) position[static_cast<std::size_t>(massive[k])] = nm - 1 - k;
+  const SparseMatrix block = assembler.mass_block_lower(position, nm);
+  ASSERT_EQ(block.rows(), nm);
+  for (int c = 0; c < block.outerSize(); ++c)
+    for (SparseMatrix::InnerIterator it(block, c); it; ++it) {
+      EXPECT_GE(it.row(), it.col());
+      EXPECT_NE(it.value(), 0.0);
+    }
+  const MatrixXd dense = MatrixXd(block);
+  const double scale = mass.cwiseAbs().maxCoeff();
+  for (int a = 0; a < nm; ++a)
+    for (int b = 0; b < nm; ++b) {
+      const int pa = nm - 1 - a, pb = nm - 1 - b;
+      const double expected = pa >= pb ? mass(massive[a], massive[b]) : 0.0;
+      EXPECT_NEAR(dense(pa, pb), expected, 1e-14 * scale)
+          << describe(dofs.key(massive[a])) << " / " << describe(dofs.key(massive[b]));
+    }
+}
+
 TEST(Assembler, PatternIsBuiltOnceAndReused) {
   const Model m = truss();
   const auto elements = build(m);
