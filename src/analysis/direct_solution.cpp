@@ -85,10 +85,11 @@ void DirectSolution::renumber(std::set<DofKey> wanted, bool keep_dynamics) {
   if (solver_) retired_ += solver_->counters();
   if (condensation_) retired_ += condensation_->counters();
   solver_ = make_linear_solver(dofs_->n_free());
-  effective_ = assembler_->pattern();
+  // Formed on the first full assembly (a condensed transient may never need it).
+  effective_ = SparseMatrix();
   // A solver that reads only some columns on this rank (MUMPS on several ranks): the assembler
   // then evaluates only the elements at them (docs/scaling.md, "Element assembly split by rank").
-  assembler_->distribute(solver_->column_owners(effective_));
+  assembler_->distribute(solver_->column_owners(assembler_->pattern()));
   factor_valid_ = false;
   stats_.n_dofs = dofs_->n_free();
   condensation_.reset();

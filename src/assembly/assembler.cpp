@@ -372,10 +372,16 @@ const std::vector<double>& Assembler::constant_effective(
   if (!constant_effective_.empty() && constant_coeff_.cK == coeff.cK &&
       constant_coeff_.cC == coeff.cC && constant_coeff_.cM == coeff.cM)
     return constant_effective_;
+  constant_effective_.assign(static_cast<std::size_t>(pattern_.nonZeros()), 0.0);
+  add_constant_effective(coeff, constant_effective_.data());
+  constant_coeff_ = coeff;
+  return constant_effective_;
+}
+
+void Assembler::add_constant_effective(const IntegrationCoefficients& coeff, double* values) const {
   // cK K_L + cC C_L + cM M from the global products (the element matrices are not kept), into
   // the free-free lower pattern. Within a column the rows ascend, as in the pattern, so a slot
   // is found by continuing the previous one's search; a new column starts a binary search.
-  constant_effective_.assign(static_cast<std::size_t>(pattern_.nonZeros()), 0.0);
   const int nf = dofs_.n_free();
   const int* outer = pattern_.outerIndexPtr();
   const int* inner = pattern_.innerIndexPtr();
@@ -393,11 +399,8 @@ const std::vector<double>& Assembler::constant_effective(
     last_column = column;
     IMPACTFE_CHECK(at < outer[column + 1] && inner[at] == row,
                    "Assembler: a product entry outside the element pattern");
-    constant_effective_[static_cast<std::size_t>(at)] +=
-        factor[0] * v[0] + factor[1] * v[1] + factor[2] * v[2];
+    values[at] += factor[0] * v[0] + factor[1] * v[1] + factor[2] * v[2];
   });
-  constant_coeff_ = coeff;
-  return constant_effective_;
 }
 
 VectorXd Assembler::mass_diagonal() const {
@@ -454,9 +457,11 @@ std::vector<int> Assembler::nonlinear_free_dofs() const {
 
 void Assembler::assemble_linear_part(const IntegrationCoefficients& coeff,
                                      SparseMatrix& effective) const {
+  // Not through the cache of constant_effective: the condensed transient factors this once per
+  // time step size and would only keep a second copy of its values.
   if (effective.nonZeros() != pattern_.nonZeros()) effective = pattern_;
-  const std::vector<double>& constant = constant_effective(coeff);
-  std::copy(constant.begin(), constant.end(), effective.valuePtr());
+  std::fill(effective.valuePtr(), effective.valuePtr() + effective.nonZeros(), 0.0);
+  add_constant_effective(coeff, effective.valuePtr());
 }
 
 void Assembler::assemble_nonlinear_part(const IntegrationCoefficients& coeff, double w,

@@ -122,6 +122,8 @@ class Assembler {
   /// elements' cK K + cC C and every element's cM M, formed once per coefficient set (a
   /// Newton iteration then adds only the nonlinear elements' tangents).
   const std::vector<double>& constant_effective(const IntegrationCoefficients& coeff) const;
+  /// values += that constant part (on the pattern's value slots), from the global products.
+  void add_constant_effective(const IntegrationCoefficients& coeff, double* values) const;
   mutable std::vector<double> constant_effective_;
   mutable IntegrationCoefficients constant_coeff_{};
   /// Forms linear_products_ from the element matrices.
