@@ -127,20 +127,28 @@ Brick8::Brick8(int id, const std::array<int, 8>& nodes, const std::array<Vec3, 8
       mean_dilatation_.segment<3>(3 * a) +=
           (gp.dv / volume_) * gp.grad.col(a).head<3>().transpose();
 
-  // Small-strain stiffness (q = 0 in the total-Lagrangian sum), condensed once.
-  mode_recovery_.setZero();
-  if (extra_shapes_) {
-    Eigen::Matrix<double, 3 * kFunctions, 3 * kFunctions> kfull;
-    Eigen::Matrix<double, 3 * kFunctions, 1> ffull;
-    tl_sum<kFunctions>(Eigen::Matrix<double, 3 * kFunctions, 1>::Zero(), &kfull, ffull);
-    const Eigen::Matrix<double, 9, 9> kaa = kfull.bottomRightCorner<9, 9>();
-    mode_recovery_ = -kaa.ldlt().solve(kfull.bottomLeftCorner<9, 24>());
-    k_linear_ = kfull.topLeftCorner<24, 24>() + kfull.topRightCorner<24, 9>() * mode_recovery_;
-    k_linear_ = 0.5 * (k_linear_ + k_linear_.transpose()).eval();
-  } else {
+  small_strain_stiffness(&mode_recovery_);
+}
+
+Eigen::Matrix<double, 24, 24> Brick8::small_strain_stiffness(
+    Eigen::Matrix<double, 9, 24>* recovery) const {
+  // q = 0 in the total-Lagrangian sum; with extra shapes the bubble amplitudes condensed out
+  // (static condensation, Wilson et al. 1973): K = K_cc − K_ca K_aa⁻¹ K_ac.
+  Eigen::Matrix<double, 24, 24> k;
+  if (!extra_shapes_) {
     Eigen::Matrix<double, 24, 1> ffull;
-    tl_sum<8>(Eigen::Matrix<double, 24, 1>::Zero(), &k_linear_, ffull);
+    tl_sum<8>(Eigen::Matrix<double, 24, 1>::Zero(), &k, ffull);
+    if (recovery) recovery->setZero();
+    return k;
   }
+  Eigen::Matrix<double, 3 * kFunctions, 3 * kFunctions> kfull;
+  Eigen::Matrix<double, 3 * kFunctions, 1> ffull;
+  tl_sum<kFunctions>(Eigen::Matrix<double, 3 * kFunctions, 1>::Zero(), &kfull, ffull);
+  const Eigen::Matrix<double, 9, 9> kaa = kfull.bottomRightCorner<9, 9>();
+  const Eigen::Matrix<double, 9, 24> modes = -kaa.ldlt().solve(kfull.bottomLeftCorner<9, 24>());
+  if (recovery) *recovery = modes;
+  k = kfull.topLeftCorner<24, 24>() + kfull.topRightCorner<24, 9>() * modes;
+  return 0.5 * (k + k.transpose());
 }
 
 Eigen::Matrix<double, 24, 1> Brick8::to_corners(const Eigen::VectorXd& u) const {
@@ -237,8 +245,9 @@ void Brick8::tl_sum(const Eigen::Matrix<double, 3 * NF, 1>& q,
 
 void Brick8::tangent_linear(const ElementContext& ctx, const Eigen::Matrix<double, 24, 1>& uc,
                             Eigen::MatrixXd& kc, Eigen::VectorXd& fc) const {
-  kc = k_linear_;
-  fc = k_linear_ * uc;
+  const Eigen::Matrix<double, 24, 24> k = small_strain_stiffness(nullptr);
+  kc = k;
+  fc = k * uc;
   if (!ctx.stress_stiffening) return;
   // Stress stiffness with the small-strain stress of u (standard functions only).
   const Eigen::Matrix<double, 9, 1> alpha = mode_recovery_ * uc;
