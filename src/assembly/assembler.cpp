@@ -61,10 +61,14 @@ Assembler::Assembler(const std::vector<std::unique_ptr<Element>>& elements, cons
   build_linear_force_matrices();
 }
 
-void Assembler::linear_element_matrices(std::size_t e, MatrixXd& k, MatrixXd& m) const {
+void Assembler::linear_element_stiffness(std::size_t e, MatrixXd& k) const {
   const VectorXd zero = VectorXd::Zero(elements_[e]->n_dofs());
   VectorXd f;
   elements_[e]->tangent(ctx_, zero, k, f);
+}
+
+void Assembler::linear_element_matrices(std::size_t e, MatrixXd& k, MatrixXd& m) const {
+  linear_element_stiffness(e, k);
   elements_[e]->mass(ctx_, m);
 }
 
@@ -518,7 +522,7 @@ SparseMatrix Assembler::full_matrix(Which which, const VectorXd& u) const {
         break;
       case Which::Stiffness:
         if (is_linear_[e]) {
-          linear_element_matrices(e, m, mass);
+          linear_element_stiffness(e, m);
         } else {
           gather(e, u, ue);
           elements_[e]->tangent(ctx_, ue, m, fe);

@@ -113,7 +113,8 @@ class Assembler {
   /// M_e = m); false when none.
   bool element_damping(std::size_t e, const VectorXd& ue, const MatrixXd& k, const MatrixXd& m,
                        MatrixXd& c) const;
-  /// A linear element's stiffness (at u = 0) and mass, evaluated (they are not stored).
+  /// A linear element's stiffness (at u = 0), and its mass, evaluated (they are not stored).
+  void linear_element_stiffness(std::size_t e, MatrixXd& k) const;
   void linear_element_matrices(std::size_t e, MatrixXd& k, MatrixXd& m) const;
   /// values += the lower triangle of a_factor·a (+ b_factor·b when b is given), element e.
   void scatter_lower(std::size_t e, double a_factor, const MatrixXd& a, double b_factor,
