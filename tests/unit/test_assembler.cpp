@@ -146,6 +146,15 @@ Model shell_plate_with_gap() {
   return m;
 }
 
+/// The plate's clamped edge x = 0 and the ground nodes, every DOF.
+std::set<DofKey> shell_plate_supports() {
+  std::set<DofKey> fixed;
+  for (int node : {1, 5, 9, 100, 101})
+    for (Dof d : {Dof::UX, Dof::UY, Dof::UZ, Dof::ROTX, Dof::ROTY, Dof::ROTZ})
+      fixed.insert({node, d});
+  return fixed;
+}
+
 TEST(Assembler, EffectiveMatrixFromTheProductsEqualsTheElementSum) {
   // The linear elements' K, C and M are kept only as global products; the constant part of
   // every effective matrix is formed from them. It must equal the element-by-element sum
@@ -153,11 +162,7 @@ TEST(Assembler, EffectiveMatrixFromTheProductsEqualsTheElementSum) {
   // a damper, constrained DOFs and a nonlinear (closed) gap.
   const Model m = shell_plate_with_gap();
   const auto elements = build(m);
-  std::set<DofKey> fixed;
-  for (int node : {1, 5, 9, 100, 101})
-    for (Dof d : {Dof::UX, Dof::UY, Dof::UZ, Dof::ROTX, Dof::ROTY, Dof::ROTZ})
-      fixed.insert({node, d});
-  const DofMap dofs(elements, fixed);
+  const DofMap dofs(elements, shell_plate_supports());
   const Assembler assembler(elements, dofs, ElementContext{}, 0.3, 2e-4);
   ASSERT_EQ(assembler.n_nonlinear_elements(), 1);
   const IntegrationCoefficients coeff{1.0, 2.0e3, 4.0e6};
@@ -190,11 +195,7 @@ TEST(Assembler, MassDiagonalAndMassBlockFromTheProductsEqualTheElementSum) {
   // that entries turn over the diagonal), without the exact zeros of the union pattern.
   const Model m = shell_plate_with_gap();
   const auto elements = build(m);
-  std::set<DofKey> fixed;
-  for (int node : {1, 5, 9, 100, 101})
-    for (Dof d : {Dof::UX, Dof::UY, Dof::UZ, Dof::ROTX, Dof::ROTY, Dof::ROTZ})
-      fixed.insert({node, d});
-  const DofMap dofs(elements, fixed);
+  const DofMap dofs(elements, shell_plate_supports());
   const Assembler assembler(elements, dofs, ElementContext{});
   const MatrixXd mass = MatrixXd(assembler.mass_matrix());
   const VectorXd diagonal = assembler.mass_diagonal();
