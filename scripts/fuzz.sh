@@ -35,5 +35,7 @@ export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 export LSAN_OPTIONS="suppressions=$(pwd)/scripts/lsan-suppressions.txt"
 # shellcheck disable=SC2086
-"$build/tests/fuzz/fuzz_deck" "${limits[@]}" ${FUZZ_ARGS:-} "$build/fuzz-corpus" "$build/fuzz-seeds"
+# tests/fuzz/regressions/ holds the inputs past findings came from (each must now pass in time).
+"$build/tests/fuzz/fuzz_deck" "${limits[@]}" ${FUZZ_ARGS:-} "$build/fuzz-corpus" "$build/fuzz-seeds" \
+  "$(pwd)/tests/fuzz/regressions"
 echo "fuzz: ok (no crash, no timeout)"
