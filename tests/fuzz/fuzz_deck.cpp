@@ -34,7 +34,7 @@ using namespace impactfe;
 
 namespace {
 
-constexpr std::size_t kMaxInput = 16384;      // bytes of deck text
+constexpr std::size_t kMaxInput = 16384;  // bytes of deck text
 // Model size limits of the read. Commands that pass over the whole model cost time in proportion
 // to it: with 20 000, nine SAVEs of 14 400 meshed shells took 2 s under the sanitizers
 // (tests/fuzz/regressions/, which scripts/fuzz.sh runs first). Reader bugs show on small models.
