@@ -32,6 +32,22 @@ void shape(const double* xi, Eigen::Matrix<double, 8, 1>& n, Eigen::Matrix<doubl
   }
 }
 
+/// The trilinear functions at the 2x2x2 Gauss points ξ_p = ξ_corner p / √3: the same for every
+/// brick, so not kept per element.
+const std::array<Eigen::Matrix<double, 8, 1>, 8>& gauss_shape() {
+  static const auto table = [] {
+    std::array<Eigen::Matrix<double, 8, 1>, 8> n;
+    Eigen::Matrix<double, 3, 8> dn;
+    const double g = 1.0 / std::sqrt(3.0);
+    for (int p = 0; p < 8; ++p) {
+      const double xi[3] = {g * kCornerXi[p][0], g * kCornerXi[p][1], g * kCornerXi[p][2]};
+      shape(xi, n[static_cast<std::size_t>(p)], dn);
+    }
+    return n;
+  }();
+  return table;
+}
+
 /// Jacobian J(i, j) = ∂x_j/∂ξ_i (Bathe's convention: ∂/∂x = J⁻¹ ∂/∂ξ).
 Eigen::Matrix3d jacobian(const Eigen::Matrix<double, 3, 8>& dn, const std::array<Vec3, 8>& x) {
   Eigen::Matrix3d j = Eigen::Matrix3d::Zero();
@@ -49,7 +65,7 @@ Eigen::Matrix3d voigt_to_tensor(const Vector6d& s) {
 
 Brick8::Brick8(int id, const std::array<int, 8>& nodes, const std::array<Vec3, 8>& x,
                const IsotropicElasticity& material, bool extra_shapes, const SourceLocation& where,
-               std::optional<J2Plasticity> plasticity)
+               std::optional<J2Plasticity> plasticity, bool large_deflection)
     : Element(id), nodes_(nodes), x_(x), plasticity_(std::move(plasticity)) {
   // Distinct nodes in order of first appearance; coincident corners share DOFs.
   std::vector<int> unique;
@@ -108,7 +124,6 @@ Brick8::Brick8(int id, const std::array<int, 8>& nodes, const std::array<Vec3, 8
                                           "and coincident nodes)",
                                           id, det, p + 1));
     GaussPoint& gp = gauss_[p];
-    gp.n = n;
     gp.dv = det;  // Gauss weights are 1 for the 2-point rule
     gp.grad.setZero();
     gp.grad.leftCols<8>() = j.inverse() * dn;
@@ -127,7 +142,15 @@ Brick8::Brick8(int id, const std::array<int, 8>& nodes, const std::array<Vec3, 8
       mean_dilatation_.segment<3>(3 * a) +=
           (gp.dv / volume_) * gp.grad.col(a).head<3>().transpose();
 
-  small_strain_stiffness(&mode_recovery_);
+  if (plasticity_) committed_.resize(kGauss);
+  if (extra_shapes_ && (plasticity_ || large_deflection)) mode_recovery_ = mode_recovery();
+}
+
+Eigen::Matrix<double, 9, 24> Brick8::mode_recovery() const {
+  if (mode_recovery_.size() != 0) return mode_recovery_;
+  Eigen::Matrix<double, 9, 24> r;
+  small_strain_stiffness(&r);
+  return r;
 }
 
 Eigen::Matrix<double, 24, 24> Brick8::small_strain_stiffness(
@@ -245,12 +268,14 @@ void Brick8::tl_sum(const Eigen::Matrix<double, 3 * NF, 1>& q,
 
 void Brick8::tangent_linear(const ElementContext& ctx, const Eigen::Matrix<double, 24, 1>& uc,
                             Eigen::MatrixXd& kc, Eigen::VectorXd& fc) const {
-  const Eigen::Matrix<double, 24, 24> k = small_strain_stiffness(nullptr);
+  Eigen::Matrix<double, 9, 24> recovery;
+  const Eigen::Matrix<double, 24, 24> k =
+      small_strain_stiffness(ctx.stress_stiffening ? &recovery : nullptr);
   kc = k;
   fc = k * uc;
   if (!ctx.stress_stiffening) return;
   // Stress stiffness with the small-strain stress of u (standard functions only).
-  const Eigen::Matrix<double, 9, 1> alpha = mode_recovery_ * uc;
+  const Eigen::Matrix<double, 9, 1> alpha = recovery * uc;
   Eigen::Matrix<double, 24, 24> kg = Eigen::Matrix<double, 24, 24>::Zero();
   for (const GaussPoint& gp : gauss_) {
     Eigen::Matrix3d h = Eigen::Matrix3d::Zero();
@@ -288,7 +313,7 @@ void Brick8::tangent_large(const Eigen::Matrix<double, 24, 1>& uc, Eigen::Matrix
   constexpr int kNq = 3 * kFunctions;
   Eigen::Matrix<double, kNq, 1> q;
   q.head<24>() = uc;
-  q.tail<9>() = mode_recovery_ * uc;  // small-strain prediction
+  q.tail<9>() = mode_recovery() * uc;  // small-strain prediction
   Eigen::Matrix<double, kNq, kNq> kq;
   Eigen::Matrix<double, kNq, 1> fq;
   const double scale = std::max(uc.lpNorm<Eigen::Infinity>(), 1e-300);
@@ -366,7 +391,7 @@ void Brick8::tangent_plastic(const Eigen::Matrix<double, 24, 1>& uc, Eigen::Matr
   // (Simo & Rifai 1990 for the enhanced-strain analogue).
   Eigen::VectorXd q(3 * kFunctions);
   q.head<24>() = uc;
-  q.tail<9>() = mode_recovery_ * uc;
+  q.tail<9>() = mode_recovery() * uc;
   Eigen::MatrixXd kq;
   Eigen::VectorXd fq;
   const double scale = std::max(uc.lpNorm<Eigen::Infinity>(), 1e-300);
@@ -413,9 +438,8 @@ void Brick8::restore_history_state(const std::vector<double>& state) {
 
 double Brick8::plastic_work() const {
   double w = 0.0;
-  for (int p = 0; p < kGauss; ++p)
-    w += committed_[static_cast<std::size_t>(p)].plastic_work *
-         gauss_[static_cast<std::size_t>(p)].dv;
+  for (std::size_t p = 0; p < committed_.size(); ++p)
+    w += committed_[p].plastic_work * gauss_[p].dv;
   return w;
 }
 
@@ -460,8 +484,10 @@ void Brick8::internal_force(const ElementContext& ctx, const Eigen::VectorXd& u,
 
 Eigen::MatrixXd Brick8::scalar_mass() const {
   Eigen::Matrix<double, 8, 8> mc = Eigen::Matrix<double, 8, 8>::Zero();
-  for (const GaussPoint& gp : gauss_)
-    mc.noalias() += (density_ * gp.dv) * (gp.n * gp.n.transpose());
+  const auto& n = gauss_shape();
+  for (int p = 0; p < kGauss; ++p)
+    mc.noalias() += (density_ * gauss_[static_cast<std::size_t>(p)].dv) *
+                    (n[static_cast<std::size_t>(p)] * n[static_cast<std::size_t>(p)].transpose());
   Eigen::MatrixXd m = Eigen::MatrixXd::Zero(n_unique_, n_unique_);
   for (int a = 0; a < 8; ++a)
     for (int b = 0; b < 8; ++b) m(corner_to_unique_[a], corner_to_unique_[b]) += mc(a, b);
@@ -645,7 +671,8 @@ std::unique_ptr<Element> make_brick8(const ElementBuildContext& ctx, const Eleme
   const IsotropicElasticity material =
       read_isotropic_elasticity(model, record.mat, record.id, record.where);
   return std::make_unique<Brick8>(record.id, nodes, x, material, extra, record.where,
-                                  plasticity_of(model, record, material.young, material.poisson));
+                                  plasticity_of(model, record, material.young, material.poisson),
+                                  ctx.large_deflection);
 }
 
 ElementTypeDescriptor brick_type(const char* name, int number, bool solid185) {

@@ -31,9 +31,11 @@ class Brick8 final : public Element {
   /// `nodes`: node ids I..P (repeats allowed: degenerate shapes); `x`: their coordinates.
   /// `extra_shapes` requests the incompatible modes; they are dropped when nodes repeat.
   /// Throws InputError at `where` for a zero or negative Jacobian at a Gauss point.
+  /// `large_deflection` (ElementBuildContext): keep the mode recovery that the total-Lagrangian
+  /// tangent reads at every iteration; otherwise it is formed when asked.
   Brick8(int id, const std::array<int, 8>& nodes, const std::array<Vec3, 8>& x,
          const IsotropicElasticity& material, bool extra_shapes, const SourceLocation& where = {},
-         std::optional<J2Plasticity> plasticity = std::nullopt);
+         std::optional<J2Plasticity> plasticity = std::nullopt, bool large_deflection = false);
 
   const char* family() const override { return "Brick8"; }
   const std::vector<DofKey>& dofs() const override { return dofs_; }
@@ -45,8 +47,10 @@ class Brick8 final : public Element {
   void commit_history(const ElementContext& ctx, const Eigen::VectorXd& u) override;
   std::vector<double> history_state() const override;
   void restore_history_state(const std::vector<double>& state) override;
-  /// Committed state of Gauss point p (0..7, order of the corners' signs).
-  const PlasticState& gauss_state(int p) const { return committed_[static_cast<std::size_t>(p)]; }
+  /// Committed state of Gauss point p (0..7, order of the corners' signs); plastic bricks only.
+  const PlasticState& gauss_state(int p) const {
+    return committed_.at(static_cast<std::size_t>(p));
+  }
   /// Linear: K = condensed ∫BᵀDB dV, f_int = K u (+ K_σ u with stress stiffening, K_σ from the
   /// stress of u, so that the converged state solves (K + K_σ(u)) u = F as ANSYS SSTIF does).
   /// Large deflection: total-Lagrangian f_int = ∫ B_Lᵀ S dV0 and its exact derivative.
@@ -90,8 +94,8 @@ class Brick8 final : public Element {
   static constexpr int kGauss = 8;
   static constexpr int kModes = 3;  // incompatible bubble functions (1-ξ²), (1-η²), (1-ζ²)
   static constexpr int kFunctions = 11;  // 8 trilinear + 3 bubbles
+  // The shape function values at the points are the same for every brick (gauss_shape()).
   struct GaussPoint {
-    Eigen::Matrix<double, 8, 1> n;              // trilinear shape functions
     Eigen::Matrix<double, 3, kFunctions> grad;  // d/dX of the 8 (+3 modified) functions
     double dv = 0.0;                            // weight * det J
   };
@@ -114,7 +118,7 @@ class Brick8 final : public Element {
                       Eigen::MatrixXd& kc, Eigen::VectorXd& fc) const;
   void tangent_large(const Eigen::Matrix<double, 24, 1>& uc, Eigen::MatrixXd& kc,
                      Eigen::VectorXd& fc) const;
-  using PointStates = std::array<PlasticState, 8>;
+  using PointStates = std::vector<PlasticState>;  // per Gauss point
   /// Small-strain elastic-plastic K_T and f_int on the corners: the Gauss points return from
   /// the committed states; with extra shapes the mode amplitudes are solved for equilibrium
   /// first (Newton) and condensed out. `updated` receives the states at u when given.
@@ -128,6 +132,9 @@ class Brick8 final : public Element {
   /// bricks), and the mode recovery α = R u_c into `recovery` when given.
   Eigen::Matrix<double, 24, 24> small_strain_stiffness(
       Eigen::Matrix<double, 9, 24>* recovery) const;
+  /// α = R u_c, the small-strain mode amplitudes (zero without extra shapes): the kept R of a
+  /// plastic or large-deflection brick, else formed now.
+  Eigen::Matrix<double, 9, 24> mode_recovery() const;
   /// Scalar (one direction) mass matrix over the distinct nodes, consistent.
   Eigen::MatrixXd scalar_mass() const;
 
@@ -141,8 +148,11 @@ class Brick8 final : public Element {
   bool extra_shapes_ = false;
   double volume_ = 0.0;
   std::array<GaussPoint, kGauss> gauss_;
-  Eigen::Matrix<double, 3, 8> grad_centre_;       // d/dX of the trilinear functions at ξ = 0
-  Eigen::Matrix<double, 9, 24> mode_recovery_;    // α = mode_recovery_ * u_c (linear)
+  Eigen::Matrix<double, 3, 8> grad_centre_;  // d/dX of the trilinear functions at ξ = 0
+  // Only what every brick reads is kept inline (a linear brick is 3 kB, 16 384 of them 50 MB):
+  // R = mode_recovery() for bricks whose tangent reads it at every iteration (9 x 24, or
+  // empty), and the Gauss points' committed states for plastic ones (8, or empty).
+  Eigen::MatrixXd mode_recovery_;
   Eigen::Matrix<double, 1, 24> mean_dilatation_;  // (1/V) ∫ ∂u_i/∂x_i row over the corners
   std::optional<J2Plasticity> plasticity_;
   PointStates committed_{};

@@ -449,6 +449,37 @@ TEST(Brick8, InternalForceAloneIsBitwiseTheForceOfTheTangent) {
   EXPECT_FALSE(bricks[1]->separate_internal_force(tl));  // extra shapes: bubbles solved with K
 }
 
+TEST(Brick8, KeptModeRecoveryGivesTheSameAnswersAsFormedOnDemand) {
+  // Built for large deflection (or plastic) a brick with extra shapes keeps the mode recovery
+  // α = R u_c its tangent reads at every iteration; otherwise it forms R when asked (issue 11:
+  // memory). Linear, stress-stiffened and total-Lagrangian tangents must agree bitwise.
+  ElementContext linear, stiffened, large;
+  stiffened.stress_stiffening = true;
+  large.large_deflection = true;
+  const Brick8 formed(1, kDistinct, distorted(), steel(), true);
+  const Brick8 kept(1, kDistinct, distorted(), steel(), true, {}, std::nullopt, true);
+  const Eigen::VectorXd u = large_displacement(24);
+  for (const ElementContext& ctx : {linear, stiffened, large}) {
+    Eigen::MatrixXd k_formed, k_kept;
+    Eigen::VectorXd f_formed, f_kept;
+    formed.tangent(ctx, u, k_formed, f_formed);
+    kept.tangent(ctx, u, k_kept, f_kept);
+    EXPECT_EQ(k_formed, k_kept);
+    EXPECT_EQ(f_formed, f_kept);
+    EXPECT_GT(k_kept.norm(), 0.0);
+  }
+  // A plastic brick keeps R and its Gauss points' states: the same answers through a yielding
+  // step and its commit whether or not it was built for large deflection.
+  const auto law = J2Plasticity::bilinear(kE, kNu, 36e3, 0.1 * kE, false);
+  Brick8 plastic_a(1, kDistinct, distorted(), steel(), true, {}, law);
+  Brick8 plastic_b(1, kDistinct, distorted(), steel(), true, {}, law, true);
+  const Eigen::VectorXd u_yield = 0.01 * large_displacement(24);
+  plastic_a.commit_history(linear, u_yield);
+  plastic_b.commit_history(linear, u_yield);
+  EXPECT_GT(plastic_a.plastic_work(), 0.0);
+  EXPECT_EQ(plastic_a.history_state(), plastic_b.history_state());
+}
+
 TEST(Brick8, TotalLagrangianReducesToLinearAtZeroDisplacement) {
   ElementContext tl;
   tl.large_deflection = true;
