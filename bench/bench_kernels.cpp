@@ -205,7 +205,7 @@ void BM_AssemblePlate(benchmark::State& state) {
   const bool large = state.range(1) != 0;
   Built b(plate_deck(n, large));
   Assembler assembler(b.structure->elements(), *b.dofs, b.structure->context());
-  SparseMatrix K = assembler.pattern();
+  SparseMatrix K = assembler.pattern().zero_matrix();
   VectorXd u = VectorXd::Constant(b.dofs->n_active(), 1e-4);
   VectorXd v = VectorXd::Zero(b.dofs->n_active());
   VectorXd f;
@@ -234,7 +234,7 @@ struct PlateSystem {
   SparseMatrix K;
   explicit PlateSystem(int n) : b(plate_deck(n, false)) {
     Assembler assembler(b.structure->elements(), *b.dofs, b.structure->context());
-    K = assembler.pattern();
+    K = assembler.pattern().zero_matrix();
     VectorXd u = VectorXd::Zero(b.dofs->n_active());
     Assembler::Output out;
     out.effective = &K;

@@ -89,7 +89,7 @@ void DirectSolution::renumber(std::set<DofKey> wanted, bool keep_dynamics) {
   effective_ = SparseMatrix();
   // A solver that reads only some columns on this rank (MUMPS on several ranks): the assembler
   // then evaluates only the elements at them (docs/scaling.md, "Element assembly split by rank").
-  assembler_->distribute(solver_->column_owners(assembler_->pattern()));
+  assembler_->distribute(solver_->column_owners(assembler_->pattern().zero_matrix()));
   factor_valid_ = false;
   stats_.n_dofs = dofs_->n_free();
   condensation_.reset();

@@ -18,9 +18,9 @@ Assembler::Assembler(const std::vector<std::unique_ptr<Element>>& elements, cons
                      const ElementContext& ctx, double alpha, double beta)
     : elements_(elements), dofs_(dofs), ctx_(ctx), alpha_(alpha), beta_(beta) {
   const int nf = dofs_.n_free();
-  graph_ = std::make_unique<DofGraph>(dofs_, elements_.size());
+  const DofGraph graph(dofs_, elements_.size());
   // Pattern: every pair of free DOFs that share an element (lower triangle), every diagonal.
-  pattern_ = graph_->lower_pattern(nf);
+  pattern_ = graph.lower_pattern(nf);
 
   slots_.resize(elements_.size());
   mass_.resize(elements_.size());
@@ -52,13 +52,14 @@ Assembler::Assembler(const std::vector<std::unique_ptr<Element>>& elements, cons
         if (row >= nf || col >= nf) continue;
         if (row < col) std::swap(row, col);
         // Binary search of `row` within column `col`.
-        const int* begin = pattern_.innerIndexPtr() + pattern_.outerIndexPtr()[col];
-        const int* end = pattern_.innerIndexPtr() + pattern_.outerIndexPtr()[col + 1];
+        const int* rows = pattern_.row.data();
+        const int* begin = rows + pattern_.column_start[static_cast<std::size_t>(col)];
+        const int* end = rows + pattern_.column_start[static_cast<std::size_t>(col) + 1];
         const int* it = std::lower_bound(begin, end, row);
-        slot[static_cast<std::size_t>(a * n + b)] = static_cast<int>(it - pattern_.innerIndexPtr());
+        slot[static_cast<std::size_t>(a * n + b)] = static_cast<int>(it - rows);
       }
   }
-  build_linear_force_matrices();
+  build_linear_force_matrices(graph);
 }
 
 void Assembler::linear_element_stiffness(std::size_t e, MatrixXd& k) const {
@@ -72,17 +73,17 @@ void Assembler::linear_element_matrices(std::size_t e, MatrixXd& k, MatrixXd& m)
   elements_[e]->mass(ctx_, m);
 }
 
-void Assembler::build_linear_force_matrices() {
+void Assembler::build_linear_force_matrices(const DofGraph& graph) {
   // The linear elements' stiffness and damping are constant (the condensed transient's A_L
   // relies on it too): evaluated at u = 0, summed on the DOF graph in element order (the order
   // of the triplet assembly this replaced: same values bitwise) and not kept element by element
   // (issue 11: the products are the model's only copy of them; 236 MB of element matrices on
   // the 155 522-DOF shell dome).
-  GraphMatrix stiffness(*graph_), damping(*graph_), mass(*graph_);
+  GraphMatrix stiffness(graph), damping(graph), mass(graph);
   MatrixXd k, m, c;
   std::vector<int> slots;
   for (std::size_t e = 0; e < elements_.size(); ++e) {
-    graph_->element_slots(dofs_.element_indices(e), slots);
+    graph.element_slots(dofs_.element_indices(e), slots);
     if (!is_linear_[e]) {
       mass.add(slots, mass_[e], false);
       continue;
@@ -96,7 +97,7 @@ void Assembler::build_linear_force_matrices() {
   for (std::size_t s = 0; s < kept.size(); ++s)
     kept[s] = static_cast<unsigned char>(kept[s] | stiffness.touched[s] | damping.touched[s]);
   auto values = [](const GraphMatrix& m) { return m.empty ? nullptr : &m.value; };
-  linear_products_ = SharedPatternProducts(graph_->row_start(), graph_->column(), kept,
+  linear_products_ = SharedPatternProducts(graph.row_start(), graph.column(), kept,
                                            {values(stiffness), values(damping), values(mass)});
 }
 
@@ -109,7 +110,7 @@ void Assembler::set_material_stiffness_damping(std::vector<double> beta) {
     return;
   material_beta_ = std::move(beta);
   for (double b : material_beta_) has_damping_ = has_damping_ || b != 0.0;
-  build_linear_force_matrices();
+  build_linear_force_matrices(DofGraph(dofs_, elements_.size()));
   constant_effective_.clear();  // the linear elements' damping changed
 }
 
@@ -214,7 +215,7 @@ void Assembler::assemble(const IntegrationCoefficients& coeff, const VectorXd& u
   compute_nonlinear_tangents(u, out.effective != nullptr, only);
   add_forces(u, v, a, out, only);
   if (out.effective) {
-    if (out.effective->nonZeros() != pattern_.nonZeros()) *out.effective = pattern_;
+    if (out.effective->nonZeros() != pattern_.nonzeros()) *out.effective = pattern_.zero_matrix();
     double* values = out.effective->valuePtr();
     VectorXd ue;
     MatrixXd c;
@@ -376,7 +377,7 @@ const std::vector<double>& Assembler::constant_effective(
   if (!constant_effective_.empty() && constant_coeff_.cK == coeff.cK &&
       constant_coeff_.cC == coeff.cC && constant_coeff_.cM == coeff.cM)
     return constant_effective_;
-  constant_effective_.assign(static_cast<std::size_t>(pattern_.nonZeros()), 0.0);
+  constant_effective_.assign(static_cast<std::size_t>(pattern_.nonzeros()), 0.0);
   add_constant_effective(coeff, constant_effective_.data());
   constant_coeff_ = coeff;
   return constant_effective_;
@@ -387,8 +388,8 @@ void Assembler::add_constant_effective(const IntegrationCoefficients& coeff, dou
   // the free-free lower pattern. Within a column the rows ascend, as in the pattern, so a slot
   // is found by continuing the previous one's search; a new column starts a binary search.
   const int nf = dofs_.n_free();
-  const int* outer = pattern_.outerIndexPtr();
-  const int* inner = pattern_.innerIndexPtr();
+  const int* outer = pattern_.column_start.data();
+  const int* inner = pattern_.row.data();
   const double factor[3] = {coeff.cK, coeff.cC, coeff.cM};
   int last_row = -1, last_column = -1, at = 0;
   for_each_lower_product_entry([&](int row, int column, const double* v) {
@@ -463,7 +464,7 @@ void Assembler::assemble_linear_part(const IntegrationCoefficients& coeff,
                                      SparseMatrix& effective) const {
   // Not through the cache of constant_effective: the condensed transient factors this once per
   // time step size and would only keep a second copy of its values.
-  if (effective.nonZeros() != pattern_.nonZeros()) effective = pattern_;
+  if (effective.nonZeros() != pattern_.nonzeros()) effective = pattern_.zero_matrix();
   std::fill(effective.valuePtr(), effective.valuePtr() + effective.nonZeros(), 0.0);
   add_constant_effective(coeff, effective.valuePtr());
 }
@@ -505,7 +506,8 @@ SparseMatrix Assembler::full_matrix(Which which, const VectorXd& u) const {
   // global products): these matrices are asked for once per analysis (energies, reduction,
   // mode superposition), and element by element they keep the structure and the values of
   // the element-order sum bit for bit.
-  GraphMatrix out(*graph_);
+  const DofGraph graph(dofs_, elements_.size());
+  GraphMatrix out(graph);
   std::vector<int> slots;
   MatrixXd m, k, mass;
   VectorXd ue, fe;
@@ -550,10 +552,10 @@ SparseMatrix Assembler::full_matrix(Which which, const VectorXd& u) const {
         break;
       }
     }
-    graph_->element_slots(idx, slots);
+    graph.element_slots(idx, slots);
     out.add(slots, *element_matrix, true);
   }
-  return out.to_sparse(*graph_);
+  return out.to_sparse(graph);
 }
 
 bool Assembler::is_nonlinear() const {

@@ -100,8 +100,8 @@ class Assembler {
   bool has_damping() const { return has_damping_; }
   /// True when some element's stiffness or internal force depends on u (or on a status).
   bool is_nonlinear() const;
-  /// An empty matrix with the free-free lower pattern.
-  const SparseMatrix& pattern() const { return pattern_; }
+  /// The free-free lower pattern of every effective matrix.
+  const SparsePattern& pattern() const { return pattern_; }
 
   /// Element DOF values gathered from a global vector.
   void gather(std::size_t e, const VectorXd& global, VectorXd& local) const;
@@ -127,8 +127,8 @@ class Assembler {
   void add_constant_effective(const IntegrationCoefficients& coeff, double* values) const;
   mutable std::vector<double> constant_effective_;
   mutable IntegrationCoefficients constant_coeff_{};
-  /// Forms linear_products_ from the element matrices.
-  void build_linear_force_matrices();
+  /// Forms linear_products_ from the element matrices, summed on the DOF graph.
+  void build_linear_force_matrices(const DofGraph& graph);
   /// Calls visit(row, column, values) once for each entry of the global products' lower
   /// triangle (row >= column; values: K, C, M there). With symmetric storage the entries come
   /// column by column, rows ascending within a column.
@@ -152,8 +152,9 @@ class Assembler {
   const std::vector<std::unique_ptr<Element>>& elements_;
   const DofMap& dofs_;
   ElementContext ctx_;
-  std::unique_ptr<DofGraph> graph_;  // DOF adjacency over the active DOFs
-  SparseMatrix pattern_;
+  // The DOF graph (DofGraph) is not kept: it is built again for the few whole-model matrices
+  // (full_matrix) and material damping, once per analysis (issue 11: memory).
+  SparsePattern pattern_;
   /// For each nonlinear element (empty for the linear ones), the value slot of each (a, b) pair
   /// with a >= b in the lower pattern (-1 when a DOF is constrained): scatter is an indexed add.
   std::vector<std::vector<int>> slots_;

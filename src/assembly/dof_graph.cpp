@@ -56,20 +56,20 @@ void DofGraph::element_slots(const std::vector<int>& idx, std::vector<int>& slot
   }
 }
 
-SparseMatrix DofGraph::lower_pattern(int n) const {
+SparsePattern DofGraph::lower_pattern(int n) const {
   // Column c of the lower triangle = the entries r >= c (r < n) of row c (symmetric graph).
-  std::vector<int> outer(static_cast<std::size_t>(n) + 1, 0);
-  std::vector<int> inner;
+  SparsePattern p;
+  p.size = n;
+  p.column_start.assign(static_cast<std::size_t>(n) + 1, 0);
   for (int c = 0; c < n; ++c) {
     const int* begin = column_.data() + row_start_[static_cast<std::size_t>(c)];
     const int* end = column_.data() + row_start_[static_cast<std::size_t>(c) + 1];
     for (const int* r = std::lower_bound(begin, end, c); r != end && *r < n; ++r)
-      inner.push_back(*r);
-    outer[static_cast<std::size_t>(c) + 1] = static_cast<int>(inner.size());
+      p.row.push_back(*r);
+    p.column_start[static_cast<std::size_t>(c) + 1] = static_cast<int>(p.row.size());
   }
-  const std::vector<double> zeros(inner.size(), 0.0);
-  return Eigen::Map<const SparseMatrix>(n, n, static_cast<Eigen::Index>(inner.size()), outer.data(),
-                                        inner.data(), zeros.data());
+  p.row.shrink_to_fit();
+  return p;
 }
 
 void GraphMatrix::add(const std::vector<int>& slots, const MatrixXd& m, bool transposed) {

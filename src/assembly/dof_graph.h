@@ -28,8 +28,8 @@ class DofGraph {
   /// slots[a * n + b] = the entry of (idx[a], idx[b]) for an element with DOF indices idx.
   void element_slots(const std::vector<int>& idx, std::vector<int>& slots) const;
 
-  /// The lower triangle of the first `n` DOFs (the free ones), column-compressed, values zero.
-  SparseMatrix lower_pattern(int n) const;
+  /// The lower triangle of the first `n` DOFs (the free ones), column-compressed.
+  SparsePattern lower_pattern(int n) const;
 
  private:
   std::vector<int> row_start_;
