@@ -149,7 +149,7 @@ class Brick8 final : public Element {
   double volume_ = 0.0;
   std::array<GaussPoint, kGauss> gauss_;
   Eigen::Matrix<double, 3, 8> grad_centre_;  // d/dX of the trilinear functions at ξ = 0
-  // Only what every brick reads is kept inline (a linear brick is 3 kB, 16 384 of them 50 MB):
+  // Only what every brick reads is kept inline (a linear brick is 3.3 kB, 16 384 of them 54 MB):
   // R = mode_recovery() for bricks whose tangent reads it at every iteration (9 x 24, or
   // empty), and the Gauss points' committed states for plastic ones (8, or empty).
   Eigen::MatrixXd mode_recovery_;
