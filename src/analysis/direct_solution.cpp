@@ -86,7 +86,7 @@ void DirectSolution::renumber(std::set<DofKey> wanted, bool keep_dynamics) {
   if (condensation_) retired_ += condensation_->counters();
   solver_ = make_linear_solver(dofs_->n_free());
   // Formed on the first full assembly (a condensed transient may never need it).
-  effective_ = SparseMatrix();
+  SparseMatrix().swap(effective_);  // freed (assigning an empty matrix keeps the storage)
   // A solver that reads only some columns on this rank (MUMPS on several ranks): the assembler
   // then evaluates only the elements at them (docs/scaling.md, "Element assembly split by rank").
   assembler_->distribute(solver_->column_owners(assembler_->pattern().zero_matrix()));

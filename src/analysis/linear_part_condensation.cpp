@@ -38,7 +38,7 @@ void LinearPartCondensation::prepare(const IntegrationCoefficients& coeff) {
   tangent_.reset();  // S changes with the coefficients
   assembler_.assemble_linear_part(coeff, effective_);
   if (solver_->counters().analyses == 0) solver_->analyze_pattern(effective_);
-  solver_->factorize(effective_);
+  solver_->factorize_and_release(effective_);  // formed again for another Δt
   prepared_ = coeff;
 }
 

@@ -63,7 +63,7 @@ class LinearPartCondensation {
   const Assembler& assembler_;
   std::vector<int> c_;
   std::vector<int> position_;
-  SparseMatrix effective_;
+  SparseMatrix effective_;  // A_L; empty once factored (the solver frees it: issue 11)
   std::unique_ptr<SchurSolver> solver_;
   std::optional<IntegrationCoefficients> prepared_;
   UpdatableDenseFactor tangent_;

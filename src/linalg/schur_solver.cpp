@@ -5,6 +5,7 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Dense>
+#include <memory>
 #include <new>
 #include <stdexcept>
 
@@ -33,6 +34,11 @@ using solver_support::ScopedTimer;
 /// ordering it as a final separator; for the contact surfaces of a body (the nonlinear
 /// elements' DOFs) the fill stays close to the unconstrained ordering's.
 class CholmodSchurSolver final : public SchurSolver {
+  struct FreeSparse {
+    cholmod_common* common;
+    void operator()(cholmod_sparse* s) const { cholmod_free_sparse(&s, common); }
+  };
+
  public:
   CholmodSchurSolver(int n, std::vector<int> c) : SchurSolver(std::move(c)), n_(n) {
     cholmod_start(&common_);
@@ -103,33 +109,8 @@ class CholmodSchurSolver final : public SchurSolver {
     ++counters_.analyses;
   }
 
-  void factorize(const SparseMatrix& lower) override {
-    if (!factor_) analyze_pattern(lower);
-    ScopedTimer timer(counters_.factorize_seconds);
-    ScopedThreadLimit threads(common_.fl >= kParallelFactorFlops ? kAllThreads : 1);
-    cholmod_sparse a = cholmod_lower_view(lower);
-    cholmod_factorize(&a, factor_, &common_);
-    ++counters_.factorizations;
-    if (common_.status == CHOLMOD_OUT_OF_MEMORY) throw std::bad_alloc();
-    const auto* perm = static_cast<const int*>(factor_->Perm);
-    if (common_.status == CHOLMOD_NOT_POSDEF || factor_->minor < factor_->n) {
-      const int row = factor_->minor < factor_->n ? perm[factor_->minor] : weakest_pivot_row(lower);
-      throw SingularMatrixError(row, "the matrix to condense is not positive definite");
-    }
-    // rcond is (min L_jj / max L_jj)^2: only a near-mechanism gets below 1e-13; then diagnose.
-    if (cholmod_rcond(factor_, &common_) < 1e-13)
-      if (const int row = weakest_pivot_row(lower); row >= 0)
-        throw SingularMatrixError(row, "near-zero pivot in the factorization");
-    read_trailing_block();
-    const auto m = static_cast<Eigen::Index>(c_.size());
-    MatrixXd lower_schur = MatrixXd::Zero(m, m);
-    lower_schur.selfadjointView<Eigen::Lower>().rankUpdate(l_cc_);
-    schur_ = lower_schur.selfadjointView<Eigen::Lower>();
-    counters_.matrix_nonzeros = static_cast<long>(lower.nonZeros());
-    counters_.factor_nonzeros = static_cast<long>(common_.lnz);
-    counters_.factor_bytes =
-        static_cast<long>(factor_->xsize * sizeof(double) + factor_->ssize * sizeof(int));
-  }
+  void factorize(const SparseMatrix& lower) override { factor(lower, nullptr); }
+  void factorize_and_release(SparseMatrix& lower) override { factor(lower, &lower); }
 
   VectorXd condense(const VectorXd& r) override {
     IMPACTFE_CHECK(factor_ != nullptr && r.size() == n_, "SchurSolver: condense before factorize");
@@ -165,6 +146,58 @@ class CholmodSchurSolver final : public SchurSolver {
     if (common_.status == CHOLMOD_OUT_OF_MEMORY) throw std::bad_alloc();
     throw std::runtime_error(fmt::format(
         "the sparse solver's symbolic analysis failed (CHOLMOD status {})", common_.status));
+  }
+
+  /// Numeric factorization of `lower` (freed into `release` when given), then S = L_cc L_ccᵀ.
+  /// What cholmod_factorize does for a supernodal factor with a given ordering, in steps:
+  /// CHOLMOD's supernodal kernel reads the lower triangle of P A Pᵀ, formed by two transposes
+  /// (the first permutes into the upper triangle); A itself is not needed after that, and the
+  /// caller's copy is freed before the factor's values are allocated.
+  void factor(const SparseMatrix& lower, SparseMatrix* release) {
+    if (!factor_) analyze_pattern(lower);
+    ScopedTimer timer(counters_.factorize_seconds);
+    ScopedThreadLimit threads(common_.fl >= kParallelFactorFlops ? kAllThreads : 1);
+    counters_.matrix_nonzeros = static_cast<long>(lower.nonZeros());
+    cholmod_sparse a = cholmod_lower_view(lower);
+    cholmod_sparse* upper =
+        cholmod_ptranspose(&a, 2, static_cast<int*>(factor_->Perm), nullptr, 0, &common_);
+    if (!upper) throw std::bad_alloc();
+    cholmod_sparse* permuted = cholmod_ptranspose(upper, 2, nullptr, nullptr, 0, &common_);
+    cholmod_free_sparse(&upper, &common_);
+    if (!permuted) throw std::bad_alloc();
+    const std::unique_ptr<cholmod_sparse, FreeSparse> owned(permuted, FreeSparse{&common_});
+    // Swapped out: Eigen's assignment of an empty matrix would keep the storage.
+    if (release) SparseMatrix().swap(*release);
+    double beta[2] = {0.0, 0.0};
+    cholmod_super_numeric(permuted, nullptr, beta, factor_, &common_);
+    ++counters_.factorizations;
+    if (common_.status == CHOLMOD_OUT_OF_MEMORY) throw std::bad_alloc();
+    const auto* perm = static_cast<const int*>(factor_->Perm);
+    // The weakest pivot of P A Pᵀ, as a row of A.
+    const auto weakest_row = [&] {
+      const SparseMatrix pap = Eigen::Map<const SparseMatrix>(
+          n_, n_, static_cast<Eigen::Index>(cholmod_nnz(permuted, &common_)),
+          static_cast<const int*>(permuted->p), static_cast<const int*>(permuted->i),
+          static_cast<const double*>(permuted->x));
+      const int row = weakest_pivot_row(pap);
+      return row >= 0 ? perm[row] : row;
+    };
+    if (common_.status == CHOLMOD_NOT_POSDEF || factor_->minor < factor_->n) {
+      const int row = factor_->minor < factor_->n ? perm[factor_->minor] : weakest_row();
+      throw SingularMatrixError(row, "the matrix to condense is not positive definite");
+    }
+    // rcond is (min L_jj / max L_jj)^2: only a near-mechanism gets below 1e-13; then diagnose.
+    if (cholmod_rcond(factor_, &common_) < 1e-13)
+      if (const int row = weakest_row(); row >= 0)
+        throw SingularMatrixError(row, "near-zero pivot in the factorization");
+    read_trailing_block();
+    const auto m = static_cast<Eigen::Index>(c_.size());
+    MatrixXd lower_schur = MatrixXd::Zero(m, m);
+    lower_schur.selfadjointView<Eigen::Lower>().rankUpdate(l_cc_);
+    schur_ = lower_schur.selfadjointView<Eigen::Lower>();
+    counters_.factor_nonzeros = static_cast<long>(common_.lnz);
+    counters_.factor_bytes =
+        static_cast<long>(factor_->xsize * sizeof(double) + factor_->ssize * sizeof(int));
   }
 
   /// L_cc: the last m columns of the supernodal L, rows n − m and below.

@@ -25,6 +25,13 @@ class SchurSolver {
   /// Numeric factorization and S. Throws SingularMatrixError (the 0-based row) when A is not
   /// positive definite.
   virtual void factorize(const SparseMatrix& lower) = 0;
+  /// The same for a matrix the caller no longer needs: the solver may free it (it is empty
+  /// afterwards) as soon as it holds its own copy, before the factor's values are allocated,
+  /// so that the two are never in memory together with the factor (issue 11).
+  virtual void factorize_and_release(SparseMatrix& lower) {
+    factorize(lower);
+    SparseMatrix().swap(lower);  // Eigen's assignment of an empty matrix keeps the storage
+  }
   /// y = (A⁻¹ r)_c, in the order of c; remembers what `recover` needs of r.
   virtual VectorXd condense(const VectorXd& r) = 0;
   /// x with x_c on c and the i rows of A x = r satisfied (r of the last `condense`).

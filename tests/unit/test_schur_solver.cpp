@@ -5,6 +5,7 @@
 
 #include <Eigen/Dense>
 #include <random>
+#include <string>
 
 #include "linalg/schur_solver.h"
 
@@ -129,6 +130,55 @@ TEST(SchurSolver, NotPositiveDefiniteNamesTheRow) {
   } catch (const SingularMatrixError& e) {
     EXPECT_GE(e.column(), 1);
     EXPECT_LE(e.column(), 3);  // the failing pivot is in the rest, up to row 3
+  }
+}
+
+TEST(SchurSolver, ReleasingTheMatrixGivesTheSameFactorization) {
+  // factorize_and_release frees the caller's matrix before the factor's values are allocated
+  // (issue 11): the same Schur complement and solutions bit for bit, and the matrix is empty.
+  const SparseMatrix lower = grid_matrix(6, 5, 4, 3);
+  std::vector<int> c;
+  for (int i = 0; i < 30; ++i) c.push_back(i);
+  for (SchurSolverKind kind : {SchurSolverKind::Factorization, SchurSolverKind::Transfer}) {
+    const auto kept = make_schur_solver(120, c, kind);
+    const auto released = make_schur_solver(120, c, kind);
+    kept->analyze_pattern(lower);
+    released->analyze_pattern(lower);
+    kept->factorize(lower);
+    SparseMatrix copy = lower;
+    released->factorize_and_release(copy);
+    EXPECT_EQ(copy.nonZeros(), 0);
+    EXPECT_EQ(kept->schur(), released->schur()) << kept->name();
+    const VectorXd r = VectorXd::LinSpaced(120, -1.0, 2.0);
+    const VectorXd y = kept->condense(r);
+    EXPECT_EQ(y, released->condense(r)) << kept->name();
+    EXPECT_EQ(kept->recover(y), released->recover(y)) << kept->name();
+    // Factored again (another time step size) from a fresh copy.
+    copy = 2.0 * lower;
+    released->factorize_and_release(copy);
+    EXPECT_LT((released->schur() - 2.0 * kept->schur()).norm(), 1e-12 * kept->schur().norm());
+  }
+}
+
+TEST(SchurSolver, NearZeroPivotOfAReleasedMatrixNamesTheRow) {
+  // Rows 2 and 3 of a chain are all but dependent (a near-mechanism): every pivot is positive
+  // but one is ~1e-15 of its diagonal. The diagnosis reads the solver's permuted copy, since
+  // the caller's matrix is gone, and names a row of the original numbering.
+  std::vector<Eigen::Triplet<double>> t;
+  for (int i = 0; i < 6; ++i) t.emplace_back(i, i, i == 2 || i == 3 ? 1.0 : 4.0);
+  t.emplace_back(3, 2, 1.0 - 1e-15);
+  t.emplace_back(1, 0, -1.0);
+  t.emplace_back(5, 4, -1.0);
+  SparseMatrix lower(6, 6);
+  lower.setFromTriplets(t.begin(), t.end());
+  const auto solver = make_schur_solver(6, {0, 5}, SchurSolverKind::Factorization);
+  solver->analyze_pattern(lower);
+  try {
+    solver->factorize_and_release(lower);
+    FAIL() << "no error";
+  } catch (const SingularMatrixError& e) {
+    EXPECT_TRUE(e.column() == 2 || e.column() == 3) << e.column();
+    EXPECT_NE(std::string(e.what()).find("near-zero pivot"), std::string::npos) << e.what();
   }
 }
 
