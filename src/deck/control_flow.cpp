@@ -403,13 +403,14 @@ void DeckReader::dispatch(const Command& c, const CommandSpec& spec) {
   spec.handler(*this, c);
 }
 
-void DeckReader::count_executed(const Command& c) {
+void DeckReader::count_work(const Command& c, long long units) {
   // Loop trips and repetitions count as well as commands: two nested empty *DO loops of 10⁷
   // trips each execute only two commands per outer trip but 10¹⁴ trips in all.
-  if (++executed_ > options.max_commands)
-    fail(c, fmt::format("more than {} commands and loop trips executed: a loop that does not "
-                        "end?",
-                        options.max_commands));
+  executed_ += units;
+  if (executed_ > options.max_commands)
+    fail(c, fmt::format("more than {} commands and loop trips executed (a SAVE or RESUME "
+                        "counts as {}): a loop that does not end?",
+                        options.max_commands, kDatabaseWork));
 }
 
 void DeckReader::repeat_previous(const Command& c) {

@@ -282,6 +282,7 @@ void cmd_save(DeckReader& r, const Command& c) {
   const std::string slab = r.label(c, 4);
   if (!slab.empty() && slab != "ALL" && slab != "MODEL")
     r.fail(c, fmt::format("Slab '{}' is not supported (ALL or MODEL)", slab));
+  r.count_work(c, DeckReader::kDatabaseWork);
   const Model& m = r.model;
   json j;
   j["format"] = "impactfe-db";
@@ -325,6 +326,7 @@ void cmd_save(DeckReader& r, const Command& c) {
 
 void cmd_resume(DeckReader& r, const Command& c) {
   // RESUME,Fname,Ext,--,NOPAR,KNOPLOT: NOPAR 1 keeps the current parameters.
+  r.count_work(c, DeckReader::kDatabaseWork);
   const std::string path = database_path(r, c);
   const auto in = read_file(path);  // rank 0's disk under MPI (core/files.h)
   if (!in) r.fail(c, fmt::format("no database file '{}' (SAVE writes it)", path));

@@ -161,6 +161,13 @@ class DeckReader {
   bool on_off(const Command& c, int i, bool fallback) const;
   [[noreturn]] void fail(const Command& c, const std::string& message) const;
   void warn(const Command& c, const std::string& message) const;
+  /// Counts `units` of interpreted work at `c` and fails past DeckOptions::max_commands. A
+  /// command whose cost is far above a parameter assignment weighs more than one unit (SAVE and
+  /// RESUME: kDatabaseWork), so that a loop of them stays within the same budget of time.
+  void count_work(const Command& c, long long units);
+  /// Work units of one database write or read (SAVE, RESUME): a file opened, the model and the
+  /// parameters serialized, about the time of 10³ interpreted commands on a small model.
+  static constexpr long long kDatabaseWork = 1000;
   /// Records a graphics/print-only command as ignored.
   void ignore(const Command& c);
 
@@ -265,7 +272,7 @@ class DeckReader {
   void repeat_previous(const Command& c);
   /// Counts one unit of interpreted work at `c` (a command, a loop trip, a *REPEAT repetition,
   /// a block pass) and fails past DeckOptions::max_commands.
-  void count_executed(const Command& c);
+  void count_executed(const Command& c) { count_work(c, 1); }
   Command resolve(const RawCommand& raw);
   const CommandSpec* lookup(Command& c);
   void dispatch(const Command& c, const CommandSpec& spec);

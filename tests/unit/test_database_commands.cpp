@@ -92,6 +92,36 @@ TEST(DatabaseCommands, ClearDeletesParametersAndResetsSettings) {
   EXPECT_EQ(run.out, " kept\n-0.988\n");  // *CREATE files survive, radians again, terminal again
 }
 
+TEST(DatabaseCommands, SaveAndResumeWeighAThousandCommandsOfWork) {
+  // A loop of SAVEs costs time per SAVE, not per command: each weighs 1000 units of the
+  // interpreted-work budget (DeckOptions::max_commands). Two SAVEs and a RESUME per trip: 3 trips
+  // take about 9000 units, within 10⁴; the 4th trip's first SAVE goes over.
+  const auto dir = impactfe::testing::fresh_directory("database_work");
+  const auto previous = std::filesystem::current_path();
+  std::filesystem::current_path(dir);
+  const auto error_of = [](int trips) -> std::string {
+    DeckOptions o;
+    o.dialect = Dialect::Modern;
+    o.max_commands = 10'000;
+    try {
+      read_deck_text(
+          "/PREP7\nN,1\n*DO,I,1," + std::to_string(trips) + "\nSAVE\nSAVE,copy\nRESUME\n*ENDDO\n",
+          "loop.inp", o);
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "";
+  };
+  const std::string within = error_of(3);
+  const std::string over = error_of(4);
+  std::filesystem::current_path(previous);
+  EXPECT_EQ(within, "");
+  EXPECT_NE(over.find("loop.inp:4: SAVE: more than 10000 commands and loop trips executed (a SAVE "
+                      "or RESUME counts as 1000)"),
+            std::string::npos)
+      << over;
+}
+
 TEST(DatabaseCommands, SaveAndResume) {
   const auto dir = impactfe::testing::fresh_directory("database_save");
   const std::string deck = R"(/PREP7
