@@ -215,7 +215,9 @@ void Assembler::assemble(const IntegrationCoefficients& coeff, const VectorXd& u
   compute_nonlinear_tangents(u, out.effective != nullptr, only);
   add_forces(u, v, a, out, only);
   if (out.effective) {
-    if (out.effective->nonZeros() != pattern_.nonzeros()) *out.effective = pattern_.zero_matrix();
+    // Swapped in, not assigned: Eigen 3.4 copies a SparseMatrix on assignment, briefly twice.
+    if (out.effective->nonZeros() != pattern_.nonzeros())
+      pattern_.zero_matrix().swap(*out.effective);
     double* values = out.effective->valuePtr();
     VectorXd ue;
     MatrixXd c;
@@ -464,7 +466,7 @@ void Assembler::assemble_linear_part(const IntegrationCoefficients& coeff,
                                      SparseMatrix& effective) const {
   // Not through the cache of constant_effective: the condensed transient factors this once per
   // time step size and would only keep a second copy of its values.
-  if (effective.nonZeros() != pattern_.nonzeros()) effective = pattern_.zero_matrix();
+  if (effective.nonZeros() != pattern_.nonzeros()) pattern_.zero_matrix().swap(effective);
   std::fill(effective.valuePtr(), effective.valuePtr() + effective.nonZeros(), 0.0);
   add_constant_effective(coeff, effective.valuePtr());
 }
