@@ -144,7 +144,10 @@ void cmd_msg(DeckReader& r, const Command& c) {
     r.warn(c, message);
   } else if (lab == "ERROR" || lab == "FATAL") {
     r.output.print(" *** ERROR ***\n" + message);
-    r.fail(c, message);  // a batch run ends at an error message
+    // A batch run ends at an error message; an empty one still tells the user why it stopped.
+    r.fail(c, message.find_first_not_of(' ') == std::string::npos
+                  ? fmt::format("*MSG,{} stopped the run (its message line is empty)", lab)
+                  : message);
   } else {
     r.fail(c, fmt::format("unknown label '{}' (INFO NOTE WARN ERROR FATAL UI)", lab));
   }

@@ -160,6 +160,11 @@ V(1) = 1,2
       << out;
   EXPECT_NE(error_of("*MSG,ERROR\nstop here %I\n").find("mem.inp:1: *MSG: stop here"),
             std::string::npos);
+  // Found by the fuzzer: an empty message line still gives the user a reason, not "".
+  EXPECT_NE(error_of("R = 2.5\n*MSG,ERROR,R\n\nN,1\n")
+                .find("mem.inp:2: *MSG: *MSG,ERROR stopped the run (its message line is empty)"),
+            std::string::npos)
+      << error_of("R = 2.5\n*MSG,ERROR,R\n\nN,1\n");
 }
 
 TEST(OutputCommands, ListAFile) {
