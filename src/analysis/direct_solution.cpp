@@ -1,11 +1,10 @@
 #include "analysis/direct_solution.h"
 
-#include <Eigen/Cholesky>
-#include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <cmath>
 
 #include "core/log.h"
+#include "linalg/mass_solve.h"
 #include "time/time_axis.h"
 
 namespace impactfe {
@@ -177,30 +176,6 @@ void DirectSolution::factorize(const IntegrationCoefficients& coeff, const Vecto
   factored_ = coeff;
 }
 
-namespace {
-
-/// M a = r on the DOFs that carry mass (`mm`: the lower triangle). A large block goes to the
-/// run's sparse solver (CHOLMOD supernodal, or MUMPS): Eigen's simplicial LDLᵀ on a 10⁵-DOF
-/// consistent mass took as long as the first factorization of the effective matrix (issue 11).
-/// A small one keeps the simplicial LDLᵀ (cheaper than a supernodal analysis), as does a block
-/// the Cholesky factorization finds singular (LDLᵀ still solves a semidefinite one).
-VectorXd solve_mass_block(const SparseMatrix& mm, const VectorXd& r) {
-  constexpr int kSupernodalRows = 4096;
-  if (mm.rows() > kSupernodalRows) {
-    const auto solver = make_linear_solver(static_cast<int>(mm.rows()));
-    try {
-      solver->analyze_pattern(mm);
-      solver->factorize(mm);
-      return solver->solve(r);
-    } catch (const SingularMatrixError&) {
-    }
-  }
-  Eigen::SimplicialLDLT<SparseMatrix> ldlt(mm);
-  return ldlt.solve(r);
-}
-
-}  // namespace
-
 std::string DirectSolution::excessive_penetration(const VectorXd& u) const {
   double worst = 1.0;
   std::size_t at = 0;
@@ -240,7 +215,7 @@ void DirectSolution::start_dynamics(const LoadPoint& at, double h) {
     const SparseMatrix mm = assembler_->mass_block_lower(position, nm);
     VectorXd r(nm);
     for (int k = 0; k < nm; ++k) r(k) = rhs(massive[k]);
-    const VectorXd am = solve_mass_block(mm, r);
+    const VectorXd am = solve_mass_system(mm, r).a;
     for (int k = 0; k < nm; ++k) a_(massive[k]) = am(k);
   }
   integrator_->start(u_, v_, a_, h);
