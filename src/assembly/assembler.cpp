@@ -93,12 +93,16 @@ void Assembler::build_linear_force_matrices(const DofGraph& graph) {
     stiffness.add(slots, k, false);
     if (element_damping(e, VectorXd::Zero(k.rows()), k, m, c)) damping.add(slots, c, false);
   }
-  std::vector<unsigned char> kept(mass.touched);
-  for (std::size_t s = 0; s < kept.size(); ++s)
-    kept[s] = static_cast<unsigned char>(kept[s] | stiffness.touched[s] | damping.touched[s]);
-  auto values = [](const GraphMatrix& m) { return m.empty ? nullptr : &m.value; };
-  linear_products_ = SharedPatternProducts(graph.row_start(), graph.column(), kept,
-                                           {values(stiffness), values(damping), values(mass)});
+  // An entry is kept where any of the three received a contribution (a matrix nothing was added
+  // to has no flags).
+  std::vector<unsigned char> kept(static_cast<std::size_t>(graph.n_entries()), 0);
+  for (GraphMatrix* m : {&stiffness, &damping, &mass}) {
+    for (std::size_t s = 0; s < m->touched.size(); ++s) kept[s] |= m->touched[s];
+    std::vector<unsigned char>().swap(m->touched);
+  }
+  linear_products_ = SharedPatternProducts(
+      graph.row_start(), graph.column(), kept,
+      {std::move(stiffness.value), std::move(damping.value), std::move(mass.value)});
 }
 
 void Assembler::set_material_stiffness_damping(std::vector<double> beta) {

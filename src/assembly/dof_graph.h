@@ -41,13 +41,17 @@ class DofGraph {
 /// exact zeros creates (an entry whose contributions cancel stays, as it does there), so the
 /// sparse matrices built from it have the same structure — and, summed in element order, the
 /// same values bit for bit — as before the graph existed.
+///
+/// The storage (9 bytes per graph entry) is allocated at the first nonzero contribution: a
+/// matrix nothing contributes to (the damping of an undamped model) costs nothing — 78 MB on
+/// the 155 522-DOF shell dome (issue 11).
 struct GraphMatrix {
   explicit GraphMatrix(const DofGraph& graph)
-      : value(static_cast<std::size_t>(graph.n_entries()), 0.0),
-        touched(static_cast<std::size_t>(graph.n_entries()), 0) {}
-  std::vector<double> value;
-  std::vector<unsigned char> touched;
-  bool empty = true;  // no contribution at all
+      : n_entries(static_cast<std::size_t>(graph.n_entries())) {}
+  std::size_t n_entries;
+  std::vector<double> value;           // n_entries values, or none while `empty`
+  std::vector<unsigned char> touched;  // likewise
+  bool empty = true;                   // no contribution at all
 
   /// Adds element matrix m at `slots` (DofGraph::element_slots); transposed when the graph's
   /// rows are to be read as columns (a column-compressed result).

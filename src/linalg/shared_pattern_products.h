@@ -21,10 +21,12 @@ class SharedPatternProducts {
   /// Square matrices of one size (an empty matrix, 0 × 0 or without nonzeros, is a zero).
   explicit SharedPatternProducts(const std::vector<const SparseMatrix*>& matrices);
   /// From entry values on one row-compressed pattern (`row_start`, `column`, columns ascending):
-  /// keeps the entries whose `kept` flag is set; `values[m]` null for a zero matrix.
+  /// keeps the entries whose `kept` flag is set; `values[m]` empty for a zero matrix. The
+  /// values are taken over and each freed once its kept entries are copied, so that the full
+  /// arrays of all the matrices are never in memory beside the products (issue 11).
   SharedPatternProducts(const std::vector<int>& row_start, const std::vector<int>& column,
                         const std::vector<unsigned char>& kept,
-                        const std::vector<const std::vector<double>*>& values);
+                        std::vector<std::vector<double>> values);
 
   int rows() const { return n_rows_; }
   long long nonzeros() const { return nonzeros_; }

@@ -163,7 +163,7 @@ TEST(DofGraph, SharedProductsFromTheGraphEqualThoseFromTheMatrices) {
   std::vector<unsigned char> kept(k_graph.touched);
   for (std::size_t s = 0; s < kept.size(); ++s) kept[s] |= m_graph.touched[s];
   const SharedPatternProducts from_graph(graph.row_start(), graph.column(), kept,
-                                         {&k_graph.value, nullptr, &m_graph.value});
+                                         {k_graph.value, {}, m_graph.value});
   EXPECT_EQ(from_graph.nonzeros(), SharedPatternProducts({&k, &m}).nonzeros());
   const int n = net.dofs.n_active();
   VectorXd x = VectorXd::LinSpaced(n, -1.0, 2.0), z = VectorXd::LinSpaced(n, 3.0, -0.5);
