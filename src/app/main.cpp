@@ -47,7 +47,7 @@ constexpr int kExitInternal = 3;
 /// glibc raises its mmap threshold to the size of every mapped block freed (up to 32 MB); from
 /// then on, blocks of that size come from the heap, and a freed one below live data is not given
 /// back. A run frees model-size arrays on its way to the factorization (pattern, products,
-/// CHOLMOD's copies), so the peak resident memory grew by those holes: 0.77 GB for the shell
+/// CHOLMOD's copies), so the peak resident memory grew by those holes: 0.73 GB for the shell
 /// dome 160, 0.68 GB with a fixed threshold (docs/benchmarks.md). Setting the threshold also
 /// stops its raising: blocks of 1 MB and more are mapped on their own and returned when freed.
 void map_large_blocks_on_their_own() {

@@ -148,7 +148,8 @@ void SharedPatternProducts::build(const std::vector<int>& row_start, const std::
     i += rows;
   }
   // The values in a second pass, into arrays of their exact size: grown entry by entry they
-  // would hold up to twice their size (issue 11: 139 MB for 75 MB of K and M on the shell dome).
+  // would hold up to twice their size (issue 11: 139 MB at the height of their growth for the
+  // 78 MB of K and M on the shell dome).
   column_.shrink_to_fit();
   groups_.shrink_to_fit();
   for (int m = 0; m < n_matrices_; ++m) {
