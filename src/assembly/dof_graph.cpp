@@ -78,10 +78,9 @@ void GraphMatrix::add(const std::vector<int>& slots, const MatrixXd& m, bool tra
     for (std::size_t b = 0; b < n; ++b) {
       const double x = m(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(b));
       if (x == 0.0) continue;
-      if (empty) {
+      if (value.empty()) {
         value.assign(n_entries, 0.0);
         touched.assign(n_entries, 0);
-        empty = false;
       }
       const auto s = static_cast<std::size_t>(transposed ? slots[b * n + a] : slots[a * n + b]);
       value[s] += x;
@@ -94,7 +93,7 @@ SparseMatrix GraphMatrix::to_sparse(const DofGraph& graph) const {
   const auto& row_start = graph.row_start();
   const auto& column = graph.column();
   std::vector<int> outer(static_cast<std::size_t>(n) + 1, 0);
-  if (empty) return SparseMatrix(n, n);
+  if (value.empty()) return SparseMatrix(n, n);
   std::vector<int> inner;
   std::vector<double> values;
   for (int i = 0; i < n; ++i) {

@@ -49,9 +49,8 @@ struct GraphMatrix {
   explicit GraphMatrix(const DofGraph& graph)
       : n_entries(static_cast<std::size_t>(graph.n_entries())) {}
   std::size_t n_entries;
-  std::vector<double> value;           // n_entries values, or none while `empty`
+  std::vector<double> value;           // n_entries values; none while nothing was added
   std::vector<unsigned char> touched;  // likewise
-  bool empty = true;                   // no contribution at all
 
   /// Adds element matrix m at `slots` (DofGraph::element_slots); transposed when the graph's
   /// rows are to be read as columns (a column-compressed result).
