@@ -409,8 +409,9 @@ void DeckReader::count_work(const Command& c, long long units) {
   executed_ += units;
   if (executed_ > options.max_commands)
     fail(c, fmt::format("more than {} commands and loop trips executed (a SAVE or RESUME "
-                        "counts as {}): a loop that does not end?",
-                        options.max_commands, kDatabaseWork));
+                        "counts as {} plus one per {} bytes of the database): a loop that does "
+                        "not end?",
+                        options.max_commands, kDatabaseWork, kDatabaseBytesPerWork));
 }
 
 void DeckReader::repeat_previous(const Command& c) {

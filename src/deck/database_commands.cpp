@@ -282,7 +282,6 @@ void cmd_save(DeckReader& r, const Command& c) {
   const std::string slab = r.label(c, 4);
   if (!slab.empty() && slab != "ALL" && slab != "MODEL")
     r.fail(c, fmt::format("Slab '{}' is not supported (ALL or MODEL)", slab));
-  r.count_work(c, DeckReader::kDatabaseWork);
   const Model& m = r.model;
   json j;
   j["format"] = "impactfe-db";
@@ -315,21 +314,23 @@ void cmd_save(DeckReader& r, const Command& c) {
   json params = json::object();
   for (const auto& [name, p] : r.params.all()) params[name] = param_json(p);
   j["parameters"] = params;
+  // JSON strings are UTF-8: a title or string parameter with other bytes (Latin-1 text, or
+  // garbage) is written with U+FFFD in their place rather than refused.
+  const std::string text = j.dump(1, ' ', false, json::error_handler_t::replace);
+  r.count_work(c, DeckReader::database_work(text.size()));
   const std::string path = database_path(r, c);
   std::ofstream out(path);
   if (!out) r.fail(c, fmt::format("cannot write '{}'", path));
-  // JSON strings are UTF-8: a title or string parameter with other bytes (Latin-1 text, or
-  // garbage) is written with U+FFFD in their place rather than refused.
-  out << j.dump(1, ' ', false, json::error_handler_t::replace) << '\n';
+  out << text << '\n';
   Log::info("{}:{}: SAVE: database written to {}", c.where.file, c.where.line, path);
 }
 
 void cmd_resume(DeckReader& r, const Command& c) {
   // RESUME,Fname,Ext,--,NOPAR,KNOPLOT: NOPAR 1 keeps the current parameters.
-  r.count_work(c, DeckReader::kDatabaseWork);
   const std::string path = database_path(r, c);
   const auto in = read_file(path);  // rank 0's disk under MPI (core/files.h)
   if (!in) r.fail(c, fmt::format("no database file '{}' (SAVE writes it)", path));
+  r.count_work(c, DeckReader::database_work(in->size()));
   const bool keep_params = r.integer(c, 4, 0) == 1;
   try {
     const json j = json::parse(*in);

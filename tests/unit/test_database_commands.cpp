@@ -2,6 +2,8 @@
 // results file; the database written and read back.
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
+
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -92,32 +94,42 @@ TEST(DatabaseCommands, ClearDeletesParametersAndResetsSettings) {
   EXPECT_EQ(run.out, " kept\n-0.988\n");  // *CREATE files survive, radians again, terminal again
 }
 
-TEST(DatabaseCommands, SaveAndResumeWeighAThousandCommandsOfWork) {
-  // A loop of SAVEs costs time per SAVE, not per command: each weighs 1000 units of the
-  // interpreted-work budget (DeckOptions::max_commands). Two SAVEs and a RESUME per trip: 3 trips
-  // take about 9000 units, within 10⁴; the 4th trip's first SAVE goes over.
+TEST(DatabaseCommands, SaveAndResumeWeighByTheSizeOfTheDatabase) {
+  // A loop of SAVEs and RESUMEs costs time per database byte, not per command: each weighs
+  // 1000 units of the interpreted-work budget (DeckOptions::max_commands) plus one per 16 bytes
+  // of the file. A line of 401 nodes writes about 10 kB, so each SAVE or RESUME weighs about
+  // 1600 units: a budget of six of them takes 3 trips of SAVE + RESUME but not 4 (with the
+  // constant 1000 units of stop 27 the 4th trip would fit as well).
   const auto dir = impactfe::testing::fresh_directory("database_work");
   const auto previous = std::filesystem::current_path();
   std::filesystem::current_path(dir);
-  const auto error_of = [](int trips) -> std::string {
+  const std::string model = "/PREP7\nN,1\nN,401,400\nFILL\n";
+  const auto error_of = [&](int trips, long long budget) -> std::string {
     DeckOptions o;
     o.dialect = Dialect::Modern;
-    o.max_commands = 10'000;
+    o.max_commands = budget;
     try {
-      read_deck_text(
-          "/PREP7\nN,1\n*DO,I,1," + std::to_string(trips) + "\nSAVE\nSAVE,copy\nRESUME\n*ENDDO\n",
-          "loop.inp", o);
+      read_deck_text(model + "*DO,I,1," + std::to_string(trips) + "\nSAVE\nRESUME\n*ENDDO\n",
+                     "loop.inp", o);
     } catch (const InputError& e) {
       return e.what();
     }
     return "";
   };
-  const std::string within = error_of(3);
-  const std::string over = error_of(4);
+  const std::string once = error_of(1, 1'000'000);
+  const auto bytes = static_cast<long long>(std::filesystem::file_size(dir / "loop.db"));
+  const long long per_operation = 1000 + bytes / 16;
+  const long long budget = 6 * per_operation + 50;  // 50: the commands and loop trips
+  const std::string within = error_of(3, budget);
+  const std::string over = error_of(4, budget);
   std::filesystem::current_path(previous);
+  EXPECT_EQ(once, "");
+  EXPECT_GT(bytes, 8000);  // the size term matters: over 500 units per database operation
   EXPECT_EQ(within, "");
-  EXPECT_NE(over.find("loop.inp:4: SAVE: more than 10000 commands and loop trips executed (a SAVE "
-                      "or RESUME counts as 1000)"),
+  EXPECT_NE(over.find(fmt::format("loop.inp:6: SAVE: more than {} commands and loop trips "
+                                  "executed (a SAVE or RESUME counts as 1000 plus one per 16 "
+                                  "bytes of the database)",
+                                  budget)),
             std::string::npos)
       << over;
 }
