@@ -99,7 +99,7 @@ TEST(DatabaseCommands, SaveAndResumeWeighByTheSizeOfTheDatabase) {
   // 1000 units of the interpreted-work budget (DeckOptions::max_commands) plus one per 16 bytes
   // of the file. A line of 401 nodes writes about 10 kB, so each SAVE or RESUME weighs about
   // 1600 units: a budget of six of them takes 3 trips of SAVE + RESUME but not 4 (with the
-  // constant 1000 units of stop 27 the 4th trip would fit as well).
+  // constant 1000 units of stop 29 the 4th trip would fit as well).
   const auto dir = impactfe::testing::fresh_directory("database_work");
   const auto previous = std::filesystem::current_path();
   std::filesystem::current_path(dir);
