@@ -21,6 +21,7 @@ Assembler::Assembler(const std::vector<std::unique_ptr<Element>>& elements, cons
   const DofGraph graph(dofs_, elements_.size());
   // Pattern: every pair of free DOFs that share an element (lower triangle), every diagonal.
   pattern_ = graph.lower_pattern(nf);
+  pattern_nonzeros_ = pattern_.nonzeros();
 
   slots_.resize(elements_.size());
   mass_.resize(elements_.size());
@@ -220,8 +221,8 @@ void Assembler::assemble(const IntegrationCoefficients& coeff, const VectorXd& u
   add_forces(u, v, a, out, only);
   if (out.effective) {
     // Swapped in, not assigned: Eigen 3.4 copies a SparseMatrix on assignment, briefly twice.
-    if (out.effective->nonZeros() != pattern_.nonzeros())
-      pattern_.zero_matrix().swap(*out.effective);
+    if (out.effective->nonZeros() != pattern_nonzeros_)
+      pattern().zero_matrix().swap(*out.effective);
     double* values = out.effective->valuePtr();
     VectorXd ue;
     MatrixXd c;
@@ -383,19 +384,28 @@ const std::vector<double>& Assembler::constant_effective(
   if (!constant_effective_.empty() && constant_coeff_.cK == coeff.cK &&
       constant_coeff_.cC == coeff.cC && constant_coeff_.cM == coeff.cM)
     return constant_effective_;
-  constant_effective_.assign(static_cast<std::size_t>(pattern_.nonzeros()), 0.0);
-  add_constant_effective(coeff, constant_effective_.data());
+  const SparsePattern& p = pattern();
+  constant_effective_.assign(static_cast<std::size_t>(p.nonzeros()), 0.0);
+  add_constant_effective(coeff, p.column_start.data(), p.row.data(), constant_effective_.data());
   constant_coeff_ = coeff;
   return constant_effective_;
 }
 
-void Assembler::add_constant_effective(const IntegrationCoefficients& coeff, double* values) const {
+const SparsePattern& Assembler::pattern() const {
+  if (pattern_.row.empty() && pattern_nonzeros_ > 0) {
+    pattern_ = DofGraph(dofs_, elements_.size()).lower_pattern(dofs_.n_free());
+    IMPACTFE_CHECK(pattern_.nonzeros() == pattern_nonzeros_,
+                   "Assembler: the pattern formed again differs from the first");
+  }
+  return pattern_;
+}
+
+void Assembler::add_constant_effective(const IntegrationCoefficients& coeff, const int* outer,
+                                       const int* inner, double* values) const {
   // cK K_L + cC C_L + cM M from the global products (the element matrices are not kept), into
   // the free-free lower pattern. Within a column the rows ascend, as in the pattern, so a slot
   // is found by continuing the previous one's search; a new column starts a binary search.
   const int nf = dofs_.n_free();
-  const int* outer = pattern_.column_start.data();
-  const int* inner = pattern_.row.data();
   const double factor[3] = {coeff.cK, coeff.cC, coeff.cM};
   int last_row = -1, last_column = -1, at = 0;
   for_each_lower_product_entry([&](int row, int column, const double* v) {
@@ -470,9 +480,13 @@ void Assembler::assemble_linear_part(const IntegrationCoefficients& coeff,
                                      SparseMatrix& effective) const {
   // Not through the cache of constant_effective: the condensed transient factors this once per
   // time step size and would only keep a second copy of its values.
-  if (effective.nonZeros() != pattern_.nonzeros()) pattern_.zero_matrix().swap(effective);
+  if (effective.nonZeros() != pattern_nonzeros_) pattern().zero_matrix().swap(effective);
   std::fill(effective.valuePtr(), effective.valuePtr() + effective.nonZeros(), 0.0);
-  add_constant_effective(coeff, effective.valuePtr());
+  add_constant_effective(coeff, effective.outerIndexPtr(), effective.innerIndexPtr(),
+                         effective.valuePtr());
+  // The matrix holds the structure now; the pattern is formed again if a full assembly needs it
+  // (issue 11: 18 MB beside the factor on the 155 522-DOF dome).
+  pattern_ = SparsePattern{};
 }
 
 void Assembler::assemble_nonlinear_part(const IntegrationCoefficients& coeff, double w,

@@ -100,8 +100,9 @@ class Assembler {
   bool has_damping() const { return has_damping_; }
   /// True when some element's stiffness or internal force depends on u (or on a status).
   bool is_nonlinear() const;
-  /// The free-free lower pattern of every effective matrix.
-  const SparsePattern& pattern() const { return pattern_; }
+  /// The free-free lower pattern of every effective matrix (formed again from the DOF graph
+  /// when assemble_linear_part released it).
+  const SparsePattern& pattern() const;
 
   /// Element DOF values gathered from a global vector.
   void gather(std::size_t e, const VectorXd& global, VectorXd& local) const;
@@ -123,8 +124,10 @@ class Assembler {
   /// elements' cK K + cC C and every element's cM M, formed once per coefficient set (a
   /// Newton iteration then adds only the nonlinear elements' tangents).
   const std::vector<double>& constant_effective(const IntegrationCoefficients& coeff) const;
-  /// values += that constant part (on the pattern's value slots), from the global products.
-  void add_constant_effective(const IntegrationCoefficients& coeff, double* values) const;
+  /// values += that constant part, from the global products, on a matrix with the pattern's
+  /// structure (`column_start`, `row`: its compressed-column index arrays).
+  void add_constant_effective(const IntegrationCoefficients& coeff, const int* column_start,
+                              const int* row, double* values) const;
   mutable std::vector<double> constant_effective_;
   mutable IntegrationCoefficients constant_coeff_{};
   /// Forms linear_products_ from the element matrices, summed on the DOF graph.
@@ -154,7 +157,11 @@ class Assembler {
   ElementContext ctx_;
   // The DOF graph (DofGraph) is not kept: it is built again for the few whole-model matrices
   // (full_matrix) and material damping, once per analysis (issue 11: memory).
-  SparsePattern pattern_;
+  // The pattern is released by assemble_linear_part: the condensed transient's effective matrix
+  // then holds the only copy of it while CHOLMOD factors (the peak memory of a large run), and
+  // a later full assembly forms it again (pattern()).
+  mutable SparsePattern pattern_;
+  long long pattern_nonzeros_ = 0;
   /// For each nonlinear element (empty for the linear ones), the value slot of each (a, b) pair
   /// with a >= b in the lower pattern (-1 when a DOF is constrained): scatter is an indexed add.
   std::vector<std::vector<int>> slots_;

@@ -189,6 +189,32 @@ TEST(Assembler, EffectiveMatrixFromTheProductsEqualsTheElementSum) {
   EXPECT_EQ(MatrixXd(lower.triangularView<Eigen::StrictlyUpper>()).norm(), 0.0);
 }
 
+TEST(Assembler, LinearPartReleasesThePatternAndAFullAssemblyFormsItAgain) {
+  // The condensed transient's linear part holds the only copy of the pattern while CHOLMOD
+  // factors it (issue 11: memory); a full Newton iteration after it (a step the condensation
+  // hands back) needs the pattern again, with the nonlinear elements' slots still valid in it.
+  const Model m = shell_plate_with_gap();
+  const auto elements = build(m);
+  const DofMap dofs(elements, shell_plate_supports());
+  const Assembler assembler(elements, dofs, ElementContext{}, 0.3, 2e-4);
+  const SparsePattern first = assembler.pattern();
+  ASSERT_GT(first.nonzeros(), 0);
+  const IntegrationCoefficients coeff{1.0, 2.0e3, 4.0e6};
+  const VectorXd u = VectorXd::LinSpaced(dofs.n_active(), -1e-3, 2e-3);
+  SparseMatrix before, linear, after;
+  assembler.assemble(coeff, u, u, Assembler::Output{&before, nullptr, nullptr});
+  assembler.assemble_linear_part(coeff, linear);
+  // Its structure is the pattern's.
+  ASSERT_EQ(linear.nonZeros(), first.nonzeros());
+  EXPECT_TRUE(std::equal(first.row.begin(), first.row.end(), linear.innerIndexPtr()));
+  const SparsePattern& again = assembler.pattern();
+  EXPECT_EQ(again.column_start, first.column_start);
+  EXPECT_EQ(again.row, first.row);
+  assembler.assemble(coeff, u, u, Assembler::Output{&after, nullptr, nullptr});
+  EXPECT_EQ(MatrixXd(after - before).norm(), 0.0);
+  EXPECT_GT(MatrixXd(after).norm(), 0.0);
+}
+
 TEST(Assembler, MassDiagonalAndMassBlockFromTheProductsEqualTheElementSum) {
   // The initial acceleration reads M from the global products (no copy of M is kept): its
   // diagonal, and its lower triangle on the massive free DOFs, renumbered (here in reverse, so
