@@ -320,10 +320,13 @@ BlockSeries& ResultsWriter::Impl::series_for(const std::string& name,
       sparse_output || result_series::product(row_dims) >= result_series::kMinCompressedPointValues;
   BlockSeries s = create_series(group, recent_group, name, row_dims, block_rows, block_start,
                                 growable, compress);
-  // The whole block starts NaN: its finished blocks are written from it, so that every chunk
-  // exists (all_chunks_written), and the rows of the current block before this point stay NaN
-  // (written to the new staging dataset at the next sync like every row of the block).
-  std::fill_n(s.block.get(), block_rows * s.row_size(), kNaN);
+  // The rows of the current block before this point are NaN (written to the new staging
+  // dataset at the next sync like every row of the block). After finished blocks the whole
+  // block starts NaN: those blocks are written from it, so that every chunk exists
+  // (all_chunks_written). Otherwise the later rows are left untouched until their points fill
+  // them: the block of a large model becomes resident row by row, not whole at the first point
+  // (issue 11: three rows, 23 MB, of the 155 522-DOF dome's peak during its factorization).
+  std::fill_n(s.block.get(), (block_start > 0 ? block_rows : slot()) * s.row_size(), kNaN);
   for (hsize_t b = 0; b < block_start; b += block_rows)
     write_rows(s.main, b, std::min(block_rows, block_start - b), s.row_dims, s.block.get());
   return series.emplace(name, std::move(s)).first->second;
