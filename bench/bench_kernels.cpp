@@ -92,7 +92,7 @@ struct Built {
     const Job::Step& step = job.steps.front();
     const AnalysisRequest& a = *step.analysis;
     structure =
-        std::make_unique<Structure>(step.model_snapshot, a.options, RunSettings{}, &a.load_steps);
+        std::make_unique<Structure>(*step.model_snapshot, a.options, RunSettings{}, &a.load_steps);
     dofs = std::make_unique<DofMap>(structure->elements(),
                                     structure->constraints_of(a.load_steps.front()));
   }

@@ -145,7 +145,7 @@ void JobSession::solve(const Job& job, std::size_t step) {
         close_open();
         return;
       }
-      models_.push_back(std::make_unique<Model>(s.model_snapshot));
+      models_.push_back(s.model_snapshot);
       open_step_.emplace();
       open_step_->analysis = *s.analysis;
       if (solves_incrementally(s.analysis->options)) {

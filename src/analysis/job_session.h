@@ -67,14 +67,14 @@ class JobSession final : public SolutionHost {
   std::size_t job_first_analysis_ = 0;     // index in stats_.analyses of this job's first analysis
   std::vector<std::string> closed_files_;  // results files of the jobs ended by /CLEAR
 
-  // The open step: its own copy of the model snapshot (the job's step list may reallocate), the
-  // structure and, for static / full transient analyses, the solution advanced load step by
-  // load step. Models are kept for the session: a reduced transient's expansion state refers to
-  // its model.
+  // The open step: the model snapshot it shares with the job's step (held here: the job's step
+  // list may reallocate, and the deck reader may drop it), the structure and, for static / full
+  // transient analyses, the solution advanced load step by load step. Models are kept for the
+  // session: a reduced transient's expansion state refers to its model.
   std::optional<std::size_t> open_;
   std::optional<Job::Step> open_step_;
   std::size_t load_steps_solved_ = 0;
-  std::vector<std::unique_ptr<Model>> models_;
+  std::vector<std::shared_ptr<const Model>> models_;
   std::unique_ptr<Structure> structure_;
   std::unique_ptr<DirectSolution> direct_;
   std::unique_ptr<ReducedSolutionState> reduced_state_;

@@ -7,6 +7,7 @@
 
 #include <array>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -301,7 +302,10 @@ struct Job {
   struct Step {
     std::optional<AnalysisRequest> analysis;
     std::optional<ExpansionPassRequest> expansion;
-    Model model_snapshot;  // model (geometry, elements, masters, gaps) as of this request
+    /// The model (geometry, elements, masters, gaps) as of this request. Shared, not copied,
+    /// by the session that solves it (issue 11: one model copy less on large runs); not changed
+    /// after the request is made.
+    std::shared_ptr<Model> model_snapshot = std::make_shared<Model>();
   };
   std::vector<Step> steps;
   std::vector<std::string> ignored_commands;  // graphics / print-only commands, listed in the log

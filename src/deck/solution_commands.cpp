@@ -523,7 +523,7 @@ void cmd_afwrite(DeckReader& r, const Command& c) {
   a.load_steps = r.load_steps_4x;
   a.where = c.where;
   step.analysis = std::move(a);
-  step.model_snapshot = solution_model(r, c);
+  step.model_snapshot = std::make_shared<Model>(solution_model(r, c));
   r.frozen = std::move(step);
 }
 
@@ -545,7 +545,7 @@ AnalysisRequest& open_analysis(DeckReader& r, const Command& c) {
     r.model.options.restart.reset();  // ANTYPE,,RESTART is taken by this analysis only
     a.where = c.where;
     step.analysis = std::move(a);
-    step.model_snapshot = solution_model(r, c);
+    step.model_snapshot = std::make_shared<Model>(solution_model(r, c));
     r.job.steps.push_back(std::move(step));
     r.open_analysis = r.job.steps.size() - 1;
   }
@@ -582,7 +582,7 @@ void solve_expansion(DeckReader& r, const Command& c) {
   e.where = c.where;
   Job::Step step;
   step.expansion = std::move(e);
-  step.model_snapshot = r.model;
+  step.model_snapshot = std::make_shared<Model>(r.model);
   r.job.steps.push_back(std::move(step));
   r.open_analysis.reset();
   r.expansion.requests.clear();
@@ -707,7 +707,7 @@ void close_stress_block(DeckReader& r, const SourceLocation& where) {
   e.requests = r.stress_requests;
   e.where = where;
   step.expansion = std::move(e);
-  step.model_snapshot = r.model;
+  step.model_snapshot = std::make_shared<Model>(r.model);
   r.job.steps.push_back(std::move(step));
   r.stress_requests.clear();
   r.solve_step(r.job.steps.size() - 1);

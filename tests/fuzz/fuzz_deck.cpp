@@ -97,7 +97,7 @@ bool small_enough_to_solve(const Job& job, const std::string& text) {
   if (contains_upper(text, "FILN") || contains_upper(text, "SEOP")) return false;
   std::size_t most_elements = 1;
   for (const auto& step : job.steps) {
-    const Model& m = step.model_snapshot;
+    const Model& m = *step.model_snapshot;
     if (m.nodes.size() > kMaxSolveNodes || m.elements.size() > kMaxSolveNodes) return false;
     most_elements = std::max(most_elements, m.elements.size());
   }

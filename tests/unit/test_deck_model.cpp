@@ -134,7 +134,7 @@ TEST(DeckModel, MaterialAndRealMayFollowE) {
       "/PREP7\nET,1,LINK180\nN,1\nN,2,10\nE,1,2\nR,1,0.5\nMP,EX,1,2E11\nFINISH\n/SOLU\n"
       "D,1,ALL\nF,2,FX,1\nSOLVE\n");
   ASSERT_EQ(job.steps.size(), 1u);
-  EXPECT_EQ(job.steps[0].model_snapshot.materials.size(), 1u);
+  EXPECT_EQ(job.steps[0].model_snapshot->materials.size(), 1u);
 }
 
 TEST(DeckModel, SectionsForLink180AndShell181) {
@@ -147,7 +147,7 @@ TEST(DeckModel, SectionsForLink180AndShell181) {
   // Without a section the modern default SECNUM 1 is dropped when the analysis is frozen.
   const Job no_section =
       parse("/PREP7\nET,1,LINK180\nR,1,0.25\nMP,EX,1,1\nN,1\nN,2,1\nE,1,2\nFINISH\n/SOLU\nSOLVE\n");
-  EXPECT_EQ(no_section.steps.at(0).model_snapshot.elements.at(1).secnum, 0);
+  EXPECT_EQ(no_section.steps.at(0).model_snapshot->elements.at(1).secnum, 0);
 }
 
 TEST(DeckModel, ConstraintsRangesLabelsAndDeletion) {

@@ -112,7 +112,7 @@ class SuperelementTest : public ::testing::Test {
                        GenerationSummary* summary_out = nullptr) {
     const Job job = parse(deck);
     const Job::Step& step = job.steps.at(0);
-    Structure s(step.model_snapshot, step.analysis->options, RunSettings{});
+    Structure s(*step.model_snapshot, step.analysis->options, RunSettings{});
     GenerationSummary summary;
     const SuperelementData se = generate_superelement(s, *step.analysis, name, summary);
     const std::string path = (dir_ / (name + ".sub.h5")).string();
@@ -150,13 +150,13 @@ TEST_F(SuperelementTest, StaticUsePassReproducesFullModelMastersExactly) {
 
   const Job full = parse(geometry(true) + "FINISH\n/SOLU\nANTYPE,STATIC\n" + kClamp + kLoads +
                          "SOLVE\nFINISH\n");
-  Structure full_s(full.steps[0].model_snapshot, full.steps[0].analysis->options, RunSettings{});
+  Structure full_s(*full.steps[0].model_snapshot, full.steps[0].analysis->options, RunSettings{});
   const Solved reference = solve_static(full_s, full.steps[0].analysis->load_steps[0]);
 
   const Job use = parse(use_deck(se, true));
   RunSettings settings;
   settings.superelement_file = path;
-  Structure use_s(use.steps[0].model_snapshot, use.steps[0].analysis->options, settings);
+  Structure use_s(*use.steps[0].model_snapshot, use.steps[0].analysis->options, settings);
   ASSERT_EQ(use_s.elements().size(), 1u);
   EXPECT_STREQ(use_s.elements()[0]->family(), "Superelement");
   const Solved reduced = solve_static(use_s, use.steps[0].analysis->load_steps[0]);
@@ -195,7 +195,7 @@ TEST_F(SuperelementTest, GenerationLoadVectorReproducesStaticMasterDisplacements
   ASSERT_EQ(se.load_vectors.cols(), 1);
   const Job full =
       parse(geometry(true) + "FINISH\n/SOLU\nANTYPE,STATIC\n" + kClamp + loads + "SOLVE\n");
-  Structure full_s(full.steps[0].model_snapshot, full.steps[0].analysis->options, RunSettings{});
+  Structure full_s(*full.steps[0].model_snapshot, full.steps[0].analysis->options, RunSettings{});
   const Solved reference = solve_static(full_s, full.steps[0].analysis->load_steps[0]);
   VectorXd um(se.n_masters());
   for (int k = 0; k < se.n_masters(); ++k) um(k) = reference.u.at(se.masters[k].key);
@@ -244,7 +244,7 @@ TEST_F(SuperelementTest, MatricesSymmetricAndMassSumsToStructureMass) {
 TEST_F(SuperelementTest, ModalCondensationErrorOfTheCurvedShell) {
   const SuperelementData se = read_superelement(generate(generation_deck(true), "plate"));
   const Job full = parse(geometry(true) + "FINISH\n/SOLU\nANTYPE,MODAL\n" + kClamp + "SOLVE\n");
-  Structure s(full.steps[0].model_snapshot, full.steps[0].analysis->options, RunSettings{});
+  Structure s(*full.steps[0].model_snapshot, full.steps[0].analysis->options, RunSettings{});
   const DofMap dofs(s.elements(), s.constraints_of(full.steps[0].analysis->load_steps[0]));
   const Assembler assembler(s.elements(), dofs, s.context());
   const int nf = dofs.n_free();
@@ -271,13 +271,13 @@ TEST_F(SuperelementTest, ExpansionOfStaticUsePassGivesFullDisplacementsAndStress
   const SuperelementData se = read_superelement(path);
   const Job full = parse(geometry(true) + "FINISH\n/SOLU\nANTYPE,STATIC\n" + kClamp + kLoads +
                          "SOLVE\nFINISH\n");
-  Structure full_s(full.steps[0].model_snapshot, full.steps[0].analysis->options, RunSettings{});
+  Structure full_s(*full.steps[0].model_snapshot, full.steps[0].analysis->options, RunSettings{});
   const Solved reference = solve_static(full_s, full.steps[0].analysis->load_steps[0]);
 
   const Job use = parse(use_deck(se, true));
   RunSettings settings;
   settings.superelement_file = path;
-  Structure use_s(use.steps[0].model_snapshot, use.steps[0].analysis->options, settings);
+  Structure use_s(*use.steps[0].model_snapshot, use.steps[0].analysis->options, settings);
   const Solved reduced = solve_static(use_s, use.steps[0].analysis->load_steps[0]);
   VectorXd um(se.n_masters());
   for (int k = 0; k < se.n_masters(); ++k) um(k) = reduced.u.at(se.masters[k].key);
@@ -316,7 +316,7 @@ TEST_F(SuperelementTest, ExpansionOfStaticUsePassGivesFullDisplacementsAndStress
 
 TEST_F(SuperelementTest, FileRoundTripKeepsEverything) {
   const Job job = parse(generation_deck(true));
-  Structure s(job.steps[0].model_snapshot, job.steps[0].analysis->options, RunSettings{});
+  Structure s(*job.steps[0].model_snapshot, job.steps[0].analysis->options, RunSettings{});
   GenerationSummary summary;
   const SuperelementData se = generate_superelement(s, *job.steps[0].analysis, "plate", summary);
   const std::string path = (dir_ / "rt.sub.h5").string();
@@ -349,7 +349,7 @@ TEST_F(SuperelementTest, UsePassWarnsWhenMasterNodeMoved) {
   RunSettings settings;
   settings.superelement_file = (dir_ / "plate.sub.h5").string();
   Log::clear();
-  Structure s(use.steps[0].model_snapshot, use.steps[0].analysis->options, settings);
+  Structure s(*use.steps[0].model_snapshot, use.steps[0].analysis->options, settings);
   bool warned = false;
   for (const auto& w : Log::warnings()) warned |= w.find("node 16") != std::string::npos;
   EXPECT_TRUE(warned);
@@ -358,13 +358,13 @@ TEST_F(SuperelementTest, UsePassWarnsWhenMasterNodeMoved) {
 TEST_F(SuperelementTest, GenerationRejectsNonZeroConstraintAndConstrainedMaster) {
   const Job nonzero = parse(geometry(true) + kMasters +
                             "FINISH\n/SOLU\nANTYPE,SUBSTR\nD,1,ALL,,,4,1\nD,5,UZ,0.1\nSOLVE\n");
-  Structure s1(nonzero.steps[0].model_snapshot, nonzero.steps[0].analysis->options, RunSettings{});
+  Structure s1(*nonzero.steps[0].model_snapshot, nonzero.steps[0].analysis->options, RunSettings{});
   GenerationSummary summary;
   EXPECT_THROW(generate_superelement(s1, *nonzero.steps[0].analysis, "x", summary), InputError);
 
   const Job master_fixed = parse(
       geometry(true) + "M,2,UZ\nM,16,UZ\nFINISH\n/SOLU\nANTYPE,SUBSTR\n" + kClamp + "SOLVE\n");
-  Structure s2(master_fixed.steps[0].model_snapshot, master_fixed.steps[0].analysis->options,
+  Structure s2(*master_fixed.steps[0].model_snapshot, master_fixed.steps[0].analysis->options,
                RunSettings{});
   try {
     generate_superelement(s2, *master_fixed.steps[0].analysis, "x", summary);

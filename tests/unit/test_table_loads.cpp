@@ -45,7 +45,7 @@ const char* kSpring =
 TEST(TableLoads, ForceFollowsItsTimeFunction) {
   const auto results =
       solve_edited("table_force", std::string(kSpring) + "F,2,FX,1\nSOLVE\n", [](Job::Step& s) {
-        s.model_snapshot.time_functions["PULL"] = pulse();
+        s.model_snapshot->time_functions["PULL"] = pulse();
         s.analysis->load_steps[0].force_tables[{2, Dof::UX}] = "PULL";
       });
   const auto ux = results->nodal_series(2, "UX");
@@ -61,7 +61,7 @@ TEST(TableLoads, DisplacementAccelerationAndPressureTables) {
   // Prescribed displacement: u(t) from the table, the spring reaction follows.
   const auto d =
       solve_edited("table_disp", std::string(kSpring) + "D,2,UX,1\nSOLVE\n", [](Job::Step& s) {
-        s.model_snapshot.time_functions["PULL"] = pulse();
+        s.model_snapshot->time_functions["PULL"] = pulse();
         s.analysis->load_steps[0].constraint_tables[{2, Dof::UX}] = "PULL";
       });
   const auto ux = d->nodal_series(2, "UX");
@@ -76,7 +76,7 @@ TEST(TableLoads, DisplacementAccelerationAndPressureTables) {
       "E,1,2\nTYPE,2\nREAL,2\nE,2\nFINISH\n/SOLU\nANTYPE,STATIC\nD,1,ALL\nD,2,UY,,,,,UZ\n"
       "NSUBST,4\nOUTRES,ALL,ALL\nTIME,2\nACEL,1\nSOLVE\n",
       [](Job::Step& s) {
-        s.model_snapshot.time_functions["G"] = pulse();
+        s.model_snapshot->time_functions["G"] = pulse();
         s.analysis->load_steps[0].acel_tables[0] = "G";
       });
   EXPECT_NEAR(a->nodal_series(2, "UX")[1].second, -3.0 * 100.0 / 100.0, 1e-12);
@@ -88,7 +88,7 @@ TEST(TableLoads, DisplacementAccelerationAndPressureTables) {
       "ANTYPE,STATIC\nNSEL,S,LOC,Z,0\nD,ALL,ALL\nNSEL,S,LOC,Z,1\nSF,ALL,PRES,1\nALLSEL\n"
       "NSUBST,4\nOUTRES,ALL,ALL\nTIME,2\nSOLVE\n",
       [](Job::Step& s) {
-        s.model_snapshot.time_functions["P"] = pulse();
+        s.model_snapshot->time_functions["P"] = pulse();
         for (auto& [face, load] : s.analysis->load_steps[0].pressures) load.table = "P";
       });
   const std::vector<double> expected = {50, 100, 75, 50};
