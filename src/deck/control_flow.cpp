@@ -45,7 +45,7 @@ std::string label_key(std::string_view text) {
 
 SourceLocation location_of(const RawCommand& c) {
   SourceLocation w;
-  w.file = c.file;
+  if (c.file) w.file = *c.file;
   w.line = c.line;
   w.command = c.name.empty() ? std::string(",") : c.name;
   return w;
@@ -140,12 +140,12 @@ struct DeckReader::Program {
   const std::vector<RawCommand>& cmds;
   std::vector<std::size_t> match;                            // opener → *ENDDO / *ENDIF / *END
   std::map<std::size_t, std::vector<std::size_t>> branches;  // *IF block → *ELSEIF / *ELSE
-  std::vector<std::string> error;                            // raised when the line is reached
-  std::vector<int> depth;                                    // block depth of each line
+  std::map<std::size_t, std::string> error;  // raised when the line is reached (few lines)
+  std::vector<int> depth;                    // block depth of each line
   std::vector<std::pair<std::string, std::size_t>> labels;
 
   Program(const std::vector<RawCommand>& c, Dialect dialect)
-      : cmds(c), match(c.size(), kNone), error(c.size()), depth(c.size(), 0) {
+      : cmds(c), match(c.size(), kNone), depth(c.size(), 0) {
     struct Open {
       std::size_t at;
       bool is_do;
@@ -348,7 +348,7 @@ Command DeckReader::resolve(const RawCommand& raw) {
   c.fields = raw.fields;
   c.rest = raw.rest;
   c.assignment = raw.assignment;
-  c.where.file = raw.file;
+  if (raw.file) c.where.file = *raw.file;
   c.where.line = raw.line;
   if (raw.repeat) {
     if (last_name_.empty()) {
@@ -599,7 +599,8 @@ DeckReader::Flow DeckReader::run_range(Frame& f, std::size_t begin, std::size_t 
       continue;
     }
     if (!raw.error.empty()) throw InputError(location_of(raw), raw.error);
-    if (!prog.error[i].empty()) throw InputError(location_of(raw), prog.error[i]);
+    if (const auto e = prog.error.find(i); e != prog.error.end() && !e->second.empty())
+      throw InputError(location_of(raw), e->second);
     Command c = resolve(raw);
     std::size_t next = i + 1;
     while (next < end && cmds[next].format_line) c.format_lines.push_back(cmds[next++].rest);

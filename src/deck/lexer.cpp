@@ -110,7 +110,8 @@ std::vector<std::string_view> split_dollar(std::string_view text) {
 }
 
 /// Lexes one command (no `$`). Returns false for an empty/comment segment.
-bool lex_segment(std::string_view raw, const std::string& file, int line, RawCommand& cmd) {
+bool lex_segment(std::string_view raw, const std::shared_ptr<const std::string>& file, int line,
+                 RawCommand& cmd) {
   const std::string text = trim(raw);
   if (text.empty()) return false;
   cmd = RawCommand{};
@@ -151,10 +152,9 @@ bool starts_with_upper(std::string_view text, std::string_view prefix) {
   return to_upper(text.substr(0, prefix.size())) == prefix;
 }
 
-}  // namespace
-
-std::vector<RawCommand> lex_line(std::string_view text, const std::string& file, int line,
-                                 Dialect dialect) {
+std::vector<RawCommand> lex_line_of(std::string_view text,
+                                    const std::shared_ptr<const std::string>& file, int line,
+                                    Dialect dialect) {
   std::vector<RawCommand> out;
   const std::string stripped = trim(text);
   if (stripped.empty()) return out;
@@ -184,11 +184,20 @@ std::vector<RawCommand> lex_line(std::string_view text, const std::string& file,
   return out;
 }
 
+}  // namespace
+
+std::vector<RawCommand> lex_line(std::string_view text, const std::string& file, int line,
+                                 Dialect dialect) {
+  return lex_line_of(text, std::make_shared<const std::string>(file), line, dialect);
+}
+
 bool takes_format_line(std::string_view n) {
   return n.substr(0, 5) == "*VWRI" || n == "*MSG" || n.substr(0, 5) == "*MWRI";
 }
 
-std::vector<RawCommand> lex_text(std::string_view text, const std::string& file, Dialect dialect) {
+std::vector<RawCommand> lex_text(std::string_view text, const std::string& file_name,
+                                 Dialect dialect) {
+  const auto file = std::make_shared<const std::string>(file_name);
   std::vector<RawCommand> out;
   int line = 0;
   std::size_t pos = 0;
@@ -224,7 +233,7 @@ std::vector<RawCommand> lex_text(std::string_view text, const std::string& file,
       if (format_next) f.rest = t.substr(0, t.size() - 1);
       out.push_back(std::move(f));
     } else {
-      auto cmds = lex_line(physical, file, line, dialect);
+      auto cmds = lex_line_of(physical, file, line, dialect);
       format_next = !cmds.empty() && takes_format_line(cmds.back().name);
       for (auto& c : cmds) {
         c.source = std::string(physical);
@@ -235,6 +244,7 @@ std::vector<RawCommand> lex_text(std::string_view text, const std::string& file,
     pos = end + 1;
     if (pos == text.size()) break;  // the newline ending the last line opens no further line
   }
+  out.shrink_to_fit();  // kept for the whole run: up to half its size spare (issue 11)
   return out;
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 /// Lexical layer of the deck reader (APDL_SUBSET §1): splits deck text into raw commands with
 /// their source location. Knows nothing about what a command means.
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -22,7 +23,9 @@ struct RawCommand {
   std::string rest;    // raw text after the first comma (for /TITLE and /COM)
   std::string error;   // a line the lexer refuses (too long): reported when it is reached
   std::string source;  // the physical line as written (*CREATE keeps it for *LIST)
-  std::string file;
+  /// The file, shared by all the commands of one lexed text (a copy per command was 32 bytes
+  /// plus a heap string for a long path, on decks of 10⁵ lines: issue 11).
+  std::shared_ptr<const std::string> file;
   int line = 0;
 };
 

@@ -32,10 +32,25 @@ TEST(DeckLexer, FieldsKeepBlankDistinctFromZero) {
   EXPECT_EQ(cmds[0].name, "ET");
   EXPECT_EQ(cmds[0].fields, (std::vector<std::string>{"1", "63", "", "", "", "", "1"}));
   EXPECT_EQ(cmds[0].line, 7);
-  EXPECT_EQ(cmds[0].file, "d.inp");
+  ASSERT_NE(cmds[0].file, nullptr);
+  EXPECT_EQ(*cmds[0].file, "d.inp");
   const auto n = lex_line("n,2,0,,0", "d.inp", 1, Dialect::Modern);
   EXPECT_EQ(n[0].name, "N");  // names are upper-cased
   EXPECT_EQ(n[0].fields, (std::vector<std::string>{"2", "0", "", "0"}));
+}
+
+TEST(DeckLexer, CommandsOfATextShareOneFileNameAndLeaveNoSpareCapacity) {
+  // A deck of 10⁵ lines holds its commands for the whole run (issue 11: memory).
+  const auto cmds =
+      lex_text("N,1\nN,2,1 $ N,3,2\n\nE,1,2\n", "a/long/path/to/the/deck.inp", Dialect::Modern);
+  ASSERT_EQ(cmds.size(), 4u);
+  EXPECT_EQ(cmds.capacity(), cmds.size());
+  for (const auto& c : cmds) {
+    ASSERT_NE(c.file, nullptr);
+    EXPECT_EQ(c.file.get(), cmds[0].file.get());
+  }
+  EXPECT_EQ(*cmds[3].file, "a/long/path/to/the/deck.inp");
+  EXPECT_EQ(cmds[3].line, 4);
 }
 
 TEST(DeckLexer, CommentsAndBlankLines) {
