@@ -111,6 +111,24 @@ Eigen::MatrixXd Shell4::to_local() const {
   return rigid_links() * T;
 }
 
+Eigen::VectorXd Shell4::apply_rigid_links(Eigen::VectorXd d) const {
+  // The rows of W that differ from the identity (rigid_links): u_f = u − h θy, v_f = v + h θx.
+  for (int a = 0; a < n_; ++a) {
+    const double h = h_[static_cast<std::size_t>(a)];
+    const double theta_x = d(6 * a + 3), theta_y = d(6 * a + 4);
+    d(6 * a) -= h * theta_y;
+    d(6 * a + 1) += h * theta_x;
+  }
+  return d;
+}
+
+Eigen::VectorXd Shell4::apply_to_local(const Eigen::VectorXd& u) const {
+  // T u: each corner's translation and rotation in element axes (R0ᵀ), then W.
+  Eigen::VectorXd d(6 * n_);
+  for (int a = 0; a < 2 * n_; ++a) d.segment<3>(3 * a) = R0_.transpose() * u.segment<3>(3 * a);
+  return apply_rigid_links(std::move(d));
+}
+
 Eigen::MatrixXd Shell4::form_corotational_stiffness() const {
   const bool warped = std::any_of(h_.begin(), h_.end(), [](double h) { return h != 0.0; });
   if (!warped) return kernel_->stiffness();
@@ -498,11 +516,11 @@ const std::vector<std::string>& Shell4::result_names() const {
 
 Eigen::VectorXd Shell4::local_displacement(const ElementContext& ctx,
                                            const Eigen::VectorXd& u) const {
-  if (!ctx.large_deflection) return to_local() * u;
+  if (!ctx.large_deflection) return apply_to_local(u);
   if (triangle_) return triangle_->deformation(u);
   Eigen::VectorXd d;
   corotational_kinematics(u, d, nullptr);
-  return rigid_links() * d;
+  return apply_rigid_links(std::move(d));
 }
 
 void Shell4::results(const ElementContext& ctx, const Eigen::VectorXd& u, const Eigen::VectorXd&,
