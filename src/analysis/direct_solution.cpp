@@ -111,8 +111,13 @@ void DirectSolution::renumber(std::set<DofKey> wanted, bool keep_dynamics) {
 }
 
 VectorXd DirectSolution::external_force(const LoadPoint& at) const {
-  VectorXd f = frame_load_(frame_acceleration(at));
-  if (f.size() != dofs_->n_active()) f = VectorXd::Zero(dofs_->n_active());
+  VectorXd f;
+  external_force(at, f);
+  return f;
+}
+
+void DirectSolution::external_force(const LoadPoint& at, VectorXd& f) const {
+  frame_load_.assign(frame_acceleration(at), dofs_->n_active(), f);
   if (at.current == resolved_step_) {
     forces_.add_to(at, f);
   } else {
@@ -120,7 +125,6 @@ VectorXd DirectSolution::external_force(const LoadPoint& at) const {
   }
   if (!at.current->pressures.empty())
     f += pressure_forces(structure_.elements(), *dofs_, ctx_, at, u_);
-  return f;
 }
 
 LoadPoint DirectSolution::load_point(const LoadStep& step, const LoadStep* previous,
@@ -330,28 +334,37 @@ namespace {
 /// The c part of a step of the condensed transient (linear_part_condensation.h): unknowns δ_c,
 /// residual ρ = S (y − δ_c) − [φ(δ_c) − φ(0)], tangent S + cK K_N + cC C_N. The nonlinear elements
 /// see the full state u0 + E δ_c (and v0 + (cC/wk) E δ_c: v is affine in u with that slope).
+/// `u` and `v` are the step's full state, changed in place on c only (the values at the
+/// predictor are kept for c alone: a step copies no vector of model size, issue 11).
 class CondensedIncrement final : public NonlinearProblem {
  public:
   CondensedIncrement(const Assembler& assembler, LinearPartCondensation& condensation,
                      StatusLoop& status_loop, const StepLabel& label,
-                     const IntegrationCoefficients& coeff, double wk, const VectorXd& u0,
-                     const VectorXd& v0, VectorXd y, double reference)
+                     const IntegrationCoefficients& coeff, double wk, VectorXd& u, VectorXd& v,
+                     VectorXd y, double reference)
       : assembler_(assembler),
         condensation_(condensation),
         status_loop_(status_loop),
         label_(label),
         coeff_(coeff),
         wk_(wk),
-        u_(u0),
-        v_(v0),
-        u0_(u0),
-        v0_(v0),
+        u_(u),
+        v_(v),
+        u0_c_(condensation.size()),
+        v0_c_(condensation.size()),
         y_(std::move(y)),
         reference_(reference),
         phi0_(VectorXd::Zero(condensation.size())) {
+    const auto& c = condensation_.dofs();
+    for (std::size_t k = 0; k < c.size(); ++k) {
+      u0_c_(static_cast<Eigen::Index>(k)) = u_(c[k]);
+      v0_c_(static_cast<Eigen::Index>(k)) = v_(c[k]);
+    }
     assembler_.assemble_nonlinear_part(coeff_, wk_, u_, v_, condensation_.position(), phi0_,
                                        nullptr);
   }
+  /// u on c at the predictor.
+  const VectorXd& u0_c() const { return u0_c_; }
 
   int n_unknowns() const override { return condensation_.size(); }
   double residual(const VectorXd& delta, VectorXd& r, double& reference) override {
@@ -390,9 +403,9 @@ class CondensedIncrement final : public NonlinearProblem {
     const double slope = wk_ != 0.0 ? coeff_.cC / wk_ : 0.0;  // dv/du of the time scheme
     const auto& c = condensation_.dofs();
     for (std::size_t k = 0; k < c.size(); ++k) {
-      const int i = c[k];
-      u_(i) = u0_(i) + delta(static_cast<Eigen::Index>(k));
-      v_(i) = v0_(i) + slope * delta(static_cast<Eigen::Index>(k));
+      const auto j = static_cast<Eigen::Index>(k);
+      u_(c[k]) = u0_c_(j) + delta(j);
+      v_(c[k]) = v0_c_(j) + slope * delta(j);
     }
   }
 
@@ -402,8 +415,9 @@ class CondensedIncrement final : public NonlinearProblem {
   StepLabel label_;
   IntegrationCoefficients coeff_;
   double wk_;
-  VectorXd u_, v_;          // full state at the current δ_c
-  const VectorXd u0_, v0_;  // at the predictor
+  VectorXd& u_;  // full state at the current δ_c
+  VectorXd& v_;
+  VectorXd u0_c_, v0_c_;  // on c, at the predictor
   VectorXd y_;
   double reference_;
   VectorXd phi0_;
@@ -429,11 +443,12 @@ bool DirectSolution::solve_condensed(VectorXd& u, const NewtonOptions& newton,
     return false;
   }
   const int nf = dofs_->n_free();
-  VectorXd r0;
+  VectorXd& r = step_residual_;  // kept: a step allocates no vector of model size (issue 11)
   double reference = 0.0;
-  residual(u, r0, reference);  // also v(u0) into inc.v
-  const VectorXd y = condensation_->condense(VectorXd(r0.head(nf)));
+  residual(u, r, reference);  // also v(u0) into inc.v
+  const VectorXd y = condensation_->condense(r.head(nf));
   const auto& c = condensation_->dofs();
+  // The problem moves u and inc.v on c; the residual below forms inc.v again from u.
   CondensedIncrement problem(*assembler_, *condensation_, *status_loop_, inc.label, inc.coeff,
                              inc.weights.stiffness, u, inc.v, y, reference);
   // δ_c = y, the linear part's own answer, is the exact solution when the nonlinear elements
@@ -444,7 +459,6 @@ bool DirectSolution::solve_condensed(VectorXd& u, const NewtonOptions& newton,
   double unused = 0.0;
   const bool inactive =
       problem.residual(delta, rho, unused) == 0.0 && !problem.update_status(delta);
-  const VectorXd u0 = u;
   if (inactive) {
     result = NewtonResult{};
     result.converged = true;
@@ -453,14 +467,17 @@ bool DirectSolution::solve_condensed(VectorXd& u, const NewtonOptions& newton,
     delta.setZero();
     result = NewtonRaphson(newton, ConvergenceTest(conv)).solve(problem, delta);
   }
-  // The whole field, once: δ_c on c, the linear part's rows in balance elsewhere.
-  u.head(nf) += condensation_->recover(delta);
+  // The whole field, once: δ_c on c, the linear part's rows in balance elsewhere (u holds the
+  // last iterate on c; the predictor's values there are put back before the update).
+  const VectorXd& u0_c = problem.u0_c();
+  for (std::size_t k = 0; k < c.size(); ++k) u(c[k]) = u0_c(static_cast<Eigen::Index>(k));
+  condensation_->recover(delta, step_correction_);
+  u.head(nf) += step_correction_;
   inc.n_status_changes += problem.n_status_changes();
   for (std::size_t k = 0; k < c.size(); ++k)
-    u(c[k]) = u0(c[k]) + delta(static_cast<Eigen::Index>(k));
+    u(c[k]) = u0_c(static_cast<Eigen::Index>(k)) + delta(static_cast<Eigen::Index>(k));
   // The full criterion on the recovered state (this evaluation also gives the forces the step
   // is accepted with).
-  VectorXd r;
   const double residual_norm = this->residual(u, r, reference);
   const ConvergenceTest test(conv);
   if (!result.converged || !test.force_converged(residual_norm, reference)) {
@@ -484,13 +501,17 @@ bool DirectSolution::solve_increment(const LoadPoint& at, const StepLabel& label
   inc.dynamic = dynamic;
   inc.label = label;
   inc.n_status_changes = 0;
-  inc.f_ext = external_force(at);
+  external_force(at, inc.f_ext);  // into the kept vector: no allocation per step (issue 11)
   inc.at = at;
   inc.follower = ctx_.large_deflection && !at.current->pressures.empty();
   if (inc.follower) inc.f_pressure = pressure_forces(structure_.elements(), *dofs_, ctx_, at, u_);
   inc.v = v_;
   inc.a = a_;
-  VectorXd u = dynamic ? integrator_->predict() : u_;
+  VectorXd& u = step_state_;  // kept: a step allocates no vector of model size (issue 11)
+  if (dynamic)
+    integrator_->predict(u);
+  else
+    u = u_;
   u.tail(nc).setZero();  // automatically constrained DOFs (no D) stay at 0
   if (at.current == resolved_step_)
     prescribed_.add_to(at, u);
@@ -624,7 +645,7 @@ bool DirectSolution::solve_increment(const LoadPoint& at, const StepLabel& label
 const VectorXd& DirectSolution::inertia_of(const VectorXd& a) {
   if (a.size() != inertia_a_.size() || a != inertia_a_) {
     inertia_a_ = a;
-    inertia_ = assembler_->inertia_force(a);
+    assembler_->inertia_force(a, inertia_);
   }
   return inertia_;
 }

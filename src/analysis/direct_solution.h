@@ -61,6 +61,7 @@ class DirectSolution : private NonlinearProblem {
   void remap_integrator(const DofMap& from, const DofMap& to);
   void start_dynamics(const LoadPoint& at, double h);
   VectorXd external_force(const LoadPoint& at) const;
+  void external_force(const LoadPoint& at, VectorXd& f) const;
   LoadPoint load_point(const LoadStep& step, const LoadStep* previous, double fraction,
                        double time) const;
   /// Solves one increment and accepts it. `may_cut` (automatic time stepping): a failure
@@ -178,6 +179,11 @@ class DirectSolution : private NonlinearProblem {
   // Condensed transient (linear_part_condensation.h): set up per DOF numbering when it applies.
   std::unique_ptr<LinearPartCondensation> condensation_;
   std::string condensation_note_;
+  /// A condensed step's residual and correction over the active / free DOFs, kept from step to
+  /// step: a vector of model size allocated per step is a fresh mapping on large models,
+  /// faulted in page by page (issue 11).
+  VectorXd step_residual_, step_correction_;
+  VectorXd step_state_;  // the iterate u of solve_increment
   long condensed_steps_ = 0, full_fallback_steps_ = 0;
   // Automatic time stepping: the contact frequency of the closed gaps (the step ceiling), the
   // reason of the last failed attempt, the last step size (Carry).

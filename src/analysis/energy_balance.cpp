@@ -15,7 +15,8 @@ EnergyBalance::EnergyBalance(const std::vector<std::unique_ptr<Element>>& elemen
 
 void EnergyBalance::add_step(const Assembler& assembler, const VectorXd& u_old,
                              const VectorXd& u_new, const StepForces& f) {
-  const VectorXd du = u_new - u_old;
+  du_ = u_new - u_old;  // kept: no allocation per step (issue 11)
+  const VectorXd& du = du_;
   external_work_ += 0.5 * (f.external_new + f.external_old).dot(du);
   damping_work_ += 0.5 * (f.damping_new + f.damping_old).dot(du);
   // Work on the status elements, element by element (trapezoidal rule on each).

@@ -71,6 +71,7 @@ class EnergyBalance {
   std::vector<VectorXd> status_force_old_;  // element forces of the status elements, last step
   double initial_kinetic_ = 0.0;
   double external_work_ = 0.0, internal_work_ = 0.0, gap_work_ = 0.0, damping_work_ = 0.0;
+  VectorXd du_;  // scratch of add_step: the step's displacement increment
 };
 
 }  // namespace impactfe

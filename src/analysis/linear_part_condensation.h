@@ -49,9 +49,12 @@ class LinearPartCondensation {
   bool prepared_for(const IntegrationCoefficients& coeff) const;
 
   /// y = (A_L⁻¹ r0)_c for the residual r0 over the free DOFs (the step's first half).
-  VectorXd condense(const VectorXd& r0_free) { return solver_->condense(r0_free); }
+  VectorXd condense(const Eigen::Ref<const VectorXd>& r0_free) {
+    return solver_->condense(r0_free);
+  }
   /// δ over the free DOFs: δ_c on c, the other rows of A_L δ = r0 − E Δφ satisfied (the r0 of
-  /// the last `condense`).
+  /// the last `condense`); into `delta`, which keeps its storage from step to step.
+  void recover(const VectorXd& delta_c, VectorXd& delta) { solver_->recover(delta_c, delta); }
   VectorXd recover(const VectorXd& delta_c) { return solver_->recover(delta_c); }
   const MatrixXd& schur() const { return solver_->schur(); }  // S (m × m)
   const SolverCounters& counters() const { return solver_->counters(); }

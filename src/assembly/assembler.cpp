@@ -280,8 +280,12 @@ void Assembler::add_forces(const VectorXd& u, const VectorXd& v, const VectorXd*
 
 VectorXd Assembler::inertia_force(const VectorXd& a) const {
   VectorXd f;
-  linear_products_.multiply({nullptr, nullptr, &a}, {nullptr, nullptr, &f});
+  inertia_force(a, f);
   return f;
+}
+
+void Assembler::inertia_force(const VectorXd& a, VectorXd& f) const {
+  linear_products_.multiply({nullptr, nullptr, &a}, {nullptr, nullptr, &f});
 }
 
 void Assembler::compute_nonlinear_tangents(const VectorXd& u, bool with_tangent,

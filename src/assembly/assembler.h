@@ -82,6 +82,8 @@ class Assembler {
 
   /// M a over all active DOFs (the same product as Output::inertia_force).
   VectorXd inertia_force(const VectorXd& a) const;
+  /// The same into `f` (resized; its storage reused).
+  void inertia_force(const VectorXd& a, VectorXd& f) const;
   /// The mass matrix's diagonal over all active DOFs (from the global products).
   VectorXd mass_diagonal() const;
   /// Lower triangle (column-compressed) of the mass matrix on the DOFs i with position[i] >= 0

@@ -129,6 +129,13 @@ VectorXd FrameAccelerationLoad::operator()(const Vec3& acel) const {
   return f;
 }
 
+void FrameAccelerationLoad::assign(const Vec3& acel, Eigen::Index n, VectorXd& f) const {
+  f.setZero(unit_[0].size() == n ? unit_[0].size() : n);
+  if (unit_[0].size() != n) return;
+  for (int d = 0; d < 3; ++d)
+    if (acel(d) != 0.0) f += acel(d) * unit_[static_cast<std::size_t>(d)];
+}
+
 VectorXd prescribed_displacements(const DofMap& dofs, const LoadPoint& at) {
   VectorXd u = VectorXd::Zero(dofs.n_active());
   ResolvedDofLoads(dofs, *at.current, at.previous, ResolvedDofLoads::Kind::Constraints)

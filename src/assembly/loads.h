@@ -76,6 +76,9 @@ class FrameAccelerationLoad {
                         const ElementContext& ctx);
   /// −M r a over all active DOFs.
   VectorXd operator()(const Vec3& acel) const;
+  /// The same into `f` (resized; its storage reused); a zero vector of `n` when there is no
+  /// frame acceleration load (no mass).
+  void assign(const Vec3& acel, Eigen::Index n, VectorXd& f) const;
 
  private:
   std::array<VectorXd, 3> unit_;

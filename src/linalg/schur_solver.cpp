@@ -112,7 +112,7 @@ class CholmodSchurSolver final : public SchurSolver {
   void factorize(const SparseMatrix& lower) override { factor(lower, nullptr); }
   void factorize_and_release(SparseMatrix& lower) override { factor(lower, &lower); }
 
-  VectorXd condense(const VectorXd& r) override {
+  VectorXd condense(const Eigen::Ref<const VectorXd>& r) override {
     IMPACTFE_CHECK(factor_ != nullptr && r.size() == n_, "SchurSolver: condense before factorize");
     ScopedTimer timer(counters_.solve_seconds);
     ScopedThreadLimit threads(1);  // a substitution is memory-bound (see CholmodSolver::solve)
@@ -124,20 +124,19 @@ class CholmodSchurSolver final : public SchurSolver {
     return l_cc_.triangularView<Eigen::Lower>().transpose().solve(z_.tail(m));
   }
 
-  VectorXd recover(const VectorXd& x_c) override {
+  void recover(const VectorXd& x_c, VectorXd& x) override {
     const auto m = static_cast<Eigen::Index>(c_.size());
     IMPACTFE_CHECK(z_.size() == n_ && x_c.size() == m, "SchurSolver: recover before condense");
     ScopedTimer timer(counters_.solve_seconds);
     ScopedThreadLimit threads(1);
-    VectorXd z = z_;
-    z.tail(m) = l_cc_.triangularView<Eigen::Lower>().transpose() * x_c;
-    substitute(CHOLMOD_Lt, z);
+    back_ = z_;  // z_ stays for another recover of the same condense
+    back_.tail(m) = l_cc_.triangularView<Eigen::Lower>().transpose() * x_c;
+    substitute(CHOLMOD_Lt, back_);
     const auto* perm = static_cast<const int*>(factor_->Perm);
-    VectorXd x(n_);
-    for (int k = 0; k < n_; ++k) x(perm[k]) = z(k);
+    x.resize(n_);
+    for (int k = 0; k < n_; ++k) x(perm[k]) = back_(k);
     for (Eigen::Index k = 0; k < m; ++k) x(c_[static_cast<std::size_t>(k)]) = x_c(k);
     ++counters_.solves;
-    return x;
   }
 
  private:
@@ -240,6 +239,7 @@ class CholmodSchurSolver final : public SchurSolver {
   cholmod_factor* factor_ = nullptr;
   MatrixXd l_cc_;             // trailing block of L (m × m, lower)
   VectorXd z_;                // L⁻¹ P r of the last condense
+  VectorXd back_;             // the back substitution of recover (kept: no allocation per step)
   std::vector<double> work_;  // the substitutions' gathered rows
 };
 
@@ -274,18 +274,17 @@ class TransferSchurSolver final : public SchurSolver {
     counters_ = solver_->counters();
   }
 
-  VectorXd condense(const VectorXd& r) override {
-    x_ = solver_->solve(r);
+  VectorXd condense(const Eigen::Ref<const VectorXd>& r) override {
+    x_ = solver_->solve(VectorXd(r));
     y_.resize(static_cast<Eigen::Index>(c_.size()));
     for (std::size_t k = 0; k < c_.size(); ++k) y_(static_cast<Eigen::Index>(k)) = x_(c_[k]);
     counters_ = solver_->counters();
     return y_;
   }
 
-  VectorXd recover(const VectorXd& x_c) override {
-    VectorXd x = x_ - g_ * (schur_ * (y_ - x_c));
+  void recover(const VectorXd& x_c, VectorXd& x) override {
+    x = x_ - g_ * (schur_ * (y_ - x_c));
     for (std::size_t k = 0; k < c_.size(); ++k) x(c_[k]) = x_c(static_cast<Eigen::Index>(k));
-    return x;
   }
 
  private:

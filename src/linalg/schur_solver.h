@@ -33,9 +33,17 @@ class SchurSolver {
     SparseMatrix().swap(lower);  // Eigen's assignment of an empty matrix keeps the storage
   }
   /// y = (A⁻¹ r)_c, in the order of c; remembers what `recover` needs of r.
-  virtual VectorXd condense(const VectorXd& r) = 0;
-  /// x with x_c on c and the i rows of A x = r satisfied (r of the last `condense`).
-  virtual VectorXd recover(const VectorXd& x_c) = 0;
+  virtual VectorXd condense(const Eigen::Ref<const VectorXd>& r) = 0;
+  /// x (resized to n) with x_c on c and the i rows of A x = r satisfied (r of the last
+  /// `condense`). Into the caller's vector: a condensed step allocates no vector of model size
+  /// (issue 11; on large models each such allocation is a fresh mapping, faulted in page by
+  /// page).
+  virtual void recover(const VectorXd& x_c, VectorXd& x) = 0;
+  VectorXd recover(const VectorXd& x_c) {
+    VectorXd x;
+    recover(x_c, x);
+    return x;
+  }
   virtual std::string name() const = 0;
 
   /// The Schur complement S (m × m, rows and columns in the order of c), symmetric.

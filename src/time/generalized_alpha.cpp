@@ -86,7 +86,8 @@ class GeneralizedAlpha final : public TimeIntegrator, public IntegratorHistory {
   }
 
   /// Constant-acceleration predictor (a_{n+1} = a_n): u_n + h v_n + h^2/2 a_n.
-  Eigen::VectorXd predict() const override { return u_ + h_ * v_ + (0.5 * h_ * h_) * a_; }
+  using TimeIntegrator::predict;
+  void predict(Eigen::VectorXd& u) const override { u = u_ + h_ * v_ + (0.5 * h_ * h_) * a_; }
 
   /// Newmark kinematics: a_{n+1} = (u_{n+1} - u_n - h v_n - h^2 (1/2 - beta) a_n)/(beta h^2),
   /// v_{n+1} = v_n + h ((1 - gamma) a_n + gamma a_{n+1}).
@@ -101,11 +102,11 @@ class GeneralizedAlpha final : public TimeIntegrator, public IntegratorHistory {
   }
 
   void advance(const Eigen::VectorXd& u_next) override {
-    Eigen::VectorXd v_next, a_next;
-    kinematics(u_next, v_next, a_next);
+    // Into kept vectors, swapped in: a step allocates no vector of model size (issue 11).
+    kinematics(u_next, v_next_, a_next_);
     u_ = u_next;
-    v_ = std::move(v_next);
-    a_ = std::move(a_next);
+    v_.swap(v_next_);
+    a_.swap(a_next_);
   }
 
   const Eigen::VectorXd& u() const override { return u_; }
@@ -129,6 +130,7 @@ class GeneralizedAlpha final : public TimeIntegrator, public IntegratorHistory {
   double h_ = 0.0;
   bool started_ = false;
   Eigen::VectorXd u_, v_, a_;
+  Eigen::VectorXd v_next_, a_next_;  // scratch of advance
 };
 
 }  // namespace

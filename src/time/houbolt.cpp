@@ -60,7 +60,8 @@ class Houbolt final : public TimeIntegrator, public IntegratorHistory {
 
   /// Taylor predictor u_n + h v_n + h^2/2 a_n with the backward-difference v_n, a_n: exact for
   /// uniformly accelerated motion (free fall converges in one iteration).
-  Eigen::VectorXd predict() const override { return u_ + h_ * v_ + (0.5 * h_ * h_) * a_; }
+  using TimeIntegrator::predict;
+  void predict(Eigen::VectorXd& u) const override { u = u_ + h_ * v_ + (0.5 * h_ * h_) * a_; }
 
   /// Thesis eqs. 3-2, 3-3 at t_{n+1}.
   void kinematics(const Eigen::VectorXd& u_next, Eigen::VectorXd& v_next,

@@ -47,8 +47,14 @@ class TimeIntegrator {
   virtual IntegrationCoefficients coefficients() const = 0;
   virtual ResidualWeights weights() const = 0;
 
-  /// Predictor for u_{n+1} (start of the equilibrium iterations).
-  virtual Eigen::VectorXd predict() const = 0;
+  /// Predictor for u_{n+1} (start of the equilibrium iterations), into `u` (resized; its
+  /// storage reused, so that a step allocates no vector of model size: issue 11).
+  virtual void predict(Eigen::VectorXd& u) const = 0;
+  Eigen::VectorXd predict() const {
+    Eigen::VectorXd u;
+    predict(u);
+    return u;
+  }
   /// v_{n+1} and a_{n+1} for a trial u_{n+1}.
   virtual void kinematics(const Eigen::VectorXd& u_next, Eigen::VectorXd& v_next,
                           Eigen::VectorXd& a_next) const = 0;
