@@ -137,14 +137,14 @@ std::string block_name(const std::string& name, Dialect dialect) {
 }  // namespace
 
 struct DeckReader::Program {
-  const std::vector<RawCommand>& cmds;
+  std::vector<RawCommand>& cmds;
   std::vector<std::size_t> match;                            // opener → *ENDDO / *ENDIF / *END
   std::map<std::size_t, std::vector<std::size_t>> branches;  // *IF block → *ELSEIF / *ELSE
   std::map<std::size_t, std::string> error;  // raised when the line is reached (few lines)
   std::vector<int> depth;                    // block depth of each line
   std::vector<std::pair<std::string, std::size_t>> labels;
 
-  Program(const std::vector<RawCommand>& c, Dialect dialect)
+  Program(std::vector<RawCommand>& c, Dialect dialect)
       : cmds(c), match(c.size(), kNone), depth(c.size(), 0) {
     struct Open {
       std::size_t at;
@@ -225,10 +225,30 @@ struct DeckReader::Program {
         error[o.at] = o.is_do ? fmt::format("no matching *ENDDO for this {}", cmds[o.at].name)
                               : "no matching *ENDIF for this *IF";
   }
+
+  /// Frees the text of the top-level commands before `i` (a top-level command about to run).
+  /// Without labels nothing jumps back to them: *DO and *IF bodies are nested (never
+  /// released), and a *CREATE body was copied when its block ran. A deck of 10⁵ node and
+  /// element lines otherwise keeps its tokens through the whole solution (issue 11: 8 MB on the
+  /// shell dome 160, ~0.2 kB a line).
+  void release_before(std::size_t i) {
+    if (!labels.empty()) return;
+    for (; released < i; ++released) {
+      if (depth[released] != 0) continue;
+      RawCommand& r = cmds[released];
+      const int line = r.line;
+      auto file = std::move(r.file);
+      r = RawCommand{};
+      r.line = line;
+      r.file = std::move(file);
+      r.released = true;
+    }
+  }
+  std::size_t released = 0;  // commands before this index are released where at top level
 };
 
 struct DeckReader::Frame {
-  const Program& program;
+  Program& program;
   int loop_depth = 0;
   std::string jump_label;
   std::size_t jump_from = 0;
@@ -239,20 +259,20 @@ struct DeckReader::Frame {
 
 void DeckReader::run_file(const std::string& path, const SourceLocation& where) {
   const std::string text = read_text_file(path, where);
-  const auto cmds = lex_text(text, path, dialect);
+  auto cmds = lex_text(text, path, dialect);
   std::error_code ec;
   const auto canonical = std::filesystem::weakly_canonical(path, ec);
   run_program(cmds, "file " + (ec ? path : canonical.string()), where);
 }
 
 void DeckReader::run_text(const std::string& text, const std::string& path) {
-  const auto cmds = lex_text(text, path, dialect);
+  auto cmds = lex_text(text, path, dialect);
   std::error_code ec;
   const auto canonical = std::filesystem::weakly_canonical(path, ec);
   run_program(cmds, "file " + (ec ? path : canonical.string()), SourceLocation{});
 }
 
-void DeckReader::run_program(const std::vector<RawCommand>& cmds, const std::string& frame_name,
+void DeckReader::run_program(std::vector<RawCommand>& cmds, const std::string& frame_name,
                              const SourceLocation& where) {
   if (static_cast<int>(active_.size()) > kMaxFrames)
     throw InputError(
@@ -261,7 +281,7 @@ void DeckReader::run_program(const std::vector<RawCommand>& cmds, const std::str
     if (a == frame_name)
       throw InputError(where,
                        fmt::format("recursive call refused: {} is already running", frame_name));
-  const Program program(cmds, dialect);
+  Program program(cmds, dialect);
   Frame frame{program};
   active_.push_back(frame_name);
   try {
@@ -337,7 +357,7 @@ bool DeckReader::call_macro(const Command& c, const std::string& name,
 }
 
 void DeckReader::run_block_macro(const Command& c, const std::string& name) {
-  const auto cmds = macros.at(name);  // copy: the block may redefine itself
+  auto cmds = macros.at(name);  // copy: the block may redefine itself
   run_program(cmds, "block " + name, c.where);
 }
 
@@ -589,11 +609,13 @@ DeckReader::Flow DeckReader::run_if(Frame& f, std::size_t i, const Command& c) {
 // ----------------------------------------------------------------------
 
 DeckReader::Flow DeckReader::run_range(Frame& f, std::size_t begin, std::size_t end) {
-  const Program& prog = f.program;
+  Program& prog = f.program;
   const auto& cmds = prog.cmds;
   std::size_t i = begin;
   while (i < end) {
+    if (f.loop_depth == 0 && prog.depth[i] == 0) prog.release_before(i);
     const RawCommand& raw = cmds[i];
+    IMPACTFE_CHECK(!raw.released, "a released deck command reached again");
     if (raw.format_line) {  // consumed by its command; a stray one is skipped
       ++i;
       continue;

@@ -268,7 +268,9 @@ class DeckReader {
   struct Program;
   struct Frame;
   enum class Flow { Normal, Exit, Cycle, Jump, Stop, EndFile };
-  void run_program(const std::vector<RawCommand>& cmds, const std::string& frame_name,
+  /// Runs the commands (the caller's own copy: the executed top-level commands of a program
+  /// without labels are released as it goes, see Program::release_before).
+  void run_program(std::vector<RawCommand>& cmds, const std::string& frame_name,
                    const SourceLocation& where);
   Flow run_range(Frame& f, std::size_t begin, std::size_t end);
   Flow run_do(Frame& f, std::size_t i, const Command& c);

@@ -19,6 +19,7 @@ struct RawCommand {
   bool repeat = false;       // line started with ',' : re-issue the previous command name
   bool assignment = false;   // `Par = expr` / `A(2,3) = 1,2,3`: fields = {Par, right side}
   bool format_line = false;  // the format line after *VWRITE / *MSG / *MWRITE (`rest` = text)
+  bool released = false;     // run, and its text freed (DeckReader::Program::release_before)
   std::vector<std::string> fields;
   std::string rest;    // raw text after the first comma (for /TITLE and /COM)
   std::string error;   // a line the lexer refuses (too long): reported when it is reached
