@@ -252,6 +252,9 @@ void cmd_antype(DeckReader& r, const Command& c) {
   } else {
     r.model.options.restart.reset();
     if (type != r.model.options.type) r.open_analysis.reset();
+    // A new analysis: the expansion pass of the previous one (EXPASS,ON) is over, so its SOLVE
+    // solves this analysis instead of expanding again.
+    r.expass = false;
   }
   r.model.options.type = type;
 }

@@ -263,6 +263,7 @@ TEST(DeckModel, ModernDefaultsNewmarkHhtAndNewStepPerAntype) {
   EXPECT_DOUBLE_EQ(q[0].t_end, 1.0);
   EXPECT_EQ(q[1].count, 1);
   EXPECT_DOUBLE_EQ(q[1].t_end, 0.5);
+  ASSERT_TRUE(job.steps[3].analysis.has_value()) << job.steps[3].expansion.has_value();
   EXPECT_EQ(job.steps[3].analysis->options.type, AnalysisType::Static);
   const Job hht = parse("/SOLU\nANTYPE,TRANS\nTRNOPT,FULL,,,,,HHT\nTINTP,,,,,,,,,,0.1,0.05\n");
   EXPECT_EQ(hht.model.options.integrator, IntegratorKind::HHT);
