@@ -123,9 +123,8 @@ FrameAccelerationLoad::FrameAccelerationLoad(const std::vector<std::unique_ptr<E
 }
 
 VectorXd FrameAccelerationLoad::operator()(const Vec3& acel) const {
-  VectorXd f = VectorXd::Zero(unit_[0].size());
-  for (int d = 0; d < 3; ++d)
-    if (acel(d) != 0.0) f += acel(d) * unit_[static_cast<std::size_t>(d)];
+  VectorXd f;
+  assign(acel, unit_[0].size(), f);
   return f;
 }
 
