@@ -179,6 +179,23 @@ Handle checked_creation_list(const std::vector<hsize_t>& chunk, const double* fi
   return dcpl;
 }
 
+/// Bytes of raw data the datasets of a file hold (their storage sizes).
+hsize_t stored_bytes(hid_t file) {
+  hsize_t total = 0;
+  H5Ovisit(
+      file, H5_INDEX_NAME, H5_ITER_INC,
+      [](hid_t loc, const char* name, const H5O_info_t* info, void* data) -> herr_t {
+        if (info->type != H5O_TYPE_DATASET) return 0;
+        const hid_t ds = H5Dopen2(loc, name, H5P_DEFAULT);
+        if (ds < 0) return 0;
+        *static_cast<hsize_t*>(data) += H5Dget_storage_size(ds);
+        H5Dclose(ds);
+        return 0;
+      },
+      &total);
+  return total;
+}
+
 bool exists(hid_t loc, const std::string& name) {
   return H5Lexists(loc, name.c_str(), H5P_DEFAULT) > 0;
 }

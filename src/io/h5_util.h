@@ -98,6 +98,8 @@ inline constexpr hsize_t kMinDeflateChunkElements = 4096;
 Handle checked_creation_list(const std::vector<hsize_t>& chunk, const double* fill = nullptr,
                              int level = 4);
 
+/// Bytes of raw data the datasets of an open file hold (their storage sizes).
+hsize_t stored_bytes(hid_t file);
 bool exists(hid_t loc, const std::string& name);
 /// Like exists() for a path "a/b/c" whose intermediate groups may be missing too.
 bool exists_path(hid_t loc, const std::string& path);

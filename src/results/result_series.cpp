@@ -80,6 +80,8 @@ BlockSeries create_series(hid_t group, hid_t recent_group, const std::string& na
     s.main = Handle(check(
         H5Dcreate2(group, name.c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT),
         "create dataset " + name));
+    s.chunk = chunk;
+    if (const auto p = pipeline_of(s.main); p && p->deflate_level > 0) s.pipeline = p;
   }
   {
     // Staging: one time point per chunk, so appending a point compresses one row only.
@@ -102,6 +104,25 @@ BlockSeries create_series(hid_t group, hid_t recent_group, const std::string& na
   }
   s.block.reset(new double[block_rows * s.row_size()]);
   return s;
+}
+
+void flush_block(BlockSeries& s, BlockCompressor& compressor, hsize_t first_row, hsize_t n_rows,
+                 hsize_t block_rows, bool more_rows) {
+  set_extent(s.main, first_row + n_rows, s.row_dims);
+  if (!s.pipeline) {
+    write_rows(s.main, first_row, n_rows, s.row_dims, s.block.get());
+    return;
+  }
+  BlockJob job;
+  job.dataset = s.main;
+  job.pipeline = *s.pipeline;
+  job.row_dims = s.row_dims;
+  job.chunk = s.chunk;
+  job.first_row = first_row;
+  job.n_rows = n_rows;
+  job.block = std::move(s.block);
+  if (more_rows) s.block.reset(new double[block_rows * s.row_size()]);
+  compressor.submit(std::move(job));
 }
 
 DirectSeries create_direct(hid_t group, const std::string& name, bool integer) {

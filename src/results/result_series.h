@@ -5,10 +5,12 @@
 /// series (time, load step, substep).
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "io/h5_util.h"
+#include "results/block_compressor.h"
 
 namespace impactfe::result_series {
 
@@ -39,6 +41,10 @@ struct BlockSeries {
   std::vector<hsize_t> row_dims;  // dimensions after the time axis
   h5::Handle main;                // (n_t, row_dims...), chunks (block_rows, ...)
   h5::Handle recent;              // (block_rows, row_dims...), one row per chunk
+  std::vector<hsize_t> chunk;     // of the main dataset: block_rows, then the row dimensions'
+  /// The main dataset's filters, when it deflates (its finished blocks are then compressed by a
+  /// BlockCompressor and stored with H5Dwrite_chunk); nullopt: written through H5Dwrite.
+  std::optional<ChunkPipeline> pipeline;
   // The block being filled, block_rows x row_size, not initialised: a row becomes valid when the
   // point's values (or NaN, finish_append) are put into it.
   std::unique_ptr<double[]> block;
@@ -52,6 +58,12 @@ struct BlockSeries {
 BlockSeries create_series(hid_t group, hid_t recent_group, const std::string& name,
                           std::vector<hsize_t> row_dims, hsize_t block_rows, hsize_t main_rows,
                           bool growable_columns, bool compress);
+
+/// Rows [first_row, first_row + n_rows) of the series' block go to its main dataset (extended to
+/// them): written now when it does not deflate, otherwise handed to `compressor` with the block
+/// (`more_rows`: the series gets a fresh block of `block_rows` for the points that follow).
+void flush_block(BlockSeries& s, BlockCompressor& compressor, hsize_t first_row, hsize_t n_rows,
+                 hsize_t block_rows, bool more_rows);
 
 /// A 1-D series written straight into its dataset at every sync (time, load step, substep):
 /// tiny, and `time` must be complete in the main dataset (its length counts the points).

@@ -9,9 +9,10 @@
 // into the block in memory (no HDF5 call, no allocation once the series exist): the points
 // since the last sync reach the staging datasets in one write per quantity, and `time` after
 // them, at a sync — every kSyncPoints points, kSyncBytes or kSyncSeconds, whichever comes
-// first — so a killed run keeps every point up to the last sync. A full block goes to the main
-// dataset in one write; when the analysis closes, the last partial block does, and `recent/`
-// is deleted.
+// first, and when a point completes its block — so a killed run keeps every point up to the
+// last sync. A full block then goes to the main dataset, a compressed one deflated on a worker
+// thread (BlockCompressor, issue 11) and stored at the next sync (Impl::sync); when the analysis
+// closes, the last partial block goes there too and `recent/` is deleted.
 #include <fmt/format.h>
 
 #include <Eigen/Core>
@@ -20,12 +21,11 @@
 #include <cmath>
 #include <exception>
 #include <filesystem>
-#include <limits>
-#include <set>
 #include <stdexcept>
 
 #include "core/errors.h"
 #include "core/log.h"
+#include "core/thread_pool.h"
 #include "io/h5_util.h"
 #include "results/live_writers.h"
 #include "results/result_series.h"
@@ -38,11 +38,11 @@ using h5::check_status;
 using h5::Handle;
 using h5::StringLayout;
 using result_series::block_rows_for;
+using result_series::BlockJob;
 using result_series::BlockSeries;
 using result_series::create_direct;
 using result_series::create_series;
 using result_series::DirectSeries;
-using result_series::kMaxBlockRows;
 using result_series::kNaN;
 using result_series::set_extent;
 using result_series::write_direct;
@@ -77,45 +77,6 @@ struct FamilySeries {
 
 }  // namespace
 
-const char* results_kind_name(ResultsKind kind) {
-  switch (kind) {
-    case ResultsKind::Static:
-      return "static";
-    case ResultsKind::Modal:
-      return "modal";
-    case ResultsKind::Transient:
-      return "transient";
-    case ResultsKind::ReducedTransient:
-      return "reduced_transient";
-    case ResultsKind::Expansion:
-      return "expansion";
-    case ResultsKind::Substructure:
-      return "substructure";
-  }
-  return "unknown";
-}
-
-bool same_time(double a, double b) {
-  return std::abs(a - b) <= 1e-12 * std::max({1.0, std::abs(a), std::abs(b)});
-}
-
-/// Bytes of raw data the datasets of a file hold (their storage sizes).
-hsize_t stored_bytes(hid_t file) {
-  hsize_t total = 0;
-  H5Ovisit(
-      file, H5_INDEX_NAME, H5_ITER_INC,
-      [](hid_t loc, const char* name, const H5O_info_t* info, void* data) -> herr_t {
-        if (info->type != H5O_TYPE_DATASET) return 0;
-        const hid_t ds = H5Dopen2(loc, name, H5P_DEFAULT);
-        if (ds < 0) return 0;
-        *static_cast<hsize_t*>(data) += H5Dget_storage_size(ds);
-        H5Dclose(ds);
-        return 0;
-      },
-      &total);
-  return total;
-}
-
 struct ResultsWriter::Impl {
   std::string path;
   std::string title, jobname;
@@ -127,10 +88,14 @@ struct ResultsWriter::Impl {
   Handle group;
   Handle recent_group;
   hsize_t n_t = 0;
-  hsize_t block_rows = kMaxBlockRows;
+  hsize_t block_rows = result_series::kMaxBlockRows;
   hsize_t block_start = 0;  // time index of the first point of the block being filled
   std::map<std::string, BlockSeries> series;
   std::map<std::string, DirectSeries> direct;
+  // Finished blocks of compressed series: on a worker thread when --threads allows two.
+  result_series::BlockCompressor compressor{threads::max_threads() > 1};
+  bool first_row_pending = false;  // recent/first_row becomes first_row_after (complete_blocks)
+  hsize_t first_row_after = 0;
   // Points appended since the last sync: [synced, n_t); their time, load step and substep.
   hsize_t synced = 0;
   std::vector<double> pending_time;
@@ -198,7 +163,8 @@ struct ResultsWriter::Impl {
   void finish_append();
   void sync(bool block_full);
   void write_pending_counters();
-  void flush_block(hsize_t n_rows);
+  void flush_block(hsize_t n_rows, bool more_rows);
+  void complete_blocks();
   void write_nodal(const std::string& name, const Eigen::MatrixXd& m);
   void write_reactions(const Eigen::MatrixXd& m);
   void write_family(const std::string& family, const ElementResultTable& table);
@@ -215,7 +181,7 @@ void ResultsWriter::Impl::compact() {
   std::error_code ec;
   const auto size = fs::file_size(path, ec);
   if (ec || size < (1u << 20)) return;
-  const double used = static_cast<double>(stored_bytes(file));
+  const double used = static_cast<double>(h5::stored_bytes(file));
   if (used > 0.9 * static_cast<double>(size)) return;
   const std::string tmp = path + ".compacting";
   try {
@@ -341,12 +307,39 @@ void ResultsWriter::Impl::put_row(BlockSeries& s, const double* row) {
   std::copy(row, row + s.row_size(), row_slot(s));
 }
 
-void ResultsWriter::Impl::flush_block(hsize_t n_rows) {
-  // The finished rows of the block go to the main datasets in one write per quantity.
-  for (auto& [name, s] : series) {
-    set_extent(s.main, block_start + n_rows, s.row_dims);
-    write_rows(s.main, block_start, n_rows, s.row_dims, s.block.get());
+/// The finished rows of the block go to the main datasets (the compressed series' through the
+/// compressor; complete_blocks writes them).
+void ResultsWriter::Impl::flush_block(hsize_t n_rows, bool more_rows) {
+  for (auto& [name, s] : series)
+    result_series::flush_block(s, compressor, block_start, n_rows, block_rows, more_rows);
+}
+
+/// Stores the chunks of the blocks submitted to the compressor (waiting for it if it is still at
+/// work), then moves recent/first_row past the block: its staging rows are then free.
+void ResultsWriter::Impl::complete_blocks() {
+  if (compressor.pending()) {
+    std::vector<BlockJob> jobs = compressor.wait_all();
+    double bytes = 0.0;
+    for (const BlockJob& job : jobs) {
+      if (job.error) std::rethrow_exception(job.error);
+      bytes += job.stored_bytes();
+    }
+    try {
+      h5::reserve_space(file, path, kReserveFactor * bytes + kReserveSlack, reserved_end);
+    } catch (const std::runtime_error& e) {
+      throw SolutionError(e.what());  // the Guard of the public call abandons the file
+    }
+    for (const BlockJob& job : jobs) job.write();
   }
+  if (first_row_pending && recent_group.valid()) {
+    // HDF5 writes what is dirty in an order of its own at a flush: the main chunks reach the
+    // file before first_row moves past their rows, and first_row before the next block's rows
+    // overwrite the staging rows (a run killed in between reads each point from where it is).
+    flush();
+    h5::write_integer_attribute(recent_group, "first_row", static_cast<long long>(first_row_after));
+    flush();
+  }
+  first_row_pending = false;
 }
 
 void ResultsWriter::Impl::finish_append() {
@@ -377,31 +370,46 @@ void ResultsWriter::Impl::write_pending_counters() {
 }
 
 /// Makes the points appended since the last sync complete in the file: their rows first (to the
-/// staging datasets, or to the main ones when the block is full), flushed, then `time` and the
-/// counters, flushed. HDF5 writes dirty chunks and metadata in an order of its own at a flush
-/// (or a cache eviction), so with one flush a run killed during it could leave `time` longer
-/// than the rows on disk (CrashSafety.KilledExpansionPassKeepsCompletedSteps).
+/// staging datasets), flushed, then `time` and the counters, flushed. HDF5 writes dirty chunks
+/// and metadata in an order of its own at a flush (or a cache eviction), so with one flush a run
+/// killed during it could leave `time` longer than the rows on disk
+/// (CrashSafety.KilledExpansionPassKeepsCompletedSteps). A full block then goes to the main
+/// datasets; its rows are read from the staging ones until complete_blocks has stored its
+/// compressed chunks and moved recent/first_row, at the next sync (so that the compression
+/// overlaps the steps in between), before the next block's rows overwrite them. When nothing is
+/// compressed, the block's last rows go to the main datasets with the rest instead, and
+/// first_row moves before `time` grows.
 void ResultsWriter::Impl::sync(bool block_full) {
   if (pending_time.empty()) return;
-  if (block_full) {
-    flush_block(block_rows);
-    // From here on the finished block is read from the main datasets.
-    if (recent_group.valid())
-      h5::write_integer_attribute(recent_group, "first_row",
-                                  static_cast<long long>(block_start + block_rows));
+  complete_blocks();
+  const bool compressed =
+      std::any_of(series.begin(), series.end(), [](const auto& s) { return s.second.pipeline; });
+  const auto finish_block = [&] {
+    flush_block(block_rows, true);
+    first_row_pending = true;
+    first_row_after = block_start + block_rows;
+  };
+  if (block_full && !compressed) {
+    finish_block();
+    complete_blocks();
   } else {
     const hsize_t first = synced - block_start, n = n_t - synced;
     for (auto& [name, s] : series)
       write_rows(s.recent, first, n, s.row_dims, s.block.get() + first * s.row_size());
+    flush();
   }
-  flush();
   write_pending_counters();
   flush();
+  if (block_full && compressed) {
+    finish_block();
+    if (!compressor.background()) complete_blocks();
+  }
   last_sync = std::chrono::steady_clock::now();
 }
 
 void ResultsWriter::Impl::close_analysis(const std::string& status) {
   if (!group.valid()) return;
+  complete_blocks();  // the blocks submitted earlier, while recent/ still holds their rows
   // The staging datasets go first (the last partial block is in memory), so that HDF5 frees
   // their space now and the main chunks written next reuse it. Both reach the disk together at
   // the flush below.
@@ -410,7 +418,10 @@ void ResultsWriter::Impl::close_analysis(const std::string& status) {
     recent_group.reset();
     H5Ldelete(group, "recent", H5P_DEFAULT);
   }
-  if (n_t > block_start) flush_block(n_t - block_start);
+  if (n_t > block_start) {
+    flush_block(n_t - block_start, false);
+    complete_blocks();
+  }
   if (!pending_time.empty()) {
     flush();  // the rows before `time` grows (see sync)
     write_pending_counters();
@@ -476,7 +487,9 @@ void ResultsWriter::Impl::write_reactions(const Eigen::MatrixXd& m) {
     if (it == series.end()) {
       series_for("R", {n_r}, true);
     } else {
-      // More columns: widen both datasets and the block (old rows keep their columns).
+      // More columns: widen both datasets and the block (old rows keep their columns). The
+      // blocks being compressed are written first, at the width they were cut with.
+      complete_blocks();
       BlockSeries& s = it->second;
       const hsize_t old_n = s.row_dims[0];
       std::unique_ptr<double[]> block(new double[block_rows * n_r]);

@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "core/errors.h"
+#include "core/thread_pool.h"
 #include "results/live_writers.h"
 #include "results/result_series.h"
 #include "results/results_file.h"
@@ -570,6 +571,89 @@ TEST_F(ResultsFileTest, NodeHistoryOfLongRunReadsFewChunks) {
   EXPECT_LT(read, file_size / 5) << read << " of " << file_size << " bytes";
   std::cout << "node history of " << kSteps << " points: read " << read << " of " << file_size
             << " bytes\n";
+}
+
+/// Raw stored bytes of every chunk of a dataset of a results file, in chunk order.
+std::vector<std::vector<unsigned char>> stored_chunks(const std::string& path,
+                                                      const std::string& dataset) {
+  hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  hid_t ds = H5Dopen2(f, dataset.c_str(), H5P_DEFAULT);
+  hid_t space = H5Dget_space(ds);
+  hsize_t n = 0;
+  H5Dget_num_chunks(ds, space, &n);
+  std::vector<std::vector<unsigned char>> chunks;
+  for (hsize_t c = 0; c < n; ++c) {
+    hsize_t offset[3] = {};
+    unsigned mask = 0;
+    haddr_t addr = 0;
+    hsize_t size = 0;
+    H5Dget_chunk_info(ds, space, c, offset, &mask, &addr, &size);
+    std::vector<unsigned char> bytes(size);
+    uint32_t filters = 0;
+    H5Dread_chunk(ds, H5P_DEFAULT, offset, &filters, bytes.data());
+    chunks.push_back(std::move(bytes));
+  }
+  H5Sclose(space);
+  H5Dclose(ds);
+  H5Fclose(f);
+  return chunks;
+}
+
+/// The finished blocks of a compressed series are deflated on a worker thread when the run may
+/// use two (issue 11): the file is the same, chunk for chunk, as with one thread, and a reader
+/// opening it while a block is being compressed reads that block from the staging rows.
+TEST_F(ResultsFileTest, BlocksCompressedOnAWorkerThreadAreStoredAsOnOne) {
+  constexpr int kNodes = 700;  // chunks of U of 64 x 21 x 6 values: deflated
+  constexpr int kBlock = static_cast<int>(result_series::kMaxBlockRows);
+  constexpr int kSteps = 3 * kBlock + 5;
+  const int threads_before = threads::max_threads();
+  std::vector<std::vector<std::vector<unsigned char>>> stored;
+  for (int n_threads : {1, 2}) {
+    threads::set_max_threads(n_threads);
+    const std::string path = file("threads" + std::to_string(n_threads) + ".h5");
+    {
+      ResultsWriter w(path, nodes_only(kNodes));
+      w.begin_analysis(ResultsKind::Transient, "compressed blocks");
+      append_history(w, kNodes, 0, kBlock);  // the first block: submitted to the compressor
+      expect_history(ResultsReader(path), 95, kBlock);
+      append_history(w, kNodes, kBlock, kSteps);
+      expect_history(ResultsReader(path), 95, kSteps);
+      w.end_analysis();
+    }
+    expect_history(ResultsReader(path), 95, kSteps);
+    expect_history(ResultsReader(path), kNodes, kSteps);
+    stored.push_back(stored_chunks(path, "analysis_1/U"));
+  }
+  threads::set_max_threads(threads_before);
+  EXPECT_EQ(stored[0].size(), 4u * ((kNodes + 20) / 21));  // 4 blocks of 34 chunks
+  EXPECT_TRUE(stored[0] == stored[1]);
+}
+
+/// A run killed after a block went to the compressor, before its chunks were written, keeps
+/// every point: the block is still read from the staging rows (recent/first_row has not moved).
+TEST_F(ResultsFileTest, KilledRunWhileABlockIsCompressedKeepsEveryPoint) {
+  constexpr int kNodes = 700;
+  constexpr int kBlock = static_cast<int>(result_series::kMaxBlockRows);
+  const std::string path = file("killed_block.h5");
+  pid_t pid = fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    threads::set_max_threads(2);
+    ResultsWriter w(path, nodes_only(kNodes));
+    w.begin_analysis(ResultsKind::Transient, "killed while compressing");
+    append_history(w, kNodes, 0, kBlock + 3);  // block 1 submitted at its last point
+    sync_live_writer(path);                    // its chunks written, the 3 new points staged
+    append_history(w, kNodes, kBlock + 3, 2 * kBlock);  // block 2 submitted, not yet written
+    raise(SIGKILL);
+    _exit(3);
+  }
+  int status = 0;
+  waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFSIGNALED(status));
+  ResultsReader r(path);
+  EXPECT_EQ(r.analyses().at(0).status, "running");
+  expect_history(r, 95, 2 * kBlock);
+  expect_history(r, kNodes, 2 * kBlock);
 }
 
 /// Byte offset of the first chunk of a dataset.

@@ -1,0 +1,236 @@
+#include "results/block_compressor.h"
+
+#include <fmt/format.h>
+#include <zlib.h>
+
+#include <algorithm>
+#include <cstring>
+#include <limits>
+#include <stdexcept>
+
+// HDF5's own Fletcher32 (H5checksum.c, exported by the library since 1.8 but declared only in
+// its private header): the checksum the Fletcher32 filter appends, byte for byte.
+extern "C" uint32_t H5_checksum_fletcher32(const void* data, size_t len);
+
+namespace impactfe::result_series {
+
+namespace {
+
+constexpr double kFill = std::numeric_limits<double>::quiet_NaN();
+
+/// HDF5's shuffle filter for 8-byte elements: byte j of element i goes to j * n + i.
+void shuffle8(const unsigned char* in, std::size_t n, unsigned char* out) {
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = 0; j < 8; ++j) out[j * n + i] = in[i * 8 + j];
+}
+
+}  // namespace
+
+std::optional<ChunkPipeline> pipeline_of(hid_t ds) {
+  h5::Handle dcpl(h5::check(H5Dget_create_plist(ds), "get dataset creation list"));
+  const int n = H5Pget_nfilters(dcpl);
+  if (n < 0) return std::nullopt;
+  ChunkPipeline p;
+  int stage = 0;  // shuffle 1, deflate 2, Fletcher32 3: each at most once, in that order
+  for (int k = 0; k < n; ++k) {
+    unsigned flags = 0, config = 0;
+    unsigned cd[8] = {};
+    std::size_t n_cd = 8;
+    const H5Z_filter_t id =
+        H5Pget_filter2(dcpl, static_cast<unsigned>(k), &flags, &n_cd, cd, 0, nullptr, &config);
+    int this_stage = 0;
+    if (id == H5Z_FILTER_SHUFFLE) {
+      this_stage = 1;
+      p.shuffle = true;
+    } else if (id == H5Z_FILTER_DEFLATE && n_cd >= 1 && cd[0] >= 1 && cd[0] <= 9) {
+      this_stage = 2;
+      p.deflate_level = static_cast<int>(cd[0]);
+    } else if (id == H5Z_FILTER_FLETCHER32) {
+      this_stage = 3;
+      p.fletcher32 = true;
+    }
+    if (this_stage <= stage) return std::nullopt;  // unknown filter, or out of order
+    stage = this_stage;
+  }
+  return p;
+}
+
+std::vector<unsigned char> filter_chunk(const ChunkPipeline& pipeline, const double* values,
+                                        std::size_t n) {
+  const std::size_t n_bytes = n * sizeof(double);
+  std::vector<unsigned char> data(n_bytes);
+  const auto* raw = reinterpret_cast<const unsigned char*>(values);
+  // H5Z__filter_shuffle leaves a buffer of a single element as it is.
+  if (pipeline.shuffle && n > 1)
+    shuffle8(raw, n, data.data());
+  else
+    std::memcpy(data.data(), raw, n_bytes);
+  if (pipeline.deflate_level > 0) {
+    // H5Z__filter_deflate: compress2 into a buffer of compressBound bytes.
+    uLongf out_bytes = compressBound(static_cast<uLong>(n_bytes));
+    std::vector<unsigned char> out(out_bytes);
+    const int status = compress2(out.data(), &out_bytes, data.data(), static_cast<uLong>(n_bytes),
+                                 pipeline.deflate_level);
+    if (status != Z_OK)
+      throw std::runtime_error(fmt::format("deflate of a results chunk failed (zlib {})", status));
+    out.resize(out_bytes);
+    data = std::move(out);
+  }
+  if (pipeline.fletcher32) {
+    // H5Z__filter_fletcher32: the checksum of the stored bytes, appended little-endian.
+    const uint32_t sum = H5_checksum_fletcher32(data.data(), data.size());
+    for (int b = 0; b < 4; ++b) data.push_back(static_cast<unsigned char>((sum >> (8 * b)) & 0xff));
+  }
+  return data;
+}
+
+void BlockJob::compress() {
+  try {
+    const std::size_t d = row_dims.size();
+    std::size_t row_size = 1;
+    for (auto x : row_dims) row_size *= static_cast<std::size_t>(x);
+    std::size_t chunk_size = 1;
+    for (auto x : chunk) chunk_size *= static_cast<std::size_t>(x);
+    if (d == 0 || chunk.size() != d + 1)
+      throw std::logic_error("BlockJob: a chunk needs one dimension more than a row");
+    if (row_size == 0 || chunk_size == 0) {
+      block.reset();
+      return;
+    }
+    // Strides of the row dimensions in a block row, and the chunk grid over them.
+    std::vector<std::size_t> stride(d, 1);
+    for (std::size_t i = d - 1; i-- > 0;)
+      stride[i] = stride[i + 1] * static_cast<std::size_t>(row_dims[i + 1]);
+    std::vector<hsize_t> origin(d, 0);  // chunk origin in the row dimensions
+    std::vector<double> buffer(chunk_size);
+    const std::size_t inner = static_cast<std::size_t>(chunk[d]);  // contiguous run in a chunk
+    while (true) {
+      // Gather the chunk: (t, i_1 .. i_d) over chunk[0] x ... x chunk[d], NaN outside the rows
+      // given and the dataset's edge, as HDF5 fills a chunk before writing the selection into it.
+      std::fill(buffer.begin(), buffer.end(), kFill);
+      std::vector<hsize_t> index(d, 0);  // within the chunk, the last dimension as runs
+      std::size_t out = 0;
+      for (hsize_t t = 0; t < chunk[0]; ++t) {
+        std::fill(index.begin(), index.end(), 0);
+        while (true) {
+          bool inside = t < n_rows;
+          std::size_t at = static_cast<std::size_t>(t) * row_size;
+          for (std::size_t i = 0; i + 1 < d; ++i) {
+            const hsize_t g = origin[i] + index[i];
+            inside = inside && g < row_dims[i];
+            at += static_cast<std::size_t>(g) * stride[i];
+          }
+          if (inside) {
+            const hsize_t g0 = origin[d - 1];
+            const std::size_t run = static_cast<std::size_t>(
+                std::min<hsize_t>(chunk[d], row_dims[d - 1] > g0 ? row_dims[d - 1] - g0 : 0));
+            std::copy_n(block.get() + at + static_cast<std::size_t>(g0), run, &buffer[out]);
+          }
+          out += inner;
+          // Next run: the odometer over the chunk's dimensions 1 .. d-1.
+          std::size_t i = d - 1;
+          while (i > 0) {
+            if (++index[i - 1] < chunk[i]) break;
+            index[i - 1] = 0;
+            --i;
+          }
+          if (i == 0) break;
+        }
+      }
+      std::vector<hsize_t> offset{first_row};
+      offset.insert(offset.end(), origin.begin(), origin.end());
+      chunks.push_back({std::move(offset), filter_chunk(pipeline, buffer.data(), chunk_size)});
+      // Next chunk of the grid.
+      std::size_t i = d;
+      while (i > 0) {
+        origin[i - 1] += chunk[i];
+        if (origin[i - 1] < row_dims[i - 1]) break;
+        origin[i - 1] = 0;
+        --i;
+      }
+      if (i == 0) break;
+    }
+  } catch (...) {
+    error = std::current_exception();
+  }
+  block.reset();
+}
+
+double BlockJob::stored_bytes() const {
+  double n = 0;
+  for (const auto& c : chunks) n += static_cast<double>(c.bytes.size());
+  return n;
+}
+
+void BlockJob::write() const {
+  for (const Chunk& c : chunks)
+    h5::check_status(
+        H5Dwrite_chunk(dataset, H5P_DEFAULT, 0, c.offset.data(), c.bytes.size(), c.bytes.data()),
+        "write a compressed chunk");
+}
+
+BlockCompressor::BlockCompressor(bool background) : background_(background) {}
+
+BlockCompressor::~BlockCompressor() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stop_ = true;
+    queue_.clear();
+  }
+  wake_.notify_all();
+  if (worker_.joinable()) worker_.join();
+}
+
+void BlockCompressor::submit(BlockJob job) {
+  ++submitted_;
+  if (background_) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    bool started = worker_.joinable();
+    if (!started) {
+      try {
+        worker_ = std::thread([this] { work(); });
+        started = true;
+      } catch (const std::system_error&) {
+        // No thread to be had: compress here, as with --threads 1.
+      }
+    }
+    if (started) {
+      queue_.push_back(std::move(job));
+      lock.unlock();
+      wake_.notify_one();
+      return;
+    }
+  }
+  job.compress();
+  std::lock_guard<std::mutex> lock(mutex_);
+  finished_.push_back(std::move(job));
+}
+
+void BlockCompressor::work() {
+  std::unique_lock<std::mutex> lock(mutex_);
+  while (true) {
+    wake_.wait(lock, [this] { return stop_ || !queue_.empty(); });
+    if (stop_) return;
+    BlockJob job = std::move(queue_.front());
+    queue_.pop_front();
+    busy_ = true;
+    lock.unlock();
+    job.compress();
+    lock.lock();
+    busy_ = false;
+    finished_.push_back(std::move(job));
+    done_.notify_all();
+  }
+}
+
+std::vector<BlockJob> BlockCompressor::wait_all() {
+  std::unique_lock<std::mutex> lock(mutex_);
+  done_.wait(lock, [this] { return queue_.empty() && !busy_; });
+  std::vector<BlockJob> jobs(std::make_move_iterator(finished_.begin()),
+                             std::make_move_iterator(finished_.end()));
+  finished_.clear();
+  taken_ = submitted_;
+  return jobs;
+}
+
+}  // namespace impactfe::result_series

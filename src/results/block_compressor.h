@@ -1,0 +1,101 @@
+#pragma once
+/// Compression of the results writer's finished blocks off the solution's critical path
+/// (issue 11: "results writing buffered and off the critical path").
+///
+/// A full block of a compressed main dataset (docs/results_file.md) used to be written through
+/// H5Dwrite, which runs the filters (shuffle, deflate, Fletcher32) chunk by chunk on the
+/// calling thread: on the 155 522-DOF dome, 40 MB every fourth stored point, about 100 ms of
+/// deflate per point, a third of a run that stores every step. Debian's HDF5 is not built
+/// thread-safe, so no second thread may call it. The filters themselves are plain functions of
+/// the chunk's bytes, though: a worker thread applies them here (the same pipeline as HDF5's,
+/// in the same order, so any HDF5 reader decodes the chunks), and the writer's thread stores
+/// the finished chunks with H5Dwrite_chunk, which only does I/O.
+#include <condition_variable>
+#include <cstdint>
+#include <deque>
+#include <exception>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <thread>
+#include <vector>
+
+#include "io/h5_util.h"
+
+namespace impactfe::result_series {
+
+/// The filters of a chunked float64 dataset as HDF5 applies them on writing, in this order:
+/// byte shuffle, deflate (zlib, `deflate_level`), Fletcher32 checksum appended.
+struct ChunkPipeline {
+  bool shuffle = false;
+  int deflate_level = 0;  // 0: no deflate
+  bool fletcher32 = false;
+};
+
+/// The pipeline of dataset `ds`; nullopt when it holds a filter this code does not apply
+/// itself, or its filters in another order (the caller then writes through H5Dwrite).
+std::optional<ChunkPipeline> pipeline_of(hid_t ds);
+
+/// The stored bytes of one chunk of `n` doubles through `pipeline`: what HDF5 would write for
+/// it, and what H5Dwrite_chunk takes with filter mask 0.
+std::vector<unsigned char> filter_chunk(const ChunkPipeline& pipeline, const double* values,
+                                        std::size_t n);
+
+/// One finished block of a main dataset: rows [first_row, first_row + n_rows) of a dataset of
+/// rows `row_dims`, chunked `chunk` (chunk[0] = block_rows, the block's length in time).
+struct BlockJob {
+  hid_t dataset = -1;  // only carried: the worker never calls HDF5
+  ChunkPipeline pipeline;
+  std::vector<hsize_t> row_dims, chunk;
+  hsize_t first_row = 0, n_rows = 0;
+  std::unique_ptr<double[]>
+      block;  // chunk[0] x product(row_dims), row-major; rows >= n_rows unused
+
+  struct Chunk {
+    std::vector<hsize_t> offset;  // logical start of the chunk in the dataset
+    std::vector<unsigned char> bytes;
+  };
+  std::vector<Chunk> chunks;  // filled by compress()
+  std::exception_ptr error;   // what compress() threw, rethrown where the chunks are written
+
+  /// Cuts the block into its chunks (rows past n_rows and columns past the dataset's edge are
+  /// NaN, the datasets' fill value) and filters each; frees the block.
+  void compress();
+  /// Stored bytes of the chunks (after compress()).
+  double stored_bytes() const;
+  /// Stores the chunks in `dataset` (H5Dwrite_chunk, filter mask 0), on the thread that owns
+  /// the file.
+  void write() const;
+};
+
+/// Runs BlockJob::compress in submission order, on one worker thread when `background` (it
+/// waits on a condition variable when idle), or at once on the caller's thread otherwise
+/// (--threads 1: the run then stays on one thread).
+class BlockCompressor {
+ public:
+  explicit BlockCompressor(bool background);
+  /// Waits for the job being compressed; jobs still queued are dropped.
+  ~BlockCompressor();
+  BlockCompressor(const BlockCompressor&) = delete;
+  BlockCompressor& operator=(const BlockCompressor&) = delete;
+
+  bool background() const { return background_; }
+  void submit(BlockJob job);
+  /// Whether a submitted job has not been taken back by wait_all yet.
+  bool pending() const { return submitted_ > taken_; }
+  /// Waits until every submitted job is compressed; returns them in submission order.
+  std::vector<BlockJob> wait_all();
+
+ private:
+  void work();
+
+  const bool background_;
+  std::mutex mutex_;
+  std::condition_variable wake_, done_;
+  std::deque<BlockJob> queue_, finished_;
+  bool busy_ = false, stop_ = false;
+  std::size_t submitted_ = 0, taken_ = 0;
+  std::thread worker_;  // started with the first job
+};
+
+}  // namespace impactfe::result_series

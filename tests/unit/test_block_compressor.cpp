@@ -1,0 +1,192 @@
+// The results writer's block compressor (issue 11): the chunks it filters on a worker thread and
+// stores with H5Dwrite_chunk are byte for byte the chunks HDF5 stores for the same rows through
+// H5Dwrite (shuffle, deflate, Fletcher32 in HDF5's order, NaN fill of a partial block and of a
+// dataset's edge), and read back through HDF5's own filters to the values written.
+#include <gtest/gtest.h>
+#include <hdf5.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <random>
+
+#include "io/h5_util.h"
+#include "results/block_compressor.h"
+
+namespace impactfe::result_series {
+namespace {
+
+namespace fs = std::filesystem;
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+struct Shape {
+  std::vector<hsize_t> row_dims, chunk;  // chunk[0]: the block's rows
+  hsize_t n_rows;                        // rows of the block given (<= chunk[0])
+  int deflate_level;                     // as asked of checked_creation_list
+};
+
+/// Rows of smooth values with NaN holes, as results look (absent DOFs).
+std::vector<double> block_values(const Shape& s) {
+  hsize_t row_size = 1;
+  for (auto d : s.row_dims) row_size *= d;
+  std::vector<double> v(s.chunk[0] * row_size, 1e300);  // rows past n_rows: never stored
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> noise(-1e-3, 1e-3);
+  for (hsize_t r = 0; r < s.n_rows; ++r)
+    for (hsize_t i = 0; i < row_size; ++i)
+      v[r * row_size + i] = i % 11 == 5 ? kNaN : std::sin(0.1 * i + r) + noise(rng);
+  return v;
+}
+
+/// Raw stored bytes of every chunk of a dataset, in chunk order.
+std::vector<std::vector<unsigned char>> stored_chunks(hid_t ds) {
+  hid_t space = H5Dget_space(ds);
+  hsize_t n = 0;
+  H5Dget_num_chunks(ds, space, &n);
+  std::vector<std::vector<unsigned char>> chunks;
+  for (hsize_t c = 0; c < n; ++c) {
+    hsize_t offset[4] = {};
+    unsigned mask = 1;
+    haddr_t addr = 0;
+    hsize_t size = 0;
+    H5Dget_chunk_info(ds, space, c, offset, &mask, &addr, &size);
+    EXPECT_EQ(mask, 0u);  // every filter applied
+    std::vector<unsigned char> bytes(size);
+    uint32_t filters = 0;
+    EXPECT_GE(H5Dread_chunk(ds, H5P_DEFAULT, offset, &filters, bytes.data()), 0);
+    chunks.push_back(std::move(bytes));
+  }
+  H5Sclose(space);
+  return chunks;
+}
+
+void check_shape(const Shape& s, bool background) {
+  const fs::path path =
+      fs::temp_directory_path() / ("impactfe_block_compressor_" + std::to_string(getpid()) + ".h5");
+  const std::vector<double> block = block_values(s);
+  hid_t file = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  ASSERT_GE(file, 0);
+  std::vector<hsize_t> dims{s.n_rows}, maxdims{H5S_UNLIMITED};
+  for (auto d : s.row_dims) {
+    dims.push_back(d);
+    maxdims.push_back(d);
+  }
+  const int rank = static_cast<int>(dims.size());
+  const double fill = kNaN;
+  h5::Handle dcpl = h5::checked_creation_list(s.chunk, &fill, s.deflate_level);
+  h5::Handle space(H5Screate_simple(rank, dims.data(), maxdims.data()));
+  // HDF5 filters the rows itself ...
+  h5::Handle by_hdf5(
+      H5Dcreate2(file, "by_hdf5", H5T_IEEE_F64LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT));
+  ASSERT_GE(H5Dwrite(by_hdf5, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, block.data()), 0);
+  // ... and the compressor for the direct chunk writes.
+  h5::Handle direct(
+      H5Dcreate2(file, "direct", H5T_IEEE_F64LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT));
+  const auto pipeline = pipeline_of(direct);
+  ASSERT_TRUE(pipeline.has_value());
+  hsize_t chunk_elements = 1;
+  for (auto c : s.chunk) chunk_elements *= c;
+  EXPECT_EQ(pipeline->deflate_level,
+            chunk_elements >= h5::kMinDeflateChunkElements ? s.deflate_level : 0);
+  EXPECT_EQ(pipeline->shuffle, pipeline->deflate_level > 0);
+  EXPECT_TRUE(pipeline->fletcher32);
+  BlockJob job;
+  job.dataset = direct;
+  job.pipeline = *pipeline;
+  job.row_dims = s.row_dims;
+  job.chunk = s.chunk;
+  job.first_row = 0;
+  job.n_rows = s.n_rows;
+  job.block.reset(new double[block.size()]);
+  std::copy(block.begin(), block.end(), job.block.get());
+  BlockCompressor compressor(background);
+  compressor.submit(std::move(job));
+  EXPECT_TRUE(compressor.pending());
+  std::vector<BlockJob> done = compressor.wait_all();
+  EXPECT_FALSE(compressor.pending());
+  ASSERT_EQ(done.size(), 1u);
+  ASSERT_FALSE(done[0].error);
+  EXPECT_FALSE(done[0].block);  // freed once compressed
+  for (const auto& c : done[0].chunks)
+    ASSERT_GE(
+        H5Dwrite_chunk(direct, H5P_DEFAULT, 0, c.offset.data(), c.bytes.size(), c.bytes.data()), 0);
+  H5Fflush(file, H5F_SCOPE_GLOBAL);
+
+  const auto want = stored_chunks(by_hdf5);
+  const auto got = stored_chunks(direct);
+  ASSERT_EQ(got.size(), want.size());
+  EXPECT_EQ(got.size(), done[0].chunks.size());
+  for (std::size_t c = 0; c < got.size(); ++c) EXPECT_EQ(got[c], want[c]) << "chunk " << c;
+
+  // Read back through HDF5's filters (Fletcher32 checked on reading).
+  std::vector<double> back(block.size() / s.chunk[0] * s.n_rows);
+  ASSERT_GE(H5Dread(direct, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, back.data()), 0);
+  for (std::size_t i = 0; i < back.size(); ++i) {
+    if (std::isnan(block[i]))
+      EXPECT_TRUE(std::isnan(back[i])) << i;
+    else
+      EXPECT_EQ(back[i], block[i]) << i;
+  }
+  H5Fclose(file);
+  fs::remove(path);
+}
+
+TEST(BlockCompressor, ChunksAreTheBytesHdf5StoresForTheSameRows) {
+  const std::vector<Shape> shapes = {
+      {{400, 6}, {4, 171, 6}, 4, 1},        // U of 400 nodes: three chunks, the last past the edge
+      {{400, 6}, {4, 171, 6}, 3, 1},        // the partial last block of an analysis
+      {{10000}, {8, 600}, 5, 1},            // a 1-D row (gap forces, R)
+      {{6, 40, 30}, {4, 4, 40, 30}, 2, 6},  // three row dimensions, another deflate level
+      {{30, 6}, {4, 16, 6}, 4, 1},          // a chunk too small for deflate: Fletcher32 only
+  };
+  for (bool background : {false, true})
+    for (const Shape& s : shapes) {
+      SCOPED_TRACE(::testing::Message()
+                   << "rows " << s.n_rows << " of " << s.chunk[0] << ", background " << background);
+      check_shape(s, background);
+    }
+}
+
+TEST(BlockCompressor, BackgroundJobsReturnInSubmissionOrder) {
+  BlockCompressor compressor(true);
+  for (int k = 0; k < 5; ++k) {
+    BlockJob job;
+    job.pipeline = {true, 1, true};
+    job.row_dims = {1000};
+    job.chunk = {4, 250};
+    job.first_row = 4 * static_cast<hsize_t>(k);
+    job.n_rows = 4;
+    job.block.reset(new double[4000]);
+    for (int i = 0; i < 4000; ++i) job.block[static_cast<std::size_t>(i)] = k + 1e-3 * i;
+    compressor.submit(std::move(job));
+  }
+  const std::vector<BlockJob> done = compressor.wait_all();
+  ASSERT_EQ(done.size(), 5u);
+  for (std::size_t k = 0; k < 5; ++k) {
+    EXPECT_EQ(done[k].first_row, 4 * k);
+    ASSERT_EQ(done[k].chunks.size(), 4u);  // 1000 columns in chunks of 250
+    EXPECT_EQ(done[k].chunks[3].offset, (std::vector<hsize_t>{4 * k, 750}));
+  }
+  EXPECT_TRUE(compressor.wait_all().empty());
+}
+
+TEST(BlockCompressor, AFilterItDoesNotApplyIsRefused) {
+  const fs::path path =
+      fs::temp_directory_path() / ("impactfe_block_pipeline_" + std::to_string(getpid()) + ".h5");
+  hid_t file = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  ASSERT_GE(file, 0);
+  hsize_t dims[1] = {64}, chunk[1] = {16};
+  h5::Handle space(H5Screate_simple(1, dims, nullptr));
+  h5::Handle dcpl(H5Pcreate(H5P_DATASET_CREATE));
+  H5Pset_chunk(dcpl, 1, chunk);
+  H5Pset_fletcher32(dcpl);
+  H5Pset_shuffle(dcpl);  // after Fletcher32: not the order this code applies
+  h5::Handle ds(H5Dcreate2(file, "d", H5T_IEEE_F64LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT));
+  EXPECT_FALSE(pipeline_of(ds).has_value());
+  H5Fclose(file);
+  fs::remove(path);
+}
+
+}  // namespace
+}  // namespace impactfe::result_series
