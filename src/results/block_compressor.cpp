@@ -58,7 +58,9 @@ std::optional<ChunkPipeline> pipeline_of(hid_t ds) {
 std::vector<unsigned char> filter_chunk(const ChunkPipeline& pipeline, const double* values,
                                         std::size_t n) {
   const std::size_t n_bytes = n * sizeof(double);
-  std::vector<unsigned char> data(n_bytes);
+  std::vector<unsigned char> data;
+  data.reserve(n_bytes + 4);
+  data.resize(n_bytes);
   const auto* raw = reinterpret_cast<const unsigned char*>(values);
   // H5Z__filter_shuffle leaves a buffer of a single element as it is.
   if (pipeline.shuffle && n > 1)
@@ -73,8 +75,12 @@ std::vector<unsigned char> filter_chunk(const ChunkPipeline& pipeline, const dou
                                  pipeline.deflate_level);
     if (status != Z_OK)
       throw std::runtime_error(fmt::format("deflate of a results chunk failed (zlib {})", status));
-    out.resize(out_bytes);
-    data = std::move(out);
+    // Exactly the stored bytes (and room for the checksum): a block's chunks wait in memory
+    // until they are written, and compressBound is the uncompressed size.
+    std::vector<unsigned char> stored;
+    stored.reserve(out_bytes + 4);
+    stored.assign(out.begin(), out.begin() + static_cast<std::ptrdiff_t>(out_bytes));
+    data = std::move(stored);
   }
   if (pipeline.fletcher32) {
     // H5Z__filter_fletcher32: the checksum of the stored bytes, appended little-endian.
@@ -93,10 +99,7 @@ void BlockJob::compress() {
     for (auto x : chunk) chunk_size *= static_cast<std::size_t>(x);
     if (d == 0 || chunk.size() != d + 1)
       throw std::logic_error("BlockJob: a chunk needs one dimension more than a row");
-    if (row_size == 0 || chunk_size == 0) {
-      block.reset();
-      return;
-    }
+    if (row_size == 0 || chunk_size == 0) return;
     // Strides of the row dimensions in a block row, and the chunk grid over them.
     std::vector<std::size_t> stride(d, 1);
     for (std::size_t i = d - 1; i-- > 0;)
@@ -153,7 +156,6 @@ void BlockJob::compress() {
   } catch (...) {
     error = std::current_exception();
   }
-  block.reset();
 }
 
 double BlockJob::stored_bytes() const {

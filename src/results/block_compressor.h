@@ -59,7 +59,7 @@ struct BlockJob {
   std::exception_ptr error;   // what compress() threw, rethrown where the chunks are written
 
   /// Cuts the block into its chunks (rows past n_rows and columns past the dataset's edge are
-  /// NaN, the datasets' fill value) and filters each; frees the block.
+  /// NaN, the datasets' fill value) and filters each. The block is left to its owner.
   void compress();
   /// Stored bytes of the chunks (after compress()).
   double stored_bytes() const;

@@ -10,8 +10,17 @@ using h5::Handle;
 
 namespace {
 
-/// Memory for the blocks being filled (all quantities of an analysis), at most.
-constexpr double kBlockMemoryBytes = 64.0 * (1 << 20);
+/// Memory for the blocks being filled (all quantities of an analysis), at most. A background
+/// compression holds a second block per compressed quantity (BlockSeries::spare): 32 MB keeps
+/// both within what one block took before (64 MB).
+constexpr double kBlockMemoryBytes = 32.0 * (1 << 20);
+
+/// Values of a job's block: chunk[0] rows of its row dimensions.
+hsize_t job_values(const BlockJob& job) {
+  hsize_t n = job.chunk.empty() ? 0 : job.chunk[0];
+  for (auto d : job.row_dims) n *= d;
+  return n;
+}
 /// Target size of a main chunk (uncompressed): large enough to compress well, small enough that
 /// a history reads little beyond what it needs (with kMaxBlockRows points, a chunk spans the
 /// columns of 21 nodes of U).
@@ -107,7 +116,7 @@ BlockSeries create_series(hid_t group, hid_t recent_group, const std::string& na
 }
 
 void flush_block(BlockSeries& s, BlockCompressor& compressor, hsize_t first_row, hsize_t n_rows,
-                 hsize_t block_rows, bool more_rows) {
+                 hsize_t block_rows) {
   set_extent(s.main, first_row + n_rows, s.row_dims);
   if (!s.pipeline) {
     write_rows(s.main, first_row, n_rows, s.row_dims, s.block.get());
@@ -121,8 +130,22 @@ void flush_block(BlockSeries& s, BlockCompressor& compressor, hsize_t first_row,
   job.first_row = first_row;
   job.n_rows = n_rows;
   job.block = std::move(s.block);
-  if (more_rows) s.block.reset(new double[block_rows * s.row_size()]);
+  if (!compressor.background()) {
+    job.compress();
+    if (job.error) std::rethrow_exception(job.error);
+    job.write();
+    s.block = std::move(job.block);
+    return;
+  }
+  s.block = s.spare ? std::move(s.spare) : std::unique_ptr<double[]>(new double[job_values(job)]);
   compressor.submit(std::move(job));
+}
+
+void finish_job(BlockJob& job, std::map<std::string, BlockSeries>& series, hsize_t block_rows) {
+  job.write();
+  for (auto& [name, s] : series)
+    if (s.main.get() == job.dataset && job_values(job) == block_rows * s.row_size())
+      s.spare = std::move(job.block);
 }
 
 DirectSeries create_direct(hid_t group, const std::string& name, bool integer) {

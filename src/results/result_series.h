@@ -4,6 +4,7 @@
 /// dataset chunked in time blocks plus its staging dataset under `recent/`) and a direct 1-D
 /// series (time, load step, substep).
 #include <limits>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -26,8 +27,8 @@ constexpr hsize_t kMinCompressedPointValues = 4096;
 
 hsize_t product(const std::vector<hsize_t>& d);
 
-/// Time points per block for a model: 256, fewer when a block of every nodal quantity and
-/// element value would need more than 64 MB.
+/// Time points per block for a model: kMaxBlockRows, fewer when a block of every nodal quantity
+/// and element value would need more than 32 MB.
 hsize_t block_rows_for(std::size_t n_nodes, std::size_t n_elements);
 
 /// Writes rows [first, first + n_rows) of a dataset of rows `row_dims`.
@@ -48,6 +49,10 @@ struct BlockSeries {
   // The block being filled, block_rows x row_size, not initialised: a row becomes valid when the
   // point's values (or NaN, finish_append) are put into it.
   std::unique_ptr<double[]> block;
+  // The block a background compression gave back, the next block's buffer (a fresh 10-MB
+  // allocation per block would come from the heap once glibc's mmap threshold has risen to it,
+  // and the heap keeps what is freed: the dome's RSS grew by 40 MB over 200 steps).
+  std::unique_ptr<double[]> spare;
   bool written = false;  // a row was given in the current append
 
   hsize_t row_size() const { return product(row_dims); }
@@ -60,10 +65,14 @@ BlockSeries create_series(hid_t group, hid_t recent_group, const std::string& na
                           bool growable_columns, bool compress);
 
 /// Rows [first_row, first_row + n_rows) of the series' block go to its main dataset (extended to
-/// them): written now when it does not deflate, otherwise handed to `compressor` with the block
-/// (`more_rows`: the series gets a fresh block of `block_rows` for the points that follow).
+/// them): written now when it does not deflate or the compressor works on this thread (the
+/// series keeps its block), otherwise handed to the compressor's worker with the block, and the
+/// series takes its spare block, or a new one, for the points that follow.
 void flush_block(BlockSeries& s, BlockCompressor& compressor, hsize_t first_row, hsize_t n_rows,
-                 hsize_t block_rows, bool more_rows);
+                 hsize_t block_rows);
+/// Writes a job's chunks and gives its block back, as the spare, to the series of `series` it
+/// came from (when that still has the block's size).
+void finish_job(BlockJob& job, std::map<std::string, BlockSeries>& series, hsize_t block_rows);
 
 /// A 1-D series written straight into its dataset at every sync (time, load step, substep):
 /// tiny, and `time` must be complete in the main dataset (its length counts the points).

@@ -25,7 +25,6 @@
 
 #include "core/errors.h"
 #include "core/log.h"
-#include "core/thread_pool.h"
 #include "io/h5_util.h"
 #include "results/live_writers.h"
 #include "results/result_series.h"
@@ -92,8 +91,10 @@ struct ResultsWriter::Impl {
   hsize_t block_start = 0;  // time index of the first point of the block being filled
   std::map<std::string, BlockSeries> series;
   std::map<std::string, DirectSeries> direct;
-  // Finished blocks of compressed series: on a worker thread when --threads allows two.
-  result_series::BlockCompressor compressor{threads::max_threads() > 1};
+  // Finished blocks of compressed series, compressed on this thread: on a worker thread the
+  // dome's step took 6-10 ms less but its peak grew by 45 MB, to 1.55 x (factor + model)
+  // (docs/benchmarks.md, issue 11); not used until that memory is found.
+  result_series::BlockCompressor compressor{false};
   bool first_row_pending = false;  // recent/first_row becomes first_row_after (complete_blocks)
   hsize_t first_row_after = 0;
   // Points appended since the last sync: [synced, n_t); their time, load step and substep.
@@ -163,7 +164,6 @@ struct ResultsWriter::Impl {
   void finish_append();
   void sync(bool block_full);
   void write_pending_counters();
-  void flush_block(hsize_t n_rows, bool more_rows);
   void complete_blocks();
   void write_nodal(const std::string& name, const Eigen::MatrixXd& m);
   void write_reactions(const Eigen::MatrixXd& m);
@@ -307,13 +307,6 @@ void ResultsWriter::Impl::put_row(BlockSeries& s, const double* row) {
   std::copy(row, row + s.row_size(), row_slot(s));
 }
 
-/// The finished rows of the block go to the main datasets (the compressed series' through the
-/// compressor; complete_blocks writes them).
-void ResultsWriter::Impl::flush_block(hsize_t n_rows, bool more_rows) {
-  for (auto& [name, s] : series)
-    result_series::flush_block(s, compressor, block_start, n_rows, block_rows, more_rows);
-}
-
 /// Stores the chunks of the blocks submitted to the compressor (waiting for it if it is still at
 /// work), then moves recent/first_row past the block: its staging rows are then free.
 void ResultsWriter::Impl::complete_blocks() {
@@ -329,7 +322,7 @@ void ResultsWriter::Impl::complete_blocks() {
     } catch (const std::runtime_error& e) {
       throw SolutionError(e.what());  // the Guard of the public call abandons the file
     }
-    for (const BlockJob& job : jobs) job.write();
+    for (BlockJob& job : jobs) result_series::finish_job(job, series, block_rows);
   }
   if (first_row_pending && recent_group.valid()) {
     // HDF5 writes what is dirty in an order of its own at a flush: the main chunks reach the
@@ -385,7 +378,8 @@ void ResultsWriter::Impl::sync(bool block_full) {
   const bool compressed =
       std::any_of(series.begin(), series.end(), [](const auto& s) { return s.second.pipeline; });
   const auto finish_block = [&] {
-    flush_block(block_rows, true);
+    for (auto& [name, s] : series)
+      result_series::flush_block(s, compressor, block_start, block_rows, block_rows);
     first_row_pending = true;
     first_row_after = block_start + block_rows;
   };
@@ -419,7 +413,8 @@ void ResultsWriter::Impl::close_analysis(const std::string& status) {
     H5Ldelete(group, "recent", H5P_DEFAULT);
   }
   if (n_t > block_start) {
-    flush_block(n_t - block_start, false);
+    for (auto& [name, s] : series)
+      result_series::flush_block(s, compressor, block_start, n_t - block_start, block_rows);
     complete_blocks();
   }
   if (!pending_time.empty()) {
@@ -499,6 +494,7 @@ void ResultsWriter::Impl::write_reactions(const Eigen::MatrixXd& m) {
         std::fill(block.get() + r * n_r + old_n, block.get() + (r + 1) * n_r, kNaN);
       }
       s.block = std::move(block);
+      s.spare.reset();  // the old width
       s.row_dims = {n_r};
       set_extent(s.main, h5::dims_of(s.main)[0], s.row_dims);
       // The new columns of the finished blocks: NaN, written (all_chunks_written).
