@@ -1,6 +1,7 @@
 #include "results/block_compressor.h"
 
 #include <fmt/format.h>
+#include <sys/mman.h>
 #include <zlib.h>
 
 #include <algorithm>
@@ -25,6 +26,18 @@ void shuffle8(const unsigned char* in, std::size_t n, unsigned char* out) {
 }
 
 }  // namespace
+
+void PageDeleter::operator()(double* p) const {
+  if (p != nullptr) munmap(p, bytes);
+}
+
+BlockBuffer allocate_block(std::size_t n) {
+  if (n == 0) return {};
+  const std::size_t bytes = n * sizeof(double);
+  void* p = mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+  if (p == MAP_FAILED) throw std::bad_alloc();
+  return BlockBuffer(static_cast<double*>(p), PageDeleter{bytes});
+}
 
 std::optional<ChunkPipeline> pipeline_of(hid_t ds) {
   h5::Handle dcpl(h5::check(H5Dget_create_plist(ds), "get dataset creation list"));
@@ -204,6 +217,7 @@ void BlockCompressor::submit(BlockJob job) {
     }
   }
   job.compress();
+  job.block.reset();
   std::lock_guard<std::mutex> lock(mutex_);
   finished_.push_back(std::move(job));
 }
@@ -218,6 +232,7 @@ void BlockCompressor::work() {
     busy_ = true;
     lock.unlock();
     job.compress();
+    job.block.reset();  // back to the system now, not when the writer takes the chunks
     lock.lock();
     busy_ = false;
     finished_.push_back(std::move(job));

@@ -10,17 +10,10 @@ using h5::Handle;
 
 namespace {
 
-/// Memory for the blocks being filled (all quantities of an analysis), at most. A background
-/// compression holds a second block per compressed quantity (BlockSeries::spare): 32 MB keeps
-/// both within what one block took before (64 MB).
+/// Memory for the blocks being filled (all quantities of an analysis), at most. While a block is
+/// compressed on a worker, the next one fills beside it: 32 MB (it was 64 MB) keeps the two
+/// within what one block took before.
 constexpr double kBlockMemoryBytes = 32.0 * (1 << 20);
-
-/// Values of a job's block: chunk[0] rows of its row dimensions.
-hsize_t job_values(const BlockJob& job) {
-  hsize_t n = job.chunk.empty() ? 0 : job.chunk[0];
-  for (auto d : job.row_dims) n *= d;
-  return n;
-}
 /// Target size of a main chunk (uncompressed): large enough to compress well, small enough that
 /// a history reads little beyond what it needs (with kMaxBlockRows points, a chunk spans the
 /// columns of 21 nodes of U).
@@ -111,7 +104,7 @@ BlockSeries create_series(hid_t group, hid_t recent_group, const std::string& na
         H5Dcreate2(recent_group, name.c_str(), H5T_IEEE_F64LE, space, lcpl, dcpl, H5P_DEFAULT),
         "create dataset recent/" + name));
   }
-  s.block.reset(new double[block_rows * s.row_size()]);
+  s.block = allocate_block(block_rows * s.row_size());
   return s;
 }
 
@@ -137,15 +130,8 @@ void flush_block(BlockSeries& s, BlockCompressor& compressor, hsize_t first_row,
     s.block = std::move(job.block);
     return;
   }
-  s.block = s.spare ? std::move(s.spare) : std::unique_ptr<double[]>(new double[job_values(job)]);
+  s.block = allocate_block(block_rows * s.row_size());
   compressor.submit(std::move(job));
-}
-
-void finish_job(BlockJob& job, std::map<std::string, BlockSeries>& series, hsize_t block_rows) {
-  job.write();
-  for (auto& [name, s] : series)
-    if (s.main.get() == job.dataset && job_values(job) == block_rows * s.row_size())
-      s.spare = std::move(job.block);
 }
 
 DirectSeries create_direct(hid_t group, const std::string& name, bool integer) {

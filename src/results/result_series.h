@@ -4,7 +4,6 @@
 /// dataset chunked in time blocks plus its staging dataset under `recent/`) and a direct 1-D
 /// series (time, load step, substep).
 #include <limits>
-#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -48,11 +47,7 @@ struct BlockSeries {
   std::optional<ChunkPipeline> pipeline;
   // The block being filled, block_rows x row_size, not initialised: a row becomes valid when the
   // point's values (or NaN, finish_append) are put into it.
-  std::unique_ptr<double[]> block;
-  // The block a background compression gave back, the next block's buffer (a fresh 10-MB
-  // allocation per block would come from the heap once glibc's mmap threshold has risen to it,
-  // and the heap keeps what is freed: the dome's RSS grew by 40 MB over 200 steps).
-  std::unique_ptr<double[]> spare;
+  BlockBuffer block;
   bool written = false;  // a row was given in the current append
 
   hsize_t row_size() const { return product(row_dims); }
@@ -66,13 +61,10 @@ BlockSeries create_series(hid_t group, hid_t recent_group, const std::string& na
 
 /// Rows [first_row, first_row + n_rows) of the series' block go to its main dataset (extended to
 /// them): written now when it does not deflate or the compressor works on this thread (the
-/// series keeps its block), otherwise handed to the compressor's worker with the block, and the
-/// series takes its spare block, or a new one, for the points that follow.
+/// series keeps its block), otherwise handed to the compressor's worker with the block (freed
+/// once compressed), and the series takes a new one for the points that follow.
 void flush_block(BlockSeries& s, BlockCompressor& compressor, hsize_t first_row, hsize_t n_rows,
                  hsize_t block_rows);
-/// Writes a job's chunks and gives its block back, as the spare, to the series of `series` it
-/// came from (when that still has the block's size).
-void finish_job(BlockJob& job, std::map<std::string, BlockSeries>& series, hsize_t block_rows);
 
 /// A 1-D series written straight into its dataset at every sync (time, load step, substep):
 /// tiny, and `time` must be complete in the main dataset (its length counts the points).

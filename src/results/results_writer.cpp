@@ -25,6 +25,7 @@
 
 #include "core/errors.h"
 #include "core/log.h"
+#include "core/thread_pool.h"
 #include "io/h5_util.h"
 #include "results/live_writers.h"
 #include "results/result_series.h"
@@ -91,10 +92,8 @@ struct ResultsWriter::Impl {
   hsize_t block_start = 0;  // time index of the first point of the block being filled
   std::map<std::string, BlockSeries> series;
   std::map<std::string, DirectSeries> direct;
-  // Finished blocks of compressed series, compressed on this thread: on a worker thread the
-  // dome's step took 6-10 ms less but its peak grew by 45 MB, to 1.55 x (factor + model)
-  // (docs/benchmarks.md, issue 11); not used until that memory is found.
-  result_series::BlockCompressor compressor{false};
+  // Finished blocks of compressed series: on a worker thread when --threads allows two.
+  result_series::BlockCompressor compressor{threads::max_threads() > 1};
   bool first_row_pending = false;  // recent/first_row becomes first_row_after (complete_blocks)
   hsize_t first_row_after = 0;
   // Points appended since the last sync: [synced, n_t); their time, load step and substep.
@@ -322,7 +321,7 @@ void ResultsWriter::Impl::complete_blocks() {
     } catch (const std::runtime_error& e) {
       throw SolutionError(e.what());  // the Guard of the public call abandons the file
     }
-    for (BlockJob& job : jobs) result_series::finish_job(job, series, block_rows);
+    for (const BlockJob& job : jobs) job.write();
   }
   if (first_row_pending && recent_group.valid()) {
     // HDF5 writes what is dirty in an order of its own at a flush: the main chunks reach the
@@ -487,14 +486,13 @@ void ResultsWriter::Impl::write_reactions(const Eigen::MatrixXd& m) {
       complete_blocks();
       BlockSeries& s = it->second;
       const hsize_t old_n = s.row_dims[0];
-      std::unique_ptr<double[]> block(new double[block_rows * n_r]);
+      result_series::BlockBuffer block = result_series::allocate_block(block_rows * n_r);
       for (hsize_t r = 0; r < slot(); ++r) {  // the rows of this block so far
         std::copy(s.block.get() + r * old_n, s.block.get() + (r + 1) * old_n,
                   block.get() + r * n_r);
         std::fill(block.get() + r * n_r + old_n, block.get() + (r + 1) * n_r, kNaN);
       }
       s.block = std::move(block);
-      s.spare.reset();  // the old width
       s.row_dims = {n_r};
       set_extent(s.main, h5::dims_of(s.main)[0], s.row_dims);
       // The new columns of the finished blocks: NaN, written (all_chunks_written).

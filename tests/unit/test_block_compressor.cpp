@@ -98,7 +98,7 @@ void check_shape(const Shape& s, bool background) {
   job.chunk = s.chunk;
   job.first_row = 0;
   job.n_rows = s.n_rows;
-  job.block.reset(new double[block.size()]);
+  job.block = allocate_block(block.size());
   std::copy(block.begin(), block.end(), job.block.get());
   BlockCompressor compressor(background);
   compressor.submit(std::move(job));
@@ -107,6 +107,7 @@ void check_shape(const Shape& s, bool background) {
   EXPECT_FALSE(compressor.pending());
   ASSERT_EQ(done.size(), 1u);
   ASSERT_FALSE(done[0].error);
+  EXPECT_FALSE(done[0].block);  // given back to the system once compressed
   for (const auto& c : done[0].chunks)
     ASSERT_GE(
         H5Dwrite_chunk(direct, H5P_DEFAULT, 0, c.offset.data(), c.bytes.size(), c.bytes.data()), 0);
@@ -156,7 +157,7 @@ TEST(BlockCompressor, BackgroundJobsReturnInSubmissionOrder) {
     job.chunk = {4, 250};
     job.first_row = 4 * static_cast<hsize_t>(k);
     job.n_rows = 4;
-    job.block.reset(new double[4000]);
+    job.block = allocate_block(4000);
     for (int i = 0; i < 4000; ++i) job.block[static_cast<std::size_t>(i)] = k + 1e-3 * i;
     compressor.submit(std::move(job));
   }

@@ -599,10 +599,10 @@ std::vector<std::vector<unsigned char>> stored_chunks(const std::string& path,
   return chunks;
 }
 
-/// The finished blocks of a compressed series go through the block compressor and
-/// H5Dwrite_chunk (issue 11): the file is the same, chunk for chunk, whatever --threads says, and
-/// a reader opening it right after a block completed reads every point.
-TEST_F(ResultsFileTest, CompressedBlocksAreStoredTheSameForAnyThreadCount) {
+/// The finished blocks of a compressed series are deflated on a worker thread when the run may
+/// use two (issue 11): the file is the same, chunk for chunk, as with one thread, and a reader
+/// opening it while a block is being compressed reads that block from the staging rows.
+TEST_F(ResultsFileTest, BlocksCompressedOnAWorkerThreadAreStoredAsOnOne) {
   constexpr int kNodes = 700;  // chunks of U of 64 x 21 x 6 values: deflated
   constexpr int kBlock = static_cast<int>(result_series::kMaxBlockRows);
   constexpr int kSteps = 3 * kBlock + 5;
@@ -614,7 +614,7 @@ TEST_F(ResultsFileTest, CompressedBlocksAreStoredTheSameForAnyThreadCount) {
     {
       ResultsWriter w(path, nodes_only(kNodes));
       w.begin_analysis(ResultsKind::Transient, "compressed blocks");
-      append_history(w, kNodes, 0, kBlock);  // the first block completed
+      append_history(w, kNodes, 0, kBlock);  // the first block: submitted to the compressor
       expect_history(ResultsReader(path), 95, kBlock);
       append_history(w, kNodes, kBlock, kSteps);
       expect_history(ResultsReader(path), 95, kSteps);
@@ -629,8 +629,9 @@ TEST_F(ResultsFileTest, CompressedBlocksAreStoredTheSameForAnyThreadCount) {
   EXPECT_TRUE(stored[0] == stored[1]);
 }
 
-/// A run killed right after a block completed keeps every point, wherever each is read from
-/// (recent/first_row moves past a block only once its main chunks are flushed).
+/// A run killed after a block went to the compressor, before its chunks were written, keeps
+/// every point: the block is still read from the staging rows (recent/first_row moves past a
+/// block only once its main chunks are flushed).
 TEST_F(ResultsFileTest, KilledRunWhileABlockIsCompressedKeepsEveryPoint) {
   constexpr int kNodes = 700;
   constexpr int kBlock = static_cast<int>(result_series::kMaxBlockRows);
@@ -641,9 +642,9 @@ TEST_F(ResultsFileTest, KilledRunWhileABlockIsCompressedKeepsEveryPoint) {
     threads::set_max_threads(2);
     ResultsWriter w(path, nodes_only(kNodes));
     w.begin_analysis(ResultsKind::Transient, "killed while compressing");
-    append_history(w, kNodes, 0, kBlock + 3);           // block 1 completed, 3 points after it
-    sync_live_writer(path);                             // the 3 new points staged
-    append_history(w, kNodes, kBlock + 3, 2 * kBlock);  // block 2 completed
+    append_history(w, kNodes, 0, kBlock + 3);  // block 1 submitted at its last point
+    sync_live_writer(path);                    // its chunks written, the 3 new points staged
+    append_history(w, kNodes, kBlock + 3, 2 * kBlock);  // block 2 submitted, not yet written
     raise(SIGKILL);
     _exit(3);
   }
