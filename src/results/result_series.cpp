@@ -10,9 +10,9 @@ using h5::Handle;
 
 namespace {
 
-/// Memory for the blocks being filled (all quantities of an analysis), at most. While a block is
-/// compressed on a worker, the next one fills beside it: 32 MB (it was 64 MB) keeps the two
-/// within what one block took before.
+/// Memory for the blocks being filled (all quantities of an analysis), at most, unless a block
+/// of 4 points needs more. While a block is compressed on a worker, the next one fills beside
+/// it: 32 MB (it was 64 MB) keeps the two within what one block took before.
 constexpr double kBlockMemoryBytes = 32.0 * (1 << 20);
 /// Target size of a main chunk (uncompressed): large enough to compress well, small enough that
 /// a history reads little beyond what it needs (with kMaxBlockRows points, a chunk spans the

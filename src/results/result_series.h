@@ -26,8 +26,8 @@ constexpr hsize_t kMinCompressedPointValues = 4096;
 
 hsize_t product(const std::vector<hsize_t>& d);
 
-/// Time points per block for a model: kMaxBlockRows, fewer when a block of every nodal quantity
-/// and element value would need more than 32 MB.
+/// Time points per block for a model: kMaxBlockRows, fewer (down to 4) when a block of every
+/// nodal quantity and element value would need more than 32 MB.
 hsize_t block_rows_for(std::size_t n_nodes, std::size_t n_elements);
 
 /// Writes rows [first, first + n_rows) of a dataset of rows `row_dims`.
