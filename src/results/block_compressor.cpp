@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 #include <sys/mman.h>
+#include <unistd.h>
 #include <zlib.h>
 
 #include <algorithm>
@@ -23,6 +24,15 @@ constexpr double kFill = std::numeric_limits<double>::quiet_NaN();
 void shuffle8(const unsigned char* in, std::size_t n, unsigned char* out) {
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = 0; j < 8; ++j) out[j * n + i] = in[i * 8 + j];
+}
+
+/// Gives the whole pages within values [begin, end) of `data` back to the system.
+void release_pages(double* data, std::size_t begin, std::size_t end) {
+  const auto page = static_cast<std::uintptr_t>(sysconf(_SC_PAGESIZE));
+  const std::uintptr_t lo =
+      (reinterpret_cast<std::uintptr_t>(data + begin) + page - 1) / page * page;
+  const std::uintptr_t hi = reinterpret_cast<std::uintptr_t>(data + end) / page * page;
+  if (hi > lo) madvise(reinterpret_cast<void*>(lo), hi - lo, MADV_DONTNEED);
 }
 
 }  // namespace
@@ -118,6 +128,7 @@ void BlockJob::compress() {
     for (std::size_t i = d - 1; i-- > 0;)
       stride[i] = stride[i + 1] * static_cast<std::size_t>(row_dims[i + 1]);
     std::vector<hsize_t> origin(d, 0);  // chunk origin in the row dimensions
+    std::size_t released = 0;           // values of each row given back (release_compressed_rows)
     std::vector<double> buffer(chunk_size);
     const std::size_t inner = static_cast<std::size_t>(chunk[d]);  // contiguous run in a chunk
     while (true) {
@@ -165,6 +176,14 @@ void BlockJob::compress() {
         --i;
       }
       if (i == 0) break;
+      if (i == 1 && release_compressed_rows) {
+        // Every chunk of the columns before origin[0] is done: their values in every row go
+        // back to the system, so that the block shrinks as its compressed chunks grow.
+        const std::size_t done = static_cast<std::size_t>(origin[0]) * stride[0];
+        for (std::size_t t = 0; t < static_cast<std::size_t>(chunk[0]); ++t)
+          release_pages(block.get(), t * row_size + released, t * row_size + done);
+        released = done;
+      }
     }
   } catch (...) {
     error = std::current_exception();

@@ -61,6 +61,10 @@ struct BlockJob {
   std::vector<hsize_t> row_dims, chunk;
   hsize_t first_row = 0, n_rows = 0;
   BlockBuffer block;  // chunk[0] x product(row_dims), row-major; rows >= n_rows unused
+  /// The block is not needed after compress(): its pages go back to the system as the chunks
+  /// that cover them are compressed (while a block is compressed, its compressed chunks then
+  /// take the place of its values instead of adding to them).
+  bool release_compressed_rows = false;
 
   struct Chunk {
     std::vector<hsize_t> offset;  // logical start of the chunk in the dataset

@@ -130,6 +130,7 @@ void flush_block(BlockSeries& s, BlockCompressor& compressor, hsize_t first_row,
     s.block = std::move(job.block);
     return;
   }
+  job.release_compressed_rows = true;
   s.block = allocate_block(block_rows * s.row_size());
   compressor.submit(std::move(job));
 }

@@ -99,6 +99,9 @@ void check_shape(const Shape& s, bool background) {
   job.first_row = 0;
   job.n_rows = s.n_rows;
   job.block = allocate_block(block.size());
+  // On the worker the block's pages go back as they are compressed: a page released too early
+  // would reach a later chunk as zeros.
+  job.release_compressed_rows = background;
   std::copy(block.begin(), block.end(), job.block.get());
   BlockCompressor compressor(background);
   compressor.submit(std::move(job));
