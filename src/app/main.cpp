@@ -26,7 +26,6 @@
 #include "core/log.h"
 #include "core/thread_pool.h"
 #include "deck/deck_reader.h"
-#include "linalg/blas_library.h"
 #include "linalg/parallel_backend.h"
 #include "results/post_csv.h"
 #include "results/report.h"
@@ -127,10 +126,7 @@ void print_skipped(const Job& job) {
 
 int run_command(const RunArgs& args) {
   const auto start = std::chrono::steady_clock::now();
-  if (args.threads > 0) {
-    threads::set_max_threads(args.threads);
-    blas::set_threads(args.threads);
-  }
+  if (args.threads > 0) threads::set_max_threads(args.threads);
   const fs::path deck = fs::absolute(args.deck);
   if (!file_exists(deck.string(), true)) {  // rank 0's disk under MPI (core/files.h)
     std::cerr << "error: deck not found: " << args.deck << "\n";
@@ -283,7 +279,8 @@ int main(int argc, char** argv) {
   run_cmd->add_option("-j,--jobname", run.jobname, "job name (default: deck file stem)");
   run_cmd->add_option(
       "--threads", run.threads,
-      "threads for element loops and BLAS (default: all cores where the work pays for them)");
+      "threads for element loops and results compression (default: all cores where the work "
+      "pays for them; BLAS runs on one thread)");
   run_cmd->add_flag("--skip-unknown", run.skip_unknown, "warn and skip unknown commands");
   run_cmd->add_option("--dialect", run.dialect, "4x|modern|auto")
       ->check(CLI::IsMember({"4x", "modern", "auto"}));

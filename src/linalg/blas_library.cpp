@@ -9,8 +9,6 @@
 #include <mutex>
 #include <stdexcept>
 
-#include "core/thread_pool.h"
-
 namespace impactfe::blas {
 
 namespace {
@@ -33,6 +31,7 @@ struct Library {
   Fn8 dtrsv = nullptr, ztrsv = nullptr;
   Fn5 dpotrf = nullptr, zpotrf = nullptr;
   void (*set_threads)(int) = nullptr;  // OpenBLAS only
+  int (*get_threads)() = nullptr;      // OpenBLAS only
   char* (*config)() = nullptr;         // OpenBLAS only
   std::string name;
 };
@@ -41,7 +40,6 @@ std::mutex load_mutex;
 Library library;
 std::atomic<bool> is_loaded{false};
 std::string load_error;
-std::atomic<int> wanted_threads{0};  // 0: threads::max_threads()
 
 constexpr const char* kBlasName = "libblas.so.3";
 constexpr const char* kLapackName = "liblapack.so.3";
@@ -94,12 +92,14 @@ void load_locked() {
     return;
   }
   lib.set_threads = reinterpret_cast<void (*)(int)>(dlsym(lib.blas, "openblas_set_num_threads"));
+  lib.get_threads = reinterpret_cast<int (*)()>(dlsym(lib.blas, "openblas_get_num_threads"));
   lib.config = reinterpret_cast<char* (*)()>(dlsym(lib.blas, "openblas_get_config"));
   lib.name = lib.config ? fmt::format("OpenBLAS ({}): {}", kBlasName, lib.config())
                         : fmt::format("{} (not OpenBLAS)", kBlasName);
   library = lib;
   is_loaded.store(true);
-  if (library.set_threads) library.set_threads(threads());
+  // One thread (blas_library.h): the same rounding whatever --threads says.
+  if (library.set_threads) library.set_threads(1);
 }
 
 /// The library for an entry point: loaded on demand. The solvers call require() before the
@@ -131,14 +131,8 @@ bool loaded() {
   return is_loaded.load();
 }
 
-void set_threads(int n) {
-  wanted_threads.store(n < 1 ? 1 : n);
-  if (is_loaded.load() && library.set_threads) library.set_threads(threads());
-}
-
 int threads() {
-  const int n = wanted_threads.load();
-  return n > 0 ? n : threads::max_threads();
+  return is_loaded.load() && library.get_threads ? library.get_threads() : 0;
 }
 
 std::string describe() {

@@ -8,9 +8,13 @@
 /// - a run that never makes a large supernodal factorization (the thesis decks, every small
 ///   model: SupernodalFactor or CHOLMOD's simplicial path) does not map OpenBLAS at all; its
 ///   ~12,000 symbol relocations were most of the dynamic loader's work at every start;
+/// - BLAS runs on one thread, whatever --threads says. OpenBLAS's threaded kernels (dgemm,
+///   dtrsm, dsyrk, dpotrf) round differently by thread count: the 155 522-DOF dome's results
+///   differed by up to 6.8e-8 of their peak between --threads 1 and 2, where issue 11 asks for
+///   bitwise equal ones. Nor did the threads pay here: the dome's factorization took 1.11-1.61 s
+///   with two against 0.93-1.01 s with one (docs/benchmarks.md, stop 33).
 /// - OpenMP (the team OpenBLAS runs on) starts after OMP_WAIT_POLICY=passive is set, unless the
-///   user set it: waiting threads sleep instead of spinning, which on a busy or virtual
-///   two-core machine made two-thread factorizations 3.7 times slower than one-thread ones.
+///   user set it, so that an OpenMP team another library starts does not spin.
 #include <string>
 
 namespace impactfe::blas {
@@ -20,9 +24,8 @@ namespace impactfe::blas {
 void require();
 bool loaded();
 
-/// Threads of the BLAS calls that follow (OpenBLAS's own setting; applied when the library is
-/// loaded later). n < 1 counts as 1.
-void set_threads(int n);
+/// Threads the loaded BLAS runs on (OpenBLAS's own count: 1); 0 when the library is not loaded
+/// or does not say.
 int threads();
 
 /// "OpenBLAS 0.3.21 (libblas.so.3)", or "not loaded": for the run summary and benchmarks.

@@ -18,10 +18,7 @@ namespace impactfe {
 namespace {
 
 using solver_support::cholmod_lower_view;
-using solver_support::kAllThreads;
-using solver_support::kParallelFactorFlops;
 using solver_support::kSingularPivot;
-using solver_support::ScopedThreadLimit;
 using solver_support::ScopedTimer;
 
 /// Factorizations up to this many flops (CHOLMOD's count from the symbolic analysis) take
@@ -89,7 +86,6 @@ class CholmodSolver final : public LinearSolver {
     // Not positive definite (or a factor too large for the inline kernels): CHOLMOD's LLᵀ,
     // then its LDLᵀ, which tells an indefinite matrix from a singular one.
     // common_.fl: flop count of the factorization, from the symbolic analysis.
-    ScopedThreadLimit threads(common_.fl >= kParallelFactorFlops ? kAllThreads : 1);
     cholmod_sparse A = cholmod_lower_view(lower);
     common_.final_ll = 1;
     cholmod_factorize(&A, factor_, &common_);
@@ -158,14 +154,6 @@ class CholmodSolver final : public LinearSolver {
       counters_.solves += B.cols();
       return inline_->solve(B);
     }
-    // A solve streams the factor once forward and once backward, supernode by supernode, with
-    // one small dgemv/dtrsv (one right-hand side) or dgemm/dtrsm per supernode: memory-bound
-    // work that threads do not speed up, while each threaded call costs a synchronisation (on a
-    // 1215-DOF block drop a two-thread solve was 20x slower on a busy machine). Threads are left
-    // to block solves of many right-hand sides of a large factor (the condensation's Schur
-    // complement).
-    ScopedThreadLimit threads(B.cols() >= 8 && common_.fl >= kParallelFactorFlops ? kAllThreads
-                                                                                  : 1);
     cholmod_dense rhs;
     rhs.nrow = static_cast<size_t>(B.rows());
     rhs.ncol = static_cast<size_t>(B.cols());

@@ -1,7 +1,7 @@
 // CHOLMOD's static archive is built with OpenMP: its supernodal numeric factorization opens
 // parallel regions to clear and copy blocks (GOMP_parallel, omp_get_num_threads,
 // omp_get_thread_num). impactfe links no OpenMP runtime (issue 11): its element loops run on
-// core/thread_pool.h, its BLAS threads are OpenBLAS's, loaded with a passive wait policy by
+// core/thread_pool.h, its BLAS is OpenBLAS on one thread, loaded with a passive wait policy by
 // linalg/blas_library.cpp. These definitions run CHOLMOD's regions as teams of one thread on
 // the calling thread — a valid OpenMP execution of them — so that no runtime starts (with its
 // spinning default) just for CHOLMOD's bookkeeping. They are not exported: a library loaded

@@ -17,9 +17,6 @@ namespace impactfe {
 namespace {
 
 using solver_support::cholmod_lower_view;
-using solver_support::kAllThreads;
-using solver_support::kParallelFactorFlops;
-using solver_support::ScopedThreadLimit;
 using solver_support::ScopedTimer;
 
 /// CHOLMOD supernodal P A Pᵀ = L Lᵀ with the unknowns of c last (in their order):
@@ -115,7 +112,6 @@ class CholmodSchurSolver final : public SchurSolver {
   VectorXd condense(const Eigen::Ref<const VectorXd>& r) override {
     IMPACTFE_CHECK(factor_ != nullptr && r.size() == n_, "SchurSolver: condense before factorize");
     ScopedTimer timer(counters_.solve_seconds);
-    ScopedThreadLimit threads(1);  // a substitution is memory-bound (see CholmodSolver::solve)
     const auto* perm = static_cast<const int*>(factor_->Perm);
     z_.resize(n_);
     for (int k = 0; k < n_; ++k) z_(k) = r(perm[k]);
@@ -128,7 +124,6 @@ class CholmodSchurSolver final : public SchurSolver {
     const auto m = static_cast<Eigen::Index>(c_.size());
     IMPACTFE_CHECK(z_.size() == n_ && x_c.size() == m, "SchurSolver: recover before condense");
     ScopedTimer timer(counters_.solve_seconds);
-    ScopedThreadLimit threads(1);
     back_ = z_;  // z_ stays for another recover of the same condense
     back_.tail(m) = l_cc_.triangularView<Eigen::Lower>().transpose() * x_c;
     substitute(CHOLMOD_Lt, back_);
@@ -155,7 +150,6 @@ class CholmodSchurSolver final : public SchurSolver {
   void factor(const SparseMatrix& lower, SparseMatrix* release) {
     if (!factor_) analyze_pattern(lower);
     ScopedTimer timer(counters_.factorize_seconds);
-    ScopedThreadLimit threads(common_.fl >= kParallelFactorFlops ? kAllThreads : 1);
     counters_.matrix_nonzeros = static_cast<long>(lower.nonZeros());
     cholmod_sparse a = cholmod_lower_view(lower);
     cholmod_sparse* upper =

@@ -19,13 +19,6 @@ namespace impactfe::solver_support {
 /// Relative pivot below which a symmetric positive (semi)definite matrix is treated as singular.
 constexpr double kSingularPivot = 1e-11;
 
-/// Floating-point operations of a factorization above which its BLAS kernels (dsyrk, dgemm,
-/// dpotrf on the supernodes) may run on several threads. Below it a factorization takes
-/// milliseconds and every threaded kernel call pays a team wake-up that a busy machine turns
-/// into a wait for a core.
-constexpr double kParallelFactorFlops = 2.0e8;
-constexpr int kAllThreads = std::numeric_limits<int>::max();
-
 /// Adds the wall time of its scope to `total` (solver phase timers of SolverCounters).
 class ScopedTimer {
  public:
@@ -39,20 +32,6 @@ class ScopedTimer {
  private:
   double& total_;
   std::chrono::steady_clock::time_point start_;
-};
-
-/// Caps the BLAS threads (blas_library.h) for one scope: how a solver phase chooses them.
-class ScopedThreadLimit {
- public:
-  explicit ScopedThreadLimit(int limit) : saved_(blas::threads()) {
-    blas::set_threads(std::max(1, std::min(limit, saved_)));
-  }
-  ~ScopedThreadLimit() { blas::set_threads(saved_); }
-  ScopedThreadLimit(const ScopedThreadLimit&) = delete;
-  ScopedThreadLimit& operator=(const ScopedThreadLimit&) = delete;
-
- private:
-  int saved_ = 1;
 };
 
 /// Loads BLAS and LAPACK before a supernodal CHOLMOD factor is computed or used (its kernels
