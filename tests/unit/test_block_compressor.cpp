@@ -11,6 +11,7 @@
 #include <limits>
 #include <random>
 
+#include "../support/stored_chunks.h"
 #include "io/h5_util.h"
 #include "results/block_compressor.h"
 
@@ -41,23 +42,12 @@ std::vector<double> block_values(const Shape& s) {
 
 /// Raw stored bytes of every chunk of a dataset, in chunk order.
 std::vector<std::vector<unsigned char>> stored_chunks(hid_t ds) {
-  hid_t space = H5Dget_space(ds);
-  hsize_t n = 0;
-  H5Dget_num_chunks(ds, space, &n);
   std::vector<std::vector<unsigned char>> chunks;
-  for (hsize_t c = 0; c < n; ++c) {
-    hsize_t offset[4] = {};
-    unsigned mask = 1;
-    haddr_t addr = 0;
-    hsize_t size = 0;
-    H5Dget_chunk_info(ds, space, c, offset, &mask, &addr, &size);
-    EXPECT_EQ(mask, 0u);  // every filter applied
-    std::vector<unsigned char> bytes(size);
-    uint32_t filters = 0;
-    EXPECT_GE(H5Dread_chunk(ds, H5P_DEFAULT, offset, &filters, bytes.data()), 0);
-    chunks.push_back(std::move(bytes));
+  for (auto& c : testing::stored_chunks(ds)) {
+    EXPECT_EQ(c.filter_mask, 0u);  // every filter applied
+    EXPECT_TRUE(c.read);
+    chunks.push_back(std::move(c.bytes));
   }
-  H5Sclose(space);
   return chunks;
 }
 

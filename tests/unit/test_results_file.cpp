@@ -14,6 +14,7 @@
 #include <random>
 #include <sstream>
 
+#include "../support/stored_chunks.h"
 #include "core/errors.h"
 #include "core/thread_pool.h"
 #include "results/live_writers.h"
@@ -578,22 +579,8 @@ std::vector<std::vector<unsigned char>> stored_chunks(const std::string& path,
                                                       const std::string& dataset) {
   hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
   hid_t ds = H5Dopen2(f, dataset.c_str(), H5P_DEFAULT);
-  hid_t space = H5Dget_space(ds);
-  hsize_t n = 0;
-  H5Dget_num_chunks(ds, space, &n);
   std::vector<std::vector<unsigned char>> chunks;
-  for (hsize_t c = 0; c < n; ++c) {
-    hsize_t offset[3] = {};
-    unsigned mask = 0;
-    haddr_t addr = 0;
-    hsize_t size = 0;
-    H5Dget_chunk_info(ds, space, c, offset, &mask, &addr, &size);
-    std::vector<unsigned char> bytes(size);
-    uint32_t filters = 0;
-    H5Dread_chunk(ds, H5P_DEFAULT, offset, &filters, bytes.data());
-    chunks.push_back(std::move(bytes));
-  }
-  H5Sclose(space);
+  for (auto& c : testing::stored_chunks(ds)) chunks.push_back(std::move(c.bytes));
   H5Dclose(ds);
   H5Fclose(f);
   return chunks;
