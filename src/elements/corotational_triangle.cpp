@@ -3,7 +3,9 @@
 #include <Eigen/Dense>
 
 #include <cmath>
+#include <cstring>
 
+#include "core/errors.h"
 #include "elements/so3.h"
 
 namespace impactfe {
@@ -67,6 +69,8 @@ CorotationalTriangle::CorotationalTriangle(const std::array<Vec3, 3>& X, const M
     }
 }
 
+CorotationalTriangle::~CorotationalTriangle() = default;
+
 bool CorotationalTriangle::uncoupled(const Eigen::MatrixXd& K_local) {
   if (K_local.rows() != 18 || K_local.cols() != 18) return false;
   auto membrane = [](int i) {
@@ -79,8 +83,7 @@ bool CorotationalTriangle::uncoupled(const Eigen::MatrixXd& K_local) {
   return true;
 }
 
-CorotationalTriangle::State CorotationalTriangle::corotate(const Eigen::VectorXd& u) const {
-  State s;
+void CorotationalTriangle::corotate(const Eigen::VectorXd& u, State& s) const {
   std::array<Vec3, 3> x;
   for (int a = 0; a < 3; ++a)
     x[static_cast<std::size_t>(a)] = X_[static_cast<std::size_t>(a)] + u.segment<3>(6 * a);
@@ -109,11 +112,28 @@ CorotationalTriangle::State CorotationalTriangle::corotate(const Eigen::VectorXd
     so3::exp_map_and_left_jacobian(s.psi[a], Q, s.T[a]);
     s.theta[a] = so3::log_map_and_left_jacobian_inverse(s.Rc.transpose() * Q * R0_, s.Ji[a]);
   }
-  return s;
+}
+
+const CorotationalTriangle::State& CorotationalTriangle::state_at(const Eigen::VectorXd& u,
+                                                                  bool with_forces) const {
+  IMPACTFE_CHECK(u.size() == 18, "CorotationalTriangle: 18 displacements per evaluation");
+  // Bitwise equality (not ==): a memo that answers for a different u, even by a signed zero,
+  // would break the results' independence of the order of evaluations.
+  if (!last_ || std::memcmp(u.data(), last_u_.data(), sizeof(double) * 18) != 0) {
+    if (!last_) last_ = std::make_unique<State>();
+    corotate(u, *last_);
+    last_u_ = u;
+    last_has_forces_ = false;
+  }
+  if (with_forces && !last_has_forces_) {
+    local_forces(*last_);
+    last_has_forces_ = true;
+  }
+  return *last_;
 }
 
 Eigen::VectorXd CorotationalTriangle::deformation(const Eigen::VectorXd& u) const {
-  const State s = corotate(u);
+  const State& s = state_at(u, false);
   Eigen::VectorXd d = Eigen::VectorXd::Zero(18);
   for (std::size_t a = 0; a < 3; ++a) {
     const int i = 6 * static_cast<int>(a);
@@ -157,8 +177,7 @@ void CorotationalTriangle::local_forces(State& s) const {
 }
 
 void CorotationalTriangle::internal_force(const Eigen::VectorXd& u, Eigen::VectorXd& f) const {
-  State s = corotate(u);
-  local_forces(s);
+  const State& s = state_at(u, true);
   f.resize(18);
   for (std::size_t a = 0; a < 3; ++a) {
     const int i = 6 * static_cast<int>(a);
@@ -169,8 +188,7 @@ void CorotationalTriangle::internal_force(const Eigen::VectorXd& u, Eigen::Vecto
 
 void CorotationalTriangle::tangent(const Eigen::VectorXd& u, Eigen::MatrixXd& K,
                                    Eigen::VectorXd& f) const {
-  State s = corotate(u);
-  local_forces(s);
+  const State& s = state_at(u, true);
   // Variations in the frame, per corner b: δξ̂ = (δx̂_b, δφ̂_b) with δx̂ = Rcᵀ δx and
   // δφ̂ = Rcᵀ T(ψ) δψ (column 6b + k). The deformation δd = B̂ δξ̂ over the 15 rows
   // (u, v, θx, θy, θz of corner a at 5a + k):

@@ -16,6 +16,7 @@
 #include <Eigen/Core>
 
 #include <array>
+#include <memory>
 
 namespace impactfe {
 
@@ -30,6 +31,7 @@ class CorotationalTriangle {
   /// 18 × 18 flat-kernel stiffness, local DOFs u v w θx θy θz per corner.
   CorotationalTriangle(const std::array<Vec3, 3>& X, const Mat3& R0, const Vec3& c0,
                        const Eigen::MatrixXd& K_local);
+  ~CorotationalTriangle();
 
   /// True when K_local couples no membrane DOF (u, v, θz) with a bending one (w, θx, θy), as
   /// the elastic flat kernel never does; the fast path relies on it.
@@ -45,9 +47,16 @@ class CorotationalTriangle {
 
  private:
   struct State;
-  State corotate(const Eigen::VectorXd& u) const;
+  void corotate(const Eigen::VectorXd& u, State& s) const;
   /// Local forces n̂, M̂ (frame components), ŵ and the frame-component internal force f̂.
   void local_forces(State& s) const;
+  /// The co-rotated state at u, with its local forces when asked for: the last one evaluated
+  /// when u is bitwise the same, else formed anew. A Newton iteration evaluates the internal
+  /// force at an iterate and then the tangent at the same iterate, and a stored point the
+  /// stresses at the converged iterate whose residual was evaluated last: the corotation (two
+  /// SO(3) maps per corner) was a quarter of the thesis helmet's run (issue 11). The assembler
+  /// evaluates an element on one thread at a time, so the memo needs no lock.
+  const State& state_at(const Eigen::VectorXd& u, bool with_forces) const;
 
   std::array<Vec3, 3> X_;
   Mat3 R0_;
@@ -57,6 +66,10 @@ class CorotationalTriangle {
   Eigen::Matrix<double, 9, 9> K_membrane_;
   Eigen::Matrix<double, 6, 6> K_bending_;
   Eigen::Matrix<double, 15, 15> K15_;  // both, over u v θx θy θz per corner (the tangent's order)
+  // The memo of state_at: the last u and its state (forces formed or not).
+  mutable std::unique_ptr<State> last_;
+  mutable Vec18 last_u_;
+  mutable bool last_has_forces_ = false;
 };
 
 }  // namespace impactfe

@@ -589,6 +589,49 @@ TEST(Shell4, TriangleFastPathEqualsTheGeneralCorotationalPath) {
   }
 }
 
+TEST(Shell4, TriangleReusesItsLastStateOnlyAtTheSameDisplacement) {
+  // CorotationalTriangle keeps the state of its last evaluation for the next one at the same u
+  // (issue 11). Whatever the order of the calls, every answer must be bitwise that of an
+  // element evaluated once, at that u alone.
+  const CorotationalCase c{"triangle", kTri, 0.8, Vec3(0.2, 1, 0.4).normalized(), 0.03, 0.05};
+  const auto e = make_case_shell(c);
+  ShellCorners X(3, 3);
+  for (int a = 0; a < 3; ++a) X.col(a) = c.x[static_cast<std::size_t>(a)];
+  const ShellFrame frame0 = shell_frame(X, false);
+  const auto fresh = [&] {
+    return std::make_unique<CorotationalTriangle>(std::array<Vec3, 3>{c.x[0], c.x[1], c.x[2]},
+                                                  frame0.R, frame0.c, e->kernel().stiffness());
+  };
+  const Eigen::VectorXd u1 = corotational_state(c);
+  Eigen::VectorXd u2 = u1;
+  u2(4) += 1e-3;  // a rotation only: the frame is the same, the corner's state is not
+  Eigen::VectorXd u3 = u1;
+  u3(0) = u3(0) == 0.0 ? 1e-3 : 0.0;
+  for (const Eigen::VectorXd& u : {u1, u2, u3}) {
+    Eigen::MatrixXd K_once, K;
+    Eigen::VectorXd f_once, g_once, f, g;
+    fresh()->tangent(u, K_once, f_once);
+    fresh()->internal_force(u, g_once);
+    const Eigen::VectorXd d_once = fresh()->deformation(u);
+    const auto t = fresh();
+    // After an evaluation at another u, then after one at the same u (deformation alone, then
+    // the force, then the tangent, then the deformation again).
+    for (const Eigen::VectorXd& other : {u1, u2, u3}) {
+      t->internal_force(other, g);
+      EXPECT_EQ(t->deformation(u), d_once);
+      t->internal_force(u, g);
+      EXPECT_EQ(g, g_once);
+      t->tangent(u, K, f);
+      EXPECT_EQ(K, K_once);
+      EXPECT_EQ(f, f_once);
+      EXPECT_EQ(t->deformation(u), d_once);
+      t->tangent(other, K, f);
+      t->tangent(u, K, f);
+      EXPECT_EQ(K, K_once);
+    }
+  }
+}
+
 TEST(Shell4, CorotationalGeometricStiffnessIsTheDerivativeOfBTransposed) {
   // K_G = ∂(B(u)ᵀ f)/∂u at a fixed f of order one: independent of the strain level, so it checks
   // the geometric part exactly even in the tiny-strain cases, where it is invisible in K.
