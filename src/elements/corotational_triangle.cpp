@@ -47,7 +47,7 @@ struct CorotationalTriangle::State {
 
 CorotationalTriangle::CorotationalTriangle(const std::array<Vec3, 3>& X, const Mat3& R0,
                                            const Vec3& c0, const Eigen::MatrixXd& K_local)
-    : X_(X), R0_(R0) {
+    : X_(X), q0_(R0) {
   for (int a = 0; a < 3; ++a) {
     const Vec3 l = R0.transpose() * (X[static_cast<std::size_t>(a)] - c0);
     xi0_[static_cast<std::size_t>(a)] = l.x();
@@ -106,11 +106,13 @@ void CorotationalTriangle::corotate(const Eigen::VectorXd& u, State& s) const {
   s.c1 = {(s.b1 - s.L) / Lb2, -s.b1 / Lb2, s.L / Lb2};
   s.c2 = {1.0 / s.L, -1.0 / s.L, 0.0};
   s.c3 = {-1.0 / s.L, 1.0 / s.L, 0.0};
+  // θ = log(Rcᵀ exp(ψ) R0), composed as quaternions (so3.h).
+  const Eigen::Quaterniond qc_inverse = Eigen::Quaterniond(s.Rc).conjugate();
   for (std::size_t a = 0; a < 3; ++a) {
     s.psi[a] = u.segment<3>(6 * static_cast<int>(a) + 3);
-    Mat3 Q;
-    so3::exp_map_and_left_jacobian(s.psi[a], Q, s.T[a]);
-    s.theta[a] = so3::log_map_and_left_jacobian_inverse(s.Rc.transpose() * Q * R0_, s.Ji[a]);
+    Eigen::Quaterniond q;
+    so3::exp_quaternion_and_left_jacobian(s.psi[a], q, s.T[a]);
+    s.theta[a] = so3::log_quaternion_and_left_jacobian_inverse(qc_inverse * q * q0_, s.Ji[a]);
   }
 }
 

@@ -14,6 +14,7 @@
 /// which the products here skip. Everything is formed in the frame and rotated to global axes
 /// once: about a fifth of the general path's operations.
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include <array>
 #include <memory>
@@ -59,7 +60,7 @@ class CorotationalTriangle {
   const State& state_at(const Eigen::VectorXd& u, bool with_forces) const;
 
   std::array<Vec3, 3> X_;
-  Mat3 R0_;
+  Eigen::Quaterniond q0_;                 // the initial frame R0 as a unit quaternion
   std::array<double, 3> xi0_{}, eta0_{};  // initial corners in the initial frame, from c0
   // The kernel's stiffness split: membrane on (u, v, θz) and bending on (θx, θy) per corner
   // (the w rows and columns meet only the deformational w, which is zero).

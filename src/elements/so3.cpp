@@ -99,29 +99,22 @@ Mat3 exp_map(const Vec3& psi) {
   return Mat3::Identity() + a * S + b * S * S;
 }
 
-void exp_map_and_left_jacobian(const Vec3& psi, Mat3& R, Mat3& T) {
-  // exp_map and left_jacobian (the same expressions, bitwise) from one sin and cos of t.
+void exp_quaternion_and_left_jacobian(const Vec3& psi, Eigen::Quaterniond& q, Mat3& T) {
   const double t = psi.norm();
-  const Mat3 S = spin(psi);
-  const double sin_t = std::sin(t), cos_t = std::cos(t);
-  double a, b;
-  if (t < 1e-6) {
-    a = 1.0 - t * t / 6.0;
-    b = 0.5 - t * t / 24.0;
-  } else {
-    a = sin_t / t;
-    b = (1.0 - cos_t) / (t * t);
-  }
-  R = Mat3::Identity() + a * S + b * S * S;
+  const double sh = std::sin(0.5 * t), ch = std::cos(0.5 * t);
+  // sin(t/2)/t: its series below 1e-6 (error < t⁴/4e4 relative).
+  const double sinc_half = t < 1e-6 ? 0.5 - t * t / 48.0 : sh / t;
+  q.w() = ch;
+  q.vec() = sinc_half * psi;
   RodriguesCoefficients k;
   if (t < 1e-4) {
     k.alpha = 0.5 - t * t / 24.0;
     k.beta = 1.0 / 6.0 - t * t / 120.0;
   } else {
-    k.alpha = (1.0 - cos_t) / (t * t);
-    k.beta = (t - sin_t) / (t * t * t);
+    k.alpha = 2.0 * sh * sh / (t * t);  // (1 − cos t)/t², without its cancellation
+    k.beta = (t - 2.0 * sh * ch) / (t * t * t);
   }
-  T = Mat3::Identity() + k.alpha * S + k.beta * S * S;
+  T = rodrigues(psi, k);
 }
 
 Vec3 log_map(const Mat3& R) {
@@ -134,7 +127,10 @@ Vec3 log_map(const Mat3& R) {
 }
 
 Vec3 log_map_and_left_jacobian_inverse(const Mat3& R, Mat3& Ji) {
-  Eigen::Quaterniond q(R);
+  return log_quaternion_and_left_jacobian_inverse(Eigen::Quaterniond(R), Ji);
+}
+
+Vec3 log_quaternion_and_left_jacobian_inverse(Eigen::Quaterniond q, Mat3& Ji) {
   if (q.w() < 0.0) q.coeffs() *= -1.0;
   const Vec3 v = q.vec();
   const double s = v.norm(), w = q.w();  // sin(t/2), cos(t/2) of the angle t

@@ -80,11 +80,25 @@ TEST(So3, ExpAndLogAreInverseAndTIsTheLeftJacobian) {
     const Vec3 theta = so3::log_map_and_left_jacobian_inverse(R, Ji);
     EXPECT_LE((theta - so3::log_map(R)).norm(), 1e-15 * std::max(1.0, psi.norm()));
     EXPECT_LE(rel_err(Ji, so3::left_jacobian_inverse(so3::log_map(R))), 1e-12) << psi.norm();
-    // Both maps at once: bitwise the two calls.
-    Mat3 R_both, T_both;
-    so3::exp_map_and_left_jacobian(psi, R_both, T_both);
-    EXPECT_EQ(R_both, R) << psi.norm();
-    EXPECT_EQ(T_both, so3::left_jacobian(psi)) << psi.norm();
+    // exp as a quaternion and T together: the two maps to round-off; log from the quaternion
+    // and from its matrix the same.
+    Eigen::Quaterniond q;
+    Mat3 T_both;
+    so3::exp_quaternion_and_left_jacobian(psi, q, T_both);
+    EXPECT_LE(std::abs(q.norm() - 1.0), 1e-15) << psi.norm();
+    EXPECT_LE((q.toRotationMatrix() - R).norm(), 1e-15 * 3.0) << psi.norm();
+    EXPECT_LE(rel_err(T_both, so3::left_jacobian(psi)), 1e-12) << psi.norm();
+    Mat3 Ji_q;
+    EXPECT_LE((so3::log_quaternion_and_left_jacobian_inverse(q, Ji_q) - theta).norm(),
+              1e-14 * std::max(1.0, psi.norm()))
+        << psi.norm();
+    EXPECT_LE(rel_err(Ji_q, Ji), 1e-12) << psi.norm();
+    // q and −q are one rotation.
+    Eigen::Quaterniond minus_q = q;
+    minus_q.coeffs() *= -1.0;
+    EXPECT_EQ(so3::log_quaternion_and_left_jacobian_inverse(minus_q, Ji_q),
+              so3::log_quaternion_and_left_jacobian_inverse(q, Ji_q))
+        << psi.norm();
   }
 }
 
