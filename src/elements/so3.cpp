@@ -126,10 +126,6 @@ Vec3 log_map(const Mat3& R) {
   return (2.0 * std::atan2(s, q.w()) / s) * v;
 }
 
-Vec3 log_map_and_left_jacobian_inverse(const Mat3& R, Mat3& Ji) {
-  return log_quaternion_and_left_jacobian_inverse(Eigen::Quaterniond(R), Ji);
-}
-
 Vec3 log_quaternion_and_left_jacobian_inverse(Eigen::Quaterniond q, Mat3& Ji) {
   if (q.w() < 0.0) q.coeffs() *= -1.0;
   const Vec3 v = q.vec();

@@ -32,11 +32,9 @@ void exp_quaternion_and_left_jacobian(const Vec3& psi, Eigen::Quaterniond& q, Ma
 /// Rotation vector of R, angle in [0, π] (via the quaternion, robust near 0 and π).
 Vec3 log_map(const Mat3& R);
 
-/// log_map(R) and T(θ)⁻¹ at that θ from one quaternion: the inverse Jacobian's coefficient
-/// from the half-angle's sine and cosine (equal to left_jacobian_inverse(log_map(R)) to
-/// round-off).
-Vec3 log_map_and_left_jacobian_inverse(const Mat3& R, Mat3& Ji);
-/// The same from a unit quaternion q (q and −q are the same rotation).
+/// The rotation vector θ of the unit quaternion q (q and −q are the same rotation) and T(θ)⁻¹:
+/// the inverse Jacobian's coefficient from the half-angle's sine and cosine (equal to
+/// left_jacobian_inverse(θ) to round-off).
 Vec3 log_quaternion_and_left_jacobian_inverse(Eigen::Quaterniond q, Mat3& Ji);
 
 /// Left Jacobian T(ψ) of exp: δR Rᵀ = spin(T(ψ) δψ); α = (1 − cos t)/t², β = (t − sin t)/t³.

@@ -77,7 +77,7 @@ TEST(So3, ExpAndLogAreInverseAndTIsTheLeftJacobian) {
         << psi.norm();
     // log and T(θ)⁻¹ from one quaternion: the two calls to round-off.
     Mat3 Ji;
-    const Vec3 theta = so3::log_map_and_left_jacobian_inverse(R, Ji);
+    const Vec3 theta = so3::log_quaternion_and_left_jacobian_inverse(Eigen::Quaterniond(R), Ji);
     EXPECT_LE((theta - so3::log_map(R)).norm(), 1e-15 * std::max(1.0, psi.norm()));
     EXPECT_LE(rel_err(Ji, so3::left_jacobian_inverse(so3::log_map(R))), 1e-12) << psi.norm();
     // exp as a quaternion and T together: the two maps to round-off; log from the quaternion
