@@ -293,7 +293,9 @@ void BM_CholmodSolve(benchmark::State& state) {
 /// solve (range(1) = 0: cholmod_solve2 with kept workspaces, BLAS threads as configured)
 /// against supernodal_substitution.h (1; 2: the forward substitution only, 3: the back one);
 /// 4 reads the factor's values twice and solves nothing (the bandwidth floor measured on the
-/// same memory). bytes_per_second counts the factor twice in every mode.
+/// same memory); 5: SubtreeSubstitution, the subtrees on the threads of --threads (the
+/// benchmark's threads::set_max_threads: all cores). bytes_per_second counts the factor twice
+/// in every mode.
 void BM_SupernodalSolve(benchmark::State& state) {
   PlateSystem p(static_cast<int>(state.range(0)));
   cholmod_common common;
@@ -314,6 +316,8 @@ void BM_SupernodalSolve(benchmark::State& state) {
   cholmod_dense *x = nullptr, *y = nullptr, *e = nullptr;
   const SupernodalLayout layout = solver_support::supernodal_layout(factor);
   std::vector<double> work;
+  SubtreeSubstitution subtrees;
+  subtrees.plan(layout);
   VectorXd z = rhs;
   for (auto _ : state) {
     if (state.range(1) == 0) {
@@ -325,6 +329,11 @@ void BM_SupernodalSolve(benchmark::State& state) {
       const auto* v = static_cast<const double*>(factor->x);
       double sum = bench::stream_sum(v, factor->xsize) + bench::stream_sum(v, factor->xsize);
       benchmark::DoNotOptimize(sum);
+    } else if (state.range(1) == 5) {
+      z = rhs;
+      subtrees.forward(layout, z.data());
+      subtrees.back(layout, z.data());
+      benchmark::DoNotOptimize(z.data());
     } else {
       z = rhs;
       if (state.range(1) != 3) forward_substitution(layout, z.data(), work);
@@ -336,6 +345,10 @@ void BM_SupernodalSolve(benchmark::State& state) {
   state.SetBytesProcessed(static_cast<int64_t>(2.0 * bytes) *
                           static_cast<int64_t>(state.iterations()));
   state.counters["factor_MB"] = bytes / 1e6;
+  if (state.range(1) == 5) {
+    state.counters["groups"] = subtrees.groups();
+    state.counters["serial"] = subtrees.serial_fraction();
+  }
   for (cholmod_dense** d : {&x, &y, &e})
     if (*d) cholmod_free_dense(d, &common);
   cholmod_free_factor(&factor, &common);
@@ -352,6 +365,8 @@ BENCHMARK(BM_SupernodalSolve)
     ->Args({160, 2})
     ->Args({160, 3})
     ->Args({160, 4})
+    ->Args({160, 5})
+    ->Args({80, 5})
     ->Unit(benchmark::kMillisecond);
 
 BENCHMARK(BM_CholmodAnalyze)->Arg(20)->Arg(40)->Arg(80)->Unit(benchmark::kMillisecond);

@@ -12,6 +12,7 @@
 #include "core/errors.h"
 #include "linalg/solver_support.h"
 #include "linalg/supernodal_factor.h"
+#include "linalg/supernodal_substitution.h"
 
 namespace impactfe {
 
@@ -117,6 +118,7 @@ class CholmodSolver final : public LinearSolver {
     // rcond is (min L_jj / max L_jj)^2: only a near-mechanism gets below 1e-13; then diagnose.
     if (cholmod_rcond(factor_, &common_) < 1e-13) check_pivots(lower);
     record_sizes(lower);
+    if (factor_->is_super) substitution_.plan(solver_support::supernodal_layout(factor_));
   }
 
   VectorXd solve(const VectorXd& b) override {
@@ -139,8 +141,8 @@ class CholmodSolver final : public LinearSolver {
     permuted_.resize(n);
     for (Eigen::Index k = 0; k < n; ++k) permuted_(k) = b(perm[k]);
     const SupernodalLayout layout = solver_support::supernodal_layout(factor_);
-    forward_substitution(layout, permuted_.data(), work_);
-    back_substitution(layout, permuted_.data(), work_);
+    substitution_.forward(layout, permuted_.data());
+    substitution_.back(layout, permuted_.data());
     VectorXd x(n);
     for (Eigen::Index k = 0; k < n; ++k) x(perm[k]) = permuted_(k);
     ++counters_.solves;
@@ -216,7 +218,7 @@ class CholmodSolver final : public LinearSolver {
   cholmod_factor* factor_ = nullptr;
   std::unique_ptr<SupernodalFactor> inline_;  // small factors: the inline kernels
   VectorXd permuted_;                         // a solve's right-hand side in the factor's order
-  std::vector<double> work_;                  // the substitutions' gathered rows
+  SubtreeSubstitution substitution_;          // planned for each supernodal factor
   int n_ = 0;
 };
 

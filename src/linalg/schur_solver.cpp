@@ -184,6 +184,7 @@ class CholmodSchurSolver final : public SchurSolver {
       if (const int row = weakest_row(); row >= 0)
         throw SingularMatrixError(row, "near-zero pivot in the factorization");
     read_trailing_block();
+    substitution_.plan(solver_support::supernodal_layout(factor_));
     const auto m = static_cast<Eigen::Index>(c_.size());
     MatrixXd lower_schur = MatrixXd::Zero(m, m);
     lower_schur.selfadjointView<Eigen::Lower>().rankUpdate(l_cc_);
@@ -223,18 +224,18 @@ class CholmodSchurSolver final : public SchurSolver {
   void substitute(int system, VectorXd& b) {
     const SupernodalLayout layout = solver_support::supernodal_layout(factor_);
     if (system == CHOLMOD_L)
-      forward_substitution(layout, b.data(), work_);
+      substitution_.forward(layout, b.data());
     else
-      back_substitution(layout, b.data(), work_);
+      substitution_.back(layout, b.data());
   }
 
   int n_;
   cholmod_common common_{};
   cholmod_factor* factor_ = nullptr;
-  MatrixXd l_cc_;             // trailing block of L (m × m, lower)
-  VectorXd z_;                // L⁻¹ P r of the last condense
-  VectorXd back_;             // the back substitution of recover (kept: no allocation per step)
-  std::vector<double> work_;  // the substitutions' gathered rows
+  MatrixXd l_cc_;  // trailing block of L (m × m, lower)
+  VectorXd z_;     // L⁻¹ P r of the last condense
+  VectorXd back_;  // the back substitution of recover (kept: no allocation per step)
+  SubtreeSubstitution substitution_;  // planned for each factorization
 };
 
 /// Over any LinearSolver (the distributed MUMPS): G = A⁻¹ E by one solve with m right-hand

@@ -2,6 +2,10 @@
 
 #include <algorithm>
 #include <cstring>
+#include <queue>
+
+#include "core/errors.h"
+#include "core/thread_pool.h"
 
 namespace impactfe {
 
@@ -145,67 +149,281 @@ struct AddDots {
   }
 };
 
+/// One supernode of the forward substitution: its own entries of y solved, and the update of
+/// the rows below handed to `update(row, value)` (y[row] += value on one thread).
+template <class Update>
+void forward_supernode(const SupernodalLayout& f, int s, double* y, std::vector<double>& work,
+                       Update&& update) {
+  const Supernode node = supernode(f, s);
+  if (static_cast<int>(work.size()) < node.rows) work.resize(static_cast<std::size_t>(node.rows));
+  // The supernode's rows of the right-hand side side by side: its own columns' entries, then
+  // zeros that collect the update of the rows below. Each column then updates one contiguous
+  // run of rows.
+  double* t = work.data();
+  double* ys = y + node.first_column;
+  std::copy(ys, ys + node.columns, t);
+  std::fill(t + node.columns, t + node.rows, 0.0);
+  const int block = node.rows > f.long_column ? kBlock : 1;
+  for (int j = 0; j < node.columns; j += block) {
+    const int w = std::min(block, node.columns - j);
+    const double* column[kBlock];
+    for (int c = 0; c < w; ++c)
+      column[c] = node.value + static_cast<std::ptrdiff_t>(j + c) * node.rows;
+    // The block's own triangle, then its columns applied to every row after it.
+    for (int c = 0; c < w; ++c) {
+      t[j + c] /= column[c][j + c];
+      for (int r = c + 1; r < w; ++r) t[j + r] -= column[c][j + r] * t[j + c];
+    }
+    with_width<SubtractColumns>(w, column, t + j, j + w, node.rows, t);
+  }
+  std::copy(t, t + node.columns, ys);
+  const int* row = node.row;
+  for (int i = node.columns; i < node.rows; ++i) update(row[i], t[i]);
+}
+
+/// One supernode of the back substitution: its own entries of y, from the final rows below.
+void back_supernode(const SupernodalLayout& f, int s, double* y, std::vector<double>& work) {
+  const Supernode node = supernode(f, s);
+  if (static_cast<int>(work.size()) < node.rows) work.resize(static_cast<std::size_t>(node.rows));
+  // The supernode's rows of the solution side by side: its own columns' entries (solved
+  // here, from the last), then the rows below (final: later supernodes).
+  double* x = work.data();
+  double* xs = y + node.first_column;
+  std::copy(xs, xs + node.columns, x);
+  const int* row = node.row;
+  for (int i = node.columns; i < node.rows; ++i) x[i] = y[row[i]];
+  // Column blocks from the last: every row after a block is final when the block is solved.
+  const int block = node.rows > f.long_column ? kBlock : 1;
+  const int last_block = ((node.columns - 1) / block) * block;
+  for (int j = last_block; j >= 0; j -= block) {
+    const int w = std::min(block, node.columns - j);
+    const double* column[kBlock];
+    for (int c = 0; c < w; ++c)
+      column[c] = node.value + static_cast<std::ptrdiff_t>(j + c) * node.rows;
+    double dot[kBlock] = {};
+    with_width<AddDots>(w, column, x + j + w, j + w, node.rows, dot);
+    for (int c = w - 1; c >= 0; --c) {
+      double sum = x[j + c] - dot[c];
+      for (int r = c + 1; r < w; ++r) sum -= column[c][j + r] * x[j + r];
+      x[j + c] = sum / column[c][j + c];
+    }
+  }
+  std::copy(x, x + node.columns, xs);
+}
+
 }  // namespace
 
 void forward_substitution(const SupernodalLayout& f, double* y, std::vector<double>& work) {
-  for (int s = 0; s < f.n_super; ++s) {
-    const Supernode node = supernode(f, s);
-    if (static_cast<int>(work.size()) < node.rows) work.resize(static_cast<std::size_t>(node.rows));
-    // The supernode's rows of the right-hand side side by side: its own columns' entries, then
-    // zeros that collect the update of the rows below. Each column then updates one contiguous
-    // run of rows.
-    double* t = work.data();
-    double* ys = y + node.first_column;
-    std::copy(ys, ys + node.columns, t);
-    std::fill(t + node.columns, t + node.rows, 0.0);
-    const int block = node.rows > f.long_column ? kBlock : 1;
-    for (int j = 0; j < node.columns; j += block) {
-      const int w = std::min(block, node.columns - j);
-      const double* column[kBlock];
-      for (int c = 0; c < w; ++c)
-        column[c] = node.value + static_cast<std::ptrdiff_t>(j + c) * node.rows;
-      // The block's own triangle, then its columns applied to every row after it.
-      for (int c = 0; c < w; ++c) {
-        t[j + c] /= column[c][j + c];
-        for (int r = c + 1; r < w; ++r) t[j + r] -= column[c][j + r] * t[j + c];
-      }
-      with_width<SubtractColumns>(w, column, t + j, j + w, node.rows, t);
-    }
-    std::copy(t, t + node.columns, ys);
-    const int* row = node.row;
-    for (int i = node.columns; i < node.rows; ++i) y[row[i]] += t[i];
-  }
+  for (int s = 0; s < f.n_super; ++s)
+    forward_supernode(f, s, y, work, [y](int row, double value) { y[row] += value; });
 }
 
 void back_substitution(const SupernodalLayout& f, double* y, std::vector<double>& work) {
-  for (int s = f.n_super - 1; s >= 0; --s) {
-    const Supernode node = supernode(f, s);
-    if (static_cast<int>(work.size()) < node.rows) work.resize(static_cast<std::size_t>(node.rows));
-    // The supernode's rows of the solution side by side: its own columns' entries (solved
-    // here, from the last), then the rows below (final: later supernodes).
-    double* x = work.data();
-    double* xs = y + node.first_column;
-    std::copy(xs, xs + node.columns, x);
-    const int* row = node.row;
-    for (int i = node.columns; i < node.rows; ++i) x[i] = y[row[i]];
-    // Column blocks from the last: every row after a block is final when the block is solved.
-    const int block = node.rows > f.long_column ? kBlock : 1;
-    const int last_block = ((node.columns - 1) / block) * block;
-    for (int j = last_block; j >= 0; j -= block) {
-      const int w = std::min(block, node.columns - j);
-      const double* column[kBlock];
-      for (int c = 0; c < w; ++c)
-        column[c] = node.value + static_cast<std::ptrdiff_t>(j + c) * node.rows;
-      double dot[kBlock] = {};
-      with_width<AddDots>(w, column, x + j + w, j + w, node.rows, dot);
-      for (int c = w - 1; c >= 0; --c) {
-        double sum = x[j + c] - dot[c];
-        for (int r = c + 1; r < w; ++r) sum -= column[c][j + r] * x[j + r];
-        x[j + c] = sum / column[c][j + c];
-      }
+  for (int s = f.n_super - 1; s >= 0; --s) back_supernode(f, s, y, work);
+}
+
+void SubtreeSubstitution::plan(const SupernodalLayout& f, long long min_values) {
+  n_super_ = f.n_super;
+  groups_.clear();
+  separators_.clear();
+  separator_position_.clear();
+  separator_column_.clear();
+  serial_fraction_ = 1.0;
+  const int ns = f.n_super;
+  const long long total = ns > 0 ? f.value_start[ns] : 0;
+  if (total < min_values) return;
+  const int n = f.super[ns];
+  // The supernodal elimination tree: a supernode's parent owns the first row below its columns.
+  std::vector<int> owner(static_cast<std::size_t>(n));
+  for (int s = 0; s < ns; ++s)
+    std::fill(owner.begin() + f.super[s], owner.begin() + f.super[s + 1], s);
+  std::vector<int> parent(static_cast<std::size_t>(ns), -1), first(static_cast<std::size_t>(ns));
+  std::vector<long long> weight(static_cast<std::size_t>(ns));
+  std::vector<int> child_count(static_cast<std::size_t>(ns) + 1, 0);
+  for (int s = 0; s < ns; ++s) {
+    const auto k = static_cast<std::size_t>(s);
+    first[k] = s;
+    weight[k] = f.value_start[s + 1] - f.value_start[s];
+    const int columns = f.super[s + 1] - f.super[s];
+    if (f.row_start[s + 1] - f.row_start[s] > columns) {
+      parent[k] = owner[static_cast<std::size_t>(f.rows[f.row_start[s] + columns])];
+      if (parent[k] <= s) return;  // not a postordered tree: stay serial
+      ++child_count[static_cast<std::size_t>(parent[k])];
     }
-    std::copy(x, x + node.columns, xs);
   }
+  // Subtree weights and first supernodes (children come before their parent).
+  std::vector<long long> subtree = weight;
+  for (int s = 0; s < ns; ++s) {
+    const int p = parent[static_cast<std::size_t>(s)];
+    if (p < 0) continue;
+    subtree[static_cast<std::size_t>(p)] += subtree[static_cast<std::size_t>(s)];
+    first[static_cast<std::size_t>(p)] =
+        std::min(first[static_cast<std::size_t>(p)], first[static_cast<std::size_t>(s)]);
+  }
+  std::vector<int> child_start(static_cast<std::size_t>(ns) + 1, 0),
+      children(static_cast<std::size_t>(ns));
+  for (int s = 0; s < ns; ++s)
+    child_start[static_cast<std::size_t>(s) + 1] =
+        child_start[static_cast<std::size_t>(s)] + child_count[static_cast<std::size_t>(s)];
+  {
+    std::vector<int> next(child_start.begin(), child_start.end() - 1);
+    for (int s = 0; s < ns; ++s)
+      if (parent[static_cast<std::size_t>(s)] >= 0)
+        children[static_cast<std::size_t>(
+            next[static_cast<std::size_t>(parent[static_cast<std::size_t>(s)])]++)] = s;
+  }
+  // Cut the tree at the root of its heaviest subtree, again and again: the separators cut off
+  // are solved on one thread, the subtrees side by side. Of the first kMaxCuts cuts in that
+  // order, keep as many as give two threads the least work, serial + max(heaviest subtree,
+  // rest / 2) (a structural choice: the plan is the same for any thread count). A 3-D mesh's
+  // top separators are dense and heavy (a sixth of L on a brick block), a shell's are light.
+  constexpr int kMaxCuts = 64;
+  using Candidate = std::pair<long long, int>;  // (weight, root): the heaviest first, ties by root
+  const auto cut = [&](int cuts, std::vector<int>& separators, std::vector<int>& roots) {
+    std::priority_queue<Candidate> open;
+    for (int s = 0; s < ns; ++s)
+      if (parent[static_cast<std::size_t>(s)] < 0)
+        open.emplace(subtree[static_cast<std::size_t>(s)], s);
+    long long serial = 0, heaviest_leaf = 0;
+    std::vector<long long> cost;  // after 0, 1, ... cuts
+    const auto record = [&] {
+      const long long heaviest = std::max(open.empty() ? 0 : open.top().first, heaviest_leaf);
+      cost.push_back(serial + std::max(heaviest, (total - serial + 1) / 2));
+    };
+    for (int done = 0;;) {
+      while (!open.empty() && child_count[static_cast<std::size_t>(open.top().second)] == 0) {
+        heaviest_leaf = std::max(heaviest_leaf, open.top().first);
+        roots.push_back(open.top().second);  // a subtree of one supernode: not cut
+        open.pop();
+      }
+      record();
+      if (done == cuts || open.empty()) break;
+      const int s = open.top().second;
+      const auto k = static_cast<std::size_t>(s);
+      open.pop();
+      serial += weight[k];
+      separators.push_back(s);
+      for (int c = child_start[k]; c < child_start[k + 1]; ++c) {
+        const int child = children[static_cast<std::size_t>(c)];
+        open.emplace(subtree[static_cast<std::size_t>(child)], child);
+      }
+      ++done;
+    }
+    for (; !open.empty(); open.pop()) roots.push_back(open.top().second);
+    return cost;
+  };
+  std::vector<int> roots;
+  const std::vector<long long> cost = cut(kMaxCuts, separators_, roots);
+  const int best = static_cast<int>(std::min_element(cost.begin(), cost.end()) - cost.begin());
+  separators_.clear();
+  roots.clear();
+  cut(best, separators_, roots);
+  long long serial = 0;
+  for (int s : separators_) serial += weight[static_cast<std::size_t>(s)];
+  if (roots.size() < 2) {
+    separators_.clear();
+    return;
+  }
+  std::sort(separators_.begin(), separators_.end());
+  separator_position_.assign(static_cast<std::size_t>(n), -1);
+  for (int s : separators_)
+    for (int c = f.super[s]; c < f.super[s + 1]; ++c) {
+      separator_position_[static_cast<std::size_t>(c)] = static_cast<int>(separator_column_.size());
+      separator_column_.push_back(c);
+    }
+  // The subtrees into groups, the heaviest first, each to the lightest group (the first of
+  // equal ones): a fixed packing, whatever the thread count.
+  std::sort(roots.begin(), roots.end(), [&](int a, int b) {
+    const long long wa = subtree[static_cast<std::size_t>(a)],
+                    wb = subtree[static_cast<std::size_t>(b)];
+    return wa != wb ? wa > wb : a < b;
+  });
+  const int n_groups = std::min<int>(kGroups, static_cast<int>(roots.size()));
+  groups_.resize(static_cast<std::size_t>(n_groups));
+  std::vector<long long> load(static_cast<std::size_t>(n_groups), 0);
+  for (int root : roots) {
+    const auto g =
+        static_cast<std::size_t>(std::min_element(load.begin(), load.end()) - load.begin());
+    const auto k = static_cast<std::size_t>(root);
+    load[g] += subtree[k];
+    groups_[g].subtrees.push_back(Subtree{first[k], root, f.super[root + 1]});
+    // The separator rows a subtree updates are its root's rows below (the rows below any of its
+    // columns outside the subtree are rows of its root's: George & Liu 1981, §5.1).
+    const int columns = f.super[root + 1] - f.super[root];
+    for (int i = f.row_start[root] + columns; i < f.row_start[root + 1]; ++i)
+      groups_[g].touched.push_back(separator_position_[static_cast<std::size_t>(f.rows[i])]);
+  }
+  std::vector<unsigned char> touched(separator_column_.size(), 0);
+  for (Group& group : groups_) {
+    // Within a group, the subtrees in postorder.
+    std::sort(group.subtrees.begin(), group.subtrees.end(),
+              [](const Subtree& a, const Subtree& b) { return a.first < b.first; });
+    std::sort(group.touched.begin(), group.touched.end());
+    group.touched.erase(std::unique(group.touched.begin(), group.touched.end()),
+                        group.touched.end());
+    group.update.assign(separator_column_.size(), 0.0);
+    // Every row a subtree updates outside itself is one of those (a factor whose supernodes
+    // broke the rule would stay on one thread rather than update a row no buffer holds).
+    for (int p : group.touched) touched[static_cast<std::size_t>(p)] = 1;
+    for (const Subtree& t : group.subtrees)
+      for (int i = f.row_start[t.first]; i < f.row_start[t.last + 1]; ++i) {
+        const int row = f.rows[i];
+        if (row < t.end_column) continue;
+        const int p = separator_position_[static_cast<std::size_t>(row)];
+        if (p < 0 || !touched[static_cast<std::size_t>(p)]) {
+          groups_.clear();
+          separators_.clear();
+          return;
+        }
+      }
+    for (int p : group.touched) touched[static_cast<std::size_t>(p)] = 0;
+  }
+  serial_fraction_ = static_cast<double>(serial) / static_cast<double>(total);
+}
+
+void SubtreeSubstitution::forward(const SupernodalLayout& f, double* y) {
+  if (groups_.empty()) {
+    forward_substitution(f, y, work_);
+    return;
+  }
+  IMPACTFE_CHECK(f.n_super == n_super_, "SubtreeSubstitution: the factor changed since its plan");
+  threads::parallel_for(groups(), 1, [&](int g) {
+    Group& group = groups_[static_cast<std::size_t>(g)];
+    double* update = group.update.data();
+    const int* position = separator_position_.data();
+    for (const Subtree& t : group.subtrees) {
+      const int end_column = t.end_column;
+      for (int s = t.first; s <= t.last; ++s)
+        forward_supernode(f, s, y, group.work, [&](int row, double value) {
+          if (row < end_column)
+            y[row] += value;
+          else
+            update[position[row]] += value;
+        });
+    }
+  });
+  for (Group& group : groups_)
+    for (int p : group.touched) {
+      y[separator_column_[static_cast<std::size_t>(p)]] +=
+          group.update[static_cast<std::size_t>(p)];
+      group.update[static_cast<std::size_t>(p)] = 0.0;
+    }
+  for (int s : separators_)
+    forward_supernode(f, s, y, work_, [y](int row, double value) { y[row] += value; });
+}
+
+void SubtreeSubstitution::back(const SupernodalLayout& f, double* y) {
+  if (groups_.empty()) {
+    back_substitution(f, y, work_);
+    return;
+  }
+  IMPACTFE_CHECK(f.n_super == n_super_, "SubtreeSubstitution: the factor changed since its plan");
+  for (auto s = separators_.rbegin(); s != separators_.rend(); ++s) back_supernode(f, *s, y, work_);
+  threads::parallel_for(groups(), 1, [&](int g) {
+    Group& group = groups_[static_cast<std::size_t>(g)];
+    for (auto t = group.subtrees.rbegin(); t != group.subtrees.rend(); ++t)
+      for (int s = t->last; s >= t->first; --s) back_supernode(f, s, y, group.work);
+  });
 }
 
 }  // namespace impactfe

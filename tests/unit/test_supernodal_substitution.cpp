@@ -1,14 +1,16 @@
 // Forward and back substitution on CHOLMOD's supernodal factor (supernodal_substitution.h): the
 // same L⁻¹ b and L⁻ᵀ b as CHOLMOD's own solve, to round-off, on factors whose supernodes have
 // from one to hundreds of columns (all remainders of the eight-column blocks), column by column
-// and eight columns per pass, and x = A⁻¹ b.
+// and eight columns per pass, and x = A⁻¹ b; the same on several threads (SubtreeSubstitution).
 #include <gtest/gtest.h>
 
 #include <cholmod.h>
 
 #include <algorithm>
+#include <cstring>
 #include <random>
 
+#include "core/thread_pool.h"
 #include "linalg/solver_support.h"
 #include "linalg/supernodal_substitution.h"
 
@@ -122,6 +124,61 @@ TEST(SupernodalSubstitution, MatchesCholmodOnEverySupernodeWidth) {
   for (int r = 0; r < 8; ++r)
     EXPECT_TRUE(std::any_of(widths.begin(), widths.end(), [r](int w) { return w % 8 == r; }))
         << "no supernode of width " << r << " mod 8";
+}
+
+/// Bitwise equality of two vectors.
+bool same_bits(const VectorXd& a, const VectorXd& b) {
+  return a.size() == b.size() &&
+         std::memcmp(a.data(), b.data(), sizeof(double) * static_cast<std::size_t>(a.size())) == 0;
+}
+
+TEST(SubtreeSubstitution, SolvesAsTheSerialSubstitutionsOnAnyThreadCount) {
+  const SparseMatrix a = grid_matrix(14, 14, 14, 3, 5u);  // 8232 unknowns
+  Factor factor(a);
+  ASSERT_TRUE(factor.f->is_super);
+  const SupernodalLayout layout = solver_support::supernodal_layout(factor.f);
+  SubtreeSubstitution subtrees;
+  const long long values = layout.value_start[layout.n_super];
+  subtrees.plan(layout, values + 1);  // below the threshold: one thread
+  EXPECT_EQ(subtrees.groups(), 0);
+  subtrees.plan(layout, values);
+  ASSERT_GE(subtrees.groups(), 2);
+  // The top separators of a small 3-D grid are a large part of its factor.
+  EXPECT_GT(subtrees.serial_fraction(), 0.0);
+  EXPECT_LT(subtrees.serial_fraction(), 0.5);
+
+  const VectorXd b = VectorXd::Random(a.rows());
+  std::vector<double> work;
+  VectorXd serial_forward = b, serial_back = b;
+  forward_substitution(layout, serial_forward.data(), work);
+  back_substitution(layout, serial_back.data(), work);
+  const int saved = threads::max_threads();
+  std::vector<VectorXd> results;
+  for (int n_threads : {1, 2, 3, 1}) {
+    threads::set_max_threads(n_threads);
+    // Twice each: the group buffers must be back to zero after a forward substitution.
+    for (int repeat = 0; repeat < 2; ++repeat) {
+      VectorXd forward = b;
+      subtrees.forward(layout, forward.data());
+      // The separators' rows sum the groups' updates in another order: round-off apart.
+      EXPECT_LT(relative(forward, serial_forward), 1e-14) << n_threads;
+      results.push_back(forward);
+      VectorXd back = b;
+      subtrees.back(layout, back.data());
+      EXPECT_TRUE(same_bits(back, serial_back)) << n_threads;  // only reads across subtrees
+      // x = A⁻¹ b.
+      const auto* perm = static_cast<const int*>(factor.f->Perm);
+      VectorXd y(a.rows());
+      for (Eigen::Index k = 0; k < a.rows(); ++k) y(k) = b(perm[k]);
+      subtrees.forward(layout, y.data());
+      subtrees.back(layout, y.data());
+      VectorXd x(a.rows());
+      for (Eigen::Index k = 0; k < a.rows(); ++k) x(perm[k]) = y(k);
+      EXPECT_LT(relative(x, factor.cholmod(CHOLMOD_A, b)), 1e-12) << n_threads;
+    }
+  }
+  threads::set_max_threads(saved);
+  for (const VectorXd& r : results) EXPECT_TRUE(same_bits(r, results.front()));
 }
 
 }  // namespace
