@@ -6,6 +6,7 @@
 #include <type_traits>
 
 #include "core/errors.h"
+#include "core/thread_pool.h"
 
 namespace impactfe {
 
@@ -168,6 +169,7 @@ void SharedPatternProducts::build(const std::vector<int>& row_start, const std::
               row_start[static_cast<std::size_t>(g.first_row + r)] + skipped + k)]);
     }
   }
+  plan_chunks();
 }
 
 namespace {
@@ -210,12 +212,22 @@ void multiply_any(const RowGroup& g, const int* column, const double* const* a,
     for (int r = 0; r < g.rows; ++r) y[m][g.first_row + r] = sum[m][r];
 }
 
+/// Where the transposed term of a group's column k goes: y[column] for a row of the caller's
+/// chunk, or a slot of `boundary` (a row of a later chunk, SharedPatternProducts::Chunk).
+struct Scatter {
+  const int* slot;
+  double* const* boundary;
+  double& at(double* const* y, int m, const RowGroup& g, int k, int j) const {
+    return k < g.first_boundary ? y[m][j] : boundary[m][slot[g.slot_start + k - g.first_boundary]];
+  }
+};
+
 /// Symmetric storage: the group's own columns as above, then each later column j applied to
 /// the group's rows (y_i += a_ij x_j) and to row j (y_j += Σ_i a_ij x_i). y starts at zero;
 /// the scattered terms of earlier groups are in y_i when the group adds its own sums.
 template <int N>
 void multiply_any_symmetric(const RowGroup& g, const int* column, const double* const* a,
-                            const double* const* x, double* const* y) {
+                            const double* const* x, double* const* y, const Scatter& scatter) {
   const int n = g.rows;
   double sum[N][kMaxGroupRows] = {};
   double xi[N][kMaxGroupRows];
@@ -231,7 +243,7 @@ void multiply_any_symmetric(const RowGroup& g, const int* column, const double* 
       if (k < g.own_columns) continue;
       double t = 0.0;
       for (int r = 0; r < n; ++r) t += v[r] * xi[m][r];
-      y[m][j] += t;
+      scatter.at(y, m, g, k, j) += t;
     }
   }
   for (int m = 0; m < N; ++m)
@@ -252,7 +264,7 @@ inline Pair load_pair(const double* p) {
 /// multiply_any_symmetric for a fixed group of G rows: G / 2 row pairs and a remainder row.
 template <int N, int G>
 void multiply_group_symmetric(const RowGroup& g, const int* column, const double* const* a,
-                              const double* const* x, double* const* y) {
+                              const double* const* x, double* const* y, const Scatter& scatter) {
   constexpr int P = G / 2;
   constexpr bool odd = G % 2 != 0;
   constexpr int kPairs = P > 0 ? P : 1;  // no zero-length arrays for a group of one row
@@ -278,7 +290,7 @@ void multiply_group_symmetric(const RowGroup& g, const int* column, const double
       if constexpr (decltype(transposed)::value) {
         double tj = t[0] + t[1];
         if constexpr (odd) tj += v[G - 1] * xi_last[m];
-        y[m][j] += tj;
+        scatter.at(y, m, g, k, j) += tj;
       }
     }
   };
@@ -293,27 +305,28 @@ void multiply_group_symmetric(const RowGroup& g, const int* column, const double
   }
 }
 
+/// The groups [first, end) with symmetric storage; y starts at zero on their rows.
 template <int N>
-void multiply_groups_symmetric(const std::vector<RowGroup>& groups, const int* column,
+void multiply_groups_symmetric(const RowGroup* groups, int first, int end, const int* column,
                                const double* const* a, const double* const* x, double* const* y,
-                               int n_rows) {
-  for (int m = 0; m < N; ++m) std::fill(y[m], y[m] + n_rows, 0.0);
-  for (const RowGroup& g : groups) {
+                               const Scatter& scatter) {
+  for (int i = first; i < end; ++i) {
+    const RowGroup& g = groups[i];
     switch (g.rows) {
       case 1:
-        multiply_group_symmetric<N, 1>(g, column, a, x, y);
+        multiply_group_symmetric<N, 1>(g, column, a, x, y, scatter);
         break;
       case 2:
-        multiply_group_symmetric<N, 2>(g, column, a, x, y);
+        multiply_group_symmetric<N, 2>(g, column, a, x, y, scatter);
         break;
       case 3:
-        multiply_group_symmetric<N, 3>(g, column, a, x, y);
+        multiply_group_symmetric<N, 3>(g, column, a, x, y, scatter);
         break;
       case 6:
-        multiply_group_symmetric<N, 6>(g, column, a, x, y);
+        multiply_group_symmetric<N, 6>(g, column, a, x, y, scatter);
         break;
       default:
-        multiply_any_symmetric<N>(g, column, a, x, y);
+        multiply_any_symmetric<N>(g, column, a, x, y, scatter);
         break;
     }
   }
@@ -368,19 +381,7 @@ void SharedPatternProducts::multiply(const std::array<const VectorXd*, kMaxMatri
   }
   const int* col = column_.data();
   if (symmetric_) {
-    switch (count) {
-      case 1:
-        multiply_groups_symmetric<1>(groups_, col, as, xs, ys, n);
-        break;
-      case 2:
-        multiply_groups_symmetric<2>(groups_, col, as, xs, ys, n);
-        break;
-      case 3:
-        multiply_groups_symmetric<3>(groups_, col, as, xs, ys, n);
-        break;
-      default:
-        break;
-    }
+    multiply_symmetric(count, as, xs, ys);
     return;
   }
   switch (count) {
@@ -395,6 +396,117 @@ void SharedPatternProducts::multiply(const std::array<const VectorXd*, kMaxMatri
       break;
     default:
       break;
+  }
+}
+
+void SharedPatternProducts::multiply_symmetric(int count, const double* const* as,
+                                               const double* const* xs, double* const* ys) const {
+  const auto run = [&](int first, int end, const Scatter& scatter) {
+    switch (count) {
+      case 1:
+        multiply_groups_symmetric<1>(groups_.data(), first, end, column_.data(), as, xs, ys,
+                                     scatter);
+        break;
+      case 2:
+        multiply_groups_symmetric<2>(groups_.data(), first, end, column_.data(), as, xs, ys,
+                                     scatter);
+        break;
+      case 3:
+        multiply_groups_symmetric<3>(groups_.data(), first, end, column_.data(), as, xs, ys,
+                                     scatter);
+        break;
+      default:
+        break;
+    }
+  };
+  const int n = rows();
+  if (chunks_.empty()) {
+    for (int m = 0; m < count; ++m) std::fill(ys[m], ys[m] + n, 0.0);
+    run(0, static_cast<int>(groups_.size()), Scatter{nullptr, nullptr});
+    return;
+  }
+  // Each chunk's rows on one thread; its transposed terms for later chunks' rows into slots of
+  // its own, added in chunk order after all chunks (the same sums on any thread count).
+  const std::size_t n_slots = slot_row_.size();
+  std::vector<double> boundary(static_cast<std::size_t>(count) * n_slots);
+  double* slots[kMaxMatrices];
+  for (int m = 0; m < count; ++m)
+    slots[m] = boundary.data() + static_cast<std::size_t>(m) * n_slots;
+  const Scatter scatter{slot_.data(), slots};
+  threads::parallel_for(static_cast<int>(chunks_.size()), 1, [&](int c) {
+    const Chunk& chunk = chunks_[static_cast<std::size_t>(c)];
+    const RowGroup& first = groups_[static_cast<std::size_t>(chunk.first_group)];
+    const int end_row = chunk.end_group < static_cast<int>(groups_.size())
+                            ? groups_[static_cast<std::size_t>(chunk.end_group)].first_row
+                            : n;
+    for (int m = 0; m < count; ++m) std::fill(ys[m] + first.first_row, ys[m] + end_row, 0.0);
+    run(chunk.first_group, chunk.end_group, scatter);
+  });
+  for (int m = 0; m < count; ++m)
+    for (std::size_t k = 0; k < n_slots; ++k) ys[m][slot_row_[k]] += slots[m][k];
+}
+
+void SharedPatternProducts::plan_chunks() {
+  plan_unchunked();
+  const long long values =
+      groups_.empty() ? 0
+                      : groups_.back().value_start +
+                            static_cast<long long>(groups_.back().columns) * groups_.back().rows;
+  if (!symmetric_ || values < kMinChunkedValues) return;
+  // Chunks of consecutive groups with about the same number of values.
+  const long long per_chunk = (values + kChunks - 1) / kChunks;
+  const int n_groups = static_cast<int>(groups_.size());
+  for (int first = 0; first < n_groups;) {
+    const long long start = groups_[static_cast<std::size_t>(first)].value_start;
+    int end = first + 1;
+    while (end < n_groups && groups_[static_cast<std::size_t>(end)].value_start - start < per_chunk)
+      ++end;
+    chunks_.push_back(Chunk{first, end});
+    first = end;
+  }
+  // A slot per distinct later row of each chunk, for the transposed terms of its groups'
+  // trailing columns (a group's columns ascend, so those are a suffix of them).
+  std::vector<int> slot_of(static_cast<std::size_t>(n_rows_), -1);
+  for (const Chunk& chunk : chunks_) {
+    const int end_row = chunk.end_group < n_groups
+                            ? groups_[static_cast<std::size_t>(chunk.end_group)].first_row
+                            : n_rows_;
+    const std::size_t chunk_slots = slot_row_.size();
+    for (int i = chunk.first_group; i < chunk.end_group; ++i) {
+      RowGroup& g = groups_[static_cast<std::size_t>(i)];
+      const int* col = column_.data() + g.column_start;
+      g.first_boundary = static_cast<int>(
+          std::max(std::lower_bound(col, col + g.columns, end_row), col + g.own_columns) - col);
+      g.slot_start = static_cast<int>(slot_.size());
+      for (int k = g.first_boundary; k < g.columns; ++k) {
+        int& slot = slot_of[static_cast<std::size_t>(col[k])];
+        if (slot < 0) {
+          slot = static_cast<int>(slot_row_.size());
+          slot_row_.push_back(col[k]);
+        }
+        slot_.push_back(slot);
+      }
+    }
+    for (std::size_t k = chunk_slots; k < slot_row_.size(); ++k)
+      slot_of[static_cast<std::size_t>(slot_row_[k])] = -1;
+    // A numbering whose couplings reach far (no locality) would need slots for most rows of
+    // every chunk: one pass on one thread then.
+    if (slot_row_.size() > static_cast<std::size_t>(n_rows_) / 2) {
+      plan_unchunked();
+      return;
+    }
+  }
+  slot_.shrink_to_fit();
+  slot_row_.shrink_to_fit();
+}
+
+void SharedPatternProducts::plan_unchunked() {
+  chunks_.clear();
+  std::vector<int>().swap(slot_);
+  std::vector<int>().swap(slot_row_);
+  for (RowGroup& g : groups_) {
+    g.first_boundary = g.columns;
+    g.slot_start = 0;
   }
 }
 

@@ -68,6 +68,21 @@ class SharedPatternProducts {
   /// so that one index load serves them all and their sums vectorize (a brick mesh's node has
   /// 3 such rows, a shell's 6). Each row's sum runs over its columns in order: the products are
   /// those of a row-by-row pass, bitwise.
+  /// Symmetric products of at least this many values per matrix run in chunks on several
+  /// threads (issue 11: a large transient's step is bandwidth-bound, and two cores stream
+  /// twice the bytes of one).
+  static constexpr long long kMinChunkedValues = 1LL << 20;
+  static constexpr int kChunks = 8;
+  /// Consecutive groups [first_group, end_group): their rows are summed on one thread; the
+  /// transposed terms they add to later chunks' rows go to slots of their own,
+  /// added to y in chunk order after the pass, so that the sums do not depend on the thread
+  /// count. A plan of the structure alone (empty for small or unsymmetric products, or when
+  /// the couplings reach so far that most rows would need a slot).
+  struct Chunk {
+    int first_group = 0, end_group = 0;
+  };
+  int chunks() const { return static_cast<int>(chunks_.size()); }
+
   struct RowGroup {
     int first_row = 0;
     int rows = 0;
@@ -75,12 +90,20 @@ class SharedPatternProducts {
     int columns = 0;
     int own_columns = 0;        // symmetric storage: the leading columns inside the group's rows
     long long value_start = 0;  // into value_[m]: columns × rows, column-major by group
+    // Chunked symmetric products: the columns from first_boundary on are rows of later chunks,
+    // whose transposed terms go to the slots slot_[slot_start ...] (columns ascend).
+    int first_boundary = 0;
+    int slot_start = 0;
   };
 
  private:
   /// Groups the rows of a row-compressed pattern and lays the values out by group.
   void build(const std::vector<int>& row_start, const std::vector<int>& column,
              const std::vector<std::vector<double>>& values);
+  void plan_chunks();
+  void plan_unchunked();
+  void multiply_symmetric(int count, const double* const* a, const double* const* x,
+                          double* const* y) const;
 
   int n_matrices_ = 0;
   int n_rows_ = 0;
@@ -90,6 +113,9 @@ class SharedPatternProducts {
   std::vector<RowGroup> groups_;
   std::vector<int> column_;
   std::array<std::vector<double>, kMaxMatrices> value_;
+  std::vector<Chunk> chunks_;
+  std::vector<int> slot_;      // per boundary column (RowGroup::first_boundary): its slot
+  std::vector<int> slot_row_;  // per slot: its row (the slots of chunk 0, then 1, ...)
 };
 
 }  // namespace impactfe

@@ -2,9 +2,11 @@
 // Eigen's sparse product to round-off, with zero matrices and omitted products handled.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
+#include "core/thread_pool.h"
 #include "linalg/shared_pattern_products.h"
 
 namespace impactfe {
@@ -116,6 +118,66 @@ TEST(SharedPatternProducts, SymmetricMatricesStoreHalfAndGiveTheSameProducts) {
     full.multiply({&u, nullptr, nullptr}, {&ku_off, nullptr, nullptr});
     EXPECT_LT(relative_difference(ku_off, k_off * u), 1e-14) << dofs;
   }
+}
+
+/// A symmetric node-blocked matrix of a chain of nodes, each coupled to the next `reach` ones
+/// (a mesh numbered with locality).
+SparseMatrix symmetric_chain(int nodes, int dofs, int reach, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> value(-1.0, 1.0);
+  std::vector<Eigen::Triplet<double, int>> t;
+  for (int a = 0; a < nodes; ++a)
+    for (int b = a; b <= std::min(nodes - 1, a + reach); ++b)
+      for (int i = 0; i < dofs; ++i)
+        for (int j = 0; j < dofs; ++j) {
+          const int r = dofs * a + i, c = dofs * b + j;
+          if (a == b && j < i) continue;
+          const double v = value(rng);
+          t.emplace_back(r, c, v);
+          if (r != c) t.emplace_back(c, r, v);
+        }
+  SparseMatrix m(nodes * dofs, nodes * dofs);
+  m.setFromTriplets(t.begin(), t.end());
+  return m;
+}
+
+TEST(SharedPatternProducts, LargeSymmetricProductsInChunksGiveTheSameBitsOnAnyThreadCount) {
+  // 5 000 shell nodes, each coupled to the next 5: about 1.1e6 stored values per matrix.
+  const int nodes = 5000, dofs = 6, n = nodes * dofs;
+  const SparseMatrix k = symmetric_chain(nodes, dofs, 5, 31),
+                     m = symmetric_chain(nodes, dofs, 5, 32);
+  const SharedPatternProducts products({&k, &m});
+  ASSERT_TRUE(products.symmetric());
+  EXPECT_EQ(products.chunks(), SharedPatternProducts::kChunks);
+  const VectorXd u = VectorXd::Random(n), a = VectorXd::Random(n);
+  const int saved = threads::max_threads();
+  std::vector<VectorXd> results;
+  for (int n_threads : {1, 2, 3, 1}) {
+    threads::set_max_threads(n_threads);
+    VectorXd ku, ma, ma_alone;
+    products.multiply({&u, &a, nullptr}, {&ku, &ma, nullptr});
+    EXPECT_LT(relative_difference(ku, k * u), 1e-14) << n_threads;
+    EXPECT_LT(relative_difference(ma, m * a), 1e-14) << n_threads;
+    products.multiply({nullptr, &a, nullptr}, {nullptr, &ma_alone, nullptr});
+    EXPECT_EQ(ma_alone, ma);
+    results.push_back(ku);
+    results.push_back(ma);
+  }
+  threads::set_max_threads(saved);
+  for (std::size_t i = 2; i < results.size(); ++i)
+    EXPECT_EQ(results[i], results[i % 2]) << i;  // bitwise: operator== compares exactly
+
+  // Couplings that reach across the whole matrix (no locality): one pass on one thread.
+  std::vector<Eigen::Triplet<double, int>> anti;
+  for (int i = 0; i < n; ++i) anti.emplace_back(i, n - 1 - i, 1.0);
+  SparseMatrix reach(n, n);
+  reach.setFromTriplets(anti.begin(), anti.end());
+  const SparseMatrix far = k + reach;
+  const SharedPatternProducts unchunked({&far});
+  EXPECT_EQ(unchunked.chunks(), 0);
+  VectorXd kf;
+  unchunked.multiply({&u, nullptr, nullptr}, {&kf, nullptr, nullptr});
+  EXPECT_LT(relative_difference(kf, far * u), 1e-14);
 }
 
 TEST(SharedPatternProducts, ZeroMatrixGivesZeroVector) {
