@@ -279,8 +279,8 @@ int main(int argc, char** argv) {
   run_cmd->add_option("-j,--jobname", run.jobname, "job name (default: deck file stem)");
   run_cmd->add_option(
       "--threads", run.threads,
-      "threads for element loops and results compression (default: all cores where the work "
-      "pays for them; BLAS runs on one thread)");
+      "threads for element loops, the solves and products of large models and results "
+      "compression (default: all cores where the work pays for them; BLAS runs on one thread)");
   run_cmd->add_flag("--skip-unknown", run.skip_unknown, "warn and skip unknown commands");
   run_cmd->add_option("--dialect", run.dialect, "4x|modern|auto")
       ->check(CLI::IsMember({"4x", "modern", "auto"}));
