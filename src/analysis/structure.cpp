@@ -254,24 +254,30 @@ std::set<DofKey> Structure::constraints_of(const LoadStep& step) const {
   return out;
 }
 
-Eigen::MatrixXd Structure::nodal_table(const DofMap& dofs, const VectorXd& values) const {
+Eigen::MatrixXd Structure::dof_table(const DofMap& dofs, const VectorXd& values, int first,
+                                     int end) const {
   Eigen::MatrixXd table = Eigen::MatrixXd::Constant(static_cast<int>(node_ids_.size()), 6,
                                                     std::numeric_limits<double>::quiet_NaN());
-  for (int i = 0; i < dofs.n_active(); ++i) {
+  // A node's DOFs are mostly consecutive in the map: its row is looked up once per run of them
+  // (a lookup per DOF took about 13 ms per stored point of the 155 522-DOF shell dome).
+  int node = 0, row = -1;
+  for (int i = first; i < end; ++i) {
     const DofKey& key = dofs.key(i);
-    table(node_row_.at(key.node), static_cast<int>(key.dof)) = values(i);
+    if (row < 0 || key.node != node) {
+      node = key.node;
+      row = node_row_.at(node);
+    }
+    table(row, static_cast<int>(key.dof)) = values(i);
   }
   return table;
 }
 
+Eigen::MatrixXd Structure::nodal_table(const DofMap& dofs, const VectorXd& values) const {
+  return dof_table(dofs, values, 0, dofs.n_active());
+}
+
 Eigen::MatrixXd Structure::reaction_table(const DofMap& dofs, const VectorXd& reactions) const {
-  Eigen::MatrixXd table = Eigen::MatrixXd::Constant(static_cast<int>(node_ids_.size()), 6,
-                                                    std::numeric_limits<double>::quiet_NaN());
-  for (int i = dofs.n_free(); i < dofs.n_active(); ++i) {
-    const DofKey& key = dofs.key(i);
-    table(node_row_.at(key.node), static_cast<int>(key.dof)) = reactions(i);
-  }
-  return table;
+  return dof_table(dofs, reactions, dofs.n_free(), dofs.n_active());
 }
 
 std::map<std::string, ElementResultTable> Structure::element_results(const Assembler& assembler,

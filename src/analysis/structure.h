@@ -77,6 +77,9 @@ class Structure {
   }
 
  private:
+  /// A node table (NaN where no DOF) of values(i) for the DOFs first .. end − 1 of `dofs`.
+  Eigen::MatrixXd dof_table(const DofMap& dofs, const VectorXd& values, int first, int end) const;
+
   const Model& model_;
   AnalysisOptions options_;
   ElementContext context_;
