@@ -64,10 +64,6 @@ class SharedPatternProducts {
         }
   }
 
-  /// Rows with one column list, stored together: the `rows` values of each column side by side,
-  /// so that one index load serves them all and their sums vectorize (a brick mesh's node has
-  /// 3 such rows, a shell's 6). Each row's sum runs over its columns in order: the products are
-  /// those of a row-by-row pass, bitwise.
   /// Symmetric products of at least this many values per matrix run in chunks on several
   /// threads (issue 11: a large transient's step is bandwidth-bound, and two cores stream
   /// twice the bytes of one).
@@ -83,6 +79,10 @@ class SharedPatternProducts {
   };
   int chunks() const { return static_cast<int>(chunks_.size()); }
 
+  /// Rows with one column list, stored together: the `rows` values of each column side by side,
+  /// so that one index load serves them all and their sums vectorize (a brick mesh's node has
+  /// 3 such rows, a shell's 6). Each row's sum runs over its columns in order: the products are
+  /// those of a row-by-row pass, bitwise.
   struct RowGroup {
     int first_row = 0;
     int rows = 0;

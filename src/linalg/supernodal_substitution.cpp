@@ -348,7 +348,7 @@ void SubtreeSubstitution::plan(const SupernodalLayout& f, long long min_values) 
     load[g] += subtree[k];
     groups_[g].subtrees.push_back(Subtree{first[k], root, f.super[root + 1]});
     // The separator rows a subtree updates are its root's rows below (the rows below any of its
-    // columns outside the subtree are rows of its root's: George & Liu 1981, §5.1).
+    // columns outside the subtree are rows of its root's: George & Liu 1981).
     const int columns = f.super[root + 1] - f.super[root];
     for (int i = f.row_start[root] + columns; i < f.row_start[root + 1]; ++i)
       groups_[g].touched.push_back(separator_position_[static_cast<std::size_t>(f.rows[i])]);

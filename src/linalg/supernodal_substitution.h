@@ -38,8 +38,8 @@ void back_substitution(const SupernodalLayout& factor, double* y, std::vector<do
 /// solve bounded by the memory bandwidth, and two cores of this machine stream twice the bytes
 /// of one (two BM_SupernodalSolve/160 runs side by side each take the time of one alone).
 ///
-/// Disjoint subtrees of the supernodal elimination tree are independent (George & Liu 1981
-/// §6.2: a column's rows below are its ancestors): the plan cuts the tree at its top separators
+/// Disjoint subtrees of the supernodal elimination tree are independent (George & Liu
+/// 1981: a column's rows below are its ancestors): the plan cuts the tree at its top separators
 /// into subtrees and packs them into `kGroups` groups of similar weight, which threads take one
 /// at a time. The back substitution solves the separators, then the groups side by side: it
 /// only reads what is above a subtree, so its results are those of back_substitution, bitwise.
