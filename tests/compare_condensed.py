@@ -63,6 +63,9 @@ def main():
         a.visititems(visit)
     if failures:
         sys.exit("FAIL " + name + ": " + "; ".join(failures))
+    # A passing case's files go (CI disk); IMPACTFE_KEEP_TEST_OUTPUT=1 keeps them.
+    if not os.environ.get("IMPACTFE_KEEP_TEST_OUTPUT"):
+        shutil.rmtree(root, ignore_errors=True)
     print("OK")
 
 

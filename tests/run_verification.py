@@ -2,6 +2,7 @@
 """Runs one verification deck through the impactfe CLI and checks the expectations written in it.
 
 Usage: run_verification.py IMPACTFE_BINARY DECK OUTDIR
+(OUTDIR/<deck> is removed when every expectation is met, unless IMPACTFE_KEEP_TEST_OUTPUT is set.)
 
 Expectation lines in the deck (comments, so the deck stays a valid APDL deck):
   ! EXPECT: NSOL <node> <LAB> AT <time> = <value> TOL <abs>      nodal result at a stored time
@@ -33,6 +34,7 @@ import csv
 import io
 import os
 import re
+import shutil
 import subprocess
 import sys
 
@@ -231,6 +233,9 @@ def main():
             fail("unknown EXPECT line: " + e)
     if not all_ok:
         sys.exit(1)
+    # A passing case's files go (CI disk); IMPACTFE_KEEP_TEST_OUTPUT=1 keeps them.
+    if not os.environ.get("IMPACTFE_KEEP_TEST_OUTPUT"):
+        shutil.rmtree(work, ignore_errors=True)
     print("verification %s: all %d expectations met" % (stem, len(expects)))
 
 

@@ -246,6 +246,9 @@ def main():
               + (", repeat bitwise equal" if repeat else ""))
     if failures:
         sys.exit("FAIL " + name + ": " + "; ".join(failures))
+    # A passing case's files go (CI disk); IMPACTFE_KEEP_TEST_OUTPUT=1 keeps them.
+    if not os.environ.get("IMPACTFE_KEEP_TEST_OUTPUT"):
+        shutil.rmtree(root, ignore_errors=True)
     print("OK")
 
 
