@@ -19,6 +19,8 @@ namespace impactfe::result_series {
 namespace {
 
 constexpr double kFill = std::numeric_limits<double>::quiet_NaN();
+/// Values of a block row given back to the system at a time (256 KiB), at least.
+constexpr std::size_t kReleaseValues = 32768;
 
 /// HDF5's shuffle filter for 8-byte elements: byte j of element i goes to j * n + i.
 void shuffle8(const unsigned char* in, std::size_t n, unsigned char* out) {
@@ -78,39 +80,61 @@ std::optional<ChunkPipeline> pipeline_of(hid_t ds) {
   return p;
 }
 
-std::vector<unsigned char> filter_chunk(const ChunkPipeline& pipeline, const double* values,
-                                        std::size_t n) {
+ChunkFilter::ChunkFilter(const ChunkPipeline& pipeline) : pipeline_(pipeline) {}
+
+ChunkFilter::~ChunkFilter() {
+  if (stream_) deflateEnd(stream_.get());
+}
+
+std::vector<unsigned char> ChunkFilter::apply(const double* values, std::size_t n) {
   const std::size_t n_bytes = n * sizeof(double);
-  std::vector<unsigned char> data;
-  data.reserve(n_bytes + 4);
-  data.resize(n_bytes);
   const auto* raw = reinterpret_cast<const unsigned char*>(values);
+  std::vector<unsigned char> stored;
   // H5Z__filter_shuffle leaves a buffer of a single element as it is.
-  if (pipeline.shuffle && n > 1)
-    shuffle8(raw, n, data.data());
-  else
-    std::memcpy(data.data(), raw, n_bytes);
-  if (pipeline.deflate_level > 0) {
-    // H5Z__filter_deflate: compress2 into a buffer of compressBound bytes.
-    uLongf out_bytes = compressBound(static_cast<uLong>(n_bytes));
-    std::vector<unsigned char> out(out_bytes);
-    const int status = compress2(out.data(), &out_bytes, data.data(), static_cast<uLong>(n_bytes),
-                                 pipeline.deflate_level);
-    if (status != Z_OK)
+  const unsigned char* plain = raw;
+  if (pipeline_.shuffle && n > 1) {
+    shuffled_.resize(n_bytes);
+    shuffle8(raw, n, shuffled_.data());
+    plain = shuffled_.data();
+  }
+  if (pipeline_.deflate_level > 0) {
+    // H5Z__filter_deflate's compress2, as deflateInit once and deflateReset per chunk: the same
+    // bytes, without zlib's state (~270 KB) and the output buffer allocated and freed for every
+    // chunk. Those frees trimmed the worker's heap: ~17 000 madvise calls on the dome, each
+    // interrupting the solver's threads to flush their TLBs (issue 11).
+    if (!stream_) {
+      stream_ = std::make_unique<z_stream>();
+      if (deflateInit(stream_.get(), pipeline_.deflate_level) != Z_OK) {
+        stream_.reset();
+        throw std::runtime_error("deflate of a results chunk: zlib could not start");
+      }
+    } else if (deflateReset(stream_.get()) != Z_OK) {
+      throw std::runtime_error("deflate of a results chunk: zlib could not reset");
+    }
+    deflated_.resize(deflateBound(stream_.get(), static_cast<uLong>(n_bytes)));
+    stream_->next_in = const_cast<unsigned char*>(plain);
+    stream_->avail_in = static_cast<uInt>(n_bytes);
+    stream_->next_out = deflated_.data();
+    stream_->avail_out = static_cast<uInt>(deflated_.size());
+    const int status = deflate(stream_.get(), Z_FINISH);
+    if (status != Z_STREAM_END)
       throw std::runtime_error(fmt::format("deflate of a results chunk failed (zlib {})", status));
     // Exactly the stored bytes (and room for the checksum): a block's chunks wait in memory
-    // until they are written, and compressBound is the uncompressed size.
-    std::vector<unsigned char> stored;
-    stored.reserve(out_bytes + 4);
-    stored.assign(out.begin(), out.begin() + static_cast<std::ptrdiff_t>(out_bytes));
-    data = std::move(stored);
+    // until they are written.
+    stored.reserve(stream_->total_out + 4);
+    stored.assign(deflated_.begin(),
+                  deflated_.begin() + static_cast<std::ptrdiff_t>(stream_->total_out));
+  } else {
+    stored.reserve(n_bytes + 4);
+    stored.assign(plain, plain + n_bytes);
   }
-  if (pipeline.fletcher32) {
+  if (pipeline_.fletcher32) {
     // H5Z__filter_fletcher32: the checksum of the stored bytes, appended little-endian.
-    const uint32_t sum = H5_checksum_fletcher32(data.data(), data.size());
-    for (int b = 0; b < 4; ++b) data.push_back(static_cast<unsigned char>((sum >> (8 * b)) & 0xff));
+    const uint32_t sum = H5_checksum_fletcher32(stored.data(), stored.size());
+    for (int b = 0; b < 4; ++b)
+      stored.push_back(static_cast<unsigned char>((sum >> (8 * b)) & 0xff));
   }
-  return data;
+  return stored;
 }
 
 void BlockJob::compress() {
@@ -130,6 +154,7 @@ void BlockJob::compress() {
     std::vector<hsize_t> origin(d, 0);  // chunk origin in the row dimensions
     std::size_t released = 0;           // values of each row given back (release_compressed_rows)
     std::vector<double> buffer(chunk_size);
+    ChunkFilter filter(pipeline);
     const std::size_t inner = static_cast<std::size_t>(chunk[d]);  // contiguous run in a chunk
     while (true) {
       // Gather the chunk: (t, i_1 .. i_d) over chunk[0] x ... x chunk[d], NaN outside the rows
@@ -166,7 +191,7 @@ void BlockJob::compress() {
       }
       std::vector<hsize_t> offset{first_row};
       offset.insert(offset.end(), origin.begin(), origin.end());
-      chunks.push_back({std::move(offset), filter_chunk(pipeline, buffer.data(), chunk_size)});
+      chunks.push_back({std::move(offset), filter.apply(buffer.data(), chunk_size)});
       // Next chunk of the grid.
       std::size_t i = d;
       while (i > 0) {
@@ -176,10 +201,12 @@ void BlockJob::compress() {
         --i;
       }
       if (i == 0) break;
-      if (i == 1 && release_compressed_rows) {
+      const std::size_t done = static_cast<std::size_t>(origin[0]) * stride[0];
+      if (i == 1 && release_compressed_rows && done - released >= kReleaseValues) {
         // Every chunk of the columns before origin[0] is done: their values in every row go
-        // back to the system, so that the block shrinks as its compressed chunks grow.
-        const std::size_t done = static_cast<std::size_t>(origin[0]) * stride[0];
+        // back to the system, so that the block shrinks as its compressed chunks grow. In runs
+        // of kReleaseValues per row at least: each call flushes the TLBs of every thread of
+        // the process (a call per narrow chunk column made ~11 000 of them on the dome).
         for (std::size_t t = 0; t < static_cast<std::size_t>(chunk[0]); ++t)
           release_pages(block.get(), t * row_size + released, t * row_size + done);
         released = done;

@@ -22,6 +22,8 @@
 
 #include "io/h5_util.h"
 
+struct z_stream_s;  // zlib
+
 namespace impactfe::result_series {
 
 /// The values of a time block in pages of their own (mmap), returned to the system when freed,
@@ -48,10 +50,24 @@ struct ChunkPipeline {
 /// itself, or its filters in another order (the caller then writes through H5Dwrite).
 std::optional<ChunkPipeline> pipeline_of(hid_t ds);
 
-/// The stored bytes of one chunk of `n` doubles through `pipeline`: what HDF5 would write for
-/// it, and what H5Dwrite_chunk takes with filter mask 0.
-std::vector<unsigned char> filter_chunk(const ChunkPipeline& pipeline, const double* values,
-                                        std::size_t n);
+/// The stored bytes of chunks through a pipeline: what HDF5 would write for a chunk, and what
+/// H5Dwrite_chunk takes with filter mask 0. Keeps zlib's state and its buffers from chunk to
+/// chunk (one filter per thread).
+class ChunkFilter {
+ public:
+  explicit ChunkFilter(const ChunkPipeline& pipeline);
+  ~ChunkFilter();
+  ChunkFilter(const ChunkFilter&) = delete;
+  ChunkFilter& operator=(const ChunkFilter&) = delete;
+
+  /// The stored bytes of one chunk of `n` doubles.
+  std::vector<unsigned char> apply(const double* values, std::size_t n);
+
+ private:
+  ChunkPipeline pipeline_;
+  std::unique_ptr<z_stream_s> stream_;  // deflate's state, from the first chunk on
+  std::vector<unsigned char> shuffled_, deflated_;
+};
 
 /// One finished block of a main dataset: rows [first_row, first_row + n_rows) of a dataset of
 /// rows `row_dims`, chunked `chunk` (chunk[0] = block_rows, the block's length in time).

@@ -14,6 +14,7 @@
 // thread (BlockCompressor, issue 11) and stored at the next sync (Impl::sync); when the analysis
 // closes, the last partial block goes there too and `recent/` is deleted.
 #include <fmt/format.h>
+#include <malloc.h>
 
 #include <Eigen/Core>
 #include <algorithm>
@@ -322,6 +323,11 @@ void ResultsWriter::Impl::complete_blocks() {
       throw SolutionError(e.what());  // the Guard of the public call abandons the file
     }
     for (const BlockJob& job : jobs) job.write();
+    // The chunks were allocated on the compressor's thread, in an arena glibc keeps when they
+    // are freed here: given back now, or they stay resident (+4.7 MB at the dome's peak, over
+    // 1.5 x factor + model, once the compressor stopped trimming its arena with every chunk).
+    jobs.clear();
+    malloc_trim(0);
   }
   if (first_row_pending && recent_group.valid()) {
     // HDF5 writes what is dirty in an order of its own at a flush: the main chunks reach the

@@ -130,6 +130,7 @@ TEST(BlockCompressor, ChunksAreTheBytesHdf5StoresForTheSameRows) {
       {{400, 6}, {4, 171, 6}, 4, 1},        // U of 400 nodes: three chunks, the last past the edge
       {{400, 6}, {4, 171, 6}, 3, 1},        // the partial last block of an analysis
       {{10000}, {8, 600}, 5, 1},            // a 1-D row (gap forces, R)
+      {{100000}, {4, 9000}, 4, 1},          // rows long enough to be given back in two runs
       {{6, 40, 30}, {4, 4, 40, 30}, 2, 6},  // three row dimensions, another deflate level
       {{30, 6}, {4, 16, 6}, 4, 1},          // a chunk too small for deflate: Fletcher32 only
   };
