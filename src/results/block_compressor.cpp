@@ -44,7 +44,7 @@ void PageDeleter::operator()(double* p) const {
 
 BlockBuffer allocate_block(std::size_t n) {
   if (n == 0) return {};
-  const std::size_t bytes = n * sizeof(double);
+  const std::size_t bytes = (n + 1) * sizeof(double);
   void* p = mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
   if (p == MAP_FAILED) throw std::bad_alloc();
   return BlockBuffer(static_cast<double*>(p), PageDeleter{bytes});
@@ -77,6 +77,14 @@ std::optional<ChunkPipeline> pipeline_of(hid_t ds) {
     stage = this_stage;
   }
   return p;
+}
+
+std::array<unsigned char, 4> fletcher32_trailer(const unsigned char* stored, std::size_t n) {
+  const uint32_t sum = H5_checksum_fletcher32(stored, n);
+  std::array<unsigned char, 4> trailer{};
+  for (std::size_t b = 0; b < 4; ++b)
+    trailer[b] = static_cast<unsigned char>((sum >> (8 * b)) & 0xff);
+  return trailer;
 }
 
 ChunkFilter::ChunkFilter(const ChunkPipeline& pipeline) : pipeline_(pipeline) {}
@@ -128,10 +136,8 @@ std::vector<unsigned char> ChunkFilter::apply(const double* values, std::size_t 
     stored.assign(plain, plain + n_bytes);
   }
   if (pipeline_.fletcher32) {
-    // H5Z__filter_fletcher32: the checksum of the stored bytes, appended little-endian.
-    const uint32_t sum = H5_checksum_fletcher32(stored.data(), stored.size());
-    for (int b = 0; b < 4; ++b)
-      stored.push_back(static_cast<unsigned char>((sum >> (8 * b)) & 0xff));
+    const auto trailer = fletcher32_trailer(stored.data(), stored.size());
+    stored.insert(stored.end(), trailer.begin(), trailer.end());
   }
   return stored;
 }

@@ -10,6 +10,7 @@
 /// the chunk's bytes, though: a worker thread applies them here (the same pipeline as HDF5's,
 /// in the same order, so any HDF5 reader decodes the chunks), and the writer's thread stores
 /// the finished chunks with H5Dwrite_chunk, which only does I/O.
+#include <array>
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
@@ -35,8 +36,14 @@ struct PageDeleter {
   void operator()(double* p) const;
 };
 using BlockBuffer = std::unique_ptr<double[], PageDeleter>;
-/// `n` values, not initialised; empty when n = 0. Throws std::bad_alloc.
+/// `n` values, not initialised, and one value of slack after them: a staging row is stored with
+/// its checksum put in the 4 bytes that follow it (write_staging_rows); empty when n = 0.
+/// Throws std::bad_alloc.
 BlockBuffer allocate_block(std::size_t n);
+
+/// The 4 bytes HDF5's Fletcher32 filter appends to a chunk of `n` stored bytes: its checksum
+/// (H5Z__filter_fletcher32), little-endian.
+std::array<unsigned char, 4> fletcher32_trailer(const unsigned char* stored, std::size_t n);
 
 /// The filters of a chunked float64 dataset as HDF5 applies them on writing, in this order:
 /// byte shuffle, deflate (zlib, `deflate_level`), Fletcher32 checksum appended.

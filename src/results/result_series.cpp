@@ -1,6 +1,8 @@
 #include "results/result_series.h"
 
 #include <algorithm>
+#include <array>
+#include <bit>
 
 namespace impactfe::result_series {
 
@@ -86,12 +88,14 @@ BlockSeries create_series(hid_t group, hid_t recent_group, const std::string& na
     if (const auto p = pipeline_of(s.main); p && p->deflate_level > 0) s.pipeline = p;
   }
   {
-    // Staging: one time point per chunk, so appending a point compresses one row only.
+    // Staging: one time point per chunk, the whole row when it is not huge (write_staging_rows
+    // then stores it without HDF5's chunk buffer).
     std::vector<hsize_t> rdims{block_rows}, rmax{block_rows}, rchunk{1};
     for (std::size_t i = 0; i < s.row_dims.size(); ++i) {
       rdims.push_back(s.row_dims[i]);
       rmax.push_back(growable_columns && i == 0 ? H5S_UNLIMITED : s.row_dims[i]);
-      rchunk.push_back(std::max<hsize_t>(1, std::min<hsize_t>(s.row_dims[i], i == 0 ? 65536 : 64)));
+      const hsize_t fit = i == 0 ? std::max<hsize_t>(1, kMaxStagingChunkValues / rest) : 0;
+      rchunk.push_back(std::max<hsize_t>(1, i == 0 ? std::min(s.row_dims[i], fit) : s.row_dims[i]));
     }
     Handle space(check(H5Screate_simple(static_cast<int>(rdims.size()), rdims.data(), rmax.data()),
                        "create dataspace for recent/" + name));
@@ -103,9 +107,39 @@ BlockSeries create_series(hid_t group, hid_t recent_group, const std::string& na
     s.recent = Handle(check(
         H5Dcreate2(recent_group, name.c_str(), H5T_IEEE_F64LE, space, lcpl, dcpl, H5P_DEFAULT),
         "create dataset recent/" + name));
+    s.recent_chunk = rchunk;
+    const auto p = pipeline_of(s.recent);
+    s.recent_checksum_only = p && !p->shuffle && p->deflate_level == 0 && p->fletcher32;
   }
   s.block = allocate_block(block_rows * s.row_size());
   return s;
+}
+
+void write_staging_rows(BlockSeries& s, hsize_t first, hsize_t n) {
+  static_assert(std::endian::native == std::endian::little, "the block holds H5T_IEEE_F64LE");
+  const hsize_t row_size = s.row_size();
+  std::vector<hsize_t> offset{1};
+  offset.insert(offset.end(), s.row_dims.begin(), s.row_dims.end());
+  if (row_size == 0 || !s.recent_checksum_only || s.recent_chunk != offset) {
+    write_rows(s.recent, first, n, s.row_dims, s.block.get() + first * row_size);
+    return;
+  }
+  std::fill(offset.begin(), offset.end(), 0);
+  const std::size_t bytes = row_size * sizeof(double);
+  for (hsize_t r = first; r < first + n; ++r) {
+    // The stored chunk is the row's bytes (little-endian float64, as the block holds them)
+    // followed by their checksum: put in the 4 bytes after the row for the write (the next row,
+    // not written yet, or the block's slack), then restored.
+    auto* row = reinterpret_cast<unsigned char*>(s.block.get() + r * row_size);
+    const auto trailer = fletcher32_trailer(row, bytes);
+    std::array<unsigned char, 4> next{};
+    std::copy_n(row + bytes, 4, next.begin());
+    std::copy(trailer.begin(), trailer.end(), row + bytes);
+    offset[0] = r;
+    const herr_t status = H5Dwrite_chunk(s.recent, H5P_DEFAULT, 0, offset.data(), bytes + 4, row);
+    std::copy(next.begin(), next.end(), row + bytes);
+    check_status(status, "write a staging row of " + s.name);
+  }
 }
 
 void flush_block(BlockSeries& s, BlockCompressor& compressor, hsize_t first_row, hsize_t n_rows,

@@ -23,6 +23,8 @@ constexpr hsize_t kMaxBlockRows = 64;
 /// values, or when the output is sparse (ResultsWriter::set_sparse_output). Below it a file of a
 /// few MB is not worth the CPU: deflate was ~20 % of the thesis helmet run (issue 11).
 constexpr hsize_t kMinCompressedPointValues = 4096;
+/// Values of a staging chunk, at most (512 MB): a row of up to this many values is one chunk.
+constexpr hsize_t kMaxStagingChunkValues = hsize_t{1} << 26;
 
 hsize_t product(const std::vector<hsize_t>& d);
 
@@ -37,11 +39,15 @@ void set_extent(hid_t ds, hsize_t rows, const std::vector<hsize_t>& row_dims);
 
 /// A float64 quantity of one row per time point (NaN = absent).
 struct BlockSeries {
-  std::string name;               // path below the analysis group, e.g. "elements/Spar/values"
-  std::vector<hsize_t> row_dims;  // dimensions after the time axis
-  h5::Handle main;                // (n_t, row_dims...), chunks (block_rows, ...)
-  h5::Handle recent;              // (block_rows, row_dims...), one row per chunk
-  std::vector<hsize_t> chunk;     // of the main dataset: block_rows, then the row dimensions'
+  std::string name;                   // path below the analysis group, e.g. "elements/Spar/values"
+  std::vector<hsize_t> row_dims;      // dimensions after the time axis
+  h5::Handle main;                    // (n_t, row_dims...), chunks (block_rows, ...)
+  h5::Handle recent;                  // (block_rows, row_dims...), one row per chunk
+  std::vector<hsize_t> recent_chunk;  // of the staging dataset: 1, then the row dimensions'
+  /// The staging dataset's only filter is Fletcher32: write_staging_rows stores a row that is
+  /// one chunk with H5Dwrite_chunk.
+  bool recent_checksum_only = false;
+  std::vector<hsize_t> chunk;  // of the main dataset: block_rows, then the row dimensions'
   /// The main dataset's filters, when it deflates (its finished blocks are then compressed by a
   /// BlockCompressor and stored with H5Dwrite_chunk); nullopt: written through H5Dwrite.
   std::optional<ChunkPipeline> pipeline;
@@ -58,6 +64,14 @@ struct BlockSeries {
 BlockSeries create_series(hid_t group, hid_t recent_group, const std::string& name,
                           std::vector<hsize_t> row_dims, hsize_t block_rows, hsize_t main_rows,
                           bool growable_columns, bool compress);
+
+/// Rows [first, first + n) of the series' block to its staging dataset. A row that is one whole
+/// chunk (every staging row but those of a model of more than kMaxStagingChunkValues values per
+/// row, or of R once it has widened) is stored as it is in the block, with its checksum in the
+/// block's next 4 bytes for the write (allocate_block's slack after the last row): H5Dwrite
+/// allocated, filled and copied a chunk buffer for every row, then copied it again to append the
+/// checksum, mostly page faults (issue 11: 5 % of the 155 522-DOF dome's samples).
+void write_staging_rows(BlockSeries& s, hsize_t first, hsize_t n);
 
 /// Rows [first_row, first_row + n_rows) of the series' block go to its main dataset (extended to
 /// them): written now when it does not deflate or the compressor works on this thread (the

@@ -393,8 +393,7 @@ void ResultsWriter::Impl::sync(bool block_full) {
     complete_blocks();
   } else {
     const hsize_t first = synced - block_start, n = n_t - synced;
-    for (auto& [name, s] : series)
-      write_rows(s.recent, first, n, s.row_dims, s.block.get() + first * s.row_size());
+    for (auto& [name, s] : series) result_series::write_staging_rows(s, first, n);
     flush();
   }
   write_pending_counters();

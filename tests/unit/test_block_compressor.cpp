@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <limits>
 #include <random>
@@ -14,6 +15,7 @@
 #include "../support/stored_chunks.h"
 #include "io/h5_util.h"
 #include "results/block_compressor.h"
+#include "results/result_series.h"
 
 namespace impactfe::result_series {
 namespace {
@@ -178,6 +180,72 @@ TEST(BlockCompressor, AFilterItDoesNotApplyIsRefused) {
   H5Pset_shuffle(dcpl);  // after Fletcher32: not the order this code applies
   h5::Handle ds(H5Dcreate2(file, "d", H5T_IEEE_F64LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT));
   EXPECT_FALSE(pipeline_of(ds).has_value());
+  H5Fclose(file);
+  fs::remove(path);
+}
+
+/// The staging rows written chunk by chunk from the block (write_staging_rows) are byte for
+/// byte what H5Dwrite stores for the same rows, their checksums read back through HDF5's filter,
+/// and the block's values after each row (where its checksum was put for the write) are as they
+/// were. A series whose rows no longer are one chunk (R once widened) is written through
+/// H5Dwrite.
+TEST(BlockCompressor, StagingRowsAreTheBytesHdf5StoresForTheSameRows) {
+  const fs::path path =
+      fs::temp_directory_path() / ("impactfe_staging_rows_" + std::to_string(getpid()) + ".h5");
+  hid_t file = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  ASSERT_GE(file, 0);
+  h5::Handle recent_by_hdf5(H5Gcreate2(file, "by_hdf5", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+  h5::Handle recent_direct(H5Gcreate2(file, "direct", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+  constexpr hsize_t kRows = 4;
+  const std::vector<std::vector<hsize_t>> shapes = {{400, 6}, {1000}, {30, 7, 3}};
+  for (const auto& row_dims : shapes) {
+    const std::string name =
+        "q" + std::to_string(row_dims.size()) + "_" + std::to_string(row_dims[0]);
+    SCOPED_TRACE(name);
+    // (their main datasets, not used here, side by side in the file's root)
+    BlockSeries by_hdf5 =
+        create_series(file, recent_by_hdf5, "h" + name, row_dims, kRows, 0, false, true);
+    BlockSeries direct =
+        create_series(file, recent_direct, "d" + name, row_dims, kRows, 0, false, true);
+    EXPECT_TRUE(direct.recent_checksum_only);
+    std::vector<hsize_t> full{kRows};
+    full.insert(full.end(), row_dims.begin(), row_dims.end());
+    const std::vector<double> values = block_values({row_dims, full, kRows, 0});
+    const hsize_t row_size = direct.row_size();
+    std::copy(values.begin(), values.end(), direct.block.get());
+    // The slack after the last row, as the memory there may hold anything.
+    direct.block[kRows * row_size] = 0.125;
+    // Rows 0..1, then 2..3, as two syncs would write them.
+    write_staging_rows(direct, 0, 2);
+    write_staging_rows(direct, 2, 2);
+    for (hsize_t i = 0; i < kRows * row_size; ++i)
+      ASSERT_EQ(std::memcmp(&direct.block[i], &values[i], sizeof(double)), 0) << i;
+    EXPECT_EQ(direct.block[kRows * row_size], 0.125);
+    write_rows(by_hdf5.recent, 0, kRows, row_dims, values.data());
+    H5Fflush(file, H5F_SCOPE_GLOBAL);
+    const auto want = stored_chunks(by_hdf5.recent);
+    const auto got = stored_chunks(direct.recent);
+    ASSERT_EQ(want.size(), kRows);  // a whole row per chunk
+    ASSERT_EQ(got.size(), want.size());
+    for (std::size_t c = 0; c < got.size(); ++c) EXPECT_EQ(got[c], want[c]) << "row " << c;
+    std::vector<double> back(values.size());
+    ASSERT_GE(H5Dread(direct.recent, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, back.data()),
+              0);
+    for (std::size_t i = 0; i < back.size(); ++i)
+      EXPECT_EQ(std::memcmp(&back[i], &values[i], sizeof(double)), 0) << i;
+  }
+  // A growable row widened past its chunk: the row is two chunks, written by HDF5.
+  BlockSeries widened = create_series(file, recent_direct, "R", {5}, kRows, 0, true, true);
+  widened.row_dims = {8};
+  set_extent(widened.recent, kRows, widened.row_dims);
+  widened.block = allocate_block(kRows * 8);
+  for (hsize_t i = 0; i < kRows * 8; ++i) widened.block[i] = static_cast<double>(i);
+  write_staging_rows(widened, 0, kRows);
+  std::vector<double> back(kRows * 8);
+  ASSERT_GE(H5Dread(widened.recent, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, back.data()),
+            0);
+  for (hsize_t i = 0; i < kRows * 8; ++i) EXPECT_EQ(back[i], static_cast<double>(i)) << i;
+  EXPECT_EQ(testing::stored_chunks(widened.recent).size(), 2 * kRows);
   H5Fclose(file);
   fs::remove(path);
 }
