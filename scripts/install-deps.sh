@@ -8,7 +8,7 @@ $SUDO apt-get update
 $SUDO apt-get install -y --no-install-recommends \
   build-essential cmake ninja-build pkg-config \
   libeigen3-dev libsuitesparse-dev libmetis-dev libspectra-dev \
-  libcli11-dev libfmt-dev libhdf5-dev libopenblas0-openmp zlib1g-dev \
+  libcli11-dev libfmt-dev libhdf5-dev libopenblas0-openmp zlib1g-dev libdeflate-dev \
   libgtest-dev libgmock-dev libbenchmark-dev \
   clang-format python3 nlohmann-json3-dev chromium fonts-dejavu-core \
   python3-numpy python3-h5py python3-pandas python3-pytest python3-vtk9 \

@@ -1,9 +1,9 @@
 #include "results/block_compressor.h"
 
 #include <fmt/format.h>
+#include <libdeflate.h>
 #include <sys/mman.h>
 #include <unistd.h>
-#include <zlib.h>
 
 #include <algorithm>
 #include <limits>
@@ -90,7 +90,7 @@ std::array<unsigned char, 4> fletcher32_trailer(const unsigned char* stored, std
 ChunkFilter::ChunkFilter(const ChunkPipeline& pipeline) : pipeline_(pipeline) {}
 
 ChunkFilter::~ChunkFilter() {
-  if (stream_) deflateEnd(stream_.get());
+  if (compressor_ != nullptr) libdeflate_free_compressor(compressor_);
 }
 
 std::vector<unsigned char> ChunkFilter::apply(const double* values, std::size_t n) {
@@ -105,32 +105,23 @@ std::vector<unsigned char> ChunkFilter::apply(const double* values, std::size_t 
     plain = shuffled_.data();
   }
   if (pipeline_.deflate_level > 0) {
-    // H5Z__filter_deflate's compress2, as deflateInit once and deflateReset per chunk: the same
-    // bytes, without zlib's state (~270 KB) and the output buffer allocated and freed for every
-    // chunk. Those frees trimmed the worker's heap: ~17 000 madvise calls on the dome, each
-    // interrupting the solver's threads to flush their TLBs (issue 11).
-    if (!stream_) {
-      stream_ = std::make_unique<z_stream>();
-      if (deflateInit(stream_.get(), pipeline_.deflate_level) != Z_OK) {
-        stream_.reset();
-        throw std::runtime_error("deflate of a results chunk: zlib could not start");
-      }
-    } else if (deflateReset(stream_.get()) != Z_OK) {
-      throw std::runtime_error("deflate of a results chunk: zlib could not reset");
+    // In place of H5Z__filter_deflate's compress2 (zlib format: header, deflate, Adler-32).
+    // The compressor is allocated once: zlib's state (~270 KB) and an output buffer allocated
+    // and freed for every chunk trimmed the worker's heap, ~17 000 madvise calls on the dome,
+    // each interrupting the solver's threads to flush their TLBs (issue 11).
+    if (compressor_ == nullptr) {
+      compressor_ = libdeflate_alloc_compressor(pipeline_.deflate_level);
+      if (compressor_ == nullptr) throw std::bad_alloc();
     }
-    deflated_.resize(deflateBound(stream_.get(), static_cast<uLong>(n_bytes)));
-    stream_->next_in = const_cast<unsigned char*>(plain);
-    stream_->avail_in = static_cast<uInt>(n_bytes);
-    stream_->next_out = deflated_.data();
-    stream_->avail_out = static_cast<uInt>(deflated_.size());
-    const int status = deflate(stream_.get(), Z_FINISH);
-    if (status != Z_STREAM_END)
-      throw std::runtime_error(fmt::format("deflate of a results chunk failed (zlib {})", status));
+    deflated_.resize(libdeflate_zlib_compress_bound(compressor_, n_bytes));
+    const std::size_t n_deflated =
+        libdeflate_zlib_compress(compressor_, plain, n_bytes, deflated_.data(), deflated_.size());
+    if (n_deflated == 0)  // only when the bound is too small, which it is not
+      throw std::runtime_error("deflate of a results chunk: no room for the stream");
     // Exactly the stored bytes (and room for the checksum): a block's chunks wait in memory
     // until they are written.
-    stored.reserve(stream_->total_out + 4);
-    stored.assign(deflated_.begin(),
-                  deflated_.begin() + static_cast<std::ptrdiff_t>(stream_->total_out));
+    stored.reserve(n_deflated + 4);
+    stored.assign(deflated_.begin(), deflated_.begin() + static_cast<std::ptrdiff_t>(n_deflated));
   } else {
     stored.reserve(n_bytes + 4);
     stored.assign(plain, plain + n_bytes);

@@ -23,7 +23,7 @@
 
 #include "io/h5_util.h"
 
-struct z_stream_s;  // zlib
+struct libdeflate_compressor;
 
 namespace impactfe::result_series {
 
@@ -46,7 +46,7 @@ BlockBuffer allocate_block(std::size_t n);
 std::array<unsigned char, 4> fletcher32_trailer(const unsigned char* stored, std::size_t n);
 
 /// The filters of a chunked float64 dataset as HDF5 applies them on writing, in this order:
-/// byte shuffle, deflate (zlib, `deflate_level`), Fletcher32 checksum appended.
+/// byte shuffle, deflate (a zlib stream of level `deflate_level`), Fletcher32 checksum appended.
 struct ChunkPipeline {
   bool shuffle = false;
   int deflate_level = 0;  // 0: no deflate
@@ -57,9 +57,13 @@ struct ChunkPipeline {
 /// itself, or its filters in another order (the caller then writes through H5Dwrite).
 std::optional<ChunkPipeline> pipeline_of(hid_t ds);
 
-/// The stored bytes of chunks through a pipeline: what HDF5 would write for a chunk, and what
-/// H5Dwrite_chunk takes with filter mask 0. Keeps zlib's state and its buffers from chunk to
-/// chunk (one filter per thread).
+/// The stored bytes of chunks through a pipeline, what H5Dwrite_chunk takes with filter mask 0:
+/// HDF5's shuffle and Fletcher32 byte for byte, and for deflate a zlib stream written by
+/// libdeflate at the dataset's level, which HDF5's filter (zlib's inflate) reads like its own.
+/// zlib's deflate_fast ran at ~64 MB/s on the shuffled results of the 155 522-DOF dome, 155 ms
+/// of the second core per stored point beside the solve's threads; libdeflate at the same
+/// level: ~2.2x the speed, the stream within 2 % of zlib's size (issue 11, docs/benchmarks.md).
+/// Keeps the compressor and its buffers from chunk to chunk (one filter per thread).
 class ChunkFilter {
  public:
   explicit ChunkFilter(const ChunkPipeline& pipeline);
@@ -72,7 +76,7 @@ class ChunkFilter {
 
  private:
   ChunkPipeline pipeline_;
-  std::unique_ptr<z_stream_s> stream_;  // deflate's state, from the first chunk on
+  libdeflate_compressor* compressor_ = nullptr;  // deflate's state, from the first chunk on
   std::vector<unsigned char> shuffled_, deflated_;
 };
 
