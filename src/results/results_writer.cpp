@@ -7,7 +7,7 @@
 // cheaply, so the points of the block being filled are kept in memory and also written, one
 // row per chunk, to a staging dataset under `recent/`. Appending a point only copies its rows
 // into the block in memory (no HDF5 call, no allocation once the series exist): the points
-// since the last sync reach the staging datasets in one write per quantity, and `time` after
+// since the last sync reach the staging datasets, one chunk per row, and `time` after
 // them, at a sync — every kSyncPoints points, kSyncBytes or kSyncSeconds, whichever comes
 // first, and when a point completes its block — so a killed run keeps every point up to the
 // last sync. A full block then goes to the main dataset, a compressed one deflated on a worker
