@@ -4,6 +4,8 @@
 #include <filesystem>
 #include <limits>
 #include <optional>
+#include <set>
+#include <stdexcept>
 
 #include "assembly/element_adapters.h"
 #include "core/files.h"
@@ -128,10 +130,8 @@ Structure::Structure(const Model& model, const AnalysisOptions& options,
   context_.stress_stiffening = options.stress_stiffening || options.large_deflection;
   context_.lumped_mass = options.lumped_mass;
 
-  for (const auto& [id, node] : model.nodes) {
-    node_row_[id] = static_cast<int>(node_ids_.size());
-    node_ids_.push_back(id);
-  }
+  for (const auto& [id, node] : model.nodes) node_ids_.push_back(id);
+  index_node_rows();
 
   ElementBuildContext build{
       model, [&settings](const ElementRecord& r) { return resolve_superelement(r, settings); }};
@@ -237,16 +237,42 @@ void Structure::check_load_step(const LoadStep& step) const {
 
 void Structure::use_table_nodes(const std::vector<int>& ids) {
   if (ids == node_ids_) return;
-  std::map<int, int> rows;
-  for (std::size_t r = 0; r < ids.size(); ++r) rows[ids[r]] = static_cast<int>(r);
+  const std::set<int> table_ids(ids.begin(), ids.end());
   for (int id : node_ids_)
-    if (rows.count(id) == 0)
+    if (table_ids.count(id) == 0)
       throw InputError(fmt::format(
           "node {} is not in the model of the results file: the model gained nodes after the job's "
           "first solution; start a new job for the new model (/CLEAR, /FILNAME)",
           id));
   node_ids_ = ids;
-  node_row_ = std::move(rows);
+  index_node_rows();
+}
+
+void Structure::index_node_rows() {
+  node_row_dense_.clear();
+  node_row_sparse_.clear();
+  if (node_ids_.empty()) return;
+  const auto [lo, hi] = std::minmax_element(node_ids_.begin(), node_ids_.end());
+  const long long span = static_cast<long long>(*hi) - *lo + 1;
+  if (span <= 4 * static_cast<long long>(node_ids_.size()) + 1024) {
+    node_id_base_ = *lo;
+    node_row_dense_.assign(static_cast<std::size_t>(span), -1);
+    for (std::size_t r = 0; r < node_ids_.size(); ++r)
+      node_row_dense_[static_cast<std::size_t>(node_ids_[r] - node_id_base_)] = static_cast<int>(r);
+  } else {
+    for (std::size_t r = 0; r < node_ids_.size(); ++r)
+      node_row_sparse_[node_ids_[r]] = static_cast<int>(r);
+  }
+}
+
+int Structure::node_row(int id) const {
+  if (node_row_dense_.empty()) return node_row_sparse_.at(id);
+  const long long at = static_cast<long long>(id) - node_id_base_;
+  const int row = at >= 0 && at < static_cast<long long>(node_row_dense_.size())
+                      ? node_row_dense_[static_cast<std::size_t>(at)]
+                      : -1;
+  if (row < 0) throw std::out_of_range(fmt::format("node {} has no row in the nodal tables", id));
+  return row;
 }
 
 std::set<DofKey> Structure::constraints_of(const LoadStep& step) const {
@@ -266,7 +292,7 @@ Eigen::MatrixXd Structure::dof_table(const DofMap& dofs, const VectorXd& values,
     const DofKey& key = dofs.key(i);
     if (row < 0 || key.node != node) {
       node = key.node;
-      row = node_row_.at(node);
+      row = node_row(node);
     }
     table(row, static_cast<int>(key.dof)) = values(i);
   }

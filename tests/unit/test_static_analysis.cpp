@@ -3,6 +3,8 @@
 // reports its linear-solver figures (run summary, results attributes, bench/).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
@@ -75,6 +77,34 @@ TEST(StaticAnalysis, ReportsLinearSolverFiguresInStatisticsAndResults) {
   const auto tip = run.reader->nodal_series(n + 1, "UX");
   ASSERT_FALSE(tip.empty());
   EXPECT_NEAR(tip.back().second, n * 10.0 / 100.0, 1e-9);
+}
+
+/// Nodal tables of nodes numbered far apart (ids spanning more than 4 × their number + 1024: the
+/// tables' rows are then found through a map) and of nodes numbered with a gap (by a vector over
+/// the span): two LINK1 spars pulled by FX = 600 at the far end, UX = F L / (E A) per spar, the
+/// reaction -600 at the fixed end.
+TEST(StaticAnalysis, NodalTablesOfSparselyAndDenselyNumberedNodes) {
+  for (const auto& [middle, end] : {std::pair{500000, 123456789}, std::pair{50, 90}}) {
+    SCOPED_TRACE(end);
+    const std::string text =
+        "/PREP7\nET,1,LINK1\nR,1,2.0\nMP,EX,1,30E6\nN,7,0,0\nN," + std::to_string(middle) +
+        ",10,0\nN," + std::to_string(end) + ",20,0\nE,7," + std::to_string(middle) + "\nE," +
+        std::to_string(middle) + "," + std::to_string(end) + "\nD,7,UX\nD,7,UY\nD," +
+        std::to_string(middle) + ",UY\nD," + std::to_string(end) + ",UY\nF," + std::to_string(end) +
+        ",FX,600\nFINISH\n/SOLU\nANTYPE,STATIC\nSOLVE\nFINISH\n";
+    const auto run = testing::run_deck_text("static_node_ids", text);
+    const TimePoint p = run.reader->time_point(1, 0);
+    const std::vector<int>& ids = run.reader->node_ids();
+    ASSERT_EQ(ids.size(), 3u);
+    const auto row = [&](int id) {
+      return static_cast<Eigen::Index>(std::find(ids.begin(), ids.end(), id) - ids.begin());
+    };
+    EXPECT_NEAR(p.displacement(row(middle), 0), 1e-4, 1e-15);  // 600 * 10 / (30e6 * 2)
+    EXPECT_NEAR(p.displacement(row(end), 0), 2e-4, 1e-15);
+    EXPECT_EQ(p.displacement(row(7), 0), 0.0);
+    EXPECT_NEAR(p.reaction(row(7), 0), -600.0, 1e-9);
+    EXPECT_TRUE(std::isnan(p.reaction(row(end), 0)));  // not constrained in UX
+  }
 }
 
 }  // namespace
