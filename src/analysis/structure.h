@@ -79,16 +79,15 @@ class Structure {
  private:
   /// A node table (NaN where no DOF) of values(i) for the DOFs first .. end − 1 of `dofs`.
   Eigen::MatrixXd dof_table(const DofMap& dofs, const VectorXd& values, int first, int end) const;
-
-  const Model& model_;
-  AnalysisOptions options_;
-  ElementContext context_;
-  std::vector<std::unique_ptr<Element>> elements_;
   /// Row of node `id` in the nodal tables; std::out_of_range when it has none.
   int node_row(int id) const;
   /// Indexes node_ids_ for node_row.
   void index_node_rows();
 
+  const Model& model_;
+  AnalysisOptions options_;
+  ElementContext context_;
+  std::vector<std::unique_ptr<Element>> elements_;
   std::vector<int> node_ids_;
   /// node_row's index: by id − node_id_base_ (−1: no row) when the ids span at most 4 × their
   /// number + 1024 values, as numbered decks do (a map lookup per node took ~3 ms per table of
