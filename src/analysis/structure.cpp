@@ -316,8 +316,10 @@ std::map<std::string, ElementResultTable> Structure::element_results(const Assem
     if (elements_[e]->result_names().empty()) continue;
     members[elements_[e]->family()].push_back(e);
   }
-  for (const auto& [family, list] : members) {
-    ElementResultTable& table = tables[family];
+  for (const auto& family_members : members) {
+    // (not a structured binding: clang 14 cannot capture one in the lambda below)
+    const std::vector<std::size_t>& list = family_members.second;
+    ElementResultTable& table = tables[family_members.first];
     table.item_names = elements_[list.front()]->result_names();
     table.values.resize(static_cast<int>(list.size()), static_cast<int>(table.item_names.size()));
     for (std::size_t e : list) table.element_ids.push_back(elements_[e]->id());
