@@ -14,9 +14,17 @@ class DirectSolution;
 /// Opens a linear or nonlinear static analysis (KAN,0 / ANTYPE,STATIC; spec §10.7) or a full
 /// (nonlinear) transient (KAN,4 / TRNOPT,FULL; spec §10.3), as the structure's options say: the
 /// results analysis is begun and the solution waits for its load steps.
+/// `expected_points`: the points the analysis will store, when its load steps are all known
+/// (stored_points_at_most; 0: not known).
 std::unique_ptr<DirectSolution> begin_direct_analysis(Structure& structure, ResultsWriter& writer,
                                                       const RunSettings& settings,
-                                                      AnalysisStatistics& stats);
+                                                      AnalysisStatistics& stats,
+                                                      long long expected_points = 0);
+/// The points a static or full transient analysis of these load steps stores at most with
+/// constant substeps (OUTRES; the initial state of a transient included); 0 when a step's
+/// timing is invalid (reported when the step is solved). Automatic time stepping may store
+/// more (items written at every substep taken).
+long long stored_points_at_most(const std::vector<LoadStep>& steps, bool transient);
 /// The number of modes a modal or mode-superposition analysis can compute: `wanted`, or fewer
 /// when fewer free DOFs carry mass (noted in `stats`). ModelError naming the materials without
 /// density when no free DOF has mass (the mass matrix is zero: no frequency exists).

@@ -153,7 +153,13 @@ void JobSession::solve(const Job& job, std::size_t step) {
                                                  &s.analysis->load_steps);
         structure_->use_table_nodes(writer.node_ids());
         record_file_defined_nodes(*structure_, writer);
-        direct_ = begin_direct_analysis(*structure_, writer, settings_, current);
+        // The file's time blocks fit the points when the load steps are all known.
+        const long long expected =
+            s.analysis->complete && !restart
+                ? stored_points_at_most(s.analysis->load_steps,
+                                        s.analysis->options.type == AnalysisType::Transient)
+                : 0;
+        direct_ = begin_direct_analysis(*structure_, writer, settings_, current, expected);
       }
     }
     // The analysis grew by the load steps its SOLVEs appended since the last call.

@@ -235,6 +235,9 @@ struct AnalysisRequest {
   AnalysisOptions options;
   std::vector<LoadStep> load_steps;
   SourceLocation where;  // the command that started the solution (/INPUT,27, SOLVE, ...)
+  /// True when `load_steps` is the whole analysis (AFWRITE froze it); false when later SOLVEs
+  /// may append load steps to it.
+  bool complete = false;
 };
 
 /// SEEXP: the superelement to expand and the use pass whose master results drive it.

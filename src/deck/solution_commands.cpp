@@ -525,6 +525,7 @@ void cmd_afwrite(DeckReader& r, const Command& c) {
   a.options = r.model.options;
   a.load_steps = r.load_steps_4x;
   a.where = c.where;
+  a.complete = true;
   step.analysis = std::move(a);
   step.model_snapshot = std::make_shared<Model>(solution_model(r, c));
   r.frozen = std::move(step);

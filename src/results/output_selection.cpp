@@ -90,6 +90,21 @@ OutputSelection output_selection_between(const OutputControl& f) {
   return output_selection(f, -1, 0);
 }
 
+long long stored_substeps_at_most(const OutputControl& f, int n_substeps) {
+  std::vector<int> frequencies{f.every};
+  for (const auto& specs : f.items)
+    for (const OutputSpec& spec : specs) frequencies.push_back(spec.every);
+  const long long n = std::max(n_substeps, 0);
+  long long count = 0;
+  bool last = false;  // some item is written at the last substep (frequency 0 or n >= 1)
+  for (int every : frequencies) {
+    if (every < 0) continue;
+    last = true;
+    if (every >= 1) count += n / every - (n % every == 0 ? 1 : 0);  // the last counted below
+  }
+  return std::min(n, count + (last && n > 0 ? 1 : 0));
+}
+
 std::vector<int> output_strides(const OutputControl& f) {
   std::vector<int> strides;
   if (f.every > 1) strides.push_back(f.every);

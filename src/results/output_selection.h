@@ -40,6 +40,11 @@ OutputSelection output_selection(const OutputControl& control, int substep, int 
 /// requested times themselves (the nominal grid j·Δt₀, j a multiple of a frequency n > 1, and
 /// the load-step end) use output_selection with the grid index j.
 OutputSelection output_selection_between(const OutputControl& control);
+/// Substeps of a load step of `n_substeps` constant substeps that store a point, at most (the
+/// initial state of a transient not counted): every one when some item is written at every
+/// substep, else the multiples of each frequency n > 1 and the last.
+long long stored_substeps_at_most(const OutputControl& control, int n_substeps);
+
 /// The OUTRES frequencies n > 1 of a load step (the strides of its requested times).
 std::vector<int> output_strides(const OutputControl& control);
 

@@ -31,11 +31,13 @@ hsize_t product(const std::vector<hsize_t>& d) {
   return n;
 }
 
-hsize_t block_rows_for(std::size_t n_nodes, std::size_t n_elements) {
+hsize_t block_rows_for(std::size_t n_nodes, std::size_t n_elements, long long expected_points) {
   const double row_bytes = 8.0 * (4.0 * 6.0 * static_cast<double>(n_nodes) +
                                   24.0 * static_cast<double>(n_elements) + 16.0);
   hsize_t rows = kMaxBlockRows;
   while (rows > 4 && static_cast<double>(rows) * row_bytes > kBlockMemoryBytes) rows /= 2;
+  if (expected_points > 0)
+    while (rows > 4 && static_cast<long long>(rows / 2) >= expected_points) rows /= 2;
   return rows;
 }
 

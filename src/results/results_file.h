@@ -72,8 +72,11 @@ class ResultsWriter {
   ResultsWriter& operator=(const ResultsWriter&) = delete;
 
   /// Opens a new analysis group /analysis_<k>; returns its 1-based index k. Ends the previous
-  /// analysis first if it is still open (status "complete").
-  int begin_analysis(ResultsKind kind, const std::string& description);
+  /// analysis first if it is still open (status "complete"). `expected_points`: the points the
+  /// analysis will store when known in advance (0: not known); a small count gives time blocks
+  /// of fewer points (result_series::block_rows_for). Storing more is still right.
+  int begin_analysis(ResultsKind kind, const std::string& description,
+                     long long expected_points = 0);
   /// Appends one time point to the current analysis and flushes the file.
   void append(const TimePoint& point);
   /// Whether the points that follow may leave quantities, nodes or elements absent (OUTRES per

@@ -621,7 +621,8 @@ ResultsWriter::~ResultsWriter() {
   }
 }
 
-int ResultsWriter::begin_analysis(ResultsKind kind, const std::string& description) {
+int ResultsWriter::begin_analysis(ResultsKind kind, const std::string& description,
+                                  long long expected_points) {
   Impl& m = *impl_;
   const Impl::Guard guard(m, m.block_bytes(m.n_t - m.block_start));
   m.close_analysis("complete");
@@ -634,7 +635,7 @@ int ResultsWriter::begin_analysis(ResultsKind kind, const std::string& descripti
   m.block_start = 0;
   m.synced = 0;
   m.last_sync = std::chrono::steady_clock::now();
-  m.block_rows = block_rows_for(m.n_nodes(), m.n_elements);
+  m.block_rows = block_rows_for(m.n_nodes(), m.n_elements, expected_points);
   h5::write_attribute(m.group, "kind", std::string(results_kind_name(kind)), StringLayout::Fixed);
   h5::write_attribute(m.group, "description", description, StringLayout::Fixed);
   h5::write_attribute(m.group, "status", std::string("running"), StringLayout::Fixed);

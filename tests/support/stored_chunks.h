@@ -3,6 +3,7 @@
 #include <hdf5.h>
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace impactfe::testing {
@@ -32,6 +33,27 @@ inline std::vector<StoredChunk> stored_chunks(hid_t ds) {
   }
   H5Sclose(space);
   return chunks;
+}
+
+/// How a dataset of a results file is stored: its chunk dimensions (the first along time: the
+/// writer's block rows; empty when not chunked) and its bytes on disk.
+struct StoredLayout {
+  std::vector<hsize_t> chunk;
+  hsize_t bytes = 0;
+};
+inline StoredLayout stored_layout(const std::string& path, const std::string& dataset) {
+  StoredLayout layout;
+  const hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  const hid_t ds = H5Dopen2(f, dataset.c_str(), H5P_DEFAULT);
+  const hid_t dcpl = H5Dget_create_plist(ds);
+  hsize_t chunk[8] = {};
+  const int rank = H5Pget_chunk(dcpl, 8, chunk);
+  if (rank > 0) layout.chunk.assign(chunk, chunk + rank);
+  layout.bytes = H5Dget_storage_size(ds);
+  H5Pclose(dcpl);
+  H5Dclose(ds);
+  H5Fclose(f);
+  return layout;
 }
 
 }  // namespace impactfe::testing

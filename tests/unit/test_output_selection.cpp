@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 #include "core/model.h"
 #include "core/output_control.h"
@@ -46,6 +47,33 @@ TEST(OutputSelection, ItemsAndComponentsAccumulateLaterWinning) {
   for (int id : {8, 9}) EXPECT_TRUE(s3.contains(id)) << id;
   for (int id : {1, 5, 7}) EXPECT_FALSE(s3.contains(id)) << id;
   EXPECT_FALSE(output_selection(c, 3, 20)[OutputItem::VSOL].contains(8));
+}
+
+// The bound the results file sizes its time blocks with (block_rows_for): never below the
+// substeps output_selection stores, and equal to them for one frequency.
+TEST(OutputSelection, StoredSubstepsAtMostCountsTheSubstepsThatStore) {
+  OutputControl mixed = control(-1);  // OUTRES,ALL,NONE; NSOL every 4th; STRS every 6th of TIP
+  mixed.items[static_cast<int>(OutputItem::NSOL)].push_back({4, "", {}});
+  mixed.items[static_cast<int>(OutputItem::STRS)].push_back({6, "TIP", {3}});
+  OutputControl none = control(-1);
+  none.items[static_cast<int>(OutputItem::RSOL)].push_back({-1, "", {}});
+  struct Case {
+    OutputControl control;
+    bool exact;  // one frequency: the bound is the count
+  };
+  const std::vector<Case> cases{{control(-1), true}, {control(0), true}, {control(1), true},
+                                {control(3), true},  {control(7), true}, {control(20), true},
+                                {control(50), true}, {mixed, false},     {none, true}};
+  for (std::size_t i = 0; i < cases.size(); ++i)
+    for (int n : {1, 2, 7, 20, 24, 200}) {
+      long long stored = 0;
+      for (int k = 1; k <= n; ++k) stored += output_selection(cases[i].control, k, n).any();
+      const long long bound = stored_substeps_at_most(cases[i].control, n);
+      EXPECT_GE(bound, stored) << "case " << i << ", " << n << " substeps";
+      if (cases[i].exact) EXPECT_EQ(bound, stored) << "case " << i << ", " << n << " substeps";
+    }
+  EXPECT_EQ(stored_substeps_at_most(control(10), 200), 20);
+  EXPECT_EQ(stored_substeps_at_most(mixed, 24), 6 + 4 - 1);  // 4, 8, .., 24 and 6, 12, 18
 }
 
 TEST(OutputSelection, ElementItemCategories) {

@@ -574,6 +574,44 @@ TEST_F(ResultsFileTest, NodeHistoryOfLongRunReadsFewChunks) {
             << " bytes\n";
 }
 
+/// An analysis that says how many points it stores gets time blocks that fit them (the thesis
+/// helmet stores 4): a smaller file with the same values; storing more than it said still
+/// keeps every point.
+TEST_F(ResultsFileTest, AnalysisOfKnownPointCountStoresBlocksThatFitThem) {
+  constexpr int kNodes = 40;
+  struct Run {
+    const char* name;
+    long long expected;  // told to begin_analysis
+    int stored;          // points appended
+    hsize_t block;       // time chunk expected
+  };
+  for (const Run& run :
+       {Run{"unknown.h5", 0, 3, result_series::kMaxBlockRows}, Run{"three.h5", 3, 3, 4},
+        Run{"five.h5", 5, 5, 8}, Run{"more_than_said.h5", 3, 11, 4}}) {
+    const std::string path = file(run.name);
+    {
+      ResultsWriter w(path, nodes_only(kNodes));
+      w.begin_analysis(ResultsKind::Transient, "known count", run.expected);
+      w.set_sparse_output(false);  // every item at every point (uniform OUTRES)
+      append_history(w, kNodes, 0, run.stored);
+      w.end_analysis();
+    }
+    EXPECT_EQ(testing::stored_layout(path, "analysis_1/U").chunk.at(0), run.block) << run.name;
+    const ResultsReader r(path);
+    for (int node : {1, 17, kNodes}) {
+      const auto s = r.nodal_series(node, "UZ");
+      ASSERT_EQ(s.size(), static_cast<std::size_t>(run.stored)) << run.name;
+      for (int k = 0; k < run.stored; ++k)
+        EXPECT_EQ(s[static_cast<std::size_t>(k)].second, history_value(node - 1, k))
+            << run.name << " node " << node << " point " << k;
+    }
+  }
+  // The unwritten rows of a block are stored too (uncompressed, as a dense output's few
+  // values per point are): U of 3 points in blocks of 4 takes a tenth of U in blocks of 64.
+  EXPECT_LT(10 * testing::stored_layout(file("three.h5"), "analysis_1/U").bytes,
+            testing::stored_layout(file("unknown.h5"), "analysis_1/U").bytes);
+}
+
 /// Raw stored bytes of every chunk of a dataset of a results file, in chunk order.
 std::vector<std::vector<unsigned char>> stored_chunks(const std::string& path,
                                                       const std::string& dataset) {

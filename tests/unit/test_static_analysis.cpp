@@ -7,8 +7,11 @@
 #include <cmath>
 #include <fstream>
 #include <sstream>
+#include <vector>
 
 #include "../support/run_deck.h"
+#include "../support/stored_chunks.h"
+#include "results/result_series.h"
 
 namespace impactfe {
 namespace {
@@ -104,6 +107,46 @@ TEST(StaticAnalysis, NodalTablesOfSparselyAndDenselyNumberedNodes) {
     EXPECT_EQ(p.displacement(row(7), 0), 0.0);
     EXPECT_NEAR(p.reaction(row(7), 0), -600.0, 1e-9);
     EXPECT_TRUE(std::isnan(p.reaction(row(end), 0)));  // not constrained in UX
+  }
+}
+
+/// An ANSYS 4.2 deck freezes its load steps (AFWRITE) before /INPUT,27 runs them: the results
+/// file then sizes its time blocks to the points the analysis stores. The thesis pendulum with
+/// ITER,100,1,50 (results at substeps 50 and 100) stores 3 points, the initial state included:
+/// blocks of 4. The same analysis from SOLVE, which later SOLVEs may continue, keeps blocks of
+/// 64; ITER,101,1,1 as the thesis wrote it stores 102 points: blocks of 64 too.
+TEST(StaticAnalysis, FrozenLoadStepsGiveTimeBlocksThatFitTheirPoints) {
+  const auto deck_text = [](const std::string& deck) {
+    std::ifstream in(std::string(IMPACTFE_TEST_DECKS) + "/" + deck);
+    std::stringstream all;
+    all << in.rdbuf();
+    return all.str();
+  };
+  const auto replaced = [](std::string s, const std::string& from, const std::string& to) {
+    const auto at = s.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    if (at != std::string::npos) s.replace(at, from.size(), to);
+    return s;
+  };
+  const std::string frozen = deck_text("thesis/pendulum1.inp");
+  const std::string solved = deck_text("modern/pendulum1_modern.inp");
+  struct Case {
+    std::string tag, deck;
+    std::size_t points;
+    hsize_t block;
+  };
+  const std::vector<Case> cases{
+      {"frozen_3", replaced(frozen, "ITER,101,5,1", "ITER,100,1,50"), 3, 4},
+      {"frozen_102", frozen, 102, result_series::kMaxBlockRows},
+      {"solved_3",
+       replaced(replaced(solved, "NSUBST,101,101,101", "NSUBST,100,100,100"), "OUTRES,ALL,1",
+                "OUTRES,ALL,50"),
+       3, result_series::kMaxBlockRows}};
+  for (const Case& c : cases) {
+    const auto run = testing::run_deck_text(c.tag, c.deck);
+    EXPECT_EQ(run.reader->times(1).size(), c.points) << c.tag;
+    EXPECT_EQ(testing::stored_layout(run.results_path, "analysis_1/U").chunk.at(0), c.block)
+        << c.tag;
   }
 }
 
