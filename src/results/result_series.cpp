@@ -63,7 +63,10 @@ BlockSeries create_series(hid_t group, hid_t recent_group, const std::string& na
   s.row_dims = std::move(row_dims);
   const double fill = kNaN;  // rows never written read as NaN ("absent")
   std::vector<hsize_t> dims{main_rows}, maxdims{H5S_UNLIMITED}, chunk{block_rows};
-  // Split the first row dimension so that a chunk holds about kChunkBytes.
+  // Split the first row dimension so that a chunk holds about kChunkBytes, in equal parts: a
+  // chunk reaching past the dataset's edge is filled with the fill value by HDF5 before every
+  // write of it (a memset and a fill of the whole chunk), which was 3/4 of the block writes of
+  // the thesis helmet (68 nodes in chunks of 21; now 17).
   hsize_t rest = 1;
   for (std::size_t i = 1; i < s.row_dims.size(); ++i) rest *= std::max<hsize_t>(1, s.row_dims[i]);
   for (std::size_t i = 0; i < s.row_dims.size(); ++i) {
@@ -73,7 +76,8 @@ BlockSeries create_series(hid_t group, hid_t recent_group, const std::string& na
     hsize_t c = std::max<hsize_t>(1, s.row_dims[i]);
     if (i == 0) {
       const hsize_t fit = std::max<hsize_t>(1, kChunkBytes / (block_rows * rest * 8));
-      c = grows ? std::min<hsize_t>(fit, 64) : std::min(c, fit);
+      const hsize_t parts = (c + fit - 1) / fit;
+      c = grows ? std::min<hsize_t>(fit, 64) : (c + parts - 1) / parts;
     }
     chunk.push_back(c);
   }

@@ -612,6 +612,37 @@ TEST_F(ResultsFileTest, AnalysisOfKnownPointCountStoresBlocksThatFitThem) {
             testing::stored_layout(file("unknown.h5"), "analysis_1/U").bytes);
 }
 
+/// The node dimension of a main chunk is split into equal parts (a chunk past the dataset's edge
+/// is filled whole by HDF5 before each write): 68 nodes, as the thesis helmet has, whose 64
+/// points of U fit 21 nodes in a chunk of 64 kB, take 4 chunks of 17 nodes, not 3 of 21 and one
+/// of 5; and the values read back.
+TEST_F(ResultsFileTest, MainChunksSplitTheNodesIntoEqualParts) {
+  for (int n_nodes : {68, 21, 22, 500}) {
+    const std::string path = file("nodes_" + std::to_string(n_nodes) + ".h5");
+    constexpr int kPoints = 70;
+    {
+      ResultsWriter w(path, nodes_only(n_nodes));
+      w.begin_analysis(ResultsKind::Transient, "equal parts");
+      w.set_sparse_output(false);
+      append_history(w, n_nodes, 0, kPoints);
+      w.end_analysis();
+    }
+    const std::vector<hsize_t> chunk = testing::stored_layout(path, "analysis_1/U").chunk;
+    ASSERT_EQ(chunk.size(), 3u);
+    const hsize_t fit = 64 * 1024 / (result_series::kMaxBlockRows * 6 * 8);  // 21 nodes
+    const hsize_t parts = (n_nodes + fit - 1) / fit;                         // fewest chunks
+    EXPECT_EQ((n_nodes + chunk[1] - 1) / chunk[1], parts) << n_nodes << " nodes";
+    EXPECT_LT(parts * chunk[1] - n_nodes, parts) << n_nodes << " nodes: chunks of " << chunk[1];
+    const ResultsReader r(path);
+    for (int node : {1, n_nodes / 2, n_nodes}) {
+      const auto series = r.nodal_series(node, "UZ");
+      ASSERT_EQ(series.size(), static_cast<std::size_t>(kPoints));
+      for (int k = 0; k < kPoints; ++k)
+        EXPECT_EQ(series[static_cast<std::size_t>(k)].second, history_value(node - 1, k));
+    }
+  }
+}
+
 /// Raw stored bytes of every chunk of a dataset of a results file, in chunk order.
 std::vector<std::vector<unsigned char>> stored_chunks(const std::string& path,
                                                       const std::string& dataset) {
