@@ -63,10 +63,10 @@ BlockSeries create_series(hid_t group, hid_t recent_group, const std::string& na
   s.row_dims = std::move(row_dims);
   const double fill = kNaN;  // rows never written read as NaN ("absent")
   std::vector<hsize_t> dims{main_rows}, maxdims{H5S_UNLIMITED}, chunk{block_rows};
-  // Split the first row dimension so that a chunk holds about kChunkBytes, in equal parts: a
-  // chunk reaching past the dataset's edge is filled with the fill value by HDF5 before every
-  // write of it (a memset and a fill of the whole chunk), which was 3/4 of the block writes of
-  // the thesis helmet (68 nodes in chunks of 21; now 17).
+  // Split the first row dimension so that a chunk holds about kChunkBytes, in equal parts: HDF5
+  // fills a new chunk that a write does not cover whole with the fill value first, as it does a
+  // chunk reaching past the dataset's edge (the thesis helmet's 68 nodes were chunks of 21, 21,
+  // 21 and 5 nodes; now 4 x 17).
   hsize_t rest = 1;
   for (std::size_t i = 1; i < s.row_dims.size(); ++i) rest *= std::max<hsize_t>(1, s.row_dims[i]);
   for (std::size_t i = 0; i < s.row_dims.size(); ++i) {

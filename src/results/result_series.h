@@ -32,8 +32,9 @@ hsize_t product(const std::vector<hsize_t>& d);
 /// nodal quantity and element value would need more than 32 MB, or when the analysis is known
 /// to store fewer points (`expected_points` > 0; the power of two that holds them, at least 4):
 /// a main chunk holds a whole block, so the last, partial block of a dataset that is not
-/// deflated is stored whole, its unwritten rows filled with NaN (the thesis helmet stores 4
-/// points: its file took 1.75 MB with blocks of 64 points, 0.2 MB with blocks of 4).
+/// deflated is stored whole, its unwritten rows filled with NaN (the thesis helmet with results
+/// at the ends of its load steps only, 4 points, took 1.75 MB with blocks of 64 points, 0.2 MB
+/// with blocks of 4).
 hsize_t block_rows_for(std::size_t n_nodes, std::size_t n_elements, long long expected_points = 0);
 
 /// Writes rows [first, first + n_rows) of a dataset of rows `row_dims`.

@@ -574,9 +574,8 @@ TEST_F(ResultsFileTest, NodeHistoryOfLongRunReadsFewChunks) {
             << " bytes\n";
 }
 
-/// An analysis that says how many points it stores gets time blocks that fit them (the thesis
-/// helmet stores 4): a smaller file with the same values; storing more than it said still
-/// keeps every point.
+/// An analysis that says how many points it stores gets time blocks that fit them: a smaller
+/// file with the same values; storing more than it said still keeps every point.
 TEST_F(ResultsFileTest, AnalysisOfKnownPointCountStoresBlocksThatFitThem) {
   constexpr int kNodes = 40;
   struct Run {
