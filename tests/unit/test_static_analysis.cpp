@@ -114,7 +114,7 @@ TEST(StaticAnalysis, NodalTablesOfSparselyAndDenselyNumberedNodes) {
 /// file then sizes its time blocks to the points the analysis stores. The thesis pendulum with
 /// ITER,100,1,50 (results at substeps 50 and 100) stores 3 points, the initial state included:
 /// blocks of 4. The same analysis from SOLVE, which later SOLVEs may continue, keeps blocks of
-/// 64; ITER,101,1,1 as the thesis wrote it stores 102 points: blocks of 64 too.
+/// 64; ITER,101,5,1 as the thesis wrote it (NPOST 1) stores 102 points: blocks of 64 too.
 TEST(StaticAnalysis, FrozenLoadStepsGiveTimeBlocksThatFitTheirPoints) {
   const auto deck_text = [](const std::string& deck) {
     std::ifstream in(std::string(IMPACTFE_TEST_DECKS) + "/" + deck);
