@@ -6,6 +6,8 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <bit>
+#include <functional>
 #include <limits>
 #include <stdexcept>
 
@@ -133,81 +135,118 @@ std::vector<unsigned char> ChunkFilter::apply(const double* values, std::size_t 
   return stored;
 }
 
-void BlockJob::compress() {
-  try {
-    const std::size_t d = row_dims.size();
-    std::size_t row_size = 1;
-    for (auto x : row_dims) row_size *= static_cast<std::size_t>(x);
-    std::size_t chunk_size = 1;
-    for (auto x : chunk) chunk_size *= static_cast<std::size_t>(x);
-    if (d == 0 || chunk.size() != d + 1)
-      throw std::logic_error("BlockJob: a chunk needs one dimension more than a row");
-    if (row_size == 0 || chunk_size == 0) return;
-    // Strides of the row dimensions in a block row, and the chunk grid over them.
-    std::vector<std::size_t> stride(d, 1);
-    for (std::size_t i = d - 1; i-- > 0;)
-      stride[i] = stride[i + 1] * static_cast<std::size_t>(row_dims[i + 1]);
-    std::vector<hsize_t> origin(d, 0);  // chunk origin in the row dimensions
-    std::size_t released = 0;           // values of each row given back (release_compressed_rows)
-    std::vector<double> buffer(chunk_size);
-    ChunkFilter filter(pipeline);
-    const std::size_t inner = static_cast<std::size_t>(chunk[d]);  // contiguous run in a chunk
-    while (true) {
-      // Gather the chunk: (t, i_1 .. i_d) over chunk[0] x ... x chunk[d], NaN outside the rows
-      // given and the dataset's edge, as HDF5 fills a chunk before writing the selection into it.
-      std::fill(buffer.begin(), buffer.end(), kFill);
-      std::vector<hsize_t> index(d, 0);  // within the chunk, the last dimension as runs
-      std::size_t out = 0;
-      for (hsize_t t = 0; t < chunk[0]; ++t) {
-        std::fill(index.begin(), index.end(), 0);
-        while (true) {
-          bool inside = t < n_rows;
-          std::size_t at = static_cast<std::size_t>(t) * row_size;
-          for (std::size_t i = 0; i + 1 < d; ++i) {
-            const hsize_t g = origin[i] + index[i];
-            inside = inside && g < row_dims[i];
-            at += static_cast<std::size_t>(g) * stride[i];
-          }
-          if (inside) {
-            const hsize_t g0 = origin[d - 1];
-            const std::size_t run = static_cast<std::size_t>(
-                std::min<hsize_t>(chunk[d], row_dims[d - 1] > g0 ? row_dims[d - 1] - g0 : 0));
-            std::copy_n(block.get() + at + static_cast<std::size_t>(g0), run, &buffer[out]);
-          }
-          out += inner;
-          // Next run: the odometer over the chunk's dimensions 1 .. d-1.
-          std::size_t i = d - 1;
-          while (i > 0) {
-            if (++index[i - 1] < chunk[i]) break;
-            index[i - 1] = 0;
-            --i;
-          }
-          if (i == 0) break;
+void cut_block(const double* block, const std::vector<hsize_t>& row_dims,
+               const std::vector<hsize_t>& chunk, hsize_t n_rows, double* buffer,
+               const std::function<void(const std::vector<hsize_t>& origin)>& visit) {
+  const std::size_t d = row_dims.size();
+  if (d == 0 || chunk.size() != d + 1)
+    throw std::logic_error("cut_block: a chunk needs one dimension more than a row");
+  std::size_t row_size = 1, chunk_size = 1;
+  for (auto x : row_dims) row_size *= static_cast<std::size_t>(x);
+  for (auto x : chunk) chunk_size *= static_cast<std::size_t>(x);
+  if (row_size == 0 || chunk_size == 0) return;
+  // Strides of the row dimensions in a block row, and the chunk grid over them.
+  std::vector<std::size_t> stride(d, 1);
+  for (std::size_t i = d - 1; i-- > 0;)
+    stride[i] = stride[i + 1] * static_cast<std::size_t>(row_dims[i + 1]);
+  std::vector<hsize_t> origin(d, 0);  // chunk origin in the row dimensions
+  std::vector<hsize_t> index(d, 0);   // within the chunk, the last dimension as runs
+  const std::size_t inner = static_cast<std::size_t>(chunk[d]);  // contiguous run in a chunk
+  while (true) {
+    // Gather the chunk: (t, i_1 .. i_d) over chunk[0] x ... x chunk[d], NaN outside the rows
+    // given and the dataset's edge, as HDF5 fills a chunk before writing the selection into it.
+    std::fill_n(buffer, chunk_size, kFill);
+    std::size_t out = 0;
+    for (hsize_t t = 0; t < chunk[0]; ++t) {
+      std::fill(index.begin(), index.end(), 0);
+      while (true) {
+        bool inside = t < n_rows;
+        std::size_t at = static_cast<std::size_t>(t) * row_size;
+        for (std::size_t i = 0; i + 1 < d; ++i) {
+          const hsize_t g = origin[i] + index[i];
+          inside = inside && g < row_dims[i];
+          at += static_cast<std::size_t>(g) * stride[i];
         }
-      }
-      std::vector<hsize_t> offset{first_row};
-      offset.insert(offset.end(), origin.begin(), origin.end());
-      chunks.push_back({std::move(offset), filter.apply(buffer.data(), chunk_size)});
-      // Next chunk of the grid.
-      std::size_t i = d;
-      while (i > 0) {
-        origin[i - 1] += chunk[i];
-        if (origin[i - 1] < row_dims[i - 1]) break;
-        origin[i - 1] = 0;
-        --i;
-      }
-      if (i == 0) break;
-      const std::size_t done = static_cast<std::size_t>(origin[0]) * stride[0];
-      if (i == 1 && release_compressed_rows && done - released >= kReleaseValues) {
-        // Every chunk of the columns before origin[0] is done: their values in every row go
-        // back to the system, so that the block shrinks as its compressed chunks grow. In runs
-        // of kReleaseValues per row at least: each call flushes the TLBs of every thread of
-        // the process (a call per narrow chunk column made ~11 000 of them on the dome).
-        for (std::size_t t = 0; t < static_cast<std::size_t>(chunk[0]); ++t)
-          release_pages(block.get(), t * row_size + released, t * row_size + done);
-        released = done;
+        if (inside) {
+          const hsize_t g0 = origin[d - 1];
+          const std::size_t run = static_cast<std::size_t>(
+              std::min<hsize_t>(chunk[d], row_dims[d - 1] > g0 ? row_dims[d - 1] - g0 : 0));
+          std::copy_n(block + at + static_cast<std::size_t>(g0), run, buffer + out);
+        }
+        out += inner;
+        // Next run: the odometer over the chunk's dimensions 1 .. d-1.
+        std::size_t i = d - 1;
+        while (i > 0) {
+          if (++index[i - 1] < chunk[i]) break;
+          index[i - 1] = 0;
+          --i;
+        }
+        if (i == 0) break;
       }
     }
+    visit(origin);
+    // Next chunk of the grid.
+    std::size_t i = d;
+    while (i > 0) {
+      origin[i - 1] += chunk[i];
+      if (origin[i - 1] < row_dims[i - 1]) break;
+      origin[i - 1] = 0;
+      --i;
+    }
+    if (i == 0) return;
+  }
+}
+
+void write_checksummed_block(hid_t dataset, const double* block,
+                             const std::vector<hsize_t>& row_dims,
+                             const std::vector<hsize_t>& chunk, hsize_t first_row, hsize_t n_rows) {
+  static_assert(std::endian::native == std::endian::little, "the block holds H5T_IEEE_F64LE");
+  std::size_t chunk_size = 1;
+  for (auto x : chunk) chunk_size *= static_cast<std::size_t>(x);
+  // One chunk and its 4-byte checksum after it: the stored bytes of a chunk that only Fletcher32
+  // filters. Reused for every chunk of the block.
+  std::vector<double> buffer(chunk_size + 1);
+  const std::size_t bytes = chunk_size * sizeof(double);
+  std::vector<hsize_t> offset(chunk.size());
+  cut_block(block, row_dims, chunk, n_rows, buffer.data(), [&](const std::vector<hsize_t>& origin) {
+    auto* stored = reinterpret_cast<unsigned char*>(buffer.data());
+    const auto trailer = fletcher32_trailer(stored, bytes);
+    std::copy(trailer.begin(), trailer.end(), stored + bytes);
+    offset[0] = first_row;
+    std::copy(origin.begin(), origin.end(), offset.begin() + 1);
+    h5::check_status(H5Dwrite_chunk(dataset, H5P_DEFAULT, 0, offset.data(), bytes + 4, stored),
+                     "write a checksummed chunk");
+  });
+}
+
+void BlockJob::compress() {
+  try {
+    std::size_t chunk_size = 1;
+    for (auto x : chunk) chunk_size *= static_cast<std::size_t>(x);
+    std::size_t row_size = 1;
+    for (auto x : row_dims) row_size *= static_cast<std::size_t>(x);
+    const std::size_t columns_stride =
+        row_dims.empty() ? 0 : row_size / std::max<hsize_t>(1, row_dims[0]);
+    std::vector<double> buffer(chunk_size);
+    ChunkFilter filter(pipeline);
+    std::size_t released = 0;  // values of each row given back (release_compressed_rows)
+    cut_block(block.get(), row_dims, chunk, n_rows, buffer.data(),
+              [&](const std::vector<hsize_t>& origin) {
+                const std::size_t done = static_cast<std::size_t>(origin[0]) * columns_stride;
+                if (release_compressed_rows && done - released >= kReleaseValues) {
+                  // Every chunk of the columns before origin[0] is done: their values in every
+                  // row go back to the system, so that the block shrinks as its compressed
+                  // chunks grow. In runs of kReleaseValues per row at least: each call flushes
+                  // the TLBs of every thread of the process (a call per narrow chunk column
+                  // made ~11 000 of them on the dome).
+                  for (std::size_t t = 0; t < static_cast<std::size_t>(chunk[0]); ++t)
+                    release_pages(block.get(), t * row_size + released, t * row_size + done);
+                  released = done;
+                }
+                std::vector<hsize_t> offset{first_row};
+                offset.insert(offset.end(), origin.begin(), origin.end());
+                chunks.push_back({std::move(offset), filter.apply(buffer.data(), chunk_size)});
+              });
   } catch (...) {
     error = std::current_exception();
   }

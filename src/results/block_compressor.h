@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <deque>
 #include <exception>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -79,6 +80,22 @@ class ChunkFilter {
   libdeflate_compressor* compressor_ = nullptr;  // deflate's state, from the first chunk on
   std::vector<unsigned char> shuffled_, deflated_;
 };
+
+/// Cuts rows [0, n_rows) of a block (row-major, rows of dimensions `row_dims`) into the chunks
+/// `chunk` of a dataset (chunk[0]: rows of a block): for each chunk of the grid, in order (the
+/// last dimension fastest), gathers its values into `buffer` (product(chunk) values; NaN, the
+/// datasets' fill value, for the rows from n_rows on and past the dataset's edge, as HDF5 fills
+/// a new chunk) and calls `visit` with the chunk's origin in the row dimensions.
+void cut_block(const double* block, const std::vector<hsize_t>& row_dims,
+               const std::vector<hsize_t>& chunk, hsize_t n_rows, double* buffer,
+               const std::function<void(const std::vector<hsize_t>& origin)>& visit);
+
+/// Stores rows [0, n_rows) of a block as the chunks from row `first_row` of `dataset`, whose
+/// only filter is Fletcher32 (H5Dwrite_chunk: the chunk's bytes and their checksum), on the
+/// calling thread. The chunks' bytes are those H5Dwrite stores.
+void write_checksummed_block(hid_t dataset, const double* block,
+                             const std::vector<hsize_t>& row_dims,
+                             const std::vector<hsize_t>& chunk, hsize_t first_row, hsize_t n_rows);
 
 /// One finished block of a main dataset: rows [first_row, first_row + n_rows) of a dataset of
 /// rows `row_dims`, chunked `chunk` (chunk[0] = block_rows, the block's length in time).

@@ -91,7 +91,9 @@ BlockSeries create_series(hid_t group, hid_t recent_group, const std::string& na
         H5Dcreate2(group, name.c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT),
         "create dataset " + name));
     s.chunk = chunk;
-    if (const auto p = pipeline_of(s.main); p && p->deflate_level > 0) s.pipeline = p;
+    const auto p = pipeline_of(s.main);
+    if (p && p->deflate_level > 0) s.pipeline = p;
+    s.main_checksum_only = p && !p->shuffle && p->deflate_level == 0 && p->fletcher32;
   }
   {
     // Staging: one time point per chunk, the whole row when it is not huge (write_staging_rows
@@ -151,6 +153,10 @@ void write_staging_rows(BlockSeries& s, hsize_t first, hsize_t n) {
 void flush_block(BlockSeries& s, BlockCompressor& compressor, hsize_t first_row, hsize_t n_rows,
                  hsize_t block_rows) {
   set_extent(s.main, first_row + n_rows, s.row_dims);
+  if (s.main_checksum_only) {
+    write_checksummed_block(s.main, s.block.get(), s.row_dims, s.chunk, first_row, n_rows);
+    return;
+  }
   if (!s.pipeline) {
     write_rows(s.main, first_row, n_rows, s.row_dims, s.block.get());
     return;

@@ -54,8 +54,13 @@ struct BlockSeries {
   bool recent_checksum_only = false;
   std::vector<hsize_t> chunk;  // of the main dataset: block_rows, then the row dimensions'
   /// The main dataset's filters, when it deflates (its finished blocks are then compressed by a
-  /// BlockCompressor and stored with H5Dwrite_chunk); nullopt: written through H5Dwrite.
+  /// BlockCompressor and stored with H5Dwrite_chunk).
   std::optional<ChunkPipeline> pipeline;
+  /// The main dataset's only filter is Fletcher32: flush_block stores its finished blocks with
+  /// write_checksummed_block. Through H5Dwrite, HDF5 cleared every new chunk, filled the rows
+  /// past a partial block with NaN and copied the chunk again into its cache (issue 11: most of
+  /// the thesis helmet's ~1100 page faults in storing its results).
+  bool main_checksum_only = false;
   // The block being filled, block_rows x row_size, not initialised: a row becomes valid when the
   // point's values (or NaN, finish_append) are put into it.
   BlockBuffer block;

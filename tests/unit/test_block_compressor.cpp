@@ -211,6 +211,70 @@ TEST(BlockCompressor, AFilterItDoesNotApplyIsRefused) {
 /// and the block's values after each row (where its checksum was put for the write) are as they
 /// were. A series whose rows no longer are one chunk (R once widened) is written through
 /// H5Dwrite.
+TEST(BlockCompressor, ChecksummedBlocksAreTheBytesHdf5StoresForTheSameRows) {
+  // A main dataset that is not deflated (a small model's): write_checksummed_block stores the
+  // chunks H5Dwrite stores, the NaN of a partial block and of the dataset's edge included, for a
+  // first block and one after it.
+  const fs::path path =
+      fs::temp_directory_path() / ("impactfe_checksummed_" + std::to_string(getpid()) + ".h5");
+  hid_t file = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  ASSERT_GE(file, 0);
+  const std::vector<Shape> shapes = {
+      {{68, 6}, {8, 17, 6}, 8, 0},        // the thesis helmet's U: 4 chunks of 17 nodes
+      {{68, 6}, {8, 21, 6}, 5, 0},        // the last chunk past the edge, a partial block
+      {{30}, {4, 30}, 1, 0},              // a 1-D row of one point
+      {{3, 10, 4}, {4, 2, 10, 4}, 3, 0},  // three row dimensions, the edge in the first
+  };
+  int k = 0;
+  for (const Shape& s : shapes) {
+    SCOPED_TRACE(::testing::Message() << "shape " << k);
+    const std::string name = "q" + std::to_string(k++);
+    // A whole block, then s.n_rows of the next (its later rows hold values never stored).
+    Shape whole = s;
+    whole.n_rows = s.chunk[0];
+    const std::vector<double> first = block_values(whole);
+    std::vector<double> second = block_values(s);
+    for (double& v : second) v = 2.0 * v + 1.0;
+    const hsize_t rows = s.chunk[0] + s.n_rows;
+    std::vector<hsize_t> dims{rows}, maxdims{H5S_UNLIMITED};
+    for (auto d : s.row_dims) {
+      dims.push_back(d);
+      maxdims.push_back(d);
+    }
+    const double fill = kNaN;
+    h5::Handle dcpl = h5::checked_creation_list(s.chunk, &fill, 0);
+    h5::Handle space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), maxdims.data()));
+    h5::Handle by_hdf5(H5Dcreate2(file, ("h" + name).c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT,
+                                  dcpl, H5P_DEFAULT));
+    h5::Handle direct(H5Dcreate2(file, ("d" + name).c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT,
+                                 dcpl, H5P_DEFAULT));
+    const auto pipeline = pipeline_of(direct);
+    ASSERT_TRUE(pipeline.has_value());
+    EXPECT_FALSE(pipeline->shuffle);
+    EXPECT_EQ(pipeline->deflate_level, 0);
+    EXPECT_TRUE(pipeline->fletcher32);
+    write_rows(by_hdf5, 0, s.chunk[0], s.row_dims, first.data());
+    write_rows(by_hdf5, s.chunk[0], s.n_rows, s.row_dims, second.data());
+    write_checksummed_block(direct, first.data(), s.row_dims, s.chunk, 0, s.chunk[0]);
+    write_checksummed_block(direct, second.data(), s.row_dims, s.chunk, s.chunk[0], s.n_rows);
+    H5Fflush(file, H5F_SCOPE_GLOBAL);
+    const auto want = stored_chunks(by_hdf5);
+    const auto got = stored_chunks(direct);
+    ASSERT_EQ(got.size(), want.size());
+    for (std::size_t c = 0; c < got.size(); ++c) EXPECT_EQ(got[c], want[c]) << "chunk " << c;
+    // Read back through HDF5's Fletcher32 check.
+    std::vector<double> back(product(dims));
+    ASSERT_GE(H5Dread(direct, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, back.data()), 0);
+    const std::size_t block_size = first.size();
+    for (std::size_t i = 0; i < back.size(); ++i) {
+      const double want_value = i < block_size ? first[i] : second[i - block_size];
+      EXPECT_EQ(std::memcmp(&back[i], &want_value, sizeof(double)), 0) << i;
+    }
+  }
+  H5Fclose(file);
+  fs::remove(path);
+}
+
 TEST(BlockCompressor, StagingRowsAreTheBytesHdf5StoresForTheSameRows) {
   const fs::path path =
       fs::temp_directory_path() / ("impactfe_staging_rows_" + std::to_string(getpid()) + ".h5");
