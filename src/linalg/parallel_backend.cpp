@@ -4,9 +4,12 @@
 #include <fmt/format.h>
 
 #include <cstdlib>
+#include <exception>
 #include <filesystem>
 #include <memory>
+#include <new>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "core/files.h"
@@ -24,6 +27,12 @@ struct Module {
   decltype(&impactfe_mumps_rank) rank = nullptr;
   decltype(&impactfe_mumps_size) size = nullptr;
   decltype(&impactfe_mumps_create) create = nullptr;
+  decltype(&impactfe_mumps_destroy) destroy = nullptr;
+  decltype(&impactfe_mumps_analyze) analyze = nullptr;
+  decltype(&impactfe_mumps_factorize) factorize = nullptr;
+  decltype(&impactfe_mumps_solve) solve = nullptr;
+  decltype(&impactfe_mumps_column_owners) column_owners = nullptr;
+  decltype(&impactfe_mumps_counters) counters = nullptr;
   decltype(&impactfe_mumps_max_int) max_int = nullptr;
   decltype(&impactfe_mumps_abort) abort = nullptr;
   decltype(&impactfe_mumps_stop) stop = nullptr;
@@ -83,8 +92,76 @@ std::optional<std::string> shared_read_file(const std::string& path) {
   return text;
 }
 
+/// Throws again, as impactfe's own exception, what a module call reported.
+[[noreturn]] void rethrow(const MumpsModuleError& e) {
+  const std::string what(e.message);
+  switch (e.kind) {
+    case MumpsModuleError::kSingular:
+      throw SingularMatrixError(e.row, what);
+    case MumpsModuleError::kOutOfMemory:
+      throw std::bad_alloc();
+    case MumpsModuleError::kLogic:
+      throw std::logic_error(what);
+    default:
+      throw std::runtime_error(what);
+  }
+}
+
+/// The module's MUMPS solver behind LinearSolver: every call goes through the module's C
+/// interface (mumps_module_api.h), which returns an exception as a description.
+class ModuleSolver final : public LinearSolver {
+ public:
+  ModuleSolver() {
+    MumpsModuleError error;
+    solver_ = module.create(&module.options, &error);
+    if (solver_ == nullptr) rethrow(error);
+  }
+  ~ModuleSolver() override { module.destroy(solver_, std::uncaught_exceptions() > 0 ? 1 : 0); }
+  ModuleSolver(const ModuleSolver&) = delete;
+  ModuleSolver& operator=(const ModuleSolver&) = delete;
+
+  void analyze_pattern(const SparseMatrix& lower) override {
+    MumpsModuleError error;
+    done(module.analyze(solver_, &lower, &error), error);
+  }
+  void factorize(const SparseMatrix& lower) override {
+    MumpsModuleError error;
+    done(module.factorize(solver_, &lower, &error), error);
+  }
+  VectorXd solve(const VectorXd& b) override {
+    VectorXd x(b.size());
+    MumpsModuleError error;
+    done(module.solve(solver_, b.data(), x.data(), b.size(), 1, &error), error);
+    return x;
+  }
+  MatrixXd solve(const MatrixXd& B) override {
+    MatrixXd X(B.rows(), B.cols());
+    MumpsModuleError error;
+    done(module.solve(solver_, B.data(), X.data(), B.rows(), B.cols(), &error), error);
+    return X;
+  }
+  std::string name() const override { return "MUMPS"; }
+  std::vector<int> column_owners(const SparseMatrix& lower) const override {
+    std::vector<int> owners(static_cast<std::size_t>(lower.cols()));
+    MumpsModuleError error;
+    const int found = module.column_owners(solver_, &lower, owners.data(), &error);
+    if (found < 0) rethrow(error);
+    if (found == 0) owners.clear();
+    return owners;
+  }
+
+ private:
+  /// The counters after a call (also after one that failed), then its exception if any.
+  void done(int status, const MumpsModuleError& error) {
+    module.counters(solver_, &counters_, &negative_pivots_, &first_negative_row_);
+    if (status != 0) rethrow(error);
+  }
+
+  void* solver_ = nullptr;
+};
+
 std::unique_ptr<LinearSolver> make_mumps_solver() {
-  return std::unique_ptr<LinearSolver>(module.create(&module.options));
+  return std::make_unique<ModuleSolver>();
 }
 
 }  // namespace
@@ -108,6 +185,12 @@ void start_parallel_backend(const ParallelSettings& settings) {
   bind(module.rank, "impactfe_mumps_rank");
   bind(module.size, "impactfe_mumps_size");
   bind(module.create, "impactfe_mumps_create");
+  bind(module.destroy, "impactfe_mumps_destroy");
+  bind(module.analyze, "impactfe_mumps_analyze");
+  bind(module.factorize, "impactfe_mumps_factorize");
+  bind(module.solve, "impactfe_mumps_solve");
+  bind(module.column_owners, "impactfe_mumps_column_owners");
+  bind(module.counters, "impactfe_mumps_counters");
   bind(module.max_int, "impactfe_mumps_max_int");
   bind(module.abort, "impactfe_mumps_abort");
   bind(module.stop, "impactfe_mumps_stop");

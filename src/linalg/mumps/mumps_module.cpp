@@ -145,6 +145,33 @@ std::vector<int> nested_dissection(Graph& g, int n) {
   return position;
 }
 
+/// Runs `f`; an exception it throws is described in *error (kind, row, message) and the call
+/// returns -1, so that it never leaves the module (mumps_module_api.h).
+template <class F>
+int guarded(MumpsModuleError* error, F&& f) {
+  *error = MumpsModuleError{};
+  const auto fill = [&](int kind, int row, const char* what) {
+    error->kind = kind;
+    error->row = row;
+    std::snprintf(error->message, sizeof(error->message), "%s", what);
+    return -1;
+  };
+  try {
+    f();
+    return 0;
+  } catch (const SingularMatrixError& e) {
+    return fill(MumpsModuleError::kSingular, e.column(), e.what());
+  } catch (const std::bad_alloc& e) {
+    return fill(MumpsModuleError::kOutOfMemory, -1, e.what());
+  } catch (const std::logic_error& e) {
+    return fill(MumpsModuleError::kLogic, -1, e.what());
+  } catch (const std::exception& e) {
+    return fill(MumpsModuleError::kRuntime, -1, e.what());
+  } catch (...) {
+    return fill(MumpsModuleError::kRuntime, -1, "MUMPS module: an unknown exception");
+  }
+}
+
 class MumpsSolver final : public LinearSolver {
  public:
   explicit MumpsSolver(const MumpsModuleOptions& options)
@@ -154,6 +181,8 @@ class MumpsSolver final : public LinearSolver {
   MumpsSolver& operator=(const MumpsSolver&) = delete;
 
   std::string name() const override { return "MUMPS"; }
+  /// The next release skips the collective JOB = -2 (see terminate).
+  void release_locally() { release_locally_ = true; }
 
   void analyze_pattern(const SparseMatrix& lower) override {
     check_not_failing();
@@ -244,12 +273,13 @@ class MumpsSolver final : public LinearSolver {
  private:
   void terminate() {
     if (!initialized_) return;
-    // JOB = -2 is collective. Unwinding an exception, or after this rank failed, the other
+    // JOB = -2 is collective. Unwinding an exception (here, or in impactfe: release_locally,
+    // impactfe_mumps_destroy), or after this rank failed, the other
     // ranks may be elsewhere (a failure only this rank saw): release nothing rather than wait
     // for them (the process ends soon: abort or MPI_Finalize; ranks that fail together all
     // skip it alike). A solver dropped inside a catch handler (a fallback after a singular
     // matrix, which every rank takes) is released normally.
-    if (failing || std::uncaught_exceptions() > 0) {
+    if (failing || release_locally_ || std::uncaught_exceptions() > 0) {
       initialized_ = false;
       return;
     }
@@ -424,6 +454,7 @@ class MumpsSolver final : public LinearSolver {
   int size_ = 1;
   DMUMPS_STRUC_C id_{};
   bool initialized_ = false;
+  bool release_locally_ = false;  // release_locally
   bool positive_definite_ = true;
   int n_ = 0;
   long pattern_nonzeros_ = -1;
@@ -496,8 +527,61 @@ int impactfe_mumps_size(void) {
   return impactfe::world_size();
 }
 
-impactfe::LinearSolver* impactfe_mumps_create(const impactfe::MumpsModuleOptions* options) {
-  return new impactfe::MumpsSolver(*options);
+void* impactfe_mumps_create(const impactfe::MumpsModuleOptions* options,
+                            impactfe::MumpsModuleError* error) {
+  impactfe::MumpsSolver* solver = nullptr;
+  impactfe::guarded(error, [&] { solver = new impactfe::MumpsSolver(*options); });
+  return solver;
+}
+
+void impactfe_mumps_destroy(void* solver, int unwinding) {
+  auto* s = static_cast<impactfe::MumpsSolver*>(solver);
+  if (s == nullptr) return;
+  if (unwinding) s->release_locally();
+  delete s;
+}
+
+int impactfe_mumps_analyze(void* solver, const impactfe::SparseMatrix* lower,
+                           impactfe::MumpsModuleError* error) {
+  return impactfe::guarded(
+      error, [&] { static_cast<impactfe::MumpsSolver*>(solver)->analyze_pattern(*lower); });
+}
+
+int impactfe_mumps_factorize(void* solver, const impactfe::SparseMatrix* lower,
+                             impactfe::MumpsModuleError* error) {
+  return impactfe::guarded(error,
+                           [&] { static_cast<impactfe::MumpsSolver*>(solver)->factorize(*lower); });
+}
+
+int impactfe_mumps_solve(void* solver, const double* b, double* x, long long rows,
+                         long long columns, impactfe::MumpsModuleError* error) {
+  return impactfe::guarded(error, [&] {
+    const Eigen::Map<const impactfe::MatrixXd> B(b, rows, columns);
+    Eigen::Map<impactfe::MatrixXd>(x, rows, columns) =
+        static_cast<impactfe::MumpsSolver*>(solver)->solve(impactfe::MatrixXd(B));
+  });
+}
+
+int impactfe_mumps_column_owners(void* solver, const impactfe::SparseMatrix* lower, int* owners,
+                                 impactfe::MumpsModuleError* error) {
+  int found = 0;
+  const int status = impactfe::guarded(error, [&] {
+    const std::vector<int> o = static_cast<impactfe::MumpsSolver*>(solver)->column_owners(*lower);
+    if (o.empty()) return;
+    if (static_cast<long long>(o.size()) != static_cast<long long>(lower->cols()))
+      throw std::logic_error("MUMPS: an owner for every column expected");
+    std::copy(o.begin(), o.end(), owners);
+    found = 1;
+  });
+  return status != 0 ? -1 : found;
+}
+
+void impactfe_mumps_counters(const void* solver, impactfe::SolverCounters* counters,
+                             int* negative_pivots, int* first_negative_row) {
+  const auto* s = static_cast<const impactfe::MumpsSolver*>(solver);
+  *counters = s->counters();
+  *negative_pivots = s->negative_pivots();
+  *first_negative_row = s->first_negative_pivot_row();
 }
 
 int impactfe_mumps_share_owned(double* values, int n, const int* owner) {
