@@ -29,15 +29,17 @@ struct libdeflate_compressor;
 namespace impactfe::result_series {
 
 /// The values of a time block in pages of their own (mmap), returned to the system when freed,
-/// and taken from it only as its rows are written. From the heap, a fresh block per finished
-/// block (10 MB per quantity on the dome) came from memory glibc keeps once freed (its mmap
-/// threshold rises to the sizes it sees freed): the dome's RSS crept up by 40 MB over 200 steps.
+/// and, for a block of more than 1 MB, taken from it only as its rows are written. From the heap, a
+/// fresh block per finished block (10 MB per quantity on the dome) came from memory glibc keeps
+/// once freed (its mmap threshold rises to the sizes it sees freed): the dome's RSS crept up by 40
+/// MB over 200 steps.
 struct PageDeleter {
   std::size_t bytes = 0;
   void operator()(double* p) const;
 };
 using BlockBuffer = std::unique_ptr<double[], PageDeleter>;
-/// `n` values, not initialised, and one value of slack after them: a staging row is stored with
+/// `n` values, not initialised, and one value of slack after them (the pages of a block up to
+/// 1 MB taken at once, a larger one's as they are written): a staging row is stored with
 /// its checksum put in the 4 bytes that follow it (write_staging_rows); empty when n = 0.
 /// Throws std::bad_alloc.
 BlockBuffer allocate_block(std::size_t n);
