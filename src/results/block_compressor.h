@@ -29,10 +29,10 @@ struct libdeflate_compressor;
 namespace impactfe::result_series {
 
 /// The values of a time block in pages of their own (mmap), returned to the system when freed,
-/// and, for a block of more than 1 MB, taken from it only as its rows are written. From the heap, a
-/// fresh block per finished block (10 MB per quantity on the dome) came from memory glibc keeps
-/// once freed (its mmap threshold rises to the sizes it sees freed): the dome's RSS crept up by 40
-/// MB over 200 steps.
+/// and, for a block of more than 1 MB, taken from it only as its rows are written. From the
+/// heap, a fresh block per finished block (10 MB per quantity on the dome) came from memory
+/// glibc keeps once freed (its mmap threshold rises to the sizes it sees freed): the dome's RSS
+/// crept up by 40 MB over 200 steps.
 struct PageDeleter {
   std::size_t bytes = 0;
   void operator()(double* p) const;
