@@ -227,9 +227,12 @@ TEST(CrashSafety, FileSizeLimitEndsWithExitTwoAndAClearMessage) {
 // A write past the limit fails half-way through the run: the writer reserves the space of
 // every write first (h5::reserve_space), so the failure comes before HDF5 touches the file and
 // every point flushed before it reads back (before the reservation, HDF5 had already rewritten
-// the superblock with the new end of file, and the file was refused as truncated).
+// the superblock with the new end of file, and the file was refused as truncated). The limits
+// take the first block (64 points, 1.5 MB, twice that reserved: the run keeps 64 points at
+// 3.5 and 4 MB, 128 at 5 MB), not the whole run's; a run slow enough to sync by time (every
+// 0.1 s) keeps more.
 TEST(CrashSafety, FileSizeLimitKeepsResultsReadable) {
-  for (rlim_t limit : {2560 * 1024, 3 * 1024 * 1024, 4 * 1024 * 1024}) {
+  for (rlim_t limit : {3584 * 1024, 4096 * 1024, 5120 * 1024}) {
     const fs::path dir =
         testing::fresh_directory("file_size_limit_" + std::to_string(limit)) / "out";
     fs::create_directories(dir);
@@ -248,7 +251,7 @@ bool mount_tmpfs(const fs::path& dir, const std::string& options) {
 
 TEST(CrashSafety, FullTmpfsEndsWithExitTwoAndKeepsResults) {
   const fs::path dir = testing::fresh_directory("full_tmpfs") / "mnt";
-  if (!mount_tmpfs(dir, "size=3m"))
+  if (!mount_tmpfs(dir, "size=4m"))  // the first block fits (FileSizeLimitKeepsResultsReadable)
     GTEST_SKIP() << "mounting a tmpfs is not permitted here (RLIMIT_FSIZE test covers it)";
   std::string err;
   const int status = run_helmet(dir, 0, err);
