@@ -54,6 +54,8 @@ struct ChunkPipeline {
   bool shuffle = false;
   int deflate_level = 0;  // 0: no deflate
   bool fletcher32 = false;
+  /// Fletcher32 alone: a chunk is stored as its bytes and their checksum.
+  bool checksum_only() const { return !shuffle && deflate_level == 0 && fletcher32; }
 };
 
 /// The pipeline of dataset `ds`; nullopt when it holds a filter this code does not apply

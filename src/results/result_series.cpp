@@ -93,7 +93,7 @@ BlockSeries create_series(hid_t group, hid_t recent_group, const std::string& na
     s.chunk = chunk;
     const auto p = pipeline_of(s.main);
     if (p && p->deflate_level > 0) s.pipeline = p;
-    s.main_checksum_only = p && !p->shuffle && p->deflate_level == 0 && p->fletcher32;
+    s.main_checksum_only = p && p->checksum_only();
   }
   {
     // Staging: one time point per chunk, the whole row when it is not huge (write_staging_rows
@@ -117,7 +117,7 @@ BlockSeries create_series(hid_t group, hid_t recent_group, const std::string& na
         "create dataset recent/" + name));
     s.recent_chunk = rchunk;
     const auto p = pipeline_of(s.recent);
-    s.recent_checksum_only = p && !p->shuffle && p->deflate_level == 0 && p->fletcher32;
+    s.recent_checksum_only = p && p->checksum_only();
   }
   s.block = allocate_block(block_rows * s.row_size());
   return s;
