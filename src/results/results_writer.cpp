@@ -51,10 +51,6 @@ using result_series::write_rows;
 
 namespace {
 
-/// A block row seen as the row-major matrix it stores (nodes x 6, elements x items).
-using RowMajorMap =
-    Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>;
-
 constexpr int kFormatVersion = 2;
 /// A sync (staging rows, then `time`, each flushed) after this many points or seconds: what a
 /// killed run can lose at most. A sync costs about a millisecond whatever it writes (two
@@ -65,11 +61,8 @@ constexpr hsize_t kSyncPoints = 128;
 constexpr double kSyncSeconds = 0.1;
 /// ... or once the points since the last sync hold this many bytes: a big model syncs more
 /// often, so that a full disk finds the earlier points synced (and the space a sync reserves,
-/// see Impl::Guard, stays bounded). 4 MB = kMaxBlockRows points of 64 kB: a model of up to
-/// 64 kB per point (the thesis's, ~1300 nodes' U, V, A and R) fills its block first, and its
-/// points are written once, into the main datasets. With 1 MB the thesis helmet (23 kB per
-/// point) synced every 45 points and wrote 133 of its 191 points twice, first as staging rows:
-/// 1 490 pwrite calls, 211 now (issue 11).
+/// see Impl::Guard, stays bounded). 4 MB: a model of up to 64 kB per point fills its block of
+/// kMaxBlockRows first, and writes each point once (docs/benchmarks.md, stop 40).
 constexpr double kSyncBytes = 4.0 * 1024 * 1024;
 /// Disk space reserved before every write beyond the data it stores (object headers, chunk
 /// index nodes, free-space rounding), and the factor on the data (checksums, chunk padding,
@@ -150,8 +143,15 @@ struct ResultsWriter::Impl {
     }
   };
   void abandon();
-  /// Whether a main dataset deflates: its blocks go through the compressor, after their
-  /// staging rows.
+  /// A reader in this process syncs the file first (live_writers.h), unless a write failed.
+  void register_live() {
+    register_live_writer(path, this, [this] {
+      if (failed) return;
+      const Guard guard(*this, block_bytes(n_t - synced));
+      sync(false);
+    });
+  }
+  /// Whether a main dataset deflates (its blocks go to the compressor after their staging rows).
   bool compressed() const {
     return std::any_of(series.begin(), series.end(),
                        [](const auto& s) { return s.second.pipeline.has_value(); });
@@ -456,9 +456,8 @@ void ResultsWriter::Impl::write_nodal(const std::string& name, const Eigen::Matr
                  fmt::format("ResultsWriter::append: {} is {}x{}, expected {}x6", name, m.rows(),
                              m.cols(), n_nodes()));
   BlockSeries& s = series_for(name, {n_nodes(), 6});
-  // A row-major copy straight into the block, written in its order (row by row): the block's
-  // row is cold, and a column at a time took a store miss per value (issue 11).
-  RowMajorMap(row_slot(s), m.rows(), 6) = m;
+  // Row by row, the block's order: a column at a time missed the cold row at every value.
+  Eigen::Map<RowMajor>(row_slot(s), m.rows(), 6) = m;
 }
 
 void ResultsWriter::Impl::write_reactions(const Eigen::MatrixXd& m) {
@@ -558,7 +557,7 @@ void ResultsWriter::Impl::write_family(const std::string& family, const ElementR
   }
   if (n_e == 0 || n_i == 0) return;
   BlockSeries& s = series_for("elements/" + family + "/values", {n_e, n_i});
-  RowMajorMap(row_slot(s), table.values.rows(), table.values.cols()) = table.values;  // as U
+  Eigen::Map<RowMajor>(row_slot(s), n_e, n_i) = table.values;  // row by row, as write_nodal
 }
 
 ResultsWriter::ResultsWriter(const std::string& path, const Model& model)
@@ -581,12 +580,7 @@ ResultsWriter::ResultsWriter(const std::string& path, const Model& model)
   } catch (const std::runtime_error& e) {
     throw SolutionError(fmt::format("results file '{}': {}", path, e.what()));
   }
-  Impl* impl = impl_.get();
-  register_live_writer(path, impl, [impl] {
-    if (impl->failed) return;  // the file keeps its last flushed state
-    const Impl::Guard guard(*impl, impl->block_bytes(impl->n_t - impl->synced));
-    impl->sync(false);
-  });
+  impl_->register_live();
 }
 
 ResultsWriter::ResultsWriter(const std::string& path, Append) : impl_(std::make_unique<Impl>()) {
@@ -611,12 +605,7 @@ ResultsWriter::ResultsWriter(const std::string& path, Append) : impl_(std::make_
   } catch (const std::runtime_error& e) {
     throw SolutionError(fmt::format("results file '{}': {}", path, e.what()));
   }
-  Impl* impl = impl_.get();
-  register_live_writer(path, impl, [impl] {
-    if (impl->failed) return;
-    const Impl::Guard guard(*impl, impl->block_bytes(impl->n_t - impl->synced));
-    impl->sync(false);
-  });
+  m.register_live();
 }
 
 ResultsWriter::~ResultsWriter() {
