@@ -61,8 +61,8 @@ constexpr hsize_t kSyncPoints = 128;
 constexpr double kSyncSeconds = 0.1;
 /// ... or once the points since the last sync hold this many bytes: a big model syncs more
 /// often, so that a full disk finds the earlier points synced (and the space a sync reserves,
-/// see Impl::Guard, stays bounded). 4 MB: a model of up to 64 kB per point fills its block of
-/// kMaxBlockRows first, and writes each point once (docs/benchmarks.md, stop 40).
+/// see Impl::Guard, stays bounded). 4 MB: a model of up to 64 kB per point fills a block of
+/// kMaxBlockRows first and, within kSyncSeconds, writes each point once (benchmarks.md, stop 40).
 constexpr double kSyncBytes = 4.0 * 1024 * 1024;
 /// Disk space reserved before every write beyond the data it stores (object headers, chunk
 /// index nodes, free-space rounding), and the factor on the data (checksums, chunk padding,
