@@ -151,10 +151,11 @@ struct ResultsWriter::Impl {
       sync(false);
     });
   }
-  /// Whether a main dataset deflates (its blocks go to the compressor after their staging rows).
-  bool compressed() const {
-    return std::any_of(series.begin(), series.end(),
-                       [](const auto& s) { return s.second.pipeline.has_value(); });
+  /// Whether a sync stages its points: not when it completes a block that no dataset deflates
+  /// (the block goes to the main datasets at once; a deflated one after its staging rows).
+  bool sync_stages(bool block_full) const {
+    return !block_full || std::any_of(series.begin(), series.end(),
+                                      [](const auto& s) { return s.second.pipeline.has_value(); });
   }
   /// Bytes of the rows of the current block (all quantities), the data of a block flush.
   double block_bytes(hsize_t n_rows) const {
@@ -394,14 +395,14 @@ void ResultsWriter::Impl::write_pending_counters() {
 void ResultsWriter::Impl::sync(bool block_full) {
   if (pending_time.empty()) return;
   complete_blocks();
-  const bool compressed = this->compressed();
+  const bool stages = sync_stages(block_full);
   const auto finish_block = [&] {
     for (auto& [name, s] : series)
       result_series::flush_block(s, compressor, block_start, block_rows, block_rows);
     first_row_pending = true;
     first_row_after = block_start + block_rows;
   };
-  if (block_full && !compressed) {
+  if (!stages) {
     finish_block();
     complete_blocks();
   } else {
@@ -411,7 +412,7 @@ void ResultsWriter::Impl::sync(bool block_full) {
   }
   write_pending_counters();
   flush();
-  if (block_full && compressed) {
+  if (block_full && stages) {  // deflated
     finish_block();
     if (!compressor.background()) complete_blocks();
   }
@@ -665,8 +666,7 @@ void ResultsWriter::append(const TimePoint& point) {
       completes_block || m.n_t + 1 - m.synced >= kSyncPoints || pending_bytes >= kSyncBytes ||
       std::chrono::duration<double>(std::chrono::steady_clock::now() - m.last_sync).count() >=
           kSyncSeconds;
-  // A sync that completes a block not deflated stores the block and no staging rows (sync).
-  const bool stages = sync_after && !(completes_block && !m.compressed());
+  const bool stages = sync_after && m.sync_stages(completes_block);
   const Impl::Guard guard(m, 8.0 * values + (stages ? pending_bytes : 0.0) +
                                  (completes_block ? m.block_bytes(m.block_rows) : 0.0));
   m.write_nodal("U", point.displacement);
