@@ -728,7 +728,7 @@ void DirectSolution::store(double time, int load_step, int substep, bool dynamic
   apply_output_selection(selection, writer_.node_ids(), point);
   point.energy = energy_->columns(kinetic_energy());
   point.frame_acceleration = acel_;
-  writer_.append(point);
+  writer_.append(std::move(point));
   ++stats_.n_stored;
 }
 

@@ -59,7 +59,7 @@ void run_expansion_pass(const ExpansionPassRequest& request, ReducedSolutionStat
     tp.element_results = structure.element_results(*state->assembler, u, v);
     tp.gap_forces = state->gap_forces[i];
     tp.energy["kinetic"] = 0.5 * v.dot(state->mass_all * v);
-    writer.append(tp);
+    writer.append(std::move(tp));
     ++stats.n_stored;
   }
   const double seconds = std::chrono::duration<double>(clock::now() - t0).count();

@@ -202,7 +202,7 @@ void integrate_reduced(ReducedRunState& state, ReducedDynamics& dynamics,
     tp.gap_forces = dynamics.gap_forces();
     tp.energy["kinetic"] = 0.5 * dynamics.v().dot(dynamics.m() * dynamics.v());
     tp.energy["strain"] = 0.5 * dynamics.q().dot(dynamics.k() * dynamics.q());
-    writer.append(tp);
+    writer.append(std::move(tp));
     ++stats.n_stored;
     state.q.push_back(dynamics.q());
     state.v.push_back(dynamics.v());

@@ -100,7 +100,7 @@ int expand_superelement_use_pass(const SuperelementExpansion& expansion, const R
     TimePoint p = expansion.time_point(used.time, um, vm, am, acel);
     p.load_step = used.load_step;
     p.substep = used.substep;
-    writer.append(p);
+    writer.append(std::move(p));
     ++written;
   }
   writer.set_count("n_expanded", static_cast<long long>(written));

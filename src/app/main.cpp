@@ -67,7 +67,8 @@ struct RunArgs {
   std::string deck;
   std::string out_dir = ".";
   std::string jobname;
-  int threads = 0;  // 0: all cores
+  int threads = 0;                      // 0: all cores
+  std::string results_thread = "auto";  // auto | on | off
   bool skip_unknown = false;
   std::string dialect = "auto";
   std::string results;
@@ -127,6 +128,9 @@ void print_skipped(const Job& job) {
 int run_command(const RunArgs& args) {
   const auto start = std::chrono::steady_clock::now();
   if (args.threads > 0) threads::set_max_threads(args.threads);
+  set_results_writer_thread(args.results_thread == "on"    ? WriterThread::On
+                            : args.results_thread == "off" ? WriterThread::Off
+                                                           : WriterThread::Auto);
   const fs::path deck = fs::absolute(args.deck);
   if (!file_exists(deck.string(), true)) {  // rank 0's disk under MPI (core/files.h)
     std::cerr << "error: deck not found: " << args.deck << "\n";
@@ -281,6 +285,11 @@ int main(int argc, char** argv) {
       "--threads", run.threads,
       "threads for element loops, the solves and products of large models and results "
       "compression (default: all cores where the work pays for them; BLAS runs on one thread)");
+  run_cmd
+      ->add_option("--results-thread", run.results_thread,
+                   "write the results file on a thread of its own: auto (default: when the run "
+                   "may use two threads and a core is idle at the start), on or off")
+      ->check(CLI::IsMember({"auto", "on", "off"}));
   run_cmd->add_flag("--skip-unknown", run.skip_unknown, "warn and skip unknown commands");
   run_cmd->add_option("--dialect", run.dialect, "4x|modern|auto")
       ->check(CLI::IsMember({"4x", "modern", "auto"}));

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <atomic>
 #include <condition_variable>
+#include <cstdio>
 #include <exception>
 #include <mutex>
 #include <new>
@@ -138,6 +139,16 @@ void set_max_threads(int n) {
 int max_threads() {
   const int n = thread_limit.load();
   return n > 0 ? n : default_threads();
+}
+
+bool core_idle() {
+  // The fourth field of /proc/loadavg: threads runnable now / threads in total.
+  std::FILE* f = std::fopen("/proc/loadavg", "r");
+  if (!f) return false;
+  int runnable = 0;
+  const bool read = std::fscanf(f, "%*s %*s %*s %d/", &runnable) == 1;
+  std::fclose(f);
+  return read && runnable < max_threads();
 }
 
 void parallel_for(int n, int grain, const std::function<void(int)>& body) {

@@ -19,6 +19,12 @@ namespace impactfe::threads {
 void set_max_threads(int n);
 int max_threads();
 
+/// Whether a core is free now for another thread of this process: fewer threads are runnable
+/// on the machine, the caller included, than max_threads() (/proc/loadavg). False when that
+/// cannot be read. A helper thread that takes work off the caller's (the results writer's)
+/// pays for the handing over in CPU time: on a busy machine it would only add that.
+bool core_idle();
+
 /// body(i) for every i in [0, n), on up to max_threads() threads. When iterations throw, the
 /// exception of the lowest such i is rethrown after the loop (the one a serial loop would
 /// throw), whatever the thread count. A loop started inside another runs serially.

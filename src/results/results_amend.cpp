@@ -5,6 +5,7 @@
 
 #include "core/errors.h"
 #include "io/h5_util.h"
+#include "results/live_writers.h"
 
 namespace impactfe {
 
@@ -13,6 +14,8 @@ bool amend_analysis_attributes(const std::string& path, int analysis, const std:
                                const std::map<std::string, long long>& counts,
                                const std::map<std::string, double>& values) {
   h5::silence_errors();
+  // A writer of this process first writes what it was given (its analysis group included).
+  sync_live_writer(path);
   // The access list of ResultsWriter: HDF5 opens a file a second time only with the same one.
   h5::Handle fapl = h5::file_access_checksummed();
   const hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDWR, fapl);

@@ -58,7 +58,17 @@ bool same_time(double a, double b);
 /// Row of `node` in the ascending node ids of a results file; -1 when absent.
 int node_row(const std::vector<int>& node_ids, int node);
 
+/// Whether a ResultsWriter writes on a thread of its own (results_writer.cpp): Auto when the
+/// run may use two threads (--threads) and a core is idle when the writer is created, On
+/// whenever HDF5 can be called from two threads, Off never (`impactfe run --results-thread`).
+enum class WriterThread { Auto, On, Off };
+/// For the writers created from now on.
+void set_results_writer_thread(WriterThread mode);
+
 /// Writes <jobname>.h5. One file per job; one /analysis_<k> group per analysis in run order.
+/// The writing may run on a thread of its own (WriterThread): a call then hands the operation
+/// over and returns; a failure of the file (a full disk) is thrown by the next call.
+/// end_analysis returns when the analysis is in the file.
 class ResultsWriter {
  public:
   /// Creates (truncates) the file and writes the model section (nodes, elements, title).
@@ -77,8 +87,9 @@ class ResultsWriter {
   /// of fewer points (result_series::block_rows_for). Storing more is still right.
   int begin_analysis(ResultsKind kind, const std::string& description,
                      long long expected_points = 0);
-  /// Appends one time point to the current analysis and flushes the file.
+  /// Appends one time point to the current analysis (written at the file's next sync).
   void append(const TimePoint& point);
+  void append(TimePoint&& point);
   /// Whether the points that follow may leave quantities, nodes or elements absent (OUTRES per
   /// item or component, reduced runs): their NaN rows and columns only vanish when compressed,
   /// so every main dataset created from then on is. Dense output (every quantity of every node
@@ -96,7 +107,8 @@ class ResultsWriter {
   /// Replaces the node lists of the given elements in the model section: a superelement's
   /// nodes (its master nodes) are known only once its file is read.
   void set_element_nodes(const std::map<int, std::vector<int>>& nodes);
-  /// Marks the current analysis as finished (status attribute "complete" or the error text).
+  /// Marks the current analysis as finished (status attribute "complete" or the error text),
+  /// once everything before it is written.
   /// An analysis still open when the writer is destroyed is marked "incomplete"; a killed run
   /// leaves "running".
   void end_analysis(const std::string& status = "complete");
@@ -105,6 +117,7 @@ class ResultsWriter {
   const std::string& path() const;
 
  private:
+  void register_live();
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

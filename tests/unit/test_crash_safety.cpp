@@ -39,7 +39,7 @@ void write_text(const fs::path& path, const std::string& text) {
 /// > 0: RLIMIT_FSIZE in bytes (a write past it fails with EFBIG, SIGXFSZ ignored), the portable
 /// stand-in for a full disk.
 pid_t start_run(const fs::path& deck, const fs::path& dir, const fs::path& stderr_file,
-                rlim_t file_limit = 0) {
+                rlim_t file_limit = 0, const std::string& results_thread = "auto") {
   const pid_t pid = fork();
   if (pid != 0) return pid;
   const int fd = ::open(stderr_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
@@ -53,7 +53,7 @@ pid_t start_run(const fs::path& deck, const fs::path& dir, const fs::path& stder
     setrlimit(RLIMIT_FSIZE, &limit);
   }
   execl(IMPACTFE_BINARY, IMPACTFE_BINARY, "run", deck.c_str(), "-o", dir.c_str(),
-        static_cast<char*>(nullptr));
+        "--results-thread", results_thread.c_str(), static_cast<char*>(nullptr));
   _exit(127);
 }
 
@@ -184,10 +184,12 @@ TEST(CrashSafety, KilledSuperelementExpansionKeepsCompletedSteps) {
 }
 
 /// Runs the helmet (190 stored steps, about 80 kB of results per step) into `dir`; `limit` > 0
-/// limits the size of every file the run writes.
-int run_helmet(const fs::path& dir, rlim_t limit, std::string& err) {
+/// limits the size of every file the run writes. `results_thread`: --results-thread.
+int run_helmet(const fs::path& dir, rlim_t limit, std::string& err,
+               const std::string& results_thread = "auto") {
   const fs::path deck = fs::path(IMPACTFE_TEST_DECKS) / "thesis" / "helmet_full.inp";
-  const int status = wait_exit_status(start_run(deck, dir, dir.string() + ".stderr", limit));
+  const int status =
+      wait_exit_status(start_run(deck, dir, dir.string() + ".stderr", limit, results_thread));
   err = read_text(dir.string() + ".stderr");
   return status;
 }
@@ -231,16 +233,21 @@ TEST(CrashSafety, FileSizeLimitEndsWithExitTwoAndAClearMessage) {
 // take the first block (64 points, 1.5 MB, twice that reserved: the run keeps 64 points at
 // 3.5 and 4 MB, 128 at 5 MB), not the whole run's; a run slow enough to sync by time (every
 // 0.1 s) keeps more.
+// The same with the results written on a thread of their own or on the solver's
+// (--results-thread): the failure comes back from the writer thread at a later call.
 TEST(CrashSafety, FileSizeLimitKeepsResultsReadable) {
-  for (rlim_t limit : {3584 * 1024, 4096 * 1024, 5120 * 1024}) {
-    const fs::path dir =
-        testing::fresh_directory("file_size_limit_" + std::to_string(limit)) / "out";
-    fs::create_directories(dir);
-    std::string err;
-    ASSERT_EQ(run_helmet(dir, limit, err), 2) << err;
-    EXPECT_NE(err.find("File too large"), std::string::npos) << err;
-    expect_partial_results_readable(dir / "helmet_full.h5");
-  }
+  for (const char* thread : {"on", "off"})
+    for (rlim_t limit : {3584 * 1024, 4096 * 1024, 5120 * 1024}) {
+      const fs::path dir =
+          testing::fresh_directory("file_size_limit_" + std::to_string(limit) + "_" + thread) /
+          "out";
+      fs::create_directories(dir);
+      std::string err;
+      ASSERT_EQ(run_helmet(dir, limit, err, thread), 2) << thread << "\n" << err;
+      EXPECT_NE(err.find("File too large"), std::string::npos) << err;
+      EXPECT_NE(err.find("results up to the failure are kept"), std::string::npos) << err;
+      expect_partial_results_readable(dir / "helmet_full.h5");
+    }
 }
 
 /// Mounts a tmpfs of `size` at `dir` (root with CAP_SYS_ADMIN only); false when not allowed.

@@ -426,19 +426,23 @@ void expect_input_error(F f, const std::string& part) {
   }
 }
 
-TEST_F(ResultsFileTest, ErrorMessages) {
-  expect_input_error([&] { ResultsReader r(file("none.h5")); },
-                     "results file '" + file("none.h5") + "' does not exist");
-  std::ofstream(file("text.h5")) << "not hdf5\n";
-  expect_input_error([&] { ResultsReader r(file("text.h5")); }, "is not an impactfe results file");
-  // A results file that cannot be created ends the run with exit status 2 and the reason.
+/// A results file that cannot be created ends the run with exit status 2 and the reason.
+void expect_cannot_create(const std::string& path) {
   try {
-    ResultsWriter w(file("no_dir/x.h5"), small_model());
+    ResultsWriter w(path, small_model());
     ADD_FAILURE() << "expected SolutionError";
   } catch (const SolutionError& e) {
     EXPECT_NE(e.message().find("cannot create results file"), std::string::npos) << e.message();
     EXPECT_NE(e.message().find("No such file or directory"), std::string::npos) << e.message();
   }
+}
+
+TEST_F(ResultsFileTest, ErrorMessages) {
+  expect_input_error([&] { ResultsReader r(file("none.h5")); },
+                     "results file '" + file("none.h5") + "' does not exist");
+  std::ofstream(file("text.h5")) << "not hdf5\n";
+  expect_input_error([&] { ResultsReader r(file("text.h5")); }, "is not an impactfe results file");
+  expect_cannot_create(file("no_dir/x.h5"));
   {
     ResultsWriter w(file("e.h5"), small_model());
     write_three_points(w);
@@ -684,6 +688,67 @@ TEST_F(ResultsFileTest, BlocksCompressedOnAWorkerThreadAreStoredAsOnOne) {
   EXPECT_TRUE(stored[0] == stored[1]);
 }
 
+/// Sets how the writers of a test write (WriterThread), and restores the default after it.
+struct WriterThreadMode {
+  explicit WriterThreadMode(WriterThread mode) { set_results_writer_thread(mode); }
+  ~WriterThreadMode() { set_results_writer_thread(WriterThread::Auto); }
+};
+
+/// A results file written on a thread of its own (issue 11) is the file written on the
+/// caller's: every chunk of U stored as the same bytes. The writer keeps its own copy of the
+/// model section (the model may go at once), a reader of this process opening the file
+/// mid-run sees every point appended so far, and the analysis is complete in the file when
+/// end_analysis returns.
+TEST_F(ResultsFileTest, WriterThreadWritesTheSameFileAsTheCallersThread) {
+  constexpr int kNodes = 700;  // chunks of U of 64 x 21 x 6 values: deflated
+  constexpr int kBlock = static_cast<int>(result_series::kMaxBlockRows);
+  constexpr int kSteps = 2 * kBlock + 7;
+  std::vector<std::vector<std::vector<unsigned char>>> stored;
+  for (WriterThread mode : {WriterThread::Off, WriterThread::On}) {
+    const WriterThreadMode set(mode);
+    const std::string path = file(mode == WriterThread::On ? "on.h5" : "off.h5");
+    {
+      auto model = std::make_unique<Model>(nodes_only(kNodes));
+      ResultsWriter w(path, *model);
+      model.reset();
+      w.begin_analysis(ResultsKind::Transient, "writer thread");
+      append_history(w, kNodes, 0, kBlock + 3);
+      expect_history(ResultsReader(path), 95, kBlock + 3);
+      append_history(w, kNodes, kBlock + 3, kSteps);
+      w.set_count("substeps", kSteps);
+      w.end_analysis();
+      const auto info = ResultsReader(path).analyses().at(0);
+      EXPECT_EQ(info.status, "complete");
+      EXPECT_EQ(info.numeric_attributes.at("substeps"), kSteps);
+    }
+    expect_history(ResultsReader(path), kNodes, kSteps);
+    stored.push_back(stored_chunks(path, "analysis_1/U"));
+  }
+  EXPECT_EQ(stored[0].size(), 3u * ((kNodes + 20) / 21));  // 3 blocks of 34 chunks
+  EXPECT_TRUE(stored[0] == stored[1]);
+}
+
+/// A failure on the writer thread is thrown by the analysis's next call that waits for the
+/// writer (end_analysis) and by every call after it; the points synced before it stay
+/// readable. A file that cannot be created is reported by the constructor, as on one thread.
+TEST_F(ResultsFileTest, WriterThreadFailureIsThrownByTheNextCall) {
+  const WriterThreadMode set(WriterThread::On);
+  expect_cannot_create(file("no_dir/x.h5"));
+  const std::string path = file("failed.h5");
+  {
+    ResultsWriter w(path, small_model());
+    write_three_points(w);
+    sync_live_writer(path);  // the three points complete in the file
+    TimePoint bad = make_point(1.5, 2, 2);
+    bad.displacement = Eigen::MatrixXd::Zero(2, 6);  // two rows for three nodes
+    w.append(std::move(bad));                        // handed over: fails on the writer thread
+    EXPECT_THROW(w.end_analysis(), InternalError);
+    EXPECT_THROW(w.append(make_point(2.0, 2, 3)), InternalError);
+    EXPECT_THROW(w.set_count("substeps", 4), InternalError);
+  }
+  expect_three_points(path);
+}
+
 /// A run killed after a block went to the compressor, before its chunks were written, keeps
 /// every point: the block is still read from the staging rows (recent/first_row moves past a
 /// block only once its main chunks are flushed).
@@ -695,6 +760,9 @@ TEST_F(ResultsFileTest, KilledRunWhileABlockIsCompressedKeepsEveryPoint) {
   ASSERT_GE(pid, 0);
   if (pid == 0) {
     threads::set_max_threads(2);
+    // On the caller's thread: the points handed to a writer thread and not yet written when
+    // the run is killed are lost like those after the last sync.
+    set_results_writer_thread(WriterThread::Off);
     ResultsWriter w(path, nodes_only(kNodes));
     w.begin_analysis(ResultsKind::Transient, "killed while compressing");
     append_history(w, kNodes, 0, kBlock + 3);  // block 1 submitted at its last point
