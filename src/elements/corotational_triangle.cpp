@@ -16,6 +16,8 @@ using Mat3 = Eigen::Matrix3d;
 using Vec3 = Eigen::Vector3d;
 using Row18 = Eigen::Matrix<double, 1, 18>;
 using Mat3x18 = Eigen::Matrix<double, 3, 18>;
+using Mat24x16 = Eigen::Matrix<double, 24, 16>;
+using Mat24x18 = Eigen::Matrix<double, 24, 18>;
 using so3::spin;
 
 // Local DOFs per corner a: u v w θx θy θz at 6a..6a+5. The membrane set (u, v, θz) is
@@ -25,6 +27,16 @@ constexpr int membrane_dof(int a, int k) {
 }
 constexpr int bending_dof(int a, int k) {
   return 6 * a + 3 + k;
+}
+
+/// Rows 0..17 of `to` = the 18 columns of `from` (their first To::Cols entries) transposed, and
+/// zero padding below. An element-wise copy: Eigen's transposed assignment of these fixed sizes
+/// took several times as long.
+template <class From, class To>
+void transpose_into(const From& from, To& to) {
+  for (int j = 0; j < 18; ++j)
+    for (int i = 0; i < To::ColsAtCompileTime; ++i) to(j, i) = from(i, j);
+  to.template bottomRows<To::RowsAtCompileTime - 18>().setZero();
 }
 
 }  // namespace
@@ -47,7 +59,7 @@ struct CorotationalTriangle::State {
 
 CorotationalTriangle::CorotationalTriangle(const std::array<Vec3, 3>& X, const Mat3& R0,
                                            const Vec3& c0, const Eigen::MatrixXd& K_local)
-    : X_(X), q0_(R0) {
+    : X_(X), q0_(R0), K16_(Eigen::Matrix<double, 16, 16>::Zero()) {
   for (int a = 0; a < 3; ++a) {
     const Vec3 l = R0.transpose() * (X[static_cast<std::size_t>(a)] - c0);
     xi0_[static_cast<std::size_t>(a)] = l.x();
@@ -65,7 +77,7 @@ CorotationalTriangle::CorotationalTriangle(const std::array<Vec3, 3>& X, const M
       constexpr int kLocal[] = {0, 1, 3, 4, 5};
       for (int i = 0; i < 5; ++i)
         for (int j = 0; j < 5; ++j)
-          K15_(5 * a + i, 5 * b + j) = K_local(6 * a + kLocal[i], 6 * b + kLocal[j]);
+          K16_(5 * a + i, 5 * b + j) = K_local(6 * a + kLocal[i], 6 * b + kLocal[j]);
     }
 }
 
@@ -196,7 +208,8 @@ void CorotationalTriangle::tangent(const Eigen::VectorXd& u, Eigen::MatrixXd& K,
   // (u, v, θx, θy, θz of corner a at 5a + k):
   //   in-plane:  δd_a = δx̂_a − δx̂_c + r̂_a × δω̂, δω̂ = Ĝ δξ̂ (the frame's spin, header),
   //   rotations: δθ_a = T(θ_a)⁻¹ (δφ̂_a − δω̂).
-  Eigen::Matrix<double, 15, 18> B = Eigen::Matrix<double, 15, 18>::Zero();
+  // B̂ has a zero 16th row (the padding of K16_).
+  Eigen::Matrix<double, 16, 18> B = Eigen::Matrix<double, 16, 18>::Zero();
   for (int a = 0; a < 3; ++a) {
     const std::size_t k = static_cast<std::size_t>(a);
     const Mat3& Ji = s.Ji[k];
@@ -213,6 +226,8 @@ void CorotationalTriangle::tangent(const Eigen::VectorXd& u, Eigen::MatrixXd& K,
   }
   // Material part B̂ᵀ K̄ B̂ over the nonzero rows of each column of B̂ (a fixed pattern: a
   // column of δû has its 3 u rows, one of δŵ the 9 rotation rows, one of δφ̂ its corner's 3).
+  // The products are sums of whole columns, 16 or 24 long (padded with zeros): whole SIMD
+  // packets.
   const auto rows_of = [](int j) -> std::pair<const int*, int> {
     static constexpr int kU[] = {0, 5, 10};
     static constexpr int kAll[] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14};
@@ -228,18 +243,19 @@ void CorotationalTriangle::tangent(const Eigen::VectorXd& u, Eigen::MatrixXd& K,
         return {kRot + 3 * (j / 6), 3};
     }
   };
-  Eigen::Matrix<double, 15, 18> KB;  // K̄ B̂, column by column
+  Eigen::Matrix<double, 16, 18> KB;  // K̄ B̂, column by column
   for (int j = 0; j < 18; ++j) {
     const auto [rows, n] = rows_of(j);
-    Eigen::Matrix<double, 15, 1> col = K15_.col(rows[0]) * B(rows[0], j);
-    for (int r = 1; r < n; ++r) col += K15_.col(rows[r]) * B(rows[r], j);
+    Eigen::Matrix<double, 16, 1> col = K16_.col(rows[0]) * B(rows[0], j);
+    for (int r = 1; r < n; ++r) col += K16_.col(rows[r]) * B(rows[r], j);
     KB.col(j) = col;
   }
-  const Eigen::Matrix<double, 18, 15> KBt = KB.transpose();
-  Mat18 Kl;  // B̂ᵀ K̄ B̂, symmetric: column i is (K̄ B̂)ᵀ B̂(:, i)
+  Mat24x16 KBt;  // (K̄ B̂)ᵀ
+  transpose_into(KB, KBt);
+  Mat24x18 Kl;  // B̂ᵀ K̄ B̂ in rows 0..17, symmetric: column i is (K̄ B̂)ᵀ B̂(:, i)
   for (int i = 0; i < 18; ++i) {
     const auto [rows, n] = rows_of(i);
-    Eigen::Matrix<double, 18, 1> col = KBt.col(rows[0]) * B(rows[0], i);
+    Eigen::Matrix<double, 24, 1> col = KBt.col(rows[0]) * B(rows[0], i);
     for (int r = 1; r < n; ++r) col += KBt.col(rows[r]) * B(rows[r], i);
     Kl.col(i) = col;
   }
@@ -311,18 +327,24 @@ void CorotationalTriangle::tangent(const Eigen::VectorXd& u, Eigen::MatrixXd& K,
     P[2 * a] = s.Rc.transpose();
     P[2 * a + 1] = s.Rc.transpose() * s.T[a];
   }
-  Mat18 KP;
+  Mat24x18 KP;
   for (int j = 0; j < 6; ++j) {
     const Mat3& Pj = P[static_cast<std::size_t>(j)];
     for (int c = 0; c < 3; ++c)
       KP.col(3 * j + c) =
           Kl.col(3 * j) * Pj(0, c) + Kl.col(3 * j + 1) * Pj(1, c) + Kl.col(3 * j + 2) * Pj(2, c);
   }
-  K.resize(18, 18);
+  // K = T̂ᵀ (K̂ T̂) as the transpose of (K̂ T̂)ᵀ T̂: sums of columns again.
+  Mat24x18 KPt;
+  transpose_into(KP, KPt);
+  Mat24x18 Kt;
   for (int i = 0; i < 6; ++i) {
-    const Mat3 Pt = P[static_cast<std::size_t>(i)].transpose();
-    for (int c = 0; c < 18; ++c) K.block<3, 1>(3 * i, c).noalias() = Pt * KP.block<3, 1>(3 * i, c);
+    const Mat3& Pi = P[static_cast<std::size_t>(i)];
+    for (int c = 0; c < 3; ++c)
+      Kt.col(3 * i + c) =
+          KPt.col(3 * i) * Pi(0, c) + KPt.col(3 * i + 1) * Pi(1, c) + KPt.col(3 * i + 2) * Pi(2, c);
   }
+  K = Kt.topRows<18>().transpose();
   f.resize(18);
   for (std::size_t a = 0; a < 3; ++a) {
     const int i = 6 * static_cast<int>(a);

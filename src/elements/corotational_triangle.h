@@ -66,7 +66,10 @@ class CorotationalTriangle {
   // (the w rows and columns meet only the deformational w, which is zero).
   Eigen::Matrix<double, 9, 9> K_membrane_;
   Eigen::Matrix<double, 6, 6> K_bending_;
-  Eigen::Matrix<double, 15, 15> K15_;  // both, over u v θx θy θz per corner (the tangent's order)
+  // Both, over u v θx θy θz per corner (the tangent's order), padded with a zero 16th row and
+  // column: a 16-vector is whole SIMD packets, where Eigen takes a fixed 15-vector two doubles
+  // at a time (corotational_triangle.cpp, tangent).
+  Eigen::Matrix<double, 16, 16> K16_;
   // The memo of state_at: the last u and its state (forces formed or not).
   mutable std::unique_ptr<State> last_;
   mutable Vec18 last_u_;
