@@ -29,6 +29,8 @@ Assembler::Assembler(const std::vector<std::unique_ptr<Element>>& elements, cons
   tangent_buffer_.resize(elements_.size());
   force_buffer_.resize(elements_.size());
   tangent_at_.resize(elements_.size());
+  gathered_.resize(elements_.size());
+  buffers_at_.assign(elements_.size(), 0);
   tangent_valid_.assign(elements_.size(), 0);
   reusable_.assign(elements_.size(), false);
   for (std::size_t e = 0; e < elements_.size(); ++e) {
@@ -321,13 +323,17 @@ void Assembler::compute_nonlinear_tangents(const VectorXd& u, bool with_tangent,
 }
 
 bool Assembler::evaluate_tangent(std::size_t e, const VectorXd& u, bool with_tangent) const {
-  VectorXd ue;
+  // The element's own scratch for its gathered values: a pass allocates nothing once every
+  // element has been evaluated (a fresh vector per evaluation was a third of the thesis
+  // helmet's 2e5 allocations, issue 11).
+  VectorXd& ue = gathered_[e];
   gather(e, u, ue);
   VectorXd& at = tangent_at_[e];
-  if (reusable_[e] && (tangent_valid_[e] || !with_tangent) && at.size() == ue.size() &&
+  if (reusable_[e] && buffers_at_[e] && (tangent_valid_[e] || !with_tangent) &&
+      at.size() == ue.size() &&
       std::memcmp(at.data(), ue.data(), sizeof(double) * static_cast<std::size_t>(ue.size())) == 0)
     return false;
-  at.resize(0);  // the buffers are not reusable until the evaluation has succeeded
+  buffers_at_[e] = 0;  // the buffers are not reusable until the evaluation has succeeded
   // Rayleigh β K_e damping forces read the tangent: such elements always form it.
   const bool tangent =
       with_tangent || beta_of(e) != 0.0 || !elements_[e]->separate_internal_force(ctx_);
@@ -336,7 +342,10 @@ bool Assembler::evaluate_tangent(std::size_t e, const VectorXd& u, bool with_tan
   else
     elements_[e]->internal_force(ctx_, ue, force_buffer_[e]);
   tangent_valid_[e] = static_cast<char>(tangent);
-  if (reusable_[e]) at = std::move(ue);
+  if (reusable_[e]) {
+    at.swap(ue);  // the next gather overwrites the old values in place
+    buffers_at_[e] = 1;
+  }
   return true;
 }
 

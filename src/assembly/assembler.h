@@ -185,8 +185,8 @@ class Assembler {
   /// function of its DOF values (ctx_ is fixed for the assembler's life), so when its gathered
   /// values are bitwise those of its last evaluation the buffers are already its answer: the
   /// results are bitwise the same. Elements with a status (gaps, contact) or history
-  /// (plasticity) are always evaluated. `tangent_at_[e]` is empty while the buffers hold
-  /// nothing reusable.
+  /// (plasticity) are always evaluated. `buffers_at_[e]` is 0 while the buffers hold nothing
+  /// reusable; `gathered_[e]` is the element's scratch for its gathered values.
   ///
   /// The tangent is formed only when asked for: a residual evaluates the internal forces
   /// alone (Element::internal_force), and the factorization that follows at the same iterate
@@ -195,6 +195,8 @@ class Assembler {
   /// `tangent_valid_[e]`: the tangent buffer belongs to tangent_at_[e] too.
   std::vector<bool> reusable_;
   mutable std::vector<VectorXd> tangent_at_;
+  mutable std::vector<VectorXd> gathered_;
+  mutable std::vector<char> buffers_at_;
   mutable std::vector<char> tangent_valid_;
   /// Internal forces (and tangents when `with_tangent`) of the nonlinear elements at u into the
   /// buffers (only those with (*only)[e] set when `only` is given: distributed assembly).
