@@ -446,8 +446,14 @@ double Brick8::plastic_work() const {
 void Brick8::tangent(const ElementContext& ctx, const Eigen::VectorXd& u, Eigen::MatrixXd& K,
                      Eigen::VectorXd& f_int) const {
   const Eigen::Matrix<double, 24, 1> uc = to_corners(u);
-  Eigen::MatrixXd kc;
-  Eigen::VectorXd fc;
+  // Corner order is the DOF order when no node repeats: the corner matrices are then formed in
+  // K and f_int, which keep their storage from one evaluation to the next (two allocations per
+  // evaluation otherwise, issue 11).
+  const bool corners_are_dofs = n_unique_ == 8;
+  Eigen::MatrixXd kc_collapsed;
+  Eigen::VectorXd fc_collapsed;
+  Eigen::MatrixXd& kc = corners_are_dofs ? K : kc_collapsed;
+  Eigen::VectorXd& fc = corners_are_dofs ? f_int : fc_collapsed;
   if (plasticity_) {
     if (ctx.large_deflection || ctx.stress_stiffening)
       throw ElementSolutionError(
@@ -460,7 +466,7 @@ void Brick8::tangent(const ElementContext& ctx, const Eigen::VectorXd& u, Eigen:
     tangent_large(uc, kc, fc);
   else
     tangent_linear(ctx, uc, kc, fc);
-  from_corners(kc, fc, K, f_int);
+  if (!corners_are_dofs) from_corners(kc, fc, K, f_int);
 }
 
 void Brick8::internal_force(const ElementContext& ctx, const Eigen::VectorXd& u,
