@@ -182,12 +182,6 @@ Eigen::Matrix<double, 24, 1> Brick8::to_corners(const Eigen::VectorXd& u) const 
 
 void Brick8::from_corners(const Eigen::MatrixXd& kc, const Eigen::VectorXd& fc, Eigen::MatrixXd& k,
                           Eigen::VectorXd& f) const {
-  if (n_unique_ == 8) {
-    // Corner order is the DOF order when no node repeats.
-    k = kc;
-    f = fc;
-    return;
-  }
   const int n = 3 * n_unique_;
   k.setZero(n, n);
   f.setZero(n);

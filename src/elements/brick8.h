@@ -101,6 +101,8 @@ class Brick8 final : public Element {
   };
 
   Eigen::Matrix<double, 24, 1> to_corners(const Eigen::VectorXd& u) const;
+  /// The corner matrices summed onto the unique nodes of a brick with repeated nodes (a brick
+  /// without forms them in place: tangent()).
   void from_corners(const Eigen::MatrixXd& kc, const Eigen::VectorXd& fc, Eigen::MatrixXd& k,
                     Eigen::VectorXd& f) const;
   /// ∫ B_Lᵀ S dV0 and ∫ (B_Lᵀ D B_L + G ᵀ S G) dV0 over the first NF functions at the
