@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "core/log.h"
 #include "linalg/mass_solve.h"
@@ -293,6 +294,7 @@ int DirectSolution::n_unknowns() const {
 double DirectSolution::residual(const VectorXd& u, VectorXd& r, double& reference) {
   Increment& inc = increment_;
   const int nf = dofs_->n_free();
+  const bool tangent_follows = std::exchange(tangent_expected_, false);
   if (inc.dynamic) integrator_->kinematics(u, inc.v, inc.a);
   if (inc.follower) {
     // Follower pressure (large deflection): the load of the deformed faces at this iterate. Its
@@ -305,8 +307,9 @@ double DirectSolution::residual(const VectorXd& u, VectorXd& r, double& referenc
     if (inc.dynamic) inc.fixed_terms += inc.weights.external * delta;
   }
   if (inc.dynamic) {
-    assembler_->assemble(inc.coeff, u, inc.v,
-                         Assembler::Output{nullptr, &inc.f_int, &inc.f_damp, &inc.inertia}, &inc.a);
+    assembler_->assemble(
+        inc.coeff, u, inc.v,
+        Assembler::Output{nullptr, &inc.f_int, &inc.f_damp, &inc.inertia, tangent_follows}, &inc.a);
     inertia_a_ = inc.a;
     inertia_ = inc.inertia;
     r = inc.fixed_terms - inc.weights.inertia * inc.inertia -
@@ -314,7 +317,9 @@ double DirectSolution::residual(const VectorXd& u, VectorXd& r, double& referenc
     reference = std::max(
         {inc.f_ext.head(nf).norm(), inc.inertia.head(nf).norm(), inc.f_int.head(nf).norm()});
   } else {
-    assembler_->assemble(inc.coeff, u, inc.v, Assembler::Output{nullptr, &inc.f_int, &inc.f_damp});
+    assembler_->assemble(
+        inc.coeff, u, inc.v,
+        Assembler::Output{nullptr, &inc.f_int, &inc.f_damp, nullptr, tangent_follows});
     r = inc.f_ext - inc.f_int;
     reference = std::max(inc.f_ext.head(nf).norm(), inc.f_int.head(nf).norm());
   }

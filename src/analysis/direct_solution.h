@@ -110,6 +110,7 @@ class DirectSolution : private NonlinearProblem {
   void factorize_tangent(const VectorXd& u) override { factorize(increment_.coeff, u); }
   VectorXd solve(const VectorXd& r) override { return solver_->solve(r); }
   bool update_status(const VectorXd& u) override;
+  void expect_tangent(bool likely) override { tangent_expected_ = likely; }
 
   Structure& structure_;
   ResultsWriter& writer_;
@@ -206,7 +207,10 @@ class DirectSolution : private NonlinearProblem {
   // The AUTOTS controller state of a point inside an AUTOTS load step (until the step resumes).
   std::optional<StepController::State> resume_autots_;
   double resume_autots_t_end_ = 0.0;
-  bool advice_given_ = false;           // the time-step advice note is given once per analysis
+  bool advice_given_ = false;  // the time-step advice note is given once per analysis
+  /// Newton said that a factorization at the next residual's iterate will follow: that
+  /// residual forms the element tangents too (read and cleared by residual()).
+  bool tangent_expected_ = false;
   bool negative_pivot_warned_ = false;  // the negative-pivot warning is given once per analysis
 };
 

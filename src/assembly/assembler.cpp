@@ -219,7 +219,8 @@ void Assembler::assemble(const IntegrationCoefficients& coeff, const VectorXd& u
   const std::vector<char>* only = !split    ? nullptr
                                   : vectors ? &evaluate_vectors_
                                             : &evaluate_matrix_;
-  compute_nonlinear_tangents(u, out.effective != nullptr, only);
+  compute_nonlinear_tangents(u, out.effective != nullptr, only,
+                             out.tangent_follows && out.effective == nullptr);
   add_forces(u, v, a, out, only);
   if (out.effective) {
     // Swapped in, not assigned: Eigen 3.4 copies a SparseMatrix on assignment, briefly twice.
@@ -291,16 +292,28 @@ void Assembler::inertia_force(const VectorXd& a, VectorXd& f) const {
 }
 
 void Assembler::compute_nonlinear_tangents(const VectorXd& u, bool with_tangent,
-                                           const std::vector<char>* only) const {
+                                           const std::vector<char>* only,
+                                           bool tangent_follows) const {
   // Tangents of the nonlinear elements (the expensive part: co-rotational shells,
   // total-Lagrangian bricks) into per-element buffers. Elements are const here and keep no shared
   // scratch, so the loop is race-free and its results do not depend on the thread count; the
   // scatter that follows stays serial and deterministic.
   const int n_nonlinear = static_cast<int>(nonlinear_.size());
   auto needed = [&](int i) { return !only || (*only)[nonlinear_[static_cast<std::size_t>(i)]]; };
-  auto evaluate = [&](int i) {
-    return needed(i) && evaluate_tangent(nonlinear_[static_cast<std::size_t>(i)], u, with_tangent);
+  // Ahead of a factorization, only the elements whose buffers it can reuse form their tangents
+  // (and, distributed, only those at this rank's matrix columns): the others are evaluated
+  // again by it anyway.
+  const bool split = !dof_owner_.empty();
+  auto tangent_of = [&](std::size_t e) {
+    return with_tangent ||
+           (tangent_follows && reusable_[e] && (!split || evaluate_matrix_[e] != 0));
   };
+  auto evaluate = [&](int i) {
+    const std::size_t e = nonlinear_[static_cast<std::size_t>(i)];
+    return needed(i) && evaluate_tangent(e, u, tangent_of(e));
+  };
+  const bool after_ahead = threading_.formed_ahead;
+  threading_.formed_ahead = tangent_follows && !with_tangent;
   if (threading_.parallel) {
     // An element's exception (e.g. one that collapsed under large deflection) comes back from
     // the loop as the one of the lowest element index, the one the serial loop would throw.
@@ -315,8 +328,10 @@ void Assembler::compute_nonlinear_tangents(const VectorXd& u, bool with_tangent,
   }
   // The probes estimate a full pass: a pass that reused some buffers is scaled to all the
   // elements it wanted (elements that never move, e.g. on constrained nodes, reuse theirs at
-  // every pass), and one that evaluated nothing is no probe; nor is one of forces alone.
-  if (evaluated > 0 && with_tangent)
+  // every pass), and one that evaluated nothing is no probe; nor is one of forces alone, nor
+  // the factorization's pass after tangents formed ahead (it evaluates the elements with a
+  // status or history alone, whose cost says nothing of the others').
+  if (evaluated > 0 && (with_tangent || tangent_follows) && !(with_tangent && after_ahead))
     threading_.record_serial_pass(
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() * wanted /
         evaluated);

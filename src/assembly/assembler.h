@@ -53,6 +53,10 @@ class Assembler {
     VectorXd* internal_force = nullptr;  // f_int(u) over all active DOFs
     VectorXd* damping_force = nullptr;   // C v over all active DOFs
     VectorXd* inertia_force = nullptr;   // M a over all active DOFs (needs `a`)
+    /// A factorization at the same u follows (the first Newton iteration of a step): the
+    /// reusable nonlinear elements form their tangents with these forces, in one evaluation,
+    /// and the factorization finds them in the buffers.
+    bool tangent_follows = false;
   };
   /// u, v, a: total displacement, velocity and acceleration over all active DOFs (a only for
   /// the inertia force).
@@ -191,7 +195,9 @@ class Assembler {
   /// The tangent is formed only when asked for: a residual evaluates the internal forces
   /// alone (Element::internal_force), and the factorization that follows at the same iterate
   /// adds the tangent. The evaluation that finds an iterate converged (one per step) thus
-  /// never forms a tangent; the helmet's shells spent 44 % of their tangents there.
+  /// never forms a tangent; the helmet's shells spent 44 % of their tangents there. The
+  /// residual of a step's predictor, which a factorization almost always follows, forms both at
+  /// once (Output::tangent_follows): one evaluation instead of two.
   /// `tangent_valid_[e]`: the tangent buffer belongs to tangent_at_[e] too.
   std::vector<bool> reusable_;
   mutable std::vector<VectorXd> tangent_at_;
@@ -200,8 +206,11 @@ class Assembler {
   mutable std::vector<char> tangent_valid_;
   /// Internal forces (and tangents when `with_tangent`) of the nonlinear elements at u into the
   /// buffers (only those with (*only)[e] set when `only` is given: distributed assembly).
+  /// `tangent_follows`: the reusable elements that a factorization would evaluate form their
+  /// tangents too (Output::tangent_follows).
   void compute_nonlinear_tangents(const VectorXd& u, bool with_tangent,
-                                  const std::vector<char>* only = nullptr) const;
+                                  const std::vector<char>* only = nullptr,
+                                  bool tangent_follows = false) const;
   /// One element's phase; false when the buffers were reused (no evaluation).
   bool evaluate_tangent(std::size_t e, const VectorXd& u, bool with_tangent) const;
 
@@ -217,6 +226,9 @@ class Assembler {
     int probes_left = kProbes;
     double fastest_serial_seconds = 1e300;
     bool parallel = false;
+    /// The last pass formed tangents ahead of a factorization, which then evaluates only the
+    /// elements with a status or history: no probe of a full pass.
+    bool formed_ahead = false;
     void record_serial_pass(double seconds);
   };
   mutable TangentThreading threading_;

@@ -16,6 +16,9 @@ NewtonResult NewtonRaphson::solve(NonlinearProblem& problem, VectorXd& u) const 
   int iteration = 0;
   for (; iteration <= options_.max_iterations; ++iteration) {
     double reference = 0.0;
+    problem.expect_tangent(
+        iteration == 0 && n > 0 &&
+        (problem.tangent_stale() || (options_.tangent_varies && options_.full_newton)));
     const double residual_norm = problem.residual(u, r, reference);
     result.history.push_back(residual_norm);
     result.residual_norm = residual_norm;

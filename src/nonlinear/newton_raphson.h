@@ -27,6 +27,11 @@ class NonlinearProblem {
   virtual void factorize_tangent(const VectorXd& u) = 0;
   /// Δu = K_T⁻¹ r over the unknowns.
   virtual VectorXd solve(const VectorXd& r_unknowns) = 0;
+  /// Said before each residual evaluation: true when a factorization of the tangent at the same
+  /// iterate follows unless that residual converges (the first iteration of full Newton, whose
+  /// predictor is accepted only in exact balance). The problem may then form the tangent's
+  /// element parts with the forces in one evaluation.
+  virtual void expect_tangent(bool likely) {}
   /// Re-evaluates element statuses (gaps, sliders) at the new iterate; true when one changed,
   /// which makes the iteration unconverged and the tangent stale.
   virtual bool update_status(const VectorXd& u) { return false; }
