@@ -23,7 +23,7 @@ Assembler::Assembler(const std::vector<std::unique_ptr<Element>>& elements, cons
   pattern_ = graph.lower_pattern(nf);
   pattern_nonzeros_ = pattern_.nonzeros();
 
-  slots_.resize(elements_.size());
+  scatter_.resize(elements_.size());
   mass_.resize(elements_.size());
   is_linear_.assign(elements_.size(), false);
   tangent_buffer_.resize(elements_.size());
@@ -47,10 +47,11 @@ Assembler::Assembler(const std::vector<std::unique_ptr<Element>>& elements, cons
     elements_[e]->mass(ctx_, mass_[e]);
     const auto& idx = dofs_.element_indices(e);
     const int n = static_cast<int>(idx.size());
-    auto& slot = slots_[e];
-    slot.assign(static_cast<std::size_t>(n * n), -1);
-    for (int a = 0; a < n; ++a)
-      for (int b = 0; b < n; ++b) {
+    auto& scatter = scatter_[e];
+    scatter.clear();
+    // Column b of the element matrix, rows a >= b (contiguous in memory), in that order.
+    for (int b = 0; b < n; ++b)
+      for (int a = b; a < n; ++a) {
         int row = idx[a], col = idx[b];
         if (row >= nf || col >= nf) continue;
         if (row < col) std::swap(row, col);
@@ -59,8 +60,9 @@ Assembler::Assembler(const std::vector<std::unique_ptr<Element>>& elements, cons
         const int* begin = rows + pattern_.column_start[static_cast<std::size_t>(col)];
         const int* end = rows + pattern_.column_start[static_cast<std::size_t>(col) + 1];
         const int* it = std::lower_bound(begin, end, row);
-        slot[static_cast<std::size_t>(a * n + b)] = static_cast<int>(it - rows);
+        scatter.push_back({b * n + a, static_cast<int>(it - rows)});
       }
+    scatter.shrink_to_fit();
   }
   build_linear_force_matrices(graph);
 }
@@ -480,18 +482,15 @@ SparseMatrix Assembler::mass_block_lower(const std::vector<int>& position, int s
 
 void Assembler::scatter_lower(std::size_t e, double a_factor, const MatrixXd& a, double b_factor,
                               const MatrixXd* b, double* values) const {
-  const int n = static_cast<int>(dofs_.element_indices(e).size());
-  const int* slot = slots_[e].data();
-  for (int j = 0; j < n; ++j) {
-    const double* aj = a.data() + static_cast<std::ptrdiff_t>(j) * n;
-    const double* bj = b ? b->data() + static_cast<std::ptrdiff_t>(j) * n : nullptr;
-    // Column j of the element matrix, rows i >= j (contiguous), into the slots of (i, j).
-    for (int i = j; i < n; ++i) {
-      const int s = slot[i * n + j];
-      if (s < 0) continue;
-      values[s] += bj ? a_factor * aj[i] + b_factor * bj[i] : a_factor * aj[i];
-    }
+  const double* av = a.data();
+  if (b) {
+    const double* bv = b->data();
+    for (const ScatterEntry& entry : scatter_[e])
+      values[entry.slot] += a_factor * av[entry.element_entry] + b_factor * bv[entry.element_entry];
+    return;
   }
+  for (const ScatterEntry& entry : scatter_[e])
+    values[entry.slot] += a_factor * av[entry.element_entry];
 }
 
 std::vector<int> Assembler::nonlinear_free_dofs() const {

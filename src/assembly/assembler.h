@@ -168,9 +168,15 @@ class Assembler {
   // a later full assembly forms it again (pattern()).
   mutable SparsePattern pattern_;
   long long pattern_nonzeros_ = 0;
-  /// For each nonlinear element (empty for the linear ones), the value slot of each (a, b) pair
-  /// with a >= b in the lower pattern (-1 when a DOF is constrained): scatter is an indexed add.
-  std::vector<std::vector<int>> slots_;
+  /// For each nonlinear element (empty for the linear ones), its lower-triangle entries (a, b),
+  /// a >= b, whose DOFs are both free: the entry's index in the column-major element matrix
+  /// and its value slot in the lower pattern. The scatter is then an indexed add without a
+  /// test per entry (the constrained DOFs' entries are not in the list).
+  struct ScatterEntry {
+    int element_entry;  // b n + a
+    int slot;
+  };
+  std::vector<std::vector<ScatterEntry>> scatter_;
   /// Constant mass matrices of the nonlinear elements (empty for the linear ones, whose K_e,
   /// C_e and M_e are only in linear_products_).
   std::vector<MatrixXd> mass_;
