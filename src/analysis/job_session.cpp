@@ -128,6 +128,17 @@ void JobSession::solve(const Job& job, std::size_t step) {
                          "(reduced and mode-superposition transients solve as a whole)");
       stats_.analyses.emplace_back();
       AnalysisStatistics& current = stats_.analyses.back();
+      // A solution solved increment by increment builds its structure before the results
+      // file is opened: the file's writer thread starts HDF5 and creates the file while this
+      // thread reads the superelement files the structure needs, and HDF5 serves one thread at
+      // a time (the use pass of the thesis's helmet waited 5 ms for it, issue 11).
+      const bool incremental = s.analysis && solves_incrementally(s.analysis->options);
+      structure_.reset();
+      if (incremental) {
+        models_.push_back(s.model_snapshot);
+        structure_ = std::make_unique<Structure>(*models_.back(), s.analysis->options, settings_,
+                                                 &s.analysis->load_steps);
+      }
       ResultsWriter& writer = writer_for(job, step);
       open_ = step;
       open_seconds_ = 0.0;
@@ -145,12 +156,10 @@ void JobSession::solve(const Job& job, std::size_t step) {
         close_open();
         return;
       }
-      models_.push_back(s.model_snapshot);
+      if (!incremental) models_.push_back(s.model_snapshot);
       open_step_.emplace();
       open_step_->analysis = *s.analysis;
-      if (solves_incrementally(s.analysis->options)) {
-        structure_ = std::make_unique<Structure>(*models_.back(), s.analysis->options, settings_,
-                                                 &s.analysis->load_steps);
+      if (incremental) {
         structure_->use_table_nodes(writer.node_ids());
         record_file_defined_nodes(*structure_, writer);
         // The file's time blocks fit the points when the load steps are all known.
