@@ -20,6 +20,10 @@ void silence_errors() {
   // here, the first HDF5 call of every reader and writer.
   static const bool no_atexit = [] {
     H5dont_atexit();
+    // HDF5 keeps freed blocks of a kind for reuse up to 64 kB per kind by default: a file's
+    // metadata cache (0.5 MB, zeroed when created) was given back to the system at every
+    // close, and the next file open or create paid its page faults again (issue 11).
+    H5set_free_list_limits(4 << 20, 1 << 20, -1, -1, -1, -1);
     return true;
   }();
   (void)no_atexit;
