@@ -155,8 +155,10 @@ SuperelementData generate_superelement(const Structure& structure, const Analysi
   // (−M r a for a unit a), so a nested superelement contributes its own exact g_d.
   se.unit_acceleration.setZero(cond.n_masters(), 3);
   se.acceleration_correction.setZero(cond.n_slaves(), 3);
+  const Eigen::MatrixXd unit_loads =
+      inertia_loads(elements, dofs, ctx, Eigen::Matrix3d::Identity());
   for (int d = 0; d < 3; ++d) {
-    const VectorXd p = -inertia_load(elements, dofs, ctx, Vec3::Unit(d));
+    const VectorXd p = -unit_loads.col(d);
     se.unit_acceleration.col(d) = cond.reduce_force(p);
     se.acceleration_correction.col(d) = slave_response(p);
     double total = 0.0, reduced = 0.0;

@@ -60,10 +60,10 @@ void NodalAxesElement::damping(const ElementContext& ctx, const Eigen::VectorXd&
   C = t_.transpose() * C * t_;
 }
 
-void NodalAxesElement::frame_acceleration_load(const ElementContext& ctx, const Vec3& a,
-                                               Eigen::VectorXd& f) const {
+void NodalAxesElement::frame_acceleration_load(const ElementContext& ctx, const Eigen::Matrix3Xd& a,
+                                               Eigen::MatrixXd& f) const {
   inner_->frame_acceleration_load(ctx, a, f);
-  f = t_.transpose() * f;
+  for (Eigen::Index k = 0; k < f.cols(); ++k) f.col(k) = (t_.transpose() * f.col(k)).eval();
 }
 
 void NodalAxesElement::pressure_load(const ElementContext& ctx, int face,

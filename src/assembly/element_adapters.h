@@ -33,8 +33,8 @@ class NodalAxesElement final : public Element, public PenetrationCheck {
   bool has_damping() const override { return inner_->has_damping(); }
   void damping(const ElementContext& ctx, const Eigen::VectorXd& u,
                Eigen::MatrixXd& C) const override;
-  void frame_acceleration_load(const ElementContext& ctx, const Vec3& a,
-                               Eigen::VectorXd& f) const override;
+  void frame_acceleration_load(const ElementContext& ctx, const Eigen::Matrix3Xd& a,
+                               Eigen::MatrixXd& f) const override;
   void pressure_load(const ElementContext& ctx, int face, const std::array<double, 4>& p,
                      const Eigen::VectorXd& u, Eigen::VectorXd& f) const override;
   bool has_history() const override { return inner_->has_history(); }
@@ -92,8 +92,8 @@ class MaterialDampingElement final : public Element, public PenetrationCheck {
   /// Inner damping + α M + β K_T(u).
   void damping(const ElementContext& ctx, const Eigen::VectorXd& u,
                Eigen::MatrixXd& C) const override;
-  void frame_acceleration_load(const ElementContext& ctx, const Vec3& a,
-                               Eigen::VectorXd& f) const override {
+  void frame_acceleration_load(const ElementContext& ctx, const Eigen::Matrix3Xd& a,
+                               Eigen::MatrixXd& f) const override {
     inner_->frame_acceleration_load(ctx, a, f);
   }
   void pressure_load(const ElementContext& ctx, int face, const std::array<double, 4>& p,

@@ -66,6 +66,11 @@ Vec3 frame_acceleration(const LoadPoint& at);
 /// Element::frame_acceleration_load (−M r a, or −Σ a_d g_d exactly for a superelement).
 VectorXd inertia_load(const std::vector<std::unique_ptr<Element>>& elements, const DofMap& dofs,
                       const ElementContext& ctx, const Vec3& acel);
+/// The inertia loads of several frame accelerations (the columns of `accelerations`) in one
+/// pass over the elements: each element's mass is formed once (issue 11).
+Eigen::MatrixXd inertia_loads(const std::vector<std::unique_ptr<Element>>& elements,
+                              const DofMap& dofs, const ElementContext& ctx,
+                              const Eigen::Matrix3Xd& accelerations);
 /// The frame-acceleration load is linear in a: f(a) = Σ_d a_d f(e_d). The three unit loads are
 /// assembled once per DOF numbering (through the element hook, so superelements are exact) and
 /// each time step costs three vector updates.

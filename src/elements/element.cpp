@@ -31,16 +31,18 @@ void Element::damping(const ElementContext&, const Eigen::VectorXd&, Eigen::Matr
   C.setZero(n_dofs(), n_dofs());
 }
 
-void Element::frame_acceleration_load(const ElementContext& ctx, const Vec3& a,
-                                      Eigen::VectorXd& f) const {
+void Element::frame_acceleration_load(const ElementContext& ctx, const Eigen::Matrix3Xd& a,
+                                      Eigen::MatrixXd& f) const {
   Eigen::MatrixXd m;
   mass(ctx, m);
-  Eigen::VectorXd ra = Eigen::VectorXd::Zero(n_dofs());
+  Eigen::MatrixXd ra = Eigen::MatrixXd::Zero(n_dofs(), a.cols());
   for (int i = 0; i < n_dofs(); ++i) {
     const int d = static_cast<int>(dofs()[static_cast<std::size_t>(i)].dof);
-    if (d < 3) ra(i) = a(d);
+    if (d < 3) ra.row(i) = a.row(d);
   }
-  f = -(m * ra);
+  // Column by column: the matrix-vector product of a single load, whatever the count.
+  f.resize(n_dofs(), a.cols());
+  for (Eigen::Index k = 0; k < a.cols(); ++k) f.col(k).noalias() = -(m * ra.col(k));
 }
 
 void Element::pressure_load(const ElementContext&, int face, const std::array<double, 4>&,

@@ -67,11 +67,12 @@ class Element {
   virtual bool has_damping() const { return false; }
   virtual void damping(const ElementContext& ctx, const Eigen::VectorXd& u,
                        Eigen::MatrixXd& C) const;
-  /// Load of a frame acceleration a (ACEL, spec §3.19) on the element DOFs. Default: f = −M r a
-  /// with the element mass and r the rigid translation of each translational DOF. A
+  /// Loads of frame accelerations (ACEL, spec §3.19) on the element DOFs: column k of f for
+  /// the acceleration in column k of `a`. Default: f = −M r a with the element mass and r the
+  /// rigid translation of each translational DOF (the mass formed once for all the columns). A
   /// superelement overrides it with the exact reduced vectors −Σ_d a_d g_d (spec §10.6, U25).
-  virtual void frame_acceleration_load(const ElementContext& ctx, const Vec3& a,
-                                       Eigen::VectorXd& f) const;
+  virtual void frame_acceleration_load(const ElementContext& ctx, const Eigen::Matrix3Xd& a,
+                                       Eigen::MatrixXd& f) const;
   /// Consistent nodal load of a pressure on face `face` (1-based, the face numbering of the
   /// element type's registration) with values `p` at the face's nodes (face-node order), over the
   /// element DOFs in global axes (APDL_MODELING §5.1-§5.3). Positive pressure acts into the face.

@@ -36,9 +36,11 @@ void Superelement::damping(const ElementContext&, const Eigen::VectorXd&,
     C.setZero(n_dofs(), n_dofs());
 }
 
-void Superelement::frame_acceleration_load(const ElementContext&, const Vec3& a,
-                                           Eigen::VectorXd& f) const {
-  f = -(data_->unit_acceleration * a);
+void Superelement::frame_acceleration_load(const ElementContext&, const Eigen::Matrix3Xd& a,
+                                           Eigen::MatrixXd& f) const {
+  f.resize(data_->unit_acceleration.rows(), a.cols());
+  for (Eigen::Index k = 0; k < a.cols(); ++k)
+    f.col(k).noalias() = -(data_->unit_acceleration * a.col(k));
 }
 
 namespace {

@@ -29,8 +29,8 @@ class Superelement final : public Element {
   void damping(const ElementContext& ctx, const Eigen::VectorXd& u,
                Eigen::MatrixXd& C) const override;
   /// f = −Σ_d a_d g_d: exact reduced inertia load of the whole substructure (spec §10.6, U25).
-  void frame_acceleration_load(const ElementContext& ctx, const Vec3& a,
-                               Eigen::VectorXd& f) const override;
+  void frame_acceleration_load(const ElementContext& ctx, const Eigen::Matrix3Xd& a,
+                               Eigen::MatrixXd& f) const override;
   /// None: internal results come from the expansion pass (spec §11.7).
   const std::vector<std::string>& result_names() const override;
   void results(const ElementContext& ctx, const Eigen::VectorXd& u, const Eigen::VectorXd& v,
