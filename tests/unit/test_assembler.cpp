@@ -438,6 +438,39 @@ TEST(Assembler, ResidualsFormNoTangentForElementsWithAForceOfTheirOwn) {
   EXPECT_EQ(MatrixXd(eff), MatrixXd(eff_fresh));
 }
 
+TEST(Assembler, AResidualAheadOfAFactorizationFormsTheReusableTangentsOnce) {
+  // The residual of a step's predictor, which a factorization at the same u follows
+  // (Output::tangent_follows): an element with a force of its own forms its tangent there, and
+  // the factorization reuses it; a status element is evaluated by both. Forces and matrix are
+  // a fresh assembler's.
+  std::vector<std::unique_ptr<Element>> elements;
+  elements.push_back(std::make_unique<SeparatingSpring>(1, 1, 2));
+  elements.push_back(std::make_unique<CountingSpring>(2, 2, 3, true));
+  const DofMap dofs(elements, {{1, Dof::UX}});
+  const Assembler assembler(elements, dofs, ElementContext{});
+  const auto& spring = static_cast<const SeparatingSpring&>(*elements[0]);
+  const auto& gap = static_cast<const CountingSpring&>(*elements[1]);
+  const VectorXd u = VectorXd::LinSpaced(dofs.n_active(), 0.0, 0.3);
+  const VectorXd v = VectorXd::Zero(dofs.n_active());
+  const IntegrationCoefficients coeff{1.0, 0.0, 0.0};
+  VectorXd f_residual;
+  SparseMatrix eff;
+  assembler.assemble(coeff, u, v, Assembler::Output{nullptr, &f_residual, nullptr, nullptr, true});
+  EXPECT_EQ(spring.force_evaluations, 0);
+  EXPECT_EQ(spring.tangents(), 1);
+  EXPECT_EQ(gap.evaluations, 1);
+  assembler.assemble(coeff, u, v, Assembler::Output{&eff, nullptr, nullptr});
+  EXPECT_EQ(spring.force_evaluations, 0);
+  EXPECT_EQ(spring.tangents(), 1);  // from the residual's pass
+  EXPECT_EQ(gap.evaluations, 2);
+  const Assembler fresh(elements, dofs, ElementContext{});
+  VectorXd f_fresh;
+  SparseMatrix eff_fresh;
+  fresh.assemble(coeff, u, v, Assembler::Output{&eff_fresh, &f_fresh, nullptr});
+  EXPECT_EQ(f_residual, f_fresh);
+  EXPECT_EQ(MatrixXd(eff), MatrixXd(eff_fresh));
+}
+
 TEST(Assembler, TangentPhaseReusesBuffersOnlyForStatelessElementsAtTheSameDofValues) {
   // Residual and tangent of a Newton iteration assemble at the same u: an element without
   // status or history is evaluated once, a status element (gap) every time; an element whose

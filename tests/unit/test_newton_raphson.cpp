@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <vector>
 
 #include "nonlinear/newton_raphson.h"
 
@@ -20,8 +21,10 @@ class HardeningChain final : public NonlinearProblem {
   bool linear = false;  // c = 0: a linear problem
   int factorizations = 0, solves = 0, status_calls = 0;
   int status_changes_left = 0;  // update_status reports a change this many times
+  std::vector<bool> expected;   // expect_tangent's word before each residual
 
   int n_unknowns() const override { return 2; }
+  void expect_tangent(bool likely) override { expected.push_back(likely); }
   double residual(const VectorXd& u, VectorXd& r, double& reference) override {
     const double cc = linear ? 0.0 : c;
     const double d = u(1) - u(0);
@@ -94,6 +97,29 @@ TEST(NewtonRaphson, FullNewtonConvergesQuadraticallyOnASmoothProblem) {
   VectorXd r;
   double ref = 0.0;
   EXPECT_LT(p.residual(u, r, ref), 1e-10);
+}
+
+TEST(NewtonRaphson, SaysBeforeTheFirstResidualOnlyThatATangentFollowsIt) {
+  // Full Newton factors the tangent at the predictor unless its residual is zero: the problem
+  // hears so before that residual (and may form the tangent with it), before no other. Modified
+  // Newton with a valid factor forms none, so there it hears it only while the factor is stale.
+  HardeningChain p;
+  NewtonOptions options;
+  options.max_iterations = 30;
+  VectorXd u = VectorXd::Zero(3);
+  const NewtonResult full = NewtonRaphson(options, ConvergenceTest(tight())).solve(p, u);
+  ASSERT_TRUE(full.converged);
+  ASSERT_EQ(p.expected.size(), static_cast<std::size_t>(full.iterations) + 1);
+  EXPECT_TRUE(p.expected.front());
+  for (std::size_t k = 1; k < p.expected.size(); ++k) EXPECT_FALSE(p.expected[k]) << k;
+  // The next increment of modified Newton keeps the factor: nothing follows its first residual.
+  options.full_newton = false;
+  p.f *= 1.01;
+  p.expected.clear();
+  const NewtonResult modified = NewtonRaphson(options, ConvergenceTest(tight())).solve(p, u);
+  ASSERT_TRUE(modified.converged);
+  ASSERT_FALSE(p.expected.empty());
+  for (std::size_t k = 0; k < p.expected.size(); ++k) EXPECT_FALSE(p.expected[k]) << k;
 }
 
 TEST(NewtonRaphson, ModifiedNewtonSolvesALinearProblemInOneIteration) {
