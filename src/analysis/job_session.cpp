@@ -133,7 +133,6 @@ void JobSession::solve(const Job& job, std::size_t step) {
       // thread reads the superelement files the structure needs, and HDF5 serves one thread at
       // a time (the use pass of the thesis's helmet waited 5 ms for it, issue 11).
       const bool incremental = s.analysis && solves_incrementally(s.analysis->options);
-      structure_.reset();
       if (incremental) {
         models_.push_back(s.model_snapshot);
         structure_ = std::make_unique<Structure>(*models_.back(), s.analysis->options, settings_,
