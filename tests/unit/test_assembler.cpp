@@ -438,6 +438,19 @@ TEST(Assembler, ResidualsFormNoTangentForElementsWithAForceOfTheirOwn) {
   EXPECT_EQ(MatrixXd(eff), MatrixXd(eff_fresh));
 }
 
+/// The forces and effective matrix that a fresh assembler forms at (u, v) equal f and eff.
+void expect_as_a_fresh_assembler(const std::vector<std::unique_ptr<Element>>& elements,
+                                 const DofMap& dofs, const IntegrationCoefficients& coeff,
+                                 const VectorXd& u, const VectorXd& v, const VectorXd& f,
+                                 const SparseMatrix& eff) {
+  const Assembler fresh(elements, dofs, ElementContext{});
+  VectorXd f_fresh;
+  SparseMatrix eff_fresh;
+  fresh.assemble(coeff, u, v, Assembler::Output{&eff_fresh, &f_fresh, nullptr});
+  EXPECT_EQ(f, f_fresh);
+  EXPECT_EQ(MatrixXd(eff), MatrixXd(eff_fresh));
+}
+
 TEST(Assembler, AResidualAheadOfAFactorizationFormsTheReusableTangentsOnce) {
   // The residual of a step's predictor, which a factorization at the same u follows
   // (Output::tangent_follows): an element with a force of its own forms its tangent there, and
@@ -463,12 +476,7 @@ TEST(Assembler, AResidualAheadOfAFactorizationFormsTheReusableTangentsOnce) {
   EXPECT_EQ(spring.force_evaluations, 0);
   EXPECT_EQ(spring.tangents(), 1);  // from the residual's pass
   EXPECT_EQ(gap.evaluations, 2);
-  const Assembler fresh(elements, dofs, ElementContext{});
-  VectorXd f_fresh;
-  SparseMatrix eff_fresh;
-  fresh.assemble(coeff, u, v, Assembler::Output{&eff_fresh, &f_fresh, nullptr});
-  EXPECT_EQ(f_residual, f_fresh);
-  EXPECT_EQ(MatrixXd(eff), MatrixXd(eff_fresh));
+  expect_as_a_fresh_assembler(elements, dofs, coeff, u, v, f_residual, eff);
 }
 
 TEST(Assembler, TangentPhaseReusesBuffersOnlyForStatelessElementsAtTheSameDofValues) {
@@ -508,12 +516,7 @@ TEST(Assembler, TangentPhaseReusesBuffersOnlyForStatelessElementsAtTheSameDofVal
   EXPECT_EQ(count(0), 1);
   EXPECT_EQ(count(1), 2);
   EXPECT_EQ(count(2), 4);
-  const Assembler fresh(elements, dofs, ElementContext{});
-  VectorXd f_fresh;
-  SparseMatrix eff_fresh;
-  fresh.assemble(coeff, u, v, Assembler::Output{&eff_fresh, &f_fresh, nullptr});
-  EXPECT_EQ(f_second, f_fresh);
-  EXPECT_EQ(MatrixXd(eff), MatrixXd(eff_fresh));
+  expect_as_a_fresh_assembler(elements, dofs, coeff, u, v, f_second, eff);
 }
 
 }  // namespace
