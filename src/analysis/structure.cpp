@@ -144,6 +144,15 @@ Structure::Structure(const Model& model, const AnalysisOptions& options,
     build_cache(build).built[id] = element.get();
     elements_.push_back(adapt_element(std::move(element), model, record));
   }
+  std::map<std::string, std::vector<std::size_t>> members;
+  for (std::size_t e = 0; e < elements_.size(); ++e)
+    if (!elements_[e]->result_names().empty()) members[elements_[e]->family()].push_back(e);
+  for (auto& [family, list] : members) {
+    ResultFamily& f = result_families_.emplace_back();
+    f.name = family;
+    for (std::size_t e : list) f.element_ids.push_back(elements_[e]->id());
+    f.members = std::move(list);
+  }
 
   // MP,DAMP: stiffness-proportional damping of the element's material, C_e += β K_e (MAPDL's
   // material BETD; APDL_MODELING §6.1, M6). The full (static/transient) solution assembles it
@@ -311,18 +320,12 @@ std::map<std::string, ElementResultTable> Structure::element_results(const Assem
                                                                      const VectorXd& u,
                                                                      const VectorXd& v) const {
   std::map<std::string, ElementResultTable> tables;
-  std::map<std::string, std::vector<std::size_t>> members;
-  for (std::size_t e = 0; e < elements_.size(); ++e) {
-    if (elements_[e]->result_names().empty()) continue;
-    members[elements_[e]->family()].push_back(e);
-  }
-  for (const auto& family_members : members) {
-    // (not a structured binding: clang 14 cannot capture one in the lambda below)
-    const std::vector<std::size_t>& list = family_members.second;
-    ElementResultTable& table = tables[family_members.first];
+  for (const ResultFamily& family : result_families_) {
+    const std::vector<std::size_t>& list = family.members;
+    ElementResultTable& table = tables[family.name];
     table.item_names = elements_[list.front()]->result_names();
+    table.element_ids = family.element_ids;
     table.values.resize(static_cast<int>(list.size()), static_cast<int>(table.item_names.size()));
-    for (std::size_t e : list) table.element_ids.push_back(elements_[e]->id());
     // Rows in runs of kResultRun elements, each with its own scratch: in parallel when the family
     // has a few runs (a stored point of the dome's 25 600 shells took ~30 ms on one thread). An
     // element's results depend on its own DOF values and state only (as its tangent in the

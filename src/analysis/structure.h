@@ -97,6 +97,14 @@ class Structure {
   std::map<int, int> node_row_sparse_;
   std::set<DofKey> automatic_;
   std::vector<double> material_beta_;
+  /// The elements with results, by family (ascending family name, as the tables of
+  /// element_results): grouped once, not at every stored point.
+  struct ResultFamily {
+    std::string name;
+    std::vector<std::size_t> members;  // element indices, element order
+    std::vector<int> element_ids;
+  };
+  std::vector<ResultFamily> result_families_;
 };
 
 }  // namespace impactfe

@@ -110,6 +110,36 @@ TEST(StaticAnalysis, NodalTablesOfSparselyAndDenselyNumberedNodes) {
   }
 }
 
+/// Element results come in one table per family, rows in element order, whatever the order in
+/// which the families' elements are numbered: a series chain whose spars (elements 1, 3) and
+/// springs (2, 4) alternate carries the end force in every element, at each load step.
+TEST(StaticAnalysis, ElementResultsOfInterleavedFamiliesAtEveryStoredPoint) {
+  const std::string text =
+      "/PREP7\nET,1,LINK1\nET,2,COMBIN14\nR,1,2.0\nR,2,1000\nMP,EX,1,30E6\n"
+      "N,1,0\nN,2,10\nN,3,11\nN,4,21\nN,5,22\n"
+      "TYPE,1\nREAL,1\nE,1,2\nTYPE,2\nREAL,2\nE,2,3\nTYPE,1\nREAL,1\nE,3,4\n"
+      "TYPE,2\nREAL,2\nE,4,5\n"
+      "D,1,UX\nD,ALL,UY\nD,ALL,UZ\nFINISH\n/SOLU\nANTYPE,STATIC\n"
+      "F,5,FX,600\nSOLVE\nF,5,FX,-150\nSOLVE\nFINISH\n";
+  const auto run = testing::run_deck_text("static_interleaved_families", text);
+  for (const auto& [point, force] : {std::pair{0, 600.0}, std::pair{1, -150.0}}) {
+    SCOPED_TRACE(point);
+    const TimePoint p = run.reader->time_point(1, point);
+    ASSERT_EQ(p.element_results.size(), 2u);
+    const ElementResultTable& spars = p.element_results.at("Spar");
+    const ElementResultTable& springs = p.element_results.at("SpringDamper");
+    EXPECT_EQ(spars.element_ids, (std::vector<int>{1, 3}));
+    EXPECT_EQ(springs.element_ids, (std::vector<int>{2, 4}));
+    ASSERT_EQ(spars.item_names.front(), "FORC");
+    ASSERT_EQ(springs.item_names, (std::vector<std::string>{"FORC", "STRETCH"}));
+    for (int r = 0; r < 2; ++r) {
+      EXPECT_NEAR(spars.values(r, 0), force, 1e-9 * 600.0);
+      EXPECT_NEAR(springs.values(r, 0), force, 1e-9 * 600.0);
+      EXPECT_NEAR(springs.values(r, 1), force / 1000.0, 1e-9 * 0.6);  // stretch = F / k
+    }
+  }
+}
+
 /// An ANSYS 4.2 deck freezes its load steps (AFWRITE) before /INPUT,27 runs them: the results
 /// file then sizes its time blocks to the points the analysis stores. The thesis pendulum with
 /// ITER,100,1,50 (results at substeps 50 and 100) stores 3 points, the initial state included:
