@@ -133,3 +133,20 @@ def test_mp_damp_refused_where_it_is_not_applied(binary, tmp_path):
     assert "mp_damp_reduced_transient.inp:12: E: element 1: its material 1 has MP,DAMP" in p.stderr, \
         p.stderr
     assert "BETAD" in p.stderr
+
+
+def test_version_names_the_version_and_the_commit(binary):
+    """`impactfe --version`: the project version and the commit the program was built from."""
+    p = run([binary, "--version"])
+    assert re.fullmatch(r"impactfe \d+\.\d+\.\d+ \(([0-9a-f]{7,40}(-dirty)?|unknown)\)\n", p.stdout), \
+        p.stdout
+
+
+def test_command_line_errors_exit_1_with_the_usage_line(binary):
+    """A command-line error (unknown option, missing argument, no subcommand) exits 1, the
+    documented status of bad input, with CLI11's message and the usage line."""
+    for args in (["run"], ["run", "deck.inp", "--no-such-option"], [], ["post"],
+                 ["run", "deck.inp", "--dialect", "5x"]):
+        p = run([binary] + args, expect=1)
+        assert p.stderr.startswith("error: ") and "usage: impactfe" in p.stderr, (args, p.stderr)
+    assert run([binary, "run", "--help"]).stdout.startswith("run an APDL deck")
