@@ -66,14 +66,24 @@ def run(binary, deck, out, timeout):
     return status, written
 
 
+def same_values(x, y):
+    """Bitwise equality of two arrays; variable-length strings and objects by value (their
+    bytes in memory are pointers)."""
+    x, y = np.asarray(x), np.asarray(y)
+    if x.dtype != y.dtype or x.shape != y.shape:
+        return False
+    if x.dtype.hasobject:
+        return x.tolist() == y.tolist()
+    return x.tobytes() == y.tobytes()
+
+
 def compare_attributes(path, a, b, problems):
     keys = {k for k in list(a.attrs) + list(b.attrs) if not volatile(k)}
     for k in sorted(keys):
         if k not in a.attrs or k not in b.attrs:
             problems.append(f"{path}@{k}: only in {'before' if k in a.attrs else 'after'}")
             continue
-        x, y = np.asarray(a.attrs[k]), np.asarray(b.attrs[k])
-        if x.dtype != y.dtype or x.shape != y.shape or x.tobytes() != y.tobytes():
+        if not same_values(a.attrs[k], b.attrs[k]):
             problems.append(f"{path}@{k}: {a.attrs[k]!r} vs {b.attrs[k]!r}")
 
 
@@ -99,7 +109,7 @@ def compare_files(before, after):
             x, y = a[()], b[()]
             if a.dtype != b.dtype or a.shape != b.shape:
                 problems.append(f"{name}: {a.dtype}{a.shape} vs {b.dtype}{b.shape}")
-            elif np.asarray(x).tobytes() != np.asarray(y).tobytes():
+            elif not same_values(x, y):
                 problems.append(f"{name}: values differ")
     return problems, count
 
@@ -112,7 +122,7 @@ def main():
     parser.add_argument("--out", default=str(ROOT / "build" / "compare-results"))
     parser.add_argument("--reuse-before", action="store_true")
     parser.add_argument("--timeout", type=float, default=900)
-    args = parser.parse_args()
+    args = parser.parse_intermixed_args()
     decks = [pathlib.Path(d).resolve() for d in args.decks] or decks_of_repository()
     out = pathlib.Path(args.out)
     # Fresh output directories (the baseline's too unless it is reused).

@@ -9,6 +9,7 @@
 #include "analysis/reduced_run.h"
 #include "core/log.h"
 #include "linalg/eigen_solver.h"
+#include "time/time_schedule.h"
 
 namespace impactfe {
 
@@ -109,9 +110,9 @@ void run_msup_transient(Structure& structure, const AnalysisRequest& request, Re
   state->points = reduced_time_axis(state->load_steps, state->dt, stats.notes);
   if (state->dt > 0.0 && nm > 0) {
     const double period = 2.0 * M_PI / omega(nm - 1);
-    if (state->dt > period / 10.0)
+    if (state->dt > coarsest_step(period))
       Log::warn("dt = {:g} is coarser than T/10 = {:g} of the highest mode used ({:.5g} Hz)",
-                state->dt, period / 10.0, omega(nm - 1) / (2 * M_PI));
+                state->dt, coarsest_step(period), omega(nm - 1) / (2 * M_PI));
   }
   ReducedDynamics dynamics(km, mm, cm, std::move(gaps), make_time_integrator(options));
   double seconds_per_step = 0.0;
