@@ -10,6 +10,7 @@
 #include <memory>
 #include <string>
 
+#include "../support/run_deck.h"
 #include "analysis/discretisation.h"
 #include "analysis/energy_balance.h"
 #include "analysis/equilibrium_increment.h"
@@ -220,6 +221,25 @@ TEST(RestartPoints, CapturedStateIsRestoredOnAnotherNumbering) {
   EXPECT_FALSE(restart_point_wanted(s, 1, false));
   EXPECT_TRUE(restart_point_wanted(s, 2, false));
   EXPECT_TRUE(restart_point_wanted(s, 3, true));
+}
+
+TEST(DirectSolution, RoundedDeltimIsInTheRunSummary) {
+  // DELTIM 0.3 over TIME 1: 3 substeps of 1/3 (the nearest whole number), said in the summary.
+  const auto run = testing::run_deck_text(
+      "rounded_deltim",
+      "/PREP7\nET,1,COMBIN14,,1\nET,2,MASS21,,,4\nR,1,100\nR,2,1\nN,1\nN,2,1\nE,1,2\n"
+      "TYPE,2\nREAL,2\nE,2\nFINISH\n/SOLU\nANTYPE,TRANS\nD,1,ALL\nD,2,UY\nF,2,FX,1\n"
+      "TIME,1\nDELTIM,0.3\nOUTRES,ALL,ALL\nSOLVE\nFINISH\n");
+  const AnalysisStatistics& a = run.statistics.analyses.at(0);
+  EXPECT_EQ(a.n_substeps, 3);
+  bool noted = false;
+  for (const std::string& note : a.notes)
+    noted = noted || note.find("DELTIM 0.3 does not divide the load step") != std::string::npos;
+  EXPECT_TRUE(noted);
+  const std::vector<double> times = run.reader->times(1);
+  ASSERT_EQ(times.size(), 4u);
+  EXPECT_DOUBLE_EQ(times[1], 1.0 / 3);
+  EXPECT_EQ(times[3], 1.0);
 }
 
 }  // namespace
