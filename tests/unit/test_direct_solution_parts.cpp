@@ -16,6 +16,7 @@
 #include "analysis/equilibrium_increment.h"
 #include "analysis/motion_state.h"
 #include "analysis/restart_points.h"
+#include "analysis/run_observers.h"
 #include "analysis/step_loads.h"
 #include "analysis/time_step_advice.h"
 #include "deck/deck_reader.h"
@@ -221,6 +222,51 @@ TEST(RestartPoints, CapturedStateIsRestoredOnAnotherNumbering) {
   EXPECT_FALSE(restart_point_wanted(s, 1, false));
   EXPECT_TRUE(restart_point_wanted(s, 2, false));
   EXPECT_TRUE(restart_point_wanted(s, 3, true));
+}
+
+/// Records the progress events.
+struct ProgressLog final : ProgressObserver {
+  void substep_done(const ProgressEvent& e) override { events.push_back(e); }
+  std::vector<ProgressEvent> events;
+};
+
+TEST(RunObservers, ProgressCountsTheSubstepsLeftInTheRun) {
+  ModelFixture m(kSpring);
+  LoadStep first = m.step();
+  first.n_substeps = 4;
+  LoadStep second = first;
+  second.number = 2;
+  second.time_end = 3.0;
+  std::vector<std::string> notes;
+  TimeSchedule schedule(false, 25, notes);
+  schedule.look_ahead({second});
+  schedule.begin_load_step(first, {});
+  schedule.begin_substeps(std::nullopt);
+  auto disc =
+      std::make_unique<Discretisation>(m.structure, m.structure.constraints_of(first), false);
+  MotionState state;
+  state.start(disc->dofs(), m.structure.model());
+  EnergyBalance energy(m.structure.elements());
+  std::unique_ptr<TimeIntegrator> no_integrator;
+  const bool running = false;
+  AnalysisStatistics stats;
+  stats.description = "static";
+  const RunParts parts{m.structure, disc, state, energy, no_integrator, schedule, running, stats};
+  ProgressLog log;
+  ProgressReport progress(parts, &log);
+  const Substep s = schedule.next();
+  schedule.accept(2, 0);
+  progress.substep_accepted(AcceptedSubstep{first, nullptr, s, 2, 0, false, false});
+  ASSERT_EQ(log.events.size(), 1u);
+  const ProgressEvent& e = log.events[0];
+  EXPECT_EQ(e.analysis, "static");
+  EXPECT_EQ(e.substep, 1);
+  EXPECT_EQ(e.substeps, 4);
+  EXPECT_EQ(e.time, 0.25);
+  EXPECT_EQ(e.time_end, 1.0);
+  EXPECT_EQ(e.iterations, 2);
+  EXPECT_EQ(e.substeps_left, 3 + 4);  // 3 of this load step, 4 of the next
+  EXPECT_EQ(e.run_time_end, 3.0);
 }
 
 TEST(DirectSolution, RoundedDeltimIsInTheRunSummary) {
