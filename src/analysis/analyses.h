@@ -13,18 +13,14 @@ namespace impactfe {
 class DirectSolution;
 /// Opens a linear or nonlinear static analysis (KAN,0 / ANTYPE,STATIC; spec §10.7) or a full
 /// (nonlinear) transient (KAN,4 / TRNOPT,FULL; spec §10.3), as the structure's options say: the
-/// results analysis is begun and the solution waits for its load steps.
-/// `expected_points`: the points the analysis will store, when its load steps are all known
-/// (stored_points_at_most; 0: not known).
+/// results analysis is begun and the solution waits for its load steps. `known_steps`: the load
+/// steps known now (planned once); `count_points`: they are all the analysis has, so the
+/// results file's time blocks are sized to the points they store.
 std::unique_ptr<DirectSolution> begin_direct_analysis(Structure& structure, ResultsWriter& writer,
                                                       const RunSettings& settings,
                                                       AnalysisStatistics& stats,
-                                                      long long expected_points = 0);
-/// The points a static or full transient analysis of these load steps stores at most with
-/// constant substeps (OUTRES; the initial state of a transient included); 0 when a step's
-/// timing is invalid (reported when the step is solved). Automatic time stepping may store
-/// more (items written at every substep taken).
-long long stored_points_at_most(const std::vector<LoadStep>& steps, bool transient);
+                                                      const std::vector<LoadStep>& known_steps,
+                                                      bool count_points);
 /// The number of modes a modal or mode-superposition analysis can compute: `wanted`, or fewer
 /// when fewer free DOFs carry mass (noted in `stats`). ModelError naming the materials without
 /// density when no free DOF has mass (the mass matrix is zero: no frequency exists).

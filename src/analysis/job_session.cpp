@@ -162,12 +162,8 @@ void JobSession::solve(const Job& job, std::size_t step) {
         structure_->use_table_nodes(writer.node_ids());
         record_file_defined_nodes(*structure_, writer);
         // The file's time blocks fit the points when the load steps are all known.
-        const long long expected =
-            s.analysis->complete && !restart
-                ? stored_points_at_most(s.analysis->load_steps,
-                                        s.analysis->options.type == AnalysisType::Transient)
-                : 0;
-        direct_ = begin_direct_analysis(*structure_, writer, settings_, current, expected);
+        direct_ = begin_direct_analysis(*structure_, writer, settings_, current,
+                                        s.analysis->load_steps, s.analysis->complete && !restart);
       }
     }
     // The analysis grew by the load steps its SOLVEs appended since the last call.
@@ -176,7 +172,7 @@ void JobSession::solve(const Job& job, std::size_t step) {
       const auto& steps = open_step_->analysis->load_steps;
       while (load_steps_solved_ < steps.size()) {
         where_ = steps[load_steps_solved_].where;
-        direct_->set_following_steps(
+        direct_->look_ahead(
             {steps.begin() + static_cast<long>(load_steps_solved_) + 1, steps.end()});
         direct_->solve_load_step(steps[load_steps_solved_++]);
       }

@@ -9,8 +9,90 @@
 #include "analysis/reduced_run.h"
 #include "core/log.h"
 #include "linalg/eigen_solver.h"
+#include "time/time_schedule.h"
 
 namespace impactfe {
+
+namespace {
+
+/// The lowest modes of K x = λ M x over the free DOFs of the reduced model (MODOPT or the MSUP
+/// mode count, only modes with mass), mass-normalised; the shift keeps rigid-body modes regular.
+EigenResult lowest_modes(Structure& structure, const ReducedRunState& state,
+                         AnalysisStatistics& stats) {
+  const AnalysisOptions& options = structure.options();
+  const DofMap& dofs = *state.dofs;
+  const int nf = dofs.n_free();
+  const std::string& method = options.modal.method;
+  if (method == "QRDAMP" || method == "DAMP" || method == "UNSYM")
+    Log::warn("MODOPT,{}: undamped real modes from the symmetric Lanczos solver are used", method);
+  int n_modes = options.msup_modes > 0 ? options.msup_modes : options.modal.n_modes;
+  n_modes = std::min(std::max(n_modes, 1), nf);
+  const VectorXd zero = VectorXd::Zero(dofs.n_active());
+  SparseMatrix k_lower(nf, nf), m_lower(nf, nf);
+  state.assembler->assemble({1.0, 0.0, 0.0}, zero, zero,
+                            Assembler::Output{&k_lower, nullptr, nullptr});
+  state.assembler->assemble({0.0, 0.0, 1.0}, zero, zero,
+                            Assembler::Output{&m_lower, nullptr, nullptr});
+  double ratio_sum = 0.0;
+  int count = 0;
+  for (int i = 0; i < nf; ++i)
+    if (m_lower.coeff(i, i) > 0.0 && k_lower.coeff(i, i) > 0.0) {
+      ratio_sum += k_lower.coeff(i, i) / m_lower.coeff(i, i);
+      ++count;
+    }
+  const double shift = -1e-6 * (count > 0 ? ratio_sum / count : 1.0);
+  n_modes = modes_with_mass(structure, m_lower, n_modes, "mode-superposition transient", stats);
+  try {
+    return lowest_eigenpairs(k_lower, m_lower, n_modes, shift);
+  } catch (const SingularMatrixError& e) {
+    throw ModelError(fmt::format(
+        "mode-superposition transient: K - sigma M is singular{}",
+        e.column() >= 0 && e.column() < nf ? " at " + describe(dofs.key(e.column())) : ""));
+  }
+}
+
+/// Modal damping: Φᵀ C_elem Φ + α I + β diag(ω²) + diag(2 ζ_j ω_j) with ζ_j = DMPRAT +
+/// MDAMP(j) (Φᵀ M Φ = I, Φᵀ K Φ = diag(ω²)).
+MatrixXd modal_damping(const ReducedRunState& state, const AnalysisOptions& options,
+                       const VectorXd& omega) {
+  const int nf = state.dofs->n_free();
+  const auto nm = omega.size();
+  const MatrixXd& phi = state.modes;
+  const VectorXd zero = VectorXd::Zero(state.dofs->n_active());
+  const SparseMatrix k_full = state.assembler->stiffness_matrix(zero);
+  const SparseMatrix c_full = damping_matrix(state, k_full);
+  MatrixXd cm = MatrixXd::Zero(nm, nm);
+  if (c_full.nonZeros()) {
+    const MatrixXd c_phi = c_full.topLeftCorner(nf, nf) * phi;
+    cm = phi.transpose() * c_phi;
+    cm = 0.5 * (cm + cm.transpose());
+  }
+  for (int j = 0; j < nm; ++j) {
+    double zeta = options.damping_ratio;
+    auto it = options.modal_damping.find(j + 1);
+    if (it != options.modal_damping.end()) zeta += it->second;
+    cm(j, j) += 2.0 * zeta * omega(j);
+  }
+  return cm;
+}
+
+/// The initial conditions (IC) projected on the modes: q0 = Φᵀ M u0, q̇0 = Φᵀ M v0.
+std::pair<VectorXd, VectorXd> modal_initial_state(const Model& model,
+                                                  const ReducedRunState& state) {
+  const DofMap& dofs = *state.dofs;
+  const int nf = dofs.n_free();
+  VectorXd u0 = VectorXd::Zero(dofs.n_active()), vel0 = u0;
+  for (const auto& [key, ic] : model.initial_conditions) {
+    const int i = dofs.index(key);
+    if (i < 0 || i >= nf) continue;
+    u0(i) = ic.displacement;
+    vel0(i) = ic.velocity;
+  }
+  const MatrixXd m_phi = state.mass_all.topLeftCorner(nf, nf) * state.modes;
+  return {m_phi.transpose() * u0.head(nf), m_phi.transpose() * vel0.head(nf)};
+}
+
+}  // namespace
 
 void run_msup_transient(Structure& structure, const AnalysisRequest& request, ResultsWriter& writer,
                         const RunSettings& settings, AnalysisStatistics& stats,
@@ -25,63 +107,20 @@ void run_msup_transient(Structure& structure, const AnalysisRequest& request, Re
   writer.begin_analysis(ResultsKind::ReducedTransient,
                         fmt::format("mode-superposition transient ({})", probe->name()));
 
-  // --- Modes ---------------------------------------------------------------------------------
+  // --- Modes and modal matrices ----------------------------------------------------------------
   const auto t_modes = clock::now();
   prepare_reduced_model(*state, structure, request, settings, {}, stats);
   const DofMap& dofs = *state->dofs;
   const int nf = dofs.n_free();
-  const std::string& method = options.modal.method;
-  if (method == "QRDAMP" || method == "DAMP" || method == "UNSYM")
-    Log::warn("MODOPT,{}: undamped real modes from the symmetric Lanczos solver are used", method);
-  int n_modes = options.msup_modes > 0 ? options.msup_modes : options.modal.n_modes;
-  n_modes = std::min(std::max(n_modes, 1), nf);
-  const VectorXd zero = VectorXd::Zero(dofs.n_active());
-  SparseMatrix k_lower(nf, nf), m_lower(nf, nf);
-  state->assembler->assemble({1.0, 0.0, 0.0}, zero, zero,
-                             Assembler::Output{&k_lower, nullptr, nullptr});
-  state->assembler->assemble({0.0, 0.0, 1.0}, zero, zero,
-                             Assembler::Output{&m_lower, nullptr, nullptr});
-  double ratio_sum = 0.0;
-  int count = 0;
-  for (int i = 0; i < nf; ++i)
-    if (m_lower.coeff(i, i) > 0.0 && k_lower.coeff(i, i) > 0.0) {
-      ratio_sum += k_lower.coeff(i, i) / m_lower.coeff(i, i);
-      ++count;
-    }
-  const double shift = -1e-6 * (count > 0 ? ratio_sum / count : 1.0);
-  n_modes = modes_with_mass(structure, m_lower, n_modes, "mode-superposition transient", stats);
-  EigenResult eig;
-  try {
-    eig = lowest_eigenpairs(k_lower, m_lower, n_modes, shift);
-  } catch (const SingularMatrixError& e) {
-    throw ModelError(fmt::format(
-        "mode-superposition transient: K - sigma M is singular{}",
-        e.column() >= 0 && e.column() < nf ? " at " + describe(dofs.key(e.column())) : ""));
-  }
+  const EigenResult eig = lowest_modes(structure, *state, stats);
   const int nm = static_cast<int>(eig.eigenvalues.size());
   state->modes = eig.eigenvectors.topRows(nf);
   VectorXd omega(nm);
   for (int j = 0; j < nm; ++j) omega(j) = std::sqrt(std::max(eig.eigenvalues(j), 0.0));
-
-  // Modal matrices: Φᵀ M Φ = I, Φᵀ K Φ = diag(ω²); damping = Φᵀ C_elem Φ + α I + β diag(ω²)
-  // + diag(2 ζ_j ω_j) with ζ_j = DMPRAT + MDAMP(j).
   const MatrixXd& phi = state->modes;
   MatrixXd km = MatrixXd::Zero(nm, nm), mm = MatrixXd::Identity(nm, nm);
   km.diagonal() = omega.cwiseProduct(omega);
-  const SparseMatrix k_full = state->assembler->stiffness_matrix(zero);
-  const SparseMatrix c_full = damping_matrix(*state, k_full);
-  MatrixXd cm = MatrixXd::Zero(nm, nm);
-  if (c_full.nonZeros()) {
-    const MatrixXd c_phi = c_full.topLeftCorner(nf, nf) * phi;
-    cm = phi.transpose() * c_phi;
-    cm = 0.5 * (cm + cm.transpose());
-  }
-  for (int j = 0; j < nm; ++j) {
-    double zeta = options.damping_ratio;
-    auto it = options.modal_damping.find(j + 1);
-    if (it != options.modal_damping.end()) zeta += it->second;
-    cm(j, j) += 2.0 * zeta * omega(j);
-  }
+  MatrixXd cm = modal_damping(*state, options, omega);
   const double modes_seconds = std::chrono::duration<double>(clock::now() - t_modes).count();
   {
     std::string list;
@@ -93,25 +132,14 @@ void run_msup_transient(Structure& structure, const AnalysisRequest& request, Re
   // GP ends: any free DOF, through its row of Φ.
   std::vector<GeneralizedGap> gaps = generalized_gaps(
       model, dofs, [&](int i) { return VectorXd(phi.row(i).transpose()); }, "");
-
-  // Initial conditions projected on the modes: q0 = Φᵀ M u0.
-  VectorXd u0 = VectorXd::Zero(dofs.n_active()), vel0 = u0;
-  for (const auto& [key, ic] : model.initial_conditions) {
-    const int i = dofs.index(key);
-    if (i < 0 || i >= nf) continue;
-    u0(i) = ic.displacement;
-    vel0(i) = ic.velocity;
-  }
-  const MatrixXd m_phi = state->mass_all.topLeftCorner(nf, nf) * phi;
-  const VectorXd q0 = m_phi.transpose() * u0.head(nf);
-  const VectorXd v0 = m_phi.transpose() * vel0.head(nf);
+  const auto [q0, v0] = modal_initial_state(model, *state);
 
   state->points = reduced_time_axis(state->load_steps, state->dt, stats.notes);
   if (state->dt > 0.0 && nm > 0) {
     const double period = 2.0 * M_PI / omega(nm - 1);
-    if (state->dt > period / 10.0)
+    if (state->dt > coarsest_step(period))
       Log::warn("dt = {:g} is coarser than T/10 = {:g} of the highest mode used ({:.5g} Hz)",
-                state->dt, period / 10.0, omega(nm - 1) / (2 * M_PI));
+                state->dt, coarsest_step(period), omega(nm - 1) / (2 * M_PI));
   }
   ReducedDynamics dynamics(km, mm, cm, std::move(gaps), make_time_integrator(options));
   double seconds_per_step = 0.0;

@@ -9,6 +9,7 @@
 #include "deck/deck_context.h"
 #include "deck/post_support.h"
 #include "results/output_selection.h"
+#include "time/time_schedule.h"
 
 namespace impactfe::deck {
 
@@ -52,10 +53,13 @@ void cmd_time(DeckReader& r, const Command& c) {
   r.model.current.time_end = t;
 }
 
+// DTIME / DELTIM and NSUBST store what the deck says; the time schedule owns the rules
+// (check_step_size_settings, time/time_schedule.h), applied here so that an error names the
+// command.
+
 void cmd_dtime(DeckReader& r, const Command& c) {
   const auto dt = r.opt_real(c, 1);
   if (!dt) r.fail(c, "time step value missing");
-  if (*dt <= 0.0) r.fail(c, fmt::format("time step {} must be positive", *dt));
   LoadStep& s = r.model.current;
   s.dt = *dt;
   // DTIME/DELTIM and NSUBST/ITER are alternatives: the last one given wins (KAN=5 keeps both;
@@ -63,41 +67,29 @@ void cmd_dtime(DeckReader& r, const Command& c) {
   if (!(r.dialect == Dialect::Classic4x && r.kan == 5)) s.n_substeps.reset();
   // DELTIM,DTIME,DTMIN,DTMAX,Carry: the limits of automatic time stepping (APDL_MODELING
   // §9.1); they replace those of an earlier NSUBST (the last of the two wins).
-  StepControl& sc = r.model.current.control;
-  sc.n_max.reset();
-  sc.n_min.reset();
-  sc.dt_min.reset();
-  sc.dt_max.reset();
-  sc.carry = false;
-  if (c.name != "DELTIM") return;  // 4.2 DTIME has the step only
-  sc.dt_min = r.opt_real(c, 2);
-  sc.dt_max = r.opt_real(c, 3);
-  if (sc.dt_min && !(*sc.dt_min > 0.0))
-    r.fail(c, fmt::format("DTMIN {} must be positive", *sc.dt_min));
-  if (sc.dt_max && *sc.dt_max < *dt)
-    r.fail(c, fmt::format("DTMAX {} is smaller than the time step {}", *sc.dt_max, *dt));
-  if (sc.dt_min && *sc.dt_min > *dt)
-    r.fail(c, fmt::format("DTMIN {} is larger than the time step {}", *sc.dt_min, *dt));
-  sc.carry = r.on_off(c, 4, false);
+  StepControl& sc = s.control;
+  sc = StepControl{sc.automatic};
+  if (c.name == "DELTIM") {  // 4.2 DTIME has the step only
+    sc.dt_min = r.opt_real(c, 2);
+    sc.dt_max = r.opt_real(c, 3);
+  }
+  check_step_size_settings(s, c.where);
+  if (c.name == "DELTIM") sc.carry = r.on_off(c, 4, false);
 }
 
 void cmd_nsubst(DeckReader& r, const Command& c) {
   const auto n = r.opt_int(c, 1);
   if (!n) r.fail(c, "number of substeps missing");
-  if (*n <= 0) r.fail(c, fmt::format("number of substeps {} must be positive", *n));
-  r.model.current.n_substeps = *n;
-  r.model.current.dt.reset();
+  LoadStep& s = r.model.current;
+  s.n_substeps = *n;
+  s.dt.reset();
   // NSUBST,NSBSTP,NSBMX,NSBMN,Carry: NSBMX substeps give the smallest step, NSBMN the largest
   // (APDL_MODELING §9.1); they replace the limits of an earlier DELTIM.
-  StepControl& sc = r.model.current.control;
-  sc.dt_min.reset();
-  sc.dt_max.reset();
+  StepControl& sc = s.control;
+  sc = StepControl{sc.automatic};
   sc.n_max = r.opt_int(c, 2);
   sc.n_min = r.opt_int(c, 3);
-  if (sc.n_max && *sc.n_max < *n)
-    r.fail(c, fmt::format("NSBMX {} (most substeps) is smaller than NSBSTP {}", *sc.n_max, *n));
-  if (sc.n_min && (*sc.n_min <= 0 || *sc.n_min > *n))
-    r.fail(c, fmt::format("NSBMN {} (fewest substeps) must be in 1..NSBSTP ({})", *sc.n_min, *n));
+  check_step_size_settings(s, c.where);
   sc.carry = r.on_off(c, 4, false);
 }
 

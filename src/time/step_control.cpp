@@ -1,58 +1,9 @@
 #include "time/step_control.h"
 
-#include <fmt/format.h>
-
 #include <algorithm>
 #include <cmath>
 
 namespace impactfe {
-
-namespace {
-
-[[noreturn]] void fail(const LoadStep& step, const std::string& message) {
-  throw InputError(step.where, fmt::format("load step {}: {}", step.number, message));
-}
-
-}  // namespace
-
-AutoStepPlan auto_step_plan(const LoadStep& step, const StepControl& c, const LoadStepTiming& t,
-                            bool transient, bool default_on, std::optional<double> carried) {
-  AutoStepPlan p;
-  p.automatic = c.automatic.value_or(default_on);
-  p.t_start = t.t_start;
-  p.t_end = t.t_end;
-  p.dt0 = t.h;
-  p.n_nominal = t.n_substeps;
-  const double span = t.t_end - t.t_start;
-  // The largest step defaults to the first one in a transient (growth then only recovers from
-  // cuts), to the whole span in a static step (§9.1 [A]).
-  const double default_max = transient ? p.dt0 : span;
-  if (step.dt) {  // DELTIM,DTIME,DTMIN,DTMAX in time units
-    p.dt_min = c.dt_min.value_or(p.dt0 / 1000.0);
-    p.dt_max = c.dt_max.value_or(default_max);
-    if (c.dt_min && !(*c.dt_min > 0.0)) fail(step, fmt::format("DTMIN {} must be > 0", *c.dt_min));
-    if (p.dt_min > p.dt0 * (1.0 + 1e-9))
-      fail(step,
-           fmt::format("DTMIN {:g} is larger than the time step {:g} (DELTIM)", p.dt_min, p.dt0));
-    if (p.dt_max < p.dt0 * (1.0 - 1e-9))
-      fail(step,
-           fmt::format("DTMAX {:g} is smaller than the time step {:g} (DELTIM)", p.dt_max, p.dt0));
-  } else {  // NSUBST,NSBSTP,NSBMX,NSBMN in substep counts (or one substep by default)
-    if (c.n_max && *c.n_max < p.n_nominal)
-      fail(step, fmt::format("NSBMX {} (most substeps) is smaller than NSBSTP {}", *c.n_max,
-                             p.n_nominal));
-    if (c.n_min && *c.n_min > p.n_nominal)
-      fail(step, fmt::format("NSBMN {} (fewest substeps) is larger than NSBSTP {}", *c.n_min,
-                             p.n_nominal));
-    p.dt_min = c.n_max ? span / *c.n_max : p.dt0 / 1000.0;
-    p.dt_max = c.n_min ? span / *c.n_min : default_max;
-  }
-  p.dt_min = std::min(p.dt_min, p.dt0);
-  p.dt_max = std::min(std::max(p.dt_max, p.dt0), span);
-  p.dt_first = p.dt0;
-  if (c.carry && carried) p.dt_first = std::clamp(*carried, p.dt_min, p.dt_max);
-  return p;
-}
 
 StepController::StepController(const AutoStepPlan& plan, std::vector<int> output_strides)
     : plan_(plan), t_(plan.t_start), dt_(plan.dt_first) {

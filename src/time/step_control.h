@@ -3,17 +3,15 @@
 /// docs/solution_control.md): the step sizes from NSUBST / DELTIM with their minimum and
 /// maximum, bisection after a failed substep, growth after easy ones, a ceiling (the contact
 /// frequency while gaps are closed), and landing exactly on the requested output times and the
-/// load-step end. Pure bookkeeping of times: the driver solves, this class proposes the next
-/// step and hears whether it was accepted.
+/// load-step end. Pure bookkeeping of times, owned by TimeSchedule (time/time_schedule.h): it
+/// proposes the next step and hears whether it was accepted.
 #include <optional>
 #include <vector>
 
-#include "core/model.h"
-#include "time/time_axis.h"
-
 namespace impactfe {
 
-/// The step limits of a load step under AUTOTS (all in time units).
+/// The step limits of a load step under AUTOTS (all in time units; auto_step_plan in
+/// time/time_schedule.h).
 struct AutoStepPlan {
   bool automatic = false;  // AUTOTS ON / AUTO
   double t_start = 0.0, t_end = 0.0;
@@ -23,15 +21,6 @@ struct AutoStepPlan {
   int n_nominal = 1;      // substeps of the nominal grid (span / dt0)
   double dt_first = 0.0;  // the step the load step starts with (dt0, or the carried one)
 };
-
-/// AUTOTS settings `control` of `step` with timing `t` (load_step_timing). Defaults (APDL_MODELING
-/// §9.1 [A]): NSBMX = 1000 NSBSTP (DTMIN = DTIME / 1000), NSBMN = 1 in a static step (DTMAX = span)
-/// and NSBMN = NSBSTP in a transient one (DTMAX = DTIME). `default_on`: AUTOTS when the deck did
-/// not say. `carried`: the last step of the previous load step (Carry ON). Throws InputError at
-/// the step's command for inconsistent limits (DTMIN > DTIME, DTMAX < DTIME, ...).
-AutoStepPlan auto_step_plan(const LoadStep& step, const StepControl& control,
-                            const LoadStepTiming& t, bool transient, bool default_on,
-                            std::optional<double> carried = std::nullopt);
 
 class StepController {
  public:

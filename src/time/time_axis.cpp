@@ -28,33 +28,6 @@ int substep_count(const LoadStep& step, double span, double dt) {
   return std::max(1, static_cast<int>(n));
 }
 
-LoadStepTiming load_step_timing(const LoadStep& step, double t_start, bool transient) {
-  LoadStepTiming t;
-  t.t_start = t_start;
-  if (step.time_end) {
-    t.t_end = *step.time_end;
-  } else if (transient) {
-    fail(step, "TIME (end time) is required in a transient analysis");
-  } else {
-    t.t_end = static_cast<double>(step.number);  // static default: the load-step number
-  }
-  if (!(t.t_end > t_start))
-    fail(step, fmt::format("end time {} does not increase (previous end {})", t.t_end, t_start));
-  const double span = t.t_end - t_start;
-  if (step.dt) {
-    t.n_substeps = substep_count(step, span, *step.dt);
-  } else if (step.n_substeps) {
-    if (*step.n_substeps <= 0)
-      fail(step, fmt::format("number of substeps {} must be > 0", *step.n_substeps));
-    if (*step.n_substeps > kMaxSubstepsPerLoadStep)
-      fail(step,
-           fmt::format("{} substeps is more than {}", *step.n_substeps, kMaxSubstepsPerLoadStep));
-    t.n_substeps = *step.n_substeps;
-  }
-  t.h = span / t.n_substeps;
-  return t;
-}
-
 std::vector<ReducedPoint> reduced_time_axis(const std::vector<LoadStep>& steps, double& dt,
                                             std::vector<std::string>& notes) {
   if (steps.empty()) throw InputError("reduced transient: no load steps were written");

@@ -1,8 +1,7 @@
 #pragma once
-/// The time axis of an analysis: how the load steps' TIME, DELTIM/DTIME and NSUBST/ITER values
-/// become substeps (APDL_SUBSET §3.16-3.18, §9.4; spec §10.3, §10.4). The one place that
-/// interprets them, for the full (static / transient) and the reduced / mode-superposition
-/// drivers alike.
+/// The constant-step time axis of the reduced / mode-superposition transients and the expansion
+/// points (APDL_SUBSET §3.17, §3.18, §3.26); the substep count of a span shared with the full
+/// drivers' schedule (time/time_schedule.h, which plans static and full transient load steps).
 #include <string>
 #include <vector>
 
@@ -18,19 +17,14 @@ inline constexpr long kMaxSubstepsPerLoadStep = 100'000'000;
 /// InputError at the step's command when dt <= 0 or the count exceeds kMaxSubstepsPerLoadStep.
 int substep_count(const LoadStep& step, double span, double dt);
 
-/// One load step of a full analysis: substep k (1-based) ends at t_start + k h.
+/// One load step of a full analysis: substep k (1-based) ends at t_start + k h (planned by
+/// TimeSchedule, time/time_schedule.h).
 struct LoadStepTiming {
   double t_start = 0.0;
   double t_end = 0.0;
   int n_substeps = 1;
   double h = 0.0;
 };
-
-/// Timing of a load step of a static or full transient analysis starting at t_start. TIME is
-/// required in a transient; a static step without TIME ends at its load-step number. DELTIM wins
-/// over NSUBST when both were given (the deck keeps only the last of the two); neither gives one
-/// substep.
-LoadStepTiming load_step_timing(const LoadStep& step, double t_start, bool transient);
 
 /// One computed time point of a reduced / mode-superposition transient.
 struct ReducedPoint {

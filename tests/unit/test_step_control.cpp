@@ -11,6 +11,7 @@
 #include "time/integrator_history.h"
 #include "time/step_control.h"
 #include "time/time_integrator.h"
+#include "time/time_schedule.h"
 
 namespace impactfe {
 namespace {
