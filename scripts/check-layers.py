@@ -22,8 +22,9 @@ ALLOWED = {
     "reduction": ["core", "linalg", "assembly", "time"],
     "results": ["core", "io", "elements"],
     # The deck layer builds the model and the list of solution requests, and reads results
-    # files for POST1/POST26: never a solver, an assembler or the nonlinear layer.
-    "deck": ["core", "elements", "geometry", "io", "results"],
+    # files for POST1/POST26: never a solver, an assembler or the nonlinear layer. It checks
+    # the step-size settings through their owner, time/time_schedule.h, at the command.
+    "deck": ["core", "elements", "geometry", "io", "results", "time"],
     # The drivers; deck/solution_host.h is the interface through which the deck hands its
     # solution requests to the job session, which implements it.
     "analysis": ["core", "linalg", "io", "materials", "elements", "time", "geometry", "assembly",
