@@ -220,10 +220,11 @@ class Results:
         if any(a.n_modes for a in self._analyses):
             datasets.add("U")
         out["nodal"] = [lab for d in "UVAR" if d in datasets for lab in _DATASET_LABELS[d]]
-        names = dict(zip(self.element_ids.tolist(), self.element_type_names))
+        names = np.array(self.element_type_names, dtype=object)
         for a in self._analyses:
             for fam in a.families:
-                for type_name in dict.fromkeys(names.get(int(e), "?") for e in fam.element_ids):
+                rows = self._model.element_rows(fam.element_ids)
+                for type_name in pd.unique(names[rows]):
                     have = out.setdefault(type_name, [])
                     have.extend(x for x in fam.items if x not in have)
         return out
@@ -415,7 +416,7 @@ class Results:
         if point.mode is not None:
             raise ResultsError(f"{point.describe()} holds mode shapes only (UX..ROTZ), no "
                                "element results")
-        values = {lab: {} for lab in labels}
+        values = {lab: pd.Series(dtype=float) for lab in labels}
         for a, k in point.sources:
             for fam in a.families:
                 mine = [lab for lab in labels if lab in fam.upper]
@@ -423,24 +424,23 @@ class Results:
                     continue
                 block = a.row(f"elements/{fam.name}/values", k)
                 for lab in mine:
-                    column = block[:, fam.upper.index(lab)]
-                    into = values[lab]
-                    for e, v in zip(fam.element_ids.tolist(), column.tolist()):
-                        if math.isfinite(v) or e not in into:  # a later finite value wins
-                            into[e] = v
-        for lab, by_element in values.items():
-            if not any(math.isfinite(v) for v in by_element.values()):
+                    column = pd.Series(block[:, fam.upper.index(lab)], index=fam.element_ids)
+                    # A later analysis's finite value wins (the merge rule of history()).
+                    values[lab] = column if values[lab].empty else \
+                        column.combine_first(values[lab])
+        for lab, column in values.items():
+            if not np.isfinite(column.to_numpy()).any():
                 stored = sorted({a.index for a in self._analyses for fam in a.families
                                  if lab in fam.upper})
                 raise ResultsError(
                     f"{lab} has no value at {point.describe()} in '{self.path}': it is stored in "
                     f"analyses {stored}" + (" but was not written at this point (OUTRES)"
-                                            if by_element else ""))
-        ids = sorted(set().union(*values.values()))
+                                            if len(column) else ""))
+        ids = pd.Index(np.unique(np.concatenate([c.index.to_numpy() for c in values.values()])))
         df = self.elements().loc[ids, ["X", "Y", "Z", "part", "type_name", "type", "mat",
                                        "real"]]
         for lab in labels:
-            df[lab] = [values[lab].get(e, np.nan) for e in ids]
+            df[lab] = values[lab].reindex(ids).to_numpy()
         return df
 
     # ---- energy and modes --------------------------------------------------------------------

@@ -154,13 +154,21 @@ class Model:
 
     def node_rows(self, nodes):
         """Rows of user node numbers; ValueError when one is not a node of the model."""
-        nodes = np.asarray(nodes, dtype=np.int64)
-        rows = np.searchsorted(self.node_ids, nodes)
-        ok = rows < len(self.node_ids)
-        ok[ok] = self.node_ids[rows[ok]] == nodes[ok]
-        if not np.all(ok):
-            raise ValueError(f"the model has no node {nodes[~ok][0]}")
-        return rows
+        return _rows(self.node_ids, nodes, "node")
+
+    def element_rows(self, elements):
+        """Rows of user element numbers; ValueError when one is not an element of the model."""
+        return _rows(self.element_ids, elements, "element")
+
+
+def _rows(ids, wanted, what):
+    wanted = np.asarray(wanted, dtype=np.int64)
+    rows = np.searchsorted(ids, wanted)
+    ok = rows < len(ids)
+    ok[ok] = ids[rows[ok]] == wanted[ok]
+    if not np.all(ok):
+        raise ValueError(f"the model has no {what} {wanted[~ok][0]}")
+    return rows
 
 
 class Family:
