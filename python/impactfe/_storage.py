@@ -107,8 +107,10 @@ def read_strings(ds):
 def open_file(path):
     """The h5py file, opened without the HDF5 file lock (a running job holds it while it writes
     the file), or a ResultsError that says why it cannot be read."""
-    if not os.path.isfile(path):
+    if not os.path.exists(path):
         raise ResultsError(f"results file '{path}' does not exist")
+    if not os.path.isfile(path):
+        raise ResultsError(f"results file '{path}' is not a file")
     try:
         is_hdf5 = h5py.is_hdf5(path)
     except OSError as e:
@@ -123,7 +125,11 @@ def open_file(path):
                 f"results file '{path}' is truncated ({os.path.getsize(path)} bytes; HDF5 says: "
                 f"{e}): the run that wrote it stopped while the file grew, or the file was cut "
                 "short when copied") from e
-        raise ResultsError(f"cannot open results file '{path}': {e}") from e
+        hint = ""
+        if "locking" in str(e):  # HDF5 opens a file once per process, with one locking mode
+            hint = (" (the file is open in this process through h5py with file locking: close "
+                    "it, or open it with h5py.File(path, 'r', locking=False))")
+        raise ResultsError(f"cannot open results file '{path}': {e}{hint}") from e
 
 
 class Model:

@@ -4,7 +4,9 @@ post`), the merge rule included; the time selection never interpolates; the mode
 (coordinates, centroids, parts) come from the model; the plate drop's total contact force from
 the CONTA174 faces balances the rigid floor's pilot reaction."""
 import os
+import shutil
 
+import h5py
 import numpy as np
 import pytest
 
@@ -186,3 +188,51 @@ def test_argument_errors_name_what_exists(helmet):
         r.history(gap=1)
     with pytest.raises(impactfe.ResultsError, match="node must be an integer"):
         r.history(node="43", item="UZ")
+
+
+def test_static_reactions_and_stresses_against_the_closed_form(run_deck):
+    """tests/verification/static_indeterminate_bar.inp: a bar fixed at x = 0 and 10, P = 1000 at
+    x = 4: R1 = -600, R3 = -400, stresses +600 and -400. A static file has no velocities."""
+    r = impactfe.open(run_deck(os.path.join(os.path.dirname(DECKS), "verification",
+                                            "static_indeterminate_bar.inp"), "static_bar"))
+    fx = r.field("FX")
+    assert list(fx.index) == [1, 3] and fx.attrs["set"] == 1
+    np.testing.assert_allclose(fx["FX"], [-600.0, -400.0], rtol=1e-9)
+    np.testing.assert_allclose(r.field("SAXL", time=1.0)["SAXL"], [600.0, -400.0], rtol=1e-9)
+    with pytest.raises(impactfe.ResultsError, match=r"VX has no value at t = 1 .*the file has no "
+                       r"VX \(it has nodal: UX .* FX .*; LINK180: FORC SAXL"):
+        r.field("VX")
+
+
+def test_every_request_error_says_what_exists(crash1, plate_modes, run_deck):
+    r = impactfe.open(crash1)
+    with pytest.raises(impactfe.ResultsError, match="analysis 1 of .* holds no data set"):
+        r.field("UX", analysis=1)  # a reduced run whose expansion pass holds the sets
+    with pytest.raises(impactfe.ResultsError, match="element 99 is not in results file"):
+        r.history(element=99, item="SAXL")
+    with pytest.raises(impactfe.ResultsError, match="give exactly one of node=, element=, gap="):
+        r.history(node=1, element=1, item="UX")
+    with pytest.raises(impactfe.ResultsError, match=r"give item= \(UX\.\.ROTZ"):
+        r.history(node=1)
+    with pytest.raises(impactfe.ResultsError, match=r"give item= \(SAXL"):
+        r.history(element=1)
+    with pytest.raises(impactfe.ResultsError, match="no energy balance is stored"):
+        impactfe.open(plate_modes).energy()
+    small = impactfe.open(run_deck(os.path.join(DECKS, "integrity", "small_results.inp"),
+                                   "integrity"))
+    with pytest.raises(impactfe.ResultsError, match="no element results are stored for element 3"):
+        small.history(element=3, item="FORC")  # the MASS21
+    with pytest.raises(impactfe.ResultsError, match=r"mode 1 of analysis 1 \(.* Hz\) holds mode "
+                       r"shapes only \(UX\.\.ROTZ\), no element results"):
+        small.field("FORC", set=1)
+    with pytest.raises(impactfe.ResultsError, match="is not a file"):
+        impactfe.open(os.path.dirname(crash1))
+
+
+def test_a_file_open_in_h5py_with_locking(crash1, tmp_path):
+    """HDF5 opens a file once per process: the error says how to open it both ways."""
+    path = tmp_path / "crash1.h5"
+    shutil.copy(crash1, path)
+    with h5py.File(path, "r"):
+        with pytest.raises(impactfe.ResultsError, match="cannot open results file .*locking=False"):
+            impactfe.open(path)
