@@ -199,15 +199,18 @@ class Results:
     def sets(self):
         """POST1's data sets (SET,LIST): every stored time point of a static, transient or
         expansion analysis except a transient's initial state t = 0, and every mode; the
-        numbers `field(..., set=n)` takes."""
-        rows = []
+        numbers `field(..., set=n)` takes. A mode's time is NaN, its frequency_hz given."""
+        rows, frequencies = [], {}
         for a, k, m in data_sets(self._analyses):
+            if m and a.index not in frequencies:
+                frequencies[a.index] = read(a.group["frequencies"])
             rows.append({"analysis": a.index, "kind": a.kind,
                          "time": np.nan if m else a.times[k],
                          "load_step": 1 if m else a.load_steps[k],
-                         "substep": m if m else a.substeps[k], "mode": m or 0})
+                         "substep": m if m else a.substeps[k], "mode": m or 0,
+                         "frequency_hz": frequencies[a.index][m - 1] if m else np.nan})
         df = pd.DataFrame(rows, columns=["analysis", "kind", "time", "load_step", "substep",
-                                         "mode"])
+                                         "mode", "frequency_hz"])
         df.index = pd.RangeIndex(1, len(df) + 1, name="set")
         return df
 

@@ -128,7 +128,9 @@ def test_plate_drop_contact_force_balances_the_pilot_reaction(plate_drop):
 
 def test_modal_sets_are_mode_shapes(plate_modes):
     r = impactfe.open(plate_modes)
-    assert list(r.sets()["mode"]) == [1, 2, 3, 4]
+    sets = r.sets()
+    assert list(sets["mode"]) == [1, 2, 3, 4] and sets["time"].isna().all()
+    np.testing.assert_array_equal(sets["frequency_hz"], r.frequencies()["frequency_hz"])
     first = r.field("UZ", set=1)
     np.testing.assert_array_equal(first["UZ"].to_numpy(), r.mode_shape(1)["UZ"].to_numpy())
     assert first.attrs["time"] == pytest.approx(r.frequencies().loc[1, "frequency_hz"])
