@@ -61,3 +61,15 @@ def post(binary, results, *requests):
     """`impactfe post` CSV as a DataFrame indexed by time."""
     p = run([binary, "post", results, *requests])
     return pd.read_csv(io.StringIO(p.stdout), index_col=0)
+
+
+@pytest.fixture(scope="session")
+def plate_drop(run_deck):
+    """A SHELL181 plate dropped at 5 m/s (IC) on a sloped rigid CONTA174/TARGE170 floor."""
+    return run_deck(os.path.join(EXAMPLES, "plate_drop.inp"), "plate_drop")
+
+
+@pytest.fixture(scope="session")
+def plate_modes(run_deck):
+    """Modal analysis of the same plate, simply supported."""
+    return run_deck(os.path.join(EXAMPLES, "plate_modes.inp"), "plate_modes")
