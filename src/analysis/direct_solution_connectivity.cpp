@@ -51,7 +51,8 @@ void DirectSolution::refresh_connectivity() {
   if (!connectivity_) {
     connectivity_.emplace();
     for (std::size_t e = 0; e < elements.size(); ++e)
-      if (dynamic_cast<ConnectivityUpdate*>(elements[e].get()) != nullptr)
+      if (const auto* update = dynamic_cast<ConnectivityUpdate*>(elements[e].get());
+          update != nullptr && update->updates_connectivity())
         connectivity_->push_back(e);
   }
   if (connectivity_->empty() || !dofs_) return;
