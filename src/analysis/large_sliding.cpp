@@ -11,7 +11,9 @@ bool LargeSliding::refresh(const Discretisation& disc, const VectorXd& u) {
   if (!members_) {
     members_.emplace();
     for (std::size_t e = 0; e < elements.size(); ++e)
-      if (dynamic_cast<ConnectivityUpdate*>(elements[e].get()) != nullptr) members_->push_back(e);
+      if (const auto* update = dynamic_cast<ConnectivityUpdate*>(elements[e].get());
+          update != nullptr && update->updates_connectivity())
+        members_->push_back(e);
   }
   if (members_->empty()) return false;
   const Model& model = structure_.model();

@@ -121,6 +121,41 @@ std::optional<Demand> demand_on(const DofKey& key, const Model& model,
                                describe(key), demand.what));
 }
 
+/// MP,DAMP: stiffness-proportional damping of each element's material, C_e += β K_e (MAPDL's
+/// material BETD; APDL_MODELING §6.1, M6), element order; empty when no material has it. The
+/// full (static/transient) solution assembles it element by element; the reduced drivers form C
+/// from global ALPHAD/BETAD only, so there it is refused rather than ignored. The same holds for
+/// MP,ALPD / MP,BETD (Element::material_damping, which the assembler adds).
+std::vector<double> damping_of_materials(const Model& model, const AnalysisOptions& options) {
+  std::vector<double> material_beta;
+  const ElementRecord* damped = nullptr;  // the first element whose material is damped
+  for (const auto& [id, record] : model.elements) {
+    double beta = 0.0;
+    bool material_damping = false;
+    if (auto m = model.materials.find(record.mat); m != model.materials.end()) {
+      beta = m->second.get("DAMP", 0.0);
+      material_damping =
+          beta != 0.0 || m->second.get("ALPD", 0.0) != 0.0 || m->second.get("BETD", 0.0) != 0.0;
+    }
+    if (material_damping && damped == nullptr) damped = &record;
+    material_beta.push_back(beta);
+  }
+  if (std::all_of(material_beta.begin(), material_beta.end(), [](double b) { return b == 0.0; }))
+    material_beta.clear();
+  const bool reduced_damping =
+      (options.type == AnalysisType::Transient && options.method != TransientMethod::Full) ||
+      (options.type == AnalysisType::Substructure && options.superelement_matrices == 3);
+  if (damped != nullptr && reduced_damping) {
+    throw InputError(
+        damped->where,
+        fmt::format("element {}: its material {} has MP,DAMP/ALPD/BETD (material damping), which "
+                    "only a full transient applies; for a reduced or mode-superposition transient "
+                    "or a superelement damping matrix use BETAD (global beta) or DMPRAT",
+                    damped->id, damped->mat));
+  }
+  return material_beta;
+}
+
 }  // namespace
 
 Structure::Structure(const Model& model, const AnalysisOptions& options,
@@ -136,7 +171,8 @@ Structure::Structure(const Model& model, const AnalysisOptions& options,
   ElementBuildContext build{
       model, [&settings](const ElementRecord& r) { return resolve_superelement(r, settings); }};
   build.large_deflection = options.large_deflection;
-  // Rotated nodes (DOFs in nodal axes) and material damping enter through element adapters.
+  // Rotated nodes (DOFs in nodal axes) enter through an element adapter, material damping as
+  // data of the element (assembly/element_adapters.h).
   // Each element made is also handed to the build pass's cache: contact elements read their
   // body elements' stiffness and depth from it instead of making them again.
   for (const auto& [id, record] : model.elements) {
@@ -154,36 +190,7 @@ Structure::Structure(const Model& model, const AnalysisOptions& options,
     f.members = std::move(list);
   }
 
-  // MP,DAMP: stiffness-proportional damping of the element's material, C_e += β K_e (MAPDL's
-  // material BETD; APDL_MODELING §6.1, M6). The full (static/transient) solution assembles it
-  // element by element; the reduced drivers form C from global ALPHAD/BETAD only, so there it
-  // is refused rather than ignored.
-  // The same holds for MP,ALPD / MP,BETD (material damping adapter, elements/adapters).
-  const ElementRecord* damped = nullptr;  // the first element whose material is damped
-  for (const auto& [id, record] : model.elements) {
-    double beta = 0.0;
-    bool material_damping = false;
-    if (auto m = model.materials.find(record.mat); m != model.materials.end()) {
-      beta = m->second.get("DAMP", 0.0);
-      material_damping =
-          beta != 0.0 || m->second.get("ALPD", 0.0) != 0.0 || m->second.get("BETD", 0.0) != 0.0;
-    }
-    if (material_damping && damped == nullptr) damped = &record;
-    material_beta_.push_back(beta);
-  }
-  if (std::all_of(material_beta_.begin(), material_beta_.end(), [](double b) { return b == 0.0; }))
-    material_beta_.clear();
-  const bool reduced_damping =
-      (options.type == AnalysisType::Transient && options.method != TransientMethod::Full) ||
-      (options.type == AnalysisType::Substructure && options.superelement_matrices == 3);
-  if (damped != nullptr && reduced_damping) {
-    throw InputError(
-        damped->where,
-        fmt::format("element {}: its material {} has MP,DAMP/ALPD/BETD (material damping), which "
-                    "only a full transient applies; for a reduced or mode-superposition transient "
-                    "or a superelement damping matrix use BETAD (global beta) or DMPRAT",
-                    damped->id, damped->mat));
-  }
+  material_beta_ = damping_of_materials(model, options);
 
   // Automatic constraints: DOFs without stiffness and without mass (spec §10.1 item 5).
   // Status elements (gaps) count as stiffness: a gap may close later.

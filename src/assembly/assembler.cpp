@@ -34,7 +34,7 @@ Assembler::Assembler(const std::vector<std::unique_ptr<Element>>& elements, cons
   tangent_valid_.assign(elements_.size(), 0);
   reusable_.assign(elements_.size(), false);
   for (std::size_t e = 0; e < elements_.size(); ++e) {
-    has_damping_ = has_damping_ || elements_[e]->has_damping() || alpha_ != 0.0 || beta_ != 0.0;
+    has_damping_ = has_damping_ || own_damping(e) || alpha_ != 0.0 || beta_ != 0.0;
     // Linear elements: K_e, C_e and M_e go into the global products once
     // (build_linear_force_matrices) and from there into every effective matrix. The nonlinear
     // elements keep M_e (their Rayleigh α M_e) and the slots their tangents are scattered to.
@@ -121,6 +121,19 @@ void Assembler::set_material_stiffness_damping(std::vector<double> beta) {
   for (double b : material_beta_) has_damping_ = has_damping_ || b != 0.0;
   build_linear_force_matrices(DofGraph(dofs_, elements_.size()));
   constant_effective_.clear();  // the linear elements' damping changed
+}
+
+bool Assembler::own_damping(std::size_t e) const {
+  const Element::MaterialDamping& d = elements_[e]->material_damping();
+  return elements_[e]->has_damping() || d.alpha != 0.0 || d.beta != 0.0;
+}
+
+void Assembler::own_damping_matrix(std::size_t e, const VectorXd& ue, const MatrixXd& k,
+                                   const MatrixXd& m, MatrixXd& c) const {
+  const Element::MaterialDamping& d = elements_[e]->material_damping();
+  elements_[e]->damping(ctx_, ue, c);
+  if (d.alpha != 0.0) c += d.alpha * m;
+  if (d.beta != 0.0) c += d.beta * k;
 }
 
 void Assembler::gather(std::size_t e, const VectorXd& global, VectorXd& local) const {
@@ -353,7 +366,7 @@ bool Assembler::evaluate_tangent(std::size_t e, const VectorXd& u, bool with_tan
   buffers_at_[e] = 0;  // the buffers are not reusable until the evaluation has succeeded
   // Rayleigh β K_e damping forces read the tangent: such elements always form it.
   const bool tangent =
-      with_tangent || beta_of(e) != 0.0 || !elements_[e]->separate_internal_force(ctx_);
+      with_tangent || damping_reads_tangent(e) || !elements_[e]->separate_internal_force(ctx_);
   if (tangent)
     elements_[e]->tangent(ctx_, ue, tangent_buffer_[e], force_buffer_[e]);
   else
@@ -378,14 +391,15 @@ bool Assembler::element_damping(std::size_t e, const VectorXd& ue, const MatrixX
   const Element& element = *elements_[e];
   const double beta = beta_of(e);  // global BETAD plus the material's MP,DAMP
   const bool rayleigh = alpha_ != 0.0 || beta != 0.0;
-  if (element.has_damping()) {
-    element.damping(ctx_, ue, c);
+  if (own_damping(e)) {
+    own_damping_matrix(e, ue, k, m, c);
   } else if (rayleigh) {
     c.setZero(element.n_dofs(), element.n_dofs());
   } else {
     return false;
   }
-  // k is read only with β ≠ 0 (a forces-only pass leaves the tangent buffer stale).
+  // k is read only with a β ≠ 0 (damping_reads_tangent: otherwise a forces-only pass leaves the
+  // tangent buffer stale).
   if (beta != 0.0)
     c += alpha_ * m + beta * k;
   else if (rayleigh)
@@ -580,10 +594,14 @@ SparseMatrix Assembler::full_matrix(Which which, const VectorXd& u) const {
       case Which::Damping: {
         const double beta = beta_of(e);
         const bool rayleigh = alpha_ != 0.0 || beta != 0.0;
-        if (!elements_[e]->has_damping() && !rayleigh) continue;
+        if (!own_damping(e) && !rayleigh) continue;
         gather(e, u, ue);
-        if (elements_[e]->has_damping()) {
-          elements_[e]->damping(ctx_, ue, m);
+        if (own_damping(e)) {
+          // The element's mass and tangent at ue for its material's α M_e + β K_e.
+          const Element::MaterialDamping& d = elements_[e]->material_damping();
+          if (d.alpha != 0.0) elements_[e]->mass(ctx_, mass);
+          if (d.beta != 0.0) elements_[e]->tangent(ctx_, ue, k, fe);
+          own_damping_matrix(e, ue, k, mass, m);
         } else {
           m.setZero(n, n);
         }

@@ -245,6 +245,17 @@ class Assembler {
   double beta_of(std::size_t e) const {
     return material_beta_.empty() ? beta_ : beta_ + material_beta_[e];
   }
+  /// The element's own damping (its dampers, its material's ALPD / BETD) is not zero.
+  bool own_damping(std::size_t e) const;
+  /// The element's own damping matrix at ue: its dampers' plus α M_e + β K_e of its material
+  /// (Element::material_damping; k = K_e at ue, m = M_e), summed in the order of the element
+  /// adapter this replaced (same values bitwise).
+  void own_damping_matrix(std::size_t e, const VectorXd& ue, const MatrixXd& k, const MatrixXd& m,
+                          MatrixXd& c) const;
+  /// The tangent at u enters the element's damping forces (a β of BETAD, DAMP or BETD).
+  bool damping_reads_tangent(std::size_t e) const {
+    return beta_of(e) != 0.0 || elements_[e]->material_damping().beta != 0.0;
+  }
 };
 
 }  // namespace impactfe

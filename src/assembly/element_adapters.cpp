@@ -8,7 +8,12 @@ namespace impactfe {
 
 NodalAxesElement::NodalAxesElement(std::unique_ptr<Element> inner, const Model& model,
                                    const SourceLocation& where)
-    : Element(inner->id()), inner_(std::move(inner)) {
+    : Element(inner->id()), inner_(std::move(inner)), model_(model), where_(where) {
+  set_material_damping(inner_->material_damping());  // the assembler reads it from here
+  build_transformation();
+}
+
+void NodalAxesElement::build_transformation() {
   const auto& dofs = inner_->dofs();
   const int n = static_cast<int>(dofs.size());
   t_ = Eigen::MatrixXd::Identity(n, n);
@@ -20,8 +25,8 @@ NodalAxesElement::NodalAxesElement(std::unique_ptr<Element> inner, const Model& 
     it->second[static_cast<std::size_t>(dofs[static_cast<std::size_t>(i)].dof)] = i;
   }
   for (const auto& [node, pos] : where_is) {
-    const auto it = model.nodes.find(node);
-    if (it == model.nodes.end() || !it->second.rotated()) continue;
+    const auto it = model_.nodes.find(node);
+    if (it == model_.nodes.end() || !it->second.rotated()) continue;
     const Mat3 R = it->second.axes();
     for (int group = 0; group < 2; ++group) {
       int present = 0;
@@ -29,17 +34,24 @@ NodalAxesElement::NodalAxesElement(std::unique_ptr<Element> inner, const Model& 
         present += pos[static_cast<std::size_t>(3 * group + a)] >= 0 ? 1 : 0;
       if (present == 0) continue;
       if (present != 3)
-        throw InputError(where, fmt::format("element {} ({}): node {} has a rotated nodal "
-                                            "coordinate system but the element carries only {} "
-                                            "of its {} DOFs",
-                                            id(), inner_->family(), node, present,
-                                            group == 0 ? "UX/UY/UZ" : "ROTX/ROTY/ROTZ"));
+        throw InputError(where_, fmt::format("element {} ({}): node {} has a rotated nodal "
+                                             "coordinate system but the element carries only {} "
+                                             "of its {} DOFs",
+                                             id(), inner_->family(), node, present,
+                                             group == 0 ? "UX/UY/UZ" : "ROTX/ROTY/ROTZ"));
       for (int a = 0; a < 3; ++a)
         for (int b = 0; b < 3; ++b)
           t_(pos[static_cast<std::size_t>(3 * group + a)],
              pos[static_cast<std::size_t>(3 * group + b)]) = R(a, b);
     }
   }
+}
+
+bool NodalAxesElement::refresh_dofs(const Eigen::VectorXd& u, const NodePositions& positions) {
+  auto* update = dynamic_cast<ConnectivityUpdate*>(inner_.get());
+  if (update == nullptr || !update->refresh_dofs(t_ * u, positions)) return false;
+  build_transformation();
+  return true;
 }
 
 void NodalAxesElement::tangent(const ElementContext& ctx, const Eigen::VectorXd& u,
@@ -78,34 +90,11 @@ void NodalAxesElement::results(const ElementContext& ctx, const Eigen::VectorXd&
   inner_->results(ctx, t_ * u, t_ * v, out);
 }
 
-MaterialDampingElement::MaterialDampingElement(std::unique_ptr<Element> inner, double alpha,
-                                               double beta)
-    : Element(inner->id()), inner_(std::move(inner)), alpha_(alpha), beta_(beta) {}
-
-void MaterialDampingElement::damping(const ElementContext& ctx, const Eigen::VectorXd& u,
-                                     Eigen::MatrixXd& C) const {
-  inner_->damping(ctx, u, C);
-  Eigen::MatrixXd m, k;
-  Eigen::VectorXd f;
-  if (alpha_ != 0.0) {
-    inner_->mass(ctx, m);
-    C += alpha_ * m;
-  }
-  if (beta_ != 0.0) {
-    inner_->tangent(ctx, u, k, f);
-    C += beta_ * k;
-  }
-}
-
 std::unique_ptr<Element> adapt_element(std::unique_ptr<Element> element, const Model& model,
                                        const ElementRecord& record) {
   const auto mat = model.materials.find(record.mat);
-  if (mat != model.materials.end()) {
-    const double alpha = mat->second.get("ALPD", 0.0);
-    const double beta = mat->second.get("BETD", 0.0);
-    if (alpha != 0.0 || beta != 0.0)
-      element = std::make_unique<MaterialDampingElement>(std::move(element), alpha, beta);
-  }
+  if (mat != model.materials.end())
+    element->set_material_damping({mat->second.get("ALPD", 0.0), mat->second.get("BETD", 0.0)});
   bool rotated = false;
   for (const DofKey& k : element->dofs()) {
     const auto it = model.nodes.find(k.node);

@@ -70,12 +70,12 @@ struct Material {
   }
 };
 
-/// SECTYPE/SECDATA: LINK (area), SHELL (thickness) and BEAM sections (subtype and SECDATA
-/// values, APDL_MODELING §7.2; elements/beam_section.h computes the properties).
+/// SECTYPE/SECDATA: a section of one of the types elements/section_types.h describes (its
+/// subtypes and what its SECDATA values mean; APDL_MODELING §7.2).
 struct Section {
   int id = 0;
-  std::string type;     // "LINK", "SHELL", "BEAM"
-  std::string subtype;  // BEAM: "RECT", "CSOLID", "CTUBE", "I", "HREC", "ASEC"
+  std::string type;     // SECTYPE Type: "LINK", "SHELL", "BEAM"
+  std::string subtype;  // SECTYPE Subtype ("RECT"), empty for a type without subtypes
   std::vector<double> data;
 };
 

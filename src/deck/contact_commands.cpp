@@ -45,8 +45,14 @@ void cmd_esurf(DeckReader& r, const Command& c) {
   if (!tlab.empty() && tlab != "TOP" && tlab != "BOTTOM")
     r.fail(c, fmt::format("Tlab must be TOP (default) or BOTTOM, not {}", c.text(2)));
   const std::string name = current_type_name(r, c);
-  const bool target = name == "TARGE170", surface = name == "CONTA174";
-  if (!target && !surface && name != "CONTA175")
+  // By shape role and cell (elements/element_registry.h): target facets, contact faces or
+  // contact nodes.
+  const ElementTypeDescriptor* type = find_element_type(name);
+  const ShapeRole role = type != nullptr ? type->role : ShapeRole::Point;
+  const int dimension = type != nullptr ? type->topology().dimension : -1;
+  const bool target = role == ShapeRole::Target;
+  const bool surface = role == ShapeRole::Contact && dimension == 2;
+  if (!target && !surface && !(role == ShapeRole::Contact && dimension == 0))
     r.fail(c, fmt::format("the current TYPE {} is {}: ESURF generates TARGE170 target facets, "
                           "CONTA174 contact faces or CONTA175 contact nodes",
                           r.current_type, name));
@@ -125,7 +131,9 @@ void check_target_shape(DeckReader& r, const Command& c, const std::vector<int>&
   const std::string& shape = r.modeling.target_shape;
   if (shape.empty()) return;
   const auto it = r.model.element_types.find(r.current_type);
-  if (it == r.model.element_types.end() || it->second.ansys_name != "TARGE170") return;
+  if (it == r.model.element_types.end() ||
+      element_type_descriptor(it->second).role != ShapeRole::Target)
+    return;
   std::size_t given = nodes.size();
   while (given > 0 && nodes[given - 1] == 0) --given;
   const std::size_t wanted = shape == "PILO" ? 1 : shape == "TRIA" ? 3 : 4;

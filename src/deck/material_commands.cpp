@@ -27,7 +27,7 @@ const std::vector<std::string>& material_labels() {
 /// Stores Lab = value for material `mat`, with the aliases the elements read: PRxy is also
 /// NUxy (isotropic use). DAMP (stiffness-proportional damping, like BETD) stays DAMP: the
 /// assembler applies it element by element (Structure::material_stiffness_damping), BETD and ALPD
-/// enter through the material-damping element adapter.
+/// as the element's material damping (Element::material_damping).
 void store_property(DeckReader& r, const Command& c, const std::string& lab, int mat,
                     double value) {
   static const std::set<std::string> refused = {"CTEX", "CTEY", "CTEZ", "THSX", "THSY", "THSZ"};

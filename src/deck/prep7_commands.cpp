@@ -8,8 +8,8 @@
 #include "core/dof.h"
 #include "core/log.h"
 #include "deck/deck_context.h"
-#include "elements/beam_section.h"
 #include "elements/element_registry.h"
+#include "elements/section_types.h"
 
 namespace impactfe::deck {
 
@@ -104,16 +104,18 @@ void cmd_sectype(DeckReader& r, const Command& c) {
   const int id = r.integer(c, 1, 0);
   if (id <= 0) r.fail(c, "section id missing or not positive");
   const std::string type = r.label(c, 2);
-  if (type != "LINK" && type != "SHELL" && type != "BEAM")
-    r.fail(c, fmt::format("section type '{}' not supported (LINK, SHELL or BEAM)", c.text(2)));
+  const SectionTypeDescriptor* d = find_section_type(type);
+  if (d == nullptr)
+    r.fail(c, fmt::format("section type '{}' not supported ({})", c.text(2),
+                          supported_section_type_names()));
   Section s;
   s.id = id;
   s.type = type;
-  if (type == "BEAM") {
-    s.subtype = c.blank(3) ? "RECT" : r.label(c, 3);
-    if (!is_supported_beam_subtype(s.subtype))
-      r.fail(c, fmt::format("beam subtype {} not supported (RECT, CSOLID, CTUBE, I, HREC, ASEC)",
-                            s.subtype));
+  if (!d->subtypes.empty()) {
+    s.subtype = c.blank(3) ? d->subtypes.front() : r.label(c, 3);
+    if (!d->accepts_subtype(s.subtype))
+      r.fail(c, fmt::format("{} subtype {} not supported ({})", to_lower(type), s.subtype,
+                            d->subtype_names()));
   }
   r.model.sections[id] = s;
   r.last_section = id;
@@ -123,41 +125,35 @@ void cmd_secdata(DeckReader& r, const Command& c) {
   auto it = r.model.sections.find(r.last_section);
   if (it == r.model.sections.end()) r.fail(c, "SECDATA without a preceding SECTYPE");
   Section& s = it->second;
-  if (s.type == "BEAM") {
-    // Beam: the subtype's dimensions (APDL_MODELING §7.2); the properties go to the log.
-    s.data.clear();
-    for (int f = 1; f <= std::min(c.last_given(), 12); ++f) s.data.push_back(r.real(c, f, 0.0));
-    try {
-      const BeamSectionProperties p = beam_section_properties(s.subtype, s.data);
-      Log::info("{}:{}: SECDATA: beam section {} ({}): {}", c.where.file, c.where.line, s.id,
-                s.subtype, describe_beam_section(p));
-    } catch (const std::invalid_argument& e) {
-      r.fail(c, e.what());
-    }
-    return;
+  const SectionTypeDescriptor& d = *find_section_type(s.type);
+  if (d.single_secdata && !s.data.empty())
+    r.fail(c, "only one SECDATA (a single homogeneous layer) is supported");
+  s.data.clear();
+  const int given =
+      d.max_values > 0 ? std::min(c.last_given(), d.max_values) : std::max(1, c.last_given());
+  for (int f = 1; f <= given; ++f) s.data.push_back(r.real(c, f, 0.0));
+  try {
+    const std::string note = d.check_data(s);
+    if (!note.empty()) Log::info("{}:{}: SECDATA: {}", c.where.file, c.where.line, note);
+  } catch (const std::invalid_argument& e) {
+    r.fail(c, e.what());
   }
-  if (!s.data.empty()) r.fail(c, "only one SECDATA (a single homogeneous layer) is supported");
-  const int n = std::max(1, c.last_given());
-  for (int f = 1; f <= n; ++f) s.data.push_back(r.real(c, f, 0.0));
-  if (s.data[0] <= 0.0)
-    r.fail(c, fmt::format("{} must be positive", s.type == "LINK" ? "area" : "thickness"));
 }
 
-// SECOFFSET,Location: beams CENT (node on the centroid, the only placement impactfe computes);
-// shells MID. Other locations would move the nodes off the section's reference and are refused
-// (APDL_MODELING §7.4).
+// SECOFFSET,Location: the locations the section type accepts (beams CENT, the node on the
+// centroid; shells MID). Other locations would move the nodes off the section's reference and
+// are refused (APDL_MODELING §7.4).
 void cmd_secoffset(DeckReader& r, const Command& c) {
   auto it = r.model.sections.find(r.last_section);
   if (it == r.model.sections.end()) r.fail(c, "SECOFFSET without a preceding SECTYPE");
   const std::string loc = c.blank(1) ? "" : r.label(c, 1);
   const std::string& type = it->second.type;
-  if (type == "BEAM" && (loc.empty() || loc == "CENT")) return;
-  if (type == "SHELL" && (loc.empty() || loc == "MID")) return;
-  r.fail(c,
-         fmt::format("location '{}' is not supported for a {} section ({} only)", c.text(1), type,
-                     type == "BEAM"    ? "CENT"
-                     : type == "SHELL" ? "MID"
-                                       : "none"));
+  const SectionTypeDescriptor& d = *find_section_type(type);
+  if (!d.offsets.empty() &&
+      (loc.empty() || std::find(d.offsets.begin(), d.offsets.end(), loc) != d.offsets.end()))
+    return;
+  r.fail(c, fmt::format("location '{}' is not supported for a {} section ({} only)", c.text(1),
+                        type, d.offset_names()));
 }
 
 void cmd_secnum(DeckReader& r, const Command& c) {

@@ -124,9 +124,9 @@ void property_fibres(BeamSectionProperties& p) {
 
 }  // namespace
 
-bool is_supported_beam_subtype(const std::string& subtype) {
-  return subtype == "RECT" || subtype == "CSOLID" || subtype == "CTUBE" || subtype == "I" ||
-         subtype == "HREC" || subtype == "ASEC";
+const std::vector<std::string>& beam_section_subtypes() {
+  static const std::vector<std::string> subtypes = {"RECT", "CSOLID", "CTUBE", "I", "HREC", "ASEC"};
+  return subtypes;
 }
 
 BeamSectionProperties beam_section_properties(const std::string& subtype,

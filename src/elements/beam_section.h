@@ -58,8 +58,8 @@ struct BeamSectionProperties {
 BeamSectionProperties beam_section_properties(const std::string& subtype,
                                               const std::vector<double>& data, double nu = 0.3);
 
-/// The beam section subtypes impactfe computes ("RECT CSOLID CTUBE I HREC ASEC").
-bool is_supported_beam_subtype(const std::string& subtype);
+/// The beam section subtypes impactfe computes, the default (RECT) first.
+const std::vector<std::string>& beam_section_subtypes();
 
 /// One line for the log: "A = 6, Iyy = 4.5, Iyz = 0, Izz = 2, J = 4.06, ...".
 std::string describe_beam_section(const BeamSectionProperties& p);

@@ -217,6 +217,7 @@ const ElementRegistration kBeam188{
      .needs_material = true,
      .section_types = {"BEAM"},
      .vtk_cell = VtkCell::Line,
+     .role = ShapeRole::Line,
      .result_names = beam_result_names(),
      .result_sequences =
          concat({numbered("SMISC", 1, {"FX_I", "MY_I", "MZ_I", "TQ_I", "SFZ_I", "SFY_I"}),
@@ -241,6 +242,7 @@ const ElementRegistration kBeam4{
      .real_constants = RealConstantUse::Required,
      .needs_material = true,
      .vtk_cell = VtkCell::Line,
+     .role = ShapeRole::Line,
      .result_names = beam_result_names(),
      .result_sequences = concat({numbered("LS", 1,
                                           {"SDIR_I", "SBYT_I", "SBYB_I", "SBZT_I", "SBZB_I",
@@ -261,6 +263,7 @@ const ElementRegistration kBeam3{
      .real_constants = RealConstantUse::Required,
      .needs_material = true,
      .vtk_cell = VtkCell::Line,
+     .role = ShapeRole::Line,
      .result_names = beam_result_names(),
      .result_sequences = concat(
          {numbered("LS", 1, {"SDIR_I", "SBYT_I", "SBYB_I", "SDIR_J", "SBYT_J", "SBYB_J"}),

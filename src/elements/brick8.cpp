@@ -533,16 +533,26 @@ Vector6d Brick8::centroid_stress(const ElementContext& ctx, const Eigen::VectorX
 }
 
 namespace {
-/// Face k + 1 as corner positions with the outward normal by the right-hand rule (SOLID185).
-const std::vector<std::vector<int>> kBrickFaces = {{1, 0, 3, 2}, {0, 1, 5, 4}, {1, 2, 6, 5},
-                                                   {2, 3, 7, 6}, {3, 0, 4, 7}, {4, 5, 6, 7}};
+/// Face k + 1 as corner positions with the outward normal by the right-hand rule, in MAPDL's
+/// numbering of the solid elements (SOLID185: 1 J-I-L-K, 2 I-J-N-M, 3 J-K-O-N, 4 K-L-P-O,
+/// 5 L-I-M-P, 6 M-N-O-P; face-node order = SFE VALUE1..VALUE4): the hexahedron's faces
+/// (elements/cell_topology.h: bottom, top, sides) with the top last and the bottom read from J.
+std::vector<std::vector<int>> numbered_brick_faces() {
+  const auto& f = cell_topology(VtkCell::Hexahedron).faces;
+  return {{f[0][3], f[0][0], f[0][1], f[0][2]}, f[2], f[3], f[4], f[5], f[1]};
+}
+
+const std::vector<std::vector<int>>& brick_faces() {
+  static const std::vector<std::vector<int>> faces = numbered_brick_faces();
+  return faces;
+}
 }  // namespace
 
 void Brick8::pressure_load(const ElementContext& ctx, int face, const std::array<double, 4>& p,
                            const Eigen::VectorXd& u, Eigen::VectorXd& f) const {
   if (face < 1 || face > 6)
     throw ModelError(fmt::format("element {}: brick face {} does not exist (1..6)", id(), face));
-  const auto& corners = kBrickFaces[static_cast<std::size_t>(face - 1)];
+  const auto& corners = brick_faces()[static_cast<std::size_t>(face - 1)];
   const Eigen::Matrix<double, 24, 1> uc = to_corners(u);
   std::array<Vec3, 4> x;
   for (int a = 0; a < 4; ++a) {
@@ -682,6 +692,7 @@ ElementTypeDescriptor brick_type(const char* name, int number, bool solid185) {
           .n_nodes = 8,
           .needs_material = true,
           .vtk_cell = VtkCell::Hexahedron,
+          .role = ShapeRole::Solid,
           .result_names = kBrick8Results,
           .result_sequences =
               {{"S", "X", "SX"},         {"S", "Y", "SY"},         {"S", "Z", "SZ"},
@@ -692,7 +703,7 @@ ElementTypeDescriptor brick_type(const char* name, int number, bool solid185) {
                {"EPPL", "YZ", "EPPLYZ"}, {"EPPL", "XZ", "EPPLXZ"}, {"NL", "EPEQ", "EPEQ"},
                {"NL", "SEPL", "SEPL"},   {"NL", "SRAT", "SRAT"},   {"NL", "PLWK", "PLWK"}},
           .plasticity = true,
-          .faces = kBrickFaces,
+          .faces = brick_faces(),
           .sf_faces = 6,
           .create = [solid185](const ElementBuildContext& ctx, const ElementRecord& record) {
             return make_brick8(ctx, record, solid185);

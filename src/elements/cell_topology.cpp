@@ -1,15 +1,48 @@
 #include "elements/cell_topology.h"
 
 #include <algorithm>
-#include <array>
+
+#include "core/errors.h"
 
 namespace impactfe {
 
 namespace {
 
-/// ANSYS brick node order I J K L M N O P; faces outward for a positive volume.
-constexpr std::array<std::array<int, 4>, 6> kHexFaces = {
-    {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}}};
+CellTopology hexahedron() {
+  CellTopology t;
+  t.cell = VtkCell::Hexahedron;
+  t.dimension = 3;
+  t.corner_nodes = 8;
+  // The one table of the hexahedron's faces (see CellTopology::faces).
+  t.faces = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+  for (int k = 0; k < 4; ++k) t.edges.push_back({k, (k + 1) % 4});          // bottom ring
+  for (int k = 0; k < 4; ++k) t.edges.push_back({4 + k, 4 + (k + 1) % 4});  // top ring
+  for (int k = 0; k < 4; ++k) t.edges.push_back({k, k + 4});                // I-M ... L-P
+  return t;
+}
+
+/// A triangle or quadrilateral: its one face is itself, its edges its sides.
+CellTopology polygon(VtkCell cell, int corners) {
+  CellTopology t;
+  t.cell = cell;
+  t.dimension = 2;
+  t.corner_nodes = corners;
+  t.faces.emplace_back();
+  for (int k = 0; k < corners; ++k) {
+    t.faces.front().push_back(k);
+    t.edges.push_back({k, (k + 1) % corners});
+  }
+  return t;
+}
+
+CellTopology simple(VtkCell cell, int dimension, int corners) {
+  CellTopology t;
+  t.cell = cell;
+  t.dimension = dimension;
+  t.corner_nodes = corners;
+  if (dimension == 1) t.edges.push_back({0, 1});
+  return t;
+}
 
 std::vector<int> unique_in_order(const std::vector<int>& nodes) {
   std::vector<int> out;
@@ -18,53 +51,71 @@ std::vector<int> unique_in_order(const std::vector<int>& nodes) {
   return out;
 }
 
-std::vector<int> sorted(std::vector<int> v) {
-  std::sort(v.begin(), v.end());
-  return v;
-}
-
 }  // namespace
 
-std::vector<CellPiece> cell_pieces(VtkCell cell, const std::vector<int>& nodes) {
-  std::vector<CellPiece> out;
-  if (nodes.empty()) return out;
+const CellTopology& cell_topology(VtkCell cell) {
+  // Function-local statics: element registrations read them during static initialisation.
+  static const CellTopology vertex = simple(VtkCell::Vertex, 0, 1);
+  static const CellTopology poly_vertex = simple(VtkCell::PolyVertex, -1, 0);
+  static const CellTopology line = simple(VtkCell::Line, 1, 2);
+  static const CellTopology triangle = polygon(VtkCell::Triangle, 3);
+  static const CellTopology quad = polygon(VtkCell::Quad, 4);
+  static const CellTopology hex = hexahedron();
   switch (cell) {
+    case VtkCell::Vertex:
+      return vertex;
+    case VtkCell::PolyVertex:
+      return poly_vertex;
     case VtkCell::Line:
-      if (nodes.front() != nodes.back())
-        out.push_back({CellPiece::Kind::Line, {nodes.front(), nodes.back()}});
-      break;
+      return line;
     case VtkCell::Triangle:
-    case VtkCell::Quad: {
-      auto ring = unique_in_order(nodes);
-      if (ring.size() >= 3) out.push_back({CellPiece::Kind::Polygon, std::move(ring)});
-      break;
-    }
+      return triangle;
+    case VtkCell::Quad:
+      return quad;
     case VtkCell::Hexahedron:
-      if (nodes.size() < 8) break;
-      for (const auto& f : kHexFaces) {
-        auto face = unique_in_order({nodes[f[0]], nodes[f[1]], nodes[f[2]], nodes[f[3]]});
-        if (face.size() >= 3) out.push_back({CellPiece::Kind::Polygon, std::move(face)});
-      }
-      break;
-    default:
-      for (int n : unique_in_order(nodes)) out.push_back({CellPiece::Kind::Point, {n}});
+      return hex;
   }
+  IMPACTFE_CHECK(false, "unknown cell type");
+  return poly_vertex;
+}
+
+std::vector<int> face_nodes(const CellTopology& cell, int face, const std::vector<int>& nodes) {
+  std::vector<int> out;
+  for (int p : cell.faces.at(static_cast<std::size_t>(face)))
+    out.push_back(nodes.at(static_cast<std::size_t>(p)));
   return out;
 }
 
-std::vector<std::vector<int>> cell_facets(VtkCell cell, const std::vector<int>& nodes) {
-  std::vector<std::vector<int>> out;
-  for (const auto& piece : cell_pieces(cell, nodes)) {
-    if (cell == VtkCell::Line) {
-      out.push_back({piece.nodes.front()});
-      out.push_back({piece.nodes.back()});
-    } else if (cell == VtkCell::Triangle || cell == VtkCell::Quad) {
-      const auto& ring = piece.nodes;
-      for (std::size_t k = 0; k < ring.size(); ++k)
-        out.push_back(sorted({ring[k], ring[(k + 1) % ring.size()]}));
-    } else {
-      out.push_back(sorted(piece.nodes));
+std::vector<CellPiece> cell_pieces(VtkCell cell, const std::vector<int>& nodes) {
+  std::vector<CellPiece> out;
+  const CellTopology& t = cell_topology(cell);
+  if (nodes.empty()) return out;
+  switch (t.dimension) {
+    case 1:
+      if (nodes.size() >= 2 && nodes[0] != nodes[1])
+        out.push_back({CellPiece::Kind::Line, {nodes[0], nodes[1]}});
+      break;
+    case 2: {
+      if (nodes.size() == 1) {
+        out.push_back({CellPiece::Kind::Point, nodes});
+        break;
+      }
+      auto ring = unique_in_order(nodes);
+      if (ring.size() >= 3)
+        out.push_back({CellPiece::Kind::Polygon, std::move(ring)});
+      else if (ring.size() == 2)
+        out.push_back({CellPiece::Kind::Line, std::move(ring)});
+      break;
     }
+    case 3:
+      if (static_cast<int>(nodes.size()) < t.corner_nodes) break;
+      for (std::size_t f = 0; f < t.faces.size(); ++f) {
+        auto face = unique_in_order(face_nodes(t, static_cast<int>(f), nodes));
+        if (face.size() >= 3) out.push_back({CellPiece::Kind::Polygon, std::move(face)});
+      }
+      break;
+    default:  // points: a vertex, a poly-vertex's nodes
+      for (int n : unique_in_order(nodes)) out.push_back({CellPiece::Kind::Point, {n}});
   }
   return out;
 }

@@ -1,12 +1,47 @@
 #pragma once
-/// Topology of the element cells (element_registry.h VtkCell) that pictures and selections need:
-/// the drawable pieces of a cell and its boundary facets, with collapsed corners (a triangle
-/// given as a quadrilateral with K = L, a wedge as a brick) removed.
+/// The reference cells of the elements (element_registry.h VtkCell): their corner nodes, faces
+/// and edges, once for the whole program. The element registry names the cell of each element
+/// type; the surface loads of the solid elements, the solid builder (V), the mesher, the VTK
+/// export, the POST1 pictures and the report's 3-D view read the cell from here.
+#include <array>
 #include <vector>
 
-#include "elements/element_registry.h"
-
 namespace impactfe {
+
+/// VTK cell types (VTK's vtkCellType.h numbering) of the full node list of an element.
+enum class VtkCell : int {
+  Vertex = 1,
+  PolyVertex = 2,
+  Line = 3,
+  Triangle = 5,
+  Quad = 9,
+  Hexahedron = 12,
+};
+
+/// The topology of one reference cell. Node positions are 0-based in the element's node list,
+/// corners first (I, J, K, L, M, N, O, P), then midside nodes.
+struct CellTopology {
+  VtkCell cell = VtkCell::PolyVertex;
+  /// 0 point, 1 line, 2 area, 3 volume; -1 for a poly-vertex (a superelement's master nodes).
+  int dimension = -1;
+  /// Corner nodes: the first `corner_nodes` nodes of the element's list (0: all of them, a
+  /// poly-vertex). Nodes beyond them that are not midside nodes are not part of the cell (a
+  /// beam's orientation node K).
+  int corner_nodes = 0;
+  /// Midside nodes after the corners (none of the cells here has any).
+  int midside_nodes = 0;
+  /// Faces of a volume cell as corner positions, outward by the right-hand rule for a positive
+  /// volume (I J K L counter-clockwise seen from M N O P): the bottom I-L-K-J, the top
+  /// M-N-O-P, then the sides I-J-N-M, J-K-O-N, K-L-P-O, L-I-M-P, each read from its bottom
+  /// corner. The order in which V creates a volume's areas and pictures draw its faces. An
+  /// area cell has one face, itself; lines and points have none.
+  std::vector<std::vector<int>> faces;
+  /// Edges as pairs of corner positions.
+  std::vector<std::array<int, 2>> edges;
+};
+
+/// The topology of a cell type.
+const CellTopology& cell_topology(VtkCell cell);
 
 /// A drawable piece of a cell: its node ids in order.
 struct CellPiece {
@@ -14,13 +49,15 @@ struct CellPiece {
   std::vector<int> nodes;
 };
 
-/// Points of a vertex or poly-vertex (superelement), the line of a line, the polygon of a
-/// triangle or quadrilateral, the six faces of a hexahedron (outward for a positive volume).
+/// The drawable pieces of an element with the given node ids, collapsed corners (a triangle
+/// given as a quadrilateral with K = L, a wedge as a brick) removed: the points of a vertex or
+/// poly-vertex, the line between the two corners of a line (none when they coincide), the
+/// polygon of a triangle or quadrilateral (a line when it collapses to two nodes, a point when
+/// one node is given: a target's pilot), the faces of a hexahedron (outward, in the cell's face
+/// order; faces collapsed below three nodes left out).
 std::vector<CellPiece> cell_pieces(VtkCell cell, const std::vector<int>& nodes);
 
-/// Boundary facets, as sorted node-id lists: the end nodes of a line, the edges of a triangle or
-/// quadrilateral, the faces of a hexahedron, the nodes of a (poly-)vertex. A facet that two
-/// elements share is interior to them (NSEL,,EXT).
-std::vector<std::vector<int>> cell_facets(VtkCell cell, const std::vector<int>& nodes);
+/// The nodes of `face` (0-based in the cell's face list) of an element, in the face's order.
+std::vector<int> face_nodes(const CellTopology& cell, int face, const std::vector<int>& nodes);
 
 }  // namespace impactfe

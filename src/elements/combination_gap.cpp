@@ -233,6 +233,7 @@ const ElementRegistration kCombin40{{.name = "COMBIN40",
                                      .n_nodes = 2,
                                      .real_constants = RealConstantUse::Required,
                                      .vtk_cell = VtkCell::Line,
+                                     .role = ShapeRole::Gap,
                                      .result_names = kCombinationGapResults,
                                      // STAT: MAPDL counts 1 open, 2 closed, 3 sliding.
                                      .result_sequences = {{"SMISC", "1", "FORC"},

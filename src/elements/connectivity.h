@@ -22,6 +22,9 @@ struct NodePositions {
 class ConnectivityUpdate {
  public:
   virtual ~ConnectivityUpdate() = default;
+  /// False when the element's DOFs never change (an adapter over an element without this
+  /// interface, elements/element_capabilities.h): the driver skips it.
+  virtual bool updates_connectivity() const { return true; }
   /// At a converged (committed) state, `u` over the element's current DOFs: re-finds the DOFs
   /// the element needs from here on. True when its dofs() changed (the caller renumbers).
   virtual bool refresh_dofs(const Eigen::VectorXd& u, const NodePositions& positions) = 0;

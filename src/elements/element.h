@@ -129,8 +129,21 @@ class Element {
   /// *GET ELEM VOLU and ETABLE VOLU; nullopt for elements without one (springs, masses, gaps).
   virtual std::optional<double> volume() const { return std::nullopt; }
 
+  // ---- damping of the element's material -----------------------------------------------------
+  /// MP,ALPD / MP,BETD of the element's material (APDL_MODELING §6.1): C_e += α M_e + β K_e.
+  /// Data, not behaviour: set when the model's elements are built (assembly/element_adapters.h)
+  /// and applied by the assembly where it scatters the element's matrices, so that no wrapper
+  /// stands between the drivers and what the element is.
+  struct MaterialDamping {
+    double alpha = 0.0;
+    double beta = 0.0;
+  };
+  const MaterialDamping& material_damping() const { return material_damping_; }
+  void set_material_damping(const MaterialDamping& d) { material_damping_ = d; }
+
  private:
   int id_;
+  MaterialDamping material_damping_;
 };
 
 struct ElementBuildCache;  // elements/element_build_cache.h

@@ -18,6 +18,28 @@ std::map<std::string, ElementTypeDescriptor>& registry() {
   return types;
 }
 
+/// A role's cell: material and masses have the dimension of their role; a gap acts between
+/// two nodes; contact and target elements are points or faces.
+bool role_fits_cell(ShapeRole role, int dimension) {
+  switch (role) {
+    case ShapeRole::Solid:
+      return dimension == 3;
+    case ShapeRole::Shell:
+      return dimension == 2;
+    case ShapeRole::Line:
+    case ShapeRole::Gap:
+      return dimension == 1;
+    case ShapeRole::Point:
+      return dimension == 0;
+    case ShapeRole::Contact:
+    case ShapeRole::Target:
+      return dimension == 0 || dimension == 2;
+    case ShapeRole::Superelement:
+      return dimension == -1;
+  }
+  return false;
+}
+
 }  // namespace
 
 bool ElementTypeDescriptor::accepts_section(const std::string& type) const {
@@ -29,6 +51,12 @@ void register_element_type(ElementTypeDescriptor d) {
   IMPACTFE_CHECK(!d.name.empty() && d.create, "element type registered without name or factory");
   IMPACTFE_CHECK(d.defined_by_file || (d.n_nodes > 0 && d.least_nodes() <= d.n_nodes),
                  "element type " + d.name + " registered with an inconsistent node count");
+  IMPACTFE_CHECK(role_fits_cell(d.role, d.topology().dimension),
+                 "element type " + d.name + " registered with a shape role its cell does not have");
+  for (const auto& face : d.faces)
+    for (int p : face)
+      IMPACTFE_CHECK(p >= 0 && p < d.n_nodes,
+                     "element type " + d.name + " registered with a face node it does not have");
   for (const auto& [name, other] : registry()) {
     IMPACTFE_CHECK(name != d.name, "element type " + d.name + " registered twice");
     IMPACTFE_CHECK(d.number == 0 || other.number != d.number,

@@ -1,9 +1,10 @@
 #pragma once
 /// The element registry: every element type registers itself once, beside its class, with what
-/// the rest of the program needs to know about it (ANSYS names, node count, required data, VTK
-/// cell, result items, status). The deck reader's validation, the supported-type list of error
-/// messages, the VTK export and the superelement file take this from here; nothing else tests
-/// what kind an element is.
+/// the rest of the program needs to know about it (ANSYS names, node count, required data, its
+/// cell and shape role, faces for surface loads, result items, status, plasticity). The deck
+/// reader's validation, the supported-type list of error messages, the mesher, the VTK export,
+/// the POST1 pictures, the report and the superelement file take this from here; nothing
+/// outside src/elements tests an element's name or family.
 ///
 /// Registration is one line in the element's .cpp:
 ///   const ElementRegistration kCombin14{{.name = "COMBIN14", .number = 14, ..., .create = ...}};
@@ -13,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "elements/cell_topology.h"
 #include "elements/element.h"
 
 namespace impactfe {
@@ -24,14 +26,17 @@ enum class RealConstantUse {
   UnlessSection,  // unless the element's SECNUM names a section of an accepted type (LINK180)
 };
 
-/// VTK cell types (VTK's vtkCellType.h numbering) of the full node list of an element.
-enum class VtkCell : int {
-  Vertex = 1,
-  PolyVertex = 2,
-  Line = 3,
-  Triangle = 5,
-  Quad = 9,
-  Hexahedron = 12,
+/// What an element is to the parts of the program that draw, mesh or connect it (the report's
+/// bodies, the mesher's element dimension, ESURF).
+enum class ShapeRole {
+  Solid,         // a volume of material (bricks)
+  Shell,         // a surface of material with a thickness
+  Line,          // a spar, beam or spring between two nodes
+  Point,         // a mass at a node
+  Gap,           // acts between two bodies at a node pair (COMBIN40, CONTA178): joins no bodies
+  Contact,       // the contact side of a surface-to-surface pair (CONTA174 faces, CONTA175 nodes)
+  Target,        // the target side (TARGE170 facets and pilot)
+  Superelement,  // a reduced matrix on master nodes (MATRIX50)
 };
 
 using ElementFactory =
@@ -63,7 +68,9 @@ struct ElementTypeDescriptor {
   bool needs_material = false;
   /// SECTYPE types an element of this type may reference through SECNUM ("LINK", "SHELL").
   std::vector<std::string> section_types;
+  /// The reference cell of the element's nodes (cell_topology.h: corners, faces, edges).
   VtkCell vtk_cell = VtkCell::PolyVertex;
+  ShapeRole role = ShapeRole::Point;
   /// Result item names, in the order Element::results() returns them.
   std::vector<std::string> result_names;
   /// MAPDL item/sequence numbers of the stored results (APDL_SCRIPTING §D.6).
@@ -83,6 +90,7 @@ struct ElementTypeDescriptor {
   std::string note;
   ElementFactory create;
 
+  const CellTopology& topology() const { return cell_topology(vtk_cell); }
   int max_nodes() const { return n_nodes + n_optional_nodes; }
   int least_nodes() const { return min_nodes > 0 ? min_nodes : n_nodes; }
   bool accepts_section(const std::string& type) const;

@@ -99,6 +99,7 @@ const ElementRegistration kMass21{{.name = "MASS21",
                                    .n_nodes = 1,
                                    .real_constants = RealConstantUse::Required,
                                    .vtk_cell = VtkCell::Vertex,
+                                   .role = ShapeRole::Point,
                                    .result_names = kPointMassResults,
                                    .create = make_point_mass}};
 

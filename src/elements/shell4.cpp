@@ -667,6 +667,7 @@ ElementTypeDescriptor shell_type(const char* name, int number, bool shell181) {
           .needs_material = true,
           .section_types = {"SHELL"},
           .vtk_cell = VtkCell::Quad,
+          .role = ShapeRole::Shell,
           .result_names = kShell4Results,
           // S at the top surface (MAPDL's default shell location); SMISC 1-6 = T and M resultants.
           .result_sequences = {{"S", "X", "SX_TOP"},

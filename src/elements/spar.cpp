@@ -190,6 +190,7 @@ ElementTypeDescriptor spar_type(const char* name, int number, bool planar) {
           .needs_material = true,
           .section_types = {"LINK"},
           .vtk_cell = VtkCell::Line,
+          .role = ShapeRole::Line,
           .result_names = kSparResults,
           .result_sequences = {{"SMISC", "1", "FORC"},
                                {"LS", "1", "SAXL"},

@@ -162,6 +162,7 @@ const ElementRegistration kCombin14{
      .n_nodes = 2,
      .real_constants = RealConstantUse::Required,
      .vtk_cell = VtkCell::Line,
+     .role = ShapeRole::Line,
      .result_names = kSpringDamperResults,
      .result_sequences = {{"SMISC", "1", "FORC"}, {"NMISC", "1", "STRETCH"}},
      .create = make_spring_damper}};

@@ -99,6 +99,7 @@ const ElementRegistration kMatrix50{{.name = "MATRIX50",
                                      .family = "Superelement",
                                      .defined_by_file = true,
                                      .vtk_cell = VtkCell::PolyVertex,
+                                     .role = ShapeRole::Superelement,
                                      .result_names = kSuperelementResults,
                                      .create = make_superelement}};
 

@@ -453,6 +453,7 @@ const ElementRegistration kTarge170{{.name = "TARGE170",
                                      .min_nodes = 1,
                                      .real_constants = RealConstantUse::Required,
                                      .vtk_cell = VtkCell::Quad,
+                                     .role = ShapeRole::Target,
                                      .result_names = RigidTargetElement::names(),
                                      .create = make_rigid_target}};
 

@@ -30,19 +30,7 @@ int ceil_divisions(double x) {
 
 /// Topological dimension of an element type's cell: 0 point, 1 line, 2 area, 3 volume.
 int dimension(const ElementTypeDescriptor& d) {
-  switch (d.vtk_cell) {
-    case VtkCell::Vertex:
-      return 0;
-    case VtkCell::Line:
-      return 1;
-    case VtkCell::Triangle:
-    case VtkCell::Quad:
-      return 2;
-    case VtkCell::Hexahedron:
-      return 3;
-    default:
-      return -1;
-  }
+  return d.topology().dimension;
 }
 
 const char* dimension_name(int dim) {

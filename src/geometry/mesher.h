@@ -100,6 +100,16 @@ class Mesher {
   void release_line(int id);
   void release_area(int id);
   void release_keypoint(int id);
+  // Mapped hexahedral meshing of a brick-like volume (volume_mesher.cpp), in this order.
+  struct VolumeBlock;
+  /// Its areas, lines and corners from the source area (checks that it is brick-like).
+  VolumeBlock volume_block(int id, int source, int target);
+  /// Divisions, the nodes of its keypoints, lines and areas, and the empty node lattice.
+  void volume_block_nodes(VolumeBlock& block);
+  /// The area meshes into the lattice.
+  void copy_face_grids(VolumeBlock& block);
+  /// The bricks of the filled lattice, I J K L counter-clockwise seen from M N O P.
+  std::vector<int> volume_block_elements(const VolumeBlock& block, const Attributes& attr);
 
   Model& model_;
   SolidModel& solid_;

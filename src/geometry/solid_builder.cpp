@@ -6,6 +6,7 @@
 #include <cmath>
 #include <set>
 
+#include "elements/cell_topology.h"
 #include "geometry/line_geometry.h"
 
 namespace impactfe::geometry {
@@ -196,10 +197,9 @@ int SolidBuilder::volume_from_areas(const std::vector<int>& areas) {
 
 int SolidBuilder::volume_from_keypoints(const std::vector<int>& kps, const CoordinateSystem& path) {
   if (kps.size() != 8) fail(fmt::format("a volume needs 8 keypoints I..P, {} given", kps.size()));
-  static const int faces[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
-                                  {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+  // The areas in the hexahedron's face order (bottom, top, then the sides), outward.
   std::vector<int> areas;
-  for (const auto& f : faces) {
+  for (const auto& f : cell_topology(VtkCell::Hexahedron).faces) {
     std::vector<int> loop;
     for (int c : f) {
       const int k = kps[static_cast<std::size_t>(c)];

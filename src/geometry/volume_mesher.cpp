@@ -16,18 +16,30 @@
 
 namespace impactfe::geometry {
 
-namespace {
-
-/// Volume parametrisation: corner (a, b, c) ∈ {0,1}³ → keypoint.
-using Corners = std::array<std::array<std::array<int, 2>, 2>, 2>;
-
-}  // namespace
+/// A brick-like volume being meshed: its areas and lines, its corners, its divisions and the
+/// (n1 + 1)(n2 + 1)(n3 + 1) lattice of node ids and positions.
+struct Mesher::VolumeBlock {
+  /// Volume parametrisation: corner (a, b, c) ∈ {0,1}³ → keypoint.
+  using Corners = std::array<std::array<std::array<int, 2>, 2>, 2>;
+  int id = 0;
+  std::vector<int> areas;
+  std::vector<int> lines;
+  std::vector<int> bottom;   // keypoints of the bottom (source) area, in its order
+  std::array<int, 4> top{};  // the keypoint above each bottom one
+  Corners q{};
+  int n1 = 0, n2 = 0, n3 = 0;
+  std::vector<int> ids;
+  std::vector<Vec3> xyz;
+  std::size_t index(int i, int j, int k) const {
+    return static_cast<std::size_t>(i + (n1 + 1) * (j + (n2 + 1) * k));
+  }
+};
 
 void Mesher::mesh_volume(int id, int source, int target) {
   Volume& volume = solid_.volumes.at(id);
   const Attributes attr = resolve(volume.attr);
   const ElementTypeDescriptor& d = descriptor(attr.type);
-  if (d.vtk_cell != VtkCell::Hexahedron)
+  if (d.topology().dimension != 3)
     fail(
         fmt::format("element type {} ({}) is not a solid element: VMESH needs a brick element "
                     "(SOLID185; set TYPE or VATT)",
@@ -49,7 +61,27 @@ void Mesher::mesh_volume(int id, int source, int target) {
         where_.file, where_.line, where_.command);
     m.free_warning_given = true;
   }
-  const std::vector<int> areas = volume.areas;
+  VolumeBlock block = volume_block(id, source, target);
+  volume_block_nodes(block);
+  copy_face_grids(block);
+  transfinite_block(block.xyz, block.n1, block.n2, block.n3);
+  std::vector<int> interior;
+  for (int k = 1; k < block.n3; ++k)
+    for (int j = 1; j < block.n2; ++j)
+      for (int i = 1; i < block.n1; ++i)
+        interior.push_back(block.ids[block.index(i, j, k)] =
+                               add_node(block.xyz[block.index(i, j, k)]));
+  std::vector<int> elements = volume_block_elements(block, attr);
+  Volume& stored = solid_.volumes.at(id);
+  stored.interior_nodes = std::move(interior);
+  stored.elements = std::move(elements);
+}
+
+Mesher::VolumeBlock Mesher::volume_block(int id, int source, int target) {
+  VolumeBlock block;
+  block.id = id;
+  block.areas = solid_.volumes.at(id).areas;
+  const std::vector<int>& areas = block.areas;
   if (areas.size() != 6)
     fail(
         fmt::format("volume {} has {} areas: mapped hexahedral meshing needs 6 (a brick-like "
@@ -63,18 +95,20 @@ void Mesher::mesh_volume(int id, int source, int target) {
                        a, area.lines.size()));
     for (int sl : area.lines) lines_set.insert(std::abs(sl));
   }
-  const std::vector<int> lines(lines_set.begin(), lines_set.end());
+  block.lines.assign(lines_set.begin(), lines_set.end());
+  const std::vector<int>& lines = block.lines;
   if (lines.size() != 12)
     fail(fmt::format("volume {} is not mappable: it has {} lines (a brick-like volume has 12)", id,
                      lines.size()));
   if (source != 0 && std::find(areas.begin(), areas.end(), source) == areas.end())
     fail(fmt::format("source area {} is not an area of volume {}", source, id));
   const int bottom = source != 0 ? source : areas.front();
-  const std::vector<int> b = solid_.areas.at(bottom).keypoints;
+  block.bottom = solid_.areas.at(bottom).keypoints;
+  const std::vector<int>& b = block.bottom;
   std::vector<int> bottom_lines;
   for (int sl : solid_.areas.at(bottom).lines) bottom_lines.push_back(std::abs(sl));
   // Each bottom corner has exactly one edge leaving the bottom face: it leads to the top corner.
-  std::array<int, 4> t{};
+  std::array<int, 4>& t = block.top;
   for (std::size_t k = 0; k < 4; ++k) {
     int found = 0;
     for (int l : lines) {
@@ -104,12 +138,17 @@ void Mesher::mesh_volume(int id, int source, int target) {
         fmt::format("VSWEEP: target area {} is not opposite to the source area {} in volume {} "
                     "(area {} is)",
                     target, bottom, id, top));
-
-  Corners q;
+  VolumeBlock::Corners& q = block.q;
   q[0][0][0] = b[0], q[1][0][0] = b[1], q[1][1][0] = b[2], q[0][1][0] = b[3];
   q[0][0][1] = t[0], q[1][0][1] = t[1], q[1][1][1] = t[2], q[0][1][1] = t[3];
+  return block;
+}
+
+void Mesher::volume_block_nodes(VolumeBlock& block) {
+  const int id = block.id;
+  const VolumeBlock::Corners& q = block.q;
   auto edge = [&](int a0, int b0, int c0, int a1, int b1, int c1) {
-    const int l = line_joining(lines, q[a0][b0][c0], q[a1][b1][c1]);
+    const int l = line_joining(block.lines, q[a0][b0][c0], q[a1][b1][c1]);
     if (l == 0)
       fail(fmt::format("volume {} is not mappable: keypoints {} and {} are not joined by a line",
                        id, q[a0][b0][c0], q[a1][b1][c1]));
@@ -125,28 +164,34 @@ void Mesher::mesh_volume(int id, int source, int target) {
   plan_divisions(classes, fmt::format("volume {}", id), std::nullopt);
 
   // Nodes: keypoints, lines, areas (ascending numbers), then the interior.
-  std::vector<int> kps(b.begin(), b.end());
-  kps.insert(kps.end(), t.begin(), t.end());
+  std::vector<int> kps(block.bottom.begin(), block.bottom.end());
+  kps.insert(kps.end(), block.top.begin(), block.top.end());
   std::sort(kps.begin(), kps.end());
   for (int k : kps) keypoint_node(k);
-  for (int l : lines) line_nodes(l);
-  std::vector<int> sorted_areas = areas;
+  for (int l : block.lines) line_nodes(l);
+  std::vector<int> sorted_areas = block.areas;
   std::sort(sorted_areas.begin(), sorted_areas.end());
   for (int a : sorted_areas) area_nodes(a, false);
 
   auto divisions = [&](int l) { return static_cast<int>(solid_.lines.at(l).nodes.size()) - 1; };
-  const int n1 = divisions(classes[0][0]), n2 = divisions(classes[1][0]),
-            n3 = divisions(classes[2][0]);
-  check_new_nodes((n1 - 1.0) * (n2 - 1.0) * (n3 - 1.0),
-                  fmt::format("volume {} ({} x {} x {} divisions)", id, n1, n2, n3));
-  const int s1 = n1 + 1, s2 = n2 + 1;
-  auto index = [&](int i, int j, int k) { return static_cast<std::size_t>(i + s1 * (j + s2 * k)); };
-  std::vector<int> ids(static_cast<std::size_t>(s1 * s2 * (n3 + 1)), 0);
-  std::vector<Vec3> xyz(ids.size(), Vec3::Zero());
+  block.n1 = divisions(classes[0][0]), block.n2 = divisions(classes[1][0]),
+  block.n3 = divisions(classes[2][0]);
+  check_new_nodes(
+      (block.n1 - 1.0) * (block.n2 - 1.0) * (block.n3 - 1.0),
+      fmt::format("volume {} ({} x {} x {} divisions)", id, block.n1, block.n2, block.n3));
+  const std::size_t size =
+      static_cast<std::size_t>((block.n1 + 1) * (block.n2 + 1) * (block.n3 + 1));
+  block.ids.assign(size, 0);
+  block.xyz.assign(size, Vec3::Zero());
+}
 
+void Mesher::copy_face_grids(VolumeBlock& block) {
   // Copy each face grid into the block: the face fixes one parameter; its area grid axes are
   // matched to the block axes through the corner keypoints.
-  for (int a : areas) {
+  const int id = block.id;
+  const VolumeBlock::Corners& q = block.q;
+  const int n[3] = {block.n1, block.n2, block.n3};
+  for (int a : block.areas) {
     const Area& area = solid_.areas.at(a);
     const std::set<int> face(area.keypoints.begin(), area.keypoints.end());
     int axis = -1, level = 0;
@@ -166,7 +211,6 @@ void Mesher::mesh_volume(int id, int source, int target) {
     if (axis < 0)
       fail(fmt::format("volume {}: area {} is not a face of its brick topology", id, a));
     const int ax_u = (axis + 1) % 3, ax_v = (axis + 2) % 3;
-    const int n[3] = {n1, n2, n3};
     const int nu = n[ax_u], nv = n[ax_v];
     auto corner_kp = [&](int u, int v) {
       std::array<int, 3> c{};
@@ -192,21 +236,21 @@ void Mesher::mesh_volume(int id, int source, int target) {
         c[static_cast<std::size_t>(axis)] = level * n[axis];
         c[static_cast<std::size_t>(ax_u)] = u;
         c[static_cast<std::size_t>(ax_v)] = v;
-        ids[index(c[0], c[1], c[2])] = node;
-        xyz[index(c[0], c[1], c[2])] = model_.nodes.at(node).x;
+        block.ids[block.index(c[0], c[1], c[2])] = node;
+        block.xyz[block.index(c[0], c[1], c[2])] = model_.nodes.at(node).x;
       }
   }
-  transfinite_block(xyz, n1, n2, n3);
-  std::vector<int> interior;
-  for (int k = 1; k < n3; ++k)
-    for (int j = 1; j < n2; ++j)
-      for (int i = 1; i < n1; ++i)
-        interior.push_back(ids[index(i, j, k)] = add_node(xyz[index(i, j, k)]));
+}
 
+std::vector<int> Mesher::volume_block_elements(const VolumeBlock& block, const Attributes& attr) {
+  const int n1 = block.n1, n2 = block.n2, n3 = block.n3;
+  const auto& xyz = block.xyz;
+  const auto& ids = block.ids;
   // Orientation: I J K L counter-clockwise seen from M N O P (positive volume).
-  const std::vector<Vec3> box = {
-      xyz[index(0, 0, 0)],  xyz[index(n1, 0, 0)],  xyz[index(n1, n2, 0)],  xyz[index(0, n2, 0)],
-      xyz[index(0, 0, n3)], xyz[index(n1, 0, n3)], xyz[index(n1, n2, n3)], xyz[index(0, n2, n3)]};
+  const std::vector<Vec3> box = {xyz[block.index(0, 0, 0)],    xyz[block.index(n1, 0, 0)],
+                                 xyz[block.index(n1, n2, 0)],  xyz[block.index(0, n2, 0)],
+                                 xyz[block.index(0, 0, n3)],   xyz[block.index(n1, 0, n3)],
+                                 xyz[block.index(n1, n2, n3)], xyz[block.index(0, n2, n3)]};
   const bool mirrored = hexahedron_volume(box) < 0.0;
   std::vector<int> elements;
   for (int k = 0; k < n3; ++k)
@@ -214,16 +258,15 @@ void Mesher::mesh_volume(int id, int source, int target) {
       for (int i = 0; i < n1; ++i) {
         std::vector<int> nodes;
         for (int c : {k, k + 1}) {
-          std::array<int, 4> quad = {ids[index(i, j, c)], ids[index(i + 1, j, c)],
-                                     ids[index(i + 1, j + 1, c)], ids[index(i, j + 1, c)]};
+          std::array<int, 4> quad = {ids[block.index(i, j, c)], ids[block.index(i + 1, j, c)],
+                                     ids[block.index(i + 1, j + 1, c)],
+                                     ids[block.index(i, j + 1, c)]};
           if (mirrored) std::swap(quad[1], quad[3]);
           nodes.insert(nodes.end(), quad.begin(), quad.end());
         }
         elements.push_back(add_element(attr, nodes));
       }
-  Volume& stored = solid_.volumes.at(id);
-  stored.interior_nodes = std::move(interior);
-  stored.elements = std::move(elements);
+  return elements;
 }
 
 }  // namespace impactfe::geometry

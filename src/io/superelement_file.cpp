@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include <cctype>
 #include <filesystem>
 #include <sstream>
 #include <stdexcept>
@@ -208,7 +209,7 @@ std::string serialize_generation_model(const Model& model, bool lumped_mass,
   }
   for (const auto& [id, s] : model.sections) {
     o << "section " << id << ' ' << s.type;
-    if (s.type == "BEAM") o << ' ' << s.subtype;  // only beam sections have a subtype
+    if (!s.subtype.empty()) o << ' ' << s.subtype;  // a type without subtypes has none
     o << ' ' << s.data.size();
     for (double v : s.data) o << ' ' << v;
     o << '\n';
@@ -278,9 +279,15 @@ Model deserialize_generation_model(const std::string& text, bool& lumped_mass,
     } else if (tag == "section") {
       Section sec;
       std::size_t n = 0;
-      s >> sec.id >> sec.type;
-      if (sec.type == "BEAM") s >> sec.subtype;
-      s >> n;
+      // "section ID TYPE [SUBTYPE] N VALUES...": a subtype is a name, N a number.
+      std::string next;
+      s >> sec.id >> sec.type >> next;
+      if (!next.empty() && std::isalpha(static_cast<unsigned char>(next.front())) != 0) {
+        sec.subtype = next;
+        s >> n;
+      } else {
+        std::istringstream(next) >> n;
+      }
       sec.data.resize(n);
       for (auto& v : sec.data) s >> v;
       model.sections[sec.id] = sec;

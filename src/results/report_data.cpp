@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -360,73 +361,29 @@ json report_mesh_json(const ReportMesh& mesh, const ResultsReader& reader) {
           {"bodies", bodies}};
 }
 
-}  // namespace
+/// The directions (UX .. AZ: X, Y, Z) and the element items of --item.
+struct RequestedItems {
+  std::vector<int> dirs;
+  std::vector<std::string> items;
+};
 
-std::vector<std::pair<double, double>> sample_min_max(
-    const std::vector<std::pair<double, double>>& series, int max_points) {
-  if (max_points < 4) throw InputError("at most fewer than 4 points per curve is too few");
-  const std::size_t n = series.size();
-  if (n <= static_cast<std::size_t>(max_points)) return series;
-  const std::size_t interior = n - 2, buckets = static_cast<std::size_t>(max_points - 2) / 2;
-  Series out;
-  out.reserve(static_cast<std::size_t>(max_points));
-  out.push_back(series.front());
-  for (std::size_t b = 0; b < buckets; ++b) {
-    const std::size_t first = 1 + b * interior / buckets, last = 1 + (b + 1) * interior / buckets;
-    if (first >= last) continue;
-    std::size_t lo = first, hi = first;
-    for (std::size_t i = first; i < last; ++i) {
-      if (series[i].second < series[lo].second) lo = i;
-      if (series[i].second > series[hi].second) hi = i;
-    }
-    out.push_back(series[std::min(lo, hi)]);
-    if (lo != hi) out.push_back(series[std::max(lo, hi)]);
-  }
-  out.push_back(series.back());
-  return out;
-}
-
-std::string report_data_json(const ResultsReader& reader, const ReportOptions& options) {
-  if (options.max_points < 4) throw InputError("--max-points must be at least 4");
-  if (options.max_frames < 2) throw InputError("--frames must be at least 2");
-  const auto& node_ids = reader.node_ids();
-  const auto analyses = reader.analyses();
-  const ReportMesh mesh = build_report_mesh(reader);
-
-  // Requested directions and element items.
-  std::vector<int> user_dirs;
-  std::vector<std::string> user_items;
+RequestedItems requested_items(const ReportOptions& options) {
+  RequestedItems out;
   for (const auto& raw : options.items) {
     const std::string item = to_upper(raw);
     const bool nodal = item.size() == 2 && std::string("UVA").find(item[0]) != std::string::npos &&
                        item[1] >= 'X' && item[1] <= 'Z';
     if (nodal) {
-      if (std::find(user_dirs.begin(), user_dirs.end(), item[1] - 'X') == user_dirs.end())
-        user_dirs.push_back(item[1] - 'X');
+      if (std::find(out.dirs.begin(), out.dirs.end(), item[1] - 'X') == out.dirs.end())
+        out.dirs.push_back(item[1] - 'X');
     } else {
-      user_items.push_back(item);
+      out.items.push_back(item);
     }
   }
-  for (int node : options.nodes)
-    if (node_row(node_ids, node) < 0)
-      throw InputError(fmt::format("node {} is not in results file '{}'", node, reader.path()));
+  return out;
+}
 
-  // Frames of the 3-D view within the value budget, then the single pass.
-  std::size_t per_frame = 3 * node_ids.size() + 4 * mesh.element_ids.size();
-  std::size_t max_frames =
-      std::min<std::size_t>(static_cast<std::size_t>(options.max_frames),
-                            std::max<std::size_t>(2, kFrameValueBudget / per_frame));
-  const auto frame_refs = choose_frames(reader, mesh, max_frames);
-  Pass pass = scan_time_points(reader, frame_refs, options.max_points);
-  const Peaks& peaks = pass.peaks;
-
-  json data;
-  data["format"] = "impactfe-report";
-  data["format_version"] = 1;
-  data["file"] = reader.path();
-  data["title"] = reader.title();
-  data["n_nodes"] = node_ids.size();
-  data["n_elements"] = reader.elements().size();
+json analyses_json(const std::vector<ResultsReader::AnalysisInfo>& analyses) {
   json an = json::array();
   for (const auto& a : analyses)
     an.push_back({{"index", a.index},
@@ -441,15 +398,60 @@ std::string report_data_json(const ResultsReader& reader, const ReportOptions& o
                   {"element_families", a.element_families},
                   {"numeric", a.numeric_attributes},
                   {"text", a.text_attributes}});
-  data["analyses"] = std::move(an);
-  data["energy"] = std::move(pass.energy);
+  return an;
+}
 
-  // --- nodal figures: chosen directions, then node groups -------------------------------------
+/// The directions of the nodal figures (the requested ones, else those whose peak reaches a
+/// tenth of the largest) and the node groups they show.
+struct NodalSelection {
+  std::vector<int> dirs;
+  std::vector<std::vector<int>> groups;
+  std::vector<std::string> group_names;
+};
+
+/// Per body: the node with the largest response, then its moving gap nodes, most loaded gap
+/// first (the helmet's crown, node 43, on the ground gap). A node whose peak equals one already
+/// picked (a rigid part moves as one) would only hide under its curve: skipped.
+std::vector<int> body_nodes(const ReportMesh::Body& body, const ReportMesh& mesh,
+                            const std::vector<int>& node_ids,
+                            const std::function<double(int)>& response,
+                            std::map<int, double>& gap_load) {
+  std::vector<int> by_response = body.nodes;
+  std::stable_sort(by_response.begin(), by_response.end(),
+                   [&](int a, int b) { return response(a) > response(b); });
+  if (by_response.empty() || response(by_response.front()) <= 0.0) return {};
+  std::vector<int> candidates = {by_response.front()};
+  std::vector<int> gap_nodes;
+  for (int idx : by_response)
+    if (mesh.gap_nodes.count(idx) && response(idx) > 0.0) gap_nodes.push_back(idx);
+  std::stable_sort(gap_nodes.begin(), gap_nodes.end(),
+                   [&](int a, int b) { return gap_load[a] > gap_load[b]; });
+  candidates.insert(candidates.end(), gap_nodes.begin(), gap_nodes.end());
+  std::vector<int> picked, picked_index;
+  for (int idx : candidates) {
+    const bool same = std::any_of(picked_index.begin(), picked_index.end(), [&](int p) {
+      return std::abs(response(p) - response(idx)) <= 1e-5 * response(p);
+    });
+    if (same) continue;
+    picked_index.push_back(idx);
+    picked.push_back(node_ids[static_cast<std::size_t>(idx)]);
+    if (picked.size() >= kMaxBodyNodes) break;
+  }
+  std::sort(picked.begin(), picked.end());
+  return picked;
+}
+
+NodalSelection nodal_selection(const ResultsReader& reader, const ReportMesh& mesh,
+                               const Peaks& peaks, const ReportOptions& options,
+                               const std::vector<int>& user_dirs) {
+  const auto& node_ids = reader.node_ids();
+  NodalSelection out;
   double largest = 0.0;
   for (Eigen::Index i = 0; i < peaks.node.rows(); ++i)
     for (int d = 0; d < 3; ++d)
       if (std::isfinite(peaks.node(i, d))) largest = std::max(largest, peaks.node(i, d));
-  std::vector<int> dirs = user_dirs;
+  std::vector<int>& dirs = out.dirs;
+  dirs = user_dirs;
   if (dirs.empty())
     for (int d = 0; d < 3; ++d) {
       double peak = 0.0;
@@ -457,18 +459,16 @@ std::string report_data_json(const ResultsReader& reader, const ReportOptions& o
         if (std::isfinite(peaks.node(i, d))) peak = std::max(peak, peaks.node(i, d));
       if (largest > 0.0 && peak >= 0.1 * largest) dirs.push_back(d);
     }
-  auto response = [&](int index) {
+  const std::function<double(int)> response = [&](int index) {
     double r = 0.0;
     for (int d : dirs)
       if (std::isfinite(peaks.node(index, d))) r = std::max(r, peaks.node(index, d));
     return r;
   };
-  std::vector<std::vector<int>> groups;
-  std::vector<std::string> group_names;
   if (!options.nodes.empty()) {
-    groups.push_back(options.nodes);
-    group_names.push_back(options.nodes.size() == 1 ? fmt::format("node {}", options.nodes[0])
-                                                    : "the selected nodes");
+    out.groups.push_back(options.nodes);
+    out.group_names.push_back(options.nodes.size() == 1 ? fmt::format("node {}", options.nodes[0])
+                                                        : "the selected nodes");
   } else if (!dirs.empty()) {
     // Load on each node from its gaps: the peak |FORC| of the gap elements it belongs to.
     std::map<int, double> gap_load;  // node index -> peak gap force
@@ -480,43 +480,20 @@ std::string report_data_json(const ResultsReader& reader, const ReportOptions& o
           gap_load[row] = std::max(gap_load[row], f->second);
     }
     for (const auto& body : mesh.bodies) {
-      // The node with the largest response, then the moving gap nodes, most loaded gap first
-      // (the helmet's crown, node 43, on the ground gap). A node whose peak equals one already
-      // picked (a rigid part moves as one) would only hide under its curve: skipped.
-      std::vector<int> by_response = body.nodes;
-      std::stable_sort(by_response.begin(), by_response.end(),
-                       [&](int a, int b) { return response(a) > response(b); });
-      if (by_response.empty() || response(by_response.front()) <= 0.0) continue;
-      std::vector<int> candidates = {by_response.front()};
-      std::vector<int> gap_nodes;
-      for (int idx : by_response)
-        if (mesh.gap_nodes.count(idx) && response(idx) > 0.0) gap_nodes.push_back(idx);
-      std::stable_sort(gap_nodes.begin(), gap_nodes.end(),
-                       [&](int a, int b) { return gap_load[a] > gap_load[b]; });
-      candidates.insert(candidates.end(), gap_nodes.begin(), gap_nodes.end());
-      std::vector<int> picked, picked_index;
-      for (int idx : candidates) {
-        const bool same = std::any_of(picked_index.begin(), picked_index.end(), [&](int p) {
-          return std::abs(response(p) - response(idx)) <= 1e-5 * response(p);
-        });
-        if (same) continue;
-        picked_index.push_back(idx);
-        picked.push_back(node_ids[static_cast<std::size_t>(idx)]);
-        if (picked.size() >= kMaxBodyNodes) break;
-      }
-      std::sort(picked.begin(), picked.end());
-      groups.push_back(picked);
-      group_names.push_back(mesh.bodies.size() == 1 ? "the model" : body.name);
+      std::vector<int> picked = body_nodes(body, mesh, node_ids, response, gap_load);
+      if (picked.empty()) continue;
+      out.groups.push_back(picked);
+      out.group_names.push_back(mesh.bodies.size() == 1 ? "the model" : body.name);
     }
   }
-  data["selection"] = {{"nodes_auto", options.nodes.empty()},
-                       {"elements_auto", options.elements.empty()},
-                       {"directions_auto", user_dirs.empty()}};
-  data["directions"] = json::array();
-  for (int d : dirs) data["directions"].push_back(kAxes[d]);
-  json figures = nodal_figures(reader, groups, group_names, dirs, options.max_points);
+  return out;
+}
 
-  // --- element figures: the most stressed element per family, the most loaded spring ----------
+/// Element figures: the requested elements, else the most stressed element of each element
+/// type (gaps aside); stresses of one type share a figure, every other item has its own.
+void add_element_figures(const ResultsReader& reader, const ReportMesh& mesh, const Peaks& peaks,
+                         const ReportOptions& options, const std::vector<std::string>& user_items,
+                         json& figures) {
   std::vector<int> stress_elements = options.elements;
   for (int e : stress_elements)
     if (!mesh.element_index.count(e))
@@ -570,9 +547,13 @@ std::string report_data_json(const ResultsReader& reader, const ReportOptions& o
                        {"ylabel", ylabel},
                        {"series", std::move(series)}});
   }
-  data["figures"] = std::move(figures);
+}
 
-  // --- gaps: forces of the most loaded gaps, status timeline of every gap ---------------------
+/// Gaps: forces of the most loaded gaps and gap conditions, the status timeline of each
+/// (data["gap_force"], data["gap_status"]).
+void add_gaps(const ResultsReader& reader, const ReportMesh& mesh, const Peaks& peaks,
+              const std::vector<ResultsReader::AnalysisInfo>& analyses, int max_points,
+              json& data) {
   std::vector<std::pair<int, double>> gaps(peaks.gap_force.begin(), peaks.gap_force.end());
   std::stable_sort(gaps.begin(), gaps.end(),
                    [](const auto& a, const auto& b) { return a.second > b.second; });
@@ -582,8 +563,7 @@ std::string report_data_json(const ResultsReader& reader, const ReportOptions& o
     const auto& type = reader.elements()[mesh.element_index.at(id)].type_name;
     const Series s = reader.element_series(id, "FORC");
     if (gap_curves.size() < kMaxGapCurves && s.size() >= 2)
-      gap_curves.push_back(
-          curve(fmt::format("Element {} ({}) FORC", id, type), s, options.max_points));
+      gap_curves.push_back(curve(fmt::format("Element {} ({}) FORC", id, type), s, max_points));
   }
   std::vector<int> gap_ids;
   for (const auto& [id, m] : peaks.family_of)
@@ -609,7 +589,7 @@ std::string report_data_json(const ResultsReader& reader, const ReportOptions& o
   for (int g = 1; g <= n_conditions; ++g) {
     const Series s = reader.gap_force_series(g);
     if (gap_curves.size() < kMaxGapCurves && s.size() >= 2)
-      gap_curves.push_back(curve(fmt::format("Gap condition {} force", g), s, options.max_points));
+      gap_curves.push_back(curve(fmt::format("Gap condition {} force", g), s, max_points));
     if (++n_gap_rows <= kMaxGapRows)
       rows.push_back(
           {{"label", fmt::format("Gap condition {}", g)}, {"changes", status_changes(s, true)}});
@@ -622,8 +602,10 @@ std::string report_data_json(const ResultsReader& reader, const ReportOptions& o
                                  {"series", std::move(gap_curves)}};
   data["gap_status"] = {{"rows", std::move(rows)},
                         {"n_gaps", gap_ids.size() + static_cast<std::size_t>(n_conditions)}};
+}
 
-  // --- modes, mesh and 3-D frames --------------------------------------------------------------
+/// Frequencies and the first 20 mode shapes.
+json modes_json(const ResultsReader& reader) {
   const auto freqs = reader.frequencies();
   json modes = {{"frequencies", freqs}};
   if (!freqs.empty()) {
@@ -637,13 +619,16 @@ std::string report_data_json(const ResultsReader& reader, const ReportOptions& o
     modes["n_shapes"] = n_shapes;
     modes["shapes"] = float32_base64(shapes);
   }
-  data["modes"] = std::move(modes);
-  data["mesh"] = report_mesh_json(mesh, reader);
+  return modes;
+}
 
-  const std::vector<Field> fields = element_fields(pass.frames);
+/// The 3-D view's frames: displacements and element fields (the max over a field's columns).
+json frames_json(const ReportMesh& mesh, const std::vector<TimePoint>& frames,
+                 const std::vector<FrameRef>& frame_refs) {
+  const std::vector<Field> fields = element_fields(frames);
   std::vector<double> u, times;
   std::vector<std::vector<double>> field_values(fields.size());
-  for (const auto& p : pass.frames) {
+  for (const auto& p : frames) {
     times.push_back(p.time);
     for (Eigen::Index i = 0; i < p.displacement.rows(); ++i)
       for (int d = 0; d < 3; ++d) u.push_back(p.displacement(i, d));
@@ -673,7 +658,79 @@ std::string report_data_json(const ResultsReader& reader, const ReportOptions& o
   for (std::size_t f = 0; f < fields.size(); ++f)
     frame_json["fields"].push_back(
         {{"name", fields[f].name}, {"values", float32_base64(field_values[f])}});
-  data["frames"] = std::move(frame_json);
+  return frame_json;
+}
+
+}  // namespace
+
+std::vector<std::pair<double, double>> sample_min_max(
+    const std::vector<std::pair<double, double>>& series, int max_points) {
+  if (max_points < 4) throw InputError("at most fewer than 4 points per curve is too few");
+  const std::size_t n = series.size();
+  if (n <= static_cast<std::size_t>(max_points)) return series;
+  const std::size_t interior = n - 2, buckets = static_cast<std::size_t>(max_points - 2) / 2;
+  Series out;
+  out.reserve(static_cast<std::size_t>(max_points));
+  out.push_back(series.front());
+  for (std::size_t b = 0; b < buckets; ++b) {
+    const std::size_t first = 1 + b * interior / buckets, last = 1 + (b + 1) * interior / buckets;
+    if (first >= last) continue;
+    std::size_t lo = first, hi = first;
+    for (std::size_t i = first; i < last; ++i) {
+      if (series[i].second < series[lo].second) lo = i;
+      if (series[i].second > series[hi].second) hi = i;
+    }
+    out.push_back(series[std::min(lo, hi)]);
+    if (lo != hi) out.push_back(series[std::max(lo, hi)]);
+  }
+  out.push_back(series.back());
+  return out;
+}
+
+std::string report_data_json(const ResultsReader& reader, const ReportOptions& options) {
+  if (options.max_points < 4) throw InputError("--max-points must be at least 4");
+  if (options.max_frames < 2) throw InputError("--frames must be at least 2");
+  const auto& node_ids = reader.node_ids();
+  const auto analyses = reader.analyses();
+  const ReportMesh mesh = build_report_mesh(reader);
+  const RequestedItems requested = requested_items(options);
+  for (int node : options.nodes)
+    if (node_row(node_ids, node) < 0)
+      throw InputError(fmt::format("node {} is not in results file '{}'", node, reader.path()));
+
+  // Frames of the 3-D view within the value budget, then the single pass.
+  std::size_t per_frame = 3 * node_ids.size() + 4 * mesh.element_ids.size();
+  std::size_t max_frames =
+      std::min<std::size_t>(static_cast<std::size_t>(options.max_frames),
+                            std::max<std::size_t>(2, kFrameValueBudget / per_frame));
+  const auto frame_refs = choose_frames(reader, mesh, max_frames);
+  Pass pass = scan_time_points(reader, frame_refs, options.max_points);
+  const Peaks& peaks = pass.peaks;
+
+  json data;
+  data["format"] = "impactfe-report";
+  data["format_version"] = 1;
+  data["file"] = reader.path();
+  data["title"] = reader.title();
+  data["n_nodes"] = node_ids.size();
+  data["n_elements"] = reader.elements().size();
+  data["analyses"] = analyses_json(analyses);
+  data["energy"] = std::move(pass.energy);
+
+  const NodalSelection nodal = nodal_selection(reader, mesh, peaks, options, requested.dirs);
+  data["selection"] = {{"nodes_auto", options.nodes.empty()},
+                       {"elements_auto", options.elements.empty()},
+                       {"directions_auto", requested.dirs.empty()}};
+  data["directions"] = json::array();
+  for (int d : nodal.dirs) data["directions"].push_back(kAxes[d]);
+  json figures =
+      nodal_figures(reader, nodal.groups, nodal.group_names, nodal.dirs, options.max_points);
+  add_element_figures(reader, mesh, peaks, options, requested.items, figures);
+  data["figures"] = std::move(figures);
+  add_gaps(reader, mesh, peaks, analyses, options.max_points, data);
+  data["modes"] = modes_json(reader);
+  data["mesh"] = report_mesh_json(mesh, reader);
+  data["frames"] = frames_json(mesh, pass.frames, frame_refs);
   // Titles of old decks may hold bytes that are not UTF-8: replaced, not an exception.
   return data.dump(-1, ' ', false, json::error_handler_t::replace);
 }

@@ -25,17 +25,18 @@ struct ReportMesh {
   std::vector<int> points;  // node indices
   std::vector<int> point_element;
   std::vector<int> used_nodes;  // node indices referenced by some element, ascending
-  std::set<int> gap_nodes;      // node indices of gap (COMBIN40) elements
+  std::set<int> gap_nodes;      // node indices of gap elements (ShapeRole::Gap)
   std::vector<Body> bodies;     // parts by their smallest node id, then the single nodes
 };
 
-/// Surfaces of shells (a 4-node shell with K = L is a triangle, a quadrilateral two) and bricks
-/// (outer faces only: a face shared by two bricks is dropped; repeated nodes collapse), lines
-/// of 2-node elements, points of 1-node elements and superelement nodes.
+/// The drawable pieces of each element's registered cell (elements/cell_topology.h):
+/// polygons of area cells (a 4-node shell with K = L is a triangle; quadrilaterals are split in
+/// two triangles), the outer faces of volume cells (a face two of them share is dropped;
+/// repeated nodes collapse), lines, and points (1-node elements, superelement nodes).
 ReportMesh build_report_mesh(const ResultsReader& reader);
 
-/// True for element types that act as gaps (COMBIN40): their nodes are picked for the nodal
-/// figures and they do not join bodies.
+/// True for element types whose shape role is a gap (COMBIN40, CONTA178): their nodes are
+/// picked for the nodal figures and they do not join bodies.
 bool is_gap_type(const std::string& type_name);
 
 }  // namespace impactfe

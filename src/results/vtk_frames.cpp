@@ -24,28 +24,11 @@ VtkCell cell_type(const std::string& name, const std::vector<int>& nodes) {
   return d->vtk_cell;
 }
 
-/// Nodes a cell of this type takes, in VTK order, or empty when the node list does not fit.
+/// Nodes a cell of this type takes, in VTK order (its corners; all nodes of a poly-vertex), or
+/// empty when the node list does not fit.
 std::vector<int> cell_nodes(VtkCell type, const std::vector<int>& nodes) {
-  std::size_t n = nodes.size();
-  switch (type) {
-    case VtkCell::Vertex:
-      n = 1;
-      break;
-    case VtkCell::Line:
-      n = 2;
-      break;
-    case VtkCell::Triangle:
-      n = 3;
-      break;
-    case VtkCell::Quad:
-      n = 4;
-      break;
-    case VtkCell::Hexahedron:
-      n = 8;
-      break;
-    case VtkCell::PolyVertex:
-      break;
-  }
+  const int corners = cell_topology(type).corner_nodes;
+  const std::size_t n = corners > 0 ? static_cast<std::size_t>(corners) : nodes.size();
   if (nodes.size() < n || n == 0) return {};
   return std::vector<int>(nodes.begin(), nodes.begin() + static_cast<long>(n));
 }

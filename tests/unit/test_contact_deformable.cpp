@@ -11,6 +11,7 @@
 #include <Eigen/Dense>
 #include <random>
 
+#include "assembly/element_adapters.h"
 #include "core/errors.h"
 #include "elements/element.h"
 #include "elements/element_registry.h"
@@ -249,33 +250,39 @@ TEST(DeformableTarget, SearchFollowsTheNodeAndReportsSlidingOutOfTheCandidates) 
   EXPECT_THROW(e->update_status(ctx, u), SolutionError);
 }
 
+/// Positions at a refresh pass: node 100 (the contact node at (0.2, 0.3, −0.05)) displaced by
+/// `d`, the target at rest.
+NodePositions slid(const Model& m, const Vec3& d, long long pass) {
+  return NodePositions{
+      [&m, d](int n) { return n == 100 ? Vec3(Vec3(0.2, 0.3, -0.05) + d) : m.nodes.at(n).x; },
+      pass};
+}
+
+/// The contact node of element `e` (model(), PINB 0.5, margin 1.5) closed at rest, then slid to
+/// x = 0.7: at rest the candidates (the first quad) stay; at x = 0.7 the second quad comes within
+/// the pinball and is re-found (6 facet nodes more).
+void slide_onto_the_second_quad(Element& e, const Model& m) {
+  auto* refresh = dynamic_cast<ConnectivityUpdate*>(&e);
+  ASSERT_NE(refresh, nullptr);
+  ASSERT_EQ(e.n_dofs(), 15);
+  const Eigen::VectorXd u = Eigen::VectorXd::Zero(e.n_dofs());
+  e.update_status(ElementContext{}, u);
+  ASSERT_NE(e.status(), GapStatus::Open);
+  EXPECT_FALSE(refresh->refresh_dofs(u, slid(m, Vec3::Zero(), 1)));  // still covered
+  EXPECT_TRUE(refresh->refresh_dofs(u, slid(m, Vec3(0.5, 0.0, 0.0), 2)));
+  ASSERT_EQ(e.n_dofs(), 3 * 7);
+}
+
 TEST(DeformableTarget, LargeSlidingRefindsTheCandidatesAsTheNodeSlides) {
   // PINB 0.5, margin 1.5: around (0.2, 0.3) the facets within 0.75 are the first quad only.
   const Model m = model(Vec3(0.2, 0.3, -0.05));
   auto e = build(m, 20);
-  auto* refresh = dynamic_cast<ConnectivityUpdate*>(e.get());
-  ASSERT_NE(refresh, nullptr);
-  ASSERT_EQ(e->n_dofs(), 15);
+  slide_onto_the_second_quad(*e, m);
+  if (HasFatalFailure()) return;
   const ElementContext ctx;
-  Eigen::VectorXd u = Eigen::VectorXd::Zero(e->n_dofs());
-  // The node's displacement; the target does not move.
-  Vec3 d(0.0, 0.0, 0.0);
-  long long pass = 0;
-  const auto positions = [&]() {
-    return NodePositions{
-        [&](int n) { return n == 100 ? Vec3(Vec3(0.2, 0.3, -0.05) + d) : m.nodes.at(n).x; },
-        ++pass};
-  };
-  e->update_status(ctx, u);
-  ASSERT_NE(e->status(), GapStatus::Open);
-  EXPECT_FALSE(refresh->refresh_dofs(u, positions()));  // still covered
-  // Slid to x = 0.7: the second quad comes within the pinball: re-found, 6 facet nodes more.
-  d = Vec3(0.5, 0.0, 0.0);
-  EXPECT_TRUE(refresh->refresh_dofs(u, positions()));
-  ASSERT_EQ(e->n_dofs(), 3 * 7);
   // The new list is consistent: the node over the second quad at x = 1.6 is closed on it, no
   // PINB error (small sliding would throw here).
-  u = Eigen::VectorXd::Zero(e->n_dofs());
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(e->n_dofs());
   u(0) = 1.4;
   e->update_status(ctx, u);
   EXPECT_NE(e->status(), GapStatus::Open);
@@ -284,9 +291,45 @@ TEST(DeformableTarget, LargeSlidingRefindsTheCandidatesAsTheNodeSlides) {
   EXPECT_GE(point->facet(), 2);  // a triangle of the second quad (facets 2 and 3)
   // Slid on to x = 1.9: everything within the pinball is a candidate already, so the list
   // stays (a stale candidate costs nothing; a change costs a renumbering).
-  d = Vec3(1.7, 0.0, 0.0);
-  EXPECT_FALSE(refresh->refresh_dofs(u, positions()));
+  EXPECT_FALSE(
+      dynamic_cast<ConnectivityUpdate&>(*e).refresh_dofs(u, slid(m, Vec3(1.7, 0.0, 0.0), 3)));
   EXPECT_EQ(e->n_dofs(), 3 * 7);
+}
+
+TEST(DeformableTarget, LargeSlidingSurvivesMaterialDampingAndRotatedNodes) {
+  // The contact node's material has MP,ALPD and the node a rotated nodal system: the element
+  // the structure builds (adapt_element) still re-finds its candidates as it slides, in global
+  // axes (u_global = T u_nodal), and T follows its new DOF list. (Before, material damping and
+  // nodal axes were wrappers that dropped the search update: a large-sliding CONTA175 model with
+  // MP,ALPD stopped with "slid across all its candidate target facets".)
+  Model m = model(Vec3(0.2, 0.3, -0.05));
+  m.materials[1].props["ALPD"] = 0.5;
+  m.nodes[100].angles_deg = Vec3(90.0, 0.0, 0.0);  // nodal x = global y, nodal y = −global x
+  const auto e = adapt_element(build(m, 20), m, m.elements.at(20));
+  EXPECT_EQ(e->material_damping().alpha, 0.5);
+  ASSERT_TRUE(dynamic_cast<ConnectivityUpdate&>(*e).updates_connectivity());
+  slide_onto_the_second_quad(*e, m);
+  if (HasFatalFailure()) return;
+  // The node at global x = 1.6 (nodal −y = global x: u_nodal(1) = −1.4) lies over the second
+  // quad: closed there, no PINB error, and the adapter's matrices have the new size.
+  const ElementContext ctx;
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(e->n_dofs());
+  u(1) = -1.4;
+  e->update_status(ctx, u);
+  EXPECT_NE(e->status(), GapStatus::Open);
+  Eigen::MatrixXd K;
+  Eigen::VectorXd f;
+  e->tangent(ctx, u, K, f);
+  EXPECT_EQ(K.rows(), 21);
+}
+
+TEST(DeformableTarget, AnAdapterOverAnElementWithoutSearchUpdatesNone) {
+  Model m = model(Vec3(0.2, 0.3, -0.05));
+  m.nodes[7].angles_deg = Vec3(30.0, 0.0, 0.0);
+  const auto brick = adapt_element(build(m, 1), m, m.elements.at(1));
+  const auto* refresh = dynamic_cast<const ConnectivityUpdate*>(brick.get());
+  ASSERT_NE(refresh, nullptr);  // the adapter implements every optional interface
+  EXPECT_FALSE(refresh->updates_connectivity());
 }
 
 TEST(DeformableTarget, FacetsOnNoBodyNeedAPilot) {

@@ -8,10 +8,13 @@
 #include <fmt/format.h>
 
 #include <fstream>
+#include <map>
 
 #include "../support/run_deck.h"
 #include "elements/element_registry.h"
 #include "elements/line_element_data.h"
+#include "results/report_mesh.h"
+#include "results/vtk_frames.h"
 
 namespace impactfe {
 namespace {
@@ -54,9 +57,12 @@ std::unique_ptr<Element> make_axial_test_spring(const ElementBuildContext& ctx,
   return std::make_unique<AxialTestSpring>(record.id, ni.id, nj.id, k);
 }
 
-// The one registration line.
+// The one registration line (its cell and shape role tell the mesher, the VTK export, the POST1
+// pictures and the report what it is).
 // clang-format off
-const ElementRegistration kTestSpring{{.name = "TSPRING", .number = 9901, .family = "AxialTestSpring", .n_nodes = 2, .real_constants = RealConstantUse::Required, .vtk_cell = VtkCell::Line, .result_names = AxialTestSpring::names(), .create = make_axial_test_spring}};
+const ElementRegistration kTestSpring{{.name = "TSPRING", .number = 9901, .family = "AxialTestSpring", .n_nodes = 2, .real_constants = RealConstantUse::Required, .vtk_cell = VtkCell::Line, .role = ShapeRole::Line, .result_names = AxialTestSpring::names(), .create = make_axial_test_spring}};
+// The same class registered as a gap between two bodies: one more line, nothing else.
+const ElementRegistration kTestGap{{.name = "TGAP", .number = 9902, .family = "AxialTestSpring", .n_nodes = 2, .real_constants = RealConstantUse::Required, .vtk_cell = VtkCell::Line, .role = ShapeRole::Gap, .result_names = AxialTestSpring::names(), .create = make_axial_test_spring}};
 // clang-format on
 
 TEST(ElementRegistry, ATestOnlyElementRunsThroughTheWholeProgram) {
@@ -88,6 +94,85 @@ TEST(ElementRegistry, ATestOnlyElementRunsThroughTheWholeProgram) {
         << e.what();
   }
   std::filesystem::remove_all(dir);
+}
+
+TEST(ElementRegistry, TheMesherTheReportAndTheVtkExportTakeATestElementFromItsRegistration) {
+  // Two bars of TSPRING meshed on lines by LMESH (the mesher asks the registered cell for its
+  // dimension), joined by a TGAP: the report draws the bars as lines, knows TGAP as a gap (its
+  // nodes picked for the nodal figures; the bars stay two bodies) and the VTK export writes
+  // line cells — with no line of the mesher, the report or the export naming these types.
+  const auto dir = testing::fresh_directory("element_registry_topology");
+  const std::string deck = (dir / "tgap.inp").string();
+  std::ofstream(deck)
+      << "/PREP7\nET,1,TSPRING\nET,2,TGAP\nR,1,100\nK,1\nK,2,1\nK,3,2\nK,4,3\nL,1,2\nL,3,4\n"
+         "LESIZE,ALL,,,2\nTYPE,1\nREAL,1\nLMESH,ALL\nTYPE,2\nE,NODE(1,0,0),NODE(2,0,0)\n"
+         "FINISH\n/SOLU\nANTYPE,STATIC\nD,ALL,ALL\nDDELE,NODE(3,0,0),UX\n"
+         "F,NODE(3,0,0),FX,1\nSOLVE\nFINISH\n";
+  const auto run = testing::run_deck_in(deck, dir);
+  const ReportMesh mesh = build_report_mesh(*run.reader);
+  EXPECT_EQ(mesh.lines.size(), 2u * 5u);  // 4 bar elements and the gap
+  EXPECT_TRUE(mesh.triangles.empty());
+  EXPECT_TRUE(mesh.points.empty());
+  EXPECT_EQ(mesh.gap_nodes.size(), 2u);
+  ASSERT_EQ(mesh.bodies.size(), 2u);  // the gap joins no bodies
+  EXPECT_EQ(mesh.bodies[0].name, "the TSPRING part 1");
+  EXPECT_TRUE(is_gap_type("TGAP"));
+  EXPECT_FALSE(is_gap_type("TSPRING"));
+  const VtkMesh vtk = build_vtk_mesh(*run.reader);
+  ASSERT_EQ(vtk.n_cells(), 5u);
+  for (unsigned char t : vtk.types) EXPECT_EQ(t, static_cast<unsigned char>(VtkCell::Line));
+  std::filesystem::remove_all(dir);
+}
+
+TEST(ElementRegistry, ARoleMustFitTheCell) {
+  ElementTypeDescriptor d = *find_element_type("TSPRING");
+  d.name = "TSPRING3";
+  d.number = 9903;
+  d.role = ShapeRole::Solid;  // a line cell is no solid
+  EXPECT_THROW(register_element_type(d), InternalError);
+  d.role = ShapeRole::Line;
+  d.faces = {{0, 2}};  // node position 2 of a 2-node element
+  EXPECT_THROW(register_element_type(d), InternalError);
+}
+
+TEST(ElementRegistry, TheHexahedronFacesAreOutwardAndTheBrickNumbersThemAsMapdl) {
+  // The unit cube I..P (z = 0 then z = 1, counter-clockwise from above): every face of the one
+  // table is outward by the right-hand rule, every edge bounds exactly two faces.
+  const std::vector<Vec3> x = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
+                               {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+  const CellTopology& hex = cell_topology(VtkCell::Hexahedron);
+  ASSERT_EQ(hex.faces.size(), 6u);
+  EXPECT_EQ(hex.edges.size(), 12u);
+  const Vec3 centre(0.5, 0.5, 0.5);
+  for (const auto& f : hex.faces) {
+    const Vec3 n = (x[f[1]] - x[f[0]]).cross(x[f[2]] - x[f[1]]);
+    EXPECT_GT(n.dot(x[f[0]] - centre), 0.0);
+  }
+  for (const auto& e : hex.edges) {
+    int faces = 0;
+    for (const auto& f : hex.faces)
+      for (std::size_t k = 0; k < 4; ++k)
+        if ((f[k] == e[0] && f[(k + 1) % 4] == e[1]) || (f[k] == e[1] && f[(k + 1) % 4] == e[0]))
+          ++faces;
+    EXPECT_EQ(faces, 2);
+  }
+  // SOLID185 faces (MAPDL element reference): J-I-L-K, I-J-N-M, J-K-O-N, K-L-P-O, L-I-M-P,
+  // M-N-O-P, node order = SFE VALUE1..4.
+  const std::vector<std::vector<int>> mapdl = {{1, 0, 3, 2}, {0, 1, 5, 4}, {1, 2, 6, 5},
+                                               {2, 3, 7, 6}, {3, 0, 4, 7}, {4, 5, 6, 7}};
+  EXPECT_EQ(find_element_type("SOLID185")->faces, mapdl);
+  EXPECT_EQ(find_element_type("SOLID45")->faces, mapdl);
+}
+
+TEST(ElementRegistry, EveryBuiltInTypeHasTheRoleOfItsKind) {
+  const std::map<std::string, ShapeRole> roles = {
+      {"SOLID185", ShapeRole::Solid},   {"SHELL181", ShapeRole::Shell},
+      {"BEAM188", ShapeRole::Line},     {"LINK180", ShapeRole::Line},
+      {"COMBIN14", ShapeRole::Line},    {"MASS21", ShapeRole::Point},
+      {"COMBIN40", ShapeRole::Gap},     {"CONTA178", ShapeRole::Gap},
+      {"CONTA174", ShapeRole::Contact}, {"CONTA175", ShapeRole::Contact},
+      {"TARGE170", ShapeRole::Target},  {"MATRIX50", ShapeRole::Superelement}};
+  for (const auto& [name, role] : roles) EXPECT_EQ(find_element_type(name)->role, role) << name;
 }
 
 TEST(ElementRegistry, TheSupportedListAndLookupsComeFromTheRegistrations) {
@@ -138,7 +223,7 @@ Model one_element_model(const std::string& type) {
 TEST(ElementRegistry, EveryBuiltInTypeMatchesItsElementClass) {
   int checked = 0;
   for (const ElementTypeDescriptor* d : registered_element_types()) {
-    if (d->defined_by_file || d->name == "TSPRING") continue;  // MATRIX50 needs a file
+    if (d->defined_by_file || d->family == "AxialTestSpring") continue;  // MATRIX50: a file
     // Contact pairs need a partner (a target, a pilot, stiffness at the nodes): built and
     // checked against their registration in test_contact.cpp (CONTA174:
     // test_contact_generation.cpp).
