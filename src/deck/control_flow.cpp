@@ -128,9 +128,8 @@ namespace {
 std::string block_name(const std::string& name, Dialect dialect) {
   if (name.empty() || name[0] != '*' || find_command(name) != nullptr) return name;
   bool ambiguous = false;
-  const CommandSpec* spec = dialect == Dialect::Classic4x
-                                ? find_command_by_prefix(name, ambiguous)
-                                : find_command_by_abbreviation(name, ambiguous);
+  const CommandSpec* spec = dialect == Dialect::Classic4x ? find_command_by_prefix(name, ambiguous)
+                                                          : find_command_modern(name, ambiguous);
   return spec != nullptr && !ambiguous ? spec->name : name;
 }
 
@@ -405,7 +404,7 @@ const CommandSpec* DeckReader::lookup(Command& c) {
       warn(c, fmt::format("taken as {} (4x: only the first four characters are significant)",
                           spec->name));
   } else {
-    spec = find_command_by_abbreviation(c.name, ambiguous);
+    spec = find_command_modern(c.name, ambiguous);
     if (ambiguous) fail(c, "ambiguous abbreviation (several commands begin with it)");
     if (spec != nullptr)
       Log::info("{}:{}: {}: taken as {}", c.where.file, c.where.line, c.name, spec->name);
@@ -651,8 +650,12 @@ DeckReader::Flow DeckReader::run_range(Frame& f, std::size_t begin, std::size_t 
         i = next;
         continue;
       }
+      if (options.skip_unknown && !cannot_change_results(c.name))
+        fail(c,
+             "unknown command (--skip-unknown skips only graphics, printing and GUI commands, "
+             "which cannot change the results; this one may)");
       if (options.skip_unknown) {
-        warn(c, "unknown command skipped (--skip-unknown)");
+        warn(c, "unknown command skipped (--skip-unknown: graphics, printing or GUI only)");
         job.ignored_commands.push_back(
             fmt::format("{}:{}: {} (unknown)", c.where.file, c.where.line, c.name));
         auto& entry = skipped[c.name];

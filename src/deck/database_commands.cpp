@@ -452,7 +452,9 @@ void cmd_rescontrol(DeckReader& r, const Command& c) {
 void register_database_commands(std::vector<CommandSpec>& t) {
   t.push_back({"/CLEAR", cmd_clear, kAnywhere});
   t.push_back({"SAVE", cmd_save, kAnywhere});
-  t.push_back({"RESUME", cmd_resume, kBegin | kPrep7 | kSolu});
+  // RESUME is valid in any processor (MAPDL RESUME): the VM decks RESUME in POST26 to bring
+  // back the parameters a SAVE kept before a /CLEAR.
+  t.push_back({"RESUME", cmd_resume, kAnywhere});
   t.push_back({"RESCONTROL", cmd_rescontrol, kPrepSolu});
 }
 

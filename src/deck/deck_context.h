@@ -7,6 +7,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/log.h"
@@ -91,6 +92,19 @@ void register_database_commands(std::vector<CommandSpec>& table);
 /// one table command is that command (`SECT` → SECTYPE, `NSUBS` → NSUBST). nullptr when none;
 /// `ambiguous` set when several begin with it.
 const CommandSpec* find_command_by_abbreviation(const std::string& name, bool& ambiguous);
+
+/// Modern dialect lookup after the exact one: an abbreviation (above); else, since MAPDL reads
+/// only the first four characters of a command name (Command Reference §1.2, "Command name"),
+/// a longer spelling of a command (`/SOLUTION` → /SOLU, `FINISHED` → FINISH) when exactly one
+/// table command has those four characters.
+const CommandSpec* find_command_modern(const std::string& name, bool& ambiguous);
+
+/// --skip-unknown: true for the MAPDL commands this program does not carry out that cannot
+/// change a result (graphics, picture files, printed listings, GUI macros such as JPGPRF):
+/// an explicit list (skippable_commands.cpp), abbreviations and longer spellings included.
+bool cannot_change_results(const std::string& upper_name);
+/// That list, names as MAPDL spells them in full.
+const std::vector<std::string_view>& commands_without_effect_on_results();
 
 /// A file made by *CREATE (kept in memory, APDL_SCRIPTING §A.13): its lines as lexed commands
 /// (with their deck locations, so errors point into the deck) and as text (*LIST).

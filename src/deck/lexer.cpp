@@ -159,14 +159,20 @@ std::vector<RawCommand> lex_line_of(std::string_view text,
   const std::string stripped = trim(text);
   if (stripped.empty()) return out;
   if (starts_with_upper(stripped, "C***")) return out;  // 4x comment line
-  // /TITLE and /COM keep the rest of the line verbatim (commas, case, '$' and '!').
+  // /TITLE and /COM keep the rest of the line verbatim (commas, case, '$' and '!'). Their name
+  // ends at the first comma or blank: `/COM REF: TEXT, MORE` is a comment as `/COM,REF...` is.
   if (starts_with_upper(stripped, "/TIT") || starts_with_upper(stripped, "/COM")) {
     RawCommand cmd;
     cmd.file = file;
     cmd.line = line;
-    const std::size_t comma = stripped.find(',');
-    cmd.name = to_upper(trim(std::string_view(stripped).substr(0, comma)));
-    if (comma != std::string::npos) cmd.rest = trim(std::string_view(stripped).substr(comma + 1));
+    const std::size_t end = stripped.find_first_of(", \t");
+    cmd.name = to_upper(trim(std::string_view(stripped).substr(0, end)));
+    if (end != std::string::npos) {
+      std::string_view rest = std::string_view(stripped).substr(end);
+      rest = rest.substr(std::min(rest.find_first_not_of(" \t"), rest.size()));
+      if (!rest.empty() && rest.front() == ',') rest.remove_prefix(1);
+      cmd.rest = trim(rest);
+    }
     cmd.fields = {cmd.rest};
     out.push_back(std::move(cmd));
     return out;

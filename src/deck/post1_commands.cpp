@@ -82,7 +82,8 @@ void cmd_set(DeckReader& r, const Command& c) {
     at_time = *time;
   } else {
     const int ls = l.empty() ? 1 : r.integer(c, 1, 1);
-    const bool last_sub = c.blank(2) || r.label(c, 2) == "LAST";
+    // Sbstep blank or 0 (a zero field is a blank one): the last substep (MAPDL SET).
+    const bool last_sub = c.blank(2) || r.label(c, 2) == "LAST" || r.integer(c, 2, 0) == 0;
     const int sbs = last_sub ? 0 : r.integer(c, 2, 1);
     for (std::size_t k = 0; k < sets.size(); ++k) {
       if (sets[k].load_step != ls) continue;
@@ -136,10 +137,10 @@ void cmd_set(DeckReader& r, const Command& c) {
 }
 
 void cmd_file(DeckReader& r, const Command& c) {
-  // FILE,Fname,Ext: the results file of the postprocessors.
-  if (c.blank(1)) r.fail(c, "file name missing");
+  // FILE,Fname,Ext: the results file of the postprocessors; a blank Fname is the jobname
+  // (MAPDL FILE: "Fname ... defaults to Jobname"), e.g. FILE,,RDSP after a reduced transient.
   PostState& ps = post_state(r);
-  ps.file_command = results_file_name(c.text(1), c.text(2));
+  ps.file_command = results_file_name(c.blank(1) ? r.model.jobname : c.text(1), c.text(2));
   ps.reader.reset();
   ps.current.reset();
   results(r, c);  // open it now: a missing file is an error here
