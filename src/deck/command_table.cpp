@@ -110,13 +110,11 @@ const CommandSpec* find_command_by_prefix(const std::string& name, bool& ambiguo
   return found;
 }
 
-const CommandSpec* find_command_modern(const std::string& name, bool& ambiguous) {
-  const CommandSpec* spec = find_command_by_abbreviation(name, ambiguous);
-  if (spec != nullptr || ambiguous) return spec;
+const CommandSpec* find_command_by_longer_spelling(const std::string& name) {
   const std::size_t lead = (!name.empty() && (name[0] == '/' || name[0] == '*')) ? 1 : 0;
   if (name.size() <= lead + 4) return nullptr;
   bool several = false;
-  spec = find_command_by_prefix(name, several);
+  const CommandSpec* spec = find_command_by_prefix(name, several);
   return several ? nullptr : spec;  // several commands share the four: the name is unknown
 }
 

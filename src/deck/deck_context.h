@@ -93,11 +93,11 @@ void register_database_commands(std::vector<CommandSpec>& table);
 /// `ambiguous` set when several begin with it.
 const CommandSpec* find_command_by_abbreviation(const std::string& name, bool& ambiguous);
 
-/// Modern dialect lookup after the exact one: an abbreviation (above); else, since MAPDL reads
-/// only the first four characters of a command name (Command Reference §1.2, "Command name"),
-/// a longer spelling of a command (`/SOLUTION` → /SOLU, `FINISHED` → FINISH) when exactly one
-/// table command has those four characters.
-const CommandSpec* find_command_modern(const std::string& name, bool& ambiguous);
+/// Modern dialect, after the exact lookup, the abbreviations and the macro search: a longer
+/// spelling of a command (`/SOLUTION` → /SOLU), since MAPDL reads the first four characters of a
+/// command name (Command Reference §1.2, "Command name"), when exactly one table command has
+/// those four. A macro of that name (SOLVIT.MAC) comes first, as in MAPDL.
+const CommandSpec* find_command_by_longer_spelling(const std::string& name);
 
 /// --skip-unknown: true for the MAPDL commands this program does not carry out that cannot
 /// change a result (graphics, picture files, printed listings, GUI macros such as JPGPRF):
@@ -298,6 +298,9 @@ class DeckReader {
   void count_executed(const Command& c) { count_work(c, 1); }
   Command resolve(const RawCommand& raw);
   const CommandSpec* lookup(Command& c);
+  /// A name the table does not know: runs its macro (true), or resolves a longer spelling
+  /// (`spec` set), or skips it under --skip-unknown (true); otherwise stops.
+  bool run_unknown(Command& c, const CommandSpec*& spec);
   void dispatch(const Command& c, const CommandSpec& spec);
 
   std::string last_name_;

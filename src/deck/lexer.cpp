@@ -110,11 +110,25 @@ std::vector<std::string_view> split_dollar(std::string_view text) {
 }
 
 /// Lexes one command (no `$`). Returns false for an empty/comment segment.
+/// The position of a `*` that follows a blank outside quotes (a comment in MAPDL, APDL
+/// Programmer's Guide §3.7), or npos.
+std::size_t star_comment_at(std::string_view text) {
+  bool quoted = false;
+  for (std::size_t i = 1; i < text.size(); ++i) {
+    if (text[i] == '\'') quoted = !quoted;
+    if (!quoted && text[i] == '*' && (text[i - 1] == ' ' || text[i - 1] == '\t')) return i;
+  }
+  return std::string_view::npos;
+}
+
 bool lex_segment(std::string_view raw, const std::shared_ptr<const std::string>& file, int line,
                  RawCommand& cmd) {
-  const std::string text = trim(raw);
+  std::string text = trim(raw);
   if (text.empty()) return false;
+  const std::size_t star = star_comment_at(text);
+  if (star != std::string::npos) text = trim(std::string_view(text).substr(0, star));
   cmd = RawCommand{};
+  cmd.star_comment = star != std::string::npos;
   cmd.file = file;
   cmd.line = line;
   if (text[0] == ',') {

@@ -92,6 +92,29 @@ TEST(DeckLexer, CommentNameEndsAtABlank) {
   EXPECT_EQ(e[0].rest, "");
 }
 
+// MAPDL: "never include a blank space before the * character because the rest of the input
+// line (beginning with the *) is interpreted as a comment" (vmd1: `F,53,FZ,-2.5,,1253,200
+// *UNIT TWISTING MOMENT (0.2*5)`). A product written without the blank is a product.
+TEST(DeckLexer, BlankThenStarStartsAComment) {
+  const auto c =
+      lex_line("F,53,FZ,-2.5,,1253,200  *UNIT TWISTING (0.2*5)", "d", 1, Dialect::Modern);
+  ASSERT_EQ(c.size(), 1u);
+  EXPECT_EQ(c[0].fields, (std::vector<std::string>{"53", "FZ", "-2.5", "", "1253", "200"}));
+  EXPECT_TRUE(c[0].star_comment);
+  const auto a = lex_line("A = B *C", "d", 1, Dialect::Modern);
+  EXPECT_EQ(a[0].fields, (std::vector<std::string>{"A", "B"}));
+  const auto p = lex_line("A = B*C $ *REPEAT,2", "d", 1, Dialect::Modern);
+  ASSERT_EQ(p.size(), 2u);
+  EXPECT_EQ(p[0].fields, (std::vector<std::string>{"A", "B*C"}));
+  EXPECT_FALSE(p[0].star_comment);
+  EXPECT_EQ(p[1].name, "*REPEAT");
+  EXPECT_FALSE(p[1].star_comment);
+  const auto q = lex_line("/TITLE, a *b", "d", 1, Dialect::Modern);
+  EXPECT_EQ(q[0].rest, "a *b");  // titles and comments keep their text
+  const auto s = lex_line("LAB = 'x *y'", "d", 1, Dialect::Modern);
+  EXPECT_EQ(s[0].fields[1], "'x *y'");
+}
+
 TEST(DeckLexer, DollarSeparatesCommandsInModernOnly) {
   const auto m = lex_line("N,1 $ N,2,1.0 $ E,1,2", "d", 3, Dialect::Modern);
   ASSERT_EQ(m.size(), 3u);
@@ -173,6 +196,9 @@ TEST(DeckLexer, FourCharacterNamesIn4xOnly) {
   EXPECT_DOUBLE_EQ(modern.model.materials.at(1).get("DENS", 0.0), 7.3e-4);
   EXPECT_TRUE(Log::warnings().empty());
   EXPECT_THROW(parse("/SOLUTION\n/PREP7\nN,1\n/SOLUTION\nNOD,2\n"), InputError);  // too short
+  // A macro of the name comes first (vm39: SOLVIT is its macro, not SOLVE).
+  const Job macro = parse("*CREATE,SOLVIT,MAC\n/PREP7\nN,ARG1\n*END\nSOLVIT,7\n");
+  EXPECT_EQ(macro.model.nodes.count(7), 1u);
 }
 
 TEST(DeckLexer, RepeatLineReissuesPreviousCommand) {
