@@ -49,32 +49,64 @@ def deck_names(verif):
     return sorted(names, key=key)
 
 
+def half_unit(tok):
+    """Half a unit of the last printed digit of a Fortran number: its rounding."""
+    mantissa, _, exponent = tok.upper().replace("D", "E").partition("E")
+    decimals = len(mantissa.split(".")[1]) if "." in mantissa else 0
+    return 0.5 * 10.0 ** (int(exponent or 0) - decimals)
+
+
+def ratio_of(target, computed, ratio):
+    """True when `ratio` is computed/target (or target/computed, or either's magnitude) within
+    the rounding of the printed numbers: the row is a comparison row."""
+    (t, dt), (c, dc), (r, dr) = target, computed, ratio
+    candidates = []
+    if t != 0.0:
+        q = c / t
+        candidates.append((q, (dc + abs(q) * dt) / abs(t)))
+    if c != 0.0:
+        q = t / c
+        candidates.append((q, (dt + abs(q) * dc) / abs(c)))
+    return any(abs(r - q) <= dq + dr + 1e-12 or abs(r - abs(q)) <= dq + dr + 1e-12
+               for q, dq in candidates)
+
+
 def table_rows(text):
-    """(target or None, computed, ratio) for each row of a comparison table; a row whose numbers
-    overflowed their Fortran field (****) has ratio None."""
-    rows = []
+    """The comparison rows of a .vrt table: (target or None, computed, ratio). A row ends in its
+    numbers (some tables add the input name after them): two numbers are computed and ratio;
+    of three or more, the last three are target, computed and ratio when the ratio is the
+    quotient of the two (within the printed rounding); otherwise three numbers are an input
+    value (a load, a length), computed and ratio, and a row of four or more is no comparison
+    row but a table of values (vm79's linear and bilinear histories beside its comparison). A number that
+    overflowed its field (****) makes the row (None, None, None). Returns (rows, other rows)."""
+    rows, other = [], 0
     for line in text.splitlines():
         tokens = line.replace("|", " ").split()
-        run, overflow = [], False
-        for tok in tokens:  # the last run of consecutive numbers on the line
-            if NUMBER.match(tok):
-                run.append(float(tok.replace("D", "E").replace("d", "e")))
-            elif OVERFLOW.match(tok) and len(tok) > 1:
-                overflow = True
-                run.append(None)
-            elif run and not any(x is None for x in run) and len(run) >= 2:
-                break  # text after the numbers (the input name of some tables)
-            else:
-                run = []
-        if len(run) < 2:
+        runs, current = [], []
+        for tok in tokens:
+            if NUMBER.match(tok) or (OVERFLOW.match(tok) and len(tok) > 1):
+                current.append(tok)
+            elif current:
+                runs.append(current)
+                current = []
+        if current:
+            runs.append(current)
+        if not runs or len(runs[-1]) < 2:
             continue
-        if overflow:
+        run = runs[-1]
+        if any(OVERFLOW.match(tok) for tok in run[-3:]):
             rows.append((None, None, None))
-        elif len(run) == 2:
-            rows.append((None, run[0], run[1]))
+            continue
+        values = [(float(tok.upper().replace("D", "E")), half_unit(tok)) for tok in run]
+        if len(run) == 2:
+            rows.append((None, values[0][0], values[1][0]))
+        elif values[-3][0] == 0.0 or ratio_of(*values[-3:]):
+            rows.append((values[-3][0], values[-2][0], values[-1][0]))
+        elif len(run) == 3:  # an input value (a load, a length), computed, ratio
+            rows.append((None, values[1][0], values[2][0]))
         else:
-            rows.append((run[-3], run[-2], run[-1]))
-    return rows
+            other += 1
+    return rows, other
 
 
 def judge(rows):
@@ -123,16 +155,20 @@ def run_deck(binary, verif, name, timeout, skip_unknown=True):
             return {"deck": name, "exit": "timeout", "seconds": time.monotonic() - start,
                     "result": "timeout", "detail": "no end within %g s" % timeout}
         seconds = time.monotonic() - start
-        rows = []
+        rows, other = [], 0
         for f in sorted(os.listdir(work)):
             if f.lower().endswith(".vrt"):
                 with open(os.path.join(work, f), errors="replace") as h:
-                    rows += table_rows(h.read())
+                    found, skipped = table_rows(h.read())
+                    rows += found
+                    other += skipped
         if status != 0:
             result = "stops"
             detail = first_error(err, out).replace(os.path.join(verif, ""), "")
         else:
             result, detail = judge(rows)
+            if other and result != "no table":
+                detail += "; %d row%s of values, not of ratios" % (other, "s" if other > 1 else "")
         return {"deck": name, "exit": status, "seconds": seconds, "result": result,
                 "detail": detail}
     finally:
