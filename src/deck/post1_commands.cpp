@@ -136,6 +136,14 @@ void cmd_set(DeckReader& r, const Command& c) {
   make_current(r, std::move(data));
 }
 
+void cmd_shell(DeckReader& r, const Command& c) {
+  // SHELL,Loc: the surface of a shell whose stresses POST1 reports (MAPDL SHELL; TOP default).
+  const std::string loc = c.blank(1) ? "TOP" : r.label(c, 1);
+  if (loc != "TOP" && loc != "MID" && loc != "BOT")
+    r.fail(c, fmt::format("Loc '{}': TOP, MID or BOT", c.text(1)));
+  post_state(r).shell_location = loc;
+}
+
 void cmd_file(DeckReader& r, const Command& c) {
   // FILE,Fname,Ext: the results file of the postprocessors; a blank Fname is the jobname
   // (MAPDL FILE: "Fname ... defaults to Jobname"), e.g. FILE,,RDSP after a reduced transient.
@@ -231,8 +239,23 @@ void cmd_pretab(DeckReader& r, const Command& c) {
   if (c.last_given() == 0 || r.label(c, 1) == "ALL") {
     for (const auto& col : ps.etable) cols.push_back(&col);
   } else {
-    for (int f = 1; f <= c.last_given(); ++f)
-      if (!c.blank(f)) cols.push_back(&column(r, c, r.label(c, f)));
+    for (int f = 1; f <= c.last_given(); ++f) {
+      if (c.blank(f)) continue;
+      const std::string l = r.label(c, f);
+      // GRPn: the n-th group of ten stored columns (MAPDL PRETAB), unless a column has the name.
+      const bool named = std::any_of(ps.etable.begin(), ps.etable.end(),
+                                     [&](const EtableColumn& col) { return col.label == l; });
+      if (!named && l.size() > 3 && l.compare(0, 3, "GRP") == 0 &&
+          l.find_first_not_of("0123456789", 3) == std::string::npos) {
+        const std::size_t group = std::stoul(l.substr(3));
+        if (group == 0 || 10 * (group - 1) >= ps.etable.size())
+          r.fail(c, fmt::format("{}: the element table has {} columns", l, ps.etable.size()));
+        for (std::size_t k = 10 * (group - 1); k < std::min(ps.etable.size(), 10 * group); ++k)
+          cols.push_back(&ps.etable[k]);
+        continue;
+      }
+      cols.push_back(&column(r, c, l));
+    }
   }
   if (cols.empty()) r.fail(c, "the element table is empty (ETABLE first)");
   std::vector<int> elements = require_selected_elements(r, c);
@@ -381,6 +404,7 @@ void cmd_nforce(DeckReader& r, const Command& c) {
 void register_post1_commands(std::vector<CommandSpec>& t) {
   t.push_back({"SET", cmd_set, kPost1});
   t.push_back({"FILE", cmd_file, kPost1 | kPost26});
+  t.push_back({"SHELL", cmd_shell, kPost1});
   t.push_back({"ETABLE", cmd_etable, kPost1});
   t.push_back({"PRETAB", cmd_pretab, kPost1});
   t.push_back({"SSUM", cmd_ssum, kPost1});

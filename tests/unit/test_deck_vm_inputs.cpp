@@ -2,6 +2,7 @@
 // form as the VM decks write it, carried out as MAPDL defines it (MAPDL Command Reference).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -111,6 +112,32 @@ TEST(DeckVmInputs, ElementTypeGivenAsAParameter) {
             std::string::npos);
   EXPECT_NE(error_of("/PREP7\nET,1,NOSUCH\n").find("unknown element type 'NOSUCH'"),
             std::string::npos);
+}
+
+}  // namespace
+}  // namespace impactfe
+
+namespace impactfe {
+namespace {
+
+// SHELL,Loc (vm39) chooses the surface of the shell stresses POST1 reports (TOP by default), and
+// PRETAB,GRP1 prints the first group of ten element-table columns (MAPDL PRETAB). A cantilever
+// strip bent by an end moment: SX at the bottom is minus SX at the top, zero at the middle.
+TEST(DeckVmInputs, ShellSurfaceAndElementTableGroups) {
+  const auto run = testing::run_deck_text(
+      "vm_shell_surface",
+      "/PREP7\nET,1,SHELL63\nR,1,0.1\nMP,EX,1,2E11\nMP,NUXY,1,0.3\nN,1\nN,2,1\nN,3,1,0.2\n"
+      "N,4,0,0.2\nE,1,2,3,4\nD,1,ALL,,,4,3\nF,2,MY,-10,,3\nFINISH\n/SOLU\nSOLVE\nFINISH\n"
+      "/POST1\nSET,LAST\nETABLE,STOP,S,X\nSHELL,MID\nETABLE,SMID,S,X\nSHELL,BOT\n"
+      "ETABLE,SBOT,S,X\nSHELL\nETABLE,STOP2,S,X\n*GET,T,ETAB,1,ELEM,1\n*GET,M,ETAB,2,ELEM,1\n"
+      "*GET,B,ETAB,3,ELEM,1\n*GET,T2,ETAB,4,ELEM,1\nPRETAB,GRP1\n"
+      "/OUT,shell_surface,txt\n*VWRITE,T,M,B,T2\n(4E18.9)\n/OUT\n");
+  const auto v = numbers_in(run, "shell_surface.txt");
+  ASSERT_EQ(v.size(), 4u);
+  EXPECT_GT(std::fabs(v[0]), 1e3);
+  EXPECT_NEAR(v[2], -v[0], 1e-9 * std::fabs(v[0]));
+  EXPECT_NEAR(v[1], 0.0, 1e-9 * std::fabs(v[0]));
+  EXPECT_EQ(v[3], v[0]);  // SHELL with a blank Loc is TOP again
 }
 
 }  // namespace
