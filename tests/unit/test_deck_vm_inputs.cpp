@@ -142,3 +142,31 @@ TEST(DeckVmInputs, ShellSurfaceAndElementTableGroups) {
 
 }  // namespace
 }  // namespace impactfe
+
+namespace impactfe {
+namespace {
+
+// PARSAV / PARRES (14 VM decks stop there): SCALAR writes the scalars, ALL the arrays too;
+// PARRES,NEW replaces the parameters by the file's, CHANGE adds them (MAPDL PARSAV, PARRES).
+TEST(DeckVmInputs, ParametersSavedAndRestored) {
+  const std::string dir = testing::fresh_directory("vm_parsav").string();
+  const Job job = read_modern(
+      "A = 1\n*DIM,V,,2\nV(1) = 5,6\nPARSAV,SCALAR," + dir + "/s,parm\nPARSAV,ALL," + dir +
+      "/all,parm\nA = 2\nB = 3\nPARRES,NEW," + dir + "/s,parm\n*GET,NB,PARM,B,TYPE\n" +
+      "/PREP7\nMP,EX,1,A\nMP,EX,2,NB\nPARRES,CHANGE," + dir + "/all,parm\nMP,EX,3,V(2)\n");
+  EXPECT_DOUBLE_EQ(job.model.materials.at(1).get("EX", 0), 1.0);   // A back to 1
+  EXPECT_DOUBLE_EQ(job.model.materials.at(2).get("EX", 0), -1.0);  // B gone (NEW)
+  EXPECT_DOUBLE_EQ(job.model.materials.at(3).get("EX", 0), 6.0);   // the array (ALL, CHANGE)
+  EXPECT_NE(error_of("PARRES,NEW," + dir + "/nothing,parm\n").find("no parameter file"),
+            std::string::npos);
+  // vmc5: a macro saves the parameters, clears the database and restores them; its own
+  // arguments (ARG1) belong to the macro call and survive the /CLEAR.
+  const Job cleared =
+      read_modern("*CREATE,BASE\nPARSAV,ALL," + dir + "/m,parm\n/CLEAR,NOSTART\nPARRES,CHANGE," +
+                  dir + "/m,parm\n/PREP7\nET,1,ARG1\nMP,EX,1,K\n*END\nK = 7\n*USE,BASE,180\n");
+  EXPECT_EQ(cleared.model.element_types.at(1).ansys_name, "LINK180");
+  EXPECT_DOUBLE_EQ(cleared.model.materials.at(1).get("EX", 0), 7.0);
+}
+
+}  // namespace
+}  // namespace impactfe
