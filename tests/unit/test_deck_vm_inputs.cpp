@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "../support/run_deck.h"
+#include "core/dof.h"
 #include "deck/deck_reader.h"
 
 namespace impactfe {
@@ -166,6 +167,39 @@ TEST(DeckVmInputs, ParametersSavedAndRestored) {
                   dir + "/m,parm\n/PREP7\nET,1,ARG1\nMP,EX,1,K\n*END\nK = 7\n*USE,BASE,180\n");
   EXPECT_EQ(cleared.model.element_types.at(1).ansys_name, "LINK180");
   EXPECT_DOUBLE_EQ(cleared.model.materials.at(1).get("EX", 0), 7.0);
+}
+
+}  // namespace
+}  // namespace impactfe
+
+namespace impactfe {
+namespace {
+
+// DSYM (vm6, vm21, vm24, vm36, vm42, ...): the selected nodes are rotated into KCN, then the
+// displacement DOFs of the symmetry or antisymmetry plane are fixed (MAPDL DSYM table).
+TEST(DeckVmInputs, SymmetryAndAntisymmetryConstraints) {
+  auto fixed = [](const Job& job, int node) {
+    std::string out;
+    for (const auto& [key, value] : job.model.current.constraints)
+      if (key.node == node && value == 0.0) out += dof_name(key.dof) + std::string(" ");
+    return out;
+  };
+  const Job sym = read_modern("/PREP7\nN,1,1\nN,2,0,1\nN,3,5\nNSEL,S,NODE,,1,2\nDSYM,SYMM,X\n");
+  EXPECT_EQ(fixed(sym, 1), "UX ROTY ROTZ ");
+  EXPECT_EQ(fixed(sym, 2), "UX ROTY ROTZ ");
+  EXPECT_EQ(fixed(sym, 3), "");  // not selected
+  const Job anti = read_modern("/PREP7\nN,1,1\nDSYM,ASYM,Y\n");
+  EXPECT_EQ(fixed(anti, 1), "UX UZ ROTY ");
+  // KCN = 1: node 2 at θ = 90° gets its nodal x along global Y (rotated 90° about Z).
+  const Job cyl = read_modern("/PREP7\nN,1,1\nN,2,0,1\nDSYM,SYMM,Y,1\n");
+  EXPECT_NEAR(cyl.model.node(2).angles_deg.x(), 90.0, 1e-9);  // THXY
+  EXPECT_EQ(fixed(cyl, 2), "UY ROTX ROTZ ");
+  // Any earlier rotation is redefined: KCN = 0 brings the nodes back to the global axes.
+  const Job back = read_modern("/PREP7\nN,2,0,1\nCSYS,1\nNROTAT,ALL\nCSYS,0\nDSYM,SYMM,Z\n");
+  EXPECT_FALSE(back.model.node(2).rotated());
+  EXPECT_NE(error_of("/PREP7\nN,1\nDSYM,SYMM,W\n").find("Normal 'W'"), std::string::npos);
+  EXPECT_NE(error_of("/PREP7\nN,1\nDSYM,SYMM,X,12\n").find("system 12 is not defined"),
+            std::string::npos);
 }
 
 }  // namespace
