@@ -110,4 +110,12 @@ const CommandSpec* find_command_by_prefix(const std::string& name, bool& ambiguo
   return found;
 }
 
+const CommandSpec* find_command_by_longer_spelling(const std::string& name) {
+  const std::size_t lead = (!name.empty() && (name[0] == '/' || name[0] == '*')) ? 1 : 0;
+  if (name.size() <= lead + 4) return nullptr;
+  bool several = false;
+  const CommandSpec* spec = find_command_by_prefix(name, several);
+  return several ? nullptr : spec;  // several commands share the four: the name is unknown
+}
+
 }  // namespace impactfe::deck

@@ -131,6 +131,8 @@ std::string block_name(const std::string& name, Dialect dialect) {
   const CommandSpec* spec = dialect == Dialect::Classic4x
                                 ? find_command_by_prefix(name, ambiguous)
                                 : find_command_by_abbreviation(name, ambiguous);
+  if (spec == nullptr && !ambiguous && dialect == Dialect::Modern)
+    spec = find_command_by_longer_spelling(name);
   return spec != nullptr && !ambiguous ? spec->name : name;
 }
 
@@ -608,6 +610,46 @@ DeckReader::Flow DeckReader::run_if(Frame& f, std::size_t i, const Command& c) {
 // ---- the loop over commands
 // ----------------------------------------------------------------------
 
+bool DeckReader::run_unknown(Command& c, const CommandSpec*& spec) {
+  // MAPDL's unknown-command macro: NAME.MAC (in memory or on disk) run with the fields as
+  // ARG1..AR19.
+  bool is_macro = files.count(c.name + ".MAC") != 0;
+  if (!is_macro) {
+    const std::string lower = to_lower(c.name) + ".mac";
+    is_macro = file_exists(join_path(directory_of(c.where.file), lower)) ||
+               file_exists(join_path(directory_of(c.where.file), c.name + ".MAC")) ||
+               file_exists(lower);
+  }
+  last_name_ = c.name;
+  if (is_macro) {
+    std::vector<Value> args;
+    for (int k = 1; k <= c.n_fields() && k <= 19; ++k) args.push_back(value(c, k));
+    call_macro(c, c.name + ".MAC", args) || call_macro(c, c.name, args);
+    return true;
+  }
+  if (dialect == Dialect::Modern) {
+    if (const CommandSpec* longer = find_command_by_longer_spelling(c.name)) {
+      Log::info("{}:{}: {}: taken as {} (the first four characters)", c.where.file, c.where.line,
+                c.name, longer->name);
+      c.name = longer->name;
+      c.where.command = c.name;
+      spec = longer;
+      return false;
+    }
+  }
+  if (!options.skip_unknown) fail(c, "unknown command");
+  if (!cannot_change_results(c.name))
+    fail(c,
+         "unknown command (--skip-unknown skips only graphics, printing and GUI commands, "
+         "which cannot change the results; this one may)");
+  warn(c, "unknown command skipped (--skip-unknown: graphics, printing or GUI only)");
+  job.ignored_commands.push_back(
+      fmt::format("{}:{}: {} (unknown)", c.where.file, c.where.line, c.name));
+  auto& entry = skipped[c.name];
+  if (entry.first++ == 0) entry.second = c.where;
+  return true;
+}
+
 DeckReader::Flow DeckReader::run_range(Frame& f, std::size_t begin, std::size_t end) {
   Program& prog = f.program;
   const auto& cmds = prog.cmds;
@@ -624,6 +666,10 @@ DeckReader::Flow DeckReader::run_range(Frame& f, std::size_t begin, std::size_t 
     if (const auto e = prog.error.find(i); e != prog.error.end() && !e->second.empty())
       throw InputError(location_of(raw), e->second);
     Command c = resolve(raw);
+    if (raw.star_comment)
+      warn(c,
+           "the text after a blank and '*' is a comment (MAPDL), ignored: write a product "
+           "without the blank");
     std::size_t next = i + 1;
     while (next < end && cmds[next].format_line) c.format_lines.push_back(cmds[next++].rest);
     count_executed(c);
@@ -632,36 +678,10 @@ DeckReader::Flow DeckReader::run_range(Frame& f, std::size_t begin, std::size_t 
       continue;
     }
     const CommandSpec* spec = lookup(c);
-    if (spec == nullptr) {
-      // MAPDL's unknown-command macro: NAME.MAC (in memory or on disk) run with the fields as
-      // ARG1..AR19.
-      std::vector<Value> args;
-      bool is_macro = files.count(c.name + ".MAC") != 0;
-      if (!is_macro) {
-        const std::string lower = to_lower(c.name) + ".mac";
-        is_macro = file_exists(join_path(directory_of(c.where.file), lower)) ||
-                   file_exists(join_path(directory_of(c.where.file), c.name + ".MAC")) ||
-                   file_exists(lower);
-      }
-      if (is_macro) {
-        for (int k = 1; k <= c.n_fields() && k <= 19; ++k) args.push_back(value(c, k));
-        last_name_ = c.name;
-        call_macro(c, c.name + ".MAC", args) || call_macro(c, c.name, args);
-        if (stopped_) return Flow::Stop;
-        i = next;
-        continue;
-      }
-      if (options.skip_unknown) {
-        warn(c, "unknown command skipped (--skip-unknown)");
-        job.ignored_commands.push_back(
-            fmt::format("{}:{}: {} (unknown)", c.where.file, c.where.line, c.name));
-        auto& entry = skipped[c.name];
-        if (entry.first++ == 0) entry.second = c.where;
-        last_name_ = c.name;
-        i = next;
-        continue;
-      }
-      fail(c, "unknown command");
+    if (spec == nullptr && run_unknown(c, spec)) {
+      if (stopped_) return Flow::Stop;
+      i = next;
+      continue;
     }
     // A repeat line re-issues a command's name with new fields; a block or control command
     // (*BEGIN, *DO, *IF, ...) takes its structure from the lines around it, which a repeat line

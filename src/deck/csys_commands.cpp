@@ -1,11 +1,12 @@
 // Coordinate systems, working plane and nodal rotations (APDL_MODELING §2): CSYS, LOCAL, CLOCAL,
-// CSDELE, WPCSYS, WPOFFS, WPROTA, WPAVE, WPSTYL, NROTAT.
+// CSDELE, WPCSYS, WPOFFS, WPROTA, WPAVE, WPSTYL, NROTAT, and DSYM (a rotation and constraints).
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
 
 #include "deck/modeling_helpers.h"
+#include "deck/post_support.h"
 
 namespace impactfe::deck {
 
@@ -133,17 +134,56 @@ void cmd_wpave(DeckReader& r, const Command& c) {
   systems(r).working_plane.origin = sum / n;
 }
 
-void cmd_nrotat(DeckReader& r, const Command& c) {
-  const CoordinateSystem active = systems(r).active_system();
-  for (int id : r.node_range(c, 1, 2, 3)) {
+/// Rotates the nodal coordinate systems of `ids` into system `kcn` (NROTAT, DSYM).
+void rotate_nodes(DeckReader& r, const Command& c, const std::vector<int>& ids, int kcn) {
+  const CoordinateSystem system = systems(r).get(kcn);
+  for (int id : ids) {
     Node& node = r.model.nodes.at(id);
     Mat3 axes;
-    if (!active.axes_at(node.x, axes))
+    if (!system.axes_at(node.x, axes))
       r.fail(c, fmt::format("node {} lies on the axis of coordinate system {} (R = 0): its nodal "
                             "x direction is undefined",
-                            id, systems(r).active));
+                            id, kcn));
     node.angles_deg = clean_angles(angles_from_rotation(axes));
   }
+}
+
+void cmd_nrotat(DeckReader& r, const Command& c) {
+  rotate_nodes(r, c, r.node_range(c, 1, 2, 3), systems(r).active);
+}
+
+void cmd_dsym(DeckReader& r, const Command& c) {
+  // DSYM,Lab,Normal,KCN (MAPDL DSYM): the selected nodes are rotated into system KCN (any earlier
+  // rotation redefined), then the displacement DOFs of a symmetry (SYMM) or antisymmetry (ASYM)
+  // plane normal to X, Y or Z of KCN (R, θ, Φ in a curvilinear system) are set to zero:
+  // SYMM X: UX ROTY ROTZ; Y: UY ROTZ ROTX; Z: UZ ROTX ROTY. ASYM X: UY UZ ROTX; Y: UX UZ ROTY;
+  // Z: UX UY ROTZ. DOFs a node does not have are skipped by the solver, as for D.
+  const std::string lab = c.blank(1) ? "SYMM" : r.label(c, 1);
+  const bool symmetric = lab == "SYMM";
+  if (!symmetric && lab != "ASYM" && lab != "ASYMM")
+    r.fail(c, fmt::format("Lab '{}': SYMM or ASYM", c.text(1)));
+  const std::string normal = c.blank(2) ? "X" : r.label(c, 2);
+  if (normal != "X" && normal != "Y" && normal != "Z")
+    r.fail(c, fmt::format("Normal '{}': X, Y or Z", c.text(2)));
+  const int kcn = r.integer(c, 3, 0);
+  if (!systems(r).has(kcn) || kcn == 4)
+    r.fail(c, fmt::format("coordinate system {} is not defined", kcn));
+  const int axis = normal[0] - 'X';  // 0, 1, 2
+  const Dof u[3] = {Dof::UX, Dof::UY, Dof::UZ};
+  const Dof rot[3] = {Dof::ROTX, Dof::ROTY, Dof::ROTZ};
+  std::vector<Dof> dofs;
+  if (symmetric)
+    dofs = {u[axis], rot[(axis + 1) % 3], rot[(axis + 2) % 3]};
+  else
+    dofs = {u[(axis + 1) % 3], u[(axis + 2) % 3], rot[axis]};
+  const std::vector<int> ids = require_selected_nodes(r, c);
+  rotate_nodes(r, c, ids, kcn);
+  LoadStep& s = r.model.current;
+  for (int id : ids)
+    for (Dof d : dofs) {
+      s.constraints[DofKey{id, d}] = 0.0;
+      s.constraint_tables.erase(DofKey{id, d});
+    }
 }
 
 }  // namespace
@@ -164,6 +204,7 @@ void register_csys_commands(std::vector<CommandSpec>& t) {
   t.push_back({"WPAVE", cmd_wpave, kAnywhere});
   t.push_back({"WPSTYL", [](DeckReader& r, const Command& c) { r.ignore(c); }, kAnywhere});
   t.push_back({"NROTAT", cmd_nrotat, kPrep7 | kSolu});
+  t.push_back({"DSYM", cmd_dsym, kPrep7 | kSolu});
 }
 
 }  // namespace impactfe::deck

@@ -1,4 +1,5 @@
-// /CLEAR, SAVE, RESUME and RESCONTROL (APDL_SCRIPTING §A.15, APDL_MODELING §9.5). SAVE writes
+// /CLEAR, SAVE, RESUME, PARSAV, PARRES and RESCONTROL (APDL_SCRIPTING §A.15, APDL_MODELING
+// §9.5). SAVE writes
 // the database to a JSON file `<Fname>.<Ext>` (default `<jobname>.db`) in the working
 // directory; the geometry part reuses the
 // superelement file's model text (io/superelement_file.h), the rest is described in
@@ -389,6 +390,59 @@ void cmd_resume(DeckReader& r, const Command& c) {
   Log::info("{}:{}: RESUME: database read from {}", c.where.file, c.where.line, path);
 }
 
+/// PARSAV / PARRES file: Fname (default jobname) and Ext (default PARM when Fname is blank, none
+/// when Fname is given alone), as MAPDL names it.
+std::string parameter_file_path(DeckReader& r, const Command& c) {
+  const std::string name = r.text_field(c, 2);
+  const std::string ext = r.text_field(c, 3);
+  if (name.empty()) return r.model.jobname + "." + (ext.empty() ? "parm" : ext);
+  return ext.empty() ? name : name + "." + ext;
+}
+
+void cmd_parsav(DeckReader& r, const Command& c) {
+  // PARSAV,Lab,Fname,Ext: SCALAR (default) the scalar parameters, ALL the arrays too (MAPDL).
+  const std::string lab = c.blank(1) ? "SCALAR" : r.label(c, 1);
+  if (lab != "SCALAR" && lab != "ALL") r.fail(c, fmt::format("Lab '{}': SCALAR or ALL", c.text(1)));
+  json params = json::object();
+  for (const auto& [name, p] : r.params.all())
+    if (lab == "ALL" || !p.is_array()) params[name] = param_json(p);
+  const json j = {{"format", "impactfe-parameters"}, {"version", 1}, {"parameters", params}};
+  const std::string text = j.dump(1, ' ', false, json::error_handler_t::replace);
+  r.count_work(c, DeckReader::database_work(text.size()));
+  const std::string path = parameter_file_path(r, c);
+  std::ofstream out(path);
+  if (!out) r.fail(c, fmt::format("cannot write '{}'", path));
+  out << text << '\n';
+  Log::info("{}:{}: PARSAV: {} parameters written to {}", c.where.file, c.where.line, params.size(),
+            path);
+}
+
+void cmd_parres(DeckReader& r, const Command& c) {
+  // PARRES,Lab,Fname,Ext: NEW (default) replaces the parameters by the file's, CHANGE adds them,
+  // replacing those of the same name (MAPDL).
+  const std::string lab = c.blank(1) ? "NEW" : r.label(c, 1);
+  if (lab != "NEW" && lab != "CHANGE") r.fail(c, fmt::format("Lab '{}': NEW or CHANGE", c.text(1)));
+  const std::string path = parameter_file_path(r, c);
+  const auto in = read_file(path);
+  if (!in) r.fail(c, fmt::format("no parameter file '{}' (PARSAV writes it)", path));
+  r.count_work(c, DeckReader::database_work(in->size()));
+  try {
+    const json j = json::parse(*in);
+    if (j.at("format") != "impactfe-parameters" || j.at("version").get<int>() != 1)
+      r.fail(c, fmt::format("'{}' is not an impactfe parameter file (version 1)", path));
+    if (lab == "NEW") {
+      const bool degrees = r.params.degrees;
+      r.params.clear();
+      r.params.degrees = degrees;
+    }
+    for (const auto& [name, p] : j.at("parameters").items()) r.params.define(name, param_of(p));
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::exception& e) {
+    r.fail(c, fmt::format("'{}' is damaged: {}", path, e.what()));
+  }
+}
+
 /// RESCONTROL,Action,Ldstep,Frequency (APDL_MODELING §9.5): DEFINE (default) sets the load
 /// steps (ALL, LAST, N, NONE) and substeps (LAST, N, NONE) that keep a restart point; NONE as
 /// Ldstep turns restart files off; STATUS / FILE_SUMMARY print; NORESTART / LINEAR are noted.
@@ -452,8 +506,12 @@ void cmd_rescontrol(DeckReader& r, const Command& c) {
 void register_database_commands(std::vector<CommandSpec>& t) {
   t.push_back({"/CLEAR", cmd_clear, kAnywhere});
   t.push_back({"SAVE", cmd_save, kAnywhere});
-  t.push_back({"RESUME", cmd_resume, kBegin | kPrep7 | kSolu});
+  // RESUME is valid in any processor (MAPDL RESUME): the VM decks RESUME in POST26 to bring
+  // back the parameters a SAVE kept before a /CLEAR.
+  t.push_back({"RESUME", cmd_resume, kAnywhere});
   t.push_back({"RESCONTROL", cmd_rescontrol, kPrepSolu});
+  t.push_back({"PARSAV", cmd_parsav, kAnywhere});
+  t.push_back({"PARRES", cmd_parres, kAnywhere});
 }
 
 }  // namespace impactfe::deck

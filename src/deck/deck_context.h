@@ -7,6 +7,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/log.h"
@@ -91,6 +92,19 @@ void register_database_commands(std::vector<CommandSpec>& table);
 /// one table command is that command (`SECT` → SECTYPE, `NSUBS` → NSUBST). nullptr when none;
 /// `ambiguous` set when several begin with it.
 const CommandSpec* find_command_by_abbreviation(const std::string& name, bool& ambiguous);
+
+/// Modern dialect, after the exact lookup, the abbreviations and the macro search: a longer
+/// spelling of a command (`/SOLUTION` → /SOLU), since MAPDL reads the first four characters of a
+/// command name (Command Reference §1.2, "Command name"), when exactly one table command has
+/// those four. A macro of that name (SOLVIT.MAC) comes first, as in MAPDL.
+const CommandSpec* find_command_by_longer_spelling(const std::string& name);
+
+/// --skip-unknown: true for the MAPDL commands this program does not carry out that cannot
+/// change a result (graphics, picture files, printed listings, GUI macros such as JPGPRF):
+/// an explicit list (skippable_commands.cpp), abbreviations and longer spellings included.
+bool cannot_change_results(const std::string& upper_name);
+/// That list, names as MAPDL spells them in full.
+const std::vector<std::string_view>& commands_without_effect_on_results();
 
 /// A file made by *CREATE (kept in memory, APDL_SCRIPTING §A.13): its lines as lexed commands
 /// (with their deck locations, so errors point into the deck) and as text (*LIST).
@@ -284,6 +298,9 @@ class DeckReader {
   void count_executed(const Command& c) { count_work(c, 1); }
   Command resolve(const RawCommand& raw);
   const CommandSpec* lookup(Command& c);
+  /// A name the table does not know: runs its macro (true), or resolves a longer spelling
+  /// (`spec` set), or skips it under --skip-unknown (true); otherwise stops.
+  bool run_unknown(Command& c, const CommandSpec*& spec);
   void dispatch(const Command& c, const CommandSpec& spec);
 
   std::string last_name_;

@@ -367,8 +367,8 @@ SelectType select_type(DeckReader& r, const Command& c, int field, bool associat
 
 std::function<bool(double)> value_test(DeckReader& r, const Command& c, int f, bool integer,
                                        bool absolute) {
-  if (!c.blank(f) && !r.opt_real(c, f)) r.fail(c, fmt::format("field {}: value missing", f));
-  if (c.blank(f)) r.fail(c, fmt::format("field {}: VMIN missing", f));
+  // A blank VMIN is 0, as any blank numeric field (NSEL,S,LOC,X: the nodes at x = 0); VMAX
+  // defaults to VMIN.
   double vmin = r.real(c, f, 0.0);
   double vmax = r.real(c, f + 1, vmin);
   if (integer) {

@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstring>
@@ -113,10 +114,17 @@ double call_builtin(const std::string& f, const std::vector<double>& a, const Pa
   return std::round(x);  // NINT: halves away from zero (Fortran)
 }
 
-/// Recursive-descent parser of §A.3:
-///   cond := additive {(<|>) additive};  additive := unary {(+|-) unary};
-///   unary := (+|-) unary | mult;  mult := power {(*|/) power};  power := primary [** unary].
-/// `A*-B` (a sign after * or /) is accepted as an extension.
+/// Recursive-descent parser of the MAPDL order of operations (APDL Programmer's Guide §3.7,
+/// "Parametric Expressions"; APDL_SCRIPTING §A.3): parentheses, `**` right to left, `*` `/` left
+/// to right, unary `+` `-`, binary `+` `-` left to right, then `<` `>` left to right.
+///   cond := additive {(<|>) additive};  additive := signed_term {(+|-) signed_term};
+///   signed_term := (+|-) signed_term | term;  term := factor {(*|/) factor};
+///   factor := (+|-) factor | power;  power := primary [** exponent];
+///   exponent := (+|-) exponent | power.
+/// A unary sign at the head of a term applies to the whole term (`-A*B = -(A*B)`,
+/// `-2**2 = -4`); a sign right after `*`, `/` or `**` (`A*-B`, `2**-1`, an extension: MAPDL
+/// documents no two adjacent operators) applies to the one operand that follows it, never to the
+/// rest of the term (`A/-B*C = (A/(-B))*C`, `I**2*3 = (I**2)*3`).
 class Parser {
  public:
   Parser(std::string_view text, const Parameters& params, const FunctionHost* host)
@@ -163,34 +171,34 @@ class Parser {
     }
   }
   Value additive() {
-    Value v = unary();
+    Value v = signed_term();
     for (;;) {
       skip();
       if (i_ < s_.size() && (s_[i_] == '+' || s_[i_] == '-')) {
         const char op = s_[i_++];
         const double a = require_number(v, "in arithmetic");
-        const double b = require_number(unary(), "in arithmetic");
+        const double b = require_number(signed_term(), "in arithmetic");
         v = op == '+' ? a + b : a - b;
       } else {
         return v;
       }
     }
   }
-  Value unary() {
-    if (accept("-")) return -require_number(unary(), "after a sign");
-    if (accept("+")) return require_number(unary(), "after a sign");
-    return mult();
+  /// A sign that heads a term: it applies after the term's products and powers.
+  Value signed_term() {
+    if (accept("-")) return -require_number(signed_term(), "after a sign");
+    if (accept("+")) return require_number(signed_term(), "after a sign");
+    return term();
   }
-  Value mult() {
-    Value v = power();
+  Value term() {
+    Value v = factor();
     for (;;) {
       skip();
-      if (s_.substr(i_, 2) == "**") return v;  // handled in power()
+      if (s_.substr(i_, 2) == "**") return v;  // only after a factor that is not a power
       if (i_ < s_.size() && (s_[i_] == '*' || s_[i_] == '/')) {
         const char op = s_[i_++];
         const double a = require_number(v, "in arithmetic");
-        const double b =
-            require_number(peek('-') || peek('+') ? unary() : power(), "in arithmetic");
+        const double b = require_number(factor(), "in arithmetic");
         if (op == '*') {
           v = a * b;
         } else {
@@ -202,11 +210,17 @@ class Parser {
       }
     }
   }
+  /// An operand of `*` or `/`; a sign written right after the operator applies to it alone.
+  Value factor() {
+    if (accept("-")) return -require_number(factor(), "after a sign");
+    if (accept("+")) return require_number(factor(), "after a sign");
+    return power();
+  }
   Value power() {
     Value base = primary();
     if (accept("**")) {
       const double a = require_number(base, "with **");
-      const double b = require_number(unary(), "with **");
+      const double b = require_number(exponent(), "with **");
       const double r = std::pow(a, b);
       if (!std::isfinite(r))
         throw ExpressionError(
@@ -214,6 +228,12 @@ class Parser {
       return r;
     }
     return base;
+  }
+  /// The right operand of `**`: a power again (right to left), optionally signed.
+  Value exponent() {
+    if (accept("-")) return -require_number(exponent(), "after a sign");
+    if (accept("+")) return require_number(exponent(), "after a sign");
+    return power();
   }
   Value primary() {
     skip();
@@ -256,12 +276,27 @@ class Parser {
     if (peek('(')) {
       ++i_;
       std::vector<Value> args;
+      bool blank_argument = false;
       if (!peek(')')) {
-        args.push_back(cond());
-        while (accept(",")) args.push_back(cond());
+        // A blank argument of a function is 0, as a blank numeric field is (NODE(,,,) is the
+        // node nearest the origin); trailing blank arguments are not given.
+        std::size_t given = 0;
+        do {
+          if (peek(',') || peek(')')) {
+            blank_argument = true;
+            args.emplace_back(0.0);
+          } else {
+            args.push_back(cond());
+            given = args.size();
+          }
+        } while (accept(","));
+        args.resize(std::max<std::size_t>(given, 1));
       }
       if (!accept(")")) throw ExpressionError("missing ')' after the arguments of " + n);
-      if (param != nullptr && param->is_array()) return element(n, *param, args);
+      if (param != nullptr && param->is_array()) {
+        if (blank_argument) throw ExpressionError(fmt::format("blank subscript of {}", n));
+        return element(n, *param, args);
+      }
       if (param != nullptr)
         throw ExpressionError(fmt::format("'{}' is a scalar parameter, not an array", n));
       std::vector<double> x;

@@ -110,11 +110,25 @@ std::vector<std::string_view> split_dollar(std::string_view text) {
 }
 
 /// Lexes one command (no `$`). Returns false for an empty/comment segment.
+/// The position of a `*` that follows a blank outside quotes (a comment in MAPDL, APDL
+/// Programmer's Guide §3.7), or npos.
+std::size_t star_comment_at(std::string_view text) {
+  bool quoted = false;
+  for (std::size_t i = 1; i < text.size(); ++i) {
+    if (text[i] == '\'') quoted = !quoted;
+    if (!quoted && text[i] == '*' && (text[i - 1] == ' ' || text[i - 1] == '\t')) return i;
+  }
+  return std::string_view::npos;
+}
+
 bool lex_segment(std::string_view raw, const std::shared_ptr<const std::string>& file, int line,
                  RawCommand& cmd) {
-  const std::string text = trim(raw);
+  std::string text = trim(raw);
   if (text.empty()) return false;
+  const std::size_t star = star_comment_at(text);
+  if (star != std::string::npos) text = trim(std::string_view(text).substr(0, star));
   cmd = RawCommand{};
+  cmd.star_comment = star != std::string::npos;
   cmd.file = file;
   cmd.line = line;
   if (text[0] == ',') {
@@ -159,14 +173,20 @@ std::vector<RawCommand> lex_line_of(std::string_view text,
   const std::string stripped = trim(text);
   if (stripped.empty()) return out;
   if (starts_with_upper(stripped, "C***")) return out;  // 4x comment line
-  // /TITLE and /COM keep the rest of the line verbatim (commas, case, '$' and '!').
+  // /TITLE and /COM keep the rest of the line verbatim (commas, case, '$' and '!'). Their name
+  // ends at the first comma or blank: `/COM REF: TEXT, MORE` is a comment as `/COM,REF...` is.
   if (starts_with_upper(stripped, "/TIT") || starts_with_upper(stripped, "/COM")) {
     RawCommand cmd;
     cmd.file = file;
     cmd.line = line;
-    const std::size_t comma = stripped.find(',');
-    cmd.name = to_upper(trim(std::string_view(stripped).substr(0, comma)));
-    if (comma != std::string::npos) cmd.rest = trim(std::string_view(stripped).substr(comma + 1));
+    const std::size_t end = stripped.find_first_of(", \t");
+    cmd.name = to_upper(trim(std::string_view(stripped).substr(0, end)));
+    if (end != std::string::npos) {
+      std::string_view rest = std::string_view(stripped).substr(end);
+      rest = rest.substr(std::min(rest.find_first_not_of(" \t"), rest.size()));
+      if (!rest.empty() && rest.front() == ',') rest.remove_prefix(1);
+      cmd.rest = trim(rest);
+    }
     cmd.fields = {cmd.rest};
     out.push_back(std::move(cmd));
     return out;

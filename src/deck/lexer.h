@@ -16,10 +16,11 @@ namespace impactfe::deck {
 /// trimmed field texts, case preserved (handlers upper-case labels; file names keep their case).
 struct RawCommand {
   std::string name;
-  bool repeat = false;       // line started with ',' : re-issue the previous command name
-  bool assignment = false;   // `Par = expr` / `A(2,3) = 1,2,3`: fields = {Par, right side}
-  bool format_line = false;  // the format line after *VWRITE / *MSG / *MWRITE (`rest` = text)
-  bool released = false;     // run, and its text freed (DeckReader::Program::release_before)
+  bool repeat = false;        // line started with ',' : re-issue the previous command name
+  bool assignment = false;    // `Par = expr` / `A(2,3) = 1,2,3`: fields = {Par, right side}
+  bool format_line = false;   // the format line after *VWRITE / *MSG / *MWRITE (`rest` = text)
+  bool released = false;      // run, and its text freed (DeckReader::Program::release_before)
+  bool star_comment = false;  // text after a blank and '*' dropped as a comment (lex_line)
   std::vector<std::string> fields;
   std::string rest;    // raw text after the first comma (for /TITLE and /COM)
   std::string error;   // a line the lexer refuses (too long): reported when it is reached
@@ -42,7 +43,9 @@ std::string trim(std::string_view text);
 std::optional<double> parse_fortran_number(std::string_view text);
 
 /// Lexes one physical line. `$` separates commands only in the modern dialect; `!` starts a
-/// comment and `C***` lines are comments in both dialects (see docs/deck_reader.md).
+/// comment, and so does a `*` after a blank inside a command (MAPDL: "never include a blank space
+/// before the * character because the rest of the input line ... is interpreted as a comment");
+/// `C***` lines are comments in both dialects (see docs/deck_reader.md).
 std::vector<RawCommand> lex_line(std::string_view text, const std::string& file, int line,
                                  Dialect dialect);
 

@@ -1,9 +1,11 @@
-// Matrix commands *MFUN, *MOPER and the array I/O commands *VGET, *VPUT (APDL_MODELING §10.1,
-// §10.2). *VGET / *VPUT read and store through the *GET item providers of get_hooks.h.
+// Matrix commands *MFUN, *MOPER, the Fourier series *MFOURI and the array I/O commands *VGET,
+// *VPUT (APDL_MODELING §10.1, §10.2). *VGET / *VPUT read and store through the *GET item
+// providers of get_hooks.h.
 #include <fmt/format.h>
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <numbers>
 
 #include "deck/vector_support.h"
 
@@ -203,6 +205,64 @@ void cmd_moper(DeckReader& r, const Command& c) {
   }
 }
 
+/// An array column of *MFOURI (field f) from its start element to the end of the column.
+VectorOperand fourier_column(DeckReader& r, const Command& c, int f, const char* what) {
+  const VectorOperand op = vector_operand(r, c, f);
+  if (!op.column)
+    r.fail(c, fmt::format("field {}: {} must be an array parameter ('{}')", f, what, c.text(f)));
+  return op;
+}
+
+void cmd_mfouri(DeckReader& r, const Command& c) {
+  // *MFOURI,Oper,COEFF,MODE,ISYM,THETA,CURVE (MAPDL Theory Reference, "Fourier Coefficient
+  // Evaluation"): CURVE(θ) = Σj COEFF(j) F(MODE(j) θ), F = cos for ISYM 0 or 1, sin for -1, θ in
+  // degrees. FIT finds COEFF by least squares over the points (θi, CURVEi); EVAL writes CURVE.
+  const std::string oper = r.label(c, 1);
+  if (oper != "FIT" && oper != "EVAL") r.fail(c, fmt::format("Oper '{}': FIT or EVAL", c.text(1)));
+  const VectorOperand coeff = fourier_column(r, c, 2, "COEFF");
+  const VectorOperand mode = fourier_column(r, c, 3, "MODE");
+  const VectorOperand isym = fourier_column(r, c, 4, "ISYM");
+  const VectorOperand theta = fourier_column(r, c, 5, "THETA");
+  const VectorOperand curve = fourier_column(r, c, 6, "CURVE");
+  const long long terms = mode.length();
+  if (coeff.length() != terms || isym.length() != terms)
+    r.fail(c, fmt::format("COEFF, MODE and ISYM must have the same length ({}, {}, {})",
+                          coeff.length(), terms, isym.length()));
+  const long long points = theta.length();
+  if (curve.length() < points)
+    r.fail(c, fmt::format("CURVE has {} values for {} THETA values", curve.length(), points));
+  Eigen::MatrixXd g(points, terms);  // the sines and cosines at the points
+  for (long long j = 0; j < terms; ++j) {
+    const double key = isym.at(j);
+    if (key != 0.0 && key != 1.0 && key != -1.0)
+      r.fail(c, fmt::format("ISYM({}) = {}: 0 or 1 (cosine) or -1 (sine)", j + 1, key));
+    for (long long i = 0; i < points; ++i) {
+      const double a = mode.at(j) * theta.at(i) * std::numbers::pi / 180.0;
+      g(i, j) = key == -1.0 ? std::sin(a) : std::cos(a);
+    }
+  }
+  Param& out = *(oper == "FIT" ? coeff : curve).pos.param;
+  const ArrayPosition& at = (oper == "FIT" ? coeff : curve).pos;
+  if (oper == "EVAL") {
+    Eigen::VectorXd a(terms);
+    for (long long j = 0; j < terms; ++j) a(j) = coeff.at(j);
+    const Eigen::VectorXd y = g * a;
+    for (long long i = 0; i < points; ++i)
+      out.values[out.offset(at.i + static_cast<int>(i), at.j, at.k)] = y(i);
+    return;
+  }
+  if (points < terms)
+    r.fail(c, fmt::format("FIT needs at least as many points ({}) as terms ({})", points, terms));
+  Eigen::VectorXd y(points);
+  for (long long i = 0; i < points; ++i) y(i) = curve.at(i);
+  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(g);
+  if (qr.rank() < terms)
+    r.fail(c, "the terms are not independent at these points (a mode twice, or sin of mode 0)");
+  const Eigen::VectorXd a = qr.solve(y);
+  for (long long j = 0; j < terms; ++j)
+    out.values[out.offset(at.i + static_cast<int>(j), at.j, at.k)] = a(j);
+}
+
 }  // namespace
 
 void register_matrix_commands(std::vector<CommandSpec>& t) {
@@ -210,6 +270,7 @@ void register_matrix_commands(std::vector<CommandSpec>& t) {
   t.push_back({"*VPUT", cmd_vput, kAnywhere});
   t.push_back({"*MFUN", cmd_mfun, kAnywhere});
   t.push_back({"*MOPER", cmd_moper, kAnywhere});
+  t.push_back({"*MFOURI", cmd_mfouri, kAnywhere});
 }
 
 }  // namespace impactfe::deck

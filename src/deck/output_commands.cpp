@@ -170,13 +170,24 @@ void cmd_status(DeckReader& r, const Command& c) {
   const std::string par = r.label(c, 1);
   const std::string header = fmt::format(" {:<32} {:<24} {:<10}{:>8}{:>8}{:>8}", "NAME", "VALUE",
                                          "TYPE", "IMAX", "JMAX", "KMAX");
-  if (par.empty() || par == "ALL" || par == "ARGX") {
+  // Par groups (MAPDL *STATUS): ALL, blank or PARM = every parameter but the local ones and
+  // those whose names begin or end with '_'; _PRM / PRM_ = only those; ARGX = the locals.
+  if (par.empty() || par == "ALL" || par == "PARM" || par == "ARGX" || par == "_PRM" ||
+      par == "PRM_") {
     const auto& table = par == "ARGX" ? r.params.locals() : r.params.all();
+    auto listed = [&](const std::string& name) {
+      if (par == "_PRM") return name.front() == '_';
+      if (par == "PRM_") return name.back() == '_';
+      return name.front() != '_' && name.back() != '_';
+    };
     std::vector<std::string> lines;
     for (const auto& [name, p] : table)
-      if (name.front() != '_' && name.back() != '_') lines.push_back(status_line(name, p));
+      if (listed(name)) lines.push_back(status_line(name, p));
     r.output.print(fmt::format(" PARAMETER STATUS- {} ({} PARAMETERS DEFINED)",
-                               par == "ARGX" ? "LOCAL (ARGX)" : "", lines.size()));
+                               par == "ARGX"                    ? "LOCAL (ARGX)"
+                               : par == "_PRM" || par == "PRM_" ? par
+                                                                : "",
+                               lines.size()));
     r.output.print(header);
     for (const auto& l : lines) r.output.print(l);
     return;

@@ -191,8 +191,9 @@ std::optional<double> Parameters::get(const std::string& name) const {
 }
 
 void Parameters::clear() {
+  // The local parameters ARG1..AR99 belong to the macro calls running, not to the database: a
+  // macro that issues /CLEAR keeps its arguments (vmc5: PARSAV, /CLEAR, PARRES, ET,1,ARG1).
   globals_.clear();
-  locals_.assign(1, {});
   degrees = false;
   random.seed(20240611u);
 }

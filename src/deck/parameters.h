@@ -94,7 +94,8 @@ class Parameters {
   void pop_level() {
     if (locals_.size() > 1) locals_.pop_back();
   }
-  /// /CLEAR: every parameter, the angle unit and the random sequence back to their start.
+  /// /CLEAR: every global parameter, the angle unit and the random sequence back to their start;
+  /// the local parameters of the macro calls running stay.
   void clear();
 
   bool degrees = false;  // *AFUN,DEG

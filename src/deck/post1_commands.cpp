@@ -82,7 +82,8 @@ void cmd_set(DeckReader& r, const Command& c) {
     at_time = *time;
   } else {
     const int ls = l.empty() ? 1 : r.integer(c, 1, 1);
-    const bool last_sub = c.blank(2) || r.label(c, 2) == "LAST";
+    // Sbstep blank or 0 (a zero field is a blank one): the last substep (MAPDL SET).
+    const bool last_sub = c.blank(2) || r.label(c, 2) == "LAST" || r.integer(c, 2, 0) == 0;
     const int sbs = last_sub ? 0 : r.integer(c, 2, 1);
     for (std::size_t k = 0; k < sets.size(); ++k) {
       if (sets[k].load_step != ls) continue;
@@ -135,11 +136,19 @@ void cmd_set(DeckReader& r, const Command& c) {
   make_current(r, std::move(data));
 }
 
+void cmd_shell(DeckReader& r, const Command& c) {
+  // SHELL,Loc: the surface of a shell whose stresses POST1 reports (MAPDL SHELL; TOP default).
+  const std::string loc = c.blank(1) ? "TOP" : r.label(c, 1);
+  if (loc != "TOP" && loc != "MID" && loc != "BOT")
+    r.fail(c, fmt::format("Loc '{}': TOP, MID or BOT", c.text(1)));
+  post_state(r).shell_location = loc;
+}
+
 void cmd_file(DeckReader& r, const Command& c) {
-  // FILE,Fname,Ext: the results file of the postprocessors.
-  if (c.blank(1)) r.fail(c, "file name missing");
+  // FILE,Fname,Ext: the results file of the postprocessors; a blank Fname is the jobname
+  // (MAPDL FILE: "Fname ... defaults to Jobname"), e.g. FILE,,RDSP after a reduced transient.
   PostState& ps = post_state(r);
-  ps.file_command = results_file_name(c.text(1), c.text(2));
+  ps.file_command = results_file_name(c.blank(1) ? r.model.jobname : c.text(1), c.text(2));
   ps.reader.reset();
   ps.current.reset();
   results(r, c);  // open it now: a missing file is an error here
@@ -230,8 +239,23 @@ void cmd_pretab(DeckReader& r, const Command& c) {
   if (c.last_given() == 0 || r.label(c, 1) == "ALL") {
     for (const auto& col : ps.etable) cols.push_back(&col);
   } else {
-    for (int f = 1; f <= c.last_given(); ++f)
-      if (!c.blank(f)) cols.push_back(&column(r, c, r.label(c, f)));
+    for (int f = 1; f <= c.last_given(); ++f) {
+      if (c.blank(f)) continue;
+      const std::string l = r.label(c, f);
+      // GRPn: the n-th group of ten stored columns (MAPDL PRETAB), unless a column has the name.
+      const bool named = std::any_of(ps.etable.begin(), ps.etable.end(),
+                                     [&](const EtableColumn& col) { return col.label == l; });
+      if (!named && l.size() > 3 && l.compare(0, 3, "GRP") == 0 &&
+          l.find_first_not_of("0123456789", 3) == std::string::npos) {
+        const std::size_t group = std::stoul(l.substr(3));
+        if (group == 0 || 10 * (group - 1) >= ps.etable.size())
+          r.fail(c, fmt::format("{}: the element table has {} columns", l, ps.etable.size()));
+        for (std::size_t k = 10 * (group - 1); k < std::min(ps.etable.size(), 10 * group); ++k)
+          cols.push_back(&ps.etable[k]);
+        continue;
+      }
+      cols.push_back(&column(r, c, l));
+    }
   }
   if (cols.empty()) r.fail(c, "the element table is empty (ETABLE first)");
   std::vector<int> elements = require_selected_elements(r, c);
@@ -380,6 +404,7 @@ void cmd_nforce(DeckReader& r, const Command& c) {
 void register_post1_commands(std::vector<CommandSpec>& t) {
   t.push_back({"SET", cmd_set, kPost1});
   t.push_back({"FILE", cmd_file, kPost1 | kPost26});
+  t.push_back({"SHELL", cmd_shell, kPost1});
   t.push_back({"ETABLE", cmd_etable, kPost1});
   t.push_back({"PRETAB", cmd_pretab, kPost1});
   t.push_back({"SSUM", cmd_ssum, kPost1});

@@ -270,7 +270,8 @@ void cmd_operation(DeckReader& r, const Command& c) {
     }
     if (negative) r.warn(c, "square root of a negative value: 0 there");
   } else if (op == "DERIV") {
-    const auto x = input(3);
+    // A blank IX is variable 1, the time (DERIV,5,2,,,VX is the velocity of variable 2).
+    const auto x = c.blank(3) ? post26_values(r, c, 1) : input(3);
     for (std::size_t k = 1; k < n; ++k)
       if (!(x[k] > x[k - 1])) r.fail(c, "IX must increase strictly");
     // Interior: mean of the two adjacent slopes; ends extrapolated linearly (§C.5).
@@ -285,7 +286,7 @@ void cmd_operation(DeckReader& r, const Command& c) {
     }
     for (double& v : out) v *= fa;
   } else if (op == "INT1") {
-    const auto x = input(3);
+    const auto x = c.blank(3) ? post26_values(r, c, 1) : input(3);  // blank IX: the time
     const double constant = r.real(c, 10, 0.0);  // CONST (not a factor: blank = 0)
     if (n > 0) out[0] = constant;
     for (std::size_t k = 1; k < n; ++k)

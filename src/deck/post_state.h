@@ -60,6 +60,7 @@ struct PostState {
   std::optional<std::array<double, 6>> fsum;  // FX FY FZ MX MY MZ of the last FSUM
   std::map<std::string, double> ssum;         // ETABLE label → last SSUM total
   std::string force_kind = "TOTAL";           // FORCE: TOTAL, STATIC, DAMP, INERT
+  std::string shell_location = "TOP";         // SHELL: TOP, MID, BOT (the layer of shell S)
 
   // ---- pictures ---------------------------------------------------------------------------
   PlotView view;

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 
 #include "deck/modeling_helpers.h"
 #include "elements/element_registry.h"
@@ -251,7 +252,27 @@ std::optional<double> element_result(DeckReader& r, const Command& c, int elemen
                                      const std::string& item, const std::string& comp) {
   if (to_upper(item) == "VOLU") return element_volume(r, c, element);
   const SetData& data = current_set(r, c);
-  return element_item(data, element, element_type_name(r, element), item, comp);
+  const std::string type_name = element_type_name(r, element);
+  // SHELL,MID or BOT: a shell's S items at that surface instead of the top (MAPDL SHELL).
+  const std::string& location = post_state(r).shell_location;
+  const ElementTypeDescriptor* type = find_element_type(type_name);
+  if (location != "TOP" && type != nullptr)
+    if (const auto seq = find_result_sequence(*type, item, comp)) {
+      const std::string& name = seq->name;
+      if (name.size() > 4 && name.compare(name.size() - 4, 4, "_TOP") == 0) {
+        const std::string layer = name.substr(0, name.size() - 3) + location;
+        const auto row = data.element_rows.find(element);
+        if (row == data.element_rows.end()) return std::numeric_limits<double>::quiet_NaN();
+        const ElementResultTable& table = data.point.element_results.at(row->second.first);
+        const auto col = std::find(table.item_names.begin(), table.item_names.end(), layer);
+        if (col == table.item_names.end())
+          r.fail(c,
+                 fmt::format("{} {} has no {} value at SHELL,{}", type_name, item, comp, location));
+        return table.values(row->second.second,
+                            static_cast<Eigen::Index>(col - table.item_names.begin()));
+      }
+    }
+  return element_item(data, element, type_name, item, comp);
 }
 
 std::optional<double> element_volume(DeckReader& r, const Command& c, int element) {

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include "core/dof.h"
@@ -26,9 +27,19 @@ void cmd_et(DeckReader& r, const Command& c) {
   }
   if (id <= 0) r.fail(c, fmt::format("element type number {} must be positive", id));
   if (c.blank(2)) r.fail(c, "element name or number missing");
-  const ElementTypeDescriptor* info = find_element_type(trim(c.text(2)));
+  std::string name = trim(c.text(2));
+  const ElementTypeDescriptor* info = find_element_type(name);
+  if (info == nullptr) {
+    // A parameter gives the name or the number (ET,1,ETYP with ETYP = 182 or 'PLANE182').
+    const Param* p = r.params.find(to_upper(name));
+    if (p != nullptr && p->type == ParamType::Number)
+      name = fmt::format("{}", std::lround(p->number));
+    else if (p != nullptr && p->type == ParamType::Text)
+      name = r.text_field(c, 2);
+    if (p != nullptr) info = find_element_type(name);
+  }
   if (info == nullptr)
-    r.fail(c, fmt::format("unknown element type '{}' (supported: {})", c.text(2),
+    r.fail(c, fmt::format("unknown element type '{}' (supported: {})", name,
                           supported_element_type_names()));
   ElementType et;
   et.id = id;
@@ -283,8 +294,21 @@ void cmd_gp(DeckReader& r, const Command& c) {
   GapCondition g;
   g.node_i = r.integer(c, 1, 0);
   g.node_j = r.integer(c, 2, 0);
-  r.require_node(c, g.node_i);
-  r.require_node(c, g.node_j);
+  if (g.node_i <= 0 || g.node_j <= 0) r.fail(c, "NODE1 and NODE2 must be positive node numbers");
+  if (g.node_i == g.node_j) r.fail(c, fmt::format("NODE1 and NODE2 are both node {}", g.node_i));
+  // A gap node that is not defined is a ground point (MAPDL GP: "grounded gap nodes need not
+  // appear elsewhere in the model"); it is stored as node 0, which renumbering leaves alone.
+  const bool ground_i = r.model.nodes.count(g.node_i) == 0;
+  const bool ground_j = r.model.nodes.count(g.node_j) == 0;
+  if (ground_i && ground_j)
+    r.fail(c, fmt::format("neither node {} nor node {} is defined (one end may be a ground point, "
+                          "not both)",
+                          g.node_i, g.node_j));
+  if (ground_i || ground_j)
+    Log::info("{}:{}: GP: node {} is not defined: a ground point", c.where.file, c.where.line,
+              ground_i ? g.node_i : g.node_j);
+  if (ground_i) g.node_i = 0;
+  if (ground_j) g.node_j = 0;
   const std::string lab = r.label(c, 3);
   auto d = parse_force_label(lab);
   if (!d) d = parse_dof_label(lab);

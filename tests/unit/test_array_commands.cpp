@@ -354,3 +354,41 @@ TEST(ArrayCommands, AssignmentInterface) {
   write_output(s.reader, "  line 1\n  line 2\n");
   EXPECT_NE(s.out.str().find("  line 1\n  line 2\n"), std::string::npos);
 }
+
+// *MFOURI (vm130): FIT finds the coefficients of a curve made of known terms (least squares,
+// exact here), EVAL writes the curve back; the saw tooth of vm130 gives its Fourier
+// coefficients 8/π² (−1)^k / (2k+1)² (Timoshenko).
+TEST(ArrayCommands, FourierSeriesFitAndEvaluation) {
+  Session s;
+  s.run(
+      "*DIM,TH,,37\n*VFILL,TH(1),RAMP,0,10\n*DIM,CI,,37\n*DIM,CO,,37\n"
+      "*DO,I,1,37\nCI(I) = 2+3*SIN(TH(I)*3.14159265358979/180)-0.5*COS(2*TH(I)*3.14159265358979/"
+      "180)\n*ENDDO\n*DIM,M,,3\nM(1) = 0,1,2\n*DIM,K,,3\nK(1) = 1,-1,0\n*DIM,A,,3\n"
+      "*MFOURI,FIT,A(1),M(1),K(1),TH(1),CI(1)\n*MFOURI,EVAL,A(1),M(1),K(1),TH(1),CO(1)\n");
+  const V a = s.column("A");
+  EXPECT_NEAR(a[0], 2.0, 1e-12);
+  EXPECT_NEAR(a[1], 3.0, 1e-12);
+  EXPECT_NEAR(a[2], -0.5, 1e-12);
+  const V in = s.column("CI"), out = s.column("CO");
+  for (std::size_t i = 0; i < in.size(); ++i) EXPECT_NEAR(out[i], in[i], 1e-12);
+  // The saw tooth of vm130 (0 → 1 → −1 → 0 over 360°, 121 points), odd sine modes 1, 3, 5.
+  Session w;
+  w.run(
+      "*DIM,TH,,121\n*VFILL,TH(1),RAMP,0,3\n*DIM,C,,121\n*VFILL,C(1),RAMP,0,1/30\n"
+      "*VFILL,C(31),RAMP,1,-1/30\n*VFILL,C(91),RAMP,-1,1/30\n*DIM,M,,4\nM(1) = 0,1,3,5\n"
+      "*DIM,K,,4\nK(1) = 0,-1,-1,-1\n*DIM,A,,4\n*MFOURI,FIT,A(1),M(1),K(1),TH(1),C(1)\n");
+  const V b = w.column("A");
+  const double pi2 = 3.14159265358979 * 3.14159265358979;
+  EXPECT_NEAR(b[0], 0.0, 1e-12);
+  EXPECT_NEAR(b[1], 8.0 / pi2, 2e-3);
+  EXPECT_NEAR(b[2], -8.0 / (9.0 * pi2), 2e-3);
+  EXPECT_NEAR(b[3], 8.0 / (25.0 * pi2), 2e-3);
+  EXPECT_NE(error_of("*DIM,A,,2\n*DIM,M,,3\n*DIM,K,,3\n*DIM,T,,5\n*DIM,C,,5\n"
+                     "*MFOURI,FIT,A(1),M(1),K(1),T(1),C(1)\n")
+                .find("same length"),
+            std::string::npos);
+  EXPECT_NE(error_of("*DIM,A,,2\nM = 1\n*DIM,K,,2\n*DIM,T,,5\n*DIM,C,,5\n"
+                     "*MFOURI,FIT,A(1),M,K(1),T(1),C(1)\n")
+                .find("MODE must be an array"),
+            std::string::npos);
+}

@@ -9,6 +9,7 @@
 
 #include "../support/run_deck.h"
 #include "core/log.h"
+#include "deck/deck_context.h"
 #include "deck/deck_reader.h"
 
 using namespace impactfe;
@@ -243,14 +244,54 @@ TEST(DeckControlFlow, SkipUnknownCountsWhatItSkipped) {
   DeckOptions o;
   o.skip_unknown = true;
   o.dialect = Dialect::Modern;
-  const Job job = read_deck_text("FOO,1\n,2\nBAR\nFOO\n/PREP7\nN,1\n", "mem.inp", o);
+  const Job job = read_deck_text("PLCAMP,1\n,2\nJPGPRF\nPLCAMP\n/PREP7\nN,1\n", "mem.inp", o);
   ASSERT_EQ(job.skipped_unknown.size(), 2u);
-  EXPECT_EQ(job.skipped_unknown[0].name, "BAR");
+  EXPECT_EQ(job.skipped_unknown[0].name, "JPGPRF");
   EXPECT_EQ(job.skipped_unknown[0].count, 1);
-  EXPECT_EQ(job.skipped_unknown[1].name, "FOO");
+  EXPECT_EQ(job.skipped_unknown[1].name, "PLCAMP");
   EXPECT_EQ(job.skipped_unknown[1].count, 3);  // with its repeat line
   EXPECT_EQ(job.skipped_unknown[1].first.line, 1);
   EXPECT_EQ(job.model.nodes.size(), 1u);
+}
+
+// --skip-unknown skipped TREF, BFUNIF and CP, and vm3 then gave 40000 instead of 19695: it now
+// skips only graphics, printing and GUI commands and stops at any other unknown command.
+TEST(DeckControlFlow, SkipUnknownStopsAtACommandThatMayChangeTheAnswer) {
+  DeckOptions o;
+  o.skip_unknown = true;
+  o.dialect = Dialect::Modern;
+  for (const char* name : {"TREF,70", "BFUNIF,TEMP,80", "CP,1,UY,5,4,6", "FOO"}) {
+    try {
+      read_deck_text(std::string("/PREP7\nJPGPRF,500,100,1\n") + name + "\nN,1\n", "mem.inp", o);
+      ADD_FAILURE() << name << " skipped";
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("mem.inp:3: " + std::string(name).substr(0, std::string(name).find(',')) +
+                          ": unknown command"),
+                std::string::npos)
+          << what;
+      EXPECT_NE(what.find("may"), std::string::npos) << what;
+    }
+  }
+  // Abbreviations and longer spellings of a listed command are that command (four characters).
+  for (const char* name :
+       {"JPEG,QUAL,100", "JPGP", "PLCA", "PLCAMPBELL", "/VSCALE,1,2", "*VPLOT,X(1),Y(1)"})
+    EXPECT_NO_THROW(read_deck_text(std::string(name) + "\n", "mem.inp", o)) << name;
+}
+
+// The list of skippable commands and the command table stay apart: a command the program carries
+// out is never skipped, and a skippable one is never half carried out.
+TEST(DeckControlFlow, SkippableCommandsAreNotInTheCommandTable) {
+  using namespace impactfe::deck;
+  for (std::string_view name : commands_without_effect_on_results()) {
+    EXPECT_EQ(find_command(std::string(name)), nullptr) << name;
+    EXPECT_TRUE(cannot_change_results(std::string(name))) << name;
+  }
+  for (const auto& spec : command_table())
+    EXPECT_FALSE(cannot_change_results(spec.name)) << spec.name;
+  EXPECT_FALSE(cannot_change_results("TREF"));
+  EXPECT_FALSE(cannot_change_results("CP"));
+  EXPECT_FALSE(cannot_change_results("BFUNIF"));
 }
 
 TEST(DeckControlFlow, PercentSubstitution) {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numbers>
 #include <sstream>
+#include <vector>
 
 #include "deck/deck_reader.h"
 #include "deck/expression.h"
@@ -59,6 +60,107 @@ TEST(DeckExpression, PrecedenceAndAssociativity) {
   EXPECT_DOUBLE_EQ(ev("A>B", p), 4.0);      // ... and maximum
   EXPECT_DOUBLE_EQ(ev("A+1>B+2", p), 6.0);  // lowest precedence
   EXPECT_DOUBLE_EQ(ev("1<2>0", p), 1.0);    // left to right: (1<2)>0
+}
+
+namespace {
+
+/// One row of the order-of-operations table: the expression, the same with every implied
+/// parenthesis written out, and its value (APDL Programmer's Guide §3.7: `**` right to left, then
+/// `*` `/`, then unary `+` `-`, then `+` `-`, then `<` `>` (minimum, maximum), left to right).
+struct OperatorPair {
+  const char* expression;
+  const char* parenthesized;
+  double value;
+};
+
+void check_rows(const std::vector<OperatorPair>& rows) {
+  Parameters p;
+  for (const auto& row : rows) {
+    SCOPED_TRACE(row.expression);
+    EXPECT_NEAR(ev(row.expression, p), row.value, 1e-14 * std::fabs(row.value));
+    EXPECT_NEAR(ev(row.parenthesized, p), row.value, 1e-14 * std::fabs(row.value));
+  }
+}
+
+}  // namespace
+
+// Every ordered pair of the binary operators `a op1 b op2 c`: which one binds first.
+TEST(DeckExpression, EveryPairOfBinaryOperators) {
+  check_rows({
+      {"2+3+4", "(2+3)+4", 9},           {"2+3-4", "(2+3)-4", 1},
+      {"2+3*4", "2+(3*4)", 14},          {"2+3/4", "2+(3/4)", 2.75},
+      {"2+3**4", "2+(3**4)", 83},        {"2+3<4", "(2+3)<4", 4},
+      {"2+3>4", "(2+3)>4", 5},           {"2-3+4", "(2-3)+4", 3},
+      {"2-3-4", "(2-3)-4", -5},          {"2-3*4", "2-(3*4)", -10},
+      {"2-3/4", "2-(3/4)", 1.25},        {"2-3**4", "2-(3**4)", -79},
+      {"2-3<4", "(2-3)<4", -1},          {"2-3>4", "(2-3)>4", 4},
+      {"2*3+4", "(2*3)+4", 10},          {"2*3-4", "(2*3)-4", 2},
+      {"2*3*4", "(2*3)*4", 24},          {"2*3/4", "(2*3)/4", 1.5},
+      {"2*3**4", "2*(3**4)", 162},       {"2*3<4", "(2*3)<4", 4},
+      {"2*3>4", "(2*3)>4", 6},           {"2/3+4", "(2/3)+4", 2.0 / 3 + 4},
+      {"2/3-4", "(2/3)-4", 2.0 / 3 - 4}, {"2/3*4", "(2/3)*4", 8.0 / 3},
+      {"2/3/4", "(2/3)/4", 1.0 / 6},     {"2/3**4", "2/(3**4)", 2.0 / 81},
+      {"2/3<4", "(2/3)<4", 2.0 / 3},     {"2/3>4", "(2/3)>4", 4},
+      {"2**3+4", "(2**3)+4", 12},        {"2**3-4", "(2**3)-4", 4},
+      {"2**3*4", "(2**3)*4", 32},        {"2**3/4", "(2**3)/4", 2},
+      {"2**3**2", "2**(3**2)", 512},     {"2**3<4", "(2**3)<4", 4},
+      {"2**3>4", "(2**3)>4", 8},         {"2<3+4", "2<(3+4)", 2},
+      {"2<3-4", "2<(3-4)", -1},          {"2<3*4", "2<(3*4)", 2},
+      {"2<3/4", "2<(3/4)", 0.75},        {"2<3**4", "2<(3**4)", 2},
+      {"2<3<4", "(2<3)<4", 2},           {"2<3>4", "(2<3)>4", 4},
+      {"2>3+4", "2>(3+4)", 7},           {"2>3-4", "2>(3-4)", 2},
+      {"2>3*4", "2>(3*4)", 12},          {"2>3/4", "2>(3/4)", 2},
+      {"2>3**4", "2>(3**4)", 81},        {"2>3<4", "(2>3)<4", 3},
+      {"2>3>4", "(2>3)>4", 4},
+  });
+}
+
+// The unary sign against every binary operator, on either side, and a sign after an operator
+// that applies to the one operand that follows it (`2/-3*4` is (2/(-3))*4, never 2/(-(3*4))).
+TEST(DeckExpression, UnarySignAgainstEveryOperator) {
+  check_rows({
+      {"-2+3", "(-2)+3", 1},
+      {"2+-3", "2+(-3)", -1},
+      {"-2-3", "(-2)-3", -5},
+      {"2--3", "2-(-3)", 5},
+      {"-2*3", "-(2*3)", -6},
+      {"2*-3", "2*(-3)", -6},
+      {"-2/3", "-(2/3)", -2.0 / 3},
+      {"2/-3", "2/(-3)", -2.0 / 3},
+      {"-2**2", "-(2**2)", -4},
+      {"2**-3", "2**(-3)", 0.125},
+      {"-2<3", "(-2)<3", -2},
+      {"2<-3", "2<(-3)", -3},
+      {"-2>3", "(-2)>3", 3},
+      {"2>-3", "2>(-3)", 2},
+      {"2*-3*4", "(2*(-3))*4", -24},
+      {"2*-3/4", "(2*(-3))/4", -1.5},
+      {"2*-3+4", "(2*(-3))+4", -2},
+      {"2*-3**2", "2*(-(3**2))", -18},
+      {"2/-3*4", "(2/(-3))*4", -8.0 / 3},
+      {"2/-3/4", "(2/(-3))/4", -1.0 / 6},
+      {"2/-3+4", "(2/(-3))+4", 4 - 2.0 / 3},
+      {"2/-3**2", "2/(-(3**2))", -2.0 / 9},
+      {"2**-3*4", "(2**(-3))*4", 0.5},
+      {"2**-3/4", "(2**(-3))/4", 0.03125},
+      {"2**-3+4", "(2**(-3))+4", 4.125},
+      {"2**-1**2", "2**(-(1**2))", 0.5},
+      {"--2**2", "-(-(2**2))", 4},
+  });
+}
+
+// `A=I**2*3` with I=2 gave 64: the exponent swallowed `2*3`. The documented example
+// Y2=A+B**C/D*E is B**C first, /D second, *E third, +A last.
+TEST(DeckExpression, PowerThenProductInADeck) {
+  const Job job =
+      run("/PREP7\nI=2\nA=I**2*3\nB=I**2/4\nH=3\nIZ=2*H**3/12\n"
+          "P=1\nQ=2\nR=3\nS=4\nT=5\nY2=P+Q**R/S*T\n"
+          "MP,EX,1,A\nMP,EX,2,B\nMP,EX,3,IZ\nMP,EX,4,Y2\nMP,EX,5,I**2*3\n");
+  EXPECT_DOUBLE_EQ(job.model.materials.at(1).get("EX", 0), 12.0);
+  EXPECT_DOUBLE_EQ(job.model.materials.at(2).get("EX", 0), 1.0);
+  EXPECT_DOUBLE_EQ(job.model.materials.at(3).get("EX", 0), 4.5);
+  EXPECT_DOUBLE_EQ(job.model.materials.at(4).get("EX", 0), 11.0);  // 1 + 8/4*5
+  EXPECT_DOUBLE_EQ(job.model.materials.at(5).get("EX", 0), 12.0);  // in a command field too
 }
 
 TEST(DeckExpression, Numbers) {

@@ -74,6 +74,47 @@ TEST(DeckLexer, TitleKeepsCaseAndCommas) {
   EXPECT_EQ(t[0].rest, "Example #1, Pendulum");
 }
 
+// `/COM REF: TEXT, MORE` (a blank after the name, as 20 VM decks write it) is a comment, not the
+// unknown command "/COM REF"; so is `/COM,text, with commas`.
+TEST(DeckLexer, CommentNameEndsAtABlank) {
+  const auto c = lex_line("/COM   REF: BATHE AND DVORKIN, 1983", "d", 1, Dialect::Modern);
+  ASSERT_EQ(c.size(), 1u);
+  EXPECT_EQ(c[0].name, "/COM");
+  EXPECT_EQ(c[0].rest, "REF: BATHE AND DVORKIN, 1983");
+  const auto d = lex_line("/COM ,text, with commas", "d", 1, Dialect::Modern);
+  EXPECT_EQ(d[0].name, "/COM");
+  EXPECT_EQ(d[0].rest, "text, with commas");
+  const auto t = lex_line("/TITLE VM3, THERMALLY LOADED", "d", 1, Dialect::Modern);
+  EXPECT_EQ(t[0].name, "/TITLE");
+  EXPECT_EQ(t[0].rest, "VM3, THERMALLY LOADED");
+  const auto e = lex_line("/COM", "d", 1, Dialect::Modern);
+  EXPECT_EQ(e[0].name, "/COM");
+  EXPECT_EQ(e[0].rest, "");
+}
+
+// MAPDL: "never include a blank space before the * character because the rest of the input
+// line (beginning with the *) is interpreted as a comment" (vmd1: `F,53,FZ,-2.5,,1253,200
+// *UNIT TWISTING MOMENT (0.2*5)`). A product written without the blank is a product.
+TEST(DeckLexer, BlankThenStarStartsAComment) {
+  const auto c =
+      lex_line("F,53,FZ,-2.5,,1253,200  *UNIT TWISTING (0.2*5)", "d", 1, Dialect::Modern);
+  ASSERT_EQ(c.size(), 1u);
+  EXPECT_EQ(c[0].fields, (std::vector<std::string>{"53", "FZ", "-2.5", "", "1253", "200"}));
+  EXPECT_TRUE(c[0].star_comment);
+  const auto a = lex_line("A = B *C", "d", 1, Dialect::Modern);
+  EXPECT_EQ(a[0].fields, (std::vector<std::string>{"A", "B"}));
+  const auto p = lex_line("A = B*C $ *REPEAT,2", "d", 1, Dialect::Modern);
+  ASSERT_EQ(p.size(), 2u);
+  EXPECT_EQ(p[0].fields, (std::vector<std::string>{"A", "B*C"}));
+  EXPECT_FALSE(p[0].star_comment);
+  EXPECT_EQ(p[1].name, "*REPEAT");
+  EXPECT_FALSE(p[1].star_comment);
+  const auto q = lex_line("/TITLE, a *b", "d", 1, Dialect::Modern);
+  EXPECT_EQ(q[0].rest, "a *b");  // titles and comments keep their text
+  const auto s = lex_line("LAB = 'x *y'", "d", 1, Dialect::Modern);
+  EXPECT_EQ(s[0].fields[1], "'x *y'");
+}
+
 TEST(DeckLexer, DollarSeparatesCommandsInModernOnly) {
   const auto m = lex_line("N,1 $ N,2,1.0 $ E,1,2", "d", 3, Dialect::Modern);
   ASSERT_EQ(m.size(), 3u);
@@ -148,8 +189,16 @@ TEST(DeckLexer, FourCharacterNamesIn4xOnly) {
   for (const auto& w : Log::warnings())
     if (w.find("first four characters") != std::string::npos) ++truncation_warnings;
   EXPECT_EQ(truncation_warnings, 2);
-  // The modern dialect needs exact names.
-  EXPECT_THROW(parse("/PREP7\nDENSITY,1,7.3E-4\n"), InputError);
+  // MAPDL reads only the first four characters of a name (Command Reference §1.2): the modern
+  // dialect takes a longer spelling too, when one command has those four (/SOLUTION, 14 VM decks).
+  Log::clear();
+  const Job modern = parse("/PREP7\nDENSITY,1,7.3E-4\nFINISH\n/SOLUTION\nFINISHED\n/POST1\n");
+  EXPECT_DOUBLE_EQ(modern.model.materials.at(1).get("DENS", 0.0), 7.3e-4);
+  EXPECT_TRUE(Log::warnings().empty());
+  EXPECT_THROW(parse("/SOLUTION\n/PREP7\nN,1\n/SOLUTION\nNOD,2\n"), InputError);  // too short
+  // A macro of the name comes first (vm39: SOLVIT is its macro, not SOLVE).
+  const Job macro = parse("*CREATE,SOLVIT,MAC\n/PREP7\nN,ARG1\n*END\nSOLVIT,7\n");
+  EXPECT_EQ(macro.model.nodes.count(7), 1u);
 }
 
 TEST(DeckLexer, RepeatLineReissuesPreviousCommand) {
@@ -168,10 +217,10 @@ TEST(DeckLexer, ParameterSubstitutionInNumericFields) {
 TEST(DeckLexer, SkipUnknownListsTheCommand) {
   DeckOptions o;
   o.skip_unknown = true;
-  const Job job = read_deck_text("/PREP7\nFOO,1\n,2\nN,1\n", "mem.inp", o);
+  const Job job = read_deck_text("/PREP7\nPLCAMP,1\n,2\nN,1\n", "mem.inp", o);
   EXPECT_EQ(job.model.nodes.size(), 1u);
-  ASSERT_EQ(job.ignored_commands.size(), 2u);  // FOO and its repeat line
-  EXPECT_NE(job.ignored_commands[0].find("mem.inp:2: FOO"), std::string::npos);
+  ASSERT_EQ(job.ignored_commands.size(), 2u);  // PLCAMP and its repeat line
+  EXPECT_NE(job.ignored_commands[0].find("mem.inp:2: PLCAMP"), std::string::npos);
   try {
     parse("/PREP7\nFOO,1\n");
     FAIL() << "unknown command accepted";

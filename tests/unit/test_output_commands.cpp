@@ -167,6 +167,23 @@ V(1) = 1,2
       << error_of("R = 2.5\n*MSG,ERROR,R\n\nN,1\n");
 }
 
+// *STATUS,PARM (vm129, vm130) lists the parameters as ALL does; _PRM and PRM_ list only the
+// names that begin or end with an underbar (MAPDL *STATUS).
+TEST(OutputCommands, StatusParameterGroups) {
+  const std::string deck = "A = 1\n_B = 2\nC_ = 3\n*STATUS,";
+  const std::string parm = run(deck + "PARM\n");
+  EXPECT_NE(parm.find("(1 PARAMETERS DEFINED)"), std::string::npos) << parm;
+  EXPECT_NE(parm.find(" A "), std::string::npos) << parm;
+  EXPECT_EQ(parm, run(deck + "ALL\n"));
+  const std::string under = run(deck + "_PRM\n");
+  EXPECT_NE(under.find(" _B "), std::string::npos) << under;
+  EXPECT_EQ(under.find(" A "), std::string::npos) << under;
+  const std::string trailing = run(deck + "PRM_\n");
+  EXPECT_NE(trailing.find(" C_ "), std::string::npos) << trailing;
+  EXPECT_EQ(trailing.find(" _B "), std::string::npos) << trailing;
+  EXPECT_NE(error_of(deck + "D\n").find("parameter D is not defined"), std::string::npos);
+}
+
 TEST(OutputCommands, ListAFile) {
   EXPECT_EQ(run("*CREATE,MAC1,MAC\nN,1\n/COM,x ! kept\n*END\n*LIST,MAC1,MAC\n"),
             "N,1\n/COM,x ! kept\n");
