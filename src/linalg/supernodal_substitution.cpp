@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <optional>
 #include <queue>
 
 #include "core/errors.h"
@@ -222,6 +223,105 @@ void back_substitution(const SupernodalLayout& f, double* y, std::vector<double>
   for (int s = f.n_super - 1; s >= 0; --s) back_supernode(f, s, y, work);
 }
 
+namespace {
+
+/// The supernodal elimination tree of a factor: a supernode's parent owns the first row below
+/// its columns. Per supernode: its parent (-1 for a root), the first supernode of its subtree,
+/// its weight (values of L) and its subtree's, and its children (child_start / children, in
+/// ascending order).
+struct EliminationTree {
+  std::vector<int> parent, first, child_count, child_start, children;
+  std::vector<long long> weight, subtree;
+};
+
+/// The tree of `f`, or nullopt when the supernodes are not in postorder (children first).
+std::optional<EliminationTree> elimination_tree(const SupernodalLayout& f) {
+  const int ns = f.n_super;
+  const int n = f.super[ns];
+  const auto nsz = static_cast<std::size_t>(ns);
+  std::vector<int> owner(static_cast<std::size_t>(n));
+  for (int s = 0; s < ns; ++s)
+    std::fill(owner.begin() + f.super[s], owner.begin() + f.super[s + 1], s);
+  EliminationTree t;
+  t.parent.assign(nsz, -1);
+  t.first.resize(nsz);
+  t.weight.resize(nsz);
+  t.child_count.assign(nsz + 1, 0);
+  for (int s = 0; s < ns; ++s) {
+    const auto k = static_cast<std::size_t>(s);
+    t.first[k] = s;
+    t.weight[k] = f.value_start[s + 1] - f.value_start[s];
+    const int columns = f.super[s + 1] - f.super[s];
+    if (f.row_start[s + 1] - f.row_start[s] > columns) {
+      t.parent[k] = owner[static_cast<std::size_t>(f.rows[f.row_start[s] + columns])];
+      if (t.parent[k] <= s) return std::nullopt;
+      ++t.child_count[static_cast<std::size_t>(t.parent[k])];
+    }
+  }
+  // Subtree weights and first supernodes (children come before their parent).
+  t.subtree = t.weight;
+  for (int s = 0; s < ns; ++s) {
+    const int p = t.parent[static_cast<std::size_t>(s)];
+    if (p < 0) continue;
+    const auto pk = static_cast<std::size_t>(p), k = static_cast<std::size_t>(s);
+    t.subtree[pk] += t.subtree[k];
+    t.first[pk] = std::min(t.first[pk], t.first[k]);
+  }
+  t.child_start.assign(nsz + 1, 0);
+  t.children.resize(nsz);
+  for (int s = 0; s < ns; ++s)
+    t.child_start[static_cast<std::size_t>(s) + 1] =
+        t.child_start[static_cast<std::size_t>(s)] + t.child_count[static_cast<std::size_t>(s)];
+  std::vector<int> next(t.child_start.begin(), t.child_start.end() - 1);
+  for (int s = 0; s < ns; ++s)
+    if (t.parent[static_cast<std::size_t>(s)] >= 0)
+      t.children[static_cast<std::size_t>(
+          next[static_cast<std::size_t>(t.parent[static_cast<std::size_t>(s)])]++)] = s;
+  return t;
+}
+
+/// Cuts the tree at the root of its heaviest subtree, `cuts` times at most: the separators cut
+/// off are solved on one thread, the subtrees left (`roots`) side by side. Returns the cost of
+/// two threads after 0, 1, ... cuts: serial + max(heaviest subtree, rest / 2) of `total`.
+std::vector<long long> cut_tree(const EliminationTree& t, long long total, int cuts,
+                                std::vector<int>& separators, std::vector<int>& roots) {
+  using Candidate = std::pair<long long, int>;  // (weight, root): the heaviest first, ties by root
+  const int ns = static_cast<int>(t.parent.size());
+  std::priority_queue<Candidate> open;
+  for (int s = 0; s < ns; ++s)
+    if (t.parent[static_cast<std::size_t>(s)] < 0)
+      open.emplace(t.subtree[static_cast<std::size_t>(s)], s);
+  long long serial = 0, heaviest_leaf = 0;
+  std::vector<long long> cost;  // after 0, 1, ... cuts
+  const auto record = [&] {
+    const long long heaviest = std::max(open.empty() ? 0 : open.top().first, heaviest_leaf);
+    cost.push_back(serial + std::max(heaviest, (total - serial + 1) / 2));
+  };
+  for (int done = 0;;) {
+    while (!open.empty() && t.child_count[static_cast<std::size_t>(open.top().second)] == 0) {
+      heaviest_leaf = std::max(heaviest_leaf, open.top().first);
+      roots.push_back(open.top().second);  // a subtree of one supernode: not cut
+      open.pop();
+    }
+    record();
+    if (done == cuts || open.empty()) break;
+    const int s = open.top().second;
+    const auto k = static_cast<std::size_t>(s);
+    open.pop();
+    serial += t.weight[k];
+    separators.push_back(s);
+    for (int c = t.child_start[k]; c < t.child_start[k + 1]; ++c) {
+      const int child = t.children[static_cast<std::size_t>(c)];
+      open.emplace(t.subtree[static_cast<std::size_t>(child)], child);
+    }
+    ++done;
+  }
+  for (; !open.empty(); open.pop()) roots.push_back(open.top().second);
+  return cost;
+}
+
+}  // namespace
+
 void SubtreeSubstitution::plan(const SupernodalLayout& f, long long min_values) {
   n_super_ = f.n_super;
   groups_.clear();
@@ -232,105 +332,44 @@ void SubtreeSubstitution::plan(const SupernodalLayout& f, long long min_values) 
   const int ns = f.n_super;
   const long long total = ns > 0 ? f.value_start[ns] : 0;
   if (total < min_values) return;
-  const int n = f.super[ns];
-  // The supernodal elimination tree: a supernode's parent owns the first row below its columns.
-  std::vector<int> owner(static_cast<std::size_t>(n));
-  for (int s = 0; s < ns; ++s)
-    std::fill(owner.begin() + f.super[s], owner.begin() + f.super[s + 1], s);
-  std::vector<int> parent(static_cast<std::size_t>(ns), -1), first(static_cast<std::size_t>(ns));
-  std::vector<long long> weight(static_cast<std::size_t>(ns));
-  std::vector<int> child_count(static_cast<std::size_t>(ns) + 1, 0);
-  for (int s = 0; s < ns; ++s) {
-    const auto k = static_cast<std::size_t>(s);
-    first[k] = s;
-    weight[k] = f.value_start[s + 1] - f.value_start[s];
-    const int columns = f.super[s + 1] - f.super[s];
-    if (f.row_start[s + 1] - f.row_start[s] > columns) {
-      parent[k] = owner[static_cast<std::size_t>(f.rows[f.row_start[s] + columns])];
-      if (parent[k] <= s) return;  // not a postordered tree: stay serial
-      ++child_count[static_cast<std::size_t>(parent[k])];
-    }
-  }
-  // Subtree weights and first supernodes (children come before their parent).
-  std::vector<long long> subtree = weight;
-  for (int s = 0; s < ns; ++s) {
-    const int p = parent[static_cast<std::size_t>(s)];
-    if (p < 0) continue;
-    subtree[static_cast<std::size_t>(p)] += subtree[static_cast<std::size_t>(s)];
-    first[static_cast<std::size_t>(p)] =
-        std::min(first[static_cast<std::size_t>(p)], first[static_cast<std::size_t>(s)]);
-  }
-  std::vector<int> child_start(static_cast<std::size_t>(ns) + 1, 0),
-      children(static_cast<std::size_t>(ns));
-  for (int s = 0; s < ns; ++s)
-    child_start[static_cast<std::size_t>(s) + 1] =
-        child_start[static_cast<std::size_t>(s)] + child_count[static_cast<std::size_t>(s)];
-  {
-    std::vector<int> next(child_start.begin(), child_start.end() - 1);
-    for (int s = 0; s < ns; ++s)
-      if (parent[static_cast<std::size_t>(s)] >= 0)
-        children[static_cast<std::size_t>(
-            next[static_cast<std::size_t>(parent[static_cast<std::size_t>(s)])]++)] = s;
-  }
-  // Cut the tree at the root of its heaviest subtree, again and again: the separators cut off
-  // are solved on one thread, the subtrees side by side. Of the first kMaxCuts cuts in that
-  // order, keep as many as give two threads the least work, serial + max(heaviest subtree,
-  // rest / 2) (a structural choice: the plan is the same for any thread count). A 3-D mesh's
-  // top separators are dense and heavy (a sixth of L on a brick block), a shell's are light.
+  const std::optional<EliminationTree> tree = elimination_tree(f);
+  if (!tree) return;  // not a postordered tree: stay serial
+  // Cut the tree at the root of its heaviest subtree, again and again. Of the first kMaxCuts
+  // cuts in that order, keep as many as give two threads the least work (a structural choice:
+  // the plan is the same for any thread count). A 3-D mesh's top separators are dense and heavy
+  // (a sixth of L on a brick block), a shell's are light.
   constexpr int kMaxCuts = 64;
-  using Candidate = std::pair<long long, int>;  // (weight, root): the heaviest first, ties by root
-  const auto cut = [&](int cuts, std::vector<int>& separators, std::vector<int>& roots) {
-    std::priority_queue<Candidate> open;
-    for (int s = 0; s < ns; ++s)
-      if (parent[static_cast<std::size_t>(s)] < 0)
-        open.emplace(subtree[static_cast<std::size_t>(s)], s);
-    long long serial = 0, heaviest_leaf = 0;
-    std::vector<long long> cost;  // after 0, 1, ... cuts
-    const auto record = [&] {
-      const long long heaviest = std::max(open.empty() ? 0 : open.top().first, heaviest_leaf);
-      cost.push_back(serial + std::max(heaviest, (total - serial + 1) / 2));
-    };
-    for (int done = 0;;) {
-      while (!open.empty() && child_count[static_cast<std::size_t>(open.top().second)] == 0) {
-        heaviest_leaf = std::max(heaviest_leaf, open.top().first);
-        roots.push_back(open.top().second);  // a subtree of one supernode: not cut
-        open.pop();
-      }
-      record();
-      if (done == cuts || open.empty()) break;
-      const int s = open.top().second;
-      const auto k = static_cast<std::size_t>(s);
-      open.pop();
-      serial += weight[k];
-      separators.push_back(s);
-      for (int c = child_start[k]; c < child_start[k + 1]; ++c) {
-        const int child = children[static_cast<std::size_t>(c)];
-        open.emplace(subtree[static_cast<std::size_t>(child)], child);
-      }
-      ++done;
-    }
-    for (; !open.empty(); open.pop()) roots.push_back(open.top().second);
-    return cost;
-  };
   std::vector<int> roots;
-  const std::vector<long long> cost = cut(kMaxCuts, separators_, roots);
+  const std::vector<long long> cost = cut_tree(*tree, total, kMaxCuts, separators_, roots);
   const int best = static_cast<int>(std::min_element(cost.begin(), cost.end()) - cost.begin());
   separators_.clear();
   roots.clear();
-  cut(best, separators_, roots);
+  cut_tree(*tree, total, best, separators_, roots);
   long long serial = 0;
-  for (int s : separators_) serial += weight[static_cast<std::size_t>(s)];
+  for (int s : separators_) serial += tree->weight[static_cast<std::size_t>(s)];
   if (roots.size() < 2) {
     separators_.clear();
     return;
   }
   std::sort(separators_.begin(), separators_.end());
-  separator_position_.assign(static_cast<std::size_t>(n), -1);
+  separator_position_.assign(static_cast<std::size_t>(f.super[ns]), -1);
   for (int s : separators_)
     for (int c = f.super[s]; c < f.super[s + 1]; ++c) {
       separator_position_[static_cast<std::size_t>(c)] = static_cast<int>(separator_column_.size());
       separator_column_.push_back(c);
     }
+  pack_groups(f, tree->subtree, tree->first, roots);
+  if (!groups_update_only_separators(f)) {
+    groups_.clear();
+    separators_.clear();
+    return;
+  }
+  serial_fraction_ = static_cast<double>(serial) / static_cast<double>(total);
+}
+
+void SubtreeSubstitution::pack_groups(const SupernodalLayout& f,
+                                      const std::vector<long long>& subtree,
+                                      const std::vector<int>& first, std::vector<int>& roots) {
   // The subtrees into groups, the heaviest first, each to the lightest group (the first of
   // equal ones): a fixed packing, whatever the thread count.
   std::sort(roots.begin(), roots.end(), [&](int a, int b) {
@@ -353,6 +392,9 @@ void SubtreeSubstitution::plan(const SupernodalLayout& f, long long min_values) 
     for (int i = f.row_start[root] + columns; i < f.row_start[root + 1]; ++i)
       groups_[g].touched.push_back(separator_position_[static_cast<std::size_t>(f.rows[i])]);
   }
+}
+
+bool SubtreeSubstitution::groups_update_only_separators(const SupernodalLayout& f) {
   std::vector<unsigned char> touched(separator_column_.size(), 0);
   for (Group& group : groups_) {
     // Within a group, the subtrees in postorder.
@@ -370,15 +412,11 @@ void SubtreeSubstitution::plan(const SupernodalLayout& f, long long min_values) 
         const int row = f.rows[i];
         if (row < t.end_column) continue;
         const int p = separator_position_[static_cast<std::size_t>(row)];
-        if (p < 0 || !touched[static_cast<std::size_t>(p)]) {
-          groups_.clear();
-          separators_.clear();
-          return;
-        }
+        if (p < 0 || !touched[static_cast<std::size_t>(p)]) return false;
       }
     for (int p : group.touched) touched[static_cast<std::size_t>(p)] = 0;
   }
-  serial_fraction_ = static_cast<double>(serial) / static_cast<double>(total);
+  return true;
 }
 
 void SubtreeSubstitution::forward(const SupernodalLayout& f, double* y) {

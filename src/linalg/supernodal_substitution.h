@@ -69,6 +69,12 @@ class SubtreeSubstitution {
   void back(const SupernodalLayout& factor, double* y);
 
  private:
+  /// The subtrees (`roots`, sorted here) packed into groups; each group's separator rows.
+  void pack_groups(const SupernodalLayout& f, const std::vector<long long>& subtree,
+                   const std::vector<int>& first, std::vector<int>& roots);
+  /// Sorts each group and checks that its subtrees update no row outside themselves but the
+  /// separator rows it lists (false: the plan cannot be used).
+  bool groups_update_only_separators(const SupernodalLayout& f);
   struct Subtree {
     int first = 0, last = 0;  // its supernodes first..last (postorder: last is its root)
     int end_column = 0;       // its columns end here; every row at or past it is a separator's
