@@ -17,7 +17,7 @@ using Vec3 = Eigen::Vector3d;
 using Row18 = Eigen::Matrix<double, 1, 18>;
 using Mat3x18 = Eigen::Matrix<double, 3, 18>;
 using Mat24x16 = Eigen::Matrix<double, 24, 16>;
-using Mat24x18 = Eigen::Matrix<double, 24, 18>;
+
 using so3::spin;
 
 // Local DOFs per corner a: u v w θx θy θz at 6a..6a+5. The membrane set (u, v, θz) is
@@ -203,13 +203,20 @@ void CorotationalTriangle::internal_force(const Eigen::VectorXd& u, Eigen::Vecto
 void CorotationalTriangle::tangent(const Eigen::VectorXd& u, Eigen::MatrixXd& K,
                                    Eigen::VectorXd& f) const {
   const State& s = state_at(u, true);
+  const Mat16x18 B = frame_variation(s);
+  Mat24x18 Kl = material_part(B);
+  add_geometric_part(s, B, Kl);
+  to_global(s, Kl, K, f);
+}
+
+CorotationalTriangle::Mat16x18 CorotationalTriangle::frame_variation(const State& s) {
   // Variations in the frame, per corner b: δξ̂ = (δx̂_b, δφ̂_b) with δx̂ = Rcᵀ δx and
   // δφ̂ = Rcᵀ T(ψ) δψ (column 6b + k). The deformation δd = B̂ δξ̂ over the 15 rows
   // (u, v, θx, θy, θz of corner a at 5a + k):
   //   in-plane:  δd_a = δx̂_a − δx̂_c + r̂_a × δω̂, δω̂ = Ĝ δξ̂ (the frame's spin, header),
   //   rotations: δθ_a = T(θ_a)⁻¹ (δφ̂_a − δω̂).
   // B̂ has a zero 16th row (the padding of K16_).
-  Eigen::Matrix<double, 16, 18> B = Eigen::Matrix<double, 16, 18>::Zero();
+  Mat16x18 B = Mat16x18::Zero();
   for (int a = 0; a < 3; ++a) {
     const std::size_t k = static_cast<std::size_t>(a);
     const Mat3& Ji = s.Ji[k];
@@ -224,6 +231,10 @@ void CorotationalTriangle::tangent(const Eigen::VectorXd& u, Eigen::MatrixXd& K,
     }
     B.block<3, 3>(5 * a + 2, 6 * a + 3) = Ji;
   }
+  return B;
+}
+
+CorotationalTriangle::Mat24x18 CorotationalTriangle::material_part(const Mat16x18& B) const {
   // Material part B̂ᵀ K̄ B̂ over the nonzero rows of each column of B̂ (a fixed pattern: a
   // column of δû has its 3 u rows, one of δŵ the 9 rotation rows, one of δφ̂ its corner's 3).
   // The products are sums of whole columns, 16 or 24 long (padded with zeros): whole SIMD
@@ -259,7 +270,10 @@ void CorotationalTriangle::tangent(const Eigen::VectorXd& u, Eigen::MatrixXd& K,
     for (int r = 1; r < n; ++r) col += KBt.col(rows[r]) * B(rows[r], i);
     Kl.col(i) = col;
   }
+  return Kl;
+}
 
+void CorotationalTriangle::add_geometric_part(const State& s, const Mat16x18& B, Mat24x18& Kl) {
   // Geometric part: the variation of f̂ at fixed local forces K̄ d.
   // The frame's spin δω̂ = Ĝ δξ̂: ω̂1 = Σ c1_b δẑ_b, ω̂2 = Σ c2_b δẑ_b, ω̂3 = Σ c3_b δŷ_b, so a
   // product with Ĝ only fills the columns of δŷ_b and δẑ_b.
@@ -318,7 +332,10 @@ void CorotationalTriangle::tangent(const Eigen::VectorXd& u, Eigen::MatrixXd& K,
     Kl.middleRows<3>(6 * b + 3) += ZTheta[k];
     subtract_spin_g(s.M[k], 6 * b + 3);
   }
+}
 
+void CorotationalTriangle::to_global(const State& s, const Mat24x18& Kl, Eigen::MatrixXd& K,
+                                     Eigen::VectorXd& f) {
   // Back to global axes: K = T̂ᵀ K̂ T̂ with the blocks Rcᵀ (translations) and Rcᵀ T(ψ)
   // (rotations), plus ∂(T(ψ)ᵀ M)/∂ψ at the global M = Rc M̂. Column blocks first (K̂ T̂, as
   // sums of columns), then each 3-row block of every column.

@@ -48,6 +48,15 @@ class CorotationalTriangle {
 
  private:
   struct State;
+  using Mat16x18 = Eigen::Matrix<double, 16, 18>;
+  using Mat24x18 = Eigen::Matrix<double, 24, 18>;
+  // The consistent tangent in four parts (tangent): the variation B̂ of the deformation in the
+  // frame, the material part B̂ᵀ K̄ B̂, the geometric part (the frame's and the rotations'
+  // variations at fixed local forces), and the transformation to global axes.
+  static Mat16x18 frame_variation(const State& s);
+  Mat24x18 material_part(const Mat16x18& B) const;
+  static void add_geometric_part(const State& s, const Mat16x18& B, Mat24x18& Kl);
+  static void to_global(const State& s, const Mat24x18& Kl, Eigen::MatrixXd& K, Eigen::VectorXd& f);
   void corotate(const Eigen::VectorXd& u, State& s) const;
   /// Local forces n̂, M̂ (frame components), ŵ and the frame-component internal force f̂.
   void local_forces(State& s) const;
