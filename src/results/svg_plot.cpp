@@ -130,22 +130,21 @@ std::string shaded(const PlotShape& sh, const ContourScale& scale, const ToScree
   return out;
 }
 
-}  // namespace
+/// Where the model lands on the plot square: the screen point of the centre and the scale
+/// (/FOCUS, /DIST, or the extent of everything drawn).
+struct PlotFrame {
+  double cx = 0.0, cy = 0.0, scale = 1.0;
+  Eigen::Vector2d to_screen(const Screen& s, const Eigen::Vector3d& p) const {
+    return Eigen::Vector2d(kPlotLeft + 0.5 * kPlotSize + scale * (s.right.dot(p) - cx),
+                           kPlotTop + 0.5 * kPlotSize - scale * (s.up.dot(p) - cy));
+  }
+};
 
-std::string contour_colour(const ContourScale& scale, double value) {
-  if (!std::isfinite(value)) return "#000000";
-  const double span = scale.max - scale.min;
-  int band = 4;
-  if (span > 0.0) band = static_cast<int>(std::floor(9.0 * (value - scale.min) / span));
-  return kBands[std::clamp(band, 0, 8)];
-}
-
-std::string ModelPicture::svg(const PlotView& view) const {
-  const Screen s = screen_of(view);
+PlotFrame frame_of(const std::vector<PlotLayer>& layers, const Screen& s, const PlotView& view) {
   // Extent of everything drawn, on screen axes and in space (for the default focus).
   double xmin = std::numeric_limits<double>::infinity(), xmax = -xmin, ymin = xmin, ymax = -xmin;
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(xmin), hi = -lo;
-  for (const auto& layer : layers_)
+  for (const auto& layer : layers)
     for (const auto& shape : layer.shapes)
       for (const auto& p : shape.points) {
         xmin = std::min(xmin, s.right.dot(p));
@@ -173,12 +172,104 @@ std::string ModelPicture::svg(const PlotView& view) const {
                              std::fabs(ymin - cy), 1e-12});
     }
   }
-  const double scale = 0.5 * kPlotSize / half;
-  auto to_screen = [&](const Eigen::Vector3d& p) {
-    return Eigen::Vector2d(kPlotLeft + 0.5 * kPlotSize + scale * (s.right.dot(p) - cx),
-                           kPlotTop + 0.5 * kPlotSize - scale * (s.up.dot(p) - cy));
-  };
+  return PlotFrame{cx, cy, 0.5 * kPlotSize / half};
+}
 
+/// One layer's shapes, far from the viewer first (painter's order).
+template <typename ToScreen>
+std::string layer_svg(const PlotLayer& layer, const Screen& s,
+                      const std::optional<ContourScale>& contour, const ToScreen& to_screen) {
+  const bool undeformed = layer.style == PlotLayer::Style::Undeformed;
+  const bool edges = layer.style == PlotLayer::Style::Edges;
+  const char* stroke = undeformed || edges ? "#888888" : "#1f3fbf";
+  const char* dash = edges ? " stroke-dasharray=\"4 3\"" : "";
+  std::vector<const PlotShape*> order;
+  for (const auto& shape : layer.shapes) order.push_back(&shape);
+  auto depth = [&](const PlotShape* sh) {
+    double d = 0.0;
+    for (const auto& p : sh->points) d += s.toward.dot(p);
+    return sh->points.empty() ? 0.0 : d / static_cast<double>(sh->points.size());
+  };
+  std::stable_sort(order.begin(), order.end(),
+                   [&](const PlotShape* a, const PlotShape* b) { return depth(a) < depth(b); });
+  std::string out = "<g>\n";
+  for (const PlotShape* sh : order) {
+    if (contour && sh->point_values.size() == sh->points.size() && !sh->points.empty()) {
+      out += shaded(*sh, *contour, to_screen);
+      continue;
+    }
+    const std::string colour =
+        sh->value && contour ? contour_colour(*contour, *sh->value) : std::string(stroke);
+    std::string pts;
+    for (const auto& p : sh->points) {
+      const auto q = to_screen(p);
+      pts += fmt::format("{:.2f},{:.2f} ", q.x(), q.y());
+    }
+    if (sh->kind == PlotShape::Kind::Point) {
+      const auto q = to_screen(sh->points.front());
+      out += fmt::format("<circle cx=\"{:.2f}\" cy=\"{:.2f}\" r=\"{}\" fill=\"{}\"/>\n", q.x(),
+                         q.y(), undeformed || edges ? 2.5 : 3.5, colour);
+    } else if (sh->kind == PlotShape::Kind::Line) {
+      out += fmt::format(
+          "<polyline points=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"{}\"{}/>\n", pts,
+          colour, sh->value ? 3.0 : 1.5, dash);
+    } else {
+      const std::string fill =
+          sh->value && contour ? colour : (undeformed || edges ? "none" : "#dfe6f7");
+      out +=
+          fmt::format("<polygon points=\"{}\" fill=\"{}\" stroke=\"{}\" stroke-width=\"1\"{}/>\n",
+                      pts, fill, sh->value && contour ? "#333333" : stroke, dash);
+    }
+  }
+  out += "</g>\n";
+  return out;
+}
+
+/// The text column: the contour legend, then each layer's legend lines.
+std::string legend_svg(const std::vector<PlotLayer>& layers,
+                       const std::optional<ContourScale>& contour) {
+  std::string out;
+  double y = kPlotTop + 10.0;
+  if (contour) {
+    out += text_svg(kTextLeft, y, contour->title);
+    y += 8.0;
+    for (int b = 8; b >= 0; --b) {
+      const double v0 = contour->min + (contour->max - contour->min) * b / 9.0;
+      const double v1 = contour->min + (contour->max - contour->min) * (b + 1) / 9.0;
+      out += fmt::format("<rect x=\"{}\" y=\"{:.1f}\" width=\"18\" height=\"16\" fill=\"{}\"/>\n",
+                         kTextLeft, y, kBands[b]);
+      out += text_svg(kTextLeft + 24.0, y + 12.0,
+                      fmt::format("{} to {}", short_number(v0), short_number(v1)));
+      y += 18.0;
+    }
+    out += text_svg(kTextLeft, y + 14.0, "MN " + short_number(contour->min));
+    out += text_svg(kTextLeft, y + 29.0, "MX " + short_number(contour->max));
+    y += 50.0;
+  }
+  for (const auto& layer : layers) {
+    for (const auto& line : layer.legend) {
+      if (y > kHeight - 8.0) break;
+      out += text_svg(kTextLeft, y, line);
+      y += 14.0;
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string contour_colour(const ContourScale& scale, double value) {
+  if (!std::isfinite(value)) return "#000000";
+  const double span = scale.max - scale.min;
+  int band = 4;
+  if (span > 0.0) band = static_cast<int>(std::floor(9.0 * (value - scale.min) / span));
+  return kBands[std::clamp(band, 0, 8)];
+}
+
+std::string ModelPicture::svg(const PlotView& view) const {
+  const Screen s = screen_of(view);
+  const PlotFrame frame = frame_of(layers_, s, view);
+  const auto to_screen = [&](const Eigen::Vector3d& p) { return frame.to_screen(s, p); };
   std::string out = header_svg(kWidth, kHeight);
   double y = 18.0;
   for (const auto& line : header_) {
@@ -190,78 +281,9 @@ std::string ModelPicture::svg(const PlotView& view) const {
       "<rect x=\"{0}\" y=\"{1}\" width=\"{2}\" height=\"{2}\" fill=\"none\" stroke=\"#999\"/>\n"
       "<g clip-path=\"url(#plot)\" stroke-linejoin=\"round\">\n",
       kPlotLeft, kPlotTop, kPlotSize);
-  for (const auto& layer : layers_) {
-    const bool undeformed = layer.style == PlotLayer::Style::Undeformed;
-    const bool edges = layer.style == PlotLayer::Style::Edges;
-    const char* stroke = undeformed || edges ? "#888888" : "#1f3fbf";
-    const char* dash = edges ? " stroke-dasharray=\"4 3\"" : "";
-    // Painter's order: polygons far from the viewer first.
-    std::vector<const PlotShape*> order;
-    for (const auto& shape : layer.shapes) order.push_back(&shape);
-    auto depth = [&](const PlotShape* sh) {
-      double d = 0.0;
-      for (const auto& p : sh->points) d += s.toward.dot(p);
-      return sh->points.empty() ? 0.0 : d / static_cast<double>(sh->points.size());
-    };
-    std::stable_sort(order.begin(), order.end(),
-                     [&](const PlotShape* a, const PlotShape* b) { return depth(a) < depth(b); });
-    out += "<g>\n";
-    for (const PlotShape* sh : order) {
-      if (contour_ && sh->point_values.size() == sh->points.size() && !sh->points.empty()) {
-        out += shaded(*sh, *contour_, to_screen);
-        continue;
-      }
-      const std::string colour =
-          sh->value && contour_ ? contour_colour(*contour_, *sh->value) : std::string(stroke);
-      std::string pts;
-      for (const auto& p : sh->points) {
-        const auto q = to_screen(p);
-        pts += fmt::format("{:.2f},{:.2f} ", q.x(), q.y());
-      }
-      if (sh->kind == PlotShape::Kind::Point) {
-        const auto q = to_screen(sh->points.front());
-        out += fmt::format("<circle cx=\"{:.2f}\" cy=\"{:.2f}\" r=\"{}\" fill=\"{}\"/>\n", q.x(),
-                           q.y(), undeformed || edges ? 2.5 : 3.5, colour);
-      } else if (sh->kind == PlotShape::Kind::Line) {
-        out += fmt::format(
-            "<polyline points=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"{}\"{}/>\n", pts,
-            colour, sh->value ? 3.0 : 1.5, dash);
-      } else {
-        const std::string fill =
-            sh->value && contour_ ? colour : (undeformed || edges ? "none" : "#dfe6f7");
-        out +=
-            fmt::format("<polygon points=\"{}\" fill=\"{}\" stroke=\"{}\" stroke-width=\"1\"{}/>\n",
-                        pts, fill, sh->value && contour_ ? "#333333" : stroke, dash);
-      }
-    }
-    out += "</g>\n";
-  }
+  for (const auto& layer : layers_) out += layer_svg(layer, s, contour_, to_screen);
   out += "</g>\n";
-  // Text column: contour legend, then each layer's legend lines.
-  y = kPlotTop + 10.0;
-  if (contour_) {
-    out += text_svg(kTextLeft, y, contour_->title);
-    y += 8.0;
-    for (int b = 8; b >= 0; --b) {
-      const double v0 = contour_->min + (contour_->max - contour_->min) * b / 9.0;
-      const double v1 = contour_->min + (contour_->max - contour_->min) * (b + 1) / 9.0;
-      out += fmt::format("<rect x=\"{}\" y=\"{:.1f}\" width=\"18\" height=\"16\" fill=\"{}\"/>\n",
-                         kTextLeft, y, kBands[b]);
-      out += text_svg(kTextLeft + 24.0, y + 12.0,
-                      fmt::format("{} to {}", short_number(v0), short_number(v1)));
-      y += 18.0;
-    }
-    out += text_svg(kTextLeft, y + 14.0, "MN " + short_number(contour_->min));
-    out += text_svg(kTextLeft, y + 29.0, "MX " + short_number(contour_->max));
-    y += 50.0;
-  }
-  for (const auto& layer : layers_) {
-    for (const auto& line : layer.legend) {
-      if (y > kHeight - 8.0) break;
-      out += text_svg(kTextLeft, y, line);
-      y += 14.0;
-    }
-  }
+  out += legend_svg(layers_, contour_);
   out += "</svg>\n";
   return out;
 }
