@@ -107,6 +107,125 @@ void move_pattern(Model& model, const CopyRequest& q, const Closure& c) {
   }
 }
 
+/// The numbers of the copies of a pattern's entities and nodes (original → copy).
+struct CopyMaps {
+  std::map<int, int> kps, lines, areas, volumes, nodes;
+};
+
+/// Copy k of the pattern's keypoints, lines, areas and volumes, with their attributes and
+/// sizes. `warned`: the warning about curved lines under a motion that is not rigid is given
+/// once per command.
+CopyMaps copy_entities(SolidModel& s, SolidBuilder& b, const CopyRequest& q, const Closure& c,
+                       int k, const SourceLocation& where, bool& warned) {
+  const auto rigid = rigid_motion(q, k);
+  CopyMaps m;
+  for (int id : c.kps) {
+    const int wanted = q.kinc > 0 ? id + k * q.kinc : 0;
+    if (wanted > 0 && s.keypoints.count(wanted) != 0)
+      throw InputError(
+          where, fmt::format("keypoint {} (copy {} of keypoint {}) already exists", wanted, k, id));
+    const Keypoint original = s.keypoints.at(id);
+    const int made = b.keypoint(wanted, moved_point(q, original.x, k));
+    s.keypoints.at(made).attr = original.attr;
+    s.keypoints.at(made).size = original.size;
+    m.kps[id] = made;
+  }
+  for (int id : c.lines) {
+    const Line original = s.lines.at(id);
+    const int a = m.kps.at(original.kp1), bb = m.kps.at(original.kp2);
+    int made = 0;
+    if (rigid) {
+      made = b.moved_line(id, a, bb, rigid->R, rigid->t);
+    } else {
+      if (original.path.curvilinear() && !warned) {
+        Log::warn(
+            "{}:{}: {}: the copy step is not a rigid motion: curved lines keep their "
+            "path system between the copied keypoints",
+            where.file, where.line, where.command);
+        warned = true;
+      }
+      made = b.line(a, bb, original.path);
+    }
+    Line& l = s.lines.at(made);
+    l.ndiv = original.ndiv;
+    l.size = original.size;
+    l.angle = original.angle;
+    l.space = original.space;
+    l.attr = original.attr;
+    m.lines[id] = made;
+  }
+  for (int id : c.areas) {
+    const Area original = s.areas.at(id);
+    std::vector<int> lines;
+    for (int sl : original.lines) lines.push_back(sl > 0 ? m.lines.at(sl) : -m.lines.at(-sl));
+    const int made = b.area_from_lines(lines);
+    s.areas.at(made).attr = original.attr;
+    s.areas.at(made).size = original.size;
+    m.areas[id] = made;
+  }
+  for (int id : c.volumes) {
+    std::vector<int> areas;
+    for (int a : s.volumes.at(id).areas) areas.push_back(m.areas.at(a));
+    const int made = b.volume_from_areas(areas);
+    s.volumes.at(made).attr = s.volumes.at(id).attr;
+    m.volumes[id] = made;
+  }
+  return m;
+}
+
+/// Copy k of the pattern's mesh: nodes in the order keypoints, lines, areas, volumes; then
+/// the elements of each entity.
+void copy_mesh(Model& model, Mesher& mesher, const CopyRequest& q, const Closure& c, int k,
+               CopyMaps& m) {
+  SolidModel& s = model.solid;
+  auto node = [&](int n) {
+    const auto it = m.nodes.find(n);
+    if (it != m.nodes.end()) return it->second;
+    const Node& original = model.nodes.at(n);
+    const int made = mesher.add_node(moved_point(q, original.x, k));
+    model.nodes.at(made).angles_deg = original.angles_deg;
+    m.nodes[n] = made;
+    return made;
+  };
+  auto nodes_of = [&](const std::vector<int>& list) {
+    std::vector<int> out;
+    for (int n : list) out.push_back(node(n));
+    return out;
+  };
+  auto copy_elements = [&](const std::vector<int>& list) {
+    std::vector<int> out;
+    for (int e : list) {
+      const ElementRecord rec = model.elements.at(e);
+      out.push_back(
+          mesher.add_element({rec.type, rec.mat, rec.real, rec.secnum}, nodes_of(rec.nodes)));
+    }
+    return out;
+  };
+  for (int id : c.kps) {
+    const Keypoint& original = s.keypoints.at(id);
+    if (original.node != 0 && model.nodes.count(original.node) != 0)
+      s.keypoints.at(m.kps.at(id)).node = node(original.node);
+  }
+  for (int id : c.lines) s.lines.at(m.lines.at(id)).nodes = nodes_of(s.lines.at(id).nodes);
+  for (int id : c.areas) {
+    const Area& original = s.areas.at(id);
+    Area& made = s.areas.at(m.areas.at(id));
+    made.grid = original.grid;
+    made.grid.nodes = nodes_of(original.grid.nodes);
+    made.interior_nodes = nodes_of(original.interior_nodes);
+  }
+  for (int id : c.volumes)
+    s.volumes.at(m.volumes.at(id)).interior_nodes = nodes_of(s.volumes.at(id).interior_nodes);
+  for (const auto& [from, to] : m.kps)
+    s.keypoints.at(to).elements = copy_elements(s.keypoints.at(from).elements);
+  for (const auto& [from, to] : m.lines)
+    s.lines.at(to).elements = copy_elements(s.lines.at(from).elements);
+  for (const auto& [from, to] : m.areas)
+    s.areas.at(to).elements = copy_elements(s.areas.at(from).elements);
+  for (const auto& [from, to] : m.volumes)
+    s.volumes.at(to).elements = copy_elements(s.volumes.at(from).elements);
+}
+
 }  // namespace
 
 void copy_solid(Model& model, const CopyRequest& q, Mesher& mesher, const SourceLocation& where) {
@@ -119,107 +238,8 @@ void copy_solid(Model& model, const CopyRequest& q, Mesher& mesher, const Source
   SolidBuilder b(s, where);
   bool warned = false;
   for (int k = 1; k <= q.copies; ++k) {
-    const auto rigid = rigid_motion(q, k);
-    std::map<int, int> kp_map, line_map, area_map, volume_map, node_map;
-    for (int id : c.kps) {
-      const int wanted = q.kinc > 0 ? id + k * q.kinc : 0;
-      if (wanted > 0 && s.keypoints.count(wanted) != 0)
-        throw InputError(where, fmt::format("keypoint {} (copy {} of keypoint {}) already exists",
-                                            wanted, k, id));
-      const Keypoint original = s.keypoints.at(id);
-      const int made = b.keypoint(wanted, moved_point(q, original.x, k));
-      s.keypoints.at(made).attr = original.attr;
-      s.keypoints.at(made).size = original.size;
-      kp_map[id] = made;
-    }
-    for (int id : c.lines) {
-      const Line original = s.lines.at(id);
-      const int a = kp_map.at(original.kp1), bb = kp_map.at(original.kp2);
-      int made = 0;
-      if (rigid) {
-        made = b.moved_line(id, a, bb, rigid->R, rigid->t);
-      } else {
-        if (original.path.curvilinear() && !warned) {
-          Log::warn(
-              "{}:{}: {}: the copy step is not a rigid motion: curved lines keep their "
-              "path system between the copied keypoints",
-              where.file, where.line, where.command);
-          warned = true;
-        }
-        made = b.line(a, bb, original.path);
-      }
-      Line& l = s.lines.at(made);
-      l.ndiv = original.ndiv;
-      l.size = original.size;
-      l.angle = original.angle;
-      l.space = original.space;
-      l.attr = original.attr;
-      line_map[id] = made;
-    }
-    for (int id : c.areas) {
-      const Area original = s.areas.at(id);
-      std::vector<int> lines;
-      for (int sl : original.lines) lines.push_back(sl > 0 ? line_map.at(sl) : -line_map.at(-sl));
-      const int made = b.area_from_lines(lines);
-      s.areas.at(made).attr = original.attr;
-      s.areas.at(made).size = original.size;
-      area_map[id] = made;
-    }
-    for (int id : c.volumes) {
-      std::vector<int> areas;
-      for (int a : s.volumes.at(id).areas) areas.push_back(area_map.at(a));
-      const int made = b.volume_from_areas(areas);
-      s.volumes.at(made).attr = s.volumes.at(id).attr;
-      volume_map[id] = made;
-    }
-    if (!q.copy_mesh) continue;
-    // The pattern's mesh: nodes in the order keypoints, lines, areas, volumes; then elements.
-    auto node = [&](int n) {
-      const auto it = node_map.find(n);
-      if (it != node_map.end()) return it->second;
-      const Node& original = model.nodes.at(n);
-      const int made = mesher.add_node(moved_point(q, original.x, k));
-      model.nodes.at(made).angles_deg = original.angles_deg;
-      node_map[n] = made;
-      return made;
-    };
-    auto nodes_of = [&](const std::vector<int>& list) {
-      std::vector<int> out;
-      for (int n : list) out.push_back(node(n));
-      return out;
-    };
-    auto copy_elements = [&](const std::vector<int>& list) {
-      std::vector<int> out;
-      for (int e : list) {
-        const ElementRecord rec = model.elements.at(e);
-        out.push_back(
-            mesher.add_element({rec.type, rec.mat, rec.real, rec.secnum}, nodes_of(rec.nodes)));
-      }
-      return out;
-    };
-    for (int id : c.kps) {
-      const Keypoint& original = s.keypoints.at(id);
-      if (original.node != 0 && model.nodes.count(original.node) != 0)
-        s.keypoints.at(kp_map.at(id)).node = node(original.node);
-    }
-    for (int id : c.lines) s.lines.at(line_map.at(id)).nodes = nodes_of(s.lines.at(id).nodes);
-    for (int id : c.areas) {
-      const Area& original = s.areas.at(id);
-      Area& made = s.areas.at(area_map.at(id));
-      made.grid = original.grid;
-      made.grid.nodes = nodes_of(original.grid.nodes);
-      made.interior_nodes = nodes_of(original.interior_nodes);
-    }
-    for (int id : c.volumes)
-      s.volumes.at(volume_map.at(id)).interior_nodes = nodes_of(s.volumes.at(id).interior_nodes);
-    for (const auto& [from, to] : kp_map)
-      s.keypoints.at(to).elements = copy_elements(s.keypoints.at(from).elements);
-    for (const auto& [from, to] : line_map)
-      s.lines.at(to).elements = copy_elements(s.lines.at(from).elements);
-    for (const auto& [from, to] : area_map)
-      s.areas.at(to).elements = copy_elements(s.areas.at(from).elements);
-    for (const auto& [from, to] : volume_map)
-      s.volumes.at(to).elements = copy_elements(s.volumes.at(from).elements);
+    CopyMaps m = copy_entities(s, b, q, c, k, where, warned);
+    if (q.copy_mesh) copy_mesh(model, mesher, q, c, k, m);
   }
 }
 
