@@ -465,12 +465,57 @@ int OutputFormat::n_data() const {
   return n;
 }
 
-std::vector<std::string> OutputFormat::format(const std::vector<Value>& items,
-                                              std::vector<std::string>* warnings) const {
-  std::vector<std::string> lines(1);
+std::string OutputFormat::data_field(const Edit& e, const Value& v, int scale,
+                                     std::vector<std::string>* warnings) const {
   auto warn = [&](const std::string& w) {
     if (warnings != nullptr) warnings->push_back(w);
   };
+  const int blank_width = e.width >= 0 ? e.width : 8;
+  const std::string blanks(static_cast<std::size_t>(std::max(e.width, 0)), ' ');
+  if (!fortran_) {
+    if (e.code == 'c') {
+      if (is_text(v)) return c_text(e, std::get<std::string>(v));
+      warn(fmt::format("number {} under %C written as blanks", format_number(std::get<double>(v))));
+      return blanks;
+    }
+    if (is_text(v)) {
+      warn(fmt::format("text '{}' under a numeric conversion written as blanks",
+                       std::get<std::string>(v)));
+      return blanks;
+    }
+    return c_number(e, std::get<double>(v));
+  }
+  if (e.code == 'A') {
+    if (is_text(v))  // MAPDL's Fortran A fields hold at most 8 characters (§A.9).
+      return fortran_a(std::get<std::string>(v).substr(0, 8), e.width);
+    warn(fmt::format("number {} under A written as blanks", format_number(std::get<double>(v))));
+    return std::string(static_cast<std::size_t>(blank_width), ' ');
+  }
+  if (is_text(v)) {
+    warn(fmt::format("text '{}' under {} written as blanks", std::get<std::string>(v), e.code));
+    return blanks;
+  }
+  const double x = std::get<double>(v);
+  switch (e.code) {
+    case 'F':
+      return fortran_f(x, e.width, e.digits, scale);
+    case 'E':
+    case 'D':
+      return fortran_e(x, e.width, e.digits, e.exponent, scale, e.code);
+    case 'S':
+      return fortran_es(x, e.width, e.digits, e.exponent);
+    case 'G':
+      return fortran_g(x, e.width, e.digits, e.exponent, scale);
+    case 'I':
+      return fortran_i(x, e.width, e.digits);
+    default:
+      return {};
+  }
+}
+
+std::vector<std::string> OutputFormat::format(const std::vector<Value>& items,
+                                              std::vector<std::string>* warnings) const {
+  std::vector<std::string> lines(1);
   std::size_t k = 0;
   std::size_t pos = 0;
   int scale = 0;
@@ -511,69 +556,11 @@ std::vector<std::string> OutputFormat::format(const std::vector<Value>& items,
       case Edit::Colon:
         if (k == items.size()) return lines;
         break;
-      case Edit::Data: {
+      case Edit::Data:
         if (k == items.size()) return lines;
         data_since_revert = true;
-        const Value& v = items[k++];
-        const int blank_width = e.width >= 0 ? e.width : 8;
-        if (!fortran_) {
-          if (e.code == 'c') {
-            if (!is_text(v)) {
-              warn(fmt::format("number {} under %C written as blanks",
-                               format_number(std::get<double>(v))));
-              line += std::string(static_cast<std::size_t>(std::max(e.width, 0)), ' ');
-            } else {
-              line += c_text(e, std::get<std::string>(v));
-            }
-          } else if (is_text(v)) {
-            warn(fmt::format("text '{}' under a numeric conversion written as blanks",
-                             std::get<std::string>(v)));
-            line += std::string(static_cast<std::size_t>(std::max(e.width, 0)), ' ');
-          } else {
-            line += c_number(e, std::get<double>(v));
-          }
-          break;
-        }
-        if (e.code == 'A') {
-          if (!is_text(v)) {
-            warn(fmt::format("number {} under A written as blanks",
-                             format_number(std::get<double>(v))));
-            line += std::string(static_cast<std::size_t>(blank_width), ' ');
-          } else {
-            // MAPDL's Fortran A fields hold at most 8 characters (§A.9).
-            line += fortran_a(std::get<std::string>(v).substr(0, 8), e.width);
-          }
-          break;
-        }
-        if (is_text(v)) {
-          warn(fmt::format("text '{}' under {} written as blanks", std::get<std::string>(v),
-                           e.code));
-          line += std::string(static_cast<std::size_t>(std::max(e.width, 0)), ' ');
-          break;
-        }
-        const double x = std::get<double>(v);
-        switch (e.code) {
-          case 'F':
-            line += fortran_f(x, e.width, e.digits, scale);
-            break;
-          case 'E':
-          case 'D':
-            line += fortran_e(x, e.width, e.digits, e.exponent, scale, e.code);
-            break;
-          case 'S':
-            line += fortran_es(x, e.width, e.digits, e.exponent);
-            break;
-          case 'G':
-            line += fortran_g(x, e.width, e.digits, e.exponent, scale);
-            break;
-          case 'I':
-            line += fortran_i(x, e.width, e.digits);
-            break;
-          default:
-            break;
-        }
+        line += data_field(e, items[k++], scale, warnings);
         break;
-      }
     }
   }
   return lines;

@@ -43,6 +43,11 @@ class OutputFormat {
   };
 
  private:
+  /// One data item under its edit descriptor (a text under a numeric one, or a number under A
+  /// or %C, is written as blanks with a warning).
+  std::string data_field(const Edit& e, const Value& v, int scale,
+                         std::vector<std::string>* warnings) const;
+
   bool fortran_ = true;
   std::vector<Edit> edits_;  // groups expanded
   std::size_t revert_at_ = 0;
