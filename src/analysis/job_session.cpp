@@ -9,6 +9,7 @@
 #include "analysis/analyses.h"
 #include "analysis/direct_solution.h"
 #include "analysis/superelement_expansion.h"
+#include "core/job_lock.h"
 #include "core/log.h"
 #include "results/output_selection.h"
 
@@ -103,6 +104,15 @@ ResultsWriter& JobSession::writer_for(const Job& job, std::size_t step) {
     // file of the run it continues.
     const std::string path = jobname_ + ".h5";
     const Job::Step& s = job.steps.at(step);
+    // No file of the job is touched before the job is ours: a second run of the same job in the
+    // same directory would otherwise truncate the results file the first is writing.
+    try {
+      job_lock_ = JobLock::acquire(path);
+    } catch (const JobLockedError& e) {
+      throw InputError(location_of(s), e.what());
+    } catch (const std::runtime_error& e) {
+      throw SolutionError(location_of(s), e.what());
+    }
     if (s.analysis && s.analysis->options.restart && std::filesystem::exists(path))
       owned_writer_ = std::make_unique<ResultsWriter>(path, ResultsWriter::Append{});
     else
@@ -325,6 +335,7 @@ void JobSession::clear(const Job&) {
     owned_writer_.reset();  // the file is closed and complete
     writer_ = nullptr;
   }
+  job_lock_.reset();
   superelement_expansion_job_ = false;
   reduced_state_.reset();  // an expansion pass cannot refer to a solution of the job before
   models_.clear();

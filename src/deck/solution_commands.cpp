@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/files.h"
 #include "deck/deck_context.h"
 #include "deck/post_support.h"
 #include "results/output_selection.h"
@@ -443,7 +444,11 @@ void cmd_outpr(DeckReader& r, const Command& c) {
 
 void cmd_seopt(DeckReader& r, const Command& c) {
   AnalysisOptions& o = r.model.options;
-  if (!c.blank(1)) o.superelement_name = c.text(1);
+  if (!c.blank(1)) {
+    if (const std::string problem = jobname_problem(c.text(1), "Sename"); !problem.empty())
+      r.fail(c, problem);
+    o.superelement_name = c.text(1);
+  }
   const int sematr = r.integer(c, 2, 1);
   if (sematr < 1 || sematr > 3) r.fail(c, fmt::format("SEMATR {} must be 1, 2 or 3", sematr));
   o.superelement_matrices = sematr;
