@@ -8,6 +8,7 @@
 
 #include "core/files.h"
 #include "deck/deck_context.h"
+#include "deck/model_changes.h"
 #include "deck/post_support.h"
 #include "results/output_selection.h"
 #include "time/time_schedule.h"
@@ -556,6 +557,15 @@ AnalysisRequest& open_analysis(DeckReader& r, const Command& c) {
 /// Appends the current load state as the next load step of the open analysis (not solved yet).
 void append_current(DeckReader& r, const Command& c) {
   prepare_model_for_solution(r, c);
+  if (r.open_analysis) {
+    const Job::Step& open = r.job.steps[*r.open_analysis];
+    if (const std::string change = model_change(*open.model_snapshot, r.model); !change.empty())
+      r.fail(c, fmt::format("{} since this analysis began at {}: an analysis keeps the model of "
+                            "its first SOLVE, so the change would not act on this load step. "
+                            "Make it before the analysis, or start a new analysis (/CLEAR, or "
+                            "ANTYPE of another type)",
+                            change, location_text(open.analysis->where)));
+  }
   AnalysisRequest& a = open_analysis(r, c);
   LoadStep s = snapshot(r, c, static_cast<int>(a.load_steps.size()) + 1);
   check_increasing(r, c, a.load_steps, s);
