@@ -11,6 +11,7 @@
 #include "analysis/superelement_expansion.h"
 #include "core/job_lock.h"
 #include "core/log.h"
+#include "elements/model_memory.h"
 #include "results/output_selection.h"
 
 namespace impactfe {
@@ -131,6 +132,9 @@ void JobSession::solve(const Job& job, std::size_t step) {
   try {
     if (!open_ && needs_generated_superelements(job, s)) share_generated_superelements();
     if (!open_) {
+      // Refused before anything large is built when the model cannot fit (the symbolic
+      // analysis checks the factor exactly later).
+      if (s.analysis) require_model_memory(*s.model_snapshot, "SOLVE");
       const auto& restart = s.analysis ? s.analysis->options.restart : std::nullopt;
       if (restart && !solves_incrementally(s.analysis->options))
         throw InputError(restart->where,

@@ -21,6 +21,7 @@
 #include "core/files.h"
 #include "core/job_lock.h"
 #include "core/log.h"
+#include "core/memory_budget.h"
 #include "core/thread_pool.h"
 #include "deck/deck_reader.h"
 #include "linalg/parallel_backend.h"
@@ -192,6 +193,14 @@ int run_command(const RunArgs& args) {
   if (const std::string problem = jobname_problem(jobname); !problem.empty()) {
     std::cerr << "error: -j: " << problem << "\n";
     return kExitInput;
+  }
+  if (!args.memory.empty()) {
+    const auto bytes = parse_bytes(args.memory);
+    if (!bytes) {
+      std::cerr << "error: --memory " << args.memory << ": not a size (e.g. 4G, 512M)\n";
+      return kExitInput;
+    }
+    set_memory_limit(bytes);
   }
   std::shared_ptr<JobLock> job_lock;  // held to the end of the run
   std::ofstream log_file;

@@ -8,6 +8,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <fmt/format.h>
+
 #include <chrono>
 #include <fstream>
 #include <sstream>
@@ -16,6 +18,8 @@
 #include "../support/run_deck.h"
 #include "core/files.h"
 #include "core/job_lock.h"
+#include "core/memory_budget.h"
+#include "linalg/linear_solver.h"
 
 namespace impactfe {
 namespace {
@@ -255,6 +259,76 @@ TEST(InputBounds, ReadLimitsCountLinesAndBytes) {
   } catch (const OversizedFileError& e) {
     EXPECT_EQ(e.line(), 0);
   }
+}
+
+/// A cube meshed into n³ SOLID185 bricks, fixed at its base, pulled at its top.
+std::string cube_deck(int n) {
+  return fmt::format(
+      "/PREP7\nET,1,SOLID185\nMP,EX,1,200E9\nMP,NUXY,1,0.3\nBLOCK,0,1,0,1,0,1\nESIZE,1/{}\n"
+      "VMESH,ALL\nNSEL,S,LOC,Z,0\nD,ALL,ALL\nALLSEL\nNSEL,S,LOC,Z,1\nF,ALL,FZ,1\nALLSEL\n"
+      "FINISH\n/SOLU\nANTYPE,STATIC\nSOLVE\nFINISH\n",
+      n);
+}
+
+TEST(MemoryLimits, MillionsOfBricksAreRefusedAtTheMeshCommandInAnInstant) {
+  const fs::path dir = testing::fresh_directory("memory_mesh");
+  for (int n : {100, 200}) {  // 1.03 and 8.1 million nodes
+    const fs::path deck = dir / fmt::format("cube{}.inp", n);
+    write_text(deck, cube_deck(n));
+    const auto start = std::chrono::steady_clock::now();
+    const int status =
+        wait_exit_status(start_run(deck, dir / "out", dir / "m.txt", {"--memory", "8G"}));
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const std::string err = read_text(dir / "m.txt");
+    std::cout << n << "^3 bricks refused in " << seconds << " s: " << err;
+    EXPECT_EQ(status, 1) << err;
+    EXPECT_NE(err.find(":7: VMESH: meshing volume 1"), std::string::npos) << err;
+    EXPECT_NE(err.find("more than the"), std::string::npos) << err;
+    EXPECT_NE(err.find("(--memory 8 GB)"), std::string::npos) << err;
+    EXPECT_NE(err.find("elements of this kind would fit"), std::string::npos) << err;
+    EXPECT_LT(seconds, 5.0);
+  }
+  // A mesh that fits is meshed and solved.
+  write_text(dir / "small.inp", cube_deck(4));
+  EXPECT_EQ(wait_exit_status(
+                start_run(dir / "small.inp", dir / "out", dir / "s.txt", {"--memory", "8G"})),
+            0)
+      << read_text(dir / "s.txt");
+  EXPECT_EQ(wait_exit_status(
+                start_run(dir / "small.inp", dir / "out", dir / "s.txt", {"--memory", "lots"})),
+            1);
+}
+
+TEST(MemoryLimits, SymbolicAnalysisRefusesAFactorThatCannotFit) {
+  // A 5-point Laplacian on a 200 x 200 grid: nnz(L) of about 1.5 million (14 MB), with room for
+  // 1 MB more than the process holds.
+  const int m = 200, n = m * m;
+  std::vector<Eigen::Triplet<double>> entries;
+  for (int i = 0; i < m; ++i)
+    for (int j = 0; j < m; ++j) {
+      const int k = i * m + j;
+      entries.emplace_back(k, k, 4.0);
+      if (i + 1 < m) entries.emplace_back(k + m, k, -1.0);
+      if (j + 1 < m) entries.emplace_back(k + 1, k, -1.0);
+    }
+  SparseMatrix lower(n, n);
+  lower.setFromTriplets(entries.begin(), entries.end());
+  auto solver = make_linear_solver(n);
+  std::ifstream statm("/proc/self/statm");
+  double pages = 0.0, resident = 0.0;
+  statm >> pages >> resident;
+  set_memory_limit(resident * static_cast<double>(::sysconf(_SC_PAGESIZE)) + 1e6);
+  try {
+    solver->analyze_pattern(lower);
+    ADD_FAILURE() << "the factor was not refused";
+  } catch (const MemoryLimitError& e) {
+    EXPECT_NE(std::string(e.what()).find("the factor of the 40000 equations (nnz(L) = "),
+              std::string::npos)
+        << e.what();
+  }
+  set_memory_limit(std::nullopt);
+  EXPECT_NO_THROW(solver->analyze_pattern(lower));
 }
 
 }  // namespace
