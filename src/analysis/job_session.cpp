@@ -9,7 +9,9 @@
 #include "analysis/analyses.h"
 #include "analysis/direct_solution.h"
 #include "analysis/superelement_expansion.h"
+#include "core/job_lock.h"
 #include "core/log.h"
+#include "elements/model_memory.h"
 #include "results/output_selection.h"
 
 namespace impactfe {
@@ -103,6 +105,15 @@ ResultsWriter& JobSession::writer_for(const Job& job, std::size_t step) {
     // file of the run it continues.
     const std::string path = jobname_ + ".h5";
     const Job::Step& s = job.steps.at(step);
+    // No file of the job is touched before the job is ours: a second run of the same job in the
+    // same directory would otherwise truncate the results file the first is writing.
+    try {
+      job_lock_ = JobLock::acquire(path);
+    } catch (const JobLockedError& e) {
+      throw InputError(location_of(s), e.what());
+    } catch (const std::runtime_error& e) {
+      throw SolutionError(location_of(s), e.what());
+    }
     if (s.analysis && s.analysis->options.restart && std::filesystem::exists(path))
       owned_writer_ = std::make_unique<ResultsWriter>(path, ResultsWriter::Append{});
     else
@@ -121,6 +132,9 @@ void JobSession::solve(const Job& job, std::size_t step) {
   try {
     if (!open_ && needs_generated_superelements(job, s)) share_generated_superelements();
     if (!open_) {
+      // Refused before anything large is built when the model cannot fit (the symbolic
+      // analysis checks the factor exactly later).
+      if (s.analysis) require_model_memory(*s.model_snapshot, "SOLVE");
       const auto& restart = s.analysis ? s.analysis->options.restart : std::nullopt;
       if (restart && !solves_incrementally(s.analysis->options))
         throw InputError(restart->where,
@@ -325,6 +339,7 @@ void JobSession::clear(const Job&) {
     owned_writer_.reset();  // the file is closed and complete
     writer_ = nullptr;
   }
+  job_lock_.reset();
   superelement_expansion_job_ = false;
   reduced_state_.reset();  // an expansion pass cannot refer to a solution of the job before
   models_.clear();

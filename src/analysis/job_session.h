@@ -20,6 +20,7 @@
 namespace impactfe {
 
 class DirectSolution;
+class JobLock;
 struct ReducedSolutionState;
 
 class JobSession final : public SolutionHost {
@@ -62,6 +63,10 @@ class JobSession final : public SolutionHost {
   RunSettings settings_;
   RunStatistics& stats_;
   ResultsWriter* writer_ = nullptr;
+  /// The claim on the files of the job being written (core/job_lock.h), taken before its
+  /// results file is created or opened and released after it is closed (declared first:
+  /// destroyed last).
+  std::shared_ptr<JobLock> job_lock_;
   std::unique_ptr<ResultsWriter> owned_writer_;
   bool superelement_expansion_job_ = false;
   std::size_t job_first_analysis_ = 0;     // index in stats_.analyses of this job's first analysis

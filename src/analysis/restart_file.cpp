@@ -80,9 +80,14 @@ void write_restart_point(const std::string& path, const RestartPoint& p,
   try {
     Handle fapl = h5::file_access_checksummed();
     hid_t f = std::filesystem::exists(path) ? H5Fopen(path.c_str(), H5F_ACC_RDWR, fapl) : -1;
+    // A new file (or one that no longer opens: a run killed while creating it) is written under
+    // a temporary name and renamed into place with its first point (core/job_lock.h keeps other
+    // runs of the job away from it meanwhile).
+    std::string creating;
     if (f < 0) {
+      creating = path + ".creating";
       Handle fcpl = h5::checksummed_group_creation_list(true);
-      f = check(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, fcpl, fapl), "create " + path);
+      f = check(H5Fcreate(creating.c_str(), H5F_ACC_TRUNC, fcpl, fapl), "create " + creating);
     }
     Handle file(f);
     h5::write_attribute(file, "format", std::string("impactfe-restart"));
@@ -156,6 +161,13 @@ void write_restart_point(const std::string& path, const RestartPoint& p,
     write_table(g, "previous_constraints", p.previous_constraints);
     write_vec3(g, "previous_acel", p.previous_acel);
     h5::check_status(H5Fflush(file, H5F_SCOPE_GLOBAL), "flush " + path);
+    if (!creating.empty()) {
+      g.reset();
+      file.reset();
+      std::error_code ec;
+      std::filesystem::rename(creating, path, ec);
+      if (ec) throw std::runtime_error("cannot rename " + creating + ": " + ec.message());
+    }
   } catch (const std::runtime_error& e) {
     throw SolutionError(fmt::format("restart file '{}': {}", path, e.what()));
   }

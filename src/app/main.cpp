@@ -47,6 +47,9 @@ CLI::App* add_run(CLI::App& app, RunArgs& run) {
   cmd->add_option("deck", run.deck, "input deck")->required();
   cmd->add_option("-o,--output", run.out_dir, "working directory for results (default .)");
   cmd->add_option("-j,--jobname", run.jobname, "job name (default: deck file stem)");
+  cmd->add_option("--memory", run.memory,
+                  "the most memory the run may use (e.g. 4G, 512M; default: what the machine "
+                  "has available)");
   cmd->add_option(
       "--threads", run.threads,
       "threads for element loops, the solves and products of large models and results "

@@ -19,7 +19,9 @@
 #include "app/terminal_progress.h"
 #include "core/errors.h"
 #include "core/files.h"
+#include "core/job_lock.h"
 #include "core/log.h"
+#include "core/memory_budget.h"
 #include "core/thread_pool.h"
 #include "deck/deck_reader.h"
 #include "linalg/parallel_backend.h"
@@ -77,14 +79,26 @@ void print_skipped(const Job& job) {
 
 /// The output directory exists (or is created) and becomes the working directory, and the log
 /// file opens there. Else the run could not keep its results: exit status 2, like a full disk.
+/// The job is claimed (core/job_lock.h) before its log is opened: a second run of the same job in
+/// the same directory is refused at once (exit status 1) and truncates nothing of the first.
 std::optional<int> enter_output_directory(const RunArgs& args, const std::string& jobname,
-                                          std::ofstream& log_file) {
+                                          std::ofstream& log_file, std::shared_ptr<JobLock>& lock) {
   std::error_code ec;
   fs::create_directories(args.out_dir, ec);
   if (!ec) fs::current_path(args.out_dir, ec);
   if (ec) {
     std::cerr << fmt::format("error: cannot use the output directory '{}': {}\n", args.out_dir,
                              ec.message());
+    return kExitSolution;
+  }
+  try {
+    lock = JobLock::acquire(jobname + ".h5");
+  } catch (const JobLockedError& e) {
+    std::cerr << "error: " << e.what() << "\n";
+    return kExitInput;
+  } catch (const std::runtime_error& e) {
+    std::cerr << fmt::format("error: cannot write in the output directory '{}': {}\n", args.out_dir,
+                             e.what());
     return kExitSolution;
   }
   log_file.open(jobname + ".log");
@@ -176,8 +190,21 @@ int run_command(const RunArgs& args) {
   }
   const fs::path start_directory = fs::current_path();  // --results is relative to it
   std::string jobname = args.jobname.empty() ? deck.stem().string() : args.jobname;
+  if (const std::string problem = jobname_problem(jobname); !problem.empty()) {
+    std::cerr << "error: -j: " << problem << "\n";
+    return kExitInput;
+  }
+  if (!args.memory.empty()) {
+    const auto bytes = parse_bytes(args.memory);
+    if (!bytes) {
+      std::cerr << "error: --memory " << args.memory << ": not a size (e.g. 4G, 512M)\n";
+      return kExitInput;
+    }
+    set_memory_limit(bytes);
+  }
+  std::shared_ptr<JobLock> job_lock;  // held to the end of the run
   std::ofstream log_file;
-  if (const auto failed = enter_output_directory(args, jobname, log_file)) return *failed;
+  if (const auto failed = enter_output_directory(args, jobname, log_file, job_lock)) return *failed;
   TerminalProgress progress;
   log_to_file_and_terminal(log_file, progress);
   const std::optional<DeckOptions> options = deck_options(args, start_directory);

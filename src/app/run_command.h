@@ -20,6 +20,7 @@ struct RunArgs {
   bool mumps_ooc = false;
   std::string mumps_ooc_dir;
   bool mumps_no_refine = false;
+  std::string memory;  // --memory SIZE ("4G"): the most the run may use; "" = what the machine has
 };
 
 /// Runs the deck in this process; returns the exit status.

@@ -6,6 +6,7 @@
 // no deck can overflow the stack or loop forever.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -96,7 +97,17 @@ struct DepthGuard {
 // ---- files -------------------------------------------------------------------------------------
 
 std::string read_text_file(const std::string& path, const SourceLocation& where) {
-  std::optional<std::string> text = read_file(path);  // rank 0's disk under MPI (core/files.h)
+  std::optional<std::string> text;
+  try {
+    text = read_file(path, ReadLimits::text());  // rank 0's disk under MPI (core/files.h)
+  } catch (const OversizedFileError& e) {
+    // Located at the offending line of the file itself, else at the /INPUT that names it.
+    if (e.line() > 0)
+      throw InputError(
+          SourceLocation{path, e.line(), "(line)"},
+          fmt::format("line longer than {} bytes refused (is it a text file?)", e.limit()));
+    throw InputError(where, fmt::format("'{}' is larger than {} bytes: refused", path, e.limit()));
+  }
   if (!text) {
     if (where.known()) throw InputError(where, fmt::format("cannot open input file '{}'", path));
     throw InputError(fmt::format("cannot open deck '{}'", path));
@@ -280,9 +291,13 @@ void DeckReader::run_program(std::vector<RawCommand>& cmds, const std::string& f
     throw InputError(
         where, fmt::format("/INPUT files and macros nested deeper than {} levels", kMaxFrames));
   for (const auto& a : active_)
-    if (a == frame_name)
-      throw InputError(where,
-                       fmt::format("recursive call refused: {} is already running", frame_name));
+    if (a == frame_name) {
+      std::string chain;
+      for (auto it = std::find(active_.begin(), active_.end(), a); it != active_.end(); ++it)
+        chain += *it + " -> ";
+      throw InputError(where, fmt::format("recursive call refused: {} is already running ({}{})",
+                                          frame_name, chain, frame_name));
+    }
   Program program(cmds, dialect);
   Frame frame{program};
   active_.push_back(frame_name);

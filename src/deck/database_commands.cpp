@@ -329,7 +329,12 @@ void cmd_save(DeckReader& r, const Command& c) {
 void cmd_resume(DeckReader& r, const Command& c) {
   // RESUME,Fname,Ext,--,NOPAR,KNOPLOT: NOPAR 1 keeps the current parameters.
   const std::string path = database_path(r, c);
-  const auto in = read_file(path);  // rank 0's disk under MPI (core/files.h)
+  std::optional<std::string> in;
+  try {
+    in = read_file(path, ReadLimits::bytes());  // rank 0's disk under MPI (core/files.h)
+  } catch (const OversizedFileError& e) {
+    r.fail(c, e.what());
+  }
   if (!in) r.fail(c, fmt::format("no database file '{}' (SAVE writes it)", path));
   r.count_work(c, DeckReader::database_work(in->size()));
   const bool keep_params = r.integer(c, 4, 0) == 1;

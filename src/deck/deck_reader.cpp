@@ -9,6 +9,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 
 #include "core/files.h"
@@ -22,9 +23,19 @@ namespace deck {
 
 namespace {
 
+std::string canonical_or_self(const std::string& path) {
+  std::error_code ec;
+  const auto canonical = std::filesystem::weakly_canonical(path, ec);
+  return ec ? path : canonical.string();
+}
+
 /// Spec §2.3: 4x when the deck uses KAN, KAY, ITER, LWRITE, AFWRITE, /INPUT,27, /STRESS or
-/// *BEGIN (a 4x *DO names a *BEGIN block, so *BEGIN already decides). Included files count.
-bool uses_4x(const std::vector<RawCommand>& cmds, const std::string& path, int depth) {
+/// *BEGIN (a 4x *DO names a *BEGIN block, so *BEGIN already decides). Included files count,
+/// each scanned once (`scanned`): a deck that includes itself, or files that include each other,
+/// are read once each, not once per path through the inclusions (a deck including itself three
+/// times was read 3^20 times). Files that cannot be read are left to the executor to report.
+bool uses_4x(const std::vector<RawCommand>& cmds, const std::string& path,
+             std::set<std::string>& scanned) {
   for (const auto& c : cmds) {
     const std::string& n = c.name;
     if (n == "KAN" || n == "KAY" || n == "ITER" || n == "LWRITE" || n == "AFWRITE" ||
@@ -32,12 +43,16 @@ bool uses_4x(const std::vector<RawCommand>& cmds, const std::string& path, int d
       return true;
     if (n == "/INPUT" && !c.fields.empty()) {
       if (trim(c.fields[0]) == "27") return true;
-      if (depth < 20) {
-        const std::string inc =
-            resolve_input(path, c.fields[0], c.fields.size() > 1 ? c.fields[1] : std::string());
-        if (const auto text = read_file(inc))
-          if (uses_4x(lex_text(*text, inc, Dialect::Modern), inc, depth + 1)) return true;
+      const std::string inc =
+          resolve_input(path, c.fields[0], c.fields.size() > 1 ? c.fields[1] : std::string());
+      if (!scanned.insert(canonical_or_self(inc)).second) continue;
+      std::optional<std::string> text;
+      try {
+        text = read_file(inc, ReadLimits::text());
+      } catch (const OversizedFileError&) {
+        continue;
       }
+      if (text && uses_4x(lex_text(*text, inc, Dialect::Modern), inc, scanned)) return true;
     }
   }
   return false;
@@ -374,7 +389,8 @@ Job read_impl(const std::string& text, const std::string& path, const DeckOption
   Dialect dialect = Dialect::Modern;
   if (options.dialect) {
     dialect = *options.dialect;
-  } else if (deck::uses_4x(deck::lex_text(text, path, Dialect::Modern), path, 0)) {
+  } else if (std::set<std::string> scanned{deck::canonical_or_self(path)};
+             deck::uses_4x(deck::lex_text(text, path, Dialect::Modern), path, scanned)) {
     dialect = Dialect::Classic4x;
   }
   std::string jobname = options.jobname;

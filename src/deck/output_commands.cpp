@@ -228,7 +228,12 @@ void cmd_list(DeckReader& r, const Command& c) {
   std::string path = name;
   const std::string beside = resolve_input(c.where.file, name, "");
   if (!file_exists(path) && file_exists(beside)) path = beside;
-  const auto text = read_file(path);
+  std::optional<std::string> text;
+  try {
+    text = read_file(path, ReadLimits::bytes());
+  } catch (const OversizedFileError& e) {
+    r.fail(c, e.what());
+  }
   if (!text) r.fail(c, fmt::format("file '{}' not found", name));
   std::istringstream in(*text);
   for (std::string line; std::getline(in, line);) r.output.print(line);

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "core/dof.h"
+#include "core/files.h"
 #include "deck/deck_context.h"
 
 namespace impactfe::deck {
@@ -39,6 +40,7 @@ void cmd_filname(DeckReader& r, const Command& c) {
     r.warn(c, fmt::format("jobname '{}' from the command line kept", r.model.jobname));
     return;
   }
+  if (const std::string problem = jobname_problem(c.text(1)); !problem.empty()) r.fail(c, problem);
   r.model.jobname = c.text(1);
 }
 

@@ -6,7 +6,9 @@
 #include <cmath>
 #include <limits>
 
+#include "core/files.h"
 #include "deck/deck_context.h"
+#include "deck/model_changes.h"
 #include "deck/post_support.h"
 #include "results/output_selection.h"
 #include "time/time_schedule.h"
@@ -443,7 +445,11 @@ void cmd_outpr(DeckReader& r, const Command& c) {
 
 void cmd_seopt(DeckReader& r, const Command& c) {
   AnalysisOptions& o = r.model.options;
-  if (!c.blank(1)) o.superelement_name = c.text(1);
+  if (!c.blank(1)) {
+    if (const std::string problem = jobname_problem(c.text(1), "Sename"); !problem.empty())
+      r.fail(c, problem);
+    o.superelement_name = c.text(1);
+  }
   const int sematr = r.integer(c, 2, 1);
   if (sematr < 1 || sematr > 3) r.fail(c, fmt::format("SEMATR {} must be 1, 2 or 3", sematr));
   o.superelement_matrices = sematr;
@@ -551,6 +557,15 @@ AnalysisRequest& open_analysis(DeckReader& r, const Command& c) {
 /// Appends the current load state as the next load step of the open analysis (not solved yet).
 void append_current(DeckReader& r, const Command& c) {
   prepare_model_for_solution(r, c);
+  if (r.open_analysis) {
+    const Job::Step& open = r.job.steps[*r.open_analysis];
+    if (const std::string change = model_change(*open.model_snapshot, r.model); !change.empty())
+      r.fail(c, fmt::format("{} since this analysis began at {}: an analysis keeps the model of "
+                            "its first SOLVE, so the change would not act on this load step. "
+                            "Make it before the analysis, or start a new analysis (/CLEAR, or "
+                            "ANTYPE of another type)",
+                            change, location_text(open.analysis->where)));
+  }
   AnalysisRequest& a = open_analysis(r, c);
   LoadStep s = snapshot(r, c, static_cast<int>(a.load_steps.size()) + 1);
   check_increasing(r, c, a.load_steps, s);

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include "elements/element_fields.h"
 #include "elements/element_registry.h"
 
 namespace impactfe {
@@ -12,7 +13,26 @@ std::unique_ptr<Element> create_element(const ElementBuildContext& ctx,
   if (type_it == ctx.model.element_types.end())
     throw InputError(record.where, fmt::format("element {}: element type {} is not defined",
                                                record.id, record.type));
-  return element_type_descriptor(type_it->second).create(ctx, record);
+  const ElementType& type = type_it->second;
+  const ElementTypeDescriptor& descriptor = element_type_descriptor(type);
+  // The element's own checks first (they name the field in the element's words), then: every
+  // KEYOPT and real constant given is one the element carries out (element_fields.h).
+  auto element = descriptor.create(ctx, record);
+  if (const std::string why = keyopt_refusal(type); !why.empty())
+    throw InputError(type.where.known() ? type.where : record.where,
+                     fmt::format("element type {}: {}", type.id, why));
+  const auto section = ctx.model.sections.find(record.secnum);
+  const bool by_section = record.secnum > 0 && section != ctx.model.sections.end() &&
+                          descriptor.accepts_section(section->second.type) &&
+                          !section->second.data.empty();
+  const bool reads_real =
+      descriptor.real_constants == RealConstantUse::Required ||
+      (descriptor.real_constants == RealConstantUse::UnlessSection && !by_section);
+  if (const auto set = ctx.model.real_sets.find(record.real);
+      reads_real && set != ctx.model.real_sets.end())
+    if (const std::string why = real_set_refusal(type, set->second); !why.empty())
+      throw InputError(record.where, fmt::format("element {}: {}", record.id, why));
+  return element;
 }
 
 void Element::restore_history_state(const std::vector<double>& state) {

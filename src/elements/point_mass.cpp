@@ -83,11 +83,14 @@ std::unique_ptr<Element> make_point_mass(const ElementBuildContext& ctx,
     throw InputError(record.where, fmt::format("element {} ({}): real set {} gives no mass (all "
                                                "masses and inertias are zero)",
                                                record.id, family, record.real));
+  // The diagonal acts in global axes: in the axes of a rotated node (KEYOPT(2) = 1) only when
+  // it is the same in every direction (a single MASS), so anything else is refused.
   if (type.key(2) == 1 && node.rotated() && type.key(3) == 0)
-    Log::warn(
-        "element {} ({}): KEYOPT(2) = 1 (mass in nodal axes) on rotated node {}: the "
-        "diagonal is applied in global axes",
-        record.id, family, node.id);
+    throw InputError(record.where,
+                     fmt::format("element {} ({}): KEYOPT(2) = 1 (masses and inertias in the "
+                                 "nodal axes of rotated node {}) is not supported: give them in "
+                                 "global axes (KEYOPT(2) = 0) or use KEYOPT(3) = 2 (one MASS)",
+                                 record.id, family, node.id));
   std::vector<DofKey> keys;
   for (Dof d : dofs) keys.push_back(DofKey{node.id, d});
   return std::make_unique<PointMass>(record.id, std::move(keys), std::move(diagonal));

@@ -628,7 +628,9 @@ std::unique_ptr<Element> make_shell4(const ElementBuildContext& ctx, const Eleme
   const RealSet* real = nullptr;
   if (const auto it = model.real_sets.find(record.real); it != model.real_sets.end())
     real = &it->second;
-  if (record.secnum > 0 && sec_it != model.sections.end() && !sec_it->second.data.empty()) {
+  const bool by_section =
+      record.secnum > 0 && sec_it != model.sections.end() && !sec_it->second.data.empty();
+  if (by_section) {
     k.t.fill(sec_it->second.data[0]);
   } else {
     if (real == nullptr)
@@ -642,7 +644,9 @@ std::unique_ptr<Element> make_shell4(const ElementBuildContext& ctx, const Eleme
   }
   for (std::size_t i = 0; i < ids.size(); ++i)
     if (!(k.t[i] > 0.0)) throw fail("zero or negative thickness");
-  if (real != nullptr && record.secnum == 0) {
+  // The other real constants apply whenever the thickness comes from them (a modern deck's
+  // elements carry SECNUM 1 whether or not a section 1 exists).
+  if (real != nullptr && !by_section) {
     k.efs = real->get(5);
     data.theta_deg = real->get(6);
     k.rmi = real->get(7) != 0.0 ? real->get(7) : 1.0;
@@ -650,7 +654,9 @@ std::unique_ptr<Element> make_shell4(const ElementBuildContext& ctx, const Eleme
   }
   k.membrane = type.key(1) != 2;
   k.bending = type.key(1) != 1;
-  k.extra_shapes = type.key(3) != 2;
+  // SHELL63 KEYOPT(3) = 2 suppresses the extra shapes; SHELL181's KEYOPT(3) chooses reduced
+  // (0) or full integration with incompatible modes (2): the kernel's extra shapes for both.
+  k.extra_shapes = shell181 || type.key(3) != 2;
   k.rotary_inertia = type.key(7) != 1;
   // SHELL181 takes TB plasticity; SHELL63 is elastic (the SOLVE check refuses it there).
   if (shell181) data.plasticity = plasticity_of(model, record, k.E, k.nu);

@@ -14,7 +14,8 @@ using corotational::AxialKinematics;
 using corotational::AxialMember;
 
 Spar::Spar(int id, std::vector<DofKey> dofs, AxialMember member, double area, double youngs_modulus,
-           double density, double initial_strain, std::optional<J2Plasticity> plasticity)
+           double density, double initial_strain, std::optional<J2Plasticity> plasticity,
+           double added_mass, Carries carries)
     : Element(id),
       dofs_(std::move(dofs)),
       member_(std::move(member)),
@@ -22,7 +23,9 @@ Spar::Spar(int id, std::vector<DofKey> dofs, AxialMember member, double area, do
       youngs_modulus_(youngs_modulus),
       density_(density),
       initial_strain_(initial_strain),
-      plasticity_(std::move(plasticity)) {}
+      plasticity_(std::move(plasticity)),
+      added_mass_(added_mass),
+      carries_(carries) {}
 
 AxialKinematics Spar::kinematics(const ElementContext& ctx) const {
   if (ctx.large_deflection) return AxialKinematics::Corotational;
@@ -31,12 +34,26 @@ AxialKinematics Spar::kinematics(const ElementContext& ctx) const {
 }
 
 bool Spar::is_nonlinear(const ElementContext& ctx) const {
-  return ctx.large_deflection || ctx.stress_stiffening || plasticity_.has_value();
+  // An initial strain makes the internal force affine, f = K u + f0, not the K u that the
+  // assembler's linear products give (the static load and a transient's motion would miss f0).
+  return ctx.large_deflection || ctx.stress_stiffening || plasticity_.has_value() ||
+         initial_strain_ != 0.0 || carries_ != Carries::Both;
 }
 
 corotational::AxialState Spar::respond(const ElementContext& ctx, const Eigen::VectorXd& u,
                                        Eigen::MatrixXd& K, Eigen::VectorXd& f,
                                        UniaxialPlasticState* updated) const {
+  if (slack_) {
+    // A slack cable or gap carries nothing and adds no stiffness; its material does not move.
+    const int n = 2 * member_.dim();
+    K.setZero(n, n);
+    f.setZero(n);
+    if (updated != nullptr) *updated = committed_;
+    corotational::AxialState none;
+    none.current_length =
+        (member_.length * member_.n + u.tail(member_.dim()) - u.head(member_.dim())).norm();
+    return none;
+  }
   const double ea = youngs_modulus_ * area_;
   const double length = member_.length;
   if (!plasticity_)
@@ -71,18 +88,45 @@ void Spar::commit_history(const ElementContext& ctx, const Eigen::VectorXd& u) {
 std::vector<double> Spar::history_state() const {
   std::vector<double> out;
   if (plasticity_) append_state(out, committed_);
+  if (has_status()) out.push_back(committed_slack_ ? 1.0 : 0.0);
   return out;
 }
 
 void Spar::restore_history_state(const std::vector<double>& state) {
   std::size_t pos = 0;
   if (plasticity_) read_state(state, pos, committed_);
+  if (has_status() && pos < state.size()) committed_slack_ = state[pos++] != 0.0;
   IMPACTFE_CHECK(pos == state.size(), "LINK: saved state of the wrong length");
+  slack_ = committed_slack_;
+  frozen_ = false;
+}
+
+bool Spar::update_status(const ElementContext& ctx, const Eigen::VectorXd& u) {
+  if (frozen_ || carries_ == Carries::Both) return false;
+  // The force the member would carry taut at u decides (LINK180, TENSKEY).
+  const bool was = slack_;
+  slack_ = false;
+  Eigen::MatrixXd K;
+  Eigen::VectorXd f;
+  UniaxialPlasticState state;
+  const double force = respond(ctx, u, K, f, plasticity_ ? &state : nullptr).force;
+  slack_ = carries_ == Carries::TensionOnly ? force < 0.0 : force > 0.0;
+  return slack_ != was;
+}
+
+void Spar::commit(const Eigen::VectorXd&) {
+  committed_slack_ = slack_;
+  frozen_ = false;
+}
+
+void Spar::revert() {
+  slack_ = committed_slack_;
+  frozen_ = false;
 }
 
 void Spar::mass(const ElementContext& ctx, Eigen::MatrixXd& M) const {
   const int d = member_.dim();
-  const double total = density_ * area_ * member_.length;
+  const double total = (density_ * area_ + added_mass_) * member_.length;
   M.setZero(2 * d, 2 * d);
   if (ctx.lumped_mass) {
     M.diagonal().setConstant(0.5 * total);
@@ -126,7 +170,7 @@ namespace {
 
 /// LINK1 (`planar`, UX UY in the X-Y plane) or LINK8 / LINK180 (UX UY UZ).
 std::unique_ptr<Element> make_spar(const ElementBuildContext& ctx, const ElementRecord& record,
-                                   bool planar) {
+                                   bool planar, bool link180) {
   const Model& model = ctx.model;
   const char* family = planar ? "Spar 2-D" : "Spar";
   const auto [ni, nj] = line_data::distinct_node_pair(model, record, family);
@@ -143,8 +187,13 @@ std::unique_ptr<Element> make_spar(const ElementBuildContext& ctx, const Element
                                  record.id, family, ni.id, nj.id, chord.z()));
 
   // Area: LINK180 may take it from a LINK section (SECTYPE/SECDATA), otherwise real constant 1.
+  // The other real constants differ by type (element_fields.cpp): LINK1 and LINK8 read R2 as
+  // the initial strain ISTRN; LINK180 reads R2 as the added mass per unit length ADDMAS and R3
+  // as TENSKEY (0 tension and compression, 1 tension only, -1 compression only).
   double area = 0.0;
   double initial_strain = 0.0;
+  double added_mass = 0.0;
+  Spar::Carries carries = Spar::Carries::Both;
   bool area_from_section = false;
   if (record.secnum > 0) {
     const auto sec = model.sections.find(record.secnum);
@@ -155,8 +204,26 @@ std::unique_ptr<Element> make_spar(const ElementBuildContext& ctx, const Element
   }
   const auto real_it = model.real_sets.find(record.real);
   if (real_it != model.real_sets.end()) {
-    if (!area_from_section) area = real_it->second.get(1);
-    initial_strain = real_it->second.get(2);
+    const RealSet& real = real_it->second;
+    if (!area_from_section) area = real.get(1);
+    if (link180) {
+      added_mass = real.get(2);
+      const double key = real.get(3);
+      if (key != 0.0 && key != 1.0 && key != -1.0)
+        throw InputError(record.where,
+                         fmt::format("element {} (LINK180): TENSKEY (real constant 3) = {} must "
+                                     "be 0 (tension and compression), 1 (tension only) or -1 "
+                                     "(compression only)",
+                                     record.id, key));
+      carries = static_cast<Spar::Carries>(static_cast<int>(key));
+      if (added_mass < 0.0)
+        throw InputError(record.where,
+                         fmt::format("element {} (LINK180): ADDMAS (real constant 2) = {} is "
+                                     "negative",
+                                     record.id, added_mass));
+    } else {
+      initial_strain = real.get(2);
+    }
   } else if (!area_from_section) {
     throw InputError(record.where,
                      fmt::format("element {} ({}): real constant set {} (AREA) is not defined",
@@ -178,10 +245,10 @@ std::unique_ptr<Element> make_spar(const ElementBuildContext& ctx, const Element
     for (int c = 0; c < d; ++c) dofs.push_back(DofKey{node, static_cast<Dof>(c)});
   return std::make_unique<Spar>(record.id, std::move(dofs), std::move(member), area,
                                 mat.youngs_modulus, mat.density, initial_strain,
-                                std::move(plasticity));
+                                std::move(plasticity), added_mass, carries);
 }
 
-ElementTypeDescriptor spar_type(const char* name, int number, bool planar) {
+ElementTypeDescriptor spar_type(const char* name, int number, bool planar, bool link180 = false) {
   return {.name = name,
           .number = number,
           .family = "Spar",
@@ -201,14 +268,14 @@ ElementTypeDescriptor spar_type(const char* name, int number, bool planar) {
                                {"NL", "SRAT", "SRAT"},
                                {"NL", "PLWK", "PLWK"}},
           .plasticity = true,
-          .create = [planar](const ElementBuildContext& ctx, const ElementRecord& record) {
-            return make_spar(ctx, record, planar);
+          .create = [planar, link180](const ElementBuildContext& ctx, const ElementRecord& record) {
+            return make_spar(ctx, record, planar, link180);
           }};
 }
 
 const ElementRegistration kLink1{spar_type("LINK1", 1, true)};
 const ElementRegistration kLink8{spar_type("LINK8", 8, false)};
-const ElementRegistration kLink180{spar_type("LINK180", 180, false)};
+const ElementRegistration kLink180{spar_type("LINK180", 180, false, true)};
 
 }  // namespace
 

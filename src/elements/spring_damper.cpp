@@ -118,9 +118,7 @@ std::unique_ptr<Element> make_spring_damper(const ElementBuildContext& ctx,
                      fmt::format("element {} ({}): real set {} gives neither a stiffness K nor a "
                                  "damping CV1 (R,{},K,CV1)",
                                  record.id, family, record.real, record.real));
-  if (real.get(3) != 0.0)
-    Log::warn("element {} ({}): nonlinear damping CV2 = {} is ignored (linear damping CV1 only)",
-              record.id, family, real.get(3));
+  // CV2 (nonlinear damping) is refused before (element_fields.cpp).
 
   AxialMember member;
   std::vector<DofKey> dofs;

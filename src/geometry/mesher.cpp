@@ -1,5 +1,8 @@
 #include "geometry/mesher.h"
 
+#include "core/memory_budget.h"
+#include "elements/model_memory.h"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -73,6 +76,16 @@ void Mesher::check_new_nodes(double n, const std::string& what) const {
         fmt::format("meshing {} would make {:.0f} nodes, more than the limit of {} (check "
                     "the divisions: LESIZE, ESIZE, KESIZE, DESIZE)",
                     what, total, current_.max_nodes));
+  // A mesh whose model could not be solved in the memory the run may take is refused before
+  // it is built (about as many elements as nodes are made). Small entities are not worth the
+  // look at /proc.
+  if (n >= 1000) {
+    try {
+      require_model_memory(model_, "meshing " + what, current_.type, n, n);
+    } catch (const MemoryLimitError& e) {
+      throw MemoryLimitError(where_, e.message());
+    }
+  }
 }
 
 int Mesher::add_node(const Vec3& x) {

@@ -111,11 +111,21 @@ void write_contents(hid_t file, const SuperelementData& d) {
 
 void write_superelement(const std::string& path, const SuperelementData& d) {
   h5::silence_errors();  // libraries never print
+  // Written whole under a temporary name, then renamed over `path`: a use pass reading the file
+  // (this run's or another's) sees the old superelement or the new one, never a part.
+  const std::string creating = path + ".creating";
   try {
-    const Handle file(h5::check(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT),
-                                "create the file"));
-    write_contents(file, d);
+    {
+      const Handle file(h5::check(
+          H5Fcreate(creating.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), "create the file"));
+      write_contents(file, d);
+    }
+    std::error_code ec;
+    std::filesystem::rename(creating, path, ec);
+    if (ec) throw std::runtime_error("cannot rename " + creating + ": " + ec.message());
   } catch (const std::runtime_error& e) {
+    std::error_code ec;
+    std::filesystem::remove(creating, ec);
     throw std::runtime_error(fmt::format("superelement file {}: {}", path, e.what()));
   }
 }

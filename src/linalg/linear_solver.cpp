@@ -10,6 +10,7 @@
 #include <new>
 
 #include "core/errors.h"
+#include "core/memory_budget.h"
 #include "linalg/solver_support.h"
 #include "linalg/supernodal_factor.h"
 #include "linalg/supernodal_substitution.h"
@@ -26,6 +27,9 @@ using solver_support::ScopedTimer;
 /// SupernodalFactor's inline kernels: below it CHOLMOD's bookkeeping and BLAS call overheads
 /// dominate (issue 11, docs/benchmarks.md).
 constexpr double kInlineFactorFlops = 5.0e7;
+/// Bytes of a factor per structural nonzero: 8 for the value, with the supernodal row indices
+/// and padding about 9.8 (measured: 705 MB for nnz(L) = 72.3 million on a brick mesh).
+constexpr double kFactorBytesPerEntry = 9.5;
 
 /// CHOLMOD supernodal LLᵀ (SupernodalFactor's kernels for small factors), falling back to
 /// simplicial LDLᵀ for indefinite (but regular) effective matrices (e.g. compressive stress
@@ -58,6 +62,22 @@ class CholmodSolver final : public LinearSolver {
           "the sparse solver's symbolic analysis failed (CHOLMOD status {})", common_.status));
     }
     solver_support::require_blas_for(factor_);
+    // The exact size of the factor is known now, before it is allocated: a model whose factor
+    // cannot fit is refused here rather than run out of memory while factorizing.
+    const double lnz = common_.lnz;
+    const double n = static_cast<double>(lower.rows());
+    try {
+      require_memory(
+          kFactorBytesPerEntry * lnz,
+          fmt::format("the factor of the {:.0f} equations (nnz(L) = {:.4g} by the symbolic "
+                      "analysis)",
+                      n, lnz),
+          fmt::format("at this fill, about {:.3g} equations would fit",
+                      n * std::pow(memory_available().bytes / (kFactorBytesPerEntry * lnz), 0.75)));
+    } catch (...) {
+      cholmod_free_factor(&factor_, &common_);
+      throw;
+    }
     ++counters_.analyses;
     n_ = static_cast<int>(lower.rows());
     inline_.reset();

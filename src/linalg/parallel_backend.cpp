@@ -78,14 +78,24 @@ bool shared_file_exists(const std::string& path, bool exists_only) {
   broadcast_raw(&found, sizeof(found));
   return found != 0;
 }
-std::optional<std::string> shared_read_file(const std::string& path) {
+std::optional<std::string> shared_read_file(const std::string& path, const ReadLimits& limits) {
   std::optional<std::string> text;
+  // size: the bytes, -1 no such file, -2 - line a file beyond `limits` (OversizedFileError on
+  // every rank alike).
   long long size = -1;
   if (process_rank() == 0) {
-    text = local_read_file(path);
-    if (text) size = static_cast<long long>(text->size());
+    try {
+      text = local_read_file(path, limits);
+      if (text) size = static_cast<long long>(text->size());
+    } catch (const OversizedFileError& e) {
+      size = -2 - e.line();
+    }
   }
   broadcast_raw(&size, sizeof(size));
+  if (size <= -2) {
+    const int line = static_cast<int>(-2 - size);
+    throw OversizedFileError(path, line, line > 0 ? limits.max_line : limits.max_bytes);
+  }
   if (size < 0) return std::nullopt;
   if (!text) text.emplace(static_cast<std::size_t>(size), '\0');
   broadcast_raw(text->data(), size);

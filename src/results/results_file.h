@@ -71,7 +71,8 @@ void set_results_writer_thread(WriterThread mode);
 /// end_analysis returns when the analysis is in the file.
 class ResultsWriter {
  public:
-  /// Creates (truncates) the file and writes the model section (nodes, elements, title).
+  /// Creates the file (under a temporary name, renamed over `path` once it holds the model
+  /// section: an existing file is replaced whole) and writes the model section.
   ResultsWriter(const std::string& path, const Model& model);
   /// Opens an existing results file to add analyses after those in it (a run continued from a
   /// restart point, docs/solution_control.md): its model section is kept as written.

@@ -542,10 +542,16 @@ ResultsFileWriter::ResultsFileWriter(const std::string& path, const ResultsModel
   impl_->path = path;
   Handle fapl = h5::file_access_checksummed();
   Handle fcpl = h5::checksummed_group_creation_list(true);
-  hid_t f = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, fcpl, fapl);
+  // The new file is made under a temporary name and renamed into place once its model section
+  // is written: a file already at `path` (an earlier run's) is replaced whole or not at all,
+  // never truncated by a creation that fails.
+  const std::string creating = path + ".creating";
+  hid_t f = H5Fcreate(creating.c_str(), H5F_ACC_TRUNC, fcpl, fapl);
   // Exit status 2 (the run cannot keep its results), with the system's reason.
   if (f < 0) {
     const std::string detail = h5::error_detail();
+    std::error_code ec;
+    std::filesystem::remove(creating, ec);
     throw SolutionError(fmt::format("cannot create results file '{}'{}", path,
                                     detail.empty() ? "" : ": " + detail));
   }
@@ -553,7 +559,13 @@ ResultsFileWriter::ResultsFileWriter(const std::string& path, const ResultsModel
   try {
     impl_->write_model(model);
     impl_->flush();
+    std::error_code ec;
+    std::filesystem::rename(creating, path, ec);  // HDF5 keeps writing the same file
+    if (ec) throw std::runtime_error(fmt::format("cannot rename {}: {}", creating, ec.message()));
   } catch (const std::runtime_error& e) {
+    impl_->file.reset();
+    std::error_code ec;
+    std::filesystem::remove(creating, ec);
     throw SolutionError(fmt::format("results file '{}': {}", path, e.what()));
   }
 }

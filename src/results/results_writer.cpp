@@ -247,11 +247,14 @@ void set_results_writer_thread(WriterThread mode) {
 
 ResultsWriter::ResultsWriter(const std::string& path, const Model& model)
     : impl_(std::make_unique<Impl>()) {
+  h5::silence_errors();  // this thread writes too once the writer thread retires
   Impl& m = *impl_;
   m.path = path;
   // Exit status 2 (the run cannot keep its results), with the system's reason, now rather than
-  // at a later step: HDF5 creates (truncates) the file on the writer thread.
-  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_CLOEXEC, 0666);
+  // at a later step: HDF5 creates the file on the writer thread (under this temporary name,
+  // renamed over `path` once it holds the model: ResultsFileWriter).
+  const std::string creating = path + ".creating";
+  const int fd = ::open(creating.c_str(), O_WRONLY | O_CREAT | O_CLOEXEC, 0666);
   if (fd < 0)
     throw SolutionError(
         fmt::format("cannot create results file '{}': {}", path, std::strerror(errno)));
@@ -265,6 +268,7 @@ ResultsWriter::ResultsWriter(const std::string& path, const Model& model)
 
 ResultsWriter::ResultsWriter(const std::string& path, Append) : impl_(std::make_unique<Impl>()) {
   // A continued file is opened here: its node ids and analyses are needed at once.
+  h5::silence_errors();
   Impl& m = *impl_;
   m.path = path;
   m.file = std::make_unique<ResultsFileWriter>(path, Append{});

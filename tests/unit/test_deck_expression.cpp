@@ -169,8 +169,10 @@ TEST(DeckExpression, Numbers) {
   EXPECT_DOUBLE_EQ(ev("1.5D-3", p), 1.5e-3);
   EXPECT_DOUBLE_EQ(ev(".5", p), 0.5);
   EXPECT_DOUBLE_EQ(ev("2.", p), 2.0);
-  EXPECT_DOUBLE_EQ(ev("123-002", p), 1.23);  // MAPDL: a sign and 0nn is an exponent
-  EXPECT_DOUBLE_EQ(ev("123-2", p), 121.0);   // ... but 123-2 is a subtraction
+  EXPECT_DOUBLE_EQ(ev("123-002", p), 1.23);  // MAPDL: a sign and 0nn is an exponent: 123E-2
+  EXPECT_DOUBLE_EQ(ev("5+03", p), 5000.0);
+  EXPECT_DOUBLE_EQ(ev("1.5-01", p), 0.15);
+  EXPECT_DOUBLE_EQ(ev("123-2", p), 121.0);  // ... but 123-2 is a subtraction
   EXPECT_DOUBLE_EQ(ev("2-0.5", p), 1.5);
 }
 

@@ -11,6 +11,7 @@
 #include <map>
 
 #include "../support/run_deck.h"
+#include "elements/element_fields.h"
 #include "elements/element_registry.h"
 #include "elements/line_element_data.h"
 #include "results/report_mesh.h"
@@ -203,7 +204,14 @@ Model one_element_model(const std::string& type) {
   et.id = 1;
   et.ansys_name = type;
   m.element_types[1] = et;
-  m.real_sets[1] = RealSet{1, {0.1, 0.1, 0.1, 0.1, 0.1, 0.1}};
+  // 0.1 at each real constant the type reads (element_fields.h refuses the others); a flag
+  // such as LINK180's TENSKEY stays 0.
+  RealSet real{1, std::vector<double>(6, 0.0)};
+  if (const ElementFields* fields = element_fields(type))
+    for (const auto& c : fields->real_constants)
+      if (c.position <= 6 && !c.refused && c.name != "TENSKEY")
+        real.values[static_cast<std::size_t>(c.position - 1)] = 0.1;
+  m.real_sets[1] = real;
   Material mat;
   mat.id = 1;
   mat.props = {{"EX", 1e6}, {"NUXY", 0.3}, {"PRXY", 0.3}, {"DENS", 1e-3}};

@@ -1,0 +1,188 @@
+#include "elements/element_fields.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+namespace impactfe {
+
+namespace {
+
+std::vector<RealConstantField> named(std::initializer_list<const char*> names) {
+  std::vector<RealConstantField> out;
+  int position = 0;
+  for (const char* name : names) out.push_back({++position, name, false});
+  return out;
+}
+
+std::vector<int> range(int first, int last) {
+  std::vector<int> out;
+  for (int v = first; v <= last; ++v) out.push_back(v);
+  return out;
+}
+
+std::vector<RealConstantField> shell63_constants() {
+  auto r = named({"TK(I)", "TK(J)", "TK(K)", "TK(L)", "EFS", "THETA", "RMI"});
+  r.push_back({8, "CTOP", true});
+  r.push_back({9, "CBOT", true});
+  r.push_back({19, "ADMSUA", false});
+  return r;
+}
+
+std::vector<RealConstantField> surface_contact_constants() {
+  // CONTA174 / CONTA175 (APDL_MODELING §8.4): the ones refused are read by MAPDL, not here.
+  std::vector<RealConstantField> r;
+  const char* names[] = {"R1",   "R2",     "FKN",  "FTOLN", "ICONT", "PINB", "PMAX",
+                         "PMIN", "TAUMAX", "CNOF", "FKOP",  "FKT",   "COHE"};
+  const bool refused[] = {true, true, false, false, true,  false, true,
+                          true, true, false, true,  false, true};
+  for (int i = 0; i < 13; ++i) r.push_back({i + 1, names[i], refused[i]});
+  return r;
+}
+
+std::vector<KeyoptField> surface_contact_keyopts() {
+  return {{2, {0, 1}, "algorithm: 0 augmented Lagrange, 1 penalty"},
+          {4, range(0, 3), "detection points"},
+          {7, {0, 1}, "1: bisection on penetration beyond FTOLN under AUTOTS"},
+          {10, range(0, 2), "contact stiffness update"},
+          {12, range(0, 6), "behaviour of the contact surface"},
+          {18, {0, 1}, "sliding on a deformable target: 0 large, 1 small"}};
+}
+
+std::vector<ElementFields> make_table() {
+  std::vector<ElementFields> t;
+  // Spars (docs/spec/APDL_SUBSET.md §11.1; LINK180: R,n,AREA,ADDMAS,TENSKEY).
+  t.push_back({"LINK1",
+               named({"AREA", "ISTRN"}),
+               {{1, {0, 1}, "written by the ANSYS 4 decks of the thesis; no effect on LINK1"}}});
+  t.push_back({"LINK8", named({"AREA", "ISTRN"}), {}});
+  t.push_back({"LINK180", named({"AREA", "ADDMAS", "TENSKEY"}), {}});
+  // Beams (APDL_MODELING §8.1, §8.2).
+  t.push_back({"BEAM3",
+               named({"AREA", "IZZ", "HEIGHT", "SHEARZ", "ISTRN", "ADDMAS"}),
+               {{2, {0, 1}, "1: lumped mass"}}});
+  {
+    auto r = named({"AREA", "IZZ", "IYY", "TKZ", "TKY", "THETA", "ISTRN", "IXX", "SHEARZ", "SHEARY",
+                    "SPIN", "ADDMAS"});
+    r[10].refused = true;  // SPIN: rotating frame
+    t.push_back({"BEAM4", r, {{2, {0, 1}, "1: lumped mass"}}});
+  }
+  t.push_back({"BEAM188",
+               {},
+               {{1, {0}, "1 (warping DOF) is not supported"},
+                {3, {0, 2, 3}, "interpolation: 0 linear, 2 quadratic, 3 cubic"}}});
+  // Springs, gaps, masses.
+  {
+    auto r = named({"K", "CV1", "CV2"});
+    r[2].refused = true;  // nonlinear damping
+    t.push_back({"COMBIN14",
+                 r,
+                 {{2, range(0, 6), "scalar spring on one DOF (1-6)"},
+                  {3, {0, 1, 2}, "0 3-D longitudinal, 1 3-D torsional, 2 2-D longitudinal"}}});
+  }
+  t.push_back({"COMBIN40",
+               named({"K1", "C", "M", "GAP", "FSLIDE", "K2"}),
+               {{1, {0, 1}, "1: gap locks when closed"},
+                {3, range(0, 6), "DOF: UX UX UY UZ ROTX ROTY ROTZ"},
+                {6, {0, 1, 2}, "mass location: 0 half at each node, 1 node I, 2 node J"}}});
+  t.push_back({"MASS21",
+               named({"MASSX", "MASSY", "MASSZ", "IXX", "IYY", "IZZ"}),
+               {{2, {0, 1}, "1: mass in nodal axes"},
+                {3, {0, 2, 3, 4}, "0 3-D with inertias, 2 3-D mass, 3 2-D with IZZ, 4 2-D mass"}}});
+  // Solids (docs/elements/solid45.md). SOLID185 KEYOPT(6) = 1 (mixed u-P) is not implemented.
+  t.push_back({"SOLID45",
+               {},
+               {{1, {0, 1}, "1: no extra displacement shapes"},
+                {2, {0, 1}, "1: reduced integration (approximated: full 2x2x2)"}}});
+  t.push_back({"SOLID185",
+               {},
+               {{2, range(0, 3),
+                 "0 B-bar, 1 reduced, 2 enhanced strain (approximated), 3 "
+                 "simplified enhanced strain"},
+                {6, {0}, "1 (mixed u-P formulation) is not implemented"}}});
+  // Shells (docs/elements/shell63.md). SHELL181 is computed with the SHELL63 kernel; of its
+  // real constants only the thicknesses are read (the others mean other things than SHELL63's).
+  t.push_back({"SHELL63",
+               shell63_constants(),
+               {{1, {0, 1, 2}, "0 bending and membrane, 1 membrane only, 2 bending only"},
+                {3, {0, 2}, "2: no extra displacement shapes"},
+                {5, {0, 1}, "1: extra stress printout (a printout option: no effect here)"},
+                {7, {0, 1}, "1: no rotary inertia"}}});
+  t.push_back({"SHELL181",
+               named({"TK(I)", "TK(J)", "TK(K)", "TK(L)"}),
+               {{1, {0, 1}, "0 bending and membrane, 1 membrane only"},
+                {3, {0, 2}, "integration: both computed with extra displacement shapes"}}});
+  t.push_back({"MATRIX50", {}, {}});
+  // Contact (APDL_MODELING §8.4, docs/elements/conta174.md, conta175.md, conta178.md).
+  t.push_back({"CONTA174", surface_contact_constants(), surface_contact_keyopts()});
+  t.push_back({"CONTA175", surface_contact_constants(), surface_contact_keyopts()});
+  {
+    auto r = named({"FKN", "GAP", "START", "FKS", "REDFACT", "NX", "NY", "NZ", "TOLN"});
+    r[4].refused = true;
+    t.push_back({"CONTA178",
+                 r,
+                 {{2, {0, 1}, "algorithm: 0 augmented Lagrange, 1 penalty"},
+                  {12, range(0, 6), "behaviour of the contact"}}});
+  }
+  t.push_back({"TARGE170", {}, {{2, {0, 1}, "boundary conditions: 0 automatic, 1 given"}}, true});
+  std::sort(t.begin(), t.end(), [](const auto& a, const auto& b) { return a.type < b.type; });
+  return t;
+}
+
+}  // namespace
+
+const std::vector<ElementFields>& all_element_fields() {
+  static const std::vector<ElementFields> table = make_table();
+  return table;
+}
+
+const ElementFields* element_fields(const std::string& type) {
+  for (const auto& f : all_element_fields())
+    if (f.type == type) return &f;
+  return nullptr;
+}
+
+std::string keyopt_refusal(const ElementType& type) {
+  const ElementFields* fields = element_fields(type.ansys_name);
+  if (fields == nullptr) return {};
+  for (int k = 1; k < static_cast<int>(type.keyopt.size()); ++k) {
+    const int v = type.key(k);
+    if (v == 0) continue;
+    const auto f = std::find_if(fields->keyopts.begin(), fields->keyopts.end(),
+                                [k](const KeyoptField& x) { return x.number == k; });
+    if (f == fields->keyopts.end())
+      return fmt::format(
+          "{} KEYOPT({}) = {} is not carried out (only KEYOPT(1..18) = 0 unless "
+          "listed in docs/deck_reader.md, \"Element fields\")",
+          type.ansys_name, k, v);
+    if (std::find(f->values.begin(), f->values.end(), v) == f->values.end())
+      return fmt::format("{} KEYOPT({}) = {} is not carried out ({})", type.ansys_name, k, v,
+                         f->meaning);
+  }
+  return {};
+}
+
+std::string real_set_refusal(const ElementType& type, const RealSet& set) {
+  const ElementFields* fields = element_fields(type.ansys_name);
+  if (fields == nullptr || fields->real_set_of_pair) return {};
+  for (int i = 1; i <= static_cast<int>(set.values.size()); ++i) {
+    if (set.get(i) == 0.0) continue;
+    const auto f = std::find_if(fields->real_constants.begin(), fields->real_constants.end(),
+                                [i](const RealConstantField& x) { return x.position == i; });
+    if (f == fields->real_constants.end()) {
+      std::string read;
+      for (const auto& c : fields->real_constants)
+        if (!c.refused)
+          read += fmt::format("{}{} {}", read.empty() ? "" : ", ", c.position, c.name);
+      return fmt::format("real constant {} of set {} (= {}) is not read by {} ({})", i, set.id,
+                         set.get(i), type.ansys_name,
+                         read.empty() ? "it takes no real constants" : "it reads " + read);
+    }
+    if (f->refused)
+      return fmt::format("{} (real constant {} of set {}) = {} is not supported by {}", f->name, i,
+                         set.id, set.get(i), type.ansys_name);
+  }
+  return {};
+}
+
+}  // namespace impactfe
