@@ -11,31 +11,17 @@
 
 namespace impactfe {
 
-void run_reduced_transient(Structure& structure, const AnalysisRequest& request,
-                           ResultsWriter& writer, const RunSettings& settings,
-                           AnalysisStatistics& stats,
-                           std::unique_ptr<ReducedSolutionState>& state_for_expansion) {
-  using clock = std::chrono::steady_clock;
-  const AnalysisOptions& options = structure.options();
-  auto state = std::make_unique<ReducedRunState>();
-  state->method = "reduced";
-  const Model& model = structure.model();
-  const std::unique_ptr<TimeIntegrator> probe = make_time_integrator(options);
-  stats.description = fmt::format("transient (reduced, {})", probe->name());
-  writer.begin_analysis(ResultsKind::ReducedTransient,
-                        fmt::format("reduced transient ({}) on master DOFs", probe->name()));
+namespace {
 
-  // --- Reduction -----------------------------------------------------------------------------
-  const auto t_reduction = clock::now();
-  prepare_reduced_model(*state, structure, request, settings, model.masters, stats);
-  const DofMap& dofs = *state->dofs;
+/// The master DOFs of the reduction (M, MDELE, TOTAL): a master that is no element's DOF is an
+/// input error; a constrained one is ignored with a warning; one without mass is named.
+std::vector<int> checked_masters(const Model& model, const DofMap& dofs, const VectorXd& k_diagonal,
+                                 const SparseMatrix& mass, const AnalysisOptions& options,
+                                 const AnalysisRequest& request, AnalysisStatistics& stats) {
   const int nf = dofs.n_free();
-  const VectorXd zero = VectorXd::Zero(dofs.n_active());
-  const SparseMatrix k = state->assembler->stiffness_matrix(zero);
-  const SparseMatrix c = damping_matrix(*state, k);
-  const MasterSelection masters = select_masters(
-      model.masters, dofs, k.diagonal().head(nf), state->mass_all.diagonal().head(nf),
-      options.total_masters, options.total_masters_exclude_rotations);
+  const MasterSelection masters =
+      select_masters(model.masters, dofs, k_diagonal, mass.diagonal().head(nf),
+                     options.total_masters, options.total_masters_exclude_rotations);
   for (const DofKey& key : masters.ignored) {
     if (!dofs.is_active(key)) {
       const auto w = model.master_where.find(key);
@@ -58,10 +44,73 @@ void run_reduced_transient(Structure& structure, const AnalysisRequest& request,
     throw InputError(request.where,
                      "reduced transient: no master DOFs (give them with M or TOTAL)");
   for (int i : masters.indices)
-    if (!(state->mass_all.coeff(i, i) > 0.0))
+    if (!(mass.coeff(i, i) > 0.0))
       Log::warn("master DOF {} carries no mass", describe(dofs.key(i)));
+  return masters.indices;
+}
+
+/// IC on the master DOFs (q0, v0 in master order); an IC on a slave DOF is ignored with a warning.
+void master_initial_conditions(const Model& model, const DofMap& dofs,
+                               const std::vector<int>& master_position, VectorXd& q0,
+                               VectorXd& v0) {
+  const int nf = dofs.n_free();
+  for (const auto& [key, ic] : model.initial_conditions) {
+    const int i = dofs.index(key);
+    const int j = (i >= 0 && i < nf) ? master_position[static_cast<std::size_t>(i)] : -1;
+    if (j < 0) {
+      Log::warn("IC on {} ignored: not a master DOF of the reduced transient", describe(key));
+      continue;
+    }
+    q0(j) = ic.displacement;
+    v0(j) = ic.velocity;
+  }
+}
+
+/// The run summary's line for each gap condition: when it first carried force, and its peak.
+void note_gap_histories(const ReducedRunState& state, std::size_t n_gaps,
+                        AnalysisStatistics& stats) {
+  for (std::size_t g = 0; g < n_gaps; ++g) {
+    double peak = 0.0, closed_at = std::numeric_limits<double>::quiet_NaN();
+    for (std::size_t p = 0; p < state.points.size(); ++p) {
+      const double f = state.gap_forces[p](static_cast<int>(g));
+      if (f != 0.0 && std::isnan(closed_at)) closed_at = state.points[p].time;
+      if (std::abs(f) > std::abs(peak)) peak = f;
+    }
+    stats.notes.push_back(std::isnan(closed_at)
+                              ? fmt::format("gap {}: never closed (no force)", g + 1)
+                              : fmt::format("gap {}: first force at t = {:g}, peak force {:.6g}",
+                                            g + 1, closed_at, peak));
+  }
+}
+
+}  // namespace
+
+void run_reduced_transient(Structure& structure, const AnalysisRequest& request,
+                           ResultsWriter& writer, const RunSettings& settings,
+                           AnalysisStatistics& stats,
+                           std::unique_ptr<ReducedSolutionState>& state_for_expansion) {
+  using clock = std::chrono::steady_clock;
+  const AnalysisOptions& options = structure.options();
+  auto state = std::make_unique<ReducedRunState>();
+  state->method = "reduced";
+  const Model& model = structure.model();
+  const std::unique_ptr<TimeIntegrator> probe = make_time_integrator(options);
+  stats.description = fmt::format("transient (reduced, {})", probe->name());
+  writer.begin_analysis(ResultsKind::ReducedTransient,
+                        fmt::format("reduced transient ({}) on master DOFs", probe->name()));
+
+  // --- Reduction -----------------------------------------------------------------------------
+  const auto t_reduction = clock::now();
+  prepare_reduced_model(*state, structure, request, settings, model.masters, stats);
+  const DofMap& dofs = *state->dofs;
+  const int nf = dofs.n_free();
+  const VectorXd zero = VectorXd::Zero(dofs.n_active());
+  const SparseMatrix k = state->assembler->stiffness_matrix(zero);
+  const SparseMatrix c = damping_matrix(*state, k);
+  const std::vector<int> masters =
+      checked_masters(model, dofs, k.diagonal().head(nf), state->mass_all, options, request, stats);
   state->guyan = std::make_unique<GuyanReduction>(k, state->mass_all, c.nonZeros() ? &c : nullptr,
-                                                  nf, masters.indices, &dofs);
+                                                  nf, masters, &dofs);
   const GuyanReduction& guyan = *state->guyan;
   const double reduction_seconds =
       std::chrono::duration<double>(clock::now() - t_reduction).count();
@@ -82,19 +131,12 @@ void run_reduced_transient(Structure& structure, const AnalysisRequest& request,
 
   // --- Initial conditions on masters (IC); slaves follow the masters -------------------------
   VectorXd q0 = VectorXd::Zero(guyan.n_masters()), v0 = q0;
-  for (const auto& [key, ic] : model.initial_conditions) {
-    const int i = dofs.index(key);
-    const int j = (i >= 0 && i < nf) ? master_position[static_cast<std::size_t>(i)] : -1;
-    if (j < 0) {
-      Log::warn("IC on {} ignored: not a master DOF of the reduced transient", describe(key));
-      continue;
-    }
-    q0(j) = ic.displacement;
-    v0(j) = ic.velocity;
-  }
+  master_initial_conditions(model, dofs, master_position, q0, v0);
 
   // --- Integration ---------------------------------------------------------------------------
-  state->points = reduced_time_axis(state->load_steps, state->dt, stats.notes);
+  state->points =
+      reduced_time_axis(state->load_steps, state->dt, stats.notes,
+                        history_bytes_per_point(guyan.n_masters(), static_cast<int>(gaps.size())));
   ReducedDynamics dynamics(guyan.k(), guyan.m(), guyan.c(), std::move(gaps),
                            make_time_integrator(options));
   double seconds_per_step = 0.0;
@@ -122,18 +164,7 @@ void run_reduced_transient(Structure& structure, const AnalysisRequest& request,
                   "{:.3g} s per step",
                   guyan.n_masters(), guyan.n_slaves(), reduction_seconds, state->points.size() - 1,
                   state->dt, seconds_per_step));
-  for (std::size_t g = 0; g < model.gap_conditions.size(); ++g) {
-    double peak = 0.0, closed_at = std::numeric_limits<double>::quiet_NaN();
-    for (std::size_t p = 0; p < state->points.size(); ++p) {
-      const double f = state->gap_forces[p](static_cast<int>(g));
-      if (f != 0.0 && std::isnan(closed_at)) closed_at = state->points[p].time;
-      if (std::abs(f) > std::abs(peak)) peak = f;
-    }
-    stats.notes.push_back(std::isnan(closed_at)
-                              ? fmt::format("gap {}: never closed (no force)", g + 1)
-                              : fmt::format("gap {}: first force at t = {:g}, peak force {:.6g}",
-                                            g + 1, closed_at, peak));
-  }
+  note_gap_histories(*state, model.gap_conditions.size(), stats);
   state_for_expansion = std::move(state);
 }
 

@@ -292,6 +292,12 @@ class DeckReader {
   Flow run_if(Frame& f, std::size_t i, const Command& c);
   bool if_condition(const Command& c, int first_field, bool& has_second);
   void run_block_macro(const Command& c, const std::string& name);
+  /// *CREATE (a macro file in memory) or 4x *BEGIN (a block for *DO): records `body`.
+  void record_block(const Command& c, std::vector<RawCommand> body);
+  void run_use(const Command& c);    // *USE,Name,ARG1..AR18
+  void run_input(const Command& c);  // /INPUT,Fname,Ext,Dir
+  /// 4x *DO,Block,N1,N2 over a recorded *BEGIN block; false when `c` is an APDL *DO loop.
+  bool run_block_do(const Command& c);
   void repeat_previous(const Command& c);
   /// Counts one unit of interpreted work at `c` (a command, a loop trip, a *REPEAT repetition,
   /// a block pass) and fails past DeckOptions::max_commands.

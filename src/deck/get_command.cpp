@@ -235,6 +235,136 @@ double real_field(DeckReader& r, const Command& c, const GetRequest& g, const st
   }
 }
 
+// *GET,Par,ETAB,col,ELEM,e: column number col (1-based).
+GetValue get_etab(DeckReader& r, const Command& c, const GetRequest& g, bool vector) {
+  const int col = integer_field(r, c, g, g.entnum);
+  const PostState& ps = post_state(r);
+  if (col < 1 || col > static_cast<int>(ps.etable.size()))
+    r.fail(c, fmt::format("{}: the element table has {} columns", g.what(), ps.etable.size()));
+  if (g.item1 != "ELEM") unsupported(r, c, g, "ELEM,e");
+  GetRequest e2 = g;
+  e2.entity = "ELEM";
+  e2.entnum = g.it1num;
+  e2.item1 = "ETAB";
+  e2.it1num = ps.etable[static_cast<std::size_t>(col - 1)].label;
+  return GetValue{get_element(r, c, e2, integer_field(r, c, g, g.it1num), vector)};
+}
+
+// *GET,Par,MODE,m,FREQ.
+double get_mode(DeckReader& r, const Command& c, const GetRequest& g) {
+  const int m = integer_field(r, c, g, g.entnum);
+  if (g.item1 != "FREQ") unsupported(r, c, g, "FREQ");
+  std::vector<double> f;
+  try {
+    f = results(r, c).frequencies();
+  } catch (const InputError& err) {
+    r.fail(c, err.what());
+  }
+  if (m < 1 || m > static_cast<int>(f.size()))
+    r.fail(c, fmt::format("{}: mode {} was not computed (modes 1..{})", g.what(), m, f.size()));
+  return f[static_cast<std::size_t>(m - 1)];
+}
+
+// The sums and sorts of POST1: FSUM (ITEM,FX..MZ), SSUM (ITEM,column), SORT (MAX ... IMIN).
+double get_post1_sum(DeckReader& r, const Command& c, const GetRequest& g) {
+  const PostState& ps = post_state(r);
+  if (g.entity == "FSUM") {
+    if (!ps.fsum) r.fail(c, fmt::format("{}: no FSUM was issued", g.what()));
+    static const char* kNames[6] = {"FX", "FY", "FZ", "MX", "MY", "MZ"};
+    for (std::size_t k = 0; k < 6; ++k)
+      if (g.item1 == "ITEM" && g.it1num == kNames[k]) return (*ps.fsum)[k];
+    unsupported(r, c, g, "ITEM,FX..MZ");
+  }
+  if (g.entity == "SSUM") {
+    const auto it = ps.ssum.find(g.it1num);
+    if (g.item1 != "ITEM") unsupported(r, c, g, "ITEM,Lab");
+    if (it == ps.ssum.end())
+      r.fail(c, fmt::format("{}: no SSUM of column '{}'", g.what(), g.it1num));
+    return it->second;
+  }
+  const auto& s = ps.sort;
+  if (!s) r.fail(c, fmt::format("{}: no NSORT or ESORT was issued", g.what()));
+  if (g.item1 == "MAX") return s->max;
+  if (g.item1 == "MIN") return s->min;
+  if (g.item1 == "IMAX") return static_cast<double>(s->imax);
+  if (g.item1 == "IMIN") return static_cast<double>(s->imin);
+  unsupported(r, c, g, "MAX, MIN, IMAX, IMIN");
+}
+
+// *GET,Par,VARI,n,...: a POST26 variable's extremes or its value at a time or location.
+double get_variable(DeckReader& r, const Command& c, const GetRequest& g) {
+  const int n = integer_field(r, c, g, g.entnum);
+  if (g.item1 == "EXTREM") {
+    const Extremes x = post26_extremes(r, c, n);
+    if (g.it1num == "VMAX") return x.vmax;
+    if (g.it1num == "VMIN") return x.vmin;
+    if (g.it1num == "TMAX") return x.tmax;
+    if (g.it1num == "TMIN") return x.tmin;
+    if (g.it1num == "VLAST") return x.vlast;
+    if (g.it1num == "TLAST") return x.tlast;
+  }
+  if (g.item1 == "REAL" || g.item1 == "RTIME")
+    return post26_value_at(r, c, n, real_field(r, c, g, g.it1num));
+  if (g.item1 == "RSET") {
+    const auto v = post26_values(r, c, n);
+    const int k = integer_field(r, c, g, g.it1num);
+    if (k < 1 || k > static_cast<int>(v.size()))
+      r.fail(c, fmt::format("{}: location {} outside 1..{}", g.what(), k, v.size()));
+    return v[static_cast<std::size_t>(k - 1)];
+  }
+  unsupported(r, c, g, "EXTREM VMAX/VMIN/TMAX/TMIN/VLAST/TLAST, REAL t, RTIME t, RSET k");
+}
+
+// *GET,Par,ETYP,t,...: the element type's number (ATTR ENAM), a KEYOPT, or the highest type.
+double get_element_type(DeckReader& r, const Command& c, const GetRequest& g) {
+  const int t = integer_field(r, c, g, g.entnum);
+  if (t == 0 && g.item1 == "NUM" && g.it1num == "MAX")
+    return r.model.element_types.empty() ? 0.0 : r.model.element_types.rbegin()->first;
+  const auto it = r.model.element_types.find(t);
+  if (it == r.model.element_types.end())
+    r.fail(c, fmt::format("{}: element type {} is not defined", g.what(), t));
+  if (g.item1 == "ATTR" && g.it1num == "ENAM") {
+    const ElementTypeDescriptor* d = find_element_type(it->second.ansys_name);
+    return d != nullptr ? d->number : 0.0;
+  }
+  if (g.item1 == "KOPT") {
+    const int k = integer_field(r, c, g, g.it1num);
+    if (k < 1 || k > 18) r.fail(c, fmt::format("{}: KEYOPT {} outside 1..18", g.what(), k));
+    return static_cast<double>(it->second.key(k));
+  }
+  unsupported(r, c, g, "ATTR ENAM, KOPT k, NUM MAX");
+}
+
+// *GET,Par,RCON,s,CONST,k or NUM,MAX.
+double get_real_constant(DeckReader& r, const Command& c, const GetRequest& g) {
+  const int s = integer_field(r, c, g, g.entnum);
+  if (s == 0 && g.item1 == "NUM" && g.it1num == "MAX")
+    return r.model.real_sets.empty() ? 0.0 : r.model.real_sets.rbegin()->first;
+  const auto it = r.model.real_sets.find(s);
+  if (it == r.model.real_sets.end())
+    r.fail(c, fmt::format("{}: real constant set {} is not defined", g.what(), s));
+  if (g.item1 == "CONST") return it->second.get(integer_field(r, c, g, g.it1num));
+  unsupported(r, c, g, "CONST k, NUM MAX");
+}
+
+// Material properties: *GET,Par,MP,Lab,MAT (older: *GET,Par,Lab,MAT,TEMP,t); nullopt when the
+// entity names no property of any material.
+std::optional<double> get_material_property(DeckReader& r, const Command& c, const GetRequest& g) {
+  const bool mp = g.entity == "MP";
+  const std::string lab = mp ? g.item1 : g.entity;
+  if (!mp && (lab.empty() || std::none_of(r.model.materials.begin(), r.model.materials.end(),
+                                          [&](const auto& m) { return m.second.has(lab); })))
+    return std::nullopt;
+  const int mat = integer_field(r, c, g, g.entnum);
+  const auto it = r.model.materials.find(mat);
+  if (it == r.model.materials.end())
+    r.fail(c, fmt::format("{}: material {} is not defined", g.what(), mat));
+  std::string l = lab == "NUXY" ? "PRXY" : lab;
+  if (!it->second.has(l) && lab == "PRXY") l = "NUXY";
+  if (!it->second.has(l)) r.fail(c, fmt::format("{}: material {} has no {}", g.what(), mat, lab));
+  return it->second.get(l, 0.0);
+}
+
 /// The item `g`; nullopt when its entity is none of these (another provider's, or unknown).
 std::optional<GetValue> get_value(DeckReader& r, const Command& c, const GetRequest& g,
                                   bool vector) {
@@ -242,122 +372,13 @@ std::optional<GetValue> get_value(DeckReader& r, const Command& c, const GetRequ
   if (e == "NODE") return GetValue{get_node(r, c, g, integer_field(r, c, g, g.entnum), vector)};
   if (e == "ELEM") return GetValue{get_element(r, c, g, integer_field(r, c, g, g.entnum), vector)};
   if (e == "ACTIVE" || e == "ACTI") return get_active(r, c, g);
-  if (e == "ETAB") {
-    // *GET,Par,ETAB,col,ELEM,e: column number col (1-based).
-    const int col = integer_field(r, c, g, g.entnum);
-    const PostState& ps = post_state(r);
-    if (col < 1 || col > static_cast<int>(ps.etable.size()))
-      r.fail(c, fmt::format("{}: the element table has {} columns", g.what(), ps.etable.size()));
-    if (g.item1 != "ELEM") unsupported(r, c, g, "ELEM,e");
-    GetRequest e2 = g;
-    e2.entity = "ELEM";
-    e2.entnum = g.it1num;
-    e2.item1 = "ETAB";
-    e2.it1num = ps.etable[static_cast<std::size_t>(col - 1)].label;
-    return GetValue{get_element(r, c, e2, integer_field(r, c, g, g.it1num), vector)};
-  }
-  if (e == "MODE") {
-    const int m = integer_field(r, c, g, g.entnum);
-    if (g.item1 != "FREQ") unsupported(r, c, g, "FREQ");
-    std::vector<double> f;
-    try {
-      f = results(r, c).frequencies();
-    } catch (const InputError& err) {
-      r.fail(c, err.what());
-    }
-    if (m < 1 || m > static_cast<int>(f.size()))
-      r.fail(c, fmt::format("{}: mode {} was not computed (modes 1..{})", g.what(), m, f.size()));
-    return GetValue{f[static_cast<std::size_t>(m - 1)]};
-  }
-  if (e == "FSUM") {
-    const auto& fsum = post_state(r).fsum;
-    if (!fsum) r.fail(c, fmt::format("{}: no FSUM was issued", g.what()));
-    static const char* kNames[6] = {"FX", "FY", "FZ", "MX", "MY", "MZ"};
-    for (std::size_t k = 0; k < 6; ++k)
-      if (g.item1 == "ITEM" && g.it1num == kNames[k]) return GetValue{(*fsum)[k]};
-    unsupported(r, c, g, "ITEM,FX..MZ");
-  }
-  if (e == "SSUM") {
-    const auto& ssum = post_state(r).ssum;
-    const auto it = ssum.find(g.it1num);
-    if (g.item1 != "ITEM") unsupported(r, c, g, "ITEM,Lab");
-    if (it == ssum.end()) r.fail(c, fmt::format("{}: no SSUM of column '{}'", g.what(), g.it1num));
-    return GetValue{it->second};
-  }
-  if (e == "SORT") {
-    const auto& s = post_state(r).sort;
-    if (!s) r.fail(c, fmt::format("{}: no NSORT or ESORT was issued", g.what()));
-    if (g.item1 == "MAX") return GetValue{s->max};
-    if (g.item1 == "MIN") return GetValue{s->min};
-    if (g.item1 == "IMAX") return GetValue{static_cast<double>(s->imax)};
-    if (g.item1 == "IMIN") return GetValue{static_cast<double>(s->imin)};
-    unsupported(r, c, g, "MAX, MIN, IMAX, IMIN");
-  }
-  if (e == "VARI") {
-    const int n = integer_field(r, c, g, g.entnum);
-    if (g.item1 == "EXTREM") {
-      const Extremes x = post26_extremes(r, c, n);
-      if (g.it1num == "VMAX") return GetValue{x.vmax};
-      if (g.it1num == "VMIN") return GetValue{x.vmin};
-      if (g.it1num == "TMAX") return GetValue{x.tmax};
-      if (g.it1num == "TMIN") return GetValue{x.tmin};
-      if (g.it1num == "VLAST") return GetValue{x.vlast};
-      if (g.it1num == "TLAST") return GetValue{x.tlast};
-    }
-    if (g.item1 == "REAL" || g.item1 == "RTIME")
-      return GetValue{post26_value_at(r, c, n, real_field(r, c, g, g.it1num))};
-    if (g.item1 == "RSET") {
-      const auto v = post26_values(r, c, n);
-      const int k = integer_field(r, c, g, g.it1num);
-      if (k < 1 || k > static_cast<int>(v.size()))
-        r.fail(c, fmt::format("{}: location {} outside 1..{}", g.what(), k, v.size()));
-      return GetValue{v[static_cast<std::size_t>(k - 1)]};
-    }
-    unsupported(r, c, g, "EXTREM VMAX/VMIN/TMAX/TMIN/VLAST/TLAST, REAL t, RTIME t, RSET k");
-  }
-  if (e == "ETYP") {
-    const int t = integer_field(r, c, g, g.entnum);
-    if (t == 0 && g.item1 == "NUM" && g.it1num == "MAX")
-      return GetValue{r.model.element_types.empty() ? 0.0 : r.model.element_types.rbegin()->first};
-    const auto it = r.model.element_types.find(t);
-    if (it == r.model.element_types.end())
-      r.fail(c, fmt::format("{}: element type {} is not defined", g.what(), t));
-    if (g.item1 == "ATTR" && g.it1num == "ENAM") {
-      const ElementTypeDescriptor* d = find_element_type(it->second.ansys_name);
-      return GetValue{d != nullptr ? d->number : 0.0};
-    }
-    if (g.item1 == "KOPT") {
-      const int k = integer_field(r, c, g, g.it1num);
-      if (k < 1 || k > 18) r.fail(c, fmt::format("{}: KEYOPT {} outside 1..18", g.what(), k));
-      return GetValue{static_cast<double>(it->second.key(k))};
-    }
-    unsupported(r, c, g, "ATTR ENAM, KOPT k, NUM MAX");
-  }
-  if (e == "RCON") {
-    const int s = integer_field(r, c, g, g.entnum);
-    if (s == 0 && g.item1 == "NUM" && g.it1num == "MAX")
-      return GetValue{r.model.real_sets.empty() ? 0.0 : r.model.real_sets.rbegin()->first};
-    const auto it = r.model.real_sets.find(s);
-    if (it == r.model.real_sets.end())
-      r.fail(c, fmt::format("{}: real constant set {} is not defined", g.what(), s));
-    if (g.item1 == "CONST") return GetValue{it->second.get(integer_field(r, c, g, g.it1num))};
-    unsupported(r, c, g, "CONST k, NUM MAX");
-  }
-  // Material properties: *GET,Par,MP,Lab,MAT (older: *GET,Par,Lab,MAT,TEMP,t).
-  const bool mp = e == "MP";
-  const std::string lab = mp ? g.item1 : e;
-  const std::string mat_text = mp ? g.entnum : g.entnum;
-  if (mp || (!lab.empty() && std::any_of(r.model.materials.begin(), r.model.materials.end(),
-                                         [&](const auto& m) { return m.second.has(lab); }))) {
-    const int mat = integer_field(r, c, g, mat_text);
-    const auto it = r.model.materials.find(mat);
-    if (it == r.model.materials.end())
-      r.fail(c, fmt::format("{}: material {} is not defined", g.what(), mat));
-    std::string l = lab == "NUXY" ? "PRXY" : lab;
-    if (!it->second.has(l) && lab == "PRXY") l = "NUXY";
-    if (!it->second.has(l)) r.fail(c, fmt::format("{}: material {} has no {}", g.what(), mat, lab));
-    return GetValue{it->second.get(l, 0.0)};
-  }
+  if (e == "ETAB") return get_etab(r, c, g, vector);
+  if (e == "MODE") return GetValue{get_mode(r, c, g)};
+  if (e == "FSUM" || e == "SSUM" || e == "SORT") return GetValue{get_post1_sum(r, c, g)};
+  if (e == "VARI") return GetValue{get_variable(r, c, g)};
+  if (e == "ETYP") return GetValue{get_element_type(r, c, g)};
+  if (e == "RCON") return GetValue{get_real_constant(r, c, g)};
+  if (const auto value = get_material_property(r, c, g)) return GetValue{*value};
   if (e == "COMM" || e == "COMMON")
     r.fail(c, fmt::format("{}: MAPDL's internal common blocks do not exist in impactfe", g.what()));
   return std::nullopt;

@@ -223,12 +223,10 @@ std::vector<Station> cells(const Face& face, const SegmentFacets& facets,
   return out;
 }
 
-}  // namespace
-
-std::vector<std::unique_ptr<ContactPoint>> segment_points(
-    const ElementBuildContext& ctx, const ElementRecord& record, const std::vector<int>& corners,
-    const std::vector<std::unique_ptr<ContactPoint>>& nodal, const char* family) {
-  const Model& model = ctx.model;
+/// The contact face on `corners` (3 or 4 nodes) in its plane: centre, unit normal (the cross
+/// product of the diagonals of a quadrilateral), in-plane axes e1 (along the first side) and e2,
+/// and the corners in those axes; `area` the area the normal spans.
+Face contact_face(const Model& model, const std::vector<int>& corners, double& area) {
   Face face;
   face.nodes = corners;
   for (int n : corners) face.x.push_back(model.nodes.at(n).x);
@@ -237,11 +235,23 @@ std::vector<std::unique_ptr<ContactPoint>> segment_points(
   for (const Vec3& y : x) face.centre += y / static_cast<double>(x.size());
   const Vec3 c =
       x.size() == 3 ? (x[1] - x[0]).cross(x[2] - x[0]) : (x[2] - x[0]).cross(x[3] - x[1]);
-  const double area = 0.5 * c.norm();
+  area = 0.5 * c.norm();
   face.normal = c.normalized();
   face.e1 = ((x[1] - x[0]) - (x[1] - x[0]).dot(face.normal) * face.normal).normalized();
   face.e2 = face.normal.cross(face.e1);
   for (const Vec3& y : x) face.plane.push_back(face.to_plane(y));
+  return face;
+}
+
+}  // namespace
+
+std::vector<std::unique_ptr<ContactPoint>> segment_points(
+    const ElementBuildContext& ctx, const ElementRecord& record, const std::vector<int>& corners,
+    const std::vector<std::unique_ptr<ContactPoint>>& nodal, const char* family) {
+  const Model& model = ctx.model;
+  double area = 0.0;
+  const Face face = contact_face(model, corners, area);
+  const auto& x = face.x;
 
   // The face's stiffness per area: the nodal law's (tributary-area shares), k = Σ k_node / A.
   ContactLawData law = nodal.front()->law();

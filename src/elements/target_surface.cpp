@@ -282,15 +282,13 @@ std::shared_ptr<const TargetSurface> contact_target(const ElementBuildContext& c
   return shared;
 }
 
-std::unique_ptr<ContactPoint> target_point(const ElementBuildContext& ctx,
-                                           const ElementRecord& record, const Node& node,
-                                           const char* family, const char* name, double share,
-                                           double area) {
-  const Model& model = ctx.model;
-  const ElementType& type = line_data::element_type(model, record);
-  const auto fail = [&](const std::string& what) {
-    return InputError(record.where, fmt::format("element {} ({}): {}", record.id, name, what));
-  };
+namespace {
+
+/// The KEYOPTs and real constants of CONTA174/175 that impactfe carries out; any other value
+/// stops the build, named in the contact element's words (`fail` makes the located error).
+template <typename Fail>
+void check_surface_contact_fields(const ElementType& type, const RealSet& real, int real_id,
+                                  const Fail& fail) {
   for (int k = 1; k < static_cast<int>(type.keyopt.size()); ++k) {
     const int v = type.key(k);
     const bool ok = v == 0 || (k == 2 && v == 1) || (k == 4 && v <= 3) || (k == 7 && v == 1) ||
@@ -304,19 +302,33 @@ std::unique_ptr<ContactPoint> target_point(const ElementBuildContext& ctx,
                       "sliding on a deformable target; the others 0)",
                       k, v));
   }
-  ContactLawData data;
-  data.augmented = type.key(2) == 0;
-  data.behaviour = static_cast<ContactBehaviour>(type.key(12));
-  data.bisect_on_penetration = type.key(7) == 1;
-
-  const RealSet& real = line_data::real_set(model, record, family);
   // 3 FKN, 4 FTOLN, 6 PINB, 10 CNOF, 12 FKT are read; 14 and beyond are thermal (ignored).
   for (int i : {1, 2, 5, 7, 8, 9, 11, 13})
     if (real.get(i) != 0.0)
       throw fail(
           fmt::format("real constant {} of set {} is not supported (impactfe reads 3 FKN, "
                       "4 FTOLN, 6 PINB, 10 CNOF, 12 FKT)",
-                      i, record.real));
+                      i, real_id));
+}
+
+}  // namespace
+
+std::unique_ptr<ContactPoint> target_point(const ElementBuildContext& ctx,
+                                           const ElementRecord& record, const Node& node,
+                                           const char* family, const char* name, double share,
+                                           double area) {
+  const Model& model = ctx.model;
+  const ElementType& type = line_data::element_type(model, record);
+  const auto fail = [&](const std::string& what) {
+    return InputError(record.where, fmt::format("element {} ({}): {}", record.id, name, what));
+  };
+  ContactLawData data;
+  data.augmented = type.key(2) == 0;
+  data.behaviour = static_cast<ContactBehaviour>(type.key(12));
+  data.bisect_on_penetration = type.key(7) == 1;
+
+  const RealSet& real = line_data::real_set(model, record, family);
+  check_surface_contact_fields(type, real, record.real, fail);
   std::shared_ptr<const TargetSurface> target = contact_target(ctx, record);
   if (target->pilot() == node.id) throw fail("the contact node is the target's pilot node");
   std::vector<int> candidates;

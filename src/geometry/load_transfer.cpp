@@ -78,6 +78,25 @@ std::vector<Dof> symmetry_dofs(const Vec3& normal, SymmetryKind kind, const Sour
   return dofs;
 }
 
+namespace {
+
+/// The element faces an SFA on area `a` loads: face `lkey` of each area element (shells) on it,
+/// else the faces of selected elements of a meshed volume whose nodes all lie on the area (LKEY
+/// names area-element faces only, as in MAPDL).
+std::vector<FaceKey> area_faces(const Model& model, const Area& a, int lkey) {
+  std::vector<FaceKey> faces;
+  if (!a.elements.empty()) {
+    for (int e : a.elements) faces.push_back(FaceKey{e, lkey});
+    return faces;
+  }
+  const std::set<int> on_area(a.grid.nodes.begin(), a.grid.nodes.end());
+  return faces_on_nodes(
+      model, [&](int n) { return on_area.count(n) != 0; },
+      [&](int e) { return model.selection.elements.selected(e); });
+}
+
+}  // namespace
+
 std::vector<std::string> transfer_solid_loads(Model& model, const SourceLocation& where) {
   SolidLoads& loads = model.solid.loads;
   LoadStep& current = model.current;
@@ -159,18 +178,7 @@ std::vector<std::string> transfer_solid_loads(Model& model, const SourceLocation
       unmeshed("SFA", "area", key.first);
       continue;
     }
-    std::vector<FaceKey> faces;
-    if (!a.elements.empty()) {
-      // Area elements (shells): face LKEY of each element on the area.
-      for (int e : a.elements) faces.push_back(FaceKey{e, key.second});
-    } else {
-      // A face of a meshed volume: element faces whose nodes all lie on the area (LKEY ignored).
-      const std::set<int> on_area(a.grid.nodes.begin(), a.grid.nodes.end());
-      faces = faces_on_nodes(
-          model, [&](int n) { return on_area.count(n) != 0; },
-          [&](int e) { return model.selection.elements.selected(e); });
-    }
-    for (const FaceKey& f : faces) {
+    for (const FaceKey& f : area_faces(model, a, key.second)) {
       if (!model.selection.elements.selected(f.element)) continue;
       if (element_face_nodes(model, model.elements.at(f.element), f.face).empty())
         throw InputError(where, fmt::format("SFA on area {}: element {} has no face {}", key.first,

@@ -102,6 +102,7 @@ struct ResultsReader::Impl {
   std::string path;
   Handle file;
   std::string title;
+  std::string units;
   std::vector<int> node_ids;
   Eigen::MatrixXd coords;
   std::vector<ElementInfo> elements;
@@ -241,7 +242,27 @@ struct ResultsReader::Impl {
   }
 
   void load();
+  void load_model();
+  Analysis load_analysis(int k, const std::string& group) const;
 };
+
+namespace {
+
+/// The links of an HDF5 group in creation order (name order where creation order is not
+/// tracked).
+std::vector<std::string> link_names(hid_t group) {
+  std::vector<std::string> names;
+  const auto collect = [](hid_t, const char* name, const H5L_info_t*, void* data) -> herr_t {
+    static_cast<std::vector<std::string>*>(data)->emplace_back(name);
+    return 0;
+  };
+  hsize_t idx = 0;
+  H5Literate(group, H5_INDEX_CRT_ORDER, H5_ITER_INC, &idx, collect, &names);
+  if (names.empty()) H5Literate(group, H5_INDEX_NAME, H5_ITER_INC, &idx, collect, &names);
+  return names;
+}
+
+}  // namespace
 
 void ResultsReader::Impl::load() {
   if (H5Aexists(file, "format") <= 0 ||
@@ -254,7 +275,17 @@ void ResultsReader::Impl::load() {
         "results file '{}' has format version {}, written by a newer impactfe; this one reads "
         "versions 1 to {}",
         path, version, kFormatVersion));
+  load_model();
+  for (int k = 1;; ++k) {
+    std::string group = fmt::format("analysis_{}", k);
+    if (!h5::exists(file, group)) break;
+    analyses.push_back(load_analysis(k, group));
+  }
+}
+
+void ResultsReader::Impl::load_model() {
   title = h5::read_string_attribute(file, "title");
+  if (H5Aexists(file, "units") > 0) units = h5::read_string_attribute(file, "units");
   node_ids = h5::read_ints(file, "model/node_ids");
   auto xyz = h5::read_doubles(file, "model/node_coordinates");
   coords.resize(static_cast<Eigen::Index>(node_ids.size()), 3);
@@ -274,90 +305,71 @@ void ResultsReader::Impl::load() {
       if (int n = nodes[e * width + i]; n != 0) info.nodes.push_back(n);
     elements.push_back(std::move(info));
   }
+}
 
-  for (int k = 1;; ++k) {
-    std::string group = fmt::format("analysis_{}", k);
-    if (!h5::exists(file, group)) break;
-    Handle g(check(H5Gopen2(file, group.c_str(), H5P_DEFAULT), "open group " + group));
-    Analysis an;
-    an.group = group;
-    an.info.index = k;
-    an.info.kind = parse_kind(h5::read_string_attribute(g, "kind"), path);
-    an.info.description = h5::read_string_attribute(g, "description");
-    an.info.status = h5::read_string_attribute(g, "status");
-    for (const auto& name : h5::attribute_names(g)) {
-      if (name == "kind" || name == "description" || name == "status" || name == "block_rows" ||
-          name == "all_chunks_written")
-        continue;  // storage details
-      Handle attr(check(H5Aopen(g, name.c_str(), H5P_DEFAULT), "open attribute " + name));
-      Handle type(check(H5Aget_type(attr), "get attribute type"));
-      const auto cls = H5Tget_class(type);
-      if (cls == H5T_STRING) {
-        an.info.text_attributes[name] = h5::read_string_attribute(g, name);
-      } else if (cls == H5T_FLOAT || cls == H5T_INTEGER) {
-        double v = 0.0;
-        check_status(H5Aread(attr, H5T_NATIVE_DOUBLE, &v), "read attribute " + name);
-        an.info.numeric_attributes[name] = v;
-      }
+Analysis ResultsReader::Impl::load_analysis(int k, const std::string& group) const {
+  Handle g(check(H5Gopen2(file, group.c_str(), H5P_DEFAULT), "open group " + group));
+  Analysis an;
+  an.group = group;
+  an.info.index = k;
+  an.info.kind = parse_kind(h5::read_string_attribute(g, "kind"), path);
+  an.info.description = h5::read_string_attribute(g, "description");
+  an.info.status = h5::read_string_attribute(g, "status");
+  for (const auto& name : h5::attribute_names(g)) {
+    if (name == "kind" || name == "description" || name == "status" || name == "block_rows" ||
+        name == "all_chunks_written")
+      continue;  // storage details
+    Handle attr(check(H5Aopen(g, name.c_str(), H5P_DEFAULT), "open attribute " + name));
+    Handle type(check(H5Aget_type(attr), "get attribute type"));
+    const auto cls = H5Tget_class(type);
+    if (cls == H5T_STRING) {
+      an.info.text_attributes[name] = h5::read_string_attribute(g, name);
+    } else if (cls == H5T_FLOAT || cls == H5T_INTEGER) {
+      double v = 0.0;
+      check_status(H5Aread(attr, H5T_NATIVE_DOUBLE, &v), "read attribute " + name);
+      an.info.numeric_attributes[name] = v;
     }
-    an.all_chunks_written = H5Aexists(g, "all_chunks_written") > 0;
-    if (h5::exists(g, "time")) an.times = h5::read_doubles(g, "time");
-    an.info.n_time_points = static_cast<int>(an.times.size());
-    if (!an.times.empty()) {
-      an.info.time_first = an.times.front();
-      an.info.time_last = an.times.back();
-    }
-    if (h5::exists(g, "recent") && H5Aexists_by_name(g, "recent", "first_row", H5P_DEFAULT) > 0) {
-      Handle rg(check(H5Gopen2(g, "recent", H5P_DEFAULT), "open group recent"));
-      an.first_recent_row = static_cast<std::size_t>(h5::read_double_attribute(rg, "first_row"));
-    }
-    if (h5::exists(g, "reaction_dofs")) {
-      an.sparse_reactions = true;
-      const auto rd = h5::read_ints(g, "reaction_dofs");
-      for (std::size_t c = 0; c + 1 < rd.size(); c += 2) {
-        auto it = std::lower_bound(node_ids.begin(), node_ids.end(), rd[c]);
-        if (it == node_ids.end() || *it != rd[c] || rd[c + 1] < 0 || rd[c + 1] > 5)
-          throw std::runtime_error("reaction_dofs names a node or DOF the model does not have");
-        an.reaction_column[{static_cast<std::size_t>(it - node_ids.begin()), rd[c + 1]}] = c / 2;
-      }
-    }
-    if (h5::exists(g, "gap_forces")) {
-      Handle ds(check(H5Dopen2(g, "gap_forces", H5P_DEFAULT), "open gap_forces"));
-      an.info.n_gaps = static_cast<int>(h5::dims_of(ds).at(1));
-    }
-    if (h5::exists(g, "frequencies")) {
-      Handle fds(check(H5Dopen2(g, "frequencies", H5P_DEFAULT), "open frequencies"));
-      an.info.n_modes = static_cast<int>(h5::dims_of(fds).at(0));
-    }
-    if (h5::exists(g, "elements")) {
-      Handle eg(check(H5Gopen2(g, "elements", H5P_DEFAULT), "open elements group"));
-      std::vector<std::string> fam_names;
-      hsize_t idx = 0;
-      H5Literate(
-          eg, H5_INDEX_CRT_ORDER, H5_ITER_INC, &idx,
-          [](hid_t, const char* name, const H5L_info_t*, void* data) -> herr_t {
-            static_cast<std::vector<std::string>*>(data)->emplace_back(name);
-            return 0;
-          },
-          &fam_names);
-      if (fam_names.empty())  // creation order not tracked: fall back to name order
-        H5Literate(
-            eg, H5_INDEX_NAME, H5_ITER_INC, &idx,
-            [](hid_t, const char* name, const H5L_info_t*, void* data) -> herr_t {
-              static_cast<std::vector<std::string>*>(data)->emplace_back(name);
-              return 0;
-            },
-            &fam_names);
-      for (const auto& fname : fam_names) {
-        Handle fg(check(H5Gopen2(eg, fname.c_str(), H5P_DEFAULT), "open family " + fname));
-        Family f{fname, h5::read_ints(fg, "element_ids"),
-                 h5::read_string_list_attribute(fg, "items")};
-        an.info.element_families.push_back(fname);
-        an.families.push_back(std::move(f));
-      }
-    }
-    analyses.push_back(std::move(an));
   }
+  an.all_chunks_written = H5Aexists(g, "all_chunks_written") > 0;
+  if (h5::exists(g, "time")) an.times = h5::read_doubles(g, "time");
+  an.info.n_time_points = static_cast<int>(an.times.size());
+  if (!an.times.empty()) {
+    an.info.time_first = an.times.front();
+    an.info.time_last = an.times.back();
+  }
+  if (h5::exists(g, "recent") && H5Aexists_by_name(g, "recent", "first_row", H5P_DEFAULT) > 0) {
+    Handle rg(check(H5Gopen2(g, "recent", H5P_DEFAULT), "open group recent"));
+    an.first_recent_row = static_cast<std::size_t>(h5::read_double_attribute(rg, "first_row"));
+  }
+  if (h5::exists(g, "reaction_dofs")) {
+    an.sparse_reactions = true;
+    const auto rd = h5::read_ints(g, "reaction_dofs");
+    for (std::size_t c = 0; c + 1 < rd.size(); c += 2) {
+      auto it = std::lower_bound(node_ids.begin(), node_ids.end(), rd[c]);
+      if (it == node_ids.end() || *it != rd[c] || rd[c + 1] < 0 || rd[c + 1] > 5)
+        throw std::runtime_error("reaction_dofs names a node or DOF the model does not have");
+      an.reaction_column[{static_cast<std::size_t>(it - node_ids.begin()), rd[c + 1]}] = c / 2;
+    }
+  }
+  if (h5::exists(g, "gap_forces")) {
+    Handle ds(check(H5Dopen2(g, "gap_forces", H5P_DEFAULT), "open gap_forces"));
+    an.info.n_gaps = static_cast<int>(h5::dims_of(ds).at(1));
+  }
+  if (h5::exists(g, "frequencies")) {
+    Handle fds(check(H5Dopen2(g, "frequencies", H5P_DEFAULT), "open frequencies"));
+    an.info.n_modes = static_cast<int>(h5::dims_of(fds).at(0));
+  }
+  if (h5::exists(g, "elements")) {
+    Handle eg(check(H5Gopen2(g, "elements", H5P_DEFAULT), "open elements group"));
+    for (const auto& fname : link_names(eg)) {
+      Handle fg(check(H5Gopen2(eg, fname.c_str(), H5P_DEFAULT), "open family " + fname));
+      Family f{fname, h5::read_ints(fg, "element_ids"),
+               h5::read_string_list_attribute(fg, "items")};
+      an.info.element_families.push_back(fname);
+      an.families.push_back(std::move(f));
+    }
+  }
+  return an;
 }
 
 int node_row(const std::vector<int>& node_ids, int node) {
@@ -412,6 +424,9 @@ const std::string& ResultsReader::path() const {
 }
 std::string ResultsReader::title() const {
   return impl_->title;
+}
+std::string ResultsReader::units() const {
+  return impl_->units;
 }
 const std::vector<int>& ResultsReader::node_ids() const {
   return impl_->node_ids;
