@@ -100,6 +100,7 @@ class Results:
             raise ResultsError(f"'{self.path}' has format version {self.format_version}; this "
                                f"package reads versions {FORMAT_VERSIONS}")
         self.title = text(f.attrs.get("title", ""))
+        self.units = text(f.attrs.get("units", ""))  # /UNITS label; "" when not given
         self._model = Model(f)
         self.node_ids = self._model.node_ids
         self.node_coordinates = self._model.node_coordinates

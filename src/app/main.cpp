@@ -18,6 +18,7 @@
 #include "app/run_command.h"
 #include "app/version.h"
 #include "core/errors.h"
+#include "deck/command_reference.h"
 #include "results/post_csv.h"
 #include "results/report.h"
 #include "results/results_file.h"
@@ -199,6 +200,39 @@ int spectrum_command(const std::vector<double>& xi) {
   return kExitOk;
 }
 
+struct HelpArgs {
+  std::string name;
+  bool markdown = false;
+};
+
+CLI::App* add_help(CLI::App& app, HelpArgs& args) {
+  CLI::App* cmd = app.add_subcommand(
+      "help", "what impactfe does with a deck command or an element type (MAPDL names)");
+  cmd->add_option("name", args.name, "command (NSUBST, /UNITS, *GET) or element type (SOLID185)");
+  cmd->add_flag("--markdown", args.markdown,
+                "print the whole command and element reference (docs/reference.md)");
+  return cmd;
+}
+
+/// `help NAME`: the element type of that name, else the command (or its abbreviation); `help`:
+/// the list of both; `help --markdown`: the reference page.
+int help_command(const HelpArgs& args) {
+  if (args.markdown || args.name.empty()) {
+    std::cout << (args.markdown ? deck::reference_markdown() : deck::help_index());
+    return kExitOk;
+  }
+  const std::string entry = deck::help_entry(args.name);
+  if (entry.empty()) {
+    std::cerr << fmt::format(
+        "error: '{}' is neither a command nor an element type of impactfe (a deck that uses it "
+        "stops there)\n",
+        args.name);
+    return kExitInput;
+  }
+  std::cout << entry;
+  return kExitOk;
+}
+
 /// A command-line error: CLI11's message, the usage line, exit status 1 (help and --version: 0).
 int command_line_error(const CLI::App& app, const CLI::ParseError& e) {
   if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) {
@@ -206,7 +240,7 @@ int command_line_error(const CLI::App& app, const CLI::ParseError& e) {
     return kExitOk;
   }
   std::cerr << "error: " << e.what() << "\n"
-            << "usage: impactfe {run|post|info|export|report|houbolt-spectrum} ...; "
+            << "usage: impactfe {run|post|info|export|report|help|houbolt-spectrum} ...; "
                "impactfe --help, impactfe SUBCOMMAND --help\n";
   return kExitInput;
 }
@@ -230,6 +264,8 @@ int main(int argc, char** argv) {
   CLI::App* export_cmd = add_export(app, export_args);
   ReportArgs report;
   CLI::App* report_cmd = add_report(app, report);
+  HelpArgs help;
+  CLI::App* help_cmd = add_help(app, help);
   std::vector<double> xi = {0.0};
   CLI::App* spectrum_cmd = app.add_subcommand(
       "houbolt-spectrum", "spectral radius of the Houbolt amplification matrix (thesis Fig. 3-4)");
@@ -256,6 +292,7 @@ int main(int argc, char** argv) {
     if (*export_cmd) return export_command(export_args);
     if (*report_cmd) return report_command(report);
     if (*spectrum_cmd) return spectrum_command(xi);
+    if (*help_cmd) return help_command(help);
   } catch (const InternalError& e) {
     return report_internal_error(e);
   } catch (const std::exception& e) {

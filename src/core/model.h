@@ -268,6 +268,7 @@ struct Component {
 struct Model {
   std::string title;
   std::string jobname;
+  std::string units;  // /UNITS system label (SI, BIN, ...); empty when the deck gives none
   Dialect dialect = Dialect::Modern;
 
   std::map<int, Node> nodes;

@@ -25,35 +25,64 @@ const char* processor_name(unsigned processor) {
   }
 }
 
-const std::vector<CommandSpec>& command_table() {
-  static const std::vector<CommandSpec> table = [] {
-    std::vector<CommandSpec> t;
-    register_session_commands(t);
-    register_prep7_commands(t);
-    register_generation_commands(t);
-    register_solution_commands(t);
-    register_load_commands(t);
-    register_component_commands(t);
-    register_get_commands(t);
-    register_post1_commands(t);
-    register_post1_plot_commands(t);
-    register_post26_commands(t);
-    register_csys_commands(t);
-    register_solid_model_commands(t);
-    register_solid_edit_commands(t);
-    register_mesh_commands(t);
-    register_contact_commands(t);
-    register_entity_selection_commands(t);
-    register_mesh_selection_commands(t);
-    register_surface_load_commands(t);
-    register_material_commands(t);
-    register_parameter_commands(t);
-    register_array_commands(t);
-    register_output_commands(t);
-    register_database_commands(t);
+namespace {
+
+struct Tables {
+  std::vector<CommandSpec> commands;
+  std::vector<CommandGroup> groups;
+};
+
+const Tables& tables() {
+  static const Tables tables = [] {
+    Tables t;
+    const auto add = [&t](void (*reg)(std::vector<CommandSpec>&), const char* title,
+                          const char* doc) {
+      const std::size_t begin = t.commands.size();
+      reg(t.commands);
+      t.groups.push_back({title, doc, begin, t.commands.size()});
+    };
+    const char* kDeck = "docs/deck_reader.md";
+    const char* kPost = "docs/post_processing.md";
+    add(register_session_commands, "Session, processors and control commands", kDeck);
+    add(register_prep7_commands,
+        "Element types, sections, nodes, elements, master DOFs, 4x analysis keys", kDeck);
+    add(register_generation_commands, "Generation (copies, fills, reflections)", kDeck);
+    add(register_solution_commands, "Analysis settings and SOLVE", "docs/solution_control.md");
+    add(register_load_commands, "Constraints, forces and initial conditions", kDeck);
+    add(register_component_commands, "Components", kDeck);
+    add(register_get_commands, "*GET", kDeck);
+    add(register_post1_commands, "POST1", kPost);
+    add(register_post1_plot_commands, "POST1 pictures", kPost);
+    add(register_post26_commands, "POST26", kPost);
+    add(register_csys_commands, "Coordinate systems and working plane", "docs/modeling.md");
+    add(register_solid_model_commands, "Solid model: keypoints, lines, areas, volumes",
+        "docs/modeling.md");
+    add(register_solid_edit_commands, "Solid model editing", "docs/modeling.md");
+    add(register_mesh_commands, "Meshing", "docs/modeling.md");
+    add(register_contact_commands, "Contact pairs", kDeck);
+    add(register_entity_selection_commands, "Selection by and of solid-model entities",
+        "docs/modeling.md");
+    add(register_mesh_selection_commands, "Selection of nodes and elements", kDeck);
+    add(register_surface_load_commands, "Surface loads", kDeck);
+    add(register_material_commands, "Materials", "docs/plasticity.md");
+    add(register_parameter_commands, "Parameters", kDeck);
+    add(register_array_commands, "Arrays and vector operations", kDeck);
+    add(register_output_commands, "Output (/OUTPUT, *VWRITE, *MSG)", kDeck);
+    add(register_database_commands,
+        "Database and restart files (SAVE, RESUME, /CLEAR, RESCONTROL, PARSAV)", kDeck);
     return t;
   }();
-  return table;
+  return tables;
+}
+
+}  // namespace
+
+const std::vector<CommandSpec>& command_table() {
+  return tables().commands;
+}
+
+const std::vector<CommandGroup>& command_groups() {
+  return tables().groups;
 }
 
 const CommandSpec* find_command(const std::string& name) {

@@ -326,6 +326,7 @@ const CommandSpec* DeckReader::lookup(Command& c) {
 void DeckReader::dispatch(const Command& c, const CommandSpec& spec) {
   if ((spec.processors & processor) == 0)
     fail(c, fmt::format("command not valid in {}", processor_name(processor)));
+  if (spec.refused != nullptr) fail(c, spec.refused);
   spec.handler(*this, c);
 }
 

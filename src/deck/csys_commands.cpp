@@ -202,7 +202,8 @@ void register_csys_commands(std::vector<CommandSpec>& t) {
   t.push_back({"WPOFFS", cmd_wpoffs, kAnywhere});
   t.push_back({"WPROTA", cmd_wprota, kAnywhere});
   t.push_back({"WPAVE", cmd_wpave, kAnywhere});
-  t.push_back({"WPSTYL", [](DeckReader& r, const Command& c) { r.ignore(c); }, kAnywhere});
+  t.push_back({"WPSTYL", [](DeckReader& r, const Command& c) { r.ignore(c); }, kAnywhere,
+               "working-plane display style: graphics only"});
   t.push_back({"NROTAT", cmd_nrotat, kPrep7 | kSolu});
   t.push_back({"DSYM", cmd_dsym, kPrep7 | kSolu});
 }

@@ -290,6 +290,7 @@ void cmd_save(DeckReader& r, const Command& c) {
   j["slab"] = slab.empty() ? "ALL" : slab;
   j["jobname"] = m.jobname;
   j["title"] = m.title;
+  j["units"] = m.units;
   j["geometry"] = serialize_generation_model(m, false, false);
   json se = json::object();
   for (const auto& [id, e] : m.elements)
@@ -356,6 +357,7 @@ void cmd_resume(DeckReader& r, const Command& c) {
       m.elements.at(std::stoi(id)).superelement_file = file.get<std::string>();
     for (auto& [id, t] : m.element_types) t.where = c.where;
     m.title = j.at("title");
+    m.units = j.value("units", std::string());
     const json& a = j.at("attributes");
     r.current_type = a[0];
     r.current_real = a[1];

@@ -61,10 +61,22 @@ struct CommandSpec {
   const char* name;
   Handler handler;
   unsigned processors;
+  /// Accepted and not carried out: why (for the command reference; the handler logs it).
+  const char* ignored = nullptr;
+  /// Known and refused wherever it appears: the error message (the handler is not called).
+  const char* refused = nullptr;
 };
 
 /// The command table (all handler groups registered once).
 const std::vector<CommandSpec>& command_table();
+/// A registration group of the table: commands [begin, end) and the page that describes them.
+struct CommandGroup {
+  const char* title;
+  const char* doc;
+  std::size_t begin = 0, end = 0;
+};
+/// The table's groups, in table order (the command reference's sections).
+const std::vector<CommandGroup>& command_groups();
 /// Exact lookup of an upper-case name.
 const CommandSpec* find_command(const std::string& name);
 /// 4x rule (APDL_SUBSET §1.8): the unique command whose first four significant characters (after
@@ -189,8 +201,9 @@ class DeckReader {
   static long long database_work(std::size_t bytes) {
     return kDatabaseWork + static_cast<long long>(bytes) / kDatabaseBytesPerWork;
   }
-  /// Records a graphics/print-only command as ignored.
-  void ignore(const Command& c);
+  /// Records a command as accepted and not carried out, with why (default: graphics or printing
+  /// only, which cannot change the results).
+  void ignore(const Command& c, std::string_view why = "graphics/print-only command ignored");
 
   // ---- model helpers ---------------------------------------------------------------------
   /// Node numbers NODE..NEND step NINC (field numbers given); NODE may be ALL (the selected

@@ -97,9 +97,9 @@ void DeckReader::warn(const Command& c, const std::string& message) const {
   Log::warn("{}:{}: {}: {}", c.where.file, c.where.line, c.where.command, message);
 }
 
-void DeckReader::ignore(const Command& c) {
+void DeckReader::ignore(const Command& c, std::string_view why) {
   job.ignored_commands.push_back(fmt::format("{}:{}: {}", c.where.file, c.where.line, c.name));
-  Log::info("{}:{}: {}: graphics/print-only command ignored", c.where.file, c.where.line, c.name);
+  Log::info("{}:{}: {}: {}", c.where.file, c.where.line, c.name, why);
 }
 
 std::optional<double> DeckReader::opt_real(const Command& c, int i) const {

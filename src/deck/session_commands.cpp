@@ -2,8 +2,12 @@
 // but run by the executor (control_flow.cpp).
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <iterator>
+
 #include "core/dof.h"
 #include "core/files.h"
+#include "core/log.h"
 #include "deck/deck_context.h"
 
 namespace impactfe::deck {
@@ -51,6 +55,37 @@ void cmd_graphics(DeckReader& r, const Command& c) {
   r.ignore(c);
 }
 
+/// Commands of MAPDL's session that have no counterpart in impactfe, ignored with the reason.
+void cmd_session_setting(DeckReader& r, const Command& c) {
+  if (c.name == "/CONFIG")
+    r.ignore(c, "MAPDL's memory and file sizing (/CONFIG) has no counterpart here: ignored");
+  else if (c.name == "/NERR")
+    r.ignore(c, "error limits (/NERR) ignored: impactfe stops at the first error");
+  else
+    r.ignore(c, "batch and verification modes do not change a run here: ignored");
+}
+
+/// /UNITS,Label: records the unit system. As in MAPDL, a marker only: nothing is converted, the
+/// deck's numbers are used as given; the label is written into the results file.
+void cmd_units(DeckReader& r, const Command& c) {
+  static const char* kSystems[] = {"USER", "SI", "MKS", "UMKS", "CGS", "MPA", "BFT", "BIN"};
+  const std::string label = c.blank(1) ? std::string("USER") : r.label(c, 1);
+  const bool known = std::find_if(std::begin(kSystems), std::end(kSystems),
+                                  [&](const char* s) { return label == s; }) != std::end(kSystems);
+  if (!known)
+    r.fail(c, fmt::format("unit system '{}' unknown (USER, SI, MKS, uMKS, CGS, MPA, BFT, BIN)",
+                          label));
+  for (int i = 2; i <= c.n_fields(); ++i)
+    if (!c.blank(i))
+      r.fail(c, "USER conversion factors are not recorded: give the system label alone");
+  r.model.units = label == "UMKS" ? "uMKS" : label;
+  Log::info("{}:{}: /UNITS: unit system {} recorded (a marker: nothing is converted)", c.where.file,
+            c.where.line, r.model.units);
+}
+
+/// A refused command's handler: never called (DeckReader::dispatch fails with its message).
+void cmd_refused(DeckReader&, const Command&) {}
+
 }  // namespace
 
 void register_session_commands(std::vector<CommandSpec>& t) {
@@ -67,14 +102,24 @@ void register_session_commands(std::vector<CommandSpec>& t) {
         "*BEGIN", "*END", "*CREATE", "*USE", "/INPUT", "/EOF", "*REPEAT"})
     t.push_back({name, nullptr, kAnywhere});
   for (const char* name :
-       {"/INTER",  "/NOPR",   "/GOPR",    "/PNUM",   "/PBC",    "EPLOT",   "NPLOT",    "/REPLOT",
-        "/ANGLE",  "/TRIAD",  "/PLOPTS",  "/WINDOW", "/DEVICE", "/RGB",    "/CONTOUR", "/EDGE",
-        "/ESHAPE", "/TYPE",   "/USER",    "/ZOOM",   "/HEADER", "/PAGE",   "/FORMAT",  "/GRAPHICS",
-        "/GFILE",  "/GLINE",  "/GCOLUMN", "/GROPT",  "/GTHK",   "/WAIT",   "/UIS",     "/BATCH",
-        "/UNITS",  "/VERIFY", "/NERR",    "/GST",    "/CWD",    "/CONFIG", "/SYS",     "NLIST",
-        "ELIST",   "ETLIST",  "DLIST",    "FLIST",   "MPLIST",  "RLIST",   "KLIST",    "LLIST",
-        "/STATUS", "/PSF",    "/PSYMB",   "GPLOT",   "/LINE",   "/COLOR",  "LINES"})
-    t.push_back({name, cmd_graphics, kAnywhere});
+       {"/INTER",  "/NOPR",   "/GOPR",    "/PNUM",   "/PBC",    "EPLOT",  "NPLOT",    "/REPLOT",
+        "/ANGLE",  "/TRIAD",  "/PLOPTS",  "/WINDOW", "/DEVICE", "/RGB",   "/CONTOUR", "/EDGE",
+        "/ESHAPE", "/TYPE",   "/USER",    "/ZOOM",   "/HEADER", "/PAGE",  "/FORMAT",  "/GRAPHICS",
+        "/GFILE",  "/GLINE",  "/GCOLUMN", "/GROPT",  "/GTHK",   "/WAIT",  "/UIS",     "/GST",
+        "NLIST",   "ELIST",   "ETLIST",   "DLIST",   "FLIST",   "MPLIST", "RLIST",    "KLIST",
+        "LLIST",   "/STATUS", "/PSF",     "/PSYMB",  "GPLOT",   "/LINE",  "/COLOR",   "LINES"})
+    t.push_back({name, cmd_graphics, kAnywhere, "graphics or printing only: no effect on results"});
+  t.push_back({"/CONFIG", cmd_session_setting, kAnywhere, "MAPDL's memory and file sizing"});
+  t.push_back({"/NERR", cmd_session_setting, kAnywhere, "impactfe stops at the first error"});
+  for (const char* name : {"/BATCH", "/VERIFY"})
+    t.push_back({name, cmd_session_setting, kAnywhere, "a mode that does not change a run here"});
+  t.push_back({"/UNITS", cmd_units, kAnywhere});
+  // /CWD would move the run's files out of its directory; /SYS would run programs: refused.
+  t.push_back({"/CWD", cmd_refused, kAnywhere, nullptr,
+               "not carried out: the run's files go to its directory (impactfe run -o DIR); "
+               "remove /CWD and give the directory on the command line"});
+  t.push_back({"/SYS", cmd_refused, kAnywhere, nullptr,
+               "operating-system commands are not run by impactfe; run them outside the deck"});
 }
 
 }  // namespace impactfe::deck

@@ -181,6 +181,7 @@ std::string mode_shape_csv(const ResultsReader& reader, int mode) {
 std::string results_info(const ResultsReader& reader) {
   std::string out = fmt::format("Results file: {}\n", reader.path());
   out += fmt::format("Title: {}\n", reader.title());
+  if (!reader.units().empty()) out += fmt::format("Units: {} (/UNITS)\n", reader.units());
   out +=
       fmt::format("Nodes: {}\nElements: {}\n", reader.node_ids().size(), reader.elements().size());
   const auto analyses = reader.analyses();

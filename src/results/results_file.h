@@ -156,6 +156,8 @@ class ResultsReader {
 
   const std::string& path() const;
   std::string title() const;
+  /// The deck's /UNITS label (SI, BIN, ...); empty when the deck gave none.
+  std::string units() const;
   const std::vector<int>& node_ids() const;
   Eigen::MatrixXd node_coordinates() const;  // n_nodes x 3
   const std::vector<ElementInfo>& elements() const;

@@ -79,7 +79,7 @@ struct FamilySeries {
 
 struct ResultsFileWriter::Impl {
   std::string path;
-  std::string title, jobname;
+  std::string title, jobname, units;
   Handle file;
   std::vector<int> node_ids;
   std::size_t n_elements = 0;
@@ -199,6 +199,7 @@ void ResultsFileWriter::Impl::compact() {
       h5::write_integer_attribute(out, "format_version", kFormatVersion);
       h5::write_attribute(out, "title", title, kFixed);
       h5::write_attribute(out, "jobname", jobname, kFixed);
+      if (!units.empty()) h5::write_attribute(out, "units", units, kFixed);
       std::vector<std::string> names{"model"};
       for (int k = 1; k <= n_analyses; ++k) names.push_back(fmt::format("analysis_{}", k));
       for (const auto& name : names)
@@ -230,8 +231,10 @@ void ResultsFileWriter::Impl::write_model(const ResultsModelSection& model) {
   h5::write_integer_attribute(file, "format_version", kFormatVersion);
   title = model.title;
   jobname = model.jobname;
+  units = model.units;
   h5::write_attribute(file, "title", model.title, kFixed);
   h5::write_attribute(file, "jobname", model.jobname, kFixed);
+  if (!units.empty()) h5::write_attribute(file, "units", units, kFixed);
   Handle gcpl = h5::checksummed_group_creation_list();
   Handle g(check(H5Gcreate2(file, "model", H5P_DEFAULT, gcpl, H5P_DEFAULT), "create group /model"));
   constexpr auto kChecked = h5::Storage::Checked;
@@ -586,6 +589,7 @@ ResultsFileWriter::ResultsFileWriter(const std::string& path, ResultsWriter::App
   try {
     m.title = h5::read_string_attribute(m.file, "title");
     m.jobname = h5::read_string_attribute(m.file, "jobname");
+    if (H5Aexists(m.file, "units") > 0) m.units = h5::read_string_attribute(m.file, "units");
     Handle g = h5::open_group(m.file, "model");
     m.node_ids = h5::read_ints(g, "node_ids");
     m.n_elements = h5::read_ints(g, "element_ids").size();

@@ -15,9 +15,10 @@ namespace impactfe {
 /// the writer may write it on another, after the Model has changed or gone.
 struct ResultsModelSection {
   std::string title, jobname;
-  std::vector<int> node_ids;                    // ascending
-  std::vector<double> node_xyz;                 // x y z per node
-  std::vector<int> element_ids;                 // ascending
+  std::string units;             // /UNITS label; empty: not given (no attribute written)
+  std::vector<int> node_ids;     // ascending
+  std::vector<double> node_xyz;  // x y z per node
+  std::vector<int> element_ids;  // ascending
   std::vector<std::string> element_type_names;  // ANSYS names ("" for an undefined type)
   std::vector<int> element_types, element_materials, element_reals;
   std::vector<std::vector<int>> element_nodes;

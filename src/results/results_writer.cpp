@@ -84,6 +84,7 @@ ResultsModelSection ResultsModelSection::of(const Model& model) {
   ResultsModelSection m;
   m.title = model.title;
   m.jobname = model.jobname;
+  m.units = model.units;
   for (const auto& [id, node] : model.nodes) {
     m.node_ids.push_back(id);
     m.node_xyz.insert(m.node_xyz.end(), {node.x.x(), node.x.y(), node.x.z()});
