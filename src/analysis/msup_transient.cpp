@@ -134,7 +134,8 @@ void run_msup_transient(Structure& structure, const AnalysisRequest& request, Re
       model, dofs, [&](int i) { return VectorXd(phi.row(i).transpose()); }, "");
   const auto [q0, v0] = modal_initial_state(model, *state);
 
-  state->points = reduced_time_axis(state->load_steps, state->dt, stats.notes);
+  state->points = reduced_time_axis(state->load_steps, state->dt, stats.notes,
+                                    history_bytes_per_point(nm, static_cast<int>(gaps.size())));
   if (state->dt > 0.0 && nm > 0) {
     const double period = 2.0 * M_PI / omega(nm - 1);
     if (state->dt > coarsest_step(period))

@@ -171,6 +171,11 @@ VectorXd static_initial_state(const MatrixXd& k, const VectorXd& f,
 
 }  // namespace
 
+double history_bytes_per_point(int n_coordinates, int n_gaps) {
+  constexpr double kVector = sizeof(VectorXd) + 16.0;  // object + allocator header per block
+  return 3.0 * (kVector + 8.0 * n_coordinates) + kVector + 8.0 * n_gaps;
+}
+
 void integrate_reduced(ReducedRunState& state, ReducedDynamics& dynamics,
                        const std::function<VectorXd(const VectorXd&)>& reduce,
                        const std::function<VectorXd(const VectorXd&)>& table, const VectorXd& q0,

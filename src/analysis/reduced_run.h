@@ -63,6 +63,11 @@ std::vector<GeneralizedGap> generalized_gaps(const Model& model, const DofMap& d
                                              const std::function<VectorXd(int free_index)>& row,
                                              const std::string& requirement);
 
+/// Bytes the time loop keeps per time point: the displacement, velocity and acceleration of the
+/// `n_coordinates` reduced coordinates and the `n_gaps` gap forces (Eigen vectors with their
+/// headers and heap blocks), which the expansion pass reads back.
+double history_bytes_per_point(int n_coordinates, int n_gaps);
+
 /// Runs the time loop shared by both transients: initial state (static solve when load step 1
 /// carries loads), integration, a results point per step (`table`: free-DOF values for the
 /// nodal tables, NaN where not computed), and the histories kept in the state. `progress`

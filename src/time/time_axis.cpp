@@ -7,6 +7,7 @@
 #include <set>
 
 #include "core/log.h"
+#include "core/memory_budget.h"
 
 namespace impactfe {
 
@@ -29,7 +30,8 @@ int substep_count(const LoadStep& step, double span, double dt) {
 }
 
 std::vector<ReducedPoint> reduced_time_axis(const std::vector<LoadStep>& steps, double& dt,
-                                            std::vector<std::string>& notes) {
+                                            std::vector<std::string>& notes,
+                                            double bytes_per_point) {
   if (steps.empty()) throw InputError("reduced transient: no load steps were written");
   dt = 0.0;
   for (const LoadStep& s : steps)
@@ -43,8 +45,13 @@ std::vector<ReducedPoint> reduced_time_axis(const std::vector<LoadStep>& steps, 
     throw InputError(
         steps.front().where,
         fmt::format("reduced transient: time step {} must be > 0 (DTIME / DELTIM)", dt));
-  std::vector<ReducedPoint> points;
-  points.push_back({0.0, steps.front().number, 1, 0, 1.0});
+  struct Span {
+    int n = 0;  // substeps
+    bool exact = false;
+    double start = 0.0;
+  };
+  std::vector<Span> spans(steps.size());
+  double total = 1.0;  // points, t = 0 included
   double t_prev = 0.0;
   bool warned = false;
   for (std::size_t i = 1; i < steps.size(); ++i) {
@@ -72,11 +79,29 @@ std::vector<ReducedPoint> reduced_time_axis(const std::vector<LoadStep>& steps, 
       Log::warn("{}", note);
       notes.push_back(note);
     }
-    for (int k = 1; k <= n; ++k) {
-      const double t = (k == n && exact) ? *step.time_end : t_prev + k * dt;
-      points.push_back({t, step.number, k, static_cast<int>(i), static_cast<double>(k) / n});
-    }
+    spans[i] = {n, exact, t_prev};
+    total += n;
     t_prev = exact ? *step.time_end : t_prev + n * dt;
+  }
+  const double per_point = static_cast<double>(sizeof(ReducedPoint)) + bytes_per_point;
+  const MemoryAvailable available = memory_available();
+  if (total * per_point > available.bytes)
+    require_memory(total * per_point,
+                   fmt::format("the {:.0f} time points of this reduced / mode-superposition "
+                               "transient with their history ({:.0f} bytes each, kept for the "
+                               "expansion pass)",
+                               total, per_point),
+                   fmt::format("at most about {:.0f} points fit: a larger DELTIM or a shorter TIME",
+                               std::floor(available.bytes / per_point)));
+  std::vector<ReducedPoint> points;
+  points.reserve(static_cast<std::size_t>(total));
+  points.push_back({0.0, steps.front().number, 1, 0, 1.0});
+  for (std::size_t i = 1; i < steps.size(); ++i) {
+    const auto [n, exact, start] = spans[i];
+    for (int k = 1; k <= n; ++k) {
+      const double t = (k == n && exact) ? *steps[i].time_end : start + k * dt;
+      points.push_back({t, steps[i].number, k, static_cast<int>(i), static_cast<double>(k) / n});
+    }
   }
   return points;
 }

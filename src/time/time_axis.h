@@ -39,9 +39,13 @@ struct ReducedPoint {
 /// the initial state at t = 0 (its TIME ignored); later steps advance with one constant Δt (the
 /// DTIME of the first step that gives one, else the span of step 2 over its substeps) from the
 /// previous TIME. `dt` receives Δt; `notes` receives what the run summary should say (a span
-/// that is not a multiple of Δt, an ignored DTIME).
+/// that is not a multiple of Δt, an ignored DTIME). The run keeps `bytes_per_point` for every
+/// point (its state history, for the expansion pass): a time axis whose points and history do not
+/// fit in the memory the run may take is refused before anything is allocated
+/// (MemoryLimitError, saying how many steps would fit).
 std::vector<ReducedPoint> reduced_time_axis(const std::vector<LoadStep>& steps, double& dt,
-                                            std::vector<std::string>& notes);
+                                            std::vector<std::string>& notes,
+                                            double bytes_per_point = 0.0);
 
 /// Stored time points selected by expansion requests (NUMEXP/NSTRES spacing in (t_begin, t_end],
 /// each snapped to the nearest stored time; NUMEXP,ALL: every time in the range), ascending,

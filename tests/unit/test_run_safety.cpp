@@ -331,5 +331,33 @@ TEST(MemoryLimits, SymbolicAnalysisRefusesAFactorThatCannotFit) {
   EXPECT_NO_THROW(solver->analyze_pattern(lower));
 }
 
+TEST(MemoryLimits, ReducedTransientWhoseHistoryCannotFitIsRefusedBeforeItStarts) {
+  // The car crash (reduced, modern form) for 0.05 s in steps of 1 ns: 5·10⁷ points whose
+  // master histories need gigabytes, against --memory 1G.
+  const fs::path dir = testing::fresh_directory("memory_reduced");
+  std::string deck = long_deck();
+  for (const auto& [from, to] : {std::pair<std::string, std::string>{"DELTIM,1E-6", "DELTIM,1E-9"},
+                                 {"TIME,1E-6", "TIME,1E-9"}}) {
+    const auto pos = deck.find(from);
+    ASSERT_NE(pos, std::string::npos) << from;
+    deck.replace(pos, from.size(), to);
+  }
+  write_text(dir / "long.inp", deck);
+  const auto start = std::chrono::steady_clock::now();
+  const int status =
+      wait_exit_status(start_run(dir / "long.inp", dir / "out", dir / "r.txt", {"--memory", "1G"}));
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const std::string err = read_text(dir / "r.txt");
+  std::cout << "reduced transient refused in " << seconds << " s: " << err;
+  EXPECT_EQ(status, 1) << err;
+  EXPECT_NE(err.find("time points of this reduced / mode-superposition transient"),
+            std::string::npos)
+      << err;
+  EXPECT_NE(err.find("(--memory 1 GB)"), std::string::npos) << err;
+  EXPECT_NE(err.find("points fit"), std::string::npos) << err;
+  EXPECT_LT(seconds, 10.0);
+}
+
 }  // namespace
 }  // namespace impactfe
