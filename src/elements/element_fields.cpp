@@ -56,7 +56,12 @@ std::vector<ElementFields> make_table() {
                named({"AREA", "ISTRN"}),
                {{1, {0, 1}, "written by the ANSYS 4 decks of the thesis; no effect on LINK1"}}});
   t.push_back({"LINK8", named({"AREA", "ISTRN"}), {}});
-  t.push_back({"LINK180", named({"AREA", "ADDMAS", "TENSKEY"}), {}});
+  // LINK180 keeps its cross-section area under NLGEOM: KEYOPT(2) = 1 (rigid section) is what
+  // it computes; the default 0 (incompressible section) is approximated by it (the same to first
+  // order in the strain).
+  t.push_back({"LINK180",
+               named({"AREA", "ADDMAS", "TENSKEY"}),
+               {{2, {0, 1}, "1: rigid cross-section (constant area); 0 is computed so as well"}}});
   // Beams (APDL_MODELING §8.1, §8.2).
   t.push_back({"BEAM3",
                named({"AREA", "IZZ", "HEIGHT", "SHEARZ", "ISTRN", "ADDMAS"}),
@@ -97,8 +102,9 @@ std::vector<ElementFields> make_table() {
   t.push_back({"SOLID185",
                {},
                {{2, range(0, 3),
-                 "0 B-bar, 1 reduced, 2 enhanced strain (approximated), 3 "
-                 "simplified enhanced strain"},
+                 "3 simplified enhanced strain (incompatible modes); 0 B-bar with TB "
+                 "plasticity, else full 2x2x2; 1 reduced and 2 enhanced strain: full 2x2x2 "
+                 "(approximations, warned)"},
                 {6, {0}, "1 (mixed u-P formulation) is not implemented"}}});
   // Shells (docs/elements/shell63.md). SHELL181 is computed with the SHELL63 kernel; of its
   // real constants only the thicknesses are read (the others mean other things than SHELL63's).

@@ -7,6 +7,8 @@
 
 #include <fmt/format.h>
 
+#include <Eigen/Geometry>
+
 #include <fstream>
 #include <map>
 
