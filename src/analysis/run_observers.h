@@ -99,15 +99,20 @@ class ContactSummaryLog final : public RunObserver {
   const RunParts& run_;
 };
 
-/// The energy balance at the end of a transient: the run summary's line, and the warning when
-/// it does not balance.
+/// The energy balance of a transient: after every accepted step the check
+/// (EnergyBalance::creation: a SolutionError naming the step, the term and the likely cause,
+/// after the step is stored; a warning once when `accept_error`), at the end the run summary's
+/// line and the warning when it does not balance.
 class EnergyReport final : public RunObserver {
  public:
-  explicit EnergyReport(const RunParts& run) : run_(run) {}
+  EnergyReport(const RunParts& run, bool accept_error) : run_(run), accept_error_(accept_error) {}
+  void substep_accepted(const AcceptedSubstep& s) override;
   void run_finished() override;
 
  private:
   const RunParts& run_;
+  bool accept_error_;
+  bool warned_ = false;
 };
 
 }  // namespace impactfe
