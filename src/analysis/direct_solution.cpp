@@ -27,7 +27,7 @@ DirectSolution::DirectSolution(Structure& structure, ResultsWriter& writer,
       storage_(parts_, writer),
       progress_(parts_, settings_.progress),
       contact_log_(parts_),
-      energy_report_(parts_) {}
+      energy_report_(parts_, settings_.accept_energy_error) {}
 
 long long DirectSolution::stored_points_at_most(const std::vector<LoadStep>& steps) {
   const auto substeps = schedule_.substeps_ahead();
@@ -98,6 +98,11 @@ void DirectSolution::start_load_step(const LoadStep& step, const LoadStep* previ
     if (dynamic) {
       increment_.start_motion(at0, h0);
       dynamics_started_ = true;
+      // The strain energy of the initial displacements (½ u₀·f_int(u₀), exact when linear) is
+      // energy put in, for the energy check's reference.
+      if (state_.f_int_old.size() == state_.u.size())
+        energy_.set_initial_strain(0.5 * state_.u.dot(state_.f_int_old));
+      energy_.start(disc_->assembler(), state_.u);
     }
     // Initial velocities (IC) bring kinetic energy that the balance must count as put in.
     energy_.set_initial_kinetic(disc_->kinetic_energy(state_.v));

@@ -5,7 +5,12 @@
 /// the plastic work ∫σ:dε_p dV the elements with plasticity accumulate in their committed history
 /// (also trapezoidal per integration point); kinetic energy from M v. The remainder external −
 /// kinetic − strain − gap − damping − plastic is the time integrator's numerical dissipation
-/// (Houbolt damps high modes; Bathe §9.4).
+/// (Houbolt damps high modes; Bathe §9.4) when positive, and energy created by the integration
+/// when negative. Energy is a check, not only a report: creation() measures, after every
+/// accepted step, the energy created by the integration (a negative remainder) and by the
+/// gap/contact elements (a negative gap work: they gave back more than they took) against the
+/// energy put in.
+#include <algorithm>
 #include <map>
 #include <memory>
 #include <optional>
@@ -34,8 +39,20 @@ class EnergyBalance {
   void add_step(const Assembler& assembler, const VectorXd& u_old, const VectorXd& u_new,
                 const StepForces& f);
 
+  /// Work of the support reactions on prescribed motion (D with a value) over a step: external
+  /// work, as that of the applied loads.
+  void add_support_work(double work) {
+    external_work_ += work;
+    peak_input_ = std::max(peak_input_, initial_kinetic_ + initial_strain_ + external_work_);
+  }
   /// Kinetic energy of the initial velocities (IC): energy put in before the first step.
   void set_initial_kinetic(double energy) { initial_kinetic_ = energy; }
+  /// Strain energy of the initial displacements (IC), ½ u₀·f_int(u₀): energy put in for the
+  /// check's reference only (the strain column counts the change from u₀).
+  void set_initial_strain(double energy) { initial_strain_ = energy; }
+  /// The status elements' forces at the initial state u₀ (all active DOFs): the first step's
+  /// trapezoid starts from them (a slider or gap loaded by IC displacements), not from zero.
+  void start(const Assembler& assembler, const VectorXd& u0);
   double external_work() const { return external_work_; }
   double gap_work() const { return gap_work_; }
   double damping_work() const { return damping_work_; }
@@ -56,6 +73,17 @@ class EnergyBalance {
   /// (negative gap work: contact chatter inside unresolved steps), with the remedy; nothing
   /// otherwise.
   std::optional<std::string> balance_warning(double kinetic) const;
+  /// Energy created beyond the bound of the check: more than kCreationBound of the energy put
+  /// in (the largest initial kinetic + initial strain + external work reached so far; the
+  /// floor: nothing is checked while nothing was put in).
+  static constexpr double kCreationBound = 0.10;
+  struct Creation {
+    std::string term;   // what grew: "gap/contact work" or "kinetic + strain energy"
+    double created;     // energy created by it
+    double reference;   // energy put in
+    std::string cause;  // the likely cause and the remedy
+  };
+  std::optional<Creation> creation(double kinetic) const;
   /// One line for the run summary.
   std::string summary(double time, double kinetic) const;
 
@@ -70,6 +98,8 @@ class EnergyBalance {
   std::vector<std::size_t> history_elements_;
   std::vector<VectorXd> status_force_old_;  // element forces of the status elements, last step
   double initial_kinetic_ = 0.0;
+  double initial_strain_ = 0.0;
+  double peak_input_ = 0.0;  // the largest energy put in so far (the check's reference)
   double external_work_ = 0.0, internal_work_ = 0.0, gap_work_ = 0.0, damping_work_ = 0.0;
   VectorXd du_;  // scratch of add_step: the step's displacement increment
 };

@@ -31,6 +31,10 @@ void EquilibriumIncrement::bind(Discretisation& disc, TimeIntegrator* integrator
 void EquilibriumIncrement::start_motion(const LoadPoint& at, double h) {
   Assembler& assembler = disc_->assembler();
   const int nf = disc_->dofs().n_free();
+  // The initial accelerations follow from the element states the initial conditions produce
+  // (as MAPDL): a slider stretched past FSLIDE by IC starts slipping (spring force FSLIDE, not
+  // K1 times the stretch), a gap the IC open starts open.
+  disc_->status_loop().settle(state_.u);
   VectorXd f_int, f_damp, f0;
   assembler.assemble({}, state_.u, state_.v, Assembler::Output{nullptr, &f_int, &f_damp});
   loads_.external_force(*disc_, at, state_.u, f0);
@@ -190,6 +194,8 @@ void EquilibriumIncrement::accept() {
   energy_.add_step(
       disc_->assembler(), state_.u, u,
       {state_.f_ext_old, inc.f_ext, state_.f_int_old, inc.f_int, state_.f_damp_old, inc.f_damp});
+  const VectorXd u_old = state_.u;
+  const VectorXd reactions_old = state_.reactions;
   if (inc.dynamic) {
     integrator_->advance(u);
     state_.u = integrator_->u();
@@ -202,6 +208,12 @@ void EquilibriumIncrement::accept() {
     state_.a.setZero();
     state_.reactions = inc.f_int - inc.f_ext;
   }
+  // Prescribed motion puts energy in through the reactions at the constrained DOFs (the tail of
+  // the active numbering): ½ (R_n + R_{n+1})·Δu_c, the trapezoidal rule as for the loads.
+  const Eigen::Index nc = disc_->dofs().n_constrained();
+  if (nc > 0 && reactions_old.size() == state_.reactions.size())
+    energy_.add_support_work(0.5 * (reactions_old.tail(nc) + state_.reactions.tail(nc))
+                                       .dot(state_.u.tail(nc) - u_old.tail(nc)));
   state_.f_ext_old = inc.f_ext;
   state_.f_int_old = inc.f_int;
   state_.f_damp_old = inc.f_damp;

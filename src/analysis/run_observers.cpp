@@ -1,7 +1,10 @@
 #include "analysis/run_observers.h"
 
+#include <fmt/format.h>
 #include "analysis/contact_summary.h"
 #include "analysis/restart_points.h"
+
+#include "core/errors.h"
 #include "core/log.h"
 
 namespace impactfe {
@@ -63,6 +66,23 @@ void ContactSummaryLog::load_step_solved(const LoadStep& step) {
           contact_summary(run_.structure.elements(), run_.disc->assembler(), run_.state.u,
                           step.number, run_.schedule.load_step_end()))
     Log::info("{}", *contact);
+}
+
+void EnergyReport::substep_accepted(const AcceptedSubstep& s) {
+  if (!run_.schedule.transient() || !run_.disc || (accept_error_ && warned_)) return;
+  const auto created = run_.energy.creation(run_.disc->kinetic_energy(run_.state.v));
+  steps_over_ = created ? steps_over_ + 1 : 0;
+  if (steps_over_ < kStepsOver) return;
+  const std::string message = fmt::format(
+      "load step {} substep {} (t = {:g}): energy created: the {} grew by {:.4g} beyond the "
+      "balance, {:.1f} % of the {:.4g} put in (bound {:.0f} %, passed for {} steps): {}. The "
+      "results up to this step are kept; --accept-energy-error goes on",
+      s.step.number, s.substep.number, s.substep.time, created->term, created->created,
+      100.0 * created->created / created->reference, created->reference,
+      100.0 * EnergyBalance::kCreationBound, kStepsOver, created->cause);
+  if (!accept_error_) throw SolutionError(message);
+  Log::warn("{} (accepted: --accept-energy-error)", message);
+  warned_ = true;
 }
 
 void EnergyReport::run_finished() {

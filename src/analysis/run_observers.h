@@ -99,15 +99,26 @@ class ContactSummaryLog final : public RunObserver {
   const RunParts& run_;
 };
 
-/// The energy balance at the end of a transient: the run summary's line, and the warning when
-/// it does not balance.
+/// The energy balance of a transient: after every accepted step the check
+/// (EnergyBalance::creation past its bound for kStepsOver steps in a row: a SolutionError naming
+/// the step, the term and the likely cause,
+/// after the step is stored; a warning once when `accept_error`), at the end the run summary's
+/// line and the warning when it does not balance.
 class EnergyReport final : public RunObserver {
  public:
-  explicit EnergyReport(const RunParts& run) : run_(run) {}
+  EnergyReport(const RunParts& run, bool accept_error) : run_(run), accept_error_(accept_error) {}
+  void substep_accepted(const AcceptedSubstep& s) override;
   void run_finished() override;
+  /// Accepted steps in a row past the bound before the run stops: the start of a multi-step
+  /// integrator (Houbolt's first velocities) may pass it for a step or two and come back, an
+  /// unstable step or a contact that creates energy stays past it.
+  static constexpr int kStepsOver = 3;
 
  private:
   const RunParts& run_;
+  bool accept_error_;
+  int steps_over_ = 0;
+  bool warned_ = false;
 };
 
 }  // namespace impactfe

@@ -30,6 +30,9 @@ struct RunSettings {
   /// Condense the linear part of a full transient onto the nonlinear elements' DOFs when that
   /// applies (--no-condense turns it off).
   bool condense = true;
+  /// A transient that creates energy (EnergyBalance::creation) stops with a solution error
+  /// unless this is set (--accept-energy-error): then it warns once and goes on.
+  bool accept_energy_error = false;
 };
 
 class Structure {

@@ -68,6 +68,9 @@ CLI::App* add_run(CLI::App& app, RunArgs& run) {
   cmd->add_option("--se", run.superelement, "superelement file for MATRIX50 elements");
   cmd->add_flag("--continue-on-nonconvergence", run.continue_on_nonconvergence,
                 "accept non-converged steps with a warning");
+  cmd->add_flag("--accept-energy-error", run.accept_energy_error,
+                "go on (with a warning) when a transient creates more energy than the bound "
+                "of the energy check");
   cmd->add_flag("--no-condense", run.no_condense,
                 "full Newton on all DOFs in a transient, never the condensed linear part");
   cmd->add_option("--solver", run.solver,

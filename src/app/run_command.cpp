@@ -212,6 +212,7 @@ int run_command(const RunArgs& args) {
 
   RunSettings settings;
   settings.continue_on_nonconvergence = args.continue_on_nonconvergence;
+  settings.accept_energy_error = args.accept_energy_error;
   settings.superelement_file = args.superelement;
   settings.progress = &progress;
   settings.condense = !args.no_condense;

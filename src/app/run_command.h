@@ -15,6 +15,7 @@ struct RunArgs {
   std::string results;
   std::string superelement;
   bool continue_on_nonconvergence = false;
+  bool accept_energy_error = false;
   bool no_condense = false;
   std::string solver = "cholmod";  // cholmod | mumps (MPI, docs/scaling.md)
   bool mumps_ooc = false;

@@ -111,11 +111,15 @@ ContactPoint::State ContactPoint::next_state(const Eigen::VectorXd& u, bool in_r
     closed = true;
   else if (!in_range)
     closed = false;
-  else if (s.status == Contact::Open)
-    closed = gap <= 0.0;
   else
-    closed = s.lambda - data_.kn * gap >= 0.0;
+    // Closed only while the nodes penetrate (MAPDL Theory §14.174: P = 0 for an open gap,
+    // P = λ + k_n·pen otherwise). A multiplier that still pushes across a positive gap
+    // (λ − k_n g > 0 for 0 < g < λ/k_n) acts as a spring anchored beyond the surface: on
+    // rebound it does work λ²/(2 k_n) and more that the impact never put in.
+    closed = gap <= 0.0;
   if (!closed) {
+    // Opening releases the multiplier: a re-closure starts from the penalty force.
+
     s.status = Contact::Open;
     s.lambda = 0.0;
     return s;
@@ -160,8 +164,8 @@ bool ContactPoint::update_status(const ElementContext&, const Eigen::VectorXd& u
   if (!changed && next.status != Contact::Open && data_.augmented &&
       next.augmentations < kMaxAugmentations) {
     const Response r = response(next, kinematics(u));
-    // A closed contact with a gap (g > 0: the multiplier pushes the nodes apart) is as wrong as
-    // one with a penetration: both update λ, which stays compressive unless the contact is tied.
+    // A closed contact penetrates (g ≤ 0, next_state) unless it is tied; a tied one with a gap
+    // (g > 0) is as wrong as one with a penetration: both update λ, tensile only when tied.
     const double error = std::abs(r.gap);
     // Tolerance: TOLN when given, else 1 % of the penetration of the pure penalty method.
     const double tol = data_.toln > 0.0 ? data_.toln : 0.01 * std::abs(r.pn) / data_.kn;

@@ -14,6 +14,9 @@
 /// multiplier is updated λ ← λ − k_n g (Uzawa step) and the iteration is declared unconverged,
 /// at most kMaxAugmentations times per substep; λ is committed with the step and carried into
 /// the next one, so a lasting contact converges to the exact constraint over the substeps.
+/// A contact is closed only while it penetrates (g ≤ 0, as MAPDL: no force across an open gap)
+/// and opening releases λ: a multiplier kept across a positive gap would push the bodies apart
+/// beyond the surface and give back more energy than the impact put in.
 ///
 /// Tangential contact: Coulomb friction with elastic slip (Wriggers §5.2.3; the return map of
 /// the COMBIN40 slider in 3-D): trial force ξ = k_t (u_t − s) with the relative tangential

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 #include "core/log.h"
 
 namespace impactfe {
@@ -39,6 +41,25 @@ int StatusLoop::update(const VectorXd& u, const StepLabel& where) {
     }
   }
   return changed;
+}
+
+int StatusLoop::settle(const VectorXd& u) {
+  std::vector<bool> changed(elements_.size(), false);
+  for (int pass = 0; pass < chatter_limit_; ++pass) {
+    int n = 0;
+    for (std::size_t e : members_) {
+      assembler_.gather(e, u, ue_);
+      if (!elements_[e]->update_status(assembler_.context(), ue_)) continue;
+      changed[e] = true;
+      ++n;
+    }
+    if (n == 0) break;
+  }
+  for (std::size_t e : members_) {
+    assembler_.gather(e, u, ue_);
+    elements_[e]->commit(ue_);
+  }
+  return static_cast<int>(std::count(changed.begin(), changed.end(), true));
 }
 
 void StatusLoop::end_step() {

@@ -36,6 +36,11 @@ class StatusLoop {
   /// elements whose status changed; an element reaching the chatter limit is frozen for the
   /// rest of the step and a warning names it.
   int update(const VectorXd& u, const StepLabel& where);
+  /// The status the initial state u₀ gives every status element (a slider stretched past FSLIDE
+  /// slips, a gap opens or closes), committed: updated until no status changes (at most
+  /// chatter-limit passes), before the initial accelerations are computed. Returns the number
+  /// of elements whose status changed.
+  int settle(const VectorXd& u);
   /// Ends a step: unfreezes the elements frozen in it.
   void end_step();
   /// Accepts the converged step at u for every status element and every element with a

@@ -152,6 +152,22 @@ TEST(EnergyBalance, WarnsWhenTheIntegratorDissipatesMoreThanFivePercent) {
   EXPECT_EQ(energy.balance_warning(0.96), std::nullopt);  // 4 %: accepted
 }
 
+TEST(EnergyBalance, CreationPastTenPercentOfTheInputIsAnError) {
+  ModelFixture m(kSpring);
+  EnergyBalance energy(m.structure.elements());
+  EXPECT_EQ(energy.creation(1.0), std::nullopt);  // nothing put in: nothing checked
+  energy.set_initial_kinetic(1.0);
+  EXPECT_EQ(energy.creation(1.09), std::nullopt);  // 9 % created: below the bound
+  const auto created = energy.creation(1.2);
+  ASSERT_TRUE(created.has_value());
+  EXPECT_EQ(created->term, "kinetic + strain energy");
+  EXPECT_NEAR(created->created, 0.2, 1e-12);
+  EXPECT_NEAR(created->reference, 1.0, 1e-12);
+  // The strain energy of IC displacements counts as put in.
+  energy.set_initial_strain(1.0);
+  EXPECT_EQ(energy.creation(1.15), std::nullopt);
+}
+
 // Ground (node 1), mass 2 (node 2) on gap 1, mass 3 (node 3) on gap 2 from node 2; gaps open.
 const char* const kTwoGaps =
     "/PREP7\nET,1,COMBIN40,,,2\nET,2,MASS21,,,4\nR,1,600,,,0.1\nR,2,2\nR,3,3\nN,1\nN,2,,1\n"
