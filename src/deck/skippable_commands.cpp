@@ -44,7 +44,6 @@ std::string_view significant(std::string_view name) {
 
 }  // namespace
 
-
 bool cannot_change_results(const std::string& name) {
   for (std::string_view listed : kNoEffectOnResults) {
     if (name == listed) return true;
