@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "analysis/restart_points.h"
+#include "core/interruption.h"
 #include "core/log.h"
 #include "results/output_selection.h"
 
@@ -73,7 +74,14 @@ void DirectSolution::solve_load_step(const LoadStep& given) {
   schedule_.begin_substeps(impact_period);
   // Under AUTOTS chatter cuts the step; the cut is what is logged.
   if (schedule_.automatic()) disc_->status_loop().set_quiet_freeze(true);
-  while (!schedule_.done()) solve_substep(step, previous, dynamic);
+  {
+    // Ctrl-C / SIGTERM: read between substeps, so that the run stops on a converged state.
+    const StopPoints stop_points;
+    while (!schedule_.done()) {
+      solve_substep(step, previous, dynamic);
+      if (stopping_ != 0) stop_on_request(step);
+    }
+  }
   if (schedule_.automatic()) disc_->status_loop().set_quiet_freeze(false);
   schedule_.end_load_step();
   stats_.stepping_seconds +=
@@ -149,10 +157,28 @@ void DirectSolution::solve_substep(const LoadStep& step, const LoadStep* previou
     schedule_.set_contact_ceiling(contact ? std::optional<double>(contact->period())
                                           : std::nullopt);
   }
-  const AcceptedSubstep accepted{
-      step,    previous,        s, iterations, stats_.n_status_changes - changes_before,
-      dynamic, schedule_.done()};
+  // Read once: the restart recorder and the loop must agree on whether the run stops here.
+  stopping_ = stop_requested();
+  const AcceptedSubstep accepted{step,
+                                 previous,
+                                 s,
+                                 iterations,
+                                 stats_.n_status_changes - changes_before,
+                                 dynamic,
+                                 schedule_.done(),
+                                 stopping_ != 0};
   for (RunObserver* o : observers_) o->substep_accepted(accepted);
+}
+
+void DirectSolution::stop_on_request(const LoadStep& step) {
+  // The restart recorder has kept this substep's state (AcceptedSubstep::stopping).
+  const std::string message = fmt::format(
+      "interrupted by {} at t = {:g} (load step {}, substep {}); the last converged state is "
+      "kept as a restart point in {} (ANTYPE,,RESTART continues from it)",
+      signal_name(stopping_), state_.time, step.number, schedule_.accepted_substep(),
+      restart_path(writer_.path()));
+  Log::info("{}", message);
+  throw RunInterrupted(stopping_, message);
 }
 
 void DirectSolution::finish() {

@@ -67,6 +67,8 @@ class DirectSolution {
   void start_load_step(const LoadStep& step, const LoadStep* previous, bool dynamic);
   /// Solves the schedule's next substep; a cut leaves it to be tried again at a smaller step.
   void solve_substep(const LoadStep& step, const LoadStep* previous, bool dynamic);
+  /// After the substep at which a stop was requested (SIGINT, SIGTERM): RunInterrupted.
+  [[noreturn]] void stop_on_request(const LoadStep& step);
   void change_step(double h);
   void time_step_advice(double h);
   // Restart (ANTYPE,,RESTART): the point read in begin(), applied at the first load step.
@@ -78,6 +80,7 @@ class DirectSolution {
   RunSettings settings_;
   AnalysisStatistics& stats_;
   bool transient_;
+  int stopping_ = 0;  // the signal that stops the run after the substep accepted last (0: none)
 
   TimeSchedule schedule_;
   std::unique_ptr<Discretisation> disc_;

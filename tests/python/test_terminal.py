@@ -1,11 +1,23 @@
-"""What the CLI says (issue 10): a progress line of `impactfe run` on a terminal
-only, the run summary with the energy balance in the job's log as well as on stdout, and
-`post --freq` on a file without modes as an error."""
+"""What the CLI says: a progress line of `impactfe run` on a terminal only, never wider than
+the terminal; Ctrl-C (SIGINT) and SIGTERM stop a run cleanly (exit 130 / 143, the results file
+marked "interrupted", a restart point it continues from); the run summary with the energy balance
+in the job's log as well as on stdout, and `post --freq` on a file without modes as an error."""
+import fcntl
 import os
 import pty
 import re
 import select
+import signal
+import struct
 import subprocess
+import termios
+import time
+
+import h5py
+import numpy as np
+import pytest
+
+import impactfe
 
 from conftest import DECKS, run
 
@@ -150,3 +162,78 @@ def test_command_line_errors_exit_1_with_the_usage_line(binary):
         p = run([binary] + args, expect=1)
         assert p.stderr.startswith("error: ") and "usage: impactfe" in p.stderr, (args, p.stderr)
     assert run([binary, "run", "--help"]).stdout.startswith("run an APDL deck")
+
+
+def _interrupt(binary, deck, out, sig, jobname="progress"):
+    """Starts the run, waits until it has stored steps, sends `sig`; returns the process."""
+    p = subprocess.Popen([binary, "run", deck, "-o", out, "-j", jobname],
+                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    results = os.path.join(out, jobname + ".h5")
+    deadline = time.monotonic() + 60
+    while not os.path.exists(results) and time.monotonic() < deadline and p.poll() is None:
+        time.sleep(0.05)
+    time.sleep(0.5)  # inside the stepping (a substep takes microseconds: 10 s in all)
+    assert p.poll() is None, "the run ended before it could be interrupted: make it longer"
+    p.send_signal(sig)
+    stdout, stderr = p.communicate(timeout=120)
+    return p.returncode, stdout, stderr
+
+
+LONG = 1000000  # substeps of 0.5 us: some seconds of stepping, interrupted after half a second
+
+
+def _long_deck(tmp_path):
+    deck = _deck(tmp_path, LONG)
+    text = open(deck).read().replace("OUTRES,ALL,LAST", "OUTRES,ALL,10000")  # 100 points
+    open(deck, "w").write(text)
+    return deck
+
+
+@pytest.mark.parametrize("sig,status", [(signal.SIGINT, 130), (signal.SIGTERM, 143)])
+def test_interrupted_run_stops_cleanly(binary, tmp_path, sig, status):
+    """Ctrl-C (SIGINT) or SIGTERM: the substep being solved is finished, its state kept as a
+    restart point, the analysis marked "interrupted"; exit 128 + the signal; the file reads."""
+    out = tmp_path / "stop"
+    code, stdout, stderr = _interrupt(binary, _long_deck(tmp_path), str(out), sig)
+    assert code == status, stderr
+    name = "SIGINT" if sig == signal.SIGINT else "SIGTERM"
+    assert "stopping after the current substep" in stderr, stderr
+    m = re.search(rf"impactfe: interrupted by {name} at t = (\S+) \(load step 1, substep "
+                  r"(\d+)\)", stderr)
+    assert m, stderr
+    assert abs(float(m.group(1)) - int(m.group(2)) * 0.5 / LONG) < 1e-6
+    assert "results up to the interruption are kept in" in stderr and '"interrupted"' in stderr
+    log = (out / "progress.log").read_text()
+    assert f"interrupted by {name}" in log and f"exit status {status}" in log
+    with h5py.File(out / "progress.h5", "r") as f:
+        assert f["analysis_1"].attrs["status"] == b"interrupted"
+    r = impactfe.open(str(out / "progress.h5"))
+    assert r.analyses()["status"].tolist() == ["interrupted"]
+    ux = r.history(node=2, item="UX")
+    assert len(ux) >= 2 and ux.index[0] == 0.0
+    t = ux.index.values
+    np.testing.assert_allclose(ux.iloc[:, 0].values, np.sin(10 * t), atol=1e-6)
+    assert os.path.exists(out / "progress.rst.h5")
+
+
+def test_interrupted_run_continues_from_its_restart_point(binary, tmp_path):
+    """ANTYPE,,RESTART after Ctrl-C continues from the last converged substep to the answer of
+    the run that was not interrupted, to round-off."""
+    deck = _long_deck(tmp_path)
+    reference = run([binary, "run", deck, "-o", str(tmp_path / "whole"), "-j", "progress"])
+    assert "interrupted" not in reference.stderr
+    whole = impactfe.open(str(tmp_path / "whole" / "progress.h5")).history(node=2, item="UX")
+    out = tmp_path / "again"
+    code, _, stderr = _interrupt(binary, deck, str(out), signal.SIGINT)
+    assert code == 130, stderr
+    stopped_at = float(re.search(r"interrupted by SIGINT at t = (\S+)", stderr).group(1))
+    assert 0 < stopped_at < 0.5
+    cont = tmp_path / "continue.inp"
+    cont.write_text(open(deck).read().replace("SOLVE\n", "ANTYPE,TRANS,RESTART\nSOLVE\n"))
+    p = run([binary, "run", str(cont), "-o", str(out), "-j", "progress"])
+    assert "continued from the restart point of load step 1 substep" in p.stdout
+    r = impactfe.open(str(out / "progress.h5"))
+    assert r.analyses()["status"].tolist() == ["interrupted", "complete"]
+    ux = r.history(node=2, item="UX")
+    assert ux.index[-1] == pytest.approx(0.5) and len(ux) == len(whole)
+    np.testing.assert_allclose(ux.iloc[:, 0].values, whole.iloc[:, 0].values, rtol=0, atol=1e-12)
