@@ -34,11 +34,14 @@ def _deck(tmp_path, substeps):
     return str(path)
 
 
-def _run_on_terminal(binary, deck, out):
-    """Runs impactfe with stderr on a pseudo-terminal; returns (exit status, what the terminal got)."""
+def _run_on_terminal(binary, deck, out, columns=200, env=None):
+    """Runs impactfe with stderr on a pseudo-terminal `columns` wide (None: no size set);
+    returns (exit status, what the terminal got)."""
     master, slave = pty.openpty()
+    if columns:
+        fcntl.ioctl(slave, termios.TIOCSWINSZ, struct.pack("HHHH", 24, columns, 0, 0))
     p = subprocess.Popen([binary, "run", deck, "-o", out], stdout=subprocess.DEVNULL,
-                         stderr=slave, stdin=subprocess.DEVNULL)
+                         stderr=slave, stdin=subprocess.DEVNULL, env=env)
     os.close(slave)
     got = b""
     while True:
@@ -57,14 +60,18 @@ def _run_on_terminal(binary, deck, out):
     return p.wait(), got.decode(errors="replace")
 
 
+def _lines(text):
+    return [s for s in text.split("\r\x1b[K") if s]
+
+
 def test_progress_line_on_a_terminal(binary, tmp_path):
     deck = _deck(tmp_path, 20000)
     status, text = _run_on_terminal(binary, deck, str(tmp_path / "tty"))
     assert status == 0, text
-    lines = [s for s in text.split("\r\x1b[K") if s]
+    lines = _lines(text)
     assert lines, "nothing drawn on the terminal"
-    pat = re.compile(r"full transient \(Newmark\): t = (\S+) of 0\.5, load step 1, "
-                     r"substep (\d+)/20000, dt 2\.5e-05, (\d+) iter, 0 status changes, "
+    pat = re.compile(r"full transient \(Newmark\) \| t (\S+)/0\.5 \| load step 1 substep "
+                     r"(\d+)/20000 \| dt 2\.5e-05 \| (\d+) iter \| 0 status changes \| "
                      r"\S+ s elapsed")
     seen = [pat.match(s) for s in lines]
     assert all(seen), lines
@@ -73,9 +80,25 @@ def test_progress_line_on_a_terminal(binary, tmp_path):
     assert times == sorted(times) and steps == sorted(steps)
     assert steps[-1] == 20000 and abs(times[-1] - 0.5) < 1e-9  # the last substep is drawn
     assert all(int(m.group(3)) >= 1 for m in seen)
-    assert any("left (to t = 0.5)" in s for s in lines[:-1])  # an estimate while it runs
+    assert any(re.search(r" \| ~\S+ (s|min|h) left to t 0\.5$", s) for s in lines[:-1])
     assert len(lines) <= 200, "the line is redrawn at most 10 times a second"
     assert text.endswith("\r\x1b[K"), "the line is cleared at the end"
+
+
+def test_progress_line_fits_the_terminal(binary, tmp_path):
+    """One line, never wrapped: at most the terminal's columns less one (80, 100 wide), $COLUMNS
+    when the terminal has no size, else 100; the time reached and the time left are kept."""
+    deck = _deck(tmp_path, 20000)
+    env = {k: v for k, v in os.environ.items() if k != "COLUMNS"}
+    cases = [(80, env, 79), (100, env, 99), (None, env, 99), (None, dict(env, COLUMNS="60"), 59)]
+    for k, (columns, environment, width) in enumerate(cases):
+        status, text = _run_on_terminal(binary, deck, str(tmp_path / f"w{k}"), columns,
+                                        environment)
+        assert status == 0, text
+        lines = _lines(text)
+        assert lines and all(len(s) <= width for s in lines), (columns, width, lines)
+        assert all(s.startswith(("full transient", "t ")) for s in lines), lines
+        assert any("left" in s for s in lines[:-1]), lines
 
 
 def test_progress_estimate_covers_every_known_load_step(binary, tmp_path):
@@ -88,10 +111,10 @@ def test_progress_estimate_covers_every_known_load_step(binary, tmp_path):
     deck.write_text(text)
     status, text = _run_on_terminal(binary, str(deck), str(tmp_path / "ls"))
     assert status == 0, text
-    lines = [s for s in text.split("\r\x1b[K") if s]
-    first = [s for s in lines if "load step 1," in s and "left" in s]
+    lines = _lines(text)
+    first = [s for s in lines if "load step 1 " in s and "left" in s]
     assert first, lines
-    assert all("left (to t = 0.5)" in s for s in first), first
+    assert all("left to t 0.5" in s for s in first), first
 
 
 def test_progress_line_of_a_reduced_transient(binary, tmp_path):
@@ -100,10 +123,10 @@ def test_progress_line_of_a_reduced_transient(binary, tmp_path):
     deck = os.path.join(DECKS, "modern", "crash1_modern.inp")
     status, text = _run_on_terminal(binary, deck, str(tmp_path / "reduced"))
     assert status == 0, text
-    lines = [s for s in text.split("\r\x1b[K") if s.startswith("transient (reduced")]
+    lines = [s for s in _lines(text) if s.startswith("transient (reduced")]
     assert lines, text
-    assert all(re.match(r"transient \(reduced, \w+\): t = \S+ of \S+, load step \d+, "
-                        r"substep \d+/\d+, dt \S+, 1 iter, \S+ s elapsed", s) for s in lines), lines
+    assert all(re.match(r"transient \(reduced, \w+\) \| t \S+/\S+ \| load step \d+ substep "
+                        r"\d+/\d+ \| dt \S+ \| 1 iter \| \S+ s elapsed", s) for s in lines), lines
     assert "status changes" not in "".join(lines)
 
 
