@@ -124,7 +124,7 @@ void DirectSolution::start_load_step(const LoadStep& step, const LoadStep* previ
   } else if (!schedule_.resumes_automatic()) {
     change_step(h0);  // (continuing inside an AUTOTS step: the controller gives the step)
   }
-  time_step_advice(h0);
+  time_step_advice(h0, !schedule_.automatic());  // a load step after a contact closed
 }
 
 void DirectSolution::solve_substep(const LoadStep& step, const LoadStep* previous, bool dynamic) {
@@ -151,11 +151,17 @@ void DirectSolution::solve_substep(const LoadStep& step, const LoadStep* previou
   ++stats_.n_substeps;
   const int iterations = stats_.n_iterations - iterations_before;
   schedule_.accept(iterations, increment_.status_changes());
-  // AUTOTS: the contact frequency of the gaps closed now bounds the next step (T/30).
-  if (dynamic && automatic && disc_->contact_frequency()) {
+  if (dynamic && disc_->contact_frequency()) {
     const auto contact = disc_->contact_frequency()->highest(true);
-    schedule_.set_contact_ceiling(contact ? std::optional<double>(contact->period())
-                                          : std::nullopt);
+    // AUTOTS: the contact frequency of the gaps closed now bounds the next step (T/30).
+    if (automatic)
+      schedule_.set_contact_ceiling(contact ? std::optional<double>(contact->period())
+                                            : std::nullopt);
+    // The advice names a contact that closed, and a stiffer one when it closes later.
+    if (contact && (!closed_highest_ || contact->omega > closed_highest_->omega)) {
+      closed_highest_ = contact;
+      time_step_advice(s.h, !automatic);
+    }
   }
   // Read once: the restart recorder and the loop must agree on whether the run stops here.
   stopping_ = stop_requested();
@@ -231,12 +237,11 @@ void DirectSolution::change_step(double h) {
   disc_->invalidate_factor();
 }
 
-void DirectSolution::time_step_advice(double h) {
-  const ContactFrequencyEstimator* frequency = disc_->contact_frequency();
-  if (frequency == nullptr) return;
-  const auto contact = frequency->highest(false);
-  if (!contact) return;
-  schedule_.advise(h, contact->period(), contact->omega / (2.0 * M_PI), contact->element);
+void DirectSolution::time_step_advice(double h, bool warn) {
+  // Only contacts that have closed in this analysis: one that never touches sets no time scale.
+  if (!closed_highest_) return;
+  const ContactFrequency& contact = *closed_highest_;
+  schedule_.advise(h, contact.period(), contact.omega / (2.0 * M_PI), contact.element, warn);
 }
 
 // ---- restart ------------------------------------------------------------------------------------

@@ -70,7 +70,9 @@ class DirectSolution {
   /// After the substep at which a stop was requested (SIGINT, SIGTERM): RunInterrupted.
   [[noreturn]] void stop_on_request(const LoadStep& step);
   void change_step(double h);
-  void time_step_advice(double h);
+  /// The time-step advice (TimeSchedule::advise) for step h from the stiffest contact that has
+  /// closed so far in the analysis; none before one closes.
+  void time_step_advice(double h, bool warn);
   // Restart (ANTYPE,,RESTART): the point read in begin(), applied at the first load step.
   void take_restart_request();
   void apply_restart(const LoadStep& step);
@@ -80,6 +82,7 @@ class DirectSolution {
   RunSettings settings_;
   AnalysisStatistics& stats_;
   bool transient_;
+  std::optional<ContactFrequency> closed_highest_;  // of the contacts closed so far
   int stopping_ = 0;  // the signal that stops the run after the substep accepted last (0: none)
 
   TimeSchedule schedule_;
