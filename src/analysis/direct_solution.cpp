@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "analysis/restart_points.h"
+#include "core/interruption.h"
 #include "core/log.h"
 #include "results/output_selection.h"
 
@@ -73,7 +74,14 @@ void DirectSolution::solve_load_step(const LoadStep& given) {
   schedule_.begin_substeps(impact_period);
   // Under AUTOTS chatter cuts the step; the cut is what is logged.
   if (schedule_.automatic()) disc_->status_loop().set_quiet_freeze(true);
-  while (!schedule_.done()) solve_substep(step, previous, dynamic);
+  {
+    // Ctrl-C / SIGTERM: read between substeps, so that the run stops on a converged state.
+    const StopPoints stop_points;
+    while (!schedule_.done()) {
+      solve_substep(step, previous, dynamic);
+      if (stopping_ != 0) stop_on_request(step);
+    }
+  }
   if (schedule_.automatic()) disc_->status_loop().set_quiet_freeze(false);
   schedule_.end_load_step();
   stats_.stepping_seconds +=
@@ -121,7 +129,7 @@ void DirectSolution::start_load_step(const LoadStep& step, const LoadStep* previ
   } else if (!schedule_.resumes_automatic()) {
     change_step(h0);  // (continuing inside an AUTOTS step: the controller gives the step)
   }
-  time_step_advice(h0);
+  time_step_advice(h0, !schedule_.automatic());  // a load step after a contact closed
 }
 
 void DirectSolution::solve_substep(const LoadStep& step, const LoadStep* previous, bool dynamic) {
@@ -148,16 +156,40 @@ void DirectSolution::solve_substep(const LoadStep& step, const LoadStep* previou
   ++stats_.n_substeps;
   const int iterations = stats_.n_iterations - iterations_before;
   schedule_.accept(iterations, increment_.status_changes());
-  // AUTOTS: the contact frequency of the gaps closed now bounds the next step (T/30).
-  if (dynamic && automatic && disc_->contact_frequency()) {
+  if (dynamic && disc_->contact_frequency()) {
     const auto contact = disc_->contact_frequency()->highest(true);
-    schedule_.set_contact_ceiling(contact ? std::optional<double>(contact->period())
-                                          : std::nullopt);
+    // AUTOTS: the contact frequency of the gaps closed now bounds the next step (T/30).
+    if (automatic)
+      schedule_.set_contact_ceiling(contact ? std::optional<double>(contact->period())
+                                            : std::nullopt);
+    // The advice names a contact that closed, and a stiffer one when it closes later.
+    if (contact && (!closed_highest_ || contact->omega > closed_highest_->omega)) {
+      closed_highest_ = contact;
+      time_step_advice(s.h, !automatic);
+    }
   }
-  const AcceptedSubstep accepted{
-      step,    previous,        s, iterations, stats_.n_status_changes - changes_before,
-      dynamic, schedule_.done()};
+  // Read once: the restart recorder and the loop must agree on whether the run stops here.
+  stopping_ = stop_requested();
+  const AcceptedSubstep accepted{step,
+                                 previous,
+                                 s,
+                                 iterations,
+                                 stats_.n_status_changes - changes_before,
+                                 dynamic,
+                                 schedule_.done(),
+                                 stopping_ != 0};
   for (RunObserver* o : observers_) o->substep_accepted(accepted);
+}
+
+void DirectSolution::stop_on_request(const LoadStep& step) {
+  // The restart recorder has kept this substep's state (AcceptedSubstep::stopping).
+  const std::string message = fmt::format(
+      "interrupted by {} at t = {:g} (load step {}, substep {}); the last converged state is "
+      "kept as a restart point in {} (ANTYPE,,RESTART continues from it)",
+      signal_name(stopping_), state_.time, step.number, schedule_.accepted_substep(),
+      restart_path(writer_.path()));
+  Log::info("{}", message);
+  throw RunInterrupted(stopping_, message);
 }
 
 void DirectSolution::finish() {
@@ -210,12 +242,11 @@ void DirectSolution::change_step(double h) {
   disc_->invalidate_factor();
 }
 
-void DirectSolution::time_step_advice(double h) {
-  const ContactFrequencyEstimator* frequency = disc_->contact_frequency();
-  if (frequency == nullptr) return;
-  const auto contact = frequency->highest(false);
-  if (!contact) return;
-  schedule_.advise(h, contact->period(), contact->omega / (2.0 * M_PI), contact->element);
+void DirectSolution::time_step_advice(double h, bool warn) {
+  // Only contacts that have closed in this analysis: one that never touches sets no time scale.
+  if (!closed_highest_) return;
+  const ContactFrequency& contact = *closed_highest_;
+  schedule_.advise(h, contact.period(), contact.omega / (2.0 * M_PI), contact.element, warn);
 }
 
 // ---- restart ------------------------------------------------------------------------------------

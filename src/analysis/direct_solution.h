@@ -67,8 +67,12 @@ class DirectSolution {
   void start_load_step(const LoadStep& step, const LoadStep* previous, bool dynamic);
   /// Solves the schedule's next substep; a cut leaves it to be tried again at a smaller step.
   void solve_substep(const LoadStep& step, const LoadStep* previous, bool dynamic);
+  /// After the substep at which a stop was requested (SIGINT, SIGTERM): RunInterrupted.
+  [[noreturn]] void stop_on_request(const LoadStep& step);
   void change_step(double h);
-  void time_step_advice(double h);
+  /// The time-step advice (TimeSchedule::advise) for step h from the stiffest contact that has
+  /// closed so far in the analysis; none before one closes.
+  void time_step_advice(double h, bool warn);
   // Restart (ANTYPE,,RESTART): the point read in begin(), applied at the first load step.
   void take_restart_request();
   void apply_restart(const LoadStep& step);
@@ -78,6 +82,8 @@ class DirectSolution {
   RunSettings settings_;
   AnalysisStatistics& stats_;
   bool transient_;
+  std::optional<ContactFrequency> closed_highest_;  // of the contacts closed so far
+  int stopping_ = 0;  // the signal that stops the run after the substep accepted last (0: none)
 
   TimeSchedule schedule_;
   std::unique_ptr<Discretisation> disc_;

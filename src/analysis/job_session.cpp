@@ -9,6 +9,7 @@
 #include "analysis/analyses.h"
 #include "analysis/direct_solution.h"
 #include "analysis/superelement_expansion.h"
+#include "core/interruption.h"
 #include "core/job_lock.h"
 #include "core/log.h"
 #include "elements/model_memory.h"
@@ -296,6 +297,12 @@ void JobSession::fail(const std::exception_ptr& error) {
   }
   try {
     std::rethrow_exception(located);
+  } catch (const RunInterrupted&) {
+    try {
+      if (writer_) writer_->end_analysis("interrupted");  // docs/results_file.md, status
+    } catch (...) {
+      // The file cannot be written any more: it keeps its last flushed state.
+    }
   } catch (const std::exception& e) {
     try {
       if (writer_) writer_->end_analysis(std::string("failed: ") + e.what());

@@ -53,12 +53,14 @@ void ProgressReport::substep_accepted(const AcceptedSubstep& s) {
 }
 
 void RestartRecorder::substep_accepted(const AcceptedSubstep& s) {
-  if (!restart_point_wanted(s.step, s.substep.number, s.last)) return;
+  const bool wanted = restart_point_wanted(s.step, s.substep.number, s.last);
+  if (!wanted && !s.stopping) return;
   const RestartSite site{s.step, s.previous, s.substep.number, s.last,
                          run_.integrator_running && s.dynamic};
   const RestartPoint p = capture_restart_point(site, run_.structure, *run_.disc, run_.state,
                                                run_.energy, run_.integrator.get(), run_.schedule);
-  write_restart_point(path_, p, s.step.rescontrol.load_steps == 0);
+  // A point kept only because the run stops drops none of those RESCONTROL asked for.
+  write_restart_point(path_, p, wanted && s.step.rescontrol.load_steps == 0);
 }
 
 void ContactSummaryLog::load_step_solved(const LoadStep& step) {

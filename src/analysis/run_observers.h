@@ -38,8 +38,9 @@ struct AcceptedSubstep {
   const Substep& substep;
   int iterations;
   int status_changes;
-  bool dynamic;  // a transient step with time integration
-  bool last;     // the last substep of the load step
+  bool dynamic;   // a transient step with time integration
+  bool last;      // the last substep of the load step
+  bool stopping;  // the run stops after it on request (core/interruption.h)
 };
 
 class RunObserver {
@@ -78,7 +79,8 @@ class ProgressReport final : public RunObserver {
   ProgressObserver* progress_;
 };
 
-/// Writes the restart points RESCONTROL asks for into <jobname>.rst.h5.
+/// Writes the restart points RESCONTROL asks for into <jobname>.rst.h5, and the point of the
+/// substep after which the run stops on request (whatever RESCONTROL says).
 class RestartRecorder final : public RunObserver {
  public:
   RestartRecorder(const RunParts& run, std::string path) : run_(run), path_(std::move(path)) {}

@@ -131,15 +131,20 @@ int post_command(const PostArgs& post) {
 }
 
 struct ExportArgs {
-  std::string file, dir = ".", format = "vtkhdf";
+  std::string file, dir = ".", format = "vtu";
 };
 
 CLI::App* add_export(CLI::App& app, ExportArgs& args) {
   CLI::App* cmd = app.add_subcommand(
-      "export", "write the results for ParaView: one VTKHDF file (default) or VTU files + PVD");
+      "export",
+      "write the results for ParaView: compressed VTU files + a PVD collection (default, any "
+      "ParaView or VTK) or one VTKHDF 2.0 file (ParaView 5.12 or later)");
   cmd->add_option("results", args.file, "results file (.h5)")->required();
   cmd->add_option("-o,--output", args.dir, "output directory (default .)");
-  cmd->add_option("--format", args.format, "vtkhdf (default) | vtu")
+  cmd->add_option("--format", args.format,
+                  "vtu (default: <stem>.pvd + <stem>_NNNNN.vtu, zlib-compressed) | vtkhdf "
+                  "(<stem>.vtkhdf, VTKHDF 2.0: its time steps need ParaView 5.12 / VTK 9.3 or "
+                  "later)")
       ->check(CLI::IsMember({"vtkhdf", "vtu"}));
   return cmd;
 }
@@ -148,14 +153,19 @@ int export_command(const ExportArgs& args) {
   ResultsReader reader(args.file);
   fs::create_directories(args.dir);
   const std::string stem = fs::path(args.file).stem().string();
+  const bool vtu = args.format == "vtu";
   const ExportSummary s =
-      args.format == "vtu"
-          ? export_vtu_series(reader, args.dir, stem)
+      vtu ? export_vtu_series(reader, args.dir, stem)
           : export_vtkhdf(reader, (fs::path(args.dir) / (stem + ".vtkhdf")).string());
   std::cout << fmt::format(
       "export: wrote {}{} ({} time points, {} points, {} cells, {:.2f} MB)\n", s.files.front(),
       s.files.size() > 1 ? fmt::format(" and {} .vtu files", s.files.size() - 1) : "", s.frames,
       s.points, s.cells, static_cast<double>(s.bytes) / 1e6);
+  // Older readers (VTK 9.1, ParaView 5.11 and before) know VTKHDF 1.0 only: they warn that
+  // version 2.0 is too high and show the first time step alone.
+  std::cout << (vtu ? "  open the .pvd in ParaView (File > Open): every time step, any version\n"
+                    : "  VTKHDF 2.0: its time steps need ParaView 5.12 or later (VTK 9.3); older "
+                      "versions show the first one only (use --format vtu)\n");
   if (!s.skipped_elements.empty())
     std::cout << fmt::format("  {} element(s) not drawn (a node is not in the model), e.g. {}\n",
                              s.skipped_elements.size(), s.skipped_elements.front());

@@ -4,6 +4,8 @@
 
 #include <new>
 
+#include "core/interruption.h"
+
 namespace impactfe {
 
 namespace {
@@ -27,6 +29,8 @@ std::string location_text(const SourceLocation& where) {
 void rethrow_at(const SourceLocation& where) {
   try {
     throw;
+  } catch (const RunInterrupted&) {
+    throw;  // a stop on request, not a failure: it keeps its kind (and its exit status)
   } catch (const LocatedError& e) {
     if (e.where().known() || !where.known()) throw;
     if (dynamic_cast<const InputError*>(&e)) throw InputError(where, e.message());

@@ -21,12 +21,15 @@ struct ExportSummary {
 
 /// One VTKHDF file (format version 2.0, transient UnstructuredGrid with a `Steps` group): the
 /// mesh once, point data U ROT V A RF RM (3 components) and cell data (every element result
-/// item, plus element_id, type_id, mat_id) per frame, times in Steps/Values. ParaView 5.12+
-/// opens it directly.
+/// item, plus element_id, type_id, mat_id) per frame, times in Steps/Values, compressed
+/// (shuffle + deflate). Its time steps need ParaView 5.12 / VTK 9.3 or later: older readers know
+/// VTKHDF 1.0 only and show the first step.
 ExportSummary export_vtkhdf(const ResultsReader& reader, const std::string& path);
 
 /// Binary VTK XML files: <out_dir>/<stem>_<nnnnn>.vtu per frame (appended raw data, zlib
 /// compressed) and <out_dir>/<stem>.pvd listing them with their times. Same arrays as above.
+/// `impactfe export`'s default: every ParaView opens the .pvd with all its time steps, and
+/// VTK 9.1 (Debian) reads every .vtu.
 ExportSummary export_vtu_series(const ResultsReader& reader, const std::string& out_dir,
                                 const std::string& stem);
 

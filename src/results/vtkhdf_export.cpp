@@ -4,6 +4,7 @@
 // offsets of each step's rows in Steps/PointDataOffsets and Steps/CellDataOffsets.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <filesystem>
 
 #include "core/errors.h"
@@ -34,7 +35,13 @@ Growing create_growing(hid_t loc, const std::string& name, hsize_t cols, hsize_t
   g.cols = cols;
   g.file_type = file_type;
   g.mem_type = mem_type;
-  std::vector<hsize_t> dims{0}, maxdims{H5S_UNLIMITED}, chunk{std::max<hsize_t>(1, chunk_rows)};
+  // Chunks of at least kMinDeflateChunkElements values, so that they are compressed (shuffle +
+  // deflate, h5::checked_creation_list): a small model's step is a few hundred values, and
+  // chunks of one step each were stored raw.
+  const hsize_t min_rows =
+      (h5::kMinDeflateChunkElements + std::max<hsize_t>(cols, 1) - 1) / std::max<hsize_t>(cols, 1);
+  std::vector<hsize_t> dims{0}, maxdims{H5S_UNLIMITED},
+      chunk{std::max<hsize_t>({1, chunk_rows, min_rows})};
   if (cols > 0) {
     dims.push_back(cols);
     maxdims.push_back(cols);
@@ -110,6 +117,9 @@ ExportSummary export_vtkhdf(const ResultsReader& reader, const std::string& path
   summary.skipped_elements = mesh.skipped_elements;
   try {
     Handle fapl = h5::file_access_checksummed();
+    // A chunk holds several steps of an array and is written a step at a time: the cache keeps
+    // the chunks being filled of every array (64 MB), so none is compressed twice.
+    check_status(H5Pset_cache(fapl, 0, 12421, std::size_t{64} << 20, 1.0), "set chunk cache");
     Handle file(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl));
     if (!file.valid())
       throw InputError(fmt::format("cannot create '{}': {}", path, h5::error_detail()));

@@ -358,15 +358,21 @@ void TimeSchedule::end_load_step() {
   notes_.push_back(summary);
 }
 
-void TimeSchedule::advise(double h, double period, double hz, int element) {
-  if (!advice_given_) {
-    notes_.push_back(fmt::format(
+void TimeSchedule::advise(double h, double period, double hz, int element, bool warn) {
+  if (!advice_note_ || hz > advised_hz_) {
+    std::string note = fmt::format(
         "time-step advice: highest contact frequency {:.4g} Hz (element {} closed), T = {:.4g} s, "
         "suggested dt = T/30 = {:.4g} s",
-        hz, element, period, resolving_step(period)));
-    advice_given_ = true;
+        hz, element, period, resolving_step(period));
+    if (advice_note_) {
+      notes_[*advice_note_] = std::move(note);
+    } else {
+      advice_note_ = notes_.size();
+      notes_.push_back(std::move(note));
+    }
+    advised_hz_ = hz;
   }
-  if (h > coarsest_step(period))
+  if (warn && h > coarsest_step(period))
     Log::warn(
         "dt = {:.4g} s is coarser than T/10 = {:.4g} s of the contact frequency {:.4g} Hz "
         "(element {} closed); suggested dt = T/30 = {:.4g} s",

@@ -153,10 +153,11 @@ class TimeSchedule {
   /// step Carry takes on.
   void end_load_step();
 
-  /// The time-step advice for a step h against the highest contact frequency of the model
-  /// (`period`, `hz`, of element `element`): the run summary suggests T/30 once per analysis,
-  /// a step over T/10 is warned.
-  void advise(double h, double period, double hz, int element);
+  /// The time-step advice for a step h against the contact frequency (`period`, `hz`) of
+  /// element `element`, a contact that has closed: the run summary suggests T/30 of the highest
+  /// such frequency (one note per analysis, replaced when a stiffer contact closes later), and
+  /// with `warn` a step over T/10 is warned.
+  void advise(double h, double period, double hz, int element, bool warn = true);
 
  private:
   /// The timing of `step` from t_start, planned once (kept until its load step ended).
@@ -172,7 +173,8 @@ class TimeSchedule {
   int first_substep_ = 1;
   std::optional<StepController::State> resume_autots_;
   double resume_autots_t_end_ = 0.0;
-  bool advice_given_ = false;
+  std::optional<std::size_t> advice_note_;  // index of the advice in notes_
+  double advised_hz_ = 0.0;
   // Plans made: the inputs of a load step's timing (and its start) and the timing.
   struct Planned {
     int number;

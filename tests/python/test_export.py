@@ -1,7 +1,8 @@
-"""`impactfe export`: the VTKHDF file (default) and the binary VTU + PVD files read back with
-h5py and xml/zlib (and with VTK when Debian's python3-vtk9 is installed): points, cells and cell
-types, every array the right length, times increasing from 0, stresses equal to `impactfe post
---esol`; superelements as poly-vertex cells; a reduced run and its expansion as one mesh."""
+"""`impactfe export`: the compressed binary VTU + PVD files (default) and the VTKHDF file read back
+with xml/zlib and h5py, and the default export with Debian's VTK 9.1 (python3-vtk9): every time
+step, every array, compressed; points, cells and cell types, every array the right length, times
+increasing from 0, stresses equal to `impactfe post --esol`; superelements as poly-vertex cells;
+a reduced run and its expansion as one mesh."""
 import os
 import struct
 import xml.etree.ElementTree as ET
@@ -82,7 +83,8 @@ def cell_history(f, times, n_c, item, element):
 
 
 def test_helmet_vtkhdf(binary, helmet, tmp_path):
-    message = export(binary, helmet, tmp_path)
+    message = export(binary, helmet, tmp_path, "--format", "vtkhdf")
+    assert "ParaView 5.12 or later" in message
     path = tmp_path / "helmet_full.vtkhdf"
     assert str(path) in message
     f, times, n_p, n_c = check_vtkhdf(path, helmet)
@@ -111,6 +113,9 @@ def test_helmet_vtkhdf(binary, helmet, tmp_path):
     reader.Update()
     out = reader.GetOutput()
     assert out.GetNumberOfPoints() == n_p and out.GetNumberOfCells() == n_c
+    # Compressed: the per-step arrays are stored with deflate, in chunks of several steps.
+    assert f["VTKHDF/PointData/U"].compression == "gzip"
+    assert f["VTKHDF/CellData/SEQV_TOP"].compression == "gzip"
 
 
 def read_vtu(path):
@@ -141,7 +146,8 @@ def read_vtu(path):
 
 
 def test_helmet_vtu_pvd(binary, helmet, tmp_path):
-    export(binary, helmet, tmp_path, "--format", "vtu")
+    message = export(binary, helmet, tmp_path, "--format", "vtu")
+    assert "helmet_full.pvd" in message
     pvd = ET.parse(tmp_path / "helmet_full.pvd").getroot()
     datasets = pvd.findall("Collection/DataSet")
     times = np.array([float(d.get("timestep")) for d in datasets])
@@ -179,7 +185,7 @@ def test_superelement_use_pass_exports_the_superelement(binary, run_deck, tmp_pa
     out = str(tmp_path_factory.mktemp("se"))
     run_deck(os.path.join(EXAMPLES, "helmet_segen.inp"), directory=out)
     use = run_deck(os.path.join(EXAMPLES, "helmet_use.inp"), directory=out)
-    export(binary, use, out)
+    export(binary, use, out, "--format", "vtkhdf")
     f, times, n_p, n_c = check_vtkhdf(os.path.join(out, "helmet_use.vtkhdf"), use)
     types = f["VTKHDF/Types"][:]
     assert (types == VTK_POLY_VERTEX).sum() == 1  # the superelement: its master nodes
@@ -192,7 +198,7 @@ def test_superelement_use_pass_exports_the_superelement(binary, run_deck, tmp_pa
 
 
 def test_reduced_run_and_expansion_are_one_mesh(binary, crash1, tmp_path):
-    export(binary, crash1, tmp_path)
+    export(binary, crash1, tmp_path, "--format", "vtkhdf")
     f, times, n_p, n_c = check_vtkhdf(tmp_path / "crash1.vtkhdf", crash1)
     r = impactfe.open(crash1)
     # 61 distinct times although the reduced run (61) and the expansion (60) overlap.
@@ -202,3 +208,55 @@ def test_reduced_run_and_expansion_are_one_mesh(binary, crash1, tmp_path):
                                at_times(csv["E6_SAXL"], times), rtol=1e-9, atol=1e-9)
     # t = 0 exists only in the reduced run, which has no element results: NaN, not 0.
     assert np.isnan(cell_history(f, times, n_c, "SAXL", 6)[0])
+
+
+def stored_times(results):
+    """The distinct stored times of a results file (every analysis)."""
+    with h5py.File(results, "r") as f:
+        times = [f[name]["time"][:] for name in f if name.startswith("analysis_")]
+    return np.unique(np.concatenate(times))
+
+
+def test_default_export_opens_every_step_in_debian_vtk(binary, helmet, tmp_path):
+    """The default export is the PVD + VTU series, which VTK 9.1 (Debian's python3-vtk9; no
+    VTKHDF 2.0 there) reads step by step: every stored time, every array, compressed."""
+    message = export(binary, helmet, tmp_path)
+    pvd_path = tmp_path / "helmet_full.pvd"
+    assert str(pvd_path) in message and "every time step" in message
+    vtk = pytest.importorskip("vtk")
+    datasets = ET.parse(pvd_path).getroot().findall("Collection/DataSet")
+    times = np.array([float(d.get("timestep")) for d in datasets])
+    np.testing.assert_allclose(times, stored_times(helmet), rtol=0, atol=0)
+    assert len(times) > 10
+    r = impactfe.open(helmet)
+    n_p = len(r.node_ids)
+    uz = r.history(node=43, item="UZ")
+    node = list(r.node_ids).index(43)
+    raw = 0
+    cell_names = None
+    for d, t in zip(datasets, times):
+        reader = vtk.vtkXMLUnstructuredGridReader()
+        reader.SetFileName(str(tmp_path / d.get("file")))
+        reader.Update()
+        assert reader.GetErrorCode() == 0
+        out = reader.GetOutput()
+        assert out.GetNumberOfPoints() == n_p and out.GetNumberOfCells() == 86
+        pd_, cd = out.GetPointData(), out.GetCellData()
+        assert sorted(pd_.GetArrayName(i) for i in range(pd_.GetNumberOfArrays())) == sorted(
+            POINT_ARRAYS)
+        names = [cd.GetArrayName(i) for i in range(cd.GetNumberOfArrays())]
+        assert {"element_id", "SEQV_TOP", "SEQV", "FORC", "STAT"} <= set(names)
+        assert cell_names in (None, names)
+        cell_names = names
+        if t in uz.index:
+            assert pd_.GetArray("U").GetTuple3(node)[2] == pytest.approx(uz.loc[t].iloc[0],
+                                                                         rel=1e-12, abs=1e-15)
+        arrays = [pd_.GetArray(i) for i in range(pd_.GetNumberOfArrays())]
+        arrays += [cd.GetArray(i) for i in range(cd.GetNumberOfArrays())]
+        arrays += [out.GetPoints().GetData(), out.GetCells().GetConnectivityArray(),
+                   out.GetCells().GetOffsetsArray(), out.GetCellTypesArray()]
+        raw += sum(a.GetNumberOfValues() * a.GetDataTypeSize() for a in arrays)
+    on_disk = sum(os.path.getsize(tmp_path / d.get("file")) for d in datasets)
+    print(f"\nhelmet export: {len(times)} time steps, {len(cell_names)} cell + "
+          f"{len(POINT_ARRAYS)} point arrays, {on_disk} bytes on disk, {raw} bytes of arrays")
+    assert on_disk < 0.7 * raw  # compressed (zlib blocks), not raw

@@ -19,6 +19,7 @@
 #include "analysis/run_observers.h"
 #include "analysis/step_loads.h"
 #include "analysis/time_step_advice.h"
+#include "core/log.h"
 #include "deck/deck_reader.h"
 
 namespace impactfe {
@@ -302,6 +303,44 @@ TEST(DirectSolution, RoundedDeltimIsInTheRunSummary) {
   ASSERT_EQ(times.size(), 4u);
   EXPECT_DOUBLE_EQ(times[1], 1.0 / 3);
   EXPECT_EQ(times[3], 1.0);
+}
+
+/// A mass (node 2, m = 1) at 50 in/s onto the floor through gap 1 (k = 1e5, GAP `near_gap`;
+/// 0.1: it closes at t = 0.002, f = sqrt(1e5) / 2 pi = 50.33 Hz) beside a far stiffer gap 2
+/// (k = 1e9, 5033 Hz) whose gap of 100 the mass never crosses; constant steps of 0.004, over
+/// T/10 = 0.002 of gap 1.
+std::string falling_mass_deck(const std::string& near_gap) {
+  return "/PREP7\nET,1,COMBIN40,,,2\nET,2,MASS21,,,4\nR,1,1.0E5,,," + near_gap +
+         "\nR,2,1.0E9,,,100\nR,3,1.0\nN,1\nN,2,,1\nN,4\nTYPE,1\nREAL,1\nE,1,2\nREAL,2\n"
+         "E,4,2\nTYPE,2\nREAL,3\nE,2\nFINISH\n/SOLU\nANTYPE,TRANS\nTRNOPT,FULL\nD,1,ALL\n"
+         "D,4,ALL\nD,2,UX\nIC,2,UY,0,-50\nTIME,0.012\nDELTIM,0.004\nOUTRES,ALL,ALL\nSOLVE\n"
+         "FINISH\n";
+}
+
+std::vector<std::string> advice_and_warnings(const testing::DeckRun& run) {
+  std::vector<std::string> out;
+  for (const std::string& note : run.statistics.analyses.at(0).notes)
+    if (note.find("contact frequency") != std::string::npos) out.push_back(note);
+  for (const std::string& w : Log::warnings())
+    if (w.find("contact frequency") != std::string::npos) out.push_back(w);
+  return out;
+}
+
+TEST(TimeStepAdvice, NamesOnlyContactsThatClosed) {
+  Log::clear();
+  const auto run = testing::run_deck_text("advice_closed", falling_mass_deck("0.1"));
+  const std::vector<std::string> said = advice_and_warnings(run);
+  ASSERT_EQ(said.size(), 2u);  // the suggestion in the summary and the warning of dt = 0.004
+  for (const std::string& s : said) {
+    EXPECT_NE(s.find("50.33 Hz (element 1 closed)"), std::string::npos) << s;
+    EXPECT_EQ(s.find("element 2"), std::string::npos) << s;
+  }
+}
+
+TEST(TimeStepAdvice, NoneWhenNoContactCloses) {
+  Log::clear();
+  const auto run = testing::run_deck_text("advice_open", falling_mass_deck("100"));
+  EXPECT_TRUE(advice_and_warnings(run).empty());
 }
 
 }  // namespace
