@@ -380,11 +380,12 @@ int node_row(const std::vector<int>& node_ids, int node) {
 ResultsReader::ResultsReader(const std::string& path) : impl_(std::make_unique<Impl>()) {
   h5::silence_errors();
   impl_->path = path;
+  // A writer of this process syncs first: its buffered points are part of the file, and on its
+  // writer thread the file may not yet be renamed into place (ResultsWriter's constructor).
+  sync_live_writer(path);
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
     throw InputError(fmt::format("results file '{}' does not exist", path));
-  // A writer of this process syncs first: its buffered points are part of the file.
-  sync_live_writer(path);
   if (H5Fis_hdf5(path.c_str()) <= 0)
     throw InputError(fmt::format("'{}' is not an impactfe results file (not HDF5)", path));
   // Default access first: in the same process this shares the file a live ResultsWriter has

@@ -728,6 +728,18 @@ TEST_F(ResultsFileTest, WriterThreadWritesTheSameFileAsTheCallersThread) {
   EXPECT_TRUE(stored[0] == stored[1]);
 }
 
+/// A reader of this process opened right after the writer is made (a deck's POST1 after its
+/// SOLVE) finds the file: the writer thread creates it under a temporary name and renames it
+/// into place, and the reader waits for the writer before it looks for the file.
+TEST_F(ResultsFileTest, ReaderRightAfterTheWriterThreadStartsFindsTheFile) {
+  const WriterThreadMode set(WriterThread::On);
+  for (int k = 0; k < 5; ++k) {
+    const std::string path = file("at_once_" + std::to_string(k) + ".h5");
+    ResultsWriter w(path, small_model());
+    EXPECT_NO_THROW(EXPECT_EQ(ResultsReader(path).node_ids().size(), 3u));
+  }
+}
+
 /// A failure on the writer thread is thrown by the analysis's next call that waits for the
 /// writer (end_analysis) and by every call after it; the points synced before it stay
 /// readable. A file that cannot be created is reported by the constructor, as on one thread.
