@@ -21,7 +21,6 @@ constexpr int kMaxFrames = 20;      // /INPUT files and macros, shared (§A.13)
 constexpr int kMaxDoNesting = 20;   // §A.10
 constexpr int kMaxIfNesting = 100;  // §A.11 asks for at least 20
 constexpr int kMaxRecursion = 400;  // executor depth over all frames
-constexpr long long kMaxTrips = 10'000'000;
 constexpr std::size_t kNone = static_cast<std::size_t>(-1);
 
 std::string field_upper(const RawCommand& c, std::size_t i) {
@@ -346,8 +345,8 @@ void DeckReader::repeat_previous(const Command& c) {
   // VINCk each time.
   if (!last_command_) fail(c, "no previous command to repeat");
   const int ntot = integer(c, 1, 1);
-  if (ntot < 1 || ntot > kMaxTrips)
-    fail(c, fmt::format("NTOT = {} out of range (1 to {})", ntot, kMaxTrips));
+  if (ntot < 1 || ntot > kMaxLoopTrips)
+    fail(c, fmt::format("NTOT = {} out of range (1 to {})", ntot, kMaxLoopTrips));
   const Command base = *last_command_;
   std::vector<double> inc(11, 0.0);
   for (int k = 1; k <= 11; ++k) inc[static_cast<std::size_t>(k - 1)] = real(c, k + 1, 0.0);
@@ -383,8 +382,8 @@ DeckReader::Flow DeckReader::run_do(Frame& f, std::size_t i, const Command& c) {
   // Trip count fixed at *DO (§A.10): a body that changes Par does not change it.
   const double span = (*fval - ival) / inc;
   const double trips = std::floor(span + 1e-10 * std::max(1.0, std::fabs(span))) + 1.0;
-  if (trips > static_cast<double>(kMaxTrips))
-    fail(c, fmt::format("{:.6g} trips refused (at most {} per loop)", trips, kMaxTrips));
+  if (trips > static_cast<double>(kMaxLoopTrips))
+    fail(c, fmt::format("{:.6g} trips refused (at most {} per loop)", trips, kMaxLoopTrips));
   const long long n = trips < 0.0 ? 0 : static_cast<long long>(trips);
   const std::size_t close = f.program.match[i];
   DepthGuard guard(nesting_, *this, c);
@@ -417,8 +416,8 @@ DeckReader::Flow DeckReader::run_dowhile(Frame& f, std::size_t i, const Command&
   Flow result = Flow::Normal;
   for (long long t = 0;; ++t) {
     if (eval(c, par) <= 0.0) break;
-    if (t >= kMaxTrips)
-      fail(c, fmt::format("more than {} trips: the loop does not end", kMaxTrips));
+    if (t >= kMaxLoopTrips)
+      fail(c, fmt::format("more than {} trips: the loop does not end", kMaxLoopTrips));
     count_executed(c);
     const Flow flow = run_range(f, i + 1, close);
     if (flow == Flow::Exit) break;

@@ -32,6 +32,8 @@ enum Processor : unsigned {
   kStress = 32u,  // 4x /STRESS block
 };
 inline constexpr unsigned kAnywhere = 63u;
+/// The most trips of one *DO / *DOWHILE loop, or passes of a 4x *DO over a block.
+inline constexpr long long kMaxLoopTrips = 10'000'000;
 inline constexpr unsigned kPrepSolu = kPrep7 | kSolu;
 inline constexpr unsigned kPost = kPost1 | kPost26;
 const char* processor_name(unsigned processor);

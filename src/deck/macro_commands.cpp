@@ -12,8 +12,6 @@ namespace impactfe::deck {
 
 namespace {
 
-constexpr long long kMaxPasses = 10'000'000;  // 4x *DO over a block, as a loop's trips
-
 std::string directory_of(const std::string& path) {
   return std::filesystem::path(path).parent_path().string();
 }
@@ -177,7 +175,7 @@ bool DeckReader::run_block_do(const Command& c) {
   // with a *SET increment is incremented (APDL_SUBSET §3.29).
   const int n1 = integer(c, 2, 1);
   const int n2 = integer(c, 3, n1);
-  if (static_cast<long long>(n2) - n1 + 1 > kMaxPasses) fail(c, "too many passes");
+  if (static_cast<long long>(n2) - n1 + 1 > kMaxLoopTrips) fail(c, "too many passes");
   for (int k = n1; k <= n2; ++k) {
     count_executed(c);
     run_block_macro(c, block);
