@@ -31,6 +31,20 @@ ALLOWED = {
                  "nonlinear", "reduction", "results", "deck"],
     "app": ["core", "linalg", "time", "results", "deck", "analysis"],
 }
+# Inside the deck layer, each processor's commands keep their own state (deck/deck_context.h):
+# the handler files that may touch each part of DeckReader's state through `r.<part>`. The rest of
+# the deck layer reaches it only through these handlers (or the model and the job).
+DECK_STATE = {
+    "modeling": ["prep7_commands.cpp", "generation_commands.cpp", "material_commands.cpp",
+                 "solid_edit_commands.cpp", "contact_commands.cpp", "mesh_commands.cpp",
+                 # SAVE/RESUME store the attribute pointers; *GET,Par,ACTIVE,,TYPE reads them.
+                 "database_commands.cpp", "get_command.cpp"],
+    # 4x defines the analysis (KAN) in PREP7; FINISH closes a 4x /STRESS block.
+    "solution": ["solution_commands.cpp", "prep7_commands.cpp", "session_commands.cpp"],
+    "scripting": ["parameter_commands.cpp", "array_commands.cpp", "matrix_commands.cpp",
+                  "output_commands.cpp", "vector_support.h"],
+    "post": ["post_support.cpp"],
+}
 MAX_LINES = 800  # soft cap of ../shared/DESIGN.md, enforced for .cpp and .h files
 
 
@@ -83,6 +97,13 @@ for path in sorted(root.rglob("*")):
         if target not in ALLOWED[folder]:
             errors.append(f"{path.relative_to(root)}:{number}: {folder} includes {m.group(1)}: "
                           f"'{folder}' -> '{target}' is not an allowed edge")
+state_use = re.compile(r"\br\.(" + "|".join(DECK_STATE) + r")\b")
+for path in sorted((root / "deck").glob("*")):
+    for number, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1):
+        for m in state_use.finditer(line):
+            if path.name not in DECK_STATE[m.group(1)]:
+                errors.append(f"deck/{path.name}:{number}: uses r.{m.group(1)}, the state of "
+                              "another processor's commands (DECK_STATE in scripts/check-layers.py)")
 for e in errors:
     print(e)
 print("layer check: " + ("ok" if not errors else f"{len(errors)} problem(s)"))

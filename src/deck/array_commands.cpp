@@ -51,8 +51,8 @@ void VectorPass::store(long long k, double value, int dj) const {
 VectorPass begin_vector_pass(DeckReader& r, const Command& c, int f, long long default_rows,
                              int create_cols) {
   VectorPass p;
-  p.settings = r.vector_settings;
-  r.vector_settings = VectorSettings{};
+  p.settings = r.scripting.vector_settings;
+  r.scripting.vector_settings = VectorSettings{};
   p.step = std::max(1, p.settings.row_increment);
   p.result = c.text(f);
   if (p.result.empty()) r.fail(c, fmt::format("field {}: result parameter missing", f));
@@ -168,7 +168,7 @@ void cmd_vfill(DeckReader& r, const Command& c) {
       if (c.blank(k)) break;  // values after the first blank CON are ignored
       values.push_back(r.real(c, k, 0.0));
     }
-    r.vector_settings = VectorSettings{};
+    r.scripting.vector_settings = VectorSettings{};
     assign_vector(r, c, c.text(1), values);
     return;
   }
@@ -388,8 +388,8 @@ void cmd_vscfun(DeckReader& r, const Command& c) {
   const VectorOperand a = vector_operand(r, c, 3);
   if (!a.column) r.fail(c, "Par1 must be an array element");
   // The pass runs over Par1 (the result is a scalar).
-  VectorSettings s = r.vector_settings;
-  r.vector_settings = VectorSettings{};
+  VectorSettings s = r.scripting.vector_settings;
+  r.scripting.vector_settings = VectorSettings{};
   const int step = std::max(1, s.row_increment);
   const long long avail = (a.length() - 1) / step + 1;
   const long long rows = s.n_rows ? *s.n_rows : avail;
@@ -463,7 +463,7 @@ void cmd_vscfun(DeckReader& r, const Command& c) {
 }
 
 void cmd_vfact(DeckReader& r, const Command& c) {
-  VectorSettings& s = r.vector_settings;
+  VectorSettings& s = r.scripting.vector_settings;
   s.factor_result = r.real(c, 1, 1.0);
   s.factor1 = r.real(c, 2, 1.0);
   s.factor2 = r.real(c, 3, 1.0);
@@ -472,29 +472,29 @@ void cmd_vfact(DeckReader& r, const Command& c) {
 
 void cmd_vmask(DeckReader& r, const Command& c) {
   if (c.blank(1)) {
-    r.vector_settings.mask.clear();
+    r.scripting.vector_settings.mask.clear();
     return;
   }
   const ArrayPosition m = array_position(r, c, c.text(1));  // checked now
   if (m.param->type == ParamType::CharArray) r.fail(c, "a mask must be a numeric array");
-  r.vector_settings.mask = c.text(1);
+  r.scripting.vector_settings.mask = c.text(1);
 }
 
 void cmd_vlen(DeckReader& r, const Command& c) {
   const int n = r.integer(c, 1, 0);
   if (n < 0) r.fail(c, "NROW must not be negative");
-  r.vector_settings.n_rows = n == 0 ? std::nullopt : std::optional<int>(n);
+  r.scripting.vector_settings.n_rows = n == 0 ? std::nullopt : std::optional<int>(n);
   const int inc = r.integer(c, 2, 1);
   if (inc < 1) r.fail(c, "NINC must be at least 1");
-  r.vector_settings.row_increment = inc;
+  r.scripting.vector_settings.row_increment = inc;
 }
 
 void cmd_vcum(DeckReader& r, const Command& c) {
-  r.vector_settings.cumulate = r.integer(c, 1, 0) != 0;
+  r.scripting.vector_settings.cumulate = r.integer(c, 1, 0) != 0;
 }
 
 void cmd_vabs(DeckReader& r, const Command& c) {
-  VectorSettings& s = r.vector_settings;
+  VectorSettings& s = r.scripting.vector_settings;
   s.abs_result = r.integer(c, 1, 0) != 0;
   s.abs1 = r.integer(c, 2, 0) != 0;
   s.abs2 = r.integer(c, 3, 0) != 0;
@@ -508,12 +508,12 @@ void cmd_vcol(DeckReader& r, const Command& c) {
     if (n < 1) r.fail(c, fmt::format("field {}: at least one column", f));
     return n;
   };
-  r.vector_settings.n_cols1 = cols(1);
-  r.vector_settings.n_cols2 = cols(2);
+  r.scripting.vector_settings.n_cols1 = cols(1);
+  r.scripting.vector_settings.n_cols2 = cols(2);
 }
 
 void cmd_vstat(DeckReader& r, const Command&) {
-  const VectorSettings& s = r.vector_settings;
+  const VectorSettings& s = r.scripting.vector_settings;
   r.output.print(" VECTOR OPERATION SETTINGS (apply to the next *V or *M command)");
   r.output.print(fmt::format("   *VFACT  FACTR={:.8G} FACT1={:.8G} FACT2={:.8G} FACT3={:.8G}",
                              s.factor_result, s.factor1, s.factor2, s.factor3));

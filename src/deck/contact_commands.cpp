@@ -22,10 +22,10 @@ int next_element_number(const DeckReader& r) {
 }
 
 const std::string& current_type_name(DeckReader& r, const Command& c) {
-  const auto it = r.model.element_types.find(r.current_type);
+  const auto it = r.model.element_types.find(r.modeling.current_type);
   if (it == r.model.element_types.end())
-    r.fail(c,
-           fmt::format("element type {} is not defined (ET missing before TYPE)", r.current_type));
+    r.fail(c, fmt::format("element type {} is not defined (ET missing before TYPE)",
+                          r.modeling.current_type));
   return it->second.ansys_name;
 }
 
@@ -55,7 +55,7 @@ void cmd_esurf(DeckReader& r, const Command& c) {
   if (!target && !surface && !(role == ShapeRole::Contact && dimension == 0))
     r.fail(c, fmt::format("the current TYPE {} is {}: ESURF generates TARGE170 target facets, "
                           "CONTA174 contact faces or CONTA175 contact nodes",
-                          r.current_type, name));
+                          r.modeling.current_type, name));
   const ModelSelection& sel = r.model.selection;
   const auto faces = geometry::faces_on_nodes(
       r.model, [&](int n) { return sel.nodes.selected(n); },
@@ -80,14 +80,15 @@ void cmd_esurf(DeckReader& r, const Command& c) {
       for (int n : geometry::element_face_nodes(r.model, r.model.elements.at(f.element), f.face))
         nodes.insert(n);
     for (const auto& [id, e] : r.model.elements)
-      if (e.type == r.current_type && e.real == r.current_real && e.nodes.size() == 1)
+      if (e.type == r.modeling.current_type && e.real == r.modeling.current_real &&
+          e.nodes.size() == 1)
         nodes.erase(e.nodes.front());
     for (int n : nodes) created.push_back({n});
   }
   if (created.empty()) {
     r.warn(c, fmt::format("every node of the {} selected faces already carries a {} of TYPE {} "
                           "and REAL {}: no element generated",
-                          faces.size(), name, r.current_type, r.current_real));
+                          faces.size(), name, r.modeling.current_type, r.modeling.current_real));
     return;
   }
   check_model_size(r, c, 0, static_cast<long long>(created.size()));
@@ -98,8 +99,8 @@ void cmd_esurf(DeckReader& r, const Command& c) {
     r.add_element(c, first + static_cast<int>(k), created[k]);
   Log::info("{}:{}: ESURF: {} {} elements {} to {} (TYPE {}, REAL {}, MAT {}) on {} faces",
             c.where.file, c.where.line, created.size(), name, first,
-            first + static_cast<int>(created.size()) - 1, r.current_type, r.current_real,
-            r.current_mat, faces.size());
+            first + static_cast<int>(created.size()) - 1, r.modeling.current_type,
+            r.modeling.current_real, r.modeling.current_mat, faces.size());
 }
 
 /// TSHAP,Shape (APDL_MODELING §8.4): the shape of the TARGE170 elements that E/EN define next.
@@ -130,7 +131,7 @@ void cmd_tshap(DeckReader& r, const Command& c) {
 void check_target_shape(DeckReader& r, const Command& c, const std::vector<int>& nodes) {
   const std::string& shape = r.modeling.target_shape;
   if (shape.empty()) return;
-  const auto it = r.model.element_types.find(r.current_type);
+  const auto it = r.model.element_types.find(r.modeling.current_type);
   if (it == r.model.element_types.end() ||
       element_type_descriptor(it->second).role != ShapeRole::Target)
     return;

@@ -30,32 +30,12 @@ void DeckReader::clear_database(const Command& c) {
       dialect == Dialect::Classic4x ? IntegratorKind::Houbolt : IntegratorKind::Newmark;
   processor = kBegin;
   params.clear();
-  increments.clear();
-  output.to_terminal();
-  if (command_file.stream.is_open()) command_file.stream.close();
-  command_file.path.clear();
-  vector_settings = VectorSettings{};
-  current_type = current_real = current_mat = 1;
-  modeling.target_shape.clear();
-  current_secnum = dialect == Dialect::Modern ? 1 : 0;
-  secnum_given = false;
-  last_real_set = last_section = 0;
-  defined_by_n.clear();
-  element_order.clear();
-  kan = 0;
-  load_steps_4x.clear();
-  frozen.reset();
-  exec_armed = false;
-  stress_requests.clear();
-  stress_count = 1;
-  stress_t_prev = 0.0;
-  open_analysis.reset();
-  lswrite_steps.clear();
-  expass = false;
-  expansion = ExpansionPassRequest{};
-  seexp.reset();
-  last_solved_time.reset();
-  mdamp_next = 1;
+  scripting.increments.clear();  // *CREATE files and *BEGIN blocks survive
+  if (scripting.command_file.stream.is_open()) scripting.command_file.stream.close();
+  scripting.command_file.path.clear();
+  scripting.vector_settings = VectorSettings{};
+  modeling = ModelingState::initial(dialect);
+  solution = SolutionState{};
   last_command_.reset();
   post.reset();  // POST1 set, element table, POST26 variables
   Log::info("{}:{}: /CLEAR: database cleared (a new job begins)", c.where.file, c.where.line);
@@ -296,8 +276,8 @@ void cmd_save(DeckReader& r, const Command& c) {
   for (const auto& [id, e] : m.elements)
     if (!e.superelement_file.empty()) se[std::to_string(id)] = e.superelement_file;
   j["superelement_files"] = se;
-  j["attributes"] = {r.current_type, r.current_real, r.current_mat, r.current_secnum,
-                     r.secnum_given};
+  j["attributes"] = {r.modeling.current_type, r.modeling.current_real, r.modeling.current_mat,
+                     r.modeling.current_secnum, r.modeling.secnum_given};
   json masters = json::array();
   for (const auto& k : m.masters) masters.push_back({k.node, static_cast<int>(k.dof)});
   j["masters"] = masters;
@@ -359,11 +339,11 @@ void cmd_resume(DeckReader& r, const Command& c) {
     m.title = j.at("title");
     m.units = j.value("units", std::string());
     const json& a = j.at("attributes");
-    r.current_type = a[0];
-    r.current_real = a[1];
-    r.current_mat = a[2];
-    r.current_secnum = a[3];
-    r.secnum_given = a[4];
+    r.modeling.current_type = a[0];
+    r.modeling.current_real = a[1];
+    r.modeling.current_mat = a[2];
+    r.modeling.current_secnum = a[3];
+    r.modeling.secnum_given = a[4];
     m.masters.clear();
     for (const auto& k : j.at("masters"))
       m.masters.push_back({k[0], static_cast<Dof>(k[1].get<int>())});
@@ -379,8 +359,8 @@ void cmd_resume(DeckReader& r, const Command& c) {
       m.options = options_of(j.at("options"));
       m.current = load_state_of(j.at("loads"));
     }
-    r.element_order.clear();
-    for (const auto& [id, e] : m.elements) r.element_order.push_back(id);
+    r.modeling.element_order.clear();
+    for (const auto& [id, e] : m.elements) r.modeling.element_order.push_back(id);
     r.model.selection
         .select_everything();  // the database file holds no selection: everything is selected
     if (!keep_params) {

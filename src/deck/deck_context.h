@@ -18,7 +18,9 @@
 #include "deck/modeling_state.h"
 #include "deck/output.h"
 #include "deck/parameters.h"
+#include "deck/scripting_state.h"
 #include "deck/solution_host.h"
+#include "deck/solution_state.h"
 
 namespace impactfe::deck {
 
@@ -120,30 +122,6 @@ bool cannot_change_results(const std::string& upper_name);
 /// That list, names as MAPDL spells them in full.
 const std::vector<std::string_view>& commands_without_effect_on_results();
 
-/// A file made by *CREATE (kept in memory, APDL_SCRIPTING §A.13): its lines as lexed commands
-/// (with their deck locations, so errors point into the deck) and as text (*LIST).
-struct MacroFile {
-  std::vector<RawCommand> commands;
-  std::vector<std::string> lines;
-};
-
-/// Vector-operation settings (*VFACT, *VMASK, *VLEN, *VCUM, *VABS, *VCOL; APDL_MODELING §10.2):
-/// they apply to the next *V / *M command and are then reset.
-struct VectorSettings {
-  double factor_result = 1.0, factor1 = 1.0, factor2 = 1.0, factor3 = 1.0;  // *VFACT
-  std::string mask;                                                   // *VMASK,Par(i) ("" = none)
-  std::optional<int> n_rows;                                          // *VLEN NROW
-  int row_increment = 1;                                              // *VLEN NINC
-  bool cumulate = false;                                              // *VCUM,1
-  bool abs_result = false, abs1 = false, abs2 = false, abs3 = false;  // *VABS
-  std::optional<int> n_cols1, n_cols2;                                // *VCOL
-};
-
-/// The *CFOPEN command file: *CFWRITE lines and *VWRITE output go there while it is open.
-struct CommandFileState {
-  std::ofstream stream;
-  std::string path;
-};
 // Model building (APDL_MODELING): registered before the post commands, whose NSEL/ESEL/ALLSEL
 // entries they take over outside /POST1 and /POST26.
 void register_csys_commands(std::vector<CommandSpec>& table);
@@ -203,9 +181,9 @@ class DeckReader {
   static long long database_work(std::size_t bytes) {
     return kDatabaseWork + static_cast<long long>(bytes) / kDatabaseBytesPerWork;
   }
-  /// Records a command as accepted and not carried out, with why (default: graphics or printing
-  /// only, which cannot change the results).
-  void ignore(const Command& c, std::string_view why = "graphics/print-only command ignored");
+  /// Records a command as accepted and not carried out; the log gives the reason its command
+  /// table entry carries (CommandSpec::ignored, also printed by the command reference).
+  void ignore(const Command& c);
 
   // ---- model helpers ---------------------------------------------------------------------
   /// Node numbers NODE..NEND step NINC (field numbers given); NODE may be ALL (the selected
@@ -230,59 +208,26 @@ class DeckReader {
   std::optional<double> previous_time() const;
 
   // ---- state (handlers are friends of the deck layer; kept public for simplicity) -----------
+  // Session: the options, the job being built and its model, the dialect and the processor.
   DeckOptions options;
   Job job;
   Model& model;
   Dialect dialect;
   unsigned processor = kBegin;
-  Parameters params;
-  std::map<std::string, double> increments;               // 4x *SET,Par,VALUE,INC
-  std::map<std::string, std::vector<RawCommand>> macros;  // 4x *BEGIN blocks
-  std::map<std::string, MacroFile> files;                 // *CREATE files: "NAME.EXT" / "NAME"
   bool jobname_from_option = false;
-  OutputSink output;               // /OUT: every printed line goes through it
-  CommandFileState command_file;   // *CFOPEN
-  VectorSettings vector_settings;  // *VFACT *VMASK *VLEN *VCUM *VABS *VCOL
   /// --skip-unknown: name → how often skipped, first location (the run summary's table).
   std::map<std::string, std::pair<int, SourceLocation>> skipped;
-
-  // PREP7 attribute pointers and generation memory.
-  int current_type = 1;
-  int current_real = 1;
-  int current_mat = 1;
-  int current_secnum = 0;
-  bool secnum_given = false;       // SECNUM issued
-  int last_real_set = 0;           // RMORE target
-  int last_section = 0;            // SECDATA target
-  std::vector<int> defined_by_n;   // nodes defined by N, in order (FILL defaults)
-  std::vector<int> element_order;  // element ids in creation order (EGEN negative IEL1)
-
-  // 4x analysis definition.
-  int kan = 0;
-  std::vector<LoadStep> load_steps_4x;  // LWRITE
-  std::optional<Job::Step> frozen;      // AFWRITE
-  bool exec_armed = false;              // /EXEC
-  // 4x /STRESS block.
-  std::vector<ExpansionRequest> stress_requests;
-  int stress_count = 1;
-  double stress_t_prev = 0.0;
-  SourceLocation stress_where;
-
-  // Modern analysis definition.
-  std::optional<std::size_t> open_analysis;  // index in job.steps
-  std::map<int, LoadStep> lswrite_steps;
-  bool expass = false;
-  ExpansionPassRequest expansion;
-  std::optional<SuperelementExpansionSource> seexp;  // SEEXP of the current expansion pass
-  std::optional<double> last_solved_time;            // end time of the last solved load step
-
-  // MDAMP memory.
-  int mdamp_next = 1;
-
-  // Post-processing state (the current POST1 set, element table, plot settings, POST26
-  // variables: deck/post_state.h). The selection and the components are in the Model.
-  std::shared_ptr<PostState> post;
   std::size_t solutions = 0;  // solution requests handed to the host so far
+
+  // The state of each processor's commands (what the model and the job do not hold yet).
+  Parameters params;         // *SET, *DIM, ...: read by every processor's fields
+  OutputSink output;         // /OUT: every printed line goes through it
+  ScriptingState scripting;  // *SET increments, *BEGIN blocks, *CREATE files, *CFOPEN, *V settings
+  ModelingState modeling;    // PREP7: attribute pointers, continuation targets, generation memory
+  SolutionState solution;    // SOLUTION: the analysis being defined, 4x /STRESS, expansion pass
+  /// POST1/POST26: the current set, element table, plot settings, POST26 variables
+  /// (deck/post_state.h). The selection and the components are in the Model.
+  std::shared_ptr<PostState> post;
 
   /// /CLEAR: a new, empty database (model, job, parameters, processor, output to the terminal);
   /// *CREATE files survive. The solution host closes the current job first.
@@ -290,8 +235,6 @@ class DeckReader {
   /// Runs a macro (in-memory *CREATE file or macro file on disk) with ARG1..AR19 set from
   /// `args`; false when no macro of that name exists.
   bool call_macro(const Command& c, const std::string& name, const std::vector<Value>& args);
-  // Model-building state that is not model data (MPTEMP table, current TB table, ESYS).
-  ModelingState modeling;
 
  private:
   struct Program;

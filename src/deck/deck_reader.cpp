@@ -86,7 +86,7 @@ DeckReader::DeckReader(const DeckOptions& opts, Dialect d, const std::string& jo
   model.options.integrator =
       d == Dialect::Classic4x ? IntegratorKind::Houbolt : IntegratorKind::Newmark;
   // MAPDL elements carry SECNUM 1 unless changed; 4x had no sections.
-  current_secnum = d == Dialect::Modern ? 1 : 0;
+  modeling = ModelingState::initial(d);
 }
 
 void DeckReader::fail(const Command& c, const std::string& message) const {
@@ -97,9 +97,13 @@ void DeckReader::warn(const Command& c, const std::string& message) const {
   Log::warn("{}:{}: {}: {}", c.where.file, c.where.line, c.where.command, message);
 }
 
-void DeckReader::ignore(const Command& c, std::string_view why) {
+void DeckReader::ignore(const Command& c) {
+  const CommandSpec* spec = find_command(c.name);
+  IMPACTFE_CHECK(spec != nullptr && spec->ignored != nullptr,
+                 "an ignored command needs its reason in the command table");
   job.ignored_commands.push_back(fmt::format("{}:{}: {}", c.where.file, c.where.line, c.name));
-  Log::info("{}:{}: {}: {}", c.where.file, c.where.line, c.name, why);
+  Log::info("{}:{}: {}: accepted and ignored: {}", c.where.file, c.where.line, c.name,
+            spec->ignored);
 }
 
 std::optional<double> DeckReader::opt_real(const Command& c, int i) const {
@@ -282,9 +286,10 @@ std::vector<int> DeckReader::node_range(const Command& c, int node_field, int en
 
 void DeckReader::add_element(const Command& c, int id, std::vector<int> nodes) {
   if (id <= 0) fail(c, fmt::format("element number {} must be positive", id));
-  const auto type_it = model.element_types.find(current_type);
+  const auto type_it = model.element_types.find(modeling.current_type);
   if (type_it == model.element_types.end())
-    fail(c, fmt::format("element type {} is not defined (ET missing before TYPE/E)", current_type));
+    fail(c, fmt::format("element type {} is not defined (ET missing before TYPE/E)",
+                        modeling.current_type));
   const ElementType& type = type_it->second;
   const ElementTypeDescriptor& d = element_type_descriptor(type);
   if (d.defined_by_file)
@@ -311,18 +316,18 @@ void DeckReader::add_element(const Command& c, int id, std::vector<int> nodes) {
   }
   ElementRecord rec;
   rec.id = id;
-  rec.type = current_type;
-  rec.real = current_real;
-  rec.mat = current_mat;
-  rec.secnum = current_secnum;
+  rec.type = modeling.current_type;
+  rec.real = modeling.current_real;
+  rec.mat = modeling.current_mat;
+  rec.secnum = modeling.current_secnum;
   rec.nodes = std::move(nodes);
   rec.where = c.where;
-  if (model.elements.count(id) == 0) element_order.push_back(id);
+  if (model.elements.count(id) == 0) modeling.element_order.push_back(id);
   model.elements[id] = std::move(rec);
 }
 
 void DeckReader::validate_elements() {
-  if (!secnum_given)
+  if (!modeling.secnum_given)
     for (auto& [id, e] : model.elements)
       if (e.secnum > 0 && model.sections.count(e.secnum) == 0) e.secnum = 0;
   for (const auto& [id, e] : model.elements) {
@@ -360,19 +365,19 @@ std::optional<double> DeckReader::previous_time() const {
     if (s.time_end && (!t || *s.time_end > *t)) t = s.time_end;
   };
   if (dialect == Dialect::Classic4x) {
-    for (const auto& s : load_steps_4x) take(s);
+    for (const auto& s : solution.load_steps_4x) take(s);
   } else {
-    if (open_analysis)
-      for (const auto& s : job.steps[*open_analysis].analysis->load_steps) take(s);
-    for (const auto& [n, s] : lswrite_steps) take(s);
+    if (solution.open_analysis)
+      for (const auto& s : job.steps[*solution.open_analysis].analysis->load_steps) take(s);
+    for (const auto& [n, s] : solution.lswrite_steps) take(s);
   }
   return t;
 }
 
 Job DeckReader::finish() {
-  if (processor == kStress && !stress_requests.empty()) {
+  if (processor == kStress && !solution.stress_requests.empty()) {
     Log::warn("/STRESS block not closed by END at the end of the deck; expansion requests kept");
-    close_stress_block(*this, stress_where);
+    close_stress_block(*this, solution.stress_where);
   }
   if (options.host != nullptr) options.host->finish(job);
   for (const auto& [name, entry] : skipped)

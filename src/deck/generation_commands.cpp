@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <climits>
-#include <cmath>
 
 #include "deck/deck_context.h"
 #include "deck/post_support.h"
@@ -56,7 +55,7 @@ std::vector<double> fill_fractions(int n, double space) {
 }
 
 void cmd_fill(DeckReader& r, const Command& c) {
-  const auto& defined = r.defined_by_n;
+  const auto& defined = r.modeling.defined_by_n;
   int node1 = 0;
   int node2 = 0;
   if (c.blank(1) || c.blank(2)) {
@@ -126,7 +125,11 @@ void cmd_ngen(DeckReader& r, const Command& c) {
   if (pattern.empty()) r.fail(c, "no existing node in the pattern");
   check_model_size(r, c, static_cast<long long>(pattern.size()) * (itime - 1), 0);
   const Vec3 d(r.real(c, 6, 0.0), r.real(c, 7, 0.0), r.real(c, 8, 0.0));
-  if (!c.blank(9) && r.real(c, 9, 1.0) != 1.0) r.warn(c, "SPACE ignored (uniform copies)");
+  const double space = r.real(c, 9, 1.0);
+  if (!(space > 0.0)) r.fail(c, fmt::format("SPACE {} must be positive", space));
+  // Copy k sits at f_k (ITIME − 1) increments: the last set does not depend on SPACE, the
+  // divisions between grow geometrically to SPACE times the first (NGEN notes).
+  const std::vector<double> fraction = geometry::division_fractions(itime - 1, space);
   std::vector<Node> source;
   for (int id : pattern) source.push_back(r.model.nodes.at(id));
   const CoordinateSystem active = r.model.coordinate_systems.active_system();
@@ -135,7 +138,8 @@ void cmd_ngen(DeckReader& r, const Command& c) {
       Node n = s;
       n.id = checked_number(r, c, s.id + static_cast<long long>(k) * inc, "node");
       // DX, DY, DZ are increments in the active coordinate system (DR, Dθ, DZ when cylindrical).
-      n.x = active.to_global(active.from_global(s.x) + static_cast<double>(k) * d);
+      n.x = active.to_global(active.from_global(s.x) +
+                             fraction[static_cast<std::size_t>(k)] * (itime - 1) * d);
       r.model.nodes[n.id] = n;
     }
   }
@@ -153,7 +157,7 @@ std::vector<int> element_pattern(DeckReader& r, const Command& c, int f1) {
     const auto first = r.opt_int(c, f1);
     if (!first) r.fail(c, "IEL1 missing");
     if (*first < 0) {
-      const auto& order = r.element_order;
+      const auto& order = r.modeling.element_order;
       const std::size_t n = std::min(order.size(), static_cast<std::size_t>(-*first));
       for (std::size_t k = order.size() - n; k < order.size(); ++k)
         if (r.model.elements.count(order[k]) != 0) out.push_back(order[k]);
@@ -196,7 +200,7 @@ void copy_element(DeckReader& r, const Command& c, const ElementRecord& src, lon
       static_cast<int>(e.nodes.size()) > d.max_nodes())
     r.fail(c, fmt::format("generated element {}: {} needs {} nodes, the pattern has {}", id,
                           t->second.ansys_name, d.n_nodes, e.nodes.size()));
-  if (r.model.elements.count(id) == 0) r.element_order.push_back(id);
+  if (r.model.elements.count(id) == 0) r.modeling.element_order.push_back(id);
   r.model.elements[id] = std::move(e);
 }
 

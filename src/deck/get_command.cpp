@@ -207,10 +207,10 @@ GetValue get_active(DeckReader& r, const Command& c, const GetRequest& g) {
         return {7.0};
     }
   }
-  if (i1 == "TYPE") return {static_cast<double>(r.current_type)};
-  if (i1 == "MAT") return {static_cast<double>(r.current_mat)};
-  if (i1 == "REAL") return {static_cast<double>(r.current_real)};
-  if (i1 == "SECT") return {static_cast<double>(r.current_secnum)};
+  if (i1 == "TYPE") return {static_cast<double>(r.modeling.current_type)};
+  if (i1 == "MAT") return {static_cast<double>(r.modeling.current_mat)};
+  if (i1 == "REAL") return {static_cast<double>(r.modeling.current_real)};
+  if (i1 == "SECT") return {static_cast<double>(r.modeling.current_secnum)};
   if (i1 == "CSYS") return {0.0};
   if (i1 == "JOBNAM") return {0.0, r.model.jobname};
   if (i1 == "TITLE") return {0.0, r.model.title};

@@ -92,10 +92,10 @@ bool DeckReader::call_macro(const Command& c, const std::string& name,
   const std::string key = to_upper(name);
   std::vector<RawCommand> cmds;
   std::string frame_name;
-  if (auto it = files.find(key); it != files.end()) {
+  if (auto it = scripting.files.find(key); it != scripting.files.end()) {
     cmds = it->second.commands;  // a copy: the macro may *CREATE itself anew
     frame_name = "macro " + key;
-  } else if (auto it2 = files.find(key + ".MAC"); it2 != files.end()) {
+  } else if (auto it2 = scripting.files.find(key + ".MAC"); it2 != scripting.files.end()) {
     cmds = it2->second.commands;
     frame_name = "macro " + key + ".MAC";
   } else {
@@ -132,7 +132,7 @@ bool DeckReader::call_macro(const Command& c, const std::string& name,
 }
 
 void DeckReader::run_block_macro(const Command& c, const std::string& name) {
-  auto cmds = macros.at(name);  // copy: the block may redefine itself
+  auto cmds = scripting.macros.at(name);  // copy: the block may redefine itself
   run_program(cmds, "block " + name, c.where);
 }
 
@@ -142,10 +142,10 @@ void DeckReader::record_block(const Command& c, std::vector<RawCommand> body) {
   if (name.empty()) fail(c, "name missing");
   const std::size_t count = body.size();
   if (n == "*BEGIN") {
-    macros[name] = std::move(body);
+    scripting.macros[name] = std::move(body);
   } else {
     const std::string ext = label(c, 2);
-    MacroFile& file = files[ext.empty() ? name : name + "." + ext];
+    MacroFile& file = scripting.files[ext.empty() ? name : name + "." + ext];
     file.lines.clear();
     int last_line = -1;
     for (const auto& b : body)
@@ -170,7 +170,7 @@ void DeckReader::run_use(const Command& c) {
 
 bool DeckReader::run_block_do(const Command& c) {
   const std::string block = label(c, 1);
-  if (dialect != Dialect::Classic4x || macros.count(block) == 0) return false;
+  if (dialect != Dialect::Classic4x || scripting.macros.count(block) == 0) return false;
   // 4x *DO,Block,N1,N2: the *BEGIN block once per k = N1..N2; after each pass every parameter
   // with a *SET increment is incremented (APDL_SUBSET §3.29).
   const int n1 = integer(c, 2, 1);
@@ -180,7 +180,7 @@ bool DeckReader::run_block_do(const Command& c) {
     count_executed(c);
     run_block_macro(c, block);
     if (stopped_) return true;
-    for (const auto& [name, inc] : increments)
+    for (const auto& [name, inc] : scripting.increments)
       params.set(name, params.get(name).value_or(0.0) + inc);
   }
   return true;
@@ -191,7 +191,7 @@ bool DeckReader::run_block_do(const Command& c) {
 bool DeckReader::run_unknown(Command& c, const CommandSpec*& spec) {
   // MAPDL's unknown-command macro: NAME.MAC (in memory or on disk) run with the fields as
   // ARG1..AR19.
-  bool is_macro = files.count(c.name + ".MAC") != 0;
+  bool is_macro = scripting.files.count(c.name + ".MAC") != 0;
   if (!is_macro) {
     const std::string lower = to_lower(c.name) + ".mac";
     is_macro = file_exists(join_path(directory_of(c.where.file), lower)) ||

@@ -53,7 +53,7 @@ void store_property(DeckReader& r, const Command& c, const std::string& lab, int
 
 /// MP,Lab,MAT,C0,C1..C4 and the 4x form Lab,MAT,C0,C1..C4.
 void set_material(DeckReader& r, const Command& c, const std::string& lab, int mat_field) {
-  const int mat = r.integer(c, mat_field, r.current_mat);
+  const int mat = r.integer(c, mat_field, r.modeling.current_mat);
   const std::string c0_text = trim(c.text(mat_field + 1));
   if (!c0_text.empty() && c0_text.front() == '%')
     r.fail(c, "tabular material properties (%TABLE%) are not supported");

@@ -95,8 +95,8 @@ void cmd_vput(DeckReader& r, const Command& c) {
   // *VPUT,ParR,Entity,ENTNUM,Item1,IT1NUM,Item2,IT2NUM,KLOOP: ParR's column into the items.
   const GetItem q = read_get_item(r, c, 2);
   const int kloop = r.integer(c, 8, 0);
-  VectorSettings s = r.vector_settings;
-  r.vector_settings = VectorSettings{};
+  VectorSettings s = r.scripting.vector_settings;
+  r.scripting.vector_settings = VectorSettings{};
   const ArrayPosition pos = array_position(r, c, c.text(1));
   const long long avail = pos.param->imax - pos.i + 1;
   const long long rows = s.n_rows ? *s.n_rows : avail;
@@ -151,8 +151,8 @@ void write_matrix(DeckReader& r, const Command& c, int f, const Eigen::MatrixXd&
 
 void cmd_mfun(DeckReader& r, const Command& c) {
   // *MFUN,ParR,Func,Par1: COPY or TRAN(spose).
-  const VectorSettings s = r.vector_settings;
-  r.vector_settings = VectorSettings{};
+  const VectorSettings s = r.scripting.vector_settings;
+  r.scripting.vector_settings = VectorSettings{};
   const std::string f = r.label(c, 2);
   const Eigen::MatrixXd a = read_matrix(r, c, 3, s.n_cols1, "Par1");
   if (f == "COPY")
@@ -165,8 +165,8 @@ void cmd_mfun(DeckReader& r, const Command& c) {
 
 void cmd_moper(DeckReader& r, const Command& c) {
   // *MOPER,ParR,Par1,Oper,Val1,...: MULT (Par1·Val1), INVERT, SOLV (Par1 x = Val1), COVAR, CORR.
-  const VectorSettings s = r.vector_settings;
-  r.vector_settings = VectorSettings{};
+  const VectorSettings s = r.scripting.vector_settings;
+  r.scripting.vector_settings = VectorSettings{};
   const std::string op = r.label(c, 3);
   const Eigen::MatrixXd a = read_matrix(r, c, 2, s.n_cols1, "Par1");
   if (op == "MULT") {

@@ -372,12 +372,13 @@ void cmd_vrotat(DeckReader& r, const Command& c) {
 }  // namespace
 
 geometry::MeshPointers mesh_pointers(const DeckReader& r) {
-  return geometry::MeshPointers{r.current_type,   r.current_mat,       r.current_real,
-                                r.current_secnum, r.options.max_nodes, r.options.max_elements};
+  return geometry::MeshPointers{r.modeling.current_type, r.modeling.current_mat,
+                                r.modeling.current_real, r.modeling.current_secnum,
+                                r.options.max_nodes,     r.options.max_elements};
 }
 
 void record_created_elements(DeckReader& r, const geometry::Mesher& mesher) {
-  for (int e : mesher.created_elements()) r.element_order.push_back(e);
+  for (int e : mesher.created_elements()) r.modeling.element_order.push_back(e);
 }
 
 void register_mesh_commands(std::vector<CommandSpec>& t) {

@@ -1,21 +1,48 @@
 #pragma once
-/// Deck-reading state of the model-building commands (APDL_MODELING §3-§6) that is not part of
-/// the model itself: the MPTEMP temperature table and the TB table that TBTEMP/TBDATA/TBPT fill.
+/// Deck-reading state of the PREP7 model-building commands (APDL_MODELING §3-§6) that is not part
+/// of the model itself: the attribute pointers that E takes (TYPE, REAL, MAT, SECNUM, ESYS), the
+/// targets of the continuation commands (RMORE, SECDATA, TBDATA), the MPTEMP table and the
+/// generation memory. Written by the PREP7 handlers; /CLEAR replaces it with a new one.
+#include <cstddef>
 #include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "core/model.h"
+
 namespace impactfe::deck {
 
 struct ModelingState {
+  /// The state a new database starts with: SECNUM 1 in the modern dialect (MAPDL's default
+  /// section pointer), 0 in 4x (real constants only).
+  static ModelingState initial(Dialect dialect) {
+    ModelingState s;
+    s.current_secnum = dialect == Dialect::Modern ? 1 : 0;
+    return s;
+  }
+
+  // Attribute pointers (TYPE, REAL, MAT, SECNUM, ESYS) of the elements E defines next.
+  int current_type = 1;
+  int current_real = 1;
+  int current_mat = 1;
+  int current_secnum = 0;
+  bool secnum_given = false;  // SECNUM issued
+  int esys = 0;
+  /// TSHAP shape of the TARGE170 elements that E/EN define next ("" = from the node count).
+  std::string target_shape;
+
+  // Targets of the continuation commands.
+  int last_real_set = 0;       // RMORE
+  int last_section = 0;        // SECDATA
   std::vector<double> mptemp;  // MPTEMP temperatures (positions 1..)
   /// (MAT, Lab) of the last TB command and the index of its current temperature (TBTEMP).
   std::optional<std::pair<int, std::string>> table;
   std::size_t table_temperature = 0;
-  int esys = 0;  // ESYS pointer
-  /// TSHAP shape of the TARGE170 elements that E/EN define next ("" = from the node count).
-  std::string target_shape;
+
+  // Generation memory.
+  std::vector<int> defined_by_n;   // nodes defined by N, in order (FILL defaults)
+  std::vector<int> element_order;  // element ids in creation order (EGEN negative IEL1)
 };
 
 }  // namespace impactfe::deck

@@ -31,9 +31,9 @@ std::string file_name(DeckReader& r, const Command& c, int f, const std::string&
 }
 
 void write_line(DeckReader& r, const std::string& line) {
-  if (r.command_file.stream.is_open()) {
-    r.command_file.stream << line << '\n';
-    r.command_file.stream.flush();
+  if (r.scripting.command_file.stream.is_open()) {
+    r.scripting.command_file.stream << line << '\n';
+    r.scripting.command_file.stream.flush();
   } else {
     r.output.print(line);
   }
@@ -94,7 +94,7 @@ void cmd_vwrite(DeckReader& r, const Command& c) {
     any_column = any_column || it.kind == VwriteItem::Column;
   }
   if (!any_column) rows = 1;
-  VectorSettings& vs = r.vector_settings;
+  VectorSettings& vs = r.scripting.vector_settings;
   if (vs.n_rows) rows = std::min<long long>(rows, *vs.n_rows);
   const std::string mask_name = vs.mask;
   const int row_step = std::max(vs.row_increment, 1);
@@ -221,7 +221,7 @@ void cmd_list(DeckReader& r, const Command& c) {
   // *LIST,Fname,Ext: a *CREATE file in memory first, then a file on disk.
   const std::string name = file_name(r, c, 1, "");
   if (name.empty()) r.fail(c, "file name missing");
-  if (auto it = r.files.find(to_upper(name)); it != r.files.end()) {
+  if (auto it = r.scripting.files.find(to_upper(name)); it != r.scripting.files.end()) {
     for (const auto& l : it->second.lines) r.output.print(l);
     return;
   }
@@ -264,9 +264,9 @@ void cmd_delete(DeckReader& r, const Command& c) {
   if (name.empty()) r.fail(c, "file name missing");
   if (r.output.redirected() && r.output.file() == name)
     r.fail(c, fmt::format("'{}' is the open /OUT file (/OUT back to the terminal first)", name));
-  if (r.command_file.stream.is_open() && r.command_file.path == name)
+  if (r.scripting.command_file.stream.is_open() && r.scripting.command_file.path == name)
     r.fail(c, fmt::format("'{}' is the open *CFOPEN file (*CFCLOS first)", name));
-  const bool in_memory = r.files.erase(to_upper(name)) != 0;
+  const bool in_memory = r.scripting.files.erase(to_upper(name)) != 0;
   std::error_code ec;
   const bool on_disk = std::filesystem::remove(name, ec);
   if (ec) r.fail(c, fmt::format("cannot delete '{}': {}", name, ec.message()));
@@ -284,20 +284,20 @@ void cmd_cfopen(DeckReader& r, const Command& c) {
   const std::string path = file_name(r, c, 1, "cmd");
   const std::string loc = r.label(c, 4);
   if (!loc.empty() && loc != "APPEND") r.fail(c, fmt::format("Loc '{}': blank or APPEND", loc));
-  if (r.command_file.stream.is_open()) r.command_file.stream.close();
-  r.command_file.stream.clear();
-  r.command_file.stream.open(path, loc == "APPEND" ? std::ios::app : std::ios::trunc);
-  if (!r.command_file.stream) {
-    r.command_file.stream.close();
+  if (r.scripting.command_file.stream.is_open()) r.scripting.command_file.stream.close();
+  r.scripting.command_file.stream.clear();
+  r.scripting.command_file.stream.open(path, loc == "APPEND" ? std::ios::app : std::ios::trunc);
+  if (!r.scripting.command_file.stream) {
+    r.scripting.command_file.stream.close();
     r.fail(c, fmt::format("cannot open '{}' for writing", path));
   }
-  r.command_file.path = path;
+  r.scripting.command_file.path = path;
 }
 
 void cmd_cfwrite(DeckReader& r, const Command& c) {
   // *CFWRITE,Command: the command written as one line, its parameter fields replaced by their
   // values (free format) and %...% substituted.
-  if (!r.command_file.stream.is_open()) r.fail(c, "no command file open (*CFOPEN first)");
+  if (!r.scripting.command_file.stream.is_open()) r.fail(c, "no command file open (*CFOPEN first)");
   std::string line = c.rest;
   if (c.fields.size() > 1) {  // a single field (`*CFWRITE,A = 5`) is written as it stands
     line = c.fields[0];
@@ -315,17 +315,17 @@ void cmd_cfwrite(DeckReader& r, const Command& c) {
       line += "," + out;
     }
   }
-  r.command_file.stream << line << '\n';
-  r.command_file.stream.flush();
+  r.scripting.command_file.stream << line << '\n';
+  r.scripting.command_file.stream.flush();
 }
 
 void cmd_cfclos(DeckReader& r, const Command& c) {
-  if (!r.command_file.stream.is_open()) {
+  if (!r.scripting.command_file.stream.is_open()) {
     r.warn(c, "no command file is open");
     return;
   }
-  r.command_file.stream.close();
-  r.command_file.path.clear();
+  r.scripting.command_file.stream.close();
+  r.scripting.command_file.path.clear();
 }
 
 }  // namespace

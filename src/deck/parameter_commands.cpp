@@ -133,13 +133,13 @@ void cmd_set(DeckReader& r, const Command& c) {
     }
   if (texts.empty()) {
     r.params.erase(t.name);
-    r.increments.erase(t.name);
+    r.scripting.increments.erase(t.name);
     return;
   }
   if (r.dialect == Dialect::Classic4x && !c.assignment && !t.subscripted && texts.size() == 2) {
     // 4x *SET,Par,VALUE,INC: INC is added to Par after each pass of a 4x *DO (APDL_SUBSET §3.29).
     r.params.set(t.name, r.eval(c, texts[0]));
-    r.increments[t.name] = r.eval(c, texts[1]);
+    r.scripting.increments[t.name] = r.eval(c, texts[1]);
     return;
   }
   if (texts.size() > 10)
@@ -178,7 +178,9 @@ void cmd_dim(DeckReader& r, const Command& c) {
     r.fail(c, fmt::format("{}x{}x{} is too large (at most {} entries)", dims[0], dims[1], dims[2],
                           kMaxArrayEntries));
   if (!c.blank(9) && r.real(c, 9, 0.0) != 0.0)
-    r.warn(c, "CSYSID ignored: table variables are global Cartesian");
+    r.fail(c,
+           "CSYSID: table variables in a local coordinate system are not supported (global "
+           "Cartesian only)");
   if (const Param* old = r.params.find(name)) {
     if (old->type == type && old->imax == dims[0] && old->jmax == dims[1] && old->kmax == dims[2])
       return;  // the same array again: kept as it is (§A.7 [A])
@@ -215,7 +217,7 @@ void cmd_del(DeckReader& r, const Command& c) {
   }
   for (const auto& name : names) {
     r.params.erase(name);
-    r.increments.erase(name);
+    r.scripting.increments.erase(name);
   }
 }
 

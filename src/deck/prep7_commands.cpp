@@ -80,11 +80,11 @@ void cmd_r(DeckReader& r, const Command& c) {
   set.id = *id;
   for (int f = 2; f <= c.last_given(); ++f) set.values.push_back(r.real(c, f, 0.0));
   r.model.real_sets[*id] = set;
-  r.last_real_set = *id;
+  r.modeling.last_real_set = *id;
 }
 
 void cmd_rmore(DeckReader& r, const Command& c) {
-  auto it = r.model.real_sets.find(r.last_real_set);
+  auto it = r.model.real_sets.find(r.modeling.last_real_set);
   if (it == r.model.real_sets.end()) r.fail(c, "RMORE without a preceding R");
   auto& v = it->second.values;
   const std::size_t start = ((v.size() + 5) / 6) * 6;  // next block of six (R7.., R13.., ...)
@@ -129,11 +129,11 @@ void cmd_sectype(DeckReader& r, const Command& c) {
                             d->subtype_names()));
   }
   r.model.sections[id] = s;
-  r.last_section = id;
+  r.modeling.last_section = id;
 }
 
 void cmd_secdata(DeckReader& r, const Command& c) {
-  auto it = r.model.sections.find(r.last_section);
+  auto it = r.model.sections.find(r.modeling.last_section);
   if (it == r.model.sections.end()) r.fail(c, "SECDATA without a preceding SECTYPE");
   Section& s = it->second;
   const SectionTypeDescriptor& d = *find_section_type(s.type);
@@ -155,7 +155,7 @@ void cmd_secdata(DeckReader& r, const Command& c) {
 // centroid; shells MID). Other locations would move the nodes off the section's reference and
 // are refused (APDL_MODELING §7.4).
 void cmd_secoffset(DeckReader& r, const Command& c) {
-  auto it = r.model.sections.find(r.last_section);
+  auto it = r.model.sections.find(r.modeling.last_section);
   if (it == r.model.sections.end()) r.fail(c, "SECOFFSET without a preceding SECTYPE");
   const std::string loc = c.blank(1) ? "" : r.label(c, 1);
   const std::string& type = it->second.type;
@@ -168,7 +168,7 @@ void cmd_secoffset(DeckReader& r, const Command& c) {
 }
 
 void cmd_secnum(DeckReader& r, const Command& c) {
-  r.current_secnum = r.integer(c, 1, 1);
+  r.modeling.current_secnum = r.integer(c, 1, 1);
 }
 
 // ---- nodes and elements ------------------------------------------------------------------------
@@ -188,7 +188,7 @@ void cmd_n(DeckReader& r, const Command& c) {
       Vec3(r.real(c, 2, 0.0), r.real(c, 3, 0.0), r.real(c, 4, 0.0)));
   n.angles_deg = Vec3(r.real(c, 5, 0.0), r.real(c, 6, 0.0), r.real(c, 7, 0.0));
   r.model.nodes[id] = n;
-  r.defined_by_n.push_back(id);
+  r.modeling.defined_by_n.push_back(id);
 }
 
 std::vector<int> node_fields(DeckReader& r, const Command& c, int first) {
@@ -203,20 +203,20 @@ int next_element_id(const DeckReader& r) {
 }
 
 bool active_type_is_matrix50(const DeckReader& r) {
-  auto it = r.model.element_types.find(r.current_type);
+  auto it = r.model.element_types.find(r.modeling.current_type);
   return it != r.model.element_types.end() && element_type_descriptor(it->second).defined_by_file;
 }
 
 void add_superelement(DeckReader& r, const Command& c, int id, const std::string& file) {
   ElementRecord rec;
   rec.id = id;
-  rec.type = r.current_type;
-  rec.real = r.current_real;
-  rec.mat = r.current_mat;
-  rec.secnum = r.current_secnum;
+  rec.type = r.modeling.current_type;
+  rec.real = r.modeling.current_real;
+  rec.mat = r.modeling.current_mat;
+  rec.secnum = r.modeling.current_secnum;
   rec.superelement_file = file;
   rec.where = c.where;
-  if (r.model.elements.count(id) == 0) r.element_order.push_back(id);
+  if (r.model.elements.count(id) == 0) r.modeling.element_order.push_back(id);
   r.model.elements[id] = rec;
 }
 
@@ -257,13 +257,13 @@ void cmd_se(DeckReader& r, const Command& c) {
 }
 
 void cmd_type(DeckReader& r, const Command& c) {
-  r.current_type = r.integer(c, 1, 1);
+  r.modeling.current_type = r.integer(c, 1, 1);
 }
 void cmd_real(DeckReader& r, const Command& c) {
-  r.current_real = r.integer(c, 1, 1);
+  r.modeling.current_real = r.integer(c, 1, 1);
 }
 void cmd_mat(DeckReader& r, const Command& c) {
-  r.current_mat = r.integer(c, 1, 1);
+  r.modeling.current_mat = r.integer(c, 1, 1);
 }
 
 // ---- masters and gaps ------------------------------------------------------------------------
@@ -336,7 +336,7 @@ void apply_kay(DeckReader& r, const Command& c, int key, int value, bool log) {
       r.model.current.time_integration = value != 0;
       return;
     case 6:
-      if (r.kan == 7)
+      if (r.solution.kan == 7)
         o.superelement_matrices = value;
       else
         o.large_deflection = value == 1;
@@ -386,7 +386,7 @@ void cmd_kan(DeckReader& r, const Command& c) {
       r.fail(c, fmt::format("unknown analysis type KAN={}", kan));
   }
   o.integrator = IntegratorKind::Houbolt;
-  r.kan = kan;
+  r.solution.kan = kan;
   for (const auto& [key, value] : o.kay) apply_kay(r, c, std::stoi(key), value, false);
 }
 

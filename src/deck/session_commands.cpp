@@ -27,9 +27,9 @@ void cmd_post(DeckReader& r, const Command& c) {
 }
 
 void cmd_finish(DeckReader& r, const Command& c) {
-  if (r.processor == kStress && !r.stress_requests.empty()) {
+  if (r.processor == kStress && !r.solution.stress_requests.empty()) {
     r.warn(c, "/STRESS block closed by FINISH without END; expansion requests kept");
-    close_stress_block(r, r.stress_where);
+    close_stress_block(r, r.solution.stress_where);
   }
   r.processor = kBegin;
 }
@@ -48,21 +48,12 @@ void cmd_filname(DeckReader& r, const Command& c) {
   r.model.jobname = c.text(1);
 }
 
-/// Graphics-device and print-only commands with no effect on results or pictures: ignored with a
-/// logged reason (and listed). The plot and print commands of POST1/POST26 and the view settings
-/// a picture needs are handled in post1_plot_commands.cpp and post26_commands.cpp.
-void cmd_graphics(DeckReader& r, const Command& c) {
+/// Commands accepted and not carried out (graphics devices, print-only listings, MAPDL session
+/// settings without a counterpart): ignored with the reason their table entry gives. The plot and
+/// print commands of POST1/POST26 and the view settings a picture needs are handled in
+/// post1_plot_commands.cpp and post26_commands.cpp.
+void cmd_ignored(DeckReader& r, const Command& c) {
   r.ignore(c);
-}
-
-/// Commands of MAPDL's session that have no counterpart in impactfe, ignored with the reason.
-void cmd_session_setting(DeckReader& r, const Command& c) {
-  if (c.name == "/CONFIG")
-    r.ignore(c, "MAPDL's memory and file sizing (/CONFIG) has no counterpart here: ignored");
-  else if (c.name == "/NERR")
-    r.ignore(c, "error limits (/NERR) ignored: impactfe stops at the first error");
-  else
-    r.ignore(c, "batch and verification modes do not change a run here: ignored");
 }
 
 /// /UNITS,Label: records the unit system. As in MAPDL, a marker only: nothing is converted, the
@@ -108,11 +99,12 @@ void register_session_commands(std::vector<CommandSpec>& t) {
         "/GFILE",  "/GLINE",  "/GCOLUMN", "/GROPT",  "/GTHK",   "/WAIT",  "/UIS",     "/GST",
         "NLIST",   "ELIST",   "ETLIST",   "DLIST",   "FLIST",   "MPLIST", "RLIST",    "KLIST",
         "LLIST",   "/STATUS", "/PSF",     "/PSYMB",  "GPLOT",   "/LINE",  "/COLOR",   "LINES"})
-    t.push_back({name, cmd_graphics, kAnywhere, "graphics or printing only: no effect on results"});
-  t.push_back({"/CONFIG", cmd_session_setting, kAnywhere, "MAPDL's memory and file sizing"});
-  t.push_back({"/NERR", cmd_session_setting, kAnywhere, "impactfe stops at the first error"});
+    t.push_back({name, cmd_ignored, kAnywhere, "graphics or printing only: no effect on results"});
+  t.push_back({"/CONFIG", cmd_ignored, kAnywhere,
+               "MAPDL's memory and file sizing has no counterpart here"});
+  t.push_back({"/NERR", cmd_ignored, kAnywhere, "error limits: impactfe stops at the first error"});
   for (const char* name : {"/BATCH", "/VERIFY"})
-    t.push_back({name, cmd_session_setting, kAnywhere, "a mode that does not change a run here"});
+    t.push_back({name, cmd_ignored, kAnywhere, "a mode that does not change a run here"});
   t.push_back({"/UNITS", cmd_units, kAnywhere});
   // /CWD would move the run's files out of its directory; /SYS would run programs: refused.
   t.push_back({"/CWD", cmd_refused, kAnywhere, nullptr,

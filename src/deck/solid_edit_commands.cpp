@@ -74,8 +74,9 @@ void remap_deck_lists(DeckReader& r, const std::map<int, int>& nodes,
     }
     list = std::move(out);
   };
-  remap(r.defined_by_n, nodes, [&](int id) { return r.model.nodes.count(id) != 0; });
-  remap(r.element_order, elements, [&](int id) { return r.model.elements.count(id) != 0; });
+  remap(r.modeling.defined_by_n, nodes, [&](int id) { return r.model.nodes.count(id) != 0; });
+  remap(r.modeling.element_order, elements,
+        [&](int id) { return r.model.elements.count(id) != 0; });
 }
 
 /// Merges coincident keypoints (restricted to `only` when non-empty) and the lines, areas and

@@ -32,12 +32,13 @@ void stress_time(DeckReader& r, const Command& c) {
   // /STRESS group: NSTRES solutions evenly spaced in (T_prev, T] (§3.26).
   const auto t = r.opt_real(c, 1);
   if (!t) r.fail(c, "TIME value missing");
-  if (*t <= r.stress_t_prev)
+  if (*t <= r.solution.stress_t_prev)
     r.fail(c, fmt::format("TIME {} is not greater than the previous expansion time {}", *t,
-                          r.stress_t_prev));
-  r.stress_requests.push_back(ExpansionRequest{r.stress_count, r.stress_t_prev, *t, false});
-  r.stress_t_prev = *t;
-  r.stress_count = 1;
+                          r.solution.stress_t_prev));
+  r.solution.stress_requests.push_back(
+      ExpansionRequest{r.solution.stress_count, r.solution.stress_t_prev, *t, false});
+  r.solution.stress_t_prev = *t;
+  r.solution.stress_count = 1;
 }
 
 void cmd_time(DeckReader& r, const Command& c) {
@@ -66,7 +67,7 @@ void cmd_dtime(DeckReader& r, const Command& c) {
   s.dt = *dt;
   // DTIME/DELTIM and NSUBST/ITER are alternatives: the last one given wins (KAN=5 keeps both;
   // its NITTER is not used for the step size).
-  if (!(r.dialect == Dialect::Classic4x && r.kan == 5)) s.n_substeps.reset();
+  if (!(r.dialect == Dialect::Classic4x && r.solution.kan == 5)) s.n_substeps.reset();
   // DELTIM,DTIME,DTMIN,DTMAX,Carry: the limits of automatic time stepping (APDL_MODELING
   // §9.1); they replace those of an earlier NSUBST (the last of the two wins).
   StepControl& sc = s.control;
@@ -102,11 +103,11 @@ void cmd_iter(DeckReader& r, const Command& c) {
   if (nitter < 0) r.fail(c, "negative NITTER (iterate to convergence) is not supported");
   if (nitter == 0) r.fail(c, "zero substeps: NITTER must be positive");
   LoadStep& s = r.model.current;
-  if (r.kan == 0) {
+  if (r.solution.kan == 0) {
     r.model.options.convergence.max_iterations = nitter;  // §3.16: static → equilibrium iterations
   } else {
     s.n_substeps = nitter;
-    if (r.kan == 4) s.dt.reset();
+    if (r.solution.kan == 4) s.dt.reset();
   }
   const int nprint = r.integer(c, 2, 0);
   const int npost = r.integer(c, 3, 0);
@@ -242,13 +243,13 @@ void cmd_antype(DeckReader& r, const Command& c) {
       r.fail(c, "LDSTEP and SUBSTEP must be positive");
     q.where = c.where;
     r.model.options.restart = q;
-    r.open_analysis.reset();  // the restarted run is an analysis of its own
+    r.solution.open_analysis.reset();  // the restarted run is an analysis of its own
   } else {
     r.model.options.restart.reset();
-    if (type != r.model.options.type) r.open_analysis.reset();
+    if (type != r.model.options.type) r.solution.open_analysis.reset();
     // A new analysis: the expansion pass of the previous one (EXPASS,ON) is over, so its SOLVE
     // solves this analysis instead of expanding again.
-    r.expass = false;
+    r.solution.expass = false;
   }
   r.model.options.type = type;
 }
@@ -266,7 +267,8 @@ void cmd_trnopt(DeckReader& r, const Command& c) {
   else
     r.fail(c, fmt::format("transient method '{}' not supported (FULL, REDUC, MSUP)", c.text(1)));
   if (!c.blank(2)) o.msup_modes = r.integer(c, 2, 0);
-  if (!c.blank(4) && r.integer(c, 4, 1) != 1) r.warn(c, "MINMODE ignored (modes from 1 are used)");
+  if (!c.blank(4) && r.integer(c, 4, 1) != 1)
+    r.fail(c, "MINMODE other than 1 is not supported (the superposition uses the modes from 1)");
   const std::string t = r.label(c, 6);
   if (t == "NMK" || t == "0")
     o.integrator = IntegratorKind::Newmark;
@@ -303,12 +305,12 @@ void cmd_dmprat(DeckReader& r, const Command& c) {
 }
 
 void cmd_mdamp(DeckReader& r, const Command& c) {
-  const int start = r.integer(c, 1, r.mdamp_next);
+  const int start = r.integer(c, 1, r.solution.mdamp_next);
   if (start <= 0) r.fail(c, "STLOC must be positive");
   for (int k = 0; k < 6; ++k) {
     if (c.blank(2 + k)) continue;
     r.model.options.modal_damping[start + k] = r.real(c, 2 + k, 0.0);
-    r.mdamp_next = std::max(r.mdamp_next, start + k + 1);
+    r.solution.mdamp_next = std::max(r.solution.mdamp_next, start + k + 1);
   }
 }
 
@@ -469,7 +471,7 @@ void cmd_seexp(DeckReader& r, const Command& c) {
     r.fail(c, fmt::format("Expopt '{}' not supported: the master DOF values of the use pass are "
                           "always part of the expanded results (ON)",
                           c.text(4)));
-  r.seexp = SuperelementExpansionSource{c.text(1), c.text(2), c.where};
+  r.solution.seexp = SuperelementExpansionSource{c.text(1), c.text(2), c.where};
 }
 
 void cmd_cmsopt(DeckReader& r, const Command& c) {
@@ -499,44 +501,45 @@ void check_increasing(DeckReader& r, const Command& c, const std::vector<LoadSte
 }
 
 void cmd_lwrite(DeckReader& r, const Command& c) {
-  if (r.frozen) r.fail(c, "LWRITE after AFWRITE: the analysis file is already written");
-  LoadStep s = snapshot(r, c, static_cast<int>(r.load_steps_4x.size()) + 1);
-  check_increasing(r, c, r.load_steps_4x, s);
-  r.load_steps_4x.push_back(std::move(s));
+  if (r.solution.frozen) r.fail(c, "LWRITE after AFWRITE: the analysis file is already written");
+  LoadStep s = snapshot(r, c, static_cast<int>(r.solution.load_steps_4x.size()) + 1);
+  check_increasing(r, c, r.solution.load_steps_4x, s);
+  r.solution.load_steps_4x.push_back(std::move(s));
 }
 
 void cmd_afwrite(DeckReader& r, const Command& c) {
-  if (r.frozen) r.fail(c, "AFWRITE issued twice");
-  if (r.load_steps_4x.empty()) r.load_steps_4x.push_back(snapshot(r, c, 1));  // §3.25
+  if (r.solution.frozen) r.fail(c, "AFWRITE issued twice");
+  if (r.solution.load_steps_4x.empty())
+    r.solution.load_steps_4x.push_back(snapshot(r, c, 1));  // §3.25
   r.validate_elements();
-  if (r.kan == 5 && r.model.masters.empty())
+  if (r.solution.kan == 5 && r.model.masters.empty())
     r.fail(c, "KAN=5 (reduced transient) needs master DOFs (M)");
-  if (r.kan == 7 && r.model.masters.empty())
+  if (r.solution.kan == 7 && r.model.masters.empty())
     r.fail(c, "KAN=7 (substructure generation) needs master DOFs (M)");
-  if (r.kan == 4 && !r.model.masters.empty())
+  if (r.solution.kan == 4 && !r.model.masters.empty())
     r.warn(c, fmt::format("{} master DOFs ignored in a full transient (KAN=4)",
                           r.model.masters.size()));
   for (const auto& [key, value] : r.model.options.kay)
-    Log::info("KAY({}) = {} (KAN={})", key, value, r.kan);
+    Log::info("KAY({}) = {} (KAN={})", key, value, r.solution.kan);
   Job::Step step;
   AnalysisRequest a;
   a.options = r.model.options;
-  a.load_steps = r.load_steps_4x;
+  a.load_steps = r.solution.load_steps_4x;
   a.where = c.where;
   a.complete = true;
   step.analysis = std::move(a);
   step.model_snapshot = std::make_shared<Model>(solution_model(r, c));
-  r.frozen = std::move(step);
+  r.solution.frozen = std::move(step);
 }
 
 void cmd_exec(DeckReader& r, const Command&) {
-  r.exec_armed = true;
+  r.solution.exec_armed = true;
   r.processor = kSolu;
 }
 
 /// Opens a modern analysis (one Job::Step) if none is open.
 AnalysisRequest& open_analysis(DeckReader& r, const Command& c) {
-  if (!r.open_analysis) {
+  if (!r.solution.open_analysis) {
     r.validate_elements();
     if (r.model.options.type == AnalysisType::Transient &&
         r.model.options.method == TransientMethod::Reduced && r.model.masters.empty())
@@ -549,16 +552,16 @@ AnalysisRequest& open_analysis(DeckReader& r, const Command& c) {
     step.analysis = std::move(a);
     step.model_snapshot = std::make_shared<Model>(solution_model(r, c));
     r.job.steps.push_back(std::move(step));
-    r.open_analysis = r.job.steps.size() - 1;
+    r.solution.open_analysis = r.job.steps.size() - 1;
   }
-  return *r.job.steps[*r.open_analysis].analysis;
+  return *r.job.steps[*r.solution.open_analysis].analysis;
 }
 
 /// Appends the current load state as the next load step of the open analysis (not solved yet).
 void append_current(DeckReader& r, const Command& c) {
   prepare_model_for_solution(r, c);
-  if (r.open_analysis) {
-    const Job::Step& open = r.job.steps[*r.open_analysis];
+  if (r.solution.open_analysis) {
+    const Job::Step& open = r.job.steps[*r.solution.open_analysis];
     if (const std::string change = model_change(*open.model_snapshot, r.model); !change.empty())
       r.fail(c, fmt::format("{} since this analysis began at {}: an analysis keeps the model of "
                             "its first SOLVE, so the change would not act on this load step. "
@@ -570,38 +573,38 @@ void append_current(DeckReader& r, const Command& c) {
   LoadStep s = snapshot(r, c, static_cast<int>(a.load_steps.size()) + 1);
   check_increasing(r, c, a.load_steps, s);
   a.load_steps.push_back(std::move(s));
-  if (a.load_steps.back().time_end) r.last_solved_time = a.load_steps.back().time_end;
+  if (a.load_steps.back().time_end) r.solution.last_solved_time = a.load_steps.back().time_end;
 }
 
 void solve_current(DeckReader& r, const Command& c) {
   append_current(r, c);
-  r.solve_step(*r.open_analysis);
+  r.solve_step(*r.solution.open_analysis);
 }
 
 void solve_expansion(DeckReader& r, const Command& c) {
-  if (r.job.steps.empty() && !r.seexp)
+  if (r.job.steps.empty() && !r.solution.seexp)
     r.fail(c,
            "expansion pass (EXPASS,ON) without a preceding analysis (or SEEXP for a "
            "superelement)");
-  ExpansionPassRequest e = r.expansion;
-  e.superelement = r.seexp;
+  ExpansionPassRequest e = r.solution.expansion;
+  e.superelement = r.solution.seexp;
   if (e.requests.empty()) {
     Log::info("{}:{}: SOLVE: no NUMEXP/EXPSOL given; every solution is expanded", c.where.file,
               c.where.line);
-    e.requests.push_back(ExpansionRequest{0, 0.0, r.last_solved_time.value_or(0.0), true});
+    e.requests.push_back(ExpansionRequest{0, 0.0, r.solution.last_solved_time.value_or(0.0), true});
   }
   e.where = c.where;
   Job::Step step;
   step.expansion = std::move(e);
   step.model_snapshot = std::make_shared<Model>(r.model);
   r.job.steps.push_back(std::move(step));
-  r.open_analysis.reset();
-  r.expansion.requests.clear();
+  r.solution.open_analysis.reset();
+  r.solution.expansion.requests.clear();
   r.solve_step(r.job.steps.size() - 1);
 }
 
 void cmd_solve(DeckReader& r, const Command& c) {
-  if (r.expass)
+  if (r.solution.expass)
     solve_expansion(r, c);
   else
     solve_current(r, c);
@@ -610,19 +613,20 @@ void cmd_solve(DeckReader& r, const Command& c) {
 void cmd_lswrite(DeckReader& r, const Command& c) {
   const std::string l = r.label(c, 1);
   if (l == "INIT") {
-    r.lswrite_steps.clear();
+    r.solution.lswrite_steps.clear();
     return;
   }
   if (l == "STAT") {
     Log::info("{}:{}: LSWRITE: {} load steps stored", c.where.file, c.where.line,
-              r.lswrite_steps.size());
+              r.solution.lswrite_steps.size());
     return;
   }
   prepare_model_for_solution(r, c);
-  const int next = r.lswrite_steps.empty() ? 1 : r.lswrite_steps.rbegin()->first + 1;
+  const int next =
+      r.solution.lswrite_steps.empty() ? 1 : r.solution.lswrite_steps.rbegin()->first + 1;
   const int n = r.integer(c, 1, next);
   if (n <= 0) r.fail(c, fmt::format("load step number {} must be positive", n));
-  r.lswrite_steps[n] = snapshot(r, c, n);
+  r.solution.lswrite_steps[n] = snapshot(r, c, n);
 }
 
 void cmd_lssolve(DeckReader& r, const Command& c) {
@@ -631,8 +635,8 @@ void cmd_lssolve(DeckReader& r, const Command& c) {
   const int last = r.integer(c, 2, *first);
   const int inc = std::max(1, r.integer(c, 3, 1));
   for (long long n = *first; n <= last; n += inc) {
-    auto it = r.lswrite_steps.find(static_cast<int>(n));
-    if (it == r.lswrite_steps.end())
+    auto it = r.solution.lswrite_steps.find(static_cast<int>(n));
+    if (it == r.solution.lswrite_steps.end())
       r.fail(c, fmt::format("load step {} was not written (LSWRITE)", n));
     const RestartControl rescontrol = r.model.current.rescontrol;  // not a load-step option
     r.model.current = it->second;
@@ -641,7 +645,7 @@ void cmd_lssolve(DeckReader& r, const Command& c) {
   }
   // All the load steps at once: the solver knows what follows (the progress estimate covers
   // them) and solves them in order, as one SOLVE each would.
-  r.solve_step(*r.open_analysis);
+  r.solve_step(*r.solution.open_analysis);
 }
 
 // ---- expansion passes ---------------------------------------------------------------------------
@@ -657,29 +661,29 @@ void cmd_stress(DeckReader& r, const Command& c) {
   if (last.options.method != TransientMethod::Reduced)
     r.warn(c, "/STRESS after an analysis that is not a reduced transient (KAN=5)");
   r.processor = kStress;
-  r.stress_requests.clear();
-  r.stress_count = 1;
-  r.stress_t_prev = 0.0;
-  r.stress_where = c.where;
+  r.solution.stress_requests.clear();
+  r.solution.stress_count = 1;
+  r.solution.stress_t_prev = 0.0;
+  r.solution.stress_where = c.where;
 }
 
 void cmd_nstres(DeckReader& r, const Command& c) {
   const auto n = r.opt_int(c, 1);
   if (!n || *n <= 0) r.fail(c, "number of expanded solutions must be positive");
-  r.stress_count = *n;
+  r.solution.stress_count = *n;
 }
 
 void cmd_end(DeckReader& r, const Command& c) {
-  if (r.stress_requests.empty())
+  if (r.solution.stress_requests.empty())
     r.fail(c, "END without an NSTRES/TIME request in the /STRESS block");
   close_stress_block(r, c.where);
 }
 
 void cmd_expass(DeckReader& r, const Command& c) {
-  r.expass = r.on_off(c, 1, false);
-  r.seexp.reset();
-  r.expansion = ExpansionPassRequest{};
-  r.expansion.static_correction = r.on_off(c, 4, true);
+  r.solution.expass = r.on_off(c, 1, false);
+  r.solution.seexp.reset();
+  r.solution.expansion = ExpansionPassRequest{};
+  r.solution.expansion.static_correction = r.on_off(c, 4, true);
 }
 
 void cmd_numexp(DeckReader& r, const Command& c) {
@@ -694,20 +698,20 @@ void cmd_numexp(DeckReader& r, const Command& c) {
   }
   q.t_begin = r.real(c, 2, 0.0);
   const auto end = r.opt_real(c, 3);
-  if (!end && !r.last_solved_time && !r.seexp)
+  if (!end && !r.solution.last_solved_time && !r.solution.seexp)
     r.fail(c, "ENDRNG missing and no solved load step with a TIME");
   // Without a solved step here (a superelement expansion), the range ends with the use pass.
-  q.t_end = end                  ? *end
-            : r.last_solved_time ? *r.last_solved_time
-                                 : std::numeric_limits<double>::infinity();
+  q.t_end = end                           ? *end
+            : r.solution.last_solved_time ? *r.solution.last_solved_time
+                                          : std::numeric_limits<double>::infinity();
   if (q.t_end < q.t_begin) r.fail(c, fmt::format("empty range {} to {}", q.t_begin, q.t_end));
-  r.expansion.requests.push_back(q);
+  r.solution.expansion.requests.push_back(q);
 }
 
 void cmd_expsol(DeckReader& r, const Command& c) {
   const auto t = r.opt_real(c, 3);
   if (!t) r.fail(c, "only EXPSOL by time (TIMFRQ, field 3) is supported");
-  r.expansion.requests.push_back(ExpansionRequest{1, *t, *t, false});
+  r.solution.expansion.requests.push_back(ExpansionRequest{1, *t, *t, false});
 }
 
 }  // namespace
@@ -715,21 +719,21 @@ void cmd_expsol(DeckReader& r, const Command& c) {
 void close_stress_block(DeckReader& r, const SourceLocation& where) {
   Job::Step step;
   ExpansionPassRequest e;
-  e.requests = r.stress_requests;
+  e.requests = r.solution.stress_requests;
   e.where = where;
   step.expansion = std::move(e);
   step.model_snapshot = std::make_shared<Model>(r.model);
   r.job.steps.push_back(std::move(step));
-  r.stress_requests.clear();
+  r.solution.stress_requests.clear();
   r.solve_step(r.job.steps.size() - 1);
 }
 
 void run_frozen_analysis(DeckReader& r, const Command& c) {
-  if (!r.frozen) r.fail(c, "no analysis to run: AFWRITE was not issued before /INPUT,27");
-  Job::Step step = *r.frozen;
+  if (!r.solution.frozen) r.fail(c, "no analysis to run: AFWRITE was not issued before /INPUT,27");
+  Job::Step step = *r.solution.frozen;
   step.analysis->where = c.where;
   r.job.steps.push_back(std::move(step));
-  r.exec_armed = false;
+  r.solution.exec_armed = false;
   r.solve_step(r.job.steps.size() - 1);
 }
 

@@ -27,7 +27,7 @@ struct VectorOperand {
 /// its first element), or a number / scalar expression. Error for a blank required field.
 VectorOperand vector_operand(DeckReader& r, const Command& c, int f);
 
-/// One operation's settings, taken from r.vector_settings (which are then reset, §10.2).
+/// One operation's settings, taken from r.scripting.vector_settings (which are then reset, §10.2).
 struct VectorPass {
   std::string result;        // ParR as written
   ArrayPosition out;         // result start (created as a 1-D array when undefined)

@@ -38,8 +38,8 @@ def _run(binary, tmp_path, units):
 def test_units_label_is_kept(binary, tmp_path):
     _, h5, log = _run(binary, tmp_path, "SI")
     assert "unit system SI recorded" in log
-    assert "/CONFIG: MAPDL's memory and file sizing" in log
-    assert "/NERR: error limits (/NERR) ignored" in log
+    assert "/CONFIG: accepted and ignored: MAPDL's memory and file sizing" in log
+    assert "/NERR: accepted and ignored: error limits" in log
     assert impactfe.open(h5).units == "SI"
     info = run([binary, "info", h5]).stdout
     assert "Units: SI (/UNITS)" in info

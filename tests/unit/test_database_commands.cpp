@@ -94,6 +94,28 @@ TEST(DatabaseCommands, ClearDeletesParametersAndResetsSettings) {
   EXPECT_EQ(run.out, " kept\n-0.988\n");  // *CREATE files survive, radians again, terminal again
 }
 
+TEST(DatabaseCommands, ClearStartsNewModelingAndSolutionStates) {
+  // The TB table that TBDATA fills, the TYPE pointer and the 4x /STRESS block belong to the old
+  // database: after /CLEAR a TBDATA without TB is an error, not data for a table that is gone.
+  const auto dir = impactfe::testing::fresh_directory("database_clear_modeling");
+  try {
+    run_with_session(dir,
+                     "/PREP7\nMP,EX,1,2E5\nTB,BISO,1\nTBDATA,1,250,1000\n/CLEAR\n/PREP7\n"
+                     "MP,EX,1,2E5\nTBDATA,1,300,2000\n");
+    FAIL() << "TBDATA wrote into a table of the cleared database";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(":8: TBDATA: no TB table is active"), std::string::npos)
+        << e.what();
+  }
+  try {
+    run_with_session(dir,
+                     "/PREP7\nET,3,COMBIN14\nTYPE,3\n/CLEAR\n/PREP7\nET,1,COMBIN14\n"
+                     "R,1,10\nN,1\nN,2,1\nE,1,2\n");
+  } catch (const InputError& e) {
+    FAIL() << "TYPE pointer survived /CLEAR: " << e.what();
+  }
+}
+
 TEST(DatabaseCommands, SaveAndResumeWeighByTheSizeOfTheDatabase) {
   // A loop of SAVEs and RESUMEs costs time per database byte, not per command: each weighs
   // 1000 units of the interpreted-work budget (DeckOptions::max_commands) plus one per 16 bytes

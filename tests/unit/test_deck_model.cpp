@@ -60,6 +60,16 @@ TEST(DeckModel, NgenCopiesPattern) {
   EXPECT_EQ(job.model.node(9).x, Vec3(1, 1, 1.5));
 }
 
+TEST(DeckModel, NgenSpacingRatioGradesTheCopies) {
+  // NGEN,4,1,1,,,3,0,0,4: three divisions, the last four times the first (ratio 2 between
+  // neighbours: 1 + 2 + 4 = 7 parts of the 9 units), the last copy at 3 × DX = 9 as without SPACE.
+  const Job job = parse("/PREP7\nN,1\nNGEN,4,1,1,,,3,0,0,4\n");
+  ASSERT_EQ(job.model.nodes.size(), 4u);
+  EXPECT_NEAR(job.model.node(2).x.x(), 9.0 / 7.0, 1e-12);
+  EXPECT_NEAR(job.model.node(3).x.x(), 27.0 / 7.0, 1e-12);
+  EXPECT_NEAR(job.model.node(4).x.x(), 9.0, 1e-12);
+}
+
 TEST(DeckModel, EgenKeepsPatternAttributesAndIncrements) {
   const Job job = parse(
       "/PREP7\nET,1,LINK180\nET,2,LINK180\nET,3,LINK180\nN,1\n,2,1\n,3,2\n,4,3\nTYPE,1\nMAT,"

@@ -1,0 +1,38 @@
+#pragma once
+/// Deck-reading state of the solution commands that is not yet part of the Job: the analysis
+/// being defined (4x: KAN, the LWRITE load steps, the AFWRITE freeze, the /STRESS block; modern:
+/// the open ANTYPE, the LSWRITE files, the expansion pass being set up) and the MDAMP pointer.
+/// Written by the solution handlers; /CLEAR replaces it with a new one.
+#include <cstddef>
+#include <map>
+#include <optional>
+#include <vector>
+
+#include "core/model.h"
+
+namespace impactfe::deck {
+
+struct SolutionState {
+  // 4x analysis definition (APDL_SUBSET §3).
+  int kan = 0;
+  std::vector<LoadStep> load_steps_4x;  // LWRITE
+  std::optional<Job::Step> frozen;      // AFWRITE
+  bool exec_armed = false;              // /EXEC
+  // 4x /STRESS block: the expansion requests and the NSTRES spacing memory (§3.26).
+  std::vector<ExpansionRequest> stress_requests;
+  int stress_count = 1;
+  double stress_t_prev = 0.0;
+  SourceLocation stress_where;
+
+  // Modern analysis definition.
+  std::optional<std::size_t> open_analysis;  // index in job.steps
+  std::map<int, LoadStep> lswrite_steps;
+  bool expass = false;
+  ExpansionPassRequest expansion;
+  std::optional<SuperelementExpansionSource> seexp;  // SEEXP of the current expansion pass
+  std::optional<double> last_solved_time;            // end time of the last solved load step
+
+  int mdamp_next = 1;  // MDAMP: the next mode's position
+};
+
+}  // namespace impactfe::deck
