@@ -77,7 +77,7 @@ function summary(section, data) {
 function timeRange(data) {
   let t0 = Infinity, t1 = -Infinity;
   for (const a of data.analyses) if (a.n_time_points && a.kind !== 'modal') { t0 = Math.min(t0, a.time_first); t1 = Math.max(t1, a.time_last); }
-  let contact = Infinity;
+  let contact = Number.isFinite(data.first_contact_time) ? data.first_contact_time : Infinity;
   for (const r of data.gap_status.rows) for (const [t, s] of r.changes) if (s === 1 || s === 2) contact = Math.min(contact, t);
   return { t0, t1, contact: Number.isFinite(contact) && contact > t0 ? contact : null };
 }
@@ -94,7 +94,8 @@ function windowControls(data, plots) {
 
 function energy(section, data, plots) {
   for (const e of data.energy) {
-    const fig = { title: `Energy balance of analysis ${e.analysis} (${e.description}) vs time`, xlabel: 'Time', ylabel: 'Energy', series: e.curves.map((c) => Object.assign({}, c, { label: ENERGY_LABELS[c.label] || c.label })) };
+    const u = data.units || {};
+    const fig = { title: `Energy balance of analysis ${e.analysis} (${e.description}) vs time`, xlabel: u.time ? `Time (${u.time})` : 'Time', ylabel: u.energy ? `Energy (${u.energy})` : 'Energy', series: e.curves.map((c) => Object.assign({}, c, { label: ENERGY_LABELS[c.label] || c.label })) };
     const grid = el('div', { class: 'grid one' });
     section.appendChild(grid);
     plots.add(grid, fig);
@@ -146,6 +147,13 @@ function gaps(section, data, plots) {
   return new GapTimeline(section, rows, t0, t1, caption, margins);
 }
 
+function contacts(section, data, plots) {
+  section.appendChild(el('p', { class: 'lead' }, 'Total force of each contact pair (the contact elements of one real set): the normal force ΣFN and the friction force ΣFT summed over its contact elements, the pair with the largest normal force first. Gap elements (COMBIN40, CONTA178) are in their own section.'));
+  const grid = el('div', { class: 'grid' });
+  section.appendChild(grid);
+  for (const f of data.contact_force) plots.add(grid, f);
+}
+
 function modes(section, data) {
   const f = data.modes.frequencies;
   const rows = f.map((hz, i) => [String(i + 1), fmt(hz, 6), fmt(2 * Math.PI * hz, 6), hz > 0 ? fmt(1 / hz, 6) : '–']);
@@ -187,6 +195,7 @@ function main() {
   if (data.figures.length) histories(section('histories', 'Time histories'), data, plots);
   if (data.energy.length) energy(section('energy', 'Energy balance'), data, plots);
   let timeline = null;
+  if ((data.contact_force || []).length) contacts(section('contact', 'Contact'), data, plots);
   if (data.gap_force || data.gap_status.rows.length) timeline = gaps(section('gaps', 'Gaps'), data, plots);
   if (data.modes.frequencies.length) modes(section('modes', 'Modal results'), data);
   const view = new View3D(shape, data, (t) => {
@@ -206,6 +215,7 @@ function main() {
     lines: view.stats.lines,
     points: view.stats.points,
     meshTriangles: data.mesh.triangles.length / 3,
+    overlayTriangles: (data.mesh.overlay_triangles || []).length / 3,
     coveredPixels: view.coveredPixels(),
     frames: (data.frames.times || []).length,
     plots: plots.plots.map((p) => ({ title: p.title, width: p.uplot.width, height: p.uplot.height, series: p.series, inkPixels: inkPixels(p) })),

@@ -69,10 +69,19 @@ export class View3D {
     this.resize();
   }
 
+  /** Node indices that set the view's extent: those of the structure (contact and target
+   *  elements aside: a rigid floor far larger than the model must not shrink it). */
+  framedNodes() {
+    const framed = this.data.mesh.framed_nodes;
+    if (framed && framed.length) return framed;
+    return Array.from({ length: this.nNodes }, (_, i) => i);
+  }
+
   modelSize() {
     const b = new THREE.Box3();
     const v = new THREE.Vector3();
-    for (let i = 0; i < this.nNodes; i++) b.expandByPoint(v.fromArray(this.xyz, 3 * i));
+    this.framed = this.framedNodes();
+    for (const i of this.framed) b.expandByPoint(v.fromArray(this.xyz, 3 * i));
     this.box = b;
     const s = b.getSize(new THREE.Vector3());
     // A model in the XY plane that moves in its plane is seen face on, Y up (a 2-D model).
@@ -161,11 +170,36 @@ export class View3D {
     const markerGeom = new THREE.BufferGeometry();
     markerGeom.setAttribute('position', new THREE.BufferAttribute(new Float32Array(this.markerNodes.length * 3), 3));
     this.markerObj = new THREE.Points(markerGeom, new THREE.PointsMaterial({ color: 0x1a1a1a, size: 5, sizeAttenuation: false }));
-    for (const o of [this.triMesh, this.lineObj, this.pointObj, this.edgeObj, this.undObj, this.markerObj]) {
+    this.buildOverlay();
+    for (const o of [this.triMesh, this.lineObj, this.pointObj, this.edgeObj, this.undObj, this.markerObj, this.overlayObj]) {
       o.frustumCulled = false;
       this.scene.add(o);
     }
     this.buildTriad();
+  }
+
+  /** Target facets (rigid floors, deformable targets): see-through, uncoloured, drawn after the
+   *  structure without writing depth so they never hide it, and clipped to the structure's box
+   *  grown by a quarter of its size on each side. */
+  buildOverlay() {
+    const tri = this.data.mesh.overlay_triangles || [];
+    const g = new THREE.BufferGeometry();
+    g.setAttribute('position', new THREE.BufferAttribute(new Float32Array(tri.length * 3), 3));
+    const margin = 0.25 * this.size;
+    const lo = this.box.min.clone().subScalar(margin), hi = this.box.max.clone().addScalar(margin);
+    const planes = [
+      new THREE.Plane(new THREE.Vector3(1, 0, 0), -lo.x),
+      new THREE.Plane(new THREE.Vector3(-1, 0, 0), hi.x),
+      new THREE.Plane(new THREE.Vector3(0, 1, 0), -lo.y),
+      new THREE.Plane(new THREE.Vector3(0, -1, 0), hi.y),
+      new THREE.Plane(new THREE.Vector3(0, 0, 1), -lo.z),
+      new THREE.Plane(new THREE.Vector3(0, 0, -1), hi.z),
+    ];
+    const material = new THREE.MeshBasicMaterial({ color: 0x9aa3ad, transparent: true, opacity: 0.25, depthWrite: false, side: THREE.DoubleSide, clippingPlanes: planes });
+    this.overlayObj = new THREE.Mesh(g, material);
+    this.overlayObj.renderOrder = 1;
+    this.overlayTri = tri;
+    if (this.renderer) this.renderer.localClippingEnabled = true;
   }
 
   buildTriad() {
@@ -356,6 +390,9 @@ export class View3D {
     this.triMesh.geometry.computeVertexNormals();
     fill(this.lineObj, m.lines, 2, m.line_element, NO_VALUE_LINE);
     fill(this.pointObj, m.points, 1, m.point_element);
+    const op = this.overlayObj.geometry.attributes.position;
+    this.overlayTri.forEach((n, k) => op.array.set(pos.subarray(3 * n, 3 * n + 3), 3 * k));
+    op.needsUpdate = true;
     const ep = this.edgeObj.geometry.attributes.position;
     m.edges.forEach((n, k) => ep.array.set(pos.subarray(3 * n, 3 * n + 3), 3 * k));
     ep.needsUpdate = true;
@@ -398,7 +435,7 @@ export class View3D {
     const steps = this.set.kind === 'frames' ? this.times.length : 2;
     for (let k = 0; k < steps; k++) {
       this.step = this.set.kind === 'frames' ? k : (k ? 3 : 1) * (MODE_STEPS / 4);
-      for (let i = 0; i < this.nNodes; i++) {
+      for (const i of this.framed) {
         this.disp(i, d);
         box.expandByPoint(v.set(this.xyz[3 * i] + scale * d[0], this.xyz[3 * i + 1] + scale * d[1], this.xyz[3 * i + 2] + scale * d[2]));
       }

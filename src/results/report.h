@@ -37,6 +37,9 @@ struct ReportOptions {
 std::vector<std::pair<double, double>> sample_min_max(
     const std::vector<std::pair<double, double>>& series, int max_points);
 
+/// Little-endian float32 values as base64 (NaN stays NaN): half the size of decimal text.
+std::string float32_base64(const std::vector<double>& values);
+
 /// The data of the page as JSON (schema: docs/report.md). Throws InputError for an unknown
 /// node, element or item in `options`.
 std::string report_data_json(const ResultsReader& reader, const ReportOptions& options);

@@ -18,7 +18,9 @@
 #include "core/errors.h"
 #include "core/text.h"
 #include "results/report.h"
+#include "results/report_contact.h"
 #include "results/report_mesh.h"
+#include "results/report_units.h"
 
 namespace impactfe {
 
@@ -32,29 +34,6 @@ constexpr const char* kAxes[3] = {"X", "Y", "Z"};
 constexpr std::size_t kFrameValueBudget = 480000;
 /// Curves per figure, nodes per body, gap curves and gap rows of the timeline.
 constexpr std::size_t kMaxCurves = 8, kMaxBodyNodes = 4, kMaxGapCurves = 8, kMaxGapRows = 40;
-
-/// Little-endian float32 values as base64 (NaN stays NaN): half the size of decimal text.
-std::string float32_base64(const std::vector<double>& values) {
-  static const char* alphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::vector<unsigned char> bytes(values.size() * 4);
-  for (std::size_t i = 0; i < values.size(); ++i) {
-    const float f = static_cast<float>(values[i]);
-    std::uint32_t u = 0;
-    std::memcpy(&u, &f, 4);
-    for (int b = 0; b < 4; ++b) bytes[i * 4 + b] = static_cast<unsigned char>(u >> (8 * b));
-  }
-  std::string out;
-  out.reserve((bytes.size() + 2) / 3 * 4);
-  for (std::size_t i = 0; i < bytes.size(); i += 3) {
-    const std::uint32_t n = (bytes[i] << 16) | (i + 1 < bytes.size() ? bytes[i + 1] << 8 : 0) |
-                            (i + 2 < bytes.size() ? bytes[i + 2] : 0);
-    out += alphabet[(n >> 18) & 63];
-    out += alphabet[(n >> 12) & 63];
-    out += i + 1 < bytes.size() ? alphabet[(n >> 6) & 63] : '=';
-    out += i + 2 < bytes.size() ? alphabet[n & 63] : '=';
-  }
-  return out;
-}
 
 /// {"label", "t", "y" (base64 float32), "n_stored", "n"} of a series sampled to max_points.
 json curve(const std::string& label, const Series& series, int max_points) {
@@ -207,7 +186,7 @@ struct Pass {
 };
 
 Pass scan_time_points(const ResultsReader& reader, const std::vector<FrameRef>& frames,
-                      int max_points) {
+                      int max_points, ContactForceSums& contact) {
   Pass pass;
   const auto n_nodes = static_cast<Eigen::Index>(reader.node_ids().size());
   pass.peaks.node = Eigen::MatrixXd::Constant(n_nodes, 3, kNaN);
@@ -241,6 +220,7 @@ Pass scan_time_points(const ResultsReader& reader, const std::vector<FrameRef>& 
               pass.peaks.gap_force[id] = std::max(pass.peaks.gap_force[id], std::abs(v));
         }
       }
+      contact.add(p);
       if (p.energy.count("external_work") && p.energy.count("kinetic")) {
         t.push_back(p.time);
         for (const char* name : kEnergyNames)
@@ -358,6 +338,9 @@ json report_mesh_json(const ReportMesh& mesh, const ResultsReader& reader) {
           {"line_element", mesh.line_element},
           {"points", mesh.points},
           {"point_element", mesh.point_element},
+          {"overlay_triangles", mesh.overlay_triangles},
+          {"overlay_element", mesh.overlay_element},
+          {"framed_nodes", mesh.framed_nodes},
           {"bodies", bodies}};
 }
 
@@ -561,13 +544,15 @@ void add_gaps(const ResultsReader& reader, const ReportMesh& mesh, const Peaks& 
   std::size_t n_gap_rows = 0;
   for (const auto& [id, peak] : gaps) {
     const auto& type = reader.elements()[mesh.element_index.at(id)].type_name;
+    if (!is_gap_type(type)) continue;
     const Series s = reader.element_series(id, "FORC");
     if (gap_curves.size() < kMaxGapCurves && s.size() >= 2)
       gap_curves.push_back(curve(fmt::format("Element {} ({}) FORC", id, type), s, max_points));
   }
-  std::vector<int> gap_ids;
+  std::vector<int> gap_ids;  // gaps only: contact elements are summed per pair instead
   for (const auto& [id, m] : peaks.family_of)
-    if (m.gap) gap_ids.push_back(id);
+    if (m.gap && is_gap_type(reader.elements()[mesh.element_index.at(id)].type_name))
+      gap_ids.push_back(id);
   auto status_changes = [](const Series& s, bool from_force) {
     json changes = json::array();
     double last = kNaN;
@@ -602,6 +587,62 @@ void add_gaps(const ResultsReader& reader, const ReportMesh& mesh, const Peaks& 
                                  {"series", std::move(gap_curves)}};
   data["gap_status"] = {{"rows", std::move(rows)},
                         {"n_gaps", gap_ids.size() + static_cast<std::size_t>(n_conditions)}};
+}
+
+/// Contact pairs: ΣFN and ΣFT of each pair vs time (data["contact_force"]), the pairs with the
+/// largest peak normal force first, and the first time a pair carries force.
+void add_contact_forces(const ContactForceSums& contact, int max_points, json& data) {
+  auto pairs = contact.pairs();
+  auto peak = [](const ContactForceSums::Series& s) {
+    double m = 0.0;
+    for (const auto& [t, v] : s) m = std::max(m, std::abs(v));
+    return m;
+  };
+  std::stable_sort(pairs.begin(), pairs.end(),
+                   [&](const auto& a, const auto& b) { return peak(a.normal) > peak(b.normal); });
+  json figures = json::array();
+  double first = kNaN;
+  for (const auto& pair : pairs) {
+    for (const auto& [t, v] : pair.normal)
+      if (v != 0.0 && !(t >= first)) first = t;
+    if (pair.normal.size() < 2) continue;
+    json series = json::array();
+    series.push_back(curve("normal ΣFN", pair.normal, max_points));
+    if (peak(pair.friction) > 0.0)
+      series.push_back(curve("friction ΣFT", pair.friction, max_points));
+    figures.push_back(
+        {{"group", "contact"},
+         {"title", fmt::format("Contact force of pair {} ({} contact elements) vs time", pair.real,
+                               pair.n_elements)},
+         {"xlabel", "Time"},
+         {"ylabel", "Contact force"},
+         {"series", std::move(series)}});
+  }
+  data["contact_force"] = std::move(figures);
+  data["first_contact_time"] = std::isfinite(first) ? json(first) : json();
+}
+
+/// Units of the axes from /UNITS (report_units.h): appended to every figure's axis labels, and
+/// data["units"] for the page's own labels (energy). Nothing when the deck gave no /UNITS.
+void label_units(const std::string& system, json& data) {
+  const auto units = unit_labels(system);
+  if (!units) {
+    data["units"] = json();
+    return;
+  }
+  data["units"] = {{"system", system},      {"time", units->time},     {"length", units->length},
+                   {"force", units->force}, {"stress", units->stress}, {"energy", units->energy}};
+  auto label = [&](json& figure) {
+    for (const char* axis : {"xlabel", "ylabel"}) {
+      if (!figure.contains(axis) || !figure[axis].is_string()) continue;
+      const std::string text = figure[axis];
+      if (const std::string u = unit_of_quantity(*units, text); !u.empty())
+        figure[axis] = fmt::format("{} ({})", text, u);
+    }
+  };
+  for (json& f : data["figures"]) label(f);
+  for (json& f : data["contact_force"]) label(f);
+  if (data["gap_force"].is_object()) label(data["gap_force"]);
 }
 
 /// Frequencies and the first 20 mode shapes.
@@ -663,30 +704,6 @@ json frames_json(const ReportMesh& mesh, const std::vector<TimePoint>& frames,
 
 }  // namespace
 
-std::vector<std::pair<double, double>> sample_min_max(
-    const std::vector<std::pair<double, double>>& series, int max_points) {
-  if (max_points < 4) throw InputError("at most fewer than 4 points per curve is too few");
-  const std::size_t n = series.size();
-  if (n <= static_cast<std::size_t>(max_points)) return series;
-  const std::size_t interior = n - 2, buckets = static_cast<std::size_t>(max_points - 2) / 2;
-  Series out;
-  out.reserve(static_cast<std::size_t>(max_points));
-  out.push_back(series.front());
-  for (std::size_t b = 0; b < buckets; ++b) {
-    const std::size_t first = 1 + b * interior / buckets, last = 1 + (b + 1) * interior / buckets;
-    if (first >= last) continue;
-    std::size_t lo = first, hi = first;
-    for (std::size_t i = first; i < last; ++i) {
-      if (series[i].second < series[lo].second) lo = i;
-      if (series[i].second > series[hi].second) hi = i;
-    }
-    out.push_back(series[std::min(lo, hi)]);
-    if (lo != hi) out.push_back(series[std::max(lo, hi)]);
-  }
-  out.push_back(series.back());
-  return out;
-}
-
 std::string report_data_json(const ResultsReader& reader, const ReportOptions& options) {
   if (options.max_points < 4) throw InputError("--max-points must be at least 4");
   if (options.max_frames < 2) throw InputError("--frames must be at least 2");
@@ -704,7 +721,8 @@ std::string report_data_json(const ResultsReader& reader, const ReportOptions& o
       std::min<std::size_t>(static_cast<std::size_t>(options.max_frames),
                             std::max<std::size_t>(2, kFrameValueBudget / per_frame));
   const auto frame_refs = choose_frames(reader, mesh, max_frames);
-  Pass pass = scan_time_points(reader, frame_refs, options.max_points);
+  ContactForceSums contact(reader);
+  Pass pass = scan_time_points(reader, frame_refs, options.max_points, contact);
   const Peaks& peaks = pass.peaks;
 
   json data;
@@ -728,6 +746,8 @@ std::string report_data_json(const ResultsReader& reader, const ReportOptions& o
   add_element_figures(reader, mesh, peaks, options, requested.items, figures);
   data["figures"] = std::move(figures);
   add_gaps(reader, mesh, peaks, analyses, options.max_points, data);
+  add_contact_forces(contact, options.max_points, data);
+  label_units(reader.units(), data);
   data["modes"] = modes_json(reader);
   data["mesh"] = report_mesh_json(mesh, reader);
   data["frames"] = frames_json(mesh, pass.frames, frame_refs);

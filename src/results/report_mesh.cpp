@@ -57,8 +57,30 @@ void add_surfaces(const std::vector<Face>& faces, ReportMesh& mesh) {
   for (const auto& [a, b] : edges) mesh.edges.insert(mesh.edges.end(), {a, b});
 }
 
-/// Parts: nodes joined by non-gap elements, named after their most common element type; the
-/// nodes joined to no other form one group.
+/// True for the roles drawn as overlays or not at all (contact and target elements lie on or
+/// beside the structure: they neither name a part nor set the view's extent).
+bool is_contact_role(const ElementTypeDescriptor* type) {
+  return type != nullptr && (type->role == ShapeRole::Contact || type->role == ShapeRole::Target);
+}
+
+/// A part's name: its most common structural element type with its ET number, material and
+/// real set, as the Python reader names parts ("SHELL181 type 1 mat 1 real 2"); for nodes
+/// joined only by target elements, "rigid target (TARGE170)".
+std::string part_label(const std::map<std::string, int>& structural,
+                       const std::map<std::string, int>& other) {
+  const auto& counts = structural.empty() ? other : structural;
+  std::string best;
+  int most = 0;
+  for (const auto& [name, count] : counts)
+    if (count > most) {
+      most = count;
+      best = name;
+    }
+  return structural.empty() && !best.empty() ? "rigid target (" + best + ")" : best;
+}
+
+/// Parts: nodes joined by non-gap elements, named after their most common structural element
+/// type, material and real set; the nodes joined to no other form one group.
 void add_bodies(const ResultsReader& reader, const std::vector<char>& used, Components& parts,
                 ReportMesh& mesh) {
   const auto& ids = reader.node_ids();
@@ -68,10 +90,17 @@ void add_bodies(const ResultsReader& reader, const std::vector<char>& used, Comp
       mesh.used_nodes.push_back(static_cast<int>(i));
       by_root[parts.root(static_cast<int>(i))].push_back(static_cast<int>(i));
     }
-  std::map<int, std::map<std::string, int>> types;  // root -> type name -> count
+  // root -> "TYPE, MAT m, REAL r" -> count (structural elements), and TYPE -> count (others)
+  std::map<int, std::map<std::string, int>> types, other_types;
   for (const auto& el : reader.elements()) {
     if (is_gap_type(el.type_name) || el.nodes.empty()) continue;
-    if (int i = node_row(ids, el.nodes[0]); i >= 0) ++types[parts.root(i)][el.type_name];
+    const int i = node_row(ids, el.nodes[0]);
+    if (i < 0) continue;
+    if (is_contact_role(type_of(el.type_name)))
+      ++other_types[parts.root(i)][el.type_name];
+    else
+      ++types[parts.root(i)]
+             [fmt::format("{} type {} mat {} real {}", el.type_name, el.type, el.mat, el.real)];
   }
   // Nodes not joined to any other (held by gaps only, lone masses, superelement masters whose
   // superelement is not in the file) form one group, not one part each.
@@ -87,27 +116,37 @@ void add_bodies(const ResultsReader& reader, const std::vector<char>& used, Comp
             [](const auto& a, const auto& b) { return a.front() < b.front(); });
   std::map<std::string, int> name_count;
   for (const auto& nodes : groups) {
-    std::string type;
-    int best = 0;
-    for (const auto& [name, count] : types[parts.root(nodes.front())])
-      if (count > best) {
-        best = count;
-        type = name;
-      }
+    const int root = parts.root(nodes.front());
+    const std::string type = part_label(types[root], other_types[root]);
     mesh.bodies.push_back({type, nodes});
     ++name_count[type];
   }
   std::map<std::string, int> seen;
   for (auto& b : mesh.bodies) {
     const int k = ++seen[b.name];
-    b.name = name_count[b.name] > 1 ? fmt::format("the {} part {}", b.name, k)
-                                    : fmt::format("the {} part", b.name);
+    const bool target = b.name.rfind("rigid target", 0) == 0;
+    const std::string number = name_count[b.name] > 1 ? fmt::format(" {}", k) : "";
+    b.name = target ? fmt::format("the {}{}", b.name, number)
+                    : fmt::format("the {} part{}", b.name, number);
   }
   if (single.size() == 1)
     mesh.bodies.push_back(
         {fmt::format("node {}", ids[static_cast<std::size_t>(single[0])]), single});
   else if (!single.empty())
     mesh.bodies.push_back({"the single nodes", single});
+}
+
+/// The polygons of a target element as overlay triangles (a fan over each).
+void add_overlay(VtkCell cell, const std::vector<int>& nodes, std::size_t element,
+                 ReportMesh& mesh) {
+  for (const auto& piece : cell_pieces(cell, nodes)) {
+    if (piece.kind != CellPiece::Kind::Polygon) continue;  // a pilot node is not drawn
+    for (std::size_t k = 1; k + 1 < piece.nodes.size(); ++k) {
+      mesh.overlay_triangles.insert(mesh.overlay_triangles.end(),
+                                    {piece.nodes[0], piece.nodes[k], piece.nodes[k + 1]});
+      mesh.overlay_element.push_back(static_cast<int>(element));
+    }
+  }
 }
 
 }  // namespace
@@ -123,7 +162,7 @@ ReportMesh build_report_mesh(const ResultsReader& reader) {
   // Faces of volume cells by their sorted nodes: a face two of them share is inside.
   std::map<std::vector<int>, std::vector<Face>> volume_faces;
   std::vector<Face> faces;
-  std::vector<char> used(ids.size(), 0);
+  std::vector<char> used(ids.size(), 0), framed(ids.size(), 0);
   Components parts(ids.size());
   const auto& elements = reader.elements();
   for (std::size_t e = 0; e < elements.size(); ++e) {
@@ -141,6 +180,13 @@ ReportMesh build_report_mesh(const ResultsReader& reader) {
     if (!gap)
       for (std::size_t k = 1; k < nodes.size(); ++k) parts.join(nodes[0], nodes[k]);
     const VtkCell cell = drawn_cell(type);
+    if (is_contact_role(type)) {
+      // Contact faces lie on the structure's own faces: not drawn, they would hide its colours.
+      // Target facets are drawn as a see-through overlay; neither sets the view's extent.
+      if (type->role == ShapeRole::Target) add_overlay(cell, nodes, e, mesh);
+      continue;
+    }
+    for (int i : nodes) framed[static_cast<std::size_t>(i)] = 1;
     const bool volume = cell_topology(cell).dimension == 3;
     for (auto& piece : cell_pieces(cell, nodes)) {
       switch (piece.kind) {
@@ -168,6 +214,8 @@ ReportMesh build_report_mesh(const ResultsReader& reader) {
     if (list.size() == 1) faces.push_back(list.front());  // outer faces only
   add_surfaces(faces, mesh);
   add_bodies(reader, used, parts, mesh);
+  for (std::size_t i = 0; i < framed.size(); ++i)
+    if (framed[i]) mesh.framed_nodes.push_back(static_cast<int>(i));
   return mesh;
 }
 

@@ -12,7 +12,7 @@ namespace impactfe {
 
 struct ReportMesh {
   struct Body {
-    std::string name;        // e.g. "the SHELL63 part"
+    std::string name;        // e.g. "the SHELL63 type 1 mat 1 real 1 part"
     std::vector<int> nodes;  // 0-based node indices (rows of the results file's node arrays)
   };
   std::vector<int> element_ids;              // = reader.elements() order
@@ -24,15 +24,23 @@ struct ReportMesh {
   std::vector<int> line_element;
   std::vector<int> points;  // node indices
   std::vector<int> point_element;
+  /// Target facets (TARGE170), drawn see-through over the structure: node indices, 3 per
+  /// triangle, and the element index of each triangle. Contact elements are not drawn.
+  std::vector<int> overlay_triangles;
+  std::vector<int> overlay_element;
   std::vector<int> used_nodes;  // node indices referenced by some element, ascending
-  std::set<int> gap_nodes;      // node indices of gap elements (ShapeRole::Gap)
-  std::vector<Body> bodies;     // parts by their smallest node id, then the single nodes
+  /// Node indices of the elements that are neither contact nor target: the view's extent (a
+  /// rigid floor far larger than the model does not shrink it), ascending.
+  std::vector<int> framed_nodes;
+  std::set<int> gap_nodes;   // node indices of gap elements (ShapeRole::Gap)
+  std::vector<Body> bodies;  // parts by their smallest node id, then the single nodes
 };
 
 /// The drawable pieces of each element's registered cell (elements/cell_topology.h):
 /// polygons of area cells (a 4-node shell with K = L is a triangle; quadrilaterals are split in
 /// two triangles), the outer faces of volume cells (a face two of them share is dropped;
-/// repeated nodes collapse), lines, and points (1-node elements, superelement nodes).
+/// repeated nodes collapse), lines, and points (1-node elements, superelement nodes); target
+/// facets as overlay triangles; contact elements not at all.
 ReportMesh build_report_mesh(const ResultsReader& reader);
 
 /// True for element types whose shape role is a gap (COMBIN40, CONTA178): their nodes are

@@ -3,7 +3,12 @@
 // a console error, a page error, a network request, an empty plot or a 3-D view that drew
 // nothing; writes a full-page screenshot and prints its path.
 //
-//   NODE_PATH=<build>/report_js/node_modules node browser_test.cjs REPORT.html OUTDIR
+//   NODE_PATH=<build>/report_js/node_modules node browser_test.cjs REPORT.html OUTDIR [KIND]
+//
+// KIND `gaps` (default, the helmet): a gap status timeline and at least 6 plots; screenshots
+// report_screenshot.png and report_3d_view.png. KIND `contact` (the plate drop): a contact-force
+// figure per pair and the rigid floor drawn as an overlay; screenshots <stem>_screenshot.png
+// and <stem>_3d_view.png.
 'use strict';
 const fs = require('node:fs');
 const os = require('node:os');
@@ -25,7 +30,9 @@ const FLAGS = [
 ];
 
 async function main() {
-  const [report, outDir] = process.argv.slice(2);
+  const [report, outDir, kind = 'gaps'] = process.argv.slice(2);
+  if (kind !== 'gaps' && kind !== 'contact') throw new Error(`KIND '${kind}': gaps or contact`);
+  const prefix = kind === 'gaps' ? 'report' : path.basename(report, '.html');
   if (!report || !outDir) throw new Error('usage: browser_test.cjs REPORT.html OUTDIR');
   const executablePath = process.env.CHROMIUM || '/usr/bin/chromium';
   if (!fs.existsSync(executablePath)) throw new Error(`no Chromium at ${executablePath} (scripts/install-deps.sh installs Debian's chromium)`);
@@ -63,17 +70,22 @@ async function main() {
     check(stats.webgl, 'the 3-D view has no WebGL context');
     check(stats.meshTriangles > 0 && stats.triangles >= stats.meshTriangles, `the 3-D view drew ${stats.triangles} triangles of ${stats.meshTriangles}`);
     check(stats.coveredPixels > 0.02, `the 3-D view covers ${(100 * stats.coveredPixels).toFixed(2)} % of its canvas (the helmet is not drawn)`);
-    check(stats.plots.length >= 6, `only ${stats.plots.length} plots`);
+    check(stats.plots.length >= (kind === 'gaps' ? 6 : 4), `only ${stats.plots.length} plots`);
     for (const p of stats.plots) {
       check(p.series.length > 0, `plot "${p.title}" has no curve`);
       for (const s of p.series) check(s.points > 1, `plot "${p.title}": curve "${s.label}" has ${s.points} points`);
       check(p.inkPixels > 100, `plot "${p.title}" drew ${p.inkPixels} curve pixels (empty plot)`);
       check(p.width > 300 && p.height > 200, `plot "${p.title}" is ${p.width} x ${p.height}`);
     }
-    check(stats.gapRows > 0, 'no gap status timeline');
+    if (kind === 'gaps') check(stats.gapRows > 0, 'no gap status timeline');
+    if (kind === 'contact') {
+      check(stats.plots.some((p) => p.title.startsWith('Contact force of pair')), 'no contact-force figure');
+      check(stats.overlayTriangles > 0, 'no target overlay in the 3-D view');
+      check(stats.triangles >= stats.meshTriangles + stats.overlayTriangles, `the 3-D view drew ${stats.triangles} triangles, mesh and overlay have ${stats.meshTriangles + stats.overlayTriangles}`);
+    }
 
     // The page as it opens (the 3-D view at the frame of the peak stress).
-    const shot = path.join(outDir, 'report_screenshot.png');
+    const shot = path.join(outDir, `${prefix}_screenshot.png`);
     await page.screenshot({ path: shot, fullPage: true });
 
     // Move the time slider to the middle and colour by |U|: still drawn, no error.
@@ -86,7 +98,7 @@ async function main() {
     console.log(`slider: ${after.label}, covered ${(100 * after.covered).toFixed(1)} %`);
     check(after.covered > 0.02, 'the 3-D view is empty after moving the time slider');
 
-    const viewShot = path.join(outDir, 'report_3d_view.png');
+    const viewShot = path.join(outDir, `${prefix}_3d_view.png`);
     await page.locator('.view3d').screenshot({ path: viewShot });
     console.log(`screenshot: ${shot}`);
     console.log(`3-D view screenshot: ${viewShot}`);

@@ -144,7 +144,7 @@ TEST_F(ReportTest, AutomaticChoicePerPart) {
   const auto& figs = d["figures"];
   ASSERT_EQ(figs.size(), 3u);  // U of each part (V and A are not stored), stress
   // Part 1: the largest response (node 2) and its moving gap node (3); part 2: nodes 4, 5.
-  EXPECT_EQ(figs[0]["title"], "Displacement UX of the LINK8 part 1 vs time");
+  EXPECT_EQ(figs[0]["title"], "Displacement UX of the LINK8 type 1 mat 1 real 1 part 1 vs time");
   EXPECT_EQ(labels(figs[0]), (std::vector<std::string>{"Node 2 UX", "Node 3 UX"}));
   EXPECT_EQ(labels(figs[1]), (std::vector<std::string>{"Node 4 UX", "Node 5 UX"}));
   EXPECT_NEAR(figs[0]["series"][0]["peak_abs"].get<double>(), 3.0, 1e-12);
