@@ -38,7 +38,9 @@ DECK_STATE = {
     "modeling": ["prep7_commands.cpp", "generation_commands.cpp", "material_commands.cpp",
                  "solid_edit_commands.cpp", "contact_commands.cpp", "mesh_commands.cpp",
                  # SAVE/RESUME store the attribute pointers; *GET,Par,ACTIVE,,TYPE reads them.
-                 "database_commands.cpp", "get_command.cpp"],
+                 "database_commands.cpp", "get_command.cpp",
+                 # EBLOCK sets the attribute pointers of each element record it adds.
+                 "cdb_commands.cpp"],
     # 4x defines the analysis (KAN) in PREP7; FINISH closes a 4x /STRESS block.
     "solution": ["solution_commands.cpp", "prep7_commands.cpp", "session_commands.cpp"],
     "scripting": ["parameter_commands.cpp", "array_commands.cpp", "matrix_commands.cpp",

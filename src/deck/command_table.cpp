@@ -70,6 +70,8 @@ const Tables& tables() {
     add(register_output_commands, "Output (/OUTPUT, *VWRITE, *MSG)", kDeck);
     add(register_database_commands,
         "Database and restart files (SAVE, RESUME, /CLEAR, RESCONTROL, PARSAV)", kDeck);
+    add(register_cdb_commands, "CDB archives (CDREAD, NBLOCK, EBLOCK, CMBLOCK, RLBLOCK)",
+        "docs/meshes.md");
     return t;
   }();
   return tables;

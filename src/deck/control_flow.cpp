@@ -273,6 +273,8 @@ Command DeckReader::resolve(const RawCommand& raw) {
   c.fields = raw.fields;
   c.rest = raw.rest;
   c.assignment = raw.assignment;
+  c.block = raw.block;
+  c.block_line = raw.block_line;
   if (raw.file) c.where.file = *raw.file;
   c.where.line = raw.line;
   if (raw.repeat) {

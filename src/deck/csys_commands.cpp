@@ -54,7 +54,37 @@ void cmd_csys(DeckReader& r, const Command& c) {
   systems(r).active = kcn;
 }
 
+/// The CDB archive form of LOCAL: `LOCAL,R5.0,LOC,KCN,KCS,XC,YC,ZC` defines the system (axes
+/// along global), then `...,ANG,KCN,KCS,THXY,THYZ,THZX` turns it and `...,PRM,KCN,KCS,PAR1,PAR2`
+/// gives its shape parameters. As LOCAL, it makes the system active.
+void local_archive_form(DeckReader& r, const Command& c) {
+  Command plain = c;
+  plain.fields.erase(plain.fields.begin(), plain.fields.begin() + std::min(2, c.n_fields()));
+  const std::string part = r.label(c, 2);
+  const int kcn = user_system_number(r, plain);
+  if (part == "LOC") {
+    CoordinateSystem cs;
+    cs.kind = system_kind(r, plain, 2);
+    cs.origin = Vec3(r.real(plain, 3, 0.0), r.real(plain, 4, 0.0), r.real(plain, 5, 0.0));
+    systems(r).define(kcn, cs);
+  } else if (part == "ANG" || part == "PRM") {
+    if (!systems(r).has(kcn))
+      r.fail(c, fmt::format("LOCAL,R5.0,{} of system {} before its LOC record", part, kcn));
+    CoordinateSystem cs = systems(r).get(kcn);
+    if (part == "ANG")
+      cs.axes = rotation_from_angles(
+          Vec3(r.real(plain, 3, 0.0), r.real(plain, 4, 0.0), r.real(plain, 5, 0.0)));
+    else
+      check_elliptic(r, plain, 3);
+    systems(r).define(kcn, cs);
+  } else {
+    r.fail(c, fmt::format("LOCAL,R5.0 record '{}': LOC, ANG or PRM", part));
+  }
+  systems(r).active = kcn;
+}
+
 void cmd_local(DeckReader& r, const Command& c) {
+  if (r.label(c, 1) == "R5.0") return local_archive_form(r, c);
   const int kcn = user_system_number(r, c);
   CoordinateSystem cs;
   cs.kind = system_kind(r, c, 2);

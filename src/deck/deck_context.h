@@ -47,6 +47,8 @@ struct Command {
   std::string rest;                       // raw text after the first comma (/TITLE, /COM)
   bool assignment = false;                // modern `Par = expr`
   std::vector<std::string> format_lines;  // the line(s) after *VWRITE / *MSG, verbatim
+  std::shared_ptr<const std::string> block;  // CDB block data (RawCommand::block), or null
+  int block_line = 0;                        // line of the block's first line
   SourceLocation where;
   int n_fields() const { return static_cast<int>(fields.size()); }
   /// Field i (1-based), "" when absent.
@@ -103,6 +105,7 @@ void register_parameter_commands(std::vector<CommandSpec>& table);
 void register_array_commands(std::vector<CommandSpec>& table);
 void register_output_commands(std::vector<CommandSpec>& table);
 void register_database_commands(std::vector<CommandSpec>& table);
+void register_cdb_commands(std::vector<CommandSpec>& table);
 
 /// Modern dialect (MAPDL): a name of at least four significant characters that begins exactly
 /// one table command is that command (`SECT` → SECTYPE, `NSUBS` → NSUBST). nullptr when none;

@@ -1,9 +1,10 @@
 #include "deck/lexer.h"
 
+#include <fmt/format.h>
+
+#include <algorithm>
 #include <cctype>
 #include <cstdlib>
-
-#include <fmt/format.h>
 
 namespace impactfe::deck {
 
@@ -215,6 +216,57 @@ bool takes_format_line(std::string_view n) {
   return n.substr(0, 5) == "*VWRI" || n == "*MSG" || n.substr(0, 5) == "*MWRI";
 }
 
+bool takes_block(std::string_view n) {
+  return n == "NBLOCK" || n == "EBLOCK" || n == "CMBLOCK" || n == "RLBLOCK";
+}
+
+namespace {
+
+/// A record of a CDB block: numbers in fixed columns, no comma, no letter but an exponent.
+bool is_block_record(std::string_view line) {
+  const std::string t = trim(line);
+  if (t.empty()) return false;
+  for (char ch : t)
+    if (!(std::isdigit(static_cast<unsigned char>(ch)) || ch == ' ' || ch == '\t' || ch == '.' ||
+          ch == '+' || ch == '-' || ch == 'E' || ch == 'e' || ch == 'D' || ch == 'd'))
+      return false;
+  return true;
+}
+
+/// The end marker MAPDL writes after an NBLOCK: `N,R5.3,LOC,-1,` (R5.1 alike).
+bool is_nblock_end(std::string_view line) {
+  std::string t = to_upper(trim(line));
+  t.erase(std::remove(t.begin(), t.end(), ' '), t.end());
+  return t.rfind("N,R5.", 0) == 0 && t.find(",LOC,-1") != std::string::npos;
+}
+
+/// Consumes the lines of the block after `text[pos]` (format lines, then records; the NBLOCK
+/// end marker too) into `cmd.block`; returns the position after them and advances `line`.
+std::size_t take_block(std::string_view text, std::size_t pos, int& line, RawCommand& cmd) {
+  std::string block;
+  cmd.block_line = line + 1;
+  bool formats = true;
+  while (pos < text.size()) {
+    std::size_t end = text.find('\n', pos);
+    if (end == std::string_view::npos) end = text.size();
+    std::string_view physical = text.substr(pos, end - pos);
+    if (!physical.empty() && physical.back() == '\r') physical.remove_suffix(1);
+    const std::string t = trim(physical);
+    const bool format = formats && !t.empty() && t.front() == '(';
+    const bool end_marker = cmd.name == "NBLOCK" && is_nblock_end(physical);
+    if (!format && !end_marker && !is_block_record(physical)) break;
+    formats = format;
+    block.append(physical).push_back('\n');
+    ++line;
+    pos = end + 1;
+    if (end_marker) break;
+  }
+  cmd.block = std::make_shared<const std::string>(std::move(block));
+  return pos;
+}
+
+}  // namespace
+
 std::vector<RawCommand> lex_text(std::string_view text, const std::string& file_name,
                                  Dialect dialect) {
   const auto file = std::make_shared<const std::string>(file_name);
@@ -255,9 +307,15 @@ std::vector<RawCommand> lex_text(std::string_view text, const std::string& file_
     } else {
       auto cmds = lex_line_of(physical, file, line, dialect);
       format_next = !cmds.empty() && takes_format_line(cmds.back().name);
+      const bool block = !cmds.empty() && takes_block(cmds.back().name);
       for (auto& c : cmds) {
         c.source = std::string(physical);
         out.push_back(std::move(c));
+      }
+      if (block && end < text.size()) {
+        pos = take_block(text, end + 1, line, out.back());
+        if (pos >= text.size()) break;
+        continue;
       }
     }
     if (end == text.size()) break;

@@ -25,6 +25,11 @@ struct RawCommand {
   std::string rest;    // raw text after the first comma (for /TITLE and /COM)
   std::string error;   // a line the lexer refuses (too long): reported when it is reached
   std::string source;  // the physical line as written (*CREATE keeps it for *LIST)
+  /// The data lines of a CDB block command (NBLOCK, EBLOCK, CMBLOCK, RLBLOCK): its Fortran
+  /// format line(s) and fixed-column records, as written ('\n'-separated), read by its handler in
+  /// one pass; `block_line` is the line number of its first line. Null for other commands.
+  std::shared_ptr<const std::string> block;
+  int block_line = 0;
   /// The file, shared by all the commands of one lexed text (a copy per command was 32 bytes
   /// plus a heap string for a long path, on decks of 10⁵ lines: issue 11).
   std::shared_ptr<const std::string> file;
@@ -55,7 +60,11 @@ std::vector<std::string> split_fields(std::string_view text);
 /// True for a command whose next physical line is its format line (*VWRITE, *MSG, *MWRITE).
 bool takes_format_line(std::string_view upper_name);
 
-/// Lexes a whole deck text, line by line (format lines after *VWRITE / *MSG kept verbatim).
+/// True for the CDB block commands whose following lines are fixed-column data (takes_block).
+bool takes_block(std::string_view upper_name);
+
+/// Lexes a whole deck text, line by line (format lines after *VWRITE / *MSG kept verbatim; the
+/// data lines after a CDB block command attached to it, see RawCommand::block).
 std::vector<RawCommand> lex_text(std::string_view text, const std::string& file, Dialect dialect);
 
 }  // namespace impactfe::deck

@@ -60,6 +60,10 @@ std::string resolve_input(const std::string& includer, const std::string& fname,
 
 void DeckReader::run_file(const std::string& path, const SourceLocation& where) {
   const std::string text = read_text_file(path, where);
+  // A CDB archive tests MAPDL's flag _CDRDOFF (1 only after CDREAD read a solid model first,
+  // which never happens here): 0 unless the deck set it.
+  std::string ext = std::filesystem::path(path).extension().string();
+  if (to_upper(ext) == ".CDB" && params.find("_CDRDOFF") == nullptr) params.set("_CDRDOFF", 0.0);
   auto cmds = lex_text(text, path, dialect);
   std::error_code ec;
   const auto canonical = std::filesystem::weakly_canonical(path, ec);

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <optional>
 #include <cmath>
 #include <set>
 
@@ -75,7 +76,23 @@ void cmd_mp(DeckReader& r, const Command& c) {
   set_material(r, c, r.label(c, 1), 2);
 }
 
+/// The CDB archive form `MPTEMP,R5.0,N,SLOC,T1..` / `MPDATA,R5.0,N,Lab,MAT,SLOC,C1..`: the
+/// command without its R5.0 and count fields (nullopt for the ordinary form).
+std::optional<Command> archive_form(DeckReader& r, const Command& c) {
+  if (r.label(c, 1) != "R5.0") return std::nullopt;
+  Command plain = c;
+  plain.fields.erase(plain.fields.begin(), plain.fields.begin() + std::min(2, c.n_fields()));
+  return plain;
+}
+
+void cmd_mpdata(DeckReader& r, const Command& c);
+
 void cmd_mptemp(DeckReader& r, const Command& c) {
+  if (const auto plain = archive_form(r, c)) {  // each property of an archive has its table
+    r.modeling.mptemp.clear();
+    if (plain->last_given() > 0) cmd_mptemp(r, *plain);
+    return;
+  }
   // MPTEMP,SLOC,T1..T6: all blank erases the table.
   auto& t = r.modeling.mptemp;
   if (c.last_given() == 0) {
@@ -95,6 +112,7 @@ void cmd_mptemp(DeckReader& r, const Command& c) {
 }
 
 void cmd_mpdata(DeckReader& r, const Command& c) {
+  if (const auto plain = archive_form(r, c)) return cmd_mpdata(r, *plain);
   // MPDATA,Lab,MAT,SLOC,C1..C6
   const std::string lab = r.label(c, 1);
   if (lab.empty()) r.fail(c, "property label missing");

@@ -174,6 +174,11 @@ void cmd_secnum(DeckReader& r, const Command& c) {
 // ---- nodes and elements ------------------------------------------------------------------------
 
 void cmd_n(DeckReader& r, const Command& c) {
+  // N,R5.3,LOC,-1 (R5.1 alike) ends an NBLOCK in a CDB archive; other R5 records are not read.
+  if (const std::string form = r.label(c, 1); form.rfind("R5.", 0) == 0) {
+    if (r.label(c, 2) == "LOC" && r.integer(c, 3, 0) == -1) return;
+    r.fail(c, fmt::format("the CDB node record form {} is not supported (NBLOCK is)", form));
+  }
   int id = 0;
   if (c.blank(1))
     id = r.model.nodes.empty() ? 1 : r.model.nodes.rbegin()->first + 1;

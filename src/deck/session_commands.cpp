@@ -105,6 +105,15 @@ void register_session_commands(std::vector<CommandSpec>& t) {
   t.push_back({"/NERR", cmd_ignored, kAnywhere, "error limits: impactfe stops at the first error"});
   for (const char* name : {"/BATCH", "/VERIFY"})
     t.push_back({name, cmd_ignored, kAnywhere, "a mode that does not change a run here"});
+  t.push_back({"/GO", cmd_ignored, kAnywhere, "printout on again (after /NOPR): printing only"});
+  // Lines every CDB archive carries.
+  t.push_back({"DOF", cmd_ignored, kPrep7 | kSolu,
+               "the degrees of freedom follow from the element types here"});
+  t.push_back({"MODCONTROL", cmd_ignored, kPrep7 | kSolu,
+               "MAPDL's modal results-file control: the modes are stored the same way here"});
+  t.push_back({"QRDOPT", cmd_ignored, kPrep7 | kSolu,
+               "options of MAPDL's QR damped eigensolver; impactfe computes undamped real modes "
+               "(MODOPT)"});
   t.push_back({"/UNITS", cmd_units, kAnywhere});
   // /CWD would move the run's files out of its directory; /SYS would run programs: refused.
   t.push_back({"/CWD", cmd_refused, kAnywhere, nullptr,
