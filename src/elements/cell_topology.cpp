@@ -18,6 +18,37 @@ CellTopology hexahedron() {
   for (int k = 0; k < 4; ++k) t.edges.push_back({k, (k + 1) % 4});          // bottom ring
   for (int k = 0; k < 4; ++k) t.edges.push_back({4 + k, 4 + (k + 1) % 4});  // top ring
   for (int k = 0; k < 4; ++k) t.edges.push_back({k, k + 4});                // I-M ... L-P
+  t.linear = VtkCell::Hexahedron;
+  return t;
+}
+
+/// The 20-node hexahedron: the hexahedron's corners, faces and edges, one midside node per edge
+/// (Q R S T on the bottom ring, U V W X on the top ring, Y Z A B on I-M ... L-P).
+CellTopology quadratic_hexahedron() {
+  CellTopology t = hexahedron();
+  t.cell = VtkCell::QuadraticHexahedron;
+  t.midside_nodes = 12;
+  return t;
+}
+
+/// The tetrahedron I J K L, L on the positive side of I J K (counter-clockwise seen from L).
+/// Faces outward in MAPDL's numbering of SOLID187 / SOLID285 (J-I-K, I-J-L, J-K-L, K-I-L);
+/// edges I-J J-K K-I I-L J-L K-L, the order of the 10-node tetrahedron's midside nodes.
+CellTopology tetrahedron() {
+  CellTopology t;
+  t.cell = VtkCell::Tetra;
+  t.dimension = 3;
+  t.corner_nodes = 4;
+  t.faces = {{1, 0, 2}, {0, 1, 3}, {1, 2, 3}, {2, 0, 3}};
+  t.edges = {{0, 1}, {1, 2}, {2, 0}, {0, 3}, {1, 3}, {2, 3}};
+  t.linear = VtkCell::Tetra;
+  return t;
+}
+
+CellTopology quadratic_tetrahedron() {
+  CellTopology t = tetrahedron();
+  t.cell = VtkCell::QuadraticTetra;
+  t.midside_nodes = 6;
   return t;
 }
 
@@ -27,6 +58,7 @@ CellTopology polygon(VtkCell cell, int corners) {
   t.cell = cell;
   t.dimension = 2;
   t.corner_nodes = corners;
+  t.linear = cell;
   t.faces.emplace_back();
   for (int k = 0; k < corners; ++k) {
     t.faces.front().push_back(k);
@@ -40,6 +72,7 @@ CellTopology simple(VtkCell cell, int dimension, int corners) {
   t.cell = cell;
   t.dimension = dimension;
   t.corner_nodes = corners;
+  t.linear = cell;
   if (dimension == 1) t.edges.push_back({0, 1});
   return t;
 }
@@ -61,6 +94,9 @@ const CellTopology& cell_topology(VtkCell cell) {
   static const CellTopology triangle = polygon(VtkCell::Triangle, 3);
   static const CellTopology quad = polygon(VtkCell::Quad, 4);
   static const CellTopology hex = hexahedron();
+  static const CellTopology hex20 = quadratic_hexahedron();
+  static const CellTopology tet = tetrahedron();
+  static const CellTopology tet10 = quadratic_tetrahedron();
   switch (cell) {
     case VtkCell::Vertex:
       return vertex;
@@ -74,9 +110,34 @@ const CellTopology& cell_topology(VtkCell cell) {
       return quad;
     case VtkCell::Hexahedron:
       return hex;
+    case VtkCell::QuadraticHexahedron:
+      return hex20;
+    case VtkCell::Tetra:
+      return tet;
+    case VtkCell::QuadraticTetra:
+      return tet10;
   }
   IMPACTFE_CHECK(false, "unknown cell type");
   return poly_vertex;
+}
+
+int CellTopology::midside_of(int a, int b) const {
+  if (midside_nodes == 0) return -1;
+  for (std::size_t k = 0; k < edges.size(); ++k)
+    if ((edges[k][0] == a && edges[k][1] == b) || (edges[k][0] == b && edges[k][1] == a))
+      return corner_nodes + static_cast<int>(k);
+  return -1;
+}
+
+std::vector<int> face_with_midsides(const CellTopology& cell, const std::vector<int>& corners) {
+  std::vector<int> out = corners;
+  if (cell.midside_nodes == 0) return out;
+  for (std::size_t k = 0; k < corners.size(); ++k) {
+    const int m = cell.midside_of(corners[k], corners[(k + 1) % corners.size()]);
+    IMPACTFE_CHECK(m >= 0, "a face side that is not an edge of its cell");
+    out.push_back(m);
+  }
+  return out;
 }
 
 std::vector<int> face_nodes(const CellTopology& cell, int face, const std::vector<int>& nodes) {
