@@ -218,6 +218,8 @@ class DeckReader {
   bool node_selected(int id) const;
   bool element_selected(int id) const;
   /// Checks the node count against the element type and stores the record (repeats allowed).
+  /// The midside nodes of a quadratic cell that E does not give are 0 until EMORE gives them
+  /// (an element still without one is refused by validate_elements).
   void add_element(const Command& c, int id, std::vector<int> nodes);
   /// Checks that every element has the real set / material / section its type needs
   /// (done when an analysis is frozen, since ANSYS allows R and MP after E).
@@ -256,6 +258,9 @@ class DeckReader {
   int last_section = 0;            // SECDATA target
   std::vector<int> defined_by_n;   // nodes defined by N, in order (FILL defaults)
   std::vector<int> element_order;  // element ids in creation order (EGEN negative IEL1)
+  /// EMORE target: the element last defined by E / EN and the position of its next node.
+  int emore_element = 0;
+  int emore_position = 0;
 
   // 4x analysis definition.
   int kan = 0;

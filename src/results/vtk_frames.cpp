@@ -24,11 +24,11 @@ VtkCell cell_type(const std::string& name, const std::vector<int>& nodes) {
   return d->vtk_cell;
 }
 
-/// Nodes a cell of this type takes, in VTK order (its corners; all nodes of a poly-vertex), or
-/// empty when the node list does not fit.
+/// Nodes a cell of this type takes, in VTK order (its corners and midside nodes, the order of
+/// the element's nodes; all nodes of a poly-vertex), or empty when the node list does not fit.
 std::vector<int> cell_nodes(VtkCell type, const std::vector<int>& nodes) {
-  const int corners = cell_topology(type).corner_nodes;
-  const std::size_t n = corners > 0 ? static_cast<std::size_t>(corners) : nodes.size();
+  const int cell_nodes = cell_topology(type).n_nodes();
+  const std::size_t n = cell_nodes > 0 ? static_cast<std::size_t>(cell_nodes) : nodes.size();
   if (nodes.size() < n || n == 0) return {};
   return std::vector<int>(nodes.begin(), nodes.begin() + static_cast<long>(n));
 }
