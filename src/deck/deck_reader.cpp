@@ -311,7 +311,8 @@ void DeckReader::add_element(const Command& c, int id, std::vector<int> nodes) {
   // Missing corner nodes repeat the last given one (3-node shell: K repeated as L).
   while (static_cast<int>(nodes.size()) < d.n_nodes) nodes.push_back(nodes.back());
   for (std::size_t k = 0; k < nodes.size(); ++k) {
-    const bool midside = static_cast<int>(k) >= cell.corner_nodes && static_cast<int>(k) < midside_end;
+    const bool midside =
+        static_cast<int>(k) >= cell.corner_nodes && static_cast<int>(k) < midside_end;
     if (midside && nodes[k] == 0) continue;  // given by EMORE, or refused (validate_elements)
     if (nodes[k] <= 0)
       fail(c, fmt::format("node {} of element {} is blank or not positive", k + 1, id));

@@ -149,9 +149,8 @@ void cmd_nsle(DeckReader& r, const Command& c) {
     const ElementTypeDescriptor* d = descriptor_of(r, e);
     const int active = d != nullptr ? d->n_nodes : static_cast<int>(e.nodes.size());
     // Corner and midside nodes of the element's cell (a cell without corners: all active ones).
-    const int corners = d != nullptr && d->topology().corner_nodes > 0
-                            ? d->topology().corner_nodes
-                            : active;
+    const int corners =
+        d != nullptr && d->topology().corner_nodes > 0 ? d->topology().corner_nodes : active;
     const int midside_end = d != nullptr ? corners + d->topology().midside_nodes : corners;
     for (std::size_t k = 0; k < e.nodes.size(); ++k) {
       const int position = static_cast<int>(k);

@@ -111,8 +111,7 @@ std::vector<ElementFields> make_table() {
                {},
                {{2, {0, 1}, "integration: 0 uniform reduced 2x2x2, 1 full 3x3x3"},
                 {6, {0}, "1 (mixed u-P formulation) is not implemented"}}});
-  t.push_back(
-      {"SOLID187", {}, {{6, {0}, "1 and 2 (mixed u-P formulations) are not implemented"}}});
+  t.push_back({"SOLID187", {}, {{6, {0}, "1 and 2 (mixed u-P formulations) are not implemented"}}});
   // Shells (docs/elements/shell63.md). SHELL181 is computed with the SHELL63 kernel; of its
   // real constants only the thicknesses are read (the others mean other things than SHELL63's).
   t.push_back({"SHELL63",
