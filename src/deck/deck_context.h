@@ -199,6 +199,8 @@ class DeckReader {
   bool node_selected(int id) const;
   bool element_selected(int id) const;
   /// Checks the node count against the element type and stores the record (repeats allowed).
+  /// The midside nodes of a quadratic cell that E does not give are 0 until EMORE gives them
+  /// (an element still without one is refused by validate_elements).
   void add_element(const Command& c, int id, std::vector<int> nodes);
   /// Checks that every element has the real set / material / section its type needs
   /// (done when an analysis is frozen, since ANSYS allows R and MP after E).

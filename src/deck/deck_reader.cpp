@@ -297,8 +297,24 @@ void DeckReader::add_element(const Command& c, int id, std::vector<int> nodes) {
                         d.name));
   // Trailing blank optional nodes (a beam's orientation node) are not nodes.
   while (static_cast<int>(nodes.size()) > d.n_nodes && nodes.back() == 0) nodes.pop_back();
+  if (d.triangle_form_keyopt > 0 && type.key(d.triangle_form_keyopt) == 1) {
+    // The 6-node triangle I J K L M N (PLANE183 KEYOPT(1) = 1) in the quadrilateral's form
+    // with K = L = O: I J K K, then the midsides L M (K) N of I-J J-K (K-K) K-I.
+    while (!nodes.empty() && nodes.back() == 0) nodes.pop_back();
+    if (nodes.size() != 6)
+      fail(c, fmt::format("{} with KEYOPT({}) = 1 is the 6-node triangle: E takes the nodes I J "
+                          "K L M N, got {}",
+                          d.name, d.triangle_form_keyopt, nodes.size()));
+    nodes = {nodes[0], nodes[1], nodes[2], nodes[2], nodes[3], nodes[4], nodes[2], nodes[5]};
+  }
   const int given = static_cast<int>(nodes.size());
-  if (given < d.least_nodes() || given > d.max_nodes()) {
+  // A cell with midside nodes takes its corners from E and the rest from EMORE (E has 8 node
+  // fields): the positions not given yet are 0 (the cell's corners must all be given).
+  const CellTopology& cell = d.topology();
+  const int midside_end = cell.midside_nodes > 0 ? cell.n_nodes() : 0;
+  if (midside_end > 0 && given >= cell.corner_nodes && given < midside_end)
+    nodes.resize(static_cast<std::size_t>(midside_end), 0);
+  else if (given < d.least_nodes() || given > d.max_nodes()) {
     std::string range;
     if (d.least_nodes() < d.n_nodes)
       range = fmt::format(" (at least {}: missing corner nodes repeat the last)", d.least_nodes());
@@ -310,10 +326,15 @@ void DeckReader::add_element(const Command& c, int id, std::vector<int> nodes) {
   // Missing corner nodes repeat the last given one (3-node shell: K repeated as L).
   while (static_cast<int>(nodes.size()) < d.n_nodes) nodes.push_back(nodes.back());
   for (std::size_t k = 0; k < nodes.size(); ++k) {
+    const bool midside =
+        static_cast<int>(k) >= cell.corner_nodes && static_cast<int>(k) < midside_end;
+    if (midside && nodes[k] == 0) continue;  // given by EMORE, or refused (validate_elements)
     if (nodes[k] <= 0)
       fail(c, fmt::format("node {} of element {} is blank or not positive", k + 1, id));
     require_node(c, nodes[k]);
   }
+  modeling.emore_element = id;
+  modeling.emore_position = given;
   ElementRecord rec;
   rec.id = id;
   rec.type = modeling.current_type;
@@ -339,6 +360,13 @@ void DeckReader::validate_elements() {
     if (d.defined_by_file && e.superelement_file.empty())
       throw InputError(e.where,
                        fmt::format("element {}: {} without a superelement file", id, d.name));
+    // A midside node that neither E nor EMORE gave (the element's factory refuses it too).
+    const CellTopology& cell = d.topology();
+    for (int k = cell.corner_nodes; cell.midside_nodes > 0 && k < cell.n_nodes(); ++k)
+      if (e.nodes[static_cast<std::size_t>(k)] == 0)
+        throw InputError(e.where, fmt::format("element {} ({}): midside node {} (of {}) is not "
+                                              "given (E takes the first 8 nodes, EMORE the rest)",
+                                              id, t->second.ansys_name, k + 1, cell.n_nodes()));
     const auto section = model.sections.find(e.secnum);
     const bool has_section =
         e.secnum > 0 && section != model.sections.end() && d.accepts_section(section->second.type);

@@ -30,16 +30,18 @@ std::vector<std::vector<int>> boundary_items(const DeckReader& r, const ElementR
   std::vector<std::vector<int>> out;
   const ElementTypeDescriptor* d = descriptor_of(r, e);
   if (d == nullptr) return out;
-  if (d->vtk_cell == VtkCell::Hexahedron) {
-    for (const auto& face : d->faces) {
-      std::vector<int> nodes;
-      for (int p : face) nodes.push_back(e.nodes[static_cast<std::size_t>(p)]);
-      out.push_back(nodes);
-    }
-  } else if (d->vtk_cell == VtkCell::Quad || d->vtk_cell == VtkCell::Triangle) {
-    for (std::size_t k = 0; k < 4 && k < e.nodes.size(); ++k) {
-      const int a = e.nodes[k], b = e.nodes[(k + 1) % std::min<std::size_t>(4, e.nodes.size())];
-      if (a != b) out.push_back({a, b});
+  const CellTopology& cell = d->topology();
+  if (cell.dimension == 3) {
+    for (const auto& face : cell.faces) out.push_back(face_with_midsides(cell, face));
+    for (auto& face : out)
+      for (int& p : face) p = e.nodes[static_cast<std::size_t>(p)];
+  } else if (cell.dimension == 2) {
+    for (const auto& edge : cell.edges) {
+      std::vector<int> nodes = {e.nodes[static_cast<std::size_t>(edge[0])],
+                                e.nodes[static_cast<std::size_t>(edge[1])]};
+      const int m = cell.midside_of(edge[0], edge[1]);
+      if (m >= 0) nodes.push_back(e.nodes[static_cast<std::size_t>(m)]);
+      if (nodes[0] != nodes[1]) out.push_back(nodes);
     }
   } else {
     for (int n : e.nodes) out.push_back({n});
@@ -146,17 +148,24 @@ void cmd_nsle(DeckReader& r, const Command& c) {
     if (!r.model.selection.elements.selected(id)) continue;
     const ElementTypeDescriptor* d = descriptor_of(r, e);
     const int active = d != nullptr ? d->n_nodes : static_cast<int>(e.nodes.size());
+    // Corner and midside nodes of the element's cell (a cell without corners: all active ones).
+    const int corners =
+        d != nullptr && d->topology().corner_nodes > 0 ? d->topology().corner_nodes : active;
+    const int midside_end = d != nullptr ? corners + d->topology().midside_nodes : corners;
     for (std::size_t k = 0; k < e.nodes.size(); ++k) {
-      const bool is_active = static_cast<int>(k) < active;
+      const int position = static_cast<int>(k);
+      const bool is_active = position < active;
       bool take = false;
-      if (node_type == "ALL" || node_type == "CORNER")
-        take = node_type == "ALL" || is_active;
+      if (node_type == "ALL")
+        take = true;
+      else if (node_type == "CORNER")
+        take = position < corners;
       else if (node_type == "ACTIVE")
         take = is_active;
       else if (node_type == "INACTIVE")
         take = !is_active;
       else if (node_type == "MID")
-        take = false;  // linear elements have no midside nodes
+        take = position >= corners && position < midside_end;
       else if (node_type == "POS")
         take = static_cast<int>(k) + 1 == num;
       else if (node_type == "FACE") {
@@ -167,7 +176,7 @@ void cmd_nsle(DeckReader& r, const Command& c) {
         r.fail(c, fmt::format("bad NodeType '{}' (ALL, ACTIVE, INACTIVE, CORNER, MID, POS, FACE)",
                               c.text(2)));
       }
-      if (take) out.insert(e.nodes[k]);
+      if (take && e.nodes[k] > 0) out.insert(e.nodes[k]);
     }
   }
   r.model.selection.nodes.apply(select_type(r, c, 1, true), all_ids(r.model.nodes),

@@ -43,6 +43,9 @@ struct ModelingState {
   // Generation memory.
   std::vector<int> defined_by_n;   // nodes defined by N, in order (FILL defaults)
   std::vector<int> element_order;  // element ids in creation order (EGEN negative IEL1)
+  /// EMORE target: the element last defined by E / EN and the position of its next node.
+  int emore_element = 0;
+  int emore_position = 0;
 };
 
 }  // namespace impactfe::deck

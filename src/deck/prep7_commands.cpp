@@ -255,6 +255,21 @@ void cmd_en(DeckReader& r, const Command& c) {
   r.add_element(c, *id, std::move(nodes));
 }
 
+void cmd_emore(DeckReader& r, const Command& c) {
+  // EMORE,Q,R,S,T,U,V,W,X: the next nodes of the element last defined by E / EN.
+  const auto e = r.model.elements.find(r.modeling.emore_element);
+  if (e == r.model.elements.end()) r.fail(c, "no element defined by E or EN before EMORE");
+  std::vector<int>& nodes = e->second.nodes;
+  for (int f = 1; f <= c.last_given(); ++f, ++r.modeling.emore_position) {
+    const int node = r.integer(c, f, 0);
+    if (r.modeling.emore_position >= static_cast<int>(nodes.size()))
+      r.fail(c, fmt::format("element {} has {} nodes: EMORE gives more", e->first, nodes.size()));
+    if (node < 0) r.fail(c, fmt::format("node {} is not positive", node));
+    if (node > 0) r.require_node(c, node);
+    nodes[static_cast<std::size_t>(r.modeling.emore_position)] = node;
+  }
+}
+
 void cmd_se(DeckReader& r, const Command& c) {
   if (!active_type_is_matrix50(r)) r.fail(c, "the active element TYPE must be MATRIX50");
   if (c.blank(1)) r.fail(c, "superelement file name missing");
@@ -419,6 +434,7 @@ void register_prep7_commands(std::vector<CommandSpec>& t) {
   t.push_back({"N", cmd_n, kPrep7});
   t.push_back({"E", cmd_e, kPrep7});
   t.push_back({"EN", cmd_en, kPrep7});
+  t.push_back({"EMORE", cmd_emore, kPrep7});
   t.push_back({"SE", cmd_se, kPrep7});
   t.push_back({"TYPE", cmd_type, kPrep7});
   t.push_back({"REAL", cmd_real, kPrep7});

@@ -18,6 +18,37 @@ CellTopology hexahedron() {
   for (int k = 0; k < 4; ++k) t.edges.push_back({k, (k + 1) % 4});          // bottom ring
   for (int k = 0; k < 4; ++k) t.edges.push_back({4 + k, 4 + (k + 1) % 4});  // top ring
   for (int k = 0; k < 4; ++k) t.edges.push_back({k, k + 4});                // I-M ... L-P
+  t.linear = VtkCell::Hexahedron;
+  return t;
+}
+
+/// The 20-node hexahedron: the hexahedron's corners, faces and edges, one midside node per edge
+/// (Q R S T on the bottom ring, U V W X on the top ring, Y Z A B on I-M ... L-P).
+CellTopology quadratic_hexahedron() {
+  CellTopology t = hexahedron();
+  t.cell = VtkCell::QuadraticHexahedron;
+  t.midside_nodes = 12;
+  return t;
+}
+
+/// The tetrahedron I J K L, L on the positive side of I J K (counter-clockwise seen from L).
+/// Faces outward in MAPDL's numbering of SOLID187 / SOLID285 (J-I-K, I-J-L, J-K-L, K-I-L);
+/// edges I-J J-K K-I I-L J-L K-L, the order of the 10-node tetrahedron's midside nodes.
+CellTopology tetrahedron() {
+  CellTopology t;
+  t.cell = VtkCell::Tetra;
+  t.dimension = 3;
+  t.corner_nodes = 4;
+  t.faces = {{1, 0, 2}, {0, 1, 3}, {1, 2, 3}, {2, 0, 3}};
+  t.edges = {{0, 1}, {1, 2}, {2, 0}, {0, 3}, {1, 3}, {2, 3}};
+  t.linear = VtkCell::Tetra;
+  return t;
+}
+
+CellTopology quadratic_tetrahedron() {
+  CellTopology t = tetrahedron();
+  t.cell = VtkCell::QuadraticTetra;
+  t.midside_nodes = 6;
   return t;
 }
 
@@ -27,6 +58,7 @@ CellTopology polygon(VtkCell cell, int corners) {
   t.cell = cell;
   t.dimension = 2;
   t.corner_nodes = corners;
+  t.linear = cell;
   t.faces.emplace_back();
   for (int k = 0; k < corners; ++k) {
     t.faces.front().push_back(k);
@@ -35,11 +67,20 @@ CellTopology polygon(VtkCell cell, int corners) {
   return t;
 }
 
+/// The 8-node quadrilateral and the 6-node triangle: a midside node on each side, in side order.
+CellTopology quadratic_polygon(VtkCell cell, VtkCell linear, int corners) {
+  CellTopology t = polygon(linear, corners);
+  t.cell = cell;
+  t.midside_nodes = corners;
+  return t;
+}
+
 CellTopology simple(VtkCell cell, int dimension, int corners) {
   CellTopology t;
   t.cell = cell;
   t.dimension = dimension;
   t.corner_nodes = corners;
+  t.linear = cell;
   if (dimension == 1) t.edges.push_back({0, 1});
   return t;
 }
@@ -60,7 +101,13 @@ const CellTopology& cell_topology(VtkCell cell) {
   static const CellTopology line = simple(VtkCell::Line, 1, 2);
   static const CellTopology triangle = polygon(VtkCell::Triangle, 3);
   static const CellTopology quad = polygon(VtkCell::Quad, 4);
+  static const CellTopology triangle6 =
+      quadratic_polygon(VtkCell::QuadraticTriangle, VtkCell::Triangle, 3);
+  static const CellTopology quad8 = quadratic_polygon(VtkCell::QuadraticQuad, VtkCell::Quad, 4);
   static const CellTopology hex = hexahedron();
+  static const CellTopology hex20 = quadratic_hexahedron();
+  static const CellTopology tet = tetrahedron();
+  static const CellTopology tet10 = quadratic_tetrahedron();
   switch (cell) {
     case VtkCell::Vertex:
       return vertex;
@@ -72,11 +119,40 @@ const CellTopology& cell_topology(VtkCell cell) {
       return triangle;
     case VtkCell::Quad:
       return quad;
+    case VtkCell::QuadraticTriangle:
+      return triangle6;
+    case VtkCell::QuadraticQuad:
+      return quad8;
     case VtkCell::Hexahedron:
       return hex;
+    case VtkCell::QuadraticHexahedron:
+      return hex20;
+    case VtkCell::Tetra:
+      return tet;
+    case VtkCell::QuadraticTetra:
+      return tet10;
   }
   IMPACTFE_CHECK(false, "unknown cell type");
   return poly_vertex;
+}
+
+int CellTopology::midside_of(int a, int b) const {
+  if (midside_nodes == 0) return -1;
+  for (std::size_t k = 0; k < edges.size(); ++k)
+    if ((edges[k][0] == a && edges[k][1] == b) || (edges[k][0] == b && edges[k][1] == a))
+      return corner_nodes + static_cast<int>(k);
+  return -1;
+}
+
+std::vector<int> face_with_midsides(const CellTopology& cell, const std::vector<int>& corners) {
+  std::vector<int> out = corners;
+  if (cell.midside_nodes == 0) return out;
+  for (std::size_t k = 0; k < corners.size(); ++k) {
+    const int m = cell.midside_of(corners[k], corners[(k + 1) % corners.size()]);
+    IMPACTFE_CHECK(m >= 0, "a face side that is not an edge of its cell");
+    out.push_back(m);
+  }
+  return out;
 }
 
 std::vector<int> face_nodes(const CellTopology& cell, int face, const std::vector<int>& nodes) {
@@ -100,7 +176,16 @@ std::vector<CellPiece> cell_pieces(VtkCell cell, const std::vector<int>& nodes) 
         out.push_back({CellPiece::Kind::Point, nodes});
         break;
       }
-      auto ring = unique_in_order(nodes);
+      // A quadratic polygon is drawn through its midside nodes: corner, midside, corner, ...
+      std::vector<int> around = nodes;
+      if (t.midside_nodes > 0 && static_cast<int>(nodes.size()) >= t.n_nodes()) {
+        around.clear();
+        for (int k = 0; k < t.corner_nodes; ++k) {
+          around.push_back(nodes[static_cast<std::size_t>(k)]);
+          around.push_back(nodes[static_cast<std::size_t>(t.corner_nodes + k)]);
+        }
+      }
+      auto ring = unique_in_order(around);
       if (ring.size() >= 3)
         out.push_back({CellPiece::Kind::Polygon, std::move(ring)});
       else if (ring.size() == 2)

@@ -15,7 +15,12 @@ enum class VtkCell : int {
   Line = 3,
   Triangle = 5,
   Quad = 9,
+  QuadraticTriangle = 22,  // 6 nodes: corners I J K, then midsides of I-J J-K K-I
+  QuadraticQuad = 23,      // 8 nodes: corners I J K L, then midsides of I-J J-K K-L L-I
+  Tetra = 10,
   Hexahedron = 12,
+  QuadraticTetra = 24,       // 10 nodes: corners I J K L, then midsides of I-J J-K K-I I-L J-L K-L
+  QuadraticHexahedron = 25,  // 20 nodes: corners I..P, midsides of the edges in `edges` order
 };
 
 /// The topology of one reference cell. Node positions are 0-based in the element's node list,
@@ -28,8 +33,11 @@ struct CellTopology {
   /// poly-vertex). Nodes beyond them that are not midside nodes are not part of the cell (a
   /// beam's orientation node K).
   int corner_nodes = 0;
-  /// Midside nodes after the corners (none of the cells here has any).
+  /// Midside nodes after the corners: midside node k (position corner_nodes + k) lies on
+  /// edges[k] (VTK's quadratic cells and MAPDL's SOLID186/SOLID187 order alike).
   int midside_nodes = 0;
+  /// The cell of the corners alone (a quadratic cell's linear counterpart; itself otherwise).
+  VtkCell linear = VtkCell::PolyVertex;
   /// Faces of a volume cell as corner positions, outward by the right-hand rule for a positive
   /// volume (I J K L counter-clockwise seen from M N O P): the bottom I-L-K-J, the top
   /// M-N-O-P, then the sides I-J-N-M, J-K-O-N, K-L-P-O, L-I-M-P, each read from its bottom
@@ -38,6 +46,10 @@ struct CellTopology {
   std::vector<std::vector<int>> faces;
   /// Edges as pairs of corner positions.
   std::vector<std::array<int, 2>> edges;
+
+  int n_nodes() const { return corner_nodes + midside_nodes; }
+  /// Position of the midside node on the edge between corner positions a and b (-1: none).
+  int midside_of(int a, int b) const;
 };
 
 /// The topology of a cell type.
@@ -59,5 +71,10 @@ std::vector<CellPiece> cell_pieces(VtkCell cell, const std::vector<int>& nodes);
 
 /// The nodes of `face` (0-based in the cell's face list) of an element, in the face's order.
 std::vector<int> face_nodes(const CellTopology& cell, int face, const std::vector<int>& nodes);
+
+/// A face given by its corner positions (in order) followed by the positions of the midside
+/// nodes of its sides c0-c1, c1-c2, ..., cn-c0 (8-node and 6-node faces of quadratic cells;
+/// the corners alone for a linear cell): the face-node order of the surface loads.
+std::vector<int> face_with_midsides(const CellTopology& cell, const std::vector<int>& corners);
 
 }  // namespace impactfe

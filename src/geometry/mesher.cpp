@@ -102,8 +102,63 @@ int Mesher::add_node(const Vec3& x) {
   return id;
 }
 
+int Mesher::midside_node(int a, int b) {
+  if (!midside_index_) {
+    // The midside nodes of the elements already in the model, by the corner pair of their
+    // edge: a neighbour meshed earlier (another volume) shares its edge's node.
+    midside_index_.emplace();
+    for (const auto& [id, e] : model_.elements) {
+      const auto t = model_.element_types.find(e.type);
+      if (t == model_.element_types.end()) continue;
+      const CellTopology& cell = element_type_descriptor(t->second).topology();
+      for (int k = 0; k < cell.midside_nodes && cell.n_nodes() <= static_cast<int>(e.nodes.size());
+           ++k) {
+        const auto& edge = cell.edges[static_cast<std::size_t>(k)];
+        const int p = e.nodes[static_cast<std::size_t>(edge[0])];
+        const int q = e.nodes[static_cast<std::size_t>(edge[1])];
+        const int m = e.nodes[static_cast<std::size_t>(cell.corner_nodes + k)];
+        if (p != q && m > 0) midside_index_->emplace(std::minmax(p, q), m);
+      }
+    }
+  }
+  const auto key = std::minmax(a, b);
+  const auto it = midside_index_->find(key);
+  if (it != midside_index_->end()) return it->second;
+  // On a meshed line: at the middle of the line between the two nodes (on an arc, not on its
+  // chord). Inside the region: at mid-edge, the mapped mesh's edges being straight there.
+  Vec3 x = 0.5 * (model_.nodes.at(a).x + model_.nodes.at(b).x);
+  if (const auto on = line_edges_.find(key); on != line_edges_.end()) {
+    const Line& line = solid_.lines.at(on->second);
+    x = line_point(line, 0.5 * (line_parameter(line, model_.nodes.at(a).x) +
+                                line_parameter(line, model_.nodes.at(b).x)));
+  }
+  const int id = add_node(x);
+  midside_index_->emplace(key, id);
+  created_midside_nodes_.push_back(id);
+  return id;
+}
+
+void Mesher::index_line_edges(int id) {
+  const auto it = solid_.lines.find(id);
+  if (it == solid_.lines.end()) return;
+  const std::vector<int>& nodes = it->second.nodes;
+  for (std::size_t k = 0; k + 1 < nodes.size(); ++k)
+    line_edges_.emplace(std::minmax(nodes[k], nodes[k + 1]), id);
+}
+
 int Mesher::add_element(const Attributes& attr, std::vector<int> nodes) {
   const ElementTypeDescriptor& d = descriptor(attr.type);
+  const CellTopology& cell = d.topology();
+  if (cell.midside_nodes > 0 && static_cast<int>(nodes.size()) <= cell.corner_nodes) {
+    // A quadratic element from the corners of the mapped lattice: a midside node on each edge
+    // (the edge's corner node when the edge is collapsed).
+    while (static_cast<int>(nodes.size()) < cell.corner_nodes) nodes.push_back(nodes.back());
+    for (const auto& edge : cell.edges) {
+      const int a = nodes[static_cast<std::size_t>(edge[0])];
+      const int b = nodes[static_cast<std::size_t>(edge[1])];
+      nodes.push_back(a == b ? a : midside_node(a, b));
+    }
+  }
   while (static_cast<int>(nodes.size()) < d.n_nodes) nodes.push_back(nodes.back());
   const long long last = model_.elements.empty() ? 0 : model_.elements.rbegin()->first;
   if (last >= kMaxMeshNumber)
@@ -390,7 +445,7 @@ void Mesher::mesh_area(int id) {
   if (dimension(d) != 2)
     fail(
         fmt::format("element type {} ({}) is a {} element: AMESH needs an area element "
-                    "(SHELL; set TYPE or AATT)",
+                    "(SHELL, PLANE; set TYPE or AATT)",
                     attr.type, d.name, dimension_name(dimension(d))));
   if (!area.elements.empty()) {
     Log::info("{}:{}: {}: area {} is already meshed", where_.file, where_.line, where_.command, id);
@@ -398,7 +453,7 @@ void Mesher::mesh_area(int id) {
   }
   MeshControls& m = solid_.mesh;
   const bool triangles = m.shape_2d == 1;
-  if (triangles && d.least_nodes() > 3)
+  if (triangles && d.least_nodes() > 3 && d.topology().midside_nodes == 0)
     fail(fmt::format("element type {} ({}) has no triangular form (MSHAPE,1)", attr.type, d.name));
   if (m.key == 0 && !m.free_warning_given) {
     Log::warn(
@@ -408,6 +463,8 @@ void Mesher::mesh_area(int id) {
     m.free_warning_given = true;
   }
   area_nodes(id, triangles);
+  if (d.topology().midside_nodes > 0)
+    for (int line : solid_.areas.at(id).lines) index_line_edges(std::abs(line));
   const AreaGrid& g = solid_.areas.at(id).grid;
   std::vector<int> elements;
   if (!g.triangular) {
@@ -431,7 +488,9 @@ void Mesher::mesh_area(int id) {
               add_element(attr, {g.at(i + 1, j), g.at(i + 1, j + 1), g.at(i, j + 1)}));
       }
   }
-  solid_.areas.at(id).elements = std::move(elements);
+  Area& meshed = solid_.areas.at(id);
+  meshed.elements = std::move(elements);
+  for (int n : take_created_midside_nodes()) meshed.interior_nodes.push_back(n);
 }
 
 // ---- clearing ----------------------------------------------------------------------------------

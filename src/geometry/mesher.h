@@ -11,6 +11,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/errors.h"
@@ -81,7 +82,20 @@ class Mesher {
   /// triangular lattice on a 3-sided area.
   void area_nodes(int id, bool triangles);
   int add_node(const Vec3& x);
+  /// An element of the attributes' type on `nodes`: the corners of its cell (missing corners
+  /// repeat the last); a cell with midside nodes gets one at the middle of each edge, shared
+  /// with the elements that have the same edge (midside_node).
   int add_element(const Attributes& attr, std::vector<int> nodes);
+  /// The midside node of the edge between nodes a and b: the one an existing element has there,
+  /// else a new node at mid-edge (kept in created_midside_nodes).
+  int midside_node(int a, int b);
+  /// Makes the midside nodes of the edges between consecutive nodes of a meshed line lie on
+  /// the line (an arc's at its middle angle), not on the chord.
+  void index_line_edges(int line);
+  /// Midside nodes created by this mesher, in creation order (the meshed entity owns them).
+  std::vector<int> take_created_midside_nodes() {
+    return std::exchange(created_midside_nodes_, {});
+  }
   /// Signed line joining keypoints a and b inside `lines` (0 when none).
   int line_joining(const std::vector<int>& lines, int a, int b) const;
   [[noreturn]] void fail(const std::string& message) const;
@@ -118,6 +132,9 @@ class Mesher {
   std::map<int, int> planned_;  // line -> divisions decided for this command
   double longest_line_ = 0.0;
   std::vector<int> created_elements_;
+  std::optional<std::map<std::pair<int, int>, int>> midside_index_;  // corner pair -> midside
+  std::vector<int> created_midside_nodes_;
+  std::map<std::pair<int, int>, int> line_edges_;  // consecutive nodes of a line -> the line
 };
 
 }  // namespace impactfe::geometry

@@ -44,6 +44,11 @@ void Mesher::mesh_volume(int id, int source, int target) {
         fmt::format("element type {} ({}) is not a solid element: VMESH needs a brick element "
                     "(SOLID185; set TYPE or VATT)",
                     attr.type, d.name));
+  if (d.topology().linear != VtkCell::Hexahedron)
+    fail(
+        fmt::format("element type {} ({}) is not a hexahedron: the mapped mesher of VMESH and "
+                    "VSWEEP makes bricks, and free tetrahedral meshing is not supported",
+                    attr.type, d.name));
   if (!volume.elements.empty()) {
     Log::info("{}:{}: {}: volume {} is already meshed", where_.file, where_.line, where_.command,
               id);
@@ -72,6 +77,7 @@ void Mesher::mesh_volume(int id, int source, int target) {
         interior.push_back(block.ids[block.index(i, j, k)] =
                                add_node(block.xyz[block.index(i, j, k)]));
   std::vector<int> elements = volume_block_elements(block, attr);
+  for (int n : take_created_midside_nodes()) interior.push_back(n);
   Volume& stored = solid_.volumes.at(id);
   stored.interior_nodes = std::move(interior);
   stored.elements = std::move(elements);

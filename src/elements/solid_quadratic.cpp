@@ -1,0 +1,239 @@
+#include "elements/solid_quadratic.h"
+
+#include <fmt/format.h>
+
+#include <Eigen/Dense>
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+
+#include "core/errors.h"
+
+namespace impactfe {
+
+namespace {
+
+Eigen::Matrix3d voigt_to_tensor(const Vector6d& s) {
+  Eigen::Matrix3d t;
+  t << s(0), s(3), s(5), s(3), s(1), s(4), s(5), s(4), s(2);
+  return t;
+}
+
+/// Small-strain B (Bathe 5.3, engineering shear; Voigt xx yy zz xy yz xz) of ∂N/∂x.
+Eigen::MatrixXd strain_matrix(const Eigen::Matrix3Xd& grad) {
+  const int nn = static_cast<int>(grad.cols());
+  Eigen::MatrixXd b = Eigen::MatrixXd::Zero(6, 3 * nn);
+  for (int a = 0; a < nn; ++a) {
+    const double g0 = grad(0, a), g1 = grad(1, a), g2 = grad(2, a);
+    b(0, 3 * a) = g0;
+    b(1, 3 * a + 1) = g1;
+    b(2, 3 * a + 2) = g2;
+    b(3, 3 * a) = g1;
+    b(3, 3 * a + 1) = g0;
+    b(4, 3 * a + 1) = g2;
+    b(4, 3 * a + 2) = g1;
+    b(5, 3 * a) = g2;
+    b(5, 3 * a + 2) = g0;
+  }
+  return b;
+}
+
+/// The points of the consistent mass: NᵀN is of degree 4 per coordinate on the brick (3x3x3 is
+/// exact for a parallelepiped) and of degree 4 on the tetrahedron (conical product, degree 5).
+std::vector<QuadraturePoint> mass_rule(QuadraticShape shape) {
+  return shape == QuadraticShape::Hex20 ? gauss_cube(3) : collapsed_tetrahedron(4);
+}
+
+}  // namespace
+
+QuadraticSolid::QuadraticSolid(int id, QuadraticShape shape, const std::vector<int>& nodes,
+                               const std::vector<Vec3>& x, const IsotropicElasticity& material,
+                               std::vector<QuadraturePoint> stiffness_rule,
+                               std::vector<std::vector<int>> faces, const SourceLocation& where)
+    : Element(id),
+      shape_(shape),
+      nodes_(nodes),
+      x_(x),
+      rule_(std::move(stiffness_rule)),
+      faces_(std::move(faces)) {
+  const int nn = quadratic_shape_nodes(shape);
+  IMPACTFE_CHECK(static_cast<int>(nodes.size()) == nn && static_cast<int>(x.size()) == nn,
+                 "quadratic solid built with a wrong node count");
+  for (int a = 0; a < nn; ++a)
+    for (int b = a + 1; b < nn; ++b)
+      if (nodes[a] == nodes[b])
+        throw InputError(where, fmt::format("element {}: node {} appears twice (positions {} and "
+                                            "{}); a quadratic solid needs distinct nodes",
+                                            id, nodes[a], a + 1, b + 1));
+  for (int node : nodes)
+    for (Dof dof : {Dof::UX, Dof::UY, Dof::UZ}) dofs_.push_back(DofKey{node, dof});
+  d_ = isotropic_elasticity_matrix(material.young, material.poisson);
+  density_ = material.density;
+
+  // A determinant below 1e-10 of (size/2)³ (size: largest node distance; ×6 for the unit
+  // tetrahedron's volume 1/6) is "zero". Checked at every integration point and every corner:
+  // a misplaced midside node makes the Jacobian change sign at a corner first.
+  double size = 0.0;
+  for (int a = 0; a < nn; ++a)
+    for (int b = a + 1; b < nn; ++b) size = std::max(size, (x[a] - x[b]).norm());
+  const double det_floor = 1e-10 * std::pow(0.5 * size, 3);
+  auto check = [&](const Eigen::Vector3d& xi, const std::string& what) {
+    const double det = point_at(xi).det;
+    if (!(det > det_floor))
+      throw InputError(where, fmt::format("element {}: zero or negative Jacobian determinant "
+                                          "{:.6g} at {} (check the node order and the midside "
+                                          "node positions)",
+                                          id, det, what));
+  };
+  const auto nodes_xi = quadratic_shape_nodes_xi(shape);
+  const int corners = shape == QuadraticShape::Hex20 ? 8 : 4;
+  for (int c = 0; c < corners; ++c) check(nodes_xi[c], fmt::format("corner node {}", c + 1));
+  for (std::size_t p = 0; p < rule_.size(); ++p)
+    check(rule_[p].xi, fmt::format("integration point {}", p + 1));
+  volume_ = 0.0;
+  for (const QuadraturePoint& q : mass_rule(shape)) volume_ += q.weight * point_at(q.xi).det;
+}
+
+QuadraticSolid::Point QuadraticSolid::point_at(const Eigen::Vector3d& xi) const {
+  Point p;
+  Eigen::Matrix3Xd dn;
+  quadratic_shape(shape_, xi, p.n, dn);
+  // J(i, j) = ∂x_j/∂ξ_i (Bathe's convention: ∂/∂x = J⁻¹ ∂/∂ξ).
+  Eigen::Matrix3d j = Eigen::Matrix3d::Zero();
+  for (int a = 0; a < static_cast<int>(dn.cols()); ++a)
+    j += dn.col(a) * x_[static_cast<std::size_t>(a)].transpose();
+  p.det = j.determinant();
+  p.grad = j.inverse() * dn;
+  return p;
+}
+
+Eigen::MatrixXd QuadraticSolid::small_strain_stiffness() const {
+  const int n = n_dofs();
+  Eigen::MatrixXd k = Eigen::MatrixXd::Zero(n, n);
+  for (const QuadraturePoint& q : rule_) {
+    const Point p = point_at(q.xi);
+    const Eigen::MatrixXd b = strain_matrix(p.grad);
+    k.noalias() += (q.weight * p.det) * (b.transpose() * d_ * b);
+  }
+  return 0.5 * (k + k.transpose());
+}
+
+void QuadraticSolid::tangent(const ElementContext& ctx, const Eigen::VectorXd& u,
+                             Eigen::MatrixXd& K, Eigen::VectorXd& f_int) const {
+  if (ctx.large_deflection)
+    throw ElementSolutionError(
+        id(), fmt::format("element {}: SOLID186/SOLID187 are small-strain here; large "
+                          "deflection (NLGEOM,ON) is not implemented for the quadratic solids",
+                          id()));
+  K = small_strain_stiffness();
+  if (ctx.stress_stiffening) {
+    // K_σ = ∫ Gᵀ σ G dV per direction with σ the small-strain stress of u at the stiffness
+    // points (Bathe 6.3.2, the linearised updated-Lagrangian term), so that the converged
+    // state solves (K + K_σ(u)) u = F as ANSYS SSTIF does.
+    const int nn = static_cast<int>(nodes_.size());
+    Eigen::MatrixXd ks = Eigen::MatrixXd::Zero(nn, nn);
+    for (const QuadraturePoint& q : rule_) {
+      const Point p = point_at(q.xi);
+      const Vector6d sigma = d_ * (strain_matrix(p.grad) * u);
+      ks.noalias() += (q.weight * p.det) * (p.grad.transpose() * voigt_to_tensor(sigma) * p.grad);
+    }
+    for (int a = 0; a < nn; ++a)
+      for (int c = 0; c < nn; ++c)
+        for (int i = 0; i < 3; ++i) K(3 * a + i, 3 * c + i) += ks(a, c);
+  }
+  f_int = K * u;
+}
+
+Eigen::MatrixXd QuadraticSolid::scalar_mass() const {
+  const int nn = static_cast<int>(nodes_.size());
+  Eigen::MatrixXd m = Eigen::MatrixXd::Zero(nn, nn);
+  for (const QuadraturePoint& q : mass_rule(shape_)) {
+    const Point p = point_at(q.xi);
+    m.noalias() += (density_ * q.weight * p.det) * (p.n * p.n.transpose());
+  }
+  return m;
+}
+
+void QuadraticSolid::mass(const ElementContext& ctx, Eigen::MatrixXd& M) const {
+  Eigen::MatrixXd ms = scalar_mass();
+  if (ctx.lumped_mass) {
+    // HRZ: the consistent diagonal scaled to the element mass ρV. Row sums would give the
+    // corners of the 20-node brick and the 10-node tetrahedron negative masses.
+    const Eigen::VectorXd diag = ms.diagonal();
+    const double sum = diag.sum();
+    ms.setZero();
+    if (sum > 0.0) ms.diagonal() = diag * (density_ * volume_ / sum);
+  }
+  const int nn = static_cast<int>(nodes_.size());
+  M.setZero(3 * nn, 3 * nn);
+  for (int a = 0; a < nn; ++a)
+    for (int b = 0; b < nn; ++b)
+      for (int i = 0; i < 3; ++i) M(3 * a + i, 3 * b + i) = ms(a, b);
+}
+
+void QuadraticSolid::pressure_load(const ElementContext& ctx, int face,
+                                   const std::array<double, 4>& p, const Eigen::VectorXd& u,
+                                   Eigen::VectorXd& f) const {
+  if (face < 1 || face > static_cast<int>(faces_.size()))
+    throw ModelError(
+        fmt::format("element {}: face {} does not exist (1..{})", id(), face, faces_.size()));
+  if (ctx.large_deflection)
+    throw ElementSolutionError(
+        id(), fmt::format("element {}: pressure on a quadratic solid under large deflection "
+                          "(follower load) is not implemented",
+                          id()));
+  f.setZero(n_dofs());
+  const std::vector<int>& nodes = faces_[static_cast<std::size_t>(face - 1)];
+  if (nodes.empty()) return;  // a face collapsed to an edge (degenerate SOLID186) carries none
+  const int fn = static_cast<int>(nodes.size());
+  // 3x3 Gauss on the quadrilateral, the degree-4 collapsed rule on the triangle: exact for a
+  // flat face with (bi)linear pressure (the integrand N p (∂x/∂ξ × ∂x/∂η) is then of degree 4).
+  const std::vector<QuadraturePoint> rule = fn == 8 ? gauss_square(3) : collapsed_triangle(3);
+  Eigen::VectorXd n, corner;
+  Eigen::Matrix<double, 2, Eigen::Dynamic> dn;
+  for (const QuadraturePoint& q : rule) {
+    quadratic_face_shape(fn, q.xi, n, dn, corner);
+    Vec3 dxi = Vec3::Zero(), deta = Vec3::Zero();
+    for (int a = 0; a < fn; ++a) {
+      const Vec3& xa = x_[static_cast<std::size_t>(nodes[static_cast<std::size_t>(a)])];
+      dxi += dn(0, a) * xa;
+      deta += dn(1, a) * xa;
+    }
+    double pressure = 0.0;
+    for (int c = 0; c < static_cast<int>(corner.size()); ++c)
+      pressure += corner(c) * p[static_cast<std::size_t>(c)];
+    // The corner order makes ∂x/∂ξ × ∂x/∂η point outward; positive pressure pushes inward.
+    const Vec3 load = -q.weight * pressure * dxi.cross(deta);
+    for (int a = 0; a < fn; ++a)
+      f.segment<3>(3 * nodes[static_cast<std::size_t>(a)]) += n(a) * load;
+  }
+}
+
+Vector6d QuadraticSolid::stress_at(const Eigen::Vector3d& xi, const Eigen::VectorXd& u) const {
+  return d_ * (strain_matrix(point_at(xi).grad) * u);
+}
+
+const std::vector<std::string>& quadratic_solid_result_names() {
+  // A function-local static: the registrations read it during static initialisation.
+  static const std::vector<std::string> names = {"SX", "SY", "SZ", "SXY",  "SYZ", "SXZ",
+                                                 "S1", "S2", "S3", "SINT", "SEQV"};
+  return names;
+}
+
+const std::vector<std::string>& QuadraticSolid::result_names() const {
+  return quadratic_solid_result_names();
+}
+
+void QuadraticSolid::results(const ElementContext& ctx, const Eigen::VectorXd& u,
+                             const Eigen::VectorXd& v, ElementResultValues& out) const {
+  const Vector6d s = stress_at(quadratic_shape_centre(shape_), u);
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(voigt_to_tensor(s),
+                                                          Eigen::EigenvaluesOnly);
+  const Eigen::Vector3d pr = es.eigenvalues();  // ascending
+  const double s1 = pr(2), s2 = pr(1), s3 = pr(0);
+  const double seqv =
+      std::sqrt(0.5 * ((s1 - s2) * (s1 - s2) + (s2 - s3) * (s2 - s3) + (s3 - s1) * (s3 - s1)));
+  out = {s(0), s(1), s(2), s(3), s(4), s(5), s1, s2, s3, s1 - s3, seqv};
+}
+
+}  // namespace impactfe
