@@ -152,7 +152,10 @@ void JobSession::solve(const Job& job, std::size_t step) {
     if (!open_) {
       // Refused before anything large is built when the model cannot fit (the symbolic
       // analysis checks the factor exactly later).
-      if (s.analysis) require_model_memory(*s.model_snapshot, "SOLVE");
+      // An explicit run keeps no matrix and no factor: the estimate (of a factorisation) is not
+      // its need (its arrays are a few hundred bytes per element).
+      explicit_ = runs_explicit_dynamics(s);
+      if (s.analysis && !explicit_) require_model_memory(*s.model_snapshot, "SOLVE");
       const auto& restart = s.analysis ? s.analysis->options.restart : std::nullopt;
       if (restart && !solves_incrementally(s.analysis->options))
         throw InputError(restart->where,
@@ -164,7 +167,6 @@ void JobSession::solve(const Job& job, std::size_t step) {
       // file is opened: the file's writer thread starts HDF5 and creates the file while this
       // thread reads the superelement files the structure needs, and HDF5 serves one thread at
       // a time (the use pass of the thesis's helmet waited 5 ms for it, issue 11).
-      explicit_ = runs_explicit_dynamics(s);
       const bool incremental =
           s.analysis && solves_incrementally(s.analysis->options) && !explicit_;
       if (incremental) {
