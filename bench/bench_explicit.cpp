@@ -33,9 +33,9 @@ Model block(int n) {
       for (int i = 0; i < n; ++i) {
         ElementRecord& r = m.elements[++e];
         r.id = e;
-        r.nodes = {id(i, j, k),         id(i + 1, j, k),         id(i + 1, j + 1, k),
-                   id(i, j + 1, k),     id(i, j, k + 1),         id(i + 1, j, k + 1),
-                   id(i + 1, j + 1, k + 1), id(i, j + 1, k + 1)};
+        r.nodes = {
+            id(i, j, k),     id(i + 1, j, k),     id(i + 1, j + 1, k),     id(i, j + 1, k),
+            id(i, j, k + 1), id(i + 1, j, k + 1), id(i + 1, j + 1, k + 1), id(i, j + 1, k + 1)};
       }
   return m;
 }
@@ -47,16 +47,16 @@ void BM_Solid164Cycle(benchmark::State& state) {
   CentralDifference cd(s, m.explicit_dynamics);
   // A compression with a twist: every element strains and spins.
   for (std::size_t i = 0; i < s.n_nodes(); ++i)
-    cd.set_velocity(i, Vec3(-1e3 * (s.x0[i] / n - 0.5), 2e2 * (s.z0[i] / n - 0.5),
-                            -2e2 * (s.y0[i] / n - 0.5)));
+    cd.set_velocity(
+        i, Vec3(-1e3 * (s.x0[i] / n - 0.5), 2e2 * (s.z0[i] / n - 0.5), -2e2 * (s.y0[i] / n - 0.5)));
   cd.set_loads(std::vector<std::uint8_t>(3 * s.n_nodes(), 0), Vec3::Zero());
   cd.start();
   for (auto _ : state) cd.cycle(cd.stable_step());
   const double elements = static_cast<double>(s.n_elements());
   state.counters["elements"] = elements;
-  state.counters["ns_per_element_cycle"] = benchmark::Counter(
-      elements * static_cast<double>(state.iterations()) * 1e-9,
-      benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["ns_per_element_cycle"] =
+      benchmark::Counter(elements * static_cast<double>(state.iterations()) * 1e-9,
+                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 BENCHMARK(BM_Solid164Cycle)->Arg(10)->Arg(22)->Arg(46)->Unit(benchmark::kMillisecond);
 

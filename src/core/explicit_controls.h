@@ -14,7 +14,7 @@ namespace impactfe {
 
 /// EDVEL,VGEN / VELO: a translational initial velocity of the nodes of a component.
 struct ExplicitInitialVelocity {
-  std::string component;  // the node component named by Cname (upper case)
+  std::string component;   // the node component named by Cname (upper case)
   std::vector<int> nodes;  // its nodes when EDVEL was given (ascending)
   Vec3 velocity = Vec3::Zero();
   SourceLocation where;  // the EDVEL command
@@ -44,8 +44,8 @@ struct ExplicitControls {
   /// EDBVIS QVCO, LVCO: quadratic and linear bulk viscosity coefficients (1.5, 0.06).
   double bulk_quadratic = 1.5;
   double bulk_linear = 0.06;
-  ExplicitOutputInterval results;  // EDRST (default 100 intervals)
-  ExplicitOutputInterval history;  // EDHTIME (default 1000 intervals)
+  ExplicitOutputInterval results;                           // EDRST (default 100 intervals)
+  ExplicitOutputInterval history;                           // EDHTIME (default 1000 intervals)
   std::vector<ExplicitInitialVelocity> initial_velocities;  // EDVEL, in input order
   SourceLocation where;  // the last ED command that changed a setting
 };

@@ -144,9 +144,9 @@ void register_explicit_commands(std::vector<CommandSpec>& t) {
   t.push_back({"EDVEL", cmd_edvel, kPrepSolu});
   t.push_back({"EDPART", cmd_edpart, kPrepSolu});
   constexpr const char* kNo = "not implemented in explicit dynamics (docs/explicit_dynamics.md)";
-  for (const char* name : {"EDCGEN", "EDLOAD", "EDMP", "EDCNSTR", "EDBOUND", "EDWRITE",
-                           "EDCONTACT", "EDCSC", "EDSHELL", "EDSTART", "EDADAPT", "EDOUT",
-                           "EDHIST", "EDINT", "EDDAMP", "EDENERGY", "EDCRB", "EDNROT"})
+  for (const char* name : {"EDCGEN", "EDLOAD", "EDMP", "EDCNSTR", "EDBOUND", "EDWRITE", "EDCONTACT",
+                           "EDCSC", "EDSHELL", "EDSTART", "EDADAPT", "EDOUT", "EDHIST", "EDINT",
+                           "EDDAMP", "EDENERGY", "EDCRB", "EDNROT"})
     t.push_back({name, [](DeckReader&, const Command&) {}, kPrepSolu, nullptr, kNo});
 }
 

@@ -26,12 +26,11 @@ const std::string kMassFamily = "Mass166";
 const std::vector<std::string> kLinkResults = {"SAXL", "FORC", "EPEQ"};
 const std::vector<std::string> kMassResults = {};
 
-const RealSet& real_set(const ExplicitBuildContext& ctx, const ElementRecord& r,
-                        const char* name) {
+const RealSet& real_set(const ExplicitBuildContext& ctx, const ElementRecord& r, const char* name) {
   const auto it = ctx.model.real_sets.find(r.real);
   if (it == ctx.model.real_sets.end())
-    throw InputError(r.where, fmt::format("element {}: {} needs real constant set {} (R)", r.id,
-                                          name, r.real));
+    throw InputError(
+        r.where, fmt::format("element {}: {} needs real constant set {} (R)", r.id, name, r.real));
   const ElementType& type = ctx.model.element_type(r.type);
   if (const std::string why = keyopt_refusal(type); !why.empty())
     throw InputError(type.where.known() ? type.where : r.where,
@@ -97,8 +96,8 @@ Link160Set::Link160Set(const ExplicitBuildContext& ctx,
   std::map<int, int> material_index;
   for (const ElementRecord* r : records) {
     if (r->nodes.size() < 2 || r->nodes[0] == r->nodes[1] || r->nodes[1] == 0)
-      throw InputError(r->where, fmt::format("element {}: LINK160 needs two distinct nodes I, J",
-                                             r->id));
+      throw InputError(r->where,
+                       fmt::format("element {}: LINK160 needs two distinct nodes I, J", r->id));
     const double area = real_set(ctx, *r, "LINK160").get(1);
     if (!(area > 0.0))
       throw InputError(r->where, fmt::format("element {}: LINK160 AREA (R1) must be > 0", r->id));
@@ -129,11 +128,10 @@ ExplicitStepLimit Link160Set::internal_forces(const ExplicitNodalView& s, double
     const Vec3 axis(s.x[j] - s.x[i], s.y[j] - s.y[i], s.z[j] - s.z[i]);
     const double l = axis.norm();
     if (!(l > 0.0))
-      throw ElementSolutionError(ids_[k], fmt::format("element {} (LINK160) has zero length",
-                                                      ids_[k]));
+      throw ElementSolutionError(ids_[k],
+                                 fmt::format("element {} (LINK160) has zero length", ids_[k]));
     const Vec3 e = axis / l;
-    const double rate =
-        e.dot(Vec3(s.vx[j] - s.vx[i], s.vy[j] - s.vy[i], s.vz[j] - s.vz[i])) / l;
+    const double rate = e.dot(Vec3(s.vx[j] - s.vx[i], s.vy[j] - s.vy[i], s.vz[j] - s.vz[i])) / l;
     const Material& m = materials_[static_cast<std::size_t>(material_[k])];
     const double old = stress_[k];
     double trial = old + dt * m.young * rate;
@@ -147,8 +145,8 @@ ExplicitStepLimit Link160Set::internal_forces(const ExplicitNodalView& s, double
         for (int it = 0; it < 50; ++it) {
           const double r = std::abs(xi) - (m.young + law.kinematic_modulus()) * delta -
                            law.flow_stress(alpha_[k] + delta);
-          const double step = r / (m.young + law.kinematic_modulus() +
-                                   law.flow_slope(alpha_[k] + delta));
+          const double step =
+              r / (m.young + law.kinematic_modulus() + law.flow_slope(alpha_[k] + delta));
           delta = std::max(0.0, delta + step);
           if (std::abs(step) <= 1e-14 * (1.0 + delta)) break;
         }
@@ -178,8 +176,7 @@ class Mass166Set final : public ExplicitElementSet {
     for (const ElementRecord* r : records) {
       const double mass = real_set(ctx, *r, "MASS166").get(1);
       if (!(mass > 0.0))
-        throw InputError(r->where, fmt::format("element {}: MASS166 MASS (R1) must be > 0",
-                                               r->id));
+        throw InputError(r->where, fmt::format("element {}: MASS166 MASS (R1) must be > 0", r->id));
       ids_.push_back(r->id);
       nodes_.push_back(ctx.node_index(r->nodes.at(0), *r));
       mass_.push_back(mass);

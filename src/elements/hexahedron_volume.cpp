@@ -17,10 +17,8 @@ constexpr int kPermutation[8][8] = {{0, 1, 2, 3, 4, 5, 6, 7}, {1, 2, 3, 0, 5, 6,
 /// FB eq. (79) for corner 1 with corners renumbered by p: ∂V/∂x_1 from the y and z of the
 /// others (1-based in the paper: y2((z6−z3)−(z4−z5)) + y3(z2−z4) + ...).
 inline double corner_derivative(const int* p, const double* y, const double* z) {
-  const double y2 = y[p[1]], y3 = y[p[2]], y4 = y[p[3]], y5 = y[p[4]], y6 = y[p[5]],
-               y8 = y[p[7]];
-  const double z2 = z[p[1]], z3 = z[p[2]], z4 = z[p[3]], z5 = z[p[4]], z6 = z[p[5]],
-               z8 = z[p[7]];
+  const double y2 = y[p[1]], y3 = y[p[2]], y4 = y[p[3]], y5 = y[p[4]], y6 = y[p[5]], y8 = y[p[7]];
+  const double z2 = z[p[1]], z3 = z[p[2]], z4 = z[p[3]], z5 = z[p[4]], z6 = z[p[5]], z8 = z[p[7]];
   return (y2 * ((z6 - z3) - (z4 - z5)) + y3 * (z2 - z4) + y4 * ((z3 - z8) - (z5 - z2)) +
           y5 * ((z8 - z6) - (z2 - z4)) + y6 * (z5 - z2) + y8 * (z4 - z5)) /
          12.0;
@@ -53,8 +51,8 @@ double jacobian_det(const double* x, const double* y, const double* z, const dou
 
 }  // namespace
 
-void volume_derivatives(const double* x, const double* y, const double* z, double* bx,
-                        double* by, double* bz) {
+void volume_derivatives(const double* x, const double* y, const double* z, double* bx, double* by,
+                        double* bz) {
   // b_y and b_z follow from b_x by the cyclic change x → y → z → x (FB eq. (79)).
   for (int a = 0; a < 8; ++a) {
     const int* p = kPermutation[a];

@@ -9,8 +9,8 @@
 namespace impactfe::hexahedron {
 
 /// b = ∂V/∂x of the 8 corners, each direction (bx, by, bz).
-void volume_derivatives(const double* x, const double* y, const double* z, double* bx,
-                        double* by, double* bz);
+void volume_derivatives(const double* x, const double* y, const double* z, double* bx, double* by,
+                        double* bz);
 /// Volume from the derivatives: Σ_I x_I b_xI.
 inline double volume(const double* x, const double* bx) {
   double v = 0.0;

@@ -36,8 +36,8 @@ struct BrickKinematics {
   double x[8], y[8], z[8], vx[8], vy[8], vz[8];
   double bx[8], by[8], bz[8];  // ∂V/∂x
   double volume = 0.0;
-  double d[6];                 // strain rate D (tensor components)
-  double w01, w12, w02;        // spin W_xy, W_yz, W_xz
+  double d[6];           // strain rate D (tensor components)
+  double w01, w12, w02;  // spin W_xy, W_yz, W_xz
 };
 
 void gather(const ExplicitNodalView& s, const int* n, BrickKinematics& k) {
@@ -72,6 +72,17 @@ void rates(BrickKinematics& k) {
   k.w01 = 0.5 * (l[0][1] - l[1][0]) * inv;
   k.w12 = 0.5 * (l[1][2] - l[2][1]) * inv;
   k.w02 = 0.5 * (l[0][2] - l[2][0]) * inv;
+}
+
+/// The characteristic length of the stable step: LS-DYNA's V / A_max, bounded for distorted
+/// bricks by √1.5 V / |b| (|b|² = Σ_I b_I·b_I, the uniform-strain operator's norm, which grows
+/// as a corner flattens; √1.5 makes it h for a cube of side h, so regular bricks are not
+/// penalised). V / A_max alone let a mapped mesh with 175° corners go unstable at TSSFAC 0.9.
+double characteristic_length(const BrickKinematics& k) {
+  double norm2 = 0.0;
+  for (int a = 0; a < 8; ++a) norm2 += k.bx[a] * k.bx[a] + k.by[a] * k.by[a] + k.bz[a] * k.bz[a];
+  const double by_faces = k.volume / hexahedron::largest_face_area(k.x, k.y, k.z);
+  return std::min(by_faces, std::sqrt(1.5 / norm2) * k.volume);
 }
 
 inline double contract(const double* s, const double* d) {
@@ -145,10 +156,10 @@ class Solid164Set final : public ExplicitElementSet {
   double update_stress(std::size_t k, const BrickKinematics& kin, double dt);
 
   std::vector<int> ids_;
-  std::vector<int> nodes_;      // 8 per element
-  std::vector<double> share_;   // ∫N_I dV at the initial configuration, 8 per element
+  std::vector<int> nodes_;       // 8 per element
+  std::vector<double> share_;    // ∫N_I dV at the initial configuration, 8 per element
   std::vector<double> density_;  // ρ, mass-scaled
-  std::vector<int> material_;   // index into materials_
+  std::vector<int> material_;    // index into materials_
   std::vector<RateMaterial> materials_;
   std::vector<double> stress_;  // 6 per element
   std::vector<double> back_;    // 6 per element (kinematic hardening)
@@ -216,10 +227,10 @@ double Solid164Set::element_step(const ExplicitNodalView& state, std::size_t k) 
   BrickKinematics kin;
   gather(state, &nodes_[8 * k], kin);
   hexahedron::volume_derivatives(kin.x, kin.y, kin.z, kin.bx, kin.by, kin.bz);
-  const double volume = hexahedron::volume(kin.x, kin.bx);
+  kin.volume = hexahedron::volume(kin.x, kin.bx);
   const RateMaterial& m = materials_[static_cast<std::size_t>(material_[k])];
   const double c = std::sqrt((m.bulk + 4.0 * m.shear / 3.0) / density_[k]);
-  return volume / hexahedron::largest_face_area(kin.x, kin.y, kin.z) / c;
+  return characteristic_length(kin) / c;
 }
 
 double Solid164Set::update_stress(std::size_t k, const BrickKinematics& kin, double dt) {
@@ -251,7 +262,7 @@ ExplicitStepLimit Solid164Set::internal_forces(const ExplicitNodalView& state, d
     const RateMaterial& m = materials_[static_cast<std::size_t>(material_[k])];
     const double rho = density_[k];
     const double c = std::sqrt((m.bulk + 4.0 * m.shear / 3.0) / rho);
-    const double length = kin.volume / hexahedron::largest_face_area(kin.x, kin.y, kin.z);
+    const double length = characteristic_length(kin);
     // Bulk viscosity (LS-DYNA theory manual, "Bulk viscosity"): in compression only.
     const double volumetric = kin.d[0] + kin.d[1] + kin.d[2];
     double q = 0.0, speed_term = 0.0;

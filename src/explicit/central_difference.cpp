@@ -11,14 +11,12 @@ CentralDifference::CentralDifference(ExplicitSystem& system, const ExplicitContr
   x_ = system.x0;
   y_ = system.y0;
   z_ = system.z0;
-  for (auto* v : {&vx_, &vy_, &vz_, &ax_, &ay_, &az_, &fx_, &fy_, &fz_})
-    v->assign(n, 0.0);
+  for (auto* v : {&vx_, &vy_, &vz_, &ax_, &ay_, &az_, &fx_, &fy_, &fz_}) v->assign(n, 0.0);
   fixed_.assign(3 * n, 0);
   element_forces_.assign(3 * system.n_slots, 0.0);
 }
 
-void CentralDifference::set_loads(std::vector<std::uint8_t> fixed,
-                                  const Vec3& frame_acceleration) {
+void CentralDifference::set_loads(std::vector<std::uint8_t> fixed, const Vec3& frame_acceleration) {
   fixed_ = std::move(fixed);
   frame_acceleration_ = frame_acceleration;
   for (std::size_t i = 0; i < system_.n_nodes(); ++i) {
@@ -35,8 +33,7 @@ void CentralDifference::set_velocity(std::size_t node, const Vec3& v) {
 }
 
 void CentralDifference::internal_forces(double dt) {
-  const ExplicitNodalView view{x_.data(), y_.data(), z_.data(),
-                               vx_.data(), vy_.data(), vz_.data()};
+  const ExplicitNodalView view{x_.data(), y_.data(), z_.data(), vx_.data(), vy_.data(), vz_.data()};
   ExplicitStepLimit limit;
   for (std::size_t i = 0; i < system_.sets.size(); ++i) {
     const ExplicitStepLimit l = system_.sets[i]->internal_forces(
@@ -94,8 +91,7 @@ void CentralDifference::accelerations() {
 bool CentralDifference::scale_masses() {
   const double target = std::abs(controls_.mass_scaling_step);
   if (!(target > 0.0)) return false;
-  const ExplicitNodalView view{x_.data(), y_.data(), z_.data(),
-                               vx_.data(), vy_.data(), vz_.data()};
+  const ExplicitNodalView view{x_.data(), y_.data(), z_.data(), vx_.data(), vy_.data(), vz_.data()};
   bool any = false;
   for (auto& set : system_.sets)
     for (std::size_t k = 0; k < set->size(); ++k) {
@@ -176,7 +172,9 @@ Vec3 CentralDifference::velocity(std::size_t n) const {
   return {vx_[n] + half * ax_[n], vy_[n] + half * ay_[n], vz_[n] + half * az_[n]};
 }
 
-Vec3 CentralDifference::acceleration(std::size_t n) const { return {ax_[n], ay_[n], az_[n]}; }
+Vec3 CentralDifference::acceleration(std::size_t n) const {
+  return {ax_[n], ay_[n], az_[n]};
+}
 
 Vec3 CentralDifference::reaction(std::size_t n) const {
   // f_int − f_ext at a fixed DOF (the body force −m a_frame is external).

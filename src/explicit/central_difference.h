@@ -1,8 +1,8 @@
 #pragma once
 /// The central-difference cycle of explicit dynamics with half-step velocities (LS-DYNA theory
 /// manual, "Time integration"; Belytschko, Liu & Moran, Nonlinear Finite Elements, Box 6.1):
-///   v_{n+1/2} = v_{n−1/2} + ½(Δt_{n−1/2} + Δt_{n+1/2}) a_n,   x_{n+1} = x_n + Δt_{n+1/2} v_{n+1/2},
-///   a_{n+1} = M⁻¹ (f_ext − f_int(x_{n+1}, v_{n+1/2})),
+///   v_{n+1/2} = v_{n−1/2} + ½(Δt_{n−1/2} + Δt_{n+1/2}) a_n,   x_{n+1} = x_n + Δt_{n+1/2}
+///   v_{n+1/2}, a_{n+1} = M⁻¹ (f_ext − f_int(x_{n+1}, v_{n+1/2})),
 /// M the lumped mass: no matrix, no factorisation, nothing allocated per cycle. The stable step
 /// of every element is recomputed each cycle at x_{n+1}; the next step is TSSFAC times the
 /// smallest. Fixed DOFs (D, value 0) keep v = a = 0. State is structure of arrays.
@@ -23,9 +23,7 @@ struct ExplicitEnergies {
   double external_work = 0.0;  // work of f_ext (ACEL) on the motion
   double initial_kinetic = 0.0;
   /// Total minus what was put in: zero for an exact balance.
-  double drift() const {
-    return kinetic + internal + hourglass - initial_kinetic - external_work;
-  }
+  double drift() const { return kinetic + internal + hourglass - initial_kinetic - external_work; }
   double put_in() const { return initial_kinetic + external_work; }
 };
 

@@ -16,8 +16,7 @@ bool runs_explicit(const Model& model, std::string* why_not) {
     const ElementTypeDescriptor& d = element_type_descriptor(model.element_type(record.type));
     if (!d.explicit_set) {
       if (why_not)
-        *why_not = fmt::format("element {} is a {}, which has no explicit formulation", id,
-                               d.name);
+        *why_not = fmt::format("element {} is a {}, which has no explicit formulation", id, d.name);
       return false;
     }
   }
@@ -94,8 +93,8 @@ ExplicitSystem build_explicit_system(const Model& model) {
           [&s, &model](int node, const ElementRecord& record) {
             const int index = s.index_of(node);
             if (index < 0 || !model.nodes.count(node))
-              throw InputError(record.where, fmt::format("element {}: node {} is not defined",
-                                                         record.id, node));
+              throw InputError(record.where,
+                               fmt::format("element {}: node {} is not defined", record.id, node));
             return index;
           },
       .hourglass_coefficient = e.hourglass_coefficient,
@@ -105,7 +104,8 @@ ExplicitSystem build_explicit_system(const Model& model) {
     const ElementTypeDescriptor& d = *find_element_type(name);
     s.set_offset.push_back(s.n_slots);
     s.sets.push_back(d.explicit_set(ctx, records));
-    s.n_slots += s.sets.back()->size() * static_cast<std::size_t>(s.sets.back()->nodes_per_element());
+    s.n_slots +=
+        s.sets.back()->size() * static_cast<std::size_t>(s.sets.back()->nodes_per_element());
   }
   s.mass.assign(s.n_nodes(), 0.0);
   for (const auto& set : s.sets) set->add_lumped_mass(s.mass);

@@ -31,8 +31,7 @@ TEST(Hexahedron, VolumeDerivativesAreThoseOfTheExactVolume) {
   // Central differences of the Gauss volume (a cubic in each coordinate: exact up to round-off).
   const double h = 1e-4;
   for (int a = 0; a < 8; ++a) {
-    double* coords[3] = {const_cast<double*>(kX), const_cast<double*>(kY),
-                         const_cast<double*>(kZ)};
+    double* coords[3] = {const_cast<double*>(kX), const_cast<double*>(kY), const_cast<double*>(kZ)};
     const double* b[3] = {bx, by, bz};
     for (int i = 0; i < 3; ++i) {
       double x[3][8];
@@ -64,9 +63,9 @@ Model distorted_block(const std::string& extra = "") {
     for (int j = 0; j < 2; ++j)
       for (int i = 0; i < 2; ++i) {
         deck += "E";
-        for (int c : {n(i, j, k), n(i + 1, j, k), n(i + 1, j + 1, k), n(i, j + 1, k),
-                      n(i, j, k + 1), n(i + 1, j, k + 1), n(i + 1, j + 1, k + 1),
-                      n(i, j + 1, k + 1)})
+        for (int c :
+             {n(i, j, k), n(i + 1, j, k), n(i + 1, j + 1, k), n(i, j + 1, k), n(i, j, k + 1),
+              n(i + 1, j, k + 1), n(i + 1, j + 1, k + 1), n(i, j + 1, k + 1)})
           deck += "," + std::to_string(c);
         deck += "\n";
       }
@@ -178,9 +177,11 @@ TEST(ExplicitSolid, KeyoptionsOfSolid164) {
   // KEYOPT(1) 0 and 1 are the same one-point element; 2 (full integration) is refused.
   EXPECT_NO_THROW(Block{distorted_block()});
   const Model one = read_deck_text(
-      "/PREP7\nET,1,SOLID164\nKEYOPT,1,1,1\nMP,EX,1,1\nMP,DENS,1,1\nN,1\nN,2,1\nN,3,1,1\nN,4,0,1\n"
-      "N,5,0,0,1\nN,6,1,0,1\nN,7,1,1,1\nN,8,0,1,1\nE,1,2,3,4,5,6,7,8\n",
-      "one.inp").model;
+                        "/PREP7\nET,1,SOLID164\nKEYOPT,1,1,1\nMP,EX,1,1\nMP,DENS,1,1\nN,1\nN,2,"
+                        "1\nN,3,1,1\nN,4,0,1\n"
+                        "N,5,0,0,1\nN,6,1,0,1\nN,7,1,1,1\nN,8,0,1,1\nE,1,2,3,4,5,6,7,8\n",
+                        "one.inp")
+                        .model;
   EXPECT_NO_THROW(build_explicit_system(one));
   Model two = one;
   two.element_types.at(1).keyopt[1] = 2;
