@@ -25,10 +25,13 @@ ALLOWED = {
     # files for POST1/POST26: never a solver, an assembler or the nonlinear layer. It checks
     # the step-size settings through their owner, time/time_schedule.h, at the command.
     "deck": ["core", "elements", "geometry", "io", "results", "time"],
+    # Explicit dynamics (docs/explicit_dynamics.md): the central-difference run over the element
+    # sets of the registry, writing the results file; no linear algebra, no assembler.
+    "explicit": ["core", "materials", "elements", "results"],
     # The drivers; deck/solution_host.h is the interface through which the deck hands its
     # solution requests to the job session, which implements it.
     "analysis": ["core", "linalg", "io", "materials", "elements", "time", "geometry", "assembly",
-                 "nonlinear", "reduction", "results", "deck"],
+                 "nonlinear", "reduction", "results", "deck", "explicit"],
     "app": ["core", "linalg", "time", "results", "deck", "analysis"],
 }
 # Inside the deck layer, each processor's commands keep their own state (deck/deck_context.h):

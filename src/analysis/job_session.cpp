@@ -13,6 +13,8 @@
 #include "core/job_lock.h"
 #include "core/log.h"
 #include "elements/model_memory.h"
+#include "explicit/explicit_run.h"
+#include "explicit/explicit_system.h"
 #include "results/output_selection.h"
 
 namespace impactfe {
@@ -27,6 +29,21 @@ bool is_superelement_expansion(const Job::Step& step) {
 bool solves_incrementally(const AnalysisOptions& o) {
   return o.type == AnalysisType::Static ||
          (o.type == AnalysisType::Transient && o.method == TransientMethod::Full);
+}
+
+/// A static or full transient analysis whose elements are all explicit ones (16x) is an
+/// explicit dynamics run, as in MAPDL's ANSYS LS-DYNA (docs/explicit_dynamics.md); explicit
+/// elements mixed with implicit ones are refused.
+bool runs_explicit_dynamics(const Job::Step& step) {
+  if (!step.analysis || !solves_incrementally(step.analysis->options)) return false;
+  const Model& model = *step.model_snapshot;
+  if (!has_explicit_elements(model)) return false;
+  std::string why;
+  if (runs_explicit(model, &why)) return true;
+  throw InputError(step.analysis->where,
+                   fmt::format("explicit (16x) elements are mixed with implicit ones: {}; an "
+                               "explicit analysis takes explicit elements only",
+                               why));
 }
 
 const SourceLocation& location_of(const Job::Step& step) {
@@ -135,7 +152,10 @@ void JobSession::solve(const Job& job, std::size_t step) {
     if (!open_) {
       // Refused before anything large is built when the model cannot fit (the symbolic
       // analysis checks the factor exactly later).
-      if (s.analysis) require_model_memory(*s.model_snapshot, "SOLVE");
+      // An explicit run keeps no matrix and no factor: the estimate (of a factorisation) is not
+      // its need (its arrays are a few hundred bytes per element).
+      explicit_ = runs_explicit_dynamics(s);
+      if (s.analysis && !explicit_) require_model_memory(*s.model_snapshot, "SOLVE");
       const auto& restart = s.analysis ? s.analysis->options.restart : std::nullopt;
       if (restart && !solves_incrementally(s.analysis->options))
         throw InputError(restart->where,
@@ -147,7 +167,8 @@ void JobSession::solve(const Job& job, std::size_t step) {
       // file is opened: the file's writer thread starts HDF5 and creates the file while this
       // thread reads the superelement files the structure needs, and HDF5 serves one thread at
       // a time (the use pass of the thesis's helmet waited 5 ms for it, issue 11).
-      const bool incremental = s.analysis && solves_incrementally(s.analysis->options);
+      const bool incremental =
+          s.analysis && solves_incrementally(s.analysis->options) && !explicit_;
       if (incremental) {
         models_.push_back(s.model_snapshot);
         structure_ = std::make_unique<Structure>(*models_.back(), s.analysis->options, settings_,
@@ -202,6 +223,17 @@ void JobSession::solve(const Job& job, std::size_t step) {
 
 void JobSession::run_whole(const Job::Step& step, AnalysisStatistics& stats) {
   const AnalysisRequest& request = *step.analysis;
+  if (explicit_) {
+    stats.description = "explicit dynamics (central difference)";
+    const ExplicitRunSummary summary = run_explicit_analysis(
+        *models_.back(), request, *writer_, {.accept_energy_error = settings_.accept_energy_error});
+    stats.n_load_steps = static_cast<int>(request.load_steps.size());
+    stats.n_substeps = static_cast<int>(summary.cycles);
+    stats.n_stored = summary.stored_points;
+    stats.notes.insert(stats.notes.end(), summary.notes.begin(), summary.notes.end());
+    for (const auto& note : summary.notes) Log::info("{}", note);
+    return;
+  }
   Structure structure(*models_.back(), request.options, settings_, &request.load_steps);
   structure.use_table_nodes(writer_->node_ids());
   record_file_defined_nodes(structure, *writer_);

@@ -69,6 +69,7 @@ class JobSession final : public SolutionHost {
   std::shared_ptr<JobLock> job_lock_;
   std::unique_ptr<ResultsWriter> owned_writer_;
   bool superelement_expansion_job_ = false;
+  bool explicit_ = false;                  // the open analysis is an explicit dynamics run
   std::size_t job_first_analysis_ = 0;     // index in stats_.analyses of this job's first analysis
   std::vector<std::string> closed_files_;  // results files of the jobs ended by /CLEAR
 

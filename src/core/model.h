@@ -15,6 +15,7 @@
 #include "core/coordinate_system.h"
 #include "core/dof.h"
 #include "core/errors.h"
+#include "core/explicit_controls.h"
 #include "core/load_values.h"
 #include "core/material_table.h"
 #include "core/output_control.h"
@@ -290,6 +291,7 @@ struct Model {
   ModelSelection selection;              // selected flags of every entity kind
   std::map<std::string, TimeFunction> time_functions;  // TABLE loads by name (upper case)
   std::map<std::pair<int, std::string>, MaterialTable> material_tables;  // TB by (MAT, Lab)
+  ExplicitControls explicit_dynamics;  // the ED* settings (docs/explicit_dynamics.md)
 
   /// Current (not yet written) load state and options; LWRITE/LSWRITE/SOLVE snapshot it.
   AnalysisOptions options;

@@ -65,6 +65,7 @@ const Tables& tables() {
     add(register_mesh_selection_commands, "Selection of nodes and elements", kDeck);
     add(register_surface_load_commands, "Surface loads", kDeck);
     add(register_material_commands, "Materials", "docs/plasticity.md");
+    add(register_explicit_commands, "Explicit dynamics (ED commands)", "docs/explicit_dynamics.md");
     add(register_parameter_commands, "Parameters", kDeck);
     add(register_array_commands, "Arrays and vector operations", kDeck);
     add(register_output_commands, "Output (/OUTPUT, *VWRITE, *MSG)", kDeck);

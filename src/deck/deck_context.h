@@ -136,6 +136,7 @@ void register_entity_selection_commands(std::vector<CommandSpec>& table);
 void register_mesh_selection_commands(std::vector<CommandSpec>& table);
 void register_surface_load_commands(std::vector<CommandSpec>& table);
 void register_material_commands(std::vector<CommandSpec>& table);
+void register_explicit_commands(std::vector<CommandSpec>& table);
 
 class DeckReader {
  public:

@@ -131,6 +131,11 @@ std::vector<ElementFields> make_table() {
                  "0 plane stress, 1 axisymmetric, 2 plane strain, 3 plane stress with "
                  "thickness; 5 and 6 are not implemented"},
                 {6, {0}, "1 (mixed u-P formulation) is not implemented"}}});
+  // Explicit elements (docs/explicit_dynamics.md): SOLID164 KEYOPT(1) 0 and 1 are both the
+  // one-point constant-stress brick; 2 (full integration) and 5 (ALE) are not implemented.
+  t.push_back({"SOLID164", {}, {{1, {0, 1}, "0 or 1: one-point constant stress (the same)"}}});
+  t.push_back({"LINK160", named({"AREA"}), {}});
+  t.push_back({"MASS166", named({"MASS"}), {}});
   // Shells (docs/elements/shell63.md). SHELL181 is computed with the SHELL63 kernel; of its
   // real constants only the thicknesses are read (the others mean other things than SHELL63's).
   t.push_back({"SHELL63",

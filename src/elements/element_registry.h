@@ -16,6 +16,7 @@
 
 #include "elements/cell_topology.h"
 #include "elements/element.h"
+#include "elements/explicit_kernel.h"
 
 namespace impactfe {
 
@@ -94,6 +95,10 @@ struct ElementTypeDescriptor {
   /// Logged when ET defines the type (e.g. a kernel substitution worth knowing about).
   std::string note;
   ElementFactory create;
+  /// Explicit dynamics: builds the elements of this type of one run as a set (explicit_kernel.h).
+  /// A type with it and no implicit kernel (SOLID164) runs only in an explicit analysis; an
+  /// analysis whose elements all have it runs explicit (docs/explicit_dynamics.md).
+  ExplicitSetFactory explicit_set = nullptr;
 
   const CellTopology& topology() const { return cell_topology(vtk_cell); }
   int max_nodes() const { return n_nodes + n_optional_nodes; }

@@ -1,0 +1,53 @@
+#pragma once
+/// The settings of an explicit dynamics analysis (the ED* commands of MAPDL's ANSYS LS-DYNA
+/// interface, docs/explicit_dynamics.md): time-step control (EDCTS), hourglass and bulk viscosity
+/// (EDHGLS, EDBVIS), output intervals (EDRST, EDHTIME) and initial velocities (EDVEL). Stored
+/// by the deck reader, read by src/explicit; nothing here solves anything.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/coordinate_system.h"
+#include "core/errors.h"
+
+namespace impactfe {
+
+/// EDVEL,VGEN / VELO: a translational initial velocity of the nodes of a component.
+struct ExplicitInitialVelocity {
+  std::string component;   // the node component named by Cname (upper case)
+  std::vector<int> nodes;  // its nodes when EDVEL was given (ascending)
+  Vec3 velocity = Vec3::Zero();
+  SourceLocation where;  // the EDVEL command
+};
+
+/// An output interval: NSTEP points over the analysis (TIME / NSTEP apart) or a time interval.
+struct ExplicitOutputInterval {
+  std::optional<int> steps;
+  std::optional<double> interval;
+  /// The interval for an analysis ending at `end_time`: `default_steps` points when none given.
+  double for_end_time(double end_time, int default_steps) const {
+    if (steps) return end_time / *steps;  // NSTEP wins over DT when both are given (EDRST notes)
+    if (interval) return *interval;
+    return end_time / default_steps;
+  }
+};
+
+struct ExplicitControls {
+  /// EDCTS TSSFAC: the fraction of the stable time step taken (default 0.9).
+  double time_step_factor = 0.9;
+  /// EDCTS DTMS: the time step of mass-scaled solutions (0: no mass scaling). Positive: every
+  /// element whose stable step falls below it gets mass until it reaches it, throughout the
+  /// run; negative: mass is added at the start only, to the elements below |DTMS|.
+  double mass_scaling_step = 0.0;
+  /// EDHGLS HGCO: the Flanagan–Belytschko viscous hourglass coefficient (default 0.1).
+  double hourglass_coefficient = 0.1;
+  /// EDBVIS QVCO, LVCO: quadratic and linear bulk viscosity coefficients (1.5, 0.06).
+  double bulk_quadratic = 1.5;
+  double bulk_linear = 0.06;
+  ExplicitOutputInterval results;                           // EDRST (default 100 intervals)
+  ExplicitOutputInterval history;                           // EDHTIME (default 1000 intervals)
+  std::vector<ExplicitInitialVelocity> initial_velocities;  // EDVEL, in input order
+  SourceLocation where;  // the last ED command that changed a setting
+};
+
+}  // namespace impactfe

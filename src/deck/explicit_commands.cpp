@@ -1,0 +1,153 @@
+// Explicit dynamics settings (the ED* commands of MAPDL's ANSYS LS-DYNA interface, Command
+// Reference release 18.2; docs/explicit_dynamics.md): EDCTS, EDHGLS, EDBVIS, EDRST, EDHTIME,
+// EDVEL, EDPART. They set Model::explicit_dynamics; the explicit run (src/explicit) reads it.
+// The ED commands of features not implemented (contact, loads by curve, rigid bodies, ...) are
+// refused where they appear, so that no deck runs without them silently.
+#include <fmt/format.h>
+
+#include <map>
+#include <set>
+#include <tuple>
+
+#include "core/log.h"
+#include "deck/deck_context.h"
+
+namespace impactfe::deck {
+
+namespace {
+
+ExplicitControls& controls(DeckReader& r, const Command& c) {
+  r.model.explicit_dynamics.where = c.where;
+  return r.model.explicit_dynamics;
+}
+
+void cmd_edcts(DeckReader& r, const Command& c) {
+  // EDCTS,DTMS,TSSFAC
+  const double dtms = r.real(c, 1, 0.0);
+  const double tssfac = r.real(c, 2, 0.9);
+  if (!(tssfac > 0.0) || tssfac > 1.0)
+    r.fail(c, fmt::format("TSSFAC {:g}: the factor on the stable time step must lie in (0, 1] "
+                          "(a larger step is beyond the central difference's stability limit)",
+                          tssfac));
+  ExplicitControls& e = controls(r, c);
+  e.mass_scaling_step = dtms;
+  e.time_step_factor = tssfac;
+}
+
+void cmd_edhgls(DeckReader& r, const Command& c) {
+  // EDHGLS,HGCO
+  const double hgco = r.real(c, 1, 0.1);
+  if (hgco < 0.0) r.fail(c, fmt::format("HGCO {:g}: the hourglass coefficient is >= 0", hgco));
+  if (hgco > 0.15)
+    r.warn(c, fmt::format("HGCO {:g} above 0.15 may make the run unstable (EDHGLS notes)", hgco));
+  controls(r, c).hourglass_coefficient = hgco;
+}
+
+void cmd_edbvis(DeckReader& r, const Command& c) {
+  // EDBVIS,QVCO,LVCO
+  const double quadratic = r.real(c, 1, 1.5);
+  const double linear = r.real(c, 2, 0.06);
+  if (quadratic < 0.0 || linear < 0.0)
+    r.fail(c, "the bulk viscosity coefficients QVCO and LVCO are >= 0");
+  ExplicitControls& e = controls(r, c);
+  e.bulk_quadratic = quadratic;
+  e.bulk_linear = linear;
+}
+
+ExplicitOutputInterval output_interval(DeckReader& r, const Command& c) {
+  // EDRST / EDHTIME,NSTEP,DT: NSTEP wins when both are given.
+  ExplicitOutputInterval out;
+  if (const auto n = r.opt_int(c, 1)) {
+    if (*n <= 0) r.fail(c, fmt::format("NSTEP {}: the number of output steps is > 0", *n));
+    out.steps = *n;
+    if (!c.blank(2)) r.warn(c, "NSTEP and DT both given: DT is ignored");
+  } else if (const auto dt = r.opt_real(c, 2)) {
+    if (!(*dt > 0.0)) r.fail(c, fmt::format("DT {:g}: the output interval is > 0", *dt));
+    out.interval = *dt;
+  }
+  return out;
+}
+
+void cmd_edrst(DeckReader& r, const Command& c) {
+  const ExplicitOutputInterval out = output_interval(r, c);
+  controls(r, c).results = out;
+}
+
+void cmd_edhtime(DeckReader& r, const Command& c) {
+  const ExplicitOutputInterval out = output_interval(r, c);
+  controls(r, c).history = out;
+}
+
+void list_initial_velocities(const DeckReader& r) {
+  for (const auto& v : r.model.explicit_dynamics.initial_velocities)
+    Log::info("EDVEL: {} ({} nodes): VX {:g} VY {:g} VZ {:g}", v.component, v.nodes.size(),
+              v.velocity.x(), v.velocity.y(), v.velocity.z());
+}
+
+void cmd_edvel(DeckReader& r, const Command& c) {
+  // EDVEL,Option,Cname,VX,VY,VZ,OMEGAX,OMEGAY,OMEGAZ,XC,YC,ZC,ANGX,ANGY,ANGZ
+  const std::string option = r.label(c, 1).empty() ? "VGEN" : r.label(c, 1);
+  auto& list = r.model.explicit_dynamics.initial_velocities;
+  const std::string cname = r.label(c, 2);
+  if (option == "LIST") return list_initial_velocities(r);
+  if (option == "DELE") {
+    std::erase_if(list, [&](const auto& v) { return cname.empty() || v.component == cname; });
+    return;
+  }
+  if (option != "VGEN" && option != "VELO")
+    r.fail(c, fmt::format("Option '{}': VGEN, VELO, LIST or DELE", c.text(1)));
+  for (int f = 6; f <= 14; ++f)
+    if (r.real(c, f, 0.0) != 0.0)
+      r.fail(c, fmt::format("field {}: initial angular velocities (OMEGAX..ANGZ) are not "
+                            "implemented; only the translational VX, VY, VZ are",
+                            f));
+  const auto it = r.model.components.find(cname);
+  if (cname.empty() || it == r.model.components.end())
+    r.fail(c, fmt::format("Cname '{}': no such component (CM); EDVEL takes a node component "
+                          "(PART numbers are not implemented)",
+                          c.text(2)));
+  if (it->second.entity != "NODE")
+    r.fail(c, fmt::format("Cname {} is a {} component; EDVEL takes a node component", cname,
+                          it->second.entity));
+  ExplicitInitialVelocity v;
+  v.component = cname;
+  v.nodes = it->second.ids;
+  v.velocity = Vec3(r.real(c, 3, 0.0), r.real(c, 4, 0.0), r.real(c, 5, 0.0));
+  v.where = c.where;
+  // A component given again replaces its velocity (EDVEL defines one per component).
+  std::erase_if(list, [&](const auto& old) { return old.component == cname; });
+  list.push_back(std::move(v));
+}
+
+void cmd_edpart(DeckReader& r, const Command& c) {
+  // EDPART,Option: a part is one combination of element type, material and real set. Parts
+  // are what EDCGEN / EDLOAD would refer to (not implemented): here they are listed.
+  const std::string option = r.label(c, 1).empty() ? "CREATE" : r.label(c, 1);
+  if (option != "CREATE" && option != "UPDATE" && option != "LIST")
+    r.fail(c, fmt::format("Option '{}': CREATE, UPDATE or LIST", c.text(1)));
+  std::map<std::tuple<int, int, int>, int> parts;
+  for (const auto& [id, e] : r.model.elements) ++parts[{e.type, e.mat, e.real}];
+  int number = 0;
+  for (const auto& [key, count] : parts)
+    Log::info("EDPART: part {}: TYPE {} MAT {} REAL {} ({} elements)", ++number, std::get<0>(key),
+              std::get<1>(key), std::get<2>(key), count);
+}
+
+}  // namespace
+
+void register_explicit_commands(std::vector<CommandSpec>& t) {
+  t.push_back({"EDCTS", cmd_edcts, kPrepSolu});
+  t.push_back({"EDHGLS", cmd_edhgls, kPrepSolu});
+  t.push_back({"EDBVIS", cmd_edbvis, kPrepSolu});
+  t.push_back({"EDRST", cmd_edrst, kPrepSolu});
+  t.push_back({"EDHTIME", cmd_edhtime, kPrepSolu});
+  t.push_back({"EDVEL", cmd_edvel, kPrepSolu});
+  t.push_back({"EDPART", cmd_edpart, kPrepSolu});
+  constexpr const char* kNo = "not implemented in explicit dynamics (docs/explicit_dynamics.md)";
+  for (const char* name : {"EDCGEN", "EDLOAD", "EDMP", "EDCNSTR", "EDBOUND", "EDWRITE", "EDCONTACT",
+                           "EDCSC", "EDSHELL", "EDSTART", "EDADAPT", "EDOUT", "EDHIST", "EDINT",
+                           "EDDAMP", "EDENERGY", "EDCRB", "EDNROT"})
+    t.push_back({name, [](DeckReader&, const Command&) {}, kPrepSolu, nullptr, kNo});
+}
+
+}  // namespace impactfe::deck

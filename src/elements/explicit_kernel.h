@@ -1,0 +1,95 @@
+#pragma once
+/// The explicit (central-difference) side of an element type (docs/explicit_dynamics.md): the
+/// elements of one type are built together into an ExplicitElementSet that keeps their state as
+/// structure of arrays and evaluates them in one loop per cycle. The explicit run (src/explicit)
+/// knows only this interface; an element type offers it through the `explicit_set` factory of
+/// its registration (element_registry.h).
+///
+/// Per cycle the run hands the set the configuration x_{n+1} and the half-step velocities
+/// v_{n+1/2}; the set updates its stresses over dt_{n+1/2}, writes each element's nodal forces
+/// into its own slots of a force buffer (the run sums them per node in a fixed order, so the
+/// result does not depend on how the element loop is split over threads) and returns the
+/// smallest stable time step of its elements at x_{n+1}.
+#include <Eigen/Core>
+
+#include <cstddef>
+#include <functional>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/model.h"
+
+namespace impactfe {
+
+/// Nodal arrays of the run, indexed by the run's node index (structure of arrays).
+struct ExplicitNodalView {
+  const double* x = nullptr;  // current coordinates x_{n+1}
+  const double* y = nullptr;
+  const double* z = nullptr;
+  const double* vx = nullptr;  // half-step velocities v_{n+1/2}
+  const double* vy = nullptr;
+  const double* vz = nullptr;
+};
+
+/// What an element set is built from.
+struct ExplicitBuildContext {
+  const Model& model;
+  /// The run's index of a node id (InputError at the element when the node is undefined).
+  std::function<int(int node, const ElementRecord& record)> node_index;
+  double hourglass_coefficient = 0.1;  // EDHGLS HGCO
+  double bulk_quadratic = 1.5;         // EDBVIS QVCO
+  double bulk_linear = 0.06;           // EDBVIS LVCO
+};
+
+/// The smallest stable time step of a set and the element (user id) that has it.
+struct ExplicitStepLimit {
+  double dt = std::numeric_limits<double>::infinity();
+  int element = 0;
+  void take(double step, int id) {
+    if (step < dt) {
+      dt = step;
+      element = id;
+    }
+  }
+};
+
+/// Energies of a set, accumulated since the start.
+struct ExplicitSetEnergies {
+  double internal = 0.0;      // ∫σ:D dV dt + bulk viscosity work (includes plastic work)
+  double hourglass = 0.0;     // work of the hourglass forces (viscous: dissipated)
+  double plastic_work = 0.0;  // ∫σ:dε_p dV
+};
+
+class ExplicitElementSet {
+ public:
+  virtual ~ExplicitElementSet() = default;
+  /// The family name of the results file's element table ("Solid164").
+  virtual const std::string& family() const = 0;
+  virtual std::size_t size() const = 0;
+  virtual int element_id(std::size_t k) const = 0;
+  /// Nodes per element: the element's slots in the force buffer are [k·3n, (k+1)·3n).
+  virtual int nodes_per_element() const = 0;
+  /// The run's node indices of element k (nodes_per_element of them).
+  virtual const int* nodes(std::size_t k) const = 0;
+  /// Adds each element's lumped (row-sum) mass to its nodes.
+  virtual void add_lumped_mass(std::vector<double>& mass) const = 0;
+  /// The stable time step of element k at the given configuration (no bulk viscosity).
+  virtual double element_step(const ExplicitNodalView& state, std::size_t k) const = 0;
+  /// Scales the density of element k by `factor` (≥ 1, mass scaling) and adds the extra mass to
+  /// its nodes; returns the mass added.
+  virtual double scale_mass(std::size_t k, double factor, std::vector<double>& mass) = 0;
+  /// One cycle: stresses updated over dt from v_{n+1/2}, nodal forces f_int (x, y, z of each node
+  /// of each element, element-major) written to `element_forces`; the stable step at x_{n+1}.
+  virtual ExplicitStepLimit internal_forces(const ExplicitNodalView& state, double dt,
+                                            double* element_forces) = 0;
+  virtual ExplicitSetEnergies energies() const = 0;
+  /// Stored results of every element (rows) in the order of the registration's result_names.
+  virtual void results(Eigen::MatrixXd& out) const = 0;
+};
+
+using ExplicitSetFactory = std::function<std::unique_ptr<ExplicitElementSet>(
+    const ExplicitBuildContext&, const std::vector<const ElementRecord*>&)>;
+
+}  // namespace impactfe

@@ -1,0 +1,186 @@
+#include "explicit/central_difference.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace impactfe {
+
+CentralDifference::CentralDifference(ExplicitSystem& system, const ExplicitControls& controls)
+    : system_(system), controls_(controls) {
+  const std::size_t n = system.n_nodes();
+  x_ = system.x0;
+  y_ = system.y0;
+  z_ = system.z0;
+  for (auto* v : {&vx_, &vy_, &vz_, &ax_, &ay_, &az_, &fx_, &fy_, &fz_}) v->assign(n, 0.0);
+  fixed_.assign(3 * n, 0);
+  element_forces_.assign(3 * system.n_slots, 0.0);
+}
+
+void CentralDifference::set_loads(std::vector<std::uint8_t> fixed, const Vec3& frame_acceleration) {
+  fixed_ = std::move(fixed);
+  frame_acceleration_ = frame_acceleration;
+  for (std::size_t i = 0; i < system_.n_nodes(); ++i) {
+    if (fixed_[3 * i]) vx_[i] = ax_[i] = 0.0;
+    if (fixed_[3 * i + 1]) vy_[i] = ay_[i] = 0.0;
+    if (fixed_[3 * i + 2]) vz_[i] = az_[i] = 0.0;
+  }
+}
+
+void CentralDifference::set_velocity(std::size_t node, const Vec3& v) {
+  vx_[node] = v.x();
+  vy_[node] = v.y();
+  vz_[node] = v.z();
+}
+
+void CentralDifference::internal_forces(double dt) {
+  const ExplicitNodalView view{x_.data(), y_.data(), z_.data(), vx_.data(), vy_.data(), vz_.data()};
+  ExplicitStepLimit limit;
+  for (std::size_t i = 0; i < system_.sets.size(); ++i) {
+    const ExplicitStepLimit l = system_.sets[i]->internal_forces(
+        view, dt, element_forces_.data() + 3 * system_.set_offset[i]);
+    limit.take(l.dt, l.element);
+  }
+  // Each node sums its slots in ascending slot order: the same sum whatever split the element
+  // loop had (docs/explicit_dynamics.md, "Determinism").
+  const double* f = element_forces_.data();
+  const std::size_t* start = system_.slot_start.data();
+  const std::size_t* slot = system_.slots.data();
+  for (std::size_t n = 0; n < system_.n_nodes(); ++n) {
+    double sx = 0.0, sy = 0.0, sz = 0.0;
+    for (std::size_t j = start[n]; j < start[n + 1]; ++j) {
+      const double* s = f + 3 * slot[j];
+      sx += s[0];
+      sy += s[1];
+      sz += s[2];
+    }
+    fx_[n] = sx;
+    fy_[n] = sy;
+    fz_[n] = sz;
+  }
+  controlling_ = limit.element;
+  critical_ = limit.dt;
+}
+
+void CentralDifference::choose_step() {
+  const double dtms = controls_.mass_scaling_step;
+  if (dtms > 0.0) {
+    // Positive DTMS holds the step at TSSFAC·DTMS: an element whose stable step fell below DTMS
+    // (distortion) gets mass now, so the next cycle's step is stable again.
+    if (critical_ < dtms * (1.0 - 1e-9)) scale_masses();
+    step_ = controls_.time_step_factor * dtms;
+  } else {
+    step_ = controls_.time_step_factor * critical_;
+  }
+}
+
+void CentralDifference::accelerations() {
+  const double* m = system_.mass.data();
+  const std::uint8_t* fix = fixed_.data();
+  // ACEL accelerates the reference frame: the body force on a node is −m a_frame.
+  const double gx = -frame_acceleration_.x(), gy = -frame_acceleration_.y(),
+               gz = -frame_acceleration_.z();
+  for (std::size_t n = 0; n < system_.n_nodes(); ++n) {
+    // A node without mass carries no element's DOFs (LINK160's orientation node K): it stays.
+    const double inv = m[n] > 0.0 ? 1.0 / m[n] : 0.0;
+    ax_[n] = fix[3 * n] ? 0.0 : gx - fx_[n] * inv;
+    ay_[n] = fix[3 * n + 1] ? 0.0 : gy - fy_[n] * inv;
+    az_[n] = fix[3 * n + 2] ? 0.0 : gz - fz_[n] * inv;
+  }
+}
+
+bool CentralDifference::scale_masses() {
+  const double target = std::abs(controls_.mass_scaling_step);
+  if (!(target > 0.0)) return false;
+  const ExplicitNodalView view{x_.data(), y_.data(), z_.data(), vx_.data(), vy_.data(), vz_.data()};
+  bool any = false;
+  for (auto& set : system_.sets)
+    for (std::size_t k = 0; k < set->size(); ++k) {
+      const double dt = set->element_step(view, k);
+      // The stable step goes as 1/√ρ: ρ (target/dt)² brings it to the target.
+      if (dt < target) {
+        added_mass_ += set->scale_mass(k, (target / dt) * (target / dt), system_.mass);
+        any = true;
+      }
+    }
+  return any;
+}
+
+void CentralDifference::start() {
+  scale_masses();
+  internal_forces(0.0);
+  choose_step();
+  accelerations();
+  double kinetic = 0.0;
+  for (std::size_t n = 0; n < system_.n_nodes(); ++n)
+    kinetic += system_.mass[n] * (vx_[n] * vx_[n] + vy_[n] * vy_[n] + vz_[n] * vz_[n]);
+  initial_kinetic_ = 0.5 * kinetic;
+  previous_step_ = 0.0;
+}
+
+void CentralDifference::cycle(double dt) {
+  const double mean = 0.5 * (previous_step_ + dt);
+  const std::size_t n_nodes = system_.n_nodes();
+  double work = 0.0;
+  const double* m = system_.mass.data();
+  const double gx = -frame_acceleration_.x(), gy = -frame_acceleration_.y(),
+               gz = -frame_acceleration_.z();
+  for (std::size_t n = 0; n < n_nodes; ++n) {
+    vx_[n] += mean * ax_[n];
+    vy_[n] += mean * ay_[n];
+    vz_[n] += mean * az_[n];
+    x_[n] += dt * vx_[n];
+    y_[n] += dt * vy_[n];
+    z_[n] += dt * vz_[n];
+    work += m[n] * (gx * vx_[n] + gy * vy_[n] + gz * vz_[n]);
+  }
+  external_work_ += dt * work;  // f_ext constant over the step: f·Δx (fixed DOFs: v = 0)
+  internal_forces(dt);
+  choose_step();
+  accelerations();
+  previous_step_ = dt;
+  time_ += dt;
+  ++cycles_;
+}
+
+ExplicitEnergies CentralDifference::energies() const {
+  ExplicitEnergies e;
+  const double half = 0.5 * previous_step_;
+  double kinetic = 0.0;
+  for (std::size_t n = 0; n < system_.n_nodes(); ++n) {
+    const double vx = vx_[n] + half * ax_[n], vy = vy_[n] + half * ay_[n],
+                 vz = vz_[n] + half * az_[n];
+    kinetic += system_.mass[n] * (vx * vx + vy * vy + vz * vz);
+  }
+  e.kinetic = 0.5 * kinetic;
+  for (const auto& set : system_.sets) {
+    const ExplicitSetEnergies s = set->energies();
+    e.internal += s.internal;
+    e.hourglass += s.hourglass;
+    e.plastic_work += s.plastic_work;
+  }
+  e.external_work = external_work_;
+  e.initial_kinetic = initial_kinetic_;
+  return e;
+}
+
+Vec3 CentralDifference::displacement(std::size_t n) const {
+  return {x_[n] - system_.x0[n], y_[n] - system_.y0[n], z_[n] - system_.z0[n]};
+}
+
+Vec3 CentralDifference::velocity(std::size_t n) const {
+  const double half = 0.5 * previous_step_;
+  return {vx_[n] + half * ax_[n], vy_[n] + half * ay_[n], vz_[n] + half * az_[n]};
+}
+
+Vec3 CentralDifference::acceleration(std::size_t n) const {
+  return {ax_[n], ay_[n], az_[n]};
+}
+
+Vec3 CentralDifference::reaction(std::size_t n) const {
+  // f_int − f_ext at a fixed DOF (the body force −m a_frame is external).
+  const double m = system_.mass[n];
+  return {fx_[n] + m * frame_acceleration_.x(), fy_[n] + m * frame_acceleration_.y(),
+          fz_[n] + m * frame_acceleration_.z()};
+}
+
+}  // namespace impactfe

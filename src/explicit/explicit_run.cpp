@@ -1,0 +1,276 @@
+#include "explicit/explicit_run.h"
+
+#include <fmt/format.h>
+
+#include <time.h>
+
+#include <cmath>
+#include <limits>
+
+#include "core/interruption.h"
+#include "core/log.h"
+#include "elements/element_registry.h"
+#include "explicit/central_difference.h"
+
+namespace impactfe {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+/// CPU time of this thread (POSIX): the cost per element-cycle measured by it does not grow
+/// when other processes share the cores, as wall time does.
+double thread_cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+/// What the explicit solver does not carry out is refused before anything runs.
+void refuse_unsupported(const Model& model, const AnalysisRequest& request) {
+  for (const auto& [key, ic] : model.initial_conditions)
+    if (ic.displacement != 0.0)
+      throw NotImplementedError(ic.where, fmt::format("node {}: initial displacements are not "
+                                                      "implemented in explicit dynamics",
+                                                      key.node));
+  for (const auto& [id, node] : model.nodes)
+    if (node.rotated())
+      throw NotImplementedError(request.where,
+                                fmt::format("node {} has rotated nodal axes: explicit dynamics "
+                                            "works in global axes only",
+                                            id));
+  for (const LoadStep& step : request.load_steps) {
+    const auto refuse = [&](const std::string& what) {
+      throw NotImplementedError(step.where,
+                                fmt::format("load step {}: {} not implemented in explicit "
+                                            "dynamics (D with value 0, ACEL, IC and EDVEL are)",
+                                            step.number, what));
+    };
+    if (!step.forces.empty()) refuse("nodal forces (F) are");
+    if (!step.pressures.empty()) refuse("surface loads (SF) are");
+    if (!step.constraint_tables.empty()) refuse("table (time-function) constraints are");
+    for (const auto& t : step.acel_tables)
+      if (!t.empty()) refuse("table (time-function) accelerations are");
+    for (const auto& [key, value] : step.constraints)
+      if (value != 0.0 && !is_rotation(key.dof))
+        refuse(fmt::format("a prescribed displacement (D,{},{},{:g}) is", key.node,
+                           dof_name(key.dof), value));
+    if (!step.time_end || !(*step.time_end > 0.0))
+      refuse("a load step without an end time (TIME) is");
+  }
+}
+
+/// The fixed DOFs of a load step: D on UX, UY, UZ (value 0). Rotations do not exist at the nodes
+/// of the explicit solids and are ignored.
+std::vector<std::uint8_t> fixed_dofs(const ExplicitSystem& s, const LoadStep& step) {
+  std::vector<std::uint8_t> fixed(3 * s.n_nodes(), 0);
+  for (const auto& [key, value] : step.constraints) {
+    const int n = s.index_of(key.node);
+    if (n >= 0 && !is_rotation(key.dof))
+      fixed[3 * static_cast<std::size_t>(n) + static_cast<std::size_t>(key.dof)] = 1;
+  }
+  return fixed;
+}
+
+/// IC velocities first, then EDVEL (which defines the velocity of its component's nodes).
+void set_initial_velocities(const Model& model, const ExplicitSystem& s, CentralDifference& cd) {
+  std::vector<Vec3> v(s.n_nodes(), Vec3::Zero());
+  for (const auto& [key, ic] : model.initial_conditions) {
+    const int n = s.index_of(key.node);
+    if (n >= 0 && !is_rotation(key.dof))
+      v[static_cast<std::size_t>(n)](static_cast<int>(key.dof)) = ic.velocity;
+  }
+  for (const auto& e : model.explicit_dynamics.initial_velocities)
+    for (int node : e.nodes) {
+      const int n = s.index_of(node);
+      if (n >= 0) v[static_cast<std::size_t>(n)] = e.velocity;
+    }
+  for (std::size_t n = 0; n < s.n_nodes(); ++n) cd.set_velocity(n, v[n]);
+}
+
+/// One stored time point: nodal U, V, A and reactions in the file's node order; the element
+/// results and the energies when `full`.
+TimePoint make_point(const ExplicitSystem& s, const CentralDifference& cd,
+                     const std::vector<int>& file_nodes, int load_step, int point, bool full) {
+  TimePoint p;
+  p.time = cd.time();
+  p.load_step = load_step;
+  p.substep = point;
+  const auto rows = static_cast<Eigen::Index>(file_nodes.size());
+  for (auto* m : {&p.displacement, &p.velocity, &p.acceleration, &p.reaction})
+    *m = Eigen::MatrixXd::Constant(rows, 6, kNaN);
+  for (std::size_t n = 0; n < s.n_nodes(); ++n) {
+    const int row = node_row(file_nodes, s.node_ids[n]);
+    if (row < 0) continue;
+    const Vec3 u = cd.displacement(n), v = cd.velocity(n), a = cd.acceleration(n),
+               r = cd.reaction(n);
+    for (int i = 0; i < 3; ++i) {
+      p.displacement(row, i) = u(i);
+      p.velocity(row, i) = v(i);
+      p.acceleration(row, i) = a(i);
+      if (cd.fixed(n, i)) p.reaction(row, i) = r(i);
+    }
+  }
+  const ExplicitEnergies e = cd.energies();
+  p.energy = {{"kinetic", e.kinetic},
+              {"strain", e.internal - e.plastic_work},
+              {"external_work", e.external_work},
+              {"gap_work", 0.0},
+              {"dissipation", e.hourglass},
+              {"plastic_work", e.plastic_work}};
+  if (!full) return p;
+  for (const auto& set : s.sets) {
+    ElementResultTable table;
+    for (std::size_t k = 0; k < set->size(); ++k) table.element_ids.push_back(set->element_id(k));
+    const ElementTypeDescriptor* d = nullptr;
+    for (const auto* t : registered_element_types())
+      if (t->family == set->family()) d = t;
+    table.item_names = d ? d->result_names : std::vector<std::string>{};
+    set->results(table.values);
+    p.element_results[set->family()] = std::move(table);
+  }
+  return p;
+}
+
+/// The energy check (same rule as the implicit driver's): |total − put in| beyond the bound
+/// at kExplicitChecksOver checks in a row.
+class EnergyCheck {
+ public:
+  explicit EnergyCheck(bool accept) : accept_(accept) {}
+  void check(const CentralDifference& cd) {
+    const ExplicitEnergies e = cd.energies();
+    peak_ = std::max(peak_, e.put_in());
+    const double reference = std::max(peak_, e.internal + e.kinetic);
+    if (!(reference > 0.0)) return;
+    worst_ = std::max(worst_, std::abs(e.drift()) / reference);
+    over_ = std::abs(e.drift()) > kExplicitEnergyBound * reference ? over_ + 1 : 0;
+    if (over_ < kExplicitChecksOver || warned_) return;
+    const std::string message = fmt::format(
+        "t = {:g}, cycle {}: energy {}: kinetic + internal + hourglass {:.4g} against {:.4g} "
+        "put in (initial kinetic + external work), {:.1f} % off (bound {:.0f} %, passed at {} "
+        "checks in a row): an unstable time step (EDCTS TSSFAC above 1 or a stiff element "
+        "outside the step estimate) or an hourglass mode out of control (EDHGLS). The results "
+        "up to here are kept; --accept-energy-error goes on",
+        cd.time(), cd.cycles(), e.drift() > 0 ? "created" : "lost",
+        e.kinetic + e.internal + e.hourglass, e.put_in(), 100.0 * std::abs(e.drift()) / reference,
+        100.0 * kExplicitEnergyBound, kExplicitChecksOver);
+    if (!accept_) throw SolutionError(message);
+    Log::warn("{} (accepted: --accept-energy-error)", message);
+    warned_ = true;
+  }
+  double worst() const { return worst_; }
+
+ private:
+  bool accept_;
+  bool warned_ = false;
+  int over_ = 0;
+  double peak_ = 0.0, worst_ = 0.0;
+};
+
+void summarize(const ExplicitSystem& s, const CentralDifference& cd, const EnergyCheck& check,
+               ExplicitRunSummary& out) {
+  const ExplicitEnergies e = cd.energies();
+  out.notes.push_back(fmt::format(
+      "explicit: {} cycles, {} elements, {} nodes; last step {:.4g} (element {}), smallest {:.4g} "
+      "(element {}); {:.0f} ns (CPU) per element-cycle",
+      out.cycles, out.n_elements, out.n_nodes, out.last_step, out.last_controlling_element,
+      out.smallest_step, out.smallest_step_element, out.ns_per_element_cycle));
+  out.notes.push_back(fmt::format(
+      "energy: kinetic {:.6g}, internal {:.6g} (plastic work {:.4g}), hourglass {:.4g} ({:.2f} % "
+      "of internal), initial kinetic {:.6g}, external work {:.6g}; balance off by {:.3f} % "
+      "(largest {:.3f} %)",
+      e.kinetic, e.internal, e.plastic_work, e.hourglass,
+      e.internal > 0 ? 100.0 * e.hourglass / e.internal : 0.0, e.initial_kinetic, e.external_work,
+      e.put_in() > 0 ? 100.0 * e.drift() / e.put_in() : 0.0, 100.0 * check.worst()));
+  if (cd.added_mass() > 0.0)
+    out.notes.push_back(fmt::format("mass scaling (EDCTS DTMS): {:.4g} added to {:.4g} ({:.3f} %)",
+                                    cd.added_mass(), s.physical_mass,
+                                    100.0 * cd.added_mass() / s.physical_mass));
+}
+
+/// The store times of an interval over [0, end]: multiples of `interval` (and the end).
+struct OutputGrid {
+  double interval = 0.0;
+  long next = 1;  // the next multiple to store
+  bool due(double t) const { return interval > 0.0 && t >= next * interval * (1.0 - 1e-9); }
+  void advance(double t) {
+    while (due(t)) ++next;
+  }
+};
+
+}  // namespace
+
+ExplicitRunSummary run_explicit_analysis(const Model& model, const AnalysisRequest& request,
+                                         ResultsWriter& writer, const ExplicitRunOptions& options) {
+  refuse_unsupported(model, request);
+  ExplicitSystem system = build_explicit_system(model);
+  const ExplicitControls& controls = model.explicit_dynamics;
+  CentralDifference cd(system, controls);
+  set_initial_velocities(model, system, cd);
+  const double end = *request.load_steps.back().time_end;
+  OutputGrid results{controls.results.for_end_time(end, 100)};
+  // EDHTIME: energy checks at its interval; stored points (nodal, energies) when it is given.
+  OutputGrid history{controls.history.for_end_time(end, 1000)};
+  const bool store_history = controls.history.steps || controls.history.interval;
+  writer.begin_analysis(ResultsKind::Transient, "explicit dynamics (central difference)",
+                        static_cast<long long>(end / results.interval) + 2);
+  ExplicitRunSummary summary;
+  summary.n_elements = system.n_elements();
+  summary.n_nodes = system.n_nodes();
+  summary.smallest_step = std::numeric_limits<double>::infinity();
+  EnergyCheck check(options.accept_energy_error);
+  StopPoints stop_points;
+  double loop_seconds = 0.0;
+  int point = 0;
+  for (std::size_t i = 0; i < request.load_steps.size(); ++i) {
+    const LoadStep& step = request.load_steps[i];
+    cd.set_loads(fixed_dofs(system, step), step.acel);
+    if (i == 0) {
+      cd.start();
+      // The initial state is load step 0, substep 0, as the implicit transients store it.
+      writer.append(make_point(system, cd, writer.node_ids(), 0, 0, true));
+    }
+    const double step_end = *step.time_end;
+    const double start = thread_cpu_seconds();
+    while (cd.time() < step_end * (1.0 - 1e-12)) {
+      const double dt = std::min(cd.stable_step(), step_end - cd.time());
+      if (cd.stable_step() < summary.smallest_step) {
+        summary.smallest_step = cd.stable_step();
+        summary.smallest_step_element = cd.controlling_element();
+      }
+      cd.cycle(dt);
+      const bool last = cd.time() >= step_end * (1.0 - 1e-12);
+      const bool full = results.due(cd.time()) || last;
+      const bool partial = history.due(cd.time());
+      if (full || partial) {
+        loop_seconds += thread_cpu_seconds() - start;
+        check.check(cd);
+        if (full || store_history)
+          writer.append(make_point(system, cd, writer.node_ids(), step.number, ++point, full));
+        results.advance(cd.time());
+        history.advance(cd.time());
+        if (const int signal = stop_requested())
+          throw RunInterrupted(signal, fmt::format("explicit run stopped by {} at t = {:g}",
+                                                   signal_name(signal), cd.time()));
+        loop_seconds -= thread_cpu_seconds() - start;
+      }
+    }
+    loop_seconds += thread_cpu_seconds() - start;
+  }
+  summary.cycles = cd.cycles();
+  summary.element_cycles = cd.cycles() * static_cast<long>(system.n_elements());
+  summary.last_step = cd.stable_step();
+  summary.last_controlling_element = cd.controlling_element();
+  summary.stored_points = point + 1;
+  summary.ns_per_element_cycle =
+      summary.element_cycles > 0 ? 1e9 * loop_seconds / static_cast<double>(summary.element_cycles)
+                                 : 0.0;
+  summarize(system, cd, check, summary);
+  writer.set_count("cycles", summary.cycles);
+  writer.set_attribute("ns_per_element_cycle", summary.ns_per_element_cycle);
+  writer.set_attribute("added_mass", cd.added_mass());
+  writer.set_attribute("hourglass_energy", cd.energies().hourglass);
+  return summary;
+}
+
+}  // namespace impactfe

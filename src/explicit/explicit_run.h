@@ -1,0 +1,44 @@
+#pragma once
+/// The explicit dynamics analysis (docs/explicit_dynamics.md): a transient analysis whose
+/// elements are all explicit ones (SOLID164, ...) runs here instead of the implicit drivers, by
+/// the central difference of central_difference.h, over the load steps of the request, and
+/// writes its results into the job's results file like an implicit transient.
+#include <string>
+#include <vector>
+
+#include "core/model.h"
+#include "results/results_file.h"
+
+namespace impactfe {
+
+struct ExplicitRunOptions {
+  bool accept_energy_error = false;  // --accept-energy-error: warn and go on
+};
+
+/// Figures of a finished run, for the run summary.
+struct ExplicitRunSummary {
+  long cycles = 0;
+  long element_cycles = 0;
+  double last_step = 0.0;
+  int last_controlling_element = 0;
+  double smallest_step = 0.0;
+  int smallest_step_element = 0;
+  double ns_per_element_cycle = 0.0;
+  int stored_points = 0;
+  std::size_t n_elements = 0, n_nodes = 0;
+  std::vector<std::string> notes;  // lines for the run summary
+};
+
+/// The energy check's bound: the same rule as the implicit driver's (EnergyBalance::
+/// kCreationBound, run_observers.h kStepsOver): the total energy off the energy put in by more
+/// than 10 % of it at 3 checks in a row stops the run.
+inline constexpr double kExplicitEnergyBound = 0.10;
+inline constexpr int kExplicitChecksOver = 3;
+
+/// Runs the analysis; throws InputError / NotImplementedError for what the explicit solver does
+/// not carry out (at the command when known), SolutionError (exit 2) when the energy check
+/// fails or an element inverts, RunInterrupted on Ctrl-C. Results written stay in the file.
+ExplicitRunSummary run_explicit_analysis(const Model& model, const AnalysisRequest& request,
+                                         ResultsWriter& writer, const ExplicitRunOptions& options);
+
+}  // namespace impactfe

@@ -1,0 +1,117 @@
+#include "explicit/explicit_system.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <map>
+#include <set>
+
+#include "elements/element_registry.h"
+
+namespace impactfe {
+
+bool runs_explicit(const Model& model, std::string* why_not) {
+  if (model.elements.empty()) return false;
+  for (const auto& [id, record] : model.elements) {
+    const ElementTypeDescriptor& d = element_type_descriptor(model.element_type(record.type));
+    if (!d.explicit_set) {
+      if (why_not)
+        *why_not = fmt::format("element {} is a {}, which has no explicit formulation", id, d.name);
+      return false;
+    }
+  }
+  return true;
+}
+
+bool has_explicit_elements(const Model& model) {
+  for (const auto& [id, type] : model.element_types)
+    if (element_type_descriptor(type).explicit_set) return true;
+  return false;
+}
+
+std::size_t ExplicitSystem::n_elements() const {
+  std::size_t n = 0;
+  for (const auto& s : sets) n += s->size();
+  return n;
+}
+
+int ExplicitSystem::index_of(int node_id) const {
+  const auto it = std::lower_bound(node_ids.begin(), node_ids.end(), node_id);
+  return it != node_ids.end() && *it == node_id ? static_cast<int>(it - node_ids.begin()) : -1;
+}
+
+namespace {
+
+void number_nodes(const Model& model, ExplicitSystem& s) {
+  std::set<int> used;
+  for (const auto& [id, record] : model.elements)
+    for (int n : record.nodes)
+      if (n != 0) used.insert(n);
+  s.node_ids.assign(used.begin(), used.end());
+  for (int id : s.node_ids) {
+    const auto it = model.nodes.find(id);
+    const Vec3 p = it == model.nodes.end() ? Vec3::Zero() : it->second.x;
+    s.x0.push_back(p.x());
+    s.y0.push_back(p.y());
+    s.z0.push_back(p.z());
+  }
+}
+
+/// The node → slots lists: a counting sort of the slots by node, slots ascending per node.
+void index_slots(ExplicitSystem& s) {
+  s.slot_start.assign(s.n_nodes() + 1, 0);
+  for (std::size_t i = 0; i < s.sets.size(); ++i) {
+    const auto& set = *s.sets[i];
+    for (std::size_t k = 0; k < set.size(); ++k)
+      for (int a = 0; a < set.nodes_per_element(); ++a) ++s.slot_start[set.nodes(k)[a] + 1];
+  }
+  for (std::size_t n = 0; n < s.n_nodes(); ++n) s.slot_start[n + 1] += s.slot_start[n];
+  s.slots.resize(s.slot_start.back());
+  std::vector<std::size_t> fill(s.slot_start.begin(), s.slot_start.end() - 1);
+  for (std::size_t i = 0; i < s.sets.size(); ++i) {
+    const auto& set = *s.sets[i];
+    const int per = set.nodes_per_element();
+    for (std::size_t k = 0; k < set.size(); ++k)
+      for (int a = 0; a < per; ++a)
+        s.slots[fill[set.nodes(k)[a]]++] = s.set_offset[i] + k * per + a;
+  }
+}
+
+}  // namespace
+
+ExplicitSystem build_explicit_system(const Model& model) {
+  ExplicitSystem s;
+  number_nodes(model, s);
+  // The elements of one type form one set, in ascending element id.
+  std::map<std::string, std::vector<const ElementRecord*>> by_type;
+  for (const auto& [id, record] : model.elements)
+    by_type[model.element_type(record.type).ansys_name].push_back(&record);
+  const ExplicitControls& e = model.explicit_dynamics;
+  ExplicitBuildContext ctx{
+      .model = model,
+      .node_index =
+          [&s, &model](int node, const ElementRecord& record) {
+            const int index = s.index_of(node);
+            if (index < 0 || !model.nodes.count(node))
+              throw InputError(record.where,
+                               fmt::format("element {}: node {} is not defined", record.id, node));
+            return index;
+          },
+      .hourglass_coefficient = e.hourglass_coefficient,
+      .bulk_quadratic = e.bulk_quadratic,
+      .bulk_linear = e.bulk_linear};
+  for (const auto& [name, records] : by_type) {
+    const ElementTypeDescriptor& d = *find_element_type(name);
+    s.set_offset.push_back(s.n_slots);
+    s.sets.push_back(d.explicit_set(ctx, records));
+    s.n_slots +=
+        s.sets.back()->size() * static_cast<std::size_t>(s.sets.back()->nodes_per_element());
+  }
+  s.mass.assign(s.n_nodes(), 0.0);
+  for (const auto& set : s.sets) set->add_lumped_mass(s.mass);
+  for (double m : s.mass) s.physical_mass += m;
+  index_slots(s);
+  return s;
+}
+
+}  // namespace impactfe
