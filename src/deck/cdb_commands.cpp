@@ -119,7 +119,8 @@ void cmd_nblock(DeckReader& r, const Command& c) {
   std::string_view record;
   std::vector<Node> nodes;
   while (b.next(record)) {
-    if (trim(record) == "-1" || trim(record).rfind("N,", 0) == 0 || trim(record).rfind("n,", 0) == 0)
+    if (trim(record) == "-1" || trim(record).rfind("N,", 0) == 0 ||
+        trim(record).rfind("n,", 0) == 0)
       break;  // the end of the block
     const auto col = columns(record, widths);
     Node n;
@@ -160,8 +161,9 @@ class AttributeScope {
 // line, further nodes on continuation lines; a -1 record ends the block.
 void cmd_eblock(DeckReader& r, const Command& c) {
   if (r.label(c, 2) != "SOLID")
-    r.fail(c, "only the SOLID format of EBLOCK is supported (the non-solid format of contact "
-              "and line elements is not)");
+    r.fail(c,
+           "only the SOLID format of EBLOCK is supported (the non-solid format of contact "
+           "and line elements is not)");
   BlockRecords b(r, c, 1);
   const std::vector<int> widths = format_widths(b, 0);
   if (widths.size() < 11) b.fail("the format has fewer than the 11 columns before the nodes");
@@ -183,7 +185,8 @@ void cmd_eblock(DeckReader& r, const Command& c) {
       nodes.push_back(static_cast<int>(column_int(b, col[k])));
     while (static_cast<long long>(nodes.size()) < n_nodes && b.next(record)) {
       const auto more = columns(record, std::vector<int>(widths.size(), widths.front()));
-      for (std::size_t k = 0; k < more.size() && static_cast<long long>(nodes.size()) < n_nodes; ++k)
+      for (std::size_t k = 0; k < more.size() && static_cast<long long>(nodes.size()) < n_nodes;
+           ++k)
         nodes.push_back(static_cast<int>(column_int(b, more[k])));
     }
     r.modeling.current_mat = static_cast<int>(mat);
@@ -204,7 +207,8 @@ void cmd_cmblock(DeckReader& r, const Command& c) {
   if (name.empty()) r.fail(c, "component name missing");
   if (entity != "NODE" && entity != "ELEM")
     r.fail(c, fmt::format("Entity '{}': NODE or ELEM (solid-model components are not read from "
-                          "a CDB)", entity));
+                          "a CDB)",
+                          entity));
   const long long n_items = r.integer(c, 3, 0);
   BlockRecords b(r, c, 1);
   const std::vector<int> widths = format_widths(b, 0);
@@ -229,9 +233,8 @@ void cmd_cmblock(DeckReader& r, const Command& c) {
   ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
   for (int id : ids)
     if (entity == "NODE" ? r.model.nodes.count(id) == 0 : r.model.elements.count(id) == 0)
-      r.fail(c, fmt::format("{} {} of component {} is not defined", entity == "NODE" ? "node"
-                                                                                    : "element",
-                            id, name));
+      r.fail(c, fmt::format("{} {} of component {} is not defined",
+                            entity == "NODE" ? "node" : "element", id, name));
   r.model.components[name] = Component{entity, std::move(ids), c.where};
 }
 
@@ -248,14 +251,15 @@ void cmd_rlblock(DeckReader& r, const Command& c) {
     const auto col = columns(record, first);
     RealSet set;
     const long long id = column_int(b, col[0]), n = column_int(b, col[1]);
-    if (id <= 0 || id > kMaxEntityNumber) b.fail(fmt::format("real set number {} out of range", id));
+    if (id <= 0 || id > kMaxEntityNumber)
+      b.fail(fmt::format("real set number {} out of range", id));
     if (n < 0 || n > 100000) b.fail(fmt::format("{} values in set {}", n, id));
     set.id = static_cast<int>(id);
     for (std::size_t k = 2; k < col.size() && static_cast<long long>(set.values.size()) < n; ++k)
       set.values.push_back(column_real(b, col[k]));
     while (static_cast<long long>(set.values.size()) < n) {
-      if (!b.next(record)) b.fail(fmt::format("set {}: {} of {} values given", id,
-                                              set.values.size(), n));
+      if (!b.next(record))
+        b.fail(fmt::format("set {}: {} of {} values given", id, set.values.size(), n));
       for (const auto& v : columns(record, more))
         if (static_cast<long long>(set.values.size()) < n) set.values.push_back(column_real(b, v));
     }
@@ -330,8 +334,9 @@ void cmd_cdwrite(DeckReader& r, const Command& c) {
   if (!option.empty() && option != "DB" && option != "ALL")
     r.fail(c, fmt::format("Option '{}': DB (or ALL for a model without a solid model)", option));
   if (option != "DB" && !r.model.solid.empty())
-    r.fail(c, "ALL writes the solid model as IGES, which is not done here: CDWRITE,DB writes the "
-              "mesh, materials, sections, components and loads");
+    r.fail(c,
+           "ALL writes the solid model as IGES, which is not done here: CDWRITE,DB writes the "
+           "mesh, materials, sections, components and loads");
   std::string name = r.text_field(c, 2), ext = r.text_field(c, 3);
   if (name.empty()) name = r.model.jobname;
   if (ext.empty()) ext = "cdb";

@@ -130,7 +130,8 @@ void write_components(const Model& m, std::ostream& out) {
     }
     out << fmt::format("CMBLOCK,{},{},{}\n(8i10)\n", name, comp.entity, items.size());
     for (std::size_t k = 0; k < items.size(); ++k)
-      out << fmt::format("{:10d}", items[k]) << ((k + 1) % 8 == 0 || k + 1 == items.size() ? "\n" : "");
+      out << fmt::format("{:10d}", items[k])
+          << ((k + 1) % 8 == 0 || k + 1 == items.size() ? "\n" : "");
   }
 }
 

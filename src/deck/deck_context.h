@@ -43,10 +43,10 @@ const char* processor_name(unsigned processor);
 /// A command ready for its handler: resolved (upper-case) name and raw field texts.
 struct Command {
   std::string name;
-  std::vector<std::string> fields;        // fields[0] is field 1
-  std::string rest;                       // raw text after the first comma (/TITLE, /COM)
-  bool assignment = false;                // modern `Par = expr`
-  std::vector<std::string> format_lines;  // the line(s) after *VWRITE / *MSG, verbatim
+  std::vector<std::string> fields;           // fields[0] is field 1
+  std::string rest;                          // raw text after the first comma (/TITLE, /COM)
+  bool assignment = false;                   // modern `Par = expr`
+  std::vector<std::string> format_lines;     // the line(s) after *VWRITE / *MSG, verbatim
   std::shared_ptr<const std::string> block;  // CDB block data (RawCommand::block), or null
   int block_line = 0;                        // line of the block's first line
   SourceLocation where;

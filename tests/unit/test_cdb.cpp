@@ -135,8 +135,7 @@ TEST(CdbRead, BadRecordsNameTheirLine) {
     read_deck_text(nonsolid, "nonsolid.cdb");
     FAIL() << "the non-solid EBLOCK format was read";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find(":24: EBLOCK: only the SOLID format"),
-              std::string::npos)
+    EXPECT_NE(std::string(e.what()).find(":24: EBLOCK: only the SOLID format"), std::string::npos)
         << e.what();
   }
 }
