@@ -116,3 +116,38 @@ def test_hypermesh_archive_reads_its_shells(binary, tmp_path):
     assert len(records) == 80  # one line each: 4 nodes
     assert all(r.split()[1] == "1" and r.split()[8] == "4" for r in records)  # TYPE 1, 4 nodes
     assert "RLBLOCK,1,1,12,7" in text
+
+
+def test_public_hexbeam_archive_bends_as_timoshenko(binary, tmp_path):
+    """HexBeam.cdb (MAPDL 2019 R2): a 1 x 1 x 5 beam along Z of 40 SOLID186 bricks, E = 70 GPa,
+    ν = 0.35, with its components. Clamped at z = 0 and loaded by P = 1000 in X spread over the
+    nodes of the end z = 5, it bends at mid-length (z = 2.5, away from both ends' local effects)
+    by Timoshenko's v = P z² (3L − z) / (6EI) + P z / (κGA), κ = 10(1 + ν)/(12 + 11ν)."""
+    source = os.path.join(SHARED_CDB, "HexBeam.cdb")
+    deck = tmp_path / "hexbeam.inp"
+    deck.write_text(f"""/PREP7
+CDREAD,DB,'{source[:-4]}',cdb
+FINISH
+/SOLU
+ANTYPE,STATIC
+NSEL,S,LOC,Z,0
+D,ALL,ALL,0
+NSEL,S,LOC,Z,5
+*GET,NTIP,NODE,0,COUNT
+F,ALL,FX,1000/NTIP
+ALLSEL
+SOLVE
+FINISH
+""")
+    run([binary, "run", str(deck), "-o", str(tmp_path)])
+    r = impactfe.open(str(tmp_path / "hexbeam.h5"))
+    assert len(r.elements()) == 40 and set(r.elements()["type_name"]) == {"SOLID186"}
+    nodes = r.nodes()
+    mid = nodes.index[np.isclose(nodes["Z"], 2.5)]
+    ux = r.field("UX").loc[mid, "UX"].mean()
+    E, nu, P, L, z = 70e9, 0.35, 1000.0, 5.0, 2.5
+    inertia, area = 1.0 / 12.0, 1.0
+    kappa = 10 * (1 + nu) / (12 + 11 * nu)
+    G = E / (2 * (1 + nu))
+    expected = P * z**2 * (3 * L - z) / (6 * E * inertia) + P * z / (kappa * G * area)
+    assert abs(ux / expected - 1) < 0.015, (ux, expected)
