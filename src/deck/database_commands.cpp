@@ -30,6 +30,7 @@ void DeckReader::clear_database(const Command& c) {
       dialect == Dialect::Classic4x ? IntegratorKind::Houbolt : IntegratorKind::Newmark;
   processor = kBegin;
   params.clear();
+  output.to_terminal();
   scripting.increments.clear();  // *CREATE files and *BEGIN blocks survive
   if (scripting.command_file.stream.is_open()) scripting.command_file.stream.close();
   scripting.command_file.path.clear();
