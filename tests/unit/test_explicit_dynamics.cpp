@@ -4,6 +4,8 @@
 // materials/rate_plasticity.h, and the central-difference run (determinism, mass scaling).
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+
 #include <cmath>
 
 #include "deck/deck_reader.h"
