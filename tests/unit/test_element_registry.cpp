@@ -13,6 +13,7 @@
 #include <map>
 
 #include "../support/run_deck.h"
+#include "elements/cell_topology.h"
 #include "elements/element_fields.h"
 #include "elements/element_registry.h"
 #include "elements/line_element_data.h"
@@ -118,7 +119,7 @@ TEST(ElementRegistry, TheMesherTheReportAndTheVtkExportTakeATestElementFromItsRe
   EXPECT_TRUE(mesh.points.empty());
   EXPECT_EQ(mesh.gap_nodes.size(), 2u);
   ASSERT_EQ(mesh.bodies.size(), 2u);  // the gap joins no bodies
-  EXPECT_EQ(mesh.bodies[0].name, "the TSPRING part 1");
+  EXPECT_EQ(mesh.bodies[0].name, "the TSPRING type 1 mat 1 real 1 part 1");
   EXPECT_TRUE(is_gap_type("TGAP"));
   EXPECT_FALSE(is_gap_type("TSPRING"));
   const VtkMesh vtk = build_vtk_mesh(*run.reader);
@@ -199,9 +200,21 @@ TEST(ElementRegistry, RegisteringANameTwiceIsAnInternalError) {
 /// A small model with one element of `type`, enough to construct it.
 Model one_element_model(const std::string& type) {
   Model m;
-  const std::vector<Vec3> corners = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
-                                     {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
-  for (int i = 0; i < 8; ++i) m.nodes[i + 1] = Node{i + 1, corners[i]};
+  const CellTopology& cell = cell_topology(find_element_type(type)->vtk_cell);
+  // A tetrahedron's four corners must not lie in one plane; midside nodes at mid-edge.
+  const std::vector<Vec3> corners =
+      cell.corner_nodes == 4 && cell.dimension == 3
+          ? std::vector<Vec3>{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}
+          : std::vector<Vec3>{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
+                              {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+  for (int i = 0; i < static_cast<int>(corners.size()); ++i)
+    m.nodes[i + 1] = Node{i + 1, corners[static_cast<std::size_t>(i)]};
+  for (int k = 0; k < cell.midside_nodes; ++k) {
+    const auto& e = cell.edges[static_cast<std::size_t>(k)];
+    const int id = cell.corner_nodes + k + 1;
+    m.nodes[id] = Node{id, 0.5 * (corners[static_cast<std::size_t>(e[0])] +
+                                  corners[static_cast<std::size_t>(e[1])])};
+  }
   ElementType et;
   et.id = 1;
   et.ansys_name = type;
@@ -252,8 +265,9 @@ TEST(ElementRegistry, EveryBuiltInTypeMatchesItsElementClass) {
     EXPECT_GE(d->number, 1);
     ++checked;
   }
-  // LINK1 LINK8 LINK180 COMBIN14 MASS21 COMBIN40 SHELL63/181 SOLID45/185 BEAM188 BEAM4 BEAM3
-  EXPECT_EQ(checked, 13);
+  // LINK1 LINK8 LINK180 COMBIN14 MASS21 COMBIN40 SHELL63/181 SOLID45/185 SOLID186/187 BEAM188
+  // BEAM4 BEAM3
+  EXPECT_EQ(checked, 15);
 }
 
 }  // namespace
