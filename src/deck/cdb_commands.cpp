@@ -212,6 +212,9 @@ void cmd_cmblock(DeckReader& r, const Command& c) {
   const long long n_items = r.integer(c, 3, 0);
   BlockRecords b(r, c, 1);
   const std::vector<int> widths = format_widths(b, 0);
+  auto defined = [&](int id) {
+    return entity == "NODE" ? r.model.nodes.count(id) != 0 : r.model.elements.count(id) != 0;
+  };
   std::vector<int> ids;
   long long read = 0;
   std::string_view record;
@@ -222,7 +225,12 @@ void cmd_cmblock(DeckReader& r, const Command& c) {
       ++read;
       if (v < 0) {
         if (ids.empty() || -v < ids.back()) b.fail(fmt::format("range end {} without a start", v));
-        for (long long k = ids.back() + 1; k <= -v; ++k) ids.push_back(static_cast<int>(k));
+        // A range holds defined entities only: it stops at the first one that is not.
+        for (long long k = ids.back() + 1; k <= -v; ++k) {
+          if (!defined(static_cast<int>(k)))
+            b.fail(fmt::format("{} {} of component {} is not defined", entity, k, name));
+          ids.push_back(static_cast<int>(k));
+        }
       } else {
         ids.push_back(static_cast<int>(v));
       }
@@ -232,9 +240,8 @@ void cmd_cmblock(DeckReader& r, const Command& c) {
   std::sort(ids.begin(), ids.end());
   ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
   for (int id : ids)
-    if (entity == "NODE" ? r.model.nodes.count(id) == 0 : r.model.elements.count(id) == 0)
-      r.fail(c, fmt::format("{} {} of component {} is not defined",
-                            entity == "NODE" ? "node" : "element", id, name));
+    if (!defined(id))
+      r.fail(c, fmt::format("{} {} of component {} is not defined", entity, id, name));
   r.model.components[name] = Component{entity, std::move(ids), c.where};
 }
 

@@ -9,6 +9,8 @@ namespace impactfe::deck {
 
 namespace {
 
+constexpr std::size_t kMaxColumns = 1000;
+
 int read_int(std::string_view s, std::size_t& i) {
   int v = 0;
   bool any = false;
@@ -68,7 +70,12 @@ std::vector<FortranField> parse_fortran_format(std::string_view format) {
 std::vector<int> field_widths(const std::vector<FortranField>& fields) {
   std::vector<int> widths;
   for (const auto& d : fields)
-    for (int k = 0; k < d.count; ++k) widths.push_back(d.width);
+    for (int k = 0; k < d.count; ++k) {
+      // A record of MAPDL's blocks has at most 19 columns; far more is not a block format.
+      if (widths.size() == kMaxColumns)
+        throw std::invalid_argument("format line with more than 1000 columns");
+      widths.push_back(d.width);
+    }
   return widths;
 }
 
