@@ -217,6 +217,7 @@ void integrate_reduced(ReducedRunState& state, ReducedDynamics& dynamics,
 
   const ReducedPoint& p0 = state.points.front();
   const VectorXd f0 = reduce(VectorXd(state.external_force(p0).head(nf)));
+  VectorXd f_last = f0;  // the reduced external load of the last point
   VectorXd q_init = q0;
   if (f0.squaredNorm() > 0.0) q_init = static_initial_state(dynamics.k(), f0, coordinate_name);
   dynamics.start(q_init, v0, f0, state.dt > 0.0 ? state.dt : 1.0);
@@ -237,8 +238,19 @@ void integrate_reduced(ReducedRunState& state, ReducedDynamics& dynamics,
   for (std::size_t i = 1; i < state.points.size(); ++i) {
     const ReducedPoint& p = state.points[i];
     const auto t0 = clock::now();
+    const ReducedPoint& before = state.points[i - 1];
+    if (p.step_index != before.step_index &&
+        state.load_steps[static_cast<std::size_t>(p.step_index)].stepped) {
+      // A stepped load (KBC,1) takes its new value at the start of the load step, as in MAPDL:
+      // the loads of this step at the time of the last point.
+      ReducedPoint start = p;
+      start.time = before.time;
+      const VectorXd f_start = reduce(VectorXd(state.external_force(start).head(nf)));
+      if (f_start != f_last) dynamics.jump_load(f_start);
+    }
     const VectorXd f = reduce(VectorXd(state.external_force(p).head(nf)));
     dynamics.step(f);
+    f_last = f;
     integration += std::chrono::duration<double>(clock::now() - t0).count();
     ++n_steps;
     ++stats.n_substeps;

@@ -57,6 +57,15 @@ void ReducedDynamics::start(const VectorXd& q0, const VectorXd& v0, const Vector
   factor_valid_ = false;
 }
 
+void ReducedDynamics::jump_load(const VectorXd& f_now) {
+  const TimeIntegrator& ti = *integrator_;
+  const VectorXd rhs = f_now + gap_load_ - c_ * ti.v() - k_ * ti.u();
+  // Masters without mass (if any) get the minimum-norm acceleration, as in start().
+  const VectorXd a = m_.completeOrthogonalDecomposition().solve(rhs);
+  integrator_->jump_acceleration(a);
+  f_old_ = f_now + gap_load_;
+}
+
 void ReducedDynamics::factorize() {
   const IntegrationCoefficients coeff = integrator_->coefficients();
   effective_.compute(coeff.cK * k_ + coeff.cC * c_ + coeff.cM * m_);

@@ -36,6 +36,10 @@ class ReducedDynamics {
   void start(const VectorXd& q0, const VectorXd& v0, const VectorXd& f0, double h);
   /// Advances one step to t_{n+1} with the reduced external load f_{n+1} (without gap forces).
   void step(const VectorXd& f_next);
+  /// The external load jumps to f_now at the current time t_n (a stepped load, KBC,1): the
+  /// acceleration at t_n is taken from M a = f_now + gap load − C v − K q and f_now becomes the
+  /// old load of the next step, so that the new load acts from t_n on, not from t_n + h/2.
+  void jump_load(const VectorXd& f_now);
 
   const VectorXd& q() const { return integrator_->u(); }
   const VectorXd& v() const { return integrator_->v(); }

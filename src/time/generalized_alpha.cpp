@@ -109,6 +109,12 @@ class GeneralizedAlpha final : public TimeIntegrator, public IntegratorHistory {
     a_.swap(a_next_);
   }
 
+  void jump_acceleration(const Eigen::VectorXd& a_jump) override {
+    IMPACTFE_CHECK(started_ && a_jump.size() == a_.size(),
+                   "GeneralizedAlpha::jump_acceleration: not started or wrong size");
+    a_ = a_jump;
+  }
+
   const Eigen::VectorXd& u() const override { return u_; }
   const Eigen::VectorXd& v() const override { return v_; }
   const Eigen::VectorXd& a() const override { return a_; }

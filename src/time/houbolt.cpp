@@ -84,6 +84,10 @@ class Houbolt final : public TimeIntegrator, public IntegratorHistory {
     a_ = std::move(a_next);
   }
 
+  /// Houbolt's equation at t_{n+1} holds the load f_{n+1} alone and its a_n is a backward
+  /// difference of the displacements (thesis eq. 3-3): a load jump at t_n needs nothing here.
+  void jump_acceleration(const Eigen::VectorXd& /*a_jump*/) override {}
+
   const Eigen::VectorXd& u() const override { return u_; }
   const Eigen::VectorXd& v() const override { return v_; }
   const Eigen::VectorXd& a() const override { return a_; }

@@ -60,6 +60,11 @@ class TimeIntegrator {
                           Eigen::VectorXd& a_next) const = 0;
   /// Accepts u_{n+1} as the converged state; the history moves one step.
   virtual void advance(const Eigen::VectorXd& u_next) = 0;
+  /// The load jumps at t_n (a stepped load, KBC,1): `a_jump` is the acceleration of the current
+  /// state under the new load, M a = f_new − C v_n − K u_n. A one-step scheme takes it as a_n, so
+  /// that the new load acts over the whole next step (with the old a_n the trapezoidal rule
+  /// would average the old and the new load over that step, which delays the load by h/2).
+  virtual void jump_acceleration(const Eigen::VectorXd& a_jump) = 0;
 
   /// Current (last accepted) state.
   virtual const Eigen::VectorXd& u() const = 0;
