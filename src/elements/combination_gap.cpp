@@ -214,10 +214,15 @@ std::unique_ptr<Element> make_combination_gap(const ElementBuildContext& ctx,
   data.k2 = real.get(6);
   data.lock_up = type.key(1) == 1;
   data.mass_location = k6;
-  if (data.k1 == 0.0 && data.k2 == 0.0)
+  // Without springs the element is a damper C and a mass M (vm9 uses one, R,3,,1.41,1, which
+  // MAPDL runs although its element notes ask for K1 or K2): linear, nothing to open or slide.
+  // A gap or a slider would carry no force there, so they are refused.
+  if (data.k1 == 0.0 && data.k2 == 0.0 && (data.gap != 0.0 || data.fslide != 0.0))
     throw InputError(record.where,
-                     fmt::format("element {} ({}): K1 and K2 are both zero (real set {})",
-                                 record.id, family, record.real));
+                     fmt::format("element {} ({}): K1 and K2 are both zero, so GAP = {:g} and "
+                                 "FSLIDE = {:g} would carry no force; give K1 or K2, or leave "
+                                 "GAP and FSLIDE zero for a pure damper and mass (real set {})",
+                                 record.id, family, data.gap, data.fslide, record.real));
   if (data.k1 < 0.0 || data.k2 < 0.0 || data.c < 0.0 || data.m < 0.0)
     throw InputError(record.where,
                      fmt::format("element {} ({}): K1, C, M and K2 must not be negative (real "

@@ -344,6 +344,27 @@ TEST(CombinationGap, DamperOnlyWhileClosed) {
   EXPECT_TRUE(C.isApprox(expected));
 }
 
+TEST(CombinationGap, WithoutSpringsIsALinearDamperAndMass) {
+  // vm9's R,3,,1.41,1: K1 = K2 = 0, C = 1.41, M = 1 (KEYOPT(6) = 2: mass at J).
+  GapSpec s;
+  s.c = 1.41;
+  s.m = 1.0;
+  s.keyopt6 = 2;
+  auto e = build(s);
+  EXPECT_FALSE(e->has_status());
+  const Eval ev = eval(*e, uv(0.3, -0.7));
+  EXPECT_EQ(ev.K.norm(), 0.0);
+  EXPECT_EQ(ev.f.norm(), 0.0);
+  Eigen::MatrixXd C, M;
+  e->damping(kCtx, uv(0.3, -0.7), C);
+  Eigen::Matrix2d expected;
+  expected << 1.41, -1.41, -1.41, 1.41;
+  EXPECT_TRUE(C.isApprox(expected));
+  e->mass(kCtx, M);
+  EXPECT_EQ(M(1, 1), 1.0);
+  EXPECT_EQ(M(0, 0), 0.0);
+}
+
 TEST(CombinationGap, InputErrors) {
   auto expect_error = [](const GapSpec& s, const char* fragment) {
     try {
@@ -356,7 +377,11 @@ TEST(CombinationGap, InputErrors) {
   };
   GapSpec s;
   s.gap = 0.1;
-  expect_error(s, "both zero");
+  expect_error(s, "K1 and K2 are both zero, so GAP = 0.1");
+  s.gap = 0.0;
+  s.fslide = 5.0;
+  expect_error(s, "FSLIDE = 5 would carry no force");
+  s.fslide = 0.0;
   s.k1 = 10;
   s.keyopt3 = 7;
   expect_error(s, "KEYOPT(3)");
