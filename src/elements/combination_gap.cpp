@@ -169,8 +169,9 @@ void CombinationGap::restore_history_state(const std::vector<double>& state) {
 }
 
 namespace {
-const std::vector<std::string> kCombinationGapResults = {"FORC", "F1",    "F2",
-                                                         "STAT", "DELTA", "SLIDE"};
+// SENE: the energy stored in the springs, F1²/(2 K1) + F2²/(2 K2) (the slider stores none).
+const std::vector<std::string> kCombinationGapResults = {"FORC",  "F1",    "F2",  "STAT",
+                                                         "DELTA", "SLIDE", "SENE"};
 }  // namespace
 
 const std::vector<std::string>& CombinationGap::result_names() const {
@@ -180,8 +181,11 @@ const std::vector<std::string>& CombinationGap::result_names() const {
 void CombinationGap::results(const ElementContext&, const Eigen::VectorXd& u,
                              const Eigen::VectorXd&, ElementResultValues& out) const {
   const Forces f = forces(trial_, u);
-  out = {f.f1 + f.f2, f.f1,  f.f2, static_cast<double>(static_cast<int>(trial_.status)),
-         f.delta,     f.slip};
+  double energy = 0.0;
+  if (data_.k1 > 0.0) energy += 0.5 * f.f1 * f.f1 / data_.k1;
+  if (data_.k2 > 0.0) energy += 0.5 * f.f2 * f.f2 / data_.k2;
+  out = {f.f1 + f.f2, f.f1,   f.f2,  static_cast<double>(static_cast<int>(trial_.status)),
+         f.delta,     f.slip, energy};
 }
 
 namespace {

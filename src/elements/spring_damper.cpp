@@ -56,7 +56,9 @@ void SpringDamper::damping(const ElementContext& ctx, const Eigen::VectorXd& u,
 }
 
 namespace {
-const std::vector<std::string> kSpringDamperResults = {"FORC", "STRETCH"};
+// SENE: the strain energy of the linear spring, k e² / 2 (also under large rotation: the
+// spring is linear in its stretch e).
+const std::vector<std::string> kSpringDamperResults = {"FORC", "STRETCH", "SENE"};
 }  // namespace
 
 const std::vector<std::string>& SpringDamper::result_names() const {
@@ -69,7 +71,7 @@ void SpringDamper::results(const ElementContext& ctx, const Eigen::VectorXd& u,
   Eigen::VectorXd f;
   const auto s =
       corotational::axial_response(member_, kinematics(ctx), stiffness_, 0.0, u, K, f, id());
-  out = {s.force, s.extension};
+  out = {s.force, s.extension, 0.5 * stiffness_ * s.extension * s.extension};
 }
 
 namespace {

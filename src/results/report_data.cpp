@@ -259,11 +259,11 @@ Pass scan_time_points(const ResultsReader& reader, const std::vector<FrameRef>& 
   return pass;
 }
 
-/// Stress items (SX .. SEQV, SAXL, SEQV_TOP, ...) share one figure; STAT, STRETCH and SLIDE
-/// are not stresses.
+/// Stress items (SX .. SEQV, SAXL, SEQV_TOP, ...) share one figure; STAT, STRETCH, SLIDE and
+/// the strain energy SENE are not stresses.
 bool is_stress_item(const std::string& item) {
   return item.size() >= 2 && item[0] == 'S' && item != "STAT" && item != "STRETCH" &&
-         item != "SLIDE";
+         item != "SLIDE" && item != "SENE";
 }
 
 /// "element 39 (SHELL63)" or "elements 39 (SHELL63), 73 (SOLID45)" from the curves' labels

@@ -30,12 +30,12 @@ std::string unit_of_quantity(const UnitLabels& units, const std::string& quantit
   if (first == "Displacement") return units.length;
   if (first == "Velocity") return units.velocity;
   if (first == "Acceleration") return units.acceleration;
-  // Stress items: SX .. SEQV, SAXL, SEPL, SEQV_TOP, ...; not STAT, SLIDE, STRETCH or the ratio
-  // SRAT.
+  if (first == "Energy" || first == "SENE") return units.energy;
+  // Stress items: SX .. SEQV, SAXL, SEPL, SEQV_TOP, ...; not STAT, SLIDE, STRETCH, the strain
+  // energy SENE or the ratio SRAT.
   if (first == "Stress" || (first.size() >= 2 && first[0] == 'S' && first != "STAT" &&
                             first != "SLIDE" && first != "STRETCH" && first != "SRAT"))
     return units.stress;
-  if (first == "Energy") return units.energy;
   if (first == "FORC" || first == "FN" || first == "FT" || first == "Gap" || first == "Contact")
     return units.force;
   return "";

@@ -78,7 +78,7 @@ TEST(CombinationGap, DofsFromKeyopt3AndResultNames) {
   ASSERT_EQ(e->n_dofs(), 2);
   EXPECT_EQ(e->dofs()[0], (DofKey{68, Dof::UZ}));
   EXPECT_EQ(e->dofs()[1], (DofKey{43, Dof::UZ}));
-  const std::vector<std::string> names = {"FORC", "F1", "F2", "STAT", "DELTA", "SLIDE"};
+  const std::vector<std::string> names = {"FORC", "F1", "F2", "STAT", "DELTA", "SLIDE", "SENE"};
   EXPECT_EQ(e->result_names(), names);
   s.keyopt3 = 0;
   EXPECT_EQ(build(s)->dofs()[0].dof, Dof::UX);
@@ -342,6 +342,17 @@ TEST(CombinationGap, DamperOnlyWhileClosed) {
   Eigen::Matrix2d expected;
   expected << 3, -3, -3, 3;
   EXPECT_TRUE(C.isApprox(expected));
+}
+
+TEST(CombinationGap, StrainEnergyOfBothSprings) {
+  // K1 = 1000, K2 = 200, no gap, compressed by 0.1: F1 = -100, F2 = -20, SENE = 5 + 1.
+  GapSpec s;
+  s.k1 = 1000;
+  s.k2 = 200;
+  auto e = build(s);
+  const Eval ev = eval(*e, uv(0.1, 0.0));
+  ASSERT_EQ(ev.r.size(), 7u);
+  EXPECT_NEAR(ev.r[6], 6.0, 1e-12);
 }
 
 TEST(CombinationGap, WithoutSpringsIsALinearDamperAndMass) {

@@ -85,10 +85,12 @@ TEST(SpringDamper, LinearForceAndStretchResults) {
   EXPECT_NEAR(f(0), -25.0, 1e-12);
   ElementResultValues out;
   e->results(ElementContext{}, u, Eigen::VectorXd::Zero(6), out);
-  ASSERT_EQ(out.size(), 2u);
+  ASSERT_EQ(out.size(), 3u);
   EXPECT_EQ(e->result_names()[1], "STRETCH");
+  EXPECT_EQ(e->result_names()[2], "SENE");
   EXPECT_NEAR(out[0], 25.0, 1e-12);
   EXPECT_NEAR(out[1], 0.25, 1e-15);
+  EXPECT_NEAR(out[2], 0.5 * 100.0 * 0.25 * 0.25, 1e-12);  // k e² / 2
 }
 
 TEST(SpringDamper, TorsionalActsOnRotations) {

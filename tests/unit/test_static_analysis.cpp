@@ -131,11 +131,12 @@ TEST(StaticAnalysis, ElementResultsOfInterleavedFamiliesAtEveryStoredPoint) {
     EXPECT_EQ(spars.element_ids, (std::vector<int>{1, 3}));
     EXPECT_EQ(springs.element_ids, (std::vector<int>{2, 4}));
     ASSERT_EQ(spars.item_names.front(), "FORC");
-    ASSERT_EQ(springs.item_names, (std::vector<std::string>{"FORC", "STRETCH"}));
+    ASSERT_EQ(springs.item_names, (std::vector<std::string>{"FORC", "STRETCH", "SENE"}));
     for (int r = 0; r < 2; ++r) {
       EXPECT_NEAR(spars.values(r, 0), force, 1e-9 * 600.0);
       EXPECT_NEAR(springs.values(r, 0), force, 1e-9 * 600.0);
-      EXPECT_NEAR(springs.values(r, 1), force / 1000.0, 1e-9 * 0.6);  // stretch = F / k
+      EXPECT_NEAR(springs.values(r, 1), force / 1000.0, 1e-9 * 0.6);            // stretch = F / k
+      EXPECT_NEAR(springs.values(r, 2), force * force / 2000.0, 1e-9 * 180.0);  // F² / (2 k)
     }
   }
 }
