@@ -144,6 +144,20 @@ void cmd_shell(DeckReader& r, const Command& c) {
   post_state(r).shell_location = loc;
 }
 
+void cmd_rsys(DeckReader& r, const Command& c) {
+  // RSYS,KCN: the results coordinate system of the nodal vector results (MAPDL RSYS; KCN
+  // blank = 0). SOLU and LSYS (solution and layer systems) are not carried out.
+  const std::string key = c.blank(1) ? "" : r.label(c, 1);
+  if (key == "SOLU" || key == "LSYS")
+    r.fail(c, fmt::format("KCN {}: only a coordinate system number is carried out (0, 1, 2, "
+                          "a LOCAL system)",
+                          key));
+  const int kcn = r.integer(c, 1, 0);
+  if (!r.model.coordinate_systems.has(kcn))
+    r.fail(c, fmt::format("coordinate system {} is not defined", kcn));
+  post_state(r).rsys = kcn;
+}
+
 void cmd_file(DeckReader& r, const Command& c) {
   // FILE,Fname,Ext: the results file of the postprocessors; a blank Fname is the jobname
   // (MAPDL FILE: "Fname ... defaults to Jobname"), e.g. FILE,,RDSP after a reduced transient.
@@ -405,6 +419,7 @@ void register_post1_commands(std::vector<CommandSpec>& t) {
   t.push_back({"SET", cmd_set, kPost1});
   t.push_back({"FILE", cmd_file, kPost1 | kPost26});
   t.push_back({"SHELL", cmd_shell, kPost1});
+  t.push_back({"RSYS", cmd_rsys, kPost1});
   t.push_back({"ETABLE", cmd_etable, kPost1});
   t.push_back({"PRETAB", cmd_pretab, kPost1});
   t.push_back({"SSUM", cmd_ssum, kPost1});

@@ -61,6 +61,9 @@ struct PostState {
   std::map<std::string, double> ssum;         // ETABLE label → last SSUM total
   std::string force_kind = "TOTAL";           // FORCE: TOTAL, STATIC, DAMP, INERT
   std::string shell_location = "TOP";         // SHELL: TOP, MID, BOT (the layer of shell S)
+  // RSYS,KCN: the system of the nodal vector results (U, ROT, V, A, reactions); nullopt = as
+  // stored (global Cartesian, the nodal axes at a rotated node).
+  std::optional<int> rsys;
 
   // ---- pictures ---------------------------------------------------------------------------
   PlotView view;

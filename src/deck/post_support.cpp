@@ -213,6 +213,33 @@ void make_current(DeckReader& r, SetData data) {
   ps.current_generation = r.solutions;
 }
 
+namespace {
+
+/// A component of a nodal vector (U, ROT, V, A, reaction) in the results system RSYS,KCN
+/// (MAPDL RSYS): the stored triad (nodal axes of the node, global when not rotated) is taken
+/// to global, g = T_node s, and then to the axes of system KCN at the node's location, l = Aᵀ g
+/// (A: radial, tangential, axial in a cylindrical system; on its axis the system axes). NaN
+/// when none of the triad is stored; an absent component counts as 0.
+double nodal_component_in_rsys(DeckReader& r, const SetData& data, int row, int node,
+                               const NodalLabel& lab, int kcn) {
+  const int base = lab.column < 3 ? 0 : 3;
+  Vec3 stored;
+  bool any = false;
+  for (int k = 0; k < 3; ++k) {
+    const double v = nodal_value(data, row, NodalLabel{lab.dataset, base + k, false});
+    any = any || std::isfinite(v);
+    stored(k) = std::isfinite(v) ? v : 0.0;
+  }
+  if (!any) return std::numeric_limits<double>::quiet_NaN();
+  const Node& n = r.model.node(node);
+  const Vec3 global = n.axes() * stored;
+  Mat3 axes;
+  r.model.coordinate_systems.get(kcn).axes_at(n.x, axes);
+  return (axes.transpose() * global)(lab.column - base);
+}
+
+}  // namespace
+
 double nodal_result(DeckReader& r, const Command& c, int node, const std::string& label) {
   const auto lab = parse_nodal_item(label);
   if (!lab)
@@ -222,6 +249,13 @@ double nodal_result(DeckReader& r, const Command& c, int node, const std::string
   const SetData& data = current_set(r, c);
   const int row = node_row(reader.node_ids(), node);
   if (row < 0) r.fail(c, fmt::format("node {} is not in the results file {}", node, reader.path()));
+  const std::optional<int>& rsys = post_state(r).rsys;
+  if (rsys && lab->column >= 0) {
+    if (!r.model.nodes.count(node))
+      r.fail(c, fmt::format("RSYS,{}: node {} is not in the model", *rsys, node));
+    const double v = nodal_component_in_rsys(r, data, row, node, *lab, *rsys);
+    if (std::isfinite(v)) return v;
+  }
   const double v = nodal_value(data, row, *lab);
   if (std::isfinite(v)) return v;
   if (data.reduced && lab->dataset != 'R')
@@ -251,6 +285,19 @@ VtkCell element_cell(const DeckReader& r, int element) {
 std::optional<double> element_result(DeckReader& r, const Command& c, int element,
                                      const std::string& item, const std::string& comp) {
   if (to_upper(item) == "VOLU") return element_volume(r, c, element);
+  {
+    // Element stresses and strains stay in the frame the element stores (global for solids,
+    // element axes for shells): a direction component under another RSYS is refused.
+    const std::optional<int>& rsys = post_state(r).rsys;
+    const std::string it = to_upper(item), cp = to_upper(comp);
+    static const std::vector<std::string> kDirections = {"X", "Y", "Z", "XY", "YZ", "XZ"};
+    if (rsys && *rsys != 0 && (it == "S" || it.rfind("EP", 0) == 0) &&
+        std::find(kDirections.begin(), kDirections.end(), cp) != kDirections.end())
+      r.fail(c, fmt::format("{},{} under RSYS,{}: element stress and strain components are not "
+                            "rotated into a results system (nodal U, ROT, V, A and reactions "
+                            "are); use RSYS,0 or the principal values (S,1 .. S,EQV)",
+                            item, comp, *rsys));
+  }
   const SetData& data = current_set(r, c);
   const std::string type_name = element_type_name(r, element);
   // SHELL,MID or BOT: a shell's S items at that surface instead of the top (MAPDL SHELL).
