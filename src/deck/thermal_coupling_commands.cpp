@@ -1,9 +1,11 @@
 // Temperatures of the thermal strain (TREF, TUNIF, BFUNIF, BF, BFDELE) and coupled DOF sets (CP,
-// CPDELE); docs/thermal_loads.md. Temperatures are load-step state in Model::current, coupled
-// sets model state in Model::coupled_sets.
+// CPINTF, CPDELE); docs/thermal_loads.md. Temperatures are load-step state in Model::current,
+// coupled sets model state in Model::coupled_sets.
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <map>
+#include <utility>
 
 #include "core/dof.h"
 #include "deck/modeling_helpers.h"
@@ -118,6 +120,56 @@ void cmd_cp(DeckReader& r, const Command& c) {
   if (set.nodes.empty()) sets.erase(id);
 }
 
+void cmd_cpintf(DeckReader& r, const Command& c) {
+  // CPINTF,Lab,TOLER: one coupled set per group of coincident selected nodes (all coordinates
+  // within TOLER, default 1e-4) for Lab (ALL: UX..ROTZ), numbered after the highest set.
+  const std::string lab = r.label(c, 1);
+  std::vector<Dof> dofs;
+  if (lab == "ALL") {
+    dofs.assign(kAllDofs.begin(), kAllDofs.end());
+  } else if (const auto d = parse_dof_label(lab)) {
+    dofs = {*d};
+  } else {
+    r.fail(c, fmt::format("bad DOF label '{}' (UX UY UZ ROTX ROTY ROTZ ALL)", c.text(1)));
+  }
+  const double tol = r.real(c, 2, 1e-4) > 0.0 ? r.real(c, 2, 1e-4) : 1e-4;
+  std::vector<std::pair<Vec3, int>> nodes;
+  for (const auto& [id, n] : r.model.nodes)
+    if (r.node_selected(id)) nodes.emplace_back(n.x, id);
+  std::sort(nodes.begin(), nodes.end(),
+            [](const auto& a, const auto& b) { return a.first.x() < b.first.x(); });
+  // Union of coincident pairs (a sweep along x: only nodes within tol in x are compared).
+  std::vector<std::size_t> root(nodes.size());
+  for (std::size_t i = 0; i < root.size(); ++i) root[i] = i;
+  const auto find = [&](std::size_t i) {
+    while (root[i] != i) i = root[i] = root[root[i]];
+    return i;
+  };
+  for (std::size_t i = 0; i < nodes.size(); ++i)
+    for (std::size_t j = i + 1; j < nodes.size() && nodes[j].first.x() - nodes[i].first.x() <= tol;
+         ++j)
+      if ((nodes[j].first - nodes[i].first).cwiseAbs().maxCoeff() <= tol) {
+        const std::size_t a = find(i), b = find(j);
+        if (a != b) root[std::max(a, b)] = std::min(a, b);
+      }
+  std::map<std::size_t, std::vector<int>> groups;
+  for (std::size_t i = 0; i < nodes.size(); ++i) groups[find(i)].push_back(nodes[i].second);
+  auto& sets = r.model.coupled_sets;
+  for (Dof d : dofs)
+    for (auto& [key, ids] : groups) {
+      if (ids.size() < 2) continue;
+      std::sort(ids.begin(), ids.end());
+      const int id = sets.empty() ? 1 : sets.rbegin()->first + 1;
+      for (const auto& [other_id, other] : sets)
+        if (other.dof == d)
+          for (int n : ids)
+            if (std::find(other.nodes.begin(), other.nodes.end(), n) != other.nodes.end())
+              r.fail(c, fmt::format("node {} {} is already in coupled set {}", n, dof_name(d),
+                                    other_id));
+      sets[id] = CoupledSet{id, d, ids, c.where};
+    }
+}
+
 void cmd_cpdele(DeckReader& r, const Command& c) {
   // CPDELE,NSET1,NSET2,NINC (NSET1 = ALL: every set)
   auto& sets = r.model.coupled_sets;
@@ -140,6 +192,7 @@ void register_thermal_coupling_commands(std::vector<CommandSpec>& t) {
   t.push_back({"BF", cmd_bf, kPrepSolu});
   t.push_back({"BFDELE", cmd_bfdele, kPrepSolu});
   t.push_back({"CP", cmd_cp, kPrepSolu});
+  t.push_back({"CPINTF", cmd_cpintf, kPrepSolu});
   t.push_back({"CPDELE", cmd_cpdele, kPrepSolu});
 }
 
