@@ -23,6 +23,12 @@ void set_uniform_temperature(DeckReader& r, const Command& c, int field) {
   // TUNIF,TEMP / BFUNIF,TEMP,VALUE: a blank value is 0 (MAPDL Command Reference, TUNIF).
   if (!c.blank(field) && c.text(field).find('%') != std::string::npos)
     r.fail(c, "a uniform temperature given by a table is not implemented");
+  // CDWRITE archives of MAPDL write BFUNIF,TEMP,_TINY for a uniform temperature never given: it
+  // stays the default (TREF).
+  if (r.label(c, field) == "_TINY" && !r.params.get("_TINY")) {
+    r.model.current.uniform_temperature.reset();
+    return;
+  }
   r.model.current.uniform_temperature = r.real(c, field, 0.0);
 }
 
