@@ -141,7 +141,7 @@ void Spar::mass(const ElementContext& ctx, Eigen::MatrixXd& M) const {
 
 namespace {
 const std::vector<std::string> kSparResults = {"FORC", "SAXL", "EPEL", "LENGTH", "EPPL",
-                                               "EPEQ", "SEPL", "SRAT", "PLWK"};
+                                               "EPEQ", "SEPL", "SRAT", "PLWK",   "EPTH"};
 }  // namespace
 
 const std::vector<std::string>& Spar::result_names() const {
@@ -174,7 +174,9 @@ void Spar::results(const ElementContext& ctx, const Eigen::VectorXd& u, const Ei
   // σ = E (ε − ε_th): the thermal strain's force E A ε_th is taken off the strain's force.
   const double force = s.force - thermal_axial_force();
   const double sigma = force / area_;
-  out = {force, sigma, sigma / youngs_modulus_, s.current_length, 0.0, 0.0, 0.0, 0.0, 0.0};
+  // EPTH: the axial thermal strain ε_th (MAPDL LEPTH).
+  const double epth = thermal_axial_force() / (youngs_modulus_ * area_);
+  out = {force, sigma, sigma / youngs_modulus_, s.current_length, 0.0, 0.0, 0.0, 0.0, 0.0, epth};
   if (plasticity_) {
     const double flow = plasticity_->flow_stress(state.alpha);
     out[4] = state.plastic_strain;
@@ -282,6 +284,7 @@ ElementTypeDescriptor spar_type(const char* name, int number, bool planar, bool 
                                {"LS", "1", "SAXL"},
                                {"LEPEL", "1", "EPEL"},
                                {"LEPPL", "1", "EPPL"},
+                               {"LEPTH", "1", "EPTH"},
                                {"NL", "EPEQ", "EPEQ"},
                                {"NL", "SEPL", "SEPL"},
                                {"NL", "SRAT", "SRAT"},
