@@ -55,6 +55,15 @@ void prepare_reduced_model(ReducedRunState& state, const Structure& structure,
           step.number));
   }
   const Structure& s = *state.structure;
+  if (!s.model().coupled_sets.empty())
+    throw NotImplementedError(s.model().coupled_sets.begin()->second.where,
+                              "coupled DOF sets (CP) in a reduced / mode-superposition "
+                              "transient are not implemented");
+  for (const LoadStep& step : state.load_steps)
+    if (step.gives_temperatures())
+      throw NotImplementedError(step.where,
+                                "temperatures (TUNIF, BFUNIF, BF) in a reduced / "
+                                "mode-superposition transient are not implemented");
   std::set<DofKey> constrained = s.constraints_of(first);
   {
     const DofMap trial(s.elements(), constrained);

@@ -18,8 +18,10 @@ class StepLoads {
 
   /// The load point at `fraction` of the load step, time `time`.
   LoadPoint at(double fraction, double time) const;
-  /// External force at `at` over the active DOFs: frame acceleration, F, and face pressures on
-  /// the faces as deformed by `u` (large deflection; undeformed otherwise).
+  /// External force at `at` over the active DOFs: frame acceleration, F, face pressures on
+  /// the faces as deformed by `u` (large deflection; undeformed otherwise), and the equivalent
+  /// forces of the thermal strain (which also sets each element's temperature change at `at`,
+  /// for its results).
   void external_force(const Discretisation& disc, const LoadPoint& at, const VectorXd& u,
                       VectorXd& f) const;
   /// Sets the constrained DOFs of `u` to their prescribed values at `at` (D; 0 for the
@@ -27,7 +29,11 @@ class StepLoads {
   void prescribe(const Discretisation& disc, const LoadPoint& at, VectorXd& u) const;
 
  private:
+  /// Adds the thermal strain loads at `at` (docs/thermal_loads.md).
+  void add_thermal_forces(const Discretisation& disc, const LoadPoint& at, VectorXd& f) const;
+
   const Structure& structure_;
+  bool thermal_ = false;  // the step or the one before gives temperatures, or a material REFT
   const LoadStep* step_ = nullptr;
   const LoadStep* previous_ = nullptr;
   ResolvedDofLoads forces_, prescribed_;

@@ -194,7 +194,7 @@ Structure::Structure(const Model& model, const AnalysisOptions& options,
 
   // Automatic constraints: DOFs without stiffness and without mass (spec §10.1 item 5).
   // Status elements (gaps) count as stiffness: a gap may close later.
-  DofMap all(elements_, {});
+  DofMap all(elements_, {}, coupled_dofs());
   VectorXd stiff = VectorXd::Zero(all.n_active());
   VectorXd mass = VectorXd::Zero(all.n_active());
   Eigen::MatrixXd k, m;
@@ -291,6 +291,16 @@ int Structure::node_row(int id) const {
   return row;
 }
 
+std::vector<std::vector<DofKey>> Structure::coupled_dofs() const {
+  std::vector<std::vector<DofKey>> sets;
+  for (const auto& [id, set] : model_.coupled_sets) {
+    std::vector<DofKey> keys;
+    for (int node : set.nodes) keys.push_back(DofKey{node, set.dof});
+    sets.push_back(std::move(keys));
+  }
+  return sets;
+}
+
 std::set<DofKey> Structure::constraints_of(const LoadStep& step) const {
   std::set<DofKey> out = automatic_;
   for (const auto& entry : step.constraints) out.insert(entry.first);
@@ -312,6 +322,11 @@ Eigen::MatrixXd Structure::dof_table(const DofMap& dofs, const VectorXd& values,
     }
     table(row, static_cast<int>(key.dof)) = values(i);
   }
+  // The eliminated DOFs of coupled sets (CP) carry their prime DOF's value; they have no
+  // reaction of their own (the table of the constrained DOFs, first > 0, leaves them out).
+  if (first == 0)
+    for (const auto& [key, index] : dofs.aliases())
+      if (index < end) table(node_row(key.node), static_cast<int>(key.dof)) = values(index);
   return table;
 }
 

@@ -57,6 +57,8 @@ class Structure {
   /// ModelError when a force of `step` acts on an automatically constrained DOF (a load step
   /// solved after the structure was built).
   void check_load_step(const LoadStep& step) const;
+  /// The coupled DOF sets (CP), each in its nodes' order (the first is the prime DOF).
+  std::vector<std::vector<DofKey>> coupled_dofs() const;
   /// D of the load step plus the automatic constraints.
   std::set<DofKey> constraints_of(const LoadStep& step) const;
 

@@ -149,6 +149,10 @@ SuperelementData generate_superelement(const Structure& structure, const Analysi
     throw InputError(request.where, "superelement generation needs master DOFs (M)");
 
   generation_constraints(request);
+  if (!model.coupled_sets.empty())
+    throw NotImplementedError(model.coupled_sets.begin()->second.where,
+                              "coupled DOF sets (CP) in a superelement generation pass are not "
+                              "implemented");
   const DofMap dofs(elements, structure.constraints_of(request.load_steps.front()));
   const Assembler assembler(elements, dofs, ctx);
   note_linearised_elements(elements, ctx);

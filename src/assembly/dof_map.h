@@ -16,8 +16,12 @@ class DofMap {
  public:
   DofMap() = default;
   /// `constrained`: DOFs held by D (and automatic constraints); those not active are ignored.
-  DofMap(const std::vector<std::unique_ptr<Element>>& elements,
-         const std::set<DofKey>& constrained);
+  /// `coupled`: sets of DOFs that share one value (CP): each set's first active DOF (the prime)
+  /// carries the equation and the others are eliminated onto it (they get its index), so the
+  /// element matrices of the set's DOFs add up in one row and column. A set with a held member
+  /// is held as a whole.
+  DofMap(const std::vector<std::unique_ptr<Element>>& elements, const std::set<DofKey>& constrained,
+         const std::vector<std::vector<DofKey>>& coupled = {});
 
   int n_active() const { return static_cast<int>(keys_.size()); }
   int n_free() const { return n_free_; }
@@ -29,14 +33,18 @@ class DofMap {
   const std::vector<DofKey>& keys() const { return keys_; }
   /// Global indices of element e's DOFs, in element DOF order.
   const std::vector<int>& element_indices(std::size_t e) const { return element_indices_[e]; }
-  /// All DOFs the elements carry, as a set (for validation of loads, masters).
+  /// All DOFs the elements carry, as a set (for validation of loads, masters); the eliminated
+  /// DOFs of coupled sets are not in it.
   std::set<DofKey> active_set() const { return {keys_.begin(), keys_.end()}; }
+  /// The eliminated DOFs of coupled sets and the index of their prime DOF (nodal results).
+  const std::vector<std::pair<DofKey, int>>& aliases() const { return aliases_; }
 
  private:
   std::vector<DofKey> keys_;
   std::vector<DofKey> sorted_;     // the active DOFs in DofKey order
   std::vector<int> sorted_index_;  // sorted_index_[k]: the index of sorted_[k]
   std::vector<std::vector<int>> element_indices_;
+  std::vector<std::pair<DofKey, int>> aliases_;
   int n_free_ = 0;
 };
 

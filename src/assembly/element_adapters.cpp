@@ -85,6 +85,11 @@ void NodalAxesElement::pressure_load(const ElementContext& ctx, int face,
   f = t_.transpose() * f;
 }
 
+void NodalAxesElement::thermal_load(const ElementContext& ctx, Eigen::VectorXd& f) const {
+  inner_->thermal_load(ctx, f);
+  f = t_.transpose() * f;
+}
+
 void NodalAxesElement::results(const ElementContext& ctx, const Eigen::VectorXd& u,
                                const Eigen::VectorXd& v, ElementResultValues& out) const {
   inner_->results(ctx, t_ * u, t_ * v, out);
@@ -93,15 +98,27 @@ void NodalAxesElement::results(const ElementContext& ctx, const Eigen::VectorXd&
 std::unique_ptr<Element> adapt_element(std::unique_ptr<Element> element, const Model& model,
                                        const ElementRecord& record) {
   const auto mat = model.materials.find(record.mat);
-  if (mat != model.materials.end())
-    element->set_material_damping({mat->second.get("ALPD", 0.0), mat->second.get("BETD", 0.0)});
+  if (mat != model.materials.end()) {
+    const Material& m = mat->second;
+    element->set_material_damping({m.get("ALPD", 0.0), m.get("BETD", 0.0)});
+    // Secant coefficients of thermal expansion (MP,ALPX; ALPY and ALPZ default to ALPX).
+    Element::ThermalExpansion thermal;
+    const double ax = m.get("ALPX", 0.0);
+    thermal.alpha = Vec3(ax, m.get("ALPY", ax), m.get("ALPZ", ax));
+    if (m.has("REFT")) thermal.reference_temperature = m.get("REFT", 0.0);
+    thermal.nodes = record.nodes;
+    element->set_thermal_expansion(thermal);
+  }
   bool rotated = false;
   for (const DofKey& k : element->dofs()) {
     const auto it = model.nodes.find(k.node);
     rotated = rotated || (it != model.nodes.end() && it->second.rotated());
   }
-  if (rotated)
+  if (rotated) {
+    Element::ThermalExpansion thermal = element->thermal_expansion();
     element = std::make_unique<NodalAxesElement>(std::move(element), model, record.where);
+    element->set_thermal_expansion(std::move(thermal));
+  }
   return element;
 }
 

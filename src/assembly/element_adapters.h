@@ -40,6 +40,11 @@ class NodalAxesElement final : public Element, public PenetrationCheck, public C
                                Eigen::MatrixXd& f) const override;
   void pressure_load(const ElementContext& ctx, int face, const std::array<double, 4>& p,
                      const Eigen::VectorXd& u, Eigen::VectorXd& f) const override;
+  void set_temperature_change(std::vector<double> dT) override {
+    inner_->set_temperature_change(dT);
+    Element::set_temperature_change(std::move(dT));
+  }
+  void thermal_load(const ElementContext& ctx, Eigen::VectorXd& f) const override;
   bool has_history() const override { return inner_->has_history(); }
   double plastic_work() const override { return inner_->plastic_work(); }
   std::vector<double> history_state() const override { return inner_->history_state(); }

@@ -130,6 +130,15 @@ struct RestartRequest {
   SourceLocation where;  // the ANTYPE command
 };
 
+/// CP: a set of nodes whose DOF `dof` (in nodal axes) share one value (APDL_MODELING, coupled
+/// DOF sets). The first node is the prime DOF: the others are eliminated onto it.
+struct CoupledSet {
+  int id = 0;
+  Dof dof = Dof::UX;
+  std::vector<int> nodes;  // input order, no repeats
+  SourceLocation where;    // the CP command
+};
+
 /// One load step: the full load state at its end (not deltas) and its options.
 /// Loads are cumulative: a step inherits everything from the previous step unless changed.
 struct LoadStep {
@@ -151,9 +160,28 @@ struct LoadStep {
   std::map<DofKey, std::string> force_tables;
   std::array<std::string, 3> acel_tables;    // ACEL components
   std::map<FaceKey, SurfaceLoad> pressures;  // SF, SFE, SFA (face pressures)
-  StepControl control;                       // AUTOTS and the DELTIM / NSUBST limits
-  RestartControl rescontrol;                 // RESCONTROL in force when the step is solved
-  SourceLocation where;                      // command that closed the step (LWRITE/SOLVE/...)
+  // Temperatures of the thermal strain (docs/thermal_loads.md). The reference temperature is
+  // TREF (MP,REFT of a material overrides it); every node without BF,TEMP has the uniform
+  // temperature (TUNIF / BFUNIF,TEMP; unset: TREF), applied stepped; BF,node,TEMP values ramp
+  // per KBC from the previous step's temperature of the node.
+  double reference_temperature = 0.0;               // TREF
+  std::optional<double> uniform_temperature;        // TUNIF / BFUNIF,TEMP
+  std::map<int, double> node_temperatures;          // BF,node,TEMP
+  std::map<int, SourceLocation> temperature_where;  // the BF command of each node temperature
+  /// The temperature of `node` at the end of the step.
+  double temperature(int node) const {
+    const auto it = node_temperatures.find(node);
+    if (it != node_temperatures.end()) return it->second;
+    return uniform_temperature.value_or(reference_temperature);
+  }
+  /// True when the step gives temperatures (TUNIF, BFUNIF or BF): a thermal strain load
+  /// wherever they differ from the reference temperature.
+  bool gives_temperatures() const {
+    return uniform_temperature.has_value() || !node_temperatures.empty();
+  }
+  StepControl control;        // AUTOTS and the DELTIM / NSUBST limits
+  RestartControl rescontrol;  // RESCONTROL in force when the step is solved
+  SourceLocation where;       // command that closed the step (LWRITE/SOLVE/...)
 };
 
 /// Initial condition on one DOF (IC).
@@ -284,6 +312,7 @@ struct Model {
   std::vector<GapCondition> gap_conditions;               // GP, in input order
   std::map<DofKey, InitialCondition> initial_conditions;  // IC
   std::map<std::string, Component> components;            // CM, by upper-case name
+  std::map<int, CoupledSet> coupled_sets;                 // CP, by set number
 
   // Model building the MAPDL way (APDL_MODELING §1-§6).
   SolidModel solid;                      // keypoints, lines, areas, volumes, mesh controls

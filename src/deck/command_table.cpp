@@ -49,6 +49,8 @@ const Tables& tables() {
     add(register_generation_commands, "Generation (copies, fills, reflections)", kDeck);
     add(register_solution_commands, "Analysis settings and SOLVE", "docs/solution_control.md");
     add(register_load_commands, "Constraints, forces and initial conditions", kDeck);
+    add(register_thermal_coupling_commands, "Temperatures and coupled DOF sets",
+        "docs/thermal_loads.md");
     add(register_component_commands, "Components", kDeck);
     add(register_get_commands, "*GET", kDeck);
     add(register_post1_commands, "POST1", kPost);

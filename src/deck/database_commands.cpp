@@ -184,6 +184,12 @@ void step_control_of(const json& j, LoadStep& s) {
   s.rescontrol = {rc[0].get<bool>(), rc[1].get<int>(), rc[2].get<int>()};
 }
 
+json temperature_table(const std::map<int, double>& t) {
+  json out = json::array();
+  for (const auto& [node, value] : t) out.push_back({node, value});
+  return out;
+}
+
 json load_state_json(const LoadStep& s) {
   return {{"time_end", opt(s.time_end)},
           {"dt", opt(s.dt)},
@@ -196,7 +202,10 @@ json load_state_json(const LoadStep& s) {
           {"acel", {s.acel(0), s.acel(1), s.acel(2)}},
           {"constraints", dof_table(s.constraints)},
           {"forces", dof_table(s.forces)},
-          {"step_control", step_control_json(s)}};
+          {"step_control", step_control_json(s)},
+          {"reference_temperature", s.reference_temperature},
+          {"uniform_temperature", opt(s.uniform_temperature)},
+          {"node_temperatures", temperature_table(s.node_temperatures)}};
 }
 
 LoadStep load_state_of(const json& j) {
@@ -213,6 +222,11 @@ LoadStep load_state_of(const json& j) {
   s.constraints = dof_table_of(j.at("constraints"));
   s.forces = dof_table_of(j.at("forces"));
   if (j.contains("step_control")) step_control_of(j.at("step_control"), s);  // older files: none
+  s.reference_temperature = j.value("reference_temperature", 0.0);
+  if (j.contains("uniform_temperature"))
+    s.uniform_temperature = opt_of(j.at("uniform_temperature"));
+  if (j.contains("node_temperatures"))
+    for (const auto& e : j.at("node_temperatures")) s.node_temperatures[e[0]] = e[1];
   return s;
 }
 
@@ -286,6 +300,10 @@ void cmd_save(DeckReader& r, const Command& c) {
   for (const auto& g : m.gap_conditions)
     gaps.push_back({g.node_i, g.node_j, static_cast<int>(g.dof), g.stiffness, g.gap, g.damping});
   j["gaps"] = gaps;
+  json coupled = json::array();
+  for (const auto& [id, set] : m.coupled_sets)
+    coupled.push_back({id, static_cast<int>(set.dof), set.nodes});
+  j["coupled_sets"] = coupled;
   if (j["slab"] == "ALL") {
     json ic = json::array();
     for (const auto& [k, v] : m.initial_conditions)
@@ -353,6 +371,13 @@ void cmd_resume(DeckReader& r, const Command& c) {
       GapCondition gc{g[0], g[1], static_cast<Dof>(g[2].get<int>()), g[3], g[4], g[5], c.where};
       m.gap_conditions.push_back(gc);
     }
+    m.coupled_sets.clear();
+    if (j.contains("coupled_sets"))  // older files: none
+      for (const auto& e : j.at("coupled_sets")) {
+        CoupledSet set{e[0], static_cast<Dof>(e[1].get<int>()), e[2].get<std::vector<int>>(),
+                       c.where};
+        m.coupled_sets[set.id] = set;
+      }
     if (j.at("slab") == "ALL") {
       m.initial_conditions.clear();
       for (const auto& e : j.at("initial_conditions"))

@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "deck/get_hooks.h"
+#include "deck/post1_print.h"
 #include "deck/post26.h"
 #include "deck/post_support.h"
 #include "elements/element_registry.h"
@@ -72,6 +73,21 @@ double get_node(DeckReader& r, const Command& c, const GetRequest& g, int n, boo
       if (it != table.end()) return it->second;
       return i1 == "D" ? 2e100 : 0.0;  // MAPDL: a huge value for "no constraint"
     }
+  }
+  if ((i1 == "S" || i1 == "EPEL") && !g.it1num.empty()) {
+    // The nodal stress of PRNSOL: the mean over the selected elements at the node of their
+    // element values (post1_print.cpp, nodal_item_value).
+    const NodalItem item = nodal_item(r, c, i1, g.it1num);
+    if (item.labels.size() != 1)
+      r.fail(c,
+             fmt::format("{}: NODE {} needs one component ({} X, 1, EQV, ...)", g.what(), i1, i1));
+    const auto v = nodal_item_value(r, c, item, 0, n);
+    if (!v) {
+      if (vector) return 0.0;
+      r.fail(c, fmt::format("{}: node {} has no {} {} (no selected element with it)", g.what(), n,
+                            i1, g.it1num));
+    }
+    return *v;
   }
   const std::string lab = nodal_label_of(i1, g.it1num);
   if (!lab.empty()) {

@@ -3,6 +3,7 @@
 #include "core/files.h"
 
 #include <fmt/format.h>
+#include <Eigen/Eigenvalues>
 
 #include <algorithm>
 #include <cmath>
@@ -319,7 +320,31 @@ std::optional<double> element_result(DeckReader& r, const Command& c, int elemen
                             static_cast<Eigen::Index>(col - table.item_names.begin()));
       }
     }
-  return element_item(data, element, type_name, item, comp);
+  const auto value = element_item(data, element, type_name, item, comp);
+  if (value || to_upper(item) != "S") return value;
+  // Principal stresses of an element that gives only the components (shells: SX SY SXY at the
+  // surface): the eigenvalues of the stress tensor, S1 ≥ S2 ≥ S3, SINT = S1 − S3 and the von
+  // Mises SEQV (absent components are 0: a shell's SZ, SYZ, SXZ).
+  const std::string k = to_upper(comp);
+  if (k != "1" && k != "2" && k != "3" && k != "INT" && k != "EQV") return value;
+  const auto part = [&](const char* name) -> std::optional<double> {
+    return element_result(r, c, element, "S", name);
+  };
+  const auto sx = part("X");
+  if (!sx) return value;
+  const double sy = part("Y").value_or(0.0), sz = part("Z").value_or(0.0);
+  const double sxy = part("XY").value_or(0.0), syz = part("YZ").value_or(0.0),
+               sxz = part("XZ").value_or(0.0);
+  Eigen::Matrix3d t;
+  t << *sx, sxy, sxz, sxy, sy, syz, sxz, syz, sz;
+  const Eigen::Vector3d p =
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(t, Eigen::EigenvaluesOnly).eigenvalues();
+  const double s1 = p(2), s2 = p(1), s3 = p(0);
+  if (k == "1") return s1;
+  if (k == "2") return s2;
+  if (k == "3") return s3;
+  if (k == "INT") return s1 - s3;
+  return std::sqrt(0.5 * ((s1 - s2) * (s1 - s2) + (s2 - s3) * (s2 - s3) + (s3 - s1) * (s3 - s1)));
 }
 
 std::optional<double> element_volume(DeckReader& r, const Command& c, int element) {

@@ -422,6 +422,29 @@ const std::vector<std::string>& Beam::result_names() const {
   return beam_result_names();
 }
 
+Eigen::Vector3d Beam::thermal_resultants() const {
+  const std::vector<double>& dT = temperature_change();
+  if (dT.size() < 2) return Eigen::Vector3d::Zero();
+  const double eps = thermal_expansion().alpha.x() * 0.5 * (dT[0] + dT[1]);
+  return D_elastic_.col(0) * eps;  // D (ε_th, 0, 0): N, and My, Mz of an offset section
+}
+
+void Beam::thermal_load(const ElementContext&, Eigen::VectorXd& f) const {
+  const Eigen::Vector3d r = thermal_resultants();
+  // Local end loads in the DOF order u v w θx θy θz: −r at I, +r at J (as f_int = Bᵀ r).
+  Vec12 fl = Vec12::Zero();
+  for (int end = 0; end < 2; ++end) {
+    const double sg = end == 0 ? -1.0 : 1.0;
+    fl(6 * end + 0) = sg * r(0);
+    fl(6 * end + 4) = sg * r(1);
+    fl(6 * end + 5) = sg * r(2);
+  }
+  const Vec12 fg = rotation().transpose() * fl;
+  f.resize(static_cast<Eigen::Index>(data_.active.size()));
+  for (std::size_t k = 0; k < data_.active.size(); ++k)
+    f(static_cast<Eigen::Index>(k)) = fg(data_.active[k]);
+}
+
 void Beam::results(const ElementContext& ctx, const Eigen::VectorXd& u, const Eigen::VectorXd&,
                    ElementResultValues& out) const {
   std::vector<UniaxialPlasticState> states;  // at u (the committed ones after a converged step)
@@ -430,11 +453,14 @@ void Beam::results(const ElementContext& ctx, const Eigen::VectorXd& u, const Ei
   const double E = data_.youngs_modulus;
   const Eigen::Matrix3d& D = D_elastic_;
   out.assign(beam_result_names().size(), 0.0);
+  const Eigen::Vector3d r_th = thermal_resultants();
   for (int end = 0; end < 2; ++end) {
     // Section forces: −f at I, +f at J (N tension positive; My, Mz, T about the element axes).
     const double sg = end == 0 ? -1.0 : 1.0;
     const Eigen::Matrix<double, 6, 1> r = sg * fl.segment<6>(6 * end);
-    const double N = r(0), Vy = r(1), Vz = r(2), Tq = r(3), My = r(4), Mz = r(5);
+    // The thermal strain's resultants are taken off: f_int − f_th = Bᵀ (r − r_th).
+    const double N = r(0) - r_th(0), Vy = r(1), Vz = r(2), Tq = r(3), My = r(4) - r_th(1),
+                 Mz = r(5) - r_th(2);
     const std::size_t o = 6 * static_cast<std::size_t>(end);
     out[o + 0] = N, out[o + 1] = My, out[o + 2] = Mz, out[o + 3] = Tq, out[o + 4] = Vz,
             out[o + 5] = Vy;

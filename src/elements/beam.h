@@ -90,6 +90,9 @@ class Beam final : public Element {
   const std::vector<std::string>& result_names() const override;
   void results(const ElementContext& ctx, const Eigen::VectorXd& u, const Eigen::VectorXd& v,
                ElementResultValues& out) const override;
+  /// Equivalent nodal forces of the axial thermal strain ε_th = ALPX ΔT (ΔT the mean of the end
+  /// temperatures): the section resultants D (ε_th, 0, 0) applied at the ends, −at I, +at J.
+  void thermal_load(const ElementContext& ctx, Eigen::VectorXd& f) const override;
   std::optional<double> volume() const override { return data_.section.area * length_; }
 
   bool has_history() const override { return data_.plasticity.has_value(); }
@@ -122,6 +125,8 @@ class Beam final : public Element {
     double ln = 0.0;                 // current chord length
   };
   Vec12 expand(const Eigen::VectorXd& u) const;
+  /// Section resultants (N, My, Mz) of the thermal strain at the temperature change set last.
+  Eigen::Vector3d thermal_resultants() const;
   void restrict(const Vec12& f, const Mat12& K, Eigen::VectorXd& f_out,
                 Eigen::MatrixXd& K_out) const;
   /// Section resultants (N, My, Mz) and tangent at (ε0, κy, κz) through the fibres; plastic

@@ -518,7 +518,8 @@ Vector6d Brick8::centroid_stress(const ElementContext& ctx, const Eigen::VectorX
   if (!ctx.large_deflection) {
     Vector6d eps;
     eps << h(0, 0), h(1, 1), h(2, 2), h(0, 1) + h(1, 0), h(1, 2) + h(2, 1), h(0, 2) + h(2, 0);
-    return d_ * eps;
+    // σ = D (ε − ε_th), the temperature at the centroid the mean of the corners'.
+    return d_ * (eps - thermal_strain(Eigen::Matrix<double, 8, 1>::Constant(0.125)));
   }
   const Eigen::Matrix3d f_grad = Eigen::Matrix3d::Identity() + h;
   const Eigen::Matrix3d e = 0.5 * (f_grad.transpose() * f_grad - Eigen::Matrix3d::Identity());
@@ -530,6 +531,41 @@ Vector6d Brick8::centroid_stress(const ElementContext& ctx, const Eigen::VectorX
   Vector6d out;
   out << sigma(0, 0), sigma(1, 1), sigma(2, 2), sigma(0, 1), sigma(1, 2), sigma(0, 2);
   return out;
+}
+
+Vector6d Brick8::thermal_strain(const Eigen::Matrix<double, 8, 1>& n) const {
+  Vector6d eps = Vector6d::Zero();
+  const std::vector<double>& dT = temperature_change();
+  if (dT.size() != 8) return eps;
+  double t = 0.0;
+  for (int a = 0; a < 8; ++a) t += n(a) * dT[static_cast<std::size_t>(a)];
+  eps.head<3>() = thermal_expansion().alpha * t;
+  return eps;
+}
+
+void Brick8::thermal_load(const ElementContext&, Eigen::VectorXd& f) const {
+  // f_a = Σ_p B_aᵀ σ_th dV_p with σ_th = D ε_th(ξ_p), for the 8 corner functions and the bubbles.
+  Eigen::Matrix<double, 3 * kFunctions, 1> ffull = Eigen::Matrix<double, 3 * kFunctions, 1>::Zero();
+  const auto& n = gauss_shape();
+  for (int p = 0; p < kGauss; ++p) {
+    const GaussPoint& gp = gauss_[static_cast<std::size_t>(p)];
+    const Vector6d s = d_ * thermal_strain(n[static_cast<std::size_t>(p)]);
+    const int nf = extra_shapes_ ? kFunctions : 8;
+    for (int a = 0; a < nf; ++a) {
+      const double gx = gp.grad(0, a), gy = gp.grad(1, a), gz = gp.grad(2, a);
+      // Voigt order xx yy zz xy yz xz (engineering shear), as the strains of centroid_stress.
+      ffull(3 * a + 0) += gp.dv * (gx * s(0) + gy * s(3) + gz * s(5));
+      ffull(3 * a + 1) += gp.dv * (gy * s(1) + gx * s(3) + gz * s(4));
+      ffull(3 * a + 2) += gp.dv * (gz * s(2) + gy * s(4) + gx * s(5));
+    }
+  }
+  Eigen::Matrix<double, 24, 1> fc = ffull.head<24>();
+  // Static condensation of the bubble amplitudes: K_aa a + K_ac u = f_a gives the corner load
+  // f_c − K_ca K_aa⁻¹ f_a = f_c + Rᵀ f_a with the recovery R = −K_aa⁻¹ K_ac.
+  if (extra_shapes_) fc += mode_recovery().transpose() * ffull.tail<9>();
+  const int nu = 3 * n_unique_;
+  f.setZero(nu);
+  for (int c = 0; c < 8; ++c) f.segment<3>(3 * corner_to_unique_[c]) += fc.segment<3>(3 * c);
 }
 
 namespace {

@@ -72,6 +72,11 @@ class Brick8 final : public Element {
   void pressure_load(const ElementContext& ctx, int face, const std::array<double, 4>& p,
                      const Eigen::VectorXd& u, Eigen::VectorXd& f) const override;
 
+  /// Equivalent nodal forces of the thermal strain, f = ∫ Bᵀ D ε_th dV (2x2x2 Gauss, the
+  /// temperature interpolated by the trilinear functions; with extra shapes the bubbles' share
+  /// condensed onto the corners as their stiffness is).
+  void thermal_load(const ElementContext& ctx, Eigen::VectorXd& f) const override;
+
   /// SX SY SZ SXY SYZ SXZ S1 S2 S3 SINT SEQV at the centroid, global axes (Cauchy stress under
   /// large deflection); with plasticity the volume average of the Gauss-point stresses, and
   /// EPPLX..EPPLXZ (plastic strain, engineering shear), EPEQ (equivalent plastic strain), SEPL
@@ -91,6 +96,8 @@ class Brick8 final : public Element {
   Vector6d centroid_stress(const ElementContext& ctx, const Eigen::VectorXd& u) const;
 
  private:
+  /// ε_th = (ALPX, ALPY, ALPZ) Σ N_a ΔT_a, no shear, at the point with trilinear values `n`.
+  Vector6d thermal_strain(const Eigen::Matrix<double, 8, 1>& n) const;
   static constexpr int kGauss = 8;
   static constexpr int kModes = 3;  // incompatible bubble functions (1-ξ²), (1-η²), (1-ζ²)
   static constexpr int kFunctions = 11;  // 8 trilinear + 3 bubbles

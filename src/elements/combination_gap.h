@@ -33,6 +33,11 @@ struct CombinationGapData {
 /// Results: FORC (F), F1, F2, STAT (0 open, 1 closed, 2 sliding/broken), DELTA (δ), SLIDE (u_sl).
 class CombinationGap final : public Element {
  public:
+  /// No strain of its own: a thermal expansion of its material does not act on it (MAPDL
+  /// applies thermal strain to the structural solids, shells, beams and links only).
+  void thermal_load(const ElementContext&, Eigen::VectorXd& f) const override {
+    f.setZero(n_dofs());
+  }
   CombinationGap(int id, std::vector<DofKey> dofs, const CombinationGapData& data);
 
   const char* family() const override { return "CombinationGap"; }

@@ -87,6 +87,11 @@ struct ContactKinematics {
 
 class ContactPoint : public Element, public PenetrationCheck {
  public:
+  /// No strain of its own: a thermal expansion of its material does not act on it (MAPDL
+  /// applies thermal strain to the structural solids, shells, beams and links only).
+  void thermal_load(const ElementContext&, Eigen::VectorXd& f) const override {
+    f.setZero(n_dofs());
+  }
   /// Augmented-Lagrange updates per substep; with the closing flip this stays below the status
   /// loop's chatter limit (4), so augmentation alone never freezes an element.
   static constexpr int kMaxAugmentations = 2;

@@ -52,6 +52,11 @@ double face_area(const Model& model, const std::vector<int>& nodes) {
 
 class SurfaceContact final : public Element, public ConnectivityUpdate, public PenetrationCheck {
  public:
+  /// No strain of its own: a thermal expansion of its material does not act on it (MAPDL
+  /// applies thermal strain to the structural solids, shells, beams and links only).
+  void thermal_load(const ElementContext&, Eigen::VectorXd& f) const override {
+    f.setZero(n_dofs());
+  }
   explicit SurfaceContact(int id, std::vector<std::unique_ptr<ContactPoint>> points)
       : Element(id), points_(std::move(points)) {
     map_points();

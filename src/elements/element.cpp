@@ -71,4 +71,11 @@ void Element::pressure_load(const ElementContext&, int face, const std::array<do
                                family(), face));
 }
 
+void Element::thermal_load(const ElementContext&, Eigen::VectorXd&) const {
+  throw NotImplementedError(fmt::format(
+      "element {} ({}): thermal strain (MP,ALPX with a temperature other than the reference "
+      "temperature) is not implemented for this element type",
+      id(), family()));
+}
+
 }  // namespace impactfe

@@ -129,6 +129,33 @@ class Element {
   /// *GET ELEM VOLU and ETABLE VOLU; nullopt for elements without one (springs, masses, gaps).
   virtual std::optional<double> volume() const { return std::nullopt; }
 
+  // ---- thermal strain (docs/thermal_loads.md) ---------------------------------------------------
+  /// The thermal expansion of the element's material: secant coefficients ALPX/ALPY/ALPZ (MP;
+  /// ALPY and ALPZ default to ALPX), its own reference temperature MP,REFT when given, and the
+  /// element's nodes (ElementRecord order) whose temperatures drive it. Data, set when the model's
+  /// elements are built (assembly/element_adapters.h).
+  struct ThermalExpansion {
+    Vec3 alpha = Vec3::Zero();
+    std::optional<double> reference_temperature;  // MP,REFT (else TREF)
+    std::vector<int> nodes;
+    bool expands() const { return alpha.squaredNorm() > 0.0; }
+  };
+  const ThermalExpansion& thermal_expansion() const { return thermal_expansion_; }
+  void set_thermal_expansion(ThermalExpansion t) { thermal_expansion_ = std::move(t); }
+  /// The temperature change T − T_ref at the element's nodes (ThermalExpansion::nodes order) at
+  /// the load point being solved; empty when there is none. The loads set it before they ask
+  /// thermal_load() and before results are taken, so that the stresses subtract the thermal
+  /// strain of the same temperatures.
+  virtual void set_temperature_change(std::vector<double> dT) {
+    temperature_change_ = std::move(dT);
+  }
+  const std::vector<double>& temperature_change() const { return temperature_change_; }
+  /// Equivalent nodal forces of the thermal strain ε_th = α (T − T_ref) at the temperature
+  /// change set last: f = ∫ Bᵀ D ε_th dV over the element DOFs in global axes (linear kinematics).
+  /// Default: NotImplementedError naming the element (an element that does not take thermal
+  /// strain never ignores it).
+  virtual void thermal_load(const ElementContext& ctx, Eigen::VectorXd& f) const;
+
   // ---- damping of the element's material -----------------------------------------------------
   /// MP,ALPD / MP,BETD of the element's material (APDL_MODELING §6.1): C_e += α M_e + β K_e.
   /// Data, not behaviour: set when the model's elements are built (assembly/element_adapters.h)
@@ -144,6 +171,8 @@ class Element {
  private:
   int id_;
   MaterialDamping material_damping_;
+  ThermalExpansion thermal_expansion_;
+  std::vector<double> temperature_change_;
 };
 
 struct ElementBuildCache;  // elements/element_build_cache.h

@@ -11,6 +11,11 @@ namespace impactfe {
 /// to the KEYOPT(3) DOF set (mass units of the deck, e.g. lbf·s²/in). No stiffness, no results.
 class PointMass final : public Element {
  public:
+  /// No strain of its own: a thermal expansion of its material does not act on it (MAPDL
+  /// applies thermal strain to the structural solids, shells, beams and links only).
+  void thermal_load(const ElementContext&, Eigen::VectorXd& f) const override {
+    f.setZero(n_dofs());
+  }
   /// `diagonal` has one entry per DOF of `dofs`.
   PointMass(int id, std::vector<DofKey> dofs, Eigen::VectorXd diagonal);
 

@@ -476,16 +476,37 @@ void Shell4::mass(const ElementContext& ctx, Eigen::MatrixXd& M) const {
 
 void Shell4::pressure_load(const ElementContext& ctx, int face, const std::array<double, 4>& p,
                            const Eigen::VectorXd& u, Eigen::VectorXd& f) const {
-  if (face != 1 && face != 2)
+  if (face < 1 || face > 6)
     throw ModelError(
-        fmt::format("element {}: shell face {} pressure is not supported (faces 1 "
-                    "and 2: bottom and top; in-plane edge pressures 3..6 are not)",
+        fmt::format("element {}: shell face {} does not exist (faces 1 and 2: bottom "
+                    "and top; 3..6: the edges J-I, K-J, L-K, I-L)",
                     id(), face));
-  const double sign = face == 1 ? 1.0 : -1.0;
   std::vector<Vec3> x = X_;
   if (ctx.large_deflection)
     for (int a = 0; a < n_; ++a) x[static_cast<std::size_t>(a)] += u.segment<3>(6 * a);
   f.setZero(n_dofs());
+  if (face >= 3) {
+    // Edge pressure (MAPDL SHELL63/SHELL181 faces 3..6), a force per unit length in the shell's
+    // plane, normal to the edge, positive into the element: f_a = −∫ N_a p m ds with m the
+    // in-plane outward normal of the edge; linear p: ∫ N_a p ds = ℓ (2 p_a + p_b) / 6. A
+    // triangle's L is its K, so its edge L-K has no length and I-L is I-K.
+    constexpr int kEdge[4][2] = {{1, 0}, {2, 1}, {3, 2}, {0, 3}};  // face-node order
+    const int ia = std::min(kEdge[face - 3][0], n_ - 1);
+    const int ib = std::min(kEdge[face - 3][1], n_ - 1);
+    const Vec3 edge = x[static_cast<std::size_t>(ib)] - x[static_cast<std::size_t>(ia)];
+    const double length = edge.norm();
+    if (length == 0.0) return;
+    Vec3 centroid = Vec3::Zero();
+    for (const Vec3& xa : x) centroid += xa / static_cast<double>(n_);
+    const Vec3 mid = 0.5 * (x[static_cast<std::size_t>(ia)] + x[static_cast<std::size_t>(ib)]);
+    Vec3 m = (mid - centroid) - (mid - centroid).dot(edge) / (length * length) * edge;
+    m.normalize();
+    const double pa = p[0], pb = p[1];
+    f.segment<3>(6 * ia) -= length * (2.0 * pa + pb) / 6.0 * m;
+    f.segment<3>(6 * ib) -= length * (pa + 2.0 * pb) / 6.0 * m;
+    return;
+  }
+  const double sign = face == 1 ? 1.0 : -1.0;
   if (n_ == 3) {
     // Flat triangle, linear pressure: ∫ N_a p dA = A (2 p_a + p_b + p_c) / 12.
     const Vec3 area = 0.5 * (x[1] - x[0]).cross(x[2] - x[0]);
@@ -503,7 +524,10 @@ void Shell4::pressure_load(const ElementContext& ctx, int face, const std::array
 }
 
 namespace {
-const std::vector<std::vector<int>> kShellFaces = {{0, 1, 2, 3}, {0, 1, 2, 3}};
+// Faces 1 and 2 (bottom, top: pressures normal to the shell) and the edges 3..6 (J-I, K-J, L-K,
+// I-L: in-plane edge pressures); SF loads face 1 only (sf_faces).
+const std::vector<std::vector<int>> kShellFaces = {{0, 1, 2, 3}, {0, 1, 2, 3}, {1, 0},
+                                                   {2, 1},       {3, 2},       {0, 3}};
 const std::vector<std::string> kShell4Results = {
     "TX",      "TY",       "TXY",      "MX",     "MY",      "MXY",    "SX_TOP",
     "SY_TOP",  "SXY_TOP",  "SX_MID",   "SY_MID", "SXY_MID", "SX_BOT", "SY_BOT",

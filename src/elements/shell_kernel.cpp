@@ -307,6 +307,16 @@ void FlatShellKernel::add_drilling(Eigen::MatrixXd& K) const {
     for (int b = 0; b < n_; ++b)
       for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) K(6 * a + map[i], 6 * b + map[j]) += Kd(3 * a + i, 3 * b + j);
+  // Membrane only (KEYOPT(1) = 1): nothing resists the in-plane rotations θx, θy, which MAPDL's
+  // membrane has no DOFs for; a diagonal stiffness of the drilling term's size holds them at
+  // zero so that a curved membrane's nodes (whose nodal axes the element plane does not share)
+  // are not singular. They couple with no translation, so the membrane's answer is unchanged.
+  if (!data_.bending) {
+    double t = 0.0;
+    for (int a = 0; a < n_; ++a) t += data_.t[static_cast<std::size_t>(a)] / n_;
+    const double k = data_.drill_factor * G * t * area_ / n_;
+    for (int a = 0; a < n_; ++a) K(6 * a + 3, 6 * a + 3) += k, K(6 * a + 4, 6 * a + 4) += k;
+  }
 }
 
 void FlatShellKernel::add_bending(Eigen::MatrixXd& K) const {

@@ -141,11 +141,28 @@ void Spar::mass(const ElementContext& ctx, Eigen::MatrixXd& M) const {
 
 namespace {
 const std::vector<std::string> kSparResults = {"FORC", "SAXL", "EPEL", "LENGTH", "EPPL",
-                                               "EPEQ", "SEPL", "SRAT", "PLWK"};
+                                               "EPEQ", "SEPL", "SRAT", "PLWK",   "EPTH"};
 }  // namespace
 
 const std::vector<std::string>& Spar::result_names() const {
   return kSparResults;
+}
+
+double Spar::thermal_axial_force() const {
+  // The axial thermal strain ε_th = ALPX (T − T_ref) at the mean of the two end temperatures
+  // (the temperature is linear along the bar and the strain constant).
+  const std::vector<double>& dT = temperature_change();
+  if (dT.size() < 2) return 0.0;
+  return youngs_modulus_ * area_ * thermal_expansion().alpha.x() * 0.5 * (dT[0] + dT[1]);
+}
+
+void Spar::thermal_load(const ElementContext&, Eigen::VectorXd& f) const {
+  // f = ∫ Bᵀ E ε_th A dx = E A ε_th (−n, n): the free bar's elongation ε_th L needs no force.
+  const int d = member_.dim();
+  const double n_th = thermal_axial_force();
+  f.resize(2 * d);
+  f.head(d) = -n_th * member_.n;
+  f.tail(d) = n_th * member_.n;
 }
 
 void Spar::results(const ElementContext& ctx, const Eigen::VectorXd& u, const Eigen::VectorXd&,
@@ -154,8 +171,12 @@ void Spar::results(const ElementContext& ctx, const Eigen::VectorXd& u, const Ei
   Eigen::VectorXd f;
   UniaxialPlasticState state;  // the state at u (the committed one after a converged step)
   const auto s = respond(ctx, u, K, f, plasticity_ ? &state : nullptr);
-  const double sigma = s.force / area_;
-  out = {s.force, sigma, sigma / youngs_modulus_, s.current_length, 0.0, 0.0, 0.0, 0.0, 0.0};
+  // σ = E (ε − ε_th): the thermal strain's force E A ε_th is taken off the strain's force.
+  const double force = s.force - thermal_axial_force();
+  const double sigma = force / area_;
+  // EPTH: the axial thermal strain ε_th (MAPDL LEPTH).
+  const double epth = thermal_axial_force() / (youngs_modulus_ * area_);
+  out = {force, sigma, sigma / youngs_modulus_, s.current_length, 0.0, 0.0, 0.0, 0.0, 0.0, epth};
   if (plasticity_) {
     const double flow = plasticity_->flow_stress(state.alpha);
     out[4] = state.plastic_strain;
@@ -263,6 +284,7 @@ ElementTypeDescriptor spar_type(const char* name, int number, bool planar, bool 
                                {"LS", "1", "SAXL"},
                                {"LEPEL", "1", "EPEL"},
                                {"LEPPL", "1", "EPPL"},
+                               {"LEPTH", "1", "EPTH"},
                                {"NL", "EPEQ", "EPEQ"},
                                {"NL", "SEPL", "SEPL"},
                                {"NL", "SRAT", "SRAT"},

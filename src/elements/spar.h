@@ -58,12 +58,16 @@ class Spar final : public Element {
   std::vector<double> history_state() const override;
   void restore_history_state(const std::vector<double>& state) override;
 
+  void thermal_load(const ElementContext& ctx, Eigen::VectorXd& f) const override;
+
   std::optional<double> volume() const override { return area_ * member_.length; }
   double area() const { return area_; }
   double length() const { return member_.length; }
 
  private:
   corotational::AxialKinematics kinematics(const ElementContext& ctx) const;
+  /// E A ε_th: the axial force of the thermal strain at the temperature change set last.
+  double thermal_axial_force() const;
   /// Axial response at u; with plasticity, the return from the committed state (`updated`
   /// receives the new state when given).
   corotational::AxialState respond(const ElementContext& ctx, const Eigen::VectorXd& u,

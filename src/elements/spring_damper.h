@@ -23,6 +23,11 @@ enum class SpringMode {
 /// STRETCH (extension: ℓ − L0, or the relative displacement/rotation along n).
 class SpringDamper final : public Element {
  public:
+  /// No strain of its own: a thermal expansion of its material does not act on it (MAPDL
+  /// applies thermal strain to the structural solids, shells, beams and links only).
+  void thermal_load(const ElementContext&, Eigen::VectorXd& f) const override {
+    f.setZero(n_dofs());
+  }
   SpringDamper(int id, SpringMode mode, std::vector<DofKey> dofs, corotational::AxialMember member,
                double stiffness, double damping);
 

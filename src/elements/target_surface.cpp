@@ -406,6 +406,11 @@ namespace {
 /// target, without stiffness or mass, they are constrained automatically, unless the pilot.
 class RigidTargetElement final : public Element {
  public:
+  /// No strain of its own: a thermal expansion of its material does not act on it (MAPDL
+  /// applies thermal strain to the structural solids, shells, beams and links only).
+  void thermal_load(const ElementContext&, Eigen::VectorXd& f) const override {
+    f.setZero(n_dofs());
+  }
   RigidTargetElement(int id, const std::vector<int>& nodes) : Element(id) {
     for (int n : nodes)
       for (Dof d : {Dof::UX, Dof::UY, Dof::UZ}) dofs_.push_back({n, d});

@@ -260,7 +260,7 @@ TEST(DeckControlFlow, SkipUnknownStopsAtACommandThatMayChangeTheAnswer) {
   DeckOptions o;
   o.skip_unknown = true;
   o.dialect = Dialect::Modern;
-  for (const char* name : {"TREF,70", "BFUNIF,TEMP,80", "CP,1,UY,5,4,6", "FOO"}) {
+  for (const char* name : {"CE,1,0,1,UX,1", "BFE,1,TEMP,1,80", "FOO"}) {
     try {
       read_deck_text(std::string("/PREP7\nJPGPRF,500,100,1\n") + name + "\nN,1\n", "mem.inp", o);
       ADD_FAILURE() << name << " skipped";
@@ -281,6 +281,20 @@ TEST(DeckControlFlow, SkipUnknownStopsAtACommandThatMayChangeTheAnswer) {
 
 // The list of skippable commands and the command table stay apart: a command the program carries
 // out is never skipped, and a skippable one is never half carried out.
+// TREF, BFUNIF and CP are carried out under --skip-unknown as without it (none is skipped).
+TEST(DeckControlFlow, SkipUnknownCarriesOutThermalLoadsAndCouplings) {
+  DeckOptions o;
+  o.skip_unknown = true;
+  o.dialect = Dialect::Modern;
+  const Job job = read_deck_text(
+      "/PREP7\nN,4\nN,5,1\nN,6,2\nTREF,70\nBFUNIF,TEMP,80\nCP,1,UY,5,4,6\n", "mem.inp", o);
+  EXPECT_TRUE(job.skipped_unknown.empty());
+  EXPECT_EQ(job.model.current.reference_temperature, 70.0);
+  EXPECT_EQ(job.model.current.uniform_temperature.value_or(0.0), 80.0);
+  ASSERT_EQ(job.model.coupled_sets.count(1), 1u);
+  EXPECT_EQ(job.model.coupled_sets.at(1).nodes, (std::vector<int>{5, 4, 6}));
+}
+
 TEST(DeckControlFlow, SkippableCommandsAreNotInTheCommandTable) {
   using namespace impactfe::deck;
   for (std::string_view name : commands_without_effect_on_results()) {

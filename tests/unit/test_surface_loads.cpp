@@ -92,8 +92,27 @@ TEST(SurfaceLoads, ShellFaceOnePushesAlongTheNormal) {
   EXPECT_TRUE(total(f, 6).isApprox(Vec3(0, 0, -6), 1e-12));
   tri->pressure_load(ElementContext{}, 1, {3, 3, 3, 3}, Eigen::VectorXd::Zero(18), f);
   EXPECT_TRUE(total(f, 6).isApprox(Vec3(0, 0, 3), 1e-12));
-  EXPECT_THROW(quad->pressure_load(ElementContext{}, 3, {1, 1, 1, 1}, Eigen::VectorXd::Zero(24), f),
+  EXPECT_THROW(quad->pressure_load(ElementContext{}, 7, {1, 1, 1, 1}, Eigen::VectorXd::Zero(24), f),
                ModelError);
+}
+
+// Faces 3..6 are the edges J-I, K-J, L-K, I-L: a force per unit length in the shell's plane,
+// normal to the edge and into the element, linear between the edge's two values.
+TEST(SurfaceLoads, ShellEdgePressureActsInThePlane) {
+  const auto k = testing::plate_data(1e7, 0.3, 0.1);
+  const auto quad = testing::make_shell(
+      1, {1, 2, 3, 4}, {Vec3(0, 0, 0), Vec3(2, 0, 0), Vec3(2, 1, 0), Vec3(0, 1, 0)}, k);
+  Eigen::VectorXd f;
+  // Face 4, K-J (x = 2, length 1): 3 per unit length pushes in −X, 1.5 at J and at K.
+  quad->pressure_load(ElementContext{}, 4, {3, 3, 0, 0}, Eigen::VectorXd::Zero(24), f);
+  EXPECT_TRUE(total(f, 6).isApprox(Vec3(-3, 0, 0), 1e-12));
+  EXPECT_NEAR(f(6 * 1), -1.5, 1e-12);
+  EXPECT_NEAR(f(6 * 2), -1.5, 1e-12);
+  // Face 3, J-I (y = 0, length 2), 0 at J and 6 at I: total 6 in +Y, 2/3 of it at I.
+  quad->pressure_load(ElementContext{}, 3, {0, 6, 0, 0}, Eigen::VectorXd::Zero(24), f);
+  EXPECT_TRUE(total(f, 6).isApprox(Vec3(0, 6, 0), 1e-12));
+  EXPECT_NEAR(f(6 * 0 + 1), 4.0, 1e-12);
+  EXPECT_NEAR(f(6 * 1 + 1), 2.0, 1e-12);
 }
 
 TEST(SurfaceLoads, FollowerPressureTurnsWithTheFace) {
