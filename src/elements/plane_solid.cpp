@@ -82,15 +82,21 @@ Eigen::Vector2d centre(PlaneShape shape) {
 }
 
 /// The stiffness points: 2x2 Gauss on the quadrilaterals (MAPDL's rule for PLANE182 and
-/// PLANE183), the centroid of the constant-strain triangle, the 3-point rule (degree 2) on the
-/// 6-node triangle.
-std::vector<QuadraturePoint> stiffness_rule(PlaneShape shape) {
+/// PLANE183), the centroid of the constant-strain triangle in plane stress and plane strain
+/// (B is constant there), the 3-point rule (degree 2) on the 6-node triangle and on the
+/// axisymmetric 3-node triangle. At the centroid alone the axisymmetric triangle would have
+/// 4 strain rows for 6 DOFs, so besides the axial translation a second zero-energy mode: the
+/// in-plane rotation about the centroid, u_r = c (z − z̄), u_z = −c r, whose hoop strain
+/// u_r / r vanishes only at z = z̄.
+std::vector<QuadraturePoint> stiffness_rule(PlaneShape shape, PlaneBehaviour behaviour) {
   switch (shape) {
     case PlaneShape::Quad4:
     case PlaneShape::Quad8:
       return gauss_square(2);
     case PlaneShape::Tri3:
-      return {{Eigen::Vector3d(1.0 / 3.0, 1.0 / 3.0, 0.0), 0.5}};
+      if (behaviour != PlaneBehaviour::Axisymmetric)
+        return {{Eigen::Vector3d(1.0 / 3.0, 1.0 / 3.0, 0.0), 0.5}};
+      [[fallthrough]];
     case PlaneShape::Tri6:
       return {{Eigen::Vector3d(1.0 / 6.0, 1.0 / 6.0, 0.0), 1.0 / 6.0},
               {Eigen::Vector3d(2.0 / 3.0, 1.0 / 6.0, 0.0), 1.0 / 6.0},
@@ -192,7 +198,7 @@ PlaneSolid::PlaneSolid(int id, const std::vector<int>& nodes, const std::vector<
     for (Dof dof : {Dof::UX, Dof::UY}) dofs_.push_back(DofKey{node, dof});
   d_ = plane_elasticity(material.young, material.poisson, options.behaviour);
   density_ = material.density;
-  rule_ = stiffness_rule(shape);
+  rule_ = stiffness_rule(shape, options.behaviour);
 
   // The Jacobian keeps one sign over the element: checked at the corners and the stiffness
   // points (a misplaced midside node makes it change sign at a corner first).

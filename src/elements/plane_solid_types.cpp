@@ -6,6 +6,7 @@
 #include <set>
 
 #include "core/errors.h"
+#include "elements/element_fields.h"
 #include "elements/element_registry.h"
 #include "elements/plane_solid.h"
 
@@ -55,6 +56,10 @@ PlaneSolidOptions behaviour_of(const Model& model, const ElementType& type,
     return o;
   }
   const auto real = model.real_sets.find(record.real);
+  // Only here is the real set read: every other value given in it must be refused.
+  if (real != model.real_sets.end())
+    if (const std::string why = real_set_refusal(type, real->second); !why.empty())
+      throw InputError(record.where, fmt::format("element {}: {}", record.id, why));
   const double thk = real == model.real_sets.end() ? 0.0 : real->second.get(1);
   if (!(thk > 0.0))
     throw InputError(record.where,
