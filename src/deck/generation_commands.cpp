@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <climits>
+#include <optional>
 
 #include "deck/deck_context.h"
 #include "deck/post_support.h"
@@ -172,10 +173,13 @@ std::vector<int> element_pattern(DeckReader& r, const Command& c, int f1) {
   return out;
 }
 
-/// Copies `src` k times its increments; `id` is the new element number.
+/// Copies `src` k times its increments; `id` is the new element number. `dxyz`: EGEN's DX,
+/// DY, DZ when given: a node of the copy that does not exist yet is generated at the pattern
+/// node moved by k (DX, DY, DZ) in the active system, as NGEN,ITIME,NINC,...,DX,DY,DZ before
+/// the EGEN would (EGEN notes); without them a missing node is an error.
 void copy_element(DeckReader& r, const Command& c, const ElementRecord& src, long long number,
                   long long k, long long ninc, long long minc, long long tinc, long long rinc,
-                  long long sinc) {
+                  long long sinc, const std::optional<Vec3>& dxyz = std::nullopt) {
   ElementRecord e = src;
   const int id = checked_number(r, c, number, "element");
   e.id = id;
@@ -191,7 +195,15 @@ void copy_element(DeckReader& r, const Command& c, const ElementRecord& src, lon
   if (d.defined_by_file)
     r.fail(c, fmt::format("element {} is a superelement and cannot be copied", src.id));
   for (int& n : e.nodes) {
+    const int from = n;
     n = checked_number(r, c, n + k * ninc, "node");
+    if (r.model.nodes.count(n) == 0 && dxyz && from != 0 && r.model.nodes.count(from) != 0) {
+      const CoordinateSystem active = r.model.coordinate_systems.active_system();
+      Node made = r.model.nodes.at(from);
+      made.id = n;
+      made.x = active.to_global(active.from_global(made.x) + static_cast<double>(k) * *dxyz);
+      r.model.nodes[n] = made;
+    }
     if (r.model.nodes.count(n) == 0)
       r.fail(c, fmt::format("node {} of generated element {} (copy of {}) is not defined", n, id,
                             src.id));
@@ -202,14 +214,6 @@ void copy_element(DeckReader& r, const Command& c, const ElementRecord& src, lon
                           t->second.ansys_name, d.n_nodes, e.nodes.size()));
   if (r.model.elements.count(id) == 0) r.modeling.element_order.push_back(id);
   r.model.elements[id] = std::move(e);
-}
-
-void warn_dxyz(DeckReader& r, const Command& c, int first) {
-  for (int f = first; f < first + 3; ++f)
-    if (!c.blank(f)) {
-      r.warn(c, "DX/DY/DZ ignored (only for solid-model meshes)");
-      return;
-    }
 }
 
 void cmd_egen(DeckReader& r, const Command& c) {
@@ -223,14 +227,16 @@ void cmd_egen(DeckReader& r, const Command& c) {
   const auto pattern = element_pattern(r, c, 3);
   const int minc = r.integer(c, 6, 0), tinc = r.integer(c, 7, 0), rinc = r.integer(c, 8, 0);
   const int sinc = r.integer(c, 10, 0);
-  warn_dxyz(r, c, 11);
+  std::optional<Vec3> dxyz;
+  if (!c.blank(11) || !c.blank(12) || !c.blank(13))
+    dxyz = Vec3(r.real(c, 11, 0.0), r.real(c, 12, 0.0), r.real(c, 13, 0.0));
   check_model_size(r, c, 0, static_cast<long long>(pattern.size()) * (itime - 1));
   std::vector<ElementRecord> src;
   for (int id : pattern) src.push_back(r.model.elements.at(id));
   for (int k = 1; k < itime; ++k)
     for (const auto& e : src) {
       const long long id = static_cast<long long>(r.model.elements.rbegin()->first) + 1;
-      copy_element(r, c, e, id, k, ninc, minc, tinc, rinc, sinc);
+      copy_element(r, c, e, id, k, ninc, minc, tinc, rinc, sinc, dxyz);
     }
 }
 
@@ -247,14 +253,16 @@ void cmd_engen(DeckReader& r, const Command& c) {
   const auto pattern = element_pattern(r, c, 4);
   const int minc = r.integer(c, 7, 0), tinc = r.integer(c, 8, 0), rinc = r.integer(c, 9, 0);
   const int sinc = r.integer(c, 11, 0);
-  warn_dxyz(r, c, 12);
+  std::optional<Vec3> dxyz;
+  if (!c.blank(12) || !c.blank(13) || !c.blank(14))
+    dxyz = Vec3(r.real(c, 12, 0.0), r.real(c, 13, 0.0), r.real(c, 14, 0.0));
   check_model_size(r, c, 0, static_cast<long long>(pattern.size()) * (itime - 1));
   std::vector<ElementRecord> src;
   for (int id : pattern) src.push_back(r.model.elements.at(id));
   for (int k = 1; k < itime; ++k)
     for (const auto& e : src)
       copy_element(r, c, e, e.id + static_cast<long long>(k) * iinc, k, ninc, minc, tinc, rinc,
-                   sinc);
+                   sinc, dxyz);
 }
 
 }  // namespace
