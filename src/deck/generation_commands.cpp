@@ -5,6 +5,7 @@
 #include <climits>
 #include <optional>
 
+#include "core/log.h"
 #include "deck/deck_context.h"
 #include "deck/post_support.h"
 #include "elements/element_registry.h"
@@ -265,9 +266,56 @@ void cmd_engen(DeckReader& r, const Command& c) {
                    sinc, dxyz);
 }
 
+void cmd_emid(DeckReader& r, const Command& c) {
+  // EMID,Key,Edges: midside nodes added to the selected elements whose (current) type has
+  // them, at the middle of each straight edge and shared by the elements on that edge; a
+  // collapsed edge (K = L) takes its corner as its midside node. Elements that already have
+  // all their midside nodes are left as they are.
+  const std::string key = r.label(c, 1), edges = r.label(c, 2);
+  if (!key.empty() && key != "ADD")
+    r.fail(c, fmt::format("Key '{}' is not supported (ADD: add midside nodes)", c.text(1)));
+  if (!edges.empty() && edges != "BOTH")
+    r.fail(c, fmt::format("Edges '{}' is not supported (BOTH)", c.text(2)));
+  std::map<std::pair<int, int>, int> made;
+  int added = 0;
+  for (int id : require_selected_elements(r, c)) {
+    ElementRecord& e = r.model.elements.at(id);
+    const auto t = r.model.element_types.find(e.type);
+    if (t == r.model.element_types.end()) continue;
+    const CellTopology& cell = element_type_descriptor(t->second).topology();
+    if (cell.midside_nodes == 0 || static_cast<int>(e.nodes.size()) < cell.corner_nodes) continue;
+    e.nodes.resize(static_cast<std::size_t>(cell.n_nodes()), 0);
+    for (int k = 0; k < cell.midside_nodes; ++k) {
+      int& slot = e.nodes[static_cast<std::size_t>(cell.corner_nodes + k)];
+      if (slot != 0) continue;
+      const auto& edge = cell.edges[static_cast<std::size_t>(k)];
+      const int a = e.nodes[static_cast<std::size_t>(edge[0])];
+      const int b = e.nodes[static_cast<std::size_t>(edge[1])];
+      if (a == b) {
+        slot = a;
+        continue;
+      }
+      const auto pair = std::minmax(a, b);
+      auto it = made.find({pair.first, pair.second});
+      if (it == made.end()) {
+        Node n;
+        n.id =
+            checked_number(r, c, static_cast<long long>(r.model.nodes.rbegin()->first) + 1, "node");
+        n.x = 0.5 * (r.model.node(a).x + r.model.node(b).x);
+        r.model.nodes[n.id] = n;
+        it = made.emplace(std::make_pair(pair.first, pair.second), n.id).first;
+        ++added;
+      }
+      slot = it->second;
+    }
+  }
+  Log::info("{}:{}: EMID: {} midside nodes added", c.where.file, c.where.line, added);
+}
+
 }  // namespace
 
 void register_generation_commands(std::vector<CommandSpec>& t) {
+  t.push_back({"EMID", cmd_emid, kPrep7});
   t.push_back({"FILL", cmd_fill, kPrep7});
   t.push_back({"NGEN", cmd_ngen, kPrep7});
   t.push_back({"EGEN", cmd_egen, kPrep7});

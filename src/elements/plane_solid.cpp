@@ -443,9 +443,10 @@ const std::vector<std::string>& PlaneSolid::result_names() const {
   return plane_solid_result_names();
 }
 
-void PlaneSolid::results(const ElementContext& ctx, const Eigen::VectorXd& u,
-                         const Eigen::VectorXd& v, ElementResultValues& out) const {
-  const Eigen::Vector4d s = centroid_stress(u);
+namespace {
+
+/// SX SY SZ SXY S1 S2 S3 SINT SEQV of a stress (xx, yy, zz, xy).
+ElementResultValues stress_items(const Eigen::Vector4d& s) {
   // In-plane principal stresses and SZ, ordered S1 >= S2 >= S3.
   const double mean = 0.5 * (s(0) + s(1));
   const double radius = std::hypot(0.5 * (s(0) - s(1)), s(3));
@@ -454,7 +455,60 @@ void PlaneSolid::results(const ElementContext& ctx, const Eigen::VectorXd& u,
   const double s1 = pr[0], s2 = pr[1], s3 = pr[2];
   const double seqv =
       std::sqrt(0.5 * ((s1 - s2) * (s1 - s2) + (s2 - s3) * (s2 - s3) + (s3 - s1) * (s3 - s1)));
-  out = {s(0), s(1), s(2), s(3), s1, s2, s3, s1 - s3, seqv};
+  return {s(0), s(1), s(2), s(3), s1, s2, s3, s1 - s3, seqv};
+}
+
+}  // namespace
+
+void PlaneSolid::results(const ElementContext& ctx, const Eigen::VectorXd& u,
+                         const Eigen::VectorXd& v, ElementResultValues& out) const {
+  out = stress_items(centroid_stress(u));
+}
+
+bool PlaneSolid::nodal_results(const ElementContext& ctx, const Eigen::VectorXd& u,
+                               std::map<int, ElementResultValues>& at_node) const {
+  // Stresses at the stiffness points, then the lowest polynomial through them (bilinear
+  // through the 2x2 points of the quadrilaterals, linear through the 3 points of the
+  // triangles, constant at the one point of the plane triangle) evaluated at the nodes: the
+  // extrapolation of integration-point stresses to the nodes (Cook et al. §6.13). Midside
+  // nodes get the polynomial's value there, the mean of their corners' values.
+  const int np = static_cast<int>(rule_.size());
+  std::vector<Eigen::Vector4d> sigma;
+  Eigen::Vector4d alpha = Eigen::Vector4d::Zero();
+  if (options_.technology == PlaneTechnology::IncompatibleModes) alpha = -(mode_recovery_ * u);
+  for (const QuadraturePoint& q : rule_) {
+    const Eigen::Vector2d xi = q.xi.head<2>();
+    const Point p = point_at(xi);
+    Eigen::MatrixXd b = strain_matrix(p);
+    if (options_.technology == PlaneTechnology::BBar) {
+      const Eigen::RowVectorXd shift = (mean_dilatation_ - b.topRows(3).colwise().sum()) / 3.0;
+      for (int r = 0; r < 3; ++r) b.row(r) += shift;
+    }
+    Eigen::Vector4d strain = b * u;
+    if (options_.technology == PlaneTechnology::IncompatibleModes)
+      strain += (mode_matrix(p, xi) - mean_modes_) * alpha;
+    sigma.push_back(d_ * strain);
+  }
+  auto basis = [&](const Eigen::Vector2d& xi) {
+    Eigen::VectorXd f(np);
+    if (np == 4) f << 1, xi(0), xi(1), xi(0) * xi(1);
+    if (np == 3) f << 1, xi(0), xi(1);
+    if (np == 1) f << 1;
+    return f;
+  };
+  Eigen::MatrixXd a(np, np), values(np, 4);
+  for (int q = 0; q < np; ++q) {
+    a.row(q) = basis(rule_[static_cast<std::size_t>(q)].xi.head<2>()).transpose();
+    values.row(q) = sigma[static_cast<std::size_t>(q)].transpose();
+  }
+  const Eigen::MatrixXd coefficients = a.partialPivLu().solve(values);
+  const auto xi_nodes = plane_shape_nodes_xi(options_.shape);
+  at_node.clear();
+  for (std::size_t k = 0; k < nodes_.size(); ++k) {
+    const Eigen::Vector4d s = (basis(xi_nodes[k]).transpose() * coefficients).transpose();
+    at_node[nodes_[k]] = stress_items(s);
+  }
+  return true;
 }
 
 }  // namespace impactfe

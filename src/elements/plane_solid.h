@@ -77,6 +77,10 @@ class PlaneSolid final : public Element {
   /// hoop stress in axisymmetry, ν(SX + SY) in plane strain, 0 in plane stress.
   void results(const ElementContext& ctx, const Eigen::VectorXd& u, const Eigen::VectorXd& v,
                ElementResultValues& out) const override;
+  /// The stresses of the integration points extrapolated to the nodes (bilinear through the
+  /// 2x2 points, linear through 3 points, constant from 1), with their derived items.
+  bool nodal_results(const ElementContext& ctx, const Eigen::VectorXd& u,
+                     std::map<int, ElementResultValues>& at_node) const override;
   /// ∫ t dA, or the volume of the full ring ∫ 2πr dA.
   std::optional<double> volume() const override { return volume_; }
 

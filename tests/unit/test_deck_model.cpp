@@ -131,6 +131,27 @@ TEST(DeckModel, EsizeWithBlankSizeAndNdivResetsTheDefaults) {
   EXPECT_NE(error_of("/PREP7\nESIZE,0\n").find("element size must be positive"), std::string::npos);
 }
 
+TEST(DeckModel, EmidAddsSharedMidsideNodes) {
+  // 4-node quadrilaterals retyped as PLANE183 (VM5): EMID puts one node at the middle of each
+  // edge, a shared edge's node once; the collapsed edge K = L of a triangle takes K.
+  const Job job = parse(
+      "/PREP7\nET,1,PLANE182\nN,1\nN,2,2\nN,3,4\nN,4,0,2\nN,5,2,2\nN,6,4,2\nN,7,3,4\n"
+      "E,1,2,5,4\nE,2,3,6,5\nE,5,6,7,7\nET,1,PLANE183\nEMID\n");
+  const Model& m = job.model;
+  ASSERT_EQ(m.elements.at(1).nodes.size(), 8u);
+  const auto& a = m.elements.at(1).nodes;
+  const auto& b = m.elements.at(2).nodes;
+  const auto& t = m.elements.at(3).nodes;
+  EXPECT_TRUE(m.nodes.at(a[4]).x.isApprox(Vec3(1, 0, 0)));
+  EXPECT_TRUE(m.nodes.at(a[5]).x.isApprox(Vec3(2, 1, 0)));
+  EXPECT_EQ(a[5], b[7]);  // the shared edge 2-5 (J-K of 1, L-I of 2): one node
+  EXPECT_EQ(b[6], t[4]);  // the shared edge 6-5
+  EXPECT_EQ(t[6], 7);     // the collapsed edge K-L
+  EXPECT_EQ(m.nodes.size(), 7u + 4u + 3u + 2u);
+  EXPECT_NE(error_of("/PREP7\nET,1,PLANE183\nN,1\nEMID,REMOVE\n").find("Key 'REMOVE'"),
+            std::string::npos);
+}
+
 TEST(DeckModel, ElementNodeCountsAndDegenerateShapes) {
   const Job job = parse(
       "/PREP7\nET,1,SHELL63\nET,2,SOLID45\nET,3,MASS21\nN,1\nN,2,1\nN,3,1,1\nN,4,0,1\n"
