@@ -297,6 +297,16 @@ void DeckReader::add_element(const Command& c, int id, std::vector<int> nodes) {
                         d.name));
   // Trailing blank optional nodes (a beam's orientation node) are not nodes.
   while (static_cast<int>(nodes.size()) > d.n_nodes && nodes.back() == 0) nodes.pop_back();
+  if (d.triangle_form_keyopt > 0 && type.key(d.triangle_form_keyopt) == 1) {
+    // The 6-node triangle I J K L M N (PLANE183 KEYOPT(1) = 1) in the quadrilateral's form
+    // with K = L = O: I J K K, then the midsides L M (K) N of I-J J-K (K-K) K-I.
+    while (!nodes.empty() && nodes.back() == 0) nodes.pop_back();
+    if (nodes.size() != 6)
+      fail(c, fmt::format("{} with KEYOPT({}) = 1 is the 6-node triangle: E takes the nodes I J "
+                          "K L M N, got {}",
+                          d.name, d.triangle_form_keyopt, nodes.size()));
+    nodes = {nodes[0], nodes[1], nodes[2], nodes[2], nodes[3], nodes[4], nodes[2], nodes[5]};
+  }
   const int given = static_cast<int>(nodes.size());
   // A cell with midside nodes takes its corners from E and the rest from EMORE (E has 8 node
   // fields): the positions not given yet are 0 (the cell's corners must all be given).

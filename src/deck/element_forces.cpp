@@ -26,6 +26,29 @@ Eigen::VectorXd gather(const Eigen::MatrixXd& m, const std::vector<int>& node_id
 
 }  // namespace
 
+std::map<int, std::vector<double>> element_nodal_results(DeckReader& r, const Command& c,
+                                                         int element) {
+  const auto rec = r.model.elements.find(element);
+  if (rec == r.model.elements.end()) return {};
+  const ResultsReader& reader = results(r, c);
+  const SetData& set = current_set(r, c);
+  const ElementBuildContext build{r.model, [&](const ElementRecord& e) -> std::string {
+                                    throw InputError(c.where, "superelement");
+                                  }};
+  std::unique_ptr<Element> el;
+  try {
+    el = create_element(build, rec->second);
+  } catch (const InputError&) {
+    return {};  // the stored centroid values stand for the nodes
+  }
+  const AnalysisOptions& o = r.model.options;
+  const ElementContext ctx{o.large_deflection, o.stress_stiffening, o.lumped_mass};
+  const Eigen::VectorXd u = gather(set.point.displacement, reader.node_ids(), el->dofs());
+  std::map<int, std::vector<double>> out;
+  if (!el->nodal_results(ctx, u, out)) return {};
+  return out;
+}
+
 std::map<int, NodalForce> element_nodal_forces(DeckReader& r, const Command& c, int element) {
   const auto rec = r.model.elements.find(element);
   if (rec == r.model.elements.end()) r.fail(c, fmt::format("element {} is not defined", element));

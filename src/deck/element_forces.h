@@ -18,6 +18,12 @@ using NodalForce = std::array<double, 6>;
 /// (TOTAL = static + damping + inertia, STATIC = f_int(u), DAMP = C v, INERT = M a).
 std::map<int, NodalForce> element_nodal_forces(DeckReader& r, const Command& c, int element);
 
+/// The element's result values extrapolated to its nodes at the current set (by node id, in
+/// the type's result_names() order); empty when the element has no nodal values (then its
+/// centroid values stand for the nodes) or cannot be built.
+std::map<int, std::vector<double>> element_nodal_results(DeckReader& r, const Command& c,
+                                                         int element);
+
 /// Sum over `elements` of their nodal forces at each node.
 std::map<int, NodalForce> nodal_force_sums(DeckReader& r, const Command& c,
                                            const std::vector<int>& elements);

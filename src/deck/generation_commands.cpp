@@ -3,7 +3,9 @@
 
 #include <algorithm>
 #include <climits>
+#include <optional>
 
+#include "core/log.h"
 #include "deck/deck_context.h"
 #include "deck/post_support.h"
 #include "elements/element_registry.h"
@@ -172,10 +174,13 @@ std::vector<int> element_pattern(DeckReader& r, const Command& c, int f1) {
   return out;
 }
 
-/// Copies `src` k times its increments; `id` is the new element number.
+/// Copies `src` k times its increments; `id` is the new element number. `dxyz`: EGEN's DX,
+/// DY, DZ when given: a node of the copy that does not exist yet is generated at the pattern
+/// node moved by k (DX, DY, DZ) in the active system, as NGEN,ITIME,NINC,...,DX,DY,DZ before
+/// the EGEN would (EGEN notes); without them a missing node is an error.
 void copy_element(DeckReader& r, const Command& c, const ElementRecord& src, long long number,
                   long long k, long long ninc, long long minc, long long tinc, long long rinc,
-                  long long sinc) {
+                  long long sinc, const std::optional<Vec3>& dxyz = std::nullopt) {
   ElementRecord e = src;
   const int id = checked_number(r, c, number, "element");
   e.id = id;
@@ -191,7 +196,15 @@ void copy_element(DeckReader& r, const Command& c, const ElementRecord& src, lon
   if (d.defined_by_file)
     r.fail(c, fmt::format("element {} is a superelement and cannot be copied", src.id));
   for (int& n : e.nodes) {
+    const int from = n;
     n = checked_number(r, c, n + k * ninc, "node");
+    if (r.model.nodes.count(n) == 0 && dxyz && from != 0 && r.model.nodes.count(from) != 0) {
+      const CoordinateSystem active = r.model.coordinate_systems.active_system();
+      Node made = r.model.nodes.at(from);
+      made.id = n;
+      made.x = active.to_global(active.from_global(made.x) + static_cast<double>(k) * *dxyz);
+      r.model.nodes[n] = made;
+    }
     if (r.model.nodes.count(n) == 0)
       r.fail(c, fmt::format("node {} of generated element {} (copy of {}) is not defined", n, id,
                             src.id));
@@ -202,14 +215,6 @@ void copy_element(DeckReader& r, const Command& c, const ElementRecord& src, lon
                           t->second.ansys_name, d.n_nodes, e.nodes.size()));
   if (r.model.elements.count(id) == 0) r.modeling.element_order.push_back(id);
   r.model.elements[id] = std::move(e);
-}
-
-void warn_dxyz(DeckReader& r, const Command& c, int first) {
-  for (int f = first; f < first + 3; ++f)
-    if (!c.blank(f)) {
-      r.warn(c, "DX/DY/DZ ignored (only for solid-model meshes)");
-      return;
-    }
 }
 
 void cmd_egen(DeckReader& r, const Command& c) {
@@ -223,14 +228,16 @@ void cmd_egen(DeckReader& r, const Command& c) {
   const auto pattern = element_pattern(r, c, 3);
   const int minc = r.integer(c, 6, 0), tinc = r.integer(c, 7, 0), rinc = r.integer(c, 8, 0);
   const int sinc = r.integer(c, 10, 0);
-  warn_dxyz(r, c, 11);
+  std::optional<Vec3> dxyz;
+  if (!c.blank(11) || !c.blank(12) || !c.blank(13))
+    dxyz = Vec3(r.real(c, 11, 0.0), r.real(c, 12, 0.0), r.real(c, 13, 0.0));
   check_model_size(r, c, 0, static_cast<long long>(pattern.size()) * (itime - 1));
   std::vector<ElementRecord> src;
   for (int id : pattern) src.push_back(r.model.elements.at(id));
   for (int k = 1; k < itime; ++k)
     for (const auto& e : src) {
       const long long id = static_cast<long long>(r.model.elements.rbegin()->first) + 1;
-      copy_element(r, c, e, id, k, ninc, minc, tinc, rinc, sinc);
+      copy_element(r, c, e, id, k, ninc, minc, tinc, rinc, sinc, dxyz);
     }
 }
 
@@ -247,19 +254,68 @@ void cmd_engen(DeckReader& r, const Command& c) {
   const auto pattern = element_pattern(r, c, 4);
   const int minc = r.integer(c, 7, 0), tinc = r.integer(c, 8, 0), rinc = r.integer(c, 9, 0);
   const int sinc = r.integer(c, 11, 0);
-  warn_dxyz(r, c, 12);
+  std::optional<Vec3> dxyz;
+  if (!c.blank(12) || !c.blank(13) || !c.blank(14))
+    dxyz = Vec3(r.real(c, 12, 0.0), r.real(c, 13, 0.0), r.real(c, 14, 0.0));
   check_model_size(r, c, 0, static_cast<long long>(pattern.size()) * (itime - 1));
   std::vector<ElementRecord> src;
   for (int id : pattern) src.push_back(r.model.elements.at(id));
   for (int k = 1; k < itime; ++k)
     for (const auto& e : src)
       copy_element(r, c, e, e.id + static_cast<long long>(k) * iinc, k, ninc, minc, tinc, rinc,
-                   sinc);
+                   sinc, dxyz);
+}
+
+void cmd_emid(DeckReader& r, const Command& c) {
+  // EMID,Key,Edges: midside nodes added to the selected elements whose (current) type has
+  // them, at the middle of each straight edge and shared by the elements on that edge; a
+  // collapsed edge (K = L) takes its corner as its midside node. Elements that already have
+  // all their midside nodes are left as they are.
+  const std::string key = r.label(c, 1), edges = r.label(c, 2);
+  if (!key.empty() && key != "ADD")
+    r.fail(c, fmt::format("Key '{}' is not supported (ADD: add midside nodes)", c.text(1)));
+  if (!edges.empty() && edges != "BOTH")
+    r.fail(c, fmt::format("Edges '{}' is not supported (BOTH)", c.text(2)));
+  std::map<std::pair<int, int>, int> made;
+  int added = 0;
+  for (int id : require_selected_elements(r, c)) {
+    ElementRecord& e = r.model.elements.at(id);
+    const auto t = r.model.element_types.find(e.type);
+    if (t == r.model.element_types.end()) continue;
+    const CellTopology& cell = element_type_descriptor(t->second).topology();
+    if (cell.midside_nodes == 0 || static_cast<int>(e.nodes.size()) < cell.corner_nodes) continue;
+    e.nodes.resize(static_cast<std::size_t>(cell.n_nodes()), 0);
+    for (int k = 0; k < cell.midside_nodes; ++k) {
+      int& slot = e.nodes[static_cast<std::size_t>(cell.corner_nodes + k)];
+      if (slot != 0) continue;
+      const auto& edge = cell.edges[static_cast<std::size_t>(k)];
+      const int a = e.nodes[static_cast<std::size_t>(edge[0])];
+      const int b = e.nodes[static_cast<std::size_t>(edge[1])];
+      if (a == b) {
+        slot = a;
+        continue;
+      }
+      const auto pair = std::minmax(a, b);
+      auto it = made.find({pair.first, pair.second});
+      if (it == made.end()) {
+        Node n;
+        n.id =
+            checked_number(r, c, static_cast<long long>(r.model.nodes.rbegin()->first) + 1, "node");
+        n.x = 0.5 * (r.model.node(a).x + r.model.node(b).x);
+        r.model.nodes[n.id] = n;
+        it = made.emplace(std::make_pair(pair.first, pair.second), n.id).first;
+        ++added;
+      }
+      slot = it->second;
+    }
+  }
+  Log::info("{}:{}: EMID: {} midside nodes added", c.where.file, c.where.line, added);
 }
 
 }  // namespace
 
 void register_generation_commands(std::vector<CommandSpec>& t) {
+  t.push_back({"EMID", cmd_emid, kPrep7});
   t.push_back({"FILL", cmd_fill, kPrep7});
   t.push_back({"NGEN", cmd_ngen, kPrep7});
   t.push_back({"EGEN", cmd_egen, kPrep7});

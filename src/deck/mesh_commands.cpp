@@ -33,7 +33,12 @@ void cmd_esize(DeckReader& r, const Command& c) {
   if (v && *v < 0.0) r.fail(c, fmt::format("element size {} must be positive", *v));
   if (ndiv && *ndiv < 0) r.fail(c, fmt::format("NDIV {} must not be negative", *ndiv));
   if ((!v || *v == 0.0) && (!ndiv || *ndiv == 0)) {
-    if (c.last_given() == 0) {  // ESIZE alone: back to the defaults
+    // ESIZE alone, or with SIZE and NDIV blank (fields beyond NDIV are none of ESIZE's, as
+    // ESIZ,,,2): back to the defaults. A zero given explicitly is a size of zero: refused.
+    if (c.blank(1) && c.blank(2)) {
+      if (c.last_given() > 2)
+        r.warn(c, fmt::format("field {} is not a field of ESIZE (SIZE, NDIV): ignored",
+                              c.last_given()));
       m.esize = 0.0;
       m.esize_ndiv = 0;
       return;

@@ -101,14 +101,24 @@ std::optional<double> nodal_item_value(DeckReader& r, const Command& c, const No
   for (int e : selected_elements(r)) {
     const auto& nodes = r.model.elements.at(e).nodes;
     if (std::find(nodes.begin(), nodes.end(), node) == nodes.end()) continue;
-    const auto v = element_result(r, c, e, item.element_item, item.elements[k]);
+    // The element's values extrapolated to this node when it has them (the 2-D solids),
+    // else its centroid value.
+    std::optional<double> v;
+    if (const ElementTypeDescriptor* d = find_element_type(element_type_name(r, e)))
+      if (const auto seq = find_result_sequence(*d, item.element_item, item.elements[k])) {
+        const auto column = std::find(d->result_names.begin(), d->result_names.end(), seq->name);
+        const auto at = element_nodal_results(r, c, e);
+        if (column != d->result_names.end() && at.count(node) != 0)
+          v = at.at(node)[static_cast<std::size_t>(column - d->result_names.begin())];
+      }
+    if (!v) v = element_result(r, c, e, item.element_item, item.elements[k]);
     if (v && std::isfinite(*v)) {
       sum += *v;
       ++n;
     }
   }
   if (n == 0) return std::nullopt;
-  return sum / n;  // element (centroid) values averaged at the node
+  return sum / n;  // element values at the node averaged
 }
 
 std::string element_table_listing(const std::vector<int>& elements,
@@ -172,7 +182,7 @@ void cmd_prnsol(DeckReader& r, const Command& c) {
   out += set_heading(set);
   out += fmt::format("\n  THE FOLLOWING {} RESULTS ARE IN THE GLOBAL COORDINATE SYSTEM\n",
                      dof ? "DEGREE OF FREEDOM" : "X,Y,Z");
-  if (!dof) out += "  (element centroid values averaged at the nodes)\n";
+  if (!dof) out += "  (element values at the nodes averaged)\n";
   out += columns_heading("NODE", item.labels);
   for (std::size_t i = 0; i < rows.size(); ++i) {
     out += fmt::format("{:8d}", rows[i]);

@@ -67,6 +67,14 @@ CellTopology polygon(VtkCell cell, int corners) {
   return t;
 }
 
+/// The 8-node quadrilateral and the 6-node triangle: a midside node on each side, in side order.
+CellTopology quadratic_polygon(VtkCell cell, VtkCell linear, int corners) {
+  CellTopology t = polygon(linear, corners);
+  t.cell = cell;
+  t.midside_nodes = corners;
+  return t;
+}
+
 CellTopology simple(VtkCell cell, int dimension, int corners) {
   CellTopology t;
   t.cell = cell;
@@ -93,6 +101,9 @@ const CellTopology& cell_topology(VtkCell cell) {
   static const CellTopology line = simple(VtkCell::Line, 1, 2);
   static const CellTopology triangle = polygon(VtkCell::Triangle, 3);
   static const CellTopology quad = polygon(VtkCell::Quad, 4);
+  static const CellTopology triangle6 =
+      quadratic_polygon(VtkCell::QuadraticTriangle, VtkCell::Triangle, 3);
+  static const CellTopology quad8 = quadratic_polygon(VtkCell::QuadraticQuad, VtkCell::Quad, 4);
   static const CellTopology hex = hexahedron();
   static const CellTopology hex20 = quadratic_hexahedron();
   static const CellTopology tet = tetrahedron();
@@ -108,6 +119,10 @@ const CellTopology& cell_topology(VtkCell cell) {
       return triangle;
     case VtkCell::Quad:
       return quad;
+    case VtkCell::QuadraticTriangle:
+      return triangle6;
+    case VtkCell::QuadraticQuad:
+      return quad8;
     case VtkCell::Hexahedron:
       return hex;
     case VtkCell::QuadraticHexahedron:
@@ -161,7 +176,16 @@ std::vector<CellPiece> cell_pieces(VtkCell cell, const std::vector<int>& nodes) 
         out.push_back({CellPiece::Kind::Point, nodes});
         break;
       }
-      auto ring = unique_in_order(nodes);
+      // A quadratic polygon is drawn through its midside nodes: corner, midside, corner, ...
+      std::vector<int> around = nodes;
+      if (t.midside_nodes > 0 && static_cast<int>(nodes.size()) >= t.n_nodes()) {
+        around.clear();
+        for (int k = 0; k < t.corner_nodes; ++k) {
+          around.push_back(nodes[static_cast<std::size_t>(k)]);
+          around.push_back(nodes[static_cast<std::size_t>(t.corner_nodes + k)]);
+        }
+      }
+      auto ring = unique_in_order(around);
       if (ring.size() >= 3)
         out.push_back({CellPiece::Kind::Polygon, std::move(ring)});
       else if (ring.size() == 2)

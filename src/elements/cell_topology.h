@@ -15,6 +15,8 @@ enum class VtkCell : int {
   Line = 3,
   Triangle = 5,
   Quad = 9,
+  QuadraticTriangle = 22,  // 6 nodes: corners I J K, then midsides of I-J J-K K-I
+  QuadraticQuad = 23,      // 8 nodes: corners I J K L, then midsides of I-J J-K K-L L-I
   Tetra = 10,
   Hexahedron = 12,
   QuadraticTetra = 24,       // 10 nodes: corners I J K L, then midsides of I-J J-K K-I I-L J-L K-L

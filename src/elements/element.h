@@ -5,6 +5,7 @@
 
 #include <array>
 #include <functional>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -125,6 +126,13 @@ class Element {
   /// Values in result_names() order at displacement u and velocity v.
   virtual void results(const ElementContext& ctx, const Eigen::VectorXd& u,
                        const Eigen::VectorXd& v, ElementResultValues& out) const = 0;
+  /// Values in result_names() order at each of the element's nodes (key: node id), for nodal
+  /// averages (PRNSOL, PLNSOL, *GET NODE S): the integration-point values extrapolated to the
+  /// nodes. false: the element has only its results() values (averaged at the nodes as they are).
+  virtual bool nodal_results(const ElementContext& ctx, const Eigen::VectorXd& u,
+                             std::map<int, ElementResultValues>& at_node) const {
+    return false;
+  }
   /// Undeformed volume (length × area of a spar, ∫t dA of a shell, ∫dV of a brick) for
   /// *GET ELEM VOLU and ETABLE VOLU; nullopt for elements without one (springs, masses, gaps).
   virtual std::optional<double> volume() const { return std::nullopt; }

@@ -112,6 +112,25 @@ std::vector<ElementFields> make_table() {
                {{2, {0, 1}, "integration: 0 uniform reduced 2x2x2, 1 full 3x3x3"},
                 {6, {0}, "1 (mixed u-P formulation) is not implemented"}}});
   t.push_back({"SOLID187", {}, {{6, {0}, "1 and 2 (mixed u-P formulations) are not implemented"}}});
+  // 2-D solids (docs/elements/plane182.md). THK is read with KEYOPT(3) = 3 only.
+  t.push_back({"PLANE182",
+               named({"THK"}),
+               {{1,
+                 {0, 2, 3},
+                 "0 full 2x2 (B-bar in plane strain and axisymmetry), 3 simplified enhanced "
+                 "strain (incompatible modes), 2 enhanced strain in plane stress only; 1 "
+                 "(reduced with hourglass control) is not implemented"},
+                {3, range(0, 3),
+                 "0 plane stress, 1 axisymmetric, 2 plane strain, 3 plane stress with "
+                 "thickness; 5 and 6 are not implemented"},
+                {6, {0}, "1 (mixed u-P formulation) is not implemented"}}});
+  t.push_back({"PLANE183",
+               named({"THK"}),
+               {{1, {0, 1}, "0 8-node quadrilateral, 1 6-node triangle"},
+                {3, range(0, 3),
+                 "0 plane stress, 1 axisymmetric, 2 plane strain, 3 plane stress with "
+                 "thickness; 5 and 6 are not implemented"},
+                {6, {0}, "1 (mixed u-P formulation) is not implemented"}}});
   // Explicit elements (docs/explicit_dynamics.md): SOLID164 KEYOPT(1) 0 and 1 are both the
   // one-point constant-stress brick; 2 (full integration) and 5 (ALE) are not implemented.
   t.push_back({"SOLID164", {}, {{1, {0, 1}, "0 or 1: one-point constant stress (the same)"}}});

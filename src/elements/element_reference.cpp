@@ -12,6 +12,9 @@ const char* role_name(ShapeRole role) {
   switch (role) {
     case ShapeRole::Solid:
       return "solid (a volume of material)";
+    case ShapeRole::Plane:
+      return "plane (an area of material in the X-Y plane: plane stress, plane strain or "
+             "axisymmetric)";
     case ShapeRole::Shell:
       return "shell (a surface with a thickness)";
     case ShapeRole::Line:

@@ -25,6 +25,7 @@ bool role_fits_cell(ShapeRole role, int dimension) {
     case ShapeRole::Solid:
       return dimension == 3;
     case ShapeRole::Shell:
+    case ShapeRole::Plane:
       return dimension == 2;
     case ShapeRole::Line:
     case ShapeRole::Gap:

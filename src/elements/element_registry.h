@@ -31,6 +31,7 @@ enum class RealConstantUse {
 /// bodies, the mesher's element dimension, ESURF).
 enum class ShapeRole {
   Solid,         // a volume of material (bricks)
+  Plane,         // an area of material in the X-Y plane: plane stress/strain, axisymmetric
   Shell,         // a surface of material with a thickness
   Line,          // a spar, beam or spring between two nodes
   Point,         // a mass at a node
@@ -87,6 +88,10 @@ struct ElementTypeDescriptor {
   std::vector<std::vector<int>> faces;
   /// Faces that SF (by selected nodes) may load: the first `sf_faces` ones (shells: face 1).
   int sf_faces = 0;
+  /// KEYOPT(k) = 1 (k = this number; 0: none) makes the type the 6-node triangle I J K L M N
+  /// (L M N midside nodes of I-J J-K K-I) of a quadratic quadrilateral cell: E stores it as
+  /// the quadrilateral with K = L = O (I J K K L M K N), the one form of the rest of the program.
+  int triangle_form_keyopt = 0;
   /// Logged when ET defines the type (e.g. a kernel substitution worth knowing about).
   std::string note;
   ElementFactory create;

@@ -29,6 +29,8 @@ const std::vector<SectionTypeDescriptor>& section_types() {
        .offsets = {"MID"},
        .single_secdata = true,
        .check_data = positive_first_value("thickness")},
+      // 2-D solids (PLANE182/183 KEYOPT(3) = 3): the thickness.
+      {.name = "PLANE", .single_secdata = true, .check_data = positive_first_value("thickness")},
       // Beams: the subtype's dimensions (at most 12 values), whose properties go to the log;
       // the nodes lie on the centroid (CENT), the only placement impactfe computes.
       {.name = "BEAM",

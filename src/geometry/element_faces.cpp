@@ -13,6 +13,10 @@ const ElementTypeDescriptor* descriptor_of(const Model& model, const ElementReco
   const auto it = model.element_types.find(e.type);
   return it == model.element_types.end() ? nullptr : &element_type_descriptor(it->second);
 }
+bool is_plane_solid(const Model& model, const ElementRecord& e) {
+  const ElementTypeDescriptor* d = descriptor_of(model, e);
+  return d != nullptr && d->role == ShapeRole::Plane;
+}
 }  // namespace
 
 std::vector<int> element_face_nodes(const Model& model, const ElementRecord& element, int face) {
@@ -40,7 +44,8 @@ std::vector<FaceKey> faces_on_nodes(const Model& model, const std::function<bool
     for (int f = 1; f <= n; ++f) {
       const std::vector<int> nodes = element_face_nodes(model, e, f);
       const std::set<int> key(nodes.begin(), nodes.end());
-      if (key.size() < 3) continue;  // a collapsed face carries no pressure
+      // A collapsed face carries no pressure: below 3 nodes (2 on the edge faces of a 2-D solid).
+      if (key.size() < (is_plane_solid(model, e) ? 2u : 3u)) continue;
       bool all = true;
       for (int node : key) all = all && node_ok(node);
       if (all) candidates[key].push_back(FaceKey{id, f});

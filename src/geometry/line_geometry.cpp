@@ -3,6 +3,7 @@
 #include "geometry/mapped_mesh.h"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 
 namespace impactfe::geometry {
@@ -53,6 +54,28 @@ void set_arc_path(Line& line, const Vec3& a, const Vec3& centre, const Vec3& axi
 
 Vec3 line_point(const Line& line, double s) {
   return line.path.to_global(line.c1 + s * (line.c2 - line.c1));
+}
+
+double line_parameter(const Line& line, const Vec3& x) {
+  // The distance along a line straight in its path system has one minimum per sampling cell
+  // near the node (arcs sweep at most 360°): 64 samples, then golden section in the best cell.
+  const int samples = 64;
+  int best = 0;
+  double best_d = (line_point(line, 0.0) - x).squaredNorm();
+  for (int k = 1; k <= samples; ++k) {
+    const double d = (line_point(line, static_cast<double>(k) / samples) - x).squaredNorm();
+    if (d < best_d) best_d = d, best = k;
+  }
+  double lo = std::max(0.0, (best - 1.0) / samples), hi = std::min(1.0, (best + 1.0) / samples);
+  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+  for (int it = 0; it < 60; ++it) {
+    const double m1 = hi - g * (hi - lo), m2 = lo + g * (hi - lo);
+    if ((line_point(line, m1) - x).squaredNorm() < (line_point(line, m2) - x).squaredNorm())
+      hi = m2;
+    else
+      lo = m1;
+  }
+  return 0.5 * (lo + hi);
 }
 
 double line_length(const Line& line) {

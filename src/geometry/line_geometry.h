@@ -15,6 +15,9 @@ void set_arc_path(Line& line, const Vec3& a, const Vec3& centre, const Vec3& axi
                   double sweep_deg);
 /// Point of the line at parameter s in [0, 1] (global Cartesian).
 Vec3 line_point(const Line& line, double s);
+/// Parameter s in [0, 1] of the point of the line closest to x (sampled, then refined by golden
+/// section: for the nodes a line's mesh placed on it).
+double line_parameter(const Line& line, const Vec3& x);
 /// Length (Gauss quadrature of the speed in the path coordinates; exact for straight lines).
 double line_length(const Line& line);
 /// Angle (degrees) swept about the path axis: 0 for lines of a Cartesian path.

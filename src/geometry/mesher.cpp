@@ -124,11 +124,26 @@ int Mesher::midside_node(int a, int b) {
   const auto key = std::minmax(a, b);
   const auto it = midside_index_->find(key);
   if (it != midside_index_->end()) return it->second;
-  // At mid-edge: the edges of the mapped mesh are straight between their corner nodes.
-  const int id = add_node(0.5 * (model_.nodes.at(a).x + model_.nodes.at(b).x));
+  // On a meshed line: at the middle of the line between the two nodes (on an arc, not on its
+  // chord). Inside the region: at mid-edge, the mapped mesh's edges being straight there.
+  Vec3 x = 0.5 * (model_.nodes.at(a).x + model_.nodes.at(b).x);
+  if (const auto on = line_edges_.find(key); on != line_edges_.end()) {
+    const Line& line = solid_.lines.at(on->second);
+    x = line_point(line, 0.5 * (line_parameter(line, model_.nodes.at(a).x) +
+                                line_parameter(line, model_.nodes.at(b).x)));
+  }
+  const int id = add_node(x);
   midside_index_->emplace(key, id);
   created_midside_nodes_.push_back(id);
   return id;
+}
+
+void Mesher::index_line_edges(int id) {
+  const auto it = solid_.lines.find(id);
+  if (it == solid_.lines.end()) return;
+  const std::vector<int>& nodes = it->second.nodes;
+  for (std::size_t k = 0; k + 1 < nodes.size(); ++k)
+    line_edges_.emplace(std::minmax(nodes[k], nodes[k + 1]), id);
 }
 
 int Mesher::add_element(const Attributes& attr, std::vector<int> nodes) {
@@ -430,7 +445,7 @@ void Mesher::mesh_area(int id) {
   if (dimension(d) != 2)
     fail(
         fmt::format("element type {} ({}) is a {} element: AMESH needs an area element "
-                    "(SHELL; set TYPE or AATT)",
+                    "(SHELL, PLANE; set TYPE or AATT)",
                     attr.type, d.name, dimension_name(dimension(d))));
   if (!area.elements.empty()) {
     Log::info("{}:{}: {}: area {} is already meshed", where_.file, where_.line, where_.command, id);
@@ -438,7 +453,7 @@ void Mesher::mesh_area(int id) {
   }
   MeshControls& m = solid_.mesh;
   const bool triangles = m.shape_2d == 1;
-  if (triangles && d.least_nodes() > 3)
+  if (triangles && d.least_nodes() > 3 && d.topology().midside_nodes == 0)
     fail(fmt::format("element type {} ({}) has no triangular form (MSHAPE,1)", attr.type, d.name));
   if (m.key == 0 && !m.free_warning_given) {
     Log::warn(
@@ -448,6 +463,8 @@ void Mesher::mesh_area(int id) {
     m.free_warning_given = true;
   }
   area_nodes(id, triangles);
+  if (d.topology().midside_nodes > 0)
+    for (int line : solid_.areas.at(id).lines) index_line_edges(std::abs(line));
   const AreaGrid& g = solid_.areas.at(id).grid;
   std::vector<int> elements;
   if (!g.triangular) {

@@ -89,6 +89,9 @@ class Mesher {
   /// The midside node of the edge between nodes a and b: the one an existing element has there,
   /// else a new node at mid-edge (kept in created_midside_nodes).
   int midside_node(int a, int b);
+  /// Makes the midside nodes of the edges between consecutive nodes of a meshed line lie on
+  /// the line (an arc's at its middle angle), not on the chord.
+  void index_line_edges(int line);
   /// Midside nodes created by this mesher, in creation order (the meshed entity owns them).
   std::vector<int> take_created_midside_nodes() {
     return std::exchange(created_midside_nodes_, {});
@@ -131,6 +134,7 @@ class Mesher {
   std::vector<int> created_elements_;
   std::optional<std::map<std::pair<int, int>, int>> midside_index_;  // corner pair -> midside
   std::vector<int> created_midside_nodes_;
+  std::map<std::pair<int, int>, int> line_edges_;  // consecutive nodes of a line -> the line
 };
 
 }  // namespace impactfe::geometry

@@ -21,12 +21,18 @@ VtkCell cell_type(const std::string& name, const std::vector<int>& nodes) {
   if (d == nullptr) return VtkCell::PolyVertex;
   if (d->vtk_cell == VtkCell::Quad && nodes.size() == 4 && nodes[2] == nodes[3])
     return VtkCell::Triangle;
+  if (d->vtk_cell == VtkCell::QuadraticQuad && nodes.size() == 8 && nodes[2] == nodes[3] &&
+      nodes[2] == nodes[6])
+    return VtkCell::QuadraticTriangle;
   return d->vtk_cell;
 }
 
 /// Nodes a cell of this type takes, in VTK order (its corners and midside nodes, the order of
 /// the element's nodes; all nodes of a poly-vertex), or empty when the node list does not fit.
 std::vector<int> cell_nodes(VtkCell type, const std::vector<int>& nodes) {
+  // The 8-node quadrilateral with K = L = O: the 6-node triangle I J K, midsides M N P.
+  if (type == VtkCell::QuadraticTriangle && nodes.size() == 8)
+    return {nodes[0], nodes[1], nodes[2], nodes[4], nodes[5], nodes[7]};
   const int cell_nodes = cell_topology(type).n_nodes();
   const std::size_t n = cell_nodes > 0 ? static_cast<std::size_t>(cell_nodes) : nodes.size();
   if (nodes.size() < n || n == 0) return {};

@@ -104,6 +104,54 @@ TEST(DeckModel, EngenNumbersByIncrementAndNegativePattern) {
             std::string::npos);
 }
 
+TEST(DeckModel, EgenGeneratesMissingNodesFromDxDyDz) {
+  // EGEN's DX, DY, DZ define the nodes a copy needs and that do not exist yet, as NGEN with
+  // the same increments would; existing nodes are kept (EGEN notes). VM25 builds its strip so.
+  const Job job =
+      parse("/PREP7\nET,1,LINK180\nN,1\nN,2,1\nN,4,7,7\nE,1,2\nEGEN,3,2,1,,,,,,,,0.5,0.25\n");
+  const Model& m = job.model;
+  ASSERT_EQ(m.elements.size(), 3u);
+  EXPECT_EQ(m.elements.at(2).nodes, (std::vector<int>{3, 4}));
+  EXPECT_TRUE(m.nodes.at(3).x.isApprox(Vec3(0.5, 0.25, 0.0)));
+  EXPECT_TRUE(m.nodes.at(4).x.isApprox(Vec3(7, 7, 0.0)));  // existing: not moved
+  EXPECT_TRUE(m.nodes.at(5).x.isApprox(Vec3(1.0, 0.5, 0.0)));
+  EXPECT_TRUE(m.nodes.at(6).x.isApprox(Vec3(2.0, 0.5, 0.0)));
+  // Without DX, DY, DZ a missing node stays an error.
+  EXPECT_NE(error_of("/PREP7\nET,1,LINK180\nN,1\nN,2,1\nE,1,2\nEGEN,2,2,1\n")
+                .find("node 3 of generated element 2 (copy of 1) is not defined"),
+            std::string::npos);
+}
+
+TEST(DeckModel, EsizeWithBlankSizeAndNdivResetsTheDefaults) {
+  // ESIZ,,,2 (VMP09): SIZE and NDIV blank: no default size, as ESIZE alone; an explicit zero
+  // size without NDIV is refused.
+  const Job job = parse("/PREP7\nESIZE,0.5\nESIZ,,,2\n");
+  EXPECT_EQ(job.model.solid.mesh.esize, 0.0);
+  EXPECT_EQ(job.model.solid.mesh.esize_ndiv, 0);
+  EXPECT_NE(error_of("/PREP7\nESIZE,0\n").find("element size must be positive"), std::string::npos);
+}
+
+TEST(DeckModel, EmidAddsSharedMidsideNodes) {
+  // 4-node quadrilaterals retyped as PLANE183 (VM5): EMID puts one node at the middle of each
+  // edge, a shared edge's node once; the collapsed edge K = L of a triangle takes K.
+  const Job job = parse(
+      "/PREP7\nET,1,PLANE182\nN,1\nN,2,2\nN,3,4\nN,4,0,2\nN,5,2,2\nN,6,4,2\nN,7,3,4\n"
+      "E,1,2,5,4\nE,2,3,6,5\nE,5,6,7,7\nET,1,PLANE183\nEMID\n");
+  const Model& m = job.model;
+  ASSERT_EQ(m.elements.at(1).nodes.size(), 8u);
+  const auto& a = m.elements.at(1).nodes;
+  const auto& b = m.elements.at(2).nodes;
+  const auto& t = m.elements.at(3).nodes;
+  EXPECT_TRUE(m.nodes.at(a[4]).x.isApprox(Vec3(1, 0, 0)));
+  EXPECT_TRUE(m.nodes.at(a[5]).x.isApprox(Vec3(2, 1, 0)));
+  EXPECT_EQ(a[5], b[7]);  // the shared edge 2-5 (J-K of 1, L-I of 2): one node
+  EXPECT_EQ(b[6], t[4]);  // the shared edge 6-5
+  EXPECT_EQ(t[6], 7);     // the collapsed edge K-L
+  EXPECT_EQ(m.nodes.size(), 7u + 4u + 3u + 2u);
+  EXPECT_NE(error_of("/PREP7\nET,1,PLANE183\nN,1\nEMID,REMOVE\n").find("Key 'REMOVE'"),
+            std::string::npos);
+}
+
 TEST(DeckModel, ElementNodeCountsAndDegenerateShapes) {
   const Job job = parse(
       "/PREP7\nET,1,SHELL63\nET,2,SOLID45\nET,3,MASS21\nN,1\nN,2,1\nN,3,1,1\nN,4,0,1\n"

@@ -60,6 +60,25 @@ TEST(DeckVmInputs, SetWithSubstepZeroAndFileWithBlankName) {
   EXPECT_NEAR(v[1], 2e-5, 1e-12);
 }
 
+// *GET,Par,NODE,n,S,X (vm5): the nodal stress, the elements' integration-point stresses
+// extrapolated to the node and averaged. A strip of two PLANE182 (incompatible modes, unit
+// thickness) under an end couple M = 100: σx = 6M/h² = 600 at the bottom fibre, exact at the
+// clamped node (one element) and at the node the two elements share.
+TEST(DeckVmInputs, GetNodeStressOfPlaneSolids) {
+  const auto run = testing::run_deck_text(
+      "vm_get_node_s",
+      "/PREP7\nET,1,PLANE182,3\nMP,EX,1,2E5\nMP,NUXY,1,0.3\nN,1\nN,2,2\nN,3,4\nN,4,0,1\n"
+      "N,5,2,1\nN,6,4,1\nE,1,2,5,4\nE,2,3,6,5\nFINISH\n/SOLU\nD,1,UX,,,,,UY\nD,4,UX\n"
+      "F,3,FX,100\nF,6,FX,-100\nSOLVE\nFINISH\n/POST1\nSET,LAST\n*GET,S1,NODE,1,S,X\n"
+      "*GET,S2,NODE,2,S,X\n*GET,S5,NODE,5,S,X\n/OUT,node_s,txt\n*VWRITE,S1,S2,S5\n(3E18.9)\n"
+      "/OUT\n");
+  const auto v = numbers_in(run, "node_s.txt");
+  ASSERT_EQ(v.size(), 3u);
+  EXPECT_NEAR(v[0], 600.0, 1e-6);
+  EXPECT_NEAR(v[1], 600.0, 1e-6);
+  EXPECT_NEAR(v[2], -600.0, 1e-6);
+}
+
 // DERIV with a blank IX (vm84, vm85) differentiates with respect to variable 1, the time; RESUME
 // in POST26 (vm81, vm182) brings back the parameters a SAVE kept.
 TEST(DeckVmInputs, DerivWithBlankArgumentAndResumeInPost26) {

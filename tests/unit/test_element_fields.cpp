@@ -26,6 +26,10 @@ struct Probe {
   std::string head;
   std::vector<double> real;
   std::string element;
+  /// Another element command under a KEYOPT that changes what E takes (key: the KEYOPT line).
+  std::map<std::string, std::string> element_with = {};
+  /// The KEYOPT under which the type reads its real set at all (checks of undeclared ones).
+  std::string reads_real_with = {};
 };
 
 std::string real_commands(const std::vector<double>& values) {
@@ -77,6 +81,16 @@ std::map<std::string, Probe> probes() {
         "E,1,2,3,4,5,6,7,8\nEMORE,9,10"}},
       {"SHELL63", {plate, shell, "E,1,2,3,4"}},
       {"SHELL181", {plate, {0.1, 0.1, 0.1, 0.1}, "E,1,2,3,4"}},
+      {"PLANE182",
+       {"N,1,0,0\nN,2,2,0\nN,3,2.2,1.5\nN,4,0,1.4\n", {0.1}, "E,1,2,3,4", {}, "KEYOPT,1,3,3\n"}},
+      // The 6-node triangle (K = L = O), so that KEYOPT(1) = 1 (the triangle form, E with
+      // I J K L M N) applies. Both read THK only in plane stress with thickness (KEYOPT(3) = 3).
+      {"PLANE183",
+       {"N,1,0,0\nN,2,2,0\nN,3,0.2,1.5\nN,4,1,0.05\nN,5,1.1,0.75\nN,6,0.1,0.75\n",
+        {0.1},
+        "E,1,2,3,3,4,5,3,6",
+        {{"KEYOPT,1,1,1\n", "E,1,2,3,4,5,6"}},
+        "KEYOPT,1,3,3\n"}},
   };
 }
 
@@ -106,6 +120,15 @@ const std::map<std::string, std::string>& by_design() {
       {"LINK180 K2=1",
        "the area is held constant under either value (KEYOPT(2) = 1 is exactly that; the "
        "default's incompressible section agrees to first order in the strain)"},
+      {"PLANE182 R1",
+       "THK acts with KEYOPT(3) = 3 only (checked by K3=3 here); otherwise unit thickness, as "
+       "in MAPDL"},
+      {"PLANE183 R1",
+       "THK acts with KEYOPT(3) = 3 only (checked by K3=3 here); otherwise unit thickness, as "
+       "in MAPDL"},
+      {"PLANE183 K1=1",
+       "the triangle form takes the 6-node triangle's nodes from E,I,J,K,L,M,N and numbers its "
+       "faces 1-3 (face 3 is I-K): the same element; the faces act through SFE pressures"},
       {"MASS21 K2=1",
        "masses in nodal axes equal global ones on an unrotated node; refused on a "
        "rotated one (AcceptedFields-style check below)"},
@@ -119,9 +142,10 @@ const std::set<std::string> kContactTypes = {"CONTA174", "CONTA175", "CONTA178",
 
 Model model_of(const std::string& type, const Probe& p, const std::vector<double>& real,
                const std::string& keyopts) {
-  const std::string deck = "/PREP7\nET,1," + type + "\n" + keyopts + kMaterial + p.head +
-                           (real.empty() ? std::string() : real_commands(real)) + p.element +
-                           "\nFINISH\n";
+  const std::string deck =
+      "/PREP7\nET,1," + type + "\n" + keyopts + kMaterial + p.head +
+      (real.empty() ? std::string() : real_commands(real)) +
+      (p.element_with.count(keyopts) ? p.element_with.at(keyopts) : p.element) + "\nFINISH\n";
   return read_deck_text(deck, "probe.inp").model;
 }
 
@@ -236,7 +260,7 @@ TEST(ElementFields, EveryDeclaredFieldActsOrIsRefused) {
       std::vector<double> real = p.real;
       real.resize(static_cast<std::size_t>(next), 0.0);
       real.back() = 0.5;
-      check(fmt::format("{} R{} (not declared)", fields.type, next), real, "", true);
+      check(fmt::format("{} R{} (not declared)", fields.type, next), real, p.reads_real_with, true);
     }
   }
   std::cout << checked << " fields checked\n";

@@ -1,0 +1,128 @@
+#pragma once
+/// PLANE182 / PLANE183: the 2-D structural solids in the global X-Y plane (UX, UY per node).
+/// The bilinear quadrilateral (and its constant-strain triangle K = L), the 8-node serendipity
+/// quadrilateral and the 6-node triangle; plane stress (with a thickness), plane strain and
+/// axisymmetry about the global Y axis (X radial, loads and matrices per full 360°). Small-strain
+/// isotropic linear elasticity; the 4-node quadrilateral with full 2x2 integration, with the
+/// B-bar (mean dilatation) of Hughes (1980), or with the incompatible bending modes of Taylor,
+/// Beresford & Wilson (1976). Consistent or lumped mass, edge pressures, centroid stresses.
+/// Large deflection, stress stiffening and plasticity are refused (docs/elements/plane182.md).
+#include <Eigen/Core>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "elements/element.h"
+#include "elements/quadratic_shapes.h"
+#include "materials/isotropic_elasticity.h"
+
+namespace impactfe {
+
+enum class PlaneShape { Quad4, Tri3, Quad8, Tri6 };
+
+/// KEYOPT(3) of PLANE182/183: 0 and 3 plane stress (3: with a thickness), 1 axisymmetric,
+/// 2 plane strain.
+enum class PlaneBehaviour { PlaneStress, Axisymmetric, PlaneStrain };
+
+/// How the 4-node quadrilateral is integrated (PLANE182 KEYOPT(1)): Standard full 2x2 (the
+/// triangles and the quadratic shapes always), BBar (KEYOPT(1) = 0 in plane strain and
+/// axisymmetry: the volumetric strain replaced by its element mean), IncompatibleModes
+/// (KEYOPT(1) = 3, and 2 in plane stress: four internal bending modes, condensed).
+enum class PlaneTechnology { Standard, BBar, IncompatibleModes };
+
+struct PlaneSolidOptions {
+  PlaneShape shape = PlaneShape::Quad4;
+  PlaneBehaviour behaviour = PlaneBehaviour::PlaneStress;
+  PlaneTechnology technology = PlaneTechnology::Standard;
+  double thickness = 1.0;  // plane stress and plane strain; unused in axisymmetry
+};
+
+/// SX SY SZ SXY S1 S2 S3 SINT SEQV.
+const std::vector<std::string>& plane_solid_result_names();
+
+/// Number of nodes of a plane shape and their natural coordinates (quadrilaterals on [-1, 1]²,
+/// corners I J K L then the midsides of I-J J-K K-L L-I; triangles on the unit triangle, corners
+/// I J K then the midsides of I-J J-K K-I).
+int plane_shape_nodes(PlaneShape shape);
+std::vector<Eigen::Vector2d> plane_shape_nodes_xi(PlaneShape shape);
+
+class PlaneSolid final : public Element {
+ public:
+  /// `nodes`: node ids in the shape's order, all distinct; `x`: their coordinates (Z ignored:
+  /// must be the same for all); `faces`: face k + 1 as positions in `nodes` (the two corners in
+  /// MAPDL's order J-I, K-J, L-K, I-L, then the midside node; empty for a collapsed face).
+  /// Throws InputError at `where` for a zero Jacobian or mixed orientation, and in axisymmetry
+  /// for a node at negative X.
+  PlaneSolid(int id, const std::vector<int>& nodes, const std::vector<Vec3>& x,
+             const IsotropicElasticity& material, const PlaneSolidOptions& options,
+             std::vector<std::vector<int>> faces, const SourceLocation& where = {});
+
+  const char* family() const override { return "PlaneSolid"; }
+  const std::vector<DofKey>& dofs() const override { return dofs_; }
+  bool is_nonlinear(const ElementContext& ctx) const override { return false; }
+  /// K = ∫ BᵀDB dV (dV = t dA, or 2πr dA), condensed over the incompatible modes; f_int = K u.
+  /// Large deflection and stress stiffening are refused (ElementSolutionError).
+  void tangent(const ElementContext& ctx, const Eigen::VectorXd& u, Eigen::MatrixXd& K,
+               Eigen::VectorXd& f_int) const override;
+  /// Consistent ρ∫NᵀN dV; lumped: row sums (4-node shapes) or HRZ (8- and 6-node shapes,
+  /// whose row sums are negative at the corners).
+  void mass(const ElementContext& ctx, Eigen::MatrixXd& M) const override;
+  /// Pressure on edge `face` (1..4), linear between the values at its two corners (p[0] at the
+  /// face's first node), positive into the element: f_a = −∫ N_a p n dS (dS = t ds or 2πr ds).
+  void pressure_load(const ElementContext& ctx, int face, const std::array<double, 4>& p,
+                     const Eigen::VectorXd& u, Eigen::VectorXd& f) const override;
+  const std::vector<std::string>& result_names() const override;
+  /// SX SY SZ SXY S1 S2 S3 SINT SEQV at the centroid (natural centre), global axes; SZ is the
+  /// hoop stress in axisymmetry, ν(SX + SY) in plane strain, 0 in plane stress.
+  void results(const ElementContext& ctx, const Eigen::VectorXd& u, const Eigen::VectorXd& v,
+               ElementResultValues& out) const override;
+  /// The stresses of the integration points extrapolated to the nodes (bilinear through the
+  /// 2x2 points, linear through 3 points, constant from 1), with their derived items.
+  bool nodal_results(const ElementContext& ctx, const Eigen::VectorXd& u,
+                     std::map<int, ElementResultValues>& at_node) const override;
+  /// ∫ t dA, or the volume of the full ring ∫ 2πr dA.
+  std::optional<double> volume() const override { return volume_; }
+
+  /// Stress (xx, yy, zz, xy) at the natural centre for displacement u.
+  Eigen::Vector4d centroid_stress(const Eigen::VectorXd& u) const;
+  /// The (condensed) stiffness matrix.
+  const Eigen::MatrixXd& stiffness() const { return k_; }
+  PlaneShape shape() const { return options_.shape; }
+
+ private:
+  struct Point {
+    Eigen::Matrix2Xd grad;  // ∂N/∂x, ∂N/∂y of every node
+    Eigen::VectorXd n;      // N of every node
+    double det = 0.0;       // det J (signed)
+    double radius = 0.0;    // X at the point
+    Eigen::Matrix2d j_inverse;
+  };
+  Point point_at(const Eigen::Vector2d& xi) const;
+  /// dV per unit natural area at a point of natural weight w: w |det J| × (t or 2πr).
+  double measure(const Point& p, double w) const;
+  /// Strain-displacement matrix (rows xx yy zz xy; zz = u/r in axisymmetry, else 0).
+  Eigen::MatrixXd strain_matrix(const Point& p) const;
+  /// The incompatible-mode strains of a point (4 x 4: modes (1−ξ²) ux, uy, (1−η²) ux, uy).
+  Eigen::Matrix4d mode_matrix(const Point& p, const Eigen::Vector2d& xi) const;
+  void form_stiffness();
+
+  std::vector<int> nodes_;
+  std::vector<Vec3> x_;
+  std::vector<DofKey> dofs_;
+  PlaneSolidOptions options_;
+  std::vector<std::vector<int>> faces_;
+  Eigen::Matrix4d d_;
+  double density_ = 0.0;
+  double volume_ = 0.0;
+  double orientation_ = 1.0;  // +1 counter-clockwise corners, −1 clockwise
+  std::vector<QuadraturePoint> rule_;
+  Eigen::MatrixXd k_;
+  Eigen::RowVectorXd mean_dilatation_;  // B-bar: element mean of the volumetric row
+  Eigen::Matrix4d mean_modes_;          // incompatible modes: their element mean (subtracted)
+  Eigen::MatrixXd mode_recovery_;       // α = −mode_recovery_ u
+  Eigen::Matrix2d j0_inverse_;
+  double det0_ = 1.0;
+};
+
+}  // namespace impactfe

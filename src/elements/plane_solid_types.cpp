@@ -1,0 +1,201 @@
+// The element types of the 2-D structural solids (elements/plane_solid.h): PLANE182 (4-node
+// quadrilateral, triangle K = L) and PLANE183 (8-node quadrilateral, 6-node triangle), their
+// KEYOPTs, thickness, factories and registrations.
+#include <fmt/format.h>
+
+#include <set>
+
+#include "core/errors.h"
+#include "elements/element_fields.h"
+#include "elements/element_registry.h"
+#include "elements/plane_solid.h"
+
+namespace impactfe {
+
+namespace {
+
+/// MAPDL's faces of the 2-D solids: 1 J-I, 2 K-J, 3 L-K, 4 I-L (each then its midside node).
+std::vector<std::vector<int>> quad_faces(VtkCell cell) {
+  const CellTopology& t = cell_topology(cell);
+  std::vector<std::vector<int>> out;
+  for (int k = 0; k < 4; ++k) {
+    const int a = (k + 1) % 4, b = k;
+    std::vector<int> face = {a, b};
+    if (t.midside_nodes > 0) face.push_back(t.midside_of(a, b));
+    out.push_back(face);
+  }
+  return out;
+}
+
+std::vector<Vec3> coordinates(const Model& model, const ElementRecord& record,
+                              const std::vector<int>& nodes) {
+  std::vector<Vec3> x;
+  for (int n : nodes) {
+    const auto it = model.nodes.find(n);
+    if (it == model.nodes.end())
+      throw InputError(record.where,
+                       fmt::format("element {}: node {} is not defined", record.id, n));
+    x.push_back(it->second.x);
+  }
+  return x;
+}
+
+/// KEYOPT(3): behaviour and thickness. KEYOPT(3) = 3 reads the thickness from the element's
+/// PLANE section (SECTYPE,,PLANE / SECDATA,THK) or else real constant 1 (THK).
+PlaneSolidOptions behaviour_of(const Model& model, const ElementType& type,
+                               const ElementRecord& record) {
+  PlaneSolidOptions o;
+  const int k3 = type.key(3);
+  if (k3 == 1) o.behaviour = PlaneBehaviour::Axisymmetric;
+  if (k3 == 2) o.behaviour = PlaneBehaviour::PlaneStrain;
+  if (k3 != 3) return o;
+  const auto section = model.sections.find(record.secnum);
+  if (record.secnum > 0 && section != model.sections.end() && section->second.type == "PLANE" &&
+      !section->second.data.empty()) {
+    o.thickness = section->second.data[0];
+    return o;
+  }
+  const auto real = model.real_sets.find(record.real);
+  // Only here is the real set read: every other value given in it must be refused.
+  if (real != model.real_sets.end())
+    if (const std::string why = real_set_refusal(type, real->second); !why.empty())
+      throw InputError(record.where, fmt::format("element {}: {}", record.id, why));
+  const double thk = real == model.real_sets.end() ? 0.0 : real->second.get(1);
+  if (!(thk > 0.0))
+    throw InputError(record.where,
+                     fmt::format("element {} ({}): KEYOPT(3) = 3 (plane stress with thickness) "
+                                 "needs a positive thickness: real constant 1 THK of set {} or "
+                                 "SECTYPE,,PLANE with SECDATA,THK",
+                                 record.id, type.ansys_name, record.real));
+  o.thickness = thk;
+  return o;
+}
+
+void refuse_large_deflection(const ElementBuildContext& ctx, const ElementRecord& record,
+                             const char* name) {
+  if (ctx.large_deflection)
+    throw InputError(record.where, fmt::format("element {} ({}): large deflection (NLGEOM,ON) is "
+                                               "not implemented for the 2-D solids",
+                                               record.id, name));
+}
+
+std::unique_ptr<Element> make_plane182(const ElementBuildContext& ctx,
+                                       const ElementRecord& record) {
+  const Model& model = ctx.model;
+  refuse_large_deflection(ctx, record, "PLANE182");
+  const ElementType& type = model.element_types.at(record.type);
+  PlaneSolidOptions o = behaviour_of(model, type, record);
+  const int k1 = type.key(1);
+  if (k1 == 1)
+    throw InputError(record.where,
+                     fmt::format("element {} (PLANE182): KEYOPT(1) = 1 (uniform reduced "
+                                 "integration with hourglass control) is not implemented; use "
+                                 "0 (B-bar) or 3 (simplified enhanced strain)",
+                                 record.id));
+  if (k1 == 2 && o.behaviour != PlaneBehaviour::PlaneStress)
+    throw InputError(record.where,
+                     fmt::format("element {} (PLANE182): KEYOPT(1) = 2 (enhanced strain) in "
+                                 "plane strain or axisymmetry needs the enhanced volumetric mode, "
+                                 "which is not implemented; use 0 (B-bar) or 3",
+                                 record.id));
+  const IsotropicElasticity material =
+      read_isotropic_elasticity(model, record.mat, record.id, record.where);
+  const std::vector<int>& n = record.nodes;
+  if (n.size() == 4 && n[2] == n[3]) {
+    // The triangle K = L: the constant-strain triangle I J K (MAPDL integrates it at one point).
+    o.shape = PlaneShape::Tri3;
+    const std::vector<int> tri = {n[0], n[1], n[2]};
+    return std::make_unique<PlaneSolid>(
+        record.id, tri, coordinates(model, record, tri), material, o,
+        std::vector<std::vector<int>>{{1, 0}, {2, 1}, {}, {0, 2}}, record.where);
+  }
+  o.shape = PlaneShape::Quad4;
+  // KEYOPT(1) = 0: B-bar in plane strain and axisymmetry (in plane stress σzz = 0 leaves no
+  // volumetric constraint to relieve: full 2x2). 2 (plane stress) and 3: incompatible modes.
+  if (k1 == 0 && o.behaviour != PlaneBehaviour::PlaneStress) o.technology = PlaneTechnology::BBar;
+  if (k1 == 2 || k1 == 3) o.technology = PlaneTechnology::IncompatibleModes;
+  return std::make_unique<PlaneSolid>(record.id, n, coordinates(model, record, n), material, o,
+                                      quad_faces(VtkCell::Quad), record.where);
+}
+
+std::unique_ptr<Element> make_plane183(const ElementBuildContext& ctx,
+                                       const ElementRecord& record) {
+  const Model& model = ctx.model;
+  refuse_large_deflection(ctx, record, "PLANE183");
+  const ElementType& type = model.element_types.at(record.type);
+  PlaneSolidOptions o = behaviour_of(model, type, record);
+  const std::vector<int>& n = record.nodes;
+  for (std::size_t k = 0; k < n.size(); ++k)
+    if (n[k] == 0)
+      throw InputError(record.where,
+                       fmt::format("element {} (PLANE183): node {} is not given: midside nodes "
+                                   "may not be omitted",
+                                   record.id, k + 1));
+  const IsotropicElasticity material =
+      read_isotropic_elasticity(model, record.mat, record.id, record.where);
+  const bool triangle_form = type.key(1) == 1;
+  if (n[2] == n[3] && n[6] == n[2]) {
+    // The triangle K = L = O: the 6-node triangle I J K with midsides M N P. Its I-K side is
+    // face 4 (I-L) of the quadrilateral numbering, and face 3 of the 6-node form (KEYOPT(1) = 1).
+    o.shape = PlaneShape::Tri6;
+    const std::vector<int> tri = {n[0], n[1], n[2], n[4], n[5], n[7]};
+    std::vector<std::vector<int>> faces = {{1, 0, 3}, {2, 1, 4}, {}, {0, 2, 5}};
+    if (triangle_form) faces[2] = faces[3];
+    return std::make_unique<PlaneSolid>(record.id, tri, coordinates(model, record, tri), material,
+                                        o, faces, record.where);
+  }
+  if (triangle_form)
+    throw InputError(record.where,
+                     fmt::format("element {} (PLANE183): KEYOPT(1) = 1 is the 6-node triangle, "
+                                 "but the element has four corners (mesh with MSHAPE,1 or use "
+                                 "KEYOPT(1) = 0)",
+                                 record.id));
+  if (std::set<int>(n.begin(), n.begin() + 4).size() != 4)
+    throw InputError(record.where,
+                     fmt::format("element {} (PLANE183): repeated corners are taken only as the "
+                                 "triangle K = L = O",
+                                 record.id));
+  o.shape = PlaneShape::Quad8;
+  return std::make_unique<PlaneSolid>(record.id, n, coordinates(model, record, n), material, o,
+                                      quad_faces(VtkCell::QuadraticQuad), record.where);
+}
+
+ElementTypeDescriptor plane_solid_type(const char* name, int number, int n_nodes, int min_nodes,
+                                       VtkCell cell, ElementFactory create) {
+  const auto faces = quad_faces(cell);
+  return {.name = name,
+          .number = number,
+          .family = "PlaneSolid",
+          .n_nodes = n_nodes,
+          .min_nodes = min_nodes,
+          .needs_material = true,
+          .section_types = {"PLANE"},
+          .vtk_cell = cell,
+          .role = ShapeRole::Plane,
+          .result_names = plane_solid_result_names(),
+          .result_sequences = {{"S", "X", "SX"},
+                               {"S", "Y", "SY"},
+                               {"S", "Z", "SZ"},
+                               {"S", "XY", "SXY"},
+                               {"S", "1", "S1"},
+                               {"S", "2", "S2"},
+                               {"S", "3", "S3"},
+                               {"S", "INT", "SINT"},
+                               {"S", "EQV", "SEQV"}},
+          .faces = faces,
+          .sf_faces = 4,
+          .create = std::move(create)};
+}
+
+const ElementRegistration kPlane182{
+    plane_solid_type("PLANE182", 182, 4, 3, VtkCell::Quad, make_plane182)};
+const ElementRegistration kPlane183{[] {
+  ElementTypeDescriptor d =
+      plane_solid_type("PLANE183", 183, 8, 6, VtkCell::QuadraticQuad, make_plane183);
+  d.triangle_form_keyopt = 1;
+  return d;
+}()};
+
+}  // namespace
+
+}  // namespace impactfe
