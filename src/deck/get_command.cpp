@@ -100,16 +100,6 @@ double get_node(DeckReader& r, const Command& c, const GetRequest& g, int n, boo
     }
     return nodal_result(r, c, n, lab);
   }
-  if ((i1 == "S" || i1 == "EPEL") && !g.it1num.empty()) {
-    // The nodal value of an element item: the selected elements' values at the node averaged,
-    // as PRNSOL lists it (post1_print.h).
-    const NodalItem item = nodal_item(r, c, i1, g.it1num);
-    const auto v = nodal_item_value(r, c, item, 0, n);
-    if (v) return *v;
-    if (vector) return 0.0;
-    r.fail(c,
-           fmt::format("{}: no selected element at node {} has {} {}", g.what(), n, i1, g.it1num));
-  }
   unsupported(r, c, g, "LOC, ANG, U, ROT, V, A, RF, D, F, S, EPEL, NSEL, NXTH, NXTL, COUNT, NUM");
 }
 
