@@ -48,6 +48,9 @@ const Tables& tables() {
         "Element types, sections, nodes, elements, master DOFs, 4x analysis keys", kDeck);
     add(register_generation_commands, "Generation (copies, fills, reflections)", kDeck);
     add(register_solution_commands, "Analysis settings and SOLVE", "docs/solution_control.md");
+    add(register_dynamics_commands,
+        "Dynamic analysis options (method, integration, damping, modes)",
+        "docs/time_integration.md");
     add(register_load_commands, "Constraints, forces and initial conditions", kDeck);
     add(register_thermal_coupling_commands, "Temperatures and coupled DOF sets",
         "docs/thermal_loads.md");

@@ -250,88 +250,10 @@ void cmd_antype(DeckReader& r, const Command& c) {
     // A new analysis: the expansion pass of the previous one (EXPASS,ON) is over, so its SOLVE
     // solves this analysis instead of expanding again.
     r.solution.expass = false;
+    // LVSCALE loads one mode-superposition analysis; a new analysis starts without it.
+    r.model.current.load_vector_scale = 0.0;
   }
   r.model.options.type = type;
-}
-
-void cmd_trnopt(DeckReader& r, const Command& c) {
-  // TRNOPT,Method,MAXMODE,InitialAcc,MINMODE,MCout,TINTOPT,VAout,...
-  AnalysisOptions& o = r.model.options;
-  const std::string m = r.label(c, 1);
-  if (m == "FULL" || m.empty())
-    o.method = TransientMethod::Full;
-  else if (m == "REDUC")
-    o.method = TransientMethod::Reduced;
-  else if (m == "MSUP")
-    o.method = TransientMethod::ModeSuperposition;
-  else
-    r.fail(c, fmt::format("transient method '{}' not supported (FULL, REDUC, MSUP)", c.text(1)));
-  if (!c.blank(2)) o.msup_modes = r.integer(c, 2, 0);
-  if (!c.blank(4) && r.integer(c, 4, 1) != 1)
-    r.fail(c, "MINMODE other than 1 is not supported (the superposition uses the modes from 1)");
-  const std::string t = r.label(c, 6);
-  if (t == "NMK" || t == "0")
-    o.integrator = IntegratorKind::Newmark;
-  else if (t == "HHT" || t == "1")
-    o.integrator = IntegratorKind::HHT;
-  else if (t == "HOUB")
-    o.integrator = IntegratorKind::Houbolt;  // program extension (§9.4)
-  else if (!t.empty())
-    r.fail(c, fmt::format("bad TINTOPT '{}' (NMK, HHT, HOUB)", c.text(6)));
-}
-
-void cmd_tintp(DeckReader& r, const Command& c) {
-  TimeIntegrationParameters& p = r.model.options.tintp;
-  p.where = c.where;
-  const std::string g = r.label(c, 1);
-  if (g == "IMPA" || g == "HISP" || g == "MOSP" || g == "LOSP" || g == "QUAS")
-    r.warn(c, fmt::format("application label {} ignored; default parameters used", g));
-  else if (!g.empty())
-    p.gamma = r.opt_real(c, 1);
-  if (!c.blank(2)) p.alpha = r.opt_real(c, 2);
-  if (!c.blank(3)) p.delta = r.opt_real(c, 3);
-  if (!c.blank(10)) p.alpha_f = r.opt_real(c, 10);
-  if (!c.blank(11)) p.alpha_m = r.opt_real(c, 11);
-}
-
-void cmd_alphad(DeckReader& r, const Command& c) {
-  r.model.options.alpha_damping = r.real(c, 1, 0.0);
-}
-void cmd_betad(DeckReader& r, const Command& c) {
-  r.model.options.beta_damping = r.real(c, 1, 0.0);
-}
-void cmd_dmprat(DeckReader& r, const Command& c) {
-  r.model.options.damping_ratio = r.real(c, 1, 0.0);
-}
-
-void cmd_mdamp(DeckReader& r, const Command& c) {
-  const int start = r.integer(c, 1, r.solution.mdamp_next);
-  if (start <= 0) r.fail(c, "STLOC must be positive");
-  for (int k = 0; k < 6; ++k) {
-    if (c.blank(2 + k)) continue;
-    r.model.options.modal_damping[start + k] = r.real(c, 2 + k, 0.0);
-    r.solution.mdamp_next = std::max(r.solution.mdamp_next, start + k + 1);
-  }
-}
-
-void cmd_modopt(DeckReader& r, const Command& c) {
-  ModalOptions& m = r.model.options.modal;
-  const std::string method = r.label(c, 1);
-  if (!method.empty()) m.method = method;
-  if (method == "QRDAMP" || method == "DAMP" || method == "UNSYM")
-    r.warn(c, "damped/unsymmetric eigensolvers not available; undamped real modes computed");
-  const auto n = r.opt_int(c, 2);
-  if (!n) r.fail(c, "NMODE (number of modes) is required");
-  if (*n <= 0) r.fail(c, fmt::format("NMODE {} must be positive", *n));
-  m.n_modes = *n;
-  m.freq_begin = r.opt_real(c, 3);
-  m.freq_end = r.opt_real(c, 4);
-  m.normalize_to_unity = r.label(c, 6) == "ON";
-}
-
-void cmd_mxpand(DeckReader& r, const Command& c) {
-  Log::info("{}:{}: MXPAND: all extracted modes are kept in memory and written", c.where.file,
-            c.where.line);
 }
 
 /// OUTRES/OUTPR frequency: n, ALL (1), LAST (0), NONE (-1); blank: every substep for a
@@ -578,6 +500,8 @@ void append_current(DeckReader& r, const Command& c) {
 
 void solve_current(DeckReader& r, const Command& c) {
   append_current(r, c);
+  const AnalysisRequest& a = *r.job.steps[*r.solution.open_analysis].analysis;
+  if (a.options.type == AnalysisType::Modal) r.model.modal_load_vectors = a.load_steps;
   r.solve_step(*r.solution.open_analysis);
 }
 
@@ -754,14 +678,6 @@ void register_solution_commands(std::vector<CommandSpec>& t) {
   t.push_back({"SSTIF", cmd_sstif, kPrepSolu});
   t.push_back({"LUMPM", cmd_lumpm, kPrepSolu});
   t.push_back({"ANTYPE", cmd_antype, kPrepSolu});
-  t.push_back({"TRNOPT", cmd_trnopt, kPrepSolu});
-  t.push_back({"TINTP", cmd_tintp, kPrepSolu});
-  t.push_back({"ALPHAD", cmd_alphad, kPrepSolu});
-  t.push_back({"BETAD", cmd_betad, kPrepSolu});
-  t.push_back({"DMPRAT", cmd_dmprat, kPrepSolu});
-  t.push_back({"MDAMP", cmd_mdamp, kPrepSolu});
-  t.push_back({"MODOPT", cmd_modopt, kPrepSolu});
-  t.push_back({"MXPAND", cmd_mxpand, kPrepSolu});
   t.push_back({"OUTRES", cmd_outres, kPrepSolu});
   t.push_back({"OUTPR", cmd_outpr, kPrepSolu});
   t.push_back({"SEOPT", cmd_seopt, kPrepSolu});
