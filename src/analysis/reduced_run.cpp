@@ -14,10 +14,31 @@ VectorXd ReducedRunState::external_force(const ReducedPoint& p) const {
   const std::size_t i = static_cast<std::size_t>(p.step_index);
   const LoadPoint at{&load_steps[i], i > 0 ? &load_steps[i - 1] : nullptr, p.fraction, p.time,
                      &structure->model().time_functions};
+  VectorXd f = loads_at(at);
+  // LVSCALE: the modal analysis's load vectors, scaled and ramped (KBC) like any load.
+  const LoadStep& step = load_steps[i];
+  const LoadStep* previous = at.previous;
+  const double ramp = step.stepped ? 1.0 : p.fraction;
+  if (step.load_vector_scale != 0.0 && ramp > 0.0)
+    f += ramp * step.load_vector_scale * modal_load_vector(step.load_vector_step, p.time);
+  if (previous && previous->load_vector_scale != 0.0 && ramp < 1.0)
+    f += (1.0 - ramp) * previous->load_vector_scale *
+         modal_load_vector(previous->load_vector_step, p.time);
+  return f;
+}
+
+VectorXd ReducedRunState::loads_at(const LoadPoint& at) const {
   // Face pressures of the linear reduced model: on the initial faces.
   return nodal_forces(*dofs, at) + frame_load(frame_acceleration(at)) +
          pressure_forces(structure->elements(), *dofs, structure->context(), at,
                          VectorXd::Zero(dofs->n_active()));
+}
+
+VectorXd ReducedRunState::modal_load_vector(int number, double time) const {
+  const std::vector<LoadStep>& vectors = structure->model().modal_load_vectors;
+  // The deck checks LVSCALE's LDSTEP against the modal analysis when the command is read.
+  const LoadStep& modal = vectors.at(static_cast<std::size_t>(number - 1));
+  return loads_at(LoadPoint{&modal, nullptr, 1.0, time, &structure->model().time_functions});
 }
 
 VectorXd ReducedRunState::expand(const VectorXd& gq, const VectorXd* f) const {
@@ -71,11 +92,16 @@ void prepare_reduced_model(ReducedRunState& state, const Structure& structure,
     const SparseMatrix k = assembler.stiffness_matrix(VectorXd::Zero(trial.n_active()));
     const VectorXd diag = k.diagonal();
     const double scale = trial.n_free() ? diag.head(trial.n_free()).cwiseAbs().maxCoeff() : 0.0;
+    // Mode superposition keeps a DOF without stiffness that carries mass: it moves in a
+    // rigid-body mode (0 Hz), which the modes include (a mass on a gap, GP, alone).
+    VectorXd mass_diag;
+    if (state.method == "msup") mass_diag = assembler.mass_matrix().diagonal();
     const std::set<DofKey> kept(keep.begin(), keep.end());
     std::string list;
     int dropped = 0;
     for (int i = 0; i < trial.n_free(); ++i) {
       if (std::abs(diag(i)) > 1e-14 * scale || kept.count(trial.key(i))) continue;
+      if (mass_diag.size() > i && mass_diag(i) > 0.0) continue;
       // A load on such a DOF would vanish with it (issue 12: no silent wrong answer).
       for (const LoadStep& step : state.load_steps) {
         const auto f = step.forces.find(trial.key(i));

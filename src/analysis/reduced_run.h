@@ -39,6 +39,10 @@ class ReducedRunState : public ReducedSolutionState {
 
   /// External load over all active DOFs at a computed point (F + ACEL inertia).
   VectorXd external_force(const ReducedPoint& p) const;
+  /// F, ACEL and face pressures at a load point (no LVSCALE load vector).
+  VectorXd loads_at(const LoadPoint& at) const;
+  /// The loads of the modal analysis's load step `number` (LVSCALE), at full value.
+  VectorXd modal_load_vector(int number, double time) const;
   /// Free-DOF vector from generalized coordinates; `f` (free-DOF load) adds the static
   /// correction of the slaves (Guyan only).
   VectorXd expand(const VectorXd& gq, const VectorXd* f) const;

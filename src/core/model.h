@@ -179,6 +179,11 @@ struct LoadStep {
   bool gives_temperatures() const {
     return uniform_temperature.has_value() || !node_temperatures.empty();
   }
+  // LVSCALE (mode-superposition transient): the loads of the modal analysis's load step
+  // `load_vector_step` (Model::modal_load_vectors) times `load_vector_scale`, added to this
+  // step's loads and ramped or stepped like them (0: none).
+  double load_vector_scale = 0.0;
+  int load_vector_step = 1;
   StepControl control;        // AUTOTS and the DELTIM / NSUBST limits
   RestartControl rescontrol;  // RESCONTROL in force when the step is solved
   SourceLocation where;       // command that closed the step (LWRITE/SOLVE/...)
@@ -325,6 +330,9 @@ struct Model {
   /// Current (not yet written) load state and options; LWRITE/LSWRITE/SOLVE snapshot it.
   AnalysisOptions options;
   LoadStep current;
+  /// The load steps of the last modal analysis solved (its F, ACEL, SF): the load vectors a
+  /// mode-superposition transient scales with LVSCALE.
+  std::vector<LoadStep> modal_load_vectors;
 
   const Node& node(int id) const;
   const ElementType& element_type(int id) const;

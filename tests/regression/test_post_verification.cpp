@@ -100,7 +100,8 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values("truss_static_get", "spring_chain_components", "bar_indeterminate_sort",
                       "tripod_etable_3d", "static_gap_select", "chain_modes_get",
                       "oscillator_post26", "damped_oscillator_post26", "gap_impact_post26",
-                      "reduced_gap_post26", "msup_step_post26", "substructure_use_get"),
+                      "reduced_gap_post26", "msup_step_post26", "msup_lvscale_post26",
+                      "substructure_use_get"),
     [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });
 
 }  // namespace
