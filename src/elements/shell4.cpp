@@ -681,6 +681,13 @@ std::unique_ptr<Element> make_shell4(const ElementBuildContext& ctx, const Eleme
   // SHELL63 KEYOPT(3) = 2 suppresses the extra shapes; SHELL181's KEYOPT(3) chooses reduced
   // (0) or full integration with incompatible modes (2): the kernel's extra shapes for both.
   k.extra_shapes = shell181 || type.key(3) != 2;
+  // SHELL181 is a Mindlin–Reissner shell (MITC transverse shear, shell_kernel_mindlin.cpp);
+  // SHELL63 keeps the thin DK kernel.
+  k.mindlin = shell181;
+  // SHELL181's drilling penalty at Hughes & Brezzi's γ = G t (drill_factor 1) rather than
+  // SHELL63's 10⁻³ G t: the drilling modes' frequency goes as √(12 γ / (ρ t³)), and at 10⁻³
+  // they fell among a thick plate's first bending modes (54 Hz for a 1 m steel plate).
+  if (shell181) k.drill_factor = 1.0;
   k.rotary_inertia = type.key(7) != 1;
   // SHELL181 takes TB plasticity; SHELL63 is elastic (the SOLVE check refuses it there).
   if (shell181) data.plasticity = plasticity_of(model, record, k.E, k.nu);
