@@ -605,7 +605,7 @@ void Shell4::results(const ElementContext& ctx, const Eigen::VectorXd& u, const 
 
 namespace {
 
-/// SHELL63, or SHELL181 (`shell181`) computed with the same thin elastic kernel.
+/// SHELL63 (thin DK kernel), or SHELL181 (`shell181`: the Mindlin–Reissner kernel).
 std::unique_ptr<Element> make_shell4(const ElementBuildContext& ctx, const ElementRecord& record,
                                      bool shell181) {
   const Model& model = ctx.model;
@@ -723,9 +723,11 @@ ElementTypeDescriptor shell_type(const char* name, int number, bool shell181) {
           .plasticity = shell181,
           .faces = kShellFaces,
           .sf_faces = 1,
-          .note = shell181 ? "SHELL181 is computed with the SHELL63 kernel (thin Kirchhoff shell; "
-                             "layered J2 plasticity with a TB table)"
-                           : "",
+          .note = shell181
+                      ? "SHELL181 is a Mindlin-Reissner shell: MITC4 / MITC3 transverse shear, "
+                        "2x2 integration with incompatible membrane modes for KEYOPT(3) = 0 "
+                        "and 2; layered J2 plasticity with a TB table"
+                      : "",
           .create = [shell181](const ElementBuildContext& ctx, const ElementRecord& record) {
             return make_shell4(ctx, record, shell181);
           }};
