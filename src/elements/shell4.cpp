@@ -529,9 +529,9 @@ namespace {
 const std::vector<std::vector<int>> kShellFaces = {{0, 1, 2, 3}, {0, 1, 2, 3}, {1, 0},
                                                    {2, 1},       {3, 2},       {0, 3}};
 const std::vector<std::string> kShell4Results = {
-    "TX",      "TY",       "TXY",      "MX",     "MY",      "MXY",    "SX_TOP",
-    "SY_TOP",  "SXY_TOP",  "SX_MID",   "SY_MID", "SXY_MID", "SX_BOT", "SY_BOT",
-    "SXY_BOT", "SEQV_TOP", "SEQV_BOT", "EPEQ",   "SRAT",    "PLWK"};
+    "TX",       "TY",     "TXY",    "MX",      "MY",     "MXY",    "SX_TOP",  "SY_TOP",
+    "SXY_TOP",  "SX_MID", "SY_MID", "SXY_MID", "SX_BOT", "SY_BOT", "SXY_BOT", "SEQV_TOP",
+    "SEQV_BOT", "EPEQ",   "SRAT",   "PLWK",    "QXZ",    "QYZ"};
 }  // namespace
 
 const std::vector<std::string>& Shell4::result_names() const {
@@ -575,6 +575,8 @@ void Shell4::results(const ElementContext& ctx, const Eigen::VectorXd& u, const 
                            (s(1) - s(0)) * sn * cs + s(2) * (cs * cs - sn * sn));
   };
   const Eigen::Vector3d N = rot(r.N), Mm = rot(r.M);
+  // Transverse shear forces per length (SHELL181's Mindlin kernel; zero for SHELL63's DK).
+  const Eigen::Vector2d Q(cs * r.Q(0) + sn * r.Q(1), -sn * r.Q(0) + cs * r.Q(1));
   // Elastic: linear through the thickness; plastic: the layer stresses (surfaces and middle).
   const Eigen::Vector3d mid = plasticity_ ? rot(layers[2]) : Eigen::Vector3d(N / r.t);
   const Eigen::Vector3d top =
@@ -600,7 +602,9 @@ void Shell4::results(const ElementContext& ctx, const Eigen::VectorXd& u, const 
          von_mises(bot(0), bot(1), bot(2)),
          epeq,
          srat,
-         plwk};
+         plwk,
+         Q(0),
+         Q(1)};
 }
 
 namespace {
@@ -717,6 +721,8 @@ ElementTypeDescriptor shell_type(const char* name, int number, bool shell181) {
                                {"SMISC", "4", "MX"},
                                {"SMISC", "5", "MY"},
                                {"SMISC", "6", "MXY"},
+                               {"SMISC", "7", "QXZ"},
+                               {"SMISC", "8", "QYZ"},
                                {"NL", "EPEQ", "EPEQ"},
                                {"NL", "SRAT", "SRAT"},
                                {"NL", "PLWK", "PLWK"}},

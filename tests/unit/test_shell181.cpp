@@ -5,6 +5,7 @@
 
 #include <Eigen/Dense>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <functional>
@@ -357,6 +358,40 @@ TEST(Shell181, HardSupportedThickPlateFrequenciesMatchMindlinTheory) {
     std::printf("FV52 hard SS mode %d: %8.3f Hz, Mindlin %8.3f\n", 4 + i, f[3 + i], ref[i]);
     EXPECT_GT(f[3 + i], ref[i]) << 4 + i;
     EXPECT_NEAR(f[3 + i] / ref[i], 1.0, i == 0 ? 1.5e-2 : 4.5e-2) << 4 + i;
+  }
+}
+
+TEST(Shell181, ThickCantileverStripHasTimoshenkoDeflectionAndShearForce) {
+  // L = 10, b = 1, t = 2, ν = 0 under a tip load P: w = P L³/(3 E I) + P L/(k G b t)
+  // (Timoshenko beam, shear part 2.3 % of w here; the thin DK kernel gives only the first term)
+  // and the transverse shear force per width QXZ = P/b in every element, QYZ = 0.
+  const double L = 10, b = 1, t = 2, E = 1e7, P = 1.0, k = 5.0 / 6.0, G = E / 2;
+  const double w_ref = P * L * L * L / (3 * E * b * t * t * t / 12) + P * L / (k * G * b * t);
+  const int n = 20;
+  const ShellMesh mesh = rect_mesh(n, 1, L, b, false);
+  const auto els = build(mesh, mindlin_data(E, 0.0, t));
+  DenseSystem s(els);
+  const auto fixed = fix(mesh, [](const Vec3& x) {
+    return near(x.x(), 0) ? std::vector<Dof>(kAllDofs.begin(), kAllDofs.end()) : std::vector<Dof>{};
+  });
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(s.n());
+  f(s.index(n + 1, Dof::UZ)) = P / 2;
+  f(s.index(2 * (n + 1), Dof::UZ)) = P / 2;
+  const Eigen::VectorXd u = s.solve_static(f, fixed);
+  const double w = 0.5 * (u(s.index(n + 1, Dof::UZ)) + u(s.index(2 * (n + 1), Dof::UZ)));
+  std::printf("thick cantilever strip: w = %.8f, Timoshenko %.8f, Euler-Bernoulli %.8f\n", w, w_ref,
+              P * L * L * L / (3 * E * b * t * t * t / 12));
+  EXPECT_NEAR(w / w_ref, 1.0, 2e-3);
+  const auto& names = els[0]->result_names();
+  const auto qxz = std::find(names.begin(), names.end(), "QXZ") - names.begin();
+  const auto qyz = std::find(names.begin(), names.end(), "QYZ") - names.begin();
+  ASSERT_LT(qyz, static_cast<long>(names.size()));
+  for (const auto& e : els) {
+    ElementResultValues out;
+    e->results(ElementContext{}, testing::gather(s, *e, u), Eigen::VectorXd::Zero(e->n_dofs()),
+               out);
+    EXPECT_NEAR(std::abs(out[static_cast<std::size_t>(qxz)]), P / b, 1e-2 * P / b);
+    EXPECT_NEAR(out[static_cast<std::size_t>(qyz)], 0.0, 1e-6 * P / b);
   }
 }
 
