@@ -430,25 +430,27 @@ ExplicitStepLimit Shell163Set::internal_forces_and_moments(const ExplicitNodalVi
     energies_.internal += dt * area * power;
     energies_.plastic_work += area * plastic;
     // Viscous hourglass control of the BT modes: γ = h − (h·x) B1 − (h·y) B2 is orthogonal to
-    // every linear field, so it never resists a uniform strain rate or a rigid motion.
-    // Coefficients scale as the solid's HGCO ρ c V^{2/3}/4 with V^{2/3} → t √A (membrane and
-    // transverse) and by A/12 more for the rotations (the rotary inertia's A/6 per node keeps
-    // the ratio to the inertia the same as the translations').
+    // every linear field, so it never resists a uniform strain rate or a rigid motion. The
+    // membrane coefficient scales as the solid's HGCO ρ c V^{2/3}/4 with V^{2/3} → t √A; the
+    // transverse and rotational ones by t/√A less (a plate's bending wave of wavelength √A is
+    // that much slower than the membrane wave: the same fraction of critical damping), the
+    // rotational one by A/12 more (the rotary inertia's A/6 per node).
     const double rho = density_[k];
     const double c = wave_speed(k);
+    const double cm = 0.25 * hourglass_ * rho * c * t * std::sqrt(area);
+    const double cw = cm * t / std::sqrt(area);
+    const double cb = cw * area / 12.0;
     double gamma[4], hx = 0.0, hy = 0.0;
     for (int a = 0; a < 4; ++a) hx += kH[a] * kin.xl[a], hy += kH[a] * kin.yl[a];
     for (int a = 0; a < 4; ++a) gamma[a] = kH[a] - hx * kin.b1[a] - hy * kin.b2[a];
-    const double cm = 0.25 * hourglass_ * rho * c * t * std::sqrt(area);
-    const double cb = cm * area / 12.0;
     double q[5] = {};  // hourglass rates of v_x, v_y, v_z, ω_x, ω_y
     for (int a = 0; a < 4; ++a) {
       for (int i = 0; i < 3; ++i) q[i] += gamma[a] * kin.v[a][i];
       for (int i = 0; i < 2; ++i) q[3 + i] += gamma[a] * kin.w[a][i];
     }
     if (hourglass_ > 0.0)
-      energies_.hourglass +=
-          dt * (cm * (q[0] * q[0] + q[1] * q[1] + q[2] * q[2]) + cb * (q[3] * q[3] + q[4] * q[4]));
+      energies_.hourglass += dt * (cm * (q[0] * q[0] + q[1] * q[1]) + cw * q[2] * q[2] +
+                                   cb * (q[3] * q[3] + q[4] * q[4]));
     else
       std::fill(q, q + 5, 0.0);
     // Nodal forces and moments: the derivatives of the power A(N:d + M:κ + Q·γ) by the nodal
@@ -459,7 +461,7 @@ ExplicitStepLimit Shell163Set::internal_forces_and_moments(const ExplicitNodalVi
       const double b1 = kin.b1[a], b2 = kin.b2[a];
       const double fx = area * (b1 * resultant[0] + b2 * resultant[2]) + cm * q[0] * gamma[a];
       const double fy = area * (b2 * resultant[1] + b1 * resultant[2]) + cm * q[1] * gamma[a];
-      const double fz = area * (b1 * resultant[4] + b2 * resultant[3]) + cm * q[2] * gamma[a];
+      const double fz = area * (b1 * resultant[4] + b2 * resultant[3]) + cw * q[2] * gamma[a];
       const double mx =
           area * (-b2 * moment[1] - b1 * moment[2] - 0.25 * resultant[3]) + cb * q[3] * gamma[a];
       const double my =
