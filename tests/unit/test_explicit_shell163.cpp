@@ -183,6 +183,35 @@ TEST(ExplicitShell, PlaneStressReturnStaysOnTheYieldSurface) {
   EXPECT_GT(run.set().energies().plastic_work, 0.0);
 }
 
+TEST(ExplicitShell, BendingReachesTheSectionLimit) {
+  // One square element bent by a curvature rate κ̇_xx (ω_y = κ̇ x at the nodes, the centre at
+  // x = 0: no membrane, transverse shear or hourglass rate), κ_yy = 0, elastic–perfectly
+  // plastic (yield 250). Far beyond yield every point flows with ε̇_yy = 0, so s_yy = 0,
+  // σ_yy = σ_xx/2 and σ_xx = ±2σ_y/√3 (Hill's plane-strain bending): the moment per unit
+  // width is that stress block integrated by the 3-point Gauss rule of the thickness,
+  // M = (2σ_y/√3)(t²/4) Σ w|ζ| = (2σ_y/√3)(t²/4)(10/9)√0.6 (0.861 of the exact block's t²/4).
+  const std::string deck =
+      "/PREP7\nET,1,SHELL163\nR,1,0.8333333,3,0.02\nMP,EX,1,2E5\nMP,NUXY,1,0.3\n"
+      "MP,DENS,1,7.8E-3\nTB,BISO,1\nTBDATA,1,250,0\n"
+      "N,1,-0.5,-0.5,0\nN,2,0.5,-0.5,0\nN,3,0.5,0.5,0\nN,4,-0.5,0.5,0\nE,1,2,3,4\n";
+  Shells run(read_deck_text(deck, "bend.inp").model);
+  const double rate = 0.08;  // curvature per step: 200 steps reach 16, 130 times first yield
+  for (std::size_t n = 0; n < run.system.n_nodes(); ++n) run.wy[n] = rate * run.x[n];
+  for (int step = 0; step < 200; ++step) run.evaluate(1.0);
+  Eigen::MatrixXd r;
+  run.set().results(r);
+  const double t = 0.02, sigma = 2 * 250 / std::sqrt(3.0);
+  EXPECT_NEAR(r(0, 11), sigma * t * t / 4 * (10.0 / 9.0) * std::sqrt(0.6), 1e-3 * sigma * t * t);
+  EXPECT_NEAR(r(0, 0), sigma, 1e-3 * sigma);        // top point in tension
+  EXPECT_NEAR(r(0, 1), 0.5 * sigma, 1e-3 * sigma);  // σ_yy = σ_xx/2
+  EXPECT_NEAR(r(0, 3), -sigma, 1e-3 * sigma);
+  EXPECT_NEAR(r(0, 8), 0.0, 1e-9);  // no membrane force
+  // Nearly all the work goes into plastic work (the elastic part is bounded).
+  const ExplicitSetEnergies e = run.set().energies();
+  EXPECT_GT(e.plastic_work, 0.9 * e.internal);
+  EXPECT_LE(e.plastic_work, e.internal);
+}
+
 TEST(ExplicitShell, RefusesWhatItDoesNotCarryOut) {
   const std::string mesh = "N,1,0,0,0\nN,2,1,0,0\nN,3,1,1,0\nN,4,0,1,0\nE,1,2,3,4\n";
   const auto build = [&](const std::string& head) {
