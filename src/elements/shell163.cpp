@@ -385,6 +385,11 @@ ExplicitStepLimit Shell163Set::internal_forces_and_moments(const ExplicitNodalVi
                                                       "out of control",
                                                       ids_[k]));
     local_velocities(state, n, kin);
+    // The mean nodal angular velocity: of the four corners, or of the three distinct ones of a
+    // triangle (its repeated node L would otherwise count twice).
+    static constexpr double kQuad[4] = {0.25, 0.25, 0.25, 0.25},
+                            kTriangle[4] = {1.0 / 3, 1.0 / 3, 1.0 / 3, 0.0};
+    const double* mean = triangle_[k] ? kTriangle : kQuad;
     // Membrane, curvature and transverse shear rates at the centre (tensor shear components).
     double g[2][3] = {}, gw[2][2] = {}, centre[2] = {};  // ∂v_i/∂x_α, ∂ω_i/∂x_α, mean ω
     for (int a = 0; a < 4; ++a) {
@@ -395,7 +400,7 @@ ExplicitStepLimit Shell163Set::internal_forces_and_moments(const ExplicitNodalVi
       for (int i = 0; i < 2; ++i) {
         gw[0][i] += kin.b1[a] * kin.w[a][i];
         gw[1][i] += kin.b2[a] * kin.w[a][i];
-        centre[i] += 0.25 * kin.w[a][i];
+        centre[i] += mean[a] * kin.w[a][i];
       }
     }
     const double membrane[3] = {g[0][0], g[1][1], 0.5 * (g[1][0] + g[0][1])};
@@ -463,9 +468,9 @@ ExplicitStepLimit Shell163Set::internal_forces_and_moments(const ExplicitNodalVi
       const double fy = area * (b2 * resultant[1] + b1 * resultant[2]) + cm * q[1] * gamma[a];
       const double fz = area * (b1 * resultant[4] + b2 * resultant[3]) + cw * q[2] * gamma[a];
       const double mx =
-          area * (-b2 * moment[1] - b1 * moment[2] - 0.25 * resultant[3]) + cb * q[3] * gamma[a];
+          area * (-b2 * moment[1] - b1 * moment[2] - mean[a] * resultant[3]) + cb * q[3] * gamma[a];
       const double my =
-          area * (b1 * moment[0] + b2 * moment[2] + 0.25 * resultant[4]) + cb * q[4] * gamma[a];
+          area * (b1 * moment[0] + b2 * moment[2] + mean[a] * resultant[4]) + cb * q[4] * gamma[a];
       const Vec3 force = fx * kin.e1 + fy * kin.e2 + fz * kin.e3;
       const Vec3 turn = mx * kin.e1 + my * kin.e2;
       for (int i = 0; i < 3; ++i) {
