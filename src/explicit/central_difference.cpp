@@ -50,6 +50,13 @@ void CentralDifference::set_velocity(std::size_t node, const Vec3& v) {
   vz_[node] = v.z();
 }
 
+void CentralDifference::set_angular_velocity(std::size_t node, const Vec3& w) {
+  if (!has_rotations(node)) return;
+  wx_[node] = w.x();
+  wy_[node] = w.y();
+  wz_[node] = w.z();
+}
+
 void CentralDifference::internal_forces(double dt) {
   const bool rotations = system_.has_rotations();
   const ExplicitNodalView view{x_.data(),
@@ -174,6 +181,8 @@ void CentralDifference::start() {
   double kinetic = 0.0;
   for (std::size_t n = 0; n < system_.n_nodes(); ++n)
     kinetic += system_.mass[n] * (vx_[n] * vx_[n] + vy_[n] * vy_[n] + vz_[n] * vz_[n]);
+  for (std::size_t r : system_.rotational_nodes)
+    kinetic += system_.inertia[r] * (wx_[r] * wx_[r] + wy_[r] * wy_[r] + wz_[r] * wz_[r]);
   initial_kinetic_ = 0.5 * kinetic;
   previous_step_ = 0.0;
 }

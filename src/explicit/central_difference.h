@@ -39,6 +39,8 @@ class CentralDifference {
   void set_rotation_fixes(std::vector<std::uint8_t> fixed);
   /// Initial velocities (before start()).
   void set_velocity(std::size_t node, const Vec3& v);
+  /// Initial angular velocity of a node with rotational DOFs (before start()).
+  void set_angular_velocity(std::size_t node, const Vec3& w);
   /// Forces and accelerations at t = 0 and the first stable step; mass scaling at the start.
   void start();
   /// One cycle of step `dt` (at most stable_step(): the caller may shorten it to land on an end

@@ -83,20 +83,35 @@ std::vector<std::uint8_t> fixed_dofs(const ExplicitSystem& s, const LoadStep& st
   return fixed;
 }
 
-/// IC velocities first, then EDVEL (which defines the velocity of its component's nodes).
+/// IC velocities first, then EDVEL (which defines the velocity of its component's nodes). IC
+/// on ROTX, ROTY, ROTZ sets the angular velocity of a shell node; a nonzero one at a node without
+/// rotations is refused.
 void set_initial_velocities(const Model& model, const ExplicitSystem& s, CentralDifference& cd) {
-  std::vector<Vec3> v(s.n_nodes(), Vec3::Zero());
+  std::vector<Vec3> v(s.n_nodes(), Vec3::Zero()), w(s.n_nodes(), Vec3::Zero());
   for (const auto& [key, ic] : model.initial_conditions) {
     const int n = s.index_of(key.node);
-    if (n >= 0 && !is_rotation(key.dof))
-      v[static_cast<std::size_t>(n)](static_cast<int>(key.dof)) = ic.velocity;
+    if (n < 0) continue;
+    const auto node = static_cast<std::size_t>(n);
+    if (!is_rotation(key.dof)) {
+      v[node](static_cast<int>(key.dof)) = ic.velocity;
+    } else if (cd.has_rotations(node)) {
+      w[node](static_cast<int>(key.dof) - 3) = ic.velocity;
+    } else if (ic.velocity != 0.0) {
+      throw InputError(ic.where, fmt::format("node {}: an initial {} velocity: the node has no "
+                                             "rotational DOFs in explicit dynamics (only the "
+                                             "nodes of shells have)",
+                                             key.node, dof_name(key.dof)));
+    }
   }
   for (const auto& e : model.explicit_dynamics.initial_velocities)
     for (int node : e.nodes) {
       const int n = s.index_of(node);
       if (n >= 0) v[static_cast<std::size_t>(n)] = e.velocity;
     }
-  for (std::size_t n = 0; n < s.n_nodes(); ++n) cd.set_velocity(n, v[n]);
+  for (std::size_t n = 0; n < s.n_nodes(); ++n) {
+    cd.set_velocity(n, v[n]);
+    cd.set_angular_velocity(n, w[n]);
+  }
 }
 
 /// One stored time point: nodal U, V, A and reactions in the file's node order; the element
