@@ -31,6 +31,11 @@ struct ExplicitNodalView {
   const double* vx = nullptr;  // half-step velocities v_{n+1/2}
   const double* vy = nullptr;
   const double* vz = nullptr;
+  /// Angular velocities ω_{n+1/2} (global axes) of the nodes that carry rotations (those of a set
+  /// with has_rotations()); null when the run has none. Other nodes' entries are 0.
+  const double* wx = nullptr;
+  const double* wy = nullptr;
+  const double* wz = nullptr;
 };
 
 /// What an element set is built from.
@@ -84,6 +89,19 @@ class ExplicitElementSet {
   /// of each element, element-major) written to `element_forces`; the stable step at x_{n+1}.
   virtual ExplicitStepLimit internal_forces(const ExplicitNodalView& state, double dt,
                                             double* element_forces) = 0;
+  /// Sets whose nodes carry rotations (shells): the run gives their nodes angular velocities and
+  /// rotary inertia and calls internal_forces_and_moments.
+  virtual bool has_rotations() const { return false; }
+  /// Adds each element's lumped rotary inertia (one value per node, the same about every
+  /// axis) to its nodes; called again after mass scaling.
+  virtual void add_rotary_inertia(std::vector<double>& /*inertia*/) const {}
+  /// internal_forces plus the nodal moments (x, y, z per slot, like the forces) of a set with
+  /// rotations; `element_moments` is null when the run has none.
+  virtual ExplicitStepLimit internal_forces_and_moments(const ExplicitNodalView& state, double dt,
+                                                        double* element_forces,
+                                                        double* /*element_moments*/) {
+    return internal_forces(state, dt, element_forces);
+  }
   virtual ExplicitSetEnergies energies() const = 0;
   /// Stored results of every element (rows) in the order of the registration's result_names.
   virtual void results(Eigen::MatrixXd& out) const = 0;

@@ -34,8 +34,13 @@ class CentralDifference {
   /// The DOFs fixed (3 per node, x y z) and the frame acceleration (ACEL: body force −m a on
   /// every node) of the current load step.
   void set_loads(std::vector<std::uint8_t> fixed, const Vec3& frame_acceleration);
+  /// The rotations fixed (3 per node, about x y z) of the current load step; entries of nodes
+  /// without rotational DOFs are ignored. Only for a system with rotations.
+  void set_rotation_fixes(std::vector<std::uint8_t> fixed);
   /// Initial velocities (before start()).
   void set_velocity(std::size_t node, const Vec3& v);
+  /// Initial angular velocity of a node with rotational DOFs (before start()).
+  void set_angular_velocity(std::size_t node, const Vec3& w);
   /// Forces and accelerations at t = 0 and the first stable step; mass scaling at the start.
   void start();
   /// One cycle of step `dt` (at most stable_step(): the caller may shorten it to land on an end
@@ -56,11 +61,24 @@ class CentralDifference {
   Vec3 acceleration(std::size_t n) const;
   Vec3 reaction(std::size_t n) const;
   bool fixed(std::size_t n, int direction) const { return fixed_[3 * n + direction] != 0; }
+  /// Rotational DOFs (nodes of a set with rotations): the rotation (the sum of the increments
+  /// Δt ω in global axes), angular velocity and acceleration, the moment reaction at a fixed
+  /// rotation. Zero at nodes without rotations.
+  bool has_rotations(std::size_t n) const { return !rotational_.empty() && rotational_[n] != 0; }
+  Vec3 rotation(std::size_t n) const;
+  Vec3 angular_velocity(std::size_t n) const;
+  Vec3 angular_acceleration(std::size_t n) const;
+  Vec3 moment_reaction(std::size_t n) const;
+  bool rotation_fixed(std::size_t n, int axis) const {
+    return !fixed_rotation_.empty() && fixed_rotation_[3 * n + axis] != 0;
+  }
 
  private:
   /// f_int from the element sets at (x, v) over dt, gathered per node in fixed order.
   void internal_forces(double dt);
   void accelerations();
+  /// The nodal moments of the sets with rotations, gathered like the forces.
+  void sum_moments();
   /// The next step from the critical one (and mass scaling under a positive DTMS).
   void choose_step();
   /// Mass scaling (EDCTS DTMS): adds mass to the elements whose stable step is below the
@@ -73,6 +91,11 @@ class CentralDifference {
   Vec3 frame_acceleration_ = Vec3::Zero();
   std::vector<double> element_forces_;
   std::vector<std::uint8_t> fixed_;
+  // Rotational DOFs: allocated only when a set has rotations; the loops visit only
+  // system_.rotational_nodes.
+  std::vector<double> wx_, wy_, wz_, rx_, ry_, rz_, bx_, by_, bz_, mx_, my_, mz_;
+  std::vector<double> element_moments_;
+  std::vector<std::uint8_t> fixed_rotation_, rotational_;
   double critical_ = 0.0;  // the smallest element step at the current configuration
   double time_ = 0.0, step_ = 0.0, previous_step_ = 0.0, added_mass_ = 0.0;
   double external_work_ = 0.0, initial_kinetic_ = 0.0;

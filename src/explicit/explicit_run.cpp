@@ -4,6 +4,7 @@
 
 #include <time.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -60,32 +61,57 @@ void refuse_unsupported(const Model& model, const AnalysisRequest& request) {
   }
 }
 
-/// The fixed DOFs of a load step: D on UX, UY, UZ (value 0). Rotations do not exist at the nodes
-/// of the explicit solids and are ignored.
-std::vector<std::uint8_t> fixed_dofs(const ExplicitSystem& s, const LoadStep& step) {
+/// The fixed DOFs of a load step: D on UX, UY, UZ (value 0), or on ROTX, ROTY, ROTZ when
+/// `rotations` (3 per node, about x y z). Rotations do not exist at the nodes of the explicit
+/// solids, links and masses: D on them is ignored there.
+std::vector<std::uint8_t> fixed_dofs(const ExplicitSystem& s, const LoadStep& step,
+                                     bool rotations) {
   std::vector<std::uint8_t> fixed(3 * s.n_nodes(), 0);
   for (const auto& [key, value] : step.constraints) {
     const int n = s.index_of(key.node);
-    if (n >= 0 && !is_rotation(key.dof))
-      fixed[3 * static_cast<std::size_t>(n) + static_cast<std::size_t>(key.dof)] = 1;
+    if (n < 0 || is_rotation(key.dof) != rotations) continue;
+    if (rotations && value != 0.0 &&
+        std::binary_search(s.rotational_nodes.begin(), s.rotational_nodes.end(),
+                           static_cast<std::size_t>(n)))
+      throw NotImplementedError(step.where,
+                                fmt::format("load step {}: a prescribed rotation (D,{},{},{:g}) "
+                                            "is not implemented in explicit dynamics (D with "
+                                            "value 0 fixes it)",
+                                            step.number, key.node, dof_name(key.dof), value));
+    fixed[3 * static_cast<std::size_t>(n) + static_cast<std::size_t>(key.dof) % 3] = 1;
   }
   return fixed;
 }
 
-/// IC velocities first, then EDVEL (which defines the velocity of its component's nodes).
+/// IC velocities first, then EDVEL (which defines the velocity of its component's nodes). IC
+/// on ROTX, ROTY, ROTZ sets the angular velocity of a shell node; a nonzero one at a node without
+/// rotations is refused.
 void set_initial_velocities(const Model& model, const ExplicitSystem& s, CentralDifference& cd) {
-  std::vector<Vec3> v(s.n_nodes(), Vec3::Zero());
+  std::vector<Vec3> v(s.n_nodes(), Vec3::Zero()), w(s.n_nodes(), Vec3::Zero());
   for (const auto& [key, ic] : model.initial_conditions) {
     const int n = s.index_of(key.node);
-    if (n >= 0 && !is_rotation(key.dof))
-      v[static_cast<std::size_t>(n)](static_cast<int>(key.dof)) = ic.velocity;
+    if (n < 0) continue;
+    const auto node = static_cast<std::size_t>(n);
+    if (!is_rotation(key.dof)) {
+      v[node](static_cast<int>(key.dof)) = ic.velocity;
+    } else if (cd.has_rotations(node)) {
+      w[node](static_cast<int>(key.dof) - 3) = ic.velocity;
+    } else if (ic.velocity != 0.0) {
+      throw InputError(ic.where, fmt::format("node {}: an initial {} velocity: the node has no "
+                                             "rotational DOFs in explicit dynamics (only the "
+                                             "nodes of shells have)",
+                                             key.node, dof_name(key.dof)));
+    }
   }
   for (const auto& e : model.explicit_dynamics.initial_velocities)
     for (int node : e.nodes) {
       const int n = s.index_of(node);
       if (n >= 0) v[static_cast<std::size_t>(n)] = e.velocity;
     }
-  for (std::size_t n = 0; n < s.n_nodes(); ++n) cd.set_velocity(n, v[n]);
+  for (std::size_t n = 0; n < s.n_nodes(); ++n) {
+    cd.set_velocity(n, v[n]);
+    cd.set_angular_velocity(n, w[n]);
+  }
 }
 
 /// One stored time point: nodal U, V, A and reactions in the file's node order; the element
@@ -109,6 +135,15 @@ TimePoint make_point(const ExplicitSystem& s, const CentralDifference& cd,
       p.velocity(row, i) = v(i);
       p.acceleration(row, i) = a(i);
       if (cd.fixed(n, i)) p.reaction(row, i) = r(i);
+    }
+    if (!cd.has_rotations(n)) continue;
+    const Vec3 rot = cd.rotation(n), w = cd.angular_velocity(n), b = cd.angular_acceleration(n),
+               m = cd.moment_reaction(n);
+    for (int i = 0; i < 3; ++i) {
+      p.displacement(row, 3 + i) = rot(i);
+      p.velocity(row, 3 + i) = w(i);
+      p.acceleration(row, 3 + i) = b(i);
+      if (cd.rotation_fixed(n, i)) p.reaction(row, 3 + i) = m(i);
     }
   }
   const ExplicitEnergies e = cd.energies();
@@ -224,7 +259,8 @@ ExplicitRunSummary run_explicit_analysis(const Model& model, const AnalysisReque
   int point = 0;
   for (std::size_t i = 0; i < request.load_steps.size(); ++i) {
     const LoadStep& step = request.load_steps[i];
-    cd.set_loads(fixed_dofs(system, step), step.acel);
+    cd.set_loads(fixed_dofs(system, step, false), step.acel);
+    if (system.has_rotations()) cd.set_rotation_fixes(fixed_dofs(system, step, true));
     if (i == 0) {
       cd.start();
       // The initial state is load step 0, substep 0, as the implicit transients store it.
