@@ -67,6 +67,20 @@ struct ExplicitSetEnergies {
   double plastic_work = 0.0;  // ∫σ:dε_p dV
 };
 
+/// A surface piece an element offers to contact (docs/explicit_dynamics.md, "Contact"): four
+/// run node indices counterclockwise seen from outside (a triangle repeats its third node), the
+/// element (user id), and what the penalty stiffness is made of (LS-DYNA Theory Manual,
+/// "Penalty method"): k = f·K·A²/V for a solid's face (`volume` > 0, `thickness` 0) and
+/// k = f·K·A/(largest diagonal) for a shell (`thickness` > 0: the surface lies ±thickness/2 off
+/// the mid-surface).
+struct ExplicitSegment {
+  int nodes[4] = {0, 0, 0, 0};
+  int element = 0;
+  double bulk_modulus = 0.0;
+  double volume = 0.0;
+  double thickness = 0.0;
+};
+
 class ExplicitElementSet {
  public:
   virtual ~ExplicitElementSet() = default;
@@ -103,6 +117,9 @@ class ExplicitElementSet {
     return internal_forces(state, dt, element_forces);
   }
   virtual ExplicitSetEnergies energies() const = 0;
+  /// The contact segments of every element (all faces of a solid: the contact keeps the ones
+  /// not shared by two elements); none by default (springs, masses).
+  virtual void segments(std::vector<ExplicitSegment>& out) const { (void)out; }
   /// Stored results of every element (rows) in the order of the registration's result_names.
   virtual void results(Eigen::MatrixXd& out) const = 0;
 };

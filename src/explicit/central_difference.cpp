@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace impactfe {
 
@@ -94,6 +95,17 @@ void CentralDifference::internal_forces(double dt) {
     fy_[n] = sy;
     fz_[n] = sz;
   }
+  // Loads by curve and contact at x_{n+1}, t_{n+1} (explicit_interaction.h).
+  // An interaction's stiffness adds to the elements': the largest frequency of M⁻¹(K_e + K_c)
+  // is at most √(ω_e² + ω_c²) (Weyl's inequality), so its step combines with the elements' as
+  // 1/√(1/dt_e² + 1/dt_c²).
+  const double elements = limit.dt;
+  for (ExplicitInteraction* i : interactions_) {
+    const ExplicitStepLimit l = i->add_forces(view, system_.mass.data(), time_ + dt, dt, fx_.data(),
+                                              fy_.data(), fz_.data());
+    if (l.dt < std::numeric_limits<double>::infinity())
+      limit.take(1.0 / std::sqrt(1.0 / (elements * elements) + 1.0 / (l.dt * l.dt)), l.element);
+  }
   controlling_ = limit.element;
   critical_ = limit.dt;
 }
@@ -153,6 +165,7 @@ void CentralDifference::accelerations() {
     by_[n] = rfix[3 * n + 1] ? 0.0 : -my_[n] * inv;
     bz_[n] = rfix[3 * n + 2] ? 0.0 : -mz_[n] * inv;
   }
+  for (ExplicitInteraction* i : interactions_) i->hold(ax_.data(), ay_.data(), az_.data());
 }
 
 bool CentralDifference::scale_masses() {
@@ -198,6 +211,10 @@ void CentralDifference::cycle(double dt) {
     vx_[n] += mean * ax_[n];
     vy_[n] += mean * ay_[n];
     vz_[n] += mean * az_[n];
+  }
+  for (ExplicitInteraction* i : interactions_)
+    i->prescribe(time_ + 0.5 * dt, mean, m, vx_.data(), vy_.data(), vz_.data());
+  for (std::size_t n = 0; n < n_nodes; ++n) {
     x_[n] += dt * vx_[n];
     y_[n] += dt * vy_[n];
     z_[n] += dt * vz_[n];
@@ -244,6 +261,10 @@ ExplicitEnergies CentralDifference::energies() const {
     e.plastic_work += s.plastic_work;
   }
   e.external_work = external_work_;
+  for (const ExplicitInteraction* i : interactions_) {
+    e.external_work += i->external_work();
+    e.contact += i->contact_energy();
+  }
   e.initial_kinetic = initial_kinetic_;
   return e;
 }

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/explicit_controls.h"
+#include "explicit/explicit_interaction.h"
 #include "explicit/explicit_system.h"
 
 namespace impactfe {
@@ -20,10 +21,13 @@ struct ExplicitEnergies {
   double internal = 0.0;
   double hourglass = 0.0;
   double plastic_work = 0.0;
-  double external_work = 0.0;  // work of f_ext (ACEL) on the motion
+  double external_work = 0.0;  // work of f_ext (ACEL, EDLOAD) on the motion
+  double contact = 0.0;        // penalty springs and friction (EDCGEN)
   double initial_kinetic = 0.0;
   /// Total minus what was put in: zero for an exact balance.
-  double drift() const { return kinetic + internal + hourglass - initial_kinetic - external_work; }
+  double drift() const {
+    return kinetic + internal + hourglass + contact - initial_kinetic - external_work;
+  }
   double put_in() const { return initial_kinetic + external_work; }
 };
 
@@ -37,6 +41,9 @@ class CentralDifference {
   /// The rotations fixed (3 per node, about x y z) of the current load step; entries of nodes
   /// without rotational DOFs are ignored. Only for a system with rotations.
   void set_rotation_fixes(std::vector<std::uint8_t> fixed);
+  /// Forces beyond the elements' (explicit_interaction.h), evaluated in the order added; the
+  /// interaction must outlive the run.
+  void add_interaction(ExplicitInteraction* interaction) { interactions_.push_back(interaction); }
   /// Initial velocities (before start()).
   void set_velocity(std::size_t node, const Vec3& v);
   /// Initial angular velocity of a node with rotational DOFs (before start()).
@@ -96,6 +103,7 @@ class CentralDifference {
   std::vector<double> wx_, wy_, wz_, rx_, ry_, rz_, bx_, by_, bz_, mx_, my_, mz_;
   std::vector<double> element_moments_;
   std::vector<std::uint8_t> fixed_rotation_, rotational_;
+  std::vector<ExplicitInteraction*> interactions_;
   double critical_ = 0.0;  // the smallest element step at the current configuration
   double time_ = 0.0, step_ = 0.0, previous_step_ = 0.0, added_mass_ = 0.0;
   double external_work_ = 0.0, initial_kinetic_ = 0.0;

@@ -12,6 +12,8 @@
 #include "core/log.h"
 #include "elements/element_registry.h"
 #include "explicit/central_difference.h"
+#include "explicit/explicit_contact.h"
+#include "explicit/explicit_loads.h"
 
 namespace impactfe {
 
@@ -150,7 +152,7 @@ TimePoint make_point(const ExplicitSystem& s, const CentralDifference& cd,
   p.energy = {{"kinetic", e.kinetic},
               {"strain", e.internal - e.plastic_work},
               {"external_work", e.external_work},
-              {"gap_work", 0.0},
+              {"gap_work", e.contact},
               {"dissipation", e.hourglass},
               {"plastic_work", e.plastic_work}};
   if (!full) return p;
@@ -181,14 +183,15 @@ class EnergyCheck {
     over_ = std::abs(e.drift()) > kExplicitEnergyBound * reference ? over_ + 1 : 0;
     if (over_ < kExplicitChecksOver || warned_) return;
     const std::string message = fmt::format(
-        "t = {:g}, cycle {}: energy {}: kinetic + internal + hourglass {:.4g} against {:.4g} "
+        "t = {:g}, cycle {}: energy {}: kinetic + internal + hourglass + contact {:.4g} against "
+        "{:.4g} "
         "put in (initial kinetic + external work), {:.1f} % off (bound {:.0f} %, passed at {} "
         "checks in a row): an unstable time step (EDCTS TSSFAC above 1 or a stiff element "
         "outside the step estimate) or an hourglass mode out of control (EDHGLS). The results "
         "up to here are kept; --accept-energy-error goes on",
         cd.time(), cd.cycles(), e.drift() > 0 ? "created" : "lost",
-        e.kinetic + e.internal + e.hourglass, e.put_in(), 100.0 * std::abs(e.drift()) / reference,
-        100.0 * kExplicitEnergyBound, kExplicitChecksOver);
+        e.kinetic + e.internal + e.hourglass + e.contact, e.put_in(),
+        100.0 * std::abs(e.drift()) / reference, 100.0 * kExplicitEnergyBound, kExplicitChecksOver);
     if (!accept_) throw SolutionError(message);
     Log::warn("{} (accepted: --accept-energy-error)", message);
     warned_ = true;
@@ -212,11 +215,12 @@ void summarize(const ExplicitSystem& s, const CentralDifference& cd, const Energ
       out.smallest_step, out.smallest_step_element, out.ns_per_element_cycle));
   out.notes.push_back(fmt::format(
       "energy: kinetic {:.6g}, internal {:.6g} (plastic work {:.4g}), hourglass {:.4g} ({:.2f} % "
-      "of internal), initial kinetic {:.6g}, external work {:.6g}; balance off by {:.3f} % "
-      "(largest {:.3f} %)",
+      "of internal), contact {:.4g}, initial kinetic {:.6g}, external work {:.6g}; balance off "
+      "by {:.3f} % (largest {:.3f} %)",
       e.kinetic, e.internal, e.plastic_work, e.hourglass,
-      e.internal > 0 ? 100.0 * e.hourglass / e.internal : 0.0, e.initial_kinetic, e.external_work,
-      e.put_in() > 0 ? 100.0 * e.drift() / e.put_in() : 0.0, 100.0 * check.worst()));
+      e.internal > 0 ? 100.0 * e.hourglass / e.internal : 0.0, e.contact, e.initial_kinetic,
+      e.external_work, e.put_in() > 0 ? 100.0 * e.drift() / e.put_in() : 0.0,
+      100.0 * check.worst()));
   if (cd.added_mass() > 0.0)
     out.notes.push_back(fmt::format("mass scaling (EDCTS DTMS): {:.4g} added to {:.4g} ({:.3f} %)",
                                     cd.added_mass(), s.physical_mass,
@@ -241,6 +245,10 @@ ExplicitRunSummary run_explicit_analysis(const Model& model, const AnalysisReque
   ExplicitSystem system = build_explicit_system(model);
   const ExplicitControls& controls = model.explicit_dynamics;
   CentralDifference cd(system, controls);
+  ExplicitCurveLoads loads(system, controls);
+  if (!loads.empty()) cd.add_interaction(&loads);
+  ExplicitContactSet contact(model, system);
+  if (!contact.empty()) cd.add_interaction(&contact);
   set_initial_velocities(model, system, cd);
   const double end = *request.load_steps.back().time_end;
   OutputGrid results{controls.results.for_end_time(end, 100)};
@@ -302,6 +310,7 @@ ExplicitRunSummary run_explicit_analysis(const Model& model, const AnalysisReque
       summary.element_cycles > 0 ? 1e9 * loop_seconds / static_cast<double>(summary.element_cycles)
                                  : 0.0;
   summarize(system, cd, check, summary);
+  if (!contact.empty()) summary.notes.push_back(contact.summary());
   writer.set_count("cycles", summary.cycles);
   writer.set_attribute("ns_per_element_cycle", summary.ns_per_element_cycle);
   writer.set_attribute("added_mass", cd.added_mass());
