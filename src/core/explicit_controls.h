@@ -3,6 +3,7 @@
 /// interface, docs/explicit_dynamics.md): time-step control (EDCTS), hourglass and bulk viscosity
 /// (EDHGLS, EDBVIS), output intervals (EDRST, EDHTIME) and initial velocities (EDVEL). Stored
 /// by the deck reader, read by src/explicit; nothing here solves anything.
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -32,6 +33,36 @@ struct ExplicitOutputInterval {
   }
 };
 
+/// EDCURVE: a data curve (abscissa, ordinate), the shorter of the two arrays' length.
+struct ExplicitCurve {
+  std::vector<double> x, y;
+  SourceLocation where;
+};
+
+/// EDLOAD,ADD: a load by curve on the nodes of a component. Lab FX/FY/FZ: nodal force on each
+/// node; VX/VY/VZ: prescribed velocity. The value at time t is SCALE · curve(t − BTIME) between
+/// BTIME and DTIME (0: no death), linear between the points and held beyond the last.
+struct ExplicitCurveLoad {
+  std::string label;       // FX FY FZ VX VY VZ
+  std::string component;   // node component (upper case) or part number as text
+  std::vector<int> nodes;  // its nodes when EDLOAD was given (ascending)
+  std::vector<double> times, values;
+  double scale = 1.0, birth = 0.0, death = 0.0;
+  SourceLocation where;
+};
+
+/// EDCGEN: a contact definition (penalty formulation, docs/explicit_dynamics.md). `contact` and
+/// `target` name a part number (EDPART) or a component; blank for single surface contact.
+struct ExplicitContact {
+  std::string option;  // NTS, ANTS, OSTS, STS, ASTS, ASSC, SS, AG
+  std::string contact, target;
+  double static_friction = 0.0, dynamic_friction = 0.0, decay = 0.0;  // FS, FD, DC
+  double viscous_damping = 0.0;                                       // VDC, % of critical
+  double slave_scale = 1.0, master_scale = 1.0;                       // EDCMORE SFS, SFM
+  double birth = 0.0, death = 0.0;                                    // BTIME, DTIME (0: never)
+  SourceLocation where;
+};
+
 struct ExplicitControls {
   /// EDCTS TSSFAC: the fraction of the stable time step taken (default 0.9).
   double time_step_factor = 0.9;
@@ -47,6 +78,12 @@ struct ExplicitControls {
   ExplicitOutputInterval results;                           // EDRST (default 100 intervals)
   ExplicitOutputInterval history;                           // EDHTIME (default 1000 intervals)
   std::vector<ExplicitInitialVelocity> initial_velocities;  // EDVEL, in input order
+  std::map<int, ExplicitCurve> curves;                      // EDCURVE, by LCID
+  std::vector<ExplicitCurveLoad> loads;                     // EDLOAD, in input order
+  std::vector<ExplicitContact> contacts;                    // EDCGEN, entity number = index + 1
+  /// SLSFAC: LS-DYNA's penalty scale factor of every contact (0.1; EDCONTACT, which sets it,
+  /// is refused).
+  double penalty_factor = 0.1;
   SourceLocation where;  // the last ED command that changed a setting
 };
 

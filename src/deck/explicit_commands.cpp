@@ -1,7 +1,8 @@
 // Explicit dynamics settings (the ED* commands of MAPDL's ANSYS LS-DYNA interface, Command
 // Reference release 18.2; docs/explicit_dynamics.md): EDCTS, EDHGLS, EDBVIS, EDRST, EDHTIME,
-// EDVEL, EDPART. They set Model::explicit_dynamics; the explicit run (src/explicit) reads it.
-// The ED commands of features not implemented (contact, loads by curve, rigid bodies, ...) are
+// EDVEL, EDPART (loads by curve and contact: explicit_load_commands.cpp). They set
+// Model::explicit_dynamics; the explicit run (src/explicit) reads it.
+// The ED commands of features not implemented (rigid bodies, restarts, ...) are
 // refused where they appear, so that no deck runs without them silently.
 #include <fmt/format.h>
 
@@ -13,6 +14,9 @@
 #include "deck/deck_context.h"
 
 namespace impactfe::deck {
+
+/// EDCURVE, EDLOAD, EDCGEN, EDCMORE, EDDC, EDCLIST (explicit_load_commands.cpp).
+void register_explicit_load_commands(std::vector<CommandSpec>& t);
 
 namespace {
 
@@ -120,8 +124,8 @@ void cmd_edvel(DeckReader& r, const Command& c) {
 }
 
 void cmd_edpart(DeckReader& r, const Command& c) {
-  // EDPART,Option: a part is one combination of element type, material and real set. Parts
-  // are what EDCGEN / EDLOAD would refer to (not implemented): here they are listed.
+  // EDPART,Option: a part is one combination of element type, material and real set, numbered
+  // in ascending (type, material, real) order: EDCGEN refers to them by number.
   const std::string option = r.label(c, 1).empty() ? "CREATE" : r.label(c, 1);
   if (option != "CREATE" && option != "UPDATE" && option != "LIST")
     r.fail(c, fmt::format("Option '{}': CREATE, UPDATE or LIST", c.text(1)));
@@ -143,10 +147,11 @@ void register_explicit_commands(std::vector<CommandSpec>& t) {
   t.push_back({"EDHTIME", cmd_edhtime, kPrepSolu});
   t.push_back({"EDVEL", cmd_edvel, kPrepSolu});
   t.push_back({"EDPART", cmd_edpart, kPrepSolu});
+  register_explicit_load_commands(t);
   constexpr const char* kNo = "not implemented in explicit dynamics (docs/explicit_dynamics.md)";
-  for (const char* name : {"EDCGEN", "EDLOAD", "EDMP", "EDCNSTR", "EDBOUND", "EDWRITE", "EDCONTACT",
-                           "EDCSC", "EDSHELL", "EDSTART", "EDADAPT", "EDOUT", "EDHIST", "EDINT",
-                           "EDDAMP", "EDENERGY", "EDCRB", "EDNROT"})
+  for (const char* name :
+       {"EDMP", "EDCNSTR", "EDBOUND", "EDWRITE", "EDCONTACT", "EDCSC", "EDSHELL", "EDSTART",
+        "EDADAPT", "EDOUT", "EDHIST", "EDINT", "EDDAMP", "EDENERGY", "EDCRB", "EDNROT"})
     t.push_back({name, [](DeckReader&, const Command&) {}, kPrepSolu, nullptr, kNo});
 }
 

@@ -136,6 +136,10 @@ std::vector<ElementFields> make_table() {
   t.push_back({"SOLID164", {}, {{1, {0, 1}, "0 or 1: one-point constant stress (the same)"}}});
   t.push_back({"LINK160", named({"AREA"}), {}});
   t.push_back({"MASS166", named({"MASS"}), {}});
+  // SHELL163: Belytschko–Tsay (KEYOPT(1) 0 or 2); the other formulations are not implemented.
+  t.push_back({"SHELL163",
+               named({"SHRF", "NIP", "T1", "T2", "T3", "T4"}),
+               {{1, {0, 2}, "0 or 2: Belytschko-Tsay (the same)"}}});
   // Shells (docs/elements/shell63.md). SHELL181 is computed with the SHELL63 kernel; of its
   // real constants only the thicknesses are read (the others mean other things than SHELL63's).
   t.push_back({"SHELL63",

@@ -31,6 +31,11 @@ struct ExplicitNodalView {
   const double* vx = nullptr;  // half-step velocities v_{n+1/2}
   const double* vy = nullptr;
   const double* vz = nullptr;
+  /// Angular velocities ω_{n+1/2} (global axes) of the nodes that carry rotations (those of a set
+  /// with has_rotations()); null when the run has none. Other nodes' entries are 0.
+  const double* wx = nullptr;
+  const double* wy = nullptr;
+  const double* wz = nullptr;
 };
 
 /// What an element set is built from.
@@ -62,6 +67,20 @@ struct ExplicitSetEnergies {
   double plastic_work = 0.0;  // ∫σ:dε_p dV
 };
 
+/// A surface piece an element offers to contact (docs/explicit_dynamics.md, "Contact"): four
+/// run node indices counterclockwise seen from outside (a triangle repeats its third node), the
+/// element (user id), and what the penalty stiffness is made of (LS-DYNA Theory Manual,
+/// "Penalty method"): k = f·K·A²/V for a solid's face (`volume` > 0, `thickness` 0) and
+/// k = f·K·A/(largest diagonal) for a shell (`thickness` > 0: the surface lies ±thickness/2 off
+/// the mid-surface).
+struct ExplicitSegment {
+  int nodes[4] = {0, 0, 0, 0};
+  int element = 0;
+  double bulk_modulus = 0.0;
+  double volume = 0.0;
+  double thickness = 0.0;
+};
+
 class ExplicitElementSet {
  public:
   virtual ~ExplicitElementSet() = default;
@@ -84,7 +103,23 @@ class ExplicitElementSet {
   /// of each element, element-major) written to `element_forces`; the stable step at x_{n+1}.
   virtual ExplicitStepLimit internal_forces(const ExplicitNodalView& state, double dt,
                                             double* element_forces) = 0;
+  /// Sets whose nodes carry rotations (shells): the run gives their nodes angular velocities and
+  /// rotary inertia and calls internal_forces_and_moments.
+  virtual bool has_rotations() const { return false; }
+  /// Adds each element's lumped rotary inertia (one value per node, the same about every
+  /// axis) to its nodes; called again after mass scaling.
+  virtual void add_rotary_inertia(std::vector<double>& /*inertia*/) const {}
+  /// internal_forces plus the nodal moments (x, y, z per slot, like the forces) of a set with
+  /// rotations; `element_moments` is null when the run has none.
+  virtual ExplicitStepLimit internal_forces_and_moments(const ExplicitNodalView& state, double dt,
+                                                        double* element_forces,
+                                                        double* /*element_moments*/) {
+    return internal_forces(state, dt, element_forces);
+  }
   virtual ExplicitSetEnergies energies() const = 0;
+  /// The contact segments of every element (all faces of a solid: the contact keeps the ones
+  /// not shared by two elements); none by default (springs, masses).
+  virtual void segments(std::vector<ExplicitSegment>& out) const { (void)out; }
   /// Stored results of every element (rows) in the order of the registration's result_names.
   virtual void results(Eigen::MatrixXd& out) const = 0;
 };

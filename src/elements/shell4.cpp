@@ -529,9 +529,9 @@ namespace {
 const std::vector<std::vector<int>> kShellFaces = {{0, 1, 2, 3}, {0, 1, 2, 3}, {1, 0},
                                                    {2, 1},       {3, 2},       {0, 3}};
 const std::vector<std::string> kShell4Results = {
-    "TX",      "TY",       "TXY",      "MX",     "MY",      "MXY",    "SX_TOP",
-    "SY_TOP",  "SXY_TOP",  "SX_MID",   "SY_MID", "SXY_MID", "SX_BOT", "SY_BOT",
-    "SXY_BOT", "SEQV_TOP", "SEQV_BOT", "EPEQ",   "SRAT",    "PLWK"};
+    "TX",       "TY",     "TXY",    "MX",      "MY",     "MXY",    "SX_TOP",  "SY_TOP",
+    "SXY_TOP",  "SX_MID", "SY_MID", "SXY_MID", "SX_BOT", "SY_BOT", "SXY_BOT", "SEQV_TOP",
+    "SEQV_BOT", "EPEQ",   "SRAT",   "PLWK",    "QXZ",    "QYZ"};
 }  // namespace
 
 const std::vector<std::string>& Shell4::result_names() const {
@@ -575,6 +575,8 @@ void Shell4::results(const ElementContext& ctx, const Eigen::VectorXd& u, const 
                            (s(1) - s(0)) * sn * cs + s(2) * (cs * cs - sn * sn));
   };
   const Eigen::Vector3d N = rot(r.N), Mm = rot(r.M);
+  // Transverse shear forces per length (SHELL181's Mindlin kernel; zero for SHELL63's DK).
+  const Eigen::Vector2d Q(cs * r.Q(0) + sn * r.Q(1), -sn * r.Q(0) + cs * r.Q(1));
   // Elastic: linear through the thickness; plastic: the layer stresses (surfaces and middle).
   const Eigen::Vector3d mid = plasticity_ ? rot(layers[2]) : Eigen::Vector3d(N / r.t);
   const Eigen::Vector3d top =
@@ -600,12 +602,14 @@ void Shell4::results(const ElementContext& ctx, const Eigen::VectorXd& u, const 
          von_mises(bot(0), bot(1), bot(2)),
          epeq,
          srat,
-         plwk};
+         plwk,
+         Q(0),
+         Q(1)};
 }
 
 namespace {
 
-/// SHELL63, or SHELL181 (`shell181`) computed with the same thin elastic kernel.
+/// SHELL63 (thin DK kernel), or SHELL181 (`shell181`: the Mindlin–Reissner kernel).
 std::unique_ptr<Element> make_shell4(const ElementBuildContext& ctx, const ElementRecord& record,
                                      bool shell181) {
   const Model& model = ctx.model;
@@ -681,6 +685,13 @@ std::unique_ptr<Element> make_shell4(const ElementBuildContext& ctx, const Eleme
   // SHELL63 KEYOPT(3) = 2 suppresses the extra shapes; SHELL181's KEYOPT(3) chooses reduced
   // (0) or full integration with incompatible modes (2): the kernel's extra shapes for both.
   k.extra_shapes = shell181 || type.key(3) != 2;
+  // SHELL181 is a Mindlin–Reissner shell (MITC transverse shear, shell_kernel_mindlin.cpp);
+  // SHELL63 keeps the thin DK kernel.
+  k.mindlin = shell181;
+  // SHELL181's drilling penalty at Hughes & Brezzi's γ = G t (drill_factor 1) rather than
+  // SHELL63's 10⁻³ G t: the drilling modes' frequency goes as √(12 γ / (ρ t³)), and at 10⁻³
+  // they fell among a thick plate's first bending modes (54 Hz for a 1 m steel plate).
+  if (shell181) k.drill_factor = 1.0;
   k.rotary_inertia = type.key(7) != 1;
   // SHELL181 takes TB plasticity; SHELL63 is elastic (the SOLVE check refuses it there).
   if (shell181) data.plasticity = plasticity_of(model, record, k.E, k.nu);
@@ -710,15 +721,19 @@ ElementTypeDescriptor shell_type(const char* name, int number, bool shell181) {
                                {"SMISC", "4", "MX"},
                                {"SMISC", "5", "MY"},
                                {"SMISC", "6", "MXY"},
+                               {"SMISC", "7", "QXZ"},
+                               {"SMISC", "8", "QYZ"},
                                {"NL", "EPEQ", "EPEQ"},
                                {"NL", "SRAT", "SRAT"},
                                {"NL", "PLWK", "PLWK"}},
           .plasticity = shell181,
           .faces = kShellFaces,
           .sf_faces = 1,
-          .note = shell181 ? "SHELL181 is computed with the SHELL63 kernel (thin Kirchhoff shell; "
-                             "layered J2 plasticity with a TB table)"
-                           : "",
+          .note = shell181
+                      ? "SHELL181 is a Mindlin-Reissner shell: MITC4 / MITC3 transverse shear, "
+                        "2x2 integration with incompatible membrane modes for KEYOPT(3) = 0 "
+                        "and 2; layered J2 plasticity with a TB table"
+                      : "",
           .create = [shell181](const ElementBuildContext& ctx, const ElementRecord& record) {
             return make_shell4(ctx, record, shell181);
           }};

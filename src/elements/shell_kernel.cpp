@@ -91,7 +91,8 @@ void FlatShellKernel::set_centroid_data() {
     Bm0_(2, 2 * a) = dN(1, a);
     Bm0_(2, 2 * a + 1) = dN(0, a);
   }
-  dk_curvature(c, c, Bb0_, detJ);
+  bending_b(c, c, Bb0_);
+  if (data_.mindlin) shear_b(c, c, Bs0_);
   n_modes_ = n_ == 4 && data_.extra_shapes ? 4 : 0;
   if (n_modes_ == 0) return;
   shape(0.0, 0.0, N, dN, detJ0_);
@@ -113,6 +114,7 @@ Eigen::MatrixXd FlatShellKernel::stiffness() const {
   // regular; it still vanishes for rigid in-plane rotations.
   add_drilling(K);
   if (data_.bending) add_bending(K);
+  if (data_.bending && data_.mindlin) add_shear(K);
   add_foundation(K);
   return K;
 }
@@ -120,6 +122,8 @@ Eigen::MatrixXd FlatShellKernel::stiffness() const {
 Eigen::MatrixXd FlatShellKernel::elastic_extra() const {
   Eigen::MatrixXd K = Eigen::MatrixXd::Zero(6 * n_, 6 * n_);
   add_drilling(K);
+  // Transverse shear stays elastic under plasticity (the J2 layers are plane stress).
+  if (data_.bending && data_.mindlin) add_shear(K);
   add_foundation(K);
   return K;
 }
@@ -330,7 +334,7 @@ void FlatShellKernel::add_bending(Eigen::MatrixXd& K) const {
     const double t = thickness_at(N);
     const Eigen::Matrix3d D = plane_stress(
         data_.nu, data_.E * t * t * t * data_.rmi / (12.0 * (1.0 - data_.nu * data_.nu)));
-    dk_curvature(p.xi, p.eta, B, detJ);
+    bending_b(p.xi, p.eta, B);
     Kb += B.transpose() * D * B * detJ * p.w;
   }
   for (int a = 0; a < n_; ++a)
@@ -365,6 +369,14 @@ Eigen::MatrixXd FlatShellKernel::lumped_mass() const {
   Eigen::MatrixXd M = Eigen::MatrixXd::Zero(6 * n_, 6 * n_);
   for (int a = 0; a < n_; ++a)
     for (int i = 0; i < 3; ++i) M(6 * a + i, 6 * a + i) = total_mass_ / n_;
+  // Mindlin: the normal's rotations θx, θy are independent fields with the inertia ρt³/12 per
+  // area (Mindlin 1951), lumped like the translations (a corner's share A/n at its thickness).
+  // θz, the drilling rotation, has no inertia of its own.
+  if (data_.mindlin && data_.rotary_inertia)
+    for (int a = 0; a < n_; ++a) {
+      const double t = data_.t[static_cast<std::size_t>(a)];
+      M(6 * a + 3, 6 * a + 3) = M(6 * a + 4, 6 * a + 4) = data_.rho * t * t * t / 12.0 * area_ / n_;
+    }
   return M;
 }
 
@@ -390,6 +402,11 @@ Resultants FlatShellKernel::resultants(const Eigen::VectorXd& d) const {
   if (data_.bending) {
     strain.noalias() = Bb0_ * db;
     r.M = plane_stress(data_.nu, data_.E * r.t * r.t * r.t * data_.rmi / (12.0 * nu2)) * strain;
+    if (data_.mindlin) {
+      Eigen::Vector2d gamma;
+      gamma.noalias() = Bs0_ * db;
+      r.Q = data_.shear_factor * data_.E / (2.0 * (1.0 + data_.nu)) * r.t * gamma;
+    }
   }
   return r;
 }

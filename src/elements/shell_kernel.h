@@ -10,8 +10,12 @@
 ///   incompatible modes 1−ξ², 1−η², condensed, 2×2 Gauss (Cook et al. §6.7); triangle = CST.
 /// - Drilling: Hughes–Brezzi penalty γ ∫ (θz − ½(∂v/∂x − ∂u/∂y))² dA with γ = drill_factor·G·t,
 ///   which vanishes for a rigid in-plane rotation (Hughes & Brezzi 1989).
-/// - Bending: discrete Kirchhoff DKT triangle (Batoz, Bathe & Ho 1980) / DKQ quad (Batoz &
-///   Ben Tahar 1982), D_b = E t³ RMI / (12(1−ν²)).
+/// - Bending, thin (SHELL63): discrete Kirchhoff DKT triangle (Batoz, Bathe & Ho 1980) / DKQ
+///   quad (Batoz & Ben Tahar 1982), D_b = E t³ RMI / (12(1−ν²)).
+/// - Bending, Mindlin–Reissner (SHELL181, KernelData::mindlin): independent rotations with the
+///   (bi)linear shape functions, βx = θy, βy = −θx; transverse shear with assumed covariant
+///   strains, MITC4 on the quad (Bathe & Dvorkin 1985) and MITC3 on the triangle (Lee & Bathe
+///   2004), D_s = k G t with k = 5/6 (shell_kernel_mindlin.cpp).
 #include <Eigen/Core>
 
 #include <array>
@@ -35,6 +39,8 @@ struct KernelData {
   bool extra_shapes = true;             // KEYOPT(3) != 2 (quad membrane only)
   bool rotary_inertia = true;           // KEYOPT(7) != 1
   double drill_factor = 1.0e-3;         // γ / (G t) of the drilling penalty
+  bool mindlin = false;                 // Mindlin–Reissner bending + MITC shear (SHELL181)
+  double shear_factor = 5.0 / 6.0;      // k of the transverse shear stiffness k G t
 };
 
 /// Stress resultants at the centroid, element axes: N = (TX, TY, TXY) force/length,
@@ -43,6 +49,8 @@ struct KernelData {
 struct Resultants {
   Eigen::Vector3d N = Eigen::Vector3d::Zero();
   Eigen::Vector3d M = Eigen::Vector3d::Zero();
+  /// Transverse shear forces (QX, QY) = k G t (γxz, γyz), force/length (Mindlin kernel only).
+  Eigen::Vector2d Q = Eigen::Vector2d::Zero();
   double t = 0.0;
 };
 
@@ -67,7 +75,8 @@ class FlatShellKernel {
   /// Consistent mass: (ρt + ADMSUA) ∫NᵀN on u, v, w with the bilinear/linear N, plus rotary
   /// inertia ρt³/12 ∫NᵀN on θx, θy, θz unless rotary inertia is off. Formed at each call.
   Eigen::MatrixXd consistent_mass() const;
-  /// Lumped mass: total_mass()/n on each translation, nothing on rotations.
+  /// Lumped mass: total_mass()/n on each translation; Mindlin kernel with rotary inertia:
+  /// ρt³/12·A/n on θx, θy; nothing on θz.
   Eigen::MatrixXd lumped_mass() const;
 
   /// Geometric (stress) stiffness of the membrane resultants of the local displacement d:
@@ -108,6 +117,18 @@ class FlatShellKernel {
   void shape(double xi, double eta, Eigen::VectorXd& N, Eigen::MatrixXd& dN_dx, double& detJ) const;
   void dk_fields(const double* N6, Eigen::VectorXd& Hx, Eigen::VectorXd& Hy) const;
   void dk_curvature(double xi, double eta, Eigen::MatrixXd& B, double& detJ) const;
+  /// Curvature operator (κx, κy, κxy) of the bending DOFs (w, θx, θy per node) at (ξ, η): the
+  /// DK one, or the Mindlin one of the (bi)linear rotations (κ = ∇β, β = (θy, −θx)).
+  void bending_b(double xi, double eta, Eigen::MatrixXd& B) const;
+  /// Assumed transverse shear strains (γxz, γyz) of the bending DOFs at (ξ, η), 2 × 3n: MITC4
+  /// (quad) or MITC3 (triangle). Mindlin kernel only.
+  void shear_b(double xi, double eta, Eigen::MatrixXd& B) const;
+  /// The Jacobian [∂(x, y)/∂ξ; ∂(x, y)/∂η] of the (bi)linear map at (ξ, η).
+  Eigen::Matrix2d jacobian(double xi, double eta) const;
+  /// Covariant transverse shear strains (γξ, γη) = (∂w/∂ξ + β·∂x/∂ξ, ∂w/∂η + β·∂x/∂η) of the
+  /// displacement-based field at (ξ, η), 2 × 3n: the values the MITC elements tie to.
+  Eigen::Matrix<double, 2, Eigen::Dynamic> covariant_shear(double xi, double eta) const;
+  void add_shear(Eigen::MatrixXd& K) const;
   double thickness_at(const Eigen::VectorXd& N) const;
   std::vector<Point> points() const;
   /// Centroidal strain operators and the incompatible modes' centre Jacobian.
@@ -140,6 +161,7 @@ class FlatShellKernel {
   Eigen::Matrix2d J0i_ = Eigen::Matrix2d::Identity();
   Eigen::MatrixXd Bm0_;  // centroidal membrane strain of (u, v) of all nodes, 3 × 2n
   Eigen::MatrixXd Bb0_;  // centroidal curvature of (w, θx, θy), 3 × 3n
+  Eigen::MatrixXd Bs0_;  // centroidal transverse shear strain of (w, θx, θy), 2 × 3n (Mindlin)
 };
 
 /// Plane-stress (or plate) constitutive matrix [[1,ν,0],[ν,1,0],[0,0,(1−ν)/2]]·scale.

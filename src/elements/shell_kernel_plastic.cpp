@@ -72,7 +72,7 @@ void FlatShellKernel::plastic_sum(const J2Plasticity& law,
     const double t = thickness_at(N);
     const double wgt = detJ * p.w;
     const Eigen::MatrixXd Bm = membrane_b(p);
-    dk_curvature(p.xi, p.eta, Bb, detJ);
+    bending_b(p.xi, p.eta, Bb);
     const Eigen::Vector3d e = data_.membrane ? Eigen::Vector3d(Bm * qm) : Eigen::Vector3d::Zero();
     const Eigen::Vector3d kappa =
         data_.bending ? Eigen::Vector3d(Bb * qb) : Eigen::Vector3d::Zero();
@@ -183,6 +183,10 @@ void FlatShellKernel::plastic_response(const J2Plasticity& law,
       K(dof[static_cast<std::size_t>(i)], dof[static_cast<std::size_t>(j)]) += krr(i, j);
   }
   K = 0.5 * (K + K.transpose()).eval();
+  if (mean && data_.mindlin && data_.bending) {
+    // Elastic transverse shear forces at the centroid (shell_kernel_mindlin.cpp).
+    mean->Q = data_.shear_factor * data_.E / (2.0 * (1.0 + data_.nu)) * mean->t * (Bs0_ * qb);
+  }
 }
 
 double FlatShellKernel::plastic_work(const std::vector<PlasticState>& states) const {

@@ -150,6 +150,7 @@ class Solid164Set final : public ExplicitElementSet {
                                     double* element_forces) override;
   ExplicitSetEnergies energies() const override { return energies_; }
   void results(Eigen::MatrixXd& out) const override;
+  void segments(std::vector<ExplicitSegment>& out) const override;
 
  private:
   /// σ_{n+1} of element k from D, W over dt; returns the stress power's mean σ:D.
@@ -336,6 +337,25 @@ const ElementRegistration kSolid164{
          -> std::unique_ptr<ExplicitElementSet> {
        return std::make_unique<Solid164Set>(ctx, records);
      }}};
+
+/// The six faces of the brick I..P, counterclockwise seen from outside (outward normal).
+constexpr int kFaces[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
+                              {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+
+void Solid164Set::segments(std::vector<ExplicitSegment>& out) const {
+  for (std::size_t k = 0; k < size(); ++k) {
+    double volume = 0.0;
+    for (int a = 0; a < 8; ++a) volume += share_[8 * k + a];
+    for (const auto& face : kFaces) {
+      ExplicitSegment s;
+      for (int a = 0; a < 4; ++a) s.nodes[a] = nodes_[8 * k + face[a]];
+      s.element = ids_[k];
+      s.bulk_modulus = materials_[material_[k]].bulk;
+      s.volume = volume;
+      out.push_back(s);
+    }
+  }
+}
 
 }  // namespace
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace impactfe {
 
@@ -14,6 +15,24 @@ CentralDifference::CentralDifference(ExplicitSystem& system, const ExplicitContr
   for (auto* v : {&vx_, &vy_, &vz_, &ax_, &ay_, &az_, &fx_, &fy_, &fz_}) v->assign(n, 0.0);
   fixed_.assign(3 * n, 0);
   element_forces_.assign(3 * system.n_slots, 0.0);
+  if (system.has_rotations()) {
+    for (auto* v : {&wx_, &wy_, &wz_, &rx_, &ry_, &rz_, &bx_, &by_, &bz_, &mx_, &my_, &mz_})
+      v->assign(n, 0.0);
+    element_moments_.assign(3 * system.n_slots, 0.0);
+    fixed_rotation_.assign(3 * n, 0);
+    rotational_.assign(n, 0);
+    for (std::size_t r : system.rotational_nodes) rotational_[r] = 1;
+  }
+}
+
+void CentralDifference::set_rotation_fixes(std::vector<std::uint8_t> fixed) {
+  if (!system_.has_rotations()) return;
+  fixed_rotation_ = std::move(fixed);
+  for (std::size_t i : system_.rotational_nodes) {
+    if (fixed_rotation_[3 * i]) wx_[i] = bx_[i] = 0.0;
+    if (fixed_rotation_[3 * i + 1]) wy_[i] = by_[i] = 0.0;
+    if (fixed_rotation_[3 * i + 2]) wz_[i] = bz_[i] = 0.0;
+  }
 }
 
 void CentralDifference::set_loads(std::vector<std::uint8_t> fixed, const Vec3& frame_acceleration) {
@@ -32,14 +51,33 @@ void CentralDifference::set_velocity(std::size_t node, const Vec3& v) {
   vz_[node] = v.z();
 }
 
+void CentralDifference::set_angular_velocity(std::size_t node, const Vec3& w) {
+  if (!has_rotations(node)) return;
+  wx_[node] = w.x();
+  wy_[node] = w.y();
+  wz_[node] = w.z();
+}
+
 void CentralDifference::internal_forces(double dt) {
-  const ExplicitNodalView view{x_.data(), y_.data(), z_.data(), vx_.data(), vy_.data(), vz_.data()};
+  const bool rotations = system_.has_rotations();
+  const ExplicitNodalView view{x_.data(),
+                               y_.data(),
+                               z_.data(),
+                               vx_.data(),
+                               vy_.data(),
+                               vz_.data(),
+                               rotations ? wx_.data() : nullptr,
+                               rotations ? wy_.data() : nullptr,
+                               rotations ? wz_.data() : nullptr};
   ExplicitStepLimit limit;
   for (std::size_t i = 0; i < system_.sets.size(); ++i) {
-    const ExplicitStepLimit l = system_.sets[i]->internal_forces(
-        view, dt, element_forces_.data() + 3 * system_.set_offset[i]);
+    const std::size_t offset = 3 * system_.set_offset[i];
+    const ExplicitStepLimit l = system_.sets[i]->internal_forces_and_moments(
+        view, dt, element_forces_.data() + offset,
+        rotations ? element_moments_.data() + offset : nullptr);
     limit.take(l.dt, l.element);
   }
+  if (rotations) sum_moments();
   // Each node sums its slots in ascending slot order: the same sum whatever split the element
   // loop had (docs/explicit_dynamics.md, "Determinism").
   const double* f = element_forces_.data();
@@ -57,8 +95,39 @@ void CentralDifference::internal_forces(double dt) {
     fy_[n] = sy;
     fz_[n] = sz;
   }
+  // Loads by curve and contact at x_{n+1}, t_{n+1} (explicit_interaction.h).
+  // An interaction's stiffness adds to the elements': the largest frequency of M⁻¹(K_e + K_c)
+  // is at most √(ω_e² + ω_c²) (Weyl's inequality), so its step combines with the elements' as
+  // 1/√(1/dt_e² + 1/dt_c²).
+  const double elements = limit.dt;
+  for (ExplicitInteraction* i : interactions_) {
+    const ExplicitStepLimit l = i->add_forces(view, system_.mass.data(), time_ + dt, dt, fx_.data(),
+                                              fy_.data(), fz_.data());
+    if (l.dt < std::numeric_limits<double>::infinity())
+      limit.take(1.0 / std::sqrt(1.0 / (elements * elements) + 1.0 / (l.dt * l.dt)), l.element);
+  }
   controlling_ = limit.element;
   critical_ = limit.dt;
+}
+
+void CentralDifference::sum_moments() {
+  // As the forces: each rotational node sums its slots in ascending order (slots of sets without
+  // rotations hold zero moments).
+  const double* f = element_moments_.data();
+  const std::size_t* start = system_.slot_start.data();
+  const std::size_t* slot = system_.slots.data();
+  for (std::size_t n : system_.rotational_nodes) {
+    double sx = 0.0, sy = 0.0, sz = 0.0;
+    for (std::size_t j = start[n]; j < start[n + 1]; ++j) {
+      const double* s = f + 3 * slot[j];
+      sx += s[0];
+      sy += s[1];
+      sz += s[2];
+    }
+    mx_[n] = sx;
+    my_[n] = sy;
+    mz_[n] = sz;
+  }
 }
 
 void CentralDifference::choose_step() {
@@ -86,6 +155,17 @@ void CentralDifference::accelerations() {
     ay_[n] = fix[3 * n + 1] ? 0.0 : gy - fy_[n] * inv;
     az_[n] = fix[3 * n + 2] ? 0.0 : gz - fz_[n] * inv;
   }
+  // Rotations: ω̇ = −m_int / I about global axes (a lumped isotropic rotary inertia, so the
+  // gyroscopic term ω × Iω vanishes).
+  const double* inertia = system_.inertia.data();
+  const std::uint8_t* rfix = fixed_rotation_.data();
+  for (std::size_t n : system_.rotational_nodes) {
+    const double inv = inertia[n] > 0.0 ? 1.0 / inertia[n] : 0.0;
+    bx_[n] = rfix[3 * n] ? 0.0 : -mx_[n] * inv;
+    by_[n] = rfix[3 * n + 1] ? 0.0 : -my_[n] * inv;
+    bz_[n] = rfix[3 * n + 2] ? 0.0 : -mz_[n] * inv;
+  }
+  for (ExplicitInteraction* i : interactions_) i->hold(ax_.data(), ay_.data(), az_.data());
 }
 
 bool CentralDifference::scale_masses() {
@@ -102,6 +182,7 @@ bool CentralDifference::scale_masses() {
         any = true;
       }
     }
+  if (any) system_.update_inertia();  // the rotary inertia follows the scaled densities
   return any;
 }
 
@@ -113,6 +194,8 @@ void CentralDifference::start() {
   double kinetic = 0.0;
   for (std::size_t n = 0; n < system_.n_nodes(); ++n)
     kinetic += system_.mass[n] * (vx_[n] * vx_[n] + vy_[n] * vy_[n] + vz_[n] * vz_[n]);
+  for (std::size_t r : system_.rotational_nodes)
+    kinetic += system_.inertia[r] * (wx_[r] * wx_[r] + wy_[r] * wy_[r] + wz_[r] * wz_[r]);
   initial_kinetic_ = 0.5 * kinetic;
   previous_step_ = 0.0;
 }
@@ -128,12 +211,26 @@ void CentralDifference::cycle(double dt) {
     vx_[n] += mean * ax_[n];
     vy_[n] += mean * ay_[n];
     vz_[n] += mean * az_[n];
+  }
+  for (ExplicitInteraction* i : interactions_)
+    i->prescribe(time_ + 0.5 * dt, mean, m, vx_.data(), vy_.data(), vz_.data());
+  for (std::size_t n = 0; n < n_nodes; ++n) {
     x_[n] += dt * vx_[n];
     y_[n] += dt * vy_[n];
     z_[n] += dt * vz_[n];
     work += m[n] * (gx * vx_[n] + gy * vy_[n] + gz * vz_[n]);
   }
   external_work_ += dt * work;  // f_ext constant over the step: f·Δx (fixed DOFs: v = 0)
+  // Rotations: the same half-step update of ω; the rotation is the sum of the increments Δt ω
+  // in global axes (output only: the shells work from ω and their current frame).
+  for (std::size_t r : system_.rotational_nodes) {
+    wx_[r] += mean * bx_[r];
+    wy_[r] += mean * by_[r];
+    wz_[r] += mean * bz_[r];
+    rx_[r] += dt * wx_[r];
+    ry_[r] += dt * wy_[r];
+    rz_[r] += dt * wz_[r];
+  }
   internal_forces(dt);
   choose_step();
   accelerations();
@@ -151,6 +248,11 @@ ExplicitEnergies CentralDifference::energies() const {
                  vz = vz_[n] + half * az_[n];
     kinetic += system_.mass[n] * (vx * vx + vy * vy + vz * vz);
   }
+  for (std::size_t r : system_.rotational_nodes) {
+    const double wx = wx_[r] + half * bx_[r], wy = wy_[r] + half * by_[r],
+                 wz = wz_[r] + half * bz_[r];
+    kinetic += system_.inertia[r] * (wx * wx + wy * wy + wz * wz);
+  }
   e.kinetic = 0.5 * kinetic;
   for (const auto& set : system_.sets) {
     const ExplicitSetEnergies s = set->energies();
@@ -159,6 +261,10 @@ ExplicitEnergies CentralDifference::energies() const {
     e.plastic_work += s.plastic_work;
   }
   e.external_work = external_work_;
+  for (const ExplicitInteraction* i : interactions_) {
+    e.external_work += i->external_work();
+    e.contact += i->contact_energy();
+  }
   e.initial_kinetic = initial_kinetic_;
   return e;
 }
@@ -181,6 +287,31 @@ Vec3 CentralDifference::reaction(std::size_t n) const {
   const double m = system_.mass[n];
   return {fx_[n] + m * frame_acceleration_.x(), fy_[n] + m * frame_acceleration_.y(),
           fz_[n] + m * frame_acceleration_.z()};
+}
+
+}  // namespace impactfe
+
+namespace impactfe {
+
+Vec3 CentralDifference::rotation(std::size_t n) const {
+  if (!has_rotations(n)) return Vec3::Zero();
+  return {rx_[n], ry_[n], rz_[n]};
+}
+
+Vec3 CentralDifference::angular_velocity(std::size_t n) const {
+  if (!has_rotations(n)) return Vec3::Zero();
+  const double half = 0.5 * previous_step_;
+  return {wx_[n] + half * bx_[n], wy_[n] + half * by_[n], wz_[n] + half * bz_[n]};
+}
+
+Vec3 CentralDifference::angular_acceleration(std::size_t n) const {
+  if (!has_rotations(n)) return Vec3::Zero();
+  return {bx_[n], by_[n], bz_[n]};
+}
+
+Vec3 CentralDifference::moment_reaction(std::size_t n) const {
+  if (!has_rotations(n)) return Vec3::Zero();
+  return {mx_[n], my_[n], mz_[n]};  // no external moments: the internal moment
 }
 
 }  // namespace impactfe

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/explicit_controls.h"
+#include "explicit/explicit_interaction.h"
 #include "explicit/explicit_system.h"
 
 namespace impactfe {
@@ -20,10 +21,13 @@ struct ExplicitEnergies {
   double internal = 0.0;
   double hourglass = 0.0;
   double plastic_work = 0.0;
-  double external_work = 0.0;  // work of f_ext (ACEL) on the motion
+  double external_work = 0.0;  // work of f_ext (ACEL, EDLOAD) on the motion
+  double contact = 0.0;        // penalty springs and friction (EDCGEN)
   double initial_kinetic = 0.0;
   /// Total minus what was put in: zero for an exact balance.
-  double drift() const { return kinetic + internal + hourglass - initial_kinetic - external_work; }
+  double drift() const {
+    return kinetic + internal + hourglass + contact - initial_kinetic - external_work;
+  }
   double put_in() const { return initial_kinetic + external_work; }
 };
 
@@ -34,8 +38,16 @@ class CentralDifference {
   /// The DOFs fixed (3 per node, x y z) and the frame acceleration (ACEL: body force −m a on
   /// every node) of the current load step.
   void set_loads(std::vector<std::uint8_t> fixed, const Vec3& frame_acceleration);
+  /// The rotations fixed (3 per node, about x y z) of the current load step; entries of nodes
+  /// without rotational DOFs are ignored. Only for a system with rotations.
+  void set_rotation_fixes(std::vector<std::uint8_t> fixed);
+  /// Forces beyond the elements' (explicit_interaction.h), evaluated in the order added; the
+  /// interaction must outlive the run.
+  void add_interaction(ExplicitInteraction* interaction) { interactions_.push_back(interaction); }
   /// Initial velocities (before start()).
   void set_velocity(std::size_t node, const Vec3& v);
+  /// Initial angular velocity of a node with rotational DOFs (before start()).
+  void set_angular_velocity(std::size_t node, const Vec3& w);
   /// Forces and accelerations at t = 0 and the first stable step; mass scaling at the start.
   void start();
   /// One cycle of step `dt` (at most stable_step(): the caller may shorten it to land on an end
@@ -56,11 +68,24 @@ class CentralDifference {
   Vec3 acceleration(std::size_t n) const;
   Vec3 reaction(std::size_t n) const;
   bool fixed(std::size_t n, int direction) const { return fixed_[3 * n + direction] != 0; }
+  /// Rotational DOFs (nodes of a set with rotations): the rotation (the sum of the increments
+  /// Δt ω in global axes), angular velocity and acceleration, the moment reaction at a fixed
+  /// rotation. Zero at nodes without rotations.
+  bool has_rotations(std::size_t n) const { return !rotational_.empty() && rotational_[n] != 0; }
+  Vec3 rotation(std::size_t n) const;
+  Vec3 angular_velocity(std::size_t n) const;
+  Vec3 angular_acceleration(std::size_t n) const;
+  Vec3 moment_reaction(std::size_t n) const;
+  bool rotation_fixed(std::size_t n, int axis) const {
+    return !fixed_rotation_.empty() && fixed_rotation_[3 * n + axis] != 0;
+  }
 
  private:
   /// f_int from the element sets at (x, v) over dt, gathered per node in fixed order.
   void internal_forces(double dt);
   void accelerations();
+  /// The nodal moments of the sets with rotations, gathered like the forces.
+  void sum_moments();
   /// The next step from the critical one (and mass scaling under a positive DTMS).
   void choose_step();
   /// Mass scaling (EDCTS DTMS): adds mass to the elements whose stable step is below the
@@ -73,6 +98,12 @@ class CentralDifference {
   Vec3 frame_acceleration_ = Vec3::Zero();
   std::vector<double> element_forces_;
   std::vector<std::uint8_t> fixed_;
+  // Rotational DOFs: allocated only when a set has rotations; the loops visit only
+  // system_.rotational_nodes.
+  std::vector<double> wx_, wy_, wz_, rx_, ry_, rz_, bx_, by_, bz_, mx_, my_, mz_;
+  std::vector<double> element_moments_;
+  std::vector<std::uint8_t> fixed_rotation_, rotational_;
+  std::vector<ExplicitInteraction*> interactions_;
   double critical_ = 0.0;  // the smallest element step at the current configuration
   double time_ = 0.0, step_ = 0.0, previous_step_ = 0.0, added_mass_ = 0.0;
   double external_work_ = 0.0, initial_kinetic_ = 0.0;

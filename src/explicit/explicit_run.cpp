@@ -4,6 +4,7 @@
 
 #include <time.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -11,6 +12,8 @@
 #include "core/log.h"
 #include "elements/element_registry.h"
 #include "explicit/central_difference.h"
+#include "explicit/explicit_contact.h"
+#include "explicit/explicit_loads.h"
 
 namespace impactfe {
 
@@ -60,32 +63,57 @@ void refuse_unsupported(const Model& model, const AnalysisRequest& request) {
   }
 }
 
-/// The fixed DOFs of a load step: D on UX, UY, UZ (value 0). Rotations do not exist at the nodes
-/// of the explicit solids and are ignored.
-std::vector<std::uint8_t> fixed_dofs(const ExplicitSystem& s, const LoadStep& step) {
+/// The fixed DOFs of a load step: D on UX, UY, UZ (value 0), or on ROTX, ROTY, ROTZ when
+/// `rotations` (3 per node, about x y z). Rotations do not exist at the nodes of the explicit
+/// solids, links and masses: D on them is ignored there.
+std::vector<std::uint8_t> fixed_dofs(const ExplicitSystem& s, const LoadStep& step,
+                                     bool rotations) {
   std::vector<std::uint8_t> fixed(3 * s.n_nodes(), 0);
   for (const auto& [key, value] : step.constraints) {
     const int n = s.index_of(key.node);
-    if (n >= 0 && !is_rotation(key.dof))
-      fixed[3 * static_cast<std::size_t>(n) + static_cast<std::size_t>(key.dof)] = 1;
+    if (n < 0 || is_rotation(key.dof) != rotations) continue;
+    if (rotations && value != 0.0 &&
+        std::binary_search(s.rotational_nodes.begin(), s.rotational_nodes.end(),
+                           static_cast<std::size_t>(n)))
+      throw NotImplementedError(step.where,
+                                fmt::format("load step {}: a prescribed rotation (D,{},{},{:g}) "
+                                            "is not implemented in explicit dynamics (D with "
+                                            "value 0 fixes it)",
+                                            step.number, key.node, dof_name(key.dof), value));
+    fixed[3 * static_cast<std::size_t>(n) + static_cast<std::size_t>(key.dof) % 3] = 1;
   }
   return fixed;
 }
 
-/// IC velocities first, then EDVEL (which defines the velocity of its component's nodes).
+/// IC velocities first, then EDVEL (which defines the velocity of its component's nodes). IC
+/// on ROTX, ROTY, ROTZ sets the angular velocity of a shell node; a nonzero one at a node without
+/// rotations is refused.
 void set_initial_velocities(const Model& model, const ExplicitSystem& s, CentralDifference& cd) {
-  std::vector<Vec3> v(s.n_nodes(), Vec3::Zero());
+  std::vector<Vec3> v(s.n_nodes(), Vec3::Zero()), w(s.n_nodes(), Vec3::Zero());
   for (const auto& [key, ic] : model.initial_conditions) {
     const int n = s.index_of(key.node);
-    if (n >= 0 && !is_rotation(key.dof))
-      v[static_cast<std::size_t>(n)](static_cast<int>(key.dof)) = ic.velocity;
+    if (n < 0) continue;
+    const auto node = static_cast<std::size_t>(n);
+    if (!is_rotation(key.dof)) {
+      v[node](static_cast<int>(key.dof)) = ic.velocity;
+    } else if (cd.has_rotations(node)) {
+      w[node](static_cast<int>(key.dof) - 3) = ic.velocity;
+    } else if (ic.velocity != 0.0) {
+      throw InputError(ic.where, fmt::format("node {}: an initial {} velocity: the node has no "
+                                             "rotational DOFs in explicit dynamics (only the "
+                                             "nodes of shells have)",
+                                             key.node, dof_name(key.dof)));
+    }
   }
   for (const auto& e : model.explicit_dynamics.initial_velocities)
     for (int node : e.nodes) {
       const int n = s.index_of(node);
       if (n >= 0) v[static_cast<std::size_t>(n)] = e.velocity;
     }
-  for (std::size_t n = 0; n < s.n_nodes(); ++n) cd.set_velocity(n, v[n]);
+  for (std::size_t n = 0; n < s.n_nodes(); ++n) {
+    cd.set_velocity(n, v[n]);
+    cd.set_angular_velocity(n, w[n]);
+  }
 }
 
 /// One stored time point: nodal U, V, A and reactions in the file's node order; the element
@@ -110,12 +138,21 @@ TimePoint make_point(const ExplicitSystem& s, const CentralDifference& cd,
       p.acceleration(row, i) = a(i);
       if (cd.fixed(n, i)) p.reaction(row, i) = r(i);
     }
+    if (!cd.has_rotations(n)) continue;
+    const Vec3 rot = cd.rotation(n), w = cd.angular_velocity(n), b = cd.angular_acceleration(n),
+               m = cd.moment_reaction(n);
+    for (int i = 0; i < 3; ++i) {
+      p.displacement(row, 3 + i) = rot(i);
+      p.velocity(row, 3 + i) = w(i);
+      p.acceleration(row, 3 + i) = b(i);
+      if (cd.rotation_fixed(n, i)) p.reaction(row, 3 + i) = m(i);
+    }
   }
   const ExplicitEnergies e = cd.energies();
   p.energy = {{"kinetic", e.kinetic},
               {"strain", e.internal - e.plastic_work},
               {"external_work", e.external_work},
-              {"gap_work", 0.0},
+              {"gap_work", e.contact},
               {"dissipation", e.hourglass},
               {"plastic_work", e.plastic_work}};
   if (!full) return p;
@@ -146,14 +183,15 @@ class EnergyCheck {
     over_ = std::abs(e.drift()) > kExplicitEnergyBound * reference ? over_ + 1 : 0;
     if (over_ < kExplicitChecksOver || warned_) return;
     const std::string message = fmt::format(
-        "t = {:g}, cycle {}: energy {}: kinetic + internal + hourglass {:.4g} against {:.4g} "
+        "t = {:g}, cycle {}: energy {}: kinetic + internal + hourglass + contact {:.4g} against "
+        "{:.4g} "
         "put in (initial kinetic + external work), {:.1f} % off (bound {:.0f} %, passed at {} "
         "checks in a row): an unstable time step (EDCTS TSSFAC above 1 or a stiff element "
         "outside the step estimate) or an hourglass mode out of control (EDHGLS). The results "
         "up to here are kept; --accept-energy-error goes on",
         cd.time(), cd.cycles(), e.drift() > 0 ? "created" : "lost",
-        e.kinetic + e.internal + e.hourglass, e.put_in(), 100.0 * std::abs(e.drift()) / reference,
-        100.0 * kExplicitEnergyBound, kExplicitChecksOver);
+        e.kinetic + e.internal + e.hourglass + e.contact, e.put_in(),
+        100.0 * std::abs(e.drift()) / reference, 100.0 * kExplicitEnergyBound, kExplicitChecksOver);
     if (!accept_) throw SolutionError(message);
     Log::warn("{} (accepted: --accept-energy-error)", message);
     warned_ = true;
@@ -177,11 +215,12 @@ void summarize(const ExplicitSystem& s, const CentralDifference& cd, const Energ
       out.smallest_step, out.smallest_step_element, out.ns_per_element_cycle));
   out.notes.push_back(fmt::format(
       "energy: kinetic {:.6g}, internal {:.6g} (plastic work {:.4g}), hourglass {:.4g} ({:.2f} % "
-      "of internal), initial kinetic {:.6g}, external work {:.6g}; balance off by {:.3f} % "
-      "(largest {:.3f} %)",
+      "of internal), contact {:.4g}, initial kinetic {:.6g}, external work {:.6g}; balance off "
+      "by {:.3f} % (largest {:.3f} %)",
       e.kinetic, e.internal, e.plastic_work, e.hourglass,
-      e.internal > 0 ? 100.0 * e.hourglass / e.internal : 0.0, e.initial_kinetic, e.external_work,
-      e.put_in() > 0 ? 100.0 * e.drift() / e.put_in() : 0.0, 100.0 * check.worst()));
+      e.internal > 0 ? 100.0 * e.hourglass / e.internal : 0.0, e.contact, e.initial_kinetic,
+      e.external_work, e.put_in() > 0 ? 100.0 * e.drift() / e.put_in() : 0.0,
+      100.0 * check.worst()));
   if (cd.added_mass() > 0.0)
     out.notes.push_back(fmt::format("mass scaling (EDCTS DTMS): {:.4g} added to {:.4g} ({:.3f} %)",
                                     cd.added_mass(), s.physical_mass,
@@ -206,6 +245,10 @@ ExplicitRunSummary run_explicit_analysis(const Model& model, const AnalysisReque
   ExplicitSystem system = build_explicit_system(model);
   const ExplicitControls& controls = model.explicit_dynamics;
   CentralDifference cd(system, controls);
+  ExplicitCurveLoads loads(system, controls);
+  if (!loads.empty()) cd.add_interaction(&loads);
+  ExplicitContactSet contact(model, system);
+  if (!contact.empty()) cd.add_interaction(&contact);
   set_initial_velocities(model, system, cd);
   const double end = *request.load_steps.back().time_end;
   OutputGrid results{controls.results.for_end_time(end, 100)};
@@ -224,7 +267,8 @@ ExplicitRunSummary run_explicit_analysis(const Model& model, const AnalysisReque
   int point = 0;
   for (std::size_t i = 0; i < request.load_steps.size(); ++i) {
     const LoadStep& step = request.load_steps[i];
-    cd.set_loads(fixed_dofs(system, step), step.acel);
+    cd.set_loads(fixed_dofs(system, step, false), step.acel);
+    if (system.has_rotations()) cd.set_rotation_fixes(fixed_dofs(system, step, true));
     if (i == 0) {
       cd.start();
       // The initial state is load step 0, substep 0, as the implicit transients store it.
@@ -266,6 +310,7 @@ ExplicitRunSummary run_explicit_analysis(const Model& model, const AnalysisReque
       summary.element_cycles > 0 ? 1e9 * loop_seconds / static_cast<double>(summary.element_cycles)
                                  : 0.0;
   summarize(system, cd, check, summary);
+  if (!contact.empty()) summary.notes.push_back(contact.summary());
   writer.set_count("cycles", summary.cycles);
   writer.set_attribute("ns_per_element_cycle", summary.ns_per_element_cycle);
   writer.set_attribute("added_mass", cd.added_mass());

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <map>
 #include <set>
 
@@ -38,6 +39,12 @@ std::size_t ExplicitSystem::n_elements() const {
 int ExplicitSystem::index_of(int node_id) const {
   const auto it = std::lower_bound(node_ids.begin(), node_ids.end(), node_id);
   return it != node_ids.end() && *it == node_id ? static_cast<int>(it - node_ids.begin()) : -1;
+}
+
+void ExplicitSystem::update_inertia() {
+  if (!has_rotations()) return;
+  inertia.assign(n_nodes(), 0.0);
+  for (const auto& set : sets) set->add_rotary_inertia(inertia);
 }
 
 namespace {
@@ -111,6 +118,14 @@ ExplicitSystem build_explicit_system(const Model& model) {
   for (const auto& set : s.sets) set->add_lumped_mass(s.mass);
   for (double m : s.mass) s.physical_mass += m;
   index_slots(s);
+  std::vector<std::uint8_t> rotational(s.n_nodes(), 0);
+  for (const auto& set : s.sets)
+    if (set->has_rotations())
+      for (std::size_t k = 0; k < set->size(); ++k)
+        for (int a = 0; a < set->nodes_per_element(); ++a) rotational[set->nodes(k)[a]] = 1;
+  for (std::size_t n = 0; n < s.n_nodes(); ++n)
+    if (rotational[n]) s.rotational_nodes.push_back(n);
+  s.update_inertia();
   return s;
 }
 

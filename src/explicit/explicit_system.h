@@ -30,6 +30,13 @@ struct ExplicitSystem {
   std::vector<std::size_t> slot_start;
   std::vector<std::size_t> slots;
   double physical_mass = 0.0;  // before mass scaling
+  /// Nodes with rotational DOFs (those of a set with has_rotations()), ascending; empty when
+  /// no set has rotations, and then `inertia` is empty too (translational runs stay as cheap).
+  std::vector<std::size_t> rotational_nodes;
+  std::vector<double> inertia;  // lumped rotary inertia per node (0 at nodes without rotations)
+  bool has_rotations() const { return !rotational_nodes.empty(); }
+  /// Recomputes `inertia` from the sets (after mass scaling changed their densities).
+  void update_inertia();
 
   std::size_t n_nodes() const { return node_ids.size(); }
   std::size_t n_elements() const;

@@ -149,7 +149,8 @@ TEST(Shell4, TriangleFromRepeatedNodeHasEighteenDofs) {
   EXPECT_EQ(e->n_dofs(), 18);
   EXPECT_STREQ(e->family(), "Shell4");
 
-  // SHELL181 with a SECTYPE SHELL thickness gives the same stiffness.
+  // SHELL181 with a SECTYPE SHELL thickness gives the stiffness of SHELL181 with the same
+  // thickness as a real constant (SHELL181 is the Mindlin kernel, SHELL63 the DK one).
   ElementType et181 = et;
   et181.id = 2;
   et181.ansys_name = "SHELL181";
@@ -160,7 +161,11 @@ TEST(Shell4, TriangleFromRepeatedNodeHasEighteenDofs) {
   rec181.real = 99;  // not defined: the section must be used
   rec181.secnum = 5;
   const auto e181 = create_element(ElementBuildContext{m, {}}, rec181);
-  EXPECT_LE((stiffness(*e) - stiffness(*e181)).norm(), 1e-12 * stiffness(*e).norm());
+  ElementRecord rec181_real = rec;
+  rec181_real.type = 2;
+  const auto e181_real = create_element(ElementBuildContext{m, {}}, rec181_real);
+  EXPECT_LE((stiffness(*e181_real) - stiffness(*e181)).norm(), 1e-12 * stiffness(*e181).norm());
+  EXPECT_GT((stiffness(*e) - stiffness(*e181)).norm(), 1e-3 * stiffness(*e).norm());
 
   // Input errors carry the element's location.
   auto expect_error = [&](const ElementRecord& r, const std::string& what) {
@@ -459,39 +464,44 @@ Eigen::VectorXd corotational_state(const CorotationalCase& c) {
   return u;
 }
 
-std::unique_ptr<Shell4> make_case_shell(const CorotationalCase& c) {
+/// `mindlin`: SHELL181's kernel (Mindlin bending, MITC shear, drilling factor 1).
+std::unique_ptr<Shell4> make_case_shell(const CorotationalCase& c, bool mindlin = false) {
   Shell4Data d;
   d.node_ids = c.x.size() == 3 ? std::vector<int>{1, 2, 3} : std::vector<int>{1, 2, 3, 4};
   d.positions = c.x;
   d.kernel = plate_data(2.0e5, 0.3, 0.05);
+  d.kernel.mindlin = mindlin;
+  if (mindlin) d.kernel.drill_factor = 1.0;
   return std::make_unique<Shell4>(1, d, SourceLocation{"test", 1, "E"});
 }
 
 TEST(Shell4, CorotationalTangentMatchesFiniteDifferences) {
   ElementContext ctx;
   ctx.large_deflection = true;
-  for (const CorotationalCase& c : corotational_cases()) {
-    const auto e = make_case_shell(c);
-    // At u = 0 the co-rotational tangent is the linear stiffness.
-    const Eigen::MatrixXd K0 = stiffness(*e);
-    EXPECT_LE((stiffness(*e, ctx) - K0).norm(), 1e-12 * K0.norm()) << c.name;
-    const Eigen::VectorXd u = corotational_state(c);
-    Eigen::MatrixXd K;
-    Eigen::VectorXd f;
-    e->tangent(ctx, u, K, f);
-    const auto f_int = [&](const Eigen::VectorXd& v) {
-      Eigen::MatrixXd dummy;
-      Eigen::VectorXd fv;
-      e->tangent(ctx, v, dummy, fv);
-      return fv;
-    };
-    // The step scales with the deformation so that the differences stay within round-off of f.
-    const double h = std::max(1e-3 * std::max(c.strain, c.bend), 1e-6);
-    const Eigen::MatrixXd Kfd = jacobian_fd(f_int, u, h);
-    const double err = (K - Kfd).norm() / K.norm();
-    EXPECT_LE(err, 1e-8) << c.name;
-    std::printf("%-40s |K - K_fd| / |K| = %.2e\n", c.name, err);
-  }
+  for (bool mindlin : {false, true})
+    for (const CorotationalCase& c : corotational_cases()) {
+      const auto e = make_case_shell(c, mindlin);
+      // At u = 0 the co-rotational tangent is the linear stiffness.
+      const Eigen::MatrixXd K0 = stiffness(*e);
+      EXPECT_LE((stiffness(*e, ctx) - K0).norm(), 1e-12 * K0.norm()) << c.name;
+      const Eigen::VectorXd u = corotational_state(c);
+      Eigen::MatrixXd K;
+      Eigen::VectorXd f;
+      e->tangent(ctx, u, K, f);
+      const auto f_int = [&](const Eigen::VectorXd& v) {
+        Eigen::MatrixXd dummy;
+        Eigen::VectorXd fv;
+        e->tangent(ctx, v, dummy, fv);
+        return fv;
+      };
+      // The step scales with the deformation so that the differences stay within round-off of f.
+      const double h = std::max(1e-3 * std::max(c.strain, c.bend), 1e-6);
+      const Eigen::MatrixXd Kfd = jacobian_fd(f_int, u, h);
+      const double err = (K - Kfd).norm() / K.norm();
+      EXPECT_LE(err, 1e-8) << c.name << (mindlin ? " (Mindlin)" : "");
+      std::printf("%-40s %s |K - K_fd| / |K| = %.2e\n", c.name, mindlin ? "Mindlin" : "DK     ",
+                  err);
+    }
 }
 
 TEST(Shell4, InternalForceAloneIsBitwiseTheForceOfTheTangent) {
@@ -558,35 +568,36 @@ TEST(Shell4, TriangleFastPathEqualsTheGeneralCorotationalPath) {
   cases.push_back({"triangle near pi/2, tiny strain", kTri, M_PI / 2 - 1e-3, axis, 1e-6, 1e-6});
   cases.push_back({"triangle, large deformational rotation", kTri, 1.2, axis, 0.05, 0.5});
   cases.push_back({"triangle, strain only", kTri, 0.0, axis, 0.03, 0.0});
-  for (const CorotationalCase& c : cases) {
-    const auto e = make_case_shell(c);
-    ASSERT_TRUE(e->fast_triangle()) << c.name;
-    const Eigen::VectorXd u = corotational_state(c);
-    Eigen::MatrixXd K, K_general;
-    Eigen::VectorXd f, f_general, f_alone;
-    e->tangent(large, u, K, f);
-    e->corotational_tangent_general(u, K_general, f_general);
-    e->internal_force(large, u, f_alone);
-    EXPECT_EQ(f_alone, f) << c.name;
-    // The deformation the stresses come from: the general path's d (its out-of-plane
-    // translations are round-off).
-    ShellCorners X(3, 3);
-    for (int a = 0; a < 3; ++a) X.col(a) = c.x[static_cast<std::size_t>(a)];
-    const ShellFrame frame0 = shell_frame(X, false);
-    const CorotationalTriangle fast({c.x[0], c.x[1], c.x[2]}, frame0.R, frame0.c,
-                                    e->kernel().stiffness());
-    Eigen::VectorXd d_general;
-    e->corotational_kinematics(u, d_general, nullptr);
-    EXPECT_LE((fast.deformation(u) - d_general).cwiseAbs().maxCoeff(), 1e-13) << c.name;
-    // Round-off of f: d = Rcᵀ r − R0ᵀ(X − c0) cancels coordinates of order L to a deformation
-    // of order strain·L, so f carries ~ε |K| L of noise, the whole of f at tiny strains.
-    const double L = (c.x[1] - c.x[0]).norm();
-    const double f_scale = f_general.norm() + 1e-3 * K_general.norm() * L;
-    EXPECT_LE((f - f_general).norm(), 1e-11 * f_scale) << c.name;
-    EXPECT_LE((K - K_general).norm(), 1e-11 * K_general.norm()) << c.name;
-    std::printf("%-40s |K - K_general| / |K| = %.2e, |f - f_general| / |f| = %.2e\n", c.name,
-                (K - K_general).norm() / K_general.norm(), (f - f_general).norm() / f_scale);
-  }
+  for (bool mindlin : {false, true})
+    for (const CorotationalCase& c : cases) {
+      const auto e = make_case_shell(c, mindlin);
+      ASSERT_TRUE(e->fast_triangle()) << c.name;
+      const Eigen::VectorXd u = corotational_state(c);
+      Eigen::MatrixXd K, K_general;
+      Eigen::VectorXd f, f_general, f_alone;
+      e->tangent(large, u, K, f);
+      e->corotational_tangent_general(u, K_general, f_general);
+      e->internal_force(large, u, f_alone);
+      EXPECT_EQ(f_alone, f) << c.name;
+      // The deformation the stresses come from: the general path's d (its out-of-plane
+      // translations are round-off).
+      ShellCorners X(3, 3);
+      for (int a = 0; a < 3; ++a) X.col(a) = c.x[static_cast<std::size_t>(a)];
+      const ShellFrame frame0 = shell_frame(X, false);
+      const CorotationalTriangle fast({c.x[0], c.x[1], c.x[2]}, frame0.R, frame0.c,
+                                      e->kernel().stiffness());
+      Eigen::VectorXd d_general;
+      e->corotational_kinematics(u, d_general, nullptr);
+      EXPECT_LE((fast.deformation(u) - d_general).cwiseAbs().maxCoeff(), 1e-13) << c.name;
+      // Round-off of f: d = Rcᵀ r − R0ᵀ(X − c0) cancels coordinates of order L to a deformation
+      // of order strain·L, so f carries ~ε |K| L of noise, the whole of f at tiny strains.
+      const double L = (c.x[1] - c.x[0]).norm();
+      const double f_scale = f_general.norm() + 1e-3 * K_general.norm() * L;
+      EXPECT_LE((f - f_general).norm(), 1e-11 * f_scale) << c.name;
+      EXPECT_LE((K - K_general).norm(), 1e-11 * K_general.norm()) << c.name;
+      std::printf("%-40s |K - K_general| / |K| = %.2e, |f - f_general| / |f| = %.2e\n", c.name,
+                  (K - K_general).norm() / K_general.norm(), (f - f_general).norm() / f_scale);
+    }
 }
 
 TEST(Shell4, TriangleReusesItsLastStateOnlyAtTheSameDisplacement) {

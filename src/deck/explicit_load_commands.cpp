@@ -1,0 +1,258 @@
+// Loads by curve and contact of explicit dynamics (MAPDL Command Reference release 18.2, the
+// ANSYS LS-DYNA interface; docs/explicit_dynamics.md): EDCURVE, EDLOAD, EDCGEN, EDCMORE, EDDC,
+// EDCLIST. They fill Model::explicit_dynamics; the explicit run (src/explicit) carries them out.
+// What is not carried out (other load labels, other contact options) is refused here.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <map>
+#include <set>
+#include <tuple>
+
+#include "core/log.h"
+#include "deck/deck_context.h"
+#include "deck/parameters.h"
+
+namespace impactfe::deck {
+
+namespace {
+
+/// The values of a numeric array parameter (its first column).
+std::vector<double> array_values(DeckReader& r, const Command& c, int field, const char* what) {
+  const std::string name = r.label(c, field);
+  const ParameterInfo info = parameter_info(r, name);
+  if (name.empty() || info.type != 1)
+    r.fail(c, fmt::format("{} '{}': not a numeric array parameter (*DIM,{},ARRAY,n)", what,
+                          c.text(field), name.empty() ? "Par" : name));
+  return read_vector(r, c, name, info.dims[0]);
+}
+
+/// A curve's points: strictly increasing abscissae, the shorter length of the two arrays.
+void check_curve(DeckReader& r, const Command& c, std::vector<double>& x, std::vector<double>& y) {
+  const std::size_t n = std::min(x.size(), y.size());
+  x.resize(n);
+  y.resize(n);
+  if (n == 0) r.fail(c, "the curve has no points");
+  for (std::size_t i = 1; i < n; ++i)
+    if (!(x[i] > x[i - 1]))
+      r.fail(c, fmt::format("abscissa {} ({:g}) is not above the one before ({:g}): the times of "
+                            "a curve increase",
+                            i + 1, x[i], x[i - 1]));
+}
+
+void cmd_edcurve(DeckReader& r, const Command& c) {
+  // EDCURVE,Option,LCID,Par1,Par2
+  const std::string option = r.label(c, 1).empty() ? "ADD" : r.label(c, 1);
+  auto& curves = r.model.explicit_dynamics.curves;
+  const auto lcid = r.opt_int(c, 2);
+  if (option == "LIST") {
+    for (const auto& [id, curve] : curves)
+      if (!lcid || *lcid == id)
+        Log::info("EDCURVE: curve {}: {} points, x {:g} .. {:g}", id, curve.x.size(),
+                  curve.x.front(), curve.x.back());
+    return;
+  }
+  if (option == "DELE") {
+    if (lcid)
+      curves.erase(*lcid);
+    else
+      curves.clear();
+    return;
+  }
+  if (option != "ADD") r.fail(c, fmt::format("Option '{}': ADD, DELE or LIST", c.text(1)));
+  if (!lcid || *lcid <= 0) r.fail(c, "LCID: the curve number is a positive integer");
+  ExplicitCurve curve;
+  curve.x = array_values(r, c, 3, "Par1");
+  curve.y = array_values(r, c, 4, "Par2");
+  check_curve(r, c, curve.x, curve.y);
+  curve.where = c.where;
+  curves[*lcid] = std::move(curve);
+}
+
+const std::set<std::string> kLoadLabels = {"FX", "FY", "FZ"};
+const std::set<std::string> kRefusedLabels = {
+    "VX",    "VY",   "VZ",   "MX",   "MY",   "MZ",   "UX",   "UY",   "UZ",   "ROTX", "ROTY",
+    "ROTZ",  "OMGX", "OMGY", "OMGZ", "AX",   "AY",   "AZ",   "ACLX", "ACLY", "ACLZ", "TEMP",
+    "PRESS", "RBFX", "RBFY", "RBFZ", "RBMX", "RBMY", "RBMZ", "RBUX", "RBUY", "RBUZ", "RBRX",
+    "RBRY",  "RBRZ", "RBVX", "RBVY", "RBVZ", "RBOX", "RBOY", "RBOZ"};
+
+void list_loads(const std::vector<ExplicitCurveLoad>& loads, const std::string& lab,
+                const std::string& cname) {
+  int number = 0;
+  for (const auto& l : loads) {
+    ++number;
+    if ((!lab.empty() && l.label != lab) || (!cname.empty() && l.component != cname)) continue;
+    Log::info("EDLOAD: load {}: {} on {} ({} nodes), {} points, scale {:g}, birth {:g}, death {:g}",
+              number, l.label, l.component, l.nodes.size(), l.times.size(), l.scale, l.birth,
+              l.death);
+  }
+}
+
+void cmd_edload(DeckReader& r, const Command& c) {
+  // EDLOAD,Option,Lab,KEY,Cname,Par1,Par2,PHASE,LCID,SCALE,BTIME,DTIME
+  const std::string option = r.label(c, 1).empty() ? "ADD" : r.label(c, 1);
+  const std::string lab = r.label(c, 2);
+  const std::string cname = r.label(c, 4);
+  auto& loads = r.model.explicit_dynamics.loads;
+  if (option == "LIST") return list_loads(loads, lab, cname);
+  if (option == "DELE") {
+    std::erase_if(loads, [&](const ExplicitCurveLoad& l) {
+      return (lab.empty() || l.label == lab) && (cname.empty() || l.component == cname);
+    });
+    return;
+  }
+  if (option != "ADD") r.fail(c, fmt::format("Option '{}': ADD, DELE or LIST", c.text(1)));
+  if (kRefusedLabels.count(lab))
+    r.fail(c, fmt::format("Lab {}: not implemented in explicit dynamics; EDLOAD carries out the "
+                          "nodal forces FX, FY, FZ",
+                          lab));
+  if (!kLoadLabels.count(lab)) r.fail(c, fmt::format("Lab '{}': not an EDLOAD label", c.text(2)));
+  if (r.real(c, 3, 0.0) != 0.0)
+    r.fail(c, "KEY: a local coordinate system for the load is not implemented (global axes)");
+  if (r.real(c, 7, 0.0) != 0.0)
+    r.fail(c, "PHASE: loads in a stress initialization phase are not implemented (PHASE 0 only)");
+  const auto it = r.model.components.find(cname);
+  if (cname.empty() || it == r.model.components.end())
+    r.fail(c, fmt::format("Cname '{}': no such component (CM); EDLOAD takes a node component "
+                          "(PART numbers are for rigid-body loads, not implemented)",
+                          c.text(4)));
+  if (it->second.entity != "NODE")
+    r.fail(c, fmt::format("Cname {} is a {} component; EDLOAD {} takes a node component", cname,
+                          it->second.entity, lab));
+  ExplicitCurveLoad load;
+  load.label = lab;
+  load.component = cname;
+  load.nodes = it->second.ids;
+  if (const auto lcid = r.opt_int(c, 8); lcid && *lcid != 0) {
+    const auto& curves = r.model.explicit_dynamics.curves;
+    const auto curve = curves.find(*lcid);
+    if (curve == curves.end())
+      r.fail(c, fmt::format("LCID {}: no such curve (EDCURVE,ADD)", *lcid));
+    load.times = curve->second.x;
+    load.values = curve->second.y;
+  } else {
+    load.times = array_values(r, c, 5, "Par1");
+    load.values = array_values(r, c, 6, "Par2");
+    check_curve(r, c, load.times, load.values);
+  }
+  load.scale = r.real(c, 9, 1.0);
+  if (c.blank(9)) load.scale = 1.0;
+  load.birth = r.real(c, 10, 0.0);
+  load.death = r.real(c, 11, 0.0);
+  if (load.death != 0.0 && load.death <= load.birth)
+    r.fail(c, fmt::format("DTIME {:g} is not after BTIME {:g}", load.death, load.birth));
+  load.where = c.where;
+  loads.push_back(std::move(load));
+}
+
+const std::set<std::string> kContactOptions = {"NTS", "ANTS", "OSTS", "STS", "ASTS"};
+
+void cmd_edcgen(DeckReader& r, const Command& c) {
+  // EDCGEN,Option,Cont,Targ,FS,FD,DC,VC,VDC,V1,V2,V3,V4,BTIME,DTIME,BOXID1,BOXID2
+  const std::string option = r.label(c, 1);
+  if (!kContactOptions.count(option))
+    r.fail(c, fmt::format("Option '{}': the contact options carried out are NTS, ANTS, OSTS "
+                          "(node to surface) and STS, ASTS (surface to surface); the others "
+                          "(single surface, eroding, forming, tied, tiebreak, drawbead, rigid, "
+                          "edge) are not implemented",
+                          c.text(1)));
+  ExplicitContact k;
+  k.option = option;
+  k.contact = r.label(c, 2);
+  k.target = r.label(c, 3);
+  const bool single = option == "ASSC" || option == "SS" || option == "AG";
+  if (!single && (k.contact.empty() || k.target.empty()))
+    r.fail(c, fmt::format("{} needs Cont and Targ (a part number or a component)", option));
+  k.static_friction = r.real(c, 4, 0.0);
+  k.dynamic_friction = r.real(c, 5, 0.0);
+  k.decay = r.real(c, 6, 0.0);
+  k.viscous_damping = r.real(c, 8, 0.0);
+  if (k.viscous_damping != 0.0)
+    r.fail(c, "VDC: viscous contact damping is not implemented (VDC 0 only)");
+  if (k.static_friction < 0 || k.dynamic_friction < 0 || k.decay < 0 || k.viscous_damping < 0)
+    r.fail(c, "FS, FD, DC and VDC are >= 0");
+  if (r.real(c, 7, 0.0) != 0.0)
+    r.fail(c, "VC: the viscous friction limit is not implemented (VC 0 only)");
+  for (int f = 9; f <= 12; ++f)
+    if (r.real(c, f, 0.0) != 0.0)
+      r.fail(c, fmt::format("field {} (V{}): the tiebreak, drawbead and forming settings are not "
+                            "implemented",
+                            f, f - 8));
+  for (int f = 15; f <= 16; ++f)
+    if (!c.blank(f)) r.fail(c, "BOXID1, BOXID2: contact boxes (EDBX) are not implemented");
+  k.birth = r.real(c, 13, 0.0);
+  k.death = r.real(c, 14, 0.0);
+  k.where = c.where;
+  r.model.explicit_dynamics.contacts.push_back(std::move(k));
+}
+
+ExplicitContact& contact_entity(DeckReader& r, const Command& c, int number) {
+  auto& list = r.model.explicit_dynamics.contacts;
+  if (number < 1 || number > static_cast<int>(list.size()))
+    r.fail(c, fmt::format("NUM {}: no such contact entity ({} defined by EDCGEN)", number,
+                          list.size()));
+  return list[static_cast<std::size_t>(number - 1)];
+}
+
+void cmd_edcmore(DeckReader& r, const Command& c) {
+  // EDCMORE,Option,NUM,--,VAL1,VAL2
+  const std::string option = r.label(c, 1).empty() ? "ADD" : r.label(c, 1);
+  if (option == "DELE") {
+    if (r.label(c, 2) == "ALL" || c.blank(2)) {
+      for (auto& k : r.model.explicit_dynamics.contacts) k.slave_scale = k.master_scale = 1.0;
+      return;
+    }
+    ExplicitContact& k = contact_entity(r, c, r.integer(c, 2, 0));
+    k.slave_scale = k.master_scale = 1.0;
+    return;
+  }
+  if (option != "ADD") r.fail(c, fmt::format("Option '{}': ADD or DELE", c.text(1)));
+  ExplicitContact& k = contact_entity(r, c, r.integer(c, 2, 0));
+  const double sfs = c.blank(4) ? 1.0 : r.real(c, 4, 1.0);
+  const double sfm = c.blank(5) ? 1.0 : r.real(c, 5, 1.0);
+  if (!(sfs > 0.0) || !(sfm > 0.0)) r.fail(c, "SFS and SFM are > 0");
+  k.slave_scale = sfs;
+  k.master_scale = sfm;
+}
+
+void cmd_eddc(DeckReader& r, const Command& c) {
+  // EDDC,Option,Ctype,Cont,Targ
+  const std::string option = r.label(c, 1).empty() ? "DELE" : r.label(c, 1);
+  if (option != "DELE")
+    r.fail(c, fmt::format("Option '{}': DACT and RACT are for restarts, not implemented; DELE is",
+                          c.text(1)));
+  const std::string type = r.label(c, 2), cont = r.label(c, 3), targ = r.label(c, 4);
+  auto& list = r.model.explicit_dynamics.contacts;
+  const auto before = list.size();
+  std::erase_if(list, [&](const ExplicitContact& k) {
+    return k.option == type && (cont.empty() || k.contact == cont) &&
+           (targ.empty() || k.target == targ);
+  });
+  if (list.size() == before)
+    r.warn(c, fmt::format("no contact definition {} {} {} to delete", type, cont, targ));
+}
+
+void cmd_edclist(DeckReader& r, const Command& c) {
+  const std::string num = r.label(c, 1);
+  int number = 0;
+  for (const auto& k : r.model.explicit_dynamics.contacts) {
+    ++number;
+    if (!num.empty() && num != "ALL" && r.integer(c, 1, 0) != number) continue;
+    Log::info("EDCGEN: contact {}: {} {} {} FS {:g} FD {:g} DC {:g} VDC {:g} SFS {:g} SFM {:g}",
+              number, k.option, k.contact, k.target, k.static_friction, k.dynamic_friction, k.decay,
+              k.viscous_damping, k.slave_scale, k.master_scale);
+  }
+}
+
+}  // namespace
+
+void register_explicit_load_commands(std::vector<CommandSpec>& t) {
+  t.push_back({"EDCURVE", cmd_edcurve, kPrepSolu});
+  t.push_back({"EDLOAD", cmd_edload, kPrepSolu});
+  t.push_back({"EDCGEN", cmd_edcgen, kPrepSolu});
+  t.push_back({"EDCMORE", cmd_edcmore, kPrepSolu});
+  t.push_back({"EDDC", cmd_eddc, kPrepSolu});
+  t.push_back({"EDCLIST", cmd_edclist, kPrepSolu});
+}
+
+}  // namespace impactfe::deck

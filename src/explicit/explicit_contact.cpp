@@ -1,0 +1,472 @@
+#include "explicit/explicit_contact.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <tuple>
+
+namespace impactfe {
+
+namespace {
+
+constexpr double kXi[4] = {-1, 1, 1, -1}, kEta[4] = {-1, -1, 1, 1};
+/// A projection this far outside [−1, 1]² still counts as on the segment (a node on the edge
+/// between two segments is not lost between them).
+constexpr double kEdgeTolerance = 1e-3;
+
+struct Vec {
+  double x, y, z;
+};
+Vec sub(Vec a, Vec b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+Vec cross(Vec a, Vec b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+double dot(Vec a, Vec b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+
+/// The local coordinates (ξ, η) of the point of the bilinear segment `p` nearest to `q`:
+/// Gauss–Newton on X(ξ, η) − q (three steps: the segments are close to flat).
+void local_coordinates(const Vec p[4], Vec q, double& xi, double& eta) {
+  xi = eta = 0.0;
+  for (int it = 0; it < 4; ++it) {
+    Vec x{0, 0, 0}, dxi{0, 0, 0}, deta{0, 0, 0};
+    for (int a = 0; a < 4; ++a) {
+      const double n = 0.25 * (1 + kXi[a] * xi) * (1 + kEta[a] * eta);
+      const double nx = 0.25 * kXi[a] * (1 + kEta[a] * eta);
+      const double ne = 0.25 * kEta[a] * (1 + kXi[a] * xi);
+      x = {x.x + n * p[a].x, x.y + n * p[a].y, x.z + n * p[a].z};
+      dxi = {dxi.x + nx * p[a].x, dxi.y + nx * p[a].y, dxi.z + nx * p[a].z};
+      deta = {deta.x + ne * p[a].x, deta.y + ne * p[a].y, deta.z + ne * p[a].z};
+    }
+    const Vec r = sub(q, x);
+    const double a11 = dot(dxi, dxi), a12 = dot(dxi, deta), a22 = dot(deta, deta);
+    const double b1 = dot(dxi, r), b2 = dot(deta, r);
+    const double det = a11 * a22 - a12 * a12;
+    if (!(std::abs(det) > 0.0)) return;
+    xi += (a22 * b1 - a12 * b2) / det;
+    eta += (a11 * b2 - a12 * b1) / det;
+  }
+}
+
+/// Parts as EDPART numbers them: the (type, material, real) combinations in ascending order.
+std::map<int, int> part_of_elements(const Model& model) {
+  std::map<std::tuple<int, int, int>, int> parts;
+  for (const auto& [id, e] : model.elements) parts[{e.type, e.mat, e.real}] = 0;
+  int number = 0;
+  for (auto& [key, n] : parts) n = ++number;
+  std::map<int, int> out;
+  for (const auto& [id, e] : model.elements) out[id] = parts[{e.type, e.mat, e.real}];
+  return out;
+}
+
+}  // namespace
+
+ExplicitContactSet::ExplicitContactSet(const Model& model, const ExplicitSystem& system) {
+  const auto& definitions = model.explicit_dynamics.contacts;
+  if (definitions.empty()) return;
+  // Every element's faces; a face offered twice (by two elements) is interior.
+  std::vector<ExplicitSegment> all;
+  for (const auto& set : system.sets) set->segments(all);
+  std::map<std::array<int, 4>, int> count;
+  const auto key = [](const ExplicitSegment& s) {
+    std::array<int, 4> k{s.nodes[0], s.nodes[1], s.nodes[2], s.nodes[3]};
+    std::sort(k.begin(), k.end());
+    return k;
+  };
+  for (const auto& s : all)
+    if (s.thickness == 0.0) ++count[key(s)];
+  double depth_max = 0.0;
+  for (const auto& s : all) {
+    if (s.thickness == 0.0 && count[key(s)] > 1) continue;
+    Vec p[4];
+    for (int a = 0; a < 4; ++a) {
+      const auto n = static_cast<std::size_t>(s.nodes[a]);
+      p[a] = {system.x0[n], system.y0[n], system.z0[n]};
+    }
+    const Vec normal = cross(sub(p[2], p[0]), sub(p[3], p[1]));
+    const double area = 0.5 * std::sqrt(dot(normal, normal));
+    if (!(area > 0.0)) continue;  // a face collapsed to an edge or a point
+    Segment g{};
+    std::copy(s.nodes, s.nodes + 4, g.nodes);
+    g.element = s.element;
+    if (s.thickness > 0.0) {
+      // Shell: k = f·K·A / (largest diagonal) (LS-DYNA Theory Manual, penalty method).
+      const double diagonal = std::sqrt(
+          std::max(dot(sub(p[2], p[0]), sub(p[2], p[0])), dot(sub(p[3], p[1]), sub(p[3], p[1]))));
+      g.stiffness = s.bulk_modulus * area / diagonal;
+      g.depth = s.thickness;
+    } else {
+      // Solid: k = f·K·A²/V; a node deeper than half the element (V/A) behind the face has not
+      // come through it (single surface: it belongs to the same body).
+      g.stiffness = s.bulk_modulus * area * area / s.volume;
+      g.depth = 0.5 * s.volume / area;
+    }
+    depth_max = std::max(depth_max, g.depth);
+    segments_.push_back(g);
+  }
+  margin_ = 2.0 * depth_max;
+  const std::map<int, int> part = part_of_elements(model);
+  // The segments and the slave nodes of a surface named by a part number or a component.
+  const auto surface = [&](const ExplicitContact& k, const std::string& name,
+                           std::vector<std::size_t>& segs, std::vector<std::size_t>& nodes) {
+    std::vector<std::uint8_t> in_node(system.n_nodes(), 0);
+    const Component* component = nullptr;
+    int part_number = 0;
+    if (!name.empty()) {
+      const auto it = model.components.find(name);
+      if (it != model.components.end()) {
+        component = &it->second;
+        if (component->entity != "NODE" && component->entity != "ELEM")
+          throw InputError(k.where, fmt::format("EDCGEN: component {} is a {} component; contact "
+                                                "takes a node or element component",
+                                                name, component->entity));
+      } else {
+        char* end = nullptr;
+        part_number = static_cast<int>(std::strtol(name.c_str(), &end, 10));
+        if (*end != '\0' || part_number <= 0)
+          throw InputError(k.where, fmt::format("EDCGEN: '{}' is neither a component (CM) nor a "
+                                                "part number (EDPART)",
+                                                name));
+      }
+    }
+    if (component && component->entity == "NODE")
+      for (int id : component->ids)
+        if (const int n = system.index_of(id); n >= 0) in_node[static_cast<std::size_t>(n)] = 1;
+    for (std::size_t i = 0; i < segments_.size(); ++i) {
+      const Segment& g = segments_[i];
+      bool take = true;
+      if (part_number > 0) {
+        take = part.at(g.element) == part_number;
+      } else if (component && component->entity == "ELEM") {
+        take = std::binary_search(component->ids.begin(), component->ids.end(), g.element);
+      } else if (component) {
+        for (int a = 0; a < 4; ++a) take = take && in_node[static_cast<std::size_t>(g.nodes[a])];
+      }
+      if (take) segs.push_back(i);
+    }
+    std::vector<std::uint8_t> slave(system.n_nodes(), 0);
+    if (component && component->entity == "NODE")
+      slave = in_node;
+    else
+      for (std::size_t i : segs)
+        for (int a = 0; a < 4; ++a) slave[static_cast<std::size_t>(segments_[i].nodes[a])] = 1;
+    for (std::size_t n = 0; n < system.n_nodes(); ++n)
+      if (slave[n]) nodes.push_back(n);
+    if (segs.empty() && nodes.empty())
+      throw InputError(k.where, fmt::format("EDCGEN,{}: '{}' has no exterior face or node of an "
+                                            "explicit element",
+                                            k.option, name.empty() ? "the model" : name));
+  };
+  const double slsfac = model.explicit_dynamics.penalty_factor;
+  for (const ExplicitContact& k : definitions) {
+    const bool single = k.option == "ASSC" || k.option == "SS" || k.option == "AG";
+    const bool symmetric = k.option == "STS" || k.option == "ASTS";
+    std::vector<std::size_t> cont_segs, cont_nodes, targ_segs, targ_nodes;
+    surface(k, single ? std::string() : k.contact, cont_segs, cont_nodes);
+    if (!single) surface(k, k.target, targ_segs, targ_nodes);
+    const auto add = [&](std::vector<std::size_t> slaves, std::vector<std::size_t> segs,
+                         double scale) {
+      if (segs.empty())
+        throw InputError(k.where, fmt::format("EDCGEN,{}: the target surface has no exterior "
+                                              "face of an explicit element (a node component "
+                                              "names its faces by all their nodes)",
+                                              k.option));
+      Pass p;
+      p.definition = &k;
+      p.factor = slsfac * scale;
+      p.single_surface = single;
+      p.slaves = std::move(slaves);
+      p.segments = std::move(segs);
+      p.tangential.assign(3 * p.slaves.size(), 0.0);
+      if (single) {
+        // The nodes of the segments around each slave: a slave is not checked against a segment
+        // that shares one of them (its own body's neighbouring faces).
+        std::vector<std::vector<int>> near(system.n_nodes());
+        for (std::size_t i : p.segments)
+          for (int a = 0; a < 4; ++a)
+            for (int b = 0; b < 4; ++b)
+              near[static_cast<std::size_t>(segments_[i].nodes[a])].push_back(
+                  segments_[i].nodes[b]);
+        p.near_start.push_back(0);
+        for (std::size_t s : p.slaves) {
+          auto& list = near[s];
+          std::sort(list.begin(), list.end());
+          list.erase(std::unique(list.begin(), list.end()), list.end());
+          p.near.insert(p.near.end(), list.begin(), list.end());
+          p.near_start.push_back(p.near.size());
+        }
+      }
+      passes_.push_back(std::move(p));
+    };
+    if (single) {
+      add(cont_nodes, cont_segs, k.slave_scale);
+    } else {
+      add(cont_nodes, targ_segs, k.master_scale);
+      if (symmetric) add(targ_nodes, cont_segs, k.slave_scale);
+    }
+  }
+  force_.assign(3 * system.n_nodes(), 0.0);
+  stiffness_.assign(system.n_nodes(), 0.0);
+  previous_ = force_;
+  mark_.assign(system.n_nodes(), 0);
+}
+
+void ExplicitContactSet::search(Pass& p, const ExplicitNodalView& s) const {
+  // Bucket sort: each segment's box, inflated by the margin, goes into the cells of a grid as
+  // fine as the largest box; a slave's candidates are the segments of its cell whose box holds
+  // it. Sorted (cell, segment) pairs keep the candidate order fixed.
+  struct Box {
+    double lo[3], hi[3];
+  };
+  std::vector<Box> boxes(p.segments.size());
+  double cell = 0.0;
+  for (std::size_t i = 0; i < p.segments.size(); ++i) {
+    const Segment& g = segments_[p.segments[i]];
+    Box& b = boxes[i];
+    for (int d = 0; d < 3; ++d)
+      b.lo[d] = std::numeric_limits<double>::infinity(), b.hi[d] = -b.lo[d];
+    for (int a = 0; a < 4; ++a) {
+      const auto n = static_cast<std::size_t>(g.nodes[a]);
+      const double c[3] = {s.x[n], s.y[n], s.z[n]};
+      for (int d = 0; d < 3; ++d)
+        b.lo[d] = std::min(b.lo[d], c[d]), b.hi[d] = std::max(b.hi[d], c[d]);
+    }
+    for (int d = 0; d < 3; ++d) {
+      b.lo[d] -= margin_;
+      b.hi[d] += margin_;
+      cell = std::max(cell, b.hi[d] - b.lo[d]);
+    }
+  }
+  const auto index = [cell](double v) { return static_cast<long long>(std::floor(v / cell)); };
+  const auto cell_key = [](long long i, long long j, long long k) {
+    // 21 bits per axis (offset): the grid of one model never spans 2^21 cells of its largest box.
+    constexpr long long kOffset = 1LL << 20;
+    return ((i + kOffset) << 42) | ((j + kOffset) << 21) | (k + kOffset);
+  };
+  std::vector<std::pair<long long, std::size_t>> cells;
+  for (std::size_t i = 0; i < boxes.size(); ++i) {
+    const Box& b = boxes[i];
+    for (long long a = index(b.lo[0]); a <= index(b.hi[0]); ++a)
+      for (long long c = index(b.lo[1]); c <= index(b.hi[1]); ++c)
+        for (long long d = index(b.lo[2]); d <= index(b.hi[2]); ++d)
+          cells.emplace_back(cell_key(a, c, d), i);
+  }
+  std::sort(cells.begin(), cells.end());
+  p.candidate_start.assign(1, 0);
+  p.candidates.clear();
+  for (std::size_t j = 0; j < p.slaves.size(); ++j) {
+    const std::size_t n = p.slaves[j];
+    const double c[3] = {s.x[n], s.y[n], s.z[n]};
+    const long long k = cell_key(index(c[0]), index(c[1]), index(c[2]));
+    auto it = std::lower_bound(cells.begin(), cells.end(), std::make_pair(k, std::size_t{0}));
+    for (; it != cells.end() && it->first == k; ++it) {
+      const Box& b = boxes[it->second];
+      if (c[0] >= b.lo[0] && c[0] <= b.hi[0] && c[1] >= b.lo[1] && c[1] <= b.hi[1] &&
+          c[2] >= b.lo[2] && c[2] <= b.hi[2])
+        p.candidates.push_back(p.segments[it->second]);
+    }
+    p.candidate_start.push_back(p.candidates.size());
+  }
+}
+
+ExplicitStepLimit ExplicitContactSet::add_forces(const ExplicitNodalView& s, const double* mass,
+                                                 double time, double dt, double* fx, double* fy,
+                                                 double* fz) {
+  ExplicitStepLimit limit;
+  if (passes_.empty()) return limit;
+  // A new search when some node may have moved by half the margin since the last one: a node
+  // and a segment that approach each other then still lie within their listed boxes.
+  bool due = !started_;
+  if (started_) {
+    double moved = 0.0;
+    for (std::size_t n = 0; n < x_search_.size(); ++n) {
+      const double dx = s.x[n] - x_search_[n], dy = s.y[n] - y_search_[n],
+                   dz = s.z[n] - z_search_[n];
+      moved = std::max(moved, dx * dx + dy * dy + dz * dz);
+    }
+    due = std::sqrt(moved) > 0.25 * margin_;
+  }
+  if (due) {
+    for (Pass& p : passes_) search(p, s);
+    x_search_.assign(s.x, s.x + force_.size() / 3);
+    y_search_.assign(s.y, s.y + force_.size() / 3);
+    z_search_.assign(s.z, s.z + force_.size() / 3);
+    started_ = true;
+    ++searches_;
+    // The step the contact will need once the listed pairs touch: a pair's row bound is 2k/m on
+    // either side (see below), doubled for a node that is slave in one pass and master in the
+    // other. Without it the first cycle of a stiff contact would run at the elements' step.
+    double omega2 = 0.0;
+    potential_element_ = 0;
+    for (const Pass& p : passes_)
+      for (std::size_t j = 0; j < p.slaves.size(); ++j)
+        for (std::size_t c = p.candidate_start[j]; c < p.candidate_start[j + 1]; ++c) {
+          const Segment& g = segments_[p.candidates[c]];
+          const double k4 = 4.0 * p.factor * g.stiffness;
+          double w = mass[p.slaves[j]] > 0.0 ? k4 / mass[p.slaves[j]] : 0.0;
+          for (int a = 0; a < 4; ++a)
+            if (const double m = mass[static_cast<std::size_t>(g.nodes[a])]; m > 0.0)
+              w = std::max(w, k4 / m);
+          if (w > omega2) omega2 = w, potential_element_ = g.element;
+        }
+    potential_step_ =
+        omega2 > 0.0 ? 2.0 / std::sqrt(omega2) : std::numeric_limits<double>::infinity();
+  }
+  limit.take(potential_step_, potential_element_);
+  stored_ = 0.0;
+  active_ = 0;
+  touched_.clear();
+  const auto touch = [this](std::size_t n, Vec f) {
+    if (!mark_[n]) {
+      mark_[n] = 1;
+      touched_.push_back(n);
+    }
+    force_[3 * n] += f.x;
+    force_[3 * n + 1] += f.y;
+    force_[3 * n + 2] += f.z;
+  };
+  for (Pass& p : passes_) {
+    const ExplicitContact& k = *p.definition;
+    const bool on = time >= k.birth && !(k.death > 0.0 && time > k.death);
+    for (std::size_t j = 0; j < p.slaves.size(); ++j) {
+      double* ft = &p.tangential[3 * j];
+      const std::size_t sn = p.slaves[j];
+      const Vec xs{s.x[sn], s.y[sn], s.z[sn]};
+      double best = std::numeric_limits<double>::infinity(), xi = 0, eta = 0;
+      std::size_t chosen = 0;
+      Vec normal{0, 0, 0};
+      for (std::size_t c = p.candidate_start[j]; on && c < p.candidate_start[j + 1]; ++c) {
+        const Segment& g = segments_[p.candidates[c]];
+        bool skip = false;
+        for (int a = 0; a < 4; ++a) {
+          skip = skip || static_cast<std::size_t>(g.nodes[a]) == sn;
+          if (p.single_surface)
+            skip = skip || std::binary_search(p.near.begin() + p.near_start[j],
+                                              p.near.begin() + p.near_start[j + 1], g.nodes[a]);
+        }
+        if (skip) continue;
+        Vec q[4], centre{0, 0, 0};
+        for (int a = 0; a < 4; ++a) {
+          const auto n = static_cast<std::size_t>(g.nodes[a]);
+          q[a] = {s.x[n], s.y[n], s.z[n]};
+          centre = {centre.x + 0.25 * q[a].x, centre.y + 0.25 * q[a].y, centre.z + 0.25 * q[a].z};
+        }
+        Vec nrm = cross(sub(q[2], q[0]), sub(q[3], q[1]));
+        const double len = std::sqrt(dot(nrm, nrm));
+        if (!(len > 0.0)) continue;
+        nrm = {nrm.x / len, nrm.y / len, nrm.z / len};
+        // Penetration behind the face, less a sliver (1e-4 of the depth): a node on the edge of a
+        // face it runs along (the side of a body it hits end on) has round-off penetrations of
+        // that side, smaller than its true one; taking the smallest would pick the side.
+        const double gap = -dot(sub(xs, centre), nrm) - 1e-4 * g.depth;
+        if (!(gap > 0.0) || gap > g.depth || gap >= best) continue;
+        double u, v;
+        const double h = gap + 1e-4 * g.depth;
+        local_coordinates(q, {xs.x + h * nrm.x, xs.y + h * nrm.y, xs.z + h * nrm.z}, u, v);
+        if (std::abs(u) > 1 + kEdgeTolerance || std::abs(v) > 1 + kEdgeTolerance) continue;
+        best = gap, xi = u, eta = v, chosen = p.candidates[c], normal = nrm;
+      }
+      if (!(best < std::numeric_limits<double>::infinity())) {
+        ft[0] = ft[1] = ft[2] = 0.0;  // out of contact: the friction spring is released
+        continue;
+      }
+      ++active_;
+      const Segment& g = segments_[chosen];
+      double shape[4];
+      Vec vm{0, 0, 0};
+      for (int a = 0; a < 4; ++a) {
+        shape[a] = 0.25 * (1 + kXi[a] * std::clamp(xi, -1.0, 1.0)) *
+                   (1 + kEta[a] * std::clamp(eta, -1.0, 1.0));
+        const auto n = static_cast<std::size_t>(g.nodes[a]);
+        vm = {vm.x + shape[a] * s.vx[n], vm.y + shape[a] * s.vy[n], vm.z + shape[a] * s.vz[n]};
+      }
+      const double stiffness = p.factor * g.stiffness;
+      const Vec vr = sub({s.vx[sn], s.vy[sn], s.vz[sn]}, vm);
+      const double vn = dot(vr, normal);  // > 0: separating
+      const double fn = stiffness * best;
+      Vec f{fn * normal.x, fn * normal.y, fn * normal.z};
+      stored_ += 0.5 * stiffness * best * best;
+      const double mu_s = k.static_friction, mu_d = k.dynamic_friction;
+      if (mu_s > 0.0 || mu_d > 0.0) {
+        // Elastic-slip friction: the tangential spring (stiffness k) loaded by the relative
+        // tangential motion dt·v_t, its force bounded by μ f_n, μ = FD + (FS − FD) e^{−DC|v_t|}.
+        const Vec vt{vr.x - vn * normal.x, vr.y - vn * normal.y, vr.z - vn * normal.z};
+        const double speed = std::sqrt(dot(vt, vt));
+        const double mu = mu_d + (mu_s - mu_d) * std::exp(-k.decay * speed);
+        Vec t{ft[0], ft[1], ft[2]};
+        const double tn = dot(t, normal);
+        t = {t.x - tn * normal.x - stiffness * dt * vt.x,
+             t.y - tn * normal.y - stiffness * dt * vt.y,
+             t.z - tn * normal.z - stiffness * dt * vt.z};
+        const double size = std::sqrt(dot(t, t)), bound = mu * fn;
+        if (size > bound) t = {t.x * bound / size, t.y * bound / size, t.z * bound / size};
+        ft[0] = t.x, ft[1] = t.y, ft[2] = t.z;
+        stored_ += 0.5 * dot(t, t) / stiffness;
+        f = {f.x + t.x, f.y + t.y, f.z + t.z};
+      }
+      touch(sn, f);
+      // Gershgorin's bound on the largest frequency of M⁻¹K_c: the pair's spring matrix
+      // k[1, −N; −N, NNᵀ] has the absolute row sums 2k (slave) and 2k·N_a (masters).
+      stiffness_[sn] += 2.0 * stiffness;
+      for (int a = 0; a < 4; ++a) {
+        touch(static_cast<std::size_t>(g.nodes[a]),
+              {-shape[a] * f.x, -shape[a] * f.y, -shape[a] * f.z});
+        stiffness_[static_cast<std::size_t>(g.nodes[a])] += 2.0 * stiffness * shape[a];
+      }
+      if (element_ == 0) element_ = g.element;
+    }
+  }
+  peak_active_ = std::max(peak_active_, active_);
+  // Work of the contact forces on the nodes over the step, trapezoidal: ½(f_n + f_{n+1})·dt v;
+  // the contact energy is minus it (what the springs hold and friction and damping took).
+  double work = 0.0;
+  const double* v[3] = {s.vx, s.vy, s.vz};
+  for (std::size_t n : touched_)
+    for (int d = 0; d < 3; ++d)
+      work += 0.5 * (previous_[3 * n + d] + force_[3 * n + d]) * dt * v[d][n];
+  for (std::size_t n : touched_before_)
+    if (!mark_[n])
+      for (int d = 0; d < 3; ++d) work += 0.5 * previous_[3 * n + d] * dt * v[d][n];
+  energy_ -= work;
+  for (std::size_t n : touched_before_)
+    for (int d = 0; d < 3; ++d) previous_[3 * n + d] = 0.0;
+  // The contact's stable step 2/ω_c, ω_c² the largest row bound over the nodes in contact.
+  double omega2 = 0.0;
+  for (std::size_t n : touched_) {
+    if (mass[n] > 0.0) omega2 = std::max(omega2, stiffness_[n] / mass[n]);
+    stiffness_[n] = 0.0;
+  }
+  if (omega2 > 0.0) limit.take(2.0 / std::sqrt(omega2), element_);
+  element_ = 0;
+  for (std::size_t n : touched_) {
+    fx[n] -= force_[3 * n];  // f_int sign: the contact force pushes the node
+    fy[n] -= force_[3 * n + 1];
+    fz[n] -= force_[3 * n + 2];
+    for (int d = 0; d < 3; ++d) {
+      previous_[3 * n + d] = force_[3 * n + d];
+      force_[3 * n + d] = 0.0;
+    }
+    mark_[n] = 0;
+  }
+  touched_before_.swap(touched_);
+  return limit;
+}
+
+std::string ExplicitContactSet::summary() const {
+  std::size_t slaves = 0;
+  for (const Pass& p : passes_) slaves += p.slaves.size();
+  return fmt::format(
+      "contact: {} passes, {} segments, {} slave nodes; {} searches; {} nodes in contact at most; "
+      "energy {:.4g} (springs {:.4g}, dissipated by friction and damping {:.4g})",
+      passes_.size(), segments_.size(), slaves, searches_, peak_active_, energy_, stored_,
+      energy_ - stored_);
+}
+
+}  // namespace impactfe

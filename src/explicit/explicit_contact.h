@@ -1,0 +1,83 @@
+#pragma once
+/// Penalty contact of an explicit run (EDCGEN; docs/explicit_dynamics.md, "Contact"), after the
+/// LS-DYNA Theory Manual ("Contact-impact algorithm", "Penalty method"): a slave node found
+/// behind a master segment by g > 0 is pushed out by k·g along the segment's normal, the
+/// reaction spread over the segment's nodes by its shape functions at the projection point;
+/// k = SLSFAC·SF·K·A²/V of the segment (K the bulk modulus, A the face area, V the element
+/// volume, SLSFAC 0.1). Friction: an elastic tangential spring of the same k whose force is
+/// bounded by μ·f_n, μ = FD + (FS − FD)·exp(−DC·|v_rel|); optional viscous damping VDC (% of
+/// critical). Surface to surface contact is two node-to-surface passes (symmetric); single
+/// surface contact checks every exterior node against every exterior segment not next to it.
+///
+/// The segments come from the element sets (ExplicitElementSet::segments): a face offered by two
+/// elements is interior and dropped. The search is a bucket sort of the segments' boxes (one
+/// sort, O(n log n)) redone only when a node has moved far enough since the last one to reach a
+/// segment it was not listed against; the cycle loops the candidate lists (O(n)). Forces are
+/// summed in a fixed order (slaves ascending, candidates ascending), so runs are repeatable.
+#include <string>
+#include <vector>
+
+#include "core/model.h"
+#include "explicit/explicit_interaction.h"
+#include "explicit/explicit_system.h"
+
+namespace impactfe {
+
+class ExplicitContactSet final : public ExplicitInteraction {
+ public:
+  /// The contact definitions of `model` (InputError at the EDCGEN for a part or component that
+  /// does not exist or offers no segment).
+  ExplicitContactSet(const Model& model, const ExplicitSystem& system);
+  bool empty() const { return passes_.empty(); }
+
+  ExplicitStepLimit add_forces(const ExplicitNodalView& state, const double* mass, double time,
+                               double dt, double* fx, double* fy, double* fz) override;
+  double contact_energy() const override { return energy_; }
+  /// Energy in the penalty springs now (normal and tangential): contact_energy() minus it is
+  /// what friction and damping dissipated.
+  double stored_energy() const { return stored_; }
+  /// A line for the run summary.
+  std::string summary() const;
+  long searches() const { return searches_; }
+
+ private:
+  struct Segment {
+    int nodes[4];
+    int element;
+    double stiffness;  // K·A²/V (solid) or K·A/diagonal (shell), without the factors
+    double depth;      // how far behind the face a node is still taken as penetrating
+  };
+  /// One node-to-surface pass.
+  struct Pass {
+    const ExplicitContact* definition;
+    double factor;  // SLSFAC × SFS or SFM
+    bool single_surface;
+    std::vector<std::size_t> slaves;    // run node indices, ascending
+    std::vector<std::size_t> segments;  // indices into segments_, ascending
+    /// Single surface: the nodes next to each slave (sorted CSR): segments holding one of them
+    /// are not checked against it.
+    std::vector<std::size_t> near_start;
+    std::vector<int> near;
+    std::vector<std::size_t> candidate_start;  // CSR per slave into candidates
+    std::vector<std::size_t> candidates;       // indices into segments_
+    std::vector<double> tangential;            // friction force on each slave (3 each)
+  };
+  void search(Pass& p, const ExplicitNodalView& s) const;
+  std::vector<Segment> segments_;
+  std::vector<Pass> passes_;
+  std::vector<double> x_search_, y_search_, z_search_;  // positions at the last search
+  double margin_ = 0.0;                                 // box inflation of the search
+  std::vector<double> force_, previous_;                // contact forces on the nodes (3 each)
+  std::vector<double> stiffness_;  // Σ of the contact springs' row bounds at each node
+  double potential_step_ = 0.0;    // the step of the pairs listed by the last search
+  int potential_element_ = 0;
+  int element_ = 0;  // an element in contact (named when the contact's step rules)
+  std::vector<std::size_t> touched_, touched_before_;
+  std::vector<std::uint8_t> mark_;
+  double energy_ = 0.0, stored_ = 0.0;
+  long searches_ = 0;
+  long active_ = 0, peak_active_ = 0;
+  bool started_ = false;
+};
+
+}  // namespace impactfe

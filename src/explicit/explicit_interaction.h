@@ -1,0 +1,38 @@
+#pragma once
+/// What acts on the nodes of an explicit run besides the elements (docs/explicit_dynamics.md):
+/// loads by curve (EDLOAD) and contact (EDCGEN). The central difference calls each interaction
+/// once per cycle at x_{n+1}; the interaction adds its nodal forces in the sign of f_int (the
+/// node's acceleration is −f/m), tracks its own energy, and may prescribe velocities.
+#include <cstdint>
+#include <vector>
+
+#include "elements/explicit_kernel.h"
+
+namespace impactfe {
+
+class ExplicitInteraction {
+ public:
+  virtual ~ExplicitInteraction() = default;
+  /// Adds forces at x_{n+1} (time t_{n+1}) to f (3 per node, f_int sign) after the elements';
+  /// v are the half-step velocities v_{n+1/2} that brought the nodes there over dt (0 at the
+  /// start); `mass` the lumped nodal masses. Returns its limit on the stable step.
+  virtual ExplicitStepLimit add_forces(const ExplicitNodalView& state, const double* mass,
+                                       double time, double dt, double* fx, double* fy,
+                                       double* fz) = 0;
+  /// Overrides the half-step velocities v_{n+1/2} of prescribed DOFs (time t_{n+1/2}, `mean`
+  /// the interval ½(dt_{n−1/2} + dt_{n+1/2}) of the velocity update just made) and counts the
+  /// work that takes.
+  virtual void prescribe(double time, double mean, const double* mass, double* vx, double* vy,
+                         double* vz) {
+    (void)time, (void)mean, (void)mass, (void)vx, (void)vy, (void)vz;
+  }
+  /// Zeroes the accelerations of the prescribed DOFs (after keeping what the forces would give
+  /// them, for the work of the next prescribe).
+  virtual void hold(double* ax, double* ay, double* az) { (void)ax, (void)ay, (void)az; }
+  /// Work put into the model (forces by curve, prescribed velocities) since the start.
+  virtual double external_work() const { return 0.0; }
+  /// Energy held in or dissipated by the interaction (penalty springs, friction).
+  virtual double contact_energy() const { return 0.0; }
+};
+
+}  // namespace impactfe

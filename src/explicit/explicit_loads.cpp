@@ -1,0 +1,91 @@
+#include "explicit/explicit_loads.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+namespace impactfe {
+
+double curve_value(const std::vector<double>& x, const std::vector<double>& y, double t) {
+  if (t <= x.front()) return y.front();
+  if (t >= x.back()) return y.back();
+  const auto it = std::upper_bound(x.begin(), x.end(), t);
+  const std::size_t i = static_cast<std::size_t>(it - x.begin());
+  const double s = (t - x[i - 1]) / (x[i] - x[i - 1]);
+  return y[i - 1] + s * (y[i] - y[i - 1]);
+}
+
+ExplicitCurveLoads::ExplicitCurveLoads(const ExplicitSystem& system,
+                                       const ExplicitControls& controls) {
+  for (const ExplicitCurveLoad& l : controls.loads) {
+    Entry e{&l, l.label[1] - 'X', {}, {}, {}, l.label[0] == 'V' && l.birth <= 0.0};
+    for (int node : l.nodes) {
+      const int n = system.index_of(node);
+      if (n < 0)
+        throw InputError(l.where, fmt::format("EDLOAD {} on {}: node {} carries no explicit "
+                                              "element",
+                                              l.label, l.component, node));
+      e.nodes.push_back(static_cast<std::size_t>(n));
+    }
+    e.previous.assign(e.nodes.size(), 0.0);
+    e.held.assign(e.nodes.size(), 0.0);
+    (l.label[0] == 'F' ? forces_ : velocities_).push_back(std::move(e));
+  }
+}
+
+double ExplicitCurveLoads::value(const ExplicitCurveLoad& l, double time) const {
+  if (time < l.birth || (l.death > 0.0 && time > l.death)) return 0.0;
+  return l.scale * curve_value(l.times, l.values, time - l.birth);
+}
+
+ExplicitStepLimit ExplicitCurveLoads::add_forces(const ExplicitNodalView& state, const double*,
+                                                 double time, double dt, double* fx, double* fy,
+                                                 double* fz) {
+  double* f[3] = {fx, fy, fz};
+  const double* v[3] = {state.vx, state.vy, state.vz};
+  for (Entry& e : forces_) {
+    const double value = this->value(*e.load, time);
+    for (std::size_t j = 0; j < e.nodes.size(); ++j) {
+      const std::size_t n = e.nodes[j];
+      // Work over the step by the trapezoidal rule: ½(f_n + f_{n+1})·Δx, Δx = dt v_{n+1/2}.
+      work_ += 0.5 * (e.previous[j] + value) * dt * v[e.direction][n];
+      e.previous[j] = value;
+      f[e.direction][n] -= value;  // an external force: f_int sign
+    }
+  }
+  return {};
+}
+
+void ExplicitCurveLoads::prescribe(double time, double mean, const double* mass, double* vx,
+                                   double* vy, double* vz) {
+  double* v[3] = {vx, vy, vz};
+  for (Entry& e : velocities_) {
+    const bool held = e.active;  // its accelerations were zeroed at the last hold
+    e.active = time >= e.load->birth && !(e.load->death > 0.0 && time > e.load->death);
+    if (!e.active) continue;
+    const double value = this->value(*e.load, time);
+    for (std::size_t j = 0; j < e.nodes.size(); ++j) {
+      const std::size_t n = e.nodes[j];
+      // The constraint's impulse J = m(v_p − v_free) over the velocity update, v_free = v_old +
+      // mean·a_free the velocity the forces alone would give, does the work J·½(v_old + v_p)
+      // (the node's mean velocity over the interval).
+      double& u = v[e.direction][n];
+      const double old = held ? u : u - mean * e.held[j];
+      const double free = old + mean * e.held[j];
+      work_ += mass[n] * (value - free) * 0.5 * (old + value);
+      u = value;
+    }
+  }
+}
+
+void ExplicitCurveLoads::hold(double* ax, double* ay, double* az) {
+  double* a[3] = {ax, ay, az};
+  for (Entry& e : velocities_)
+    for (std::size_t j = 0; j < e.nodes.size(); ++j) {
+      double& u = a[e.direction][e.nodes[j]];
+      e.held[j] = u;
+      if (e.active) u = 0.0;
+    }
+}
+
+}  // namespace impactfe

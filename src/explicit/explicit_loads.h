@@ -1,0 +1,46 @@
+#pragma once
+/// Loads by curve of an explicit run (EDLOAD; docs/explicit_dynamics.md): nodal forces FX, FY,
+/// FZ and prescribed velocities VX, VY, VZ on the nodes of a component, valued by a curve of
+/// time: linear between its points, held at the first before it and at the last beyond it (as
+/// LS-DYNA's load curves), times SCALE, active between BTIME and DTIME.
+#include <vector>
+
+#include "core/explicit_controls.h"
+#include "explicit/explicit_interaction.h"
+#include "explicit/explicit_system.h"
+
+namespace impactfe {
+
+/// The value of a curve (abscissae increasing) at `t`: linear interpolation, constant beyond
+/// the ends.
+double curve_value(const std::vector<double>& x, const std::vector<double>& y, double t);
+
+class ExplicitCurveLoads final : public ExplicitInteraction {
+ public:
+  /// The loads of `controls` on the nodes of `system` (InputError at the EDLOAD for a node that
+  /// carries no explicit element).
+  ExplicitCurveLoads(const ExplicitSystem& system, const ExplicitControls& controls);
+  bool empty() const { return forces_.empty() && velocities_.empty(); }
+
+  ExplicitStepLimit add_forces(const ExplicitNodalView& state, const double* mass, double time,
+                               double dt, double* fx, double* fy, double* fz) override;
+  void prescribe(double time, double mean, const double* mass, double* vx, double* vy,
+                 double* vz) override;
+  void hold(double* ax, double* ay, double* az) override;
+  double external_work() const override { return work_; }
+
+ private:
+  struct Entry {
+    const ExplicitCurveLoad* load;
+    int direction;                   // 0 x, 1 y, 2 z
+    std::vector<std::size_t> nodes;  // run indices
+    std::vector<double> previous;    // force at t_n of each node (trapezoidal work)
+    std::vector<double> held;        // prescribed: the acceleration the forces would give
+    bool active = false;             // a velocity prescribed at the last half step
+  };
+  double value(const ExplicitCurveLoad& l, double time) const;
+  std::vector<Entry> forces_, velocities_;
+  double work_ = 0.0;
+};
+
+}  // namespace impactfe

@@ -1,0 +1,129 @@
+// Contact and loads by curve of explicit dynamics (docs/explicit_dynamics.md): the curve
+// interpolation, the exterior segments of SOLID164, the energy balance of an elastic impact
+// (penalty springs give back what they took), friction that only dissipates, repeatable sums.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "deck/deck_reader.h"
+#include "explicit/central_difference.h"
+#include "explicit/explicit_contact.h"
+#include "explicit/explicit_loads.h"
+#include "explicit/explicit_system.h"
+
+namespace impactfe {
+namespace {
+
+TEST(ExplicitCurve, InterpolatesLinearlyAndHoldsTheEnds) {
+  const std::vector<double> x = {0.0, 1.0, 3.0}, y = {1.0, 3.0, -1.0};
+  EXPECT_DOUBLE_EQ(curve_value(x, y, -1.0), 1.0);
+  EXPECT_DOUBLE_EQ(curve_value(x, y, 0.5), 2.0);
+  EXPECT_DOUBLE_EQ(curve_value(x, y, 2.0), 1.0);
+  EXPECT_DOUBLE_EQ(curve_value(x, y, 10.0), -1.0);
+}
+
+std::string deck(const std::string& name) {
+  std::ifstream in(std::string(IMPACTFE_TEST_VERIFICATION) + "/" + name);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+/// Runs a deck's explicit model by hand to `end` (its D on the listed node range fixed).
+struct ContactRun {
+  Model model;
+  ExplicitSystem system;
+  ExplicitContactSet contact;
+  CentralDifference cd;
+  ContactRun(const std::string& text, int fixed_first, int fixed_last,
+             const Vec3& acel = Vec3::Zero())
+      : model(read_deck_text(text, "deck.inp").model),
+        system(build_explicit_system(model)),
+        contact(model, system),
+        cd(system, model.explicit_dynamics) {
+    cd.add_interaction(&contact);
+    std::vector<std::uint8_t> fixed(3 * system.n_nodes(), 0);
+    for (int id = fixed_first; id <= fixed_last; ++id)
+      if (const int n = system.index_of(id); n >= 0)
+        for (int d = 0; d < 3; ++d) fixed[3 * static_cast<std::size_t>(n) + d] = 1;
+    for (const auto& v : model.explicit_dynamics.initial_velocities)
+      for (int id : v.nodes)
+        cd.set_velocity(static_cast<std::size_t>(system.index_of(id)), v.velocity);
+    cd.set_loads(fixed, acel);
+    cd.start();
+  }
+  void to(double end) {
+    while (cd.time() < end) cd.cycle(std::min(cd.stable_step(), end - cd.time()));
+  }
+};
+
+/// The decks' model part (up to FINISH): the runs here set loads themselves.
+std::string prep(const std::string& name) {
+  const std::string text = deck(name);
+  return text.substr(0, text.find("FINISH"));
+}
+
+TEST(ExplicitContact, ExteriorFacesOnlyAreSegments) {
+  // Two bars of 50 bricks: 4 · 50 side faces and 2 ends each; the 49 inner faces are dropped.
+  Model m = read_deck_text(prep("explicit_contact_bars_solid164.inp"), "b.inp").model;
+  ExplicitSystem s = build_explicit_system(m);
+  ExplicitContactSet c(m, s);
+  EXPECT_NE(c.summary().find("404 segments"), std::string::npos) << c.summary();
+}
+
+TEST(ExplicitContact, BarsImpactKeepsTheEnergy) {
+  ContactRun r(prep("explicit_contact_bars_solid164.inp"), 0, -1);
+  const double put_in = r.cd.energies().initial_kinetic;
+  double worst = 0.0;
+  while (r.cd.time() < 3e-4) {
+    r.cd.cycle(std::min(r.cd.stable_step(), 3e-4 - r.cd.time()));
+    worst = std::max(worst, std::abs(r.cd.energies().drift()) / put_in);
+  }
+  EXPECT_LT(worst, 0.015);  // the balance through the impact (1.06 % at its worst)
+  EXPECT_NEAR(r.contact.stored_energy(), 0.0, 1e-12);  // the bars have parted
+  EXPECT_LT(std::abs(r.cd.energies().contact), 0.01 * put_in);
+}
+
+TEST(ExplicitContact, UnsupportedOptionsAreRefused) {
+  const std::string base = prep("explicit_contact_bars_solid164.inp");
+  EXPECT_ANY_THROW(read_deck_text(base + "EDCGEN,ASSC\n", "a.inp"));
+  EXPECT_ANY_THROW(read_deck_text(base + "EDCGEN,NTS,1,2,0.3,0.3,0,0,20\n", "v.inp"));
+  EXPECT_ANY_THROW(read_deck_text(base + "*DIM,T,ARRAY,2\n*DIM,V,ARRAY,2\nT(1)=0,1\nV(1)=1,1\n"
+                                         "EDLOAD,ADD,VX,,BARA,T,V\n",
+                                  "l.inp"));
+}
+
+TEST(ExplicitContact, FrictionOnlyDissipates) {
+  ContactRun r(prep("explicit_contact_friction_solid164.inp"), 101, 290, Vec3(0, 0, 9.81));
+  double before = 0.0;
+  for (int i = 1; i <= 20; ++i) {
+    r.to(0.01 * i);
+    const double dissipated = r.cd.energies().contact - r.contact.stored_energy();
+    EXPECT_GE(dissipated, before - 1e-9) << "t = " << r.cd.time();
+    before = dissipated;
+  }
+  // About the kinetic energy ½ m v0² by then (the block has stopped at t = 0.204).
+  double block = 0.0;
+  for (int id = 1; id <= 18; ++id)
+    block += r.system.mass[static_cast<std::size_t>(r.system.index_of(id))];
+  const double half_mv2 = 0.5 * block * 1.0;
+  EXPECT_NEAR(before, half_mv2, 0.05 * half_mv2);
+  EXPECT_LT(std::abs(r.cd.energies().drift()), 0.02 * half_mv2);
+}
+
+TEST(ExplicitContact, RunsAreBitwiseRepeatable) {
+  const auto once = [] {
+    ContactRun r(prep("explicit_contact_bars_solid164.inp"), 0, -1);
+    r.to(5e-5);
+    return r.cd.displacement(200);
+  };
+  const Vec3 a = once(), b = once();
+  EXPECT_EQ(a.x(), b.x());
+  EXPECT_EQ(a.y(), b.y());
+  EXPECT_EQ(a.z(), b.z());
+}
+
+}  // namespace
+}  // namespace impactfe
