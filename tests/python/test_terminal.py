@@ -265,3 +265,30 @@ def test_interrupted_run_continues_from_its_restart_point(binary, tmp_path):
     ux = r.history(node=2, item="UX")
     assert ux.index[-1] == pytest.approx(0.5) and len(ux) == len(whole)
     np.testing.assert_allclose(ux.iloc[:, 0].values, whole.iloc[:, 0].values, rtol=0, atol=1e-12)
+
+
+def test_second_interrupt_stops_at_once_and_keeps_the_flushed_results(binary, tmp_path):
+    """Two Ctrl-Cs in a row: the second one, while the first is still being carried out
+    (finishing the substep, writing the restart point), stops the run at once with exit 130 and
+    says so; the results file keeps what was flushed before and reads."""
+    deck = _long_deck(tmp_path)
+    out = tmp_path / "twice"
+    p = subprocess.Popen([binary, "run", deck, "-o", str(out), "-j", "progress"],
+                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    results = out / "progress.h5"
+    deadline = time.monotonic() + 60
+    while not results.exists() and time.monotonic() < deadline and p.poll() is None:
+        time.sleep(0.05)
+    time.sleep(0.5)
+    assert p.poll() is None, "the run ended before it could be interrupted: make it longer"
+    p.send_signal(signal.SIGINT)
+    p.send_signal(signal.SIGINT)
+    _, stderr = p.communicate(timeout=120)
+    assert p.returncode == 130, stderr
+    # Either the second signal arrived while the first was being carried out (stopped at once),
+    # or after the run had already stopped cleanly; both must leave a readable file.
+    assert ("stopped at once (second interrupt)" in stderr
+            or "results up to the interruption are kept in" in stderr), stderr
+    r = impactfe.open(str(results))
+    ux = r.history(node=2, item="UX")
+    assert len(ux) >= 1 and ux.index[0] == 0.0
