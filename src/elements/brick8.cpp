@@ -65,7 +65,7 @@ Eigen::Matrix3d voigt_to_tensor(const Vector6d& s) {
 
 Brick8::Brick8(int id, const std::array<int, 8>& nodes, const std::array<Vec3, 8>& x,
                const IsotropicElasticity& material, bool extra_shapes, const SourceLocation& where,
-               std::optional<J2Plasticity> plasticity, bool large_deflection)
+               std::optional<J2Plasticity> plasticity, bool large_deflection, BrickStrain strain)
     : Element(id), nodes_(nodes), x_(x), plasticity_(std::move(plasticity)) {
   // Distinct nodes in order of first appearance; coincident corners share DOFs.
   std::vector<int> unique;
@@ -89,7 +89,13 @@ Brick8::Brick8(int id, const std::array<int, 8>& nodes, const std::array<Vec3, 8
   d_ = isotropic_elasticity_matrix(material.young, material.poisson);
   density_ = material.density;
   // Wilson's bubbles need a genuine hexahedron: dropped for collapsed shapes (ANSYS does too).
-  extra_shapes_ = extra_shapes && n_unique_ == 8;
+  // Enhanced strain needs them too; a collapsed enhanced brick keeps B-bar against volumetric
+  // locking. B-bar has no internal parameters.
+  strain_ = strain;
+  if (strain_ == BrickStrain::Enhanced && n_unique_ < 8) strain_ = BrickStrain::BBar;
+  extra_shapes_ = strain_ == BrickStrain::Enhanced ||
+                  (strain_ == BrickStrain::Standard && extra_shapes && n_unique_ == 8);
+  n_internal_ = strain_ == BrickStrain::Enhanced ? 13 : (extra_shapes_ ? 9 : 0);
 
   // Length scale for the Jacobian test: a determinant below 1e-10 of (size/2)³ is "zero".
   double size = 0.0;
@@ -103,6 +109,7 @@ Brick8::Brick8(int id, const std::array<int, 8>& nodes, const std::array<Vec3, 8
   shape(centre, n, dn);
   const Eigen::Matrix3d j0 = jacobian(dn, x);
   const double det0 = j0.determinant();
+  det0_ = det0;
   if (!(det0 > det_floor))
     throw InputError(where, fmt::format("element {}: zero or negative Jacobian determinant {:.6g} "
                                         "at the element centre (check the node order I..P and "
@@ -146,22 +153,83 @@ Brick8::Brick8(int id, const std::array<int, 8>& nodes, const std::array<Vec3, 8
   if (extra_shapes_ && (plasticity_ || large_deflection)) mode_recovery_ = mode_recovery();
 }
 
-Eigen::Matrix<double, 9, 24> Brick8::mode_recovery() const {
+Eigen::MatrixXd Brick8::mode_recovery() const {
   if (mode_recovery_.size() != 0) return mode_recovery_;
-  Eigen::Matrix<double, 9, 24> r;
+  Eigen::MatrixXd r;
   small_strain_stiffness(&r);
   return r;
 }
 
-Eigen::Matrix<double, 24, 24> Brick8::small_strain_stiffness(
-    Eigen::Matrix<double, 9, 24>* recovery) const {
+Eigen::Matrix<double, 6, Eigen::Dynamic> Brick8::strain_operator(int p, bool internal) const {
+  const GaussPoint& gp = gauss_[static_cast<std::size_t>(p)];
+  const int nf = internal && extra_shapes_ ? kFunctions : 8;
+  const int n_vol = internal && strain_ == BrickStrain::Enhanced ? 4 : 0;
+  Eigen::Matrix<double, 6, Eigen::Dynamic> b =
+      Eigen::Matrix<double, 6, Eigen::Dynamic>::Zero(6, 3 * nf + n_vol);
+  for (int a = 0; a < nf; ++a) {  // small-strain B (Bathe 5.3), engineering shear
+    const double g0 = gp.grad(0, a), g1 = gp.grad(1, a), g2 = gp.grad(2, a);
+    b(0, 3 * a) = g0;
+    b(1, 3 * a + 1) = g1;
+    b(2, 3 * a + 2) = g2;
+    b(3, 3 * a) = g1;
+    b(3, 3 * a + 1) = g0;
+    b(4, 3 * a + 1) = g2;
+    b(4, 3 * a + 2) = g1;
+    b(5, 3 * a) = g2;
+    b(5, 3 * a + 2) = g0;
+  }
+  if (n_vol > 0) {
+    // Enhanced volumetric strains (Simo & Rifai 1990, eq. 3.13 form): ε = (det J0 / det J)
+    // E(ξ) α with E = m (ξη, ηζ, ξζ, ξηζ), m = (1 1 1 0 0 0)ᵀ. ∫E dξ = 0, so they are
+    // orthogonal to constant stress (patch test). With the bubbles' ξ, η, ζ dilatations they
+    // make the 8 Gauss points' volumetric strains independent: no volumetric locking.
+    const double g = 1.0 / std::sqrt(3.0);
+    const double xi = g * kCornerXi[p][0], eta = g * kCornerXi[p][1], zeta = g * kCornerXi[p][2];
+    const double scale = det0_ / gp.dv;  // the 2-point Gauss weights are 1: dv = det J
+    const double e[4] = {xi * eta, eta * zeta, xi * zeta, xi * eta * zeta};
+    for (int m = 0; m < 4; ++m) b.col(3 * nf + m).head<3>().setConstant(scale * e[m]);
+  }
+  if (bbar_active()) {
+    // B-bar (selective dilatational, Hughes 1980; SOLID185 KEYOPT(2) = 0): the volumetric
+    // strain of every point is replaced by the element mean (1/V)∫ div u dV, so an isochoric
+    // field (plastic flow, ν → 0.5) is not constrained at each point.
+    Eigen::Matrix<double, 1, 24> vol;
+    for (int a = 0; a < 8; ++a) vol.segment<3>(3 * a) = gp.grad.col(a).head<3>().transpose();
+    const Eigen::Matrix<double, 1, 24> shift = (mean_dilatation_ - vol) / 3.0;
+    for (int i = 0; i < 3; ++i) b.row(i) += shift;
+  }
+  return b;
+}
+
+Eigen::Matrix<double, 24, 24> Brick8::small_strain_stiffness(Eigen::MatrixXd* recovery) const {
+  if (strain_ != BrickStrain::Standard) {
+    // K = Σ Bᵀ D B dV over the corners and internal parameters, then the internal ones
+    // condensed: K = K_cc − K_ca K_aa⁻¹ K_ac (Simo & Rifai 1990 eq. 4.9, linear case).
+    const int nq = 24 + n_internal_;
+    Eigen::MatrixXd kfull = Eigen::MatrixXd::Zero(nq, nq);
+    for (int p = 0; p < kGauss; ++p) {
+      const Eigen::Matrix<double, 6, Eigen::Dynamic> b = strain_operator(p, true);
+      kfull.noalias() += gauss_[static_cast<std::size_t>(p)].dv * (b.transpose() * d_ * b);
+    }
+    Eigen::Matrix<double, 24, 24> k = kfull.topLeftCorner<24, 24>();
+    if (n_internal_ == 0) {
+      if (recovery) recovery->setZero(9, 24);
+      return 0.5 * (k + k.transpose());
+    }
+    const Eigen::MatrixXd modes = -kfull.bottomRightCorner(n_internal_, n_internal_)
+                                       .ldlt()
+                                       .solve(kfull.bottomLeftCorner(n_internal_, 24));
+    if (recovery) *recovery = modes;
+    k += kfull.topRightCorner(24, n_internal_) * modes;
+    return 0.5 * (k + k.transpose());
+  }
   // q = 0 in the total-Lagrangian sum; with extra shapes the bubble amplitudes condensed out
   // (static condensation, Wilson et al. 1973): K = K_cc − K_ca K_aa⁻¹ K_ac.
   Eigen::Matrix<double, 24, 24> k;
   if (!extra_shapes_) {
     Eigen::Matrix<double, 24, 1> ffull;
     tl_sum<8>(Eigen::Matrix<double, 24, 1>::Zero(), &k, ffull);
-    if (recovery) recovery->setZero();
+    if (recovery) recovery->setZero(9, 24);
     return k;
   }
   Eigen::Matrix<double, 3 * kFunctions, 3 * kFunctions> kfull;
@@ -262,24 +330,20 @@ void Brick8::tl_sum(const Eigen::Matrix<double, 3 * NF, 1>& q,
 
 void Brick8::tangent_linear(const ElementContext& ctx, const Eigen::Matrix<double, 24, 1>& uc,
                             Eigen::MatrixXd& kc, Eigen::VectorXd& fc) const {
-  Eigen::Matrix<double, 9, 24> recovery;
+  Eigen::MatrixXd recovery;
   const Eigen::Matrix<double, 24, 24> k =
       small_strain_stiffness(ctx.stress_stiffening ? &recovery : nullptr);
   kc = k;
   fc = k * uc;
   if (!ctx.stress_stiffening) return;
   // Stress stiffness with the small-strain stress of u (standard functions only).
-  const Eigen::Matrix<double, 9, 1> alpha = recovery * uc;
+  Eigen::VectorXd q(24 + n_internal_);
+  q.head<24>() = uc;
+  if (n_internal_ > 0) q.tail(n_internal_) = recovery * uc;
   Eigen::Matrix<double, 24, 24> kg = Eigen::Matrix<double, 24, 24>::Zero();
-  for (const GaussPoint& gp : gauss_) {
-    Eigen::Matrix3d h = Eigen::Matrix3d::Zero();
-    for (int a = 0; a < 8; ++a) h += uc.segment<3>(3 * a) * gp.grad.col(a).transpose();
-    if (extra_shapes_)
-      for (int m = 0; m < kModes; ++m)
-        h += alpha.segment<3>(3 * m) * gp.grad.col(8 + m).transpose();
-    Vector6d eps;
-    eps << h(0, 0), h(1, 1), h(2, 2), h(0, 1) + h(1, 0), h(1, 2) + h(2, 1), h(0, 2) + h(2, 0);
-    const Vector6d sigma = d_ * eps;
+  for (int p = 0; p < kGauss; ++p) {
+    const GaussPoint& gp = gauss_[static_cast<std::size_t>(p)];
+    const Vector6d sigma = d_ * (strain_operator(p, true) * q);
     const auto grad = gp.grad.leftCols<8>();
     const Eigen::Matrix<double, 8, 8> gs =
         gp.dv * (grad.transpose() * voigt_to_tensor(sigma) * grad);
@@ -307,7 +371,7 @@ void Brick8::tangent_large(const Eigen::Matrix<double, 24, 1>& uc, Eigen::Matrix
   constexpr int kNq = 3 * kFunctions;
   Eigen::Matrix<double, kNq, 1> q;
   q.head<24>() = uc;
-  q.tail<9>() = mode_recovery() * uc;  // small-strain prediction
+  q.tail<9>() = mode_recovery().topRows<9>() * uc;  // small-strain prediction (bubbles)
   Eigen::Matrix<double, kNq, kNq> kq;
   Eigen::Matrix<double, kNq, 1> fq;
   const double scale = std::max(uc.lpNorm<Eigen::Infinity>(), 1e-300);
@@ -334,36 +398,16 @@ void Brick8::tangent_large(const Eigen::Matrix<double, 24, 1>& uc, Eigen::Matrix
   fc = fq.head<24>() - kau.transpose() * kaa_ldlt.solve(fq.tail<9>());
 }
 
-void Brick8::plastic_sum(int nf, const Eigen::VectorXd& q, Eigen::MatrixXd& k, Eigen::VectorXd& f,
+void Brick8::plastic_sum(const Eigen::VectorXd& q, Eigen::MatrixXd& k, Eigen::VectorXd& f,
                          PointStates* updated) const {
-  const int nq = 3 * nf;
+  const auto nq = q.size();
   k.setZero(nq, nq);
   f.setZero(nq);
-  Eigen::Matrix<double, 6, Eigen::Dynamic> b(6, nq);
   for (int p = 0; p < kGauss; ++p) {
     const GaussPoint& gp = gauss_[static_cast<std::size_t>(p)];
-    const auto grad = gp.grad.leftCols(nf);
-    b.setZero();
-    for (int a = 0; a < nf; ++a) {  // small-strain B (Bathe 5.3), engineering shear
-      const double g0 = grad(0, a), g1 = grad(1, a), g2 = grad(2, a);
-      b(0, 3 * a) = g0;
-      b(1, 3 * a + 1) = g1;
-      b(2, 3 * a + 2) = g2;
-      b(3, 3 * a) = g1;
-      b(3, 3 * a + 1) = g0;
-      b(4, 3 * a + 1) = g2;
-      b(4, 3 * a + 2) = g1;
-      b(5, 3 * a) = g2;
-      b(5, 3 * a + 2) = g0;
-    }
-    if (nf == 8) {
-      // B-bar (mean dilatation, Hughes 1980; SOLID185 KEYOPT(2) = 0): the volumetric strain of
-      // every point is replaced by the element mean, so plastic (isochoric) flow does not lock.
-      Eigen::Matrix<double, 1, 24> vol;
-      for (int a = 0; a < 8; ++a) vol.segment<3>(3 * a) = grad.col(a).transpose();
-      const Eigen::Matrix<double, 1, 24> shift = (mean_dilatation_ - vol) / 3.0;
-      for (int i = 0; i < 3; ++i) b.row(i) += shift;
-    }
+    // B-bar without internal parameters (isochoric plastic flow does not lock), else the
+    // incompatible / enhanced modes in the strain (strain_operator()).
+    const Eigen::Matrix<double, 6, Eigen::Dynamic> b = strain_operator(p, nq > 24);
     const Vector6d eps = b * q;
     const PlasticResponse r =
         plasticity_->solid(committed_[static_cast<std::size_t>(p)], eps,
@@ -376,35 +420,35 @@ void Brick8::plastic_sum(int nf, const Eigen::VectorXd& q, Eigen::MatrixXd& k, E
 void Brick8::tangent_plastic(const Eigen::Matrix<double, 24, 1>& uc, Eigen::MatrixXd& kc,
                              Eigen::VectorXd& fc, PointStates* updated) const {
   if (!extra_shapes_) {
-    plastic_sum(8, uc, kc, fc, updated);
+    plastic_sum(uc, kc, fc, updated);
     return;
   }
   // The mode amplitudes α are internal: f_α(u, α) = ∫B_αᵀσ dV = 0 is solved by Newton from the
   // elastic prediction (each evaluation returns every point from its committed state, so this
   // stays a function of (committed state, u)); then K = K_uu − K_uα K_αα⁻¹ K_αu, exact at f_α = 0
   // (Simo & Rifai 1990 for the enhanced-strain analogue).
-  Eigen::VectorXd q(3 * kFunctions);
+  const int ni = n_internal_;
+  Eigen::VectorXd q(24 + ni);
   q.head<24>() = uc;
-  q.tail<9>() = mode_recovery() * uc;
+  q.tail(ni) = mode_recovery() * uc;
   Eigen::MatrixXd kq;
   Eigen::VectorXd fq;
   const double scale = std::max(uc.lpNorm<Eigen::Infinity>(), 1e-300);
   for (int iter = 0; iter < 25; ++iter) {
-    plastic_sum(kFunctions, q, kq, fq, nullptr);
-    const Eigen::Matrix<double, 9, 1> step =
-        -kq.bottomRightCorner<9, 9>().ldlt().solve(fq.tail<9>());
-    q.tail<9>() += step;
+    plastic_sum(q, kq, fq, nullptr);
+    const Eigen::VectorXd step = -kq.bottomRightCorner(ni, ni).ldlt().solve(fq.tail(ni));
+    q.tail(ni) += step;
     if (step.lpNorm<Eigen::Infinity>() <=
-        1e-12 * std::max(scale, q.tail<9>().lpNorm<Eigen::Infinity>()))
+        1e-12 * std::max(scale, q.tail(ni).lpNorm<Eigen::Infinity>()))
       break;
   }
   // A residual f_α left by an unconverged local iteration is condensed consistently below.
-  plastic_sum(kFunctions, q, kq, fq, updated);
-  const Eigen::Matrix<double, 9, 24> kau = kq.bottomLeftCorner<9, 24>();
-  const auto kaa_ldlt = kq.bottomRightCorner<9, 9>().ldlt();
+  plastic_sum(q, kq, fq, updated);
+  const Eigen::MatrixXd kau = kq.bottomLeftCorner(ni, 24);
+  const auto kaa_ldlt = kq.bottomRightCorner(ni, ni).ldlt();
   kc = kq.topLeftCorner<24, 24>() - kau.transpose() * kaa_ldlt.solve(kau);
   kc = 0.5 * (kc + kc.transpose()).eval();
-  fc = fq.head<24>() - kau.transpose() * kaa_ldlt.solve(fq.tail<9>());
+  fc = fq.head<24>() - kau.transpose() * kaa_ldlt.solve(fq.tail(ni));
 }
 
 void Brick8::commit_history(const ElementContext& ctx, const Eigen::VectorXd& u) {
@@ -518,6 +562,8 @@ Vector6d Brick8::centroid_stress(const ElementContext& ctx, const Eigen::VectorX
   if (!ctx.large_deflection) {
     Vector6d eps;
     eps << h(0, 0), h(1, 1), h(2, 2), h(0, 1) + h(1, 0), h(1, 2) + h(2, 1), h(0, 2) + h(2, 0);
+    // The enhanced volumetric modes vanish at ξ = 0 too; B-bar: the element's mean dilatation.
+    if (bbar_active()) eps.head<3>().array() += (mean_dilatation_ * uc - h.trace()) / 3.0;
     // σ = D (ε − ε_th), the temperature at the centroid the mean of the corners'.
     return d_ * (eps - thermal_strain(Eigen::Matrix<double, 8, 1>::Constant(0.125)));
   }
@@ -544,25 +590,20 @@ Vector6d Brick8::thermal_strain(const Eigen::Matrix<double, 8, 1>& n) const {
 }
 
 void Brick8::thermal_load(const ElementContext&, Eigen::VectorXd& f) const {
-  // f_a = Σ_p B_aᵀ σ_th dV_p with σ_th = D ε_th(ξ_p), for the 8 corner functions and the bubbles.
-  Eigen::Matrix<double, 3 * kFunctions, 1> ffull = Eigen::Matrix<double, 3 * kFunctions, 1>::Zero();
+  // f = Σ_p Bᵀ σ_th dV_p with σ_th = D ε_th(ξ_p), B over the corners and the internal
+  // parameters (B-bar when in effect: the work conjugate of the stiffness's strain).
+  const int nq = 24 + n_internal_;
+  Eigen::VectorXd ffull = Eigen::VectorXd::Zero(nq);
   const auto& n = gauss_shape();
   for (int p = 0; p < kGauss; ++p) {
     const GaussPoint& gp = gauss_[static_cast<std::size_t>(p)];
     const Vector6d s = d_ * thermal_strain(n[static_cast<std::size_t>(p)]);
-    const int nf = extra_shapes_ ? kFunctions : 8;
-    for (int a = 0; a < nf; ++a) {
-      const double gx = gp.grad(0, a), gy = gp.grad(1, a), gz = gp.grad(2, a);
-      // Voigt order xx yy zz xy yz xz (engineering shear), as the strains of centroid_stress.
-      ffull(3 * a + 0) += gp.dv * (gx * s(0) + gy * s(3) + gz * s(5));
-      ffull(3 * a + 1) += gp.dv * (gy * s(1) + gx * s(3) + gz * s(4));
-      ffull(3 * a + 2) += gp.dv * (gz * s(2) + gy * s(4) + gx * s(5));
-    }
+    ffull.noalias() += gp.dv * (strain_operator(p, true).transpose() * s);
   }
   Eigen::Matrix<double, 24, 1> fc = ffull.head<24>();
-  // Static condensation of the bubble amplitudes: K_aa a + K_ac u = f_a gives the corner load
+  // Static condensation of the internal amplitudes: K_aa a + K_ac u = f_a gives the corner load
   // f_c − K_ca K_aa⁻¹ f_a = f_c + Rᵀ f_a with the recovery R = −K_aa⁻¹ K_ac.
-  if (extra_shapes_) fc += mode_recovery().transpose() * ffull.tail<9>();
+  if (n_internal_ > 0) fc += mode_recovery().transpose() * ffull.tail(n_internal_);
   const int nu = 3 * n_unique_;
   f.setZero(nu);
   for (int c = 0; c < 8; ++c) f.segment<3>(3 * corner_to_unique_[c]) += fc.segment<3>(3 * c);
@@ -616,6 +657,14 @@ const std::vector<std::string> kBrick8Results = {
 
 const std::vector<std::string>& Brick8::result_names() const {
   return kBrick8Results;
+}
+
+const std::vector<std::string>& brick8_result_names() {
+  return kBrick8Results;
+}
+
+const std::vector<std::vector<int>>& brick8_faces() {
+  return brick_faces();
 }
 
 void Brick8::results(const ElementContext& ctx, const Eigen::VectorXd& u, const Eigen::VectorXd& v,
@@ -672,83 +721,5 @@ void Brick8::results(const ElementContext& ctx, const Eigen::VectorXd& u, const 
          srat,
          plwk};
 }
-
-namespace {
-
-/// SOLID45, or SOLID185 (`solid185`: its KEYOPT(2) selects the integration).
-std::unique_ptr<Element> make_brick8(const ElementBuildContext& ctx, const ElementRecord& record,
-                                     bool solid185) {
-  const Model& model = ctx.model;
-  if (record.nodes.size() != 8)
-    throw InputError(record.where, fmt::format("element {}: an 8-node brick needs nodes I..P, "
-                                               "got {} nodes",
-                                               record.id, record.nodes.size()));
-  std::array<int, 8> nodes{};
-  std::array<Vec3, 8> x;
-  for (int c = 0; c < 8; ++c) {
-    nodes[c] = record.nodes[c];
-    const auto it = model.nodes.find(nodes[c]);
-    if (it == model.nodes.end())
-      throw InputError(record.where,
-                       fmt::format("element {}: node {} is not defined", record.id, nodes[c]));
-    x[c] = it->second.x;
-  }
-  const auto type_it = model.element_types.find(record.type);
-  if (type_it == model.element_types.end())
-    throw InputError(record.where, fmt::format("element {}: element type {} is not defined",
-                                               record.id, record.type));
-  const ElementType& type = type_it->second;
-  // SOLID45: KEYOPT(1) = 1 suppresses the extra shapes. SOLID185: only KEYOPT(2) = 3
-  // (simplified enhanced strain) maps to them; B-bar (0), reduced (1) and enhanced strain (2)
-  // are approximated by full 2x2x2 integration without extra shapes (docs/elements/solid45.md).
-  const bool extra = solid185 ? type.key(2) == 3 : type.key(1) != 1;
-  const bool approximated = solid185 ? type.key(2) != 3 : type.key(2) == 1;
-  if (approximated) {
-    // Warn once per element type: only for the first element of this type.
-    const auto first = std::find_if(model.elements.begin(), model.elements.end(),
-                                    [&](const auto& kv) { return kv.second.type == record.type; });
-    if (first == model.elements.end() || first->first == record.id)
-      Log::warn(
-          "element type {} ({} KEYOPT(2) = {}): integrated with full 2x2x2 Gauss{} "
-          "(approximation)",
-          record.type, solid185 ? "SOLID185" : "SOLID45", type.key(2),
-          extra ? " and extra shapes" : ", no extra shapes");
-  }
-  const IsotropicElasticity material =
-      read_isotropic_elasticity(model, record.mat, record.id, record.where);
-  return std::make_unique<Brick8>(record.id, nodes, x, material, extra, record.where,
-                                  plasticity_of(model, record, material.young, material.poisson),
-                                  ctx.large_deflection);
-}
-
-ElementTypeDescriptor brick_type(const char* name, int number, bool solid185) {
-  return {.name = name,
-          .number = number,
-          .family = "Brick8",
-          .n_nodes = 8,
-          .needs_material = true,
-          .vtk_cell = VtkCell::Hexahedron,
-          .role = ShapeRole::Solid,
-          .result_names = kBrick8Results,
-          .result_sequences =
-              {{"S", "X", "SX"},         {"S", "Y", "SY"},         {"S", "Z", "SZ"},
-               {"S", "XY", "SXY"},       {"S", "YZ", "SYZ"},       {"S", "XZ", "SXZ"},
-               {"S", "1", "S1"},         {"S", "2", "S2"},         {"S", "3", "S3"},
-               {"S", "INT", "SINT"},     {"S", "EQV", "SEQV"},     {"EPPL", "X", "EPPLX"},
-               {"EPPL", "Y", "EPPLY"},   {"EPPL", "Z", "EPPLZ"},   {"EPPL", "XY", "EPPLXY"},
-               {"EPPL", "YZ", "EPPLYZ"}, {"EPPL", "XZ", "EPPLXZ"}, {"NL", "EPEQ", "EPEQ"},
-               {"NL", "SEPL", "SEPL"},   {"NL", "SRAT", "SRAT"},   {"NL", "PLWK", "PLWK"}},
-          .plasticity = true,
-          .faces = brick_faces(),
-          .sf_faces = 6,
-          .create = [solid185](const ElementBuildContext& ctx, const ElementRecord& record) {
-            return make_brick8(ctx, record, solid185);
-          }};
-}
-
-const ElementRegistration kSolid45{brick_type("SOLID45", 45, false)};
-const ElementRegistration kSolid185{brick_type("SOLID185", 185, true)};
-
-}  // namespace
 
 }  // namespace impactfe

@@ -24,6 +24,19 @@
 
 namespace impactfe {
 
+/// Small-strain technology of the brick (SOLID185 KEYOPT(2)). Standard: full 2x2x2 with the
+/// incompatible modes when extra_shapes (KEYOPT(2) = 3, SOLID45), B-bar for a plastic brick
+/// without them. BBar (KEYOPT(2) = 0): selective dilatational (Hughes 1980), the volumetric
+/// strain of every Gauss point replaced by the element mean. Enhanced (KEYOPT(2) = 2): the 9
+/// incompatible modes plus 4 enhanced volumetric strains (Simo & Rifai 1990), 13 internal
+/// parameters condensed per element; a collapsed brick falls back to BBar.
+enum class BrickStrain { Standard, BBar, Enhanced };
+
+/// The brick's result names (SX..PLWK) and its faces 1..6 in MAPDL's numbering (corner
+/// positions, outward normals by the right-hand rule): for the registration.
+const std::vector<std::string>& brick8_result_names();
+const std::vector<std::vector<int>>& brick8_faces();
+
 /// The 8-node brick. All matrices are in global Cartesian axes; the DOF order is (node, UX/UY/UZ)
 /// for the distinct nodes in order of first appearance in I..P.
 class Brick8 final : public Element {
@@ -35,7 +48,8 @@ class Brick8 final : public Element {
   /// tangent reads at every iteration; otherwise it is formed when asked.
   Brick8(int id, const std::array<int, 8>& nodes, const std::array<Vec3, 8>& x,
          const IsotropicElasticity& material, bool extra_shapes, const SourceLocation& where = {},
-         std::optional<J2Plasticity> plasticity = std::nullopt, bool large_deflection = false);
+         std::optional<J2Plasticity> plasticity = std::nullopt, bool large_deflection = false,
+         BrickStrain strain = BrickStrain::Standard);
 
   const char* family() const override { return "Brick8"; }
   const std::vector<DofKey>& dofs() const override { return dofs_; }
@@ -88,6 +102,10 @@ class Brick8 final : public Element {
 
   /// True when the incompatible modes are active (requested and all 8 nodes distinct).
   bool extra_shapes() const { return extra_shapes_; }
+  /// The small-strain technology in effect (Enhanced on a collapsed brick becomes BBar).
+  BrickStrain strain() const { return strain_; }
+  /// Internal strain parameters condensed per element: 0, 9 (incompatible modes) or 13.
+  int n_internal() const { return n_internal_; }
   /// True when some of the nodes I..P repeat (prism, pyramid, tetrahedron).
   bool degenerate() const { return n_unique_ < 8; }
   /// Element volume ∫dV (2x2x2 Gauss), in the deck's length unit cubed.
@@ -133,17 +151,25 @@ class Brick8 final : public Element {
   /// first (Newton) and condensed out. `updated` receives the states at u when given.
   void tangent_plastic(const Eigen::Matrix<double, 24, 1>& uc, Eigen::MatrixXd& kc,
                        Eigen::VectorXd& fc, PointStates* updated) const;
-  /// ∫BᵀC_alg B dV, ∫Bᵀσ dV over the first nf functions at generalised displacements q.
-  void plastic_sum(int nf, const Eigen::VectorXd& q, Eigen::MatrixXd& k, Eigen::VectorXd& f,
+  /// ∫BᵀC_alg B dV, ∫Bᵀσ dV at generalised displacements q (24 corners, or 24 + n_internal()).
+  void plastic_sum(const Eigen::VectorXd& q, Eigen::MatrixXd& k, Eigen::VectorXd& f,
                    PointStates* updated) const;
   /// The condensed small-strain stiffness on the corners, formed when asked (not kept: a linear
   /// model's bricks are asked once, and the assembler keeps the global sums; 75 MB on 16 384
   /// bricks), and the mode recovery α = R u_c into `recovery` when given.
-  Eigen::Matrix<double, 24, 24> small_strain_stiffness(
-      Eigen::Matrix<double, 9, 24>* recovery) const;
-  /// α = R u_c, the small-strain mode amplitudes (zero without extra shapes): the kept R of a
-  /// plastic or large-deflection brick, else formed now.
-  Eigen::Matrix<double, 9, 24> mode_recovery() const;
+  Eigen::Matrix<double, 24, 24> small_strain_stiffness(Eigen::MatrixXd* recovery) const;
+  /// α = R u_c, the small-strain internal amplitudes (n_internal() x 24; 9 x 24 of zeros
+  /// without any): the kept R of a plastic or large-deflection brick, else formed now.
+  Eigen::MatrixXd mode_recovery() const;
+  /// Small-strain B (Voigt xx yy zz xy yz xz, engineering shear) at Gauss point p over the
+  /// corners, then (`internal`) the n_internal() internal parameters: bubble k direction i at
+  /// column 24 + 3k + i, enhanced volumetric mode m at 33 + m. Without internal parameters the
+  /// corner columns carry the B-bar shift when B-bar is in effect (bbar_active()).
+  Eigen::Matrix<double, 6, Eigen::Dynamic> strain_operator(int p, bool internal) const;
+  /// B-bar in the small-strain forms: BrickStrain::BBar, or a plastic brick without modes.
+  bool bbar_active() const {
+    return n_internal_ == 0 && (strain_ == BrickStrain::BBar || plasticity_);
+  }
   /// Scalar (one direction) mass matrix over the distinct nodes, consistent.
   Eigen::MatrixXd scalar_mass() const;
 
@@ -155,6 +181,9 @@ class Brick8 final : public Element {
   Matrix6d d_;
   double density_ = 0.0;
   bool extra_shapes_ = false;
+  BrickStrain strain_ = BrickStrain::Standard;
+  int n_internal_ = 0;
+  double det0_ = 0.0;  // det J at the element centre (enhanced-strain scaling)
   double volume_ = 0.0;
   std::array<GaussPoint, kGauss> gauss_;
   Eigen::Matrix<double, 3, 8> grad_centre_;  // d/dX of the trilinear functions at ξ = 0

@@ -102,9 +102,9 @@ std::vector<ElementFields> make_table() {
   t.push_back({"SOLID185",
                {},
                {{2, range(0, 3),
-                 "3 simplified enhanced strain (incompatible modes); 0 B-bar with TB "
-                 "plasticity, else full 2x2x2; 1 reduced and 2 enhanced strain: full 2x2x2 "
-                 "(approximations, warned)"},
+                 "0 B-bar (mean dilatation); 2 enhanced strain (incompatible modes + 4 "
+                 "volumetric); 3 simplified enhanced strain (incompatible modes); 1 reduced: "
+                 "full 2x2x2 (approximation, warned)"},
                 {6, {0}, "1 (mixed u-P formulation) is not implemented"}}});
   // Quadratic solids (docs/elements/solid186.md). KEYOPT(6) = 1 (mixed u-P) is not implemented.
   t.push_back({"SOLID186",

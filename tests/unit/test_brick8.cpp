@@ -7,6 +7,7 @@
 #include <memory>
 #include <set>
 #include <string>
+#include <tuple>
 
 #include "../support/dense_assembly.h"
 #include "core/errors.h"
@@ -602,7 +603,17 @@ TEST(Brick8, KeyoptsSelectExtraShapes) {
   EXPECT_FALSE(built_with_extra_shapes(brick_model("SOLID45", 1, 0, true)));  // ET,2,45,1
   EXPECT_TRUE(built_with_extra_shapes(brick_model("SOLID185", 0, 3, true)));
   EXPECT_FALSE(built_with_extra_shapes(brick_model("SOLID185", 0, 0, true)));
-  EXPECT_FALSE(built_with_extra_shapes(brick_model("SOLID185", 0, 2, true)));
+  // KEYOPT(2) = 2: the incompatible modes plus 4 enhanced volumetric strains.
+  EXPECT_TRUE(built_with_extra_shapes(brick_model("SOLID185", 0, 2, true)));
+  for (const auto& [keyopt2, strain, internal] :
+       {std::tuple{0, BrickStrain::BBar, 0}, std::tuple{2, BrickStrain::Enhanced, 13},
+        std::tuple{3, BrickStrain::Standard, 9}}) {
+    const Model m = brick_model("SOLID185", 0, keyopt2, true);
+    const auto e = create_element(ElementBuildContext{m, nullptr}, m.elements.at(5));
+    EXPECT_EQ(dynamic_cast<const Brick8&>(*e).strain(), strain) << keyopt2;
+    EXPECT_EQ(dynamic_cast<const Brick8&>(*e).n_internal(), internal) << keyopt2;
+  }
+  EXPECT_THROW(built_with_extra_shapes(brick_model("SOLID185", 0, 5, true)), InputError);
   // Default NUXY = 0.3 and DENS are read: the mass is ρ for the unit cube.
   const Model m = brick_model("SOLID45", 0, 0, true);
   const auto e = create_element(ElementBuildContext{m, nullptr}, m.elements.at(5));

@@ -108,8 +108,6 @@ const std::map<std::string, std::string>& by_design() {
       {"SOLID45 K2=1",
        "reduced integration is approximated by full 2x2x2 integration (warned; "
        "docs/elements/solid45.md)"},
-      {"SOLID185 K2=1", "approximated by full 2x2x2 integration without extra shapes (warned)"},
-      {"SOLID185 K2=2", "approximated by full 2x2x2 integration without extra shapes (warned)"},
       {"SHELL181 K3=2", "both integrations are computed with the SHELL63 kernel's extra shapes"},
       {"BEAM188 K3=2",
        "the element is exact for end loads with any interpolation "
