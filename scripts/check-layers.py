@@ -45,7 +45,8 @@ DECK_STATE = {
                  # EBLOCK sets the attribute pointers of each element record it adds.
                  "cdb_commands.cpp"],
     # 4x defines the analysis (KAN) in PREP7; FINISH closes a 4x /STRESS block.
-    "solution": ["solution_commands.cpp", "prep7_commands.cpp", "session_commands.cpp"],
+    "solution": ["solution_commands.cpp", "dynamics_commands.cpp", "prep7_commands.cpp",
+                 "session_commands.cpp"],
     "scripting": ["parameter_commands.cpp", "array_commands.cpp", "matrix_commands.cpp",
                   "output_commands.cpp", "vector_support.h"],
     "post": ["post_support.cpp"],
