@@ -6,6 +6,27 @@
 
 namespace impactfe {
 
+namespace {
+
+/// Node n's sum of its slots of an element buffer (x, y, z per slot), in ascending slot order:
+/// the same sum whatever split the element loop had.
+inline void sum_slots(const ExplicitSystem& system, const double* buffer, std::size_t n, double& x,
+                      double& y, double& z) {
+  const std::size_t* slot = system.slots.data();
+  double sx = 0.0, sy = 0.0, sz = 0.0;
+  for (std::size_t j = system.slot_start[n]; j < system.slot_start[n + 1]; ++j) {
+    const double* s = buffer + 3 * slot[j];
+    sx += s[0];
+    sy += s[1];
+    sz += s[2];
+  }
+  x = sx;
+  y = sy;
+  z = sz;
+}
+
+}  // namespace
+
 CentralDifference::CentralDifference(ExplicitSystem& system, const ExplicitControls& controls)
     : system_(system), controls_(controls) {
   const std::size_t n = system.n_nodes();
@@ -80,21 +101,8 @@ void CentralDifference::internal_forces(double dt) {
   if (rotations) sum_moments();
   // Each node sums its slots in ascending slot order: the same sum whatever split the element
   // loop had (docs/explicit_dynamics.md, "Determinism").
-  const double* f = element_forces_.data();
-  const std::size_t* start = system_.slot_start.data();
-  const std::size_t* slot = system_.slots.data();
-  for (std::size_t n = 0; n < system_.n_nodes(); ++n) {
-    double sx = 0.0, sy = 0.0, sz = 0.0;
-    for (std::size_t j = start[n]; j < start[n + 1]; ++j) {
-      const double* s = f + 3 * slot[j];
-      sx += s[0];
-      sy += s[1];
-      sz += s[2];
-    }
-    fx_[n] = sx;
-    fy_[n] = sy;
-    fz_[n] = sz;
-  }
+  for (std::size_t n = 0; n < system_.n_nodes(); ++n)
+    sum_slots(system_, element_forces_.data(), n, fx_[n], fy_[n], fz_[n]);
   // Loads by curve and contact at x_{n+1}, t_{n+1} (explicit_interaction.h).
   // An interaction's stiffness adds to the elements': the largest frequency of M⁻¹(K_e + K_c)
   // is at most √(ω_e² + ω_c²) (Weyl's inequality), so its step combines with the elements' as
@@ -113,21 +121,8 @@ void CentralDifference::internal_forces(double dt) {
 void CentralDifference::sum_moments() {
   // As the forces: each rotational node sums its slots in ascending order (slots of sets without
   // rotations hold zero moments).
-  const double* f = element_moments_.data();
-  const std::size_t* start = system_.slot_start.data();
-  const std::size_t* slot = system_.slots.data();
-  for (std::size_t n : system_.rotational_nodes) {
-    double sx = 0.0, sy = 0.0, sz = 0.0;
-    for (std::size_t j = start[n]; j < start[n + 1]; ++j) {
-      const double* s = f + 3 * slot[j];
-      sx += s[0];
-      sy += s[1];
-      sz += s[2];
-    }
-    mx_[n] = sx;
-    my_[n] = sy;
-    mz_[n] = sz;
-  }
+  for (std::size_t n : system_.rotational_nodes)
+    sum_slots(system_, element_moments_.data(), n, mx_[n], my_[n], mz_[n]);
 }
 
 void CentralDifference::choose_step() {
@@ -288,10 +283,6 @@ Vec3 CentralDifference::reaction(std::size_t n) const {
   return {fx_[n] + m * frame_acceleration_.x(), fy_[n] + m * frame_acceleration_.y(),
           fz_[n] + m * frame_acceleration_.z()};
 }
-
-}  // namespace impactfe
-
-namespace impactfe {
 
 Vec3 CentralDifference::rotation(std::size_t n) const {
   if (!has_rotations(n)) return Vec3::Zero();
