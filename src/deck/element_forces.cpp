@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "deck/post_state.h"
 #include "deck/post_support.h"
 #include "elements/element.h"
 
@@ -47,6 +48,30 @@ std::map<int, std::vector<double>> element_nodal_results(DeckReader& r, const Co
   std::map<int, std::vector<double>> out;
   if (!el->nodal_results(ctx, u, out)) return {};
   return out;
+}
+
+const Mat3& element_result_axes(DeckReader& r, const Command& c, int element) {
+  const SetData& set = current_set(r, c);  // first: a new set clears the cache
+  PostState& ps = post_state(r);
+  if (const auto hit = ps.result_axes.find(element); hit != ps.result_axes.end())
+    return hit->second;
+  Mat3 axes = Mat3::Identity();
+  const auto rec = r.model.elements.find(element);
+  if (rec != r.model.elements.end()) {
+    const ElementBuildContext build{r.model, [&](const ElementRecord&) -> std::string {
+                                      throw InputError(c.where, "superelement");
+                                    }};
+    try {
+      const std::unique_ptr<Element> el = create_element(build, rec->second);
+      const AnalysisOptions& o = r.model.options;
+      const ElementContext ctx{o.large_deflection, o.stress_stiffening, o.lumped_mass};
+      axes = el->result_axes(ctx,
+                             gather(set.point.displacement, results(r, c).node_ids(), el->dofs()));
+    } catch (const InputError&) {
+      // An element that cannot be built from the model now: its values stay as stored.
+    }
+  }
+  return ps.result_axes.emplace(element, axes).first->second;
 }
 
 std::map<int, NodalForce> element_nodal_forces(DeckReader& r, const Command& c, int element) {

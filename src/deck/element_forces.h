@@ -24,6 +24,12 @@ std::map<int, NodalForce> element_nodal_forces(DeckReader& r, const Command& c, 
 std::map<int, std::vector<double>> element_nodal_results(DeckReader& r, const Command& c,
                                                          int element);
 
+/// The axes of the element's stress and strain components at the current set (columns: the
+/// result x, y, z axes in global coordinates; Element::result_axes at the stored displacement),
+/// cached for the set. The identity when the element cannot be built (its values then stay as
+/// stored).
+const Mat3& element_result_axes(DeckReader& r, const Command& c, int element);
+
 /// Sum over `elements` of their nodal forces at each node.
 std::map<int, NodalForce> nodal_force_sums(DeckReader& r, const Command& c,
                                            const std::vector<int>& elements);

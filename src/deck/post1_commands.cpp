@@ -145,17 +145,25 @@ void cmd_shell(DeckReader& r, const Command& c) {
 }
 
 void cmd_rsys(DeckReader& r, const Command& c) {
-  // RSYS,KCN: the results coordinate system of the nodal vector results (MAPDL RSYS; KCN
-  // blank = 0). SOLU and LSYS (solution and layer systems) are not carried out.
+  // RSYS,KCN: the results coordinate system (MAPDL RSYS; KCN blank = 0) of the nodal vector
+  // results and of the element stress and strain components (rotated from the element's
+  // result axes at the element's centroid or, for nodal averages, at the node). SOLU: the
+  // components as the elements give them and the nodal vectors in the nodal axes. LSYS (layer
+  // systems) is not carried out.
   const std::string key = c.blank(1) ? "" : r.label(c, 1);
-  if (key == "SOLU" || key == "LSYS")
-    r.fail(c, fmt::format("KCN {}: only a coordinate system number is carried out (0, 1, 2, "
-                          "a LOCAL system)",
-                          key));
+  PostState& ps = post_state(r);
+  if (key == "SOLU") {
+    ps.rsys.reset();
+    ps.rsys_solution = true;
+    return;
+  }
+  if (key == "LSYS")
+    r.fail(c, "KCN LSYS: layer coordinate systems are not carried out (a number or SOLU)");
   const int kcn = r.integer(c, 1, 0);
   if (!r.model.coordinate_systems.has(kcn))
     r.fail(c, fmt::format("coordinate system {} is not defined", kcn));
-  post_state(r).rsys = kcn;
+  ps.rsys = kcn;
+  ps.rsys_solution = false;
 }
 
 void cmd_file(DeckReader& r, const Command& c) {

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "deck/element_forces.h"
@@ -98,20 +99,45 @@ std::optional<double> nodal_item_value(DeckReader& r, const Command& c, const No
   if (item.element_item.empty()) return nodal_result(r, c, node, item.labels[k]);
   double sum = 0.0;
   int n = 0;
+  const int direction = tensor_direction(item.elements[k]);
+  static const std::array<const char*, 6> kComponents = {"X", "Y", "Z", "XY", "YZ", "XZ"};
   for (int e : selected_elements(r)) {
     const auto& nodes = r.model.elements.at(e).nodes;
     if (std::find(nodes.begin(), nodes.end(), node) == nodes.end()) continue;
     // The element's values extrapolated to this node when it has them (the 2-D solids),
     // else its centroid value.
+    const ElementTypeDescriptor* d = find_element_type(element_type_name(r, e));
+    std::optional<std::map<int, std::vector<double>>> at;
+    const auto at_node = [&](const std::string& comp) -> std::optional<double> {
+      if (d == nullptr) return std::nullopt;
+      const auto seq = find_result_sequence(*d, item.element_item, comp);
+      if (!seq) return std::nullopt;
+      const auto column = std::find(d->result_names.begin(), d->result_names.end(), seq->name);
+      if (column == d->result_names.end()) return std::nullopt;
+      if (!at) at = element_nodal_results(r, c, e);
+      if (at->count(node) == 0) return std::nullopt;
+      return at->at(node)[static_cast<std::size_t>(column - d->result_names.begin())];
+    };
     std::optional<double> v;
-    if (const ElementTypeDescriptor* d = find_element_type(element_type_name(r, e)))
-      if (const auto seq = find_result_sequence(*d, item.element_item, item.elements[k])) {
-        const auto column = std::find(d->result_names.begin(), d->result_names.end(), seq->name);
-        const auto at = element_nodal_results(r, c, e);
-        if (column != d->result_names.end() && at.count(node) != 0)
-          v = at.at(node)[static_cast<std::size_t>(column - d->result_names.begin())];
+    if (direction >= 0 && is_tensor_item(item.element_item)) {
+      // A stress or strain component: the element's tensor at the node (or its centroid
+      // values; absent components 0 in its axes), rotated into the results system at the node.
+      std::array<std::optional<double>, 6> six;
+      for (std::size_t i = 0; i < six.size(); ++i) six[i] = at_node(kComponents[i]);
+      if (std::none_of(six.begin(), six.end(), [](const auto& x) { return x.has_value(); }))
+        for (std::size_t i = 0; i < six.size(); ++i)
+          six[i] = stored_element_result(r, c, e, item.element_item, kComponents[i]);
+      if (std::any_of(six.begin(), six.end(), [](const auto& x) { return x.has_value(); })) {
+        std::array<double, 6> stored{};
+        for (std::size_t i = 0; i < six.size(); ++i)
+          stored[i] = six[i] && std::isfinite(*six[i]) ? *six[i] : 0.0;
+        v = tensor_in_results_system(r, c, e, item.element_item, stored, direction,
+                                     r.model.node(node).x);
       }
-    if (!v) v = element_result(r, c, e, item.element_item, item.elements[k]);
+    } else {
+      v = at_node(item.elements[k]);
+      if (!v) v = stored_element_result(r, c, e, item.element_item, item.elements[k]);
+    }
     if (v && std::isfinite(*v)) {
       sum += *v;
       ++n;
@@ -180,8 +206,13 @@ void cmd_prnsol(DeckReader& r, const Command& c) {
       "LISTING *****\n\n",
       item.heading, dof ? "NODAL DEGREE OF FREEDOM" : "NODAL ELEMENT SOLUTION");
   out += set_heading(set);
-  out += fmt::format("\n  THE FOLLOWING {} RESULTS ARE IN THE GLOBAL COORDINATE SYSTEM\n",
-                     dof ? "DEGREE OF FREEDOM" : "X,Y,Z");
+  const PostState& ps = post_state(r);
+  const std::string system = ps.rsys_solution ? "THE SOLUTION COORDINATE SYSTEMS"
+                             : ps.rsys && *ps.rsys != 0
+                                 ? fmt::format("COORDINATE SYSTEM {}", *ps.rsys)
+                                 : "THE GLOBAL COORDINATE SYSTEM";
+  out += fmt::format("\n  THE FOLLOWING {} RESULTS ARE IN {}\n",
+                     dof ? "DEGREE OF FREEDOM" : "X,Y,Z", system);
   if (!dof) out += "  (element values at the nodes averaged)\n";
   out += columns_heading("NODE", item.labels);
   for (std::size_t i = 0; i < rows.size(); ++i) {

@@ -64,6 +64,12 @@ struct PostState {
   // RSYS,KCN: the system of the nodal vector results (U, ROT, V, A, reactions); nullopt = as
   // stored (global Cartesian, the nodal axes at a rotated node).
   std::optional<int> rsys;
+  // RSYS,SOLU: element stress and strain components as the elements store them (their own
+  // axes: shells), nodal vectors in the nodal axes.
+  bool rsys_solution = false;
+  // Element result axes at the current set (element_forces.h), keyed by element; cleared when
+  // the current set changes (make_current).
+  std::map<int, Mat3> result_axes;
 
   // ---- pictures ---------------------------------------------------------------------------
   PlotView view;

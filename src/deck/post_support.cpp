@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <limits>
 
+#include "deck/element_forces.h"
 #include "deck/modeling_helpers.h"
 #include "elements/element_registry.h"
 
@@ -212,6 +213,7 @@ void make_current(DeckReader& r, SetData data) {
   PostState& ps = post_state(r);
   ps.current = std::move(data);
   ps.current_generation = r.solutions;
+  ps.result_axes.clear();
 }
 
 namespace {
@@ -283,22 +285,74 @@ VtkCell element_cell(const DeckReader& r, int element) {
   return d != nullptr ? d->vtk_cell : VtkCell::PolyVertex;
 }
 
+namespace {
+
+const std::array<const char*, 6> kTensorComponents = {"X", "Y", "Z", "XY", "YZ", "XZ"};
+
+}  // namespace
+
+bool is_tensor_item(const std::string& item) {
+  const std::string it = to_upper(item);
+  return it == "S" || it == "EPEL" || it == "EPPL" || it == "EPTO" || it == "EPTH" || it == "EPCR";
+}
+
+int tensor_direction(const std::string& comp) {
+  const std::string k = to_upper(comp);
+  for (std::size_t i = 0; i < kTensorComponents.size(); ++i)
+    if (k == kTensorComponents[i]) return static_cast<int>(i);
+  return -1;
+}
+
+double tensor_in_results_system(DeckReader& r, const Command& c, int element,
+                                const std::string& item, const std::array<double, 6>& stored,
+                                int direction, const Vec3& location) {
+  const PostState& ps = post_state(r);
+  const auto k = static_cast<std::size_t>(direction);
+  if (ps.rsys_solution) return stored[k];
+  const Mat3& A = element_result_axes(r, c, element);
+  const bool global = !ps.rsys || *ps.rsys == 0;
+  if (global && A == Mat3::Identity()) return stored[k];
+  // σ_g = A σ_e Aᵀ (A: the element's result axes in global), then σ_r = Bᵀ σ_g B with B the
+  // axes of RSYS,KCN at the location; a strain's engineering shears are twice the tensor's.
+  const double shear = to_upper(item) == "S" ? 1.0 : 0.5;
+  Mat3 t;
+  t << stored[0], shear * stored[3], shear * stored[5], shear * stored[3], stored[1],
+      shear * stored[4], shear * stored[5], shear * stored[4], stored[2];
+  t = A * t * A.transpose();
+  if (!global) {
+    Mat3 B;
+    r.model.coordinate_systems.get(*ps.rsys).axes_at(location, B);
+    t = B.transpose() * t * B;
+  }
+  static constexpr int kRow[6] = {0, 1, 2, 0, 1, 0}, kCol[6] = {0, 1, 2, 1, 2, 2};
+  const double v = t(kRow[direction], kCol[direction]);
+  return direction < 3 ? v : v / shear;
+}
+
 std::optional<double> element_result(DeckReader& r, const Command& c, int element,
                                      const std::string& item, const std::string& comp) {
-  if (to_upper(item) == "VOLU") return element_volume(r, c, element);
-  {
-    // Element stresses and strains stay in the frame the element stores (global for solids,
-    // element axes for shells): a direction component under another RSYS is refused.
-    const std::optional<int>& rsys = post_state(r).rsys;
-    const std::string it = to_upper(item), cp = to_upper(comp);
-    static const std::vector<std::string> kDirections = {"X", "Y", "Z", "XY", "YZ", "XZ"};
-    if (rsys && *rsys != 0 && (it == "S" || it.rfind("EP", 0) == 0) &&
-        std::find(kDirections.begin(), kDirections.end(), cp) != kDirections.end())
-      r.fail(c, fmt::format("{},{} under RSYS,{}: element stress and strain components are not "
-                            "rotated into a results system (nodal U, ROT, V, A and reactions "
-                            "are); use RSYS,0 or the principal values (S,1 .. S,EQV)",
-                            item, comp, *rsys));
+  const int direction = tensor_direction(comp);
+  if (direction < 0 || !is_tensor_item(item))
+    return stored_element_result(r, c, element, item, comp);
+  // A stress or strain component: the element's tensor (absent components 0 in its axes: a
+  // shell's SZ, SYZ, SXZ) rotated into the results system at the element's centroid.
+  std::array<double, 6> stored{};
+  std::optional<double> wanted;
+  bool any = false;
+  for (std::size_t i = 0; i < kTensorComponents.size(); ++i) {
+    const auto v = stored_element_result(r, c, element, item, kTensorComponents[i]);
+    if (static_cast<int>(i) == direction) wanted = v;
+    any = any || v.has_value();
+    stored[i] = v && std::isfinite(*v) ? *v : 0.0;
   }
+  if (!any || (wanted && !std::isfinite(*wanted))) return wanted;
+  return tensor_in_results_system(r, c, element, item, stored, direction,
+                                  element_centroid(r, element));
+}
+
+std::optional<double> stored_element_result(DeckReader& r, const Command& c, int element,
+                                            const std::string& item, const std::string& comp) {
+  if (to_upper(item) == "VOLU") return element_volume(r, c, element);
   const SetData& data = current_set(r, c);
   const std::string type_name = element_type_name(r, element);
   // SHELL,MID or BOT: a shell's S items at that surface instead of the top (MAPDL SHELL).

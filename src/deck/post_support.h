@@ -2,6 +2,7 @@
 /// Helpers of the selection, POST1, POST26 and *GET handlers: the selected sets, components,
 /// results access (the deck layer reads results through the solution host and ResultsReader;
 /// it never solves), the current POST1 set, element and nodal item look-ups, and printing.
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -58,6 +59,20 @@ double nodal_result(DeckReader& r, const Command& c, int node, const std::string
 /// current set; nullopt when the element's type has no such item.
 std::optional<double> element_result(DeckReader& r, const Command& c, int element,
                                      const std::string& item, const std::string& comp);
+/// element_result as the element stores it: stress and strain components in the element's
+/// result axes, whatever RSYS says.
+std::optional<double> stored_element_result(DeckReader& r, const Command& c, int element,
+                                            const std::string& item, const std::string& comp);
+/// Stress and strain items whose X..XZ components are a tensor that RSYS rotates (S, EPEL,
+/// EPPL, EPTO, EPTH, EPCR); `direction` is the index of Comp in X Y Z XY YZ XZ, or -1.
+bool is_tensor_item(const std::string& item);
+int tensor_direction(const std::string& comp);
+/// Component `direction` of a stress or strain tensor of element e given in the element's result
+/// axes (`stored`: X Y Z XY YZ XZ, engineering shears for strains), in the results system at
+/// `location`: global (RSYS,0) or the axes of RSYS,KCN there; as stored under RSYS,SOLU.
+double tensor_in_results_system(DeckReader& r, const Command& c, int element,
+                                const std::string& item, const std::array<double, 6>& stored,
+                                int direction, const Vec3& location);
 /// ANSYS type name of element e ("" when unknown).
 std::string element_type_name(const DeckReader& r, int element);
 /// Cell kind of element e (its type's VtkCell; PolyVertex when unknown).

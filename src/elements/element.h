@@ -133,6 +133,14 @@ class Element {
                              std::map<int, ElementResultValues>& at_node) const {
     return false;
   }
+  /// The axes of the element's stress and strain components (S, EPEL, EPPL ... X..XZ) at
+  /// displacement u: columns = the result x, y, z axes in global coordinates. POST1 rotates the
+  /// components through them into the results system (MAPDL RSYS: "rotates the results data to
+  /// the specified coordinate system during printout, display, or element table operations").
+  /// Global axes (the identity) unless the element reports in its own axes (shells).
+  virtual Eigen::Matrix3d result_axes(const ElementContext& ctx, const Eigen::VectorXd& u) const {
+    return Eigen::Matrix3d::Identity();
+  }
   /// Undeformed volume (length × area of a spar, ∫t dA of a shell, ∫dV of a brick) for
   /// *GET ELEM VOLU and ETABLE VOLU; nullopt for elements without one (springs, masses, gaps).
   virtual std::optional<double> volume() const { return std::nullopt; }

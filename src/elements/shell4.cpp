@@ -607,6 +607,23 @@ void Shell4::results(const ElementContext& ctx, const Eigen::VectorXd& u, const 
          Q(1)};
 }
 
+Eigen::Matrix3d Shell4::result_axes(const ElementContext& ctx, const Eigen::VectorXd& u) const {
+  Mat3 R = R0_;
+  if (ctx.large_deflection && u.size() == 6 * n_) {
+    // The co-rotated frame that results() measures the deformation in (corotate above).
+    ShellCorners x(3, n_);
+    for (int a = 0; a < n_; ++a) x.col(a) = X_[static_cast<std::size_t>(a)] + u.segment<3>(6 * a);
+    R = shell_frame(x, false).R;
+  }
+  // results() rotates the in-plane tensors to x' = cos θ e1 + sin θ e2 (THETA).
+  const double cs = std::cos(theta_), sn = std::sin(theta_);
+  Mat3 A;
+  A.col(0) = cs * R.col(0) + sn * R.col(1);
+  A.col(1) = -sn * R.col(0) + cs * R.col(1);
+  A.col(2) = R.col(2);
+  return A;
+}
+
 namespace {
 
 /// SHELL63 (thin DK kernel), or SHELL181 (`shell181`: the Mindlin–Reissner kernel).

@@ -69,6 +69,9 @@ class Shell4 : public Element {
   void results(const ElementContext& ctx, const Eigen::VectorXd& u, const Eigen::VectorXd& v,
                ElementResultValues& out) const override;
 
+  /// The element axes of results(): the facet frame (e1 along I-J projected on the mean plane,
+  /// e3 the normal) rotated by THETA about e3; under large deflection the co-rotated frame at u.
+  Eigen::Matrix3d result_axes(const ElementContext& ctx, const Eigen::VectorXd& u) const override;
   /// Deformational local displacement d(u) (element axes, before the warping links) and, when
   /// B != nullptr, its derivative B = ∂d/∂u (co-rotational kinematics). Exposed for tests.
   void corotational_kinematics(const Eigen::VectorXd& u, Eigen::VectorXd& d,
