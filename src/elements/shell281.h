@@ -90,6 +90,12 @@ class Shell281 : public Element {
   static Eigen::MatrixXd strains(const Eigen::MatrixXd& G);
   /// The global gradient ∂U_i/∂X_j operator (rows 3i + j) at (ξ, η, ζ), with det J.
   Eigen::MatrixXd global_gradient(double xi, double eta, double zeta, double* detJ) const;
+  /// Covariant transverse shear strains (γ_ξζ, γ_ηζ) of the displacement field (2 × 6n).
+  Eigen::MatrixXd covariant_shear(double xi, double eta, double zeta) const;
+  /// Assumed (tied) transverse shear (γ13, γ23) in the frame R (2 × 6n), quadrilateral.
+  Eigen::MatrixXd assumed_shear(double xi, double eta, double zeta, const Eigen::Matrix3d& R) const;
+  /// The transverse shear operator of the stiffness: assumed (quadrilateral) or displacement-based.
+  Eigen::MatrixXd shear_b(double xi, double eta, double zeta, const Eigen::Matrix3d& R) const;
   std::vector<Rule> bending_rule() const;
   std::vector<Rule> shear_rule() const;
   std::vector<Rule> full_rule() const;
