@@ -57,8 +57,12 @@ Shell281::Shell281(int id, const Shell281Data& data, const SourceLocation& where
       node_ids_(data.node_ids),
       data_(data) {
   IMPACTFE_CHECK(n_ == 8 || n_ == 6, "SHELL281: 8 or 6 nodes");
+  // Membrane only (KEYOPT(1) = 1): the translations alone, as MAPDL's membrane shells have
+  // (the rotations would carry no stiffness).
   for (int node : data.node_ids)
-    for (Dof d : kAllDofs) dofs_.push_back(DofKey{node, d});
+    for (Dof d : kAllDofs)
+      if (!data.membrane_only || d == Dof::UX || d == Dof::UY || d == Dof::UZ)
+        dofs_.push_back(DofKey{node, d});
   // Nodal directors: the element's own surface normal at each node.
   Eigen::VectorXd N;
   Eigen::MatrixXd dN;
@@ -320,7 +324,9 @@ Eigen::MatrixXd Shell281::stiffness() const {
       }
     }
   // Drilling: γ ∫ (θ·e3 − ½(L_yx − L_xy))² dA on the mid-surface (Hughes & Brezzi 1989, eq. 4.1
-  // with their γ = G); a rigid rotation ω gives θ·e3 = ω·e3 = ½ curl, so no energy.
+  // with their γ = G); a rigid rotation ω gives θ·e3 = ω·e3 = ½ curl, so no energy. None for
+  // the membrane-only element, which has no rotations (θ = 0 would penalise the curl).
+  if (!data_.membrane_only)
   for (const Rule& q : full_rule()) {
     shape(q.xi, q.eta, N, dN);
     double dA = 0.0;
@@ -365,11 +371,26 @@ Eigen::MatrixXd Shell281::geometric_stiffness(const Eigen::VectorXd& u) const {
   return 0.5 * (K + K.transpose());
 }
 
+Eigen::VectorXd Shell281::expand(const Eigen::VectorXd& u) const {
+  if (!data_.membrane_only) return u;
+  Eigen::VectorXd full = Eigen::VectorXd::Zero(6 * n_);
+  for (int a = 0; a < n_; ++a) full.segment<3>(6 * a) = u.segment<3>(3 * a);
+  return full;
+}
+
+Eigen::MatrixXd Shell281::reduce(const Eigen::MatrixXd& A) const {
+  if (!data_.membrane_only) return A;
+  Eigen::MatrixXd out(3 * n_, 3 * n_);
+  for (int a = 0; a < n_; ++a)
+    for (int b = 0; b < n_; ++b) out.block<3, 3>(3 * a, 3 * b) = A.block<3, 3>(6 * a, 6 * b);
+  return out;
+}
+
 void Shell281::tangent(const ElementContext& ctx, const Eigen::VectorXd& u, Eigen::MatrixXd& K,
                        Eigen::VectorXd& f_int) const {
-  K = stiffness();
+  K = reduce(stiffness());
   f_int = K * u;
-  if (ctx.stress_stiffening) K += geometric_stiffness(u);
+  if (ctx.stress_stiffening) K += reduce(geometric_stiffness(expand(u)));
 }
 
 void Shell281::mass(const ElementContext& ctx, Eigen::MatrixXd& M) const {
@@ -403,7 +424,10 @@ void Shell281::mass(const ElementContext& ctx, Eigen::MatrixXd& M) const {
     M.noalias() += b.transpose() * b * (data_.rho * t * t * t / 12.0 * dA * q.w);
   }
   M = 0.5 * (M + M.transpose()).eval();
-  if (!ctx.lumped_mass) return;
+  if (!ctx.lumped_mass) {
+    M = reduce(M);
+    return;
+  }
   // HRZ: the diagonal, scaled so that each translation carries the element's mass; the
   // rotations keep their diagonal terms.
   Eigen::MatrixXd L = Eigen::MatrixXd::Zero(nd, nd);
@@ -415,11 +439,21 @@ void Shell281::mass(const ElementContext& ctx, Eigen::MatrixXd& M) const {
   }
   for (int a = 0; a < n_; ++a)
     for (int i = 3; i < 6; ++i) L(6 * a + i, 6 * a + i) = M(6 * a + i, 6 * a + i);
-  M = L;
+  M = reduce(L);
 }
 
 void Shell281::pressure_load(const ElementContext& ctx, int face, const std::array<double, 4>& p,
-                             const Eigen::VectorXd&, Eigen::VectorXd& f) const {
+                             const Eigen::VectorXd& u, Eigen::VectorXd& f) const {
+  full_pressure_load(ctx, face, p, u, f);
+  if (!data_.membrane_only) return;
+  Eigen::VectorXd translations(3 * n_);
+  for (int a = 0; a < n_; ++a) translations.segment<3>(3 * a) = f.segment<3>(6 * a);
+  f = translations;
+}
+
+void Shell281::full_pressure_load(const ElementContext& ctx, int face,
+                                  const std::array<double, 4>& p, const Eigen::VectorXd&,
+                                  Eigen::VectorXd& f) const {
   if (face < 1 || face > 6)
     throw ModelError(
         fmt::format("element {}: shell face {} does not exist (faces 1 and 2: bottom "
@@ -429,7 +463,7 @@ void Shell281::pressure_load(const ElementContext& ctx, int face, const std::arr
     throw ElementSolutionError(id(), fmt::format("element {}: SHELL281 under large deflection "
                                                  "is not implemented",
                                                  id()));
-  f.setZero(n_dofs());
+  f.setZero(6 * n_);
   if (face >= 3) {
     // In-plane edge pressure: f_a = −∫ N_a p m ds, m the outward in-plane normal of the edge,
     // p linear between the edge's corner values; 3-point Gauss on the quadratic edge.
@@ -518,14 +552,14 @@ ElementResultValues Shell281::values_at(double xi, double eta, const Eigen::Vect
 
 void Shell281::results(const ElementContext&, const Eigen::VectorXd& u, const Eigen::VectorXd&,
                        ElementResultValues& out) const {
-  out = n_ == 8 ? values_at(0.0, 0.0, u) : values_at(1.0 / 3.0, 1.0 / 3.0, u);
+  out = n_ == 8 ? values_at(0.0, 0.0, expand(u)) : values_at(1.0 / 3.0, 1.0 / 3.0, expand(u));
 }
 
 bool Shell281::nodal_results(const ElementContext&, const Eigen::VectorXd& u,
                              std::map<int, ElementResultValues>& at_node) const {
   for (int a = 0; a < n_; ++a) {
     const double* xi = n_ == 8 ? kQuadXi[a] : kTriXi[a];
-    at_node[node_ids_[static_cast<std::size_t>(a)]] = values_at(xi[0], xi[1], u);
+    at_node[node_ids_[static_cast<std::size_t>(a)]] = values_at(xi[0], xi[1], expand(u));
   }
   return true;
 }
@@ -638,8 +672,8 @@ const ElementRegistration kShell281{
                {3, 2, 6},
                {0, 3, 7}},
      .sf_faces = 1,
-     .note = "SHELL281 is a degenerated-continuum Mindlin-Reissner shell: 3x3 membrane and "
-             "bending, 2x2 transverse shear (selective reduced integration), small deflection",
+     .note = "SHELL281 is a degenerated-continuum Mindlin-Reissner shell: 3x3 Gauss with "
+             "tied transverse shear, small deflection; KEYOPT(1) = 1 has translations only",
      .create = make_shell281}};
 
 }  // namespace
