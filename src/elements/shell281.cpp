@@ -42,10 +42,10 @@ double von_mises(double sx, double sy, double sxy) {
 }
 
 const std::vector<std::string> kShell281Results = {
-    "TX",      "TY",      "TXY",      "MX",       "MY",      "MXY",     "SX_TOP",  "SY_TOP",
-    "SXY_TOP", "SX_MID",  "SY_MID",   "SXY_MID",  "SX_BOT",  "SY_BOT",  "SXY_BOT", "SEQV_TOP",
-    "SEQV_MID", "SEQV_BOT", "QXZ",    "QYZ",      "EPX_TOP", "EPY_TOP", "EPXY_TOP", "EPX_MID",
-    "EPY_MID", "EPXY_MID", "EPX_BOT", "EPY_BOT", "EPXY_BOT"};
+    "TX",       "TY",       "TXY",     "MX",      "MY",      "MXY",     "SX_TOP",   "SY_TOP",
+    "SXY_TOP",  "SX_MID",   "SY_MID",  "SXY_MID", "SX_BOT",  "SY_BOT",  "SXY_BOT",  "SEQV_TOP",
+    "SEQV_MID", "SEQV_BOT", "QXZ",     "QYZ",     "EPX_TOP", "EPY_TOP", "EPXY_TOP", "EPX_MID",
+    "EPY_MID",  "EPXY_MID", "EPX_BOT", "EPY_BOT", "EPXY_BOT"};
 
 }  // namespace
 
@@ -150,8 +150,7 @@ Mat3 Shell281::frame(const Eigen::VectorXd& N, const Eigen::MatrixXd& dN, double
   return R;
 }
 
-Eigen::MatrixXd Shell281::global_gradient(double xi, double eta, double zeta,
-                                          double* detJ) const {
+Eigen::MatrixXd Shell281::global_gradient(double xi, double eta, double zeta, double* detJ) const {
   Eigen::VectorXd N;
   Eigen::MatrixXd dN;
   shape(xi, eta, N, dN);
@@ -240,8 +239,7 @@ Eigen::MatrixXd Shell281::covariant_shear(double xi, double eta, double zeta) co
   return E;
 }
 
-Eigen::MatrixXd Shell281::assumed_shear(double xi, double eta, double zeta,
-                                        const Mat3& R) const {
+Eigen::MatrixXd Shell281::assumed_shear(double xi, double eta, double zeta, const Mat3& R) const {
   // Assumed covariant transverse shear: γ_ξζ = c0 + c1 ξ + c2 η + c3 ξη + c4 η², tied at the
   // four points (±a, ±1) of the sides η = ±1 (a = 1/√3) and at the centre; γ_ηζ the same with
   // ξ and η exchanged. The side values depend on that side's nodes alone and are shared with the
@@ -327,16 +325,16 @@ Eigen::MatrixXd Shell281::stiffness() const {
   // with their γ = G); a rigid rotation ω gives θ·e3 = ω·e3 = ½ curl, so no energy. None for
   // the membrane-only element, which has no rotations (θ = 0 would penalise the curl).
   if (!data_.membrane_only)
-  for (const Rule& q : full_rule()) {
-    shape(q.xi, q.eta, N, dN);
-    double dA = 0.0;
-    const Mat3 R = frame(N, dN, &dA);
-    const Eigen::MatrixXd L = gradient(q.xi, q.eta, 0.0, R, nullptr);
-    Eigen::RowVectorXd b = -0.5 * (L.row(3) - L.row(1));
-    for (int a = 0; a < n_; ++a) b.segment<3>(6 * a + 3) += N(a) * R.col(2).transpose();
-    const double gamma = data_.drill_factor * G * thickness_at(N);
-    K.noalias() += b.transpose() * b * (gamma * dA * q.w);
-  }
+    for (const Rule& q : full_rule()) {
+      shape(q.xi, q.eta, N, dN);
+      double dA = 0.0;
+      const Mat3 R = frame(N, dN, &dA);
+      const Eigen::MatrixXd L = gradient(q.xi, q.eta, 0.0, R, nullptr);
+      Eigen::RowVectorXd b = -0.5 * (L.row(3) - L.row(1));
+      for (int a = 0; a < n_; ++a) b.segment<3>(6 * a + 3) += N(a) * R.col(2).transpose();
+      const double gamma = data_.drill_factor * G * thickness_at(N);
+      K.noalias() += b.transpose() * b * (gamma * dA * q.w);
+    }
   return 0.5 * (K + K.transpose());
 }
 
@@ -410,8 +408,8 @@ void Shell281::mass(const ElementContext& ctx, Eigen::MatrixXd& M) const {
       Eigen::MatrixXd H = Eigen::MatrixXd::Zero(3, nd);
       for (int a = 0; a < n_; ++a) {
         H.block<3, 3>(0, 6 * a) = N(a) * Mat3::Identity();
-        H.block<3, 3>(0, 6 * a + 3) =
-            -zeta * 0.5 * t_[static_cast<std::size_t>(a)] * N(a) * skew(V_[static_cast<std::size_t>(a)]);
+        H.block<3, 3>(0, 6 * a + 3) = -zeta * 0.5 * t_[static_cast<std::size_t>(a)] * N(a) *
+                                      skew(V_[static_cast<std::size_t>(a)]);
       }
       M.noalias() += H.transpose() * H * (data_.rho * detJ * q.w);
       total += data_.rho * detJ * q.w;
@@ -544,10 +542,35 @@ ElementResultValues Shell281::values_at(double xi, double eta, const Eigen::Vect
   }
   const Eigen::VectorXd et = strain(1.0), em = strain(0.0), eb = strain(-1.0);
   const Eigen::Vector3d st = Dm * et.head<3>(), sm = Dm * em.head<3>(), sb = Dm * eb.head<3>();
-  return {Nr(0), Nr(1), Nr(2), Mr(0), Mr(1), Mr(2), st(0), st(1), st(2), sm(0),
-          sm(1), sm(2), sb(0), sb(1), sb(2), von_mises(st(0), st(1), st(2)),
-          von_mises(sm(0), sm(1), sm(2)), von_mises(sb(0), sb(1), sb(2)), Q(0), Q(1),
-          et(0), et(1), et(2), em(0), em(1), em(2), eb(0), eb(1), eb(2)};
+  return {Nr(0),
+          Nr(1),
+          Nr(2),
+          Mr(0),
+          Mr(1),
+          Mr(2),
+          st(0),
+          st(1),
+          st(2),
+          sm(0),
+          sm(1),
+          sm(2),
+          sb(0),
+          sb(1),
+          sb(2),
+          von_mises(st(0), st(1), st(2)),
+          von_mises(sm(0), sm(1), sm(2)),
+          von_mises(sb(0), sb(1), sb(2)),
+          Q(0),
+          Q(1),
+          et(0),
+          et(1),
+          et(2),
+          em(0),
+          em(1),
+          em(2),
+          eb(0),
+          eb(1),
+          eb(2)};
 }
 
 void Shell281::results(const ElementContext&, const Eigen::VectorXd& u, const Eigen::VectorXd&,
@@ -615,8 +638,8 @@ std::unique_ptr<Element> make_shell281(const ElementBuildContext& ctx,
   } else {
     const auto it = model.real_sets.find(record.real);
     if (it == model.real_sets.end())
-      throw fail(fmt::format("no section {} and no real constant set {} (thickness)",
-                             record.secnum, record.real));
+      throw fail(fmt::format("no section {} and no real constant set {} (thickness)", record.secnum,
+                             record.real));
     const double ti = it->second.get(1);
     for (int i = 0; i < 4; ++i) {
       const double t = it->second.get(i + 1);
@@ -629,8 +652,8 @@ std::unique_ptr<Element> make_shell281(const ElementBuildContext& ctx,
     data.thickness.push_back(tc[static_cast<std::size_t>(i)]);
   }
   for (int i = 0; i < nc; ++i)
-    data.thickness.push_back(0.5 * (tc[static_cast<std::size_t>(i)] +
-                                    tc[static_cast<std::size_t>((i + 1) % nc)]));
+    data.thickness.push_back(
+        0.5 * (tc[static_cast<std::size_t>(i)] + tc[static_cast<std::size_t>((i + 1) % nc)]));
   data.membrane_only = type.key(1) == 1;
   return std::make_unique<Shell281>(record.id, data, record.where);
 }

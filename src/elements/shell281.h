@@ -30,8 +30,8 @@ namespace impactfe {
 
 /// Everything make_shell281 reads from the model, resolved; lets tests build elements directly.
 struct Shell281Data {
-  std::vector<int> node_ids;    // 8 (quadrilateral) or 6 (triangle I J K M N P)
-  std::vector<Vec3> positions;  // same order
+  std::vector<int> node_ids;      // 8 (quadrilateral) or 6 (triangle I J K M N P)
+  std::vector<Vec3> positions;    // same order
   std::vector<double> thickness;  // at each node
   double E = 0.0;
   double nu = 0.3;

@@ -67,8 +67,8 @@ Mesh8 rect_mesh(int nx, int ny, double lx, double ly,
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i < nx; ++i) {
       const int a = 2 * i, b = 2 * j;
-      m.elements.push_back({id(a, b), id(a + 2, b), id(a + 2, b + 2), id(a, b + 2),
-                            id(a + 1, b), id(a + 2, b + 1), id(a + 1, b + 2), id(a, b + 1)});
+      m.elements.push_back({id(a, b), id(a + 2, b), id(a + 2, b + 2), id(a, b + 2), id(a + 1, b),
+                            id(a + 2, b + 1), id(a + 1, b + 2), id(a, b + 1)});
     }
   return m;
 }
@@ -143,7 +143,8 @@ TEST(Shell281, FreeElementHasExactlySixZeroEnergyModes) {
     for (const auto& shape : shapes) {
       std::vector<Vec3> x;
       std::vector<int> ids;
-      for (const Vec3& p : shape) x.push_back(R * p), ids.push_back(static_cast<int>(ids.size()) + 1);
+      for (const Vec3& p : shape)
+        x.push_back(R * p), ids.push_back(static_cast<int>(ids.size()) + 1);
       const auto e = make(1, ids, x, data(2e11, 0.3, t));
       Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(element_stiffness(*e));
       const Eigen::VectorXd lam = es.eigenvalues();
@@ -210,7 +211,7 @@ void run_patch(const Mesh8& m, bool membrane, bool bending) {
     v[0] = ex * x.x() + 0.5 * g * x.y();
     v[1] = 0.5 * g * x.x() + ey * x.y();
     v[2] = 0.5 * (kx * x.x() * x.x() + ky * x.y() * x.y() + kxy * x.x() * x.y());
-    v[3] = ky * x.y() + 0.5 * kxy * x.x();    // ∂w/∂y
+    v[3] = ky * x.y() + 0.5 * kxy * x.x();     // ∂w/∂y
     v[4] = -(kx * x.x() + 0.5 * kxy * x.y());  // −∂w/∂x
     return v;
   };
@@ -236,9 +237,9 @@ void run_patch(const Mesh8& m, bool membrane, bool bending) {
   for (int a = 0; a < nf; ++a) EXPECT_NEAR(uf(a), u(free[a]), 1e-12) << a;
   for (int a = 0; a < nf; ++a) u(free[a]) = uf(a);
   const double A = E * t / (1 - nu * nu), D = E * t * t * t / (12 * (1 - nu * nu));
-  const std::vector<double> want = {A * (ex + nu * ey),     A * (ey + nu * ex),
-                                    A * (1 - nu) / 2 * g,   -D * (kx + nu * ky),
-                                    -D * (ky + nu * kx),    -D * (1 - nu) / 2 * kxy};
+  const std::vector<double> want = {A * (ex + nu * ey),   A * (ey + nu * ex),
+                                    A * (1 - nu) / 2 * g, -D * (kx + nu * ky),
+                                    -D * (ky + nu * kx),  -D * (1 - nu) / 2 * kxy};
   for (std::size_t n = 0; n < els.size(); ++n) {
     const auto& e = els[n];
     ElementResultValues r;
@@ -271,9 +272,10 @@ TEST(Shell281, ConstantBendingPatchTestOnADistortedPatch) {
 }
 
 TEST(Shell281, ConstantMembraneAndBendingPatchTestOnASkewPatch) {
-  run_patch(rect_mesh(2, 2, 2.0, 2.0, [](const Vec3& x) {
-              return Vec3(x.x() + 0.3 * x.y(), 0.9 * x.y() + 0.1 * x.x(), 0.0);
-            }),
+  run_patch(rect_mesh(2, 2, 2.0, 2.0,
+                      [](const Vec3& x) {
+                        return Vec3(x.x() + 0.3 * x.y(), 0.9 * x.y() + 0.1 * x.x(), 0.0);
+                      }),
             true, true);
 }
 
@@ -345,8 +347,8 @@ TEST(Shell281, ThickSimplySupportedPlateMatchesTheMindlinSolution) {
     const double t = a / ratio, D = E * t * t * t / (12 * (1 - nu * nu));
     const double ref = mindlin_ss_centre(a, t, E, nu, q, 5.0 / 6.0);
     const double w = plate_centre(8, false, data(E, nu, t), a, q);
-    std::printf("thick SS plate a/t = %2.0f: w D/(q a^4) = %.6f, Mindlin %.6f\n", ratio,
-                w * D / q, ref * D / q);
+    std::printf("thick SS plate a/t = %2.0f: w D/(q a^4) = %.6f, Mindlin %.6f\n", ratio, w * D / q,
+                ref * D / q);
     EXPECT_NEAR(w / ref, 1.0, 1.2e-2);  // 8 × 8: +0.9 % (measured)
   }
 }
@@ -358,9 +360,8 @@ TEST(Shell281, CantileverStripMatchesEulerBernoulli) {
   for (bool tilted : {false, true}) {
     // Tilted: the strip turned about its axis by 30°, loaded along its normal.
     const double c = std::cos(tilted ? M_PI / 6 : 0), sn = std::sin(tilted ? M_PI / 6 : 0);
-    const Mesh8 m = rect_mesh(10, 1, L, b, [&](const Vec3& x) {
-      return Vec3(x.x(), c * x.y(), sn * x.y());
-    });
+    const Mesh8 m =
+        rect_mesh(10, 1, L, b, [&](const Vec3& x) { return Vec3(x.x(), c * x.y(), sn * x.y()); });
     const Vec3 normal(0, -sn, c);
     const auto els = build(m, data(E, 0.0, t));
     DenseSystem s(els);
