@@ -414,3 +414,67 @@ TEST(Shell281, SimplySupportedPlateFrequencyMatchesKirchhoff) {
 
 }  // namespace
 }  // namespace impactfe
+
+namespace impactfe {
+namespace {
+
+TEST(Shell281, StressStiffnessGivesTheEulerBucklingLoadOfACantileverStrip) {
+  // L = 10, b = 1, t = 0.1, ν = 0, clamped at x = 0, axial compression P at the free end:
+  // K u0 = f, then (K + λ K_G(u0)) x = 0 gives λ P = π² E I / (4 L²) (Euler's first case; the
+  // shear correction P/(kGA) is 1e-7 of it). The plate strip's width b = 10 t: EI = E b t³/12.
+  const double L = 10, b = 1, t = 0.1, E = 2e11, P = 1000;
+  const Mesh8 m = rect_mesh(10, 1, L, b);
+  const auto els = build(m, data(E, 0.0, t));
+  DenseSystem s(els);
+  const auto fixed = fix(m, [&](const Vec3& x) {
+    if (near(x.x(), 0))
+      return std::vector<Dof>{Dof::UX, Dof::UY, Dof::UZ, Dof::ROTX, Dof::ROTY, Dof::ROTZ};
+    return std::vector<Dof>{Dof::UY};  // no in-plane sway: the out-of-plane mode only
+  });
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(s.n());
+  for (const auto& [id, x] : m.nodes)
+    if (near(x.x(), L))
+      f(s.index(id, Dof::UX)) -= (near(x.y(), 0) || near(x.y(), b) ? P / 6 : 2 * P / 3);
+  const Eigen::VectorXd u0 = s.solve_static(f, fixed);
+  Eigen::MatrixXd KG = Eigen::MatrixXd::Zero(s.n(), s.n());
+  for (const auto& e : els) {
+    const auto* shell = dynamic_cast<const Shell281*>(e.get());
+    const Eigen::MatrixXd kg = shell->geometric_stiffness(gather(s, *e, u0));
+    const auto& d = e->dofs();
+    for (int a = 0; a < e->n_dofs(); ++a)
+      for (int c = 0; c < e->n_dofs(); ++c)
+        KG(s.index(d[a].node, d[a].dof), s.index(d[c].node, d[c].dof)) += kg(a, c);
+  }
+  // With SSTIF the element adds the same K_G to its tangent.
+  {
+    ElementContext ctx;
+    ctx.stress_stiffening = true;
+    Eigen::MatrixXd K1, K0;
+    Eigen::VectorXd f1;
+    const Eigen::VectorXd ue = gather(s, *els.front(), u0);
+    els.front()->tangent(ctx, ue, K1, f1);
+    K0 = dynamic_cast<const Shell281*>(els.front().get())->stiffness();
+    EXPECT_LT((K1 - K0 - dynamic_cast<const Shell281*>(els.front().get())->geometric_stiffness(ue))
+                  .norm(),
+              1e-12 * K0.norm());
+  }
+  std::vector<int> free;
+  for (int i = 0; i < s.n(); ++i)
+    if (!fixed.count(s.dofs()[static_cast<std::size_t>(i)])) free.push_back(i);
+  const int nf = static_cast<int>(free.size());
+  Eigen::MatrixXd Kf(nf, nf), Gf(nf, nf);
+  for (int i = 0; i < nf; ++i)
+    for (int j = 0; j < nf; ++j) Kf(i, j) = s.K(free[i], free[j]), Gf(i, j) = -KG(free[i], free[j]);
+  // K x = λ (−K_G) x: −K_G is not definite, so take the eigenvalues of K⁻¹(−K_G), the largest
+  // μ = 1/λ being the first buckling load factor.
+  const Eigen::MatrixXd A = Kf.ldlt().solve(Gf);
+  Eigen::EigenSolver<Eigen::MatrixXd> es(A);
+  double mu = 0.0;
+  for (int i = 0; i < nf; ++i) mu = std::max(mu, es.eigenvalues()(i).real());
+  const double I = b * t * t * t / 12, Pcr = M_PI * M_PI * E * I / (4 * L * L);
+  std::printf("cantilever strip buckling: %.6g, Euler %.6g\n", P / mu, Pcr);
+  EXPECT_NEAR(P / mu / Pcr, 1.0, 3e-3);  // 0.9985 (measured, 10 elements)
+}
+
+}  // namespace
+}  // namespace impactfe
