@@ -61,6 +61,8 @@ class ExplicitContactSet final : public ExplicitInteraction {
     std::vector<std::size_t> candidate_start;  // CSR per slave into candidates
     std::vector<std::size_t> candidates;       // indices into segments_
     std::vector<double> tangential;            // friction force on each slave (3 each)
+    /// The segment each slave is in contact with (its index in segments_; none when out).
+    std::vector<std::size_t> kept;
   };
   void search(Pass& p, const ExplicitNodalView& s) const;
   std::vector<Segment> segments_;
