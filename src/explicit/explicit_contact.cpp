@@ -63,6 +63,14 @@ void local_coordinates(const Vec p[4], Vec q, double& xi, double& eta) {
   }
 }
 
+/// The factor on a contact spring's stable step 2/ω for its viscous damping of ξ of critical:
+/// the central difference with the damping force from v(n+1/2) is stable for
+/// ω dt ≤ 2(√(1 + ξ²) − ξ) (Belytschko, Liu & Moran, Nonlinear Finite Elements, eq. (6.3.28)).
+double damped_step_factor(const ExplicitContact& k) {
+  const double xi = 0.01 * k.viscous_damping;
+  return std::sqrt(1.0 + xi * xi) - xi;
+}
+
 /// Parts as EDPART numbers them: the (type, material, real) combinations in ascending order.
 std::map<int, int> part_of_elements(const Model& model) {
   std::map<std::tuple<int, int, int>, int> parts;
@@ -174,10 +182,10 @@ ExplicitContactSet::ExplicitContactSet(const Model& model, const ExplicitSystem&
   };
   const double slsfac = model.explicit_dynamics.penalty_factor;
   for (const ExplicitContact& k : definitions) {
-    const bool single = k.option == "ASSC" || k.option == "SS" || k.option == "AG";
+    const bool single = k.option == "ASSC" || k.option == "SS";
     const bool symmetric = k.option == "STS" || k.option == "ASTS";
     std::vector<std::size_t> cont_segs, cont_nodes, targ_segs, targ_nodes;
-    surface(k, single ? std::string() : k.contact, cont_segs, cont_nodes);
+    surface(k, k.contact, cont_segs, cont_nodes);  // single surface: blank is the whole model
     if (!single) surface(k, k.target, targ_segs, targ_nodes);
     const auto add = [&](std::vector<std::size_t> slaves, std::vector<std::size_t> segs,
                          double scale) {
@@ -318,7 +326,8 @@ ExplicitStepLimit ExplicitContactSet::add_forces(const ExplicitNodalView& s, con
       for (std::size_t j = 0; j < p.slaves.size(); ++j)
         for (std::size_t c = p.candidate_start[j]; c < p.candidate_start[j + 1]; ++c) {
           const Segment& g = segments_[p.candidates[c]];
-          const double k4 = 4.0 * p.factor * g.stiffness;
+          const double soften = damped_step_factor(*p.definition);
+          const double k4 = 4.0 * p.factor * g.stiffness / (soften * soften);
           double w = mass[p.slaves[j]] > 0.0 ? k4 / mass[p.slaves[j]] : 0.0;
           for (int a = 0; a < 4; ++a)
             if (const double m = mass[static_cast<std::size_t>(g.nodes[a])]; m > 0.0)
@@ -465,7 +474,22 @@ ExplicitStepLimit ExplicitContactSet::add_forces(const ExplicitNodalView& s, con
       const double stiffness = p.factor * g.stiffness;
       const Vec vr = sub({s.vx[sn], s.vy[sn], s.vz[sn]}, vm);
       const double vn = dot(vr, normal);  // > 0: separating
-      const double fn = stiffness * best;
+      double fn = stiffness * best;
+      if (k.viscous_damping > 0.0) {
+        // Viscous contact damping VDC (LS-DYNA Theory Manual, "Contact damping"): the force
+        // −c·v_n along the normal, c = VDC/100 · 2mω, m = min(m_s, m_m), ω² = k(m_s + m_m)/(m_s
+        // m_m), m_m the segment's mass at the projection (Σ N_a m_a). The normal force stays ≥ 0:
+        // the damping slows a separation, it never holds the bodies together.
+        double m_master = 0.0;
+        for (int a = 0; a < 4; ++a)
+          m_master += shape[a] * mass[static_cast<std::size_t>(g.nodes[a])];
+        const double m_slave = mass[sn];
+        if (m_slave > 0.0 && m_master > 0.0) {
+          const double omega = std::sqrt(stiffness * (m_slave + m_master) / (m_slave * m_master));
+          const double c = 0.02 * k.viscous_damping * std::min(m_slave, m_master) * omega;
+          fn = std::max(0.0, fn - c * vn);
+        }
+      }
       Vec f{fn * normal.x, fn * normal.y, fn * normal.z};
       stored_ += 0.5 * stiffness * best * best;
       const double mu_s = k.static_friction, mu_d = k.dynamic_friction;
@@ -489,11 +513,14 @@ ExplicitStepLimit ExplicitContactSet::add_forces(const ExplicitNodalView& s, con
       touch(sn, f);
       // Gershgorin's bound on the largest frequency of M⁻¹K_c: the pair's spring matrix
       // k[1, −N; −N, NNᵀ] has the absolute row sums 2k (slave) and 2k·N_a (masters).
-      stiffness_[sn] += 2.0 * stiffness;
+      // Damping lowers the spring's stable step by damped_step_factor: as a stiffer spring.
+      const double soften = damped_step_factor(k);
+      const double bound = 2.0 * stiffness / (soften * soften);
+      stiffness_[sn] += bound;
       for (int a = 0; a < 4; ++a) {
         touch(static_cast<std::size_t>(g.nodes[a]),
               {-shape[a] * f.x, -shape[a] * f.y, -shape[a] * f.z});
-        stiffness_[static_cast<std::size_t>(g.nodes[a])] += 2.0 * stiffness * shape[a];
+        stiffness_[static_cast<std::size_t>(g.nodes[a])] += bound * shape[a];
       }
       if (element_ == 0) element_ = g.element;
     }
