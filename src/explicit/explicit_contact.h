@@ -8,6 +8,10 @@
 /// bounded by μ·f_n, μ = FD + (FS − FD)·exp(−DC·|v_rel|); optional viscous damping VDC (% of
 /// critical). Surface to surface contact is two node-to-surface passes (symmetric); single
 /// surface contact checks every exterior node against every exterior segment not next to it.
+/// The gap is taken at the slave's projection point on the bilinear segment, so the force is
+/// the gradient of ½kg²; a slave keeps the segment it came through while it stays behind it, and
+/// a new contact must have crossed its segment over the step (the springs give back what they
+/// took: an elastic impact keeps its energy).
 ///
 /// The segments come from the element sets (ExplicitElementSet::segments): a face offered by two
 /// elements is interior and dropped. The search is a bucket sort of the segments' boxes (one
