@@ -52,7 +52,8 @@ double iges_unit_mm(const std::string& path) {
     if (cur.find_first_not_of("0123456789 ") == std::string::npos && (c == 'H' || c == 'h') &&
         !cur.empty() && cur.find_first_not_of(' ') != std::string::npos) {
       const std::size_t n = static_cast<std::size_t>(std::stoul(cur));
-      cur = "H" + global.substr(i + 1, n);
+      cur.assign(1, 'H');
+      cur.append(global, i + 1, n);
       i += n;
       continue;
     }

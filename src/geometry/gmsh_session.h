@@ -1,15 +1,14 @@
 #pragma once
 /// A Gmsh session for the free mesher and the CAD importer: Gmsh keeps its model in global
 /// state, so a session opens and closes around each operation, with one thread and fixed
-/// options so that the same input gives the same mesh. Only the files that talk to Gmsh include
-/// this header (gmsh.h comes from libgmsh-dev).
+/// options so that the same input gives the same mesh. Gmsh is reached through gmsh_api.h.
 #include <fmt/format.h>
-#include <gmsh.h>
 
 #include <exception>
 #include <string>
 
 #include "core/errors.h"
+#include "geometry/gmsh_api.h"
 
 namespace impactfe::geometry {
 
@@ -39,14 +38,12 @@ class GmshSession {
   GmshSession& operator=(const GmshSession&) = delete;
 };
 
-/// Runs f, turning Gmsh's errors (4.8 throws its message as a std::string) into an InputError
+/// Runs f, turning Gmsh's errors (std::runtime_error from gmsh_api.h) into an InputError
 /// "Gmsh could not <what>: <message>".
 template <class F>
 void with_gmsh(const SourceLocation& where, const std::string& what, F&& f) {
   try {
     f();
-  } catch (const std::string& e) {
-    throw InputError(where, fmt::format("Gmsh could not {}: {}", what, e));
   } catch (const std::exception& e) {
     if (dynamic_cast<const InputError*>(&e) != nullptr) throw;
     throw InputError(where, fmt::format("Gmsh could not {}: {}", what, e.what()));

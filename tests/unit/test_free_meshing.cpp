@@ -4,7 +4,6 @@
 // area, free triangles and quadrilaterals on a five-sided area, reproducibility, refusals, and
 // CAD files read by IGESIN (an IGES pair of annuli, a STEP quarter cylinder) against their CAD
 // areas and volumes.
-#include <gmsh.h>
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -18,9 +17,12 @@
 #include "deck/deck_reader.h"
 #include "elements/element.h"
 #include "geometry/cad_import.h"
+#include "geometry/gmsh_api.h"
 
 namespace impactfe {
 namespace {
+
+namespace gmsh = geometry::gmsh;
 
 const char* kHead = "/PREP7\nMP,EX,1,200E3\nMP,PRXY,1,0.3\n";
 
