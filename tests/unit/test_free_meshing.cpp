@@ -9,6 +9,8 @@
 #include <Eigen/Geometry>
 #include <array>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <set>
 #include <string>
@@ -270,6 +272,31 @@ TEST(FreeMeshing, StepVolumeMeshedToTheCadVolume) {
   EXPECT_NE(message("/PREP7\nIGESIN,'" + spline.substr(0, spline.size() - 5) + "',step\n")
                 .find("BSpline"),
             std::string::npos);
+}
+
+TEST(FreeMeshing, MeshSubcommandWritesTheCdbOfACadFile) {
+  // impactfe mesh on the STEP quarter cylinder: a CDB whose NBLOCK / EBLOCK CDREAD reads back
+  // into the same number of nodes and SOLID187 elements as the IGESIN deck makes.
+  const std::string step = ::testing::TempDir() + "quarter_mesh.step";
+  gmsh::initialize(0, nullptr, false);
+  gmsh::option::setNumber("General.Terminal", 0);
+  gmsh::model::add("quarter");
+  gmsh::model::occ::addCylinder(0, 0, 0, 0, 0, 2, 1.0, -1, M_PI / 2);
+  gmsh::model::occ::synchronize();
+  gmsh::write(step);
+  gmsh::finalize();
+  const std::string cdb = ::testing::TempDir() + "quarter_mesh.cdb";
+  std::remove(cdb.c_str());
+  const std::string command = std::string(IMPACTFE_BINARY) + " mesh " + step +
+                              " --type 187 --esize 0.25 -o " + cdb + " > /dev/null";
+  ASSERT_EQ(std::system(command.c_str()), 0) << command;
+  const Model direct = read(std::string(kHead) + "ET,1,SOLID187\nIGESIN,'" +
+                            step.substr(0, step.size() - 5) + "',step\nESIZE,0.25\nVMESH,ALL\n");
+  const Model back = read("/PREP7\nCDREAD,DB,'" + cdb.substr(0, cdb.size() - 4) + "',cdb\n");
+  EXPECT_GT(back.elements.size(), 20u);
+  EXPECT_EQ(back.elements.size(), direct.elements.size());
+  EXPECT_EQ(back.nodes.size(), direct.nodes.size());
+  EXPECT_NEAR(totals(back).volume, totals(direct).volume, 1e-9);
 }
 
 }  // namespace
