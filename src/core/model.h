@@ -143,16 +143,19 @@ struct CoupledSet {
 /// Loads are cumulative: a step inherits everything from the previous step unless changed.
 struct LoadStep {
   int number = 1;
-  std::optional<double> time_end;                // TIME; blank = default (see analysis driver)
-  std::optional<double> dt;                      // DTIME / DELTIM
-  std::optional<int> n_substeps;                 // ITER NITTER / NSUBST
-  OutputControl output;                          // ITER NPOST / OUTRES (core/output_control.h)
-  bool stepped = false;                          // KBC: false = ramped, true = stepped
-  int reformulation = 1;                         // KRF / NROPT: re-form tangent every n iterations
-  bool time_integration = true;                  // KAY(5) / TIMINT
-  Vec3 acel = Vec3::Zero();                      // ACEL: acceleration of the reference frame
-  std::map<DofKey, double> constraints;          // D (value in nodal axes)
-  std::map<DofKey, double> forces;               // F (nodal axes)
+  std::optional<double> time_end;        // TIME; blank = default (see analysis driver)
+  std::optional<double> dt;              // DTIME / DELTIM
+  std::optional<int> n_substeps;         // ITER NITTER / NSUBST
+  OutputControl output;                  // ITER NPOST / OUTRES (core/output_control.h)
+  bool stepped = false;                  // KBC: false = ramped, true = stepped
+  int reformulation = 1;                 // KRF / NROPT: re-form tangent every n iterations
+  bool time_integration = true;          // KAY(5) / TIMINT
+  Vec3 acel = Vec3::Zero();              // ACEL: acceleration of the reference frame
+  std::map<DofKey, double> constraints;  // D (value in nodal axes)
+  std::map<DofKey, double> forces;       // F (nodal axes)
+  // HARFRQ,FREQB,FREQE (Hz) of a harmonic analysis: the substeps' frequencies are evenly spaced
+  // in (FREQB, FREQE] (NSUBST of them); unset: no frequency given (the SOLVE is refused).
+  std::optional<std::pair<double, double>> frequency_range;
   std::map<DofKey, SourceLocation> force_where;  // the F command that set each force
   // Time-function loads (`%TABLE%`, APDL_MODELING §5.5): the table named here gives the value
   // at each time (KBC does not apply); the number in constraints/forces is then unused.
