@@ -153,6 +153,7 @@ struct LoadStep {
   Vec3 acel = Vec3::Zero();              // ACEL: acceleration of the reference frame
   std::map<DofKey, double> constraints;  // D (value in nodal axes)
   std::map<DofKey, double> forces;       // F (nodal axes)
+  std::map<DofKey, double> forces_imag;  // F VALUE2: imaginary part (harmonic analysis)
   // HARFRQ,FREQB,FREQE (Hz) of a harmonic analysis: the substeps' frequencies are evenly spaced
   // in (FREQB, FREQE] (NSUBST of them); unset: no frequency given (the SOLVE is refused).
   std::optional<std::pair<double, double>> frequency_range;
@@ -199,7 +200,7 @@ struct InitialCondition {
   SourceLocation where;  // the IC command
 };
 
-enum class AnalysisType { Static, Modal, Transient, Substructure };
+enum class AnalysisType { Static, Modal, Transient, Substructure, Harmonic };
 enum class TransientMethod { Full, Reduced, ModeSuperposition };
 enum class IntegratorKind { Houbolt, Newmark, HHT };
 enum class Dialect { Classic4x, Modern };
@@ -240,6 +241,14 @@ struct ExpansionRequest {
   bool every_step = false;  // NUMEXP,ALL
 };
 
+/// HROPT / HROUT / DMPSTR: the harmonic response analysis (ANTYPE,HARMIC).
+struct HarmonicOptions {
+  bool mode_superposition = false;  // HROPT,MSUP (else FULL)
+  int n_modes = 0;                  // HROPT MAXMODE (0: the MODOPT count)
+  bool amplitude_phase = false;     // HROUT,OFF: printed as amplitude and phase (printout only)
+  double structural_damping = 0.0;  // DMPSTR g: i g K
+};
+
 /// Analysis-wide options (first load step semantics).
 struct AnalysisOptions {
   AnalysisType type = AnalysisType::Static;
@@ -256,6 +265,7 @@ struct AnalysisOptions {
   std::map<int, double> modal_damping;  // MDAMP: mode -> ratio
   double alpha_damping = 0.0;           // ALPHAD
   double beta_damping = 0.0;            // BETAD
+  HarmonicOptions harmonic;             // ANTYPE,HARMIC
   int superelement_matrices = 1;        // KAY(6) under KAN=7 / SEOPT SEMATR
   std::string superelement_name;        // SEOPT Sename
   std::optional<int> total_masters;     // TOTAL NTOT (automatic masters)
