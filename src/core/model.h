@@ -311,6 +311,15 @@ struct Component {
   SourceLocation where;  // the CM command
 };
 
+/// The time of the substep being solved, as the implicit creep laws read it
+/// (J2Plasticity::creep): creep acts over (time − dt, time) while `active`.
+struct CreepClock {
+  bool active = false;       // creep acts in the step being solved
+  double time = 0.0;         // t_{n+1}: the load-step TIME at the end of the substep
+  double dt = 0.0;           // t_{n+1} − t_n (0: no creep increment)
+  double temperature = 0.0;  // absolute temperature of the creep laws
+};
+
 /// Everything the deck defines. Node and element maps are ordered by user id.
 struct Model {
   std::string title;
@@ -339,6 +348,8 @@ struct Model {
   std::map<std::string, TimeFunction> time_functions;  // TABLE loads by name (upper case)
   std::map<std::pair<int, std::string>, MaterialTable> material_tables;  // TB by (MAT, Lab)
   ExplicitControls explicit_dynamics;  // the ED* settings (docs/explicit_dynamics.md)
+  /// Shared by the creep laws of the elements built from this model (and its snapshots).
+  std::shared_ptr<CreepClock> creep_clock = std::make_shared<CreepClock>();
 
   /// Current (not yet written) load state and options; LWRITE/LSWRITE/SOLVE snapshot it.
   AnalysisOptions options;
