@@ -573,6 +573,16 @@ ElementResultValues Shell281::values_at(double xi, double eta, const Eigen::Vect
           eb(2)};
 }
 
+Eigen::Matrix3d Shell281::result_axes(const ElementContext&, const Eigen::VectorXd&) const {
+  Eigen::VectorXd N;
+  Eigen::MatrixXd dN;
+  if (n_ == 8)
+    shape(0.0, 0.0, N, dN);
+  else
+    shape(1.0 / 3.0, 1.0 / 3.0, N, dN);
+  return frame(N, dN, nullptr);
+}
+
 void Shell281::results(const ElementContext&, const Eigen::VectorXd& u, const Eigen::VectorXd&,
                        ElementResultValues& out) const {
   out = n_ == 8 ? values_at(0.0, 0.0, expand(u)) : values_at(1.0 / 3.0, 1.0 / 3.0, expand(u));

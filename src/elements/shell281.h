@@ -61,6 +61,10 @@ class Shell281 : public Element {
   void pressure_load(const ElementContext& ctx, int face, const std::array<double, 4>& p,
                      const Eigen::VectorXd& u, Eigen::VectorXd& f) const override;
   const std::vector<std::string>& result_names() const override;
+  /// The lamina frame at the element centre (e1 along ∂x/∂ξ, e3 the normal): the axes of the
+  /// centroid values. The nodal values are in the frames at the nodes, which on a curved
+  /// element differ from it by the element's curvature; POST1 rotates them with this one.
+  Eigen::Matrix3d result_axes(const ElementContext& ctx, const Eigen::VectorXd& u) const override;
   /// Values at the element centre (element axes: e1 along ∂x/∂ξ).
   void results(const ElementContext& ctx, const Eigen::VectorXd& u, const Eigen::VectorXd& v,
                ElementResultValues& out) const override;
