@@ -13,7 +13,8 @@ $SUDO apt-get install -y --no-install-recommends \
   clang-format python3 nlohmann-json3-dev chromium fonts-dejavu-core \
   python3-numpy python3-h5py python3-pandas python3-pytest python3-vtk9 \
   clang-14 libclang-rt-14-dev libomp-14-dev \
-  libmumps-dev libopenmpi-dev openmpi-bin
+  libmumps-dev libopenmpi-dev openmpi-bin libgmsh-dev
+# Gmsh: free meshing (MSHAPE,1, non-mappable areas and volumes; src/geometry/free_mesher.cpp).
 # MUMPS and Open MPI: the distributed solver (`--solver mumps`, docs/scaling.md).
 # clang-14 with compiler-rt (libFuzzer, AddressSanitizer, UBSan) and its OpenMP runtime: the
 # sanitizer build of scripts/test-sanitizers.sh and scripts/fuzz.sh (scripts/sanitizer-build.sh).

@@ -26,6 +26,11 @@ std::unique_ptr<DirectSolution> begin_direct_analysis(Structure& structure, Resu
 /// density when no free DOF has mass (the mass matrix is zero: no frequency exists).
 int modes_with_mass(const Structure& structure, const SparseMatrix& m_lower, int wanted,
                     const char* analysis, AnalysisStatistics& stats);
+/// Harmonic response (ANTYPE,HARMIC + HROPT,FULL or MSUP): the complex steady-state response at
+/// each frequency of the load steps (harmonic_analysis.cpp).
+void run_harmonic_analysis(Structure& structure, const AnalysisRequest& request,
+                           ResultsWriter& writer, const RunSettings& settings,
+                           AnalysisStatistics& stats);
 /// Modal analysis (ANTYPE,MODAL + MODOPT): natural frequencies (Hz) and mode shapes.
 void run_modal_analysis(Structure& structure, const AnalysisRequest& request, ResultsWriter& writer,
                         const RunSettings& settings, AnalysisStatistics& stats);

@@ -255,6 +255,9 @@ void JobSession::run_whole(const Job::Step& step, AnalysisStatistics& stats) {
       else
         run_msup_transient(structure, request, *writer_, settings_, stats, reduced_state_);
       break;
+    case AnalysisType::Harmonic:
+      run_harmonic_analysis(structure, request, *writer_, settings_, stats);
+      break;
     case AnalysisType::Substructure:
       run_substructure_generation(structure, request, *writer_, settings_, stats, jobname_);
       break;

@@ -13,20 +13,17 @@
 
 namespace impactfe {
 
-namespace {
-
 /// The lowest modes of K x = λ M x over the free DOFs of the reduced model (MODOPT or the MSUP
 /// mode count, only modes with mass), mass-normalised; the shift keeps rigid-body modes regular.
-EigenResult lowest_modes(Structure& structure, const ReducedRunState& state,
-                         AnalysisStatistics& stats) {
+EigenResult lowest_modes(Structure& structure, const ReducedRunState& state, int wanted,
+                         const char* analysis, AnalysisStatistics& stats) {
   const AnalysisOptions& options = structure.options();
   const DofMap& dofs = *state.dofs;
   const int nf = dofs.n_free();
   const std::string& method = options.modal.method;
   if (method == "QRDAMP" || method == "DAMP" || method == "UNSYM")
     Log::warn("MODOPT,{}: undamped real modes from the symmetric Lanczos solver are used", method);
-  int n_modes = options.msup_modes > 0 ? options.msup_modes : options.modal.n_modes;
-  n_modes = std::min(std::max(n_modes, 1), nf);
+  int n_modes = std::min(std::max(wanted, 1), nf);
   const VectorXd zero = VectorXd::Zero(dofs.n_active());
   SparseMatrix k_lower(nf, nf), m_lower(nf, nf);
   state.assembler->assemble({1.0, 0.0, 0.0}, zero, zero,
@@ -41,12 +38,12 @@ EigenResult lowest_modes(Structure& structure, const ReducedRunState& state,
       ++count;
     }
   const double shift = -1e-6 * (count > 0 ? ratio_sum / count : 1.0);
-  n_modes = modes_with_mass(structure, m_lower, n_modes, "mode-superposition transient", stats);
+  n_modes = modes_with_mass(structure, m_lower, n_modes, analysis, stats);
   try {
     return lowest_eigenpairs(k_lower, m_lower, n_modes, shift);
   } catch (const SingularMatrixError& e) {
     throw ModelError(fmt::format(
-        "mode-superposition transient: K - sigma M is singular{}",
+        "{}: K - sigma M is singular{}", analysis,
         e.column() >= 0 && e.column() < nf ? " at " + describe(dofs.key(e.column())) : ""));
   }
 }
@@ -75,6 +72,8 @@ MatrixXd modal_damping(const ReducedRunState& state, const AnalysisOptions& opti
   }
   return cm;
 }
+
+namespace {
 
 /// The initial conditions (IC) projected on the modes: q0 = Φᵀ M u0, q̇0 = Φᵀ M v0.
 std::pair<VectorXd, VectorXd> modal_initial_state(const Model& model,
@@ -112,7 +111,9 @@ void run_msup_transient(Structure& structure, const AnalysisRequest& request, Re
   prepare_reduced_model(*state, structure, request, settings, {}, stats);
   const DofMap& dofs = *state->dofs;
   const int nf = dofs.n_free();
-  const EigenResult eig = lowest_modes(structure, *state, stats);
+  const EigenResult eig = lowest_modes(
+      structure, *state, options.msup_modes > 0 ? options.msup_modes : options.modal.n_modes,
+      "mode-superposition transient", stats);
   const int nm = static_cast<int>(eig.eigenvalues.size());
   state->modes = eig.eigenvectors.topRows(nf);
   VectorXd omega(nm);

@@ -93,9 +93,10 @@ void prepare_reduced_model(ReducedRunState& state, const Structure& structure,
     const VectorXd diag = k.diagonal();
     const double scale = trial.n_free() ? diag.head(trial.n_free()).cwiseAbs().maxCoeff() : 0.0;
     // Mode superposition keeps a DOF without stiffness that carries mass: it moves in a
-    // rigid-body mode (0 Hz), which the modes include (a mass on a gap, GP, alone).
+    // rigid-body mode (0 Hz), which the modes include (a mass on a gap, GP, alone). So does a
+    // full harmonic analysis, where −Ω² M restrains it at any non-zero frequency.
     VectorXd mass_diag;
-    if (state.method == "msup") mass_diag = assembler.mass_matrix().diagonal();
+    if (state.method != "reduced") mass_diag = assembler.mass_matrix().diagonal();
     const std::set<DofKey> kept(keep.begin(), keep.end());
     std::string list;
     int dropped = 0;

@@ -10,6 +10,7 @@
 #include "analysis/analyses.h"
 #include "analysis/progress.h"
 #include "assembly/loads.h"
+#include "linalg/eigen_solver.h"
 #include "reduction/guyan.h"
 #include "reduction/reduced_dynamics.h"
 #include "time/time_axis.h"
@@ -59,6 +60,16 @@ void prepare_reduced_model(ReducedRunState& state, const Structure& structure,
 
 /// Full-storage damping over the active DOFs: element dampers + α M + β K.
 SparseMatrix damping_matrix(const ReducedRunState& state, const SparseMatrix& k);
+
+/// The lowest `wanted` modes of K x = λ M x over the free DOFs of the state's model (only modes
+/// with mass), mass-normalised; `analysis` names the analysis in messages (msup_transient.cpp).
+EigenResult lowest_modes(Structure& structure, const ReducedRunState& state, int wanted,
+                         const char* analysis, AnalysisStatistics& stats);
+
+/// Modal damping: Φᵀ C_elem Φ + α I + β diag(ω²) + diag(2 ζ_j ω_j) with ζ_j = DMPRAT +
+/// MDAMP(j), for the state's mass-normalised modes (msup_transient.cpp).
+MatrixXd modal_damping(const ReducedRunState& state, const AnalysisOptions& options,
+                       const VectorXd& omega);
 
 /// GP gap conditions in generalized coordinates. `row(free_index)` gives the row of the basis
 /// (b with u_i = bᵀ q); a node without active DOFs (or a constrained DOF) is ground; any other

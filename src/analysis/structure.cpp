@@ -144,13 +144,15 @@ std::vector<double> damping_of_materials(const Model& model, const AnalysisOptio
     material_beta.clear();
   const bool reduced_damping =
       (options.type == AnalysisType::Transient && options.method != TransientMethod::Full) ||
+      options.type == AnalysisType::Harmonic ||
       (options.type == AnalysisType::Substructure && options.superelement_matrices == 3);
   if (damped != nullptr && reduced_damping) {
     throw InputError(
         damped->where,
         fmt::format("element {}: its material {} has MP,DAMP/ALPD/BETD (material damping), which "
-                    "only a full transient applies; for a reduced or mode-superposition transient "
-                    "or a superelement damping matrix use BETAD (global beta) or DMPRAT",
+                    "only a full transient applies; for a reduced or mode-superposition transient, "
+                    "a harmonic analysis or a superelement damping matrix use BETAD (global beta), "
+                    "DMPRAT or DMPSTR",
                     damped->id, damped->mat));
   }
   return material_beta;

@@ -1,6 +1,6 @@
-/// impactfe command-line interface: run a deck, query a results file, export, report, Houbolt
-/// spectrum. Each subcommand's options are declared in a function of their own; main parses and
-/// dispatches.
+/// impactfe command-line interface: run a deck, query a results file, export, report, mesh a CAD
+/// file, Houbolt spectrum. Each subcommand's options are declared in a function of their own;
+/// main parses and dispatches.
 #include <fmt/format.h>
 #include <CLI/CLI.hpp>
 
@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -18,7 +19,9 @@
 #include "app/run_command.h"
 #include "app/version.h"
 #include "core/errors.h"
+#include "deck/cdb_writer.h"
 #include "deck/command_reference.h"
+#include "deck/deck_reader.h"
 #include "results/post_csv.h"
 #include "results/report.h"
 #include "results/results_file.h"
@@ -213,6 +216,53 @@ int spectrum_command(const std::vector<double>& xi) {
   return kExitOk;
 }
 
+struct MeshArgs {
+  std::string file, out, type = "187";
+  double esize = 0.0;
+  bool triangles = false;
+};
+
+CLI::App* add_mesh(CLI::App& app, MeshArgs& args) {
+  CLI::App* cmd = app.add_subcommand(
+      "mesh",
+      "mesh a CAD file (IGES or STEP) with Gmsh and write the nodes and elements as a CDB "
+      "archive (the deck IGESIN, ESIZE, VMESH / AMESH, CDWRITE,DB would)");
+  cmd->add_option("cad", args.file, "CAD file (.igs, .iges, .stp, .step)")->required();
+  cmd->add_option("-o,--output", args.out, "CDB file to write (default <stem>.cdb)");
+  cmd->add_option("--type", args.type,
+                  "element type: a volume type meshes the volumes (187: SOLID187 10-node "
+                  "tetrahedra, default; 185, 186: degenerate bricks), an area type the areas "
+                  "(182, 183, 181)");
+  cmd->add_option("--esize", args.esize, "element edge length (ESIZE; default: DESIZE's)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_flag("--triangles", args.triangles,
+                "areas: triangles (MSHAPE,1) instead of quadrilaterals");
+  return cmd;
+}
+
+int mesh_command(const MeshArgs& args) {
+  const fs::path cad = fs::absolute(args.file);
+  const std::string ext = cad.extension().string();
+  const std::string stem = (cad.parent_path() / cad.stem()).string();
+  const bool volume_type = args.type == "185" || args.type == "186" || args.type == "187" ||
+                           args.type.find("SOLID") != std::string::npos;
+  std::string deck = fmt::format("/PREP7\nET,1,{}\nMP,EX,1,1\nMP,PRXY,1,0.3\n", args.type);
+  if (args.type == "181" || args.type == "SHELL181") deck += "SECTYPE,1,SHELL\nSECDATA,1\n";
+  deck += fmt::format("IGESIN,'{}',{}\n", stem, ext.empty() ? "" : ext.substr(1));
+  if (args.esize > 0.0) deck += fmt::format("ESIZE,{}\n", args.esize);
+  if (args.triangles) deck += "MSHAPE,1,2D\n";
+  deck += volume_type ? "VMESH,ALL\n" : "AMESH,ALL\n";
+  const Model model = read_deck_text(deck, args.file, DeckOptions{}).model;
+  const std::string out = args.out.empty() ? cad.stem().string() + ".cdb" : args.out;
+  std::ofstream os(out);
+  if (!os) throw std::runtime_error("cannot write " + out);
+  deck::write_cdb(model, os);
+  std::cout << fmt::format("mesh: {} volumes, {} areas from {}: {} nodes, {} elements -> {}\n",
+                           model.solid.volumes.size(), model.solid.areas.size(), args.file,
+                           model.nodes.size(), model.elements.size(), out);
+  return kExitOk;
+}
+
 struct HelpArgs {
   std::string name;
   bool markdown = false;
@@ -277,6 +327,8 @@ int main(int argc, char** argv) {
   CLI::App* export_cmd = add_export(app, export_args);
   ReportArgs report;
   CLI::App* report_cmd = add_report(app, report);
+  MeshArgs mesh;
+  CLI::App* mesh_cmd = add_mesh(app, mesh);
   HelpArgs help;
   CLI::App* help_cmd = add_help(app, help);
   std::vector<double> xi = {0.0};
@@ -305,6 +357,7 @@ int main(int argc, char** argv) {
     if (*export_cmd) return export_command(export_args);
     if (*report_cmd) return report_command(report);
     if (*spectrum_cmd) return spectrum_command(xi);
+    if (*mesh_cmd) return mesh_command(mesh);
     if (*help_cmd) return help_command(help);
   } catch (const InternalError& e) {
     return report_internal_error(e);

@@ -143,16 +143,20 @@ struct CoupledSet {
 /// Loads are cumulative: a step inherits everything from the previous step unless changed.
 struct LoadStep {
   int number = 1;
-  std::optional<double> time_end;                // TIME; blank = default (see analysis driver)
-  std::optional<double> dt;                      // DTIME / DELTIM
-  std::optional<int> n_substeps;                 // ITER NITTER / NSUBST
-  OutputControl output;                          // ITER NPOST / OUTRES (core/output_control.h)
-  bool stepped = false;                          // KBC: false = ramped, true = stepped
-  int reformulation = 1;                         // KRF / NROPT: re-form tangent every n iterations
-  bool time_integration = true;                  // KAY(5) / TIMINT
-  Vec3 acel = Vec3::Zero();                      // ACEL: acceleration of the reference frame
-  std::map<DofKey, double> constraints;          // D (value in nodal axes)
-  std::map<DofKey, double> forces;               // F (nodal axes)
+  std::optional<double> time_end;        // TIME; blank = default (see analysis driver)
+  std::optional<double> dt;              // DTIME / DELTIM
+  std::optional<int> n_substeps;         // ITER NITTER / NSUBST
+  OutputControl output;                  // ITER NPOST / OUTRES (core/output_control.h)
+  bool stepped = false;                  // KBC: false = ramped, true = stepped
+  int reformulation = 1;                 // KRF / NROPT: re-form tangent every n iterations
+  bool time_integration = true;          // KAY(5) / TIMINT
+  Vec3 acel = Vec3::Zero();              // ACEL: acceleration of the reference frame
+  std::map<DofKey, double> constraints;  // D (value in nodal axes)
+  std::map<DofKey, double> forces;       // F (nodal axes)
+  std::map<DofKey, double> forces_imag;  // F VALUE2: imaginary part (harmonic analysis)
+  // HARFRQ,FREQB,FREQE (Hz) of a harmonic analysis: the substeps' frequencies are evenly spaced
+  // in (FREQB, FREQE] (NSUBST of them); unset: no frequency given (the SOLVE is refused).
+  std::optional<std::pair<double, double>> frequency_range;
   std::map<DofKey, SourceLocation> force_where;  // the F command that set each force
   // Time-function loads (`%TABLE%`, APDL_MODELING §5.5): the table named here gives the value
   // at each time (KBC does not apply); the number in constraints/forces is then unused.
@@ -196,7 +200,7 @@ struct InitialCondition {
   SourceLocation where;  // the IC command
 };
 
-enum class AnalysisType { Static, Modal, Transient, Substructure };
+enum class AnalysisType { Static, Modal, Transient, Substructure, Harmonic };
 enum class TransientMethod { Full, Reduced, ModeSuperposition };
 enum class IntegratorKind { Houbolt, Newmark, HHT };
 enum class Dialect { Classic4x, Modern };
@@ -237,6 +241,14 @@ struct ExpansionRequest {
   bool every_step = false;  // NUMEXP,ALL
 };
 
+/// HROPT / HROUT / DMPSTR: the harmonic response analysis (ANTYPE,HARMIC).
+struct HarmonicOptions {
+  bool mode_superposition = false;  // HROPT,MSUP (else FULL)
+  int n_modes = 0;                  // HROPT MAXMODE (0: the MODOPT count)
+  bool amplitude_phase = false;     // HROUT,OFF: printed as amplitude and phase (printout only)
+  double structural_damping = 0.0;  // DMPSTR g: i g K
+};
+
 /// Analysis-wide options (first load step semantics).
 struct AnalysisOptions {
   AnalysisType type = AnalysisType::Static;
@@ -253,6 +265,7 @@ struct AnalysisOptions {
   std::map<int, double> modal_damping;  // MDAMP: mode -> ratio
   double alpha_damping = 0.0;           // ALPHAD
   double beta_damping = 0.0;            // BETAD
+  HarmonicOptions harmonic;             // ANTYPE,HARMIC
   int superelement_matrices = 1;        // KAY(6) under KAN=7 / SEOPT SEMATR
   std::string superelement_name;        // SEOPT Sename
   std::optional<int> total_masters;     // TOTAL NTOT (automatic masters)
@@ -298,6 +311,15 @@ struct Component {
   SourceLocation where;  // the CM command
 };
 
+/// The time of the substep being solved, as the implicit creep laws read it
+/// (J2Plasticity::creep): creep acts over (time − dt, time) while `active`.
+struct CreepClock {
+  bool active = false;       // creep acts in the step being solved
+  double time = 0.0;         // t_{n+1}: the load-step TIME at the end of the substep
+  double dt = 0.0;           // t_{n+1} − t_n (0: no creep increment)
+  double temperature = 0.0;  // absolute temperature of the creep laws
+};
+
 /// Everything the deck defines. Node and element maps are ordered by user id.
 struct Model {
   std::string title;
@@ -326,6 +348,8 @@ struct Model {
   std::map<std::string, TimeFunction> time_functions;  // TABLE loads by name (upper case)
   std::map<std::pair<int, std::string>, MaterialTable> material_tables;  // TB by (MAT, Lab)
   ExplicitControls explicit_dynamics;  // the ED* settings (docs/explicit_dynamics.md)
+  /// Shared by the creep laws of the elements built from this model (and its snapshots).
+  std::shared_ptr<CreepClock> creep_clock = std::make_shared<CreepClock>();
 
   /// Current (not yet written) load state and options; LWRITE/LSWRITE/SOLVE snapshot it.
   AnalysisOptions options;

@@ -362,9 +362,10 @@ void cmd_cdwrite(DeckReader& r, const Command& c) {
             r.model.nodes.size(), r.model.elements.size());
 }
 
-// OMEGA, DOMEGA, CGLOC, CGOMEGA, DCGOMG, DMPSTR: every CDB archive states them, zero for a model
-// without rotating-frame loads or structural damping. Zero is what impactfe computes; anything
-// else is refused (no rotating reference frames, no constant structural damping here).
+// OMEGA, DOMEGA, CGLOC, CGOMEGA, DCGOMG: every CDB archive states them, zero for a model
+// without rotating-frame loads. Zero is what impactfe computes; anything else is refused (no
+// rotating reference frames). DMPSTR, also in every archive, is a harmonic analysis command
+// (dynamics_commands.cpp).
 void cmd_zero_only(DeckReader& r, const Command& c) {
   for (int f = 1; f <= c.last_given(); ++f)
     if (!c.blank(f) && r.real(c, f, 0.0) != 0.0)
@@ -375,7 +376,7 @@ void cmd_zero_only(DeckReader& r, const Command& c) {
 }  // namespace
 
 void register_cdb_commands(std::vector<CommandSpec>& t) {
-  for (const char* name : {"OMEGA", "DOMEGA", "CGLOC", "CGOMEGA", "DCGOMG", "DMPSTR"})
+  for (const char* name : {"OMEGA", "DOMEGA", "CGLOC", "CGOMEGA", "DCGOMG"})
     t.push_back({name, cmd_zero_only, kPrep7 | kSolu});
   t.push_back({"CDWRITE", cmd_cdwrite, kPrep7 | kSolu});
   t.push_back({"CDREAD", cmd_cdread, kPrep7});

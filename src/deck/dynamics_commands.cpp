@@ -1,6 +1,7 @@
 // Dynamic analysis options: the transient method (TRNOPT), the integration parameters (TINTP),
 // damping (ALPHAD, BETAD, DMPRAT, MDAMP), the modal extraction (MODOPT, MXPAND) and the
-// mode-superposition load vector scale (LVSCALE).
+// mode-superposition load vector scale (LVSCALE); the harmonic response options (HROPT, HROUT,
+// HARFRQ, DMPSTR).
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -115,6 +116,63 @@ void cmd_lvscale(DeckReader& r, const Command& c) {
   r.model.current.load_vector_step = step;
 }
 
+void cmd_hropt(DeckReader& r, const Command& c) {
+  // HROPT,Method,MAXMODE,MINMODE,MCout,Damp,...
+  HarmonicOptions& h = r.model.options.harmonic;
+  const std::string m = r.label(c, 1);
+  if (m == "FULL" || m.empty())
+    h.mode_superposition = false;
+  else if (m == "MSUP")
+    h.mode_superposition = true;
+  else if (m == "HBM")
+    r.fail(c, "the harmonic balance method (HROPT,HBM) is not supported (FULL, MSUP)");
+  else
+    r.fail(c, fmt::format("harmonic method '{}' not supported (FULL, MSUP)", c.text(1)));
+  h.n_modes = 0;
+  if (!c.blank(2)) {
+    h.n_modes = r.integer(c, 2, 0);
+    if (h.n_modes < 0) r.fail(c, fmt::format("MAXMODE {} must not be negative", h.n_modes));
+  }
+  if (!c.blank(3) && r.integer(c, 3, 1) != 1)
+    r.fail(c, "MINMODE other than 1 is not supported (the superposition uses the modes from 1)");
+  if (!c.blank(4) && r.label(c, 4) != "NO")
+    r.fail(c, "MCout (modal coordinates file) is not supported");
+}
+
+void cmd_hrout(DeckReader& r, const Command& c) {
+  // HROUT,Reimky,Clust,Mcont: Reimky ON prints real and imaginary parts, OFF amplitude and
+  // phase; the results file always stores real and imaginary parts.
+  HarmonicOptions& h = r.model.options.harmonic;
+  h.amplitude_phase = !r.on_off(c, 1, true);
+  if (r.on_off(c, 2, false))
+    r.fail(c, "Clust ON (frequencies clustered about the natural frequencies) is not supported");
+  if (r.on_off(c, 3, false)) r.fail(c, "Mcont ON (modal contributions printout) is not supported");
+}
+
+void cmd_harfrq(DeckReader& r, const Command& c) {
+  // HARFRQ,FREQB,FREQE,--,LogOpt,FREQARR,Toler: FREQE blank means the single frequency FREQB.
+  if (!c.blank(4)) r.fail(c, "LogOpt (logarithmic frequency spacing) is not supported");
+  if (!c.blank(5)) r.fail(c, "FREQARR (a table of frequencies) is not supported");
+  const double fb = r.real(c, 1, 0.0);
+  const double fe = c.blank(2) ? fb : r.real(c, 2, 0.0);
+  if (fb < 0.0 || fe < 0.0) r.fail(c, "frequencies must not be negative");
+  if (fe < fb) r.fail(c, fmt::format("FREQE {:g} is below FREQB {:g}", fe, fb));
+  if (fe <= 0.0) r.fail(c, "FREQE must be positive (the harmonic frequency in Hz)");
+  r.model.current.frequency_range = std::make_pair(fb, fe);
+}
+
+void cmd_dmpstr(DeckReader& r, const Command& c) {
+  const double g = r.real(c, 1, 0.0);
+  if (g < 0.0) r.fail(c, fmt::format("structural damping coefficient {:g} is negative", g));
+  // CDB archives write DMPSTR,0 whatever the analysis; a non-zero value acts in a harmonic
+  // analysis only (i g K), so elsewhere it is refused rather than ignored.
+  if (g != 0.0 && r.model.options.type != AnalysisType::Harmonic)
+    r.fail(c,
+           "a non-zero DMPSTR (structural damping) acts in a harmonic analysis only: give "
+           "ANTYPE,HARMIC first");
+  r.model.options.harmonic.structural_damping = g;
+}
+
 }  // namespace
 
 void register_dynamics_commands(std::vector<CommandSpec>& t) {
@@ -127,6 +185,10 @@ void register_dynamics_commands(std::vector<CommandSpec>& t) {
   t.push_back({"MODOPT", cmd_modopt, kPrepSolu});
   t.push_back({"MXPAND", cmd_mxpand, kPrepSolu});
   t.push_back({"LVSCALE", cmd_lvscale, kSolu});
+  t.push_back({"HROPT", cmd_hropt, kPrepSolu});
+  t.push_back({"HROUT", cmd_hrout, kPrepSolu});
+  t.push_back({"HARFRQ", cmd_harfrq, kPrepSolu});
+  t.push_back({"DMPSTR", cmd_dmpstr, kPrepSolu});
 }
 
 }  // namespace impactfe::deck

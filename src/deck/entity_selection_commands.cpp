@@ -5,8 +5,10 @@
 
 #include <cmath>
 #include <set>
+#include <utility>
 
 #include "deck/modeling_helpers.h"
+#include "elements/element_registry.h"
 #include "geometry/line_geometry.h"
 #include "geometry/mesher.h"
 
@@ -204,10 +206,29 @@ std::set<int> nodes_of_keypoints(DeckReader& r) {
 
 std::set<int> nodes_of_lines(DeckReader& r, bool ends) {
   std::set<int> out;
+  std::set<std::pair<int, int>> edges;  // consecutive nodes of the selected lines
   for (const auto& [id, l] : solid(r).lines) {
     if (!r.model.selection.lines.selected(id) || l.nodes.empty()) continue;
     const std::size_t skip = ends ? 0 : 1;
     out.insert(l.nodes.begin() + static_cast<long>(skip), l.nodes.end() - static_cast<long>(skip));
+    for (std::size_t k = 0; k + 1 < l.nodes.size(); ++k)
+      edges.insert(std::minmax(l.nodes[k], l.nodes[k + 1]));
+  }
+  if (edges.empty()) return out;
+  // The midside nodes of quadratic elements on those edges lie on the lines too (MAPDL's NSLL
+  // selects them; a pressure on the edge of a PLANE183 needs all three nodes).
+  for (const auto& [id, e] : r.model.elements) {
+    const auto t = r.model.element_types.find(e.type);
+    if (t == r.model.element_types.end()) continue;
+    const CellTopology& cell = element_type_descriptor(t->second).topology();
+    for (int k = 0; k < cell.midside_nodes && cell.n_nodes() <= static_cast<int>(e.nodes.size());
+         ++k) {
+      const auto& edge = cell.edges[static_cast<std::size_t>(k)];
+      const int p = e.nodes[static_cast<std::size_t>(edge[0])];
+      const int q = e.nodes[static_cast<std::size_t>(edge[1])];
+      if (edges.count(std::minmax(p, q)) != 0)
+        out.insert(e.nodes[static_cast<std::size_t>(cell.corner_nodes + k)]);
+    }
   }
   return out;
 }

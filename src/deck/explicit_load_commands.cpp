@@ -69,12 +69,12 @@ void cmd_edcurve(DeckReader& r, const Command& c) {
   curves[*lcid] = std::move(curve);
 }
 
-const std::set<std::string> kLoadLabels = {"FX", "FY", "FZ"};
+const std::set<std::string> kLoadLabels = {"FX", "FY", "FZ", "VX", "VY", "VZ"};
 const std::set<std::string> kRefusedLabels = {
-    "VX",    "VY",   "VZ",   "MX",   "MY",   "MZ",   "UX",   "UY",   "UZ",   "ROTX", "ROTY",
-    "ROTZ",  "OMGX", "OMGY", "OMGZ", "AX",   "AY",   "AZ",   "ACLX", "ACLY", "ACLZ", "TEMP",
-    "PRESS", "RBFX", "RBFY", "RBFZ", "RBMX", "RBMY", "RBMZ", "RBUX", "RBUY", "RBUZ", "RBRX",
-    "RBRY",  "RBRZ", "RBVX", "RBVY", "RBVZ", "RBOX", "RBOY", "RBOZ"};
+    "MX",   "MY",   "MZ",   "UX",   "UY",   "UZ",   "ROTX", "ROTY", "ROTZ", "OMGX",
+    "OMGY", "OMGZ", "AX",   "AY",   "AZ",   "ACLX", "ACLY", "ACLZ", "TEMP", "PRESS",
+    "RBFX", "RBFY", "RBFZ", "RBMX", "RBMY", "RBMZ", "RBUX", "RBUY", "RBUZ", "RBRX",
+    "RBRY", "RBRZ", "RBVX", "RBVY", "RBVZ", "RBOX", "RBOY", "RBOZ"};
 
 void list_loads(const std::vector<ExplicitCurveLoad>& loads, const std::string& lab,
                 const std::string& cname) {
@@ -104,7 +104,7 @@ void cmd_edload(DeckReader& r, const Command& c) {
   if (option != "ADD") r.fail(c, fmt::format("Option '{}': ADD, DELE or LIST", c.text(1)));
   if (kRefusedLabels.count(lab))
     r.fail(c, fmt::format("Lab {}: not implemented in explicit dynamics; EDLOAD carries out the "
-                          "nodal forces FX, FY, FZ",
+                          "nodal forces FX, FY, FZ and the prescribed velocities VX, VY, VZ",
                           lab));
   if (!kLoadLabels.count(lab)) r.fail(c, fmt::format("Lab '{}': not an EDLOAD label", c.text(2)));
   if (r.real(c, 3, 0.0) != 0.0)
@@ -145,32 +145,43 @@ void cmd_edload(DeckReader& r, const Command& c) {
   loads.push_back(std::move(load));
 }
 
-const std::set<std::string> kContactOptions = {"NTS", "ANTS", "OSTS", "STS", "ASTS"};
+const std::set<std::string> kContactOptions = {"NTS", "ANTS", "OSTS", "STS", "ASTS", "ASSC", "SS"};
 
 void cmd_edcgen(DeckReader& r, const Command& c) {
   // EDCGEN,Option,Cont,Targ,FS,FD,DC,VC,VDC,V1,V2,V3,V4,BTIME,DTIME,BOXID1,BOXID2
   const std::string option = r.label(c, 1);
+  if (option == "AG")
+    r.fail(c,
+           "Option AG: automatic general contact adds the contact of shell edges and beams, "
+           "not implemented; ASSC (automatic single surface) checks every exterior node "
+           "against every exterior face");
   if (!kContactOptions.count(option))
     r.fail(c, fmt::format("Option '{}': the contact options carried out are NTS, ANTS, OSTS "
-                          "(node to surface) and STS, ASTS (surface to surface); the others "
-                          "(single surface, eroding, forming, tied, tiebreak, drawbead, rigid, "
-                          "edge) are not implemented",
+                          "(node to surface), STS, ASTS (surface to surface) and ASSC, SS "
+                          "(single surface); the others (automatic general, eroding, forming, "
+                          "tied, tiebreak, drawbead, rigid, edge) are not implemented",
                           c.text(1)));
   ExplicitContact k;
   k.option = option;
   k.contact = r.label(c, 2);
   k.target = r.label(c, 3);
-  const bool single = option == "ASSC" || option == "SS" || option == "AG";
+  const bool single = option == "ASSC" || option == "SS";
   if (!single && (k.contact.empty() || k.target.empty()))
     r.fail(c, fmt::format("{} needs Cont and Targ (a part number or a component)", option));
+  if (single && !k.target.empty())
+    r.fail(c, fmt::format("Targ '{}': single surface contact ({}) has no target; Cont (blank: "
+                          "the whole model) is both sides",
+                          c.text(3), option));
   k.static_friction = r.real(c, 4, 0.0);
   k.dynamic_friction = r.real(c, 5, 0.0);
   k.decay = r.real(c, 6, 0.0);
   k.viscous_damping = r.real(c, 8, 0.0);
-  if (k.viscous_damping != 0.0)
-    r.fail(c, "VDC: viscous contact damping is not implemented (VDC 0 only)");
   if (k.static_friction < 0 || k.dynamic_friction < 0 || k.decay < 0 || k.viscous_damping < 0)
     r.fail(c, "FS, FD, DC and VDC are >= 0");
+  if (k.viscous_damping > 100.0)
+    r.fail(c, fmt::format("VDC {:g}: the viscous contact damping is a percentage of critical "
+                          "damping, 0 to 100",
+                          k.viscous_damping));
   if (r.real(c, 7, 0.0) != 0.0)
     r.fail(c, "VC: the viscous friction limit is not implemented (VC 0 only)");
   for (int f = 9; f <= 12; ++f)

@@ -217,6 +217,8 @@ GetValue get_active(DeckReader& r, const Command& c, const GetRequest& g) {
         return {0.0};
       case AnalysisType::Modal:
         return {2.0};
+      case AnalysisType::Harmonic:
+        return {3.0};
       case AnalysisType::Transient:
         return {4.0};
       case AnalysisType::Substructure:
@@ -319,8 +321,12 @@ double get_variable(DeckReader& r, const Command& c, const GetRequest& g) {
     if (g.it1num == "VLAST") return x.vlast;
     if (g.it1num == "TLAST") return x.tlast;
   }
+  // RTIME: the real part (amplitude under PRCPLX,1) of a complex variable; ITIME: its imaginary
+  // part (phase angle).
   if (g.item1 == "REAL" || g.item1 == "RTIME")
     return post26_value_at(r, c, n, real_field(r, c, g, g.it1num));
+  if (g.item1 == "IMAG" || g.item1 == "ITIME")
+    return post26_value_at(r, c, n, real_field(r, c, g, g.it1num), true);
   if (g.item1 == "RSET") {
     const auto v = post26_values(r, c, n);
     const int k = integer_field(r, c, g, g.it1num);
@@ -328,7 +334,8 @@ double get_variable(DeckReader& r, const Command& c, const GetRequest& g) {
       r.fail(c, fmt::format("{}: location {} outside 1..{}", g.what(), k, v.size()));
     return v[static_cast<std::size_t>(k - 1)];
   }
-  unsupported(r, c, g, "EXTREM VMAX/VMIN/TMAX/TMIN/VLAST/TLAST, REAL t, RTIME t, RSET k");
+  unsupported(r, c, g,
+              "EXTREM VMAX/VMIN/TMAX/TMIN/VLAST/TLAST, REAL t, RTIME t, IMAG t, ITIME t, RSET k");
 }
 
 // *GET,Par,ETYP,t,...: the element type's number (ATTR ENAM), a KEYOPT, or the highest type.

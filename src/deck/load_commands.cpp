@@ -81,10 +81,20 @@ void cmd_f(DeckReader& r, const Command& c) {
   auto d = parse_force_label(l);
   if (!d) r.fail(c, fmt::format("bad force label '{}' (FX FY FZ MX MY MZ)", c.text(2)));
   const LoadField value = load_field(r, c, 3);
-  if (r.real(c, 4, 0.0) != 0.0) r.warn(c, "VALUE2 (imaginary part) ignored");
+  // VALUE2: the imaginary part of a harmonic force (ANTYPE,HARMIC); other analyses have none.
+  const double imag = r.real(c, 4, 0.0);
+  const bool harmonic = r.model.options.type == AnalysisType::Harmonic;
+  if (imag != 0.0 && !harmonic)
+    r.warn(c, "VALUE2 (imaginary part) ignored: only a harmonic analysis has one");
+  if (imag != 0.0 && !value.table.empty())
+    r.fail(c, "VALUE2 (imaginary part) with a table VALUE is not supported");
   LoadStep& s = r.model.current;
   for (int node : r.node_range(c, 1, 5, 6)) {
     s.forces[DofKey{node, *d}] = value.value;
+    if (harmonic && imag != 0.0)
+      s.forces_imag[DofKey{node, *d}] = imag;
+    else
+      s.forces_imag.erase(DofKey{node, *d});
     s.force_where[DofKey{node, *d}] = c.where;
     if (value.table.empty())
       s.force_tables.erase(DofKey{node, *d});
@@ -107,6 +117,7 @@ void cmd_fdele(DeckReader& r, const Command& c) {
       r.model.current.forces.erase(DofKey{node, d});
       r.model.current.force_tables.erase(DofKey{node, d});
       r.model.current.force_where.erase(DofKey{node, d});
+      r.model.current.forces_imag.erase(DofKey{node, d});
     }
 }
 

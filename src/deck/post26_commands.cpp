@@ -93,8 +93,29 @@ std::vector<double> on_axis(DeckReader& r, const Command& c, const Series& s,
   return out;
 }
 
+/// Whether the results file has a harmonic analysis (complex displacements).
+bool has_harmonic(const ResultsReader& reader) {
+  const auto all = reader.analyses();
+  return std::any_of(all.begin(), all.end(),
+                     [](const auto& a) { return a.kind == ResultsKind::Harmonic; });
+}
+
 void fill(DeckReader& r, const Command& c, Post26Variable& v) {
   v.values = on_axis(r, c, series_of(r, c, v), post_state(r).times, v.name);
+  v.imag.clear();
+  const ResultsReader& reader = results(r, c);
+  const auto lab = parse_nodal_item(v.label);
+  if (v.kind != "NSOL" || !lab || lab->dataset != 'U' || lab->column < 0 || !has_harmonic(reader))
+    return;
+  // The imaginary part at the harmonic frequencies, 0 at the points of other analyses.
+  const Series s = reader.nodal_series_imaginary(v.id, v.label);
+  const auto& times = post_state(r).times;
+  v.imag.assign(times.size(), 0.0);
+  std::size_t j = 0;
+  for (std::size_t k = 0; k < times.size(); ++k) {
+    while (j < s.size() && s[j].first < times[k] && !same_time(s[j].first, times[k])) ++j;
+    if (j < s.size() && same_time(s[j].first, times[k])) v.imag[k] = s[j].second;
+  }
 }
 
 /// Builds the time axis (the stored time points of the file within TIMERANGE) when the results
@@ -238,7 +259,15 @@ void cmd_operation(DeckReader& r, const Command& c) {
   refresh(r, c);
   const int ir = variable_number(r, c, 1, true);
   const std::string op = c.name;
-  auto input = [&](int field) { return post26_values(r, c, variable_number(r, c, field, false)); };
+  auto input = [&](int field) {
+    const int n = variable_number(r, c, field, false);
+    const auto it = post_state(r).variables.find(n);
+    if (it != post_state(r).variables.end() && !it->second.imag.empty())
+      r.fail(c, fmt::format("variable {} is complex (a harmonic analysis): {} of complex "
+                            "variables is not supported",
+                            n, op));
+    return post26_values(r, c, n);
+  };
   const auto a = input(2);
   const std::size_t n = a.size();
   std::vector<double> out(n, 0.0);
@@ -384,14 +413,23 @@ void cmd_prvar(DeckReader& r, const Command& c) {
   refresh(r, c);
   const auto vars = listed_variables(r, c, 6);
   PostState& ps = post_state(r);
+  // A complex variable (harmonic) lists two columns: real and imaginary parts, or amplitude and
+  // phase (PRCPLX,1).
   std::string out = "\n ***** POST26 VARIABLE LISTING *****\n\n     TIME     ";
-  for (int n : vars)
-    out += fmt::format("  {:>3} {:<9}", n, n == 1 ? "TIME" : ps.variables.at(n).kind);
-  out += "\n              ";
-  for (int n : vars) out += fmt::format("  {:>13}", n == 1 ? "TIME" : ps.variables.at(n).name);
-  out += "\n";
   std::vector<std::vector<double>> cols;
-  for (int n : vars) cols.push_back(post26_values(r, c, n));
+  std::string names;
+  for (int n : vars) {
+    const bool complex = n != 1 && !ps.variables.at(n).imag.empty();
+    out += fmt::format("  {:>3} {:<9}", n, n == 1 ? "TIME" : ps.variables.at(n).kind);
+    names += fmt::format("  {:>13}", n == 1 ? "TIME" : ps.variables.at(n).name);
+    cols.push_back(post26_values(r, c, n));
+    if (complex) {
+      out += fmt::format("  {:>13}", "");
+      names += fmt::format("  {:>13}", ps.amplitude_phase ? "PHASE" : "IMAG");
+      cols.push_back(post26_second_part(r, c, n));
+    }
+  }
+  out += "\n              " + names + "\n";
   for (std::size_t k = 0; k < ps.times.size(); ++k) {
     if (!in_prtime(ps, ps.times[k])) continue;
     out += " " + listing_number(ps.times[k], 12) + " ";
@@ -549,7 +587,27 @@ std::vector<double> post26_values(DeckReader& r, const Command& c, int n) {
   if (n == 1) return ps.times;
   const auto it = ps.variables.find(n);
   if (it == ps.variables.end()) r.fail(c, fmt::format("POST26 variable {} is not defined", n));
-  return it->second.values;
+  const Post26Variable& v = it->second;
+  if (v.imag.empty() || !ps.amplitude_phase) return v.values;
+  std::vector<double> amplitude(v.values.size());
+  for (std::size_t k = 0; k < amplitude.size(); ++k)
+    amplitude[k] = std::hypot(v.values[k], v.imag[k]);
+  return amplitude;
+}
+
+std::vector<double> post26_second_part(DeckReader& r, const Command& c, int n) {
+  refresh(r, c);
+  PostState& ps = post_state(r);
+  const auto it = ps.variables.find(n);
+  if (n == 1 || it == ps.variables.end())
+    return std::vector<double>(ps.times.size(), 0.0);  // TIME and real variables: 0
+  const Post26Variable& v = it->second;
+  if (v.imag.empty()) return std::vector<double>(v.values.size(), 0.0);
+  if (!ps.amplitude_phase) return v.imag;
+  std::vector<double> phase(v.values.size());
+  for (std::size_t k = 0; k < phase.size(); ++k)
+    phase[k] = std::atan2(v.imag[k], v.values[k]) * 180.0 / M_PI;
+  return phase;
 }
 
 Extremes post26_extremes(DeckReader& r, const Command& c, int n) {
@@ -570,8 +628,8 @@ Extremes post26_extremes(DeckReader& r, const Command& c, int n) {
   return e;
 }
 
-double post26_value_at(DeckReader& r, const Command& c, int n, double t) {
-  const auto values = post26_values(r, c, n);
+double post26_value_at(DeckReader& r, const Command& c, int n, double t, bool second_part) {
+  const auto values = second_part ? post26_second_part(r, c, n) : post26_values(r, c, n);
   const auto& times = post_state(r).times;
   if (t <= times.front()) return values.front();
   for (std::size_t k = 1; k < times.size(); ++k)
@@ -581,7 +639,19 @@ double post26_value_at(DeckReader& r, const Command& c, int n, double t) {
   return values.back();
 }
 
+namespace {
+
+void cmd_prcplx(DeckReader& r, const Command& c) {
+  // PRCPLX,KEY: 0 real and imaginary parts, 1 amplitude and phase angle (degrees).
+  const int key = r.integer(c, 1, 0);
+  if (key != 0 && key != 1) r.fail(c, fmt::format("KEY {} must be 0 or 1", key));
+  post_state(r).amplitude_phase = key == 1;
+}
+
+}  // namespace
+
 void register_post26_commands(std::vector<CommandSpec>& t) {
+  t.push_back({"PRCPLX", cmd_prcplx, kPost26});
   t.push_back({"NUMVAR", cmd_numvar, kPost26});
   t.push_back({"NSOL", cmd_nsol, kPost26});
   t.push_back({"ESOL", cmd_esol, kPost26});

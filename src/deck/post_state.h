@@ -34,6 +34,9 @@ struct Post26Variable {
   std::string item;   // element Item and Comp as given (ESOL)
   std::string comp;
   std::vector<double> values;
+  /// Imaginary parts (NSOL displacements of a harmonic analysis; 0 at time points of other
+  /// analyses); empty for a real variable.
+  std::vector<double> imag;
 };
 
 /// Last NSORT / ESORT (*GET,Par,SORT,0,MAX|MIN|IMAX|IMIN).
@@ -91,6 +94,7 @@ struct PostState {
   std::optional<std::pair<double, double>> x_range, y_range;
   bool grid = false;
   int xvar = 1;
+  bool amplitude_phase = false;  // PRCPLX,1: complex variables as amplitude and phase (degrees)
 };
 
 }  // namespace impactfe::deck

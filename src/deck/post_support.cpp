@@ -174,7 +174,8 @@ void model_from_results(DeckReader& r, const ResultsReader& reader, const Comman
 
 std::string results_file_name(const std::string& fname, const std::string& ext) {
   const std::string e = to_upper(ext);
-  if (e.empty() || e == "RST" || e == "RDSP" || e == "RTH" || e == "RMG" || e == "H5")
+  if (e.empty() || e == "RST" || e == "RDSP" || e == "RFRQ" || e == "RTH" || e == "RMG" ||
+      e == "H5")
     return fname + ".h5";
   return fname + "." + ext;
 }

@@ -1,7 +1,7 @@
 // Solid-model entities (APDL_MODELING §3): keypoints K, KFILL, KDELE; lines L, LSTR, LARC;
 // areas A, AL; volumes V, VA; working-plane primitives RECTNG, BLC4, BLC5, BLOCK, CYL4, CYLIND;
-// NUMSTR; listings KLIST, LLIST, ALIST, VLIST; and the clear refusals of what is not supported
-// (booleans, splines, other primitives).
+// NUMSTR; listings KLIST, LLIST, ALIST, VLIST; IGESIN (CAD files, /AUX15); and the clear refusals
+// of what is not supported (booleans, splines, other primitives).
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
@@ -9,7 +9,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/log.h"
 #include "deck/modeling_helpers.h"
+#include "geometry/cad_import.h"
 #include "geometry/line_geometry.h"
 #include "geometry/solid_builder.h"
 #include "geometry/spacing.h"
@@ -331,13 +333,13 @@ const std::map<std::string, std::string>& refusal_reasons() {
       {"BSPLIN", "splines are not supported"},
       {"SPLINE", "splines are not supported"},
       {"PCIRC", "PCIRC is not supported; use CYL4"},
-      {"CON4", "cones are not supported (not mappable)"},
-      {"CONE", "cones are not supported (not mappable)"},
+      {"CON4", "cones are not supported (not a primitive here)"},
+      {"CONE", "cones are not supported (not a primitive here)"},
       {"TORUS", "tori are not supported"},
-      {"POLYGON", "polygons are not supported (not mappable)"},
-      {"RPRISM", "regular prisms are not supported (not mappable)"},
-      {"PRISM", "PRISM is not supported (not mappable)"},
-      {"SPHERE", "spheres need free tetrahedral meshing, which is not supported"},
+      {"POLYGON", "polygons are not supported (not a primitive here)"},
+      {"RPRISM", "regular prisms are not supported (not a primitive here)"},
+      {"PRISM", "PRISM is not supported (not a primitive here)"},
+      {"SPHERE", "spheres are not supported (their surface has no edges to bound areas)"},
       {"LCCAT", "concatenated lines (LCCAT) are not supported"},
       {"AMAP", "AMAP is not supported; mapped meshing needs 3- or 4-sided areas"},
       {"CS", "CS (system by three nodes) is not supported; use LOCAL or CLOCAL"},
@@ -348,6 +350,28 @@ const std::map<std::string, std::string>& refusal_reasons() {
   return reasons;
 }
 
+// IGESIN,Fname,Ext: the IGES (or STEP) file's geometry into the solid model through Gmsh's
+// OpenCASCADE importer (geometry/cad_import.h); Fname defaults to the jobname, Ext to "iges".
+// MAPDL reads IGES in /AUX15; here IGESIN is a /PREP7 command and /AUX15 enters /PREP7.
+void cmd_igesin(DeckReader& r, const Command& c) {
+  std::string name = r.text_field(c, 1), ext = r.text_field(c, 2);
+  if (name.empty()) name = r.model.jobname;
+  if (ext.empty()) ext = "iges";
+  if (!c.blank(3)) r.warn(c, "field 3 of IGESIN is not used; ignored");
+  const std::string path = resolve_input(c.where.file, name, ext);
+  const auto n = geometry::import_cad(r.model, path, c.where);
+  Log::info("{}:{}: IGESIN: {} keypoints, {} lines, {} areas, {} volumes from {}", c.where.file,
+            c.where.line, n.keypoints, n.lines, n.areas, n.volumes, path);
+}
+
+void cmd_aux15(DeckReader& r, const Command&) {
+  r.processor = kPrep7;
+}
+
+void cmd_ioptn(DeckReader& r, const Command& c) {
+  r.warn(c, "IOPTN: import options have no effect (the file's geometry is read as it is)");
+}
+
 /// A command recognised but not supported: a clear error naming the command.
 void cmd_refused(DeckReader& r, const Command& c) {
   r.fail(c, refusal_reasons().at(c.name));
@@ -356,6 +380,9 @@ void cmd_refused(DeckReader& r, const Command& c) {
 }  // namespace
 
 void register_solid_model_commands(std::vector<CommandSpec>& t) {
+  t.push_back({"/AUX15", cmd_aux15, kBegin | kPrep7 | kSolu | kPost});
+  t.push_back({"IGESIN", cmd_igesin, kPrep7});
+  t.push_back({"IOPTN", cmd_ioptn, kPrep7});
   t.push_back({"K", cmd_k, kPrep7});
   t.push_back({"KFILL", cmd_kfill, kPrep7});
   t.push_back({"KDELE", cmd_kdele, kPrep7});

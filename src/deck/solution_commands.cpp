@@ -219,10 +219,16 @@ void cmd_antype(DeckReader& r, const Command& c) {
     type = AnalysisType::Transient;
   else if (l == "SUBSTR" || l == "SUBSTRUCTURE" || l == "7")
     type = AnalysisType::Substructure;
+  else if (l == "HARMIC" || l == "HARMONIC" || l == "3")
+    type = AnalysisType::Harmonic;
+  else if (l == "SPECTR" || l == "SPECTRUM" || l == "8")
+    r.fail(c, "spectrum analysis (ANTYPE,SPECTR: response spectrum, PSD) is not supported");
+  else if (l == "BUCKLE" || l == "1")
+    r.fail(c, "buckling analysis (ANTYPE,BUCKLE) is not supported");
   else if (l.empty())
     ;
   else
-    r.fail(c, fmt::format("analysis type '{}' not supported (STATIC, MODAL, TRANS, SUBSTR)",
+    r.fail(c, fmt::format("analysis type '{}' not supported (STATIC, MODAL, HARMIC, TRANS, SUBSTR)",
                           c.text(1)));
   const std::string status = r.label(c, 2);
   const bool restart = status == "REST" || status == "RESTART";

@@ -152,6 +152,11 @@ std::vector<ElementFields> make_table() {
                named({"TK(I)", "TK(J)", "TK(K)", "TK(L)"}),
                {{1, {0, 1}, "0 bending and membrane, 1 membrane only"},
                 {3, {0, 2}, "integration: both computed with extra displacement shapes"}}});
+  t.push_back({"SHELL281",
+               named({"TK(I)", "TK(J)", "TK(K)", "TK(L)"}),
+               {{1, {0, 1}, "0 bending and membrane, 1 membrane only"},
+                {8, {0, 1, 2}, "layer data storage (a printout option: no effect here)"},
+                {9, {0}, "1 (user thickness routine) is not supported"}}});
   t.push_back({"MATRIX50", {}, {}});
   // Contact (APDL_MODELING §8.4, docs/elements/conta174.md, conta175.md, conta178.md).
   t.push_back({"CONTA174", surface_contact_constants(), surface_contact_keyopts()});

@@ -107,7 +107,8 @@ Link160Set::Link160Set(const ExplicitBuildContext& ctx,
                                              "explicit dynamics needs the mass of every element",
                                              r->id, r->mat));
     auto [it, added] = material_index.emplace(r->mat, static_cast<int>(materials_.size()));
-    if (added) materials_.push_back({e.young, plasticity_of(ctx.model, *r, e.young, e.poisson)});
+    if (added)
+      materials_.push_back({e.young, plasticity_of(ctx.model, *r, e.young, e.poisson, false)});
     const Vec3 d = ctx.model.node(r->nodes[1]).x - ctx.model.node(r->nodes[0]).x;
     for (int a = 0; a < 2; ++a) nodes_.push_back(ctx.node_index(r->nodes[a], *r));
     ids_.push_back(r->id);

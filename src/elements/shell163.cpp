@@ -273,7 +273,7 @@ Shell163Set::Shell163Set(const ExplicitBuildContext& ctx,
       m.rate.shear = e.young / (2.0 * (1.0 + e.poisson));
       m.rate.bulk = e.young / (3.0 * (1.0 - 2.0 * e.poisson));
       m.rate.density = e.density;
-      m.rate.plasticity = plasticity_of(ctx.model, *r, e.young, e.poisson);
+      m.rate.plasticity = plasticity_of(ctx.model, *r, e.young, e.poisson, false);
       materials_.push_back(std::move(m));
     }
     std::array<double, 4> x{}, y{}, z{};

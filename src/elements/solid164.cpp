@@ -197,7 +197,7 @@ Solid164Set::Solid164Set(const ExplicitBuildContext& ctx,
       m.shear = e.young / (2.0 * (1.0 + e.poisson));
       m.bulk = e.young / (3.0 * (1.0 - 2.0 * e.poisson));
       m.density = e.density;
-      m.plasticity = plasticity_of(ctx.model, *r, e.young, e.poisson);
+      m.plasticity = plasticity_of(ctx.model, *r, e.young, e.poisson, false);
       materials_.push_back(std::move(m));
     }
     double x[8], y[8], z[8], share[8];

@@ -17,6 +17,8 @@ constexpr double kXi[4] = {-1, 1, 1, -1}, kEta[4] = {-1, -1, 1, 1};
 /// A projection this far outside [−1, 1]² still counts as on the segment (a node on the edge
 /// between two segments is not lost between them).
 constexpr double kEdgeTolerance = 1e-3;
+/// No segment (a slave out of contact).
+constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
 
 struct Vec {
   double x, y, z;
@@ -31,20 +33,26 @@ double dot(Vec a, Vec b) {
   return a.x * b.x + a.y * b.y + a.z * b.z;
 }
 
+/// The point X(ξ, η) of the bilinear segment `p` and its tangents ∂X/∂ξ, ∂X/∂η.
+void surface_point(const Vec p[4], double xi, double eta, Vec& x, Vec& dxi, Vec& deta) {
+  x = dxi = deta = {0, 0, 0};
+  for (int a = 0; a < 4; ++a) {
+    const double n = 0.25 * (1 + kXi[a] * xi) * (1 + kEta[a] * eta);
+    const double nx = 0.25 * kXi[a] * (1 + kEta[a] * eta);
+    const double ne = 0.25 * kEta[a] * (1 + kXi[a] * xi);
+    x = {x.x + n * p[a].x, x.y + n * p[a].y, x.z + n * p[a].z};
+    dxi = {dxi.x + nx * p[a].x, dxi.y + nx * p[a].y, dxi.z + nx * p[a].z};
+    deta = {deta.x + ne * p[a].x, deta.y + ne * p[a].y, deta.z + ne * p[a].z};
+  }
+}
+
 /// The local coordinates (ξ, η) of the point of the bilinear segment `p` nearest to `q`:
 /// Gauss–Newton on X(ξ, η) − q (three steps: the segments are close to flat).
 void local_coordinates(const Vec p[4], Vec q, double& xi, double& eta) {
   xi = eta = 0.0;
   for (int it = 0; it < 4; ++it) {
-    Vec x{0, 0, 0}, dxi{0, 0, 0}, deta{0, 0, 0};
-    for (int a = 0; a < 4; ++a) {
-      const double n = 0.25 * (1 + kXi[a] * xi) * (1 + kEta[a] * eta);
-      const double nx = 0.25 * kXi[a] * (1 + kEta[a] * eta);
-      const double ne = 0.25 * kEta[a] * (1 + kXi[a] * xi);
-      x = {x.x + n * p[a].x, x.y + n * p[a].y, x.z + n * p[a].z};
-      dxi = {dxi.x + nx * p[a].x, dxi.y + nx * p[a].y, dxi.z + nx * p[a].z};
-      deta = {deta.x + ne * p[a].x, deta.y + ne * p[a].y, deta.z + ne * p[a].z};
-    }
+    Vec x, dxi, deta;
+    surface_point(p, xi, eta, x, dxi, deta);
     const Vec r = sub(q, x);
     const double a11 = dot(dxi, dxi), a12 = dot(dxi, deta), a22 = dot(deta, deta);
     const double b1 = dot(dxi, r), b2 = dot(deta, r);
@@ -53,6 +61,14 @@ void local_coordinates(const Vec p[4], Vec q, double& xi, double& eta) {
     xi += (a22 * b1 - a12 * b2) / det;
     eta += (a11 * b2 - a12 * b1) / det;
   }
+}
+
+/// The factor on a contact spring's stable step 2/ω for its viscous damping of ξ of critical:
+/// the central difference with the damping force from v(n+1/2) is stable for
+/// ω dt ≤ 2(√(1 + ξ²) − ξ) (Belytschko, Liu & Moran, Nonlinear Finite Elements, eq. (6.3.28)).
+double damped_step_factor(const ExplicitContact& k) {
+  const double xi = 0.01 * k.viscous_damping;
+  return std::sqrt(1.0 + xi * xi) - xi;
 }
 
 /// Parts as EDPART numbers them: the (type, material, real) combinations in ascending order.
@@ -166,10 +182,10 @@ ExplicitContactSet::ExplicitContactSet(const Model& model, const ExplicitSystem&
   };
   const double slsfac = model.explicit_dynamics.penalty_factor;
   for (const ExplicitContact& k : definitions) {
-    const bool single = k.option == "ASSC" || k.option == "SS" || k.option == "AG";
+    const bool single = k.option == "ASSC" || k.option == "SS";
     const bool symmetric = k.option == "STS" || k.option == "ASTS";
     std::vector<std::size_t> cont_segs, cont_nodes, targ_segs, targ_nodes;
-    surface(k, single ? std::string() : k.contact, cont_segs, cont_nodes);
+    surface(k, k.contact, cont_segs, cont_nodes);  // single surface: blank is the whole model
     if (!single) surface(k, k.target, targ_segs, targ_nodes);
     const auto add = [&](std::vector<std::size_t> slaves, std::vector<std::size_t> segs,
                          double scale) {
@@ -185,6 +201,7 @@ ExplicitContactSet::ExplicitContactSet(const Model& model, const ExplicitSystem&
       p.slaves = std::move(slaves);
       p.segments = std::move(segs);
       p.tangential.assign(3 * p.slaves.size(), 0.0);
+      p.kept.assign(p.slaves.size(), kNone);
       if (single) {
         // The nodes of the segments around each slave: a slave is not checked against a segment
         // that shares one of them (its own body's neighbouring faces).
@@ -309,7 +326,8 @@ ExplicitStepLimit ExplicitContactSet::add_forces(const ExplicitNodalView& s, con
       for (std::size_t j = 0; j < p.slaves.size(); ++j)
         for (std::size_t c = p.candidate_start[j]; c < p.candidate_start[j + 1]; ++c) {
           const Segment& g = segments_[p.candidates[c]];
-          const double k4 = 4.0 * p.factor * g.stiffness;
+          const double soften = damped_step_factor(*p.definition);
+          const double k4 = 4.0 * p.factor * g.stiffness / (soften * soften);
           double w = mass[p.slaves[j]] > 0.0 ? k4 / mass[p.slaves[j]] : 0.0;
           for (int a = 0; a < 4; ++a)
             if (const double m = mass[static_cast<std::size_t>(g.nodes[a])]; m > 0.0)
@@ -332,6 +350,12 @@ ExplicitStepLimit ExplicitContactSet::add_forces(const ExplicitNodalView& s, con
     force_[3 * n + 1] += f.y;
     force_[3 * n + 2] += f.z;
   };
+  const auto shares_node = [this](std::size_t a, std::size_t b) {
+    for (int i = 0; i < 4; ++i)
+      for (int j = 0; j < 4; ++j)
+        if (segments_[a].nodes[i] == segments_[b].nodes[j]) return true;
+    return false;
+  };
   for (Pass& p : passes_) {
     const ExplicitContact& k = *p.definition;
     const bool on = time >= k.birth && !(k.death > 0.0 && time > k.death);
@@ -342,7 +366,75 @@ ExplicitStepLimit ExplicitContactSet::add_forces(const ExplicitNodalView& s, con
       double best = std::numeric_limits<double>::infinity(), xi = 0, eta = 0;
       std::size_t chosen = 0;
       Vec normal{0, 0, 0};
-      for (std::size_t c = p.candidate_start[j]; on && c < p.candidate_start[j + 1]; ++c) {
+      // The penetration of the slave behind segment `i`: false when it is not behind it (or
+      // deeper than the segment's depth) or does not project onto it.
+      const auto behind = [&](std::size_t i, double& gap, double& u, double& v, Vec& nrm) {
+        const Segment& g = segments_[i];
+        Vec q[4], centre{0, 0, 0};
+        for (int a = 0; a < 4; ++a) {
+          const auto n = static_cast<std::size_t>(g.nodes[a]);
+          q[a] = {s.x[n], s.y[n], s.z[n]};
+          centre = {centre.x + 0.25 * q[a].x, centre.y + 0.25 * q[a].y, centre.z + 0.25 * q[a].z};
+        }
+        // The face's plane (normal from the diagonals) rules out what lies far from it.
+        const Vec plane = cross(sub(q[2], q[0]), sub(q[3], q[1]));
+        const double len = std::sqrt(dot(plane, plane));
+        if (!(len > 0.0)) return false;
+        const double across = -dot(sub(xs, centre), plane) / len;
+        if (!(across > 0.0) || across > 2.0 * g.depth) return false;
+        gap = across - 1e-4 * g.depth;  // off the face: how far behind its plane
+        local_coordinates(q, xs, u, v);
+        if (!(std::abs(u) <= 1 + kEdgeTolerance && std::abs(v) <= 1 + kEdgeTolerance)) return false;
+        // The gap at the point X(ξ, η) of the bilinear face the slave projects onto, along the
+        // face's normal there: g = −(x_s − X)·n. Its change with a node of the face is N_a n,
+        // the shares the reaction is spread by, so the force is the gradient of ½kg² and the
+        // springs give back what they took. The gap from the centroid's plane instead changes
+        // by ¼ n with each corner: on a warped face (the dished face under an impactor) the
+        // reaction on a corner a slave sits on did four times the work of the spring.
+        Vec x, dxi, deta;
+        surface_point(q, std::clamp(u, -1.0, 1.0), std::clamp(v, -1.0, 1.0), x, dxi, deta);
+        nrm = cross(dxi, deta);
+        const double size = std::sqrt(dot(nrm, nrm));
+        if (!(size > 0.0)) return false;
+        nrm = {nrm.x / size, nrm.y / size, nrm.z / size};
+        // Penetration behind the face, less a sliver (1e-4 of the depth): a node on the edge of a
+        // face it runs along (the side of a body it hits end on) has round-off penetrations of
+        // that side, smaller than its true one; taking the smallest would pick the side.
+        gap = -dot(sub(xs, x), nrm) - 1e-4 * g.depth;
+        return gap > 0.0 && gap <= g.depth;
+      };
+      // Whether the slave was in front of (or on) the plane of segment `i` at x_n.
+      const auto crossed = [&](std::size_t i, double step) {
+        if (!(step > 0.0)) return false;
+        const Segment& g = segments_[i];
+        Vec q[4], centre{0, 0, 0};
+        for (int a = 0; a < 4; ++a) {
+          const auto n = static_cast<std::size_t>(g.nodes[a]);
+          q[a] = {s.x[n] - step * s.vx[n], s.y[n] - step * s.vy[n], s.z[n] - step * s.vz[n]};
+          centre = {centre.x + 0.25 * q[a].x, centre.y + 0.25 * q[a].y, centre.z + 0.25 * q[a].z};
+        }
+        const Vec nrm = cross(sub(q[2], q[0]), sub(q[3], q[1]));
+        const Vec xp{xs.x - step * s.vx[sn], xs.y - step * s.vy[sn], xs.z - step * s.vz[sn]};
+        return dot(sub(xp, centre), nrm) >= -1e-4 * g.depth * std::sqrt(dot(nrm, nrm));
+      };
+      // A slave in contact keeps the segment it came through while it stays behind it and
+      // projects onto it. Choosing afresh each cycle the smallest penetration over all the
+      // segments would let it jump to a face it never crossed (at a corner of the other body,
+      // the side face the slave is a round-off inside of): the spring's energy ½kg² of the face
+      // it came through would vanish in one cycle, energy the contact never gives back.
+      std::size_t& kept = p.kept[j];
+      const std::size_t was = kept;
+      bool slid = false;  // behind its segment's plane still, but no longer over it
+      if (on && kept != kNone) {
+        double gap = -1.0, u, v;
+        Vec nrm;
+        if (behind(kept, gap, u, v, nrm))
+          best = gap, xi = u, eta = v, chosen = kept, normal = nrm;
+        else
+          slid = gap > 0.0 && gap <= segments_[kept].depth;
+      }
+      const bool held = best < std::numeric_limits<double>::infinity();
+      for (std::size_t c = p.candidate_start[j]; on && !held && c < p.candidate_start[j + 1]; ++c) {
         const Segment& g = segments_[p.candidates[c]];
         bool skip = false;
         for (int a = 0; a < 4; ++a) {
@@ -352,27 +444,19 @@ ExplicitStepLimit ExplicitContactSet::add_forces(const ExplicitNodalView& s, con
                                               p.near.begin() + p.near_start[j + 1], g.nodes[a]);
         }
         if (skip) continue;
-        Vec q[4], centre{0, 0, 0};
-        for (int a = 0; a < 4; ++a) {
-          const auto n = static_cast<std::size_t>(g.nodes[a]);
-          q[a] = {s.x[n], s.y[n], s.z[n]};
-          centre = {centre.x + 0.25 * q[a].x, centre.y + 0.25 * q[a].y, centre.z + 0.25 * q[a].z};
-        }
-        Vec nrm = cross(sub(q[2], q[0]), sub(q[3], q[1]));
-        const double len = std::sqrt(dot(nrm, nrm));
-        if (!(len > 0.0)) continue;
-        nrm = {nrm.x / len, nrm.y / len, nrm.z / len};
-        // Penetration behind the face, less a sliver (1e-4 of the depth): a node on the edge of a
-        // face it runs along (the side of a body it hits end on) has round-off penetrations of
-        // that side, smaller than its true one; taking the smallest would pick the side.
-        const double gap = -dot(sub(xs, centre), nrm) - 1e-4 * g.depth;
-        if (!(gap > 0.0) || gap > g.depth || gap >= best) continue;
-        double u, v;
-        const double h = gap + 1e-4 * g.depth;
-        local_coordinates(q, {xs.x + h * nrm.x, xs.y + h * nrm.y, xs.z + h * nrm.z}, u, v);
-        if (std::abs(u) > 1 + kEdgeTolerance || std::abs(v) > 1 + kEdgeTolerance) continue;
+        double gap, u, v;
+        Vec nrm;
+        if (!behind(p.candidates[c], gap, u, v, nrm) || gap >= best) continue;
+        // A new contact is a slave that came through the face over this step: it was in front
+        // of the face's plane at x_n = x_{n+1} − dt v_{n+1/2}. A slave found behind a face it
+        // did not cross is inside the other body through another face (near an edge: behind
+        // the side face of a body whose top face it lies on) or was there at the start; a
+        // spring taken up at such a penetration would give back energy it never took. A slave
+        // sliding off its segment onto one sharing a node with it is handed over.
+        if (!(slid && shares_node(was, p.candidates[c])) && !crossed(p.candidates[c], dt)) continue;
         best = gap, xi = u, eta = v, chosen = p.candidates[c], normal = nrm;
       }
+      kept = best < std::numeric_limits<double>::infinity() ? chosen : kNone;
       if (!(best < std::numeric_limits<double>::infinity())) {
         ft[0] = ft[1] = ft[2] = 0.0;  // out of contact: the friction spring is released
         continue;
@@ -390,7 +474,22 @@ ExplicitStepLimit ExplicitContactSet::add_forces(const ExplicitNodalView& s, con
       const double stiffness = p.factor * g.stiffness;
       const Vec vr = sub({s.vx[sn], s.vy[sn], s.vz[sn]}, vm);
       const double vn = dot(vr, normal);  // > 0: separating
-      const double fn = stiffness * best;
+      double fn = stiffness * best;
+      if (k.viscous_damping > 0.0) {
+        // Viscous contact damping VDC (LS-DYNA Theory Manual, "Contact damping"): the force
+        // −c·v_n along the normal, c = VDC/100 · 2mω, m = min(m_s, m_m), ω² = k(m_s + m_m)/(m_s
+        // m_m), m_m the segment's mass at the projection (Σ N_a m_a). The normal force stays ≥ 0:
+        // the damping slows a separation, it never holds the bodies together.
+        double m_master = 0.0;
+        for (int a = 0; a < 4; ++a)
+          m_master += shape[a] * mass[static_cast<std::size_t>(g.nodes[a])];
+        const double m_slave = mass[sn];
+        if (m_slave > 0.0 && m_master > 0.0) {
+          const double omega = std::sqrt(stiffness * (m_slave + m_master) / (m_slave * m_master));
+          const double c = 0.02 * k.viscous_damping * std::min(m_slave, m_master) * omega;
+          fn = std::max(0.0, fn - c * vn);
+        }
+      }
       Vec f{fn * normal.x, fn * normal.y, fn * normal.z};
       stored_ += 0.5 * stiffness * best * best;
       const double mu_s = k.static_friction, mu_d = k.dynamic_friction;
@@ -414,11 +513,14 @@ ExplicitStepLimit ExplicitContactSet::add_forces(const ExplicitNodalView& s, con
       touch(sn, f);
       // Gershgorin's bound on the largest frequency of M⁻¹K_c: the pair's spring matrix
       // k[1, −N; −N, NNᵀ] has the absolute row sums 2k (slave) and 2k·N_a (masters).
-      stiffness_[sn] += 2.0 * stiffness;
+      // Damping lowers the spring's stable step by damped_step_factor: as a stiffer spring.
+      const double soften = damped_step_factor(k);
+      const double bound = 2.0 * stiffness / (soften * soften);
+      stiffness_[sn] += bound;
       for (int a = 0; a < 4; ++a) {
         touch(static_cast<std::size_t>(g.nodes[a]),
               {-shape[a] * f.x, -shape[a] * f.y, -shape[a] * f.z});
-        stiffness_[static_cast<std::size_t>(g.nodes[a])] += 2.0 * stiffness * shape[a];
+        stiffness_[static_cast<std::size_t>(g.nodes[a])] += bound * shape[a];
       }
       if (element_ == 0) element_ = g.element;
     }

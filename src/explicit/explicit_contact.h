@@ -8,6 +8,10 @@
 /// bounded by μ·f_n, μ = FD + (FS − FD)·exp(−DC·|v_rel|); optional viscous damping VDC (% of
 /// critical). Surface to surface contact is two node-to-surface passes (symmetric); single
 /// surface contact checks every exterior node against every exterior segment not next to it.
+/// The gap is taken at the slave's projection point on the bilinear segment, so the force is
+/// the gradient of ½kg²; a slave keeps the segment it came through while it stays behind it, and
+/// a new contact must have crossed its segment over the step (the springs give back what they
+/// took: an elastic impact keeps its energy).
 ///
 /// The segments come from the element sets (ExplicitElementSet::segments): a face offered by two
 /// elements is interior and dropped. The search is a bucket sort of the segments' boxes (one
@@ -61,6 +65,8 @@ class ExplicitContactSet final : public ExplicitInteraction {
     std::vector<std::size_t> candidate_start;  // CSR per slave into candidates
     std::vector<std::size_t> candidates;       // indices into segments_
     std::vector<double> tangential;            // friction force on each slave (3 each)
+    /// The segment each slave is in contact with (its index in segments_; none when out).
+    std::vector<std::size_t> kept;
   };
   void search(Pass& p, const ExplicitNodalView& s) const;
   std::vector<Segment> segments_;

@@ -58,21 +58,24 @@ ExplicitStepLimit ExplicitCurveLoads::add_forces(const ExplicitNodalView& state,
 
 void ExplicitCurveLoads::prescribe(double time, double mean, const double* mass, double* vx,
                                    double* vy, double* vz) {
+  // `time` is t_{n+1/2} = t_n + ½dt_{n+1/2}: the step about to be taken is 2(t_{n+1/2} − t_n).
+  step_ = 2.0 * (time - integer_time_);
+  integer_time_ += step_;
+  mass_ = mass;
   double* v[3] = {vx, vy, vz};
   for (Entry& e : velocities_) {
     const bool held = e.active;  // its accelerations were zeroed at the last hold
     e.active = time >= e.load->birth && !(e.load->death > 0.0 && time > e.load->death);
     if (!e.active) continue;
     const double value = this->value(*e.load, time);
+    e.current = value;
     for (std::size_t j = 0; j < e.nodes.size(); ++j) {
       const std::size_t n = e.nodes[j];
-      // The constraint's impulse J = m(v_p − v_free) over the velocity update, v_free = v_old +
-      // mean·a_free the velocity the forces alone would give, does the work J·½(v_old + v_p)
-      // (the node's mean velocity over the interval).
+      // The constraint's work: what it changes the DOF's kinetic energy by, ½m(v_p² − v_old²),
+      // here; the work against the other forces on it over the step, in hold().
       double& u = v[e.direction][n];
       const double old = held ? u : u - mean * e.held[j];
-      const double free = old + mean * e.held[j];
-      work_ += mass[n] * (value - free) * 0.5 * (old + value);
+      work_ += 0.5 * mass[n] * (value * value - old * old);
       u = value;
     }
   }
@@ -83,6 +86,12 @@ void ExplicitCurveLoads::hold(double* ax, double* ay, double* az) {
   for (Entry& e : velocities_)
     for (std::size_t j = 0; j < e.nodes.size(); ++j) {
       double& u = a[e.direction][e.nodes[j]];
+      // Held over the step just taken (Δx = dt v_p), the DOF had the other forces m a_free
+      // (elements, contact, loads) against it: the constraint did minus their work, by the
+      // trapezoidal rule as the forces' (½m(a_n + a_{n+1})·Δx), so that the work put in up to
+      // t_{n+1} is there when the energies of t_{n+1} are taken. (The impulse m(v_p − v_free)
+      // at the mean velocity instead credits half a step late or early.)
+      if (e.active && mass_) work_ -= 0.5 * mass_[e.nodes[j]] * (e.held[j] + u) * step_ * e.current;
       e.held[j] = u;
       if (e.active) u = 0.0;
     }

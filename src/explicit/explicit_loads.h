@@ -37,10 +37,14 @@ class ExplicitCurveLoads final : public ExplicitInteraction {
     std::vector<double> previous;    // force at t_n of each node (trapezoidal work)
     std::vector<double> held;        // prescribed: the acceleration the forces would give
     bool active = false;             // a velocity prescribed at the last half step
+    double current = 0.0;            // the velocity prescribed at the last half step
   };
   double value(const ExplicitCurveLoad& l, double time) const;
   std::vector<Entry> forces_, velocities_;
   double work_ = 0.0;
+  double integer_time_ = 0.0;     // t_{n+1} after prescribe() at t_{n+1/2}
+  double step_ = 0.0;             // dt_{n+1/2}, the step after the last prescribe()
+  const double* mass_ = nullptr;  // the nodal masses prescribe() was given
 };
 
 }  // namespace impactfe

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <map>
 #include <set>
+#include <utility>
 
 #include "elements/element_registry.h"
 
@@ -33,6 +34,57 @@ int element_face_count(const Model& model, const ElementRecord& element, bool sf
   const ElementTypeDescriptor* d = descriptor_of(model, element);
   if (d == nullptr) return 0;
   return sf_only ? d->sf_faces : static_cast<int>(d->faces.size());
+}
+
+std::vector<int> area_nodes_with_midsides(const Model& model, const std::vector<int>& corners) {
+  const std::set<int> on(corners.begin(), corners.end());
+  std::set<int> midsides;
+  for (const auto& [id, e] : model.elements) {
+    const ElementTypeDescriptor* d = descriptor_of(model, e);
+    if (d == nullptr) continue;
+    const CellTopology& cell = d->topology();
+    if (cell.midside_nodes == 0 || static_cast<int>(e.nodes.size()) < cell.n_nodes()) continue;
+    // An area element is a face of itself; a volume element's faces are in `faces`.
+    for (const auto& face : cell.faces) {
+      bool all = true;
+      for (int p : face) all = all && on.count(e.nodes[static_cast<std::size_t>(p)]) != 0;
+      if (!all) continue;
+      for (std::size_t k = 0; k < face.size(); ++k) {
+        const int m = cell.midside_of(face[k], face[(k + 1) % face.size()]);
+        if (m >= 0 && e.nodes[static_cast<std::size_t>(m)] > 0)
+          midsides.insert(e.nodes[static_cast<std::size_t>(m)]);
+      }
+    }
+  }
+  std::vector<int> out = corners;
+  for (int m : midsides)
+    if (on.count(m) == 0) out.push_back(m);
+  return out;
+}
+
+std::vector<int> line_nodes_with_midsides(const Model& model, const std::vector<int>& chain) {
+  std::set<std::pair<int, int>> edges;
+  for (std::size_t k = 0; k + 1 < chain.size(); ++k)
+    edges.insert(std::minmax(chain[k], chain[k + 1]));
+  std::set<int> midsides;
+  for (const auto& [id, e] : model.elements) {
+    const ElementTypeDescriptor* d = descriptor_of(model, e);
+    if (d == nullptr) continue;
+    const CellTopology& cell = d->topology();
+    if (cell.midside_nodes == 0 || static_cast<int>(e.nodes.size()) < cell.n_nodes()) continue;
+    for (int k = 0; k < cell.midside_nodes; ++k) {
+      const auto& edge = cell.edges[static_cast<std::size_t>(k)];
+      const int a = e.nodes[static_cast<std::size_t>(edge[0])];
+      const int b = e.nodes[static_cast<std::size_t>(edge[1])];
+      if (edges.count(std::minmax(a, b)) != 0)
+        midsides.insert(e.nodes[static_cast<std::size_t>(cell.corner_nodes + k)]);
+    }
+  }
+  std::vector<int> out = chain;
+  const std::set<int> on(chain.begin(), chain.end());
+  for (int m : midsides)
+    if (on.count(m) == 0) out.push_back(m);
+  return out;
 }
 
 std::vector<FaceKey> faces_on_nodes(const Model& model, const std::function<bool(int)>& node_ok,

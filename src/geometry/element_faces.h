@@ -14,6 +14,14 @@ std::vector<int> element_face_nodes(const Model& model, const ElementRecord& ele
 /// Number of faces of the element's type (`sf_only`: those SF may load by nodes).
 int element_face_count(const Model& model, const ElementRecord& element, bool sf_only);
 
+/// The nodes of an area's mesh with the midside nodes of quadratic elements on it: `corners`
+/// (the area's corner nodes, AreaGrid::nodes) and the midside node of each side of an element
+/// face whose corners all lie in `corners`.
+std::vector<int> area_nodes_with_midsides(const Model& model, const std::vector<int>& corners);
+/// The nodes of a line's mesh (`chain`, in order) with the midside nodes of quadratic elements
+/// on the edges between consecutive nodes.
+std::vector<int> line_nodes_with_midsides(const Model& model, const std::vector<int>& chain);
+
 /// The SF face rule: faces (of elements passing `element_ok`, among the first sf_faces faces of
 /// each type) whose nodes all pass `node_ok`, except faces shared by two such elements.
 std::vector<FaceKey> faces_on_nodes(const Model& model, const std::function<bool(int)>& node_ok,

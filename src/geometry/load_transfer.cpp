@@ -89,7 +89,8 @@ std::vector<FaceKey> area_faces(const Model& model, const Area& a, int lkey) {
     for (int e : a.elements) faces.push_back(FaceKey{e, lkey});
     return faces;
   }
-  const std::set<int> on_area(a.grid.nodes.begin(), a.grid.nodes.end());
+  const std::vector<int> nodes = area_nodes_with_midsides(model, a.grid.nodes);
+  const std::set<int> on_area(nodes.begin(), nodes.end());
   return faces_on_nodes(
       model, [&](int n) { return on_area.count(n) != 0; },
       [&](int e) { return model.selection.elements.selected(e); });
@@ -135,20 +136,21 @@ std::vector<std::string> transfer_solid_loads(Model& model, const SourceLocation
     const auto it = s.lines.find(key.first);
     if (it == s.lines.end() || !sel.lines.selected(key.first)) continue;
     if (it->second.nodes.empty()) unmeshed("DL", "line", key.first);
-    for (int n : it->second.nodes) w.constrain(n, key.second, v);
+    for (int n : line_nodes_with_midsides(model, it->second.nodes)) w.constrain(n, key.second, v);
   }
   for (const auto& [key, v] : loads.area_constraints) {
     const auto it = s.areas.find(key.first);
     if (it == s.areas.end() || !sel.areas.selected(key.first)) continue;
     if (it->second.grid.empty()) unmeshed("DA", "area", key.first);
-    for (int n : it->second.grid.nodes) w.constrain(n, key.second, v);
+    for (int n : area_nodes_with_midsides(model, it->second.grid.nodes))
+      w.constrain(n, key.second, v);
   }
   for (const auto& [area, kind] : loads.area_symmetry) {
     const auto it = s.areas.find(area);
     if (it == s.areas.end() || !sel.areas.selected(area)) continue;
     const auto dofs =
         symmetry_dofs(area_normal(s, it->second), kind, where, fmt::format("DA on area {}", area));
-    for (int n : it->second.grid.nodes)
+    for (int n : area_nodes_with_midsides(model, it->second.grid.nodes))
       for (Dof d : dofs) w.constrain(n, d, SolidDofLoad{});
   }
   for (const auto& [line, kind] : loads.line_symmetry) {
@@ -167,7 +169,7 @@ std::vector<std::string> transfer_solid_loads(Model& model, const SourceLocation
     const Vec3 tangent = (line_point(it->second, 1.0) - line_point(it->second, 0.0)).normalized();
     const Vec3 normal = tangent.cross(area_normal(s, *owner)).normalized();
     const auto dofs = symmetry_dofs(normal, kind, where, fmt::format("DL on line {}", line));
-    for (int n : it->second.nodes)
+    for (int n : line_nodes_with_midsides(model, it->second.nodes))
       for (Dof d : dofs) w.constrain(n, d, SolidDofLoad{});
   }
   for (const auto& [key, load] : loads.area_pressures) {

@@ -300,8 +300,8 @@ void Mesher::area_nodes(int id, bool triangles) {
     plan_divisions({lines}, what, area.size);
   } else {
     fail(
-        fmt::format("area {} has {} sides: mapped meshing needs 3 or 4 (free meshing of "
-                    "general areas is not supported; divide the area into 3- or 4-sided ones)",
+        fmt::format("area {} has {} sides: mapped meshing needs 3 or 4 (MSHKEY,0 meshes it "
+                    "free, or divide it into 3- or 4-sided areas)",
                     id, sides));
   }
   std::vector<int> kps = area.keypoints;
@@ -455,6 +455,10 @@ void Mesher::mesh_area(int id) {
   const bool triangles = m.shape_2d == 1;
   if (triangles && d.least_nodes() > 3 && d.topology().midside_nodes == 0)
     fail(fmt::format("element type {} ({}) has no triangular form (MSHAPE,1)", attr.type, d.name));
+  if (area_needs_free_mesh(id)) {
+    mesh_area_free(id);
+    return;
+  }
   if (m.key == 0 && !m.free_warning_given) {
     Log::warn(
         "{}:{}: {}: MSHKEY,0 (free meshing): impactfe meshes 3- and 4-sided regions with "

@@ -8,6 +8,7 @@
 /// from max(NUMSTR, max + 1) upward; within one command the keypoint nodes come first, then
 /// the line nodes by line number, the area nodes by area number, the interior last (§4.6). Each
 /// entity records the nodes and elements it created (ownership maps, §4.7).
+#include <array>
 #include <map>
 #include <optional>
 #include <string>
@@ -22,6 +23,12 @@ struct ElementTypeDescriptor;
 }
 
 namespace impactfe::geometry {
+
+/// A free (Gmsh) area mesh: `nodes` holds all its nodes, boundary first, and the grid has no
+/// lattice (n1 = n2 = 0); its faces are those of the elements on it.
+inline bool free_grid(const AreaGrid& g) {
+  return !g.nodes.empty() && g.n1 == 0;
+}
 
 /// Largest node or element number meshing may give (the deck's kMaxEntityNumber).
 inline constexpr long long kMaxMeshNumber = 2'000'000'000;
@@ -47,7 +54,19 @@ class Mesher {
   void mesh_line(int id);
   void mesh_area(int id);
   /// VMESH (source = target = 0) or VSWEEP (source/target areas of the sweep; 0 = automatic).
+  /// Tetrahedral element types and MSHAPE,1,3D go to the free mesher (mesh_volume_free).
   void mesh_volume(int id, int source = 0, int target = 0);
+  /// Whether AMESH of the area goes to the free mesher: it is not mappable (not 3- or 4-sided,
+  /// or 3-sided with quadrilaterals asked) and MSHKEY is not 1 (mapped only).
+  bool area_needs_free_mesh(int id) const;
+
+  // ---- free meshing through Gmsh (free_mesher.cpp) -------------------------------------------
+  /// AMESH of a non-mappable area: triangles (MSHAPE,1) or quadrilaterals by recombination
+  /// (MSHAPE,0, with triangles where recombination leaves them), boundary lines meshed first.
+  void mesh_area_free(int id);
+  /// VMESH with tetrahedra: the unmeshed areas of the volume are meshed with triangles, then
+  /// the volume bounded by its area meshes is filled with tetrahedra.
+  void mesh_volume_free(int id);
 
   /// xCLEAR: deletes the elements of the entity and the nodes it owns that no element uses and
   /// no other meshed entity needs; boundary entities meshed only for it are cleared too.
@@ -124,6 +143,17 @@ class Mesher {
   void copy_face_grids(VolumeBlock& block);
   /// The bricks of the filled lattice, I J K L counter-clockwise seen from M N O P.
   std::vector<int> volume_block_elements(const VolumeBlock& block, const Attributes& attr);
+
+  /// Free triangle/quadrilateral mesh of the unmeshed ones among `areas` through a Gmsh model
+  /// of them: sets their grids (free_grid) and returns their faces (corner nodes oriented by
+  /// the area's loop; a triangle's fourth entry is 0).
+  std::map<int, std::vector<std::array<int, 4>>> free_area_nodes(const std::vector<int>& areas,
+                                                                 bool quads);
+  /// Unit normal of an area by its loop direction (the normal of its area elements).
+  Vec3 area_normal(int id) const;
+  /// Faces of an area meshed before: its area elements, else the faces of the volumes' elements
+  /// that lie on it.
+  std::vector<std::array<int, 4>> existing_area_faces(int area) const;
 
   Model& model_;
   SolidModel& solid_;

@@ -44,20 +44,28 @@ void Mesher::mesh_volume(int id, int source, int target) {
         fmt::format("element type {} ({}) is not a solid element: VMESH needs a brick element "
                     "(SOLID185; set TYPE or VATT)",
                     attr.type, d.name));
-  if (d.topology().linear != VtkCell::Hexahedron)
-    fail(
-        fmt::format("element type {} ({}) is not a hexahedron: the mapped mesher of VMESH and "
-                    "VSWEEP makes bricks, and free tetrahedral meshing is not supported",
-                    attr.type, d.name));
   if (!volume.elements.empty()) {
     Log::info("{}:{}: {}: volume {} is already meshed", where_.file, where_.line, where_.command,
               id);
     return;
   }
-  if (solid_.mesh.shape_3d == 1)
-    fail(
-        "MSHAPE,1,3D asks for tetrahedra: free tetrahedral meshing is not supported; use "
-        "MSHAPE,0,3D (mapped hexahedra) or VSWEEP");
+  // Tetrahedra (a tetrahedral type, or MSHAPE,1,3D for a brick type: MAPDL's degenerate
+  // bricks) come from the free mesher; VSWEEP makes bricks only.
+  const bool tet_type = d.topology().linear == VtkCell::Tetra;
+  if (tet_type || solid_.mesh.shape_3d == 1) {
+    if (source != 0 || target != 0 || where_.command == "VSWEEP")
+      fail(
+          fmt::format("VSWEEP makes bricks: element type {} ({}) or MSHAPE,1,3D asks for "
+                      "tetrahedra (use VMESH)",
+                      attr.type, d.name));
+    if (solid_.mesh.key == 1)
+      fail("MSHKEY,1 asks for a mapped mesh, and tetrahedra are meshed free (MSHKEY,0)");
+    mesh_volume_free(id);
+    return;
+  }
+  if (d.topology().linear != VtkCell::Hexahedron)
+    fail(fmt::format("element type {} ({}) is neither a hexahedron nor a tetrahedron", attr.type,
+                     d.name));
   MeshControls& m = solid_.mesh;
   if (m.key == 0 && !m.free_warning_given) {
     Log::warn(
@@ -96,6 +104,11 @@ Mesher::VolumeBlock Mesher::volume_block(int id, int source, int target) {
   std::set<int> lines_set;
   for (int a : areas) {
     const Area& area = solid_.areas.at(a);
+    if (free_grid(area.grid))
+      fail(
+          fmt::format("volume {} cannot be mapped: its area {} has a free (Gmsh) mesh; mesh "
+                      "it with tetrahedra (MSHAPE,1,3D) or ACLEAR the area first",
+                      id, a));
     if (area.lines.size() != 4)
       fail(fmt::format("volume {} is not mappable: its area {} has {} sides (all six need 4)", id,
                        a, area.lines.size()));

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "core/errors.h"
 
@@ -74,6 +75,103 @@ J2Plasticity J2Plasticity::multilinear(double young, double poisson,
   return law;
 }
 
+J2Plasticity J2Plasticity::creep(double young, double poisson, CreepLaw law,
+                                 std::shared_ptr<const CreepClock> clock) {
+  IMPACTFE_CHECK(young > 0.0 && clock != nullptr, "creep needs E > 0 and the solution's clock");
+  J2Plasticity out;
+  out.kind_ = HardeningKind::Creep;
+  out.young_ = young;
+  out.poisson_ = poisson;
+  // No yield surface: the inelastic strain is the creep strain alone.
+  out.isotropic_ = {{0.0, std::numeric_limits<double>::infinity()}};
+  out.extend_last_slope_ = false;
+  out.creep_ = std::move(law);
+  out.clock_ = std::move(clock);
+  return out;
+}
+
+double CreepLaw::increment(double q, double e, double t_end, double dt, double temperature) const {
+  if (!(q > 0.0) || !(dt > 0.0)) return 0.0;
+  // Arrhenius factor e^(−C/T); a zero constant means no temperature dependence.
+  const auto arrhenius = [&](double k) { return k == 0.0 ? 1.0 : std::exp(-k / temperature); };
+  const double t0 = std::max(t_end - dt, 0.0), t1 = t_end;
+  // ∫ t^C3 dt over the substep, exact: (t1^(C3+1) − t0^(C3+1)) / (C3+1).
+  const auto time_integral = [&](double c3) {
+    if (std::abs(c3 + 1.0) < 1e-12) return t0 > 0.0 ? std::log(t1 / t0) : 0.0;
+    return (std::pow(t1, c3 + 1.0) - std::pow(t0, c3 + 1.0)) / (c3 + 1.0);
+  };
+  const double c1 = constant(1), c2 = constant(2), c3 = constant(3), c4 = constant(4);
+  switch (option) {
+    case 1:  // strain hardening, backward Euler at the end-of-substep creep strain
+      return dt * c1 * std::pow(q, c2) * std::pow(e, c3) * arrhenius(c4);
+    case 2:  // time hardening and its integrated (modified) form: the same increment
+    case 6:
+      return c1 * std::pow(q, c2) * arrhenius(c4) * time_integral(c3);
+    case 3: {  // generalized exponential: ∫ r e^(−rt) dt = e^(−r t0) − e^(−r t1)
+      const double r = constant(5) * std::pow(q, c3) * arrhenius(c4);
+      return c1 * std::pow(q, c2) * (std::exp(-r * t0) - std::exp(-r * t1));
+    }
+    case 7:  // modified strain hardening
+      return dt * std::pow(c1 * std::pow(q, c2) * std::pow((c3 + 1.0) * e, c3), 1.0 / (c3 + 1.0)) *
+             arrhenius(c4);
+    case 10:  // Norton
+      return dt * c1 * std::pow(q, c2) * arrhenius(c3);
+    case 11:  // combined time hardening: primary (modified time hardening) plus secondary
+      return c1 * std::pow(q, c2) * arrhenius(c4) * time_integral(c3) +
+             constant(5) * std::pow(q, constant(6)) * arrhenius(constant(7)) * dt;
+    default:
+      IMPACTFE_CHECK(false, "creep equation not implemented");
+      return 0.0;
+  }
+}
+
+bool J2Plasticity::creeping() const {
+  return clock_ && clock_->active && clock_->dt > 0.0;
+}
+
+double J2Plasticity::creep_increment(double q_trial, double c, double alpha_n,
+                                     double& slope) const {
+  // g(Δ) = Δ − F(q_tr − cΔ, α_n + Δ) rises from g(0) = −F(q_tr, α_n) ≤ 0 to g(q_tr/c) = q_tr/c
+  // (F = 0 at zero stress): the root is bracketed; Newton with bisection where it leaves the
+  // bracket. F's partial derivatives by central differences (relative step 1e-6).
+  const CreepClock& k = *clock_;
+  const auto F = [&](double q, double e) {
+    return creep_.increment(q, e, k.time, k.dt, k.temperature);
+  };
+  const auto partials = [&](double q, double e, double& fq, double& fe) {
+    const double hq = 1e-6 * q;
+    fq = hq > 0.0 ? (F(q + hq, e) - F(q - hq, e)) / (2.0 * hq) : 0.0;
+    const double he = 1e-6 * std::max(e, 1e-300);
+    fe = e > he ? (F(q, e + he) - F(q, e - he)) / (2.0 * he) : (F(q, e + he) - F(q, e)) / he;
+    if (!std::isfinite(fe)) fe = 0.0;
+  };
+  slope = 0.0;
+  if (!(q_trial > 0.0) || F(q_trial, alpha_n) <= 0.0) return 0.0;
+  double lo = 0.0, hi = q_trial / c;
+  double d = std::min(F(q_trial, alpha_n), 0.5 * hi);
+  if (!std::isfinite(d)) d = 0.5 * hi;
+  for (int it = 0; it < 200; ++it) {
+    const double q = q_trial - c * d, e = alpha_n + d;
+    const double g = d - F(q, e);
+    if (g < 0.0)
+      lo = d;
+    else
+      hi = d;
+    if (std::abs(g) <= 1e-13 * d || hi - lo <= 1e-15 * hi) break;
+    double fq = 0.0, fe = 0.0;
+    partials(q, e, fq, fe);
+    const double dg = 1.0 + c * fq - fe;
+    double next = d - g / dg;
+    if (!std::isfinite(next) || next <= lo || next >= hi || !(dg > 0.0)) next = 0.5 * (lo + hi);
+    d = next;
+  }
+  double fq = 0.0, fe = 0.0;
+  partials(q_trial - c * d, alpha_n + d, fq, fe);
+  const double denominator = 1.0 + c * fq - fe;
+  slope = denominator > 0.0 ? fq / denominator : 0.0;  // dΔ/dq_tr from dg = 0
+  return d;
+}
+
 double J2Plasticity::flow_slope(double alpha) const {
   const auto& p = isotropic_;
   // The segment that a forward increment from α enters (right-sided at a breakpoint).
@@ -126,6 +224,27 @@ UniaxialResponse J2Plasticity::uniaxial(const UniaxialPlasticState& committed, d
                                         UniaxialPlasticState* updated) const {
   UniaxialResponse out;
   const double trial = young_ * (strain - committed.plastic_strain);
+  if (kind_ == HardeningKind::Creep) {
+    // Backward Euler on the creep strain: σ = E(ε − ε_cr,n − sign Δ), Δ = F(|σ|, α_n + Δ);
+    // dσ/dε = E(1 − E dΔ/dq_tr).
+    double h = 0.0;
+    const double d =
+        creeping() ? creep_increment(std::abs(trial), young_, committed.alpha, h) : 0.0;
+    const double sign = trial >= 0.0 ? 1.0 : -1.0;
+    const double creep_strain = committed.plastic_strain + sign * d;
+    out.stress = young_ * (strain - creep_strain);
+    out.tangent = young_ * (1.0 - young_ * h);
+    out.yielding = d > 0.0;
+    if (updated) {
+      *updated = committed;
+      updated->plastic_strain = creep_strain;
+      updated->alpha = committed.alpha + d;
+      updated->plastic_work =
+          committed.plastic_work + 0.5 * (committed.stress + out.stress) * sign * d;
+      updated->stress = out.stress;
+    }
+    return out;
+  }
   const double xi = trial - committed.back_stress;
   const double f = std::abs(xi) - flow_stress(committed.alpha);
   if (f <= 0.0) {
@@ -166,7 +285,14 @@ PlasticResponse J2Plasticity::solid(const PlasticState& committed, const Vector6
   const Vector6d trial = elastic * (strain - committed.plastic_strain);
   const Vector6d xi = deviator(trial) - committed.back_stress;
   const double xi_norm = tensor_norm(xi);
-  const double f = kSqrt32 * xi_norm - flow_stress(committed.alpha);
+  // Creep: Δ = F(q_tr − 3μΔ, α_n + Δ) replaces the consistency condition (no yield surface).
+  double creep_slope = 0.0;
+  const double creep =
+      kind_ == HardeningKind::Creep && creeping() && xi_norm > 0.0
+          ? creep_increment(kSqrt32 * xi_norm, 3.0 * mu, committed.alpha, creep_slope)
+          : 0.0;
+  const double f = kind_ == HardeningKind::Creep ? (creep > 0.0 ? 1.0 : -1.0)
+                                                 : kSqrt32 * xi_norm - flow_stress(committed.alpha);
   if (f <= 0.0) {
     out.stress = trial;
     out.tangent = elastic;
@@ -177,7 +303,9 @@ PlasticResponse J2Plasticity::solid(const PlasticState& committed, const Vector6
     return out;
   }
   // Box 3.2: σ_eq,trial − (3μ + H)Δα − k(α_n + Δα) = 0, Δγ = √(3/2) Δα.
-  const double d_alpha = solve_increment(kSqrt32 * xi_norm, 3.0 * mu, committed.alpha);
+  const double d_alpha = kind_ == HardeningKind::Creep
+                             ? creep
+                             : solve_increment(kSqrt32 * xi_norm, 3.0 * mu, committed.alpha);
   const double d_gamma = kSqrt32 * d_alpha;
   const Vector6d n = xi / xi_norm;
   out.stress = trial - 2.0 * mu * d_gamma * n;
@@ -187,8 +315,12 @@ PlasticResponse J2Plasticity::solid(const PlasticState& committed, const Vector6
   // θ̄ = 1/(1 + (k' + H)/(3μ)) − (1 − θ). In Voigt form with engineering shear strains I_dev has
   // 1/2 on the shear diagonal and n⊗n acts on the strain through n:ε = n_v·ε_v.
   const double theta = 1.0 - 2.0 * mu * d_gamma / xi_norm;
-  const double h = flow_slope(committed.alpha + d_alpha) + kinematic_;
-  const double theta_bar = 1.0 / (1.0 + h / (3.0 * mu)) - (1.0 - theta);
+  // Creep: dΔ/dq_tr = F_q / (1 + 3μ F_q − F_ε) takes the place of 1/(3μ + k' + H).
+  const double h =
+      kind_ == HardeningKind::Creep ? 0.0 : flow_slope(committed.alpha + d_alpha) + kinematic_;
+  const double theta_bar = kind_ == HardeningKind::Creep
+                               ? 3.0 * mu * creep_slope - (1.0 - theta)
+                               : 1.0 / (1.0 + h / (3.0 * mu)) - (1.0 - theta);
   Matrix6d dev = Matrix6d::Zero();
   dev.topLeftCorner<3, 3>().setConstant(-1.0 / 3.0);
   dev.topLeftCorner<3, 3>().diagonal().array() += 1.0;
@@ -221,7 +353,9 @@ PlaneStressResponse J2Plasticity::plane_stress(const PlasticState& committed,
   const Vector6d& ep = committed.plastic_strain;
   e(2) = ep(2) - poisson_ / (1.0 - poisson_) * (strain(0) - ep(0) + strain(1) - ep(1));
   PlasticResponse r = solid(committed, e, nullptr);
-  const double scale = std::max(flow_stress(committed.alpha), r.stress.cwiseAbs().maxCoeff());
+  const double scale = kind_ == HardeningKind::Creep
+                           ? std::max(r.stress.cwiseAbs().maxCoeff(), 1e-300)
+                           : std::max(flow_stress(committed.alpha), r.stress.cwiseAbs().maxCoeff());
   for (int it = 0; it < 50 && std::abs(r.stress(2)) > 1e-12 * scale; ++it) {
     e(2) -= r.stress(2) / r.tangent(2, 2);  // Newton on σzz(εzz) = 0
     r = solid(committed, e, nullptr);
@@ -259,10 +393,34 @@ std::string table_name(const MaterialTable& t) {
 }  // namespace
 
 std::optional<J2Plasticity> plasticity_of(const Model& model, const ElementRecord& record,
-                                          double young, double poisson) {
+                                          double young, double poisson, bool implicit) {
   const MaterialTable* table = nullptr;
-  for (const auto& [key, t] : model.material_tables)
+  const MaterialTable* creep = nullptr;
+  for (const auto& [key, t] : model.material_tables) {
     if (key.first == record.mat && is_plasticity_table(t.label)) table = &t;
+    if (key.first == record.mat && t.label == "CREEP") creep = &t;
+  }
+  if (creep) {
+    const auto fail = [&](const std::string& what) {
+      throw InputError(creep->where, fmt::format("material {} (TB,CREEP,,,,{}, used by element "
+                                                 "{}): {}",
+                                                 record.mat, creep->option, record.id, what));
+    };
+    if (table)
+      fail(fmt::format("creep combined with {} plasticity (TB at {}:{}) is not implemented",
+                       table_name(*table), table->where.file, table->where.line));
+    if (!implicit) fail("implicit creep is not available in explicit dynamics");
+    CreepLaw law;
+    law.option = std::stoi(creep->option);
+    law.c = creep->temperatures.front().constants;
+    if (!(law.constant(1) > 0.0))
+      fail(fmt::format("C1 (TBDATA 1) is {} (must be positive)", law.constant(1)));
+    if ((law.option == 2 || law.option == 6 || law.option == 11) && law.constant(3) <= -1.0)
+      fail(fmt::format("C3 = {} must be greater than −1 (time exponent)", law.constant(3)));
+    if (law.option == 7 && law.constant(3) <= -1.0)
+      fail(fmt::format("C3 = {} must be greater than −1", law.constant(3)));
+    return J2Plasticity::creep(young, poisson, std::move(law), model.creep_clock);
+  }
   if (!table) return std::nullopt;
   const std::string name = table_name(*table);
   const auto fail = [&](const std::string& what) {

@@ -20,6 +20,7 @@
 /// strain). The law is the same object for all three variants.
 #include <Eigen/Core>
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
@@ -79,14 +80,42 @@ struct PlaneStressResponse {
   bool yielding = false;
 };
 
-enum class HardeningKind { BilinearIsotropic, MultilinearIsotropic, BilinearKinematic };
+enum class HardeningKind { BilinearIsotropic, MultilinearIsotropic, BilinearKinematic, Creep };
 
+/// An implicit creep equation of TB,CREEP (MAPDL Material Reference, implicit creep equations),
+/// σ the von Mises stress, ε the equivalent creep strain, t the load-step time, T the absolute
+/// temperature (temperature + TOFF):
+///   1  strain hardening           ε̇ = C1 σ^C2 ε^C3 e^(−C4/T)
+///   2  time hardening             ε̇ = C1 σ^C2 t^C3 e^(−C4/T)
+///   3  generalized exponential    ε̇ = C1 σ^C2 r e^(−rt),  r = C5 σ^C3 e^(−C4/T)
+///   6  modified time hardening    ε = C1 σ^C2 t^(C3+1) e^(−C4/T) / (C3+1)
+///   7  modified strain hardening  ε̇ = [C1 σ^C2 ((C3+1) ε)^C3]^(1/(C3+1)) e^(−C4/T)
+///   10 Norton                     ε̇ = C1 σ^C2 e^(−C3/T)
+///   11 combined time hardening    ε = C1 σ^C2 t^(C3+1) e^(−C4/T) / (C3+1) + C5 σ^C6 t e^(−C7/T)
+/// A temperature constant of 0 means no temperature term. The time laws (2, 3, 6, 11) are
+/// integrated exactly in time over a substep at the stress of its end (so a constant stress
+/// reproduces their closed form at any step size); the strain laws (1, 7) and Norton are backward
+/// Euler at the end of the substep.
+struct CreepLaw {
+  int option = 0;         ///< TBOPT
+  std::vector<double> c;  ///< C1, C2, ... (missing ones 0)
+  double constant(std::size_t i) const { return i - 1 < c.size() ? c[i - 1] : 0.0; }
+  /// The equivalent creep strain increment over the substep (t_n, t_n + dt) at the von Mises
+  /// stress q (held over the substep) and the end-of-substep equivalent creep strain e.
+  double increment(double q, double e, double t_end, double dt, double temperature) const;
+};
 /// The plasticity law of one material: elastic constants plus the hardening of its TB table.
 class J2Plasticity {
  public:
   /// Bilinear: yield stress σy > 0, tangent modulus 0 ≤ Et < E (slope of σ–ε after yield).
   static J2Plasticity bilinear(double young, double poisson, double yield_stress,
                                double tangent_modulus, bool kinematic);
+  /// Implicit creep without plasticity (TB,CREEP alone): the inelastic strain of the state is
+  /// the creep strain, its `alpha` the equivalent creep strain. The law reads the substep's time
+  /// from `clock` (shared with the solution driver).
+  static J2Plasticity creep(double young, double poisson, CreepLaw law,
+                            std::shared_ptr<const CreepClock> clock);
+  bool has_creep() const { return kind_ == HardeningKind::Creep; }
   /// Multilinear isotropic: points (ε_p, σ) of plastic strain and true stress, ε_p ascending,
   /// the first at ε_p = 0 (σ = σy); perfectly plastic beyond the last point.
   static J2Plasticity multilinear(double young, double poisson,
@@ -116,6 +145,11 @@ class J2Plasticity {
  private:
   /// Solves s − (c + H) Δα − k(α_n + Δα) = 0 for Δα ≥ 0 (k piecewise linear: exact per segment).
   double solve_increment(double s, double c, double alpha_n) const;
+  /// Backward Euler on the equivalent creep strain: Δ = F(q_tr − cΔ, α_n + Δ) for Δ in
+  /// [0, q_tr/c] (safeguarded Newton); `slope` gets dΔ/dq_tr for the consistent tangent.
+  double creep_increment(double q_trial, double c, double alpha_n, double& slope) const;
+  /// True when the clock asks for a creep increment now.
+  bool creeping() const;
 
   HardeningKind kind_ = HardeningKind::BilinearIsotropic;
   double young_ = 0.0, poisson_ = 0.0;
@@ -124,6 +158,8 @@ class J2Plasticity {
   std::vector<std::pair<double, double>> isotropic_;
   bool extend_last_slope_ = true;
   double kinematic_ = 0.0;
+  CreepLaw creep_;
+  std::shared_ptr<const CreepClock> clock_;
 };
 
 /// von Mises equivalent of a Voigt stress (tensor shear components).
@@ -133,7 +169,10 @@ double von_mises(const Vector6d& stress);
 /// MISO, TB,PLAS with those options), nullopt otherwise. Throws InputError (at the TB command)
 /// for data it cannot use: missing σy, Et ≥ E, a MISO curve that does not start at ε_p = 0 or
 /// whose stress falls, more than one temperature, or a law not implemented (KINH, MKIN).
+/// TB,CREEP (implicit TBOPT) gives the creep law of J2Plasticity::creep; a material with both a
+/// creep and a plasticity table is refused, and so is creep where `implicit` is false (explicit
+/// dynamics elements).
 std::optional<J2Plasticity> plasticity_of(const Model& model, const ElementRecord& record,
-                                          double young, double poisson);
+                                          double young, double poisson, bool implicit = true);
 
 }  // namespace impactfe

@@ -20,6 +20,8 @@ const char* results_kind_name(ResultsKind kind) {
       return "expansion";
     case ResultsKind::Substructure:
       return "substructure";
+    case ResultsKind::Harmonic:
+      return "harmonic";
   }
   return "unknown";
 }

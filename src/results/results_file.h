@@ -29,6 +29,9 @@ struct TimePoint {
   int load_step = 1;
   int substep = 1;
   Eigen::MatrixXd displacement;  // U
+  /// Imaginary part of U (dataset UI) of a harmonic analysis, whose `time` is the frequency in
+  /// Hz and whose U is the real part; empty otherwise.
+  Eigen::MatrixXd displacement_imag;
   Eigen::MatrixXd velocity;      // V (NaN for static)
   Eigen::MatrixXd acceleration;  // A (NaN for static)
   Eigen::MatrixXd reaction;      // reaction forces at constrained DOFs, NaN elsewhere
@@ -43,8 +46,17 @@ struct TimePoint {
 };
 
 /// Kind of an analysis section in the file.
-enum class ResultsKind { Static, Modal, Transient, ReducedTransient, Expansion, Substructure };
-/// "static", "modal", "transient", "reduced_transient", "expansion", "substructure".
+enum class ResultsKind {
+  Static,
+  Modal,
+  Transient,
+  ReducedTransient,
+  Expansion,
+  Substructure,
+  Harmonic
+};
+/// "static", "modal", "transient", "reduced_transient", "expansion", "substructure",
+/// "harmonic".
 const char* results_kind_name(ResultsKind kind);
 
 /// Energy columns of the per-analysis `energy` dataset, in stored order (docs/results_file.md).
@@ -171,6 +183,10 @@ class ResultsReader {
   /// Returns (time, value) pairs over all analyses in order, only where the value exists; at a
   /// time present in several analyses the later analysis wins.
   std::vector<std::pair<double, double>> nodal_series(int node, const std::string& lab) const;
+  /// The imaginary part of a displacement label (UX .. ROTZ) over the harmonic analyses'
+  /// frequencies (dataset UI); empty when the file has none.
+  std::vector<std::pair<double, double>> nodal_series_imaginary(int node,
+                                                                const std::string& lab) const;
   /// Time series of an element item (SAXL, FORC, STAT, ...).
   std::vector<std::pair<double, double>> element_series(int element, const std::string& item) const;
   /// Time series of a GP gap-condition force (1-based gap number).

@@ -640,9 +640,9 @@ void ResultsFileWriter::set_sparse_output(bool sparse) {
 void ResultsFileWriter::append(const TimePoint& point) {
   impl_->require_open("append");
   Impl& m = *impl_;
-  double values = static_cast<double>(point.displacement.size() + point.velocity.size() +
-                                      point.acceleration.size() + point.reaction.size() +
-                                      point.gap_forces.size()) +
+  double values = static_cast<double>(point.displacement.size() + point.displacement_imag.size() +
+                                      point.velocity.size() + point.acceleration.size() +
+                                      point.reaction.size() + point.gap_forces.size()) +
                   16.0;
   for (const auto& [family, table] : point.element_results)
     values += static_cast<double>(table.values.size() + table.element_ids.size());
@@ -659,6 +659,7 @@ void ResultsFileWriter::append(const TimePoint& point) {
   const Impl::Guard guard(m, 8.0 * values + (stages ? pending_bytes : 0.0) +
                                  (completes_block ? m.block_bytes(m.block_rows) : 0.0));
   m.write_nodal("U", point.displacement);
+  m.write_nodal("UI", point.displacement_imag);
   m.write_nodal("V", point.velocity);
   m.write_nodal("A", point.acceleration);
   m.write_reactions(point.reaction);

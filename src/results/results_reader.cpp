@@ -26,7 +26,8 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 ResultsKind parse_kind(const std::string& name, const std::string& path) {
   for (auto k : {ResultsKind::Static, ResultsKind::Modal, ResultsKind::Transient,
-                 ResultsKind::ReducedTransient, ResultsKind::Expansion, ResultsKind::Substructure})
+                 ResultsKind::ReducedTransient, ResultsKind::Expansion, ResultsKind::Substructure,
+                 ResultsKind::Harmonic})
     if (name == results_kind_name(k)) return k;
   throw InputError(fmt::format("results file '{}': unknown analysis kind '{}'", path, name));
 }
@@ -469,6 +470,24 @@ std::vector<std::pair<double, double>> ResultsReader::nodal_series(int node,
   });
 }
 
+std::vector<std::pair<double, double>> ResultsReader::nodal_series_imaginary(
+    int node, const std::string& lab) const {
+  return impl_->guarded([&] {
+    auto where = parse_nodal_label(lab);
+    if (!where || std::string(where->dataset) != "U")
+      throw InputError(fmt::format(
+          "nodal result label '{}' has no imaginary part (UX UY UZ ROTX ROTY ROTZ have)", lab));
+    const auto index = static_cast<hsize_t>(impl_->node_index(node));
+    Series merged;
+    for (const auto& an : impl_->analyses)
+      if (an.info.kind == ResultsKind::Harmonic)
+        merge_into(merged, impl_->collect(an, impl_->column(an, "UI", index, where->column)));
+    std::stable_sort(merged.begin(), merged.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
+    return merged;
+  });
+}
+
 std::vector<std::pair<double, double>> ResultsReader::element_series(
     int element, const std::string& item) const {
   return impl_->guarded([&] {
@@ -610,6 +629,7 @@ TimePoint ResultsReader::time_point(int analysis, int k) const {
     p.substep = integer_at("substep");
     const auto r = static_cast<std::size_t>(k);
     p.displacement = impl_->nodal_row(an, "U", k);
+    if (an.info.kind == ResultsKind::Harmonic) p.displacement_imag = impl_->nodal_row(an, "UI", k);
     p.velocity = impl_->nodal_row(an, "V", k);
     p.acceleration = impl_->nodal_row(an, "A", k);
     p.reaction = impl_->reaction_row(an, k);

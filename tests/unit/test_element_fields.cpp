@@ -81,6 +81,11 @@ std::map<std::string, Probe> probes() {
         "E,1,2,3,4,5,6,7,8\nEMORE,9,10"}},
       {"SHELL63", {plate, shell, "E,1,2,3,4"}},
       {"SHELL181", {plate, {0.1, 0.1, 0.1, 0.1}, "E,1,2,3,4"}},
+      {"SHELL281",
+       {"N,1,0,0\nN,2,2,0\nN,3,2.2,1.5\nN,4,0,1.4\nN,5,1,0\nN,6,2.1,0.75\nN,7,1.1,1.45\n"
+        "N,8,0,0.7\n",
+        {0.1, 0.12, 0.14, 0.16},
+        "E,1,2,3,4,5,6,7,8"}},
       {"PLANE182",
        {"N,1,0,0\nN,2,2,0\nN,3,2.2,1.5\nN,4,0,1.4\n", {0.1}, "E,1,2,3,4", {}, "KEYOPT,1,3,3\n"}},
       // The 6-node triangle (K = L = O), so that KEYOPT(1) = 1 (the triangle form, E with
@@ -109,6 +114,8 @@ const std::map<std::string, std::string>& by_design() {
        "reduced integration is approximated by full 2x2x2 integration (warned; "
        "docs/elements/solid45.md)"},
       {"SHELL181 K3=2", "both integrations are computed with the SHELL63 kernel's extra shapes"},
+      {"SHELL281 K8=1", "layer data storage: a printout option (docs/elements/shell281.md)"},
+      {"SHELL281 K8=2", "layer data storage: a printout option (docs/elements/shell281.md)"},
       {"BEAM188 K3=2",
        "the element is exact for end loads with any interpolation "
        "(docs/elements/beam.md, KEYOPT(3))"},

@@ -86,13 +86,118 @@ TEST(ExplicitContact, BarsImpactKeepsTheEnergy) {
   EXPECT_LT(std::abs(r.cd.energies().contact), 0.01 * put_in);
 }
 
+/// The block drop of explicit_contact_blocks_solid164 to 5e-5 (the blocks part at 2.2e-5):
+/// the contact energy and the balance at the end relative to the initial kinetic energy, and
+/// the largest change of the total z momentum.
+struct BlockDrop {
+  double contact = 0.0, stored = 0.0, drift = 0.0, momentum = 0.0;
+  double rebound = 0.0;  // z velocity of the impactor's top centre (node 23) at the end
+};
+BlockDrop drop_blocks(const std::string& text) {
+  ContactRun r(text, 0, -1);
+  const double put_in = r.cd.energies().initial_kinetic;
+  const auto momentum = [&r] {
+    double p = 0.0;
+    for (std::size_t n = 0; n < r.system.n_nodes(); ++n)
+      p += r.system.mass[n] * r.cd.velocity(n).z();
+    return p;
+  };
+  const double p0 = momentum();
+  BlockDrop out;
+  while (r.cd.time() < 5e-5) {
+    r.cd.cycle(std::min(r.cd.stable_step(), 5e-5 - r.cd.time()));
+    out.momentum = std::max(out.momentum, std::abs(momentum() - p0) / std::abs(p0));
+  }
+  out.contact = r.cd.energies().contact / put_in;
+  out.stored = r.contact.stored_energy() / put_in;
+  out.drift = r.cd.energies().drift() / put_in;
+  out.rebound = r.cd.velocity(static_cast<std::size_t>(r.system.index_of(23))).z();
+  return out;
+}
+
+TEST(ExplicitContact, BlockDropGivesBackTheEnergy) {
+  // Matching meshes: each slave sits on a corner of the warped face under the impactor and
+  // next to the other block's side faces. The contact took 8.0 % of the energy (a slave jumped
+  // to a side face it never crossed, its spring's ½kg² lost) and, once that was fixed, created
+  // 5.5 % (the gap from the centroid's plane of a warped face is not the potential of the
+  // reaction spread by the shape functions); now it gives back all but 0.4 %.
+  const BlockDrop d = drop_blocks(prep("explicit_contact_blocks_solid164.inp"));
+  EXPECT_NEAR(d.stored, 0.0, 1e-12);  // parted
+  EXPECT_LT(std::abs(d.contact), 0.01);
+  EXPECT_LT(std::abs(d.drift), 0.02);
+  EXPECT_LT(d.momentum, 1e-9);  // the contact forces are equal and opposite
+}
+
+TEST(ExplicitContact, BlockDropOnOffsetMeshesGivesBackTheEnergy) {
+  // The impactor shifted by half an element: its nodes at the lower block's edges lie on its
+  // top face half an element from its side faces. They were taken as penetrating the side
+  // faces by half an element (k·h/2 pushes: the run blew up at cycle 3); a new contact must
+  // have crossed its face over the step.
+  std::string text = prep("explicit_contact_blocks_solid164.inp");
+  const std::string from = "N,1+I+3*J+9*K,0.01*I,0.01*J,0.01*K";
+  text.replace(text.find(from), from.size(), "N,1+I+3*J+9*K,0.005+0.01*I,0.005+0.01*J,0.01*K");
+  const BlockDrop d = drop_blocks(text);
+  EXPECT_NEAR(d.stored, 0.0, 1e-12);
+  EXPECT_LT(std::abs(d.contact), 0.01);
+  EXPECT_LT(std::abs(d.drift), 0.02);
+  EXPECT_LT(d.momentum, 1e-9);
+}
+
+TEST(ExplicitContact, SingleSurfaceFindsABodyHittingItself) {
+  // The two blocks as one part (one material) under automatic single surface contact: every
+  // exterior node against every exterior face not next to it. The impact is the one of the
+  // surface to surface contact between the two parts: the same energy balance and rebound.
+  const std::string base = prep("explicit_contact_blocks_solid164.inp");
+  const BlockDrop pair = drop_blocks(base);
+  std::string text = base;
+  text.replace(text.find("MAT,2"), 5, "MAT,1");
+  text.replace(text.find("EDCGEN,ASTS,1,2"), 15, "EDCGEN,ASSC");
+  const BlockDrop self = drop_blocks(text);
+  EXPECT_NEAR(self.stored, 0.0, 1e-12);
+  EXPECT_LT(std::abs(self.contact), 0.01);
+  EXPECT_LT(std::abs(self.drift), 0.02);
+  EXPECT_LT(self.momentum, 1e-9);
+  EXPECT_NEAR(self.rebound, pair.rebound, 0.01 * std::abs(pair.rebound));
+  // Single surface over the impactor alone (Cont = its nodes): it does not see the block.
+  std::string alone = text;
+  alone.replace(alone.find("EDCGEN,ASSC"), 11, "EDCGEN,ASSC,TOP");
+  ContactRun r(alone, 0, -1);
+  r.to(2e-5);
+  EXPECT_EQ(r.cd.energies().contact, 0.0);
+}
+
 TEST(ExplicitContact, UnsupportedOptionsAreRefused) {
   const std::string base = prep("explicit_contact_bars_solid164.inp");
-  EXPECT_ANY_THROW(read_deck_text(base + "EDCGEN,ASSC\n", "a.inp"));
-  EXPECT_ANY_THROW(read_deck_text(base + "EDCGEN,NTS,1,2,0.3,0.3,0,0,20\n", "v.inp"));
+  EXPECT_ANY_THROW(read_deck_text(base + "EDCGEN,AG\n", "a.inp"));
+  EXPECT_ANY_THROW(read_deck_text(base + "EDCGEN,ASSC,,2\n", "t.inp"));  // no target
+  EXPECT_NO_THROW(read_deck_text(base + "EDCGEN,ASSC\n", "s.inp"));
+  EXPECT_ANY_THROW(read_deck_text(base + "EDCGEN,NTS,1,2,0.3,0.3,0,0,150\n", "v.inp"));
+  EXPECT_NO_THROW(read_deck_text(base + "EDCGEN,NTS,1,2,0.3,0.3,0,0,20\n", "w.inp"));
   EXPECT_ANY_THROW(read_deck_text(base + "*DIM,T,ARRAY,2\n*DIM,V,ARRAY,2\nT(1)=0,1\nV(1)=1,1\n"
-                                         "EDLOAD,ADD,VX,,BARA,T,V\n",
+                                         "EDLOAD,ADD,UX,,BARA,T,V\n",
                                   "l.inp"));
+}
+
+TEST(ExplicitCurve, PrescribedVelocityDrivesTheWaveOfTheClosedForm) {
+  // explicit_edload_velocity_bar_solid164: the end of a free bar driven at v = 5 (EDLOAD VX).
+  // The driving force is ρcAv = 19748 (c = √(E/ρ)), its work ρcAv²t, half of it kinetic.
+  Model model = read_deck_text(prep("explicit_edload_velocity_bar_solid164.inp"), "v.inp").model;
+  ExplicitSystem system = build_explicit_system(model);
+  ExplicitCurveLoads loads(system, model.explicit_dynamics);
+  CentralDifference cd(system, model.explicit_dynamics);
+  cd.add_interaction(&loads);
+  cd.set_loads(std::vector<std::uint8_t>(3 * system.n_nodes(), 0), Vec3::Zero());
+  cd.start();
+  const double end = 8e-5;
+  while (cd.time() < end) cd.cycle(std::min(cd.stable_step(), end - cd.time()));
+  const double force = std::sqrt(200e9 * 7800.0) * 1e-4 * 5.0;
+  const ExplicitEnergies e = cd.energies();
+  EXPECT_NEAR(e.external_work, force * 5.0 * end, 0.01 * force * 5.0 * end);
+  EXPECT_NEAR(e.kinetic, 0.5 * e.external_work, 0.03 * e.external_work);
+  // The impulsive start: the first cycle's measured energies run 0.024 ahead (the next layer's
+  // kinetic energy at the integer time), 0.45 % of the work at the end.
+  EXPECT_LT(std::abs(e.drift()), 0.01 * e.external_work);
+  EXPECT_DOUBLE_EQ(cd.velocity(static_cast<std::size_t>(system.index_of(1))).x(), 5.0);
 }
 
 TEST(ExplicitContact, FrictionOnlyDissipates) {

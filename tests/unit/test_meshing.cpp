@@ -171,9 +171,11 @@ TEST(Meshing, TrianglesOnThreeAndFourSidedAreas) {
   for (const auto& [id, e] : tri.elements) EXPECT_EQ(e.nodes[2], e.nodes[3]);
   const Model quad = read(head + "RECTNG,0,2,0,1\nAMESH,ALL\n");
   EXPECT_EQ(quad.elements.size(), 2u * 4u * 4u);
-  // Quadrilaterals refuse a 3-sided area.
-  EXPECT_THROW(read("/PREP7\nET,1,SHELL63\nR,1,0.1\nK,1\nK,2,1\nK,3,0,1\nA,1,2,3\nAMESH,1\n"),
-               InputError);
+  // Mapped quadrilaterals (MSHKEY,1) refuse a 3-sided area; free meshing (the default) meshes
+  // it (tests/unit/test_free_meshing.cpp).
+  EXPECT_THROW(
+      read("/PREP7\nET,1,SHELL63\nR,1,0.1\nK,1\nK,2,1\nK,3,0,1\nA,1,2,3\nMSHKEY,1\nAMESH,1\n"),
+      InputError);
 }
 
 TEST(Meshing, FullCylinderVolume) {
@@ -284,7 +286,7 @@ TEST(Meshing, MalformedModellingInputIsAnInputError) {
     return std::string("no error");
   };
   EXPECT_NE(message("/PREP7\nET,1,SHELL63\nR,1,0.1\nK,1\nK,2,1\nK,3,2,1\nK,4,1,2\nK,5,0,1\n"
-                    "A,1,2,3,4,5\nAMESH,1\n")
+                    "A,1,2,3,4,5\nMSHKEY,1\nAMESH,1\n")
                 .find("area 1 has 5 sides"),
             std::string::npos);
   EXPECT_NE(message("/PREP7\nESIZE,-1\n").find("must be positive"), std::string::npos);
@@ -294,8 +296,8 @@ TEST(Meshing, MalformedModellingInputIsAnInputError) {
   EXPECT_NE(message("/PREP7\nK,1\nK,2,1\nK,3,1,1\nK,4,0,1\nA,1,2,3,4\nK,2,5\n")
                 .find("keypoint 2 is used by line"),
             std::string::npos);
-  EXPECT_NE(message(std::string(kBrick) + "BLOCK,0,1,0,1,0,1\nMSHAPE,1,3D\nVMESH,1\n")
-                .find("free tetrahedral meshing is not supported"),
+  EXPECT_NE(message(std::string(kBrick) + "BLOCK,0,1,0,1,0,1\nMSHKEY,1\nMSHAPE,1,3D\nVMESH,1\n")
+                .find("tetrahedra are meshed free"),
             std::string::npos);
   EXPECT_NE(message("/PREP7\nBLOCK,0,1,0,1,0,1\nVSBV,1,2\n").find("boolean"), std::string::npos);
 }

@@ -141,7 +141,7 @@ TEST(QuadraticSolidDeck, VolumesMeshedApartShareTheirMidsideNodes) {
 }
 
 TEST(QuadraticSolidDeck, VmeshWithTetrahedraAndNsleMid) {
-  EXPECT_THROW(read(std::string(kHead) + "ET,1,SOLID187\nBLOCK,0,1,0,1,0,1\nVMESH,ALL\n"),
+  EXPECT_THROW(read(std::string(kHead) + "ET,1,SOLID187\nBLOCK,0,1,0,1,0,1\nMSHKEY,1\nVMESH,ALL\n"),
                InputError);
   const std::string one = std::string(kHead) + "ET,1,SOLID186\n" + cube_nodes() +
                           "E,1,2,3,4,5,6,7,8\nEMORE,9,10,11,12,13,14,15,16\nEMORE,17,18,19,20\n";

@@ -1,0 +1,714 @@
+// SHELL281: the 8-node quadratic degenerated-continuum shell (shell281.h), its factory and
+// registration.
+#include "elements/shell281.h"
+
+#include <fmt/format.h>
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include "core/errors.h"
+#include "elements/element_registry.h"
+#include "elements/quadratic_shapes.h"
+
+namespace impactfe {
+
+namespace {
+
+using Mat3 = Eigen::Matrix3d;
+
+/// Natural coordinates of the nodes: the quadrilateral's corners, then its midsides; the
+/// triangle's corners (0,0) (1,0) (0,1), then the midsides of 0-1 1-2 2-0 (quadratic_shapes.h).
+constexpr double kQuadXi[8][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1},
+                                  {0, -1},  {1, 0},  {0, 1}, {-1, 0}};
+constexpr double kTriXi[6][2] = {{0, 0}, {1, 0}, {0, 1}, {0.5, 0}, {0.5, 0.5}, {0, 0.5}};
+
+/// Two-point Gauss through the thickness: exact for the strain energy of a homogeneous shell
+/// whose strains are linear in ζ (the flat element; O(t/R) close to it on a curved one).
+constexpr double kZeta = 0.57735026918962576;
+constexpr bool kAssumedShear = true;
+
+Mat3 skew(const Vec3& v) {
+  Mat3 s;
+  s << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
+  return s;
+}
+
+double von_mises(double sx, double sy, double sxy) {
+  return std::sqrt(std::max(0.0, sx * sx - sx * sy + sy * sy + 3.0 * sxy * sxy));
+}
+
+const std::vector<std::string> kShell281Results = {
+    "TX",       "TY",       "TXY",     "MX",      "MY",      "MXY",     "SX_TOP",   "SY_TOP",
+    "SXY_TOP",  "SX_MID",   "SY_MID",  "SXY_MID", "SX_BOT",  "SY_BOT",  "SXY_BOT",  "SEQV_TOP",
+    "SEQV_MID", "SEQV_BOT", "QXZ",     "QYZ",     "EPX_TOP", "EPY_TOP", "EPXY_TOP", "EPX_MID",
+    "EPY_MID",  "EPXY_MID", "EPX_BOT", "EPY_BOT", "EPXY_BOT"};
+
+}  // namespace
+
+Shell281::Shell281(int id, const Shell281Data& data, const SourceLocation& where)
+    : Element(id),
+      n_(static_cast<int>(data.node_ids.size())),
+      X_(data.positions),
+      t_(data.thickness),
+      node_ids_(data.node_ids),
+      data_(data) {
+  IMPACTFE_CHECK(n_ == 8 || n_ == 6, "SHELL281: 8 or 6 nodes");
+  // Membrane only (KEYOPT(1) = 1): the translations alone, as MAPDL's membrane shells have
+  // (the rotations would carry no stiffness).
+  for (int node : data.node_ids)
+    for (Dof d : kAllDofs)
+      if (!data.membrane_only || d == Dof::UX || d == Dof::UY || d == Dof::UZ)
+        dofs_.push_back(DofKey{node, d});
+  // Nodal directors: the element's own surface normal at each node.
+  Eigen::VectorXd N;
+  Eigen::MatrixXd dN;
+  for (int a = 0; a < n_; ++a) {
+    const double* xi = n_ == 8 ? kQuadXi[a] : kTriXi[a];
+    shape(xi[0], xi[1], N, dN);
+    Vec3 a1 = Vec3::Zero(), a2 = Vec3::Zero();
+    for (int b = 0; b < n_; ++b) {
+      a1 += dN(0, b) * X_[static_cast<std::size_t>(b)];
+      a2 += dN(1, b) * X_[static_cast<std::size_t>(b)];
+    }
+    const Vec3 n = a1.cross(a2);
+    if (!(n.norm() > 0.0))
+      throw InputError(where, fmt::format("element {}: zero area at node {} (coincident or "
+                                          "collinear nodes)",
+                                          id, data.node_ids[static_cast<std::size_t>(a)]));
+    V_.push_back(n.normalized());
+  }
+  for (const Rule& q : full_rule())
+    for (double zeta : {-kZeta, kZeta}) {
+      double detJ = 0.0;
+      const Mat3 R = Mat3::Identity();
+      gradient(q.xi, q.eta, zeta, R, &detJ);
+      if (!(detJ > 0.0))
+        throw InputError(where, fmt::format("element {}: non-positive Jacobian (distorted "
+                                            "element, or thickness large against the curvature)",
+                                            id));
+      volume_ += detJ * q.w;
+    }
+}
+
+void Shell281::shape(double xi, double eta, Eigen::VectorXd& N, Eigen::MatrixXd& dN) const {
+  Eigen::Matrix<double, 2, Eigen::Dynamic> d;
+  Eigen::VectorXd corner;
+  quadratic_face_shape(n_, Eigen::Vector3d(xi, eta, 0.0), N, d, corner);
+  dN = d;
+}
+
+double Shell281::thickness_at(const Eigen::VectorXd& N) const {
+  double t = 0.0;
+  for (int a = 0; a < n_; ++a) t += N(a) * t_[static_cast<std::size_t>(a)];
+  return t;
+}
+
+Mat3 Shell281::membrane_d() const {
+  const double c = data_.E / (1.0 - data_.nu * data_.nu);
+  Mat3 D;
+  D << c, c * data_.nu, 0, c * data_.nu, c, 0, 0, 0, c * 0.5 * (1.0 - data_.nu);
+  return D;
+}
+
+std::vector<Shell281::Rule> Shell281::full_rule() const {
+  std::vector<Rule> out;
+  for (const QuadraturePoint& q : n_ == 8 ? gauss_square(3) : collapsed_triangle(3))
+    out.push_back({q.xi(0), q.xi(1), q.weight});
+  return out;
+}
+
+std::vector<Shell281::Rule> Shell281::bending_rule() const {
+  if (n_ == 8) return full_rule();
+  // The triangle's midside rule: exact to degree 2 (Zienkiewicz & Taylor vol. 1, Table 6.3).
+  return {{0.5, 0.0, 1.0 / 6.0}, {0.5, 0.5, 1.0 / 6.0}, {0.0, 0.5, 1.0 / 6.0}};
+}
+
+std::vector<Shell281::Rule> Shell281::shear_rule() const {
+  if (n_ == 6) return bending_rule();
+  if (kAssumedShear) return full_rule();
+  std::vector<Rule> out;
+  for (const QuadraturePoint& q : gauss_square(2)) out.push_back({q.xi(0), q.xi(1), q.weight});
+  return out;
+}
+
+Mat3 Shell281::frame(const Eigen::VectorXd& N, const Eigen::MatrixXd& dN, double* dA) const {
+  Vec3 a1 = Vec3::Zero(), a2 = Vec3::Zero();
+  for (int a = 0; a < n_; ++a) {
+    a1 += dN(0, a) * X_[static_cast<std::size_t>(a)];
+    a2 += dN(1, a) * X_[static_cast<std::size_t>(a)];
+  }
+  const Vec3 n = a1.cross(a2);
+  if (dA != nullptr) *dA = n.norm();
+  Mat3 R;
+  R.col(2) = n.normalized();
+  R.col(0) = a1.normalized();
+  R.col(1) = R.col(2).cross(R.col(0));
+  return R;
+}
+
+Eigen::MatrixXd Shell281::global_gradient(double xi, double eta, double zeta, double* detJ) const {
+  Eigen::VectorXd N;
+  Eigen::MatrixXd dN;
+  shape(xi, eta, N, dN);
+  // J: rows ∂X/∂ξ, ∂X/∂η, ∂X/∂ζ, so that (f,ξ f,η f,ζ)ᵀ = J ∇f.
+  Mat3 J = Mat3::Zero();
+  for (int a = 0; a < n_; ++a) {
+    const double h = 0.5 * t_[static_cast<std::size_t>(a)];
+    const Vec3 x = X_[static_cast<std::size_t>(a)] + zeta * h * V_[static_cast<std::size_t>(a)];
+    J.row(0) += dN(0, a) * x.transpose();
+    J.row(1) += dN(1, a) * x.transpose();
+    J.row(2) += N(a) * h * V_[static_cast<std::size_t>(a)].transpose();
+  }
+  if (detJ != nullptr) *detJ = J.determinant();
+  const Mat3 Ji = J.inverse();
+  // ∂U_i/∂X_j (row 3i + j): U = Σ N_a u_a + Σ ζ h_a N_a θ_a × V_a, and
+  // (θ × V)_i = θ · (V × E_i).
+  Eigen::MatrixXd G = Eigen::MatrixXd::Zero(9, 6 * n_);
+  for (int a = 0; a < n_; ++a) {
+    const double h = 0.5 * t_[static_cast<std::size_t>(a)];
+    const Vec3 g = Ji * Vec3(dN(0, a), dN(1, a), 0.0);
+    const Vec3 r = h * (Ji * Vec3(zeta * dN(0, a), zeta * dN(1, a), N(a)));
+    const Vec3& V = V_[static_cast<std::size_t>(a)];
+    for (int i = 0; i < 3; ++i) {
+      const Vec3 c = V.cross(Vec3::Unit(i));
+      for (int j = 0; j < 3; ++j) {
+        G(3 * i + j, 6 * a + i) = g(j);
+        G.block<1, 3>(3 * i + j, 6 * a + 3) = r(j) * c.transpose();
+      }
+    }
+  }
+  return G;
+}
+
+Eigen::MatrixXd Shell281::gradient(double xi, double eta, double zeta, const Mat3& R,
+                                   double* detJ) const {
+  const Eigen::MatrixXd G = global_gradient(xi, eta, zeta, detJ);
+  // L_pq = Σ_ij R_ip R_jq ∂U_i/∂X_j.
+  Eigen::MatrixXd L = Eigen::MatrixXd::Zero(9, 6 * n_);
+  for (int p = 0; p < 3; ++p)
+    for (int q = 0; q < 3; ++q)
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+          const double w = R(i, p) * R(j, q);
+          if (w != 0.0) L.row(3 * p + q) += w * G.row(3 * i + j);
+        }
+  return L;
+}
+
+Eigen::MatrixXd Shell281::strains(const Eigen::MatrixXd& G) {
+  Eigen::MatrixXd B(5, G.cols());
+  B.row(0) = G.row(0);
+  B.row(1) = G.row(4);
+  B.row(2) = G.row(1) + G.row(3);
+  B.row(3) = G.row(2) + G.row(6);
+  B.row(4) = G.row(5) + G.row(7);
+  return B;
+}
+
+Eigen::MatrixXd Shell281::covariant_shear(double xi, double eta, double zeta) const {
+  Eigen::VectorXd N;
+  Eigen::MatrixXd dN;
+  shape(xi, eta, N, dN);
+  // Base vectors g_ξ, g_η, g_ζ and the operators of ∂U/∂ξ, ∂U/∂η, ∂U/∂ζ (3 × 6n each), with
+  // U = Σ N_a u_a − Σ ζ h_a N_a (V_a ×) θ_a.
+  Vec3 g[3] = {Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};
+  Eigen::MatrixXd dU[3];
+  for (auto& m : dU) m = Eigen::MatrixXd::Zero(3, 6 * n_);
+  for (int a = 0; a < n_; ++a) {
+    const double h = 0.5 * t_[static_cast<std::size_t>(a)];
+    const Vec3& V = V_[static_cast<std::size_t>(a)];
+    const Vec3 x = X_[static_cast<std::size_t>(a)] + zeta * h * V;
+    g[0] += dN(0, a) * x;
+    g[1] += dN(1, a) * x;
+    g[2] += N(a) * h * V;
+    const Mat3 S = -h * skew(V);
+    dU[0].block<3, 3>(0, 6 * a) = dN(0, a) * Mat3::Identity();
+    dU[1].block<3, 3>(0, 6 * a) = dN(1, a) * Mat3::Identity();
+    dU[0].block<3, 3>(0, 6 * a + 3) = zeta * dN(0, a) * S;
+    dU[1].block<3, 3>(0, 6 * a + 3) = zeta * dN(1, a) * S;
+    dU[2].block<3, 3>(0, 6 * a + 3) = N(a) * S;
+  }
+  // γ_ξζ = g_ξ·∂U/∂ζ + g_ζ·∂U/∂ξ, γ_ηζ likewise.
+  Eigen::MatrixXd E(2, 6 * n_);
+  E.row(0) = g[0].transpose() * dU[2] + g[2].transpose() * dU[0];
+  E.row(1) = g[1].transpose() * dU[2] + g[2].transpose() * dU[1];
+  return E;
+}
+
+Eigen::MatrixXd Shell281::assumed_shear(double xi, double eta, double zeta, const Mat3& R) const {
+  // Assumed covariant transverse shear: γ_ξζ = c0 + c1 ξ + c2 η + c3 ξη + c4 η², tied at the
+  // four points (±a, ±1) of the sides η = ±1 (a = 1/√3) and at the centre; γ_ηζ the same with
+  // ξ and η exchanged. The side values depend on that side's nodes alone and are shared with the
+  // neighbour, so an n × n mesh carries ~6 shear constraints per element against ~9 bending
+  // DOFs; 2 × 2 Gauss (8 per element) over-constrains the clamped thin plate (w at a/t = 1000
+  // on 8 × 8 elements: 0.66 of Kirchhoff's).
+  const double a = 0.57735026918962576;
+  auto tied = [&](int row, double s, double r, bool swap) {
+    // s: the coordinate along the tying sides, r: across them.
+    auto at = [&](double along, double across) {
+      return swap ? covariant_shear(across, along, zeta).row(row).eval()
+                  : covariant_shear(along, across, zeta).row(row).eval();
+    };
+    const Eigen::RowVectorXd e0 = at(0.0, 0.0);
+    const Eigen::RowVectorXd e1 = at(-a, -1.0), e2 = at(a, -1.0);
+    const Eigen::RowVectorXd e3 = at(-a, 1.0), e4 = at(a, 1.0);
+    return (e0 * (1.0 - r * r) + 0.25 * (r * r + r) * (e3 + e4) + 0.25 * (r * r - r) * (e1 + e2) +
+            s / (2.0 * a) * (0.5 * (1.0 + r) * (e4 - e3) + 0.5 * (1.0 - r) * (e2 - e1)))
+        .eval();
+  };
+  const Eigen::RowVectorXd ex = tied(0, xi, eta, false);
+  const Eigen::RowVectorXd ey = tied(1, eta, xi, true);
+  double detJ = 0.0;
+  Eigen::VectorXd N;
+  Eigen::MatrixXd dN;
+  shape(xi, eta, N, dN);
+  Mat3 J = Mat3::Zero();
+  for (int b = 0; b < n_; ++b) {
+    const double h = 0.5 * t_[static_cast<std::size_t>(b)];
+    const Vec3 x = X_[static_cast<std::size_t>(b)] + zeta * h * V_[static_cast<std::size_t>(b)];
+    J.row(0) += dN(0, b) * x.transpose();
+    J.row(1) += dN(1, b) * x.transpose();
+    J.row(2) += N(b) * h * V_[static_cast<std::size_t>(b)].transpose();
+  }
+  detJ = J.determinant();
+  (void)detJ;
+  const Mat3 Ji = J.inverse();
+  const double c3 = Ji.col(2).dot(R.col(2));
+  Eigen::MatrixXd B(2, 6 * n_);
+  for (int i = 0; i < 2; ++i)
+    B.row(i) = c3 * (Ji.col(0).dot(R.col(i)) * ex + Ji.col(1).dot(R.col(i)) * ey);
+  return B;
+}
+
+Eigen::MatrixXd Shell281::shear_b(double xi, double eta, double zeta, const Mat3& R) const {
+  if (n_ == 8 && kAssumedShear) return assumed_shear(xi, eta, zeta, R);
+  return strains(gradient(xi, eta, zeta, R, nullptr)).bottomRows(2);
+}
+
+Eigen::MatrixXd Shell281::stiffness() const {
+  const int nd = 6 * n_;
+  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(nd, nd);
+  const Mat3 Dm = membrane_d();
+  const double G = data_.E / (2.0 * (1.0 + data_.nu));
+  const double Ds = data_.shear_factor * G;
+  Eigen::VectorXd N;
+  Eigen::MatrixXd dN;
+  // Membrane and bending (membrane only: the mid-surface, twice the weight of ζ ∈ [−1, 1]).
+  const std::vector<double> zetas =
+      data_.membrane_only ? std::vector<double>{0.0} : std::vector<double>{-kZeta, kZeta};
+  const double wz = data_.membrane_only ? 2.0 : 1.0;
+  for (const Rule& q : bending_rule()) {
+    shape(q.xi, q.eta, N, dN);
+    const Mat3 R = frame(N, dN, nullptr);
+    for (double zeta : zetas) {
+      double detJ = 0.0;
+      const Eigen::MatrixXd B = strains(gradient(q.xi, q.eta, zeta, R, &detJ)).topRows(3);
+      K.noalias() += B.transpose() * Dm * B * (detJ * q.w * wz);
+    }
+  }
+  if (!data_.membrane_only)
+    for (const Rule& q : shear_rule()) {
+      shape(q.xi, q.eta, N, dN);
+      const Mat3 R = frame(N, dN, nullptr);
+      for (double zeta : zetas) {
+        double detJ = 0.0;
+        gradient(q.xi, q.eta, zeta, R, &detJ);
+        const Eigen::MatrixXd B = shear_b(q.xi, q.eta, zeta, R);
+        K.noalias() += B.transpose() * B * (Ds * detJ * q.w);
+      }
+    }
+  // Drilling: γ ∫ (θ·e3 − ½(L_yx − L_xy))² dA on the mid-surface (Hughes & Brezzi 1989, eq. 4.1
+  // with their γ = G); a rigid rotation ω gives θ·e3 = ω·e3 = ½ curl, so no energy. None for
+  // the membrane-only element, which has no rotations (θ = 0 would penalise the curl).
+  if (!data_.membrane_only)
+    for (const Rule& q : full_rule()) {
+      shape(q.xi, q.eta, N, dN);
+      double dA = 0.0;
+      const Mat3 R = frame(N, dN, &dA);
+      const Eigen::MatrixXd L = gradient(q.xi, q.eta, 0.0, R, nullptr);
+      Eigen::RowVectorXd b = -0.5 * (L.row(3) - L.row(1));
+      for (int a = 0; a < n_; ++a) b.segment<3>(6 * a + 3) += N(a) * R.col(2).transpose();
+      const double gamma = data_.drill_factor * G * thickness_at(N);
+      K.noalias() += b.transpose() * b * (gamma * dA * q.w);
+    }
+  return 0.5 * (K + K.transpose());
+}
+
+Eigen::MatrixXd Shell281::geometric_stiffness(const Eigen::VectorXd& u) const {
+  // K_G = ∫ Σ_i (∂U_i/∂X)ᵀ σ (∂U_i/∂X) dV with σ the stress of u in global axes (Cook et al.
+  // §18.3); σ33 = 0.
+  const int nd = 6 * n_;
+  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(nd, nd);
+  const Mat3 Dm = membrane_d();
+  const double Ds = data_.shear_factor * data_.E / (2.0 * (1.0 + data_.nu));
+  Eigen::VectorXd N;
+  Eigen::MatrixXd dN;
+  for (const Rule& q : bending_rule()) {
+    shape(q.xi, q.eta, N, dN);
+    const Mat3 R = frame(N, dN, nullptr);
+    for (double zeta : {-kZeta, kZeta}) {
+      double detJ = 0.0;
+      const Eigen::MatrixXd Gg = global_gradient(q.xi, q.eta, zeta, &detJ);
+      const Eigen::VectorXd e = strains(gradient(q.xi, q.eta, zeta, R, nullptr)) * u;
+      const Eigen::Vector3d sm = Dm * e.head<3>();
+      const double s13 = data_.membrane_only ? 0.0 : Ds * e(3);
+      const double s23 = data_.membrane_only ? 0.0 : Ds * e(4);
+      Mat3 S;
+      S << sm(0), sm(2), s13, sm(2), sm(1), s23, s13, s23, 0.0;
+      const Mat3 sigma = R * S * R.transpose();
+      for (int i = 0; i < 3; ++i) {
+        const Eigen::MatrixXd Gi = Gg.middleRows(3 * i, 3);
+        K.noalias() += Gi.transpose() * sigma * Gi * (detJ * q.w);
+      }
+    }
+  }
+  return 0.5 * (K + K.transpose());
+}
+
+Eigen::VectorXd Shell281::expand(const Eigen::VectorXd& u) const {
+  if (!data_.membrane_only) return u;
+  Eigen::VectorXd full = Eigen::VectorXd::Zero(6 * n_);
+  for (int a = 0; a < n_; ++a) full.segment<3>(6 * a) = u.segment<3>(3 * a);
+  return full;
+}
+
+Eigen::MatrixXd Shell281::reduce(const Eigen::MatrixXd& A) const {
+  if (!data_.membrane_only) return A;
+  Eigen::MatrixXd out(3 * n_, 3 * n_);
+  for (int a = 0; a < n_; ++a)
+    for (int b = 0; b < n_; ++b) out.block<3, 3>(3 * a, 3 * b) = A.block<3, 3>(6 * a, 6 * b);
+  return out;
+}
+
+void Shell281::tangent(const ElementContext& ctx, const Eigen::VectorXd& u, Eigen::MatrixXd& K,
+                       Eigen::VectorXd& f_int) const {
+  K = reduce(stiffness());
+  f_int = K * u;
+  if (ctx.stress_stiffening) K += reduce(geometric_stiffness(expand(u)));
+}
+
+void Shell281::mass(const ElementContext& ctx, Eigen::MatrixXd& M) const {
+  const int nd = 6 * n_;
+  M = Eigen::MatrixXd::Zero(nd, nd);
+  Eigen::VectorXd N;
+  Eigen::MatrixXd dN;
+  double total = 0.0;
+  for (const Rule& q : full_rule()) {
+    shape(q.xi, q.eta, N, dN);
+    double dA = 0.0;
+    const Mat3 R = frame(N, dN, &dA);
+    for (double zeta : {-kZeta, kZeta}) {
+      double detJ = 0.0;
+      global_gradient(q.xi, q.eta, zeta, &detJ);
+      // H: U = Σ N_a u_a − Σ ζ h_a N_a (V_a ×) θ_a.
+      Eigen::MatrixXd H = Eigen::MatrixXd::Zero(3, nd);
+      for (int a = 0; a < n_; ++a) {
+        H.block<3, 3>(0, 6 * a) = N(a) * Mat3::Identity();
+        H.block<3, 3>(0, 6 * a + 3) = -zeta * 0.5 * t_[static_cast<std::size_t>(a)] * N(a) *
+                                      skew(V_[static_cast<std::size_t>(a)]);
+      }
+      M.noalias() += H.transpose() * H * (data_.rho * detJ * q.w);
+      total += data_.rho * detJ * q.w;
+    }
+    // The drilling rotation carries the rotary inertia ρt³/12 of the other two (the directors
+    // give it none), as SHELL181's θz does.
+    const double t = thickness_at(N);
+    Eigen::RowVectorXd b = Eigen::RowVectorXd::Zero(nd);
+    for (int a = 0; a < n_; ++a) b.segment<3>(6 * a + 3) = N(a) * R.col(2).transpose();
+    M.noalias() += b.transpose() * b * (data_.rho * t * t * t / 12.0 * dA * q.w);
+  }
+  M = 0.5 * (M + M.transpose()).eval();
+  if (!ctx.lumped_mass) {
+    M = reduce(M);
+    return;
+  }
+  // HRZ: the diagonal, scaled so that each translation carries the element's mass; the
+  // rotations keep their diagonal terms.
+  Eigen::MatrixXd L = Eigen::MatrixXd::Zero(nd, nd);
+  for (int i = 0; i < 3; ++i) {
+    double sum = 0.0;
+    for (int a = 0; a < n_; ++a) sum += M(6 * a + i, 6 * a + i);
+    for (int a = 0; a < n_; ++a)
+      L(6 * a + i, 6 * a + i) = sum > 0.0 ? total * M(6 * a + i, 6 * a + i) / sum : 0.0;
+  }
+  for (int a = 0; a < n_; ++a)
+    for (int i = 3; i < 6; ++i) L(6 * a + i, 6 * a + i) = M(6 * a + i, 6 * a + i);
+  M = reduce(L);
+}
+
+void Shell281::pressure_load(const ElementContext& ctx, int face, const std::array<double, 4>& p,
+                             const Eigen::VectorXd& u, Eigen::VectorXd& f) const {
+  full_pressure_load(ctx, face, p, u, f);
+  if (!data_.membrane_only) return;
+  Eigen::VectorXd translations(3 * n_);
+  for (int a = 0; a < n_; ++a) translations.segment<3>(3 * a) = f.segment<3>(6 * a);
+  f = translations;
+}
+
+void Shell281::full_pressure_load(const ElementContext& ctx, int face,
+                                  const std::array<double, 4>& p, const Eigen::VectorXd&,
+                                  Eigen::VectorXd& f) const {
+  if (face < 1 || face > 6)
+    throw ModelError(
+        fmt::format("element {}: shell face {} does not exist (faces 1 and 2: bottom "
+                    "and top; 3..6: the edges J-I, K-J, L-K, I-L)",
+                    id(), face));
+  if (ctx.large_deflection)
+    throw ElementSolutionError(id(), fmt::format("element {}: SHELL281 under large deflection "
+                                                 "is not implemented",
+                                                 id()));
+  f.setZero(6 * n_);
+  if (face >= 3) {
+    // In-plane edge pressure: f_a = −∫ N_a p m ds, m the outward in-plane normal of the edge,
+    // p linear between the edge's corner values; 3-point Gauss on the quadratic edge.
+    constexpr int kQuadEdge[4][3] = {{1, 0, 4}, {2, 1, 5}, {3, 2, 6}, {0, 3, 7}};
+    constexpr int kTriEdge[4][3] = {{1, 0, 3}, {2, 1, 4}, {-1, -1, -1}, {0, 2, 5}};
+    const int* e = n_ == 8 ? kQuadEdge[face - 3] : kTriEdge[face - 3];
+    if (e[0] < 0) return;  // the triangle's collapsed L-K
+    Vec3 centroid = Vec3::Zero();
+    for (const Vec3& x : X_) centroid += x / static_cast<double>(n_);
+    const double gs[3] = {-std::sqrt(0.6), 0.0, std::sqrt(0.6)};
+    const double gw[3] = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
+    for (int g = 0; g < 3; ++g) {
+      const double s = gs[g];
+      const double Ne[3] = {0.5 * s * (s - 1.0), 0.5 * s * (s + 1.0), 1.0 - s * s};
+      const double dNe[3] = {s - 0.5, s + 0.5, -2.0 * s};
+      Vec3 x = Vec3::Zero(), dx = Vec3::Zero(), n = Vec3::Zero();
+      for (int k = 0; k < 3; ++k) {
+        x += Ne[k] * X_[static_cast<std::size_t>(e[k])];
+        dx += dNe[k] * X_[static_cast<std::size_t>(e[k])];
+        n += Ne[k] * V_[static_cast<std::size_t>(e[k])];
+      }
+      Vec3 m = dx.cross(n);
+      if (m.dot(x - centroid) < 0.0) m = -m;
+      m.normalize();
+      const double pressure = 0.5 * (1.0 - s) * p[0] + 0.5 * (1.0 + s) * p[1];
+      for (int k = 0; k < 3; ++k)
+        f.segment<3>(6 * e[k]) -= Ne[k] * pressure * dx.norm() * gw[g] * m;
+    }
+    return;
+  }
+  const double sign = face == 1 ? 1.0 : -1.0;
+  Eigen::VectorXd N, corner;
+  Eigen::Matrix<double, 2, Eigen::Dynamic> dN;
+  for (const Rule& q : full_rule()) {
+    quadratic_face_shape(n_, Eigen::Vector3d(q.xi, q.eta, 0.0), N, dN, corner);
+    Vec3 a1 = Vec3::Zero(), a2 = Vec3::Zero();
+    for (int a = 0; a < n_; ++a) {
+      a1 += dN(0, a) * X_[static_cast<std::size_t>(a)];
+      a2 += dN(1, a) * X_[static_cast<std::size_t>(a)];
+    }
+    double pressure = 0.0;
+    for (int c = 0; c < static_cast<int>(corner.size()); ++c)
+      pressure += corner(c) * p[static_cast<std::size_t>(c)];
+    const Vec3 load = sign * pressure * q.w * a1.cross(a2);
+    for (int a = 0; a < n_; ++a) f.segment<3>(6 * a) += N(a) * load;
+  }
+}
+
+const std::vector<std::string>& Shell281::names() {
+  return kShell281Results;
+}
+
+const std::vector<std::string>& Shell281::result_names() const {
+  return kShell281Results;
+}
+
+ElementResultValues Shell281::values_at(double xi, double eta, const Eigen::VectorXd& u) const {
+  Eigen::VectorXd N;
+  Eigen::MatrixXd dN;
+  shape(xi, eta, N, dN);
+  const Mat3 R = frame(N, dN, nullptr);
+  const double t = thickness_at(N), h = 0.5 * t;
+  const Mat3 Dm = membrane_d();
+  const double Ds = data_.shear_factor * data_.E / (2.0 * (1.0 + data_.nu));
+  auto strain = [&](double zeta) -> Eigen::VectorXd {
+    return strains(gradient(xi, eta, data_.membrane_only ? 0.0 : zeta, R, nullptr)) * u;
+  };
+  // Resultants by the thickness rule: N = ∫σ dz, M = ∫zσ dz (z = ζ t/2 toward the top),
+  // Q = ∫ k G γ dz.
+  Eigen::Vector3d Nr = Eigen::Vector3d::Zero(), Mr = Eigen::Vector3d::Zero();
+  Eigen::Vector2d Q = Eigen::Vector2d::Zero();
+  for (double zeta : {-kZeta, kZeta}) {
+    const Eigen::VectorXd e = strain(zeta);
+    const Eigen::Vector3d s = Dm * e.head<3>();
+    Nr += s * h;
+    Mr += s * zeta * h * h;
+    if (!data_.membrane_only) Q += Ds * (shear_b(xi, eta, zeta, R) * u) * h;
+  }
+  const Eigen::VectorXd et = strain(1.0), em = strain(0.0), eb = strain(-1.0);
+  const Eigen::Vector3d st = Dm * et.head<3>(), sm = Dm * em.head<3>(), sb = Dm * eb.head<3>();
+  return {Nr(0),
+          Nr(1),
+          Nr(2),
+          Mr(0),
+          Mr(1),
+          Mr(2),
+          st(0),
+          st(1),
+          st(2),
+          sm(0),
+          sm(1),
+          sm(2),
+          sb(0),
+          sb(1),
+          sb(2),
+          von_mises(st(0), st(1), st(2)),
+          von_mises(sm(0), sm(1), sm(2)),
+          von_mises(sb(0), sb(1), sb(2)),
+          Q(0),
+          Q(1),
+          et(0),
+          et(1),
+          et(2),
+          em(0),
+          em(1),
+          em(2),
+          eb(0),
+          eb(1),
+          eb(2)};
+}
+
+Eigen::Matrix3d Shell281::result_axes(const ElementContext&, const Eigen::VectorXd&) const {
+  Eigen::VectorXd N;
+  Eigen::MatrixXd dN;
+  if (n_ == 8)
+    shape(0.0, 0.0, N, dN);
+  else
+    shape(1.0 / 3.0, 1.0 / 3.0, N, dN);
+  return frame(N, dN, nullptr);
+}
+
+void Shell281::results(const ElementContext&, const Eigen::VectorXd& u, const Eigen::VectorXd&,
+                       ElementResultValues& out) const {
+  out = n_ == 8 ? values_at(0.0, 0.0, expand(u)) : values_at(1.0 / 3.0, 1.0 / 3.0, expand(u));
+}
+
+bool Shell281::nodal_results(const ElementContext&, const Eigen::VectorXd& u,
+                             std::map<int, ElementResultValues>& at_node) const {
+  for (int a = 0; a < n_; ++a) {
+    const double* xi = n_ == 8 ? kQuadXi[a] : kTriXi[a];
+    at_node[node_ids_[static_cast<std::size_t>(a)]] = values_at(xi[0], xi[1], expand(u));
+  }
+  return true;
+}
+
+namespace {
+
+std::unique_ptr<Element> make_shell281(const ElementBuildContext& ctx,
+                                       const ElementRecord& record) {
+  const Model& model = ctx.model;
+  const auto fail = [&](const std::string& msg) {
+    return InputError(record.where, fmt::format("element {} (SHELL281): {}", record.id, msg));
+  };
+  if (ctx.large_deflection)
+    throw fail("large deflection (NLGEOM,ON) is not implemented for SHELL281; use SHELL181");
+  const ElementType& type = model.element_types.at(record.type);
+  const std::vector<int>& n = record.nodes;
+  if (n.size() != 8) throw fail(fmt::format("needs 8 nodes I..P, got {}", n.size()));
+  for (std::size_t k = 0; k < n.size(); ++k)
+    if (n[k] == 0)
+      throw fail(fmt::format("node {} is not given: midside nodes may not be omitted", k + 1));
+  Shell281Data data;
+  std::vector<int> corners_of;  // record positions of the element's nodes
+  if (n[2] == n[3] && n[6] == n[2]) {
+    // The triangle K = L = O: I J K with midsides M N P.
+    corners_of = {0, 1, 2, 4, 5, 7};
+  } else {
+    corners_of = {0, 1, 2, 3, 4, 5, 6, 7};
+  }
+  for (int k : corners_of) data.node_ids.push_back(n[static_cast<std::size_t>(k)]);
+  if (std::set<int>(data.node_ids.begin(), data.node_ids.end()).size() != data.node_ids.size())
+    throw fail("repeated nodes are taken only as the triangle K = L = O");
+  for (int id : data.node_ids) {
+    const auto it = model.nodes.find(id);
+    if (it == model.nodes.end()) throw fail(fmt::format("node {} is not defined", id));
+    data.positions.push_back(it->second.x);
+  }
+  const auto mat_it = model.materials.find(record.mat);
+  if (mat_it == model.materials.end() || !mat_it->second.has("EX"))
+    throw fail(fmt::format("material {} has no EX", record.mat));
+  const Material& mat = mat_it->second;
+  data.E = mat.get("EX", 0.0);
+  if (!(data.E > 0.0)) throw fail(fmt::format("material {}: EX must be positive", record.mat));
+  data.nu = mat.has("NUXY") ? mat.get("NUXY", 0.3) : mat.get("PRXY", 0.3);
+  data.rho = mat.get("DENS", 0.0);
+  // Thickness: the section (SECTYPE SHELL / SECDATA) or the real constants TK(I..L); a
+  // midside node takes the mean of its corners.
+  std::array<double, 4> tc{};
+  const auto sec_it = model.sections.find(record.secnum);
+  const bool by_section =
+      record.secnum > 0 && sec_it != model.sections.end() && !sec_it->second.data.empty();
+  if (by_section) {
+    tc.fill(sec_it->second.data[0]);
+  } else {
+    const auto it = model.real_sets.find(record.real);
+    if (it == model.real_sets.end())
+      throw fail(fmt::format("no section {} and no real constant set {} (thickness)", record.secnum,
+                             record.real));
+    const double ti = it->second.get(1);
+    for (int i = 0; i < 4; ++i) {
+      const double t = it->second.get(i + 1);
+      tc[static_cast<std::size_t>(i)] = t != 0.0 ? t : ti;
+    }
+  }
+  const int nc = data.node_ids.size() == 8 ? 4 : 3;
+  for (int i = 0; i < nc; ++i) {
+    if (!(tc[static_cast<std::size_t>(i)] > 0.0)) throw fail("zero or negative thickness");
+    data.thickness.push_back(tc[static_cast<std::size_t>(i)]);
+  }
+  for (int i = 0; i < nc; ++i)
+    data.thickness.push_back(
+        0.5 * (tc[static_cast<std::size_t>(i)] + tc[static_cast<std::size_t>((i + 1) % nc)]));
+  data.membrane_only = type.key(1) == 1;
+  return std::make_unique<Shell281>(record.id, data, record.where);
+}
+
+const ElementRegistration kShell281{
+    {.name = "SHELL281",
+     .number = 281,
+     .family = "Shell281",
+     .n_nodes = 8,
+     .real_constants = RealConstantUse::UnlessSection,
+     .needs_material = true,
+     .section_types = {"SHELL"},
+     .vtk_cell = VtkCell::QuadraticQuad,
+     .role = ShapeRole::Shell,
+     .result_names = kShell281Results,
+     // S and EPEL at the top surface (MAPDL's default; SHELL,MID / BOT choose the others);
+     // SMISC 1-8 = N, M and Q resultants.
+     .result_sequences = {{"S", "X", "SX_TOP"},
+                          {"S", "Y", "SY_TOP"},
+                          {"S", "XY", "SXY_TOP"},
+                          {"S", "EQV", "SEQV_TOP"},
+                          {"EPEL", "X", "EPX_TOP"},
+                          {"EPEL", "Y", "EPY_TOP"},
+                          {"EPEL", "XY", "EPXY_TOP"},
+                          {"SMISC", "1", "TX"},
+                          {"SMISC", "2", "TY"},
+                          {"SMISC", "3", "TXY"},
+                          {"SMISC", "4", "MX"},
+                          {"SMISC", "5", "MY"},
+                          {"SMISC", "6", "MXY"},
+                          {"SMISC", "7", "QXZ"},
+                          {"SMISC", "8", "QYZ"}},
+     // Faces 1 and 2 (bottom, top: all eight nodes), edges 3..6 (J-I, K-J, L-K, I-L and their
+     // midside nodes); SF loads face 1.
+     .faces = {{0, 1, 2, 3, 4, 5, 6, 7},
+               {0, 1, 2, 3, 4, 5, 6, 7},
+               {1, 0, 4},
+               {2, 1, 5},
+               {3, 2, 6},
+               {0, 3, 7}},
+     .sf_faces = 1,
+     .note = "SHELL281 is a degenerated-continuum Mindlin-Reissner shell: 3x3 Gauss with "
+             "tied transverse shear, small deflection; KEYOPT(1) = 1 has translations only",
+     .create = make_shell281}};
+
+}  // namespace
+
+}  // namespace impactfe
