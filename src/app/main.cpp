@@ -19,9 +19,9 @@
 #include "app/run_command.h"
 #include "app/version.h"
 #include "core/errors.h"
+#include "deck/cad_meshing.h"
 #include "deck/cdb_writer.h"
 #include "deck/command_reference.h"
-#include "deck/deck_reader.h"
 #include "results/post_csv.h"
 #include "results/report.h"
 #include "results/results_file.h"
@@ -242,17 +242,7 @@ CLI::App* add_mesh(CLI::App& app, MeshArgs& args) {
 
 int mesh_command(const MeshArgs& args) {
   const fs::path cad = fs::absolute(args.file);
-  const std::string ext = cad.extension().string();
-  const std::string stem = (cad.parent_path() / cad.stem()).string();
-  const bool volume_type = args.type == "185" || args.type == "186" || args.type == "187" ||
-                           args.type.find("SOLID") != std::string::npos;
-  std::string deck = fmt::format("/PREP7\nET,1,{}\nMP,EX,1,1\nMP,PRXY,1,0.3\n", args.type);
-  if (args.type == "181" || args.type == "SHELL181") deck += "SECTYPE,1,SHELL\nSECDATA,1\n";
-  deck += fmt::format("IGESIN,'{}',{}\n", stem, ext.empty() ? "" : ext.substr(1));
-  if (args.esize > 0.0) deck += fmt::format("ESIZE,{}\n", args.esize);
-  if (args.triangles) deck += "MSHAPE,1,2D\n";
-  deck += volume_type ? "VMESH,ALL\n" : "AMESH,ALL\n";
-  const Model model = read_deck_text(deck, args.file, DeckOptions{}).model;
+  const Model model = deck::mesh_cad_file({args.file, args.type, args.esize, args.triangles});
   const std::string out = args.out.empty() ? cad.stem().string() + ".cdb" : args.out;
   std::ofstream os(out);
   if (!os) throw std::runtime_error("cannot write " + out);
