@@ -115,7 +115,7 @@ void store_values(DeckReader& r, const Command& c, const Target& t, const std::v
   }
 }
 
-void cmd_set(DeckReader& r, const Command& c) {
+void cmd_star_set(DeckReader& r, const Command& c) {
   const Target t = parse_target(r, c, c.text(1));
   std::vector<std::string> texts;
   if (c.assignment) {
@@ -343,7 +343,7 @@ std::pair<int, int> parameter_counts(DeckReader& r) {
 }
 
 void register_parameter_commands(std::vector<CommandSpec>& t) {
-  t.push_back({"*SET", cmd_set, kAnywhere});
+  t.push_back({"*SET", cmd_star_set, kAnywhere});
   t.push_back({"*DIM", cmd_dim, kAnywhere});
   t.push_back({"*DEL", cmd_del, kAnywhere});
   t.push_back({"*AFUN", cmd_afun, kAnywhere});

@@ -41,7 +41,7 @@ int current_index(const PostState& ps) {
   return -1;
 }
 
-void cmd_set(DeckReader& r, const Command& c) {
+void cmd_results_set(DeckReader& r, const Command& c) {
   // SET,Lstep,Sbstep,Fact,KIMG,TIME,ANGLE,NSET,ORDER
   const ResultsReader& reader = results(r, c);
   PostState& ps = post_state(r);
@@ -424,7 +424,7 @@ void cmd_nforce(DeckReader& r, const Command& c) {
 }  // namespace
 
 void register_post1_commands(std::vector<CommandSpec>& t) {
-  t.push_back({"SET", cmd_set, kPost1});
+  t.push_back({"SET", cmd_results_set, kPost1});
   t.push_back({"FILE", cmd_file, kPost1 | kPost26});
   t.push_back({"SHELL", cmd_shell, kPost1});
   t.push_back({"RSYS", cmd_rsys, kPost1});

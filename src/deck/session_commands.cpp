@@ -75,7 +75,7 @@ void cmd_units(DeckReader& r, const Command& c) {
 }
 
 /// A refused command's handler: never called (DeckReader::dispatch fails with its message).
-void cmd_refused(DeckReader&, const Command&) {}
+void cmd_refused_session(DeckReader&, const Command&) {}
 
 }  // namespace
 
@@ -119,10 +119,10 @@ void register_session_commands(std::vector<CommandSpec>& t) {
                "(MODOPT)"});
   t.push_back({"/UNITS", cmd_units, kAnywhere});
   // /CWD would move the run's files out of its directory; /SYS would run programs: refused.
-  t.push_back({"/CWD", cmd_refused, kAnywhere, nullptr,
+  t.push_back({"/CWD", cmd_refused_session, kAnywhere, nullptr,
                "not carried out: the run's files go to its directory (impactfe run -o DIR); "
                "remove /CWD and give the directory on the command line"});
-  t.push_back({"/SYS", cmd_refused, kAnywhere, nullptr,
+  t.push_back({"/SYS", cmd_refused_session, kAnywhere, nullptr,
                "operating-system commands are not run by impactfe; run them outside the deck"});
 }
 

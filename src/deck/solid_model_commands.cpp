@@ -373,7 +373,7 @@ void cmd_ioptn(DeckReader& r, const Command& c) {
 }
 
 /// A command recognised but not supported: a clear error naming the command.
-void cmd_refused(DeckReader& r, const Command& c) {
+void cmd_refused_solid_model(DeckReader& r, const Command& c) {
   r.fail(c, refusal_reasons().at(c.name));
 }
 
@@ -403,7 +403,7 @@ void register_solid_model_commands(std::vector<CommandSpec>& t) {
   for (const char* name : {"KLIST", "LLIST", "ALIST", "VLIST"})
     t.push_back({name, cmd_list, kAnywhere});
   for (const auto& entry : refusal_reasons())
-    t.push_back({entry.first.c_str(), cmd_refused, kAnywhere});
+    t.push_back({entry.first.c_str(), cmd_refused_solid_model, kAnywhere});
 }
 
 }  // namespace impactfe::deck

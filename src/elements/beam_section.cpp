@@ -1,6 +1,7 @@
 #include "elements/beam_section.h"
 
 #include <fmt/format.h>
+#include <numbers>
 
 #include <Eigen/Eigenvalues>
 
@@ -12,8 +13,6 @@
 namespace impactfe {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 [[noreturn]] void bad(const std::string& msg) {
   throw std::invalid_argument(msg);
@@ -63,7 +62,7 @@ void add_rectangle(std::vector<BeamFibre>& f, double y0, double y1, double z0, d
 /// the integrand r, r³: exact for the area and the second moments when n ≥ 3). The centre point of
 /// a solid circle has zero weight and is skipped.
 void add_annulus(std::vector<BeamFibre>& f, double ri, double ro, int n, int nr) {
-  const double dth = 2.0 * kPi / n;
+  const double dth = 2.0 * std::numbers::pi / n;
   for (int k = 0; k < n; ++k) {
     const double th = k * dth;
     for (const auto& [r, w] : simpson(ri, ro, nr))
@@ -77,8 +76,9 @@ void add_annulus(std::vector<BeamFibre>& f, double ri, double ro, int n, int nr)
 double rectangle_torsion(double w, double h) {
   const double a = std::max(w, h), b = std::min(w, h);
   double sum = 0.0;
-  for (int n = 1; n < 200; n += 2) sum += std::tanh(n * kPi * a / (2.0 * b)) / std::pow(n, 5);
-  return a * b * b * b / 3.0 * (1.0 - 192.0 / std::pow(kPi, 5) * (b / a) * sum);
+  for (int n = 1; n < 200; n += 2)
+    sum += std::tanh(n * std::numbers::pi * a / (2.0 * b)) / std::pow(n, 5);
+  return a * b * b * b / 3.0 * (1.0 - 192.0 / std::pow(std::numbers::pi, 5) * (b / a) * sum);
 }
 
 /// Area, centroid, second moments and extreme fibres from the fibres; moves the fibres so that
@@ -153,7 +153,7 @@ BeamSectionProperties beam_section_properties(const std::string& subtype,
     if (n < 3) bad("CSOLID: N (divisions around) must be at least 3");
     add_annulus(p.fibres, 0.0, r, n, t);
     moments_from_fibres(p, -r, r, -r, r);
-    p.torsion = kPi * std::pow(r, 4) / 2.0;
+    p.torsion = std::numbers::pi * std::pow(r, 4) / 2.0;
     p.shear_area_y = p.shear_area_z = 0.9 * p.area;
     p.shear_note = "0.9 A (APDL_MODELING §7.2)";
   } else if (subtype == "CTUBE") {
@@ -164,7 +164,7 @@ BeamSectionProperties beam_section_properties(const std::string& subtype,
     if (d.size() > 3) bad("CTUBE: only Ri, Ro, N are supported (more than 3 SECDATA fields)");
     add_annulus(p.fibres, ri, ro, n, 1);
     moments_from_fibres(p, -ro, ro, -ro, ro);
-    p.torsion = kPi * (std::pow(ro, 4) - std::pow(ri, 4)) / 2.0;
+    p.torsion = std::numbers::pi * (std::pow(ro, 4) - std::pow(ri, 4)) / 2.0;
     // Cowper (1966), J. Appl. Mech. 33, Table 1, hollow circle, m = Ri/Ro.
     const double m2 = (ri / ro) * (ri / ro), q = (1.0 + m2) * (1.0 + m2);
     const double k = 6.0 * (1.0 + nu) * q / ((7.0 + 6.0 * nu) * q + (20.0 + 12.0 * nu) * m2);

@@ -2,6 +2,7 @@
 // section (APDL_MODELING §8.1), and the 4.2-era elastic beams BEAM4 (3-D) and BEAM3 (2-D, X-Y
 // plane) with their real constants (§8.2).
 #include <fmt/format.h>
+#include <numbers>
 
 #include <Eigen/Geometry>
 
@@ -17,8 +18,6 @@
 namespace impactfe {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 InputError element_error(const ElementRecord& record, const char* name, const std::string& msg) {
   return InputError(record.where, fmt::format("element {} ({}): {}", record.id, name, msg));
@@ -47,7 +46,7 @@ Eigen::Matrix3d beam_frame(const ElementRecord& record, const char* name, const 
       ey = zg.cross(ex).normalized();
     }
     ez = ex.cross(ey);
-    const double t = theta_deg * kPi / 180.0;
+    const double t = theta_deg * std::numbers::pi / 180.0;
     const Vec3 y0 = ey;
     ey = std::cos(t) * y0 + std::sin(t) * ez;
     ez = ex.cross(ey);

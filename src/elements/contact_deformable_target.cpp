@@ -17,12 +17,6 @@ namespace impactfe {
 
 namespace {
 
-/// How far (in barycentric coordinates, a fraction of the facet) a node may lie beyond a free
-/// edge of a deformable target and still touch it [A]: a contact node on the rim of a target
-/// that deforms with it (two blocks of the same width) sits on the edge to round-off and would
-/// otherwise chatter open and closed.
-constexpr double kEdgeTolerance = 0.01;
-
 /// The projection of x_s on the plane of the triangle x₁ x₂ x₃: barycentric N and the signed
 /// distance along the unit normal.
 struct Projection {
@@ -210,7 +204,7 @@ bool DeformableTargetPoint::locate(const Eigen::VectorXd& u) {
     const Candidate& c = candidates_[static_cast<std::size_t>(least)];
     const Projection p = project(xs, pos(c.local[0]), pos(c.local[1]), pos(c.local[2]));
     const auto a = static_cast<std::size_t>(std::min_element(p.N.begin(), p.N.end()) - p.N.begin());
-    if (c.edge[a] == 1 || (c.edge[a] == 0 && p.N[a] >= -kEdgeTolerance)) {
+    if (c.edge[a] == 1 || (c.edge[a] == 0 && p.N[a] >= -kTargetEdgeTolerance)) {
       // Between two candidates at a convex edge, or just beyond a free edge of the target (a
       // node on the rim of a target that deforms with it): the nearest facet, extended.
       current_ = least;

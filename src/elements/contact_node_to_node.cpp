@@ -17,7 +17,7 @@ namespace impactfe {
 
 namespace {
 
-constexpr const char* kFamily = "NodeToNodeContact";
+constexpr const char* kNodeToNodeFamily = "NodeToNodeContact";
 
 class NodeToNodeContact final : public ContactPoint {
  public:
@@ -25,14 +25,14 @@ class NodeToNodeContact final : public ContactPoint {
       : ContactPoint(id, node_i, node_j, data) {
     initialize();
   }
-  const char* family() const override { return kFamily; }
+  const char* family() const override { return kNodeToNodeFamily; }
 };
 
 std::unique_ptr<Element> make_node_to_node_contact(const ElementBuildContext& ctx,
                                                    const ElementRecord& record) {
   const Model& model = ctx.model;
   const ElementType& type = line_data::element_type(model, record);
-  const auto [ni, nj] = line_data::distinct_node_pair(model, record, kFamily);
+  const auto [ni, nj] = line_data::distinct_node_pair(model, record, kNodeToNodeFamily);
   const auto fail = [&](const std::string& what) {
     return InputError(record.where, fmt::format("element {} (CONTA178): {}", record.id, what));
   };
@@ -55,7 +55,7 @@ std::unique_ptr<Element> make_node_to_node_contact(const ElementBuildContext& ct
     throw fail(fmt::format("KEYOPT(12) = {} is not a contact behaviour (0..6)", behaviour));
   data.behaviour = static_cast<ContactBehaviour>(behaviour);
 
-  const RealSet& real = line_data::real_set(model, record, kFamily);
+  const RealSet& real = line_data::real_set(model, record, kNodeToNodeFamily);
   // Real constants: 1 FKN, 2 GAP, 3 START, 4 FKS, 5 REDFACT, 6-8 NX NY NZ, 9 TOLN [A].
   for (int i = 10; i <= static_cast<int>(real.values.size()); ++i)
     if (real.get(i) != 0.0)
@@ -105,7 +105,7 @@ std::unique_ptr<Element> make_node_to_node_contact(const ElementBuildContext& ct
 
 const ElementRegistration kConta178{{.name = "CONTA178",
                                      .number = 178,
-                                     .family = kFamily,
+                                     .family = kNodeToNodeFamily,
                                      .n_nodes = 2,
                                      .real_constants = RealConstantUse::Required,
                                      .vtk_cell = VtkCell::Line,

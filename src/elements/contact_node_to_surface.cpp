@@ -19,17 +19,17 @@ namespace impactfe {
 
 namespace {
 
-constexpr const char* kFamily = "NodeToSurfaceContact";
+constexpr const char* kNodeToSurfaceFamily = "NodeToSurfaceContact";
 
 std::unique_ptr<Element> make_node_to_surface_contact(const ElementBuildContext& ctx,
                                                       const ElementRecord& record) {
-  const Node& node = line_data::node(ctx.model, record, 0, 1, kFamily);
-  return target_point(ctx, record, node, kFamily, "CONTA175", 1.0, 0.0);
+  const Node& node = line_data::node(ctx.model, record, 0, 1, kNodeToSurfaceFamily);
+  return target_point(ctx, record, node, kNodeToSurfaceFamily, "CONTA175", 1.0, 0.0);
 }
 
 const ElementRegistration kConta175{{.name = "CONTA175",
                                      .number = 175,
-                                     .family = kFamily,
+                                     .family = kNodeToSurfaceFamily,
                                      .n_nodes = 1,
                                      .real_constants = RealConstantUse::Required,
                                      .vtk_cell = VtkCell::Vertex,

@@ -76,7 +76,7 @@ class SegmentPoint final : public ContactPoint {
  protected:
   /// The candidate the point projects into (the current one while it does, for hysteresis),
   /// else the nearest one extended across an edge shared with another candidate or less than
-  /// kEdgeTolerance beyond a free edge; false (open) when none. A point that leaves the
+  /// kTargetEdgeTolerance beyond a free edge; false (open) when none. A point that leaves the
   /// candidates across an edge shared with a non-candidate facet is an ElementSolutionError
   /// (enlarge PINB), as for a contact node.
   bool locate(const Eigen::VectorXd& u) override;

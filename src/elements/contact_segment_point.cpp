@@ -16,11 +16,6 @@ namespace impactfe {
 
 namespace {
 
-/// How far (a fraction of the facet) an integration point may lie beyond the last candidate
-/// facet and still touch it, as for a contact node (contact_deformable_target.cpp): a point on
-/// the rim of a target that deforms with it sits on the edge to round-off.
-constexpr double kEdgeTolerance = 0.01;
-
 /// The closest point of x_s on the facet through x (m nodes): Newton on the projection condition
 /// F_α = (x_s − x(ξ))·a_α = 0 with the Jacobian A_αβ = a_α·a_β − r·a_α,β (Wriggers §4.1,
 /// eq. 4.7; a bilinear facet has a_1,1 = a_2,2 = 0). `ok` false when Newton does not converge.
@@ -181,7 +176,7 @@ bool SegmentPoint::locate(const Eigen::VectorXd& u) {
   const int m = static_cast<int>(c.local.size());
   const FacetProjection p = try_facet(least);
   const int edge = c.edge[static_cast<std::size_t>(facet_exit_edge(m, p.xi, p.eta))];
-  if (edge == 1 || (edge == 0 && least_out <= kEdgeTolerance)) {
+  if (edge == 1 || (edge == 0 && least_out <= kTargetEdgeTolerance)) {
     // Between two candidates at a convex edge, or just beyond a free edge of the target: the
     // nearest facet, extended.
     current_ = least;

@@ -31,7 +31,7 @@ namespace impactfe {
 
 namespace {
 
-constexpr const char* kFamily = "SurfaceContact";
+constexpr const char* kSurfaceContactFamily = "SurfaceContact";
 
 /// Distinct corner nodes (the first four positions; E repeats the last node of a short list).
 std::vector<int> corners(const ElementRecord& record) {
@@ -85,7 +85,7 @@ class SurfaceContact final : public Element, public ConnectivityUpdate, public P
       maps_.push_back(std::move(map));
     }
   }
-  const char* family() const override { return kFamily; }
+  const char* family() const override { return kSurfaceContactFamily; }
   const std::vector<DofKey>& dofs() const override { return dofs_; }
   bool is_nonlinear(const ElementContext&) const override { return true; }
 
@@ -212,7 +212,7 @@ std::unique_ptr<Element> make_surface_contact(const ElementBuildContext& ctx,
     return InputError(record.where, fmt::format("element {} (CONTA174): {}", record.id, what));
   };
   for (std::size_t k = 0; k < record.nodes.size(); ++k)
-    line_data::node(model, record, k, record.nodes.size(), kFamily);
+    line_data::node(model, record, k, record.nodes.size(), kSurfaceContactFamily);
   const std::vector<int> nodes = corners(record);
   for (std::size_t k = 4; k < record.nodes.size(); ++k)
     if (std::find(nodes.begin(), nodes.end(), record.nodes[k]) == nodes.end())
@@ -236,20 +236,20 @@ std::unique_ptr<Element> make_surface_contact(const ElementBuildContext& ctx,
       total += face_area(model, c) / static_cast<double>(c.size());
     }
     const Node& node = model.nodes.at(n);
-    points.push_back(target_point(ctx, record, node, kFamily, "CONTA174",
+    points.push_back(target_point(ctx, record, node, kSurfaceContactFamily, "CONTA174",
                                   tributary / std::max(total, tributary), tributary));
   }
   // KEYOPT(4) = 0 (MAPDL's default, Gauss-point detection) and 3 (surface-projection based):
   // segment-to-segment integration over the face (elements/contact_segment.h); 1 and 2: nodal.
   const int detection = line_data::element_type(model, record).key(4);
   if (detection == 0 || detection == 3)
-    points = segment_points(ctx, record, nodes, points, kFamily);
+    points = segment_points(ctx, record, nodes, points, kSurfaceContactFamily);
   return std::make_unique<SurfaceContact>(record.id, std::move(points));
 }
 
 const ElementRegistration kConta174{{.name = "CONTA174",
                                      .number = 174,
-                                     .family = kFamily,
+                                     .family = kSurfaceContactFamily,
                                      .n_nodes = 8,
                                      .min_nodes = 3,
                                      .real_constants = RealConstantUse::Required,

@@ -30,7 +30,7 @@ namespace impactfe {
 
 namespace {
 
-const std::string kFamily = "Shell163";
+const std::string kShell163Family = "Shell163";
 // Local-frame stresses at the top and bottom integration points, the mean transverse shears,
 // the resultants per unit length (N membrane, M bending), the largest SEQV and EPEQ over the
 // points.
@@ -142,7 +142,7 @@ class Shell163Set final : public ExplicitElementSet {
  public:
   Shell163Set(const ExplicitBuildContext& ctx, const std::vector<const ElementRecord*>& records);
 
-  const std::string& family() const override { return kFamily; }
+  const std::string& family() const override { return kShell163Family; }
   std::size_t size() const override { return ids_.size(); }
   int element_id(std::size_t k) const override { return ids_[k]; }
   int nodes_per_element() const override { return 4; }
@@ -524,7 +524,7 @@ std::unique_ptr<Element> refuse_implicit(const ElementBuildContext&, const Eleme
 const ElementRegistration kShell163{
     {.name = "SHELL163",
      .number = 163,
-     .family = kFamily,
+     .family = kShell163Family,
      .n_nodes = 4,
      .min_nodes = 3,
      .real_constants = RealConstantUse::Required,

@@ -13,6 +13,7 @@
 #include "core/errors.h"
 #include "elements/element_registry.h"
 #include "elements/quadratic_shapes.h"
+#include "elements/shell_kernel.h"
 
 namespace impactfe {
 
@@ -35,10 +36,6 @@ Mat3 skew(const Vec3& v) {
   Mat3 s;
   s << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
   return s;
-}
-
-double von_mises(double sx, double sy, double sxy) {
-  return std::sqrt(std::max(0.0, sx * sx - sx * sy + sy * sy + 3.0 * sxy * sxy));
 }
 
 const std::vector<std::string> kShell281Results = {
@@ -557,9 +554,9 @@ ElementResultValues Shell281::values_at(double xi, double eta, const Eigen::Vect
           sb(0),
           sb(1),
           sb(2),
-          von_mises(st(0), st(1), st(2)),
-          von_mises(sm(0), sm(1), sm(2)),
-          von_mises(sb(0), sb(1), sb(2)),
+          shell::plane_stress_von_mises(st(0), st(1), st(2)),
+          shell::plane_stress_von_mises(sm(0), sm(1), sm(2)),
+          shell::plane_stress_von_mises(sb(0), sb(1), sb(2)),
           Q(0),
           Q(1),
           et(0),

@@ -36,10 +36,6 @@ struct CorotationalState {
   std::array<Mat3, 4> T, Ji;
 };
 
-double von_mises(double sx, double sy, double sxy) {
-  return std::sqrt(std::max(0.0, sx * sx - sx * sy + sy * sy + 3.0 * sxy * sxy));
-}
-
 }  // namespace
 
 Shell4::Shell4(int id, const Shell4Data& data, const SourceLocation& where)
@@ -598,8 +594,8 @@ void Shell4::results(const ElementContext& ctx, const Eigen::VectorXd& u, const 
          bot(0),
          bot(1),
          bot(2),
-         von_mises(top(0), top(1), top(2)),
-         von_mises(bot(0), bot(1), bot(2)),
+         shell::plane_stress_von_mises(top(0), top(1), top(2)),
+         shell::plane_stress_von_mises(bot(0), bot(1), bot(2)),
          epeq,
          srat,
          plwk,

@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -43,6 +44,10 @@ void dk_shape(int n, double xi, double eta, double* val, double* dxi, double* de
 }
 
 }  // namespace
+
+double plane_stress_von_mises(double sx, double sy, double sxy) {
+  return std::sqrt(std::max(0.0, sx * sx - sx * sy + sy * sy + 3.0 * sxy * sxy));
+}
 
 Eigen::Matrix3d plane_stress(double nu, double scale) {
   Eigen::Matrix3d D;

@@ -164,6 +164,9 @@ class FlatShellKernel {
   Eigen::MatrixXd Bs0_;  // centroidal transverse shear strain of (w, θx, θy), 2 × 3n (Mindlin)
 };
 
+/// von Mises equivalent of a plane stress state (σx, σy, τxy; σz = 0).
+double plane_stress_von_mises(double sx, double sy, double sxy);
+
 /// Plane-stress (or plate) constitutive matrix [[1,ν,0],[ν,1,0],[0,0,(1−ν)/2]]·scale.
 Eigen::Matrix3d plane_stress(double nu, double scale);
 

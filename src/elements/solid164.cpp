@@ -22,7 +22,7 @@ namespace impactfe {
 
 namespace {
 
-const std::string kFamily = "Solid164";
+const std::string kSolid164Family = "Solid164";
 const std::vector<std::string> kResults = {"SX", "SY", "SZ", "SXY", "SYZ", "SXZ", "SEQV", "EPEQ"};
 
 /// The hourglass base vectors ηζ, ξζ, ξη, ξηζ at the corners I..P (FB eq. (50)).
@@ -126,7 +126,7 @@ class Solid164Set final : public ExplicitElementSet {
  public:
   Solid164Set(const ExplicitBuildContext& ctx, const std::vector<const ElementRecord*>& records);
 
-  const std::string& family() const override { return kFamily; }
+  const std::string& family() const override { return kSolid164Family; }
   std::size_t size() const override { return ids_.size(); }
   int element_id(std::size_t k) const override { return ids_[k]; }
   int nodes_per_element() const override { return 8; }
@@ -316,7 +316,7 @@ std::unique_ptr<Element> refuse_implicit(const ElementBuildContext&, const Eleme
 const ElementRegistration kSolid164{
     {.name = "SOLID164",
      .number = 164,
-     .family = kFamily,
+     .family = kSolid164Family,
      .n_nodes = 8,
      .needs_material = true,
      .vtk_cell = VtkCell::Hexahedron,

@@ -174,7 +174,7 @@ int TargetSurface::current_grid_builds() const {
 
 namespace {
 
-constexpr const char* kFamily = "RigidTarget";
+constexpr const char* kRigidTargetFamily = "RigidTarget";
 
 /// Distinct nodes of a record in order (E repeats the last node of a short node list).
 std::vector<int> distinct_nodes(const ElementRecord& record) {
@@ -202,7 +202,7 @@ std::shared_ptr<const TargetSurface> contact_target(const ElementBuildContext& c
   for (const auto& [id, rec] : model.elements) {
     if (rec.real != record.real || !is_target(model, rec)) continue;
     for (std::size_t k = 0; k < rec.nodes.size(); ++k)  // every node defined (InputError)
-      line_data::node(model, rec, k, rec.nodes.size(), kFamily);
+      line_data::node(model, rec, k, rec.nodes.size(), kRigidTargetFamily);
     const std::vector<int> nodes = distinct_nodes(rec);
     if (nodes.size() == 1) {
       if (pilot != 0 && pilot != nodes[0])
@@ -415,7 +415,7 @@ class RigidTargetElement final : public Element {
     for (int n : nodes)
       for (Dof d : {Dof::UX, Dof::UY, Dof::UZ}) dofs_.push_back({n, d});
   }
-  const char* family() const override { return kFamily; }
+  const char* family() const override { return kRigidTargetFamily; }
   const std::vector<DofKey>& dofs() const override { return dofs_; }
   bool is_nonlinear(const ElementContext&) const override { return false; }
   void tangent(const ElementContext&, const Eigen::VectorXd&, Eigen::MatrixXd& K,
@@ -451,13 +451,14 @@ std::unique_ptr<Element> make_rigid_target(const ElementBuildContext& ctx,
                                    "(KEYOPT(2) 0 or 1; the others 0)",
                                    record.id, k, type.key(k)));
   const std::vector<int> nodes = distinct_nodes(record);
-  for (std::size_t k = 0; k < nodes.size(); ++k) line_data::node(model, record, k, 1, kFamily);
+  for (std::size_t k = 0; k < nodes.size(); ++k)
+    line_data::node(model, record, k, 1, kRigidTargetFamily);
   if (nodes.size() == 2)
     throw InputError(record.where,
                      fmt::format("element {} (TARGE170): two distinct nodes: give a pilot (one "
                                  "node), a triangle (three) or a quadrilateral (four)",
                                  record.id));
-  line_data::real_set(model, record, kFamily);
+  line_data::real_set(model, record, kRigidTargetFamily);
   // Builds the target once to report a bad target at its first element.
   contact_target(ctx, record);
   return std::make_unique<RigidTargetElement>(record.id, nodes);
@@ -465,7 +466,7 @@ std::unique_ptr<Element> make_rigid_target(const ElementBuildContext& ctx,
 
 const ElementRegistration kTarge170{{.name = "TARGE170",
                                      .number = 170,
-                                     .family = kFamily,
+                                     .family = kRigidTargetFamily,
                                      .n_nodes = 4,
                                      .min_nodes = 1,
                                      .real_constants = RealConstantUse::Required,

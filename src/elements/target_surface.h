@@ -20,6 +20,12 @@
 
 namespace impactfe {
 
+/// How far (a fraction of the facet, in its parametric or barycentric coordinates) a contact
+/// node or integration point may lie beyond a free edge of a target and still touch it [A]: a
+/// point on the rim of a target that deforms with it (two blocks of the same width) sits on the
+/// edge to round-off and would otherwise chatter open and closed.
+inline constexpr double kTargetEdgeTolerance = 0.01;
+
 class TargetSurface {
  public:
   struct Triangle {

@@ -10,6 +10,7 @@
 
 #include "core/interruption.h"
 #include "core/log.h"
+#include "core/numbers.h"
 #include "elements/element_registry.h"
 #include "explicit/central_difference.h"
 #include "explicit/explicit_contact.h"
@@ -18,8 +19,6 @@
 namespace impactfe {
 
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 /// CPU time of this thread (POSIX): the cost per element-cycle measured by it does not grow
 /// when other processes share the cores, as wall time does.

@@ -7,6 +7,7 @@
 
 #include "core/errors.h"
 #include "core/thread_pool.h"
+#include "linalg/simd_pair.h"
 
 namespace impactfe {
 
@@ -250,16 +251,11 @@ void multiply_any_symmetric(const RowGroup& g, const int* column, const double* 
     for (int r = 0; r < n; ++r) y[m][g.first_row + r] += sum[m][r];
 }
 
-/// Two doubles in one register (SSE2 / NEON): GCC leaves the transposed product's reduction
-/// over a group's rows scalar; with the rows as pairs it is three multiplies and a horizontal
-/// add for a node's six DOFs (the 155 522-DOF shell dome: ~12 ms of scalar code per step).
-typedef double Pair __attribute__((vector_size(16)));
-
-inline Pair load_pair(const double* p) {
-  Pair v;
-  std::memcpy(&v, p, sizeof v);
-  return v;
-}
+/// GCC leaves the transposed product's reduction over a group's rows scalar; with the rows as
+/// pairs it is three multiplies and a horizontal add for a node's six DOFs (the 155 522-DOF
+/// shell dome: ~12 ms of scalar code per step).
+using simd::load_pair;
+using simd::Pair;
 
 /// multiply_any_symmetric for a fixed group of G rows: G / 2 row pairs and a remainder row.
 template <int N, int G>

@@ -7,20 +7,14 @@
 
 #include "core/errors.h"
 #include "core/thread_pool.h"
+#include "linalg/simd_pair.h"
 
 namespace impactfe {
 
 namespace {
 
-/// Two doubles in one register (SSE2 on x86-64, NEON elsewhere): the dot products of the back
-/// substitution are reductions, which the compiler does not vectorize without reassociating.
-typedef double Pair __attribute__((vector_size(16)));
-
-inline Pair load_pair(const double* p) {
-  Pair v;
-  std::memcpy(&v, p, sizeof v);
-  return v;
-}
+using simd::load_pair;
+using simd::Pair;
 
 /// Columns of L per pass over a supernode's rows. One column at a time reads the supernode's
 /// values as one sequential stream (its columns are contiguous), which the hardware prefetcher

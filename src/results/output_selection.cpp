@@ -5,11 +5,11 @@
 #include <algorithm>
 #include <limits>
 
+#include "core/numbers.h"
+
 namespace impactfe {
 
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 /// Does a specification write at substep k of n? The last substep of a load step is written
 /// for every frequency but NONE (MAPDL: "every n-th and the last"); k = 0 (initial state)

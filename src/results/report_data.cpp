@@ -16,6 +16,7 @@
 #include <set>
 
 #include "core/errors.h"
+#include "core/numbers.h"
 #include "core/text.h"
 #include "results/report.h"
 #include "results/report_contact.h"
@@ -28,7 +29,6 @@ namespace {
 
 using json = nlohmann::ordered_json;
 using Series = std::vector<std::pair<double, double>>;
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr const char* kAxes[3] = {"X", "Y", "Z"};
 /// Values kept for the 3-D view (frames x (3 nodes + fields x elements)): ~2.5 MB of base64.
 constexpr std::size_t kFrameValueBudget = 480000;

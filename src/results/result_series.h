@@ -9,12 +9,12 @@
 #include <string>
 #include <vector>
 
+#include "core/numbers.h"
 #include "io/h5_util.h"
 #include "results/block_compressor.h"
 
 namespace impactfe::result_series {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 /// Time points per block (main chunk length along time), at most. An uncompressed main chunk
 /// stores the unwritten rows of its last block too (as NaN): 64 bounds that waste, and a
 /// history of n points still reads n / 64 chunks.

@@ -4,14 +4,13 @@
 #include <cmath>
 #include <limits>
 
+#include "core/numbers.h"
 #include "core/text.h"
 #include "elements/element_registry.h"
 
 namespace impactfe {
 
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 void index_elements(SetData& d) {
   d.element_rows.clear();

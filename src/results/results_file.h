@@ -13,6 +13,10 @@
 
 namespace impactfe {
 
+/// The layout version of <jobname>.h5 that this program writes (attribute format_version) and
+/// the newest it reads.
+inline constexpr int kResultsFormatVersion = 2;
+
 /// Element results of one family at one time point: one row per element.
 struct ElementResultTable {
   std::vector<int> element_ids;         // fixed for an analysis

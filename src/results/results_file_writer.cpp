@@ -42,14 +42,12 @@ using result_series::BlockSeries;
 using result_series::create_direct;
 using result_series::create_series;
 using result_series::DirectSeries;
-using result_series::kNaN;
 using result_series::set_extent;
 using result_series::write_direct;
 using result_series::write_rows;
 
 namespace {
 
-constexpr int kFormatVersion = 2;
 /// A sync (staging rows, then `time`, each flushed) after this many points or seconds: what a
 /// killed run can lose at most. A sync costs about a millisecond whatever it writes (two
 /// flushes of the file's metadata and chunk cache): syncing every 32 points, a fast run spent a
@@ -196,7 +194,7 @@ void ResultsFileWriter::Impl::compact() {
       Handle out(check(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, fcpl, fapl), "create " + tmp));
       constexpr auto kFixed = StringLayout::Fixed;
       h5::write_attribute(out, "format", std::string("impactfe-results"), kFixed);
-      h5::write_integer_attribute(out, "format_version", kFormatVersion);
+      h5::write_integer_attribute(out, "format_version", kResultsFormatVersion);
       h5::write_attribute(out, "title", title, kFixed);
       h5::write_attribute(out, "jobname", jobname, kFixed);
       if (!units.empty()) h5::write_attribute(out, "units", units, kFixed);
@@ -228,7 +226,7 @@ void ResultsFileWriter::Impl::abandon() {
 void ResultsFileWriter::Impl::write_model(const ResultsModelSection& model) {
   constexpr auto kFixed = StringLayout::Fixed;
   h5::write_attribute(file, "format", std::string("impactfe-results"), kFixed);
-  h5::write_integer_attribute(file, "format_version", kFormatVersion);
+  h5::write_integer_attribute(file, "format_version", kResultsFormatVersion);
   title = model.title;
   jobname = model.jobname;
   units = model.units;

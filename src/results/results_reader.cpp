@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "core/errors.h"
+#include "core/numbers.h"
 #include "core/text.h"
 #include "io/h5_util.h"
 #include "results/live_writers.h"
@@ -21,8 +22,6 @@ using h5::check_status;
 using h5::Handle;
 
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 ResultsKind parse_kind(const std::string& name, const std::string& path) {
   for (auto k : {ResultsKind::Static, ResultsKind::Modal, ResultsKind::Transient,
@@ -72,8 +71,6 @@ struct Analysis {
   /// index does not find is a corrupted index entry, not values never given.
   bool all_chunks_written = false;
 };
-
-constexpr int kFormatVersion = 2;
 
 using Series = std::vector<std::pair<double, double>>;
 
@@ -271,11 +268,11 @@ void ResultsReader::Impl::load() {
     throw InputError(fmt::format("'{}' is not an impactfe results file", path));
   const double version =
       H5Aexists(file, "format_version") > 0 ? h5::read_double_attribute(file, "format_version") : 1;
-  if (version > kFormatVersion)
+  if (version > kResultsFormatVersion)
     throw InputError(fmt::format(
         "results file '{}' has format version {}, written by a newer impactfe; this one reads "
         "versions 1 to {}",
-        path, version, kFormatVersion));
+        path, version, kResultsFormatVersion));
   load_model();
   for (int k = 1;; ++k) {
     std::string group = fmt::format("analysis_{}", k);

@@ -5,13 +5,12 @@
 #include <limits>
 #include <map>
 
+#include "core/numbers.h"
 #include "elements/element_registry.h"
 
 namespace impactfe {
 
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 /// VTK cell type of an element: the registered cell of its type (a quadrilateral with K = L is a
 /// triangle); a poly-vertex over its nodes for a type this program does not know. A
