@@ -1,0 +1,206 @@
+// Elastic-plastic SOLID186 / SOLID187 (src/elements/solid_quadratic.cpp): every stiffness point of
+// a curved element under a homogeneous strain history equals the 3-D material point, the element
+// tangent against finite differences, the restart state round trip, a uniaxial stretch through a
+// deck against the bilinear closed form, and a patch of curved-edge bricks in the plastic range.
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <functional>
+#include <memory>
+#include <sstream>
+
+#include "../support/run_deck.h"
+#include "elements/solid_quadratic.h"
+#include "materials/j2_plasticity.h"
+
+namespace impactfe {
+namespace {
+
+constexpr double kE = 200e3, kNu = 0.3, kSy = 250.0, kEt = 20e3;
+
+/// A curved, non-affine brick and tetrahedron (as test_solid_quadratic.cpp).
+Vec3 distorted_brick(const Vec3& xi) {
+  return Vec3(1.0 * xi(0) + 0.1 * xi(1) * xi(2) + 0.05 * (1 - xi(1) * xi(1)),
+              0.8 * xi(1) + 0.07 * xi(0) * xi(1) + 0.04 * (1 - xi(0) * xi(0)),
+              0.6 * xi(2) + 0.05 * xi(0) + 0.03 * xi(0) * xi(1) * xi(2));
+}
+
+Vec3 distorted_tet(const Vec3& xi) {
+  return Vec3(2.0 * xi(0) + 0.3 * xi(1) + 0.05 * xi(0) * xi(1), 1.5 * xi(1) + 0.2 * xi(2),
+              1.2 * xi(2) + 0.1 * xi(0) + 0.04 * xi(1) * xi(2));
+}
+
+struct Case {
+  QuadraticShape shape;
+  int order;  // 2 or 3 (brick), 0: the tetrahedron's 4-point rule
+};
+
+const std::vector<Case> kCases = {
+    {QuadraticShape::Hex20, 2}, {QuadraticShape::Hex20, 3}, {QuadraticShape::Tet10, 0}};
+
+struct Single {
+  std::unique_ptr<QuadraticSolid> element;
+  std::vector<Vec3> x;
+};
+
+Single single(const Case& c, const J2Plasticity& law) {
+  Single s;
+  std::vector<int> ids;
+  for (const Eigen::Vector3d& xi : quadratic_shape_nodes_xi(c.shape)) {
+    s.x.push_back(c.shape == QuadraticShape::Hex20 ? distorted_brick(xi) : distorted_tet(xi));
+    ids.push_back(static_cast<int>(ids.size()) + 1);
+  }
+  s.element =
+      std::make_unique<QuadraticSolid>(1, c.shape, ids, s.x, IsotropicElasticity{kE, kNu, 0.0},
+                                       c.order > 0 ? gauss_cube(c.order) : tetrahedron_4_point(),
+                                       std::vector<std::vector<int>>{}, SourceLocation{}, law);
+  return s;
+}
+
+Eigen::Matrix3d gradient(double scale) {
+  Eigen::Matrix3d h;
+  h << 0.004, 0.001, -0.0005, 0.0, -0.0015, 0.002, 0.0007, 0.0, 0.001;
+  return scale * h;
+}
+
+Eigen::VectorXd nodal(const std::vector<Vec3>& x, const Eigen::Matrix3d& h) {
+  Eigen::VectorXd u(3 * static_cast<int>(x.size()));
+  for (std::size_t a = 0; a < x.size(); ++a) u.segment<3>(3 * a) = h * x[a];
+  return u;
+}
+
+Vector6d voigt(const Eigen::Matrix3d& h) {
+  Vector6d e;
+  e << h(0, 0), h(1, 1), h(2, 2), h(0, 1) + h(1, 0), h(1, 2) + h(2, 1), h(0, 2) + h(2, 0);
+  return e;
+}
+
+TEST(PlasticQuadraticSolids, HomogeneousStrainGivesTheMaterialPointAtEveryPoint) {
+  for (bool kinematic : {false, true}) {
+    const auto law = J2Plasticity::bilinear(kE, kNu, kSy, kEt, kinematic);
+    for (const Case& c : kCases) {
+      Single s = single(c, law);
+      PlasticState point;
+      for (double scale : {1.0, 2.0, 1.7, -1.0}) {
+        const Eigen::Matrix3d h = gradient(scale);
+        s.element->commit_history({}, nodal(s.x, h));
+        PlasticState next;
+        law.solid(point, voigt(h), &next);
+        point = next;
+        for (int p = 0; p < s.element->stiffness_points(); ++p) {
+          const PlasticState& st = s.element->point_state(p);
+          EXPECT_LT((st.plastic_strain - point.plastic_strain).norm(),
+                    1e-9 * point.plastic_strain.norm())
+              << "order " << c.order << " point " << p;
+          EXPECT_LT((st.stress - point.stress).norm(), 1e-8 * kSy);
+        }
+      }
+      ASSERT_GT(point.alpha, 0.0);
+      ElementResultValues r;
+      s.element->results({}, nodal(s.x, gradient(-1.0)), {}, r);
+      ASSERT_EQ(r.size(), 21u);
+      for (int k = 0; k < 6; ++k) {
+        EXPECT_NEAR(r[static_cast<std::size_t>(k)], point.stress(k), 1e-8 * kSy);
+        EXPECT_NEAR(r[static_cast<std::size_t>(11 + k)], point.plastic_strain(k),
+                    1e-9 * point.alpha);
+      }
+      EXPECT_NEAR(r[17], point.alpha, 1e-9 * point.alpha);
+      // Plastic work: the point's work per volume over the element volume (the stiffness rule
+      // integrates det J of these curved shapes to within 1e-3 of the mass rule's volume).
+      EXPECT_NEAR(s.element->plastic_work(), *s.element->volume() * point.plastic_work,
+                  1e-3 * s.element->plastic_work());
+    }
+  }
+}
+
+TEST(PlasticQuadraticSolids, ElementTangentMatchesFiniteDifferences) {
+  for (bool kinematic : {false, true}) {
+    const auto law = J2Plasticity::bilinear(kE, kNu, kSy, kEt, kinematic);
+    for (const Case& c : kCases) {
+      Single s = single(c, law);
+      s.element->commit_history({}, nodal(s.x, gradient(1.0)));
+      Eigen::VectorXd u = nodal(s.x, gradient(1.6));
+      for (std::size_t a = 0; a < s.x.size(); ++a)
+        u(3 * static_cast<int>(a)) += 0.002 * s.x[a].y() * s.x[a].z();
+      Eigen::MatrixXd k, kp, km;
+      Eigen::VectorXd f, fp, fm;
+      s.element->tangent({}, u, k, f);
+      const int n = static_cast<int>(u.size());
+      Eigen::MatrixXd fd(n, n);
+      const double step = 1e-8;
+      for (int j = 0; j < n; ++j) {
+        Eigen::VectorXd up = u, um = u;
+        up(j) += step;
+        um(j) -= step;
+        s.element->tangent({}, up, kp, fp);
+        s.element->tangent({}, um, km, fm);
+        fd.col(j) = (fp - fm) / (2.0 * step);
+      }
+      EXPECT_LT((k - fd).norm(), 1e-5 * k.norm()) << "order " << c.order;
+      EXPECT_GT((k - s.element->small_strain_stiffness()).norm(), 1e-3 * k.norm());
+    }
+  }
+}
+
+TEST(PlasticQuadraticSolids, RestartStateRoundTrip) {
+  const auto law = J2Plasticity::bilinear(kE, kNu, kSy, kEt, true);
+  for (const Case& c : kCases) {
+    Single a = single(c, law), b = single(c, law);
+    a.element->commit_history({}, nodal(a.x, gradient(2.0)));
+    const std::vector<double> saved = a.element->history_state();
+    ASSERT_FALSE(saved.empty());
+    b.element->restore_history_state(saved);
+    EXPECT_EQ(b.element->history_state(), saved);
+    const Eigen::VectorXd u = nodal(a.x, gradient(-0.5));
+    Eigen::MatrixXd ka, kb;
+    Eigen::VectorXd fa, fb;
+    a.element->tangent({}, u, ka, fa);
+    b.element->tangent({}, u, kb, fb);
+    EXPECT_EQ(fa, fb);
+    EXPECT_EQ(ka, kb);
+    EXPECT_ANY_THROW(b.element->restore_history_state({1.0}));
+  }
+}
+
+TEST(PlasticQuadraticSolids, UniaxialStretchOfABrickMatchesTheBilinearClosedForm) {
+  // A unit SOLID186 cube (both integration rules) stretched along X by its face X = 1, the
+  // lateral faces free: uniaxial stress, σ = σy + Et (ε − σy/E) beyond yield, unloading with E.
+  const double ey = kSy / kE;
+  const std::vector<double> strains = {0.5 * ey, 3.0 * ey, 2.5 * ey};
+  const double s2 = kSy + kEt * (3.0 * ey - ey);
+  const std::vector<double> expected = {0.5 * kSy, s2, s2 - kE * 0.5 * ey};
+  for (int keyopt2 : {0, 1}) {
+    std::ostringstream d;
+    d << "/PREP7\nET,1,SOLID186,," << keyopt2 << "\nMP,EX,1," << kE << "\nMP,PRXY,1," << kNu
+      << "\nTB,BISO,1\nTBDATA,1," << kSy << "," << kEt << "\n";
+    // The 20 nodes of the cube at their natural positions mapped to [0, 1]³.
+    const auto xi = quadratic_shape_nodes_xi(QuadraticShape::Hex20);
+    for (std::size_t a = 0; a < xi.size(); ++a) {
+      const Vec3 p = 0.5 * (xi[a] + Vec3::Ones());
+      d << fmt::format("N,{},{},{},{}\n", a + 1, p.x(), p.y(), p.z());
+    }
+    d << "E";
+    for (std::size_t a = 0; a < 20; ++a) d << "," << a + 1;
+    d << "\nFINISH\n/SOLU\nANTYPE,STATIC\nCNVTOL,F,,1E-10\n";
+    d << "NSEL,S,LOC,X,0\nD,ALL,UX,0\nNSEL,S,LOC,Y,0\nD,ALL,UY,0\nNSEL,S,LOC,Z,0\nD,ALL,UZ,0\n";
+    for (std::size_t s = 0; s < strains.size(); ++s)
+      d << "TIME," << s + 1 << "\nNSEL,S,LOC,X,1\nD,ALL,UX," << strains[s] << "\nNSEL,ALL\nSOLVE\n";
+    d << "FINISH\n";
+    const auto run = testing::run_deck_text(fmt::format("solid186_stretch_{}", keyopt2), d.str());
+    for (std::size_t s = 0; s < strains.size(); ++s) {
+      const double t = s + 1.0;
+      EXPECT_NEAR(testing::value_stored_at(run.reader->element_series(1, "SX"), t), expected[s],
+                  1e-8 * kSy)
+          << "KEYOPT(2) " << keyopt2 << " step " << s + 1;
+      EXPECT_NEAR(testing::value_stored_at(run.reader->element_series(1, "SY"), t), 0.0,
+                  1e-8 * kSy);
+      const double eppl = s == 0 ? 0.0 : 3.0 * ey - s2 / kE;
+      EXPECT_NEAR(testing::value_stored_at(run.reader->element_series(1, "EPPLX"), t), eppl, 1e-10);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace impactfe
