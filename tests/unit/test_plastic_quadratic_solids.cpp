@@ -1,13 +1,14 @@
 // Elastic-plastic SOLID186 / SOLID187 (src/elements/solid_quadratic.cpp): every stiffness point of
 // a curved element under a homogeneous strain history equals the 3-D material point, the element
 // tangent against finite differences, the restart state round trip, a uniaxial stretch through a
-// deck against the bilinear closed form, and a patch of curved-edge bricks in the plastic range.
+// deck against the bilinear closed form, and a distorted patch of bricks in the plastic range.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
 #include <cmath>
 #include <functional>
+#include <map>
 #include <memory>
 #include <sstream>
 
@@ -198,6 +199,101 @@ TEST(PlasticQuadraticSolids, UniaxialStretchOfABrickMatchesTheBilinearClosedForm
                   1e-8 * kSy);
       const double eppl = s == 0 ? 0.0 : 3.0 * ey - s2 / kE;
       EXPECT_NEAR(testing::value_stored_at(run.reader->element_series(1, "EPPLX"), t), eppl, 1e-10);
+    }
+  }
+}
+
+TEST(PlasticQuadraticSolids, DistortedPatchOfBricksReproducesTheHomogeneousPlasticState) {
+  // 2x2x2 SOLID186 on the unit cube (both rules) with the centre corner node moved off centre
+  // and every midside node halfway along its (straight) edge; the boundary nodes follow
+  // u = H x, the inner nodes are free. Steps H, 2H, −H (BKIN): the inner nodes land on u = H x
+  // and every element carries the material point's plastic strain.
+  const auto law = J2Plasticity::bilinear(kE, kNu, kSy, kEt, true);
+  const auto xi = quadratic_shape_nodes_xi(QuadraticShape::Hex20);
+  // Nodes on the 5x5x5 grid of quarter points where at most one index is odd.
+  auto id = [](int i, int j, int k) { return 1 + i + 5 * j + 25 * k; };
+  auto corner = [](int i, int j, int k) {
+    Vec3 p(0.25 * i, 0.25 * j, 0.25 * k);
+    if (i == 2 && j == 2 && k == 2) p += Vec3(0.08, -0.06, 0.05);
+    return p;
+  };
+  std::map<int, Vec3> x;
+  for (int k = 0; k <= 4; ++k)
+    for (int j = 0; j <= 4; ++j)
+      for (int i = 0; i <= 4; ++i) {
+        const int odd = i % 2 + j % 2 + k % 2;
+        if (odd > 1) continue;
+        if (odd == 0) {
+          x[id(i, j, k)] = corner(i, j, k);
+        } else {  // halfway between the two corners of its edge
+          const int di = i % 2, dj = j % 2, dk = k % 2;
+          x[id(i, j, k)] = 0.5 * (corner(i - di, j - dj, k - dk) + corner(i + di, j + dj, k + dk));
+        }
+      }
+  auto boundary = [&](int node) {
+    const int i = (node - 1) % 5, j = ((node - 1) / 5) % 5, k = (node - 1) / 25;
+    return i == 0 || i == 4 || j == 0 || j == 4 || k == 0 || k == 4;
+  };
+  for (int keyopt2 : {0, 1}) {
+    std::ostringstream d;
+    d << "/PREP7\nET,1,SOLID186,," << keyopt2 << "\nMP,EX,1," << kE << "\nMP,PRXY,1," << kNu
+      << "\nTB,BKIN,1\nTBDATA,1," << kSy << "," << kEt << "\n";
+    for (const auto& [node, p] : x)
+      d << fmt::format("N,{},{:.15g},{:.15g},{:.15g}\n", node, p.x(), p.y(), p.z());
+    for (int ek = 0; ek < 2; ++ek)
+      for (int ej = 0; ej < 2; ++ej)
+        for (int ei = 0; ei < 2; ++ei) {
+          // Node a of the element at the grid point of its natural coordinates.
+          std::vector<int> nodes;
+          for (const Eigen::Vector3d& c : xi)
+            nodes.push_back(id(2 * ei + 1 + static_cast<int>(c(0)),
+                               2 * ej + 1 + static_cast<int>(c(1)),
+                               2 * ek + 1 + static_cast<int>(c(2))));
+          d << "E";
+          for (std::size_t a = 0; a < 8; ++a) d << "," << nodes[a];
+          d << "\nEMORE";
+          for (std::size_t a = 8; a < 20; ++a) d << "," << nodes[a];
+          d << "\n";
+        }
+    d << "FINISH\n/SOLU\nANTYPE,STATIC\nCNVTOL,F,,1E-8\n";
+    const std::vector<double> scales = {1.0, 2.0, -1.0};
+    for (std::size_t s = 0; s < scales.size(); ++s) {
+      const Eigen::Matrix3d h = gradient(scales[s]);
+      d << "TIME," << s + 1 << "\n";
+      for (const auto& [node, p] : x) {
+        if (!boundary(node)) continue;
+        const Vec3 u = h * p;
+        d << fmt::format("D,{},UX,{:.17g}\nD,{},UY,{:.17g}\nD,{},UZ,{:.17g}\n", node, u.x(), node,
+                         u.y(), node, u.z());
+      }
+      d << "SOLVE\n";
+    }
+    d << "FINISH\n";
+    const std::string tag = fmt::format("solid186_patch_{}", keyopt2);
+    const auto run = testing::run_deck_text(tag, d.str());
+    PlasticState point;
+    for (std::size_t s = 0; s < scales.size(); ++s) {
+      const Eigen::Matrix3d h = gradient(scales[s]);
+      PlasticState next;
+      law.solid(point, voigt(h), &next);
+      point = next;
+      ASSERT_GT(point.alpha, 0.0);
+      const double t = s + 1.0;
+      const char* labels[3] = {"UX", "UY", "UZ"};
+      for (const auto& [node, p] : x) {
+        if (boundary(node)) continue;
+        const Vec3 u = h * p;
+        for (int c = 0; c < 3; ++c)
+          EXPECT_NEAR(testing::value_stored_at(run.reader->nodal_series(node, labels[c]), t), u(c),
+                      1e-9)
+              << tag << " node " << node << " " << labels[c];
+      }
+      const char* items[6] = {"EPPLX", "EPPLY", "EPPLZ", "EPPLXY", "EPPLYZ", "EPPLXZ"};
+      for (int e = 1; e <= 8; ++e)
+        for (int c = 0; c < 6; ++c)
+          EXPECT_NEAR(testing::value_stored_at(run.reader->element_series(e, items[c]), t),
+                      point.plastic_strain(c), 1e-8 * point.plastic_strain.norm())
+              << tag << " element " << e << " " << items[c] << " step " << s + 1;
     }
   }
 }
