@@ -450,8 +450,9 @@ Eigen::Vector4d PlaneSolid::centroid_stress(const Eigen::VectorXd& u) const {
 const std::vector<std::string>& plane_solid_result_names() {
   // A function-local static: the registrations read it during static initialisation.
   static const std::vector<std::string> names = {
-      "SX",    "SY",    "SZ",    "SXY",    "S1",   "S2",   "S3",   "SINT", "SEQV",
-      "EPPLX", "EPPLY", "EPPLZ", "EPPLXY", "EPEQ", "SEPL", "SRAT", "PLWK"};
+      "SX",   "SY",    "SZ",    "SXY",   "S1",     "S2",      "S3",   "SINT",
+      "SEQV", "EPPLX", "EPPLY", "EPPLZ", "EPPLXY", "EPEQ",    "SEPL", "SRAT",
+      "PLWK", "EPCRX", "EPCRY", "EPCRZ", "EPCRXY", "EPCREQV", "CREQ"};
   return names;
 }
 
@@ -459,7 +460,7 @@ const std::vector<std::string>& PlaneSolid::result_names() const {
   return plane_solid_result_names();
 }
 
-/// SX SY SZ SXY S1 S2 S3 SINT SEQV of a stress (xx, yy, zz, xy), the plastic items 0.
+/// SX SY SZ SXY S1 S2 S3 SINT SEQV of a stress (xx, yy, zz, xy), the inelastic items 0.
 ElementResultValues plane_stress_items(const Eigen::Vector4d& s) {
   // In-plane principal stresses and SZ, ordered S1 >= S2 >= S3.
   const double mean = 0.5 * (s(0) + s(1));
@@ -469,7 +470,9 @@ ElementResultValues plane_stress_items(const Eigen::Vector4d& s) {
   const double s1 = pr[0], s2 = pr[1], s3 = pr[2];
   const double seqv =
       std::sqrt(0.5 * ((s1 - s2) * (s1 - s2) + (s2 - s3) * (s2 - s3) + (s3 - s1) * (s3 - s1)));
-  return {s(0), s(1), s(2), s(3), s1, s2, s3, s1 - s3, seqv, 0, 0, 0, 0, 0, 0, 0, 0};
+  ElementResultValues out = {s(0), s(1), s(2), s(3), s1, s2, s3, s1 - s3, seqv};
+  out.resize(plane_solid_result_names().size(), 0.0);
+  return out;
 }
 
 void PlaneSolid::results(const ElementContext& ctx, const Eigen::VectorXd& u,

@@ -44,10 +44,12 @@ struct PlaneSolidOptions {
   double thickness = 1.0;  // plane stress and plane strain; unused in axisymmetry
 };
 
-/// SX SY SZ SXY S1 S2 S3 SINT SEQV, then EPPLX EPPLY EPPLZ EPPLXY EPEQ SEPL SRAT PLWK.
+/// SX SY SZ SXY S1 S2 S3 SINT SEQV, then EPPLX EPPLY EPPLZ EPPLXY EPEQ SEPL SRAT PLWK, then
+/// EPCRX EPCRY EPCRZ EPCRXY EPCREQV CREQ (creep strain, equivalent, accumulated equivalent).
 const std::vector<std::string>& plane_solid_result_names();
 
-/// The result items (plane_solid_result_names()) of a stress (xx, yy, zz, xy), plastic items 0.
+/// The result items (plane_solid_result_names()) of a stress (xx, yy, zz, xy), the inelastic
+/// items 0.
 ElementResultValues plane_stress_items(const Eigen::Vector4d& stress);
 
 /// Number of nodes of a plane shape and their natural coordinates (quadrilaterals on [-1, 1]²,
@@ -98,7 +100,10 @@ class PlaneSolid final : public Element {
   /// hoop stress in axisymmetry, ν(SX + SY) in plane strain, 0 in plane stress. With
   /// plasticity the volume averages of the points' stresses, plastic strains EPPLX..EPPLXY
   /// (engineering shear), EPEQ, PLWK, SEPL (flow stress at EPEQ) and SRAT (largest point ratio
-  /// of equivalent stress to flow stress); these are 0 without plasticity.
+  /// of equivalent stress to flow stress); these are 0 without plasticity. A creep law (no
+  /// yield surface) reports its inelastic strain as EPCR X..XY, EPCR EQV (von Mises equivalent
+  /// of the averaged creep strain) and NL CREQ (accumulated equivalent creep strain), with the
+  /// plastic items 0, as MAPDL separates them.
   void results(const ElementContext& ctx, const Eigen::VectorXd& u, const Eigen::VectorXd& v,
                ElementResultValues& out) const override;
   /// The stresses of the integration points extrapolated to the nodes (bilinear through the

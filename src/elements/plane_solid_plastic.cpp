@@ -139,7 +139,13 @@ void PlaneSolid::plastic_results(const Eigen::VectorXd& u, ElementResultValues& 
   Eigen::VectorXd f;
   PointStates at = committed_;
   std::vector<Eigen::Vector4d> sigma;
-  tangent_plastic(u, k, f, &at, &sigma);
+  if (plasticity_->has_creep()) {
+    // A creep return at u would add the creep of the clock's substep once more: the committed
+    // states are those at the converged u (results are taken after Element::commit_history).
+    for (const PlasticState& st : at) sigma.emplace_back(st.stress.head<4>());
+  } else {
+    tangent_plastic(u, k, f, &at, &sigma);
+  }
   Eigen::Vector4d s = Eigen::Vector4d::Zero();
   Vector6d eppl = Vector6d::Zero();
   double epeq = 0.0, plwk = 0.0, srat = 0.0, total = 0.0;
@@ -158,7 +164,18 @@ void PlaneSolid::plastic_results(const Eigen::VectorXd& u, ElementResultValues& 
                       von_mises(st.stress - st.back_stress) / plasticity_->flow_stress(st.alpha));
   }
   out = plane_stress_items(s);
-  const double sepl = creep ? 0.0 : plasticity_->flow_stress(epeq);
+  if (creep) {
+    // EPCR X Y Z XY, EQV = √(2/3 ε:ε) of the (deviatoric) creep strain, engineering shear
+    // halved; NL CREQ the accumulated equivalent creep strain. PLWK: the creep work.
+    const double eqv = std::sqrt(
+        2.0 / 3.0 *
+        (eppl(0) * eppl(0) + eppl(1) * eppl(1) + eppl(2) * eppl(2) + 0.5 * eppl(3) * eppl(3)));
+    const double inelastic[6] = {eppl(0), eppl(1), eppl(2), eppl(3), eqv, epeq};
+    std::copy(inelastic, inelastic + 6, out.begin() + 17);
+    out[16] = plwk;
+    return;
+  }
+  const double sepl = plasticity_->flow_stress(epeq);
   const double plastic[8] = {eppl(0), eppl(1), eppl(2), eppl(3), epeq, sepl, srat, plwk};
   std::copy(plastic, plastic + 8, out.begin() + 9);
 }

@@ -228,9 +228,9 @@ Vector6d QuadraticSolid::stress_at(const Eigen::Vector3d& xi, const Eigen::Vecto
 const std::vector<std::string>& quadratic_solid_result_names() {
   // A function-local static: the registrations read it during static initialisation.
   static const std::vector<std::string> names = {
-      "SX",     "SY",     "SZ",     "SXY",  "SYZ",   "SXZ",   "S1",
-      "S2",     "S3",     "SINT",   "SEQV", "EPPLX", "EPPLY", "EPPLZ",
-      "EPPLXY", "EPPLYZ", "EPPLXZ", "EPEQ", "SEPL",  "SRAT",  "PLWK"};
+      "SX",   "SY",    "SZ",    "SXY",   "SYZ",    "SXZ",    "S1",     "S2",      "S3",   "SINT",
+      "SEQV", "EPPLX", "EPPLY", "EPPLZ", "EPPLXY", "EPPLYZ", "EPPLXZ", "EPEQ",    "SEPL", "SRAT",
+      "PLWK", "EPCRX", "EPCRY", "EPCRZ", "EPCRXY", "EPCRYZ", "EPCRXZ", "EPCREQV", "CREQ"};
   return names;
 }
 
@@ -310,7 +310,9 @@ void QuadraticSolid::plastic_results(const Eigen::VectorXd& u, ElementResultValu
   Eigen::MatrixXd k;
   Eigen::VectorXd f;
   std::vector<PlasticState> at = committed_;
-  plastic_sum(u, k, f, &at);
+  // A creep return at u would add the creep of the clock's substep once more: the committed
+  // states are those at the converged u (results are taken after Element::commit_history).
+  if (!plasticity_->has_creep()) plastic_sum(u, k, f, &at);
   Vector6d s = Vector6d::Zero(), eppl = Vector6d::Zero();
   double epeq = 0.0, plwk = 0.0, srat = 0.0, total = 0.0;
   const bool creep = plasticity_->has_creep();  // no yield surface: SEPL, SRAT 0
@@ -336,9 +338,24 @@ void QuadraticSolid::plastic_results(const Eigen::VectorXd& u, ElementResultValu
   const double s1 = pr(2), s2 = pr(1), s3 = pr(0);
   const double seqv =
       std::sqrt(0.5 * ((s1 - s2) * (s1 - s2) + (s2 - s3) * (s2 - s3) + (s3 - s1) * (s3 - s1)));
-  const double sepl = creep ? 0.0 : plasticity_->flow_stress(epeq);
-  out = {s(0),    s(1),    s(2),    s(3),    s(4),    s(5),    s1,   s2,   s3,   s1 - s3, seqv,
-         eppl(0), eppl(1), eppl(2), eppl(3), eppl(4), eppl(5), epeq, sepl, srat, plwk};
+  out = {s(0), s(1), s(2), s(3), s(4), s(5), s1, s2, s3, s1 - s3, seqv};
+  out.resize(quadratic_solid_result_names().size(), 0.0);
+  if (creep) {
+    // A creep law (no yield surface): EPCR X..XZ, EQV = √(2/3 ε:ε) of the (deviatoric) creep
+    // strain with the engineering shears halved, NL CREQ the accumulated equivalent creep
+    // strain; the plastic items stay 0 as MAPDL separates them. PLWK: the creep work.
+    const double eqv =
+        std::sqrt(2.0 / 3.0 * (eppl.head<3>().squaredNorm() + 0.5 * eppl.tail<3>().squaredNorm()));
+    for (int c = 0; c < 6; ++c) out[static_cast<std::size_t>(21 + c)] = eppl(c);
+    out[27] = eqv;
+    out[28] = epeq;
+    out[20] = plwk;
+    return;
+  }
+  const double plastic[10] = {eppl(0), eppl(1), eppl(2), eppl(3),
+                              eppl(4), eppl(5), epeq,    plasticity_->flow_stress(epeq),
+                              srat,    plwk};
+  std::copy(plastic, plastic + 10, out.begin() + 11);
 }
 
 }  // namespace impactfe

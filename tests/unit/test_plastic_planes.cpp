@@ -444,6 +444,19 @@ TEST(PlasticPlanes, CreepThroughTheElementAtConstantLoadMatchesTimeHardening) {
       EXPECT_NEAR(st.plastic_strain(0), creep, 1e-8 * creep);
       EXPECT_NEAR(st.plastic_strain(1), -0.5 * creep, 1e-8 * creep);  // isochoric flow
     }
+    // Results: the creep strain as EPCR (X, Y, Z, EQV = ε_cr in uniaxial stress, CREQ), the
+    // plastic items 0; SX the applied stress.
+    ElementResultValues r;
+    el.results({}, u, {}, r);
+    ASSERT_EQ(r.size(), plane_solid_result_names().size());
+    EXPECT_NEAR(r[0], sigma, 1e-8 * sigma);
+    EXPECT_EQ(r[9], 0.0);                            // EPPLX
+    EXPECT_EQ(r[13], 0.0);                           // EPEQ
+    EXPECT_NEAR(r[17], creep, 1e-8 * creep);         // EPCRX
+    EXPECT_NEAR(r[18], -0.5 * creep, 1e-8 * creep);  // EPCRY
+    EXPECT_NEAR(r[19], -0.5 * creep, 1e-8 * creep);  // EPCRZ
+    EXPECT_NEAR(r[21], creep, 1e-8 * creep);         // EPCR EQV
+    EXPECT_NEAR(r[22], creep, 1e-8 * creep);         // CREQ
     // The end's stretch: elastic plus creep strain.
     for (std::size_t a = 0; a < x.size(); ++a)
       if (x[a].x() == 1.0) EXPECT_NEAR(u(2 * a), sigma / kE + creep, 1e-9 * (sigma / kE));

@@ -101,7 +101,7 @@ TEST(PlasticQuadraticSolids, HomogeneousStrainGivesTheMaterialPointAtEveryPoint)
       ASSERT_GT(point.alpha, 0.0);
       ElementResultValues r;
       s.element->results({}, nodal(s.x, gradient(-1.0)), {}, r);
-      ASSERT_EQ(r.size(), 21u);
+      ASSERT_EQ(r.size(), 29u);
       for (int k = 0; k < 6; ++k) {
         EXPECT_NEAR(r[static_cast<std::size_t>(k)], point.stress(k), 1e-8 * kSy);
         EXPECT_NEAR(r[static_cast<std::size_t>(11 + k)], point.plastic_strain(k),
@@ -295,6 +295,41 @@ TEST(PlasticQuadraticSolids, DistortedPatchOfBricksReproducesTheHomogeneousPlast
                       point.plastic_strain(c), 1e-8 * point.plastic_strain.norm())
               << tag << " element " << e << " " << items[c] << " step " << s + 1;
     }
+  }
+}
+
+TEST(PlasticQuadraticSolids, NortonCreepThroughTheElementEqualsTheMaterialPoint) {
+  // J2Plasticity::creep (Norton, TBOPT 10) under a fixed homogeneous strain for 4 substeps of
+  // the clock: every point relaxes as the material point; the results report the creep strain
+  // as EPCR X..XZ, EQV and CREQ with the plastic items 0.
+  auto clock = std::make_shared<CreepClock>();
+  clock->active = true;
+  const auto law = J2Plasticity::creep(kE, kNu, CreepLaw{10, {1e-12, 3.0, 0.0}}, clock);
+  for (const Case& c : kCases) {
+    Single s = single(c, law);
+    const Eigen::Matrix3d h = gradient(0.5);
+    PlasticState point;
+    for (int i = 1; i <= 4; ++i) {
+      clock->time = 10.0 * i;
+      clock->dt = 10.0;
+      s.element->commit_history({}, nodal(s.x, h));
+      PlasticState next;
+      law.solid(point, voigt(h), &next);
+      point = next;
+    }
+    ASSERT_GT(point.alpha, 1e-5);  // creep strain comparable to the elastic strain
+    for (int p = 0; p < s.element->stiffness_points(); ++p)
+      EXPECT_LT((s.element->point_state(p).plastic_strain - point.plastic_strain).norm(),
+                1e-9 * point.alpha);
+    ElementResultValues r;
+    s.element->results({}, nodal(s.x, h), {}, r);
+    for (int k = 0; k < 6; ++k) {
+      EXPECT_NEAR(r[static_cast<std::size_t>(k)], point.stress(k), 1e-8 * kSy);
+      EXPECT_EQ(r[static_cast<std::size_t>(11 + k)], 0.0);  // EPPL
+      EXPECT_NEAR(r[static_cast<std::size_t>(21 + k)], point.plastic_strain(k),
+                  1e-9 * point.alpha);  // EPCR
+    }
+    EXPECT_NEAR(r[28], point.alpha, 1e-9 * point.alpha);  // CREQ
   }
 }
 
