@@ -322,12 +322,15 @@ void check_material_tables(DeckReader& r, const Command& c) {
       const ElementTypeDescriptor* type =
           et == r.model.element_types.end() ? nullptr : find_element_type(et->second.ansys_name);
       if (!type || type->plasticity || !type->needs_material) continue;
+      // The types that take it, from the registry (ElementTypeDescriptor::plasticity).
+      std::string with;
+      for (const ElementTypeDescriptor* d : registered_element_types())
+        if (d->plasticity) with += (with.empty() ? "" : ", ") + d->name;
       r.fail(c, fmt::format("material {} has TB,{}{} plasticity (TB at {}:{}), but element {} "
-                            "({}) is elastic only; plasticity is available for LINK1, LINK8, "
-                            "LINK180, SOLID45, SOLID185 and SHELL181",
+                            "({}) is elastic only; plasticity is available for {}",
                             key.first, table.label,
                             table.label == "PLAS" ? ",,,," + table.option : std::string(),
-                            table.where.file, table.where.line, id, type->name));
+                            table.where.file, table.where.line, id, type->name, with));
     }
   }
 }

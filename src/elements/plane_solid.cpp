@@ -170,8 +170,14 @@ std::vector<Eigen::Vector2d> plane_shape_nodes_xi(PlaneShape shape) {
 
 PlaneSolid::PlaneSolid(int id, const std::vector<int>& nodes, const std::vector<Vec3>& x,
                        const IsotropicElasticity& material, const PlaneSolidOptions& options,
-                       std::vector<std::vector<int>> faces, const SourceLocation& where)
-    : Element(id), nodes_(nodes), x_(x), options_(options), faces_(std::move(faces)) {
+                       std::vector<std::vector<int>> faces, const SourceLocation& where,
+                       std::optional<J2Plasticity> plasticity)
+    : Element(id),
+      nodes_(nodes),
+      x_(x),
+      options_(options),
+      faces_(std::move(faces)),
+      plasticity_(std::move(plasticity)) {
   const PlaneShape shape = options.shape;
   const int nn = plane_shape_nodes(shape);
   IMPACTFE_CHECK(static_cast<int>(nodes.size()) == nn && static_cast<int>(x.size()) == nn,
@@ -229,6 +235,11 @@ PlaneSolid::PlaneSolid(int id, const std::vector<int>& nodes, const std::vector<
     volume_ += measure(point_at(xi), q.weight);
   }
   form_stiffness();
+  if (plasticity_) {
+    committed_.resize(rule_.size());
+    for (const QuadraturePoint& q : rule_)
+      point_dv_.push_back(measure(point_at(q.xi.head<2>()), q.weight));
+  }
 }
 
 PlaneSolid::Point PlaneSolid::point_at(const Eigen::Vector2d& xi) const {
@@ -346,6 +357,10 @@ void PlaneSolid::tangent(const ElementContext& ctx, const Eigen::VectorXd& u, Ei
                           id(),
                           ctx.large_deflection ? "large deflection (NLGEOM,ON)"
                                                : "stress stiffening (SSTIF / PSTRES)"));
+  if (plasticity_) {
+    tangent_plastic(u, K, f_int, nullptr, nullptr);
+    return;
+  }
   K = k_;
   f_int = K * u;
 }
@@ -434,8 +449,10 @@ Eigen::Vector4d PlaneSolid::centroid_stress(const Eigen::VectorXd& u) const {
 
 const std::vector<std::string>& plane_solid_result_names() {
   // A function-local static: the registrations read it during static initialisation.
-  static const std::vector<std::string> names = {"SX", "SY", "SZ",   "SXY", "S1",
-                                                 "S2", "S3", "SINT", "SEQV"};
+  static const std::vector<std::string> names = {
+      "SX",   "SY",    "SZ",    "SXY",   "S1",     "S2",      "S3",   "SINT",
+      "SEQV", "EPPLX", "EPPLY", "EPPLZ", "EPPLXY", "EPEQ",    "SEPL", "SRAT",
+      "PLWK", "EPCRX", "EPCRY", "EPCRZ", "EPCRXY", "EPCREQV", "CREQ"};
   return names;
 }
 
@@ -443,10 +460,8 @@ const std::vector<std::string>& PlaneSolid::result_names() const {
   return plane_solid_result_names();
 }
 
-namespace {
-
-/// SX SY SZ SXY S1 S2 S3 SINT SEQV of a stress (xx, yy, zz, xy).
-ElementResultValues stress_items(const Eigen::Vector4d& s) {
+/// SX SY SZ SXY S1 S2 S3 SINT SEQV of a stress (xx, yy, zz, xy), the inelastic items 0.
+ElementResultValues plane_stress_items(const Eigen::Vector4d& s) {
   // In-plane principal stresses and SZ, ordered S1 >= S2 >= S3.
   const double mean = 0.5 * (s(0) + s(1));
   const double radius = std::hypot(0.5 * (s(0) - s(1)), s(3));
@@ -455,14 +470,18 @@ ElementResultValues stress_items(const Eigen::Vector4d& s) {
   const double s1 = pr[0], s2 = pr[1], s3 = pr[2];
   const double seqv =
       std::sqrt(0.5 * ((s1 - s2) * (s1 - s2) + (s2 - s3) * (s2 - s3) + (s3 - s1) * (s3 - s1)));
-  return {s(0), s(1), s(2), s(3), s1, s2, s3, s1 - s3, seqv};
+  ElementResultValues out = {s(0), s(1), s(2), s(3), s1, s2, s3, s1 - s3, seqv};
+  out.resize(plane_solid_result_names().size(), 0.0);
+  return out;
 }
-
-}  // namespace
 
 void PlaneSolid::results(const ElementContext& ctx, const Eigen::VectorXd& u,
                          const Eigen::VectorXd& v, ElementResultValues& out) const {
-  out = stress_items(centroid_stress(u));
+  if (plasticity_ && !ctx.large_deflection && !ctx.stress_stiffening) {
+    plastic_results(u, out);
+    return;
+  }
+  out = plane_stress_items(centroid_stress(u));
 }
 
 bool PlaneSolid::nodal_results(const ElementContext& ctx, const Eigen::VectorXd& u,
@@ -472,6 +491,7 @@ bool PlaneSolid::nodal_results(const ElementContext& ctx, const Eigen::VectorXd&
   // triangles, constant at the one point of the plane triangle) evaluated at the nodes: the
   // extrapolation of integration-point stresses to the nodes (Cook et al. §6.13). Midside
   // nodes get the polynomial's value there, the mean of their corners' values.
+  if (plasticity_) return false;
   const int np = static_cast<int>(rule_.size());
   std::vector<Eigen::Vector4d> sigma;
   Eigen::Vector4d alpha = Eigen::Vector4d::Zero();
@@ -506,7 +526,7 @@ bool PlaneSolid::nodal_results(const ElementContext& ctx, const Eigen::VectorXd&
   at_node.clear();
   for (std::size_t k = 0; k < nodes_.size(); ++k) {
     const Eigen::Vector4d s = (basis(xi_nodes[k]).transpose() * coefficients).transpose();
-    at_node[nodes_[k]] = stress_items(s);
+    at_node[nodes_[k]] = plane_stress_items(s);
   }
   return true;
 }

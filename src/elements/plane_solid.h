@@ -6,7 +6,12 @@
 /// isotropic linear elasticity; the 4-node quadrilateral with full 2x2 integration, with the
 /// B-bar (mean dilatation) of Hughes (1980), or with the incompatible bending modes of Taylor,
 /// Beresford & Wilson (1976). Consistent or lumped mass, edge pressures, centroid stresses.
-/// Large deflection, stress stiffening and plasticity are refused (docs/elements/plane182.md).
+/// With a TB plasticity (or implicit creep) law: small-strain J2 at the stiffness points with
+/// committed states per point (plane_solid_plastic.cpp): the 3-D return of the strain
+/// (εxx, εyy, εzz, γxy) with εzz = u/r in axisymmetry and 0 in plane strain, the plane-stress
+/// return (σzz = 0) otherwise; the incompatible modes, when active, are solved per element for
+/// each u and condensed. Large deflection and stress stiffening are refused
+/// (docs/elements/plane182.md).
 #include <Eigen/Core>
 
 #include <optional>
@@ -16,6 +21,7 @@
 #include "elements/element.h"
 #include "elements/quadratic_shapes.h"
 #include "materials/isotropic_elasticity.h"
+#include "materials/j2_plasticity.h"
 
 namespace impactfe {
 
@@ -38,8 +44,13 @@ struct PlaneSolidOptions {
   double thickness = 1.0;  // plane stress and plane strain; unused in axisymmetry
 };
 
-/// SX SY SZ SXY S1 S2 S3 SINT SEQV.
+/// SX SY SZ SXY S1 S2 S3 SINT SEQV, then EPPLX EPPLY EPPLZ EPPLXY EPEQ SEPL SRAT PLWK, then
+/// EPCRX EPCRY EPCRZ EPCRXY EPCREQV CREQ (creep strain, equivalent, accumulated equivalent).
 const std::vector<std::string>& plane_solid_result_names();
+
+/// The result items (plane_solid_result_names()) of a stress (xx, yy, zz, xy), the inelastic
+/// items 0.
+ElementResultValues plane_stress_items(const Eigen::Vector4d& stress);
 
 /// Number of nodes of a plane shape and their natural coordinates (quadrilaterals on [-1, 1]²,
 /// corners I J K L then the midsides of I-J J-K K-L L-I; triangles on the unit triangle, corners
@@ -53,15 +64,27 @@ class PlaneSolid final : public Element {
   /// must be the same for all); `faces`: face k + 1 as positions in `nodes` (the two corners in
   /// MAPDL's order J-I, K-J, L-K, I-L, then the midside node; empty for a collapsed face).
   /// Throws InputError at `where` for a zero Jacobian or mixed orientation, and in axisymmetry
-  /// for a node at negative X.
+  /// for a node at negative X. `plasticity`: the material's J2 law (plasticity_of), if any.
   PlaneSolid(int id, const std::vector<int>& nodes, const std::vector<Vec3>& x,
              const IsotropicElasticity& material, const PlaneSolidOptions& options,
-             std::vector<std::vector<int>> faces, const SourceLocation& where = {});
+             std::vector<std::vector<int>> faces, const SourceLocation& where = {},
+             std::optional<J2Plasticity> plasticity = std::nullopt);
 
   const char* family() const override { return "PlaneSolid"; }
   const std::vector<DofKey>& dofs() const override { return dofs_; }
-  bool is_nonlinear(const ElementContext& ctx) const override { return false; }
+  bool is_nonlinear(const ElementContext& ctx) const override { return plasticity_.has_value(); }
+  bool has_history() const override { return plasticity_.has_value(); }
+  double plastic_work() const override;
+  void commit_history(const ElementContext& ctx, const Eigen::VectorXd& u) override;
+  std::vector<double> history_state() const override;
+  void restore_history_state(const std::vector<double>& state) override;
+  /// Committed state of stiffness point p (plastic elements only).
+  const PlasticState& point_state(int p) const {
+    return committed_.at(static_cast<std::size_t>(p));
+  }
+  int n_points() const { return static_cast<int>(rule_.size()); }
   /// K = ∫ BᵀDB dV (dV = t dA, or 2πr dA), condensed over the incompatible modes; f_int = K u.
+  /// With plasticity K = ∫ BᵀC_alg B dV and f_int = ∫ Bᵀσ dV from the committed states.
   /// Large deflection and stress stiffening are refused (ElementSolutionError).
   void tangent(const ElementContext& ctx, const Eigen::VectorXd& u, Eigen::MatrixXd& K,
                Eigen::VectorXd& f_int) const override;
@@ -74,11 +97,18 @@ class PlaneSolid final : public Element {
                      const Eigen::VectorXd& u, Eigen::VectorXd& f) const override;
   const std::vector<std::string>& result_names() const override;
   /// SX SY SZ SXY S1 S2 S3 SINT SEQV at the centroid (natural centre), global axes; SZ is the
-  /// hoop stress in axisymmetry, ν(SX + SY) in plane strain, 0 in plane stress.
+  /// hoop stress in axisymmetry, ν(SX + SY) in plane strain, 0 in plane stress. With
+  /// plasticity the volume averages of the points' stresses, plastic strains EPPLX..EPPLXY
+  /// (engineering shear), EPEQ, PLWK, SEPL (flow stress at EPEQ) and SRAT (largest point ratio
+  /// of equivalent stress to flow stress); these are 0 without plasticity. A creep law (no
+  /// yield surface) reports its inelastic strain as EPCR X..XY, EPCR EQV (von Mises equivalent
+  /// of the averaged creep strain) and NL CREQ (accumulated equivalent creep strain), with the
+  /// plastic items 0, as MAPDL separates them.
   void results(const ElementContext& ctx, const Eigen::VectorXd& u, const Eigen::VectorXd& v,
                ElementResultValues& out) const override;
   /// The stresses of the integration points extrapolated to the nodes (bilinear through the
-  /// 2x2 points, linear through 3 points, constant from 1), with their derived items.
+  /// 2x2 points, linear through 3 points, constant from 1), with their derived items. Not for
+  /// a plastic element (false: its history is not in a freshly built element).
   bool nodal_results(const ElementContext& ctx, const Eigen::VectorXd& u,
                      std::map<int, ElementResultValues>& at_node) const override;
   /// ∫ t dA, or the volume of the full ring ∫ 2πr dA.
@@ -107,6 +137,24 @@ class PlaneSolid final : public Element {
   Eigen::Matrix4d mode_matrix(const Point& p, const Eigen::Vector2d& xi) const;
   void form_stiffness();
 
+  // ---- plasticity (plane_solid_plastic.cpp) ----
+  using PointStates = std::vector<PlasticState>;
+  /// The strain operator of stiffness point q (rows xx yy zz xy, B-bar applied) over the nodal
+  /// DOFs, then the 4 incompatible-mode amplitudes when `modes`.
+  Eigen::MatrixXd point_operator(std::size_t q, bool modes) const;
+  /// σ (xx yy zz xy) and dσ/dε (4 x 4) of one point for the strain (εxx, εyy, εzz, γxy).
+  void point_response(const PlasticState& committed, const Eigen::Vector4d& strain,
+                      Eigen::Vector4d& stress, Eigen::Matrix4d& tangent,
+                      PlasticState* updated) const;
+  /// ∫BᵀC_alg B dV and ∫Bᵀσ dV at the generalised displacements q (nodal, then the modes).
+  void plastic_sum(const Eigen::VectorXd& q, Eigen::MatrixXd& k, Eigen::VectorXd& f,
+                   PointStates* updated, std::vector<Eigen::Vector4d>* stresses) const;
+  /// K_T and f_int on the nodal DOFs: the mode amplitudes (when active) solved for
+  /// ∫Gᵀσ dV = 0 by Newton and condensed out. `updated` receives the states at u when given.
+  void tangent_plastic(const Eigen::VectorXd& u, Eigen::MatrixXd& k, Eigen::VectorXd& f,
+                       PointStates* updated, std::vector<Eigen::Vector4d>* stresses) const;
+  void plastic_results(const Eigen::VectorXd& u, ElementResultValues& out) const;
+
   std::vector<int> nodes_;
   std::vector<Vec3> x_;
   std::vector<DofKey> dofs_;
@@ -123,6 +171,9 @@ class PlaneSolid final : public Element {
   Eigen::MatrixXd mode_recovery_;       // α = −mode_recovery_ u
   Eigen::Matrix2d j0_inverse_;
   double det0_ = 1.0;
+  std::optional<J2Plasticity> plasticity_;
+  PointStates committed_;         // per stiffness point (plastic elements)
+  std::vector<double> point_dv_;  // dV of the stiffness points (plastic elements)
 };
 
 }  // namespace impactfe

@@ -9,6 +9,7 @@
 #include "elements/element_fields.h"
 #include "elements/element_registry.h"
 #include "elements/plane_solid.h"
+#include "materials/j2_plasticity.h"
 
 namespace impactfe {
 
@@ -107,15 +108,17 @@ std::unique_ptr<Element> make_plane182(const ElementBuildContext& ctx,
     const std::vector<int> tri = {n[0], n[1], n[2]};
     return std::make_unique<PlaneSolid>(
         record.id, tri, coordinates(model, record, tri), material, o,
-        std::vector<std::vector<int>>{{1, 0}, {2, 1}, {}, {0, 2}}, record.where);
+        std::vector<std::vector<int>>{{1, 0}, {2, 1}, {}, {0, 2}}, record.where,
+        plasticity_of(model, record, material.young, material.poisson));
   }
   o.shape = PlaneShape::Quad4;
   // KEYOPT(1) = 0: B-bar in plane strain and axisymmetry (in plane stress σzz = 0 leaves no
   // volumetric constraint to relieve: full 2x2). 2 (plane stress) and 3: incompatible modes.
   if (k1 == 0 && o.behaviour != PlaneBehaviour::PlaneStress) o.technology = PlaneTechnology::BBar;
   if (k1 == 2 || k1 == 3) o.technology = PlaneTechnology::IncompatibleModes;
-  return std::make_unique<PlaneSolid>(record.id, n, coordinates(model, record, n), material, o,
-                                      quad_faces(VtkCell::Quad), record.where);
+  return std::make_unique<PlaneSolid>(
+      record.id, n, coordinates(model, record, n), material, o, quad_faces(VtkCell::Quad),
+      record.where, plasticity_of(model, record, material.young, material.poisson));
 }
 
 std::unique_ptr<Element> make_plane183(const ElementBuildContext& ctx,
@@ -141,8 +144,9 @@ std::unique_ptr<Element> make_plane183(const ElementBuildContext& ctx,
     const std::vector<int> tri = {n[0], n[1], n[2], n[4], n[5], n[7]};
     std::vector<std::vector<int>> faces = {{1, 0, 3}, {2, 1, 4}, {}, {0, 2, 5}};
     if (triangle_form) faces[2] = faces[3];
-    return std::make_unique<PlaneSolid>(record.id, tri, coordinates(model, record, tri), material,
-                                        o, faces, record.where);
+    return std::make_unique<PlaneSolid>(
+        record.id, tri, coordinates(model, record, tri), material, o, faces, record.where,
+        plasticity_of(model, record, material.young, material.poisson));
   }
   if (triangle_form)
     throw InputError(record.where,
@@ -156,8 +160,9 @@ std::unique_ptr<Element> make_plane183(const ElementBuildContext& ctx,
                                  "triangle K = L = O",
                                  record.id));
   o.shape = PlaneShape::Quad8;
-  return std::make_unique<PlaneSolid>(record.id, n, coordinates(model, record, n), material, o,
-                                      quad_faces(VtkCell::QuadraticQuad), record.where);
+  return std::make_unique<PlaneSolid>(
+      record.id, n, coordinates(model, record, n), material, o, quad_faces(VtkCell::QuadraticQuad),
+      record.where, plasticity_of(model, record, material.young, material.poisson));
 }
 
 ElementTypeDescriptor plane_solid_type(const char* name, int number, int n_nodes, int min_nodes,
@@ -173,15 +178,16 @@ ElementTypeDescriptor plane_solid_type(const char* name, int number, int n_nodes
           .vtk_cell = cell,
           .role = ShapeRole::Plane,
           .result_names = plane_solid_result_names(),
-          .result_sequences = {{"S", "X", "SX"},
-                               {"S", "Y", "SY"},
-                               {"S", "Z", "SZ"},
-                               {"S", "XY", "SXY"},
-                               {"S", "1", "S1"},
-                               {"S", "2", "S2"},
-                               {"S", "3", "S3"},
-                               {"S", "INT", "SINT"},
-                               {"S", "EQV", "SEQV"}},
+          .result_sequences =
+              {{"S", "X", "SX"},           {"S", "Y", "SY"},       {"S", "Z", "SZ"},
+               {"S", "XY", "SXY"},         {"S", "1", "S1"},       {"S", "2", "S2"},
+               {"S", "3", "S3"},           {"S", "INT", "SINT"},   {"S", "EQV", "SEQV"},
+               {"EPPL", "X", "EPPLX"},     {"EPPL", "Y", "EPPLY"}, {"EPPL", "Z", "EPPLZ"},
+               {"EPPL", "XY", "EPPLXY"},   {"NL", "EPEQ", "EPEQ"}, {"NL", "SEPL", "SEPL"},
+               {"NL", "SRAT", "SRAT"},     {"NL", "PLWK", "PLWK"}, {"EPCR", "X", "EPCRX"},
+               {"EPCR", "Y", "EPCRY"},     {"EPCR", "Z", "EPCRZ"}, {"EPCR", "XY", "EPCRXY"},
+               {"EPCR", "EQV", "EPCREQV"}, {"NL", "CREQ", "CREQ"}},
+          .plasticity = true,
           .faces = faces,
           .sf_faces = 4,
           .create = std::move(create)};

@@ -49,13 +49,15 @@ std::vector<QuadraturePoint> mass_rule(QuadraticShape shape) {
 QuadraticSolid::QuadraticSolid(int id, QuadraticShape shape, const std::vector<int>& nodes,
                                const std::vector<Vec3>& x, const IsotropicElasticity& material,
                                std::vector<QuadraturePoint> stiffness_rule,
-                               std::vector<std::vector<int>> faces, const SourceLocation& where)
+                               std::vector<std::vector<int>> faces, const SourceLocation& where,
+                               std::optional<J2Plasticity> plasticity)
     : Element(id),
       shape_(shape),
       nodes_(nodes),
       x_(x),
       rule_(std::move(stiffness_rule)),
-      faces_(std::move(faces)) {
+      faces_(std::move(faces)),
+      plasticity_(std::move(plasticity)) {
   const int nn = quadratic_shape_nodes(shape);
   IMPACTFE_CHECK(static_cast<int>(nodes.size()) == nn && static_cast<int>(x.size()) == nn,
                  "quadratic solid built with a wrong node count");
@@ -92,6 +94,7 @@ QuadraticSolid::QuadraticSolid(int id, QuadraticShape shape, const std::vector<i
     check(rule_[p].xi, fmt::format("integration point {}", p + 1));
   volume_ = 0.0;
   for (const QuadraturePoint& q : mass_rule(shape)) volume_ += q.weight * point_at(q.xi).det;
+  if (plasticity_) committed_.resize(rule_.size());
 }
 
 QuadraticSolid::Point QuadraticSolid::point_at(const Eigen::Vector3d& xi) const {
@@ -125,6 +128,15 @@ void QuadraticSolid::tangent(const ElementContext& ctx, const Eigen::VectorXd& u
         id(), fmt::format("element {}: SOLID186/SOLID187 are small-strain here; large "
                           "deflection (NLGEOM,ON) is not implemented for the quadratic solids",
                           id()));
+  if (plasticity_) {
+    if (ctx.stress_stiffening)
+      throw ElementSolutionError(
+          id(), fmt::format("element {}: stress stiffening with a TB plasticity material is not "
+                            "implemented for SOLID186/SOLID187",
+                            id()));
+    plastic_sum(u, K, f_int, nullptr);
+    return;
+  }
   K = small_strain_stiffness();
   if (ctx.stress_stiffening) {
     // K_σ = ∫ Gᵀ σ G dV per direction with σ the small-strain stress of u at the stiffness
@@ -215,8 +227,10 @@ Vector6d QuadraticSolid::stress_at(const Eigen::Vector3d& xi, const Eigen::Vecto
 
 const std::vector<std::string>& quadratic_solid_result_names() {
   // A function-local static: the registrations read it during static initialisation.
-  static const std::vector<std::string> names = {"SX", "SY", "SZ", "SXY",  "SYZ", "SXZ",
-                                                 "S1", "S2", "S3", "SINT", "SEQV"};
+  static const std::vector<std::string> names = {
+      "SX",   "SY",    "SZ",    "SXY",   "SYZ",    "SXZ",    "S1",     "S2",      "S3",   "SINT",
+      "SEQV", "EPPLX", "EPPLY", "EPPLZ", "EPPLXY", "EPPLYZ", "EPPLXZ", "EPEQ",    "SEPL", "SRAT",
+      "PLWK", "EPCRX", "EPCRY", "EPCRZ", "EPCRXY", "EPCRYZ", "EPCRXZ", "EPCREQV", "CREQ"};
   return names;
 }
 
@@ -226,6 +240,10 @@ const std::vector<std::string>& QuadraticSolid::result_names() const {
 
 void QuadraticSolid::results(const ElementContext& ctx, const Eigen::VectorXd& u,
                              const Eigen::VectorXd& v, ElementResultValues& out) const {
+  if (plasticity_ && !ctx.stress_stiffening && !ctx.large_deflection) {
+    plastic_results(u, out);
+    return;
+  }
   const Vector6d s = stress_at(quadratic_shape_centre(shape_), u);
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(voigt_to_tensor(s),
                                                           Eigen::EigenvaluesOnly);
@@ -234,6 +252,110 @@ void QuadraticSolid::results(const ElementContext& ctx, const Eigen::VectorXd& u
   const double seqv =
       std::sqrt(0.5 * ((s1 - s2) * (s1 - s2) + (s2 - s3) * (s2 - s3) + (s3 - s1) * (s3 - s1)));
   out = {s(0), s(1), s(2), s(3), s(4), s(5), s1, s2, s3, s1 - s3, seqv};
+  out.resize(quadratic_solid_result_names().size(), 0.0);  // the plastic items
+}
+
+// ---- plasticity ----------------------------------------------------------------------------
+
+void QuadraticSolid::plastic_sum(const Eigen::VectorXd& u, Eigen::MatrixXd& k, Eigen::VectorXd& f,
+                                 std::vector<PlasticState>* updated) const {
+  // The 3-D return (J2Plasticity::solid) at every stiffness point from its committed state;
+  // K = ∫BᵀC_alg B dV with the consistent tangent, so the global Newton converges quadratically.
+  const int n = n_dofs();
+  k.setZero(n, n);
+  f.setZero(n);
+  for (std::size_t q = 0; q < rule_.size(); ++q) {
+    const Point p = point_at(rule_[q].xi);
+    const Eigen::MatrixXd b = strain_matrix(p.grad);
+    const double dv = rule_[q].weight * p.det;
+    const PlasticResponse r =
+        plasticity_->solid(committed_[q], b * u, updated ? &(*updated)[q] : nullptr);
+    f.noalias() += dv * (b.transpose() * r.stress);
+    k.noalias() += dv * (b.transpose() * r.tangent * b);
+  }
+  k = 0.5 * (k + k.transpose()).eval();
+}
+
+void QuadraticSolid::commit_history(const ElementContext&, const Eigen::VectorXd& u) {
+  if (!plasticity_) return;
+  Eigen::MatrixXd k;
+  Eigen::VectorXd f;
+  std::vector<PlasticState> next = committed_;
+  plastic_sum(u, k, f, &next);
+  committed_ = next;
+}
+
+std::vector<double> QuadraticSolid::history_state() const {
+  std::vector<double> out;
+  for (const PlasticState& s : committed_) append_state(out, s);  // per stiffness point
+  return out;
+}
+
+void QuadraticSolid::restore_history_state(const std::vector<double>& state) {
+  std::size_t pos = 0;
+  for (PlasticState& s : committed_) read_state(state, pos, s);
+  IMPACTFE_CHECK(pos == state.size(), "SOLID186/187: saved state of the wrong length");
+}
+
+double QuadraticSolid::plastic_work() const {
+  double w = 0.0;
+  for (std::size_t q = 0; q < committed_.size(); ++q)
+    w += committed_[q].plastic_work * rule_[q].weight * point_at(rule_[q].xi).det;
+  return w;
+}
+
+void QuadraticSolid::plastic_results(const Eigen::VectorXd& u, ElementResultValues& out) const {
+  // The states at u (the committed ones after a converged step), averaged over the volume of
+  // the stiffness rule.
+  Eigen::MatrixXd k;
+  Eigen::VectorXd f;
+  std::vector<PlasticState> at = committed_;
+  // A creep return at u would add the creep of the clock's substep once more: the committed
+  // states are those at the converged u (results are taken after Element::commit_history).
+  if (!plasticity_->has_creep()) plastic_sum(u, k, f, &at);
+  Vector6d s = Vector6d::Zero(), eppl = Vector6d::Zero();
+  double epeq = 0.0, plwk = 0.0, srat = 0.0, total = 0.0;
+  const bool creep = plasticity_->has_creep();  // no yield surface: SEPL, SRAT 0
+  for (std::size_t q = 0; q < rule_.size(); ++q) {
+    const double dv = rule_[q].weight * point_at(rule_[q].xi).det;
+    const PlasticState& st = at[q];
+    total += dv;
+    s += dv * st.stress;
+    eppl += dv * st.plastic_strain;
+    epeq += dv * st.alpha;
+    plwk += dv * st.plastic_work;
+    if (!creep)
+      srat = std::max(srat,
+                      von_mises(st.stress - st.back_stress) / plasticity_->flow_stress(st.alpha));
+  }
+  s /= total;
+  eppl /= total;
+  epeq /= total;
+  plwk /= total;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(voigt_to_tensor(s),
+                                                          Eigen::EigenvaluesOnly);
+  const Eigen::Vector3d pr = es.eigenvalues();  // ascending
+  const double s1 = pr(2), s2 = pr(1), s3 = pr(0);
+  const double seqv =
+      std::sqrt(0.5 * ((s1 - s2) * (s1 - s2) + (s2 - s3) * (s2 - s3) + (s3 - s1) * (s3 - s1)));
+  out = {s(0), s(1), s(2), s(3), s(4), s(5), s1, s2, s3, s1 - s3, seqv};
+  out.resize(quadratic_solid_result_names().size(), 0.0);
+  if (creep) {
+    // A creep law (no yield surface): EPCR X..XZ, EQV = √(2/3 ε:ε) of the (deviatoric) creep
+    // strain with the engineering shears halved, NL CREQ the accumulated equivalent creep
+    // strain; the plastic items stay 0 as MAPDL separates them. PLWK: the creep work.
+    const double eqv =
+        std::sqrt(2.0 / 3.0 * (eppl.head<3>().squaredNorm() + 0.5 * eppl.tail<3>().squaredNorm()));
+    for (int c = 0; c < 6; ++c) out[static_cast<std::size_t>(21 + c)] = eppl(c);
+    out[27] = eqv;
+    out[28] = epeq;
+    out[20] = plwk;
+    return;
+  }
+  const double plastic[10] = {eppl(0), eppl(1), eppl(2), eppl(3),
+                              eppl(4), eppl(5), epeq,    plasticity_->flow_stress(epeq),
+                              srat,    plwk};
+  std::copy(plastic, plastic + 10, out.begin() + 11);
 }
 
 }  // namespace impactfe

@@ -5,7 +5,9 @@
 /// 4-point rule (SOLID187, and SOLID186's degenerate tetrahedron). Small-strain isotropic linear
 /// elasticity; consistent mass (exact rules: 3x3x3, or the conical product on the tetrahedron) or
 /// HRZ-lumped mass; linear stress stiffening; consistent pressure loads on the 8-node and 6-node
-/// faces. Large deflection and plasticity are refused (docs/elements/solid186.md).
+/// faces. With a TB plasticity (or implicit creep) law: small-strain J2 at the stiffness points
+/// with committed states per point (solid_quadratic_plastic.cpp). Large deflection is refused,
+/// and stress stiffening with plasticity (docs/elements/solid186.md).
 #include <Eigen/Core>
 
 #include <optional>
@@ -15,10 +17,11 @@
 #include "elements/element.h"
 #include "elements/quadratic_shapes.h"
 #include "materials/isotropic_elasticity.h"
+#include "materials/j2_plasticity.h"
 
 namespace impactfe {
 
-/// SX SY SZ SXY SYZ SXZ S1 S2 S3 SINT SEQV.
+/// SX SY SZ SXY SYZ SXZ S1 S2 S3 SINT SEQV, EPPLX..EPPLXZ EPEQ SEPL SRAT PLWK.
 const std::vector<std::string>& quadratic_solid_result_names();
 
 class QuadraticSolid final : public Element {
@@ -32,15 +35,26 @@ class QuadraticSolid final : public Element {
   QuadraticSolid(int id, QuadraticShape shape, const std::vector<int>& nodes,
                  const std::vector<Vec3>& x, const IsotropicElasticity& material,
                  std::vector<QuadraturePoint> stiffness_rule, std::vector<std::vector<int>> faces,
-                 const SourceLocation& where = {});
+                 const SourceLocation& where = {},
+                 std::optional<J2Plasticity> plasticity = std::nullopt);
 
   const char* family() const override { return "QuadraticSolid"; }
   const std::vector<DofKey>& dofs() const override { return dofs_; }
   bool is_nonlinear(const ElementContext& ctx) const override {
-    return ctx.large_deflection || ctx.stress_stiffening;
+    return ctx.large_deflection || ctx.stress_stiffening || plasticity_.has_value();
+  }
+  bool has_history() const override { return plasticity_.has_value(); }
+  double plastic_work() const override;
+  void commit_history(const ElementContext& ctx, const Eigen::VectorXd& u) override;
+  std::vector<double> history_state() const override;
+  void restore_history_state(const std::vector<double>& state) override;
+  /// Committed state of stiffness point p (plastic elements only).
+  const PlasticState& point_state(int p) const {
+    return committed_.at(static_cast<std::size_t>(p));
   }
   /// K = ∫BᵀDB dV, f_int = K u; with stress stiffening K + K_σ(u) and f_int = (K + K_σ) u (the
   /// geometric stiffness of the small-strain stress of u at the stiffness points, as Brick8).
+  /// With plasticity K = ∫BᵀC_alg B dV, f_int = ∫Bᵀσ dV from the committed states.
   /// Large deflection is refused (ElementSolutionError naming the element).
   void tangent(const ElementContext& ctx, const Eigen::VectorXd& u, Eigen::MatrixXd& K,
                Eigen::VectorXd& f_int) const override;
@@ -53,7 +67,10 @@ class QuadraticSolid final : public Element {
   /// (bi)linearly over the face; f_a = −∫ N_a p n dA with the quadratic face functions.
   void pressure_load(const ElementContext& ctx, int face, const std::array<double, 4>& p,
                      const Eigen::VectorXd& u, Eigen::VectorXd& f) const override;
-  /// SX SY SZ SXY SYZ SXZ S1 S2 S3 SINT SEQV at the natural centre, global axes.
+  /// SX SY SZ SXY SYZ SXZ S1 S2 S3 SINT SEQV at the natural centre, global axes; with
+  /// plasticity the volume averages of the points' stresses, plastic strains (engineering
+  /// shear), EPEQ and PLWK, SEPL (flow stress at EPEQ), SRAT (largest point ratio of equivalent
+  /// to flow stress); the plastic items are 0 without plasticity.
   const std::vector<std::string>& result_names() const override;
   void results(const ElementContext& ctx, const Eigen::VectorXd& u, const Eigen::VectorXd& v,
                ElementResultValues& out) const override;
@@ -75,6 +92,10 @@ class QuadraticSolid final : public Element {
   Point point_at(const Eigen::Vector3d& xi) const;
   /// ρ∫NᵀN dV (one direction) with a rule exact for undistorted elements.
   Eigen::MatrixXd scalar_mass() const;
+  /// ∫BᵀC_alg B dV and ∫Bᵀσ dV at u from the committed states; the states at u into `updated`.
+  void plastic_sum(const Eigen::VectorXd& u, Eigen::MatrixXd& k, Eigen::VectorXd& f,
+                   std::vector<PlasticState>* updated) const;
+  void plastic_results(const Eigen::VectorXd& u, ElementResultValues& out) const;
 
   QuadraticShape shape_;
   std::vector<int> nodes_;
@@ -85,6 +106,8 @@ class QuadraticSolid final : public Element {
   double volume_ = 0.0;
   std::vector<QuadraturePoint> rule_;  // stiffness points
   std::vector<std::vector<int>> faces_;
+  std::optional<J2Plasticity> plasticity_;
+  std::vector<PlasticState> committed_;  // per stiffness point (plastic elements)
 };
 
 }  // namespace impactfe

@@ -128,14 +128,16 @@ std::unique_ptr<Element> make_solid186(const ElementBuildContext& ctx,
   if (std::set<int>(n.begin(), n.begin() + 8).size() == 8) {
     // KEYOPT(2) = 0: uniform reduced integration (2x2x2), MAPDL's default; 1: full (3x3x3).
     const int order = type_of(model, record).key(2) == 1 ? 3 : 2;
-    return std::make_unique<QuadraticSolid>(record.id, QuadraticShape::Hex20, n,
-                                            coordinates(model, record, n), material,
-                                            gauss_cube(order), hex20_faces(), record.where);
+    return std::make_unique<QuadraticSolid>(
+        record.id, QuadraticShape::Hex20, n, coordinates(model, record, n), material,
+        gauss_cube(order), hex20_faces(), record.where,
+        plasticity_of(model, record, material.young, material.poisson));
   }
   if (const auto tet = solid186_tetrahedron(n))
-    return std::make_unique<QuadraticSolid>(record.id, QuadraticShape::Tet10, tet->first,
-                                            coordinates(model, record, tet->first), material,
-                                            tetrahedron_4_point(), tet->second, record.where);
+    return std::make_unique<QuadraticSolid>(
+        record.id, QuadraticShape::Tet10, tet->first, coordinates(model, record, tet->first),
+        material, tetrahedron_4_point(), tet->second, record.where,
+        plasticity_of(model, record, material.young, material.poisson));
   throw InputError(
       record.where,
       fmt::format("element {}: SOLID186 with repeated corner nodes is taken only as the "
@@ -154,9 +156,10 @@ std::unique_ptr<Element> make_solid187(const ElementBuildContext& ctx,
   require_all_nodes(record, "SOLID187", 10);
   const IsotropicElasticity material =
       read_isotropic_elasticity(ctx.model, record.mat, record.id, record.where);
-  return std::make_unique<QuadraticSolid>(record.id, QuadraticShape::Tet10, record.nodes,
-                                          coordinates(ctx.model, record, record.nodes), material,
-                                          tetrahedron_4_point(), tet10_faces(), record.where);
+  return std::make_unique<QuadraticSolid>(
+      record.id, QuadraticShape::Tet10, record.nodes, coordinates(ctx.model, record, record.nodes),
+      material, tetrahedron_4_point(), tet10_faces(), record.where,
+      plasticity_of(ctx.model, record, material.young, material.poisson));
 }
 
 ElementTypeDescriptor quadratic_solid_type(const char* name, int number, int n_nodes, VtkCell cell,
@@ -170,17 +173,18 @@ ElementTypeDescriptor quadratic_solid_type(const char* name, int number, int n_n
           .vtk_cell = cell,
           .role = ShapeRole::Solid,
           .result_names = quadratic_solid_result_names(),
-          .result_sequences = {{"S", "X", "SX"},
-                               {"S", "Y", "SY"},
-                               {"S", "Z", "SZ"},
-                               {"S", "XY", "SXY"},
-                               {"S", "YZ", "SYZ"},
-                               {"S", "XZ", "SXZ"},
-                               {"S", "1", "S1"},
-                               {"S", "2", "S2"},
-                               {"S", "3", "S3"},
-                               {"S", "INT", "SINT"},
-                               {"S", "EQV", "SEQV"}},
+          .result_sequences =
+              {{"S", "X", "SX"},           {"S", "Y", "SY"},         {"S", "Z", "SZ"},
+               {"S", "XY", "SXY"},         {"S", "YZ", "SYZ"},       {"S", "XZ", "SXZ"},
+               {"S", "1", "S1"},           {"S", "2", "S2"},         {"S", "3", "S3"},
+               {"S", "INT", "SINT"},       {"S", "EQV", "SEQV"},     {"EPPL", "X", "EPPLX"},
+               {"EPPL", "Y", "EPPLY"},     {"EPPL", "Z", "EPPLZ"},   {"EPPL", "XY", "EPPLXY"},
+               {"EPPL", "YZ", "EPPLYZ"},   {"EPPL", "XZ", "EPPLXZ"}, {"NL", "EPEQ", "EPEQ"},
+               {"NL", "SEPL", "SEPL"},     {"NL", "SRAT", "SRAT"},   {"NL", "PLWK", "PLWK"},
+               {"EPCR", "X", "EPCRX"},     {"EPCR", "Y", "EPCRY"},   {"EPCR", "Z", "EPCRZ"},
+               {"EPCR", "XY", "EPCRXY"},   {"EPCR", "YZ", "EPCRYZ"}, {"EPCR", "XZ", "EPCRXZ"},
+               {"EPCR", "EQV", "EPCREQV"}, {"NL", "CREQ", "CREQ"}},
+          .plasticity = true,
           .faces = faces,
           .sf_faces = static_cast<int>(faces.size()),
           .create = std::move(create)};

@@ -6,8 +6,9 @@ new process (ANTYPE,,RESTART) from the end of load step 1 and from a point insid
 and compares the merged histories (`impactfe post`) with the uninterrupted run: same times, same
 values to round-off (1e-12 of the largest value). The continued run needs what the elements have
 committed at the point, not only the displacements:
-- a plastic bar (LINK180 / BEAM188 with BISO, SOLID185 with BKIN) striking a wall through a
-  COMBIN40 gap: plastic strain, back stress, equivalent plastic strain per point or fibre;
+- a plastic bar (LINK180 / BEAM188 with BISO, SOLID185 / PLANE182 with BKIN) striking a wall
+  through a COMBIN40 gap: plastic strain, back stress, equivalent plastic strain per point or
+  fibre;
 - Coulomb friction through a COMBIN40 slider (tests/verification/coulomb_friction.inp): the
   slip of the slider and its sliding direction;
 - a brick sliding down a rigid incline on CONTA175 contact with friction: the stick anchor,
@@ -36,9 +37,11 @@ def _bar_model(family):
         d += ["ET,1,LINK180", "SECTYPE,1,LINK", "SECDATA,1.0"]
     elif family == "BEAM188":
         d += ["ET,1,BEAM188", "SECTYPE,1,BEAM,RECT", "SECDATA,1,1,1,1"]
+    elif family == "PLANE182":
+        d += ["ET,1,PLANE182"]  # plane stress, thickness 1
     else:
         d += ["ET,1,SOLID185"]
-    tb = "TB,BKIN,1" if family == "SOLID185" else "TB,BISO,1"
+    tb = "TB,BKIN,1" if family in ("SOLID185", "PLANE182") else "TB,BISO,1"
     d += ["ET,2,COMBIN40,,,1", "MP,EX,1,1E4", "MP,PRXY,1,0.3", "MP,DENS,1,1.0", tb,
           "TBDATA,1,100,1000"]
     if family == "SOLID185":
@@ -52,6 +55,14 @@ def _bar_model(family):
         d += ["R,2,2.5E4,,,0.01", "TYPE,2", "REAL,2"] + [f"E,{41 + j},{100 + j}" for j in range(4)]
         moving, tip = range(1, 45), 41
         ground = "D,100,ALL,,,103"
+    elif family == "PLANE182":
+        for i in range(11):
+            d += [f"N,{2 * i + 1},{i},0", f"N,{2 * i + 2},{i},1"]
+        d += ["TYPE,1"] + [f"E,{2 * i + 1},{2 * i + 3},{2 * i + 4},{2 * i + 2}" for i in range(10)]
+        d += ["N,100,11,0", "N,101,11,1", "R,2,5E4,,,0.01", "TYPE,2", "REAL,2", "E,21,100",
+              "E,22,101"]
+        moving, tip = range(1, 23), 21
+        ground = "D,100,ALL,,,101"
     else:
         d += [f"N,{i + 1},{i}" for i in range(11)] + ["N,20,11", "TYPE,1"]
         d += [f"E,{i},{i + 1}" for i in range(1, 11)]
@@ -59,7 +70,7 @@ def _bar_model(family):
         moving, tip = range(1, 12), 11
         ground = "D,20,ALL"
     d += ["FINISH", "/SOLU", "ANTYPE,TRANS", "TRNOPT,FULL", "TINTP,,0.25,0.5", "LUMPM,ON",
-          "D,ALL,UY", "D,ALL,UZ", ground]
+          "D,ALL,UY"] + (["D,ALL,UZ"] if family != "PLANE182" else []) + [ground]
     if family == "BEAM188":
         d += ["D,ALL,ROTX", "D,ALL,ROTY", "D,ALL,ROTZ"]
     d += [f"IC,{n},UX,0,2.0" for n in moving]
@@ -132,7 +143,7 @@ def _stopped_and_continued(binary, tmp_path, model, ls1, ls2, every, inside, nod
     return reference
 
 
-@pytest.mark.parametrize("family", ["LINK180", "BEAM188", "SOLID185"])
+@pytest.mark.parametrize("family", ["LINK180", "BEAM188", "SOLID185", "PLANE182"])
 def test_plastic_bar_restarted_equals_uninterrupted(binary, tmp_path, family):
     model, tip = _bar_model(family)
     ls1 = "TIME,0.02\nSOLVE\n"
