@@ -138,6 +138,12 @@ void DirectSolution::solve_substep(const LoadStep& step, const LoadStep* previou
   const bool automatic = schedule_.automatic();
   if (dynamic && automatic) change_step(s.h);
   const StepLabel label{step.number, s.number, s.time};
+  // Implicit creep acts over this substep, (t − h, t): the creep laws of the elements read the
+  // clock (the deck armed it: RATE, temperature + TOFF). A retry after a cut comes back here
+  // with the shorter step.
+  CreepClock& creep = *structure_.model().creep_clock;
+  creep.time = s.time;
+  creep.dt = s.h;
   const int iterations_before = stats_.n_iterations;
   const int changes_before = stats_.n_status_changes;
   const SubstepDecision decision =
@@ -151,7 +157,10 @@ void DirectSolution::solve_substep(const LoadStep& step, const LoadStep* previou
     Log::warn("{}", message);
     increment_.find_equilibrium(at, label, dynamic, false);  // accepted as it comes (warned)
   }
-  increment_.accept();
+  increment_.accept();  // commits the element states: the creep increment of the substep
+  // The states are committed at the end of the substep: the results written now (and any
+  // evaluation until the next substep) return from them without creeping again.
+  creep.dt = 0.0;
   refresh_connectivity();
   ++stats_.n_substeps;
   const int iterations = stats_.n_iterations - iterations_before;
