@@ -1,7 +1,8 @@
 // The deck side of implicit creep: MAPDL's value of an undefined parameter in a numeric field
 // (TUNIF,HOT in the Verification Manual's creep decks), RATE switching creep per load step, and
 // TOFF entering the creep law's temperature term, each against the closed form of time
-// hardening at constant uniaxial stress.
+// hardening at constant uniaxial stress; and SF on the nodes of a shell edge (the creep decks'
+// loading) as MAPDL's in-plane edge pressure.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -97,9 +98,10 @@ std::pair<double, double> cube_creep(const std::string& tag, const std::string& 
        "D,1,UZ,,,4,1\nF,2,FX,25\nF,3,FX,25\nF,6,FX,25\nF,7,FX,25\nFINISH\n/SOLU\n"
        "CNVTOL,F,,1E-10\nKBC,1\nRATE,"
     << rate1 << "\nTIME,1\nSOLVE\nRATE,ON\nTIME,16\nNSUBST,4\nSOLVE\nFINISH\n";
-  const auto run = testing::run_deck_text(tag, d.str());
+  const auto run = impactfe::testing::run_deck_text(tag, d.str());
   const auto series = run.reader->element_series(1, "EPCRX");
-  return {testing::value_stored_at(series, 1.0), testing::value_stored_at(series, 16.0)};
+  return {impactfe::testing::value_stored_at(series, 1.0),
+          impactfe::testing::value_stored_at(series, 16.0)};
 }
 
 /// ∫ C1 σ^C2 t^C3 e^(−C4/T) dt from t0 to t1 (C3 = −0.5).
@@ -146,4 +148,25 @@ TEST(CreepDeck, TbCreepRefusesExplicitAndUnknownEquations) {
   EXPECT_NE(error_of("/PREP7\nTB,CREEP,1,2,,6\n").find("temperature-dependent creep"),
             std::string::npos);
   EXPECT_EQ(error_of("/PREP7\nTB,CREEP,1,,,6.0\nTBDATA,1,1E-10,3\n"), "no error");
+}
+
+TEST(ShellEdgePressure, SfOnTheNodesOfAShellEdgeLoadsTheEdgeInPlane) {
+  // SHELL181 square 100 × 100, t = 1, held at x = 0 (UX) and node 1 (UY); SF,ALL,PRES,−200 on
+  // the nodes of x = 100 (MAPDL's in-plane edge pressure, positive into the element): uniaxial
+  // σx = 200, u_x(100) = 200 · 100 / E = 0.1. The surface (face 1) of no element is selected.
+  const std::string deck =
+      "/PREP7\nET,1,SHELL181\nSECTYPE,1,SHELL\nSECDATA,1\nMP,EX,1,200e3\nMP,NUXY,1,0.3\n"
+      "N,1,0,0\nN,2,100,0\nN,3,100,100\nN,4,0,100\nE,1,2,3,4\nD,1,UX\nD,4,UX\nD,1,UY\n"
+      "D,ALL,UZ\nD,ALL,ROTX\nD,ALL,ROTY\nD,ALL,ROTZ\nFINISH\n/SOLU\nNSEL,S,LOC,X,100\n"
+      "SF,ALL,PRES,-200\nNSEL,ALL\nSOLVE\nFINISH\n";
+  const auto run = impactfe::testing::run_deck_text("shell_edge_pressure", deck);
+  EXPECT_NEAR(impactfe::testing::value_stored_at(run.reader->nodal_series(3, "UX"), 1.0), 0.1,
+              1e-9);
+  EXPECT_NEAR(impactfe::testing::value_stored_at(run.reader->element_series(1, "SX_TOP"), 1.0),
+              200.0, 1e-6);
+  // One node of the edge selected: no face and no edge has all its nodes selected.
+  EXPECT_NE(error_of("/PREP7\nET,1,SHELL181\nN,1\nN,2,1\nN,3,1,1\nE,1,2,3\nNSEL,S,NODE,,3\n"
+                     "SF,ALL,PRES,1\n")
+                .find("no element face has all its nodes selected"),
+            std::string::npos);
 }
