@@ -211,6 +211,13 @@ void cmd_rate(DeckReader& r, const Command& c) {
     if (!c.blank(f)) r.fail(c, fmt::format("field {} '{}' is not a RATE field", f, c.text(f)));
 }
 
+void cmd_toff(DeckReader& r, const Command& c) {
+  // TOFF,Value: the offset of the temperature scale from absolute zero (blank: 0); the creep
+  // laws' temperature terms e^(−C/T) read T + TOFF (MAPDL Command Reference, TOFF). Kept with
+  // RATE: both arm the creep clock at SOLVE (arm_creep_clock).
+  r.solution.temperature_offset = r.real(c, 1, 0.0);
+}
+
 void cmd_sstif(DeckReader& r, const Command& c) {
   r.model.options.stress_stiffening = r.on_off(c, 1, false);
 }
@@ -711,6 +718,7 @@ void register_solution_commands(std::vector<CommandSpec>& t) {
   t.push_back({"NLGEOM", cmd_nlgeom, kPrepSolu});
   t.push_back({"SSTIF", cmd_sstif, kPrepSolu});
   t.push_back({"RATE", cmd_rate, kPrepSolu});
+  t.push_back({"TOFF", cmd_toff, kPrepSolu});
   t.push_back({"LUMPM", cmd_lumpm, kPrepSolu});
   t.push_back({"ANTYPE", cmd_antype, kPrepSolu});
   t.push_back({"OUTRES", cmd_outres, kPrepSolu});

@@ -19,12 +19,6 @@ void cmd_tref(DeckReader& r, const Command& c) {
   r.model.current.reference_temperature = r.real(c, 1, 0.0);
 }
 
-void cmd_toff(DeckReader& r, const Command& c) {
-  // TOFF,Value: the offset of the temperature scale from absolute zero (blank: 0); the creep
-  // laws' temperature terms e^(−C/T) read T + TOFF (MAPDL Command Reference, TOFF).
-  r.solution.temperature_offset = r.real(c, 1, 0.0);
-}
-
 void set_uniform_temperature(DeckReader& r, const Command& c, int field) {
   // TUNIF,TEMP / BFUNIF,TEMP,VALUE: a blank value is 0 (MAPDL Command Reference, TUNIF).
   if (!c.blank(field) && c.text(field).find('%') != std::string::npos)
@@ -200,7 +194,6 @@ void cmd_cpdele(DeckReader& r, const Command& c) {
 void register_thermal_coupling_commands(std::vector<CommandSpec>& t) {
   t.push_back({"TREF", cmd_tref, kPrepSolu});
   t.push_back({"TUNIF", cmd_tunif, kPrepSolu});
-  t.push_back({"TOFF", cmd_toff, kPrepSolu});
   t.push_back({"BFUNIF", cmd_bfunif, kPrepSolu});
   t.push_back({"BF", cmd_bf, kPrepSolu});
   t.push_back({"BFDELE", cmd_bfdele, kPrepSolu});
