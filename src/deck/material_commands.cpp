@@ -222,6 +222,13 @@ void cmd_tb(DeckReader& r, const Command& c) {
       r.fail(c, fmt::format("TB,CREEP: NTEMP = {}: temperature-dependent creep constants are "
                             "not implemented (one temperature)",
                             ntemp));
+  } else if (lab == "HILL") {
+    // Hill's anisotropic potential: only its isotropic form (all six ratios 1, von Mises) is
+    // carried out; the ratios are checked where the law is built (plasticity_of).
+    if (!opt.empty())
+      r.fail(c, fmt::format("TB,HILL,,,,{}: only the common potential (blank TBOPT) is supported",
+                            c.text(5)));
+    if (ntemp != 1) r.fail(c, "TB,HILL: one temperature only");
   } else if (lab != "BISO" && lab != "BKIN" && lab != "MISO" && lab != "MKIN") {
     r.fail(c, fmt::format("TB,{}: material model not supported", lab.empty() ? "(blank)" : lab));
   }
