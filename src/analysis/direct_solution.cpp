@@ -138,6 +138,21 @@ void DirectSolution::solve_substep(const LoadStep& step, const LoadStep* previou
   const bool automatic = schedule_.automatic();
   if (dynamic && automatic) change_step(s.h);
   const StepLabel label{step.number, s.number, s.time};
+  // Implicit creep acts over this substep, (t − h, t): the creep laws of the elements read the
+  // clock (the deck armed it: RATE, temperature + TOFF). A retry after a cut comes back here
+  // with the shorter step.
+  CreepClock& creep = *structure_.model().creep_clock;
+  creep.time = s.time;
+  creep.dt = s.h;
+  // Static creep substeps after the first of a load step start from the last increment scaled
+  // to this step (linear extrapolation, MAPDL's substep predictor, PRED): creep under a steady
+  // load advances the displacements nearly linearly, so Newton starts close to the solution
+  // and the force tolerance (CNVTOL 0.5 %) leaves no visible error in the creep strain.
+  const bool creep_static = creep.active && !dynamic;
+  if (creep_static && creep_load_step_ == step.number && creep_step_ > 0.0 &&
+      creep_increment_.size() == state_.u.size())
+    increment_.predict_static((s.h / creep_step_) * creep_increment_);
+  const VectorXd u_start = creep_static ? state_.u : VectorXd();
   const int iterations_before = stats_.n_iterations;
   const int changes_before = stats_.n_status_changes;
   const SubstepDecision decision =
@@ -151,7 +166,17 @@ void DirectSolution::solve_substep(const LoadStep& step, const LoadStep* previou
     Log::warn("{}", message);
     increment_.find_equilibrium(at, label, dynamic, false);  // accepted as it comes (warned)
   }
-  increment_.accept();
+  increment_.accept();  // commits the element states: the creep increment of the substep
+  if (creep_static && u_start.size() == state_.u.size()) {
+    creep_increment_ = state_.u - u_start;
+    creep_step_ = s.h;
+    creep_load_step_ = step.number;
+  } else {
+    creep_increment_.resize(0);
+  }
+  // The states are committed at the end of the substep: the results written now (and any
+  // evaluation until the next substep) return from them without creeping again.
+  creep.dt = 0.0;
   refresh_connectivity();
   ++stats_.n_substeps;
   const int iterations = stats_.n_iterations - iterations_before;

@@ -84,6 +84,11 @@ class DirectSolution {
   bool transient_;
   std::optional<ContactFrequency> closed_highest_;  // of the contacts closed so far
   int stopping_ = 0;  // the signal that stops the run after the substep accepted last (0: none)
+  // Creep substep predictor: the increment of the last static creep substep, its step and load
+  // step (solve_substep).
+  VectorXd creep_increment_;
+  double creep_step_ = 0.0;
+  int creep_load_step_ = 0;
 
   TimeSchedule schedule_;
   std::unique_ptr<Discretisation> disc_;

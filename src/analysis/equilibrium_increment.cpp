@@ -75,10 +75,13 @@ void EquilibriumIncrement::prepare(const LoadPoint& at, const StepLabel& label, 
         pressure_forces(structure_.elements(), disc_->dofs(), structure_.context(), at, state_.u);
   inc.v = state_.v;
   inc.a = state_.a;
-  if (dynamic)
+  if (dynamic) {
     integrator_->predict(u);
-  else
+  } else {
     u = state_.u;
+    if (static_delta_.size() == u.size()) u += static_delta_;
+  }
+  static_delta_.resize(0);
   loads_.prescribe(*disc_, at, u);
   inc.coeff = dynamic ? integrator_->coefficients() : IntegrationCoefficients{1.0, 0.0, 0.0};
   inc.weights = dynamic ? integrator_->weights() : ResidualWeights{};

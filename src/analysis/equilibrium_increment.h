@@ -47,6 +47,10 @@ class EquilibriumIncrement final : private NonlinearProblem {
   void reject();
   /// Status changes of the increment solved last.
   int status_changes() const { return inc_.n_status_changes; }
+  /// The next static find_equilibrium starts from u_n + `delta` (free DOFs; the prescribed ones
+  /// take their values) instead of u_n: the substep predictor of creep steps (DirectSolution).
+  /// Used once; ignored when its size is not the state's.
+  void predict_static(VectorXd delta) { static_delta_ = std::move(delta); }
 
   /// The run summary's line on the condensed transient (empty when it never applied).
   std::string condensation_summary() const;
@@ -113,6 +117,7 @@ class EquilibriumIncrement final : private NonlinearProblem {
   /// kept from step to step: a vector of model size allocated per step is a fresh mapping on
   /// large models, faulted in page by page.
   VectorXd step_state_, step_residual_, step_correction_;
+  VectorXd static_delta_;  // predict_static
   VectorXd inertia_a_, inertia_;
   /// Newton said that a factorization at the next residual's iterate will follow: that
   /// residual forms the element tangents too (read and cleared by residual()).

@@ -119,6 +119,16 @@ std::optional<double> DeckReader::opt_real(const Command& c, int i) const {
       value = std::get<double>(v);
     }
   } catch (const ExpressionError& e) {
+    // A numeric field that is only the name of an undefined parameter takes MAPDL's "tiny"
+    // value 2^-100 (APDL Programmer's Reference §3.6: a parameter used in a numeric field but
+    // not defined is substituted by 2^-100, usually without warning). impactfe warns, naming the
+    // parameter; a name inside an expression (LEN*WIDTH) stays an error.
+    if (is_parameter_name(t) && params.find(to_upper(t)) == nullptr) {
+      warn(c, fmt::format("field {}: parameter '{}' is not defined; it takes MAPDL's value for "
+                          "an undefined parameter, 2^-100 = {:.6g}",
+                          i, to_upper(t), kUndefinedParameterValue));
+      return kUndefinedParameterValue;
+    }
     bool letters = false;
     for (char ch : t) letters = letters || std::isalpha(static_cast<unsigned char>(ch));
     if (!letters) fail(c, fmt::format("field {}: bad number '{}'", i, t));

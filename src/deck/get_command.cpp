@@ -74,7 +74,7 @@ double get_node(DeckReader& r, const Command& c, const GetRequest& g, int n, boo
       return i1 == "D" ? 2e100 : 0.0;  // MAPDL: a huge value for "no constraint"
     }
   }
-  if ((i1 == "S" || i1 == "EPEL") && !g.it1num.empty()) {
+  if ((i1 == "S" || i1 == "EPEL" || i1 == "EPPL" || i1 == "EPCR") && !g.it1num.empty()) {
     // The nodal stress of PRNSOL: the mean over the selected elements at the node of their
     // element values (post1_print.cpp, nodal_item_value).
     const NodalItem item = nodal_item(r, c, i1, g.it1num);
@@ -100,7 +100,9 @@ double get_node(DeckReader& r, const Command& c, const GetRequest& g, int n, boo
     }
     return nodal_result(r, c, n, lab);
   }
-  unsupported(r, c, g, "LOC, ANG, U, ROT, V, A, RF, D, F, S, EPEL, NSEL, NXTH, NXTL, COUNT, NUM");
+  unsupported(
+      r, c, g,
+      "LOC, ANG, U, ROT, V, A, RF, D, F, S, EPEL, EPPL, EPCR, NSEL, NXTH, NXTL, COUNT, NUM");
 }
 
 /// LENG: the distance between an element's first and last node; 0 for a point element

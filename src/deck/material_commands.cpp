@@ -1,6 +1,7 @@
 // Materials (APDL_MODELING §6): MP and the 4x property commands (EX, NUXY, ...), MPTEMP, MPDATA,
 // MPDELE, and the nonlinear material tables TB, TBTEMP, TBDATA, TBPT, TBDELE (parsed and stored;
-// TB,ELASTIC and TB,FRIC act at once, the plasticity laws stop the solve until they exist).
+// TB,ELASTIC and TB,FRIC act at once; the plasticity and implicit creep laws are built with the
+// elements, materials/j2_plasticity.h).
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -199,6 +200,35 @@ void cmd_tb(DeckReader& r, const Command& c) {
   } else if (lab == "FRIC") {
     if (opt.empty()) opt = "ISO";
     if (opt != "ISO") r.fail(c, fmt::format("TB,FRIC,,,,{}: only ISO is supported", opt));
+  } else if (lab == "CREEP") {
+    // Implicit creep equations (TBOPT 1-3, 6, 7, 10, 11; materials/j2_plasticity.h CreepLaw).
+    // TBOPT 0 / blank is explicit creep (and 100 user creep): not implemented.
+    static const std::set<std::string> implicit = {"1", "2", "3", "6", "7", "10", "11"};
+    if (opt.empty() || opt == "0")
+      r.fail(c,
+             "TB,CREEP without TBOPT is explicit creep, which is not implemented; give an "
+             "implicit creep equation (TBOPT 1, 2, 3, 6, 7, 10 or 11)");
+    // A TBOPT written as a number (6.0) or a parameter: its integral value.
+    if (implicit.count(opt) == 0) {
+      const auto value = r.opt_real(c, 5);
+      if (value && *value == std::round(*value))
+        opt = std::to_string(static_cast<long long>(*value));
+    }
+    if (implicit.count(opt) == 0)
+      r.fail(c, fmt::format("TB,CREEP,,,,{}: creep equation not supported (implicit TBOPT 1, 2, "
+                            "3, 6, 7, 10, 11)",
+                            c.text(5)));
+    if (ntemp != 1)
+      r.fail(c, fmt::format("TB,CREEP: NTEMP = {}: temperature-dependent creep constants are "
+                            "not implemented (one temperature)",
+                            ntemp));
+  } else if (lab == "HILL") {
+    // Hill's anisotropic potential: only its isotropic form (all six ratios 1, von Mises) is
+    // carried out; the ratios are checked where the law is built (plasticity_of).
+    if (!opt.empty())
+      r.fail(c, fmt::format("TB,HILL,,,,{}: only the common potential (blank TBOPT) is supported",
+                            c.text(5)));
+    if (ntemp != 1) r.fail(c, "TB,HILL: one temperature only");
   } else if (lab != "BISO" && lab != "BKIN" && lab != "MISO" && lab != "MKIN") {
     r.fail(c, fmt::format("TB,{}: material model not supported", lab.empty() ? "(blank)" : lab));
   }
@@ -312,10 +342,12 @@ void cmd_tbdele(DeckReader& r, const Command& c) {
 }  // namespace
 
 void check_material_tables(DeckReader& r, const Command& c) {
-  // The laws themselves (BISO, BKIN, MISO) are checked when the elements are built
-  // (plasticity_of, at the TB command); here: element types that take no plasticity.
+  // The laws themselves (BISO, BKIN, MISO, CREEP) are checked when the elements are built
+  // (plasticity_of, at the TB command); here: element types that take neither plasticity nor
+  // creep (creep uses the same inelastic material point as plasticity).
   for (const auto& [key, table] : r.model.material_tables) {
-    if (!is_plasticity(table.label)) continue;
+    const bool creep = table.label == "CREEP";
+    if (!is_plasticity(table.label) && !creep) continue;
     for (const auto& [id, e] : r.model.elements) {
       if (e.mat != key.first) continue;
       const auto et = r.model.element_types.find(e.type);
@@ -326,11 +358,12 @@ void check_material_tables(DeckReader& r, const Command& c) {
       std::string with;
       for (const ElementTypeDescriptor* d : registered_element_types())
         if (d->plasticity) with += (with.empty() ? "" : ", ") + d->name;
-      r.fail(c, fmt::format("material {} has TB,{}{} plasticity (TB at {}:{}), but element {} "
-                            "({}) is elastic only; plasticity is available for {}",
+      r.fail(c, fmt::format("material {} has TB,{}{} {} (TB at {}:{}), but element {} "
+                            "({}) is elastic only; plasticity and creep are available for {}",
                             key.first, table.label,
-                            table.label == "PLAS" ? ",,,," + table.option : std::string(),
-                            table.where.file, table.where.line, id, type->name, with));
+                            table.label == "PLAS" || creep ? ",,,," + table.option : std::string(),
+                            creep ? "creep" : "plasticity", table.where.file, table.where.line, id,
+                            type->name, with));
     }
   }
 }

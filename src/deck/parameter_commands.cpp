@@ -146,10 +146,19 @@ void cmd_star_set(DeckReader& r, const Command& c) {
     r.fail(c, fmt::format("{} values given: at most 10 per command", texts.size()));
   std::vector<Value> values;
   for (const auto& text : texts) {
-    if (auto num = parse_fortran_number(text))
+    const std::string name = to_upper(trim(text));
+    if (auto num = parse_fortran_number(text)) {
       values.emplace_back(*num);
-    else
+    } else if (is_parameter_name(name) && r.params.find(name) == nullptr && !is_local_name(name)) {
+      // A = B with B undefined: A takes MAPDL's tiny value 2^-100 (APDL Programmer's Reference
+      // §3.1); warned, naming B.
+      r.warn(c, fmt::format("parameter '{}' is not defined; {} takes MAPDL's value for an "
+                            "undefined parameter, 2^-100 = {:.6g}",
+                            name, t.name, kUndefinedParameterValue));
+      values.emplace_back(kUndefinedParameterValue);
+    } else {
       values.push_back(r.eval_value(c, text));
+    }
   }
   store_values(r, c, t, values);
 }

@@ -107,6 +107,10 @@ class Parameters {
   std::vector<std::map<std::string, Param>> locals_{1};
 };
 
+/// The value MAPDL gives a parameter that is used in a numeric field but not defined: the
+/// "tiny" 2^-100 ≈ 7.88860905221e-31 (APDL Programmer's Reference §3.6).
+inline constexpr double kUndefinedParameterValue = 7.888609052210118e-31;
+
 /// True for a legal parameter name: a letter (or a leading `_`, reserved for program parameters)
 /// first, then letters, digits or '_', at most 32 characters.
 bool is_parameter_name(std::string_view name);

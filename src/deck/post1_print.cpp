@@ -88,8 +88,26 @@ NodalItem nodal_item(DeckReader& r, const Command& c, const std::string& item_in
       out.labels.push_back(item.substr(0, 1) + k);
       out.elements.push_back(k);
     }
+  } else if (item == "EPPL" || item == "EPCR") {
+    // Plastic and creep strain: the components (engineering shears) and the equivalent of the
+    // elements that report them (NL items of a plastic or creep material).
+    out.element_item = item;
+    static const std::vector<std::string> all = {"X", "Y", "Z", "XY", "YZ", "XZ"};
+    std::vector<std::string> comps;
+    if (comp.empty() || comp == "COMP")
+      comps = all;
+    else if (comp == "EQV" || std::find(all.begin(), all.end(), comp) != all.end())
+      comps = {comp};
+    else
+      r.fail(c,
+             fmt::format("{}: Comp '{}' unknown (X, Y, Z, XY, YZ, XZ, EQV, COMP)", item, comp_in));
+    for (const auto& k : comps) {
+      out.labels.push_back(item + k);
+      out.elements.push_back(k);
+    }
   } else {
-    r.fail(c, fmt::format("item '{}' not supported (U, ROT, DOF, V, A, S, EPEL)", item_in));
+    r.fail(c, fmt::format("item '{}' not supported (U, ROT, DOF, V, A, S, EPEL, EPPL, EPCR)",
+                          item_in));
   }
   return out;
 }

@@ -198,6 +198,26 @@ void cmd_nlgeom(DeckReader& r, const Command& c) {
   if (on) r.model.options.stress_stiffening = true;
 }
 
+void cmd_rate(DeckReader& r, const Command& c) {
+  // RATE,Option: implicit creep (TB,CREEP) acts in the load steps solved while it is ON; OFF
+  // (the default) solves them without creep (MAPDL Command Reference, RATE).
+  r.solution.creep_rate = r.on_off(c, 1, false);
+  // The Verification Manual's creep decks write RATE,ON,ON: a second ON/OFF that the command
+  // reference does not describe; accepted as the first field's repetition, anything else refused.
+  if (!c.blank(2) && r.on_off(c, 2, false) != r.solution.creep_rate)
+    r.fail(c, fmt::format("field 2 '{}' differs from the option '{}' (RATE,Option)", c.text(2),
+                          c.text(1)));
+  for (int f = 3; f <= c.n_fields(); ++f)
+    if (!c.blank(f)) r.fail(c, fmt::format("field {} '{}' is not a RATE field", f, c.text(f)));
+}
+
+void cmd_toff(DeckReader& r, const Command& c) {
+  // TOFF,Value: the offset of the temperature scale from absolute zero (blank: 0); the creep
+  // laws' temperature terms e^(−C/T) read T + TOFF (MAPDL Command Reference, TOFF). Kept with
+  // RATE: both arm the creep clock at SOLVE (arm_creep_clock).
+  r.solution.temperature_offset = r.real(c, 1, 0.0);
+}
+
 void cmd_sstif(DeckReader& r, const Command& c) {
   r.model.options.stress_stiffening = r.on_off(c, 1, false);
 }
@@ -504,10 +524,23 @@ void append_current(DeckReader& r, const Command& c) {
   if (a.load_steps.back().time_end) r.solution.last_solved_time = a.load_steps.back().time_end;
 }
 
+/// The creep clock of the analysis about to solve (shared by the creep laws of its elements):
+/// creep acts when RATE is ON, at the absolute temperature TUNIF (else TREF) + TOFF of the load
+/// step. The solution driver sets the substep's time and step on it (DirectSolution).
+void arm_creep_clock(DeckReader& r, const Job::Step& step) {
+  CreepClock& clock = *step.model_snapshot->creep_clock;
+  clock.active = r.solution.creep_rate;
+  clock.temperature =
+      r.model.current.uniform_temperature.value_or(r.model.current.reference_temperature) +
+      r.solution.temperature_offset;
+  clock.dt = 0.0;
+}
+
 void solve_current(DeckReader& r, const Command& c) {
   append_current(r, c);
   const AnalysisRequest& a = *r.job.steps[*r.solution.open_analysis].analysis;
   if (a.options.type == AnalysisType::Modal) r.model.modal_load_vectors = a.load_steps;
+  arm_creep_clock(r, r.job.steps[*r.solution.open_analysis]);
   r.solve_step(*r.solution.open_analysis);
 }
 
@@ -574,7 +607,9 @@ void cmd_lssolve(DeckReader& r, const Command& c) {
     append_current(r, c);
   }
   // All the load steps at once: the solver knows what follows (the progress estimate covers
-  // them) and solves them in order, as one SOLVE each would.
+  // them) and solves them in order, as one SOLVE each would. RATE and TOFF are those in force
+  // at LSSOLVE, for all of them.
+  arm_creep_clock(r, r.job.steps[*r.solution.open_analysis]);
   r.solve_step(*r.solution.open_analysis);
 }
 
@@ -682,6 +717,8 @@ void register_solution_commands(std::vector<CommandSpec>& t) {
   t.push_back({"TIMINT", cmd_timint, kPrepSolu});
   t.push_back({"NLGEOM", cmd_nlgeom, kPrepSolu});
   t.push_back({"SSTIF", cmd_sstif, kPrepSolu});
+  t.push_back({"RATE", cmd_rate, kPrepSolu});
+  t.push_back({"TOFF", cmd_toff, kPrepSolu});
   t.push_back({"LUMPM", cmd_lumpm, kPrepSolu});
   t.push_back({"ANTYPE", cmd_antype, kPrepSolu});
   t.push_back({"OUTRES", cmd_outres, kPrepSolu});

@@ -33,6 +33,12 @@ struct SolutionState {
   std::optional<double> last_solved_time;            // end time of the last solved load step
 
   int mdamp_next = 1;  // MDAMP: the next mode's position
+
+  // Implicit creep (docs/materials.md, "Creep"): RATE,ON|OFF (default OFF) and TOFF, the offset
+  // from the temperature scale to absolute zero. They are read when a SOLVE / LSSOLVE solves:
+  // the creep clock of the model solved (Model::creep_clock) takes them then.
+  bool creep_rate = false;          // RATE
+  double temperature_offset = 0.0;  // TOFF
 };
 
 }  // namespace impactfe::deck

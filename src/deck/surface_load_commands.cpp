@@ -59,10 +59,11 @@ void cmd_sf(DeckReader& r, const Command& c) {
   const LoadField v = load_field(r, c, 3);
   if (r.real(c, 4, 0.0) != 0.0) r.fail(c, "VALUE2 (imaginary part) is not supported");
   const ModelSelection& sel = r.model.selection;
-  const auto faces = component ? geometry::faces_on_nodes(
-                                     r.model, [&](int n) { return component->count(n) != 0; },
-                                     [&](int e) { return sel.elements.selected(e); })
-                               : faces_on_selected_nodes(r, c);
+  // Pressures on shells whose surface is not selected go to their selected edges (MAPDL's
+  // in-plane edge pressure).
+  const auto faces = geometry::faces_on_nodes(
+      r.model, [&](int n) { return component ? component->count(n) != 0 : sel.nodes.selected(n); },
+      [&](int e) { return sel.elements.selected(e); }, true);
   if (faces.empty())
     r.fail(c,
            "no element face has all its nodes selected (select the nodes of the loaded "

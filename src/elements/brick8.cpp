@@ -10,6 +10,7 @@
 #include "core/log.h"
 #include "elements/element_registry.h"
 #include "elements/face_pressure.h"
+#include "materials/inelastic_strain.h"
 
 namespace impactfe {
 
@@ -651,8 +652,9 @@ void Brick8::pressure_load(const ElementContext& ctx, int face, const std::array
 
 namespace {
 const std::vector<std::string> kBrick8Results = {
-    "SX",    "SY",    "SZ",    "SXY",    "SYZ",    "SXZ",    "S1",   "S2",   "S3",   "SINT", "SEQV",
-    "EPPLX", "EPPLY", "EPPLZ", "EPPLXY", "EPPLYZ", "EPPLXZ", "EPEQ", "SEPL", "SRAT", "PLWK"};
+    "SX",   "SY",    "SZ",    "SXY",   "SYZ",    "SXZ",    "S1",     "S2",      "S3",   "SINT",
+    "SEQV", "EPPLX", "EPPLY", "EPPLZ", "EPPLXY", "EPPLYZ", "EPPLXZ", "EPEQ",    "SEPL", "SRAT",
+    "PLWK", "EPCRX", "EPCRY", "EPCRZ", "EPCRXY", "EPCRYZ", "EPCRXZ", "EPCREQV", "CREQ"};
 }  // namespace
 
 const std::vector<std::string>& Brick8::result_names() const {
@@ -693,6 +695,16 @@ void Brick8::results(const ElementContext& ctx, const Eigen::VectorXd& u, const 
   } else {
     s = centroid_stress(ctx, u);
   }
+  // A creep material's inelastic strain is its creep strain (EPCR, NL CREQ); it has no
+  // plastic strain, yield surface or plastic work.
+  Vector6d creep_strain = Vector6d::Zero();
+  double creq = 0.0;
+  if (plasticity_ && plasticity_->has_creep()) {
+    creep_strain = plastic_strain;
+    creq = epeq;
+    plastic_strain.setZero();
+    epeq = sepl = srat = plwk = 0.0;
+  }
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(voigt_to_tensor(s),
                                                           Eigen::EigenvaluesOnly);
   const Eigen::Vector3d pr = es.eigenvalues();  // ascending
@@ -719,7 +731,15 @@ void Brick8::results(const ElementContext& ctx, const Eigen::VectorXd& u, const 
          epeq,
          sepl,
          srat,
-         plwk};
+         plwk,
+         creep_strain(0),
+         creep_strain(1),
+         creep_strain(2),
+         creep_strain(3),
+         creep_strain(4),
+         creep_strain(5),
+         equivalent_inelastic_strain(creep_strain),
+         creq};
 }
 
 }  // namespace impactfe

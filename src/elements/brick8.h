@@ -95,7 +95,10 @@ class Brick8 final : public Element {
   /// large deflection); with plasticity the volume average of the Gauss-point stresses, and
   /// EPPLX..EPPLXZ (plastic strain, engineering shear), EPEQ (equivalent plastic strain), SEPL
   /// (yield stress at EPEQ), SRAT (equivalent stress / SEPL, largest point), PLWK (plastic work
-  /// per volume), volume averages of the points; zeros without plasticity.
+  /// per volume), volume averages of the points; zeros without plasticity. With implicit creep
+  /// (TB,CREEP) the inelastic strain is reported as EPCRX..EPCRXZ (creep strain, engineering
+  /// shear), EPCREQV (its equivalent, equivalent_inelastic_strain) and CREQ (accumulated
+  /// equivalent creep strain) instead, the plastic items zero.
   const std::vector<std::string>& result_names() const override;
   void results(const ElementContext& ctx, const Eigen::VectorXd& u, const Eigen::VectorXd& v,
                ElementResultValues& out) const override;

@@ -16,6 +16,7 @@
 #include "elements/face_pressure.h"
 #include "elements/shell_frame.h"
 #include "elements/so3.h"
+#include "materials/inelastic_strain.h"
 
 namespace impactfe {
 
@@ -525,9 +526,10 @@ namespace {
 const std::vector<std::vector<int>> kShellFaces = {{0, 1, 2, 3}, {0, 1, 2, 3}, {1, 0},
                                                    {2, 1},       {3, 2},       {0, 3}};
 const std::vector<std::string> kShell4Results = {
-    "TX",       "TY",     "TXY",    "MX",      "MY",     "MXY",    "SX_TOP",  "SY_TOP",
-    "SXY_TOP",  "SX_MID", "SY_MID", "SXY_MID", "SX_BOT", "SY_BOT", "SXY_BOT", "SEQV_TOP",
-    "SEQV_BOT", "EPEQ",   "SRAT",   "PLWK",    "QXZ",    "QYZ"};
+    "TX",       "TY",     "TXY",    "MX",      "MY",      "MXY",    "SX_TOP",  "SY_TOP",
+    "SXY_TOP",  "SX_MID", "SY_MID", "SXY_MID", "SX_BOT",  "SY_BOT", "SXY_BOT", "SEQV_TOP",
+    "SEQV_BOT", "EPEQ",   "SRAT",   "PLWK",    "QXZ",     "QYZ",    "EPCRX",   "EPCRY",
+    "EPCRZ",    "EPCRXY", "EPCRYZ", "EPCRXZ",  "EPCREQV", "CREQ"};
 }  // namespace
 
 const std::vector<std::string>& Shell4::result_names() const {
@@ -547,7 +549,8 @@ void Shell4::results(const ElementContext& ctx, const Eigen::VectorXd& u, const 
                      ElementResultValues& out) const {
   shell::Resultants r;
   std::array<Eigen::Vector3d, shell::FlatShellKernel::kLayers> layers;
-  double epeq = 0.0, srat = 0.0, plwk = 0.0;
+  double epeq = 0.0, srat = 0.0, plwk = 0.0, creq = 0.0;
+  Vector6d creep = Vector6d::Zero();
   if (plasticity_) {
     // The states at u (the committed ones after a converged step).
     Eigen::MatrixXd K;
@@ -560,6 +563,13 @@ void Shell4::results(const ElementContext& ctx, const Eigen::VectorXd& u, const 
           srat, impactfe::von_mises(s.stress - s.back_stress) / plasticity_->flow_stress(s.alpha));
     }
     plwk = kernel_->plastic_work(at) / kernel_->volume();
+    if (plasticity_->has_creep()) {
+      // Implicit creep: the inelastic strain is the creep strain (EPCR at the top surface, as
+      // S; NL CREQ the largest accumulated equivalent creep strain); no plastic items.
+      creep = kernel_->layer_inelastic_strain(at, shell::FlatShellKernel::kLayers - 1);
+      creq = epeq;
+      epeq = srat = plwk = 0.0;
+    }
   } else {
     r = kernel_->resultants(local_displacement(ctx, u));
   }
@@ -573,6 +583,10 @@ void Shell4::results(const ElementContext& ctx, const Eigen::VectorXd& u, const 
   const Eigen::Vector3d N = rot(r.N), Mm = rot(r.M);
   // Transverse shear forces per length (SHELL181's Mindlin kernel; zero for SHELL63's DK).
   const Eigen::Vector2d Q(cs * r.Q(0) + sn * r.Q(1), -sn * r.Q(0) + cs * r.Q(1));
+  // The creep strain in the THETA axes: in-plane as a tensor (engineering shear halved, then
+  // doubled back), the transverse shears as a vector.
+  const Eigen::Vector3d creep_in_plane = rot(Eigen::Vector3d(creep(0), creep(1), 0.5 * creep(3)));
+  const double creep_xz = cs * creep(5) + sn * creep(4), creep_yz = -sn * creep(5) + cs * creep(4);
   // Elastic: linear through the thickness; plastic: the layer stresses (surfaces and middle).
   const Eigen::Vector3d mid = plasticity_ ? rot(layers[2]) : Eigen::Vector3d(N / r.t);
   const Eigen::Vector3d top =
@@ -600,7 +614,15 @@ void Shell4::results(const ElementContext& ctx, const Eigen::VectorXd& u, const 
          srat,
          plwk,
          Q(0),
-         Q(1)};
+         Q(1),
+         creep_in_plane(0),
+         creep_in_plane(1),
+         creep(2),
+         2.0 * creep_in_plane(2),
+         creep_yz,
+         creep_xz,
+         equivalent_inelastic_strain(creep),
+         creq};
 }
 
 Eigen::Matrix3d Shell4::result_axes(const ElementContext& ctx, const Eigen::VectorXd& u) const {
@@ -724,21 +746,15 @@ ElementTypeDescriptor shell_type(const char* name, int number, bool shell181) {
           .role = ShapeRole::Shell,
           .result_names = kShell4Results,
           // S at the top surface (MAPDL's default shell location); SMISC 1-6 = T and M resultants.
-          .result_sequences = {{"S", "X", "SX_TOP"},
-                               {"S", "Y", "SY_TOP"},
-                               {"S", "XY", "SXY_TOP"},
-                               {"S", "EQV", "SEQV_TOP"},
-                               {"SMISC", "1", "TX"},
-                               {"SMISC", "2", "TY"},
-                               {"SMISC", "3", "TXY"},
-                               {"SMISC", "4", "MX"},
-                               {"SMISC", "5", "MY"},
-                               {"SMISC", "6", "MXY"},
-                               {"SMISC", "7", "QXZ"},
-                               {"SMISC", "8", "QYZ"},
-                               {"NL", "EPEQ", "EPEQ"},
-                               {"NL", "SRAT", "SRAT"},
-                               {"NL", "PLWK", "PLWK"}},
+          .result_sequences =
+              {{"S", "X", "SX_TOP"},     {"S", "Y", "SY_TOP"},      {"S", "XY", "SXY_TOP"},
+               {"S", "EQV", "SEQV_TOP"}, {"SMISC", "1", "TX"},      {"SMISC", "2", "TY"},
+               {"SMISC", "3", "TXY"},    {"SMISC", "4", "MX"},      {"SMISC", "5", "MY"},
+               {"SMISC", "6", "MXY"},    {"SMISC", "7", "QXZ"},     {"SMISC", "8", "QYZ"},
+               {"NL", "EPEQ", "EPEQ"},   {"NL", "SRAT", "SRAT"},    {"NL", "PLWK", "PLWK"},
+               {"NL", "CREQ", "CREQ"},   {"EPCR", "X", "EPCRX"},    {"EPCR", "Y", "EPCRY"},
+               {"EPCR", "Z", "EPCRZ"},   {"EPCR", "XY", "EPCRXY"},  {"EPCR", "YZ", "EPCRYZ"},
+               {"EPCR", "XZ", "EPCRXZ"}, {"EPCR", "EQV", "EPCREQV"}},
           .plasticity = shell181,
           .faces = kShellFaces,
           .sf_faces = 1,

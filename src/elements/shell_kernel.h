@@ -105,6 +105,10 @@ class FlatShellKernel {
                         std::array<Eigen::Vector3d, kLayers>* layers = nullptr) const;
   /// ∫ (plastic work per volume) dV of the given states.
   double plastic_work(const std::vector<PlasticState>& states) const;
+  /// The inelastic (plastic or creep) strain of layer `layer` (0 bottom .. kLayers − 1 top)
+  /// averaged over the area (Voigt xx, yy, zz, xy, yz, xz in the kernel's axes, engineering
+  /// shears).
+  Vector6d layer_inelastic_strain(const std::vector<PlasticState>& states, int layer) const;
 
   /// DK rotation fields βx = Hx·U, βy = Hy·U (β = −∇w at the Kirchhoff points) at natural
   /// point (ξ, η) for the bending DOFs U = (w, θx, θy) per node; exposed for tests.

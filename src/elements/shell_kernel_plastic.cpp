@@ -205,4 +205,19 @@ double FlatShellKernel::plastic_work(const std::vector<PlasticState>& states) co
   return w;
 }
 
+Vector6d FlatShellKernel::layer_inelastic_strain(const std::vector<PlasticState>& states,
+                                                 int layer) const {
+  const auto pts = points();
+  Eigen::VectorXd N;
+  Eigen::MatrixXd dN;
+  Vector6d mean = Vector6d::Zero();
+  for (std::size_t ip = 0; ip < pts.size(); ++ip) {
+    double detJ = 0.0;
+    shape(pts[ip].xi, pts[ip].eta, N, dN, detJ);
+    mean += (detJ * pts[ip].w / area_) *
+            states[ip * kLayers + static_cast<std::size_t>(layer)].plastic_strain;
+  }
+  return mean;
+}
+
 }  // namespace impactfe::shell

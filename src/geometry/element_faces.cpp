@@ -18,6 +18,10 @@ bool is_plane_solid(const Model& model, const ElementRecord& e) {
   const ElementTypeDescriptor* d = descriptor_of(model, e);
   return d != nullptr && d->role == ShapeRole::Plane;
 }
+bool is_shell(const Model& model, const ElementRecord& e) {
+  const ElementTypeDescriptor* d = descriptor_of(model, e);
+  return d != nullptr && d->role == ShapeRole::Shell;
+}
 }  // namespace
 
 std::vector<int> element_face_nodes(const Model& model, const ElementRecord& element, int face) {
@@ -88,11 +92,12 @@ std::vector<int> line_nodes_with_midsides(const Model& model, const std::vector<
 }
 
 std::vector<FaceKey> faces_on_nodes(const Model& model, const std::function<bool(int)>& node_ok,
-                                    const std::function<bool(int)>& element_ok) {
+                                    const std::function<bool(int)>& element_ok, bool shell_edges) {
   std::map<std::set<int>, std::vector<FaceKey>> candidates;
   for (const auto& [id, e] : model.elements) {
     if (!element_ok(id)) continue;
     const int n = element_face_count(model, e, true);
+    bool loaded = false;
     for (int f = 1; f <= n; ++f) {
       const std::vector<int> nodes = element_face_nodes(model, e, f);
       const std::set<int> key(nodes.begin(), nodes.end());
@@ -101,6 +106,21 @@ std::vector<FaceKey> faces_on_nodes(const Model& model, const std::function<bool
       bool all = true;
       for (int node : key) all = all && node_ok(node);
       if (all) candidates[key].push_back(FaceKey{id, f});
+      loaded = loaded || all;
+    }
+    // A shell whose surface is not selected as a whole takes the load on its edges whose nodes
+    // are (MAPDL's in-plane edge pressure, faces 3.. of SHELL63/181: the Verification Manual's
+    // NSEL,S,LOC,X,..; SF,ALL,PRES on a shell edge); an edge shared by two shells is not loaded.
+    if (shell_edges && !loaded && is_shell(model, e)) {
+      const int faces = element_face_count(model, e, false);
+      for (int f = 3; f <= faces; ++f) {
+        const std::vector<int> nodes = element_face_nodes(model, e, f);
+        const std::set<int> key(nodes.begin(), nodes.end());
+        if (key.size() < 2u) continue;  // a triangle's collapsed edge
+        bool all = true;
+        for (int node : key) all = all && node_ok(node);
+        if (all) candidates[key].push_back(FaceKey{id, f});
+      }
     }
   }
   std::vector<FaceKey> out;

@@ -23,8 +23,11 @@ std::vector<int> area_nodes_with_midsides(const Model& model, const std::vector<
 std::vector<int> line_nodes_with_midsides(const Model& model, const std::vector<int>& chain);
 
 /// The SF face rule: faces (of elements passing `element_ok`, among the first sf_faces faces of
-/// each type) whose nodes all pass `node_ok`, except faces shared by two such elements.
+/// each type) whose nodes all pass `node_ok`, except faces shared by two such elements. With
+/// `shell_edges` (SF pressures), a shell none of whose SF faces qualifies offers its edge faces
+/// (3..) instead, MAPDL's in-plane edge pressure.
 std::vector<FaceKey> faces_on_nodes(const Model& model, const std::function<bool(int)>& node_ok,
-                                    const std::function<bool(int)>& element_ok);
+                                    const std::function<bool(int)>& element_ok,
+                                    bool shell_edges = false);
 
 }  // namespace impactfe::geometry

@@ -399,6 +399,18 @@ std::optional<J2Plasticity> plasticity_of(const Model& model, const ElementRecor
   for (const auto& [key, t] : model.material_tables) {
     if (key.first == record.mat && is_plasticity_table(t.label)) table = &t;
     if (key.first == record.mat && t.label == "CREEP") creep = &t;
+    // TB,HILL: Hill's potential with the ratios R11 R22 R33 R12 R23 R13 all 1 is von Mises's,
+    // which the laws here are; any other ratio (an anisotropic potential) is refused.
+    if (key.first == record.mat && t.label == "HILL") {
+      const std::vector<double>& r = t.temperatures.front().constants;
+      bool isotropic = r.size() == 6;
+      for (double v : r) isotropic = isotropic && v == 1.0;
+      if (!isotropic)
+        throw InputError(t.where, fmt::format("material {} (TB,HILL, used by element {}): only "
+                                              "the isotropic potential (TBDATA,1,1,1,1,1,1,1: von "
+                                              "Mises) is implemented",
+                                              record.mat, record.id));
+    }
   }
   if (creep) {
     const auto fail = [&](const std::string& what) {

@@ -109,7 +109,11 @@ AutoStepPlan auto_step_plan(const LoadStep& step, const StepControl& c, const Lo
     p.dt_min = c.dt_min.value_or(p.dt0 / 1000.0);
     p.dt_max = c.dt_max.value_or(default_max);
     // DTIME was checked against its limits at the command; the step run is DTIME rounded to
-    // divide the span.
+    // divide the span. A span shorter than DTIME is one step of the span, whatever DTMIN (MAPDL
+    // takes the time left: the Verification Manual's creep decks give DELTIM,1.0,0.99,1.0 from
+    // t = 0.1 to 1); with constant steps the limits are not used.
+    if (t.n_substeps == 1 && span < *step.dt) p.dt_min = std::min(p.dt_min, p.dt0);
+    if (!p.automatic) p.dt_min = std::min(p.dt_min, p.dt0);
     if (p.dt_min > p.dt0 * (1.0 + 1e-9))
       fail(step,
            fmt::format("DTMIN {:g} is larger than the time step {:g} (DELTIM)", p.dt_min, p.dt0));

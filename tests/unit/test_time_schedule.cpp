@@ -151,6 +151,38 @@ TEST(TimeSchedule, LaterLoadStepsArePlannedOnceAndTheirErrorsWait) {
   }
 }
 
+TEST(TimeSchedule, ASpanShorterThanDeltimIsOneStepWhateverDtmin) {
+  // DELTIM,1.0,0.99,1.0 from t = 0.1 to 1 (the Verification Manual's creep decks): one step of
+  // 0.9, below DTMIN, with constant steps and under AUTOTS alike.
+  for (const bool automatic : {false, true}) {
+    std::vector<std::string> notes;
+    TimeSchedule schedule(false, 25, notes);
+    LoadStep first = step_to(1, 0.1);
+    first.dt = 0.1;
+    schedule.begin_load_step(first, {});
+    schedule.begin_substeps(std::nullopt);
+    while (!schedule.done()) schedule.accept(1, 0);
+    schedule.end_load_step();
+    LoadStep s = step_to(2, 1.0);
+    s.dt = 1.0;
+    s.control.dt_min = 0.99;
+    s.control.dt_max = 1.0;
+    s.control.automatic = automatic;
+    schedule.begin_load_step(s, {});
+    schedule.begin_substeps(std::nullopt);
+    EXPECT_NEAR(schedule.next().h, 0.9, 1e-12) << automatic;
+    EXPECT_NEAR(schedule.next().time, 1.0, 1e-12) << automatic;
+  }
+  // A DTMIN above a step that divides the span is still refused under AUTOTS.
+  std::vector<std::string> notes;
+  TimeSchedule schedule(false, 25, notes);
+  LoadStep s = step_to(1, 1.0);
+  s.dt = 0.25;
+  s.control.dt_min = 0.3;
+  s.control.automatic = true;
+  EXPECT_THROW(schedule.begin_load_step(s, {}), InputError);
+}
+
 TEST(TimeSchedule, ImpactInAStepLongerThanT30IsCutThenStops) {
   std::vector<std::string> notes;
   TimeSchedule schedule(true, 8, notes);
