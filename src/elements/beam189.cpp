@@ -127,18 +127,57 @@ bool QuadraticBeam::is_nonlinear(const ElementContext& ctx) const {
   return ctx.large_deflection || ctx.stress_stiffening;
 }
 
+void QuadraticBeam::evaluate(const Vec18& u, bool stiffening, bool thermal, Vec18* f, Mat18* K,
+                             Vec6* sg) const {
+  using Vec6 = Eigen::Matrix<double, 6, 1>;
+  if (f) f->setZero();
+  if (K) K->setZero();
+  for (int g = 0; g < 2; ++g) {
+    const double xi = g == 0 ? -kGauss2 : kGauss2;
+    double J = 0.0;
+    StrainMatrix B = strain_matrix(xi, &J);
+    Vec6 e = B * u;
+    if (thermal) e(0) -= thermal_strain(xi);
+    Eigen::Matrix<double, 3, 18> G = Eigen::Matrix<double, 3, 18>::Zero();
+    Mat3 P = Mat3::Zero();
+    if (stiffening) {
+      // Moderate-rotation axial strain ε0 += ½ u'ᵀ (I − t tᵀ) u' (the transverse part of the
+      // axis derivative; BEAM188's (Δv² + Δw²)/(2L²), Cook et al. §18.3): B's first row gains
+      // ((I − t tᵀ) u')ᵀ G, and K the geometric term N Gᵀ (I − t tᵀ) G.
+      const Eigen::Vector3d dN = shape_derivative(xi);
+      for (int a = 0; a < 3; ++a) G.block<3, 3>(0, 6 * a) = dN(a) / J * Mat3::Identity();
+      const Vec3 t = axes_at(xi).col(0);
+      P = Mat3::Identity() - t * t.transpose();
+      const Vec3 du = G * u;
+      e(0) += 0.5 * du.dot(P * du);
+      B.row(0) += (P * du).transpose() * G;
+    }
+    const Vec6 s = D_ * e;
+    if (sg) sg[g] = s;
+    if (f) *f += J * B.transpose() * s;  // Gauss weight 1
+    if (K) *K += J * (B.transpose() * D_ * B + s(0) * G.transpose() * P * G);
+  }
+  if (K) *K = (0.5 * (*K + K->transpose())).eval();
+}
+
 void QuadraticBeam::tangent(const ElementContext& ctx, const Eigen::VectorXd& u, Eigen::MatrixXd& K,
                             Eigen::VectorXd& f_int) const {
   // Refused rather than computed without: the analysis would be wrong, not approximate.
-  if (ctx.large_deflection || ctx.stress_stiffening)
+  if (ctx.large_deflection)
     throw NotImplementedError(fmt::format(
-        "element {} (BEAM189): {} is not implemented for BEAM189 (small-deflection linear "
-        "elastic only; BEAM188 has it)",
-        id(),
-        ctx.large_deflection ? "large deflection (NLGEOM,ON)"
-                             : "stress stiffening (SSTIF, PSTRES, buckling)"));
-  K = K_;
-  f_int = K_ * u;
+        "element {} (BEAM189): large deflection (NLGEOM,ON) is not implemented for BEAM189 "
+        "(BEAM188 has it)",
+        id()));
+  if (!ctx.stress_stiffening) {
+    K = K_;
+    f_int = K_ * u;
+    return;
+  }
+  Vec18 f;
+  Mat18 Kt;
+  evaluate(u, true, false, &f, &Kt, nullptr);
+  K = Kt;
+  f_int = f;
 }
 
 void QuadraticBeam::mass(const ElementContext& ctx, Eigen::MatrixXd& M) const {
@@ -204,18 +243,16 @@ const std::vector<std::string>& QuadraticBeam::result_names() const {
   return quadratic_beam_result_names();
 }
 
-void QuadraticBeam::results(const ElementContext&, const Eigen::VectorXd& u, const Eigen::VectorXd&,
-                            ElementResultValues& out) const {
+void QuadraticBeam::results(const ElementContext& ctx, const Eigen::VectorXd& u,
+                            const Eigen::VectorXd&, ElementResultValues& out) const {
   using Vec6 = Eigen::Matrix<double, 6, 1>;
   out.assign(quadratic_beam_result_names().size(), 0.0);
-  // Generalised stresses (N, My, Mz, T, Vy, Vz) = D (B u − ε_th) at the two Gauss points, and
-  // the linear field through them at ξ: exact wherever the resultants are linear along the
-  // element (end loads, a thermal strain), also on a curved element.
+  // Generalised stresses (N, My, Mz, T, Vy, Vz) = D (B u − ε_th) at the two Gauss points (with
+  // the moderate-rotation axial strain under stress stiffening), and the linear field through
+  // them at ξ: exact wherever the resultants are linear along the element (end loads, a thermal
+  // strain), also on a curved element.
   Vec6 sg[2];
-  for (int g = 0; g < 2; ++g) {
-    const double xi = g == 0 ? -kGauss2 : kGauss2;
-    sg[g] = D_ * (strain_matrix(xi) * u - thermal_strain(xi) * Vec6::Unit(0));
-  }
+  evaluate(u, ctx.stress_stiffening && !ctx.large_deflection, true, nullptr, nullptr, sg);
   auto at = [&](double xi) -> Vec6 {
     return 0.5 * (sg[0] + sg[1]) + 0.5 * std::sqrt(3.0) * xi * (sg[1] - sg[0]);
   };
@@ -323,7 +360,7 @@ const ElementRegistration kBeam189{
      .result_names = quadratic_beam_result_names(),
      .result_sequences = beam189_sequences(),
      .note = "BEAM189: quadratic Timoshenko beam, 2-point Gauss along the axis; linear elastic, "
-             "small deflection (NLGEOM, stress stiffening and plasticity refused)",
+             "small deflection with stress stiffening (NLGEOM and plasticity refused)",
      .create = make_beam189}};
 
 }  // namespace

@@ -1,6 +1,6 @@
 #pragma once
 /// Three-node quadratic 3-D beam (BEAM189): nodes I, J (ends), K (midside), optional
-/// orientation node L. Small-deflection, linear elastic.
+/// orientation node L. Small deflection (with stress stiffening), linear elastic.
 ///
 /// Kinematics: isoparametric Timoshenko beam, positions, displacements u and rotations θ
 /// interpolated by the quadratic Lagrange functions of ξ ∈ [−1, 1] (I at −1, K at 0, J at +1),
@@ -30,6 +30,10 @@
 /// Mass: consistent ∫ Nᵀ m N ds with m = diag(ρA I₃, R diag(ρ(Iyy + Izz), ρIyy, ρIzz) Rᵀ)
 /// (translational and rotary inertia, R the section axes), 3-point Gauss; lumped (LUMPM): the
 /// row sums of each node's blocks (1/6, 2/3, 1/6 of a straight element's mass).
+///
+/// Stress stiffening (SSTIF, PSTRES, buckling): the axial strain takes the moderate-rotation
+/// term ½ u'ᵀ(I − t tᵀ)u', which adds N Gᵀ(I − t tᵀ)G (G: u' = G u) at each Gauss point, the
+/// exact derivative of f_int (BEAM188's (Δv² + Δw²)/(2L²); Cook et al. §18.3).
 ///
 /// Results: the generalised stresses D (B u − ε_th) of the two Gauss points, extrapolated
 /// linearly to I and J and interpolated to K (section axes; the signs of BEAM188's −f at I, +f at
@@ -97,6 +101,10 @@ class QuadraticBeam final : public Element {
   const Mat18& stiffness() const { return K_; }
 
  private:
+  using Vec6 = Eigen::Matrix<double, 6, 1>;
+  /// Internal force f, tangent K and Gauss-point generalised stresses sg[2] at u (each when
+  /// asked); `stiffening` adds the moderate-rotation axial strain, `thermal` takes ε_th off.
+  void evaluate(const Vec18& u, bool stiffening, bool thermal, Vec18* f, Mat18* K, Vec6* sg) const;
   /// ε_th at ξ from the temperature change set last (0 without one).
   double thermal_strain(double xi) const;
   Vec18 thermal_forces() const;

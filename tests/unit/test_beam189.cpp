@@ -8,6 +8,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <cstdio>
 
 #include "core/errors.h"
@@ -394,13 +395,64 @@ TEST(Beam189, BadInputIsRefused) {
   EXPECT_THROW(build(m, record(1, {1, 2, 3}), true), InputError);  // NLGEOM
   m.element_types[1].keyopt[1] = 1;
   EXPECT_THROW(build(m, record(1, {1, 2, 3})), InputError);  // warping DOF
-  m.element_types[1].keyopt[1] = 0;
+}
+
+TEST(Beam189, StressStiffeningTangentAndEulerBuckling) {
+  // The stress-stiffened tangent is the derivative of f_int (central difference, curved element).
+  Model m = beam_model("RECT", {2, 3});
+  m.nodes[1] = Node{1, Vec3(0, 0, 0)};
+  m.nodes[2] = Node{2, Vec3(10, 2, 1)};
+  m.nodes[3] = Node{3, Vec3(5, 2.5, 1.5)};
   const auto el = build(m, record(1, {1, 2, 3}));
   ElementContext ss;
   ss.stress_stiffening = true;
-  Eigen::MatrixXd K;
+  Eigen::VectorXd u = Eigen::VectorXd::LinSpaced(18, -0.01, 0.02);
+  Eigen::MatrixXd K, Kd;
   Eigen::VectorXd f;
-  EXPECT_THROW(el->tangent(ss, Eigen::VectorXd::Zero(18), K, f), NotImplementedError);
+  el->tangent(ss, u, K, f);
+  for (int j = 0; j < 18; ++j) {
+    Eigen::VectorXd up = u, um = u, fp, fm;
+    up(j) += 1e-6;
+    um(j) -= 1e-6;
+    el->tangent(ss, up, Kd, fp);
+    el->tangent(ss, um, Kd, fm);
+    EXPECT_LT(((fp - fm) / 2e-6 - K.col(j)).norm(), 1e-6 * K.norm()) << j;
+  }
+  // Cantilever column (CSOLID, L/r = 400, 6 elements) under an axial compression: the smallest
+  // load factor of K + λ K_G(P) is the Euler load π² EI/(4 L²) (within 1e-3; the shear
+  // flexibility lowers it by 1e-5 here).
+  const double r = 5, L = 1000, P = 1.0;
+  const Chain c = chain("CSOLID", {r}, 6, [&](double t) { return Vec3(L * t, 0, 0); });
+  Eigen::VectorXd F = Eigen::VectorXd::Zero(c.n_dofs());
+  F(Chain::dof(13, 0)) = -P;
+  const Eigen::VectorXd u0 = clamped_solution(c, F);
+  Eigen::MatrixXd K0 = Eigen::MatrixXd::Zero(c.n_dofs(), c.n_dofs()), Ks = K0;
+  for (int e = 1; e <= c.n; ++e) {
+    const int nodes[3] = {2 * e - 1, 2 * e + 1, 2 * e};
+    Eigen::MatrixXd Ke0, Kes;
+    Eigen::VectorXd fe;
+    const Element& el_e = *c.elements[static_cast<std::size_t>(e - 1)];
+    el_e.tangent(ElementContext{}, element_u(c, e, u0), Ke0, fe);
+    el_e.tangent(ss, element_u(c, e, u0), Kes, fe);
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) {
+        K0.block<6, 6>(Chain::dof(nodes[a], 0), Chain::dof(nodes[b], 0)) +=
+            Ke0.block<6, 6>(6 * a, 6 * b);
+        Ks.block<6, 6>(Chain::dof(nodes[a], 0), Chain::dof(nodes[b], 0)) +=
+            Kes.block<6, 6>(6 * a, 6 * b);
+      }
+  }
+  const int n = c.n_dofs() - 6;
+  const Eigen::MatrixXd Kg = (Ks - K0).bottomRightCorner(n, n);
+  // K φ = λ (−K_G) φ: the smallest positive λ.
+  Eigen::GeneralizedEigenSolver<Eigen::MatrixXd> ges(-Kg, K0.bottomRightCorner(n, n));
+  double lambda = 1e300;
+  for (Eigen::Index k = 0; k < ges.eigenvalues().size(); ++k) {
+    const std::complex<double> mu = ges.eigenvalues()(k);  // μ = 1/λ
+    if (std::abs(mu.imag()) < 1e-12 && mu.real() > 1e-12) lambda = std::min(lambda, 1 / mu.real());
+  }
+  const double euler = kPi * kPi * kE * kPi * std::pow(r, 4) / 4 / (4 * L * L);
+  EXPECT_NEAR(lambda * P / euler, 1.0, 1e-3);
 }
 
 }  // namespace
