@@ -10,6 +10,7 @@
 #include <cmath>
 
 #include "core/errors.h"
+#include "elements/beam_setup.h"
 #include "elements/so3.h"
 
 namespace impactfe {
@@ -464,20 +465,15 @@ void Beam::results(const ElementContext& ctx, const Eigen::VectorXd& u, const Ei
     const std::size_t o = 6 * static_cast<std::size_t>(end);
     out[o + 0] = N, out[o + 1] = My, out[o + 2] = Mz, out[o + 3] = Tq, out[o + 4] = Vz,
             out[o + 5] = Vy;
-    // Section strains of these resultants, then σ = E (ε0 + z κy − y κz) at the extreme fibres:
-    // the elastic (nominal) stresses of the end resultants, also for a plastic beam, whose fibre
-    // stresses stay on the yield surface (EPEQ and SRAT below say where it yields).
-    const Eigen::Vector3d e = D.ldlt().solve(Eigen::Vector3d(N, My, Mz));
-    const double sdir = E * e(0);
-    const double sbyt = -E * p.y_max * e(2), sbyb = -E * p.y_min * e(2);
-    const double sbzt = E * p.z_max * e(1), sbzb = E * p.z_min * e(1);
+    // The elastic (nominal) extreme-fibre stresses of the end resultants, also for a plastic
+    // beam, whose fibre stresses stay on the yield surface (EPEQ and SRAT below say where it
+    // yields).
+    const BeamFibreStresses st = beam_fibre_stresses(p, E, D, N, My, Mz);
     const std::size_t so = 12 + 5 * static_cast<std::size_t>(end);
-    out[so + 0] = sdir, out[so + 1] = sbyt, out[so + 2] = sbyb, out[so + 3] = sbzt,
-             out[so + 4] = sbzb;
-    out[22 + 2 * static_cast<std::size_t>(end)] =
-        sdir + std::max(sbyt, sbyb) + std::max(sbzt, sbzb);
-    out[23 + 2 * static_cast<std::size_t>(end)] =
-        sdir + std::min(sbyt, sbyb) + std::min(sbzt, sbzb);
+    out[so + 0] = st.sdir, out[so + 1] = st.sbyt, out[so + 2] = st.sbyb, out[so + 3] = st.sbzt,
+             out[so + 4] = st.sbzb;
+    out[22 + 2 * static_cast<std::size_t>(end)] = st.smax;
+    out[23 + 2 * static_cast<std::size_t>(end)] = st.smin;
   }
   if (!data_.plasticity) return;
   double epeq = 0.0, srat = 0.0, work = 0.0;

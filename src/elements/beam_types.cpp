@@ -2,7 +2,6 @@
 // section (APDL_MODELING §8.1), and the 4.2-era elastic beams BEAM4 (3-D) and BEAM3 (2-D, X-Y
 // plane) with their real constants (§8.2).
 #include <fmt/format.h>
-#include <numbers>
 
 #include <Eigen/Geometry>
 
@@ -11,6 +10,7 @@
 
 #include "core/log.h"
 #include "elements/beam.h"
+#include "elements/beam_setup.h"
 #include "elements/element_registry.h"
 #include "elements/line_element_data.h"
 #include "materials/linear_elastic.h"
@@ -18,45 +18,6 @@
 namespace impactfe {
 
 namespace {
-
-InputError element_error(const ElementRecord& record, const char* name, const std::string& msg) {
-  return InputError(record.where, fmt::format("element {} ({}): {}", record.id, name, msg));
-}
-
-/// Element axes (columns x, y, z). x from I to J. With an orientation node K: I, J, K span the
-/// x-z plane, z toward K. Without K: y parallel to the global X-Y plane (y = Z × x normalised),
-/// or y = global Y when the element is parallel to Z; then a rotation THETA (degrees) about x
-/// (APDL_MODELING §8.1, §8.2).
-Eigen::Matrix3d beam_frame(const ElementRecord& record, const char* name, const Vec3& xi,
-                           const Vec3& xj, const Vec3* xk, double theta_deg) {
-  const Vec3 ex = (xj - xi).normalized();
-  Vec3 ey, ez;
-  if (xk != nullptr) {
-    const Vec3 v = *xk - xi;
-    const Vec3 z = v - v.dot(ex) * ex;
-    if (!(z.norm() > 1e-9 * std::max(v.norm(), (xj - xi).norm())))
-      throw element_error(record, name, "orientation node K lies on the beam axis I-J");
-    ez = z.normalized();
-    ey = ez.cross(ex);
-  } else {
-    const Vec3 zg = Vec3::UnitZ();
-    if (zg.cross(ex).norm() < 1e-6) {
-      ey = Vec3::UnitY();
-    } else {
-      ey = zg.cross(ex).normalized();
-    }
-    ez = ex.cross(ey);
-    const double t = theta_deg * std::numbers::pi / 180.0;
-    const Vec3 y0 = ey;
-    ey = std::cos(t) * y0 + std::sin(t) * ez;
-    ez = ex.cross(ey);
-  }
-  Eigen::Matrix3d R;
-  R.col(0) = ex;
-  R.col(1) = ey;
-  R.col(2) = ez;
-  return R;
-}
 
 /// Nodes, frame, material and DOFs common to the three types; the section is filled by the
 /// caller. `planar` (BEAM3): X-Y plane, z = global Z, DOFs UX, UY, ROTZ.
@@ -70,12 +31,13 @@ BeamData beam_data(const Model& model, const ElementRecord& record, const char* 
   d.xj = nj.x;
   const double L = (nj.x - ni.x).norm();
   if (!(L > 0.0))
-    throw element_error(record, name,
-                        fmt::format("zero length (nodes {} and {} coincide)", ni.id, nj.id));
+    throw beam_element_error(record, name,
+                             fmt::format("zero length (nodes {} and {} coincide)", ni.id, nj.id));
   if (planar) {
     if (std::abs(nj.x.z() - ni.x.z()) > 1e-9 * L)
-      throw element_error(record, name, "BEAM3 must lie in an X-Y plane (nodes differ in Z)");
-    if (record.nodes.size() > 2) throw element_error(record, name, "BEAM3 has nodes I, J only");
+      throw beam_element_error(record, name, "BEAM3 must lie in an X-Y plane (nodes differ in Z)");
+    if (record.nodes.size() > 2)
+      throw beam_element_error(record, name, "BEAM3 has nodes I, J only");
     const Vec3 ex = (nj.x - ni.x) / L;
     d.frame.col(0) = ex;
     d.frame.col(2) = Vec3::UnitZ();
@@ -105,30 +67,21 @@ std::unique_ptr<Element> make_beam188(const ElementBuildContext& ctx, const Elem
   const char* name = "BEAM188";
   const ElementType& type = line_data::element_type(model, record);
   if (type.key(1) != 0)
-    throw element_error(record, name,
-                        "KEYOPT(1) = 1 (warping DOF) is not supported (APDL_MODELING §8.1)");
+    throw beam_element_error(record, name,
+                             "KEYOPT(1) = 1 (warping DOF) is not supported (APDL_MODELING §8.1)");
   if (type.key(3) != 0 && type.key(3) != 2 && type.key(3) != 3)
-    throw element_error(
+    throw beam_element_error(
         record, name,
         fmt::format("KEYOPT(3) = {} is not a valid interpolation (0, 2 or 3)", type.key(3)));
-  const auto sec = model.sections.find(record.secnum);
-  if (record.secnum <= 0 || sec == model.sections.end() || sec->second.type != "BEAM")
-    throw element_error(
-        record, name,
-        fmt::format("needs a beam section (SECTYPE,{},BEAM and SECNUM)", record.secnum));
   BeamData d = beam_data(model, record, name, false, 0.0);
   const double nu = d.youngs_modulus / (2.0 * d.shear_modulus) - 1.0;
-  try {
-    d.section = beam_section_properties(sec->second.subtype, sec->second.data, nu);
-  } catch (const std::invalid_argument& e) {
-    throw element_error(record, name, fmt::format("section {}: {}", record.secnum, e.what()));
-  }
+  d.section = record_beam_section(model, record, name, nu);
   // TB plasticity: a law per fibre of the section (docs/plasticity.md). ASEC has properties but
   // no geometry, so there is nothing to integrate the stresses over (its 4 fibres only reproduce
   // A and the second moments): refused rather than yielding at made-up points.
   d.plasticity = plasticity_of(model, record, d.youngs_modulus, nu);
   if (d.plasticity && d.section.subtype == "ASEC")
-    throw element_error(
+    throw beam_element_error(
         record, name,
         fmt::format("section {} is ASEC (properties only, no geometry to integrate stresses over): "
                     "material {} has a TB plasticity table, which BEAM188 supports only for the "
@@ -141,11 +94,11 @@ std::unique_ptr<Element> make_beam188(const ElementBuildContext& ctx, const Elem
 BeamSectionProperties legacy_section(const ElementRecord& record, const char* name, double area,
                                      double izz, double iyy, double ixx, double tkz, double tky,
                                      double shearz, double sheary) {
-  if (!(area > 0.0)) throw element_error(record, name, "AREA is missing or not positive");
-  if (!(izz > 0.0)) throw element_error(record, name, "IZZ is missing or not positive");
-  if (!(iyy > 0.0)) throw element_error(record, name, "IYY is missing or not positive");
+  if (!(area > 0.0)) throw beam_element_error(record, name, "AREA is missing or not positive");
+  if (!(izz > 0.0)) throw beam_element_error(record, name, "IZZ is missing or not positive");
+  if (!(iyy > 0.0)) throw beam_element_error(record, name, "IYY is missing or not positive");
   if (tkz < 0.0 || tky < 0.0 || shearz < 0.0 || sheary < 0.0)
-    throw element_error(record, name, "TKZ, TKY, SHEARZ and SHEARY must not be negative");
+    throw beam_element_error(record, name, "TKZ, TKY, SHEARZ and SHEARY must not be negative");
   BeamSectionProperties p =
       beam_section_properties("ASEC", {area, iyy, 0.0, izz, 0.0, ixx, 0, 0, 0, 0, tkz, tky});
   // Shear deflection constants A/As; 0 = no shear deformation.
@@ -161,7 +114,7 @@ std::unique_ptr<Element> make_beam4(const ElementBuildContext& ctx, const Elemen
   const ElementType& type = line_data::element_type(model, record);
   // AREA, IZZ, IYY, TKZ, TKY, THETA; ISTRN, IXX, SHEARZ, SHEARY, SPIN, ADDMAS.
   if (rs.get(11) != 0.0)
-    throw element_error(record, name, "SPIN (real constant 11) is not supported");
+    throw beam_element_error(record, name, "SPIN (real constant 11) is not supported");
   BeamData d = beam_data(model, record, name, false, rs.get(6));
   const double ixx = rs.get(8) != 0.0 ? rs.get(8) : rs.get(2) + rs.get(3);
   d.section = legacy_section(record, name, rs.get(1), rs.get(2), rs.get(3), ixx, rs.get(4),

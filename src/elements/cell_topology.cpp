@@ -85,6 +85,14 @@ CellTopology simple(VtkCell cell, int dimension, int corners) {
   return t;
 }
 
+/// The 3-node line: ends I J and the midside node K on its one edge.
+CellTopology quadratic_edge() {
+  CellTopology t = simple(VtkCell::Line, 1, 2);
+  t.cell = VtkCell::QuadraticEdge;
+  t.midside_nodes = 1;
+  return t;
+}
+
 std::vector<int> unique_in_order(const std::vector<int>& nodes) {
   std::vector<int> out;
   for (int n : nodes)
@@ -99,6 +107,7 @@ const CellTopology& cell_topology(VtkCell cell) {
   static const CellTopology vertex = simple(VtkCell::Vertex, 0, 1);
   static const CellTopology poly_vertex = simple(VtkCell::PolyVertex, -1, 0);
   static const CellTopology line = simple(VtkCell::Line, 1, 2);
+  static const CellTopology line3 = quadratic_edge();
   static const CellTopology triangle = polygon(VtkCell::Triangle, 3);
   static const CellTopology quad = polygon(VtkCell::Quad, 4);
   static const CellTopology triangle6 =
@@ -115,6 +124,8 @@ const CellTopology& cell_topology(VtkCell cell) {
       return poly_vertex;
     case VtkCell::Line:
       return line;
+    case VtkCell::QuadraticEdge:
+      return line3;
     case VtkCell::Triangle:
       return triangle;
     case VtkCell::Quad:
@@ -168,8 +179,14 @@ std::vector<CellPiece> cell_pieces(VtkCell cell, const std::vector<int>& nodes) 
   if (nodes.empty()) return out;
   switch (t.dimension) {
     case 1:
-      if (nodes.size() >= 2 && nodes[0] != nodes[1])
+      // A quadratic line is drawn through its midside node: I-K, K-J.
+      if (t.midside_nodes > 0 && nodes.size() >= 3 && nodes[2] != nodes[0] &&
+          nodes[2] != nodes[1]) {
+        out.push_back({CellPiece::Kind::Line, {nodes[0], nodes[2]}});
+        out.push_back({CellPiece::Kind::Line, {nodes[2], nodes[1]}});
+      } else if (nodes.size() >= 2 && nodes[0] != nodes[1]) {
         out.push_back({CellPiece::Kind::Line, {nodes[0], nodes[1]}});
+      }
       break;
     case 2: {
       if (nodes.size() == 1) {

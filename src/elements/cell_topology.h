@@ -13,6 +13,7 @@ enum class VtkCell : int {
   Vertex = 1,
   PolyVertex = 2,
   Line = 3,
+  QuadraticEdge = 21,  // 3 nodes: ends I J, then the midside node K
   Triangle = 5,
   Quad = 9,
   QuadraticTriangle = 22,  // 6 nodes: corners I J K, then midsides of I-J J-K K-I

@@ -76,6 +76,7 @@ std::vector<ElementFields> make_table() {
                {},
                {{1, {0}, "1 (warping DOF) is not supported"},
                 {3, {0, 2, 3}, "interpolation: 0 linear, 2 quadratic, 3 cubic"}}});
+  t.push_back({"BEAM189", {}, {{1, {0}, "1 (warping DOF) is not supported"}}});
   // Springs, gaps, masses.
   {
     auto r = named({"K", "CV1", "CV2"});

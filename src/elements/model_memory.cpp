@@ -25,7 +25,8 @@ constexpr double kSolidFill = 9.0;  // half of nnz(L) / n^(4/3) on cube meshes o
 std::pair<double, bool> dofs_per_node(const ElementTypeDescriptor& d) {
   if (d.role == ShapeRole::Solid) return {3.0, true};
   if (d.role == ShapeRole::Plane) return {2.0, false};
-  if (d.family == "Shell4" || d.family == "Beam") return {6.0, false};
+  if (d.family == "Shell4" || d.family == "Beam" || d.family == "QuadraticBeam")
+    return {6.0, false};
   return {3.0, false};
 }
 

@@ -425,9 +425,14 @@ void Mesher::mesh_line(int id) {
     v1 = solid_.keypoints.at(l.orientation_kb).x - x1;
     v2 = l.orientation_ke > 0 ? Vec3(solid_.keypoints.at(l.orientation_ke).x - x2) : v1;
   }
+  // A quadratic line element (BEAM189) gets its midside node on the line (on an arc, not on
+  // its chord) before the orientation node.
+  const bool quadratic = d.topology().midside_nodes > 0;
+  if (quadratic) index_line_edges(id);
   for (int k = 0; k < n; ++k) {
     std::vector<int> nodes{l.nodes[static_cast<std::size_t>(k)],
                            l.nodes[static_cast<std::size_t>(k + 1)]};
+    if (quadratic) nodes.push_back(midside_node(nodes[0], nodes[1]));
     if (orient) {
       const double s = (k + 0.5) / n;
       const Vec3 mid = 0.5 * (model_.nodes.at(nodes[0]).x + model_.nodes.at(nodes[1]).x);
@@ -435,6 +440,8 @@ void Mesher::mesh_line(int id) {
     }
     elements.push_back(add_element(attr, nodes));
   }
+  // The midside nodes belong to the line's elements (clear_line deletes them with them).
+  (void)take_created_midside_nodes();
   solid_.lines.at(id).elements = std::move(elements);
 }
 
