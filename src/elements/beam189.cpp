@@ -325,23 +325,16 @@ std::unique_ptr<Element> make_beam189(const ElementBuildContext& ctx, const Elem
   }
 }
 
-std::vector<ResultSequence> numbered(const char* item, int first,
-                                     const std::vector<std::string>& names) {
-  std::vector<ResultSequence> s;
-  for (std::size_t k = 0; k < names.size(); ++k)
-    s.push_back({item, std::to_string(first + static_cast<int>(k)), names[k]});
-  return s;
-}
-
 std::vector<ResultSequence> beam189_sequences() {
   // The SMISC numbers of BEAM188 (APDL_MODELING §8.1): 1-6 / 14-19 FX MY MZ TQ SFZ SFY at I / J,
   // 31-35 / 36-40 SDIR SByT SByB SBzT SBzB at I / J.
   std::vector<ResultSequence> all;
-  for (auto part : {numbered("SMISC", 1, {"FX_I", "MY_I", "MZ_I", "TQ_I", "SFZ_I", "SFY_I"}),
-                    numbered("SMISC", 14, {"FX_J", "MY_J", "MZ_J", "TQ_J", "SFZ_J", "SFY_J"}),
-                    numbered("SMISC", 31,
-                             {"SDIR_I", "SBYT_I", "SBYB_I", "SBZT_I", "SBZB_I", "SDIR_J", "SBYT_J",
-                              "SBYB_J", "SBZT_J", "SBZB_J"})})
+  for (auto part :
+       {numbered_sequences("SMISC", 1, {"FX_I", "MY_I", "MZ_I", "TQ_I", "SFZ_I", "SFY_I"}),
+        numbered_sequences("SMISC", 14, {"FX_J", "MY_J", "MZ_J", "TQ_J", "SFZ_J", "SFY_J"}),
+        numbered_sequences("SMISC", 31,
+                           {"SDIR_I", "SBYT_I", "SBYB_I", "SBZT_I", "SBZB_I", "SDIR_J", "SBYT_J",
+                            "SBYB_J", "SBZT_J", "SBZB_J"})})
     all.insert(all.end(), part.begin(), part.end());
   return all;
 }

@@ -77,4 +77,13 @@ BeamFibreStresses beam_fibre_stresses(const BeamSectionProperties& p, double you
   return s;
 }
 
+std::vector<ResultSequence> numbered_sequences(const char* item, int first,
+                                               const std::vector<std::string>& names) {
+  std::vector<ResultSequence> s;
+  for (std::size_t k = 0; k < names.size(); ++k)
+    if (!names[k].empty())
+      s.push_back({item, std::to_string(first + static_cast<int>(k)), names[k]});
+  return s;
+}
+
 }  // namespace impactfe

@@ -5,10 +5,12 @@
 #include <Eigen/Core>
 
 #include <string>
+#include <vector>
 
 #include "core/errors.h"
 #include "core/model.h"
 #include "elements/beam_section.h"
+#include "elements/element_registry.h"
 
 namespace impactfe {
 
@@ -39,5 +41,10 @@ struct BeamFibreStresses {
 };
 BeamFibreStresses beam_fibre_stresses(const BeamSectionProperties& p, double youngs_modulus,
                                       const Eigen::Matrix3d& D, double N, double My, double Mz);
+
+/// Result sequences `item` first, first + 1, ... named `names` (an empty name skips its number):
+/// the SMISC / NMISC tables of the beam types.
+std::vector<ResultSequence> numbered_sequences(const char* item, int first,
+                                               const std::vector<std::string>& names);
 
 }  // namespace impactfe

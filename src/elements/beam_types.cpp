@@ -142,15 +142,6 @@ std::unique_ptr<Element> make_beam3(const ElementBuildContext& ctx, const Elemen
   return std::make_unique<Beam>(record.id, std::move(d));
 }
 
-std::vector<ResultSequence> numbered(const char* item, int first,
-                                     const std::vector<std::string>& names) {
-  std::vector<ResultSequence> s;
-  for (std::size_t k = 0; k < names.size(); ++k)
-    if (!names[k].empty())
-      s.push_back({item, std::to_string(first + static_cast<int>(k)), names[k]});
-  return s;
-}
-
 std::vector<ResultSequence> concat(std::initializer_list<std::vector<ResultSequence>> parts) {
   std::vector<ResultSequence> all;
   for (const auto& p : parts) all.insert(all.end(), p.begin(), p.end());
@@ -171,13 +162,13 @@ const ElementRegistration kBeam188{
      .vtk_cell = VtkCell::Line,
      .role = ShapeRole::Line,
      .result_names = beam_result_names(),
-     .result_sequences =
-         concat({numbered("SMISC", 1, {"FX_I", "MY_I", "MZ_I", "TQ_I", "SFZ_I", "SFY_I"}),
-                 numbered("SMISC", 14, {"FX_J", "MY_J", "MZ_J", "TQ_J", "SFZ_J", "SFY_J"}),
-                 numbered("SMISC", 31,
-                          {"SDIR_I", "SBYT_I", "SBYB_I", "SBZT_I", "SBZB_I", "SDIR_J", "SBYT_J",
-                           "SBYB_J", "SBZT_J", "SBZB_J"}),
-                 {{"NL", "EPEQ", "EPEQ"}, {"NL", "SRAT", "SRAT"}, {"NL", "PLWK", "PLWK"}}}),
+     .result_sequences = concat(
+         {numbered_sequences("SMISC", 1, {"FX_I", "MY_I", "MZ_I", "TQ_I", "SFZ_I", "SFY_I"}),
+          numbered_sequences("SMISC", 14, {"FX_J", "MY_J", "MZ_J", "TQ_J", "SFZ_J", "SFY_J"}),
+          numbered_sequences("SMISC", 31,
+                             {"SDIR_I", "SBYT_I", "SBYB_I", "SBZT_I", "SBZB_I", "SDIR_J", "SBYT_J",
+                              "SBYB_J", "SBZT_J", "SBZB_J"}),
+          {{"NL", "EPEQ", "EPEQ"}, {"NL", "SRAT", "SRAT"}, {"NL", "PLWK", "PLWK"}}}),
      .plasticity = true,
      .note = "BEAM188: KEYOPT(3) = 0, 2, 3 give one element (exact stiffness for nodal loads, "
              "cubic mass); KEYOPT(2) not used (rigid cross section under NLGEOM)",
@@ -196,13 +187,14 @@ const ElementRegistration kBeam4{
      .vtk_cell = VtkCell::Line,
      .role = ShapeRole::Line,
      .result_names = beam_result_names(),
-     .result_sequences = concat({numbered("LS", 1,
-                                          {"SDIR_I", "SBYT_I", "SBYB_I", "SBZT_I", "SBZB_I",
-                                           "SDIR_J", "SBYT_J", "SBYB_J", "SBZT_J", "SBZB_J"}),
-                                 numbered("NMISC", 1, {"SMAX_I", "SMIN_I", "SMAX_J", "SMIN_J"}),
-                                 numbered("SMISC", 1,
-                                          {"FX_I", "SFY_I", "SFZ_I", "TQ_I", "MY_I", "MZ_I", "FX_J",
-                                           "SFY_J", "SFZ_J", "TQ_J", "MY_J", "MZ_J"})}),
+     .result_sequences =
+         concat({numbered_sequences("LS", 1,
+                                    {"SDIR_I", "SBYT_I", "SBYB_I", "SBZT_I", "SBZB_I", "SDIR_J",
+                                     "SBYT_J", "SBYB_J", "SBZT_J", "SBZB_J"}),
+                 numbered_sequences("NMISC", 1, {"SMAX_I", "SMIN_I", "SMAX_J", "SMIN_J"}),
+                 numbered_sequences("SMISC", 1,
+                                    {"FX_I", "SFY_I", "SFZ_I", "TQ_I", "MY_I", "MZ_I", "FX_J",
+                                     "SFY_J", "SFZ_J", "TQ_J", "MY_J", "MZ_J"})}),
      .create = make_beam4}};
 
 // BEAM3: LS 1-3 / 4-6 SDIR SBYT SBYB at I / J; NMISC 1-4; SMISC 1, 2, 6 / 7, 8, 12 MFORX MFORY
@@ -218,10 +210,11 @@ const ElementRegistration kBeam3{
      .role = ShapeRole::Line,
      .result_names = beam_result_names(),
      .result_sequences = concat(
-         {numbered("LS", 1, {"SDIR_I", "SBYT_I", "SBYB_I", "SDIR_J", "SBYT_J", "SBYB_J"}),
-          numbered("NMISC", 1, {"SMAX_I", "SMIN_I", "SMAX_J", "SMIN_J"}),
-          numbered("SMISC", 1,
-                   {"FX_I", "SFY_I", "", "", "", "MZ_I", "FX_J", "SFY_J", "", "", "", "MZ_J"})}),
+         {numbered_sequences("LS", 1, {"SDIR_I", "SBYT_I", "SBYB_I", "SDIR_J", "SBYT_J", "SBYB_J"}),
+          numbered_sequences("NMISC", 1, {"SMAX_I", "SMIN_I", "SMAX_J", "SMIN_J"}),
+          numbered_sequences(
+              "SMISC", 1,
+              {"FX_I", "SFY_I", "", "", "", "MZ_I", "FX_J", "SFY_J", "", "", "", "MZ_J"})}),
      .create = make_beam3}};
 
 }  // namespace

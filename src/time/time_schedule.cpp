@@ -17,7 +17,7 @@ namespace {
 constexpr double kResolvingStepsPerPeriod = 30.0;
 constexpr double kCoarsestStepsPerPeriod = 10.0;
 
-[[noreturn]] void fail(const LoadStep& step, const std::string& message) {
+[[noreturn]] void fail_load_step(const LoadStep& step, const std::string& message) {
   throw InputError(step.where, fmt::format("load step {}: {}", step.number, message));
 }
 
@@ -30,19 +30,20 @@ LoadStepTiming load_step_timing(const LoadStep& step, double t_start, bool trans
   if (step.time_end) {
     t.t_end = *step.time_end;
   } else if (transient) {
-    fail(step, "TIME (end time) is required in a transient analysis");
+    fail_load_step(step, "TIME (end time) is required in a transient analysis");
   } else {
     t.t_end = static_cast<double>(step.number);  // static default: the load-step number
   }
   if (!(t.t_end > t_start))
-    fail(step, fmt::format("end time {} does not increase (previous end {})", t.t_end, t_start));
+    fail_load_step(
+        step, fmt::format("end time {} does not increase (previous end {})", t.t_end, t_start));
   const double span = t.t_end - t_start;
   if (step.dt) {
     t.n_substeps = substep_count(step, span, *step.dt);
   } else if (step.n_substeps) {
     if (*step.n_substeps > kMaxSubstepsPerLoadStep)
-      fail(step,
-           fmt::format("{} substeps is more than {}", *step.n_substeps, kMaxSubstepsPerLoadStep));
+      fail_load_step(step, fmt::format("{} substeps is more than {}", *step.n_substeps,
+                                       kMaxSubstepsPerLoadStep));
     // Positive: check_step_size_settings at the command.
     IMPACTFE_CHECK(*step.n_substeps > 0, "a load step with no substeps");
     t.n_substeps = *step.n_substeps;
@@ -115,11 +116,11 @@ AutoStepPlan auto_step_plan(const LoadStep& step, const StepControl& c, const Lo
     if (t.n_substeps == 1 && span < *step.dt) p.dt_min = std::min(p.dt_min, p.dt0);
     if (!p.automatic) p.dt_min = std::min(p.dt_min, p.dt0);
     if (p.dt_min > p.dt0 * (1.0 + 1e-9))
-      fail(step,
-           fmt::format("DTMIN {:g} is larger than the time step {:g} (DELTIM)", p.dt_min, p.dt0));
+      fail_load_step(step, fmt::format("DTMIN {:g} is larger than the time step {:g} (DELTIM)",
+                                       p.dt_min, p.dt0));
     if (p.dt_max < p.dt0 * (1.0 - 1e-9))
-      fail(step,
-           fmt::format("DTMAX {:g} is smaller than the time step {:g} (DELTIM)", p.dt_max, p.dt0));
+      fail_load_step(step, fmt::format("DTMAX {:g} is smaller than the time step {:g} (DELTIM)",
+                                       p.dt_max, p.dt0));
   } else {  // NSUBST,NSBSTP,NSBMX,NSBMN in substep counts (or one substep by default)
     p.dt_min = c.n_max ? span / *c.n_max : p.dt0 / 1000.0;
     p.dt_max = c.n_min ? span / *c.n_min : default_max;
