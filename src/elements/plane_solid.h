@@ -34,8 +34,10 @@ enum class PlaneBehaviour { PlaneStress, Axisymmetric, PlaneStrain };
 /// How the 4-node quadrilateral is integrated (PLANE182 KEYOPT(1)): Standard full 2x2 (the
 /// triangles and the quadratic shapes always), BBar (KEYOPT(1) = 0 in plane strain and
 /// axisymmetry: the volumetric strain replaced by its element mean), IncompatibleModes
-/// (KEYOPT(1) = 3, and 2 in plane stress: four internal bending modes, condensed).
-enum class PlaneTechnology { Standard, BBar, IncompatibleModes };
+/// (KEYOPT(1) = 3, and 2 in plane stress: four internal bending modes, condensed), Reduced
+/// (KEYOPT(1) = 1: the material at the centre alone plus an elastic hourglass stiffness,
+/// plane_solid_reduced.cpp).
+enum class PlaneTechnology { Standard, BBar, IncompatibleModes, Reduced };
 
 struct PlaneSolidOptions {
   PlaneShape shape = PlaneShape::Quad4;
@@ -136,6 +138,12 @@ class PlaneSolid final : public Element {
   /// The incompatible-mode strains of a point (4 x 4: modes (1−ξ²) ux, uy, (1−η²) ux, uy).
   Eigen::Matrix4d mode_matrix(const Point& p, const Eigen::Vector2d& xi) const;
   void form_stiffness();
+  /// Reduced integration (plane_solid_reduced.cpp): the mean strain operator and the elastic
+  /// stabilisation stiffness.
+  void form_hourglass();
+  /// The strain operator of the stiffness point p: B there, or the element mean with reduced
+  /// integration.
+  Eigen::MatrixXd point_strain(const Point& p) const;
 
   // ---- plasticity (plane_solid_plastic.cpp) ----
   using PointStates = std::vector<PlasticState>;
@@ -169,6 +177,8 @@ class PlaneSolid final : public Element {
   Eigen::RowVectorXd mean_dilatation_;  // B-bar: element mean of the volumetric row
   Eigen::Matrix4d mean_modes_;          // incompatible modes: their element mean (subtracted)
   Eigen::MatrixXd mode_recovery_;       // α = −mode_recovery_ u
+  Eigen::MatrixXd hourglass_;           // reduced integration: the stabilisation stiffness
+  Eigen::MatrixXd mean_strain_;         // reduced integration: B̄ = ∫ B dV / V
   Eigen::Matrix2d j0_inverse_;
   double det0_ = 1.0;
   std::optional<J2Plasticity> plasticity_;
