@@ -4,8 +4,9 @@
 /// quadrilateral and the 6-node triangle; plane stress (with a thickness), plane strain and
 /// axisymmetry about the global Y axis (X radial, loads and matrices per full 360°). Small-strain
 /// isotropic linear elasticity; the 4-node quadrilateral with full 2x2 integration, with the
-/// B-bar (mean dilatation) of Hughes (1980), or with the incompatible bending modes of Taylor,
-/// Beresford & Wilson (1976). Consistent or lumped mass, edge pressures, centroid stresses.
+/// B-bar (mean dilatation) of Hughes (1980), with the incompatible bending modes of Taylor,
+/// Beresford & Wilson (1976), or at one point with hourglass stabilisation (KEYOPT(1) = 1).
+/// Consistent or lumped mass, edge pressures, centroid stresses.
 /// With a TB plasticity (or implicit creep) law: small-strain J2 at the stiffness points with
 /// committed states per point (plane_solid_plastic.cpp): the 3-D return of the strain
 /// (εxx, εyy, εzz, γxy) with εzz = u/r in axisymmetry and 0 in plane strain, the plane-stress
