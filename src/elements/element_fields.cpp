@@ -116,11 +116,10 @@ std::vector<ElementFields> make_table() {
   // 2-D solids (docs/elements/plane182.md). THK is read with KEYOPT(3) = 3 only.
   t.push_back({"PLANE182",
                named({"THK"}),
-               {{1,
-                 {0, 2, 3},
-                 "0 full 2x2 (B-bar in plane strain and axisymmetry), 3 simplified enhanced "
-                 "strain (incompatible modes), 2 enhanced strain in plane stress only; 1 "
-                 "(reduced with hourglass control) is not implemented"},
+               {{1, range(0, 3),
+                 "0 full 2x2 (B-bar in plane strain and axisymmetry), 1 uniform reduced "
+                 "(one point, hourglass control), 3 simplified enhanced strain (incompatible "
+                 "modes), 2 enhanced strain in plane stress only"},
                 {3, range(0, 3),
                  "0 plane stress, 1 axisymmetric, 2 plane strain, 3 plane stress with "
                  "thickness; 5 and 6 are not implemented"},

@@ -88,9 +88,14 @@ Eigen::Vector2d centre(PlaneShape shape) {
 /// 4 strain rows for 6 DOFs, so besides the axial translation a second zero-energy mode: the
 /// in-plane rotation about the centroid, u_r = c (z − z̄), u_z = −c r, whose hoop strain
 /// u_r / r vanishes only at z = z̄.
-std::vector<QuadraturePoint> stiffness_rule(PlaneShape shape, PlaneBehaviour behaviour) {
+/// Reduced integration of the 4-node quadrilateral (PLANE182 KEYOPT(1) = 1): the centre alone
+/// (MAPDL theory reference, PLANE182: 1 point if KEYOPT(1) = 1), stabilised by form_hourglass().
+std::vector<QuadraturePoint> stiffness_rule(PlaneShape shape, PlaneBehaviour behaviour,
+                                            PlaneTechnology technology) {
   switch (shape) {
     case PlaneShape::Quad4:
+      if (technology == PlaneTechnology::Reduced) return {{Eigen::Vector3d(0.0, 0.0, 0.0), 4.0}};
+      [[fallthrough]];
     case PlaneShape::Quad8:
       return gauss_square(2);
     case PlaneShape::Tri3:
@@ -204,7 +209,7 @@ PlaneSolid::PlaneSolid(int id, const std::vector<int>& nodes, const std::vector<
     for (Dof dof : {Dof::UX, Dof::UY}) dofs_.push_back(DofKey{node, dof});
   d_ = plane_elasticity(material.young, material.poisson, options.behaviour);
   density_ = material.density;
-  rule_ = stiffness_rule(shape, options.behaviour);
+  rule_ = stiffness_rule(shape, options.behaviour, options.technology);
 
   // The Jacobian keeps one sign over the element: checked at the corners and the stiffness
   // points (a misplaced midside node makes it change sign at a corner first).
@@ -238,7 +243,9 @@ PlaneSolid::PlaneSolid(int id, const std::vector<int>& nodes, const std::vector<
   if (plasticity_) {
     committed_.resize(rule_.size());
     for (const QuadraturePoint& q : rule_)
-      point_dv_.push_back(measure(point_at(q.xi.head<2>()), q.weight));
+      point_dv_.push_back(options.technology == PlaneTechnology::Reduced
+                              ? volume_
+                              : measure(point_at(q.xi.head<2>()), q.weight));
   }
 }
 
@@ -279,6 +286,10 @@ Eigen::MatrixXd PlaneSolid::strain_matrix(const Point& p) const {
   return b;
 }
 
+Eigen::MatrixXd PlaneSolid::point_strain(const Point& p) const {
+  return options_.technology == PlaneTechnology::Reduced ? mean_strain_ : strain_matrix(p);
+}
+
 Eigen::Matrix4d PlaneSolid::mode_matrix(const Point& p, const Eigen::Vector2d& xi) const {
   // Taylor, Beresford & Wilson (1976): the modes' natural gradients (−2ξ, 0) and (0, −2η)
   // mapped with the centre Jacobian and scaled by det J0 / det J, so that their integral over
@@ -300,16 +311,19 @@ Eigen::Matrix4d PlaneSolid::mode_matrix(const Point& p, const Eigen::Vector2d& x
 
 void PlaneSolid::form_stiffness() {
   const int n = 2 * static_cast<int>(nodes_.size());
+  const bool reduced = options_.technology == PlaneTechnology::Reduced;
+  if (reduced) form_hourglass();
   std::vector<Point> points;
   std::vector<double> dv;
   double total = 0.0;
   for (const QuadraturePoint& q : rule_) {
     points.push_back(point_at(q.xi.head<2>()));
-    dv.push_back(measure(points.back(), q.weight));
+    // Reduced: the one point carries the whole (2x2-exact) volume with the mean strain B̄.
+    dv.push_back(reduced ? volume_ : measure(points.back(), q.weight));
     total += dv.back();
   }
   std::vector<Eigen::MatrixXd> b;
-  for (const Point& p : points) b.push_back(strain_matrix(p));
+  for (const Point& p : points) b.push_back(point_strain(p));
   const bool bbar = options_.technology == PlaneTechnology::BBar;
   const bool modes = options_.technology == PlaneTechnology::IncompatibleModes;
   if (bbar) {
@@ -345,6 +359,7 @@ void PlaneSolid::form_stiffness() {
     mode_recovery_ = kaa.ldlt().solve(kau);
     k_ -= kau.transpose() * mode_recovery_;
   }
+  if (reduced) k_ += hourglass_;
   k_ = 0.5 * (k_ + k_.transpose()).eval();
 }
 
@@ -434,7 +449,7 @@ void PlaneSolid::pressure_load(const ElementContext& ctx, int face, const std::a
 
 Eigen::Vector4d PlaneSolid::centroid_stress(const Eigen::VectorXd& u) const {
   const Point p = point_at(centre(options_.shape));
-  Eigen::MatrixXd b = strain_matrix(p);
+  Eigen::MatrixXd b = point_strain(p);
   if (options_.technology == PlaneTechnology::BBar) {
     const Eigen::RowVectorXd shift = (mean_dilatation_ - b.topRows(3).colwise().sum()) / 3.0;
     for (int r = 0; r < 3; ++r) b.row(r) += shift;
@@ -499,7 +514,7 @@ bool PlaneSolid::nodal_results(const ElementContext& ctx, const Eigen::VectorXd&
   for (const QuadraturePoint& q : rule_) {
     const Eigen::Vector2d xi = q.xi.head<2>();
     const Point p = point_at(xi);
-    Eigen::MatrixXd b = strain_matrix(p);
+    Eigen::MatrixXd b = point_strain(p);
     if (options_.technology == PlaneTechnology::BBar) {
       const Eigen::RowVectorXd shift = (mean_dilatation_ - b.topRows(3).colwise().sum()) / 3.0;
       for (int r = 0; r < 3; ++r) b.row(r) += shift;

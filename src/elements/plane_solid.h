@@ -4,8 +4,9 @@
 /// quadrilateral and the 6-node triangle; plane stress (with a thickness), plane strain and
 /// axisymmetry about the global Y axis (X radial, loads and matrices per full 360°). Small-strain
 /// isotropic linear elasticity; the 4-node quadrilateral with full 2x2 integration, with the
-/// B-bar (mean dilatation) of Hughes (1980), or with the incompatible bending modes of Taylor,
-/// Beresford & Wilson (1976). Consistent or lumped mass, edge pressures, centroid stresses.
+/// B-bar (mean dilatation) of Hughes (1980), with the incompatible bending modes of Taylor,
+/// Beresford & Wilson (1976), or at one point with hourglass stabilisation (KEYOPT(1) = 1).
+/// Consistent or lumped mass, edge pressures, centroid stresses.
 /// With a TB plasticity (or implicit creep) law: small-strain J2 at the stiffness points with
 /// committed states per point (plane_solid_plastic.cpp): the 3-D return of the strain
 /// (εxx, εyy, εzz, γxy) with εzz = u/r in axisymmetry and 0 in plane strain, the plane-stress
@@ -34,8 +35,10 @@ enum class PlaneBehaviour { PlaneStress, Axisymmetric, PlaneStrain };
 /// How the 4-node quadrilateral is integrated (PLANE182 KEYOPT(1)): Standard full 2x2 (the
 /// triangles and the quadratic shapes always), BBar (KEYOPT(1) = 0 in plane strain and
 /// axisymmetry: the volumetric strain replaced by its element mean), IncompatibleModes
-/// (KEYOPT(1) = 3, and 2 in plane stress: four internal bending modes, condensed).
-enum class PlaneTechnology { Standard, BBar, IncompatibleModes };
+/// (KEYOPT(1) = 3, and 2 in plane stress: four internal bending modes, condensed), Reduced
+/// (KEYOPT(1) = 1: the material at the centre alone plus an elastic hourglass stiffness,
+/// plane_solid_reduced.cpp).
+enum class PlaneTechnology { Standard, BBar, IncompatibleModes, Reduced };
 
 struct PlaneSolidOptions {
   PlaneShape shape = PlaneShape::Quad4;
@@ -136,6 +139,12 @@ class PlaneSolid final : public Element {
   /// The incompatible-mode strains of a point (4 x 4: modes (1−ξ²) ux, uy, (1−η²) ux, uy).
   Eigen::Matrix4d mode_matrix(const Point& p, const Eigen::Vector2d& xi) const;
   void form_stiffness();
+  /// Reduced integration (plane_solid_reduced.cpp): the mean strain operator and the elastic
+  /// stabilisation stiffness.
+  void form_hourglass();
+  /// The strain operator of the stiffness point p: B there, or the element mean with reduced
+  /// integration.
+  Eigen::MatrixXd point_strain(const Point& p) const;
 
   // ---- plasticity (plane_solid_plastic.cpp) ----
   using PointStates = std::vector<PlasticState>;
@@ -169,6 +178,8 @@ class PlaneSolid final : public Element {
   Eigen::RowVectorXd mean_dilatation_;  // B-bar: element mean of the volumetric row
   Eigen::Matrix4d mean_modes_;          // incompatible modes: their element mean (subtracted)
   Eigen::MatrixXd mode_recovery_;       // α = −mode_recovery_ u
+  Eigen::MatrixXd hourglass_;           // reduced integration: the stabilisation stiffness
+  Eigen::MatrixXd mean_strain_;         // reduced integration: B̄ = ∫ B dV / V
   Eigen::Matrix2d j0_inverse_;
   double det0_ = 1.0;
   std::optional<J2Plasticity> plasticity_;

@@ -15,7 +15,7 @@ namespace impactfe {
 Eigen::MatrixXd PlaneSolid::point_operator(std::size_t q, bool modes) const {
   const Eigen::Vector2d xi = rule_[q].xi.head<2>();
   const Point p = point_at(xi);
-  const Eigen::MatrixXd b = strain_matrix(p);
+  const Eigen::MatrixXd b = point_strain(p);
   const auto n = b.cols();
   Eigen::MatrixXd out = Eigen::MatrixXd::Zero(4, n + (modes ? 4 : 0));
   out.leftCols(n) = b;
@@ -77,6 +77,12 @@ void PlaneSolid::tangent_plastic(const Eigen::VectorXd& u, Eigen::MatrixXd& k, E
                                  std::vector<Eigen::Vector4d>* stresses) const {
   if (options_.technology != PlaneTechnology::IncompatibleModes) {
     plastic_sum(u, k, f, updated, stresses);
+    if (options_.technology == PlaneTechnology::Reduced) {
+      // The material at the centre; the hourglass stiffness stays elastic (Flanagan &
+      // Belytschko 1981, their stiffness form; plane_solid_reduced.cpp).
+      k += hourglass_;
+      f.noalias() += hourglass_ * u;
+    }
     return;
   }
   // The mode amplitudes α are internal: f_α(u, α) = ∫Gᵀσ dV = 0 solved by Newton from the

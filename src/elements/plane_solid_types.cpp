@@ -87,12 +87,6 @@ std::unique_ptr<Element> make_plane182(const ElementBuildContext& ctx,
   const ElementType& type = model.element_types.at(record.type);
   PlaneSolidOptions o = behaviour_of(model, type, record);
   const int k1 = type.key(1);
-  if (k1 == 1)
-    throw InputError(record.where,
-                     fmt::format("element {} (PLANE182): KEYOPT(1) = 1 (uniform reduced "
-                                 "integration with hourglass control) is not implemented; use "
-                                 "0 (B-bar) or 3 (simplified enhanced strain)",
-                                 record.id));
   if (k1 == 2 && o.behaviour != PlaneBehaviour::PlaneStress)
     throw InputError(record.where,
                      fmt::format("element {} (PLANE182): KEYOPT(1) = 2 (enhanced strain) in "
@@ -114,7 +108,9 @@ std::unique_ptr<Element> make_plane182(const ElementBuildContext& ctx,
   o.shape = PlaneShape::Quad4;
   // KEYOPT(1) = 0: B-bar in plane strain and axisymmetry (in plane stress σzz = 0 leaves no
   // volumetric constraint to relieve: full 2x2). 2 (plane stress) and 3: incompatible modes.
+  // 1: uniform reduced integration, the centre point with hourglass stabilisation.
   if (k1 == 0 && o.behaviour != PlaneBehaviour::PlaneStress) o.technology = PlaneTechnology::BBar;
+  if (k1 == 1) o.technology = PlaneTechnology::Reduced;
   if (k1 == 2 || k1 == 3) o.technology = PlaneTechnology::IncompatibleModes;
   return std::make_unique<PlaneSolid>(
       record.id, n, coordinates(model, record, n), material, o, quad_faces(VtkCell::Quad),

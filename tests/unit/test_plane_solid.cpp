@@ -36,6 +36,7 @@ std::vector<Variant> variants() {
        {PlaneBehaviour::PlaneStress, PlaneBehaviour::PlaneStrain, PlaneBehaviour::Axisymmetric}) {
     out.push_back({PlaneShape::Quad4, PlaneTechnology::Standard, b});
     out.push_back({PlaneShape::Quad4, PlaneTechnology::IncompatibleModes, b});
+    out.push_back({PlaneShape::Quad4, PlaneTechnology::Reduced, b});
     if (b != PlaneBehaviour::PlaneStress)
       out.push_back({PlaneShape::Quad4, PlaneTechnology::BBar, b});
     out.push_back({PlaneShape::Quad8, PlaneTechnology::Standard, b});

@@ -35,6 +35,7 @@ std::vector<Variant> variants() {
        {PlaneBehaviour::PlaneStress, PlaneBehaviour::PlaneStrain, PlaneBehaviour::Axisymmetric}) {
     out.push_back({PlaneShape::Quad4, PlaneTechnology::Standard, b});
     out.push_back({PlaneShape::Quad4, PlaneTechnology::IncompatibleModes, b});
+    out.push_back({PlaneShape::Quad4, PlaneTechnology::Reduced, b});
     if (b != PlaneBehaviour::PlaneStress)
       out.push_back({PlaneShape::Quad4, PlaneTechnology::BBar, b});
     out.push_back({PlaneShape::Quad8, PlaneTechnology::Standard, b});
@@ -303,6 +304,7 @@ TEST(PlasticPlanes, DistortedPatchReproducesTheHomogeneousPlasticState) {
   };
   const std::vector<Case> cases = {{"PLANE182", 0, 0}, {"PLANE182", 0, 1}, {"PLANE182", 0, 2},
                                    {"PLANE182", 3, 0}, {"PLANE182", 3, 1}, {"PLANE182", 3, 2},
+                                   {"PLANE182", 1, 0}, {"PLANE182", 1, 1}, {"PLANE182", 1, 2},
                                    {"PLANE183", 0, 0}, {"PLANE183", 0, 1}, {"PLANE183", 0, 2}};
   for (const Case& c : cases) {
     const bool quadratic = std::string(c.type) == "PLANE183";
