@@ -650,19 +650,18 @@ void Brick8::pressure_load(const ElementContext& ctx, int face, const std::array
   }
 }
 
-namespace {
-const std::vector<std::string> kBrick8Results = {
-    "SX",   "SY",    "SZ",    "SXY",   "SYZ",    "SXZ",    "S1",     "S2",      "S3",   "SINT",
-    "SEQV", "EPPLX", "EPPLY", "EPPLZ", "EPPLXY", "EPPLYZ", "EPPLXZ", "EPEQ",    "SEPL", "SRAT",
-    "PLWK", "EPCRX", "EPCRY", "EPCRZ", "EPCRXY", "EPCRYZ", "EPCRXZ", "EPCREQV", "CREQ"};
-}  // namespace
-
 const std::vector<std::string>& Brick8::result_names() const {
-  return kBrick8Results;
+  return brick8_result_names();
 }
 
 const std::vector<std::string>& brick8_result_names() {
-  return kBrick8Results;
+  // A function-local static: the registrations (brick8_types.cpp) read it during static
+  // initialisation, before a namespace-scope table of this file may be constructed.
+  static const std::vector<std::string> names = {
+      "SX",   "SY",    "SZ",    "SXY",   "SYZ",    "SXZ",    "S1",     "S2",      "S3",   "SINT",
+      "SEQV", "EPPLX", "EPPLY", "EPPLZ", "EPPLXY", "EPPLYZ", "EPPLXZ", "EPEQ",    "SEPL", "SRAT",
+      "PLWK", "EPCRX", "EPCRY", "EPCRZ", "EPCRXY", "EPCRYZ", "EPCRXZ", "EPCREQV", "CREQ"};
+  return names;
 }
 
 const std::vector<std::vector<int>>& brick8_faces() {
