@@ -230,14 +230,14 @@ TEST(CrashSafety, FileSizeLimitEndsWithExitTwoAndAClearMessage) {
 // every write first (h5::reserve_space), so the failure comes before HDF5 touches the file and
 // every point flushed before it reads back (before the reservation, HDF5 had already rewritten
 // the superblock with the new end of file, and the file was refused as truncated). The limits
-// take the first block (64 points, 1.5 MB, twice that reserved: the run keeps 64 points at
-// 3.5 and 4 MB, 128 at 5 MB), not the whole run's; a run slow enough to sync by time (every
+// take the first block (64 points, 1.9 MB, twice that reserved: the run keeps 64 points at
+// 4.25 and 4.5 MB, 128 at 5 MB), not the whole run's; a run slow enough to sync by time (every
 // 0.1 s) keeps more.
 // The same with the results written on a thread of their own or on the solver's
 // (--results-thread): the failure comes back from the writer thread at a later call.
 TEST(CrashSafety, FileSizeLimitKeepsResultsReadable) {
   for (const char* thread : {"on", "off"})
-    for (rlim_t limit : {3584 * 1024, 4096 * 1024, 5120 * 1024}) {
+    for (rlim_t limit : {4352 * 1024, 4608 * 1024, 5120 * 1024}) {
       const fs::path dir =
           testing::fresh_directory("file_size_limit_" + std::to_string(limit) + "_" + thread) /
           "out";

@@ -81,10 +81,12 @@ TEST(DatabaseCommands, ClearStartsANewJobAndResultsFile) {
 TEST(DatabaseCommands, ClearDeletesParametersAndResetsSettings) {
   const auto dir = impactfe::testing::fresh_directory("database_clear_params");
   try {
-    run_with_session(dir, "K0 = 1\n*AFUN,DEG\n/CLEAR\nX = K0\n");
+    // X = K0 alone would take MAPDL's undefined-parameter value (warned); in an expression
+    // an undefined name is an error.
+    run_with_session(dir, "K0 = 1\n*AFUN,DEG\n/CLEAR\nX = K0+1\n");
     FAIL() << "parameter survived /CLEAR";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find(":4: *SET: bad expression 'K0'"), std::string::npos)
+    EXPECT_NE(std::string(e.what()).find(":4: *SET: bad expression 'K0"), std::string::npos)
         << e.what();
   }
   const DeckRunResult run =

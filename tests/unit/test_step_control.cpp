@@ -52,7 +52,10 @@ TEST(StepControl, DefaultLimitsFollowTheSpec) {
   EXPECT_DOUBLE_EQ(p.dt_min, 0.01);
   EXPECT_DOUBLE_EQ(p.dt_max, 0.3);
   d.dt_min = 0.2;  // above the step
+  d.automatic = true;
   EXPECT_THROW(auto_step_plan(deltim, d, timing(0.0, 1.0, 10), true, false), InputError);
+  d.automatic = false;  // constant steps: MAPDL does not use the limits
+  EXPECT_NO_THROW(auto_step_plan(deltim, d, timing(0.0, 1.0, 10), true, false));
 }
 
 AutoStepPlan plan(double dt0, double dt_min, double dt_max, double t_end = 1.0) {
