@@ -6,11 +6,13 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <chrono>
 #include <cstring>
 #include <filesystem>
 #include <map>
 #include <mutex>
 #include <string>
+#include <thread>
 
 namespace impactfe {
 
@@ -24,14 +26,20 @@ std::map<std::string, std::weak_ptr<JobLock>>& registry() {
   return held;
 }
 
-/// The process id written in a lock file (0 when unreadable).
+/// The process id written in a lock file (0 when unreadable). The holder writes it just after
+/// taking the lock: a run started at the same moment can find the lock taken and the file still
+/// empty, so an empty file is read again for up to 0.2 s before the holder is called unknown.
 long holder_of(const std::string& path) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) return 0;
-  char text[32] = {};
-  const ssize_t n = ::read(fd, text, sizeof(text) - 1);
-  ::close(fd);
-  return n > 0 ? std::strtol(text, nullptr, 10) : 0;
+  for (int attempt = 0; attempt < 20; ++attempt) {
+    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd < 0) return 0;
+    char text[32] = {};
+    const ssize_t n = ::read(fd, text, sizeof(text) - 1);
+    ::close(fd);
+    if (n > 0) return std::strtol(text, nullptr, 10);
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  return 0;
 }
 
 std::string absolute_path(const std::string& path) {
