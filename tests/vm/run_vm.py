@@ -95,7 +95,10 @@ def table_rows(text):
                 current = []
         if current:
             runs.append(current)
-        if not runs or len(runs[-1]) < 2:
+        # The last run of two or more numbers: a lone number after it is part of a label
+        # (vmr027-cr12b's input name "vmr027-cr12b-18 1"), not the ratio.
+        runs = [r for r in runs if len(r) >= 2]
+        if not runs:
             continue
         run = runs[-1]
         if any(OVERFLOW.match(tok) for tok in run[-3:]):
