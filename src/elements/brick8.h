@@ -24,6 +24,8 @@
 
 namespace impactfe {
 
+struct ResultSequence;  // elements/element_registry.h
+
 /// Small-strain technology of the brick (SOLID185 KEYOPT(2)). Standard: full 2x2x2 with the
 /// incompatible modes when extra_shapes (KEYOPT(2) = 3, SOLID45), B-bar for a plastic brick
 /// without them. BBar (KEYOPT(2) = 0): selective dilatational (Hughes 1980), the volumetric
@@ -35,6 +37,9 @@ enum class BrickStrain { Standard, BBar, Enhanced };
 /// The brick's result names (SX..PLWK) and its faces 1..6 in MAPDL's numbering (corner
 /// positions, outward normals by the right-hand rule): for the registration.
 const std::vector<std::string>& brick8_result_names();
+/// The POST1 sequences (S, EPPL, NL, EPCR) of brick8_result_names(), shared by the 3-D solids
+/// (brick8_types.cpp).
+const std::vector<ResultSequence>& solid_result_sequences();
 const std::vector<std::vector<int>>& brick8_faces();
 
 /// The 8-node brick. All matrices are in global Cartesian axes; the DOF order is (node, UX/UY/UZ)

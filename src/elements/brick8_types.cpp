@@ -13,6 +13,22 @@
 
 namespace impactfe {
 
+const std::vector<ResultSequence>& solid_result_sequences() {
+  // A function-local static: the registrations read it during static initialisation.
+  static const std::vector<ResultSequence> sequences = {
+      {"S", "X", "SX"},           {"S", "Y", "SY"},         {"S", "Z", "SZ"},
+      {"S", "XY", "SXY"},         {"S", "YZ", "SYZ"},       {"S", "XZ", "SXZ"},
+      {"S", "1", "S1"},           {"S", "2", "S2"},         {"S", "3", "S3"},
+      {"S", "INT", "SINT"},       {"S", "EQV", "SEQV"},     {"EPPL", "X", "EPPLX"},
+      {"EPPL", "Y", "EPPLY"},     {"EPPL", "Z", "EPPLZ"},   {"EPPL", "XY", "EPPLXY"},
+      {"EPPL", "YZ", "EPPLYZ"},   {"EPPL", "XZ", "EPPLXZ"}, {"NL", "EPEQ", "EPEQ"},
+      {"NL", "SEPL", "SEPL"},     {"NL", "SRAT", "SRAT"},   {"NL", "PLWK", "PLWK"},
+      {"EPCR", "X", "EPCRX"},     {"EPCR", "Y", "EPCRY"},   {"EPCR", "Z", "EPCRZ"},
+      {"EPCR", "XY", "EPCRXY"},   {"EPCR", "YZ", "EPCRYZ"}, {"EPCR", "XZ", "EPCRXZ"},
+      {"EPCR", "EQV", "EPCREQV"}, {"NL", "CREQ", "CREQ"}};
+  return sequences;
+}
+
 namespace {
 
 /// SOLID45, or SOLID185 (`solid185`: its KEYOPT(2) selects the integration).
@@ -90,17 +106,7 @@ ElementTypeDescriptor brick_type(const char* name, int number, bool solid185) {
           .vtk_cell = VtkCell::Hexahedron,
           .role = ShapeRole::Solid,
           .result_names = brick8_result_names(),
-          .result_sequences =
-              {{"S", "X", "SX"},           {"S", "Y", "SY"},         {"S", "Z", "SZ"},
-               {"S", "XY", "SXY"},         {"S", "YZ", "SYZ"},       {"S", "XZ", "SXZ"},
-               {"S", "1", "S1"},           {"S", "2", "S2"},         {"S", "3", "S3"},
-               {"S", "INT", "SINT"},       {"S", "EQV", "SEQV"},     {"EPPL", "X", "EPPLX"},
-               {"EPPL", "Y", "EPPLY"},     {"EPPL", "Z", "EPPLZ"},   {"EPPL", "XY", "EPPLXY"},
-               {"EPPL", "YZ", "EPPLYZ"},   {"EPPL", "XZ", "EPPLXZ"}, {"NL", "EPEQ", "EPEQ"},
-               {"NL", "SEPL", "SEPL"},     {"NL", "SRAT", "SRAT"},   {"NL", "PLWK", "PLWK"},
-               {"EPCR", "X", "EPCRX"},     {"EPCR", "Y", "EPCRY"},   {"EPCR", "Z", "EPCRZ"},
-               {"EPCR", "XY", "EPCRXY"},   {"EPCR", "YZ", "EPCRYZ"}, {"EPCR", "XZ", "EPCRXZ"},
-               {"EPCR", "EQV", "EPCREQV"}, {"NL", "CREQ", "CREQ"}},
+          .result_sequences = solid_result_sequences(),
           .plasticity = true,
           .faces = brick8_faces(),
           .sf_faces = 6,

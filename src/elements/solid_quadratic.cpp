@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "core/errors.h"
+#include "elements/brick8.h"
 
 namespace impactfe {
 
@@ -226,12 +227,7 @@ Vector6d QuadraticSolid::stress_at(const Eigen::Vector3d& xi, const Eigen::Vecto
 }
 
 const std::vector<std::string>& quadratic_solid_result_names() {
-  // A function-local static: the registrations read it during static initialisation.
-  static const std::vector<std::string> names = {
-      "SX",   "SY",    "SZ",    "SXY",   "SYZ",    "SXZ",    "S1",     "S2",      "S3",   "SINT",
-      "SEQV", "EPPLX", "EPPLY", "EPPLZ", "EPPLXY", "EPPLYZ", "EPPLXZ", "EPEQ",    "SEPL", "SRAT",
-      "PLWK", "EPCRX", "EPCRY", "EPCRZ", "EPCRXY", "EPCRYZ", "EPCRXZ", "EPCREQV", "CREQ"};
-  return names;
+  return brick8_result_names();  // the same items as SOLID185
 }
 
 const std::vector<std::string>& QuadraticSolid::result_names() const {

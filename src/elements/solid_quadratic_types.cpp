@@ -8,6 +8,7 @@
 #include <set>
 
 #include "core/errors.h"
+#include "elements/brick8.h"
 #include "elements/element_registry.h"
 #include "elements/solid_quadratic.h"
 
@@ -173,17 +174,7 @@ ElementTypeDescriptor quadratic_solid_type(const char* name, int number, int n_n
           .vtk_cell = cell,
           .role = ShapeRole::Solid,
           .result_names = quadratic_solid_result_names(),
-          .result_sequences =
-              {{"S", "X", "SX"},           {"S", "Y", "SY"},         {"S", "Z", "SZ"},
-               {"S", "XY", "SXY"},         {"S", "YZ", "SYZ"},       {"S", "XZ", "SXZ"},
-               {"S", "1", "S1"},           {"S", "2", "S2"},         {"S", "3", "S3"},
-               {"S", "INT", "SINT"},       {"S", "EQV", "SEQV"},     {"EPPL", "X", "EPPLX"},
-               {"EPPL", "Y", "EPPLY"},     {"EPPL", "Z", "EPPLZ"},   {"EPPL", "XY", "EPPLXY"},
-               {"EPPL", "YZ", "EPPLYZ"},   {"EPPL", "XZ", "EPPLXZ"}, {"NL", "EPEQ", "EPEQ"},
-               {"NL", "SEPL", "SEPL"},     {"NL", "SRAT", "SRAT"},   {"NL", "PLWK", "PLWK"},
-               {"EPCR", "X", "EPCRX"},     {"EPCR", "Y", "EPCRY"},   {"EPCR", "Z", "EPCRZ"},
-               {"EPCR", "XY", "EPCRXY"},   {"EPCR", "YZ", "EPCRYZ"}, {"EPCR", "XZ", "EPCRXZ"},
-               {"EPCR", "EQV", "EPCREQV"}, {"NL", "CREQ", "CREQ"}},
+          .result_sequences = solid_result_sequences(),
           .plasticity = true,
           .faces = faces,
           .sf_faces = static_cast<int>(faces.size()),
