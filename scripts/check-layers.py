@@ -110,6 +110,16 @@ for path in sorted((root / "deck").glob("*")):
             if path.name not in DECK_STATE[m.group(1)]:
                 errors.append(f"deck/{path.name}:{number}: uses r.{m.group(1)}, the state of "
                               "another processor's commands (DECK_STATE in scripts/check-layers.py)")
+# The test binary is a unity build (cmake/unity.cmake): each test file keeps its code in a
+# namespace named after the file, so that file-scope helpers of two files never collide.
+tests = root.parent / "tests"
+for path in sorted(list((tests / "unit").glob("test_*.cpp")) +
+                   list((tests / "regression").glob("test_*.cpp"))):
+    text = path.read_text(encoding="utf-8")
+    if not re.search(r"^namespace (impactfe(::\w+)*::)?" + path.stem + r" \{$", text, re.M):
+        errors.append(f"{path.relative_to(root.parent)}: its code is not in a namespace named "
+                      f"after the file ('namespace impactfe::{path.stem} {{' or "
+                      f"'namespace {path.stem} {{'; tests/CMakeLists.txt says why)")
 for e in errors:
     print(e)
 print("layer check: " + ("ok" if not errors else f"{len(errors)} problem(s)"))

@@ -14,6 +14,8 @@
 #include "deck/deck_reader.h"
 #include "results/results_file.h"
 
+namespace test_car_crash {
+
 using namespace impactfe;
 namespace fs = std::filesystem;
 
@@ -178,3 +180,5 @@ TEST(ReducedVsFull, SparAllMastersAgreeFewerMastersReported) {
             << ", masters UX3+UX5 " << diff_few << " (" << 100 * diff_few / peak << " %)\n";
   RecordProperty("fewer_masters_relative_difference", std::to_string(diff_few / peak));
 }
+
+}  // namespace test_car_crash

@@ -15,7 +15,7 @@
 #include "../support/run_deck.h"
 #include "core/errors.h"
 
-namespace impactfe {
+namespace impactfe::test_contact_energy {
 namespace {
 
 using testing::run_deck_text;
@@ -128,4 +128,4 @@ TEST(ContactEnergy, PenaltyConta178UnderHoubolt) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_contact_energy

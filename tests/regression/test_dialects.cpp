@@ -7,7 +7,7 @@
 
 #include "../support/run_deck.h"
 
-namespace impactfe {
+namespace impactfe::test_dialects {
 namespace {
 
 TEST(Dialects, ModernPendulumMatchesThe42Deck) {
@@ -27,9 +27,9 @@ TEST(Dialects, ModernPendulumMatchesThe42Deck) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_dialects
 
-namespace impactfe {
+namespace impactfe::test_dialects {
 namespace {
 
 TEST(Dialects, ModernReducedCrashMatchesThe42Deck) {
@@ -61,9 +61,9 @@ TEST(Dialects, ModernReducedCrashMatchesThe42Deck) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_dialects
 
-namespace impactfe {
+namespace impactfe::test_dialects {
 namespace {
 
 TEST(Dialects, ModernSuperelementGenerationAndUse) {
@@ -79,4 +79,4 @@ TEST(Dialects, ModernSuperelementGenerationAndUse) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_dialects

@@ -6,7 +6,7 @@
 
 #include "../support/run_deck.h"
 
-namespace impactfe {
+namespace impactfe::test_helmet_full {
 namespace {
 
 constexpr double kHelmetMass = 1.2355e-4;  // 72 SHELL63, rho t A (REFERENCE §3)
@@ -81,4 +81,4 @@ TEST_F(HelmetFull, GroundGapReopensAndHeadClosesOnTheHelmet) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_helmet_full

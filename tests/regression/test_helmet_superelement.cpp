@@ -21,7 +21,7 @@
 #include "io/superelement_file.h"
 #include "results/results_file.h"
 
-namespace impactfe {
+namespace impactfe::test_helmet_superelement {
 namespace {
 
 namespace fs = std::filesystem;
@@ -233,4 +233,4 @@ TEST_F(HelmetSuperelement, ExpansionPassMustBeAJobOfItsOwn) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_helmet_superelement

@@ -11,7 +11,7 @@
 
 #include "../support/run_deck.h"
 
-namespace impactfe {
+namespace impactfe::test_msup_step_load {
 namespace {
 
 std::string oscillator_deck(int kbc) {
@@ -67,4 +67,4 @@ TEST(MsupStepLoad, RampedLoadGrowsOverItsLoadStep) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_msup_step_load

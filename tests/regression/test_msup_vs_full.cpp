@@ -10,7 +10,7 @@
 
 #include "../support/run_deck.h"
 
-namespace impactfe {
+namespace impactfe::test_msup_vs_full {
 namespace {
 
 TEST(MsupVersusFull, TwoMassGapHistoriesAgree) {
@@ -42,4 +42,4 @@ TEST(MsupVersusFull, TwoMassGapHistoriesAgree) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_msup_vs_full

@@ -6,7 +6,7 @@
 
 #include "../support/run_deck.h"
 
-namespace impactfe {
+namespace impactfe::test_pendulum {
 namespace {
 
 using testing::run_deck;
@@ -74,4 +74,4 @@ TEST(PendulumCase2, SpringPendulumMatchesTheOdeSolution) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_pendulum

@@ -12,7 +12,7 @@
 #include "../support/run_deck.h"
 #include "core/errors.h"
 
-namespace impactfe {
+namespace impactfe::test_post_decks {
 namespace {
 
 namespace fs = std::filesystem;
@@ -195,4 +195,4 @@ TEST(ThesisPostDecks, HelmetPost26CurvesMatchTheReference) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_post_decks

@@ -16,7 +16,7 @@
 
 #include "../support/run_deck.h"
 
-namespace impactfe {
+namespace impactfe::test_post_verification {
 namespace {
 
 namespace fs = std::filesystem;
@@ -105,4 +105,4 @@ INSTANTIATE_TEST_SUITE_P(
     [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_post_verification

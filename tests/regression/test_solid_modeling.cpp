@@ -12,7 +12,7 @@
 
 #include "../support/run_deck.h"
 
-namespace impactfe {
+namespace impactfe::test_solid_modeling {
 namespace {
 
 const std::string kDecks = std::string(IMPACTFE_TEST_DECKS) + "/modeling/";
@@ -173,4 +173,4 @@ TEST(SolidModeling, BlockDropEqualsTheNodeByNodeDeck) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_solid_modeling

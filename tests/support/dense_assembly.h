@@ -90,4 +90,14 @@ class DenseSystem {
   std::vector<DofKey> dofs_;
 };
 
+/// Element part of a global vector.
+inline Eigen::VectorXd gather(const DenseSystem& s, const Element& e, const Eigen::VectorXd& u) {
+  Eigen::VectorXd ue(e.n_dofs());
+  for (int a = 0; a < e.n_dofs(); ++a) {
+    const DofKey& k = e.dofs()[static_cast<std::size_t>(a)];
+    ue(a) = u(s.index(k.node, k.dof));
+  }
+  return ue;
+}
+
 }  // namespace impactfe::testing

@@ -75,16 +75,6 @@ inline Eigen::VectorXd solve_prescribed(const DenseSystem& s, const Eigen::Vecto
   return u;
 }
 
-/// Element part of a global vector.
-inline Eigen::VectorXd gather(const DenseSystem& s, const Element& e, const Eigen::VectorXd& u) {
-  Eigen::VectorXd ue(e.n_dofs());
-  for (int a = 0; a < e.n_dofs(); ++a) {
-    const DofKey& k = e.dofs()[static_cast<std::size_t>(a)];
-    ue(a) = u(s.index(k.node, k.dof));
-  }
-  return ue;
-}
-
 /// Assembles K_T and f_int at the global displacement u.
 inline void assemble_at(const DenseSystem& s, const std::vector<std::unique_ptr<Element>>& els,
                         const ElementContext& ctx, const Eigen::VectorXd& u, Eigen::MatrixXd& K,

@@ -12,7 +12,7 @@
 
 #include "../support/run_deck.h"
 
-namespace impactfe {
+namespace impactfe::test_accepted_fields {
 namespace {
 
 namespace fs = std::filesystem;
@@ -182,4 +182,4 @@ TEST(AcceptedFields, Solid185MixedFormulationIsRefused) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_accepted_fields

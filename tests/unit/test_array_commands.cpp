@@ -9,6 +9,8 @@
 #include "deck/get_hooks.h"
 #include "deck/parameters.h"
 
+namespace test_array_commands {
+
 using namespace impactfe;
 using namespace impactfe::deck;
 
@@ -392,3 +394,5 @@ TEST(ArrayCommands, FourierSeriesFitAndEvaluation) {
                 .find("MODE must be an array"),
             std::string::npos);
 }
+
+}  // namespace test_array_commands

@@ -12,7 +12,7 @@
 #include "core/errors.h"
 #include "core/thread_pool.h"
 
-namespace impactfe {
+namespace impactfe::test_assembler {
 namespace {
 
 /// A plane truss of LINK1 bars with lumped masses: a square with one diagonal.
@@ -520,4 +520,4 @@ TEST(Assembler, TangentPhaseReusesBuffersOnlyForStatelessElementsAtTheSameDofVal
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_assembler

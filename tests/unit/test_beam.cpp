@@ -16,7 +16,7 @@
 #include "elements/element.h"
 #include "elements/element_registry.h"
 
-namespace impactfe {
+namespace impactfe::test_beam {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
@@ -424,4 +424,4 @@ TEST(Beam3, PlanarDofsAndMass) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_beam

@@ -17,7 +17,7 @@
 #include "elements/element.h"
 #include "elements/element_registry.h"
 
-namespace impactfe {
+namespace impactfe::test_beam189 {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
@@ -456,4 +456,4 @@ TEST(Beam189, StressStiffeningTangentAndEulerBuckling) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_beam189

@@ -13,7 +13,7 @@
 extern "C" void dgemm_(void*, void*, void*, void*, void*, void*, void*, void*, void*, void*, void*,
                        void*, void*);
 
-namespace impactfe {
+namespace impactfe::test_blas_library {
 namespace {
 
 bool mapped(const std::string& library) {
@@ -88,4 +88,4 @@ TEST(BlasLibrary, RunsOnOneThreadWhateverTheThreadSetting) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_blas_library

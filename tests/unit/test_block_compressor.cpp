@@ -19,7 +19,7 @@
 #include "results/block_compressor.h"
 #include "results/result_series.h"
 
-namespace impactfe::result_series {
+namespace impactfe::result_series::test_block_compressor {
 namespace {
 
 namespace fs = std::filesystem;
@@ -337,4 +337,4 @@ TEST(BlockCompressor, StagingRowsAreTheBytesHdf5StoresForTheSameRows) {
 }
 
 }  // namespace
-}  // namespace impactfe::result_series
+}  // namespace impactfe::result_series::test_block_compressor

@@ -14,7 +14,7 @@
 #include "elements/brick8.h"
 #include "materials/isotropic_elasticity.h"
 
-namespace impactfe {
+namespace impactfe::test_brick8 {
 namespace {
 
 constexpr double kE = 30e6;  // psi
@@ -636,4 +636,4 @@ TEST(Brick8, MissingYoungsModulusIsAnInputError) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_brick8

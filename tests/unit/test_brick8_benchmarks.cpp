@@ -9,7 +9,7 @@
 #include "../support/dense_assembly.h"
 #include "elements/brick8.h"
 
-namespace impactfe {
+namespace impactfe::test_brick8_benchmarks {
 namespace {
 
 constexpr double kE = 30e6;      // psi
@@ -235,4 +235,4 @@ TEST(Brick8Benchmark, LargeDeflectionCantileverMatchesElastica) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_brick8_benchmarks

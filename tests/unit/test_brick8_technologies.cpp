@@ -16,7 +16,7 @@
 #include "materials/isotropic_elasticity.h"
 #include "materials/j2_plasticity.h"
 
-namespace impactfe {
+namespace impactfe::test_brick8_technologies {
 namespace {
 
 constexpr double kE = 30e6;  // psi
@@ -319,4 +319,4 @@ TEST(Brick8Technology, PlasticEnhancedBrickIsElasticBelowYield) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_brick8_technologies

@@ -12,7 +12,7 @@
 #include "deck/deck_reader.h"
 #include "deck/lexer.h"
 
-namespace impactfe::deck {
+namespace impactfe::deck::test_cdb {
 namespace {
 
 TEST(CdbFormat, ColumnsOfTheBlockFormats) {
@@ -176,4 +176,4 @@ TEST(CdbWrite, ReadBackGivesTheSameModelAndFile) {
 }
 
 }  // namespace
-}  // namespace impactfe::deck
+}  // namespace impactfe::deck::test_cdb

@@ -8,7 +8,7 @@
 #include "elements/combination_gap.h"
 #include "elements/element.h"
 
-namespace impactfe {
+namespace impactfe::test_combination_gap {
 namespace {
 
 struct GapSpec {
@@ -402,4 +402,4 @@ TEST(CombinationGap, InputErrors) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_combination_gap

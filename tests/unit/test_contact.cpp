@@ -15,7 +15,7 @@
 #include "elements/element_registry.h"
 #include "elements/target_surface.h"
 
-namespace impactfe {
+namespace impactfe::test_contact {
 namespace {
 
 ElementRecord record(int id, int type_id, int real, int mat, std::vector<int> nodes) {
@@ -287,4 +287,4 @@ TEST(Contact, ElementsMatchTheirRegistration) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_contact

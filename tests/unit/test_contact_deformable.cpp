@@ -17,7 +17,7 @@
 #include "elements/element_registry.h"
 #include "elements/target_surface.h"
 
-namespace impactfe {
+namespace impactfe::test_contact_deformable {
 namespace {
 
 ElementRecord record(int id, int type_id, int real, int mat, std::vector<int> nodes) {
@@ -339,4 +339,4 @@ TEST(DeformableTarget, FacetsOnNoBodyNeedAPilot) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_contact_deformable

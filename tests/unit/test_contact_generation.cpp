@@ -16,7 +16,7 @@
 #include "elements/element.h"
 #include "elements/element_registry.h"
 
-namespace impactfe {
+namespace impactfe::test_contact_generation {
 namespace {
 
 Model read(const std::string& text) {
@@ -295,4 +295,4 @@ ESURF
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_contact_generation

@@ -16,7 +16,7 @@
 #include "elements/element_registry.h"
 #include "elements/so3.h"
 
-namespace impactfe {
+namespace impactfe::test_contact_rotating {
 namespace {
 
 ElementRecord record(int id, int type_id, int real, int mat, std::vector<int> nodes) {
@@ -195,4 +195,4 @@ TEST(RotatingTarget, UnrotatedPilotGivesTheTranslatingTargetsForces) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_contact_rotating

@@ -17,7 +17,7 @@
 #include "elements/element.h"
 #include "elements/element_registry.h"
 
-namespace impactfe {
+namespace impactfe::test_contact_segment {
 namespace {
 
 ElementRecord record(int id, int type_id, int real, int mat, std::vector<int> nodes) {
@@ -249,4 +249,4 @@ TEST(SegmentContact, RigidTargetUsesTheFaceGaussPoints) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_contact_segment

@@ -3,7 +3,7 @@
 
 #include "nonlinear/convergence.h"
 
-namespace impactfe {
+namespace impactfe::test_convergence {
 namespace {
 
 TEST(ConvergenceTest, ForceCriterionIsRelativeToTheReference) {
@@ -36,4 +36,4 @@ TEST(ConvergenceTest, DisplacementCriterionOnlyWhenRequested) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_convergence

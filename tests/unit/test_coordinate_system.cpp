@@ -9,7 +9,7 @@
 #include "core/coordinate_system.h"
 #include "deck/deck_reader.h"
 
-namespace impactfe {
+namespace impactfe::test_coordinate_system {
 namespace {
 
 TEST(CoordinateSystem, RotationAnglesRoundTrip) {
@@ -97,4 +97,4 @@ TEST(CoordinateSystem, WorkingPlanePrimitivesAndNrotat) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_coordinate_system

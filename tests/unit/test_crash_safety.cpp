@@ -19,7 +19,7 @@
 
 #include "../support/run_deck.h"
 
-namespace impactfe {
+namespace impactfe::test_crash_safety {
 namespace {
 
 namespace fs = std::filesystem;
@@ -305,4 +305,4 @@ TEST(CrashSafety, ReadOnlyOutputDirectoryEndsWithExitTwo) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_crash_safety

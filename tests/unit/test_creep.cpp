@@ -8,7 +8,7 @@
 
 #include "materials/j2_plasticity.h"
 
-namespace impactfe {
+namespace impactfe::test_creep {
 namespace {
 
 constexpr double kE = 200e3, kNu = 0.3;
@@ -134,4 +134,4 @@ TEST(Creep, SolidTangentMatchesFiniteDifferences) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_creep

@@ -14,6 +14,8 @@
 #include "core/log.h"
 #include "deck/deck_reader.h"
 
+namespace test_creep_deck {
+
 using namespace impactfe;
 
 namespace {
@@ -170,3 +172,5 @@ TEST(ShellEdgePressure, SfOnTheNodesOfAShellEdgeLoadsTheEdgeInPlane) {
                 .find("no element face has all its nodes selected"),
             std::string::npos);
 }
+
+}  // namespace test_creep_deck

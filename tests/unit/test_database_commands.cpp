@@ -14,6 +14,8 @@
 #include "deck/deck_reader.h"
 #include "results/results_file.h"
 
+namespace test_database_commands {
+
 using namespace impactfe;
 
 namespace {
@@ -319,3 +321,5 @@ TEST(DatabaseCommands, SolutionControlsAreSavedResumedAndCleared) {
   EXPECT_EQ(j.at("loads").at("step_control").at("autots"), true);
   EXPECT_EQ(j.at("loads").at("step_control").at("rescontrol")[2], 5);
 }
+
+}  // namespace test_database_commands

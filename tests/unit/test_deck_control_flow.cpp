@@ -12,6 +12,8 @@
 #include "deck/deck_context.h"
 #include "deck/deck_reader.h"
 
+namespace test_deck_control_flow {
+
 using namespace impactfe;
 
 namespace {
@@ -366,3 +368,5 @@ TEST(DeckControlFlow, FourXBlocksStillReplay) {
       Dialect::Classic4x);
   EXPECT_EQ(out, "  1.\n  6.\n 11.\n");
 }
+
+}  // namespace test_deck_control_flow

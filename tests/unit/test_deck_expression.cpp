@@ -11,6 +11,8 @@
 #include "deck/expression.h"
 #include "deck/parameters.h"
 
+namespace test_deck_expression {
+
 using namespace impactfe;
 using namespace impactfe::deck;
 
@@ -387,3 +389,5 @@ Y = NODE(2)
       &out);
   EXPECT_EQ(out, "  10.0   9.0\n");
 }
+
+}  // namespace test_deck_expression

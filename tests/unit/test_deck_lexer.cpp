@@ -9,6 +9,8 @@
 #include "deck/expression.h"
 #include "deck/lexer.h"
 
+namespace test_deck_lexer {
+
 using namespace impactfe;
 using namespace impactfe::deck;
 
@@ -250,3 +252,5 @@ TEST(DeckLexer, LineOfMegabytesIsRefusedWithItsLocation) {
     }
   }
 }
+
+}  // namespace test_deck_lexer

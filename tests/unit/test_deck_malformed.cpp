@@ -13,6 +13,8 @@
 #include "../support/run_deck.h"
 #include "deck/deck_reader.h"
 
+namespace test_deck_malformed {
+
 using namespace impactfe;
 
 namespace {
@@ -79,3 +81,5 @@ TEST(DeckMalformed, EachDeckFailsWhereItsHeaderSays) {
     }
   }
 }
+
+}  // namespace test_deck_malformed

@@ -7,6 +7,8 @@
 
 #include "deck/deck_reader.h"
 
+namespace test_deck_model {
+
 using namespace impactfe;
 
 namespace {
@@ -388,3 +390,5 @@ TEST(DeckModel, FilnameSetsJobnameUnlessGivenOnTheCommandLine) {
   o.jobname = "cli";
   EXPECT_EQ(read_deck_text("/FILNAME,crash\n", "x.inp", o).model.jobname, "cli");
 }
+
+}  // namespace test_deck_model

@@ -10,6 +10,8 @@
 
 #include "deck/deck_reader.h"
 
+namespace test_deck_thesis {
+
 using namespace impactfe;
 
 namespace {
@@ -348,3 +350,5 @@ TEST(DeckThesis, HelmetUsePass) {
   ASSERT_EQ(job.steps.size(), 1u);
   expect_helmet_steps(*job.steps[0].analysis);
 }
+
+}  // namespace test_deck_thesis

@@ -12,7 +12,7 @@
 #include "core/dof.h"
 #include "deck/deck_reader.h"
 
-namespace impactfe {
+namespace impactfe::test_deck_vm_inputs {
 namespace {
 
 Job read_modern(const std::string& text) {
@@ -135,9 +135,9 @@ TEST(DeckVmInputs, ElementTypeGivenAsAParameter) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_deck_vm_inputs
 
-namespace impactfe {
+namespace impactfe::test_deck_vm_inputs {
 namespace {
 
 // SHELL,Loc (vm39) chooses the surface of the shell stresses POST1 reports (TOP by default), and
@@ -161,9 +161,9 @@ TEST(DeckVmInputs, ShellSurfaceAndElementTableGroups) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_deck_vm_inputs
 
-namespace impactfe {
+namespace impactfe::test_deck_vm_inputs {
 namespace {
 
 // PARSAV / PARRES (14 VM decks stop there): SCALAR writes the scalars, ALL the arrays too;
@@ -189,9 +189,9 @@ TEST(DeckVmInputs, ParametersSavedAndRestored) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_deck_vm_inputs
 
-namespace impactfe {
+namespace impactfe::test_deck_vm_inputs {
 namespace {
 
 // DSYM (vm6, vm21, vm24, vm36, vm42, ...): the selected nodes are rotated into KCN, then the
@@ -222,4 +222,4 @@ TEST(DeckVmInputs, SymmetryAndAntisymmetryConstraints) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_deck_vm_inputs

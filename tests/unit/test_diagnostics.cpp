@@ -11,7 +11,7 @@
 #include "../support/run_deck.h"
 #include "core/log.h"
 
-namespace impactfe {
+namespace impactfe::test_diagnostics {
 namespace {
 
 namespace fs = std::filesystem;
@@ -122,4 +122,4 @@ TEST(Diagnostics, ErrorsWithoutALocationGainTheCommandsLocation) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_diagnostics

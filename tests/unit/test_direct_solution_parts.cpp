@@ -22,7 +22,7 @@
 #include "core/log.h"
 #include "deck/deck_reader.h"
 
-namespace impactfe {
+namespace impactfe::test_direct_solution_parts {
 namespace {
 
 /// A model read from deck text and its first analysis, with the structure built from them.
@@ -344,4 +344,4 @@ TEST(TimeStepAdvice, NoneWhenNoContactCloses) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_direct_solution_parts

@@ -11,7 +11,7 @@
 #include "assembly/dof_graph.h"
 #include "linalg/shared_pattern_products.h"
 
-namespace impactfe {
+namespace impactfe::test_dof_graph {
 namespace {
 
 /// A random LINK1 net: 40 nodes in a plane, 90 bars between random pairs (some nodes left
@@ -177,4 +177,4 @@ TEST(DofGraph, SharedProductsFromTheGraphEqualThoseFromTheMatrices) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_dof_graph

@@ -7,7 +7,7 @@
 
 #include "linalg/eigen_solver.h"
 
-namespace impactfe {
+namespace impactfe::test_eigen_solver {
 namespace {
 
 /// Fixed-free chain of n unit masses and unit springs: λ_j = 4 sin²((2j−1)π/(2(2n+1))).
@@ -53,4 +53,4 @@ TEST(EigenSolver, FreeChainHasOneRigidBodyMode) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_eigen_solver

@@ -17,7 +17,7 @@
 #include "elements/element_fields.h"
 #include "elements/element_registry.h"
 
-namespace impactfe {
+namespace impactfe::test_element_fields {
 namespace {
 
 /// A one-element model of a type: the deck up to (not including) its real set, the real set
@@ -302,4 +302,4 @@ TEST(ElementFields, MassInNodalAxesOfARotatedNodeIsRefused) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_element_fields

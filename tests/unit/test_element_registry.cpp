@@ -20,7 +20,7 @@
 #include "results/report_mesh.h"
 #include "results/vtk_frames.h"
 
-namespace impactfe {
+namespace impactfe::test_element_registry {
 namespace {
 
 // ---- a test-only element: a 2-node axial spring along X with stiffness R1 ------------------
@@ -271,4 +271,4 @@ TEST(ElementRegistry, EveryBuiltInTypeMatchesItsElementClass) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_element_registry

@@ -13,7 +13,7 @@
 #include "explicit/explicit_loads.h"
 #include "explicit/explicit_system.h"
 
-namespace impactfe {
+namespace impactfe::test_explicit_contact {
 namespace {
 
 TEST(ExplicitCurve, InterpolatesLinearlyAndHoldsTheEnds) {
@@ -231,4 +231,4 @@ TEST(ExplicitContact, RunsAreBitwiseRepeatable) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_explicit_contact

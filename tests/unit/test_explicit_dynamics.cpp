@@ -15,7 +15,7 @@
 #include "explicit/explicit_system.h"
 #include "materials/rate_plasticity.h"
 
-namespace impactfe {
+namespace impactfe::test_explicit_dynamics {
 namespace {
 
 // A distorted hexahedron (no two faces parallel).
@@ -290,4 +290,4 @@ TEST(CentralDifference, MassScalingRaisesTheStepAndReportsTheMass) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_explicit_dynamics

@@ -14,7 +14,7 @@
 #include "explicit/central_difference.h"
 #include "explicit/explicit_system.h"
 
-namespace impactfe {
+namespace impactfe::test_explicit_shell163 {
 namespace {
 
 const std::string kHead =
@@ -279,4 +279,4 @@ TEST(ExplicitShell, RunFixesRotationsAndReportsMoments) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_explicit_shell163

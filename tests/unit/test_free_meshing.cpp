@@ -21,7 +21,7 @@
 #include "geometry/cad_import.h"
 #include "geometry/gmsh_api.h"
 
-namespace impactfe {
+namespace impactfe::test_free_meshing {
 namespace {
 
 namespace gmsh = geometry::gmsh;
@@ -300,4 +300,4 @@ TEST(FreeMeshing, MeshSubcommandWritesTheCdbOfACadFile) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_free_meshing

@@ -7,6 +7,8 @@
 #include "core/errors.h"
 #include "reduction/guyan.h"
 
+namespace test_guyan {
+
 using namespace impactfe;
 
 namespace {
@@ -116,3 +118,5 @@ TEST(Guyan, UnrestrainedSlaveIsReportedByName) {
     EXPECT_NE(std::string(e.what()).find("not restrained"), std::string::npos) << e.what();
   }
 }
+
+}  // namespace test_guyan

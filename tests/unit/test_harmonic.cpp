@@ -11,6 +11,8 @@
 #include "analysis/harmonic_response.h"
 #include "core/errors.h"
 
+namespace test_harmonic {
+
 using namespace impactfe;
 using Complex = std::complex<double>;
 
@@ -168,3 +170,5 @@ TEST(Harmonic, ModeSuperpositionAgreesWithFullOnACantileverBeam) {
   EXPECT_NEAR(omega_n(0), 1.8751040687 * 1.8751040687 * std::sqrt(ei / rho_a) / (length * length),
               1e-4 * omega_n(0));
 }
+
+}  // namespace test_harmonic

@@ -15,7 +15,7 @@
 #include "time/houbolt_spectrum.h"
 #include "time/time_integrator.h"
 
-namespace impactfe {
+namespace impactfe::test_houbolt_spectrum {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
@@ -165,4 +165,4 @@ TEST(HouboltSpectrum, LogGridAndBadInput) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_houbolt_spectrum

@@ -9,7 +9,7 @@
 #include "../support/bilinear_closed_form.h"
 #include "materials/j2_plasticity.h"
 
-namespace impactfe {
+namespace impactfe::test_j2_plasticity {
 namespace {
 
 constexpr double kE = 200e3, kNu = 0.3, kSy = 250.0, kEt = 20e3;
@@ -223,4 +223,4 @@ TEST(J2Plasticity, PlasticWorkOfAMonotonicBarIsTheAreaAboveTheElasticLine) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_j2_plasticity

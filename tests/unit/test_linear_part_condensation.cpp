@@ -9,7 +9,7 @@
 
 #include "analysis/linear_part_condensation.h"
 
-namespace impactfe {
+namespace impactfe::test_linear_part_condensation {
 namespace {
 
 /// Nodes 1..6 on X; COMBIN14 springs 1-2 ... 5-6 (k = 100 + 10 i), masses 1e-3 per node (MASS21),
@@ -122,4 +122,4 @@ TEST(LinearPartCondensation, RefusedWhenEverythingIsNonlinearOrLinear) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_linear_part_condensation

@@ -6,7 +6,7 @@
 
 #include "linalg/linear_solver.h"
 
-namespace impactfe {
+namespace impactfe::test_linear_solver {
 namespace {
 
 /// Lower triangle of the stiffness of a chain of n springs k = 1..n, grounded at one end:
@@ -152,4 +152,4 @@ TEST(WeakestPivot, FindsTheMechanismRow) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_linear_solver

@@ -5,7 +5,7 @@
 
 #include "assembly/loads.h"
 
-namespace impactfe {
+namespace impactfe::test_loads {
 namespace {
 
 class LoadsTest : public ::testing::Test {
@@ -83,4 +83,4 @@ TEST_F(LoadsTest, FrameAccelerationRamps) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_loads

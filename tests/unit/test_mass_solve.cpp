@@ -9,7 +9,7 @@
 
 #include "linalg/mass_solve.h"
 
-namespace impactfe {
+namespace impactfe::test_mass_solve {
 namespace {
 
 /// Lower triangle of the consistent mass of a grid of nx × ny bilinear quadrilaterals (unit
@@ -111,4 +111,4 @@ TEST(MassSolve, ABadlyScaledSystemFallsBackToAFactorization) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_mass_solve

@@ -13,7 +13,7 @@
 #include "elements/element.h"
 #include "geometry/mapped_mesh.h"
 
-namespace impactfe {
+namespace impactfe::test_meshing {
 namespace {
 
 Model read(const std::string& text) {
@@ -303,4 +303,4 @@ TEST(Meshing, MalformedModellingInputIsAnInputError) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_meshing

@@ -11,6 +11,8 @@
 #include "linalg/eigen_solver.h"
 #include "reduction/reduced_dynamics.h"
 
+namespace test_msup {
+
 using namespace impactfe;
 
 namespace {
@@ -134,3 +136,5 @@ TEST(Msup, TwoMassGapAllModesEqualsPhysicalIntegration) {
   EXPECT_LT(peak, 0.0);  // the gap closed
   EXPECT_LT(diff, 1e-9 * umax);
 }
+
+}  // namespace test_msup

@@ -11,7 +11,7 @@
 #include "linalg/linear_solver.h"
 #include "linalg/parallel_backend.h"
 
-namespace impactfe {
+namespace impactfe::test_mumps_solver {
 namespace {
 
 /// MPI_Finalize once, after every test of this binary.
@@ -109,4 +109,4 @@ TEST(MumpsSolver, ZeroPivotNamesItsRow) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_mumps_solver

@@ -8,7 +8,7 @@
 
 #include "nonlinear/newton_raphson.h"
 
-namespace impactfe {
+namespace impactfe::test_newton_raphson {
 namespace {
 
 /// Two hardening springs in series, f = (f1, f2):
@@ -212,4 +212,4 @@ TEST(NewtonRaphson, APredictorInBalanceIsAcceptedWithoutIterating) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_newton_raphson

@@ -11,6 +11,8 @@
 #include "deck/deck_reader.h"
 #include "deck/output.h"
 
+namespace test_output_commands {
+
 using namespace impactfe;
 
 namespace {
@@ -207,3 +209,5 @@ TEST(OutputCommands, DeleteFiles) {
       std::string::npos);
   EXPECT_THROW(run_in(dir, "/OUT,held,txt\n/DELETE,held,txt\n"), InputError);  // still open
 }
+
+}  // namespace test_output_commands

@@ -4,6 +4,8 @@
 
 #include "deck/output_format.h"
 
+namespace test_output_format {
+
 using namespace impactfe::deck;
 
 namespace {
@@ -130,3 +132,5 @@ TEST(OutputFormat, BadFormatsAreRejected) {
        {"(F10)", "(Q5)", "(F10.3", "(F10.3))", "('abc", "(0F5.1)", "(EN12.3)", "%Q", "value %"})
     EXPECT_THROW(OutputFormat::parse(bad), FormatError) << bad;
 }
+
+}  // namespace test_output_format

@@ -10,7 +10,7 @@
 #include "core/output_control.h"
 #include "results/output_selection.h"
 
-namespace impactfe {
+namespace impactfe::test_output_selection {
 namespace {
 
 OutputControl control(int every) {
@@ -127,4 +127,4 @@ TEST(OutputControl, ALoadStepCarriesItsPerItemSettings) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_output_selection

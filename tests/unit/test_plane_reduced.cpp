@@ -15,7 +15,7 @@
 #include "../support/dense_assembly.h"
 #include "elements/plane_solid.h"
 
-namespace impactfe {
+namespace impactfe::test_plane_reduced {
 namespace {
 
 constexpr double kE = 200e3, kNu = 0.3, kT = 0.7;
@@ -143,4 +143,4 @@ TEST(PlaneReduced, CantileverTenByTwoNeitherLocksNorHourglasses) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_plane_reduced

@@ -16,7 +16,7 @@
 #include "core/errors.h"
 #include "elements/plane_solid.h"
 
-namespace impactfe {
+namespace impactfe::test_plane_solid {
 namespace {
 
 constexpr double kE = 200e3;
@@ -356,4 +356,4 @@ TEST(PlaneSolid, RefusesBadShapes) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_plane_solid

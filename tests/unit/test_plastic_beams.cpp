@@ -20,7 +20,7 @@
 #include "elements/beam_section.h"
 #include "materials/j2_plasticity.h"
 
-namespace impactfe {
+namespace impactfe::test_plastic_beams {
 namespace {
 
 constexpr double kE = 200e3, kNu = 0.3, kSy = 250.0, kEt = 20e3;
@@ -401,4 +401,4 @@ TEST(PlasticBeams, BarOfBeamsStrikingAWallEqualsTheLinkBarAndBalancesItsEnergy) 
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_plastic_beams

@@ -13,7 +13,7 @@
 #include "elements/brick8.h"
 #include "materials/j2_plasticity.h"
 
-namespace impactfe {
+namespace impactfe::test_plastic_bricks {
 namespace {
 
 constexpr double kE = 200e3, kNu = 0.3, kSy = 250.0, kEt = 20e3;
@@ -284,4 +284,4 @@ TEST(PlasticBricks, ThickCylinderApproachesTheLimitPressure) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_plastic_bricks

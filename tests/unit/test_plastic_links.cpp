@@ -12,7 +12,7 @@
 #include "../support/bilinear_closed_form.h"
 #include "../support/run_deck.h"
 
-namespace impactfe {
+namespace impactfe::test_plastic_links {
 namespace {
 
 constexpr double kE = 200e3, kSy = 250.0, kEt = 20e3;
@@ -167,4 +167,4 @@ TEST(PlasticLinks, BarStrikingAWallKeepsAPermanentSetAndBalancesItsEnergy) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_plastic_links

@@ -18,7 +18,7 @@
 #include "elements/plane_solid.h"
 #include "materials/j2_plasticity.h"
 
-namespace impactfe {
+namespace impactfe::test_plastic_planes {
 namespace {
 
 constexpr double kE = 200e3, kNu = 0.3, kSy = 250.0, kEt = 20e3;
@@ -466,4 +466,4 @@ TEST(PlasticPlanes, CreepThroughTheElementAtConstantLoadMatchesTimeHardening) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_plastic_planes

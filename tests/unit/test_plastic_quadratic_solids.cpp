@@ -16,7 +16,7 @@
 #include "elements/solid_quadratic.h"
 #include "materials/j2_plasticity.h"
 
-namespace impactfe {
+namespace impactfe::test_plastic_quadratic_solids {
 namespace {
 
 constexpr double kE = 200e3, kNu = 0.3, kSy = 250.0, kEt = 20e3;
@@ -374,4 +374,4 @@ TEST(PlasticQuadraticSolids, FreeTetrahedralMeshOfABlockStretchedPastYield) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_plastic_quadratic_solids

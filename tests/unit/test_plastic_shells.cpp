@@ -11,7 +11,7 @@
 #include "../support/run_deck.h"
 #include "elements/shell4.h"
 
-namespace impactfe {
+namespace impactfe::test_plastic_shells {
 namespace {
 
 constexpr double kE = 200e3, kSy = 250.0, kEt = 20e3;
@@ -142,4 +142,4 @@ TEST(PlasticShells, StripInCylindricalBendingYieldsAndReachesTheSectionLimit) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_plastic_shells

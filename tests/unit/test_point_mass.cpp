@@ -6,7 +6,7 @@
 #include "elements/element.h"
 #include "elements/point_mass.h"
 
-namespace impactfe {
+namespace impactfe::test_point_mass {
 namespace {
 
 Model mass_model(int keyopt3, std::vector<double> reals) {
@@ -136,4 +136,4 @@ TEST(PointMass, SparWithEndMassVibratesAtSqrtKOverM) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_point_mass

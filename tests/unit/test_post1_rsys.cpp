@@ -12,7 +12,7 @@
 
 #include "../support/run_deck.h"
 
-namespace impactfe {
+namespace impactfe::test_post1_rsys {
 namespace {
 
 const char* kTruss =
@@ -122,4 +122,4 @@ TEST(Post1Rsys, RefusesWhatItDoesNotCarryOut) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_post1_rsys

@@ -14,7 +14,7 @@
 #include "results/results_file.h"
 #include "results/vtk_export.h"
 
-namespace impactfe {
+namespace impactfe::test_post_csv {
 namespace {
 
 namespace fs = std::filesystem;
@@ -317,4 +317,4 @@ TEST_F(PostTest, VtuSeriesWellFormed) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_post_csv

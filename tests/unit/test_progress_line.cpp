@@ -7,7 +7,7 @@
 
 #include "analysis/progress_line.h"
 
-namespace impactfe {
+namespace impactfe::test_progress_line {
 namespace {
 
 ProgressEvent helmet_event() {
@@ -91,4 +91,4 @@ TEST(TimeLeftEstimate, AChangeOfPaceIsFollowedSmoothly) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_progress_line

@@ -11,6 +11,8 @@
 #include "reduction/guyan.h"
 #include "reduction/reduced_dynamics.h"
 
+namespace test_reduced_transient {
+
 using namespace impactfe;
 
 namespace {
@@ -246,3 +248,5 @@ TEST(ReducedTransientMatrices, CrashCase3Element1StressConvergesToReference) {
   EXPECT_NEAR(s1, 396.0, 0.03 * 396.0);
   EXPECT_NEAR(s6, 2560.0, 0.03 * 2560.0);
 }
+
+}  // namespace test_reduced_transient

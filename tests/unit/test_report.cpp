@@ -15,7 +15,7 @@
 #include "results/report.h"
 #include "results/results_file.h"
 
-namespace impactfe {
+namespace impactfe::test_report {
 namespace {
 
 namespace fs = std::filesystem;
@@ -343,4 +343,4 @@ TEST(ReportLongHistory, SampledAndSmall) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_report

@@ -15,7 +15,7 @@
 #include "results/report_units.h"
 #include "results/results_file.h"
 
-namespace impactfe {
+namespace impactfe::test_report_contact {
 namespace {
 
 namespace fs = std::filesystem;
@@ -159,4 +159,4 @@ TEST(ReportUnits, SystemsAndQuantities) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_report_contact

@@ -21,7 +21,7 @@
 #include "results/result_series.h"
 #include "results/results_file.h"
 
-namespace impactfe {
+namespace impactfe::test_results_file {
 namespace {
 
 namespace fs = std::filesystem;
@@ -939,4 +939,4 @@ TEST(ResultsKindTest, NamesAndSameTime) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_results_file

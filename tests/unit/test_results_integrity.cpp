@@ -22,7 +22,7 @@
 #include "results/post_csv.h"
 #include "results/vtk_export.h"
 
-namespace impactfe {
+namespace impactfe::test_results_integrity {
 namespace {
 
 namespace fs = std::filesystem;
@@ -151,4 +151,4 @@ TEST(ResultsIntegrity, CorruptionAnywhereIsReportedOrHarmless) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_results_integrity

@@ -21,7 +21,7 @@
 #include "core/memory_budget.h"
 #include "linalg/linear_solver.h"
 
-namespace impactfe {
+namespace impactfe::test_run_safety {
 namespace {
 
 namespace fs = std::filesystem;
@@ -360,4 +360,4 @@ TEST(MemoryLimits, ReducedTransientWhoseHistoryCannotFitIsRefusedBeforeItStarts)
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_run_safety

@@ -9,7 +9,7 @@
 
 #include "linalg/schur_solver.h"
 
-namespace impactfe {
+namespace impactfe::test_schur_solver {
 namespace {
 
 /// A 3-D grid Laplacian plus a diagonal shift (a stiffness-plus-mass-like SPD matrix), lower
@@ -183,4 +183,4 @@ TEST(SchurSolver, NearZeroPivotOfAReleasedMatrixNamesTheRow) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_schur_solver

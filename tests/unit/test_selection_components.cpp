@@ -8,7 +8,7 @@
 #include "deck/deck_context.h"
 #include "deck/post_support.h"
 
-namespace impactfe::deck {
+namespace impactfe::deck::test_selection_components {
 namespace {
 
 std::vector<int> range(int first, int last) {
@@ -148,4 +148,4 @@ TEST(GetFunctions, ModelFunctionsSeeTheSelection) {
 }
 
 }  // namespace
-}  // namespace impactfe::deck
+}  // namespace impactfe::deck::test_selection_components

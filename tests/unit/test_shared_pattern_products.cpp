@@ -9,7 +9,7 @@
 #include "core/thread_pool.h"
 #include "linalg/shared_pattern_products.h"
 
-namespace impactfe {
+namespace impactfe::test_shared_pattern_products {
 namespace {
 
 /// A random n × n sparse matrix with about `per_row` entries per row (different patterns for
@@ -208,4 +208,4 @@ TEST(SharedPatternProducts, DuplicateEntriesAreSummed) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_shared_pattern_products

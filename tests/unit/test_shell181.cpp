@@ -13,7 +13,7 @@
 #include "elements/shell4.h"
 #include "shell4_test_helpers.h"
 
-namespace impactfe {
+namespace impactfe::test_shell181 {
 namespace {
 
 using testing::build;
@@ -413,4 +413,4 @@ TEST(Shell181, LumpedMassCarriesMindlinRotaryInertia) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_shell181

@@ -14,7 +14,7 @@
 #include "../support/dense_assembly.h"
 #include "elements/shell281.h"
 
-namespace impactfe {
+namespace impactfe::test_shell281 {
 namespace {
 
 using testing::DenseSystem;
@@ -97,15 +97,6 @@ Eigen::VectorXd pressure(const DenseSystem& s, const std::vector<std::unique_ptr
     }
   }
   return f;
-}
-
-Eigen::VectorXd gather(const DenseSystem& s, const Element& e, const Eigen::VectorXd& u) {
-  Eigen::VectorXd ue(e.n_dofs());
-  for (int a = 0; a < e.n_dofs(); ++a) {
-    const DofKey& k = e.dofs()[static_cast<std::size_t>(a)];
-    ue(a) = u(s.index(k.node, k.dof));
-  }
-  return ue;
 }
 
 Eigen::MatrixXd element_stiffness(const Element& e) {
@@ -243,7 +234,7 @@ void run_patch(const Mesh8& m, bool membrane, bool bending) {
   for (std::size_t n = 0; n < els.size(); ++n) {
     const auto& e = els[n];
     ElementResultValues r;
-    e->results(ElementContext{}, gather(s, *e, u), Eigen::VectorXd(), r);
+    e->results(ElementContext{}, testing::gather(s, *e, u), Eigen::VectorXd(), r);
     // Element axes: e1 along ∂x/∂ξ at the centre, x_N − x_P (midside nodes 6 and 8).
     const auto& ids = m.elements[n];
     const Vec3 d = m.nodes.at(ids[5]) - m.nodes.at(ids[7]);
@@ -386,7 +377,8 @@ TEST(Shell281, CantileverStripMatchesEulerBernoulli) {
       }
     // Root element moment per width ≈ P (L − x_c)/b at its centre x_c = 0.5.
     ElementResultValues r;
-    els.front()->results(ElementContext{}, gather(s, *els.front(), u), Eigen::VectorXd(), r);
+    els.front()->results(ElementContext{}, testing::gather(s, *els.front(), u), Eigen::VectorXd(),
+                         r);
     EXPECT_NEAR(std::abs(r[3]), P * (L - 0.5) / b, 5e-3 * P * L);  // 947.3 (measured)
   }
 }
@@ -413,9 +405,9 @@ TEST(Shell281, SimplySupportedPlateFrequencyMatchesKirchhoff) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_shell281
 
-namespace impactfe {
+namespace impactfe::test_shell281 {
 namespace {
 
 TEST(Shell281, StressStiffnessGivesTheEulerBucklingLoadOfACantileverStrip) {
@@ -439,7 +431,7 @@ TEST(Shell281, StressStiffnessGivesTheEulerBucklingLoadOfACantileverStrip) {
   Eigen::MatrixXd KG = Eigen::MatrixXd::Zero(s.n(), s.n());
   for (const auto& e : els) {
     const auto* shell = dynamic_cast<const Shell281*>(e.get());
-    const Eigen::MatrixXd kg = shell->geometric_stiffness(gather(s, *e, u0));
+    const Eigen::MatrixXd kg = shell->geometric_stiffness(testing::gather(s, *e, u0));
     const auto& d = e->dofs();
     for (int a = 0; a < e->n_dofs(); ++a)
       for (int c = 0; c < e->n_dofs(); ++c)
@@ -451,7 +443,7 @@ TEST(Shell281, StressStiffnessGivesTheEulerBucklingLoadOfACantileverStrip) {
     ctx.stress_stiffening = true;
     Eigen::MatrixXd K1, K0;
     Eigen::VectorXd f1;
-    const Eigen::VectorXd ue = gather(s, *els.front(), u0);
+    const Eigen::VectorXd ue = testing::gather(s, *els.front(), u0);
     els.front()->tangent(ctx, ue, K1, f1);
     K0 = dynamic_cast<const Shell281*>(els.front().get())->stiffness();
     EXPECT_LT((K1 - K0 - dynamic_cast<const Shell281*>(els.front().get())->geometric_stiffness(ue))
@@ -477,4 +469,4 @@ TEST(Shell281, StressStiffnessGivesTheEulerBucklingLoadOfACantileverStrip) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_shell281

@@ -12,7 +12,7 @@
 #include "elements/shell_frame.h"
 #include "shell4_test_helpers.h"
 
-namespace impactfe {
+namespace impactfe::test_shell4 {
 namespace {
 
 using testing::build;
@@ -729,4 +729,4 @@ TEST(Shell4, KeyoptionsAndThetaThroughTheModel) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_shell4

@@ -11,7 +11,7 @@
 #include "elements/shell4.h"
 #include "shell4_test_helpers.h"
 
-namespace impactfe {
+namespace impactfe::test_shell4_benchmarks {
 namespace {
 
 using testing::build;
@@ -293,4 +293,4 @@ TEST(Shell4Benchmark, CorotationalCantileverEndMoment) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_shell4_benchmarks

@@ -12,7 +12,7 @@
 #include "elements/shell_frame.h"
 #include "elements/so3.h"
 
-namespace impactfe {
+namespace impactfe::test_shell_frame {
 namespace {
 
 using Mat3 = Eigen::Matrix3d;
@@ -191,4 +191,4 @@ TEST(ShellFrame, DerivativeOfSpinMatrixTransposeTimesVector) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_shell_frame

@@ -15,7 +15,7 @@
 #include "elements/cell_topology.h"
 #include "elements/solid_quadratic.h"
 
-namespace impactfe {
+namespace impactfe::test_solid_quadratic {
 namespace {
 
 constexpr double kE = 200e3;
@@ -310,4 +310,4 @@ TEST(QuadraticSolid, RefusesLargeDeflectionAndBadShapes) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_solid_quadratic

@@ -14,7 +14,7 @@
 #include "elements/element.h"
 #include "elements/solid_quadratic.h"
 
-namespace impactfe {
+namespace impactfe::test_solid_quadratic_deck {
 namespace {
 
 const char* kHead = "/PREP7\nMP,EX,1,200E3\nMP,PRXY,1,0.3\nMP,DENS,1,7.85E-9\n";
@@ -158,4 +158,4 @@ TEST(QuadraticSolidDeck, VmeshWithTetrahedraAndNsleMid) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_solid_quadratic_deck

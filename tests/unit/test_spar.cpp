@@ -12,7 +12,7 @@
 #include "elements/spar.h"
 #include "materials/linear_elastic.h"
 
-namespace impactfe {
+namespace impactfe::test_spar {
 namespace {
 
 constexpr double kE = 30e6;      // psi
@@ -358,4 +358,4 @@ TEST(LinearElastic, DefaultsAndPrxyAlias) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_spar

@@ -12,7 +12,7 @@
 #include "elements/element.h"
 #include "elements/spring_damper.h"
 
-namespace impactfe {
+namespace impactfe::test_spring_damper {
 namespace {
 
 Model spring_model(const Vec3& xi, const Vec3& xj, int keyopt2, int keyopt3,
@@ -207,4 +207,4 @@ TEST(SpringDamper, InputErrors) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_spring_damper

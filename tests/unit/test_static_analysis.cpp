@@ -13,7 +13,7 @@
 #include "../support/stored_chunks.h"
 #include "results/result_series.h"
 
-namespace impactfe {
+namespace impactfe::test_static_analysis {
 namespace {
 
 std::string run_text_expecting_error(const std::string& text) {
@@ -182,4 +182,4 @@ TEST(StaticAnalysis, FrozenLoadStepsGiveTimeBlocksThatFitTheirPoints) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_static_analysis

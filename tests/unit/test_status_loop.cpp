@@ -11,7 +11,7 @@
 #include "elements/element.h"
 #include "nonlinear/status_loop.h"
 
-namespace impactfe {
+namespace impactfe::test_status_loop {
 namespace {
 
 /// A one-DOF element whose status flips at every update unless frozen (a contact that never
@@ -115,4 +115,4 @@ TEST(StatusLoop, AChatteringElementIsFrozenAndReported) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_status_loop

@@ -13,7 +13,7 @@
 #include "time/time_integrator.h"
 #include "time/time_schedule.h"
 
-namespace impactfe {
+namespace impactfe::test_step_control {
 namespace {
 
 LoadStepTiming timing(double t0, double t1, int n) {
@@ -188,4 +188,4 @@ TEST(IntegratorHistory, RestoredIntegratorContinuesIdentically) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_step_control

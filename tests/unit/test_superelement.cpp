@@ -21,7 +21,7 @@
 #include "deck/deck_reader.h"
 #include "elements/superelement.h"
 
-namespace impactfe {
+namespace impactfe::test_superelement {
 namespace {
 
 namespace fs = std::filesystem;
@@ -379,9 +379,9 @@ TEST_F(SuperelementTest, MissingFileIsAnInputError) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_superelement
 
-namespace impactfe {
+namespace impactfe::test_superelement {
 namespace {
 
 TEST(SuperelementFile, VersionOneFilesAreStillRead) {
@@ -405,4 +405,4 @@ TEST(SuperelementFile, VersionOneFilesAreStillRead) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_superelement

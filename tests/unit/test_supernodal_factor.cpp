@@ -9,7 +9,7 @@
 
 #include "linalg/supernodal_factor.h"
 
-namespace impactfe {
+namespace impactfe::test_supernodal_factor {
 namespace {
 
 /// Lower triangle of an SPD matrix with the pattern of a brick mesh of m³ cells and 3 DOFs per
@@ -109,4 +109,4 @@ TEST(SupernodalFactor, ReciprocalConditionIsTheSquaredPivotRatio) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_supernodal_factor

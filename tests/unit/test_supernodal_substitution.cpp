@@ -14,7 +14,7 @@
 #include "linalg/solver_support.h"
 #include "linalg/supernodal_substitution.h"
 
-namespace impactfe {
+namespace impactfe::test_supernodal_substitution {
 namespace {
 
 /// Lower triangle of an SPD matrix: a 3-D grid of nx × ny × nz nodes with `dofs` unknowns per
@@ -182,4 +182,4 @@ TEST(SubtreeSubstitution, SolvesAsTheSerialSubstitutionsOnAnyThreadCount) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_supernodal_substitution

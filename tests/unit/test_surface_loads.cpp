@@ -13,7 +13,7 @@
 #include "elements/element_registry.h"
 #include "shell4_test_helpers.h"
 
-namespace impactfe {
+namespace impactfe::test_surface_loads {
 namespace {
 
 std::array<Vec3, 8> box(double lx, double ly, double lz) {
@@ -169,4 +169,4 @@ TEST(SurfaceLoads, RotatedNodesGetThePressureInNodalAxes) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_surface_loads

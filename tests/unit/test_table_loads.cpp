@@ -10,7 +10,7 @@
 #include "analysis/job_session.h"
 #include "deck/deck_reader.h"
 
-namespace impactfe {
+namespace impactfe::test_table_loads {
 namespace {
 
 /// Reads `deck` without solving, lets `edit` change the first analysis (model snapshot and load
@@ -111,4 +111,4 @@ TEST(TableLoads, AnUndefinedTableIsADeckError) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_table_loads

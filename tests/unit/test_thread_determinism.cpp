@@ -14,7 +14,7 @@
 #include "../support/run_deck.h"
 #include "core/thread_pool.h"
 
-namespace impactfe {
+namespace impactfe::test_thread_determinism {
 namespace {
 
 constexpr const char* kDome = R"(/PREP7
@@ -158,4 +158,4 @@ FINISH
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_thread_determinism

@@ -12,7 +12,7 @@
 
 #include "core/thread_pool.h"
 
-namespace impactfe {
+namespace impactfe::test_thread_pool {
 namespace {
 
 struct ThreadLimit {
@@ -83,4 +83,4 @@ TEST(ThreadPool, WaitingWorkersTakeNoProcessorTime) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_thread_pool

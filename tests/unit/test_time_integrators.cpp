@@ -14,7 +14,7 @@
 #include "core/model.h"
 #include "time/time_integrator.h"
 
-namespace impactfe {
+namespace impactfe::test_time_integrators {
 namespace {
 
 /// Chung & Hulbert (1993) generalized-alpha parameters from the spectral radius at infinity
@@ -488,4 +488,4 @@ TEST(TimeIntegrators, RejectsNonPositiveStep) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_time_integrators

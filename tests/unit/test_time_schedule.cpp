@@ -10,7 +10,7 @@
 
 #include "time/time_schedule.h"
 
-namespace impactfe {
+namespace impactfe::test_time_schedule {
 namespace {
 
 LoadStep step_to(int number, double time_end) {
@@ -274,4 +274,4 @@ TEST(TimeSchedule, RestartPointContinuesItsLoadStep) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_time_schedule

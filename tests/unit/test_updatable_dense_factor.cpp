@@ -9,7 +9,7 @@
 
 #include "linalg/updatable_dense_factor.h"
 
-namespace impactfe {
+namespace impactfe::test_updatable_dense_factor {
 namespace {
 
 /// A symmetric positive definite m × m matrix (a dense Schur complement's kind).
@@ -99,4 +99,4 @@ TEST(UpdatableDenseFactor, RoundOffIsBoundedByRefactoringAfterManyUpdates) {
 }
 
 }  // namespace
-}  // namespace impactfe
+}  // namespace impactfe::test_updatable_dense_factor
