@@ -82,10 +82,27 @@ def table_rows(text):
     quotient of the two (within the printed rounding); otherwise three numbers are an input
     value (a load, a length), computed and ratio, and a row of four or more is no comparison
     row but a table of values (vm79's linear and bilinear histories beside its comparison). A number that
-    overflowed its field (****) makes the row (None, None, None). Returns (rows, other rows)."""
+    overflowed its field (****) makes the row (None, None, None).
+
+    A row with no label before its numbers whose first two numbers are zero is an unset row of
+    the deck's arrays, not a result: *VWRITE loops to the longest of its arrays and writes 0 and
+    blanks for the shorter ones (vmr027-cr10a's name array LABEL2 has three rows, its result
+    arrays one). A labelled row of zeros is judged. Returns (rows, other rows).
+
+    >>> table_rows("  ECR6X   4.265   0.9990   vmr027-cr10a-18  1\\n          0.000   0.0000   cr10a-1  1")
+    ([(None, 4.265, 0.999)], 0)
+    >>> table_rows("  ECR6X   0.000   0.0000")[0]
+    [(None, 0.0, 0.0)]
+    >>> table_rows(" DEFL   -0.5   -0.5012   1.002")[0]
+    [(-0.5, -0.5012, 1.002)]
+    """
     rows, other = [], 0
     for line in text.splitlines():
         tokens = line.replace("|", " ").split()
+        if (len(tokens) >= 2 and all(NUMBER.match(t) for t in tokens[:2])
+                and float(tokens[0].upper().replace("D", "E")) == 0.0
+                and float(tokens[1].upper().replace("D", "E")) == 0.0):
+            continue  # an unset array row
         runs, current = [], []
         for tok in tokens:
             if NUMBER.match(tok) or (OVERFLOW.match(tok) and len(tok) > 1):
