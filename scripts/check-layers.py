@@ -43,7 +43,9 @@ DECK_STATE = {
                  # SAVE/RESUME store the attribute pointers; *GET,Par,ACTIVE,,TYPE reads them.
                  "database_commands.cpp", "get_command.cpp",
                  # EBLOCK sets the attribute pointers of each element record it adds.
-                 "cdb_commands.cpp"],
+                 "cdb_commands.cpp",
+                 # EDMP's MAT defaults to the MAT attribute pointer.
+                 "explicit_commands.cpp"],
     # 4x defines the analysis (KAN) in PREP7; FINISH closes a 4x /STRESS block.
     "solution": ["solution_commands.cpp", "dynamics_commands.cpp", "prep7_commands.cpp",
                  "session_commands.cpp"],

@@ -46,6 +46,18 @@ bool runs_explicit_dynamics(const Job::Step& step) {
                                why));
 }
 
+/// EDMP,RIGID acts in explicit dynamics only: an implicit analysis of a model that has rigid
+/// materials refuses them rather than solving them as deformable.
+void refuse_rigid_materials(const Model& model) {
+  for (const auto& [mat, rigid] : model.explicit_dynamics.rigid_materials)
+    for (const auto& [id, record] : model.elements)
+      if (record.mat == mat)
+        throw InputError(rigid.where,
+                         fmt::format("material {} is rigid (EDMP,RIGID), which explicit dynamics "
+                                     "carries out; element {} of it is in an implicit analysis",
+                                     mat, id));
+}
+
 const SourceLocation& location_of(const Job::Step& step) {
   return step.analysis ? step.analysis->where : step.expansion->where;
 }
@@ -155,6 +167,7 @@ void JobSession::solve(const Job& job, std::size_t step) {
       // An explicit run keeps no matrix and no factor: the estimate (of a factorisation) is not
       // its need (its arrays are a few hundred bytes per element).
       explicit_ = runs_explicit_dynamics(s);
+      if (s.analysis && !explicit_) refuse_rigid_materials(*s.model_snapshot);
       if (s.analysis && !explicit_) require_model_memory(*s.model_snapshot, "SOLVE");
       const auto& restart = s.analysis ? s.analysis->options.restart : std::nullopt;
       if (restart && !solves_incrementally(s.analysis->options))

@@ -63,6 +63,15 @@ struct ExplicitContact {
   SourceLocation where;
 };
 
+/// EDMP,RIGID: the elements of a material move as one rigid body. The constraint codes are
+/// those of the command (and of LS-DYNA's *MAT_RIGID CON1/CON2), in global axes: 0 free,
+/// 1 x, 2 y, 3 z, 4 x and y, 5 y and z, 6 z and x, 7 all three.
+struct ExplicitRigidMaterial {
+  int translation = 0;  // VAL1: the fixed translations of the centre of mass
+  int rotation = 0;     // VAL2: the fixed rotations
+  SourceLocation where;
+};
+
 struct ExplicitControls {
   /// EDCTS TSSFAC: the fraction of the stable time step taken (default 0.9).
   double time_step_factor = 0.9;
@@ -81,6 +90,7 @@ struct ExplicitControls {
   std::map<int, ExplicitCurve> curves;                      // EDCURVE, by LCID
   std::vector<ExplicitCurveLoad> loads;                     // EDLOAD, in input order
   std::vector<ExplicitContact> contacts;                    // EDCGEN, entity number = index + 1
+  std::map<int, ExplicitRigidMaterial> rigid_materials;     // EDMP,RIGID, by material
   /// SLSFAC: LS-DYNA's penalty scale factor of every contact (0.1; EDCONTACT, which sets it,
   /// is refused).
   double penalty_factor = 0.1;

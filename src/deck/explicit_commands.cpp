@@ -1,8 +1,8 @@
 // Explicit dynamics settings (the ED* commands of MAPDL's ANSYS LS-DYNA interface, Command
 // Reference release 18.2; docs/explicit_dynamics.md): EDCTS, EDHGLS, EDBVIS, EDRST, EDHTIME,
-// EDVEL, EDPART (loads by curve and contact: explicit_load_commands.cpp). They set
+// EDVEL, EDPART, EDMP (loads by curve and contact: explicit_load_commands.cpp). They set
 // Model::explicit_dynamics; the explicit run (src/explicit) reads it.
-// The ED commands of features not implemented (rigid bodies, restarts, ...) are
+// The ED commands of features not implemented (restarts, ...) are
 // refused where they appear, so that no deck runs without them silently.
 #include <fmt/format.h>
 
@@ -70,6 +70,27 @@ ExplicitOutputInterval output_interval(DeckReader& r, const Command& c) {
     out.interval = *dt;
   }
   return out;
+}
+
+void cmd_edmp(DeckReader& r, const Command& c) {
+  // EDMP,Lab,MAT,VAL1,VAL2: RIGID (VAL1, VAL2 the translational and rotational constraint
+  // codes); the other labels are refused.
+  const std::string lab = r.label(c, 1);
+  if (lab.rfind("RIGI", 0) != 0)
+    r.fail(c, fmt::format("Lab '{}' is not implemented in explicit dynamics (RIGID)", c.text(1)));
+  const int mat = r.integer(c, 2, r.modeling.current_mat);
+  if (mat <= 0) r.fail(c, fmt::format("MAT {}: a material number is positive", mat));
+  ExplicitRigidMaterial m;
+  m.translation = r.integer(c, 3, 0);
+  m.rotation = r.integer(c, 4, 0);
+  for (const int code : {m.translation, m.rotation})
+    if (code < 0 || code > 7)
+      r.fail(c,
+             fmt::format("constraint code {}: VAL1 and VAL2 are 0 (free) to 7 (x, y and z)", code));
+  for (int k = 5; k <= c.n_fields(); ++k)
+    if (!c.blank(k)) r.fail(c, "RIGID takes VAL1 and VAL2 only");
+  m.where = c.where;
+  controls(r, c).rigid_materials[mat] = m;
 }
 
 void cmd_edrst(DeckReader& r, const Command& c) {
@@ -147,11 +168,12 @@ void register_explicit_commands(std::vector<CommandSpec>& t) {
   t.push_back({"EDHTIME", cmd_edhtime, kPrepSolu});
   t.push_back({"EDVEL", cmd_edvel, kPrepSolu});
   t.push_back({"EDPART", cmd_edpart, kPrepSolu});
+  t.push_back({"EDMP", cmd_edmp, kPrepSolu});
   register_explicit_load_commands(t);
   constexpr const char* kNo = "not implemented in explicit dynamics (docs/explicit_dynamics.md)";
   for (const char* name :
-       {"EDMP", "EDCNSTR", "EDBOUND", "EDWRITE", "EDCONTACT", "EDCSC", "EDSHELL", "EDSTART",
-        "EDADAPT", "EDOUT", "EDHIST", "EDINT", "EDDAMP", "EDENERGY", "EDCRB", "EDNROT"})
+       {"EDCNSTR", "EDBOUND", "EDWRITE", "EDCONTACT", "EDCSC", "EDSHELL", "EDSTART", "EDADAPT",
+        "EDOUT", "EDHIST", "EDINT", "EDDAMP", "EDENERGY", "EDCRB", "EDNROT"})
     t.push_back({name, [](DeckReader&, const Command&) {}, kPrepSolu, nullptr, kNo});
 }
 

@@ -94,6 +94,10 @@ class ExplicitElementSet {
   virtual const int* nodes(std::size_t k) const = 0;
   /// Adds each element's lumped (row-sum) mass to its nodes.
   virtual void add_lumped_mass(std::vector<double>& mass) const = 0;
+  /// ∫ρ x xᵀ dV of element k about the origin in the configuration `state`: the rotational
+  /// inertia of a rigid body (EDMP,RIGID) made of such elements.
+  virtual Eigen::Matrix3d second_mass_moment(const ExplicitNodalView& state,
+                                             std::size_t k) const = 0;
   /// The stable time step of element k at the given configuration (no bulk viscosity).
   virtual double element_step(const ExplicitNodalView& state, std::size_t k) const = 0;
   /// Scales the density of element k by `factor` (≥ 1, mass scaling) and adds the extra mass to

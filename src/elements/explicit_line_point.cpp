@@ -52,6 +52,14 @@ class Link160Set final : public ExplicitElementSet {
     for (std::size_t k = 0; k < size(); ++k)
       for (int a = 0; a < 2; ++a) mass[nodes_[2 * k + a]] += 0.5 * density_[k] * volume_[k];
   }
+  /// ∫ρA x xᵀ ds, x linear along the link: m (x₁x₁ᵀ + x₂x₂ᵀ)/3 + m (x₁x₂ᵀ + x₂x₁ᵀ)/6.
+  Eigen::Matrix3d second_mass_moment(const ExplicitNodalView& s, std::size_t k) const override {
+    const int i = nodes_[2 * k], j = nodes_[2 * k + 1];
+    const Eigen::Vector3d a(s.x[i], s.y[i], s.z[i]), b(s.x[j], s.y[j], s.z[j]);
+    const double m = density_[k] * volume_[k];
+    return m / 3.0 * (a * a.transpose() + b * b.transpose()) +
+           m / 6.0 * (a * b.transpose() + b * a.transpose());
+  }
   double element_step(const ExplicitNodalView& s, std::size_t k) const override {
     return length(s, k) / wave_speed(k);
   }
@@ -190,6 +198,11 @@ class Mass166Set final : public ExplicitElementSet {
   const int* nodes(std::size_t k) const override { return &nodes_[k]; }
   void add_lumped_mass(std::vector<double>& mass) const override {
     for (std::size_t k = 0; k < size(); ++k) mass[nodes_[k]] += mass_[k];
+  }
+  Eigen::Matrix3d second_mass_moment(const ExplicitNodalView& s, std::size_t k) const override {
+    const int n = nodes_[k];
+    const Eigen::Vector3d x(s.x[n], s.y[n], s.z[n]);
+    return mass_[k] * x * x.transpose();
   }
   // A point mass has no stiffness: no step limit, nothing to scale.
   double element_step(const ExplicitNodalView&, std::size_t) const override {

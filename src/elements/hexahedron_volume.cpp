@@ -73,6 +73,28 @@ void row_sum_volumes(const double* x, const double* y, const double* z, double* 
   }
 }
 
+void second_moment(const double* x, const double* y, const double* z, double* s) {
+  // Gauss–Legendre, 3 points: ±√(3/5) with weight 5/9, 0 with weight 8/9.
+  const double g[3] = {-std::sqrt(0.6), 0.0, std::sqrt(0.6)};
+  const double w[3] = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
+  std::fill(s, s + 9, 0.0);
+  double n[8];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      for (int k = 0; k < 3; ++k) {
+        const double xi[3] = {g[i], g[j], g[k]};
+        const double dv = w[i] * w[j] * w[k] * jacobian_det(x, y, z, xi, n);
+        double p[3] = {0.0, 0.0, 0.0};
+        for (int a = 0; a < 8; ++a) {
+          p[0] += n[a] * x[a];
+          p[1] += n[a] * y[a];
+          p[2] += n[a] * z[a];
+        }
+        for (int r = 0; r < 3; ++r)
+          for (int c = 0; c < 3; ++c) s[3 * r + c] += p[r] * p[c] * dv;
+      }
+}
+
 double gauss_volume(const double* x, const double* y, const double* z) {
   double share[8];
   row_sum_volumes(x, y, z, share);

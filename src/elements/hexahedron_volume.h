@@ -19,6 +19,9 @@ inline double volume(const double* x, const double* bx) {
 }
 /// ∫ N_I dV of the 8 corners (2x2x2 Gauss: exact for the trilinear element).
 void row_sum_volumes(const double* x, const double* y, const double* z, double* share);
+/// ∫ x xᵀ dV about the origin (row-major 3 × 3), by 3x3x3 Gauss quadrature: exact for a
+/// parallelepiped, whose det J is constant (the rotational inertia of rigid bodies).
+void second_moment(const double* x, const double* y, const double* z, double* s);
 /// The volume by 2x2x2 Gauss quadrature of det J (exact; an independent check of volume()).
 double gauss_volume(const double* x, const double* y, const double* z);
 /// The largest of the six face areas (each face's area as half the cross product of its

@@ -164,6 +164,36 @@ class Shell163Set final : public ExplicitElementSet {
         inertia[nodes_[4 * k + a]] += density_[k] * share_[4 * k + a] * factor;
     }
   }
+  /// ∫ρ x xᵀ over the mid-surface (bilinear map, 3×3 Gauss) times the thickness, plus the
+  /// thickness's own ρ t³/12 n nᵀ per area.
+  Eigen::Matrix3d second_mass_moment(const ExplicitNodalView& state, std::size_t k) const override {
+    const double g[3] = {-std::sqrt(0.6), 0.0, std::sqrt(0.6)};
+    const double w[3] = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
+    constexpr double kXi[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+    Eigen::Vector3d p[4];
+    for (int a = 0; a < 4; ++a) {
+      const int n = nodes_[4 * k + a];
+      p[a] = {state.x[n], state.y[n], state.z[n]};
+    }
+    const double t = thickness_[k];
+    Eigen::Matrix3d m = Eigen::Matrix3d::Zero();
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) {
+        Eigen::Vector3d x = Eigen::Vector3d::Zero(), dxi = x, deta = x;
+        for (int a = 0; a < 4; ++a) {
+          const double fx = 1.0 + g[i] * kXi[a][0], fy = 1.0 + g[j] * kXi[a][1];
+          x += 0.25 * fx * fy * p[a];
+          dxi += 0.25 * kXi[a][0] * fy * p[a];
+          deta += 0.25 * fx * kXi[a][1] * p[a];
+        }
+        const Eigen::Vector3d normal = dxi.cross(deta);
+        const double da = w[i] * w[j] * normal.norm();
+        if (!(da > 0.0)) continue;
+        const Eigen::Vector3d unit = normal.normalized();
+        m += da * (t * x * x.transpose() + t * t * t / 12.0 * unit * unit.transpose());
+      }
+    return density_[k] * m;
+  }
   double element_step(const ExplicitNodalView& state, std::size_t k) const override {
     ShellKinematics kin;
     if (!frame(state, &nodes_[4 * k], kin)) return 0.0;

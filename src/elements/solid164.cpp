@@ -135,6 +135,17 @@ class Solid164Set final : public ExplicitElementSet {
     for (std::size_t k = 0; k < size(); ++k)
       for (int a = 0; a < 8; ++a) mass[nodes_[8 * k + a]] += density_[k] * share_[8 * k + a];
   }
+  Eigen::Matrix3d second_mass_moment(const ExplicitNodalView& state, std::size_t k) const override {
+    double x[8], y[8], z[8], m[9];
+    for (int a = 0; a < 8; ++a) {
+      const int n = nodes_[8 * k + a];
+      x[a] = state.x[n];
+      y[a] = state.y[n];
+      z[a] = state.z[n];
+    }
+    hexahedron::second_moment(x, y, z, m);
+    return density_[k] * Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(m);
+  }
   double element_step(const ExplicitNodalView& state, std::size_t k) const override;
   double scale_mass(std::size_t k, double factor, std::vector<double>& mass) override {
     const double added = (factor - 1.0) * density_[k];

@@ -44,6 +44,8 @@ CentralDifference::CentralDifference(ExplicitSystem& system, const ExplicitContr
     rotational_.assign(n, 0);
     for (std::size_t r : system.rotational_nodes) rotational_[r] = 1;
   }
+  for (const RigidBody& b : system.rigid_bodies)
+    rigid_.push_back({b.centre0, Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero()});
 }
 
 void CentralDifference::set_rotation_fixes(std::vector<std::uint8_t> fixed) {
@@ -160,7 +162,147 @@ void CentralDifference::accelerations() {
     by_[n] = rfix[3 * n + 1] ? 0.0 : -my_[n] * inv;
     bz_[n] = rfix[3 * n + 2] ? 0.0 : -mz_[n] * inv;
   }
+  if (!rigid_.empty()) rigid_accelerations();
   for (ExplicitInteraction* i : interactions_) i->hold(ax_.data(), ay_.data(), az_.data());
+}
+
+void CentralDifference::fit_rigid_velocities() {
+  for (std::size_t k = 0; k < rigid_.size(); ++k) {
+    const RigidBody& body = system_.rigid_bodies[k];
+    RigidMotion& r = rigid_[k];
+    // The rigid motion nearest to the nodes' velocities, weighted by their masses: v_c = p/M
+    // and ω = J_m⁻¹ L with p, L and J_m the momentum, angular momentum and inertia of the nodal
+    // masses (so a rigid motion given at the nodes is kept exactly; about fixed axes ω = 0).
+    Vec3 p = Vec3::Zero(), L = Vec3::Zero();
+    Eigen::Matrix3d J = Eigen::Matrix3d::Zero();
+    for (std::size_t j = 0; j < body.nodes.size(); ++j) {
+      const std::size_t n = body.nodes[j];
+      const Vec3 v(vx_[n], vy_[n], vz_[n]), q = body.offsets[j];
+      const double m = system_.mass[n];
+      p += m * v;
+      L += m * q.cross(v);
+      J += m * (q.squaredNorm() * Eigen::Matrix3d::Identity() - q * q.transpose());
+    }
+    r.velocity = p / body.mass;
+    for (int i = 0; i < 3; ++i)
+      if (body.fixed_translation[static_cast<std::size_t>(i)]) r.velocity(i) = 0.0;
+    r.omega = rigid_angular_acceleration(J, L, body.fixed_rotation);
+    for (std::size_t j = 0; j < body.nodes.size(); ++j) {
+      const std::size_t n = body.nodes[j];
+      const Vec3 v = r.velocity + r.omega.cross(body.offsets[j]);
+      vx_[n] = v.x();
+      vy_[n] = v.y();
+      vz_[n] = v.z();
+      if (has_rotations(n)) {
+        wx_[n] = r.omega.x();
+        wy_[n] = r.omega.y();
+        wz_[n] = r.omega.z();
+      }
+    }
+  }
+}
+
+void CentralDifference::rigid_accelerations() {
+  const Vec3 g = -frame_acceleration_;
+  for (std::size_t k = 0; k < rigid_.size(); ++k) {
+    const RigidBody& body = system_.rigid_bodies[k];
+    RigidMotion& r = rigid_[k];
+    // The nodes' forces: the body force m g minus what the elements, contact and loads by curve
+    // gathered (f = f_int − f_ext); the moments of shells sharing a node act on the body too.
+    Vec3 force = Vec3::Zero(), moment = Vec3::Zero();
+    for (std::size_t j = 0; j < body.nodes.size(); ++j) {
+      const std::size_t n = body.nodes[j];
+      const Vec3 f = system_.mass[n] * g - Vec3(fx_[n], fy_[n], fz_[n]);
+      force += f;
+      moment += (r.rotation * body.offsets[j]).cross(f);
+      if (has_rotations(n)) moment -= Vec3(mx_[n], my_[n], mz_[n]);
+    }
+    r.acceleration = force / body.mass;
+    for (int i = 0; i < 3; ++i)
+      if (body.fixed_translation[static_cast<std::size_t>(i)]) r.acceleration(i) = 0.0;
+    // Euler's equations in global axes: J α = m − ω × J ω, J = R J₀ Rᵀ (ω of the half step
+    // before: the explicit gyroscopic term).
+    const Eigen::Matrix3d J = r.rotation * body.inertia0 * r.rotation.transpose();
+    r.alpha =
+        rigid_angular_acceleration(J, moment - r.omega.cross(J * r.omega), body.fixed_rotation);
+    for (std::size_t j = 0; j < body.nodes.size(); ++j) {
+      const std::size_t n = body.nodes[j];
+      const Vec3 q = r.rotation * body.offsets[j];
+      const Vec3 a = r.acceleration + r.alpha.cross(q) + r.omega.cross(r.omega.cross(q));
+      ax_[n] = a.x();
+      ay_[n] = a.y();
+      az_[n] = a.z();
+      if (has_rotations(n)) {
+        bx_[n] = r.alpha.x();
+        by_[n] = r.alpha.y();
+        bz_[n] = r.alpha.z();
+      }
+    }
+  }
+}
+
+void CentralDifference::move_rigid_bodies(double dt, double mean) {
+  for (std::size_t k = 0; k < rigid_.size(); ++k) {
+    const RigidBody& body = system_.rigid_bodies[k];
+    RigidMotion& r = rigid_[k];
+    r.velocity += mean * r.acceleration;
+    r.omega += mean * r.alpha;
+    r.centre += dt * r.velocity;
+    // R_{n+1} = exp(Δt ω̂) R_n: the rotation by the angle Δt|ω| about ω (Rodrigues).
+    const double angle = dt * r.omega.norm();
+    if (angle > 0.0)
+      r.rotation = Eigen::AngleAxisd(angle, r.omega.normalized()).toRotationMatrix() * r.rotation;
+    for (std::size_t j = 0; j < body.nodes.size(); ++j) {
+      const std::size_t n = body.nodes[j];
+      const Vec3 x = r.centre + r.rotation * body.offsets[j];
+      vx_[n] = (x.x() - x_[n]) / dt;
+      vy_[n] = (x.y() - y_[n]) / dt;
+      vz_[n] = (x.z() - z_[n]) / dt;
+      if (has_rotations(n)) {
+        wx_[n] = r.omega.x();
+        wy_[n] = r.omega.y();
+        wz_[n] = r.omega.z();
+      }
+    }
+  }
+}
+
+void CentralDifference::place_rigid_nodes() {
+  for (std::size_t k = 0; k < rigid_.size(); ++k) {
+    const RigidBody& body = system_.rigid_bodies[k];
+    const RigidMotion& r = rigid_[k];
+    for (std::size_t j = 0; j < body.nodes.size(); ++j) {
+      const std::size_t n = body.nodes[j];
+      const Vec3 x = r.centre + r.rotation * body.offsets[j];
+      x_[n] = x.x();
+      y_[n] = x.y();
+      z_[n] = x.z();
+    }
+  }
+}
+
+double CentralDifference::kinetic_energy(double half) const {
+  double twice = 0.0;
+  for (std::size_t n = 0; n < system_.n_nodes(); ++n) {
+    if (system_.is_rigid(n)) continue;
+    const double vx = vx_[n] + half * ax_[n], vy = vy_[n] + half * ay_[n],
+                 vz = vz_[n] + half * az_[n];
+    twice += system_.mass[n] * (vx * vx + vy * vy + vz * vz);
+  }
+  for (std::size_t r : system_.rotational_nodes) {
+    if (system_.is_rigid(r)) continue;
+    const double wx = wx_[r] + half * bx_[r], wy = wy_[r] + half * by_[r],
+                 wz = wz_[r] + half * bz_[r];
+    twice += system_.inertia[r] * (wx * wx + wy * wy + wz * wz);
+  }
+  for (std::size_t k = 0; k < rigid_.size(); ++k) {
+    const RigidBody& body = system_.rigid_bodies[k];
+    const RigidMotion& r = rigid_[k];
+    const Vec3 v = r.velocity + half * r.acceleration, w = r.omega + half * r.alpha;
+    const Eigen::Matrix3d J = r.rotation * body.inertia0 * r.rotation.transpose();
+    twice += body.mass * v.squaredNorm() + w.dot(J * w);
+  }
+  return 0.5 * twice;
 }
 
 bool CentralDifference::scale_masses() {
@@ -183,15 +325,11 @@ bool CentralDifference::scale_masses() {
 
 void CentralDifference::start() {
   scale_masses();
+  fit_rigid_velocities();
   internal_forces(0.0);
   choose_step();
   accelerations();
-  double kinetic = 0.0;
-  for (std::size_t n = 0; n < system_.n_nodes(); ++n)
-    kinetic += system_.mass[n] * (vx_[n] * vx_[n] + vy_[n] * vy_[n] + vz_[n] * vz_[n]);
-  for (std::size_t r : system_.rotational_nodes)
-    kinetic += system_.inertia[r] * (wx_[r] * wx_[r] + wy_[r] * wy_[r] + wz_[r] * wz_[r]);
-  initial_kinetic_ = 0.5 * kinetic;
+  initial_kinetic_ = kinetic_energy(0.0);
   previous_step_ = 0.0;
 }
 
@@ -209,19 +347,23 @@ void CentralDifference::cycle(double dt) {
   }
   for (ExplicitInteraction* i : interactions_)
     i->prescribe(time_ + 0.5 * dt, mean, m, vx_.data(), vy_.data(), vz_.data());
+  if (!rigid_.empty()) move_rigid_bodies(dt, mean);
   for (std::size_t n = 0; n < n_nodes; ++n) {
     x_[n] += dt * vx_[n];
     y_[n] += dt * vy_[n];
     z_[n] += dt * vz_[n];
     work += m[n] * (gx * vx_[n] + gy * vy_[n] + gz * vz_[n]);
   }
+  if (!rigid_.empty()) place_rigid_nodes();
   external_work_ += dt * work;  // f_ext constant over the step: f·Δx (fixed DOFs: v = 0)
   // Rotations: the same half-step update of ω; the rotation is the sum of the increments Δt ω
   // in global axes (output only: the shells work from ω and their current frame).
   for (std::size_t r : system_.rotational_nodes) {
-    wx_[r] += mean * bx_[r];
-    wy_[r] += mean * by_[r];
-    wz_[r] += mean * bz_[r];
+    if (!system_.is_rigid(r)) {  // a rigid body's nodes turn with it (move_rigid_bodies)
+      wx_[r] += mean * bx_[r];
+      wy_[r] += mean * by_[r];
+      wz_[r] += mean * bz_[r];
+    }
     rx_[r] += dt * wx_[r];
     ry_[r] += dt * wy_[r];
     rz_[r] += dt * wz_[r];
@@ -236,19 +378,7 @@ void CentralDifference::cycle(double dt) {
 
 ExplicitEnergies CentralDifference::energies() const {
   ExplicitEnergies e;
-  const double half = 0.5 * previous_step_;
-  double kinetic = 0.0;
-  for (std::size_t n = 0; n < system_.n_nodes(); ++n) {
-    const double vx = vx_[n] + half * ax_[n], vy = vy_[n] + half * ay_[n],
-                 vz = vz_[n] + half * az_[n];
-    kinetic += system_.mass[n] * (vx * vx + vy * vy + vz * vz);
-  }
-  for (std::size_t r : system_.rotational_nodes) {
-    const double wx = wx_[r] + half * bx_[r], wy = wy_[r] + half * by_[r],
-                 wz = wz_[r] + half * bz_[r];
-    kinetic += system_.inertia[r] * (wx * wx + wy * wy + wz * wz);
-  }
-  e.kinetic = 0.5 * kinetic;
+  e.kinetic = kinetic_energy(0.5 * previous_step_);
   for (const auto& set : system_.sets) {
     const ExplicitSetEnergies s = set->energies();
     e.internal += s.internal;

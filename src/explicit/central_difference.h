@@ -91,6 +91,19 @@ class CentralDifference {
   /// Mass scaling (EDCTS DTMS): adds mass to the elements whose stable step is below the
   /// target; returns whether any was added.
   bool scale_masses();
+  /// Rigid bodies (rigid_body.h): the body velocities nearest to the nodes' initial ones (the
+  /// nodes then move with the body).
+  void fit_rigid_velocities();
+  /// Newton–Euler accelerations of the bodies from the forces of their nodes, and the nodes'
+  /// accelerations that follow.
+  void rigid_accelerations();
+  /// The half-step update of the bodies; the velocity of each node of a body becomes its chord
+  /// velocity (x_{n+1} − x_n)/Δt, so that x += Δt v lands on c + R r.
+  void move_rigid_bodies(double dt, double mean);
+  /// Puts the nodes of the bodies exactly on c + R r.
+  void place_rigid_nodes();
+  /// ½ Σ m v² at v_{n+1/2} + half·a_n (rigid bodies: ½ M v_c² + ½ ωᵀ J ω).
+  double kinetic_energy(double half) const;
 
   ExplicitSystem& system_;
   ExplicitControls controls_;
@@ -104,7 +117,12 @@ class CentralDifference {
   std::vector<double> element_moments_;
   std::vector<std::uint8_t> fixed_rotation_, rotational_;
   std::vector<ExplicitInteraction*> interactions_;
-  double critical_ = 0.0;  // the smallest element step at the current configuration
+  struct RigidMotion {
+    Vec3 centre, velocity, acceleration, omega, alpha;  // ω, α in global axes
+    Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
+  };
+  std::vector<RigidMotion> rigid_;  // per system_.rigid_bodies
+  double critical_ = 0.0;           // the smallest element step at the current configuration
   double time_ = 0.0, step_ = 0.0, previous_step_ = 0.0, added_mass_ = 0.0;
   double external_work_ = 0.0, initial_kinetic_ = 0.0;
   int controlling_ = 0;

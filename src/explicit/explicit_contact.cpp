@@ -90,6 +90,7 @@ ExplicitContactSet::ExplicitContactSet(const Model& model, const ExplicitSystem&
   // Every element's faces; a face offered twice (by two elements) is interior.
   std::vector<ExplicitSegment> all;
   for (const auto& set : system.sets) set->segments(all);
+  for (const auto& set : system.rigid_sets) set->segments(all);  // rigid bodies' faces too
   std::map<std::array<int, 4>, int> count;
   const auto key = [](const ExplicitSegment& s) {
     std::array<int, 4> k{s.nodes[0], s.nodes[1], s.nodes[2], s.nodes[3]};

@@ -62,6 +62,42 @@ void refuse_unsupported(const Model& model, const AnalysisRequest& request) {
   }
 }
 
+/// A rigid body moves by its EDMP constraint codes and the forces of its nodes: D on its nodes
+/// and velocities prescribed there by curve (EDLOAD VX ...) would fight it and are refused.
+void refuse_rigid_node_loads(const Model& model, const AnalysisRequest& request,
+                             const ExplicitSystem& s) {
+  if (s.rigid_bodies.empty()) return;
+  const auto body_material = [&](int node) {
+    const int n = s.index_of(node);
+    return n >= 0 && s.is_rigid(static_cast<std::size_t>(n))
+               ? s.rigid_bodies[static_cast<std::size_t>(
+                                    s.rigid_body_of[static_cast<std::size_t>(n)])]
+                     .material
+               : 0;
+  };
+  for (const LoadStep& step : request.load_steps)
+    for (const auto& [key, value] : step.constraints)
+      if (const int mat = body_material(key.node))
+        throw InputError(step.where,
+                         fmt::format("load step {}: D,{},{} on a node of the rigid body of "
+                                     "material {}: constrain a rigid body with EDMP,RIGID's "
+                                     "VAL1 and VAL2",
+                                     step.number, key.node, dof_name(key.dof), mat));
+  for (const ExplicitCurveLoad& load : model.explicit_dynamics.loads)
+    if (load.label.size() == 2 && load.label[0] == 'V')
+      for (int node : load.nodes)
+        if (const int mat = body_material(node))
+          throw NotImplementedError(load.where,
+                                    fmt::format("EDLOAD {} on node {} of the rigid body of "
+                                                "material {}: prescribed motion of a rigid body "
+                                                "(RBV labels) is not implemented",
+                                                load.label, node, mat));
+  if (s.sets.empty())
+    throw InputError(request.where,
+                     "every element is rigid (EDMP,RIGID): an explicit run needs deformable "
+                     "elements, whose wave speed sets the time step");
+}
+
 /// The fixed DOFs of a load step: D on UX, UY, UZ (value 0), or on ROTX, ROTY, ROTZ when
 /// `rotations` (3 per node, about x y z). Rotations do not exist at the nodes of the explicit
 /// solids, links and masses: D on them is ignored there.
@@ -242,6 +278,7 @@ ExplicitRunSummary run_explicit_analysis(const Model& model, const AnalysisReque
                                          ResultsWriter& writer, const ExplicitRunOptions& options) {
   refuse_unsupported(model, request);
   ExplicitSystem system = build_explicit_system(model);
+  refuse_rigid_node_loads(model, request, system);
   const ExplicitControls& controls = model.explicit_dynamics;
   CentralDifference cd(system, controls);
   ExplicitCurveLoads loads(system, controls);

@@ -84,16 +84,73 @@ void index_slots(ExplicitSystem& s) {
   }
 }
 
+/// One body per rigid material: its nodes (those of its elements, and so also the nodes
+/// deformable elements share with it), mass, centre and inertia. A node of two rigid materials
+/// is refused: the bodies would have to be merged (EDCRB, not implemented).
+void build_rigid_bodies(const Model& model, const std::map<int, std::set<int>>& rigid_nodes,
+                        ExplicitSystem& s) {
+  if (rigid_nodes.empty()) return;
+  s.rigid_body_of.assign(s.n_nodes(), -1);
+  std::vector<double> rigid_mass(s.n_nodes(), 0.0);
+  for (const auto& set : s.rigid_sets) set->add_lumped_mass(rigid_mass);
+  const ExplicitNodalView initial{s.x0.data(), s.y0.data(), s.z0.data()};
+  for (const auto& [mat, ids] : rigid_nodes) {
+    const ExplicitRigidMaterial& m = model.explicit_dynamics.rigid_materials.at(mat);
+    RigidBody body;
+    body.material = mat;
+    body.fixed_translation = rigid_constraint_axes(m.translation);
+    body.fixed_rotation = rigid_constraint_axes(m.rotation);
+    for (int id : ids) {
+      const auto n = static_cast<std::size_t>(s.index_of(id));
+      if (s.rigid_body_of[n] >= 0)
+        throw InputError(
+            m.where,
+            fmt::format("node {} belongs to the rigid bodies of materials {} and {}: "
+                        "merging rigid bodies (EDCRB) is not implemented",
+                        id, s.rigid_bodies[static_cast<std::size_t>(s.rigid_body_of[n])].material,
+                        mat));
+      s.rigid_body_of[n] = static_cast<int>(s.rigid_bodies.size());
+      body.nodes.push_back(n);
+    }
+    // S = ∫ρ x xᵀ of the body's elements, plus the mass that deformable elements sharing its
+    // nodes put there, as points.
+    Eigen::Matrix3d second = Eigen::Matrix3d::Zero();
+    for (const auto& set : s.rigid_sets)
+      for (std::size_t k = 0; k < set->size(); ++k)
+        if (model.elements.at(set->element_id(k)).mat == mat)
+          second += set->second_mass_moment(initial, k);
+    for (std::size_t n : body.nodes) {
+      const Eigen::Vector3d x(s.x0[n], s.y0[n], s.z0[n]);
+      second += (s.mass[n] - rigid_mass[n]) * x * x.transpose();
+    }
+    set_rigid_body_inertia(body, s.mass, s.x0, s.y0, s.z0, second);
+    if (!(body.mass > 0.0))
+      throw InputError(m.where,
+                       fmt::format("the rigid body of material {} has no mass (MP,DENS)", mat));
+    s.rigid_bodies.push_back(std::move(body));
+  }
+}
+
 }  // namespace
 
 ExplicitSystem build_explicit_system(const Model& model) {
   ExplicitSystem s;
   number_nodes(model, s);
-  // The elements of one type form one set, in ascending element id.
-  std::map<std::string, std::vector<const ElementRecord*>> by_type;
-  for (const auto& [id, record] : model.elements)
-    by_type[model.element_type(record.type).ansys_name].push_back(&record);
+  // The elements of one type form one set, in ascending element id; those of a rigid material
+  // form sets of their own, kept apart from the force loop.
   const ExplicitControls& e = model.explicit_dynamics;
+  std::map<std::string, std::vector<const ElementRecord*>> by_type, rigid_by_type;
+  std::map<int, std::set<int>> rigid_nodes;  // material → node ids
+  for (const auto& [id, record] : model.elements) {
+    const std::string& type = model.element_type(record.type).ansys_name;
+    if (e.rigid_materials.count(record.mat)) {
+      rigid_by_type[type].push_back(&record);
+      for (int n : record.nodes)
+        if (n != 0) rigid_nodes[record.mat].insert(n);
+    } else {
+      by_type[type].push_back(&record);
+    }
+  }
   ExplicitBuildContext ctx{
       .model = model,
       .node_index =
@@ -114,9 +171,13 @@ ExplicitSystem build_explicit_system(const Model& model) {
     s.n_slots +=
         s.sets.back()->size() * static_cast<std::size_t>(s.sets.back()->nodes_per_element());
   }
+  for (const auto& [name, records] : rigid_by_type)
+    s.rigid_sets.push_back(find_element_type(name)->explicit_set(ctx, records));
   s.mass.assign(s.n_nodes(), 0.0);
   for (const auto& set : s.sets) set->add_lumped_mass(s.mass);
+  for (const auto& set : s.rigid_sets) set->add_lumped_mass(s.mass);
   for (double m : s.mass) s.physical_mass += m;
+  build_rigid_bodies(model, rigid_nodes, s);
   index_slots(s);
   std::vector<std::uint8_t> rotational(s.n_nodes(), 0);
   for (const auto& set : s.sets)

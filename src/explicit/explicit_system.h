@@ -10,6 +10,7 @@
 
 #include "core/model.h"
 #include "elements/explicit_kernel.h"
+#include "explicit/rigid_body.h"
 
 namespace impactfe {
 
@@ -34,6 +35,12 @@ struct ExplicitSystem {
   /// no set has rotations, and then `inertia` is empty too (translational runs stay as cheap).
   std::vector<std::size_t> rotational_nodes;
   std::vector<double> inertia;  // lumped rotary inertia per node (0 at nodes without rotations)
+  /// The elements of rigid materials (EDMP,RIGID): built for their mass and their contact
+  /// faces only; they take no part in the force loop or the time step.
+  std::vector<std::unique_ptr<ExplicitElementSet>> rigid_sets;
+  std::vector<RigidBody> rigid_bodies;  // one per rigid material, ascending material
+  std::vector<int> rigid_body_of;       // per node: its body, −1 for none (empty: no bodies)
+  bool is_rigid(std::size_t n) const { return !rigid_body_of.empty() && rigid_body_of[n] >= 0; }
   bool has_rotations() const { return !rotational_nodes.empty(); }
   /// Recomputes `inertia` from the sets (after mass scaling changed their densities).
   void update_inertia();
