@@ -189,15 +189,8 @@ void CentralDifference::fit_rigid_velocities() {
     r.omega = rigid_angular_acceleration(J, L, body.fixed_rotation);
     for (std::size_t j = 0; j < body.nodes.size(); ++j) {
       const std::size_t n = body.nodes[j];
-      const Vec3 v = r.velocity + r.omega.cross(body.offsets[j]);
-      vx_[n] = v.x();
-      vy_[n] = v.y();
-      vz_[n] = v.z();
-      if (has_rotations(n)) {
-        wx_[n] = r.omega.x();
-        wy_[n] = r.omega.y();
-        wz_[n] = r.omega.z();
-      }
+      set_velocity(n, r.velocity + r.omega.cross(body.offsets[j]));
+      set_angular_velocity(n, r.omega);
     }
   }
 }
@@ -255,14 +248,8 @@ void CentralDifference::move_rigid_bodies(double dt, double mean) {
     for (std::size_t j = 0; j < body.nodes.size(); ++j) {
       const std::size_t n = body.nodes[j];
       const Vec3 x = r.centre + r.rotation * body.offsets[j];
-      vx_[n] = (x.x() - x_[n]) / dt;
-      vy_[n] = (x.y() - y_[n]) / dt;
-      vz_[n] = (x.z() - z_[n]) / dt;
-      if (has_rotations(n)) {
-        wx_[n] = r.omega.x();
-        wy_[n] = r.omega.y();
-        wz_[n] = r.omega.z();
-      }
+      set_velocity(n, (x - Vec3(x_[n], y_[n], z_[n])) / dt);
+      set_angular_velocity(n, r.omega);
     }
   }
 }
