@@ -72,6 +72,16 @@ struct ExplicitRigidMaterial {
   SourceLocation where;
 };
 
+/// EDDAMP,ALL,LCID,VALDMP: mass-weighted (alpha) damping of the whole model, the force −α m v
+/// on every deformable node (and the moment −α I ω on a node with rotations) and on the centre
+/// of mass of every rigid body (LS-DYNA *DAMPING_GLOBAL). α is VALDMP, or the curve LCID's
+/// value at the time.
+struct ExplicitMassDamping {
+  double alpha = 0.0;
+  int curve = 0;  // LCID (EDCURVE), 0: the constant alpha
+  SourceLocation where;
+};
+
 struct ExplicitControls {
   /// EDCTS TSSFAC: the fraction of the stable time step taken (default 0.9).
   double time_step_factor = 0.9;
@@ -91,6 +101,10 @@ struct ExplicitControls {
   std::vector<ExplicitCurveLoad> loads;                     // EDLOAD, in input order
   std::vector<ExplicitContact> contacts;                    // EDCGEN, entity number = index + 1
   std::map<int, ExplicitRigidMaterial> rigid_materials;     // EDMP,RIGID, by material
+  std::optional<ExplicitMassDamping> mass_damping;          // EDDAMP,ALL
+  /// EDHIST: the node components whose nodes the stored history points (EDHTIME) hold; empty:
+  /// all nodes.
+  std::vector<std::string> history_components;
   /// SLSFAC: LS-DYNA's penalty scale factor of every contact (0.1; EDCONTACT, which sets it,
   /// is refused).
   double penalty_factor = 0.1;

@@ -1,11 +1,12 @@
 // Explicit dynamics settings (the ED* commands of MAPDL's ANSYS LS-DYNA interface, Command
 // Reference release 18.2; docs/explicit_dynamics.md): EDCTS, EDHGLS, EDBVIS, EDRST, EDHTIME,
-// EDVEL, EDPART, EDMP (loads by curve and contact: explicit_load_commands.cpp). They set
+// EDVEL, EDPART, EDMP, EDDAMP, EDHIST (loads by curve and contact: explicit_load_commands.cpp). They set
 // Model::explicit_dynamics; the explicit run (src/explicit) reads it.
 // The ED commands of features not implemented (restarts, ...) are
 // refused where they appear, so that no deck runs without them silently.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <map>
 #include <set>
 #include <tuple>
@@ -93,6 +94,53 @@ void cmd_edmp(DeckReader& r, const Command& c) {
   controls(r, c).rigid_materials[mat] = m;
 }
 
+void cmd_eddamp(DeckReader& r, const Command& c) {
+  // EDDAMP,PART,LCID,VALDMP: PART = ALL (or blank) is the mass-weighted damping of the whole
+  // model, by the curve LCID or the constant VALDMP; a part number gives that part
+  // stiffness-weighted damping, which is not implemented.
+  const std::string part = r.label(c, 1);
+  if (!part.empty() && part != "ALL")
+    r.fail(c, fmt::format("PART {}: stiffness-weighted damping of a part is not implemented "
+                          "(EDDAMP,ALL, the mass-weighted damping of the model, is)",
+                          c.text(1)));
+  const int lcid = r.integer(c, 2, 0);
+  const double valdmp = r.real(c, 3, 0.0);
+  if (lcid < 0) r.fail(c, fmt::format("LCID {}: a curve number is positive", lcid));
+  if (lcid > 0 && r.model.explicit_dynamics.curves.count(lcid) == 0)
+    r.fail(c, fmt::format("LCID {}: no such curve (EDCURVE,ADD)", lcid));
+  if (lcid > 0 && valdmp != 0.0)
+    r.fail(c, "LCID and VALDMP both given: the damping is either the curve's or the constant");
+  if (valdmp < 0.0) r.fail(c, fmt::format("VALDMP {:g}: the damping constant is >= 0", valdmp));
+  if (lcid == 0 && valdmp == 0.0) {
+    controls(r, c).mass_damping.reset();  // EDDAMP,ALL,,0: no damping
+    return;
+  }
+  controls(r, c).mass_damping = ExplicitMassDamping{valdmp, lcid, c.where};
+}
+
+void cmd_edhist(DeckReader& r, const Command& c) {
+  // EDHIST,Comp: the nodes of a component go to the history points (EDHTIME). impactfe stores
+  // every node at those points, so the components only need to exist; LIST and DELE as MAPDL.
+  const std::string comp = r.label(c, 1);
+  auto& list = controls(r, c).history_components;
+  if (comp == "LIST") {
+    for (const auto& name : list) Log::info("EDHIST: component {}", name);
+    return;
+  }
+  if (comp == "DELE") {
+    list.clear();
+    return;
+  }
+  const auto it = r.model.components.find(comp);
+  if (comp.empty() || it == r.model.components.end())
+    r.fail(c, fmt::format("Comp '{}': no such component (CM)", c.text(1)));
+  if (it->second.entity != "NODE")
+    r.fail(c, fmt::format("Comp {} is a {} component; the history of element components is "
+                          "not implemented (node components are)",
+                          comp, it->second.entity));
+  if (std::find(list.begin(), list.end(), comp) == list.end()) list.push_back(comp);
+}
+
 void cmd_edrst(DeckReader& r, const Command& c) {
   const ExplicitOutputInterval out = output_interval(r, c);
   controls(r, c).results = out;
@@ -169,11 +217,13 @@ void register_explicit_commands(std::vector<CommandSpec>& t) {
   t.push_back({"EDVEL", cmd_edvel, kPrepSolu});
   t.push_back({"EDPART", cmd_edpart, kPrepSolu});
   t.push_back({"EDMP", cmd_edmp, kPrepSolu});
+  t.push_back({"EDDAMP", cmd_eddamp, kPrepSolu});
+  t.push_back({"EDHIST", cmd_edhist, kPrepSolu});
   register_explicit_load_commands(t);
   constexpr const char* kNo = "not implemented in explicit dynamics (docs/explicit_dynamics.md)";
   for (const char* name :
        {"EDCNSTR", "EDBOUND", "EDWRITE", "EDCONTACT", "EDCSC", "EDSHELL", "EDSTART", "EDADAPT",
-        "EDOUT", "EDHIST", "EDINT", "EDDAMP", "EDENERGY", "EDCRB", "EDNROT"})
+        "EDOUT", "EDINT", "EDENERGY", "EDCRB", "EDNROT"})
     t.push_back({name, [](DeckReader&, const Command&) {}, kPrepSolu, nullptr, kNo});
 }
 

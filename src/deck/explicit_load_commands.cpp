@@ -69,10 +69,11 @@ void cmd_edcurve(DeckReader& r, const Command& c) {
   curves[*lcid] = std::move(curve);
 }
 
-const std::set<std::string> kLoadLabels = {"FX", "FY", "FZ", "VX", "VY", "VZ"};
+const std::set<std::string> kLoadLabels = {"FX", "FY", "FZ",   "VX",   "VY",
+                                           "VZ", "ACLX", "ACLY", "ACLZ"};
 const std::set<std::string> kRefusedLabels = {
     "MX",   "MY",   "MZ",   "UX",   "UY",   "UZ",   "ROTX", "ROTY", "ROTZ", "OMGX",
-    "OMGY", "OMGZ", "AX",   "AY",   "AZ",   "ACLX", "ACLY", "ACLZ", "TEMP", "PRESS",
+    "OMGY", "OMGZ", "AX",   "AY",   "AZ",   "TEMP", "PRESS",
     "RBFX", "RBFY", "RBFZ", "RBMX", "RBMY", "RBMZ", "RBUX", "RBUY", "RBUZ", "RBRX",
     "RBRY", "RBRZ", "RBVX", "RBVY", "RBVZ", "RBOX", "RBOY", "RBOZ"};
 
@@ -104,7 +105,8 @@ void cmd_edload(DeckReader& r, const Command& c) {
   if (option != "ADD") r.fail(c, fmt::format("Option '{}': ADD, DELE or LIST", c.text(1)));
   if (kRefusedLabels.count(lab))
     r.fail(c, fmt::format("Lab {}: not implemented in explicit dynamics; EDLOAD carries out the "
-                          "nodal forces FX, FY, FZ and the prescribed velocities VX, VY, VZ",
+                          "nodal forces FX, FY, FZ, the prescribed velocities VX, VY, VZ and the base accelerations "
+                          "ACLX, ACLY, ACLZ",
                           lab));
   if (!kLoadLabels.count(lab)) r.fail(c, fmt::format("Lab '{}': not an EDLOAD label", c.text(2)));
   if (r.real(c, 3, 0.0) != 0.0)

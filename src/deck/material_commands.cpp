@@ -182,7 +182,7 @@ MaterialTable& current_table(DeckReader& r, const Command& c) {
 
 void cmd_tb(DeckReader& r, const Command& c) {
   // TB,Lab,MATID,NTEMP,NPTS,TBOPT,FuncName
-  const std::string lab = r.label(c, 1);
+  std::string lab = r.label(c, 1);
   const int mat = r.integer(c, 2, 1);
   if (mat <= 0 || mat >= 100000) r.fail(c, fmt::format("MATID {} out of range 1..99999", mat));
   const int ntemp = r.integer(c, 3, 1);
@@ -229,6 +229,19 @@ void cmd_tb(DeckReader& r, const Command& c) {
       r.fail(c, fmt::format("TB,HILL,,,,{}: only the common potential (blank TBOPT) is supported",
                             c.text(5)));
     if (ntemp != 1) r.fail(c, "TB,HILL: one temperature only");
+  } else if (lab.rfind("DISC", 0) == 0) {
+    // The spring-damper tables of COMBI165 (explicit dynamics): TBOPT 0 a linear elastic spring,
+    // 1 a linear viscous damper, C1 the constant of either.
+    lab = "DISCRETE";
+    if (opt.empty()) opt = "0";
+    if (const auto value = r.opt_real(c, 5); value && *value == std::round(*value))
+      opt = std::to_string(static_cast<long long>(*value));
+    if (opt != "0" && opt != "1")
+      r.fail(c, fmt::format("TB,DISCRETE,,,,{}: only TBOPT 0 (linear elastic spring) and 1 "
+                            "(linear viscous damper) are implemented; the nonlinear, "
+                            "elastoplastic, Maxwell and inelastic springs (2 to 7) are not",
+                            c.text(5)));
+    if (ntemp != 1) r.fail(c, "TB,DISCRETE: one temperature only (NTEMP = 1)");
   } else if (lab != "BISO" && lab != "BKIN" && lab != "MISO" && lab != "MKIN") {
     r.fail(c, fmt::format("TB,{}: material model not supported", lab.empty() ? "(blank)" : lab));
   }

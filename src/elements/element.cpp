@@ -27,6 +27,7 @@ std::unique_ptr<Element> create_element(const ElementBuildContext& ctx,
                           !section->second.data.empty();
   const bool reads_real =
       descriptor.real_constants == RealConstantUse::Required ||
+      descriptor.real_constants == RealConstantUse::Optional ||
       (descriptor.real_constants == RealConstantUse::UnlessSection && !by_section);
   if (const auto set = ctx.model.real_sets.find(record.real);
       reads_real && set != ctx.model.real_sets.end())

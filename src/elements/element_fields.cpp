@@ -136,6 +136,12 @@ std::vector<ElementFields> make_table() {
   t.push_back({"SOLID164", {}, {{1, {0, 1}, "0 or 1: one-point constant stress (the same)"}}});
   t.push_back({"LINK160", named({"AREA"}), {}});
   t.push_back({"MASS166", named({"MASS"}), {}});
+  // COMBI165: the dynamic magnification, clearance, failure and deflection limits are refused.
+  {
+    auto r = named({"KD", "V0", "CL", "FD", "CDL", "TDL"});
+    for (auto& f : r) f.refused = true;
+    t.push_back({"COMBI165", r, {{1, {1}, "1: translational spring or damper"}}});
+  }
   // SHELL163: Belytschko–Tsay (KEYOPT(1) 0 or 2); the other formulations are not implemented.
   t.push_back({"SHELL163",
                named({"SHRF", "NIP", "T1", "T2", "T3", "T4"}),

@@ -41,6 +41,8 @@ const char* real_constant_use(RealConstantUse use) {
       return "required (R)";
     case RealConstantUse::UnlessSection:
       return "required unless SECNUM names a section";
+    case RealConstantUse::Optional:
+      return "optional (R)";
   }
   return "?";
 }

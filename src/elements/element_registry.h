@@ -25,6 +25,7 @@ enum class RealConstantUse {
   None,           // never (bricks)
   Required,       // always (springs, masses, gaps)
   UnlessSection,  // unless the element's SECNUM names a section of an accepted type (LINK180)
+  Optional,       // read when the element's REAL set exists (COMBI165)
 };
 
 /// What an element is to the parts of the program that draw, mesh or connect it (the report's

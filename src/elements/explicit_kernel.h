@@ -36,6 +36,9 @@ struct ExplicitNodalView {
   const double* wx = nullptr;
   const double* wy = nullptr;
   const double* wz = nullptr;
+  /// Lumped nodal masses (after mass scaling): the step of the discrete elements (COMBI165),
+  /// which have none of their own, comes from their nodes' masses.
+  const double* mass = nullptr;
 };
 
 /// What an element set is built from.

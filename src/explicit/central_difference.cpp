@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "explicit/explicit_loads.h"
+
 namespace impactfe {
 
 namespace {
@@ -91,7 +93,8 @@ void CentralDifference::internal_forces(double dt) {
                                vz_.data(),
                                rotations ? wx_.data() : nullptr,
                                rotations ? wy_.data() : nullptr,
-                               rotations ? wz_.data() : nullptr};
+                               rotations ? wz_.data() : nullptr,
+                               system_.mass.data()};
   ExplicitStepLimit limit;
   for (std::size_t i = 0; i < system_.sets.size(); ++i) {
     const std::size_t offset = 3 * system_.set_offset[i];
@@ -139,18 +142,31 @@ void CentralDifference::choose_step() {
   }
 }
 
+double CentralDifference::mass_damping(double t) const {
+  const auto& d = controls_.mass_damping;
+  if (!d) return 0.0;
+  if (d->curve == 0) return d->alpha;
+  const ExplicitCurve& c = controls_.curves.at(d->curve);
+  return curve_value(c.x, c.y, t);
+}
+
 void CentralDifference::accelerations() {
   const double* m = system_.mass.data();
   const std::uint8_t* fix = fixed_.data();
   // ACEL accelerates the reference frame: the body force on a node is −m a_frame.
   const double gx = -frame_acceleration_.x(), gy = -frame_acceleration_.y(),
                gz = -frame_acceleration_.z();
+  // Mass-weighted damping (EDDAMP) at the integer time: a = f/m − α v_{n+1} with
+  // v_{n+1} = v_{n+1/2} + (Δt/2) a, so a = (f/m − α v_{n+1/2}) / (1 + α Δt/2) (time-centred,
+  // stable for any α).
+  damping_ = mass_damping(time_);
+  const double alpha = damping_, keep = 1.0 / (1.0 + 0.5 * alpha * previous_step_);
   for (std::size_t n = 0; n < system_.n_nodes(); ++n) {
     // A node without mass carries no element's DOFs (LINK160's orientation node K): it stays.
     const double inv = m[n] > 0.0 ? 1.0 / m[n] : 0.0;
-    ax_[n] = fix[3 * n] ? 0.0 : gx - fx_[n] * inv;
-    ay_[n] = fix[3 * n + 1] ? 0.0 : gy - fy_[n] * inv;
-    az_[n] = fix[3 * n + 2] ? 0.0 : gz - fz_[n] * inv;
+    ax_[n] = fix[3 * n] ? 0.0 : (gx - fx_[n] * inv - alpha * vx_[n]) * keep;
+    ay_[n] = fix[3 * n + 1] ? 0.0 : (gy - fy_[n] * inv - alpha * vy_[n]) * keep;
+    az_[n] = fix[3 * n + 2] ? 0.0 : (gz - fz_[n] * inv - alpha * vz_[n]) * keep;
   }
   // Rotations: ω̇ = −m_int / I about global axes (a lumped isotropic rotary inertia, so the
   // gyroscopic term ω × Iω vanishes).
@@ -158,9 +174,9 @@ void CentralDifference::accelerations() {
   const std::uint8_t* rfix = fixed_rotation_.data();
   for (std::size_t n : system_.rotational_nodes) {
     const double inv = inertia[n] > 0.0 ? 1.0 / inertia[n] : 0.0;
-    bx_[n] = rfix[3 * n] ? 0.0 : -mx_[n] * inv;
-    by_[n] = rfix[3 * n + 1] ? 0.0 : -my_[n] * inv;
-    bz_[n] = rfix[3 * n + 2] ? 0.0 : -mz_[n] * inv;
+    bx_[n] = rfix[3 * n] ? 0.0 : (-mx_[n] * inv - alpha * wx_[n]) * keep;
+    by_[n] = rfix[3 * n + 1] ? 0.0 : (-my_[n] * inv - alpha * wy_[n]) * keep;
+    bz_[n] = rfix[3 * n + 2] ? 0.0 : (-mz_[n] * inv - alpha * wz_[n]) * keep;
   }
   if (!rigid_.empty()) rigid_accelerations();
   for (ExplicitInteraction* i : interactions_) i->hold(ax_.data(), ay_.data(), az_.data());
@@ -210,7 +226,9 @@ void CentralDifference::rigid_accelerations() {
       moment += (r.rotation * body.offsets[j]).cross(f);
       if (has_rotations(n)) moment -= Vec3(mx_[n], my_[n], mz_[n]);
     }
-    r.acceleration = force / body.mass;
+    // Mass-weighted damping acts on the centre of mass only (as accelerations(), time-centred).
+    r.acceleration =
+        (force / body.mass - damping_ * r.velocity) / (1.0 + 0.5 * damping_ * previous_step_);
     for (int i = 0; i < 3; ++i)
       if (body.fixed_translation[static_cast<std::size_t>(i)]) r.acceleration(i) = 0.0;
     // Euler's equations in global axes: J α = m − ω × J ω, J = R J₀ Rᵀ (ω of the half step
@@ -292,10 +310,32 @@ double CentralDifference::kinetic_energy(double half) const {
   return 0.5 * twice;
 }
 
+double CentralDifference::damping_power(double half) const {
+  double power = 0.0;
+  for (std::size_t n = 0; n < system_.n_nodes(); ++n) {
+    if (system_.is_rigid(n)) continue;
+    const double vx = vx_[n] + half * ax_[n], vy = vy_[n] + half * ay_[n],
+                 vz = vz_[n] + half * az_[n];
+    power += system_.mass[n] * (vx * vx + vy * vy + vz * vz);
+  }
+  for (std::size_t r : system_.rotational_nodes) {
+    if (system_.is_rigid(r)) continue;
+    const double wx = wx_[r] + half * bx_[r], wy = wy_[r] + half * by_[r],
+                 wz = wz_[r] + half * bz_[r];
+    power += system_.inertia[r] * (wx * wx + wy * wy + wz * wz);
+  }
+  for (std::size_t k = 0; k < rigid_.size(); ++k) {
+    const Vec3 v = rigid_[k].velocity + half * rigid_[k].acceleration;
+    power += system_.rigid_bodies[k].mass * v.squaredNorm();
+  }
+  return damping_ * power;
+}
+
 bool CentralDifference::scale_masses() {
   const double target = std::abs(controls_.mass_scaling_step);
   if (!(target > 0.0)) return false;
-  const ExplicitNodalView view{x_.data(), y_.data(), z_.data(), vx_.data(), vy_.data(), vz_.data()};
+  const ExplicitNodalView view{x_.data(),  y_.data(),  z_.data(), vx_.data(), vy_.data(),
+                               vz_.data(), nullptr,    nullptr,   nullptr,    system_.mass.data()};
   bool any = false;
   for (auto& set : system_.sets)
     for (std::size_t k = 0; k < set->size(); ++k) {
@@ -323,6 +363,8 @@ void CentralDifference::start() {
 void CentralDifference::cycle(double dt) {
   const double mean = 0.5 * (previous_step_ + dt);
   const std::size_t n_nodes = system_.n_nodes();
+  // The damping force at t_n acts over the mean step around it (the velocities' interval).
+  if (damping_ > 0.0) damping_work_ += mean * damping_power(0.5 * previous_step_);
   double work = 0.0;
   const double* m = system_.mass.data();
   const double gx = -frame_acceleration_.x(), gy = -frame_acceleration_.y(),
@@ -357,9 +399,9 @@ void CentralDifference::cycle(double dt) {
   }
   internal_forces(dt);
   choose_step();
-  accelerations();
   previous_step_ = dt;
   time_ += dt;
+  accelerations();
   ++cycles_;
 }
 
@@ -377,6 +419,7 @@ ExplicitEnergies CentralDifference::energies() const {
     e.external_work += i->external_work();
     e.contact += i->contact_energy();
   }
+  e.damping = damping_work_;
   e.initial_kinetic = initial_kinetic_;
   return e;
 }

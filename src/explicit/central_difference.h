@@ -23,10 +23,11 @@ struct ExplicitEnergies {
   double plastic_work = 0.0;
   double external_work = 0.0;  // work of f_ext (ACEL, EDLOAD) on the motion
   double contact = 0.0;        // penalty springs and friction (EDCGEN)
+  double damping = 0.0;        // work of the mass-weighted damping (EDDAMP), dissipated
   double initial_kinetic = 0.0;
   /// Total minus what was put in: zero for an exact balance.
   double drift() const {
-    return kinetic + internal + hourglass + contact - initial_kinetic - external_work;
+    return kinetic + internal + hourglass + contact + damping - initial_kinetic - external_work;
   }
   double put_in() const { return initial_kinetic + external_work; }
 };
@@ -104,6 +105,11 @@ class CentralDifference {
   void place_rigid_nodes();
   /// ½ Σ m v² at v_{n+1/2} + half·a_n (rigid bodies: ½ M v_c² + ½ ωᵀ J ω).
   double kinetic_energy(double half) const;
+  /// α of the mass-weighted damping (EDDAMP) at time t; 0 without it.
+  double mass_damping(double t) const;
+  /// Σ α m v·v at the integer time (v_{n+1/2} + half·a_n): the power the damping dissipates
+  /// (deformable nodes, rotations, rigid bodies' centres).
+  double damping_power(double half) const;
 
   ExplicitSystem& system_;
   ExplicitControls controls_;
@@ -125,6 +131,8 @@ class CentralDifference {
   double critical_ = 0.0;           // the smallest element step at the current configuration
   double time_ = 0.0, step_ = 0.0, previous_step_ = 0.0, added_mass_ = 0.0;
   double external_work_ = 0.0, initial_kinetic_ = 0.0;
+  double damping_ = 0.0;  // α of the accelerations a_n (EDDAMP)
+  double damping_work_ = 0.0;
   int controlling_ = 0;
   long cycles_ = 0;
 };

@@ -18,7 +18,9 @@ double curve_value(const std::vector<double>& x, const std::vector<double>& y, d
 ExplicitCurveLoads::ExplicitCurveLoads(const ExplicitSystem& system,
                                        const ExplicitControls& controls) {
   for (const ExplicitCurveLoad& l : controls.loads) {
-    Entry e{&l, l.label[1] - 'X', {}, {}, {}, l.label[0] == 'V' && l.birth <= 0.0};
+    // ACLX/ACLY/ACLZ accelerate the base (as ACEL): each node feels the body force −m a.
+    const bool base = l.label.rfind("ACL", 0) == 0;
+    Entry e{&l, l.label.back() - 'X', base, {}, {}, {}, l.label[0] == 'V' && l.birth <= 0.0};
     for (int node : l.nodes) {
       const int n = system.index_of(node);
       if (n < 0)
@@ -29,7 +31,7 @@ ExplicitCurveLoads::ExplicitCurveLoads(const ExplicitSystem& system,
     }
     e.previous.assign(e.nodes.size(), 0.0);
     e.held.assign(e.nodes.size(), 0.0);
-    (l.label[0] == 'F' ? forces_ : velocities_).push_back(std::move(e));
+    (l.label[0] == 'V' ? velocities_ : forces_).push_back(std::move(e));
   }
 }
 
@@ -38,15 +40,16 @@ double ExplicitCurveLoads::value(const ExplicitCurveLoad& l, double time) const 
   return l.scale * curve_value(l.times, l.values, time - l.birth);
 }
 
-ExplicitStepLimit ExplicitCurveLoads::add_forces(const ExplicitNodalView& state, const double*,
-                                                 double time, double dt, double* fx, double* fy,
-                                                 double* fz) {
+ExplicitStepLimit ExplicitCurveLoads::add_forces(const ExplicitNodalView& state,
+                                                 const double* mass, double time, double dt,
+                                                 double* fx, double* fy, double* fz) {
   double* f[3] = {fx, fy, fz};
   const double* v[3] = {state.vx, state.vy, state.vz};
   for (Entry& e : forces_) {
-    const double value = this->value(*e.load, time);
+    const double curve = this->value(*e.load, time);
     for (std::size_t j = 0; j < e.nodes.size(); ++j) {
       const std::size_t n = e.nodes[j];
+      const double value = e.per_mass ? -mass[n] * curve : curve;
       // Work over the step by the trapezoidal rule: ½(f_n + f_{n+1})·Δx, Δx = dt v_{n+1/2}.
       work_ += 0.5 * (e.previous[j] + value) * dt * v[e.direction][n];
       e.previous[j] = value;

@@ -1,6 +1,7 @@
 #pragma once
 /// Loads by curve of an explicit run (EDLOAD; docs/explicit_dynamics.md): nodal forces FX, FY,
-/// FZ and prescribed velocities VX, VY, VZ on the nodes of a component, valued by a curve of
+/// FZ, base accelerations ACLX, ACLY, ACLZ (the body force −m a on each node) and prescribed
+/// velocities VX, VY, VZ on the nodes of a component, valued by a curve of
 /// time: linear between its points, held at the first before it and at the last beyond it (as
 /// LS-DYNA's load curves), times SCALE, active between BTIME and DTIME.
 #include <vector>
@@ -33,6 +34,7 @@ class ExplicitCurveLoads final : public ExplicitInteraction {
   struct Entry {
     const ExplicitCurveLoad* load;
     int direction;                   // 0 x, 1 y, 2 z
+    bool per_mass = false;           // ACLX..: the body force −m a of a base acceleration
     std::vector<std::size_t> nodes;  // run indices
     std::vector<double> previous;    // force at t_n of each node (trapezoidal work)
     std::vector<double> held;        // prescribed: the acceleration the forces would give

@@ -60,6 +60,10 @@ void refuse_unsupported(const Model& model, const AnalysisRequest& request) {
     if (!step.time_end || !(*step.time_end > 0.0))
       refuse("a load step without an end time (TIME) is");
   }
+  const auto& damping = model.explicit_dynamics.mass_damping;
+  if (damping && damping->curve > 0 && model.explicit_dynamics.curves.count(damping->curve) == 0)
+    throw InputError(damping->where, fmt::format("EDDAMP: curve {} no longer exists (EDCURVE)",
+                                                 damping->curve));
 }
 
 /// A rigid body moves by its EDMP constraint codes and the forces of its nodes: D on its nodes
@@ -118,6 +122,27 @@ std::vector<std::uint8_t> fixed_dofs(const ExplicitSystem& s, const LoadStep& st
     fixed[3 * static_cast<std::size_t>(n) + static_cast<std::size_t>(key.dof) % 3] = 1;
   }
   return fixed;
+}
+
+/// A node with no mass (a COMBI165 end that no massive element shares) has no acceleration to
+/// integrate: it must be held in x, y and z (D) or given a mass (MASS166), else it would stay
+/// where it is whatever its spring pulls.
+void refuse_free_massless_nodes(const Model& model, const ExplicitSystem& s, const LoadStep& step,
+                                const std::vector<std::uint8_t>& fixed) {
+  for (const auto& set : s.sets)
+    for (std::size_t k = 0; k < set->size(); ++k)
+      for (int a = 0; a < set->nodes_per_element(); ++a) {
+        const auto n = static_cast<std::size_t>(set->nodes(k)[a]);
+        if (s.mass[n] > 0.0 || s.is_rigid(n) || (fixed[3 * n] && fixed[3 * n + 1] && fixed[3 * n + 2]))
+          continue;
+        const int id = set->element_id(k);
+        const auto e = model.elements.find(id);
+        throw InputError(e != model.elements.end() ? e->second.where : step.where,
+                         fmt::format("load step {}: node {} of element {} has no mass and is not "
+                                     "held in UX, UY and UZ: give it a mass (MASS166) or "
+                                     "constrain it (D)",
+                                     step.number, s.node_ids[n], id));
+      }
 }
 
 /// IC velocities first, then EDVEL (which defines the velocity of its component's nodes). IC
@@ -188,7 +213,7 @@ TimePoint make_point(const ExplicitSystem& s, const CentralDifference& cd,
               {"strain", e.internal - e.plastic_work},
               {"external_work", e.external_work},
               {"gap_work", e.contact},
-              {"dissipation", e.hourglass},
+              {"dissipation", e.hourglass + e.damping},
               {"plastic_work", e.plastic_work}};
   if (!full) return p;
   for (const auto& set : s.sets) {
@@ -218,14 +243,14 @@ class EnergyCheck {
     over_ = std::abs(e.drift()) > kExplicitEnergyBound * reference ? over_ + 1 : 0;
     if (over_ < kExplicitChecksOver || warned_) return;
     const std::string message = fmt::format(
-        "t = {:g}, cycle {}: energy {}: kinetic + internal + hourglass + contact {:.4g} against "
-        "{:.4g} "
+        "t = {:g}, cycle {}: energy {}: kinetic + internal + hourglass + contact + damping {:.4g} "
+        "against {:.4g} "
         "put in (initial kinetic + external work), {:.1f} % off (bound {:.0f} %, passed at {} "
         "checks in a row): an unstable time step (EDCTS TSSFAC above 1 or a stiff element "
         "outside the step estimate) or an hourglass mode out of control (EDHGLS). The results "
         "up to here are kept; --accept-energy-error goes on",
         cd.time(), cd.cycles(), e.drift() > 0 ? "created" : "lost",
-        e.kinetic + e.internal + e.hourglass + e.contact, e.put_in(),
+        e.kinetic + e.internal + e.hourglass + e.contact + e.damping, e.put_in(),
         100.0 * std::abs(e.drift()) / reference, 100.0 * kExplicitEnergyBound, kExplicitChecksOver);
     if (!accept_) throw SolutionError(message);
     Log::warn("{} (accepted: --accept-energy-error)", message);
@@ -256,6 +281,11 @@ void summarize(const ExplicitSystem& s, const CentralDifference& cd, const Energ
       e.internal > 0 ? 100.0 * e.hourglass / e.internal : 0.0, e.contact, e.initial_kinetic,
       e.external_work, e.put_in() > 0 ? 100.0 * e.drift() / e.put_in() : 0.0,
       100.0 * check.worst()));
+  if (e.damping > 0.0)
+    out.notes.push_back(
+        fmt::format("mass-weighted damping (EDDAMP): {:.6g} dissipated ({:.2f} % of the energy "
+                    "put in)",
+                    e.damping, e.put_in() > 0 ? 100.0 * e.damping / e.put_in() : 0.0));
   if (cd.added_mass() > 0.0)
     out.notes.push_back(fmt::format("mass scaling (EDCTS DTMS): {:.4g} added to {:.4g} ({:.3f} %)",
                                     cd.added_mass(), s.physical_mass,
@@ -288,9 +318,13 @@ ExplicitRunSummary run_explicit_analysis(const Model& model, const AnalysisReque
   set_initial_velocities(model, system, cd);
   const double end = *request.load_steps.back().time_end;
   OutputGrid results{controls.results.for_end_time(end, 100)};
-  // EDHTIME: energy checks at its interval; stored points (nodal, energies) when it is given.
+  // EDHTIME: energy checks at its interval; stored points (nodal, energies) when it or EDHIST
+  // is given.
   OutputGrid history{controls.history.for_end_time(end, 1000)};
-  const bool store_history = controls.history.steps || controls.history.interval;
+  // EDHIST asks for history points too (at the default interval without EDHTIME); they hold
+  // every node, the components' among them.
+  const bool store_history = controls.history.steps || controls.history.interval ||
+                             !controls.history_components.empty();
   writer.begin_analysis(ResultsKind::Transient, "explicit dynamics (central difference)",
                         static_cast<long long>(end / results.interval) + 2);
   ExplicitRunSummary summary;
@@ -303,7 +337,9 @@ ExplicitRunSummary run_explicit_analysis(const Model& model, const AnalysisReque
   int point = 0;
   for (std::size_t i = 0; i < request.load_steps.size(); ++i) {
     const LoadStep& step = request.load_steps[i];
-    cd.set_loads(fixed_dofs(system, step, false), step.acel);
+    std::vector<std::uint8_t> fixed = fixed_dofs(system, step, false);
+    refuse_free_massless_nodes(model, system, step, fixed);
+    cd.set_loads(std::move(fixed), step.acel);
     if (system.has_rotations()) cd.set_rotation_fixes(fixed_dofs(system, step, true));
     if (i == 0) {
       cd.start();
