@@ -138,7 +138,8 @@ ResultsWriter& JobSession::writer_for(const Job& job, std::size_t step) {
     // No file of the job is touched before the job is ours: a second run of the same job in the
     // same directory would otherwise truncate the results file the first is writing.
     try {
-      job_lock_ = JobLock::acquire(path);
+      // A new analysis's file (supersede_results_file) is made under the job's lock already held.
+      if (!job_lock_) job_lock_ = JobLock::acquire(path);
     } catch (const JobLockedError& e) {
       throw InputError(location_of(s), e.what());
     } catch (const std::runtime_error& e) {
@@ -153,6 +154,40 @@ ResultsWriter& JobSession::writer_for(const Job& job, std::size_t step) {
   return *writer_;
 }
 
+void JobSession::supersede_results_file(const Job& job, const Job::Step& s) {
+  if (!s.analysis || !s.analysis->new_analysis || !writer_) return;
+  if (!owned_writer_)
+    throw InputError(location_of(s),
+                     "a new analysis after FINISH needs a results file of its own, and this run "
+                     "writes into a results file it was given (solve the deck with `impactfe "
+                     "run`)");
+  const std::string path = owned_writer_->path();
+  owned_writer_.reset();  // the earlier analyses are complete and closed
+  writer_ = nullptr;
+  if (!job.model.jobname.empty() && job.model.jobname + ".h5" != path) {
+    // /FILNAME named another job since: the new analysis writes that job's file, this one stays.
+    closed_files_.push_back(path);
+    job_lock_.reset();
+    return;
+  }
+  const std::string base =
+      path.size() > 3 && path.compare(path.size() - 3, 3, ".h5") == 0 ? path.substr(0, path.size() - 3)
+                                                                      : path;
+  const std::string kept = fmt::format("{}.{}.h5", base, ++superseded_files_);
+  std::error_code ec;
+  std::filesystem::rename(path, kept, ec);
+  if (ec)
+    throw SolutionError(location_of(s),
+                        fmt::format("a new analysis begins, and the results of the earlier one "
+                                    "could not be kept: renaming {} to {} failed: {}",
+                                    path, kept, ec.message()));
+  closed_files_.push_back(kept);
+  Log::info(
+      "{}:{}: SOLVE: a new analysis begins (FINISH ended the earlier one; ANTYPE,,REST would "
+      "continue it): its results go to a new {}, the earlier analyses' results are kept in {}",
+      s.analysis->where.file, s.analysis->where.line, path, kept);
+}
+
 void JobSession::solve(const Job& job, std::size_t step) {
   IMPACTFE_CHECK(step < job.steps.size(), "solution request out of range");
   const Job::Step& s = job.steps[step];
@@ -161,6 +196,7 @@ void JobSession::solve(const Job& job, std::size_t step) {
   where_ = location_of(s);
   try {
     if (!open_ && needs_generated_superelements(job, s)) share_generated_superelements();
+    if (!open_) supersede_results_file(job, s);
     if (!open_) {
       // Refused before anything large is built when the model cannot fit (the symbolic
       // analysis checks the factor exactly later).
@@ -395,6 +431,7 @@ void JobSession::clear(const Job&) {
     writer_ = nullptr;
   }
   job_lock_.reset();
+  superseded_files_ = 0;
   superelement_expansion_job_ = false;
   reduced_state_.reset();  // an expansion pass cannot refer to a solution of the job before
   models_.clear();
