@@ -154,8 +154,15 @@ ResultsWriter& JobSession::writer_for(const Job& job, std::size_t step) {
   return *writer_;
 }
 
-void JobSession::supersede_results_file(const Job& job, const Job::Step& s) {
-  if (!s.analysis || !s.analysis->new_analysis || !writer_) return;
+void JobSession::begin_new_analysis(const Job&, std::size_t step) {
+  new_analysis_ = step;
+}
+
+void JobSession::supersede_results_file(const Job& job, std::size_t step) {
+  const Job::Step& s = job.steps[step];
+  if (new_analysis_ != step || !s.analysis) return;
+  new_analysis_.reset();
+  if (!writer_) return;
   if (!owned_writer_)
     throw InputError(location_of(s),
                      "a new analysis after FINISH needs a results file of its own, and this run "
@@ -196,7 +203,7 @@ void JobSession::solve(const Job& job, std::size_t step) {
   where_ = location_of(s);
   try {
     if (!open_ && needs_generated_superelements(job, s)) share_generated_superelements();
-    if (!open_) supersede_results_file(job, s);
+    if (!open_) supersede_results_file(job, step);
     if (!open_) {
       // Refused before anything large is built when the model cannot fit (the symbolic
       // analysis checks the factor exactly later).
@@ -432,6 +439,7 @@ void JobSession::clear(const Job&) {
   }
   job_lock_.reset();
   superseded_files_ = 0;
+  new_analysis_.reset();
   superelement_expansion_job_ = false;
   reduced_state_.reset();  // an expansion pass cannot refer to a solution of the job before
   models_.clear();

@@ -285,11 +285,6 @@ struct AnalysisRequest {
   /// True when `load_steps` is the whole analysis (AFWRITE froze it); false when later SOLVEs
   /// may append load steps to it.
   bool complete = false;
-  /// A new analysis begun by a SOLVE after FINISH had ended an earlier one (MAPDL: leaving
-  /// /SOLU ends the analysis; without ANTYPE,,REST the next SOLVE starts again at load step 1
-  /// on the model as it is then). Its results file replaces the earlier one, which is kept
-  /// under another name (docs/results_file.md, "New analyses").
-  bool new_analysis = false;
 };
 
 /// SEEXP: the superelement to expand and the use pass whose master results drive it.
