@@ -177,9 +177,9 @@ void JobSession::supersede_results_file(const Job& job, std::size_t step) {
     job_lock_.reset();
     return;
   }
-  const std::string base =
-      path.size() > 3 && path.compare(path.size() - 3, 3, ".h5") == 0 ? path.substr(0, path.size() - 3)
-                                                                      : path;
+  const std::string base = path.size() > 3 && path.compare(path.size() - 3, 3, ".h5") == 0
+                               ? path.substr(0, path.size() - 3)
+                               : path;
   const std::string kept = fmt::format("{}.{}.h5", base, ++superseded_files_);
   std::error_code ec;
   std::filesystem::rename(path, kept, ec);

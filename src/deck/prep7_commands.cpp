@@ -296,11 +296,11 @@ void cmd_mpchg(DeckReader& r, const Command& c) {
   if (!mat) r.fail(c, "MAT (the material number) missing");
   if (*mat <= 0) r.fail(c, fmt::format("material number {} must be positive", *mat));
   if (c.blank(2)) r.fail(c, "ELEM missing (an element number, or ALL for the selected elements)");
-  const std::vector<int> ids = entity_list(r, c, 2, 0, 0, r.model.elements,
-                                           r.model.selection.elements, "element");
+  const std::vector<int> ids =
+      entity_list(r, c, 2, 0, 0, r.model.elements, r.model.selection.elements, "element");
   for (int id : ids) r.model.elements.at(id).mat = *mat;
-  Log::info("{}:{}: MPCHG: {} element{} now of material {}", c.where.file, c.where.line,
-            ids.size(), ids.size() == 1 ? "" : "s", *mat);
+  Log::info("{}:{}: MPCHG: {} element{} now of material {}", c.where.file, c.where.line, ids.size(),
+            ids.size() == 1 ? "" : "s", *mat);
 }
 
 // ---- masters and gaps ------------------------------------------------------------------------

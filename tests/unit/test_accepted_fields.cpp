@@ -220,29 +220,28 @@ TEST(AcceptedFields, MpchgWithinOneAnalysisIsRefused) {
   // /PREP7 without FINISH (or MPCHG in /SOLU) between load steps: the analysis goes on, and it
   // keeps the model of its first SOLVE.
   for (const char* change : {"/PREP7\nMPCHG,2,ALL\n/SOLU", "MPCHG,2,1"}) {
-    const std::string err = error_of(
-        "mpchg_between_steps",
-        bar_deck("LINK180", "1", kRho,
-                 fmt::format("MP,EX,2,{}\nANTYPE,STATIC\nF,2,FX,1000\nSOLVE\n{}\nSOLVE\n", 2 * kE,
-                             change)));
+    const std::string err =
+        error_of("mpchg_between_steps",
+                 bar_deck("LINK180", "1", kRho,
+                          fmt::format("MP,EX,2,{}\nANTYPE,STATIC\nF,2,FX,1000\nSOLVE\n{}\nSOLVE\n",
+                                      2 * kE, change)));
     EXPECT_NE(err.find("element 1 changed (type, real constants, material, section or nodes) "
                        "since this analysis began at"),
               std::string::npos)
         << change << ": " << err;
   }
-  for (const auto& [fields, message] :
-       std::vector<std::pair<std::string, std::string>>{
+  for (const auto& [fields, message] : std::vector<std::pair<std::string, std::string>>{
            {"MPCHG,2", "MPCHG: ELEM missing"},
            {"MPCHG,,ALL", "MPCHG: MAT (the material number) missing"},
            {"MPCHG,-1,ALL", "MPCHG: material number -1 must be positive"},
            {"MPCHG,2,7", "MPCHG: element 7 is not defined"},
            {"MPCHG,2,P", "MPCHG: graphical picking (P)"},
            {"MPCHG,3,ALL", "element 1 (LINK180): material 3 is not defined"}}) {
-    const std::string err = error_of(
-        "mpchg_bad", bar_deck("LINK180", "1", kRho,
-                              fmt::format("MP,EX,2,{}\n/PREP7\n{}\n/SOLU\nANTYPE,STATIC\n"
-                                          "F,2,FX,1000\nSOLVE\n",
-                                          2 * kE, fields)));
+    const std::string err =
+        error_of("mpchg_bad", bar_deck("LINK180", "1", kRho,
+                                       fmt::format("MP,EX,2,{}\n/PREP7\n{}\n/SOLU\nANTYPE,STATIC\n"
+                                                   "F,2,FX,1000\nSOLVE\n",
+                                                   2 * kE, fields)));
     EXPECT_NE(err.find(message), std::string::npos) << fields << ": " << err;
   }
 }
