@@ -154,6 +154,41 @@ ResultsWriter& JobSession::writer_for(const Job& job, std::size_t step) {
   return *writer_;
 }
 
+namespace {
+
+/// Whether the model section of a results file written for `a` describes `b` too: the same
+/// nodes (numbers, coordinates) and elements (number, type, material, real set, section, nodes).
+bool same_model_section(const Model& a, const Model& b) {
+  if (a.nodes.size() != b.nodes.size() || a.elements.size() != b.elements.size()) return false;
+  for (auto i = a.nodes.begin(), j = b.nodes.begin(); i != a.nodes.end(); ++i, ++j)
+    if (i->first != j->first || i->second.x != j->second.x) return false;
+  for (auto i = a.elements.begin(), j = b.elements.begin(); i != a.elements.end(); ++i, ++j) {
+    const ElementRecord& x = i->second;
+    const ElementRecord& y = j->second;
+    if (i->first != j->first || x.type != y.type || x.mat != y.mat || x.real != y.real ||
+        x.secnum != y.secnum || x.nodes != y.nodes)
+      return false;
+  }
+  return true;
+}
+
+/// A new analysis after FINISH that the results file can hold beside the earlier ones: of
+/// another type than the analysis before it (a modal analysis, then a transient: nothing of the
+/// two is merged) on the same model section. One of the same type would mix its load steps and
+/// times with the earlier analysis's, and a changed model would not match the file's model.
+bool fits_the_same_file(const Job& job, std::size_t step) {
+  const Job::Step& s = job.steps[step];
+  for (std::size_t k = step; k-- > 0;) {
+    const Job::Step& p = job.steps[k];
+    if (!p.analysis) continue;
+    return p.analysis->options.type != s.analysis->options.type &&
+           same_model_section(*p.model_snapshot, *s.model_snapshot);
+  }
+  return true;
+}
+
+}  // namespace
+
 void JobSession::begin_new_analysis(const Job&, std::size_t step) {
   new_analysis_ = step;
 }
@@ -162,7 +197,7 @@ void JobSession::supersede_results_file(const Job& job, std::size_t step) {
   const Job::Step& s = job.steps[step];
   if (new_analysis_ != step || !s.analysis) return;
   new_analysis_.reset();
-  if (!writer_) return;
+  if (!writer_ || fits_the_same_file(job, step)) return;
   if (!owned_writer_)
     throw InputError(location_of(s),
                      "a new analysis after FINISH needs a results file of its own, and this run "
