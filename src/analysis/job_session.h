@@ -54,10 +54,10 @@ class JobSession final : public SolutionHost {
 
  private:
   ResultsWriter& writer_for(const Job& job, std::size_t step);
-  /// A new analysis after FINISH (begin_new_analysis) replaces the results file the
-  /// deck reads: the file of the earlier analyses is closed and kept as <jobname>.<n>.h5 (n =
-  /// 1, 2, ... per superseded file), and the next writer_for creates a new <jobname>.h5 with the
-  /// model as it is now.
+  /// A new analysis after FINISH (begin_new_analysis) of the type of the analysis before it, or
+  /// on a changed model section, replaces the results file the deck reads: the file of the
+  /// earlier analyses is closed and kept as <jobname>.<n>.h5 (n = 1, 2, ... per superseded
+  /// file), and the next writer_for creates a new <jobname>.h5 with the model as it is now.
   void supersede_results_file(const Job& job, std::size_t step);
   /// Runs what the open step still owes and ends its results analysis.
   void close_open();
