@@ -138,7 +138,8 @@ ResultsWriter& JobSession::writer_for(const Job& job, std::size_t step) {
     // No file of the job is touched before the job is ours: a second run of the same job in the
     // same directory would otherwise truncate the results file the first is writing.
     try {
-      job_lock_ = JobLock::acquire(path);
+      // A new analysis's file (supersede_results_file) is made under the job's lock already held.
+      if (!job_lock_) job_lock_ = JobLock::acquire(path);
     } catch (const JobLockedError& e) {
       throw InputError(location_of(s), e.what());
     } catch (const std::runtime_error& e) {
@@ -153,6 +154,82 @@ ResultsWriter& JobSession::writer_for(const Job& job, std::size_t step) {
   return *writer_;
 }
 
+namespace {
+
+/// Whether the model section of a results file written for `a` describes `b` too: the same
+/// nodes (numbers, coordinates) and elements (number, type, material, real set, section, nodes).
+bool same_model_section(const Model& a, const Model& b) {
+  if (a.nodes.size() != b.nodes.size() || a.elements.size() != b.elements.size()) return false;
+  for (auto i = a.nodes.begin(), j = b.nodes.begin(); i != a.nodes.end(); ++i, ++j)
+    if (i->first != j->first || i->second.x != j->second.x) return false;
+  for (auto i = a.elements.begin(), j = b.elements.begin(); i != a.elements.end(); ++i, ++j) {
+    const ElementRecord& x = i->second;
+    const ElementRecord& y = j->second;
+    if (i->first != j->first || x.type != y.type || x.mat != y.mat || x.real != y.real ||
+        x.secnum != y.secnum || x.nodes != y.nodes)
+      return false;
+  }
+  return true;
+}
+
+/// A new analysis after FINISH that the results file can hold beside the earlier ones: of
+/// another type than the analysis before it (a modal analysis, then a transient: nothing of the
+/// two is merged) on the same model section. One of the same type would mix its load steps and
+/// times with the earlier analysis's, and a changed model would not match the file's model.
+bool fits_the_same_file(const Job& job, std::size_t step) {
+  const Job::Step& s = job.steps[step];
+  for (std::size_t k = step; k-- > 0;) {
+    const Job::Step& p = job.steps[k];
+    if (!p.analysis) continue;
+    return p.analysis->options.type != s.analysis->options.type &&
+           same_model_section(*p.model_snapshot, *s.model_snapshot);
+  }
+  return true;
+}
+
+}  // namespace
+
+void JobSession::begin_new_analysis(const Job&, std::size_t step) {
+  new_analysis_ = step;
+}
+
+void JobSession::supersede_results_file(const Job& job, std::size_t step) {
+  const Job::Step& s = job.steps[step];
+  if (new_analysis_ != step || !s.analysis) return;
+  new_analysis_.reset();
+  if (!writer_ || fits_the_same_file(job, step)) return;
+  if (!owned_writer_)
+    throw InputError(location_of(s),
+                     "a new analysis after FINISH needs a results file of its own, and this run "
+                     "writes into a results file it was given (solve the deck with `impactfe "
+                     "run`)");
+  const std::string path = owned_writer_->path();
+  owned_writer_.reset();  // the earlier analyses are complete and closed
+  writer_ = nullptr;
+  if (!job.model.jobname.empty() && job.model.jobname + ".h5" != path) {
+    // /FILNAME named another job since: the new analysis writes that job's file, this one stays.
+    closed_files_.push_back(path);
+    job_lock_.reset();
+    return;
+  }
+  const std::string base = path.size() > 3 && path.compare(path.size() - 3, 3, ".h5") == 0
+                               ? path.substr(0, path.size() - 3)
+                               : path;
+  const std::string kept = fmt::format("{}.{}.h5", base, ++superseded_files_);
+  std::error_code ec;
+  std::filesystem::rename(path, kept, ec);
+  if (ec)
+    throw SolutionError(location_of(s),
+                        fmt::format("a new analysis begins, and the results of the earlier one "
+                                    "could not be kept: renaming {} to {} failed: {}",
+                                    path, kept, ec.message()));
+  closed_files_.push_back(kept);
+  Log::info(
+      "{}:{}: SOLVE: a new analysis begins (FINISH ended the earlier one; ANTYPE,,REST would "
+      "continue it): its results go to a new {}, the earlier analyses' results are kept in {}",
+      s.analysis->where.file, s.analysis->where.line, path, kept);
+}
+
 void JobSession::solve(const Job& job, std::size_t step) {
   IMPACTFE_CHECK(step < job.steps.size(), "solution request out of range");
   const Job::Step& s = job.steps[step];
@@ -161,6 +238,7 @@ void JobSession::solve(const Job& job, std::size_t step) {
   where_ = location_of(s);
   try {
     if (!open_ && needs_generated_superelements(job, s)) share_generated_superelements();
+    if (!open_) supersede_results_file(job, step);
     if (!open_) {
       // Refused before anything large is built when the model cannot fit (the symbolic
       // analysis checks the factor exactly later).
@@ -395,6 +473,8 @@ void JobSession::clear(const Job&) {
     writer_ = nullptr;
   }
   job_lock_.reset();
+  superseded_files_ = 0;
+  new_analysis_.reset();
   superelement_expansion_job_ = false;
   reduced_state_.reset();  // an expansion pass cannot refer to a solution of the job before
   models_.clear();

@@ -34,6 +34,7 @@ class JobSession final : public SolutionHost {
   ~JobSession() override;
 
   void solve(const Job& job, std::size_t step) override;
+  void begin_new_analysis(const Job& job, std::size_t step) override;
   std::string results_for_reading(const Job& job) override;
   void finish(const Job& job) override;
   /// The end of the run: the open analysis closed, and under MPI the superelement files that
@@ -47,11 +48,17 @@ class JobSession final : public SolutionHost {
   /// The results file of the current job (after a /CLEAR with no solution since: the previous
   /// job's; "" before the first solution).
   std::string results_path() const;
-  /// Every results file written, in order (several when /CLEAR started new jobs).
+  /// Every results file written, in order (several when /CLEAR started new jobs or a new
+  /// analysis after FINISH superseded the earlier ones).
   std::vector<std::string> results_files() const;
 
  private:
   ResultsWriter& writer_for(const Job& job, std::size_t step);
+  /// A new analysis after FINISH (begin_new_analysis) of the type of the analysis before it, or
+  /// on a changed model section, replaces the results file the deck reads: the file of the
+  /// earlier analyses is closed and kept as <jobname>.<n>.h5 (n = 1, 2, ... per superseded
+  /// file), and the next writer_for creates a new <jobname>.h5 with the model as it is now.
+  void supersede_results_file(const Job& job, std::size_t step);
   /// Runs what the open step still owes and ends its results analysis.
   void close_open();
   void run_whole(const Job::Step& step, AnalysisStatistics& stats);
@@ -71,7 +78,10 @@ class JobSession final : public SolutionHost {
   bool superelement_expansion_job_ = false;
   bool explicit_ = false;                  // the open analysis is an explicit dynamics run
   std::size_t job_first_analysis_ = 0;     // index in stats_.analyses of this job's first analysis
-  std::vector<std::string> closed_files_;  // results files of the jobs ended by /CLEAR
+  std::vector<std::string> closed_files_;  // results files of the jobs ended by /CLEAR and
+                                           // the kept files of superseded analyses
+  int superseded_files_ = 0;               // <jobname>.<n>.h5 kept so far in this job
+  std::optional<std::size_t> new_analysis_;  // the step begin_new_analysis announced
 
   // The open step: the model snapshot it shares with the job's step (held here: the job's step
   // list may reallocate, and the deck reader may drop it), the structure and, for static / full

@@ -9,6 +9,7 @@
 #include "core/dof.h"
 #include "core/log.h"
 #include "deck/deck_context.h"
+#include "deck/modeling_helpers.h"
 #include "elements/element_registry.h"
 #include "elements/section_types.h"
 
@@ -286,6 +287,22 @@ void cmd_mat(DeckReader& r, const Command& c) {
   r.modeling.current_mat = r.integer(c, 1, 1);
 }
 
+/// MPCHG,MAT,ELEM: gives element ELEM (a number, or ALL: the selected elements) material MAT.
+/// The material is checked when the elements are solved. In /SOLU between the load steps of one
+/// analysis the change is refused by that analysis's next SOLVE (an analysis keeps the model of
+/// its first SOLVE); between analyses (FINISH, /PREP7, MPCHG, /SOLU) it acts on the next one.
+void cmd_mpchg(DeckReader& r, const Command& c) {
+  const auto mat = r.opt_int(c, 1);
+  if (!mat) r.fail(c, "MAT (the material number) missing");
+  if (*mat <= 0) r.fail(c, fmt::format("material number {} must be positive", *mat));
+  if (c.blank(2)) r.fail(c, "ELEM missing (an element number, or ALL for the selected elements)");
+  const std::vector<int> ids =
+      entity_list(r, c, 2, 0, 0, r.model.elements, r.model.selection.elements, "element");
+  for (int id : ids) r.model.elements.at(id).mat = *mat;
+  Log::info("{}:{}: MPCHG: {} element{} now of material {}", c.where.file, c.where.line, ids.size(),
+            ids.size() == 1 ? "" : "s", *mat);
+}
+
 // ---- masters and gaps ------------------------------------------------------------------------
 
 void cmd_m(DeckReader& r, const Command& c) {
@@ -439,6 +456,7 @@ void register_prep7_commands(std::vector<CommandSpec>& t) {
   t.push_back({"TYPE", cmd_type, kPrep7});
   t.push_back({"REAL", cmd_real, kPrep7});
   t.push_back({"MAT", cmd_mat, kPrep7});
+  t.push_back({"MPCHG", cmd_mpchg, kPrep7 | kSolu});
   t.push_back({"M", cmd_m, kPrep7 | kSolu});
   t.push_back({"TOTAL", cmd_total, kPrep7 | kSolu});
   t.push_back({"GP", cmd_gp, kPrep7 | kSolu});

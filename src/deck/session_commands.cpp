@@ -31,6 +31,12 @@ void cmd_finish(DeckReader& r, const Command& c) {
     r.warn(c, "/STRESS block closed by FINISH without END; expansion requests kept");
     close_stress_block(r, r.solution.stress_where);
   }
+  // Leaving /SOLU ends the analysis (MAPDL): the next SOLVE begins a new one unless ANTYPE,,REST
+  // continues it. A 4.2 deck's analysis is the one its AFWRITE froze (no SOLVE).
+  if (r.processor == kSolu && r.solution.open_analysis) {
+    r.solution.open_analysis.reset();
+    r.solution.finished_analysis = true;
+  }
   r.processor = kBegin;
 }
 

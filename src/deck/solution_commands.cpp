@@ -497,10 +497,16 @@ AnalysisRequest& open_analysis(DeckReader& r, const Command& c) {
     a.options = r.model.options;
     r.model.options.restart.reset();  // ANTYPE,,RESTART is taken by this analysis only
     a.where = c.where;
+    // After FINISH, a SOLVE without ANTYPE,,REST starts the analysis again (a restart continues
+    // the earlier one instead and adds to its results file).
+    const bool new_analysis = r.solution.finished_analysis && !a.options.restart;
+    r.solution.finished_analysis = false;
     step.analysis = std::move(a);
     step.model_snapshot = std::make_shared<Model>(solution_model(r, c));
     r.job.steps.push_back(std::move(step));
     r.solution.open_analysis = r.job.steps.size() - 1;
+    if (new_analysis && r.options.host != nullptr)
+      r.options.host->begin_new_analysis(r.job, *r.solution.open_analysis);
   }
   return *r.job.steps[*r.solution.open_analysis].analysis;
 }

@@ -18,6 +18,11 @@ class SolutionHost {
   /// before `step` are complete. Throws the solver's errors (InputError, ModelError,
   /// SolutionError, ...), which end the deck.
   virtual void solve(const Job& job, std::size_t step) = 0;
+  /// job.steps[step], just created and not solved yet, is a new analysis begun after FINISH
+  /// ended an earlier one (MAPDL: leaving /SOLU ends the analysis; without ANTYPE,,REST the next
+  /// SOLVE starts again at load step 1 on the model as it is then). Its results replace those
+  /// the deck reads (the job session keeps the earlier file under another name).
+  virtual void begin_new_analysis(const Job& job, std::size_t step) = 0;
   /// Results are about to be read (*GET of results, POST1, POST26): finish what is pending (an
   /// analysis that runs only as a whole, such as a reduced transient) and return the results
   /// file ("" when nothing was solved and no results file was given).

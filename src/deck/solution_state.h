@@ -26,6 +26,10 @@ struct SolutionState {
 
   // Modern analysis definition.
   std::optional<std::size_t> open_analysis;  // index in job.steps
+  /// FINISH left /SOLU with an analysis open: that analysis is over, and the next SOLVE that
+  /// is not a restart (ANTYPE,,REST) or an expansion pass begins a new analysis, which
+  /// supersedes the earlier ones in the results file (SolutionHost::begin_new_analysis).
+  bool finished_analysis = false;
   std::map<int, LoadStep> lswrite_steps;
   bool expass = false;
   ExpansionPassRequest expansion;

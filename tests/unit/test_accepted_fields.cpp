@@ -1,6 +1,7 @@
 // Fields that were accepted and ignored (silent wrong answers) are carried out or refused:
 // LINK180's ADDMAS and TENSKEY (read as a LINK8 initial strain before), LINK8's initial strain in
-// a linear static and a transient, MP / RMODIF between load steps, SOLID185 KEYOPT(6) = 1.
+// a linear static and a transient, MP / RMODIF / MPCHG between load steps (a new analysis after
+// FINISH takes them), SOLID185 KEYOPT(6) = 1.
 // Closed forms: a bar of EA/L with a tip load; a one-element fixed-free bar with consistent mass,
 // ω² = 3EA / ((ρA + m) L²); a mass on a pre-strained bar oscillating about u = −ε₀L.
 #include <fmt/format.h>
@@ -166,6 +167,83 @@ TEST(AcceptedFields, ModelChangesBetweenLoadStepsAreRefused) {
                                                   "MP,EX,1,60E6\nANTYPE,STATIC\nF,2,FX,1000\n"
                                                   "SOLVE\n"));
   EXPECT_NEAR(last(run.reader->nodal_series(2, "UX")), 1000.0 * kL / (2 * kE * kA), 1e-15);
+}
+
+/// The bar of bar_deck with a material 2 of twice the modulus; `rest`: the deck after the first
+/// analysis's FINISH.
+std::string two_analyses(const std::string& rest) {
+  return bar_deck("LINK180", "1", kRho,
+                  fmt::format("ANTYPE,STATIC\nF,2,FX,1000\nTIME,1\nSOLVE\nF,2,FX,2000\nTIME,2\n"
+                              "SOLVE\nFINISH\n/PREP7\nMP,EX,2,{}\nMP,DENS,2,{}\n{}",
+                              2 * kE, kRho, rest));
+}
+
+TEST(AcceptedFields, FinishEndsTheAnalysisAndTheNextSolveBeginsANewOne) {
+  // MAPDL: leaving /SOLU with FINISH ends the analysis; the next SOLVE (no ANTYPE,,REST) begins
+  // a new one on the model as it is then (MPCHG gives the bar twice the modulus), at load step 1
+  // and a TIME below the earlier analysis's last. Its results replace <jobname>.h5; the earlier
+  // analysis is kept in <jobname>.1.h5.
+  auto run = run_text("new_analysis_after_finish",
+                      two_analyses("MPCHG,2,ALL\nFINISH\n/SOLU\nF,2,FX,1000\nTIME,0.5\nSOLVE\n"));
+  const auto ux = run.reader->nodal_series(2, "UX");
+  ASSERT_EQ(ux.size(), 1u);
+  EXPECT_EQ(ux[0].first, 0.5);
+  EXPECT_NEAR(ux[0].second, 1000.0 * kL / (2 * kE * kA), 1e-15);
+  EXPECT_EQ(run.reader->load_steps_of(1), (std::vector<std::pair<int, int>>{{1, 1}}));
+  EXPECT_EQ(run.reader->elements().front().mat, 2);
+  const ResultsReader earlier((run.directory / "deck.1.h5").string());
+  const auto ux1 = earlier.nodal_series(2, "UX");
+  ASSERT_EQ(ux1.size(), 2u);
+  EXPECT_NEAR(ux1[1].second, 2000.0 * kL / (kE * kA), 1e-15);
+  EXPECT_EQ(earlier.elements().front().mat, 1);
+  // POST1 reads the new analysis: its load step 2 does not exist.
+  const std::string err = error_of(
+      "new_analysis_post1",
+      two_analyses("MPCHG,2,1\nFINISH\n/SOLU\nF,2,FX,1000\nSOLVE\nFINISH\n/POST1\nSET,2\n"));
+  EXPECT_NE(err.find("SET: load step 2 is not on the results file"), std::string::npos) << err;
+}
+
+TEST(AcceptedFields, RestartAfterFinishContinuesTheAnalysis) {
+  // ANTYPE,,REST continues the analysis FINISH left: TIME must go on, results add to the file.
+  auto run = run_text("restart_after_finish",
+                      bar_deck("LINK180", "1", kRho,
+                               "ANTYPE,STATIC\nRESCONTROL,DEFINE,ALL,LAST\nF,2,FX,1000\nTIME,1\n"
+                               "SOLVE\nFINISH\n/SOLU\n"
+                               "ANTYPE,,REST\nF,2,FX,2000\nTIME,2\nSOLVE\n"));
+  const auto ux = run.reader->nodal_series(2, "UX");
+  ASSERT_EQ(ux.size(), 2u);
+  EXPECT_NEAR(ux[1].second, 2000.0 * kL / (kE * kA), 1e-15);
+  EXPECT_FALSE(fs::exists(run.directory / "deck.1.h5"));
+}
+
+TEST(AcceptedFields, MpchgWithinOneAnalysisIsRefused) {
+  // /PREP7 without FINISH (or MPCHG in /SOLU) between load steps: the analysis goes on, and it
+  // keeps the model of its first SOLVE.
+  for (const char* change : {"/PREP7\nMPCHG,2,ALL\n/SOLU", "MPCHG,2,1"}) {
+    const std::string err =
+        error_of("mpchg_between_steps",
+                 bar_deck("LINK180", "1", kRho,
+                          fmt::format("MP,EX,2,{}\nANTYPE,STATIC\nF,2,FX,1000\nSOLVE\n{}\nSOLVE\n",
+                                      2 * kE, change)));
+    EXPECT_NE(err.find("element 1 changed (type, real constants, material, section or nodes) "
+                       "since this analysis began at"),
+              std::string::npos)
+        << change << ": " << err;
+  }
+  for (const auto& [fields, message] : std::vector<std::pair<std::string, std::string>>{
+           {"MPCHG,2", "MPCHG: ELEM missing"},
+           {"MPCHG,,ALL", "MPCHG: MAT (the material number) missing"},
+           {"MPCHG,-1,ALL", "MPCHG: material number -1 must be positive"},
+           {"MPCHG,2,7", "MPCHG: element 7 is not defined"},
+           {"MPCHG,2,P", "MPCHG: graphical picking (P)"},
+           {"MPCHG,3,ALL", "element 1 (LINK180): material 3 is not defined"}}) {
+    const std::string err =
+        error_of("mpchg_bad", bar_deck("LINK180", "1", kRho,
+                                       fmt::format("MP,EX,2,{}\n/PREP7\n{}\n/SOLU\nANTYPE,STATIC\n"
+                                                   "F,2,FX,1000\nSOLVE\n",
+                                                   2 * kE, fields)));
+    EXPECT_NE(err.find(message), std::string::npos) << fields << ": " << err;
+  }
 }
 
 TEST(AcceptedFields, Solid185MixedFormulationIsRefused) {
