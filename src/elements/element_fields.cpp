@@ -119,7 +119,7 @@ std::vector<ElementFields> make_table() {
                {{1, range(0, 3),
                  "0 full 2x2 (B-bar in plane strain and axisymmetry), 1 uniform reduced "
                  "(one point, hourglass control), 3 simplified enhanced strain (incompatible "
-                 "modes), 2 enhanced strain in plane stress only"},
+                 "modes), 2 enhanced strain in plane stress only; under NLGEOM 0 only"},
                 {3, range(0, 3),
                  "0 plane stress, 1 axisymmetric, 2 plane strain, 3 plane stress with "
                  "thickness; 5 and 6 are not implemented"},

@@ -189,6 +189,9 @@ PlaneSolid::PlaneSolid(int id, const std::vector<int>& nodes, const std::vector<
                  "plane solid built with a wrong node count");
   IMPACTFE_CHECK(options.technology == PlaneTechnology::Standard || shape == PlaneShape::Quad4,
                  "B-bar and incompatible modes are formulations of the 4-node quadrilateral");
+  IMPACTFE_CHECK(!options.large_deflection || options.technology == PlaneTechnology::Standard ||
+                     options.technology == PlaneTechnology::BBar,
+                 "large deflection is formulated for full integration and B-bar only");
   for (int a = 0; a < nn; ++a)
     for (int b = a + 1; b < nn; ++b)
       if (nodes[a] == nodes[b])
@@ -208,6 +211,8 @@ PlaneSolid::PlaneSolid(int id, const std::vector<int>& nodes, const std::vector<
   for (int node : nodes)
     for (Dof dof : {Dof::UX, Dof::UY}) dofs_.push_back(DofKey{node, dof});
   d_ = plane_elasticity(material.young, material.poisson, options.behaviour);
+  young_ = material.young;
+  poisson_ = material.poisson;
   density_ = material.density;
   rule_ = stiffness_rule(shape, options.behaviour, options.technology);
 
@@ -246,6 +251,10 @@ PlaneSolid::PlaneSolid(int id, const std::vector<int>& nodes, const std::vector<
       point_dv_.push_back(options.technology == PlaneTechnology::Reduced
                               ? volume_
                               : measure(point_at(q.xi.head<2>()), q.weight));
+  }
+  if (options.large_deflection) {
+    finite_.resize(rule_.size());
+    committed_u_ = Eigen::VectorXd::Zero(2 * nn);
   }
 }
 
@@ -365,13 +374,22 @@ void PlaneSolid::form_stiffness() {
 
 void PlaneSolid::tangent(const ElementContext& ctx, const Eigen::VectorXd& u, Eigen::MatrixXd& K,
                          Eigen::VectorXd& f_int) const {
-  if (ctx.large_deflection || ctx.stress_stiffening)
+  if (ctx.large_deflection != options_.large_deflection)
     throw ElementSolutionError(
-        id(), fmt::format("element {}: PLANE182/PLANE183 are small-strain here; {} is not "
-                          "implemented for the 2-D solids",
-                          id(),
-                          ctx.large_deflection ? "large deflection (NLGEOM,ON)"
-                                               : "stress stiffening (SSTIF / PSTRES)"));
+        id(), fmt::format("element {}: PLANE182/PLANE183 built {} cannot be solved {}: large "
+                          "deflection (NLGEOM) may not change within an analysis of the 2-D "
+                          "solids",
+                          id(), options_.large_deflection ? "with NLGEOM,ON" : "small-strain",
+                          ctx.large_deflection ? "with NLGEOM,ON" : "small-strain"));
+  if (ctx.large_deflection) {
+    finite_tangent(u, K, f_int, true);
+    return;
+  }
+  if (ctx.stress_stiffening)
+    throw ElementSolutionError(
+        id(), fmt::format("element {}: stress stiffening (SSTIF / PSTRES) without large "
+                          "deflection is not implemented for the 2-D solids",
+                          id()));
   if (plasticity_) {
     tangent_plastic(u, K, f_int, nullptr, nullptr);
     return;
@@ -408,10 +426,8 @@ void PlaneSolid::pressure_load(const ElementContext& ctx, int face, const std::a
   if (face < 1 || face > static_cast<int>(faces_.size()))
     throw ModelError(
         fmt::format("element {}: face {} does not exist (1..{})", id(), face, faces_.size()));
-  if (ctx.large_deflection)
-    throw ElementSolutionError(id(), fmt::format("element {}: pressure on a 2-D solid under "
-                                                 "large deflection is not implemented",
-                                                 id()));
+  // Under large deflection the pressure follows the edge deformed by u (no load stiffness).
+  const bool follow = ctx.large_deflection && u.size() == n_dofs();
   f.setZero(n_dofs());
   const std::vector<int>& edge = faces_[static_cast<std::size_t>(face - 1)];
   if (edge.empty()) return;  // a face collapsed to a node carries no load
@@ -431,9 +447,10 @@ void PlaneSolid::pressure_load(const ElementContext& ctx, int face, const std::a
     }
     Eigen::Vector2d xs = Eigen::Vector2d::Zero(), dxs = Eigen::Vector2d::Zero();
     for (std::size_t a = 0; a < edge.size(); ++a) {
-      const Vec3& xa = x_[static_cast<std::size_t>(edge[a])];
-      xs += n(static_cast<int>(a)) * xa.head<2>();
-      dxs += dn(static_cast<int>(a)) * xa.head<2>();
+      Eigen::Vector2d xa = x_[static_cast<std::size_t>(edge[a])].head<2>();
+      if (follow) xa += u.segment<2>(2 * edge[a]);
+      xs += n(static_cast<int>(a)) * xa;
+      dxs += dn(static_cast<int>(a)) * xa;
     }
     // The faces run clockwise around a counter-clockwise element (J-I, K-J, L-K, I-L): the
     // outward normal of the tangent (tx, ty) is (−ty, tx) there.
@@ -465,9 +482,9 @@ Eigen::Vector4d PlaneSolid::centroid_stress(const Eigen::VectorXd& u) const {
 const std::vector<std::string>& plane_solid_result_names() {
   // A function-local static: the registrations read it during static initialisation.
   static const std::vector<std::string> names = {
-      "SX",   "SY",    "SZ",    "SXY",   "S1",     "S2",      "S3",   "SINT",
-      "SEQV", "EPPLX", "EPPLY", "EPPLZ", "EPPLXY", "EPEQ",    "SEPL", "SRAT",
-      "PLWK", "EPCRX", "EPCRY", "EPCRZ", "EPCRXY", "EPCREQV", "CREQ"};
+      "SX",    "SY",    "SZ",     "SXY",     "S1",   "S2",    "S3",    "SINT",  "SEQV",
+      "EPPLX", "EPPLY", "EPPLZ",  "EPPLXY",  "EPEQ", "SEPL",  "SRAT",  "PLWK",  "EPCRX",
+      "EPCRY", "EPCRZ", "EPCRXY", "EPCREQV", "CREQ", "EPELX", "EPELY", "EPELZ", "EPELXY"};
   return names;
 }
 
@@ -492,11 +509,19 @@ ElementResultValues plane_stress_items(const Eigen::Vector4d& s) {
 
 void PlaneSolid::results(const ElementContext& ctx, const Eigen::VectorXd& u,
                          const Eigen::VectorXd& v, ElementResultValues& out) const {
-  if (plasticity_ && !ctx.large_deflection && !ctx.stress_stiffening) {
-    plastic_results(u, out);
+  if (options_.large_deflection && ctx.large_deflection) {
+    finite_results(u, out);
     return;
   }
-  out = plane_stress_items(centroid_stress(u));
+  if (plasticity_ && !ctx.stress_stiffening) {
+    plastic_results(u, out);
+  } else {
+    out = plane_stress_items(centroid_stress(u));
+  }
+  // EPEL: the elastic strain of the reported stress (isotropic law).
+  const Eigen::Vector4d s(out[0], out[1], out[2], out[3]);
+  const Eigen::Vector4d epel = elastic_strain(s);
+  std::copy(epel.data(), epel.data() + 4, out.begin() + 23);
 }
 
 bool PlaneSolid::nodal_results(const ElementContext& ctx, const Eigen::VectorXd& u,
@@ -506,7 +531,7 @@ bool PlaneSolid::nodal_results(const ElementContext& ctx, const Eigen::VectorXd&
   // triangles, constant at the one point of the plane triangle) evaluated at the nodes: the
   // extrapolation of integration-point stresses to the nodes (Cook et al. §6.13). Midside
   // nodes get the polynomial's value there, the mean of their corners' values.
-  if (plasticity_) return false;
+  if (plasticity_ || options_.large_deflection) return false;
   const int np = static_cast<int>(rule_.size());
   std::vector<Eigen::Vector4d> sigma;
   Eigen::Vector4d alpha = Eigen::Vector4d::Zero();

@@ -11,8 +11,12 @@
 /// committed states per point (plane_solid_plastic.cpp): the 3-D return of the strain
 /// (εxx, εyy, εzz, γxy) with εzz = u/r in axisymmetry and 0 in plane strain, the plane-stress
 /// return (σzz = 0) otherwise; the incompatible modes, when active, are solved per element for
-/// each u and condensed. Large deflection and stress stiffening are refused
-/// (docs/elements/plane182.md).
+/// each u and condensed. Under large deflection (NLGEOM,ON; PlaneSolidOptions::large_deflection)
+/// the element is finite-strain, updated-Lagrangian and hypoelastic as MAPDL's 18x elements
+/// (plane_solid_finite.cpp): the strain increment from the midpoint configuration, the stress
+/// rotated by the incremental rotation of Hughes & Winget (1980), Cauchy stress and the
+/// accumulated logarithmic strain as results. Stress stiffening alone (SSTIF without NLGEOM) is
+/// refused (docs/elements/plane182.md).
 #include <Eigen/Core>
 
 #include <optional>
@@ -45,10 +49,14 @@ struct PlaneSolidOptions {
   PlaneBehaviour behaviour = PlaneBehaviour::PlaneStress;
   PlaneTechnology technology = PlaneTechnology::Standard;
   double thickness = 1.0;  // plane stress and plane strain; unused in axisymmetry
+  /// NLGEOM,ON when the element is built: finite-strain kinematics with a committed
+  /// configuration and stress per point (Standard or BBar technology only).
+  bool large_deflection = false;
 };
 
 /// SX SY SZ SXY S1 S2 S3 SINT SEQV, then EPPLX EPPLY EPPLZ EPPLXY EPEQ SEPL SRAT PLWK, then
-/// EPCRX EPCRY EPCRZ EPCRXY EPCREQV CREQ (creep strain, equivalent, accumulated equivalent).
+/// EPCRX EPCRY EPCRZ EPCRXY EPCREQV CREQ (creep strain, equivalent, accumulated equivalent),
+/// then EPELX EPELY EPELZ EPELXY (elastic strain, engineering shear; logarithmic under NLGEOM).
 const std::vector<std::string>& plane_solid_result_names();
 
 /// The result items (plane_solid_result_names()) of a stress (xx, yy, zz, xy), the inelastic
@@ -75,8 +83,12 @@ class PlaneSolid final : public Element {
 
   const char* family() const override { return "PlaneSolid"; }
   const std::vector<DofKey>& dofs() const override { return dofs_; }
-  bool is_nonlinear(const ElementContext& ctx) const override { return plasticity_.has_value(); }
-  bool has_history() const override { return plasticity_.has_value(); }
+  bool is_nonlinear(const ElementContext& ctx) const override {
+    return plasticity_.has_value() || options_.large_deflection;
+  }
+  /// Plastic elements, and every element under large deflection (its committed configuration
+  /// and stress are the start of the next increment).
+  bool has_history() const override { return plasticity_.has_value() || options_.large_deflection; }
   double plastic_work() const override;
   void commit_history(const ElementContext& ctx, const Eigen::VectorXd& u) override;
   std::vector<double> history_state() const override;
@@ -99,7 +111,16 @@ class PlaneSolid final : public Element {
   void pressure_load(const ElementContext& ctx, int face, const std::array<double, 4>& p,
                      const Eigen::VectorXd& u, Eigen::VectorXd& f) const override;
   const std::vector<std::string>& result_names() const override;
-  /// SX SY SZ SXY S1 S2 S3 SINT SEQV at the centroid (natural centre), global axes; SZ is the
+  /// Finite strain (large deflection, plane_solid_finite.cpp) at total displacement u from the
+  /// committed state: f_int = ∫ Bᵀσ dv over the current configuration and its exact derivative
+  /// K (material part of the rate form with the incremental rotation, initial-stress part and
+  /// the change of volume). `symmetric`: K replaced by ½(K + Kᵀ), as the symmetric solvers
+  /// need (tangent()).
+  void finite_tangent(const Eigen::VectorXd& u, Eigen::MatrixXd& K, Eigen::VectorXd& f_int,
+                      bool symmetric) const;
+  /// Cauchy stress (xx, yy, zz, xy) of stiffness point p at u (large deflection only).
+  Eigen::Vector4d finite_point_stress(const Eigen::VectorXd& u, int p) const;
+  /// SX SY S1 S2 S3 SINT SEQV at the centroid (natural centre), global axes; SZ is the
   /// hoop stress in axisymmetry, ν(SX + SY) in plane strain, 0 in plane stress. With
   /// plasticity the volume averages of the points' stresses, plastic strains EPPLX..EPPLXY
   /// (engineering shear), EPEQ, PLWK, SEPL (flow stress at EPEQ) and SRAT (largest point ratio
@@ -164,6 +185,21 @@ class PlaneSolid final : public Element {
                        PointStates* updated, std::vector<Eigen::Vector4d>* stresses) const;
   void plastic_results(const Eigen::VectorXd& u, ElementResultValues& out) const;
 
+  // ---- finite strain (plane_solid_finite.cpp) ----
+  /// Committed state of one stiffness point under large deflection: the accumulated
+  /// (logarithmic) strain (xx, yy, zz, xy; engineering shear) in global axes, and the elastic
+  /// Cauchy stress of an element without plasticity.
+  struct FiniteState {
+    Eigen::Vector4d strain = Eigen::Vector4d::Zero();
+  };
+  struct FiniteUpdate;  // the states at u, for commit and results
+  void finite_sum(const Eigen::VectorXd& u, Eigen::MatrixXd* K, Eigen::VectorXd& f,
+                  FiniteUpdate* update) const;
+  void finite_commit(const Eigen::VectorXd& u);
+  void finite_results(const Eigen::VectorXd& u, ElementResultValues& out) const;
+  /// The elastic strain (xx, yy, zz, xy; engineering shear) of a stress (isotropic law).
+  Eigen::Vector4d elastic_strain(const Eigen::Vector4d& stress) const;
+
   std::vector<int> nodes_;
   std::vector<Vec3> x_;
   std::vector<DofKey> dofs_;
@@ -185,6 +221,10 @@ class PlaneSolid final : public Element {
   std::optional<J2Plasticity> plasticity_;
   PointStates committed_;         // per stiffness point (plastic elements)
   std::vector<double> point_dv_;  // dV of the stiffness points (plastic elements)
+  double young_ = 0.0, poisson_ = 0.0;
+  // Large deflection: committed displacement (element DOF order) and point states.
+  Eigen::VectorXd committed_u_;
+  std::vector<FiniteState> finite_;
 };
 
 }  // namespace impactfe

@@ -111,7 +111,11 @@ void PlaneSolid::tangent_plastic(const Eigen::VectorXd& u, Eigen::MatrixXd& k, E
   f = fq.head(n) - kau.transpose() * kaa.solve(fq.tail<4>());
 }
 
-void PlaneSolid::commit_history(const ElementContext&, const Eigen::VectorXd& u) {
+void PlaneSolid::commit_history(const ElementContext& ctx, const Eigen::VectorXd& u) {
+  if (options_.large_deflection && ctx.large_deflection) {
+    finite_commit(u);
+    return;
+  }
   if (!plasticity_) return;
   Eigen::MatrixXd k;
   Eigen::VectorXd f;
@@ -123,13 +127,20 @@ void PlaneSolid::commit_history(const ElementContext&, const Eigen::VectorXd& u)
 std::vector<double> PlaneSolid::history_state() const {
   std::vector<double> out;
   for (const PlasticState& s : committed_) append_state(out, s);  // per stiffness point
+  // Large deflection: the accumulated strains, then the committed displacement.
+  for (const FiniteState& s : finite_) out.insert(out.end(), s.strain.data(), s.strain.data() + 4);
+  out.insert(out.end(), committed_u_.data(), committed_u_.data() + committed_u_.size());
   return out;
 }
 
 void PlaneSolid::restore_history_state(const std::vector<double>& state) {
   std::size_t pos = 0;
   for (PlasticState& s : committed_) read_state(state, pos, s);
-  IMPACTFE_CHECK(pos == state.size(), "PLANE182/183: saved state of the wrong length");
+  const std::size_t finite = 4 * finite_.size() + static_cast<std::size_t>(committed_u_.size());
+  IMPACTFE_CHECK(pos + finite == state.size(), "PLANE182/183: saved state of the wrong length");
+  for (FiniteState& s : finite_)
+    for (int i = 0; i < 4; ++i) s.strain(i) = state[pos++];
+  for (Eigen::Index i = 0; i < committed_u_.size(); ++i) committed_u_(i) = state[pos++];
 }
 
 double PlaneSolid::plastic_work() const {

@@ -72,20 +72,32 @@ PlaneSolidOptions behaviour_of(const Model& model, const ElementType& type,
   return o;
 }
 
-void refuse_large_deflection(const ElementBuildContext& ctx, const ElementRecord& record,
-                             const char* name) {
-  if (ctx.large_deflection)
-    throw InputError(record.where, fmt::format("element {} ({}): large deflection (NLGEOM,ON) is "
-                                               "not implemented for the 2-D solids",
+/// Large deflection (NLGEOM,ON): the finite-strain form of full integration and B-bar
+/// (plane_solid_finite.cpp). The enhanced strain and the reduced integration with hourglass
+/// control have no finite-strain form here, nor has the creep law: refused.
+void check_large_deflection(const ElementBuildContext& ctx, const ElementRecord& record,
+                            const char* name, PlaneTechnology technology,
+                            const std::optional<J2Plasticity>& plasticity) {
+  if (!ctx.large_deflection) return;
+  if (technology == PlaneTechnology::IncompatibleModes || technology == PlaneTechnology::Reduced)
+    throw InputError(
+        record.where,
+        fmt::format("element {} ({}): large deflection (NLGEOM,ON) is implemented "
+                    "for KEYOPT(1) = 0 (full integration, B-bar in plane strain and "
+                    "axisymmetry); KEYOPT(1) = {} is not",
+                    record.id, name, technology == PlaneTechnology::Reduced ? "1" : "2 or 3"));
+  if (plasticity && plasticity->has_creep())
+    throw InputError(record.where, fmt::format("element {} ({}): creep (TB,CREEP) under large "
+                                               "deflection (NLGEOM,ON) is not implemented",
                                                record.id, name));
 }
 
 std::unique_ptr<Element> make_plane182(const ElementBuildContext& ctx,
                                        const ElementRecord& record) {
   const Model& model = ctx.model;
-  refuse_large_deflection(ctx, record, "PLANE182");
   const ElementType& type = model.element_types.at(record.type);
   PlaneSolidOptions o = behaviour_of(model, type, record);
+  o.large_deflection = ctx.large_deflection;
   const int k1 = type.key(1);
   if (k1 == 2 && o.behaviour != PlaneBehaviour::PlaneStress)
     throw InputError(record.where,
@@ -95,15 +107,17 @@ std::unique_ptr<Element> make_plane182(const ElementBuildContext& ctx,
                                  record.id));
   const IsotropicElasticity material =
       read_isotropic_elasticity(model, record.mat, record.id, record.where);
+  std::optional<J2Plasticity> plasticity =
+      plasticity_of(model, record, material.young, material.poisson);
   const std::vector<int>& n = record.nodes;
   if (n.size() == 4 && n[2] == n[3]) {
+    check_large_deflection(ctx, record, "PLANE182", PlaneTechnology::Standard, plasticity);
     // The triangle K = L: the constant-strain triangle I J K (MAPDL integrates it at one point).
     o.shape = PlaneShape::Tri3;
     const std::vector<int> tri = {n[0], n[1], n[2]};
     return std::make_unique<PlaneSolid>(
         record.id, tri, coordinates(model, record, tri), material, o,
-        std::vector<std::vector<int>>{{1, 0}, {2, 1}, {}, {0, 2}}, record.where,
-        plasticity_of(model, record, material.young, material.poisson));
+        std::vector<std::vector<int>>{{1, 0}, {2, 1}, {}, {0, 2}}, record.where, plasticity);
   }
   o.shape = PlaneShape::Quad4;
   // KEYOPT(1) = 0: B-bar in plane strain and axisymmetry (in plane stress σzz = 0 leaves no
@@ -112,17 +126,17 @@ std::unique_ptr<Element> make_plane182(const ElementBuildContext& ctx,
   if (k1 == 0 && o.behaviour != PlaneBehaviour::PlaneStress) o.technology = PlaneTechnology::BBar;
   if (k1 == 1) o.technology = PlaneTechnology::Reduced;
   if (k1 == 2 || k1 == 3) o.technology = PlaneTechnology::IncompatibleModes;
-  return std::make_unique<PlaneSolid>(
-      record.id, n, coordinates(model, record, n), material, o, quad_faces(VtkCell::Quad),
-      record.where, plasticity_of(model, record, material.young, material.poisson));
+  check_large_deflection(ctx, record, "PLANE182", o.technology, plasticity);
+  return std::make_unique<PlaneSolid>(record.id, n, coordinates(model, record, n), material, o,
+                                      quad_faces(VtkCell::Quad), record.where, plasticity);
 }
 
 std::unique_ptr<Element> make_plane183(const ElementBuildContext& ctx,
                                        const ElementRecord& record) {
   const Model& model = ctx.model;
-  refuse_large_deflection(ctx, record, "PLANE183");
   const ElementType& type = model.element_types.at(record.type);
   PlaneSolidOptions o = behaviour_of(model, type, record);
+  o.large_deflection = ctx.large_deflection;
   const std::vector<int>& n = record.nodes;
   for (std::size_t k = 0; k < n.size(); ++k)
     if (n[k] == 0)
@@ -132,6 +146,9 @@ std::unique_ptr<Element> make_plane183(const ElementBuildContext& ctx,
                                    record.id, k + 1));
   const IsotropicElasticity material =
       read_isotropic_elasticity(model, record.mat, record.id, record.where);
+  std::optional<J2Plasticity> plasticity =
+      plasticity_of(model, record, material.young, material.poisson);
+  check_large_deflection(ctx, record, "PLANE183", PlaneTechnology::Standard, plasticity);
   const bool triangle_form = type.key(1) == 1;
   if (n[2] == n[3] && n[6] == n[2]) {
     // The triangle K = L = O: the 6-node triangle I J K with midsides M N P. Its I-K side is
@@ -140,9 +157,8 @@ std::unique_ptr<Element> make_plane183(const ElementBuildContext& ctx,
     const std::vector<int> tri = {n[0], n[1], n[2], n[4], n[5], n[7]};
     std::vector<std::vector<int>> faces = {{1, 0, 3}, {2, 1, 4}, {}, {0, 2, 5}};
     if (triangle_form) faces[2] = faces[3];
-    return std::make_unique<PlaneSolid>(
-        record.id, tri, coordinates(model, record, tri), material, o, faces, record.where,
-        plasticity_of(model, record, material.young, material.poisson));
+    return std::make_unique<PlaneSolid>(record.id, tri, coordinates(model, record, tri), material,
+                                        o, faces, record.where, plasticity);
   }
   if (triangle_form)
     throw InputError(record.where,
@@ -156,9 +172,8 @@ std::unique_ptr<Element> make_plane183(const ElementBuildContext& ctx,
                                  "triangle K = L = O",
                                  record.id));
   o.shape = PlaneShape::Quad8;
-  return std::make_unique<PlaneSolid>(
-      record.id, n, coordinates(model, record, n), material, o, quad_faces(VtkCell::QuadraticQuad),
-      record.where, plasticity_of(model, record, material.young, material.poisson));
+  return std::make_unique<PlaneSolid>(record.id, n, coordinates(model, record, n), material, o,
+                                      quad_faces(VtkCell::QuadraticQuad), record.where, plasticity);
 }
 
 ElementTypeDescriptor plane_solid_type(const char* name, int number, int n_nodes, int min_nodes,
@@ -182,7 +197,8 @@ ElementTypeDescriptor plane_solid_type(const char* name, int number, int n_nodes
                {"EPPL", "XY", "EPPLXY"},   {"NL", "EPEQ", "EPEQ"}, {"NL", "SEPL", "SEPL"},
                {"NL", "SRAT", "SRAT"},     {"NL", "PLWK", "PLWK"}, {"EPCR", "X", "EPCRX"},
                {"EPCR", "Y", "EPCRY"},     {"EPCR", "Z", "EPCRZ"}, {"EPCR", "XY", "EPCRXY"},
-               {"EPCR", "EQV", "EPCREQV"}, {"NL", "CREQ", "CREQ"}},
+               {"EPCR", "EQV", "EPCREQV"}, {"NL", "CREQ", "CREQ"}, {"EPEL", "X", "EPELX"},
+               {"EPEL", "Y", "EPELY"},     {"EPEL", "Z", "EPELZ"}, {"EPEL", "XY", "EPELXY"}},
           .plasticity = true,
           .faces = faces,
           .sf_faces = 4,
