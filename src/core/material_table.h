@@ -11,7 +11,7 @@
 namespace impactfe {
 
 struct MaterialTable {
-  std::string label;   // TB Lab: PLAS, BISO, BKIN, MISO, KINH, MKIN, ELASTIC, FRIC
+  std::string label;   // TB Lab: PLAS, BISO, BKIN, MISO, KINH, MKIN, ELASTIC, FRIC, DISCRETE
   std::string option;  // TBOPT: BISO, BKIN, MISO, KINH (PLAS); ISOT (ELASTIC); ISO (FRIC)
   int mat = 1;
   int n_temperatures = 1;  // NTEMP

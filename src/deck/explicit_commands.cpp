@@ -1,9 +1,9 @@
 // Explicit dynamics settings (the ED* commands of MAPDL's ANSYS LS-DYNA interface, Command
 // Reference release 18.2; docs/explicit_dynamics.md): EDCTS, EDHGLS, EDBVIS, EDRST, EDHTIME,
-// EDVEL, EDPART, EDMP, EDDAMP, EDHIST (loads by curve and contact: explicit_load_commands.cpp). They set
-// Model::explicit_dynamics; the explicit run (src/explicit) reads it.
-// The ED commands of features not implemented (restarts, ...) are
-// refused where they appear, so that no deck runs without them silently.
+// EDVEL, EDPART, EDMP, EDDAMP, EDHIST (loads by curve and contact: explicit_load_commands.cpp).
+// They set Model::explicit_dynamics; the explicit run (src/explicit) reads it. The ED commands of
+// features not implemented (restarts, ...) are refused where they appear, so that no deck runs
+// without them silently.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -221,9 +221,8 @@ void register_explicit_commands(std::vector<CommandSpec>& t) {
   t.push_back({"EDHIST", cmd_edhist, kPrepSolu});
   register_explicit_load_commands(t);
   constexpr const char* kNo = "not implemented in explicit dynamics (docs/explicit_dynamics.md)";
-  for (const char* name :
-       {"EDCNSTR", "EDBOUND", "EDWRITE", "EDCONTACT", "EDCSC", "EDSHELL", "EDSTART", "EDADAPT",
-        "EDOUT", "EDINT", "EDENERGY", "EDCRB", "EDNROT"})
+  for (const char* name : {"EDCNSTR", "EDBOUND", "EDWRITE", "EDCONTACT", "EDCSC", "EDSHELL",
+                           "EDSTART", "EDADAPT", "EDOUT", "EDINT", "EDENERGY", "EDCRB", "EDNROT"})
     t.push_back({name, [](DeckReader&, const Command&) {}, kPrepSolu, nullptr, kNo});
 }
 

@@ -69,13 +69,12 @@ void cmd_edcurve(DeckReader& r, const Command& c) {
   curves[*lcid] = std::move(curve);
 }
 
-const std::set<std::string> kLoadLabels = {"FX", "FY", "FZ",   "VX",   "VY",
+const std::set<std::string> kLoadLabels = {"FX", "FY",   "FZ",   "VX",  "VY",
                                            "VZ", "ACLX", "ACLY", "ACLZ"};
 const std::set<std::string> kRefusedLabels = {
-    "MX",   "MY",   "MZ",   "UX",   "UY",   "UZ",   "ROTX", "ROTY", "ROTZ", "OMGX",
-    "OMGY", "OMGZ", "AX",   "AY",   "AZ",   "TEMP", "PRESS",
-    "RBFX", "RBFY", "RBFZ", "RBMX", "RBMY", "RBMZ", "RBUX", "RBUY", "RBUZ", "RBRX",
-    "RBRY", "RBRZ", "RBVX", "RBVY", "RBVZ", "RBOX", "RBOY", "RBOZ"};
+    "MX",   "MY",   "MZ",   "UX",   "UY",    "UZ",   "ROTX", "ROTY", "ROTZ", "OMGX", "OMGY", "OMGZ",
+    "AX",   "AY",   "AZ",   "TEMP", "PRESS", "RBFX", "RBFY", "RBFZ", "RBMX", "RBMY", "RBMZ", "RBUX",
+    "RBUY", "RBUZ", "RBRX", "RBRY", "RBRZ",  "RBVX", "RBVY", "RBVZ", "RBOX", "RBOY", "RBOZ"};
 
 void list_loads(const std::vector<ExplicitCurveLoad>& loads, const std::string& lab,
                 const std::string& cname) {
@@ -105,8 +104,8 @@ void cmd_edload(DeckReader& r, const Command& c) {
   if (option != "ADD") r.fail(c, fmt::format("Option '{}': ADD, DELE or LIST", c.text(1)));
   if (kRefusedLabels.count(lab))
     r.fail(c, fmt::format("Lab {}: not implemented in explicit dynamics; EDLOAD carries out the "
-                          "nodal forces FX, FY, FZ, the prescribed velocities VX, VY, VZ and the base accelerations "
-                          "ACLX, ACLY, ACLZ",
+                          "nodal forces FX, FY, FZ, the prescribed velocities VX, VY, VZ and the "
+                          "base accelerations ACLX, ACLY, ACLZ",
                           lab));
   if (!kLoadLabels.count(lab)) r.fail(c, fmt::format("Lab '{}': not an EDLOAD label", c.text(2)));
   if (r.real(c, 3, 0.0) != 0.0)

@@ -334,8 +334,8 @@ double CentralDifference::damping_power(double half) const {
 bool CentralDifference::scale_masses() {
   const double target = std::abs(controls_.mass_scaling_step);
   if (!(target > 0.0)) return false;
-  const ExplicitNodalView view{x_.data(),  y_.data(),  z_.data(), vx_.data(), vy_.data(),
-                               vz_.data(), nullptr,    nullptr,   nullptr,    system_.mass.data()};
+  const ExplicitNodalView view{x_.data(),  y_.data(), z_.data(), vx_.data(), vy_.data(),
+                               vz_.data(), nullptr,   nullptr,   nullptr,    system_.mass.data()};
   bool any = false;
   for (auto& set : system_.sets)
     for (std::size_t k = 0; k < set->size(); ++k) {

@@ -40,9 +40,9 @@ double ExplicitCurveLoads::value(const ExplicitCurveLoad& l, double time) const 
   return l.scale * curve_value(l.times, l.values, time - l.birth);
 }
 
-ExplicitStepLimit ExplicitCurveLoads::add_forces(const ExplicitNodalView& state,
-                                                 const double* mass, double time, double dt,
-                                                 double* fx, double* fy, double* fz) {
+ExplicitStepLimit ExplicitCurveLoads::add_forces(const ExplicitNodalView& state, const double* mass,
+                                                 double time, double dt, double* fx, double* fy,
+                                                 double* fz) {
   double* f[3] = {fx, fy, fz};
   const double* v[3] = {state.vx, state.vy, state.vz};
   for (Entry& e : forces_) {

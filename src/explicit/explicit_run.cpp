@@ -62,8 +62,8 @@ void refuse_unsupported(const Model& model, const AnalysisRequest& request) {
   }
   const auto& damping = model.explicit_dynamics.mass_damping;
   if (damping && damping->curve > 0 && model.explicit_dynamics.curves.count(damping->curve) == 0)
-    throw InputError(damping->where, fmt::format("EDDAMP: curve {} no longer exists (EDCURVE)",
-                                                 damping->curve));
+    throw InputError(damping->where,
+                     fmt::format("EDDAMP: curve {} no longer exists (EDCURVE)", damping->curve));
 }
 
 /// A rigid body moves by its EDMP constraint codes and the forces of its nodes: D on its nodes
@@ -133,7 +133,8 @@ void refuse_free_massless_nodes(const Model& model, const ExplicitSystem& s, con
     for (std::size_t k = 0; k < set->size(); ++k)
       for (int a = 0; a < set->nodes_per_element(); ++a) {
         const auto n = static_cast<std::size_t>(set->nodes(k)[a]);
-        if (s.mass[n] > 0.0 || s.is_rigid(n) || (fixed[3 * n] && fixed[3 * n + 1] && fixed[3 * n + 2]))
+        if (s.mass[n] > 0.0 || s.is_rigid(n) ||
+            (fixed[3 * n] && fixed[3 * n + 1] && fixed[3 * n + 2]))
           continue;
         const int id = set->element_id(k);
         const auto e = model.elements.find(id);
@@ -323,8 +324,8 @@ ExplicitRunSummary run_explicit_analysis(const Model& model, const AnalysisReque
   OutputGrid history{controls.history.for_end_time(end, 1000)};
   // EDHIST asks for history points too (at the default interval without EDHTIME); they hold
   // every node, the components' among them.
-  const bool store_history = controls.history.steps || controls.history.interval ||
-                             !controls.history_components.empty();
+  const bool store_history =
+      controls.history.steps || controls.history.interval || !controls.history_components.empty();
   writer.begin_analysis(ResultsKind::Transient, "explicit dynamics (central difference)",
                         static_cast<long long>(end / results.interval) + 2);
   ExplicitRunSummary summary;
