@@ -143,6 +143,16 @@ void cmd_edload(DeckReader& r, const Command& c) {
   if (load.death != 0.0 && load.death <= load.birth)
     r.fail(c, fmt::format("DTIME {:g} is not after BTIME {:g}", load.death, load.birth));
   load.where = c.where;
+  // A load of the same label on the same component is redefined, not added (the VM's vme3
+  // redefines its load so between two solutions).
+  for (auto it = loads.begin(); it != loads.end();)
+    if (it->label == load.label && it->component == load.component) {
+      Log::info("{}:{}: EDLOAD: the {} load on {} of line {} is replaced", c.where.file,
+                c.where.line, load.label, load.component, it->where.line);
+      it = loads.erase(it);
+    } else {
+      ++it;
+    }
   loads.push_back(std::move(load));
 }
 

@@ -173,9 +173,10 @@ void model_from_results(DeckReader& r, const ResultsReader& reader, const Comman
 }  // namespace
 
 std::string results_file_name(const std::string& fname, const std::string& ext) {
+  // HIS: the time-history file of an explicit run (EDHTIME), whose points the job's file holds.
   const std::string e = to_upper(ext);
   if (e.empty() || e == "RST" || e == "RDSP" || e == "RFRQ" || e == "RTH" || e == "RMG" ||
-      e == "H5")
+      e == "HIS" || e == "H5")
     return fname + ".h5";
   return fname + "." + ext;
 }
