@@ -11,20 +11,25 @@
 
 #include "core/log.h"
 #include "deck/deck_context.h"
+#include "deck/lexer.h"
 #include "deck/parameters.h"
 
 namespace impactfe::deck {
 
 namespace {
 
-/// The values of a numeric array parameter (its first column).
+/// The values of a numeric array parameter's column. The field names the array (its first column
+/// from row 1) or one of its elements, NAME(i) or NAME(i,j): the column from that row to the
+/// array's end (vme2 gives EDLOAD's Par1 as TIME(1)).
 std::vector<double> array_values(DeckReader& r, const Command& c, int field, const char* what) {
-  const std::string name = r.label(c, field);
+  const std::string text = r.label(c, field);
+  const std::string name = trim(text.substr(0, text.find('(')));
   const ParameterInfo info = parameter_info(r, name);
   if (name.empty() || info.type != 1)
     r.fail(c, fmt::format("{} '{}': not a numeric array parameter (*DIM,{},ARRAY,n)", what,
                           c.text(field), name.empty() ? "Par" : name));
-  return read_vector(r, c, name, info.dims[0]);
+  const ArrayPosition first = array_position(r, c, text);
+  return read_vector(r, c, text, info.dims[0] - first.i + 1);
 }
 
 /// A curve's points: strictly increasing abscissae, the shorter length of the two arrays.

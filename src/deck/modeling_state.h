@@ -42,6 +42,7 @@ struct ModelingState {
 
   // Generation memory.
   std::vector<int> defined_by_n;   // nodes defined by N, in order (FILL defaults)
+  int moved_nodes_checked = 0;     // nodes N moved and looked up in the elements (a few)
   std::vector<int> element_order;  // element ids in creation order (EGEN negative IEL1)
   /// EMORE target: the element last defined by E / EN and the position of its next node.
   int emore_element = 0;

@@ -174,6 +174,24 @@ void cmd_secnum(DeckReader& r, const Command& c) {
 
 // ---- nodes and elements ------------------------------------------------------------------------
 
+/// N on an existing node redefines it, as in MAPDL, and the elements on it follow. A deck that
+/// numbers a new node inside a mesh it did not expect to be that fine (vme2: N,1000 after a VMESH
+/// of 2304 nodes) moves a meshed node without a word otherwise.
+void warn_moved_node(DeckReader& r, const Command& c, const Node& old, const Vec3& x) {
+  // Only the first ten moves are looked up (a scan of the elements each), so that a deck moving
+  // many nodes of a large mesh on purpose stays linear.
+  if ((old.x - x).norm() == 0.0 || ++r.modeling.moved_nodes_checked > 10) return;
+  int attached = 0, first = 0;
+  for (const auto& [id, e] : r.model.elements)
+    if (std::find(e.nodes.begin(), e.nodes.end(), old.id) != e.nodes.end() && attached++ == 0)
+      first = id;
+  if (attached == 0) return;
+  r.warn(c, fmt::format("node {} is redefined: moved from ({:g}, {:g}, {:g}) to ({:g}, {:g}, {:g}) "
+                        "with the {} element(s) on it (first: element {})",
+                        old.id, old.x.x(), old.x.y(), old.x.z(), x.x(), x.y(), x.z(), attached,
+                        first));
+}
+
 void cmd_n(DeckReader& r, const Command& c) {
   // N,R5.3,LOC,-1 (R5.1 alike) ends an NBLOCK in a CDB archive; other R5 records are not read.
   if (const std::string form = r.label(c, 1); form.rfind("R5.", 0) == 0) {
@@ -193,6 +211,8 @@ void cmd_n(DeckReader& r, const Command& c) {
   n.x = r.model.coordinate_systems.active_system().to_global(
       Vec3(r.real(c, 2, 0.0), r.real(c, 3, 0.0), r.real(c, 4, 0.0)));
   n.angles_deg = Vec3(r.real(c, 5, 0.0), r.real(c, 6, 0.0), r.real(c, 7, 0.0));
+  if (const auto old = r.model.nodes.find(id); old != r.model.nodes.end())
+    warn_moved_node(r, c, old->second, n.x);
   r.model.nodes[id] = n;
   r.modeling.defined_by_n.push_back(id);
 }

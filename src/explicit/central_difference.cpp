@@ -286,49 +286,40 @@ void CentralDifference::place_rigid_nodes() {
   }
 }
 
-double CentralDifference::kinetic_energy(double half) const {
-  double twice = 0.0;
+double CentralDifference::mass_weighted_speed(double half, bool rigid_spin) const {
+  double sum = 0.0;
   for (std::size_t n = 0; n < system_.n_nodes(); ++n) {
     if (system_.is_rigid(n)) continue;
     const double vx = vx_[n] + half * ax_[n], vy = vy_[n] + half * ay_[n],
                  vz = vz_[n] + half * az_[n];
-    twice += system_.mass[n] * (vx * vx + vy * vy + vz * vz);
+    sum += system_.mass[n] * (vx * vx + vy * vy + vz * vz);
   }
   for (std::size_t r : system_.rotational_nodes) {
     if (system_.is_rigid(r)) continue;
     const double wx = wx_[r] + half * bx_[r], wy = wy_[r] + half * by_[r],
                  wz = wz_[r] + half * bz_[r];
-    twice += system_.inertia[r] * (wx * wx + wy * wy + wz * wz);
+    sum += system_.inertia[r] * (wx * wx + wy * wy + wz * wz);
   }
   for (std::size_t k = 0; k < rigid_.size(); ++k) {
     const RigidBody& body = system_.rigid_bodies[k];
     const RigidMotion& r = rigid_[k];
-    const Vec3 v = r.velocity + half * r.acceleration, w = r.omega + half * r.alpha;
+    const Vec3 v = r.velocity + half * r.acceleration;
+    sum += body.mass * v.squaredNorm();
+    if (!rigid_spin) continue;
+    const Vec3 w = r.omega + half * r.alpha;
     const Eigen::Matrix3d J = r.rotation * body.inertia0 * r.rotation.transpose();
-    twice += body.mass * v.squaredNorm() + w.dot(J * w);
+    sum += w.dot(J * w);
   }
-  return 0.5 * twice;
+  return sum;
+}
+
+double CentralDifference::kinetic_energy(double half) const {
+  return 0.5 * mass_weighted_speed(half, true);
 }
 
 double CentralDifference::damping_power(double half) const {
-  double power = 0.0;
-  for (std::size_t n = 0; n < system_.n_nodes(); ++n) {
-    if (system_.is_rigid(n)) continue;
-    const double vx = vx_[n] + half * ax_[n], vy = vy_[n] + half * ay_[n],
-                 vz = vz_[n] + half * az_[n];
-    power += system_.mass[n] * (vx * vx + vy * vy + vz * vz);
-  }
-  for (std::size_t r : system_.rotational_nodes) {
-    if (system_.is_rigid(r)) continue;
-    const double wx = wx_[r] + half * bx_[r], wy = wy_[r] + half * by_[r],
-                 wz = wz_[r] + half * bz_[r];
-    power += system_.inertia[r] * (wx * wx + wy * wy + wz * wz);
-  }
-  for (std::size_t k = 0; k < rigid_.size(); ++k) {
-    const Vec3 v = rigid_[k].velocity + half * rigid_[k].acceleration;
-    power += system_.rigid_bodies[k].mass * v.squaredNorm();
-  }
-  return damping_ * power;
+  // A rigid body is damped in its translation only (rigid_accelerations).
+  return damping_ * mass_weighted_speed(half, false);
 }
 
 bool CentralDifference::scale_masses() {

@@ -103,6 +103,9 @@ class CentralDifference {
   void move_rigid_bodies(double dt, double mean);
   /// Puts the nodes of the bodies exactly on c + R r.
   void place_rigid_nodes();
+  /// Σ m v·v (and I ω·ω at rotational DOFs) at v_{n+1/2} + half·a_n; rigid bodies give
+  /// M v_c·v_c, plus ωᵀ J ω with `rigid_spin`.
+  double mass_weighted_speed(double half, bool rigid_spin) const;
   /// ½ Σ m v² at v_{n+1/2} + half·a_n (rigid bodies: ½ M v_c² + ½ ωᵀ J ω).
   double kinetic_energy(double half) const;
   /// α of the mass-weighted damping (EDDAMP) at time t; 0 without it.

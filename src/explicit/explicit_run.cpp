@@ -239,7 +239,7 @@ class EnergyCheck {
     const ExplicitEnergies e = cd.energies();
     peak_ = std::max(peak_, e.put_in());
     const double reference = std::max(peak_, e.internal + e.kinetic);
-    if (!(reference > 0.0)) return;
+    if (!(reference > 0.0) || cd.cycles() < kExplicitFirstJudgedCycle) return;
     worst_ = std::max(worst_, std::abs(e.drift()) / reference);
     over_ = std::abs(e.drift()) > kExplicitEnergyBound * reference ? over_ + 1 : 0;
     if (over_ < kExplicitChecksOver || warned_) return;
