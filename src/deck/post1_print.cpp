@@ -130,7 +130,9 @@ std::optional<double> nodal_item_value(DeckReader& r, const Command& c, const No
       if (d == nullptr) return std::nullopt;
       const auto seq = find_result_sequence(*d, item.element_item, comp);
       if (!seq) return std::nullopt;
-      const auto column = std::find(d->result_names.begin(), d->result_names.end(), seq->name);
+      // A shell's surface items at the SHELL location (TOP, MID, BOT).
+      const auto column = std::find(d->result_names.begin(), d->result_names.end(),
+                                    shell_location_column(r, seq->name));
       if (column == d->result_names.end()) return std::nullopt;
       if (!at) at = element_nodal_results(r, c, e);
       if (at->count(node) == 0) return std::nullopt;

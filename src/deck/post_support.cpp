@@ -352,6 +352,13 @@ std::optional<double> element_result(DeckReader& r, const Command& c, int elemen
                                   element_centroid(r, element));
 }
 
+std::string shell_location_column(DeckReader& r, const std::string& name) {
+  const std::string& location = post_state(r).shell_location;
+  if (location == "TOP" || name.size() <= 4 || name.compare(name.size() - 4, 4, "_TOP") != 0)
+    return name;
+  return name.substr(0, name.size() - 3) + location;
+}
+
 std::optional<double> stored_element_result(DeckReader& r, const Command& c, int element,
                                             const std::string& item, const std::string& comp) {
   if (to_upper(item) == "VOLU") return element_volume(r, c, element);
@@ -362,9 +369,7 @@ std::optional<double> stored_element_result(DeckReader& r, const Command& c, int
   const ElementTypeDescriptor* type = find_element_type(type_name);
   if (location != "TOP" && type != nullptr)
     if (const auto seq = find_result_sequence(*type, item, comp)) {
-      const std::string& name = seq->name;
-      if (name.size() > 4 && name.compare(name.size() - 4, 4, "_TOP") == 0) {
-        const std::string layer = name.substr(0, name.size() - 3) + location;
+      if (const std::string layer = shell_location_column(r, seq->name); layer != seq->name) {
         const auto row = data.element_rows.find(element);
         if (row == data.element_rows.end()) return std::numeric_limits<double>::quiet_NaN();
         const ElementResultTable& table = data.point.element_results.at(row->second.first);

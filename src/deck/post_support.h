@@ -63,6 +63,10 @@ std::optional<double> element_result(DeckReader& r, const Command& c, int elemen
 /// result axes, whatever RSYS says.
 std::optional<double> stored_element_result(DeckReader& r, const Command& c, int element,
                                             const std::string& item, const std::string& comp);
+/// The stored column of a shell surface item at the SHELL location: a result name ending in
+/// "_TOP" (the sequence tables name the top) with MID or BOT in its place under SHELL,MID/BOT;
+/// any other name unchanged.
+std::string shell_location_column(DeckReader& r, const std::string& name);
 /// Stress and strain items whose X..XZ components are a tensor that RSYS rotates (S, EPEL,
 /// EPPL, EPTO, EPTH, EPCR); `direction` is the index of Comp in X Y Z XY YZ XZ, or -1.
 bool is_tensor_item(const std::string& item);

@@ -585,11 +585,79 @@ void Shell281::results(const ElementContext&, const Eigen::VectorXd& u, const Ei
   out = n_ == 8 ? values_at(0.0, 0.0, expand(u)) : values_at(1.0 / 3.0, 1.0 / 3.0, expand(u));
 }
 
+namespace {
+
+/// values_at()'s values in axes turned by φ (cos φ = c, sin φ = s) about the normal: the
+/// in-plane tensors (N, M, the surfaces' S and EPEL, engineering shear strains) and Q.
+ElementResultValues in_centre_axes(ElementResultValues v, double c, double s) {
+  const auto tensor = [&](std::size_t i, double shear) {
+    const double x = v[i], y = v[i + 1], xy = shear * v[i + 2];
+    v[i] = c * c * x + s * s * y - 2.0 * c * s * xy;
+    v[i + 1] = s * s * x + c * c * y + 2.0 * c * s * xy;
+    v[i + 2] = (c * s * (x - y) + (c * c - s * s) * xy) / shear;
+  };
+  for (std::size_t i : {0, 3, 6, 9, 12}) tensor(i, 1.0);
+  for (std::size_t i : {20, 23, 26}) tensor(i, 0.5);
+  const double qx = v[18], qy = v[19];
+  v[18] = c * qx - s * qy;
+  v[19] = s * qx + c * qy;
+  return v;
+}
+
+}  // namespace
+
 bool Shell281::nodal_results(const ElementContext&, const Eigen::VectorXd& u,
                              std::map<int, ElementResultValues>& at_node) const {
+  // Extrapolated from the 2 x 2 Gauss points of the quadrilateral (the 3 points of the triangle)
+  // as MAPDL's SHELL281 reports its nodal results (ERESX default for a linear material): the
+  // bilinear (linear) field through the points' values, evaluated at the nodes, so a midside
+  // takes the mean of its corners. The 8-node field evaluated at a corner directly carries the
+  // spurious membrane stresses of a curved element (Cook's barrel vault, vm42: +190 kPa of hoop
+  // membrane stress at the crown node) that the Gauss points do not.
+  const Eigen::VectorXd ue = expand(u);
+  constexpr double g = 0.57735026918962576;
+  const std::vector<std::array<double, 2>> points =
+      n_ == 8 ? std::vector<std::array<double, 2>>{{-g, -g}, {g, -g}, {g, g}, {-g, g}}
+              : std::vector<std::array<double, 2>>{
+                    {1.0 / 6.0, 1.0 / 6.0}, {2.0 / 3.0, 1.0 / 6.0}, {1.0 / 6.0, 2.0 / 3.0}};
+  const auto basis = [&](double xi, double eta) {
+    Eigen::VectorXd b(points.size());
+    b(0) = 1.0, b(1) = xi, b(2) = eta;
+    if (points.size() == 4) b(3) = xi * eta;
+    return b;
+  };
+  const auto np = static_cast<Eigen::Index>(points.size());
+  Eigen::MatrixXd V(np, np);
+  std::vector<ElementResultValues> at_points;
+  const Mat3 R0 = result_axes(ElementContext{}, u);
+  Eigen::VectorXd N;
+  Eigen::MatrixXd dN;
+  for (Eigen::Index k = 0; k < np; ++k) {
+    const auto& p = points[static_cast<std::size_t>(k)];
+    V.row(k) = basis(p[0], p[1]).transpose();
+    // The point's values are in its lamina frame: turned into the centre frame (the axes POST1
+    // rotates the nodal values with) by the in-plane angle between the frames' e1.
+    shape(p[0], p[1], N, dN);
+    const Mat3 R = frame(N, dN, nullptr);
+    const double c = R0.col(0).dot(R.col(0)), sn = R0.col(1).dot(R.col(0)),
+                 norm = std::hypot(c, sn);
+    at_points.push_back(in_centre_axes(values_at(p[0], p[1], ue), c / norm, sn / norm));
+  }
+  const Eigen::MatrixXd Vinv = V.inverse();
+  const std::size_t n_values = at_points.front().size();
   for (int a = 0; a < n_; ++a) {
     const double* xi = n_ == 8 ? kQuadXi[a] : kTriXi[a];
-    at_node[node_ids_[static_cast<std::size_t>(a)]] = values_at(xi[0], xi[1], expand(u));
+    const Eigen::VectorXd w = Vinv.transpose() * basis(xi[0], xi[1]);
+    ElementResultValues v(n_values, 0.0);
+    for (Eigen::Index k = 0; k < np; ++k)
+      for (std::size_t i = 0; i < n_values; ++i)
+        v[i] += w(k) * at_points[static_cast<std::size_t>(k)][i];
+    // The equivalent stresses of the extrapolated components (not extrapolated themselves).
+    for (int s = 0; s < 3; ++s)
+      v[static_cast<std::size_t>(15 + s)] = shell::plane_stress_von_mises(
+          v[static_cast<std::size_t>(6 + 3 * s)], v[static_cast<std::size_t>(7 + 3 * s)],
+          v[static_cast<std::size_t>(8 + 3 * s)]);
+    at_node[node_ids_[static_cast<std::size_t>(a)]] = std::move(v);
   }
   return true;
 }

@@ -62,13 +62,13 @@ class Shell281 : public Element {
                      const Eigen::VectorXd& u, Eigen::VectorXd& f) const override;
   const std::vector<std::string>& result_names() const override;
   /// The lamina frame at the element centre (e1 along ∂x/∂ξ, e3 the normal): the axes of the
-  /// centroid values. The nodal values are in the frames at the nodes, which on a curved
-  /// element differ from it by the element's curvature; POST1 rotates them with this one.
+  /// centroid values. The nodal values come from the frames at the Gauss points, which on a
+  /// curved element differ from it by the element's curvature; POST1 rotates them with this one.
   Eigen::Matrix3d result_axes(const ElementContext& ctx, const Eigen::VectorXd& u) const override;
   /// Values at the element centre (element axes: e1 along ∂x/∂ξ).
   void results(const ElementContext& ctx, const Eigen::VectorXd& u, const Eigen::VectorXd& v,
                ElementResultValues& out) const override;
-  /// The same values evaluated at each node.
+  /// The same values extrapolated from the Gauss points to each node (MAPDL's ERESX default).
   bool nodal_results(const ElementContext& ctx, const Eigen::VectorXd& u,
                      std::map<int, ElementResultValues>& at_node) const override;
   std::optional<double> volume() const override { return volume_; }

@@ -304,9 +304,8 @@ void Mesher::area_nodes(int id, bool triangles) {
                     "free, or divide it into 3- or 4-sided areas)",
                     id, sides));
   }
-  std::vector<int> kps = area.keypoints;
-  std::sort(kps.begin(), kps.end());
-  for (int k : kps) keypoint_node(k);
+  // Nodes line by line in ascending line number, each line's end keypoints first (line_nodes),
+  // as MAPDL numbers them: vm42's A,1,3,4,2 puts node 2 at keypoint 3, the far end of line 1.
   std::vector<int> sorted_lines = lines;
   std::sort(sorted_lines.begin(), sorted_lines.end());
   for (int l : sorted_lines) line_nodes(l, area.size);

@@ -182,12 +182,11 @@ void Mesher::volume_block_nodes(VolumeBlock& block) {
                                                   edge(1, 1, 0, 1, 1, 1), edge(0, 1, 0, 0, 1, 1)}};
   plan_divisions(classes, fmt::format("volume {}", id), std::nullopt);
 
-  // Nodes: keypoints, lines, areas (ascending numbers), then the interior.
-  std::vector<int> kps(block.bottom.begin(), block.bottom.end());
-  kps.insert(kps.end(), block.top.begin(), block.top.end());
-  std::sort(kps.begin(), kps.end());
-  for (int k : kps) keypoint_node(k);
-  for (int l : block.lines) line_nodes(l);
+  // Nodes: lines (each with its end keypoints first, as area_nodes), areas (ascending numbers),
+  // then the interior.
+  std::vector<int> sorted_lines(block.lines.begin(), block.lines.end());
+  std::sort(sorted_lines.begin(), sorted_lines.end());
+  for (int l : sorted_lines) line_nodes(l);
   std::vector<int> sorted_areas = block.areas;
   std::sort(sorted_areas.begin(), sorted_areas.end());
   for (int a : sorted_areas) area_nodes(a, false);

@@ -160,6 +160,24 @@ TEST(DeckVmInputs, ShellSurfaceAndElementTableGroups) {
   EXPECT_EQ(v[3], v[0]);  // SHELL with a blank Loc is TOP again
 }
 
+// The nodal values of a shell with values at its nodes (SHELL281) follow SHELL,Loc too (vm42
+// read the same SX at TOP and BOT): the strip bent by an end moment, SX at a node.
+TEST(DeckVmInputs, ShellSurfaceOfNodalStresses) {
+  const auto run = testing::run_deck_text(
+      "vm_shell_nodal_surface",
+      "/PREP7\nET,1,SHELL281\nSECTYPE,1,SHELL\nSECDATA,0.1\nMP,EX,1,2E11\nMP,NUXY,1,0.3\n"
+      "N,1\nN,2,1\nN,3,1,0.2\nN,4,0,0.2\nN,5,0.5\nN,6,1,0.1\nN,7,0.5,0.2\nN,8,0,0.1\n"
+      "E,1,2,3,4,5,6,7,8\nD,1,ALL\nD,4,ALL\nD,8,ALL\nF,2,MY,-5\nF,3,MY,-5\nFINISH\n"
+      "/SOLU\nSOLVE\nFINISH\n/POST1\nSET,LAST\n*GET,T,NODE,6,S,X\nSHELL,BOT\n"
+      "*GET,B,NODE,6,S,X\nSHELL,MID\n*GET,M,NODE,6,S,X\n"
+      "/OUT,nodal_surface,txt\n*VWRITE,T,B,M\n(3E18.9)\n/OUT\n");
+  const auto v = numbers_in(run, "nodal_surface.txt");
+  ASSERT_EQ(v.size(), 3u);
+  EXPECT_GT(std::fabs(v[0]), 1e3);
+  EXPECT_NEAR(v[1], -v[0], 1e-6 * std::fabs(v[0]));
+  EXPECT_NEAR(v[2], 0.0, 1e-6 * std::fabs(v[0]));
+}
+
 }  // namespace
 }  // namespace impactfe::test_deck_vm_inputs
 

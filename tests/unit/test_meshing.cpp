@@ -276,6 +276,22 @@ TEST(Meshing, SelectionOfEntitiesAndTheirNodes) {
   EXPECT_EQ(n_kps, 8);    // the keypoints of the four 4-long lines
 }
 
+TEST(Meshing, AreaNodesAreNumberedLineByLine) {
+  // vm42: A,1,3,4,2 makes line 1 from keypoint 1 to 3; its end nodes come first (1 at keypoint
+  // 1, 2 at keypoint 3), then its interior nodes, then line 2's (keypoint 4 first), as MAPDL
+  // numbers them (the deck reads its crown point B as node 2). Keypoint order would put node 2
+  // at keypoint 2.
+  const Model m = read(
+      "/PREP7\nET,1,SHELL181\nK,1,0,0\nK,2,0,1\nK,3,2,0\nK,4,2,1\nA,1,3,4,2\n"
+      "ESIZE,,4\nAMESH,1\n");
+  EXPECT_TRUE(m.nodes.at(1).x.isApprox(Vec3(0, 0, 0)));
+  EXPECT_TRUE(m.nodes.at(2).x.isApprox(Vec3(2, 0, 0)));
+  EXPECT_TRUE(m.nodes.at(3).x.isApprox(Vec3(0.5, 0, 0)) ||
+              m.nodes.at(3).x.isApprox(Vec3(1.5, 0, 0)));
+  EXPECT_TRUE(m.nodes.at(6).x.isApprox(Vec3(2, 1, 0)));
+  EXPECT_EQ(m.nodes.size(), 25u);
+}
+
 TEST(Meshing, MalformedModellingInputIsAnInputError) {
   auto message = [](const std::string& text) {
     try {

@@ -251,6 +251,16 @@ void run_patch(const Mesh8& m, bool membrane, bool bending) {
     EXPECT_NEAR(r[19], 0.0, 1e-9);  // QYZ
     // SX at the top: N/t + 6 M/t².
     EXPECT_NEAR(r[6], local[0] / t + 6 * local[3] / (t * t), 1e-6);
+    // The nodal values extrapolated from the Gauss points reproduce the constant field at every
+    // node (corners and midsides), the surfaces' SEQV from the extrapolated components.
+    std::map<int, ElementResultValues> at;
+    ASSERT_TRUE(e->nodal_results(ElementContext{}, testing::gather(s, *e, u), at));
+    ASSERT_EQ(at.size(), 8u);
+    for (const auto& [node, v] : at) {
+      for (std::size_t k = 0; k < 15; ++k) EXPECT_NEAR(v[k], r[k], 1e-9 * (1.0 + std::abs(r[k])));
+      EXPECT_NEAR(v[15], r[15], 1e-9 * (1.0 + r[15])) << node;
+      EXPECT_NEAR(v[17], r[17], 1e-9 * (1.0 + r[17])) << node;
+    }
   }
 }
 
