@@ -2,17 +2,19 @@
 // 1, Hughes–Liu with cross-section integration, one station along the length),
 // docs/explicit_dynamics.md. Nodes I, J; node K orients the section at the start (the s axis lies
 // in the plane IJK). Six DOFs per node. Large rotations by a co-rotational frame per element and
-// cycle: r = e1 along IJ at x_{n+1}, s = e2 the last cycle's e2 turned by the mean nodal spin over
-// dt (so the section twists with the nodes) and made orthogonal to e1, t = e3 = e1 × e2. In it,
-// with the nodal velocities v_a and angular velocities ω_a (LS-DYNA Theory Manual, "Belytschko
-// Beam" / "Hughes-Liu Beam"; Belytschko, Liu & Moran, Nonlinear Finite Elements, §9.5):
+// cycle: r = e1 along IJ, s = e2 the last cycle's e2 turned by the mean nodal spin over dt (so
+// the section twists with the nodes) and made orthogonal to e1, t = e3 = e1 × e2. The rates, in
+// the frame of the midpoint configuration x_{n+1/2}, from the nodal velocities v_a and angular
+// velocities ω_a (LS-DYNA Theory Manual, "Belytschko Beam" / "Hughes-Liu Beam"; Belytschko, Liu &
+// Moran, Nonlinear Finite Elements, §9.5):
 //   ε̇ = e1·(v_J − v_I)/L,  κ̇_r,s,t = e_{1,2,3}·(ω_J − ω_I)/L,
 //   γ̇_s = e2·(v_J − v_I)/L − e3·ω̄,  γ̇_t = e3·(v_J − v_I)/L + e2·ω̄  (ω̄ the mean of ω_I, ω_J),
 // and at a section point (s, t): d_rr = ε̇ + t κ̇_s − s κ̇_t, 2d_rs = SHRF γ̇_s − t κ̇_r,
 // 2d_rt = SHRF γ̇_t + s κ̇_r. A rigid motion (v = v0 + ω × x, ω the same at every node) makes none.
 // Stresses σ_rr, τ_rs, τ_rt at the section points in the co-rotational frame (objective: they
-// turn with it); the nodal forces and moments are the derivatives of the power L∫σ:d dA by the
-// nodal velocities. Runs only in an explicit analysis: its implicit factory refuses.
+// turn with it); the nodal forces and moments, in the frame at x_{n+1}, are the derivatives of the
+// power L∫σ:d dA by the nodal velocities. Runs only in an explicit analysis: its implicit factory
+// refuses.
 #include <fmt/format.h>
 #include <Eigen/Geometry>
 
@@ -354,23 +356,34 @@ ExplicitStepLimit Beam161Set::internal_forces_and_moments(const ExplicitNodalVie
     const Vec3 wi = st.wx ? Vec3(st.wx[i], st.wy[i], st.wz[i]) : Vec3::Zero();
     const Vec3 wj = st.wx ? Vec3(st.wx[j], st.wy[j], st.wz[j]) : Vec3::Zero();
     const Vec3 mean = 0.5 * (wi + wj);
-    // The s axis follows the mean spin over the step (Rodrigues), then e1 at x_{n+1}.
-    Vec3 e2 = frame_[k];
+    // The s axis follows the mean spin over the step (Rodrigues) and is made orthogonal to the
+    // axis: at x_{n+1/2} (turned by half the step) for the rates, at x_{n+1} for the forces.
     const double angle = dt * mean.norm();
-    if (angle > 0.0) e2 = Eigen::AngleAxisd(angle, mean.normalized()) * e2;
-    e2 -= e2.dot(e1) * e1;
-    const double n2 = e2.norm();
-    if (!(n2 > 1e-6))
-      throw ElementSolutionError(ids_[k], fmt::format("element {} (BEAM161) turned its axis onto "
-                                                      "its s axis in one step: a time step too "
-                                                      "large",
-                                                      ids_[k]));
-    e2 /= n2;
+    const auto section_axis = [&](double share, const Vec3& axis_unit) {
+      Vec3 e = frame_[k];
+      if (angle > 0.0) e = Eigen::AngleAxisd(share * angle, mean.normalized()) * e;
+      e -= e.dot(axis_unit) * axis_unit;
+      const double norm = e.norm();
+      if (!(norm > 1e-6))
+        throw ElementSolutionError(ids_[k], fmt::format("element {} (BEAM161) turned its axis "
+                                                        "onto its s axis in one step: a time "
+                                                        "step too large",
+                                                        ids_[k]));
+      return Vec3(e / norm);
+    };
+    // The rates in the frame of the midpoint configuration x_{n+1/2} = x_{n+1} − dt/2 v_{n+1/2}
+    // (LS-DYNA Theory Manual, "Hughes-Liu Beam": the strain increments at the midpoint): the
+    // chord of a rigid rotation over the step, x_{n+1} − x_n, is exactly normal to the
+    // midpoint's axis, so a rotation makes no axial strain; with the axis at x_{n+1} each step
+    // would stretch the element by (ω dt)²/2.
+    const Vec3 axis_mid = axis - 0.5 * dt * (vj - vi);
+    const double lm = axis_mid.norm();
+    const Vec3 m1 = axis_mid / lm, m2 = section_axis(0.5, m1), m3 = m1.cross(m2);
+    const Vec3 e2 = section_axis(1.0, e1), e3 = e1.cross(e2);
     frame_[k] = e2;
-    const Vec3 e3 = e1.cross(e2);
-    const Vec3 dv = (vj - vi) / l, dw = (wj - wi) / l;
-    const double axial = e1.dot(dv), kr = e1.dot(dw), ks = e2.dot(dw), kt = e3.dot(dw);
-    const double gs = e2.dot(dv) - e3.dot(mean), gt = e3.dot(dv) + e2.dot(mean);
+    const Vec3 dv = (vj - vi) / lm, dw = (wj - wi) / lm;
+    const double axial = m1.dot(dv), kr = m1.dot(dw), ks = m2.dot(dw), kt = m3.dot(dw);
+    const double gs = m2.dot(dv) - m3.dot(mean), gt = m3.dot(dv) + m2.dot(mean);
     const double kappa = shear_factor_[k];
     const Section& sec = sections_[section_[k]];
     double n = 0.0, qs = 0.0, qt = 0.0, tq = 0.0, ms = 0.0, mt = 0.0, power = 0.0, plastic = 0.0;
@@ -389,8 +402,8 @@ ExplicitStepLimit Beam161Set::internal_forces_and_moments(const ExplicitNodalVie
       ms += pt.w * pt.t * s[0];
       mt -= pt.w * pt.s * s[0];
     }
-    energies_.internal += dt * l * power;
-    energies_.plastic_work += l * plastic;
+    energies_.internal += dt * lm * power;
+    energies_.plastic_work += lm * plastic;
     // ∂P/∂v and ∂P/∂ω of P = L(Nε̇ + Q_s γ̇_s + Q_t γ̇_t + T κ̇_r + M_s κ̇_s + M_t κ̇_t).
     const Vec3 force = n * e1 + qs * e2 + qt * e3;
     const Vec3 turn = tq * e1 + ms * e2 + mt * e3;
