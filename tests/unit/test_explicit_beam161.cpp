@@ -233,6 +233,34 @@ TEST(ExplicitBeam, AxialPlasticFlowFollowsTheHardeningLine) {
   EXPECT_GT(run.set().energies().plastic_work, 0.0);
 }
 
+TEST(ExplicitBeam, BendingReachesTheSectionLimit) {
+  // One element bent about s at a constant curvature rate (ω_J along s, perfectly plastic BISO
+  // σy = 250e6): every point of the 2×2 rule yields at ±σy, so M_s = 4 (A/4) σy h/(2√3)
+  // = σy A h/(2√3) (the rule's limit: the exact rectangle's σy A h/4 needs more points), the
+  // other resultants stay 0, EPEQ = κ h/(2√3) − σy/E.
+  Model m = beam(1, Vec3(0, 0, 0), Vec3(1, 0, 0), "", false, "TB,BISO,1\nTBDATA,1,250E6,0\n");
+  Beams run(m);
+  const std::size_t j = static_cast<std::size_t>(run.system.index_of(2));
+  // The s axis of the element: K's direction normal to the axis.
+  const Vec3 k = Vec3(run.x[static_cast<std::size_t>(run.system.index_of(1000))],
+                      run.y[static_cast<std::size_t>(run.system.index_of(1000))],
+                      run.z[static_cast<std::size_t>(run.system.index_of(1000))]);
+  const Vec3 s = (k - k.dot(Vec3::UnitX()) * Vec3::UnitX()).normalized();
+  // Opposite nodal spins ±κ̇L/2 about s: the mean spin, and so the transverse shear, is 0.
+  const double rate = 1000.0, dt = 1e-6;  // κ̇ over L = 1: κ = 1 after 1000 steps
+  const std::size_t i = static_cast<std::size_t>(run.system.index_of(1));
+  run.wx[j] = 0.5 * rate * s.x(), run.wy[j] = 0.5 * rate * s.y(), run.wz[j] = 0.5 * rate * s.z();
+  run.wx[i] = -run.wx[j], run.wy[i] = -run.wy[j], run.wz[i] = -run.wz[j];
+  for (int step = 0; step < 1000; ++step) run.evaluate(dt);
+  Eigen::MatrixXd r;
+  run.set().results(r);
+  const double c = kH / (2.0 * std::sqrt(3.0));
+  EXPECT_NEAR(r(0, 4), 250e6 * kH * kH * c, 1e-9 * 250e6 * kH * kH * c);  // MS
+  for (int col : {0, 1, 2, 3, 5}) EXPECT_NEAR(r(0, col), 0.0, 1e-6);
+  EXPECT_NEAR(r(0, 6), 250e6, 1e-3);
+  EXPECT_NEAR(r(0, 7), 1.0 * c - 250e6 / kE, 1e-12);
+}
+
 TEST(ExplicitBeam, RefusesWhatItDoesNotCarryOut) {
   const auto build = [&](const std::string& extra, const std::string& real = "") {
     return build_explicit_system(beam(2, Vec3(0, 0, 0), Vec3(1, 0, 0), extra, false, "", real));
