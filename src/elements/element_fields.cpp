@@ -142,6 +142,19 @@ std::vector<ElementFields> make_table() {
     for (auto& f : r) f.refused = true;
     t.push_back({"COMBI165", r, {{1, {1}, "1: translational spring or damper"}}});
   }
+  // BEAM161: Hughes–Liu with cross-section integration (KEYOPT(1) 0 or 1), the default
+  // quadrature, rectangular (KEYOPT(5) 0) or tubular (1) sections from the real constants; the
+  // resultant, truss and tubular Belytschko formulations (KEYOPT(1) 2 to 5), the other
+  // quadratures, the standard sections (KEYOPT(4), KEYOPT(5) = 2) and offset reference lines
+  // (NSLOC, NTLOC) are not implemented.
+  {
+    auto r = named({"SHRF", "TS1", "TS2", "TT1", "TT2", "NSLOC", "NTLOC"});
+    r[5].refused = r[6].refused = true;
+    t.push_back({"BEAM161",
+                 r,
+                 {{1, {0, 1}, "0 or 1: Hughes-Liu with cross-section integration (the same)"},
+                  {5, {0, 1}, "0 rectangular, 1 tubular (circular) section"}}});
+  }
   // SHELL163: Belytschko–Tsay (KEYOPT(1) 0 or 2); the other formulations are not implemented.
   t.push_back({"SHELL163",
                named({"SHRF", "NIP", "T1", "T2", "T3", "T4"}),

@@ -147,8 +147,8 @@ void refuse_free_massless_nodes(const Model& model, const ExplicitSystem& s, con
 }
 
 /// IC velocities first, then EDVEL (which defines the velocity of its component's nodes). IC
-/// on ROTX, ROTY, ROTZ sets the angular velocity of a shell node; a nonzero one at a node without
-/// rotations is refused.
+/// on ROTX, ROTY, ROTZ sets the angular velocity of a shell or beam node; a nonzero one at a node
+/// without rotations is refused.
 void set_initial_velocities(const Model& model, const ExplicitSystem& s, CentralDifference& cd) {
   std::vector<Vec3> v(s.n_nodes(), Vec3::Zero()), w(s.n_nodes(), Vec3::Zero());
   for (const auto& [key, ic] : model.initial_conditions) {
@@ -162,7 +162,7 @@ void set_initial_velocities(const Model& model, const ExplicitSystem& s, Central
     } else if (ic.velocity != 0.0) {
       throw InputError(ic.where, fmt::format("node {}: an initial {} velocity: the node has no "
                                              "rotational DOFs in explicit dynamics (only the "
-                                             "nodes of shells have)",
+                                             "nodes of shells and beams have)",
                                              key.node, dof_name(key.dof)));
     }
   }

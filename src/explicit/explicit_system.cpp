@@ -145,8 +145,14 @@ ExplicitSystem build_explicit_system(const Model& model) {
     const std::string& type = model.element_type(record.type).ansys_name;
     if (e.rigid_materials.count(record.mat)) {
       rigid_by_type[type].push_back(&record);
-      for (int n : record.nodes)
-        if (n != 0) rigid_nodes[record.mat].insert(n);
+      // The element's own nodes: an orientation node (BEAM161's and LINK160's K, often one
+      // for many elements) is not part of the body.
+      const auto own =
+          std::min(record.nodes.size(),
+                   static_cast<std::size_t>(
+                       element_type_descriptor(model.element_type(record.type)).n_nodes));
+      for (std::size_t a = 0; a < own; ++a)
+        if (record.nodes[a] != 0) rigid_nodes[record.mat].insert(record.nodes[a]);
     } else {
       by_type[type].push_back(&record);
     }
