@@ -138,16 +138,12 @@ class Beam161Set final : public ExplicitElementSet {
     density_[k] *= factor;
     return added;
   }
-  ExplicitStepLimit internal_forces(const ExplicitNodalView& s, double dt, double* f) override {
-    moments_scratch_.assign(6 * size(), 0.0);
-    return internal_forces_and_moments(s, dt, f, moments_scratch_.data());
-  }
-  ExplicitStepLimit internal_forces_and_moments(const ExplicitNodalView& s, double dt, double* f,
-                                                double* moments) override;
-  ExplicitSetEnergies energies() const override { return energies_; }
   void results(Eigen::MatrixXd& out) const override;
 
  private:
+  ExplicitStepLimit chunk_forces(const ExplicitNodalView& s, double dt, double* f, double* moments,
+                                 std::size_t begin, std::size_t end,
+                                 ExplicitSetEnergies& energies) override;
   double half_mass(std::size_t k) const {
     return 0.5 * density_[k] * sections_[section_[k]].area * length0_[k];
   }
@@ -196,8 +192,6 @@ class Beam161Set final : public ExplicitElementSet {
   std::vector<BeamMaterial> materials_;
   // Per element and point (kMaxPoints each): σ_rr, τ_rs, τ_rt; back stress; plastic strain.
   std::vector<double> stress_, back_, alpha_;
-  std::vector<double> moments_scratch_;
-  ExplicitSetEnergies energies_;
 };
 
 Beam161Set::Beam161Set(const ExplicitBuildContext& ctx,
@@ -341,10 +335,11 @@ double Beam161Set::update_point(std::size_t k, int p, const double* d, double dt
   return s[0] * flow[0] + s[1] * flow[1] + s[2] * flow[2];
 }
 
-ExplicitStepLimit Beam161Set::internal_forces_and_moments(const ExplicitNodalView& st, double dt,
-                                                          double* f, double* moments) {
+ExplicitStepLimit Beam161Set::chunk_forces(const ExplicitNodalView& st, double dt, double* f,
+                                           double* moments, std::size_t begin, std::size_t end,
+                                           ExplicitSetEnergies& energies) {
   ExplicitStepLimit limit;
-  for (std::size_t k = 0; k < size(); ++k) {
+  for (std::size_t k = begin; k < end; ++k) {
     const int i = nodes_[2 * k], j = nodes_[2 * k + 1];
     const Vec3 axis(st.x[j] - st.x[i], st.y[j] - st.y[i], st.z[j] - st.z[i]);
     const double l = axis.norm();
@@ -402,8 +397,8 @@ ExplicitStepLimit Beam161Set::internal_forces_and_moments(const ExplicitNodalVie
       ms += pt.w * pt.t * s[0];
       mt -= pt.w * pt.s * s[0];
     }
-    energies_.internal += dt * lm * power;
-    energies_.plastic_work += lm * plastic;
+    energies.internal += dt * lm * power;
+    energies.plastic_work += lm * plastic;
     // ∂P/∂v and ∂P/∂ω of P = L(Nε̇ + Q_s γ̇_s + Q_t γ̇_t + T κ̇_r + M_s κ̇_s + M_t κ̇_t).
     const Vec3 force = n * e1 + qs * e2 + qt * e3;
     const Vec3 turn = tq * e1 + ms * e2 + mt * e3;

@@ -82,8 +82,6 @@ class Combi165Set final : public ExplicitElementSet {
     }
     return added;
   }
-  ExplicitStepLimit internal_forces(const ExplicitNodalView& s, double dt, double* f) override;
-  ExplicitSetEnergies energies() const override { return energies_; }
   void results(Eigen::MatrixXd& out) const override {
     out.resize(static_cast<Eigen::Index>(size()), 2);
     for (std::size_t k = 0; k < size(); ++k) {
@@ -102,7 +100,9 @@ class Combi165Set final : public ExplicitElementSet {
   }
   std::vector<int> ids_, nodes_;
   std::vector<double> stiffness_, damping_, rest_length_, length_, force_;
-  ExplicitSetEnergies energies_;
+  ExplicitStepLimit chunk_forces(const ExplicitNodalView& s, double dt, double* f, double*,
+                                 std::size_t begin, std::size_t end,
+                                 ExplicitSetEnergies& energies) override;
 };
 
 Combi165Set::Combi165Set(const ExplicitBuildContext& ctx,
@@ -135,9 +135,11 @@ Combi165Set::Combi165Set(const ExplicitBuildContext& ctx,
   force_.assign(ids_.size(), 0.0);
 }
 
-ExplicitStepLimit Combi165Set::internal_forces(const ExplicitNodalView& s, double dt, double* f) {
+ExplicitStepLimit Combi165Set::chunk_forces(const ExplicitNodalView& s, double dt, double* f,
+                                            double*, std::size_t begin, std::size_t end,
+                                            ExplicitSetEnergies& energies) {
   ExplicitStepLimit limit;
-  for (std::size_t k = 0; k < size(); ++k) {
+  for (std::size_t k = begin; k < end; ++k) {
     const int i = nodes_[2 * k], j = nodes_[2 * k + 1];
     const Vec3 axis(s.x[j] - s.x[i], s.y[j] - s.y[i], s.z[j] - s.z[i]);
     const double l = axis.norm();
@@ -150,11 +152,11 @@ ExplicitStepLimit Combi165Set::internal_forces(const ExplicitNodalView& s, doubl
     if (stiffness_[k] > 0.0) {
       force = stiffness_[k] * (l - rest_length_[k]);
       // The work of a linear spring over the step, exact: ½(N_n + N_{n+1})(L_{n+1} − L_n).
-      energies_.internal += 0.5 * (old + force) * (l - length_[k]);
+      energies.internal += 0.5 * (old + force) * (l - length_[k]);
     } else {
       const double rate = e.dot(Vec3(s.vx[j] - s.vx[i], s.vy[j] - s.vy[i], s.vz[j] - s.vz[i]));
       force = damping_[k] * rate;
-      energies_.internal += dt * force * rate;  // dissipated: c ṡ² Δt
+      energies.internal += dt * force * rate;  // dissipated: c ṡ² Δt
     }
     force_[k] = force;
     length_[k] = l;

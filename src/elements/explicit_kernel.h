@@ -108,27 +108,47 @@ class ExplicitElementSet {
   virtual double scale_mass(std::size_t k, double factor, std::vector<double>& mass) = 0;
   /// One cycle: stresses updated over dt from v_{n+1/2}, nodal forces f_int (x, y, z of each node
   /// of each element, element-major) written to `element_forces`; the stable step at x_{n+1}.
-  virtual ExplicitStepLimit internal_forces(const ExplicitNodalView& state, double dt,
-                                            double* element_forces) = 0;
-  /// Sets whose nodes carry rotations (shells): the run gives their nodes angular velocities and
-  /// rotary inertia and calls internal_forces_and_moments.
+  /// The element loop runs in chunks of kChunk elements on the thread pool: each element writes
+  /// only its own slots and state, each chunk sums its energies, and the chunks' sums and step
+  /// limits are taken in chunk order, so the results are bitwise equal for any thread count.
+  ExplicitStepLimit internal_forces(const ExplicitNodalView& state, double dt,
+                                    double* element_forces) {
+    return internal_forces_and_moments(state, dt, element_forces, nullptr);
+  }
+  /// Sets whose nodes carry rotations (shells, beams): the run gives their nodes angular
+  /// velocities and rotary inertia and passes `element_moments`.
   virtual bool has_rotations() const { return false; }
   /// Adds each element's lumped rotary inertia (one value per node, the same about every
   /// axis) to its nodes; called again after mass scaling.
   virtual void add_rotary_inertia(std::vector<double>& /*inertia*/) const {}
   /// internal_forces plus the nodal moments (x, y, z per slot, like the forces) of a set with
-  /// rotations; `element_moments` is null when the run has none.
-  virtual ExplicitStepLimit internal_forces_and_moments(const ExplicitNodalView& state, double dt,
-                                                        double* element_forces,
-                                                        double* /*element_moments*/) {
-    return internal_forces(state, dt, element_forces);
-  }
-  virtual ExplicitSetEnergies energies() const = 0;
+  /// rotations; `element_moments` may be null (the moments are then computed and dropped).
+  ExplicitStepLimit internal_forces_and_moments(const ExplicitNodalView& state, double dt,
+                                                double* element_forces, double* element_moments);
+  /// Energies accumulated since the start.
+  ExplicitSetEnergies energies() const { return energies_; }
+  /// Elements per chunk of the threaded element loop.
+  static constexpr std::size_t kChunk = 256;
   /// The contact segments of every element (all faces of a solid: the contact keeps the ones
   /// not shared by two elements); none by default (springs, masses).
   virtual void segments(std::vector<ExplicitSegment>& out) const { (void)out; }
   /// Stored results of every element (rows) in the order of the registration's result_names.
   virtual void results(Eigen::MatrixXd& out) const = 0;
+
+ protected:
+  /// The cycle of elements [begin, end): as internal_forces_and_moments, the energies of the
+  /// chunk added to `energies` (not to the set's: the caller sums the chunks in order).
+  /// `element_moments` is never null for a set with rotations.
+  virtual ExplicitStepLimit chunk_forces(const ExplicitNodalView& state, double dt,
+                                         double* element_forces, double* element_moments,
+                                         std::size_t begin, std::size_t end,
+                                         ExplicitSetEnergies& energies) = 0;
+  ExplicitSetEnergies energies_;
+
+ private:
+  std::vector<ExplicitSetEnergies> chunk_energies_;
+  std::vector<ExplicitStepLimit> chunk_limits_;
+  std::vector<double> dropped_moments_;
 };
 
 using ExplicitSetFactory = std::function<std::unique_ptr<ExplicitElementSet>(

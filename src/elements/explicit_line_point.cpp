@@ -69,8 +69,6 @@ class Link160Set final : public ExplicitElementSet {
     density_[k] *= factor;
     return added;
   }
-  ExplicitStepLimit internal_forces(const ExplicitNodalView& s, double dt, double* f) override;
-  ExplicitSetEnergies energies() const override { return energies_; }
   void results(Eigen::MatrixXd& out) const override {
     out.resize(static_cast<Eigen::Index>(size()), 3);
     for (std::size_t k = 0; k < size(); ++k) {
@@ -96,7 +94,9 @@ class Link160Set final : public ExplicitElementSet {
   std::vector<int> ids_, nodes_, material_;
   std::vector<double> area_, volume_, density_, stress_, back_, alpha_;
   std::vector<Material> materials_;
-  ExplicitSetEnergies energies_;
+  ExplicitStepLimit chunk_forces(const ExplicitNodalView& s, double dt, double* f, double*,
+                                 std::size_t begin, std::size_t end,
+                                 ExplicitSetEnergies& energies) override;
 };
 
 Link160Set::Link160Set(const ExplicitBuildContext& ctx,
@@ -130,9 +130,11 @@ Link160Set::Link160Set(const ExplicitBuildContext& ctx,
   alpha_.assign(ids_.size(), 0.0);
 }
 
-ExplicitStepLimit Link160Set::internal_forces(const ExplicitNodalView& s, double dt, double* f) {
+ExplicitStepLimit Link160Set::chunk_forces(const ExplicitNodalView& s, double dt, double* f,
+                                           double*, std::size_t begin, std::size_t end,
+                                           ExplicitSetEnergies& energies) {
   ExplicitStepLimit limit;
-  for (std::size_t k = 0; k < size(); ++k) {
+  for (std::size_t k = begin; k < end; ++k) {
     const int i = nodes_[2 * k], j = nodes_[2 * k + 1];
     const Vec3 axis(s.x[j] - s.x[i], s.y[j] - s.y[i], s.z[j] - s.z[i]);
     const double l = axis.norm();
@@ -163,11 +165,11 @@ ExplicitStepLimit Link160Set::internal_forces(const ExplicitNodalView& s, double
         trial -= m.young * delta * sign;
         back_[k] += law.kinematic_modulus() * delta * sign;
         alpha_[k] += delta;
-        energies_.plastic_work += std::abs(trial) * delta * area_[k] * l;
+        energies.plastic_work += std::abs(trial) * delta * area_[k] * l;
       }
     }
     stress_[k] = trial;
-    energies_.internal += dt * 0.5 * (old + trial) * rate * area_[k] * l;
+    energies.internal += dt * 0.5 * (old + trial) * rate * area_[k] * l;
     const double force = trial * area_[k];
     double* fk = f + 6 * k;
     for (int c = 0; c < 3; ++c) {
@@ -209,16 +211,17 @@ class Mass166Set final : public ExplicitElementSet {
     return std::numeric_limits<double>::infinity();
   }
   double scale_mass(std::size_t, double, std::vector<double>&) override { return 0.0; }
-  ExplicitStepLimit internal_forces(const ExplicitNodalView&, double, double* f) override {
-    std::fill(f, f + 3 * size(), 0.0);
-    return {};
-  }
-  ExplicitSetEnergies energies() const override { return {}; }
   void results(Eigen::MatrixXd& out) const override {
     out.resize(static_cast<Eigen::Index>(size()), 0);
   }
 
  private:
+  ExplicitStepLimit chunk_forces(const ExplicitNodalView&, double, double* f, double*,
+                                 std::size_t begin, std::size_t end,
+                                 ExplicitSetEnergies&) override {
+    std::fill(f + 3 * begin, f + 3 * end, 0.0);
+    return {};
+  }
   std::vector<int> ids_, nodes_;
   std::vector<double> mass_;
 };

@@ -209,18 +209,12 @@ class Shell163Set final : public ExplicitElementSet {
     density_[k] *= factor;
     return total;
   }
-  ExplicitStepLimit internal_forces(const ExplicitNodalView& state, double dt,
-                                    double* element_forces) override {
-    moments_scratch_.assign(12 * size(), 0.0);
-    return internal_forces_and_moments(state, dt, element_forces, moments_scratch_.data());
-  }
-  ExplicitStepLimit internal_forces_and_moments(const ExplicitNodalView& state, double dt,
-                                                double* element_forces,
-                                                double* element_moments) override;
-  ExplicitSetEnergies energies() const override { return energies_; }
   void results(Eigen::MatrixXd& out) const override;
 
  private:
+  ExplicitStepLimit chunk_forces(const ExplicitNodalView& state, double dt, double* element_forces,
+                                 double* element_moments, std::size_t begin, std::size_t end,
+                                 ExplicitSetEnergies& energies) override;
   double wave_speed(std::size_t k) const {
     return std::sqrt(materials_[static_cast<std::size_t>(material_[k])].plate_modulus() /
                      density_[k]);
@@ -237,10 +231,8 @@ class Shell163Set final : public ExplicitElementSet {
   // Per element and point (kMaxPoints each): σ (xx, yy, zz = 0, xy, yz, xz, local axes), back
   // stress, equivalent plastic strain.
   std::vector<double> stress_, back_, alpha_;
-  std::vector<double> moments_scratch_;
   double hourglass_ = 0.1;
   double gauss_z_[kMaxPoints + 1][kMaxPoints] = {}, gauss_w_[kMaxPoints + 1][kMaxPoints] = {};
-  ExplicitSetEnergies energies_;
 };
 
 Shell163Set::Shell163Set(const ExplicitBuildContext& ctx,
@@ -401,13 +393,14 @@ double Shell163Set::update_point(std::size_t k, int p, const double* d, double d
   return work;
 }
 
-ExplicitStepLimit Shell163Set::internal_forces_and_moments(const ExplicitNodalView& state,
-                                                           double dt, double* element_forces,
-                                                           double* element_moments) {
+ExplicitStepLimit Shell163Set::chunk_forces(const ExplicitNodalView& state, double dt,
+                                            double* element_forces, double* element_moments,
+                                            std::size_t begin, std::size_t end,
+                                            ExplicitSetEnergies& energies) {
   ExplicitStepLimit limit;
   ShellKinematics kin;
   constexpr double kH[4] = {1.0, -1.0, 1.0, -1.0};  // the hourglass base vector
-  for (std::size_t k = 0; k < size(); ++k) {
+  for (std::size_t k = begin; k < end; ++k) {
     const int* n = &nodes_[4 * k];
     if (!frame(state, n, kin))
       throw ElementSolutionError(ids_[k], fmt::format("element {} (SHELL163) lost its area: a "
@@ -462,8 +455,8 @@ ExplicitStepLimit Shell163Set::internal_forces_and_moments(const ExplicitNodalVi
       moment[2] += weight * z * s[3];
     }
     const double area = kin.area;
-    energies_.internal += dt * area * power;
-    energies_.plastic_work += area * plastic;
+    energies.internal += dt * area * power;
+    energies.plastic_work += area * plastic;
     // Viscous hourglass control of the BT modes: γ = h − (h·x) B1 − (h·y) B2 is orthogonal to
     // every linear field, so it never resists a uniform strain rate or a rigid motion. The
     // membrane coefficient scales as the solid's HGCO ρ c V^{2/3}/4 with V^{2/3} → t √A; the
@@ -484,8 +477,8 @@ ExplicitStepLimit Shell163Set::internal_forces_and_moments(const ExplicitNodalVi
       for (int i = 0; i < 2; ++i) q[3 + i] += gamma[a] * kin.w[a][i];
     }
     if (hourglass_ > 0.0)
-      energies_.hourglass += dt * (cm * (q[0] * q[0] + q[1] * q[1]) + cw * q[2] * q[2] +
-                                   cb * (q[3] * q[3] + q[4] * q[4]));
+      energies.hourglass += dt * (cm * (q[0] * q[0] + q[1] * q[1]) + cw * q[2] * q[2] +
+                                  cb * (q[3] * q[3] + q[4] * q[4]));
     else
       std::fill(q, q + 5, 0.0);
     // Nodal forces and moments: the derivatives of the power A(N:d + M:κ + Q·γ) by the nodal

@@ -157,15 +157,17 @@ class Solid164Set final : public ExplicitElementSet {
     density_[k] *= factor;
     return total;
   }
-  ExplicitStepLimit internal_forces(const ExplicitNodalView& state, double dt,
-                                    double* element_forces) override;
-  ExplicitSetEnergies energies() const override { return energies_; }
   void results(Eigen::MatrixXd& out) const override;
   void segments(std::vector<ExplicitSegment>& out) const override;
 
  private:
-  /// σ_{n+1} of element k from D, W over dt; returns the stress power's mean σ:D.
-  double update_stress(std::size_t k, const BrickKinematics& kin, double dt);
+  ExplicitStepLimit chunk_forces(const ExplicitNodalView& state, double dt, double* element_forces,
+                                 double* element_moments, std::size_t begin, std::size_t end,
+                                 ExplicitSetEnergies& energies) override;
+  /// σ_{n+1} of element k from D, W over dt (its plastic work added to `energies`); returns the
+  /// stress power's mean σ:D.
+  double update_stress(std::size_t k, const BrickKinematics& kin, double dt,
+                       ExplicitSetEnergies& energies);
 
   std::vector<int> ids_;
   std::vector<int> nodes_;       // 8 per element
@@ -180,7 +182,6 @@ class Solid164Set final : public ExplicitElementSet {
   std::vector<double> back_;    // 6 per element (kinematic hardening)
   std::vector<double> alpha_;   // equivalent plastic strain
   double hourglass_ = 0.1, bulk_quadratic_ = 1.5, bulk_linear_ = 0.06;
-  ExplicitSetEnergies energies_;
 };
 
 Solid164Set::Solid164Set(const ExplicitBuildContext& ctx,
@@ -249,22 +250,24 @@ double Solid164Set::element_step(const ExplicitNodalView& state, std::size_t k) 
   return mass_factor_[k] * characteristic_length(kin) / c;
 }
 
-double Solid164Set::update_stress(std::size_t k, const BrickKinematics& kin, double dt) {
+double Solid164Set::update_stress(std::size_t k, const BrickKinematics& kin, double dt,
+                                  ExplicitSetEnergies& energies) {
   double* s = &stress_[6 * k];
   const RateMaterial& m = materials_[static_cast<std::size_t>(material_[k])];
   jaumann_rotate(s, kin.w01, kin.w12, kin.w02, dt);
   const double power_old = contract(s, kin.d);
   elastic_increment(s, kin.d, dt, m);
   if (m.plasticity)
-    energies_.plastic_work += kin.volume * radial_return(s, &back_[6 * k], alpha_[k], m);
+    energies.plastic_work += kin.volume * radial_return(s, &back_[6 * k], alpha_[k], m);
   return 0.5 * (power_old + contract(s, kin.d));
 }
 
-ExplicitStepLimit Solid164Set::internal_forces(const ExplicitNodalView& state, double dt,
-                                               double* element_forces) {
+ExplicitStepLimit Solid164Set::chunk_forces(const ExplicitNodalView& state, double dt,
+                                            double* element_forces, double*, std::size_t begin,
+                                            std::size_t end, ExplicitSetEnergies& energies) {
   ExplicitStepLimit limit;
   BrickKinematics kin;
-  for (std::size_t k = 0; k < size(); ++k) {
+  for (std::size_t k = begin; k < end; ++k) {
     gather(state, &nodes_[8 * k], kin);
     hexahedron::volume_derivatives(kin.x, kin.y, kin.z, kin.bx, kin.by, kin.bz);
     kin.volume = hexahedron::volume(kin.x, kin.bx);
@@ -274,7 +277,7 @@ ExplicitStepLimit Solid164Set::internal_forces(const ExplicitNodalView& state, d
                                                       "an hourglass mode out of control",
                                                       ids_[k], kin.volume));
     rates(kin);
-    const double stress_power = update_stress(k, kin, dt);
+    const double stress_power = update_stress(k, kin, dt, energies);
     const RateMaterial& m = materials_[static_cast<std::size_t>(material_[k])];
     const double rho = density_[k];
     const double c = std::sqrt((m.bulk + 4.0 * m.shear / 3.0) / rho);
@@ -288,7 +291,7 @@ ExplicitStepLimit Solid164Set::internal_forces(const ExplicitNodalView& state, d
     }
     limit.take(mass_factor_[k] * length / (speed_term + std::sqrt(speed_term * speed_term + c * c)),
                ids_[k]);
-    energies_.internal += dt * kin.volume * (stress_power - q * volumetric);
+    energies.internal += dt * kin.volume * (stress_power - q * volumetric);
     const double* s = &stress_[6 * k];
     double* f = element_forces + 24 * k;
     for (int a = 0; a < 8; ++a) {
@@ -298,7 +301,7 @@ ExplicitStepLimit Solid164Set::internal_forces(const ExplicitNodalView& state, d
     }
     // FB hourglass viscosity QM ρ c V^{2/3} / 4 (LS-DYNA theory manual, hourglass type 2).
     const double coefficient = 0.25 * hourglass_ * rho * c * std::cbrt(kin.volume * kin.volume);
-    energies_.hourglass += dt * hourglass_forces(kin, coefficient, f);
+    energies.hourglass += dt * hourglass_forces(kin, coefficient, f);
   }
   return limit;
 }
