@@ -450,8 +450,16 @@ std::optional<J2Plasticity> plasticity_of(const Model& model, const ElementRecor
   const auto& data = table->temperatures.front();
   if (law == "BISO" || law == "BKIN") {
     const double sy = data.constants.size() > 0 ? data.constants[0] : 0.0;
-    const double et = data.constants.size() > 1 ? data.constants[1] : 0.0;
+    double et = data.constants.size() > 1 ? data.constants[1] : 0.0;
     if (!(sy > 0.0)) fail(fmt::format("yield stress (TBDATA 1) is {} (must be positive)", sy));
+    if (table->label == "PLAS") {
+      // TB,PLAS,,,,BISO|BKIN gives the plastic tangent modulus Ep = dσ/dε_pl (vm198's deck says
+      // so, and the NAFEMS decks vmr049-pl1b..pl3b pass E Et/(E − Et) there), not TB,BISO's
+      // tangent modulus Et = dσ/dε: Et = E Ep/(E + Ep).
+      if (!(et >= 0.0))
+        fail(fmt::format("plastic tangent modulus (TBDATA 2) = {} must be ≥ 0", et));
+      et = young * et / (young + et);
+    }
     if (!(et >= 0.0 && et < young))
       fail(fmt::format("tangent modulus Et (TBDATA 2) = {} must satisfy 0 ≤ Et < EX = {}", et,
                        young));

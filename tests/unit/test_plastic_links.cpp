@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <iomanip>
 #include <map>
 #include <sstream>
 
@@ -16,6 +17,8 @@ namespace impactfe::test_plastic_links {
 namespace {
 
 constexpr double kE = 200e3, kSy = 250.0, kEt = 20e3;
+/// TB,PLAS's second constant: the plastic tangent modulus E Et/(E − Et) of the tangent kEt.
+constexpr double kEp = kE * kEt / (kE - kEt);
 
 void cyclic_bar(const char* law, bool kinematic) {
   // Two LINK180 in series (L = 10 each), node 3 pulled by D,UX load steps along a cyclic path;
@@ -23,8 +26,9 @@ void cyclic_bar(const char* law, bool kinematic) {
   const double length = 10.0, ey = kSy / kE;
   const auto path = testing::cyclic_strain_path(4.0 * ey, 0.37 * ey);
   std::ostringstream deck;
+  deck << std::setprecision(17);  // kEp is not a short decimal
   deck << "/PREP7\nET,1,LINK180\nSECTYPE,1,LINK\nSECDATA,2.0\nMP,EX,1," << kE
-       << "\nMP,PRXY,1,0.3\nTB,PLAS,1,,," << law << "\nTBDATA,1," << kSy << "," << kEt
+       << "\nMP,PRXY,1,0.3\nTB,PLAS,1,,," << law << "\nTBDATA,1," << kSy << "," << kEp
        << "\nN,1\nN,2," << length << "\nN,3," << 2 * length
        << "\nE,1,2\nE,2,3\nFINISH\n/SOLU\nANTYPE,STATIC\nCNVTOL,F,,1E-8\n"
           "D,ALL,UY\nD,ALL,UZ\nD,1,UX\n";

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <iomanip>
 #include <sstream>
 
 #include "../support/bilinear_closed_form.h"
@@ -15,6 +16,8 @@ namespace impactfe::test_plastic_shells {
 namespace {
 
 constexpr double kE = 200e3, kSy = 250.0, kEt = 20e3;
+/// TB,PLAS's second constant: the plastic tangent modulus E Et/(E − Et) of the tangent kEt.
+constexpr double kEp = kE * kEt / (kE - kEt);
 
 TEST(PlasticShells, ElementTangentMatchesFiniteDifferences) {
   // A skewed quad (incompatible membrane modes active) and a triangle, loaded into membrane +
@@ -68,8 +71,9 @@ TEST(PlasticShells, MembraneCycleFollowsTheBkinLoop) {
   const double t = 0.1, ey = kSy / kE;
   const auto path = testing::cyclic_strain_path(4.0 * ey, 0.45 * ey);
   std::ostringstream deck;
+  deck << std::setprecision(17);  // kEp is not a short decimal
   deck << "/PREP7\nET,1,SHELL181\nSECTYPE,1,SHELL\nSECDATA," << t << "\nMP,EX,1," << kE
-       << "\nMP,PRXY,1,0.3\nTB,PLAS,1,,,BKIN\nTBDATA,1," << kSy << "," << kEt
+       << "\nMP,PRXY,1,0.3\nTB,PLAS,1,,,BKIN\nTBDATA,1," << kSy << "," << kEp
        << "\nN,1,0,0\nN,2,1,0\nN,3,1,1\nN,4,0,1\nE,1,2,3,4\nFINISH\n/SOLU\nANTYPE,STATIC\n"
           "CNVTOL,F,,1E-10\nD,ALL,UZ\nD,ALL,ROTX\nD,ALL,ROTY\nD,ALL,ROTZ\nD,1,UX\nD,4,UX\n"
           "D,1,UY\n";
