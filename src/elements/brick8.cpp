@@ -533,8 +533,8 @@ void Brick8::tangent(const ElementContext& ctx, const Eigen::VectorXd& u, Eigen:
                             "of a plastic brick",
                             id()));
     if (ctx.large_deflection) {
-      // Updated Lagrangian: the initial-stress stiffness is part of the exact tangent.
-      finite_sum(uc, &kc, fc, nullptr);
+      // Updated Lagrangian: the symmetric tangent includes the initial-stress stiffness.
+      finite_sum(uc, &kc, fc, nullptr, FiniteStrainTangent::Symmetric);
       kc = 0.5 * (kc + kc.transpose()).eval();
     } else if (ctx.stress_stiffening) {
       throw ElementSolutionError(

@@ -78,7 +78,7 @@ class Brick8 final : public Element {
   /// stress of u, so that the converged state solves (K + K_σ(u)) u = F as ANSYS SSTIF does).
   /// Large deflection: total-Lagrangian f_int = ∫ B_Lᵀ S dV0 and its exact derivative; with
   /// plasticity the updated-Lagrangian f_int = ∫ Bᵀσ dv on the current configuration and the
-  /// symmetric part of its exact derivative (finite_tangent(), brick8_finite.cpp).
+  /// symmetric tangent of solid_finite_strain.h (finite_tangent(), brick8_finite.cpp).
   void tangent(const ElementContext& ctx, const Eigen::VectorXd& u, Eigen::MatrixXd& K,
                Eigen::VectorXd& f_int) const override;
   /// Consistent ρ∫NᵀN dV (trilinear functions, 2x2x2) or HRZ-lumped when ctx.lumped_mass.
@@ -128,8 +128,8 @@ class Brick8 final : public Element {
   Vector6d centroid_stress(const ElementContext& ctx, const Eigen::VectorXd& u) const;
   /// True for a plastic brick built for large deflection (updated-Lagrangian finite strain).
   bool finite_strain() const { return !finite_points_.empty(); }
-  /// Finite strain: f_int at u (element DOF order) and the exact tangent, non-symmetric unless
-  /// `symmetric` (then its symmetric part, as tangent() assembles it).
+  /// Finite strain: f_int at u (element DOF order) and the exact tangent, non-symmetric, or with
+  /// `symmetric` the symmetric form tangent() assembles (FiniteStrainTangent::Symmetric).
   void finite_tangent(const Eigen::VectorXd& u, Eigen::MatrixXd& K, Eigen::VectorXd& f_int,
                       bool symmetric) const;
   /// Finite strain: the Cauchy stress of Gauss point p (0..7) at u, from the committed state.
@@ -196,7 +196,8 @@ class Brick8 final : public Element {
   Eigen::MatrixXd scalar_mass() const;
   /// Finite strain on the corners: f, the exact tangent when `kc` is given, the states at u.
   void finite_sum(const Eigen::Matrix<double, 24, 1>& uc, Eigen::MatrixXd* kc, Eigen::VectorXd& fc,
-                  FiniteStrainUpdate* update) const;
+                  FiniteStrainUpdate* update,
+                  FiniteStrainTangent form = FiniteStrainTangent::Exact) const;
   /// Finite strain: the states at the corner displacements uc become the committed ones.
   void finite_commit(const Eigen::Matrix<double, 24, 1>& uc);
 

@@ -9,7 +9,8 @@
 namespace impactfe {
 
 void Brick8::finite_sum(const Eigen::Matrix<double, 24, 1>& uc, Eigen::MatrixXd* kc,
-                        Eigen::VectorXd& fc, FiniteStrainUpdate* update) const {
+                        Eigen::VectorXd& fc, FiniteStrainUpdate* update,
+                        FiniteStrainTangent form) const {
   FiniteStrainElement e;
   e.id = id();
   e.points = &finite_points_;
@@ -17,7 +18,7 @@ void Brick8::finite_sum(const Eigen::Matrix<double, 24, 1>& uc, Eigen::MatrixXd*
   e.plasticity = &*plasticity_;
   e.mean_dilatation = true;  // bbar_active(): a plastic brick without internal parameters
   const Eigen::Map<const Eigen::Matrix<double, 3, 8>> u(uc.data());
-  finite_strain_sum(e, committed_u_, u, finite_, kc, fc, update);
+  finite_strain_sum(e, committed_u_, u, finite_, kc, fc, update, form);
 }
 
 void Brick8::finite_tangent(const Eigen::VectorXd& u, Eigen::MatrixXd& K, Eigen::VectorXd& f_int,
@@ -25,7 +26,8 @@ void Brick8::finite_tangent(const Eigen::VectorXd& u, Eigen::MatrixXd& K, Eigen:
   IMPACTFE_CHECK(finite_strain(), "finite_tangent of a brick built without finite strain");
   Eigen::MatrixXd kc;
   Eigen::VectorXd fc;
-  finite_sum(to_corners(u), &kc, fc, nullptr);
+  finite_sum(to_corners(u), &kc, fc, nullptr,
+             symmetric ? FiniteStrainTangent::Symmetric : FiniteStrainTangent::Exact);
   if (symmetric) kc = 0.5 * (kc + kc.transpose()).eval();
   from_corners(kc, fc, K, f_int);
 }

@@ -21,8 +21,14 @@
 //    δσ_k through the midpoint kinematics δL = (I − ½L) δH F_½⁻¹, the derivative of ΔR,
 //    ∂ΔR/∂ω_m = ½ (I − ½ΔW)⁻¹ G_m (I + ΔR) (G_m the generator of the axial component m), and the
 //    algorithmic tangent of the law; the σ-terms are the initial-stress stiffness. It is not
-//    symmetric (rotation terms of the order of σ/E, midpoint terms of the order of the
-//    increment); the elements assemble its symmetric part for the symmetric solvers.
+//    symmetric (rotation and volume terms of the order of σ, midpoint terms of the order of the
+//    increment). Its symmetric part is a poor Newton matrix once σ is comparable with the
+//    plastic tangent modulus (the 20-node brick's iterations stall in uniaxial plastic flow
+//    with E_t = 2000, σ ≈ 300): the symmetric solvers get FiniteStrainTangent::Symmetric
+//    instead, the material term ∫ δε̄ᵀ C δε̄ dv (the law's algorithmic tangent rotated by ΔR)
+//    plus the initial-stress term ∫ ∇N_a·σ∇N_b I dv, the stress stiffness of MAPDL's
+//    large-strain solids (Theory Reference §3.2); Newton then converges linearly, in a few
+//    more iterations.
 //  * Mean dilatation (SOLID185 B-bar): the volumetric part of each point's Δε replaced by its
 //    element mean (reference volume weights), the rate form of Hughes (1980).
 #include "elements/solid_finite_strain.h"
@@ -104,7 +110,8 @@ struct PointKinematics3 {
 
 void finite_strain_sum(const FiniteStrainElement& element, const Eigen::Matrix3Xd& u_n,
                        const Eigen::Matrix3Xd& u, const std::vector<FiniteStrainState>& committed,
-                       Eigen::MatrixXd* K, Eigen::VectorXd& f, FiniteStrainUpdate* update) {
+                       Eigen::MatrixXd* K, Eigen::VectorXd& f, FiniteStrainUpdate* update,
+                       FiniteStrainTangent form) {
   const std::vector<FiniteStrainPoint>& points = *element.points;
   const auto nn = u.cols();
   const auto nd = 3 * nn;
@@ -240,8 +247,20 @@ void finite_strain_sum(const FiniteStrainElement& element, const Eigen::Matrix3X
                          rot * sh3 * drot.transpose();
       ds.col(6 + m) = voigt3(dsig, 1.0);
     }
-    const Eigen::MatrixXd dsigma = ds * k.dq;  // 6 x nd
     Eigen::MatrixXd& kk = *K;
+    if (form == FiniteStrainTangent::Symmetric) {
+      // ∫ δε̄_jᵀ C̃ δε̄_k dv (tensor shears: the shear rows count twice in the contraction) and
+      // the initial-stress stiffness δ_ij ∫ ∇N_bj · σ ∇N_bk dv.
+      Eigen::Matrix<double, 6, Eigen::Dynamic> weighted = k.dq.topRows<6>();
+      weighted.bottomRows<3>() *= 2.0;
+      kk.noalias() += dv * (weighted.transpose() * (ds.leftCols<6>() * k.dq.topRows<6>()));
+      const Eigen::MatrixXd g = dv * (k.h.transpose() * (s3 * k.h));
+      for (Eigen::Index bj = 0; bj < nn; ++bj)
+        for (Eigen::Index bk = 0; bk < nn; ++bk)
+          for (int i = 0; i < 3; ++i) kk(3 * bj + i, 3 * bk + i) += g(bj, bk);
+      continue;
+    }
+    const Eigen::MatrixXd dsigma = ds * k.dq;  // 6 x nd
     for (Eigen::Index bk = 0; bk < nn; ++bk)
       for (int ik = 0; ik < 3; ++ik) {
         const Eigen::Index col = 3 * bk + ik;

@@ -47,12 +47,19 @@ struct FiniteStrainElement {
   bool mean_dilatation = false;
 };
 
+/// The tangent finite_strain_sum() forms. Exact: the derivative of the internal force (not
+/// symmetric). Symmetric: the material term ∫ δε̄ᵀ C δε̄ dv (the law's algorithmic tangent
+/// rotated by ΔR, the strain variations of the midpoint kinematics with the mean dilatation)
+/// plus the initial-stress term ∫ ∇N_a·σ∇N_b I dv, the form of the symmetric solvers.
+enum class FiniteStrainTangent { Exact, Symmetric };
+
 /// Internal force f (3 per function, function order of FiniteStrainPoint::grad) at the total
 /// displacement u (3 x n) from the committed displacement u_n and the committed states; the
-/// exact (non-symmetric) tangent into K when given; the states at u into `update` when given.
+/// tangent of the given form into K when given; the states at u into `update` when given.
 /// Throws ElementSolutionError when a point turns inside out.
 void finite_strain_sum(const FiniteStrainElement& element, const Eigen::Matrix3Xd& u_n,
                        const Eigen::Matrix3Xd& u, const std::vector<FiniteStrainState>& committed,
-                       Eigen::MatrixXd* K, Eigen::VectorXd& f, FiniteStrainUpdate* update);
+                       Eigen::MatrixXd* K, Eigen::VectorXd& f, FiniteStrainUpdate* update,
+                       FiniteStrainTangent form = FiniteStrainTangent::Exact);
 
 }  // namespace impactfe

@@ -142,7 +142,7 @@ void QuadraticSolid::tangent(const ElementContext& ctx, const Eigen::VectorXd& u
                           id(), finite_strain() ? "with NLGEOM,ON" : "small-strain",
                           ctx.large_deflection ? "with NLGEOM,ON" : "small-strain"));
   if (ctx.large_deflection) {
-    // Updated Lagrangian: the initial-stress stiffness is part of the exact tangent.
+    // Updated Lagrangian: the symmetric tangent includes the initial-stress stiffness.
     finite_tangent(u, K, f_int, true);
     return;
   }
@@ -398,20 +398,21 @@ void QuadraticSolid::plastic_results(const Eigen::VectorXd& u, ElementResultValu
 // ---- large deflection (solid_finite_strain.h) ------------------------------------------------
 
 void QuadraticSolid::finite_sum(const Eigen::VectorXd& u, Eigen::MatrixXd* k, Eigen::VectorXd& f,
-                                FiniteStrainUpdate* update) const {
+                                FiniteStrainUpdate* update, FiniteStrainTangent form) const {
   FiniteStrainElement e;
   e.id = id();
   e.points = &finite_points_;
   e.d = d_;
   e.plasticity = plasticity_ ? &*plasticity_ : nullptr;
   const Eigen::Map<const Eigen::Matrix3Xd> uc(u.data(), 3, u.size() / 3);
-  finite_strain_sum(e, committed_u_, uc, finite_, k, f, update);
+  finite_strain_sum(e, committed_u_, uc, finite_, k, f, update, form);
 }
 
 void QuadraticSolid::finite_tangent(const Eigen::VectorXd& u, Eigen::MatrixXd& K,
                                     Eigen::VectorXd& f_int, bool symmetric) const {
   IMPACTFE_CHECK(finite_strain(), "finite_tangent of a quadratic solid built small-strain");
-  finite_sum(u, &K, f_int, nullptr);
+  finite_sum(u, &K, f_int, nullptr,
+             symmetric ? FiniteStrainTangent::Symmetric : FiniteStrainTangent::Exact);
   if (symmetric) K = 0.5 * (K + K.transpose()).eval();
 }
 

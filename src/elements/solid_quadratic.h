@@ -62,7 +62,7 @@ class QuadraticSolid final : public Element {
   /// geometric stiffness of the small-strain stress of u at the stiffness points, as Brick8).
   /// With plasticity K = ∫BᵀC_alg B dV, f_int = ∫Bᵀσ dV from the committed states.
   /// Large deflection: f_int = ∫ Bᵀσ dv on the current configuration (Cauchy stress) and the
-  /// symmetric part of its exact derivative (finite_tangent()).
+  /// symmetric tangent of solid_finite_strain.h (finite_tangent()).
   void tangent(const ElementContext& ctx, const Eigen::VectorXd& u, Eigen::MatrixXd& K,
                Eigen::VectorXd& f_int) const override;
   /// Consistent ρ∫NᵀN dV, or HRZ-lumped when ctx.lumped_mass (Hinton, Rock & Zienkiewicz 1976:
@@ -82,8 +82,8 @@ class QuadraticSolid final : public Element {
   void results(const ElementContext& ctx, const Eigen::VectorXd& u, const Eigen::VectorXd& v,
                ElementResultValues& out) const override;
   std::optional<double> volume() const override { return volume_; }
-  /// Finite strain: f_int at u and the exact tangent, non-symmetric unless `symmetric` (then
-  /// its symmetric part, as tangent() assembles it).
+  /// Finite strain: f_int at u and the exact tangent, non-symmetric, or with `symmetric` the
+  /// symmetric form tangent() assembles (FiniteStrainTangent::Symmetric).
   void finite_tangent(const Eigen::VectorXd& u, Eigen::MatrixXd& K, Eigen::VectorXd& f_int,
                       bool symmetric) const;
   /// Finite strain: the Cauchy stress of stiffness point p at u, from the committed state.
@@ -111,7 +111,8 @@ class QuadraticSolid final : public Element {
   void plastic_results(const Eigen::VectorXd& u, ElementResultValues& out) const;
   /// Finite strain at u from the committed states (solid_finite_strain.h).
   void finite_sum(const Eigen::VectorXd& u, Eigen::MatrixXd* k, Eigen::VectorXd& f,
-                  FiniteStrainUpdate* update) const;
+                  FiniteStrainUpdate* update,
+                  FiniteStrainTangent form = FiniteStrainTangent::Exact) const;
   /// The volume averages of the states at u (reference weights) as results().
   void finite_results(const Eigen::VectorXd& u, ElementResultValues& out) const;
 
