@@ -255,8 +255,8 @@ void register_mesh_selection_commands(std::vector<CommandSpec>& t) {
   const unsigned where = kPrep7 | kSolu | kPost1;
   t.push_back({"NSEL", cmd_nsel, where | kPost});
   t.push_back({"ESEL", cmd_esel, where | kPost});
-  t.push_back({"NSLE", cmd_nsle, where});
-  t.push_back({"ESLN", cmd_esln, where});
+  t.push_back({"NSLE", cmd_nsle, where | kPost});
+  t.push_back({"ESLN", cmd_esln, where | kPost});
   t.push_back({"ALLSEL", cmd_allsel, where | kPost});
   t.push_back({"NALL", cmd_select_all, where});
   t.push_back({"EALL", cmd_select_all, where});

@@ -151,6 +151,18 @@ Brick8::Brick8(int id, const std::array<int, 8>& nodes, const std::array<Vec3, 8
           (gp.dv / volume_) * gp.grad.col(a).head<3>().transpose();
 
   if (plasticity_) committed_.resize(kGauss);
+  // The finite-strain form (solid_finite_strain.h) has the mean dilatation but no internal
+  // strain parameters, and no creep clock: a plastic brick with modes or creep is not built for
+  // it (the registration refuses such a deck; tangent() refuses to solve it under NLGEOM).
+  if (plasticity_ && large_deflection && n_internal_ == 0 && !plasticity_->has_creep()) {
+    finite_points_.resize(kGauss);
+    for (int p = 0; p < kGauss; ++p) {
+      finite_points_[static_cast<std::size_t>(p)].grad = gauss_[p].grad.leftCols<8>();
+      finite_points_[static_cast<std::size_t>(p)].dv0 = gauss_[p].dv;
+    }
+    finite_.resize(kGauss);
+    committed_u_.setZero(3, 8);
+  }
   if (extra_shapes_ && (plasticity_ || large_deflection)) mode_recovery_ = mode_recovery();
 }
 
@@ -454,6 +466,10 @@ void Brick8::tangent_plastic(const Eigen::Matrix<double, 24, 1>& uc, Eigen::Matr
 
 void Brick8::commit_history(const ElementContext& ctx, const Eigen::VectorXd& u) {
   if (!plasticity_) return;
+  if (finite_strain() && ctx.large_deflection) {
+    finite_commit(to_corners(u));
+    return;
+  }
   Eigen::MatrixXd kc;
   Eigen::VectorXd fc;
   PointStates next = committed_;
@@ -465,6 +481,10 @@ std::vector<double> Brick8::history_state() const {
   std::vector<double> out;
   if (plasticity_)
     for (const PlasticState& s : committed_) append_state(out, s);  // per Gauss point
+  // Finite strain: the accumulated strains, then the committed corner displacements.
+  for (const FiniteStrainState& s : finite_)
+    out.insert(out.end(), s.strain.data(), s.strain.data() + 6);
+  out.insert(out.end(), committed_u_.data(), committed_u_.data() + committed_u_.size());
   return out;
 }
 
@@ -472,7 +492,13 @@ void Brick8::restore_history_state(const std::vector<double>& state) {
   std::size_t pos = 0;
   if (plasticity_)
     for (PlasticState& s : committed_) read_state(state, pos, s);
-  IMPACTFE_CHECK(pos == state.size(), "SOLID: saved state of the wrong length");
+  const std::size_t finite = 6 * finite_.size() + static_cast<std::size_t>(committed_u_.size());
+  IMPACTFE_CHECK(pos + finite == state.size(), "SOLID: saved state of the wrong length");
+  for (std::size_t p = 0; p < finite_.size(); ++p) {
+    for (int i = 0; i < 6; ++i) finite_[p].strain(i) = state[pos++];
+    finite_[p].plastic = committed_[p];
+  }
+  for (Eigen::Index i = 0; i < committed_u_.size(); ++i) committed_u_.data()[i] = state[pos++];
 }
 
 double Brick8::plastic_work() const {
@@ -494,13 +520,30 @@ void Brick8::tangent(const ElementContext& ctx, const Eigen::VectorXd& u, Eigen:
   Eigen::MatrixXd& kc = corners_are_dofs ? K : kc_collapsed;
   Eigen::VectorXd& fc = corners_are_dofs ? f_int : fc_collapsed;
   if (plasticity_) {
-    if (ctx.large_deflection || ctx.stress_stiffening)
+    if (ctx.large_deflection && !finite_strain())
       throw ElementSolutionError(
-          id(), fmt::format("element {}: brick plasticity is small-strain; large deflection "
-                            "(NLGEOM) and stress stiffening with a TB plasticity material are "
-                            "not implemented for bricks",
+          id(), fmt::format("element {}: large deflection (NLGEOM,ON) with a TB plasticity "
+                            "material is implemented for a brick built with NLGEOM,ON, without "
+                            "incompatible or enhanced modes and without creep",
                             id()));
-    tangent_plastic(uc, kc, fc, nullptr);
+    if (!ctx.large_deflection && finite_strain())
+      throw ElementSolutionError(
+          id(), fmt::format("element {}: a plastic brick built with NLGEOM,ON cannot be solved "
+                            "small-strain: large deflection may not change within an analysis "
+                            "of a plastic brick",
+                            id()));
+    if (ctx.large_deflection) {
+      // Updated Lagrangian: the symmetric tangent includes the initial-stress stiffness.
+      finite_sum(uc, &kc, fc, nullptr, FiniteStrainTangent::Symmetric);
+      kc = 0.5 * (kc + kc.transpose()).eval();
+    } else if (ctx.stress_stiffening) {
+      throw ElementSolutionError(
+          id(), fmt::format("element {}: stress stiffening (SSTIF) without large deflection "
+                            "with a TB plasticity material is not implemented for bricks",
+                            id()));
+    } else {
+      tangent_plastic(uc, kc, fc, nullptr);
+    }
   } else if (ctx.large_deflection)
     tangent_large(uc, kc, fc);
   else
@@ -673,12 +716,22 @@ void Brick8::results(const ElementContext& ctx, const Eigen::VectorXd& u, const 
   Vector6d s;
   Vector6d plastic_strain = Vector6d::Zero();
   double epeq = 0.0, sepl = 0.0, srat = 0.0, plwk = 0.0;
-  if (plasticity_ && !ctx.large_deflection && !ctx.stress_stiffening) {
-    // The states at u (the committed ones after a converged step), averaged over the volume.
-    Eigen::MatrixXd kc;
-    Eigen::VectorXd fc;
+  const bool finite = plasticity_ && finite_strain() && ctx.large_deflection;
+  if (finite || (plasticity_ && !ctx.large_deflection && !ctx.stress_stiffening)) {
+    // The states at u (the committed ones after a converged step), averaged over the (reference)
+    // volume; under large deflection the Cauchy stresses and the states rotated to the current
+    // configuration.
     PointStates at = committed_;
-    tangent_plastic(to_corners(u), kc, fc, &at);
+    if (finite) {
+      FiniteStrainUpdate up;
+      Eigen::VectorXd fc;
+      finite_sum(to_corners(u), nullptr, fc, &up);
+      for (std::size_t p = 0; p < at.size(); ++p) at[p] = up.states[p].plastic;
+    } else {
+      Eigen::MatrixXd kc;
+      Eigen::VectorXd fc;
+      tangent_plastic(to_corners(u), kc, fc, &at);
+    }
     s.setZero();
     for (int p = 0; p < kGauss; ++p) {
       const PlasticState& st = at[static_cast<std::size_t>(p)];

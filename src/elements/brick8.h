@@ -10,7 +10,10 @@
 /// consistent tangent) — the enhanced-mode treatment of SOLID185 KEYOPT(2) = 3 and SOLID45.
 /// Without extra shapes the plastic brick uses B-bar (mean dilatation, as MAPDL's SOLID185
 /// KEYOPT(2) = 0), so isochoric plastic flow does not lock; the elastic brick without TB keeps
-/// full integration (docs/elements/solid45.md).
+/// full integration (docs/elements/solid45.md). A plastic brick under large deflection (NLGEOM,ON)
+/// is updated-Lagrangian and hypoelastic (elements/solid_finite_strain.h: midpoint increments,
+/// Hughes-Winget rotation, Cauchy stress, logarithmic strain) with the mean dilatation applied to
+/// the strain increment; the elastic brick keeps the total-Lagrangian St. Venant-Kirchhoff form.
 #include <Eigen/Core>
 
 #include <array>
@@ -19,6 +22,7 @@
 #include <vector>
 
 #include "elements/element.h"
+#include "elements/solid_finite_strain.h"
 #include "materials/isotropic_elasticity.h"
 #include "materials/j2_plasticity.h"
 
@@ -72,7 +76,9 @@ class Brick8 final : public Element {
   }
   /// Linear: K = condensed ∫BᵀDB dV, f_int = K u (+ K_σ u with stress stiffening, K_σ from the
   /// stress of u, so that the converged state solves (K + K_σ(u)) u = F as ANSYS SSTIF does).
-  /// Large deflection: total-Lagrangian f_int = ∫ B_Lᵀ S dV0 and its exact derivative.
+  /// Large deflection: total-Lagrangian f_int = ∫ B_Lᵀ S dV0 and its exact derivative; with
+  /// plasticity the updated-Lagrangian f_int = ∫ Bᵀσ dv on the current configuration and the
+  /// symmetric tangent of solid_finite_strain.h (finite_tangent(), brick8_finite.cpp).
   void tangent(const ElementContext& ctx, const Eigen::VectorXd& u, Eigen::MatrixXd& K,
                Eigen::VectorXd& f_int) const override;
   /// Consistent ρ∫NᵀN dV (trilinear functions, 2x2x2) or HRZ-lumped when ctx.lumped_mass.
@@ -120,6 +126,14 @@ class Brick8 final : public Element {
   std::optional<double> volume() const override { return volume_; }
   /// Cauchy stress (xx, yy, zz, xy, yz, xz) at the centroid for displacement u.
   Vector6d centroid_stress(const ElementContext& ctx, const Eigen::VectorXd& u) const;
+  /// True for a plastic brick built for large deflection (updated-Lagrangian finite strain).
+  bool finite_strain() const { return !finite_points_.empty(); }
+  /// Finite strain: f_int at u (element DOF order) and the exact tangent, non-symmetric, or with
+  /// `symmetric` the symmetric form tangent() assembles (FiniteStrainTangent::Symmetric).
+  void finite_tangent(const Eigen::VectorXd& u, Eigen::MatrixXd& K, Eigen::VectorXd& f_int,
+                      bool symmetric) const;
+  /// Finite strain: the Cauchy stress of Gauss point p (0..7) at u, from the committed state.
+  Vector6d finite_point_stress(const Eigen::VectorXd& u, int p) const;
 
  private:
   /// ε_th = (ALPX, ALPY, ALPZ) Σ N_a ΔT_a, no shear, at the point with trilinear values `n`.
@@ -180,6 +194,12 @@ class Brick8 final : public Element {
   }
   /// Scalar (one direction) mass matrix over the distinct nodes, consistent.
   Eigen::MatrixXd scalar_mass() const;
+  /// Finite strain on the corners: f, the exact tangent when `kc` is given, the states at u.
+  void finite_sum(const Eigen::Matrix<double, 24, 1>& uc, Eigen::MatrixXd* kc, Eigen::VectorXd& fc,
+                  FiniteStrainUpdate* update,
+                  FiniteStrainTangent form = FiniteStrainTangent::Exact) const;
+  /// Finite strain: the states at the corner displacements uc become the committed ones.
+  void finite_commit(const Eigen::Matrix<double, 24, 1>& uc);
 
   std::array<int, 8> nodes_;
   std::array<Vec3, 8> x_;
@@ -202,6 +222,12 @@ class Brick8 final : public Element {
   Eigen::Matrix<double, 1, 24> mean_dilatation_;  // (1/V) ∫ ∂u_i/∂x_i row over the corners
   std::optional<J2Plasticity> plasticity_;
   PointStates committed_{};
+  // Plastic brick under large deflection: the Gauss points' reference gradients and measures,
+  // their committed finite-strain states and the committed corner displacements (all empty
+  // otherwise).
+  std::vector<FiniteStrainPoint> finite_points_;
+  std::vector<FiniteStrainState> finite_;
+  Eigen::Matrix3Xd committed_u_;  // 3 x 8 (corners)
 };
 
 }  // namespace impactfe

@@ -63,6 +63,10 @@ std::unique_ptr<Element> make_brick8(const ElementBuildContext& ctx, const Eleme
   BrickStrain strain = BrickStrain::Standard;
   if (solid185 && k2 == 0) strain = BrickStrain::BBar;
   if (solid185 && k2 == 2) strain = BrickStrain::Enhanced;
+  const IsotropicElasticity material =
+      read_isotropic_elasticity(model, record.mat, record.id, record.where);
+  std::optional<J2Plasticity> plasticity =
+      plasticity_of(model, record, material.young, material.poisson);
   std::string approximation;
   if (k2 == 1)
     approximation = fmt::format(
@@ -70,7 +74,9 @@ std::unique_ptr<Element> make_brick8(const ElementBuildContext& ctx, const Eleme
         "implemented: computed with full 2x2x2 Gauss{} (stiffer in "
         "bending than the reduced element)",
         extra ? " and incompatible modes" : ", no extra shapes");
-  else if (solid185 && (k2 == 0 || k2 == 2) && ctx.large_deflection)
+  // A plastic brick under large deflection is finite-strain with B-bar (KEYOPT(2) = 0) and
+  // refuses 2 and 3 (Brick8); the elastic one is total-Lagrangian without B-bar.
+  else if (solid185 && (k2 == 0 || k2 == 2) && ctx.large_deflection && !plasticity)
     approximation = k2 == 0 ? "under large deflection (NLGEOM) B-bar is not implemented: "
                               "computed with full 2x2x2 Gauss (locks for nearly incompressible "
                               "material)"
@@ -90,11 +96,25 @@ std::unique_ptr<Element> make_brick8(const ElementBuildContext& ctx, const Eleme
       Log::warn("element type {} ({} KEYOPT(2) = {}): {} (approximation)", record.type,
                 solid185 ? "SOLID185" : "SOLID45", k2, approximation);
   }
-  const IsotropicElasticity material =
-      read_isotropic_elasticity(model, record.mat, record.id, record.where);
-  return std::make_unique<Brick8>(record.id, nodes, x, material, extra, record.where,
-                                  plasticity_of(model, record, material.young, material.poisson),
-                                  ctx.large_deflection, strain);
+  const bool creep = plasticity && plasticity->has_creep();
+  const bool plastic = plasticity.has_value();
+  auto brick = std::make_unique<Brick8>(record.id, nodes, x, material, extra, record.where,
+                                        std::move(plasticity), ctx.large_deflection, strain);
+  // Plasticity under large deflection is the finite-strain brick with B-bar (Brick8): no
+  // internal strain parameters, no creep.
+  if (plastic && ctx.large_deflection && brick->n_internal() > 0)
+    throw InputError(record.where,
+                     fmt::format("element {} ({}): large deflection (NLGEOM,ON) with a TB "
+                                 "plasticity material is implemented for the brick with B-bar "
+                                 "(SOLID185 KEYOPT(2) = 0, SOLID45 KEYOPT(1) = 1); the "
+                                 "incompatible or enhanced strain modes (SOLID185 KEYOPT(2) = 2 "
+                                 "or 3, SOLID45 KEYOPT(1) = 0) are not",
+                                 record.id, solid185 ? "SOLID185" : "SOLID45"));
+  if (creep && ctx.large_deflection)
+    throw InputError(record.where, fmt::format("element {} ({}): creep (TB,CREEP) under large "
+                                               "deflection (NLGEOM,ON) is not implemented",
+                                               record.id, solid185 ? "SOLID185" : "SOLID45"));
+  return brick;
 }
 
 ElementTypeDescriptor brick_type(const char* name, int number, bool solid185) {

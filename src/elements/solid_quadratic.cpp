@@ -51,7 +51,7 @@ QuadraticSolid::QuadraticSolid(int id, QuadraticShape shape, const std::vector<i
                                const std::vector<Vec3>& x, const IsotropicElasticity& material,
                                std::vector<QuadraturePoint> stiffness_rule,
                                std::vector<std::vector<int>> faces, const SourceLocation& where,
-                               std::optional<J2Plasticity> plasticity)
+                               std::optional<J2Plasticity> plasticity, bool large_deflection)
     : Element(id),
       shape_(shape),
       nodes_(nodes),
@@ -96,6 +96,16 @@ QuadraticSolid::QuadraticSolid(int id, QuadraticShape shape, const std::vector<i
   volume_ = 0.0;
   for (const QuadraturePoint& q : mass_rule(shape)) volume_ += q.weight * point_at(q.xi).det;
   if (plasticity_) committed_.resize(rule_.size());
+  if (large_deflection) {
+    IMPACTFE_CHECK(!plasticity_ || !plasticity_->has_creep(),
+                   "quadratic solid: creep under large deflection");
+    for (const QuadraturePoint& q : rule_) {
+      const Point p = point_at(q.xi);
+      finite_points_.push_back(FiniteStrainPoint{p.grad, q.weight * p.det});
+    }
+    finite_.resize(rule_.size());
+    committed_u_.setZero(3, nn);
+  }
 }
 
 QuadraticSolid::Point QuadraticSolid::point_at(const Eigen::Vector3d& xi) const {
@@ -124,11 +134,18 @@ Eigen::MatrixXd QuadraticSolid::small_strain_stiffness() const {
 
 void QuadraticSolid::tangent(const ElementContext& ctx, const Eigen::VectorXd& u,
                              Eigen::MatrixXd& K, Eigen::VectorXd& f_int) const {
-  if (ctx.large_deflection)
+  if (ctx.large_deflection != finite_strain())
     throw ElementSolutionError(
-        id(), fmt::format("element {}: SOLID186/SOLID187 are small-strain here; large "
-                          "deflection (NLGEOM,ON) is not implemented for the quadratic solids",
-                          id()));
+        id(), fmt::format("element {}: SOLID186/SOLID187 built {} cannot be solved {}: large "
+                          "deflection (NLGEOM) may not change within an analysis of the "
+                          "quadratic solids",
+                          id(), finite_strain() ? "with NLGEOM,ON" : "small-strain",
+                          ctx.large_deflection ? "with NLGEOM,ON" : "small-strain"));
+  if (ctx.large_deflection) {
+    // Updated Lagrangian: the symmetric tangent includes the initial-stress stiffness.
+    finite_tangent(u, K, f_int, true);
+    return;
+  }
   if (plasticity_) {
     if (ctx.stress_stiffening)
       throw ElementSolutionError(
@@ -236,6 +253,10 @@ const std::vector<std::string>& QuadraticSolid::result_names() const {
 
 void QuadraticSolid::results(const ElementContext& ctx, const Eigen::VectorXd& u,
                              const Eigen::VectorXd& v, ElementResultValues& out) const {
+  if (finite_strain() && ctx.large_deflection) {
+    finite_results(u, out);
+    return;
+  }
   if (plasticity_ && !ctx.stress_stiffening && !ctx.large_deflection) {
     plastic_results(u, out);
     return;
@@ -272,7 +293,17 @@ void QuadraticSolid::plastic_sum(const Eigen::VectorXd& u, Eigen::MatrixXd& k, E
   k = 0.5 * (k + k.transpose()).eval();
 }
 
-void QuadraticSolid::commit_history(const ElementContext&, const Eigen::VectorXd& u) {
+void QuadraticSolid::commit_history(const ElementContext& ctx, const Eigen::VectorXd& u) {
+  if (finite_strain() && ctx.large_deflection) {
+    FiniteStrainUpdate at;
+    Eigen::VectorXd f;
+    finite_sum(u, nullptr, f, &at);
+    finite_ = at.states;
+    if (plasticity_)
+      for (std::size_t p = 0; p < finite_.size(); ++p) committed_[p] = finite_[p].plastic;
+    committed_u_ = Eigen::Map<const Eigen::Matrix3Xd>(u.data(), 3, u.size() / 3);
+    return;
+  }
   if (!plasticity_) return;
   Eigen::MatrixXd k;
   Eigen::VectorXd f;
@@ -284,13 +315,23 @@ void QuadraticSolid::commit_history(const ElementContext&, const Eigen::VectorXd
 std::vector<double> QuadraticSolid::history_state() const {
   std::vector<double> out;
   for (const PlasticState& s : committed_) append_state(out, s);  // per stiffness point
+  // Large deflection: the accumulated strains, then the committed displacement.
+  for (const FiniteStrainState& s : finite_)
+    out.insert(out.end(), s.strain.data(), s.strain.data() + 6);
+  out.insert(out.end(), committed_u_.data(), committed_u_.data() + committed_u_.size());
   return out;
 }
 
 void QuadraticSolid::restore_history_state(const std::vector<double>& state) {
   std::size_t pos = 0;
   for (PlasticState& s : committed_) read_state(state, pos, s);
-  IMPACTFE_CHECK(pos == state.size(), "SOLID186/187: saved state of the wrong length");
+  const std::size_t finite = 6 * finite_.size() + static_cast<std::size_t>(committed_u_.size());
+  IMPACTFE_CHECK(pos + finite == state.size(), "SOLID186/187: saved state of the wrong length");
+  for (std::size_t p = 0; p < finite_.size(); ++p) {
+    for (int i = 0; i < 6; ++i) finite_[p].strain(i) = state[pos++];
+    if (plasticity_) finite_[p].plastic = committed_[p];
+  }
+  for (Eigen::Index i = 0; i < committed_u_.size(); ++i) committed_u_.data()[i] = state[pos++];
 }
 
 double QuadraticSolid::plastic_work() const {
@@ -348,6 +389,69 @@ void QuadraticSolid::plastic_results(const Eigen::VectorXd& u, ElementResultValu
     out[20] = plwk;
     return;
   }
+  const double plastic[10] = {eppl(0), eppl(1), eppl(2), eppl(3),
+                              eppl(4), eppl(5), epeq,    plasticity_->flow_stress(epeq),
+                              srat,    plwk};
+  std::copy(plastic, plastic + 10, out.begin() + 11);
+}
+
+// ---- large deflection (solid_finite_strain.h) ------------------------------------------------
+
+void QuadraticSolid::finite_sum(const Eigen::VectorXd& u, Eigen::MatrixXd* k, Eigen::VectorXd& f,
+                                FiniteStrainUpdate* update, FiniteStrainTangent form) const {
+  FiniteStrainElement e;
+  e.id = id();
+  e.points = &finite_points_;
+  e.d = d_;
+  e.plasticity = plasticity_ ? &*plasticity_ : nullptr;
+  const Eigen::Map<const Eigen::Matrix3Xd> uc(u.data(), 3, u.size() / 3);
+  finite_strain_sum(e, committed_u_, uc, finite_, k, f, update, form);
+}
+
+void QuadraticSolid::finite_tangent(const Eigen::VectorXd& u, Eigen::MatrixXd& K,
+                                    Eigen::VectorXd& f_int, bool symmetric) const {
+  IMPACTFE_CHECK(finite_strain(), "finite_tangent of a quadratic solid built small-strain");
+  finite_sum(u, &K, f_int, nullptr,
+             symmetric ? FiniteStrainTangent::Symmetric : FiniteStrainTangent::Exact);
+  if (symmetric) K = 0.5 * (K + K.transpose()).eval();
+}
+
+Vector6d QuadraticSolid::finite_point_stress(const Eigen::VectorXd& u, int p) const {
+  FiniteStrainUpdate at;
+  Eigen::VectorXd f;
+  finite_sum(u, nullptr, f, &at);
+  return at.stress.at(static_cast<std::size_t>(p));
+}
+
+void QuadraticSolid::finite_results(const Eigen::VectorXd& u, ElementResultValues& out) const {
+  // Volume averages over the stiffness points (reference weights), as the small-strain plastic
+  // results; the stresses are Cauchy, the states rotated into the current configuration.
+  FiniteStrainUpdate at;
+  Eigen::VectorXd f;
+  finite_sum(u, nullptr, f, &at);
+  Vector6d s = Vector6d::Zero(), eppl = Vector6d::Zero();
+  double epeq = 0.0, plwk = 0.0, srat = 0.0, total = 0.0;
+  for (const FiniteStrainPoint& p : finite_points_) total += p.dv0;
+  for (std::size_t q = 0; q < finite_points_.size(); ++q) {
+    const double w = finite_points_[q].dv0 / total;
+    s += w * at.stress[q];
+    if (!plasticity_) continue;
+    const PlasticState& st = at.states[q].plastic;
+    eppl += w * st.plastic_strain;
+    epeq += w * st.alpha;
+    plwk += w * st.plastic_work;
+    srat =
+        std::max(srat, von_mises(st.stress - st.back_stress) / plasticity_->flow_stress(st.alpha));
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(voigt_to_tensor(s),
+                                                          Eigen::EigenvaluesOnly);
+  const Eigen::Vector3d pr = es.eigenvalues();  // ascending
+  const double s1 = pr(2), s2 = pr(1), s3 = pr(0);
+  const double seqv =
+      std::sqrt(0.5 * ((s1 - s2) * (s1 - s2) + (s2 - s3) * (s2 - s3) + (s3 - s1) * (s3 - s1)));
+  out = {s(0), s(1), s(2), s(3), s(4), s(5), s1, s2, s3, s1 - s3, seqv};
+  out.resize(quadratic_solid_result_names().size(), 0.0);
+  if (!plasticity_) return;
   const double plastic[10] = {eppl(0), eppl(1), eppl(2), eppl(3),
                               eppl(4), eppl(5), epeq,    plasticity_->flow_stress(epeq),
                               srat,    plwk};

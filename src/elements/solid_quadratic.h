@@ -6,8 +6,10 @@
 /// elasticity; consistent mass (exact rules: 3x3x3, or the conical product on the tetrahedron) or
 /// HRZ-lumped mass; linear stress stiffening; consistent pressure loads on the 8-node and 6-node
 /// faces. With a TB plasticity (or implicit creep) law: small-strain J2 at the stiffness points
-/// with committed states per point (solid_quadratic_plastic.cpp). Large deflection is refused,
-/// and stress stiffening with plasticity (docs/elements/solid186.md).
+/// with committed states per point. Large deflection (NLGEOM,ON, elastic or plastic) is
+/// updated-Lagrangian and hypoelastic (elements/solid_finite_strain.h: midpoint increments,
+/// Hughes-Winget rotation, Cauchy stress, logarithmic strain); stress stiffening with plasticity
+/// is refused (docs/elements/solid186.md).
 #include <Eigen/Core>
 
 #include <optional>
@@ -16,6 +18,7 @@
 
 #include "elements/element.h"
 #include "elements/quadratic_shapes.h"
+#include "elements/solid_finite_strain.h"
 #include "materials/isotropic_elasticity.h"
 #include "materials/j2_plasticity.h"
 
@@ -36,14 +39,17 @@ class QuadraticSolid final : public Element {
                  const std::vector<Vec3>& x, const IsotropicElasticity& material,
                  std::vector<QuadraturePoint> stiffness_rule, std::vector<std::vector<int>> faces,
                  const SourceLocation& where = {},
-                 std::optional<J2Plasticity> plasticity = std::nullopt);
+                 std::optional<J2Plasticity> plasticity = std::nullopt,
+                 bool large_deflection = false);
 
   const char* family() const override { return "QuadraticSolid"; }
   const std::vector<DofKey>& dofs() const override { return dofs_; }
   bool is_nonlinear(const ElementContext& ctx) const override {
     return ctx.large_deflection || ctx.stress_stiffening || plasticity_.has_value();
   }
-  bool has_history() const override { return plasticity_.has_value(); }
+  bool has_history() const override { return plasticity_.has_value() || finite_strain(); }
+  /// True when built for large deflection (updated-Lagrangian finite strain).
+  bool finite_strain() const { return !finite_points_.empty(); }
   double plastic_work() const override;
   void commit_history(const ElementContext& ctx, const Eigen::VectorXd& u) override;
   std::vector<double> history_state() const override;
@@ -55,7 +61,8 @@ class QuadraticSolid final : public Element {
   /// K = ∫BᵀDB dV, f_int = K u; with stress stiffening K + K_σ(u) and f_int = (K + K_σ) u (the
   /// geometric stiffness of the small-strain stress of u at the stiffness points, as Brick8).
   /// With plasticity K = ∫BᵀC_alg B dV, f_int = ∫Bᵀσ dV from the committed states.
-  /// Large deflection is refused (ElementSolutionError naming the element).
+  /// Large deflection: f_int = ∫ Bᵀσ dv on the current configuration (Cauchy stress) and the
+  /// symmetric tangent of solid_finite_strain.h (finite_tangent()).
   void tangent(const ElementContext& ctx, const Eigen::VectorXd& u, Eigen::MatrixXd& K,
                Eigen::VectorXd& f_int) const override;
   /// Consistent ρ∫NᵀN dV, or HRZ-lumped when ctx.lumped_mass (Hinton, Rock & Zienkiewicz 1976:
@@ -75,6 +82,12 @@ class QuadraticSolid final : public Element {
   void results(const ElementContext& ctx, const Eigen::VectorXd& u, const Eigen::VectorXd& v,
                ElementResultValues& out) const override;
   std::optional<double> volume() const override { return volume_; }
+  /// Finite strain: f_int at u and the exact tangent, non-symmetric, or with `symmetric` the
+  /// symmetric form tangent() assembles (FiniteStrainTangent::Symmetric).
+  void finite_tangent(const Eigen::VectorXd& u, Eigen::MatrixXd& K, Eigen::VectorXd& f_int,
+                      bool symmetric) const;
+  /// Finite strain: the Cauchy stress of stiffness point p at u, from the committed state.
+  Vector6d finite_point_stress(const Eigen::VectorXd& u, int p) const;
   /// Stress (xx, yy, zz, xy, yz, xz) at natural coordinates xi for displacement u.
   Vector6d stress_at(const Eigen::Vector3d& xi, const Eigen::VectorXd& u) const;
   QuadraticShape shape() const { return shape_; }
@@ -96,6 +109,12 @@ class QuadraticSolid final : public Element {
   void plastic_sum(const Eigen::VectorXd& u, Eigen::MatrixXd& k, Eigen::VectorXd& f,
                    std::vector<PlasticState>* updated) const;
   void plastic_results(const Eigen::VectorXd& u, ElementResultValues& out) const;
+  /// Finite strain at u from the committed states (solid_finite_strain.h).
+  void finite_sum(const Eigen::VectorXd& u, Eigen::MatrixXd* k, Eigen::VectorXd& f,
+                  FiniteStrainUpdate* update,
+                  FiniteStrainTangent form = FiniteStrainTangent::Exact) const;
+  /// The volume averages of the states at u (reference weights) as results().
+  void finite_results(const Eigen::VectorXd& u, ElementResultValues& out) const;
 
   QuadraticShape shape_;
   std::vector<int> nodes_;
@@ -108,6 +127,11 @@ class QuadraticSolid final : public Element {
   std::vector<std::vector<int>> faces_;
   std::optional<J2Plasticity> plasticity_;
   std::vector<PlasticState> committed_;  // per stiffness point (plastic elements)
+  // Large deflection: the stiffness points' reference gradients and measures, their committed
+  // finite-strain states and the committed displacement (3 x nodes); empty otherwise.
+  std::vector<FiniteStrainPoint> finite_points_;
+  std::vector<FiniteStrainState> finite_;
+  Eigen::Matrix3Xd committed_u_;
 };
 
 }  // namespace impactfe

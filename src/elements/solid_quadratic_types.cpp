@@ -78,13 +78,14 @@ void require_all_nodes(const ElementRecord& record, const char* name, int n_node
                                    record.id, name, k + 1, n_nodes));
 }
 
-void refuse_large_deflection(const ElementBuildContext& ctx, const ElementRecord& record,
-                             const char* name) {
-  if (ctx.large_deflection)
-    throw InputError(record.where,
-                     fmt::format("element {} ({}): large deflection (NLGEOM,ON) is not "
-                                 "implemented for the quadratic solids",
-                                 record.id, name));
+/// Large deflection (NLGEOM,ON) is the finite-strain form (solid_finite_strain.h), which has no
+/// creep clock: creep under NLGEOM is refused.
+void refuse_large_deflection_creep(const ElementBuildContext& ctx, const ElementRecord& record,
+                                   const char* name, const std::optional<J2Plasticity>& law) {
+  if (ctx.large_deflection && law && law->has_creep())
+    throw InputError(record.where, fmt::format("element {} ({}): creep (TB,CREEP) under large "
+                                               "deflection (NLGEOM,ON) is not implemented",
+                                               record.id, name));
 }
 
 /// The degenerate tetrahedron of SOLID186 (K = L = S, M = N = O = P = U = V = W = X, A = B) as
@@ -117,7 +118,6 @@ std::optional<std::pair<std::vector<int>, std::vector<std::vector<int>>>> solid1
 std::unique_ptr<Element> make_solid186(const ElementBuildContext& ctx,
                                        const ElementRecord& record) {
   const Model& model = ctx.model;
-  refuse_large_deflection(ctx, record, "SOLID186");
   if (record.nodes.size() != 20)
     throw InputError(record.where, fmt::format("element {}: SOLID186 needs 20 nodes I..P, Q..B, "
                                                "got {}",
@@ -125,20 +125,21 @@ std::unique_ptr<Element> make_solid186(const ElementBuildContext& ctx,
   require_all_nodes(record, "SOLID186", 20);
   const IsotropicElasticity material =
       read_isotropic_elasticity(model, record.mat, record.id, record.where);
+  std::optional<J2Plasticity> law = plasticity_of(model, record, material.young, material.poisson);
+  refuse_large_deflection_creep(ctx, record, "SOLID186", law);
   const std::vector<int>& n = record.nodes;
   if (std::set<int>(n.begin(), n.begin() + 8).size() == 8) {
     // KEYOPT(2) = 0: uniform reduced integration (2x2x2), MAPDL's default; 1: full (3x3x3).
     const int order = type_of(model, record).key(2) == 1 ? 3 : 2;
     return std::make_unique<QuadraticSolid>(
         record.id, QuadraticShape::Hex20, n, coordinates(model, record, n), material,
-        gauss_cube(order), hex20_faces(), record.where,
-        plasticity_of(model, record, material.young, material.poisson));
+        gauss_cube(order), hex20_faces(), record.where, std::move(law), ctx.large_deflection);
   }
   if (const auto tet = solid186_tetrahedron(n))
-    return std::make_unique<QuadraticSolid>(
-        record.id, QuadraticShape::Tet10, tet->first, coordinates(model, record, tet->first),
-        material, tetrahedron_4_point(), tet->second, record.where,
-        plasticity_of(model, record, material.young, material.poisson));
+    return std::make_unique<QuadraticSolid>(record.id, QuadraticShape::Tet10, tet->first,
+                                            coordinates(model, record, tet->first), material,
+                                            tetrahedron_4_point(), tet->second, record.where,
+                                            std::move(law), ctx.large_deflection);
   throw InputError(
       record.where,
       fmt::format("element {}: SOLID186 with repeated corner nodes is taken only as the "
@@ -150,17 +151,19 @@ std::unique_ptr<Element> make_solid186(const ElementBuildContext& ctx,
 
 std::unique_ptr<Element> make_solid187(const ElementBuildContext& ctx,
                                        const ElementRecord& record) {
-  refuse_large_deflection(ctx, record, "SOLID187");
   if (record.nodes.size() != 10)
     throw InputError(record.where, fmt::format("element {}: SOLID187 needs 10 nodes I..R, got {}",
                                                record.id, record.nodes.size()));
   require_all_nodes(record, "SOLID187", 10);
   const IsotropicElasticity material =
       read_isotropic_elasticity(ctx.model, record.mat, record.id, record.where);
-  return std::make_unique<QuadraticSolid>(
-      record.id, QuadraticShape::Tet10, record.nodes, coordinates(ctx.model, record, record.nodes),
-      material, tetrahedron_4_point(), tet10_faces(), record.where,
-      plasticity_of(ctx.model, record, material.young, material.poisson));
+  std::optional<J2Plasticity> law =
+      plasticity_of(ctx.model, record, material.young, material.poisson);
+  refuse_large_deflection_creep(ctx, record, "SOLID187", law);
+  return std::make_unique<QuadraticSolid>(record.id, QuadraticShape::Tet10, record.nodes,
+                                          coordinates(ctx.model, record, record.nodes), material,
+                                          tetrahedron_4_point(), tet10_faces(), record.where,
+                                          std::move(law), ctx.large_deflection);
 }
 
 ElementTypeDescriptor quadratic_solid_type(const char* name, int number, int n_nodes, VtkCell cell,
