@@ -17,6 +17,17 @@ ExplicitStepLimit ExplicitElementSet::internal_forces_and_moments(const Explicit
     element_moments = dropped_moments_.data();
   }
   const std::size_t chunks = (n + kChunk - 1) / kChunk;
+  if (chunks <= 1) {
+    // One chunk: on this thread, without the pool's hand-over (a small model's cycle is a few
+    // microseconds).
+    ExplicitSetEnergies e;
+    const ExplicitStepLimit limit =
+        chunk_forces(state, dt, element_forces, element_moments, 0, n, e);
+    energies_.internal += e.internal;
+    energies_.hourglass += e.hourglass;
+    energies_.plastic_work += e.plastic_work;
+    return limit;
+  }
   // Sized once: the per-chunk sums are cleared, not reallocated, each cycle.
   chunk_energies_.assign(chunks, ExplicitSetEnergies{});
   chunk_limits_.assign(chunks, ExplicitStepLimit{});
