@@ -443,14 +443,6 @@ void Beam161Set::results(Eigen::MatrixXd& out) const {
   }
 }
 
-std::unique_ptr<Element> refuse_implicit(const ElementBuildContext&, const ElementRecord& record) {
-  throw InputError(record.where,
-                   fmt::format("element {}: BEAM161 is an explicit dynamics element: it runs in a "
-                               "transient analysis whose elements are all explicit (16x) ones "
-                               "(docs/explicit_dynamics.md); use BEAM188 in an implicit one",
-                               record.id));
-}
-
 const ElementRegistration kBeam161{
     {.name = "BEAM161",
      .number = 161,
@@ -464,7 +456,9 @@ const ElementRegistration kBeam161{
      .result_names = kResults,
      .result_sequences = {{"SMISC", "1", "FORC"}, {"S", "EQV", "SEQV"}, {"NL", "EPEQ", "EPEQ"}},
      .plasticity = true,
-     .create = refuse_implicit,
+     .create = [](const ElementBuildContext&, const ElementRecord& r) -> std::unique_ptr<Element> {
+       refuse_in_implicit_analysis(r, "BEAM161", "; use BEAM188 in an implicit one");
+     },
      .explicit_set = [](const ExplicitBuildContext& ctx,
                         const std::vector<const ElementRecord*>& records)
          -> std::unique_ptr<ExplicitElementSet> {

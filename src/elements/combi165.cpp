@@ -170,14 +170,6 @@ ExplicitStepLimit Combi165Set::chunk_forces(const ExplicitNodalView& s, double d
   return limit;
 }
 
-[[noreturn]] std::unique_ptr<Element> refuse_implicit(const ElementRecord& record) {
-  throw InputError(record.where,
-                   fmt::format("element {}: COMBI165 is an explicit dynamics element: it runs in a "
-                               "transient analysis whose elements are all explicit (16x) ones "
-                               "(docs/explicit_dynamics.md); COMBIN14 is the implicit spring",
-                               record.id));
-}
-
 const ElementRegistration kCombi165{
     {.name = "COMBI165",
      .number = 165,
@@ -189,8 +181,10 @@ const ElementRegistration kCombi165{
      .role = ShapeRole::Line,
      .result_names = kResults,
      .result_sequences = {{"SMISC", "1", "FORC"}},
-     .create = [](const ElementBuildContext&,
-                  const ElementRecord& r) { return refuse_implicit(r); },
+     .create =
+         [](const ElementBuildContext&, const ElementRecord& r) {
+           return refuse_in_implicit_analysis(r, "COMBI165", "; COMBIN14 is the implicit spring");
+         },
      .explicit_set = [](const ExplicitBuildContext& ctx,
                         const std::vector<const ElementRecord*>& records)
          -> std::unique_ptr<ExplicitElementSet> {

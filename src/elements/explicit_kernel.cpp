@@ -1,9 +1,13 @@
 // The threaded element loop of the explicit element sets (explicit_kernel.h).
 #include "elements/explicit_kernel.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 
+#include "core/errors.h"
 #include "core/thread_pool.h"
+#include "elements/element.h"
 
 namespace impactfe {
 
@@ -46,6 +50,15 @@ ExplicitStepLimit ExplicitElementSet::internal_forces_and_moments(const Explicit
     limit.take(chunk_limits_[c].dt, chunk_limits_[c].element);
   }
   return limit;
+}
+
+std::unique_ptr<Element> refuse_in_implicit_analysis(const ElementRecord& record, const char* name,
+                                                     const char* alternative) {
+  throw InputError(record.where,
+                   fmt::format("element {}: {} is an explicit dynamics element: it runs in a "
+                               "transient analysis whose elements are all explicit (16x) ones "
+                               "(docs/explicit_dynamics.md){}",
+                               record.id, name, alternative));
 }
 
 }  // namespace impactfe

@@ -151,6 +151,14 @@ class ExplicitElementSet {
   std::vector<double> dropped_moments_;
 };
 
+class Element;
+
+/// The implicit factory of an explicit (16x) element type: refuses the element, named `name`,
+/// at its definition; `alternative` ends the message ("; use SOLID185 in an implicit one").
+[[noreturn]] std::unique_ptr<Element> refuse_in_implicit_analysis(const ElementRecord& record,
+                                                                  const char* name,
+                                                                  const char* alternative = "");
+
 using ExplicitSetFactory = std::function<std::unique_ptr<ExplicitElementSet>(
     const ExplicitBuildContext&, const std::vector<const ElementRecord*>&)>;
 

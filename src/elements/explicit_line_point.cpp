@@ -226,15 +226,6 @@ class Mass166Set final : public ExplicitElementSet {
   std::vector<double> mass_;
 };
 
-[[noreturn]] std::unique_ptr<Element> refuse_implicit(const ElementRecord& record,
-                                                      const char* name) {
-  throw InputError(record.where,
-                   fmt::format("element {}: {} is an explicit dynamics element: it runs in a "
-                               "transient analysis whose elements are all explicit (16x) ones "
-                               "(docs/explicit_dynamics.md)",
-                               record.id, name));
-}
-
 const ElementRegistration kLink160{
     {.name = "LINK160",
      .number = 160,
@@ -249,7 +240,7 @@ const ElementRegistration kLink160{
      .result_sequences = {{"LS", "1", "SAXL"}, {"SMISC", "1", "FORC"}, {"NL", "EPEQ", "EPEQ"}},
      .plasticity = true,
      .create = [](const ElementBuildContext&,
-                  const ElementRecord& r) { return refuse_implicit(r, "LINK160"); },
+                  const ElementRecord& r) { return refuse_in_implicit_analysis(r, "LINK160"); },
      .explicit_set = [](const ExplicitBuildContext& ctx,
                         const std::vector<const ElementRecord*>& records)
          -> std::unique_ptr<ExplicitElementSet> {
@@ -266,7 +257,7 @@ const ElementRegistration kMass166{
      .role = ShapeRole::Point,
      .result_names = kMassResults,
      .create = [](const ElementBuildContext&,
-                  const ElementRecord& r) { return refuse_implicit(r, "MASS166"); },
+                  const ElementRecord& r) { return refuse_in_implicit_analysis(r, "MASS166"); },
      .explicit_set = [](const ExplicitBuildContext& ctx,
                         const std::vector<const ElementRecord*>& records)
          -> std::unique_ptr<ExplicitElementSet> {

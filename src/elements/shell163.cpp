@@ -536,14 +536,6 @@ void Shell163Set::results(Eigen::MatrixXd& out) const {
   }
 }
 
-std::unique_ptr<Element> refuse_implicit(const ElementBuildContext&, const ElementRecord& record) {
-  throw InputError(record.where,
-                   fmt::format("element {}: SHELL163 is an explicit dynamics element: it runs in "
-                               "a transient analysis whose elements are all explicit (16x) ones "
-                               "(docs/explicit_dynamics.md); use SHELL181 in an implicit one",
-                               record.id));
-}
-
 const ElementRegistration kShell163{
     {.name = "SHELL163",
      .number = 163,
@@ -557,7 +549,9 @@ const ElementRegistration kShell163{
      .result_names = kResults,
      .result_sequences = {{"S", "EQV", "SEQV"}, {"NL", "EPEQ", "EPEQ"}},
      .plasticity = true,
-     .create = refuse_implicit,
+     .create = [](const ElementBuildContext&, const ElementRecord& r) -> std::unique_ptr<Element> {
+       refuse_in_implicit_analysis(r, "SHELL163", "; use SHELL181 in an implicit one");
+     },
      .explicit_set = [](const ExplicitBuildContext& ctx,
                         const std::vector<const ElementRecord*>& records)
          -> std::unique_ptr<ExplicitElementSet> {

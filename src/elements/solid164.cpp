@@ -319,14 +319,6 @@ void Solid164Set::results(Eigen::MatrixXd& out) const {
   }
 }
 
-std::unique_ptr<Element> refuse_implicit(const ElementBuildContext&, const ElementRecord& record) {
-  throw InputError(record.where,
-                   fmt::format("element {}: SOLID164 is an explicit dynamics element: it runs in "
-                               "a transient analysis whose elements are all explicit (16x) ones "
-                               "(docs/explicit_dynamics.md); use SOLID185 in an implicit one",
-                               record.id));
-}
-
 const ElementRegistration kSolid164{
     {.name = "SOLID164",
      .number = 164,
@@ -345,7 +337,9 @@ const ElementRegistration kSolid164{
                           {"S", "EQV", "SEQV"},
                           {"NL", "EPEQ", "EPEQ"}},
      .plasticity = true,
-     .create = refuse_implicit,
+     .create = [](const ElementBuildContext&, const ElementRecord& r) -> std::unique_ptr<Element> {
+       refuse_in_implicit_analysis(r, "SOLID164", "; use SOLID185 in an implicit one");
+     },
      .explicit_set = [](const ExplicitBuildContext& ctx,
                         const std::vector<const ElementRecord*>& records)
          -> std::unique_ptr<ExplicitElementSet> {
