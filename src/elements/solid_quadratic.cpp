@@ -251,6 +251,24 @@ const std::vector<std::string>& QuadraticSolid::result_names() const {
   return quadratic_solid_result_names();
 }
 
+namespace {
+
+/// A result row with its stress columns: S X..XZ, the principal stresses S1 ≥ S2 ≥ S3, SINT and
+/// SEQV (from the principal values); the other columns zero.
+ElementResultValues stress_columns(const Vector6d& s) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(voigt_to_tensor(s),
+                                                          Eigen::EigenvaluesOnly);
+  const Eigen::Vector3d pr = es.eigenvalues();  // ascending
+  const double s1 = pr(2), s2 = pr(1), s3 = pr(0);
+  const double seqv =
+      std::sqrt(0.5 * ((s1 - s2) * (s1 - s2) + (s2 - s3) * (s2 - s3) + (s3 - s1) * (s3 - s1)));
+  ElementResultValues out = {s(0), s(1), s(2), s(3), s(4), s(5), s1, s2, s3, s1 - s3, seqv};
+  out.resize(quadratic_solid_result_names().size(), 0.0);
+  return out;
+}
+
+}  // namespace
+
 void QuadraticSolid::results(const ElementContext& ctx, const Eigen::VectorXd& u,
                              const Eigen::VectorXd& v, ElementResultValues& out) const {
   if (finite_strain() && ctx.large_deflection) {
@@ -261,15 +279,7 @@ void QuadraticSolid::results(const ElementContext& ctx, const Eigen::VectorXd& u
     plastic_results(u, out);
     return;
   }
-  const Vector6d s = stress_at(quadratic_shape_centre(shape_), u);
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(voigt_to_tensor(s),
-                                                          Eigen::EigenvaluesOnly);
-  const Eigen::Vector3d pr = es.eigenvalues();  // ascending
-  const double s1 = pr(2), s2 = pr(1), s3 = pr(0);
-  const double seqv =
-      std::sqrt(0.5 * ((s1 - s2) * (s1 - s2) + (s2 - s3) * (s2 - s3) + (s3 - s1) * (s3 - s1)));
-  out = {s(0), s(1), s(2), s(3), s(4), s(5), s1, s2, s3, s1 - s3, seqv};
-  out.resize(quadratic_solid_result_names().size(), 0.0);  // the plastic items
+  out = stress_columns(stress_at(quadratic_shape_centre(shape_), u));  // plastic items 0
 }
 
 // ---- plasticity ----------------------------------------------------------------------------
@@ -369,14 +379,7 @@ void QuadraticSolid::plastic_results(const Eigen::VectorXd& u, ElementResultValu
   eppl /= total;
   epeq /= total;
   plwk /= total;
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(voigt_to_tensor(s),
-                                                          Eigen::EigenvaluesOnly);
-  const Eigen::Vector3d pr = es.eigenvalues();  // ascending
-  const double s1 = pr(2), s2 = pr(1), s3 = pr(0);
-  const double seqv =
-      std::sqrt(0.5 * ((s1 - s2) * (s1 - s2) + (s2 - s3) * (s2 - s3) + (s3 - s1) * (s3 - s1)));
-  out = {s(0), s(1), s(2), s(3), s(4), s(5), s1, s2, s3, s1 - s3, seqv};
-  out.resize(quadratic_solid_result_names().size(), 0.0);
+  out = stress_columns(s);
   if (creep) {
     // A creep law (no yield surface): EPCR X..XZ, EQV = √(2/3 ε:ε) of the (deviatoric) creep
     // strain with the engineering shears halved, NL CREQ the accumulated equivalent creep
@@ -443,14 +446,7 @@ void QuadraticSolid::finite_results(const Eigen::VectorXd& u, ElementResultValue
     srat =
         std::max(srat, von_mises(st.stress - st.back_stress) / plasticity_->flow_stress(st.alpha));
   }
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(voigt_to_tensor(s),
-                                                          Eigen::EigenvaluesOnly);
-  const Eigen::Vector3d pr = es.eigenvalues();  // ascending
-  const double s1 = pr(2), s2 = pr(1), s3 = pr(0);
-  const double seqv =
-      std::sqrt(0.5 * ((s1 - s2) * (s1 - s2) + (s2 - s3) * (s2 - s3) + (s3 - s1) * (s3 - s1)));
-  out = {s(0), s(1), s(2), s(3), s(4), s(5), s1, s2, s3, s1 - s3, seqv};
-  out.resize(quadratic_solid_result_names().size(), 0.0);
+  out = stress_columns(s);
   if (!plasticity_) return;
   const double plastic[10] = {eppl(0), eppl(1), eppl(2), eppl(3),
                               eppl(4), eppl(5), epeq,    plasticity_->flow_stress(epeq),
