@@ -6,7 +6,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <ctime>
 
 #include "deck/get_hooks.h"
 #include "deck/post1_print.h"
@@ -17,6 +19,9 @@
 namespace impactfe::deck {
 
 namespace {
+
+/// The start of the run, for *GET ACTIVE TIME WALL (the elapsed wall-clock time).
+const auto kRunStart = std::chrono::steady_clock::now();
 
 /// The fields of a *GET / *VGET after Par: Entity, ENTNUM, Item1, IT1NUM, Item2, IT2NUM.
 struct GetRequest {
@@ -234,9 +239,17 @@ GetValue get_active(DeckReader& r, const Command& c, const GetRequest& g) {
   if (i1 == "CSYS") return {0.0};
   if (i1 == "JOBNAM") return {0.0, r.model.jobname};
   if (i1 == "TITLE") return {0.0, r.model.title};
+  // Run timers, as Workbench input files read them around SOLVE: WALL is the elapsed wall-clock
+  // time in hours (ds.dat multiplies differences by 3600), CPU the processor time in seconds.
+  if (i1 == "TIME" && g.it1num == "WALL") {
+    const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - kRunStart;
+    return {elapsed.count() / 3600.0};
+  }
+  if (i1 == "TIME" && g.it1num == "CPU")
+    return {static_cast<double>(std::clock()) / CLOCKS_PER_SEC};
   unsupported(r, c, g,
               "SET TIME/FREQ/LSTP/SBST/NSET, SOLU DTIME/NCMLS/NCMSS/NCMIT/CNVG, ANTY, TYPE, MAT, "
-              "REAL, SECT, CSYS, JOBNAM, TITLE");
+              "REAL, SECT, CSYS, JOBNAM, TITLE, TIME WALL/CPU");
 }
 
 int integer_field(DeckReader& r, const Command& c, const GetRequest& g, const std::string& text) {

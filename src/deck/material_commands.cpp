@@ -242,6 +242,13 @@ void cmd_tb(DeckReader& r, const Command& c) {
                             "elastoplastic, Maxwell and inelastic springs (2 to 7) are not",
                             c.text(5)));
     if (ntemp != 1) r.fail(c, "TB,DISCRETE: one temperature only (NTEMP = 1)");
+  } else if (lab == "FCLI") {
+    // Strength limits for the failure criteria of POST1 (FC, FAIL): they do not enter the
+    // solution, and impactfe computes no failure criteria, so the table is kept unused. Workbench
+    // input files write it for every composite material.
+    r.warn(c,
+           "TB,FCLI: failure-criterion limits are read but not used: impactfe computes no "
+           "failure criteria (the solution does not depend on them)");
   } else if (lab != "BISO" && lab != "BKIN" && lab != "MISO" && lab != "MKIN") {
     r.fail(c, fmt::format("TB,{}: material model not supported", lab.empty() ? "(blank)" : lab));
   }

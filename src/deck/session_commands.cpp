@@ -123,6 +123,17 @@ void register_session_commands(std::vector<CommandSpec>& t) {
   t.push_back({"QRDOPT", cmd_ignored, kPrep7 | kSolu,
                "options of MAPDL's QR damped eigensolver; impactfe computes undamped real modes "
                "(MODOPT)"});
+  // Lines every Workbench input file (ds.dat) carries.
+  t.push_back({"/WB", cmd_ignored, kAnywhere,
+               "marks the sections of a Workbench input file: no effect on the model"});
+  t.push_back({"/NOLIST", cmd_ignored, kAnywhere, "input echo off: printing only"});
+  t.push_back({"/GOLIST", cmd_ignored, kAnywhere, "input echo on: printing only"});
+  t.push_back({"SHPP", cmd_ignored, kAnywhere,
+               "MAPDL's element shape warnings; impactfe's own element checks (zero or negative "
+               "volume or area) always run and cannot be switched off"});
+  t.push_back({"ETCONTROL", cmd_ignored, kAnywhere,
+               "MAPDL's automatic choice of the 18x elements' KEYOPTs; impactfe keeps the KEYOPTs "
+               "as the input gives them (a Workbench input file writes them)"});
   t.push_back({"/UNITS", cmd_units, kAnywhere});
   // /CWD would move the run's files out of its directory; /SYS would run programs: refused.
   t.push_back({"/CWD", cmd_refused_session, kAnywhere, nullptr,

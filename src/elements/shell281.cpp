@@ -14,6 +14,7 @@
 #include "elements/element_registry.h"
 #include "elements/quadratic_shapes.h"
 #include "elements/shell_kernel.h"
+#include "materials/isotropic_elasticity.h"
 
 namespace impactfe {
 
@@ -698,6 +699,7 @@ std::unique_ptr<Element> make_shell281(const ElementBuildContext& ctx,
   if (mat_it == model.materials.end() || !mat_it->second.has("EX"))
     throw fail(fmt::format("material {} has no EX", record.mat));
   const Material& mat = mat_it->second;
+  require_isotropic(mat, record.mat, record.id, record.where);
   data.E = mat.get("EX", 0.0);
   if (!(data.E > 0.0)) throw fail(fmt::format("material {}: EX must be positive", record.mat));
   data.nu = mat.has("NUXY") ? mat.get("NUXY", 0.3) : mat.get("PRXY", 0.3);

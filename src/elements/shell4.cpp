@@ -17,6 +17,7 @@
 #include "elements/shell_frame.h"
 #include "elements/so3.h"
 #include "materials/inelastic_strain.h"
+#include "materials/isotropic_elasticity.h"
 
 namespace impactfe {
 
@@ -680,6 +681,7 @@ std::unique_ptr<Element> make_shell4(const ElementBuildContext& ctx, const Eleme
   if (mat_it == model.materials.end() || !mat_it->second.has("EX"))
     throw fail(fmt::format("material {} has no EX", record.mat));
   const Material& mat = mat_it->second;
+  require_isotropic(mat, record.mat, record.id, record.where);
   shell::KernelData& k = data.kernel;
   k.E = mat.get("EX", 0.0);
   if (!(k.E > 0.0)) throw fail(fmt::format("material {}: EX must be positive", record.mat));

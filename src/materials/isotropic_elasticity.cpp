@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+
 namespace impactfe {
 
 Matrix6d isotropic_elasticity_matrix(double young, double poisson) {
@@ -17,6 +19,26 @@ Matrix6d isotropic_elasticity_matrix(double young, double poisson) {
   return d;
 }
 
+void require_isotropic(const Material& mat, int mat_id, int element_id,
+                       const SourceLocation& where) {
+  const double young = mat.get("EX", 0.0);
+  const double poisson = mat.has("NUXY") ? mat.get("NUXY", 0.3) : mat.get("PRXY", 0.3);
+  const double shear = young / (2.0 * (1.0 + poisson));
+  const auto check = [&](const char* label, double isotropic_value, double tolerance) {
+    if (!mat.has(label)) return;
+    const double given = mat.get(label, 0.0);
+    if (std::abs(given - isotropic_value) <= tolerance * std::abs(isotropic_value)) return;
+    throw InputError(where, fmt::format("element {}: material {} is anisotropic ({} = {:g}, the "
+                                        "isotropic value is {:g}): orthotropic elasticity is not "
+                                        "implemented; give isotropic constants (EX, PRXY)",
+                                        element_id, mat_id, label, given, isotropic_value));
+  };
+  check("EY", young, 1e-12);
+  check("EZ", young, 1e-12);
+  for (const char* label : {"PRYZ", "PRXZ", "NUYZ", "NUXZ"}) check(label, poisson, 1e-12);
+  for (const char* label : {"GXY", "GYZ", "GXZ"}) check(label, shear, 1e-4);
+}
+
 IsotropicElasticity read_isotropic_elasticity(const Model& model, int mat_id, int element_id,
                                               const SourceLocation& where) {
   const auto it = model.materials.find(mat_id);
@@ -24,6 +46,7 @@ IsotropicElasticity read_isotropic_elasticity(const Model& model, int mat_id, in
     throw InputError(where, fmt::format("element {}: material {} has no EX (Young's modulus)",
                                         element_id, mat_id));
   const Material& mat = it->second;
+  require_isotropic(mat, mat_id, element_id, where);
   IsotropicElasticity out;
   out.young = mat.get("EX", 0.0);
   out.poisson = mat.has("NUXY") ? mat.get("NUXY", 0.3) : mat.get("PRXY", 0.3);

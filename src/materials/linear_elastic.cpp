@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include "materials/isotropic_elasticity.h"
+
 namespace impactfe {
 
 ElasticMaterial elastic_material(const Model& model, const ElementRecord& record,
@@ -14,6 +16,7 @@ ElasticMaterial elastic_material(const Model& model, const ElementRecord& record
   if (!mat.has("EX"))
     throw InputError(record.where, fmt::format("element {} ({}): material {} has no EX", record.id,
                                                family, record.mat));
+  require_isotropic(mat, record.mat, record.id, record.where);
   ElasticMaterial out;
   out.youngs_modulus = mat.get("EX", 0.0);
   if (!(out.youngs_modulus > 0.0))

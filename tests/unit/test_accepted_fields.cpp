@@ -1,7 +1,8 @@
 // Fields that were accepted and ignored (silent wrong answers) are carried out or refused:
 // LINK180's ADDMAS and TENSKEY (read as a LINK8 initial strain before), LINK8's initial strain in
 // a linear static and a transient, MP / RMODIF / MPCHG between load steps (a new analysis after
-// FINISH takes them), SOLID185 KEYOPT(6) = 1.
+// FINISH takes them), SOLID185 KEYOPT(6) = 1, orthotropic elastic constants (MP,EY, GXY ...)
+// that the isotropic elements would have left out.
 // Closed forms: a bar of EA/L with a tip load; a one-element fixed-free bar with consistent mass,
 // ω² = 3EA / ((ρA + m) L²); a mass on a pre-strained bar oscillating about u = −ε₀L.
 #include <fmt/format.h>
@@ -257,6 +258,44 @@ TEST(AcceptedFields, Solid185MixedFormulationIsRefused) {
                      "(1 (mixed u-P formulation) is not implemented)"),
             std::string::npos)
       << err;
+}
+
+/// A one-element SOLID185 cube or SHELL181 square with material 1's extra MP line `extra`.
+std::string elastic_deck(const std::string& type, const std::string& extra) {
+  const bool shell = type == "SHELL181";
+  std::string deck =
+      fmt::format("/PREP7\nET,1,{}\nMP,EX,1,200E9\nMP,PRXY,1,0.3\n{}\n", type, extra);
+  deck += shell ? "SECTYPE,1,SHELL\nSECDATA,0.01\n" : "";
+  deck += "N,1,0,0,0\nN,2,1,0,0\nN,3,1,1,0\nN,4,0,1,0\n";
+  deck += shell ? "E,1,2,3,4\n" : "N,5,0,0,1\nN,6,1,0,1\nN,7,1,1,1\nN,8,0,1,1\nE,1,2,3,4,5,6,7,8\n";
+  deck += shell ? "D,1,ALL\nD,2,ALL\nD,4,ALL\n"
+                : "D,1,ALL\nD,2,ALL\nD,4,ALL\nD,5,ALL\nD,6,ALL\nD,8,ALL\n";
+  deck += "FINISH\n/SOLU\nF,3,FZ,1\n";
+  deck += "SOLVE\nFINISH\n";
+  return deck;
+}
+
+TEST(AcceptedFields, OrthotropicConstantsAreRefused) {
+  // EY, PRYZ or a shear modulus other than EX / (2 (1 + PRXY)) would be left out by the
+  // isotropic elements: each is refused, naming the constant.
+  for (const std::string type : {"SOLID185", "SHELL181"}) {
+    for (const auto& [extra, label] :
+         std::vector<std::pair<std::string, std::string>>{{"MP,EY,1,100E9", "EY = 1e+11"},
+                                                          {"MP,PRYZ,1,0.2", "PRYZ = 0.2"},
+                                                          {"MP,GXY,1,50E9", "GXY = 5e+10"}}) {
+      const std::string err = error_of("orthotropic_" + type, elastic_deck(type, extra));
+      EXPECT_NE(err.find("material 1 is anisotropic (" + label), std::string::npos)
+          << type << " " << extra << ": " << err;
+    }
+  }
+}
+
+TEST(AcceptedFields, IsotropicValuesOfTheOrthotropicLabelsAreAccepted) {
+  // EY = EX, PRXZ = PRXY and G = E / (2 (1 + nu)) rounded to four digits describe the isotropic
+  // solid: the run goes on.
+  const std::string extra = "MP,EY,1,200E9\nMP,EZ,1,200E9\nMP,PRXZ,1,0.3\nMP,GXY,1,76.92E9";
+  for (const std::string type : {"SOLID185", "SHELL181"})
+    EXPECT_EQ(error_of("isotropic_" + type, elastic_deck(type, extra)), "") << type;
 }
 
 }  // namespace

@@ -54,6 +54,20 @@ std::string error_of(const std::string& text) {
 
 using V = std::vector<double>;
 
+TEST(GetActive, WallAndCpuTimersOfWorkbenchFiles) {
+  // *GET,Par,ACTIVE,,TIME,WALL (hours since the run began) and CPU (seconds), as Workbench input
+  // files read them around SOLVE.
+  Session s;
+  s.run(
+      "*GET,W0,ACTIVE,,TIME,WALL\n*GET,C0,ACTIVE,,TIME,CPU\n*GET,W1,ACTIVE,,TIME,WALL\n"
+      "DW=(W1-W0)*3600\n");
+  EXPECT_GE(s.num("W0"), 0.0);
+  EXPECT_LT(s.num("W0"), 1.0);  // elapsed hours, not a time of day
+  EXPECT_GE(s.num("DW"), 0.0);
+  EXPECT_LT(s.num("DW"), 60.0);
+  EXPECT_GT(s.num("C0"), 0.0);
+}
+
 }  // namespace
 
 TEST(ArrayCommands, ScalarsTextsAndLists) {
