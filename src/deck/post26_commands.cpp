@@ -6,6 +6,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
+
+#include <Eigen/Eigenvalues>
 
 #include "deck/post26.h"
 #include "elements/element_registry.h"
@@ -20,6 +23,49 @@ bool is_filled(const Post26Variable& v) {
   return v.kind == "NSOL" || v.kind == "ESOL" || v.kind == "RFORCE" || v.kind == "GAPF";
 }
 
+/// The series of element item `name` at the element's node position k (1-based) when the element
+/// stores element nodal values (ITEM@k: PLANE182/183, the values MAPDL's ERESX default puts at
+/// the nodes); the principal and equivalent stresses are formed from the stored components.
+/// nullopt when the element has none.
+std::optional<Series> element_nodal_series(const ResultsReader& reader, int element, int k,
+                                           const std::string& name) {
+  auto stored = [&](const std::string& item) -> std::optional<Series> {
+    try {
+      return reader.element_series(element, fmt::format("{}@{}", item, k));
+    } catch (const InputError&) {
+      return std::nullopt;
+    }
+  };
+  if (auto s = stored(name)) return s;
+  const auto sx = stored("SX");
+  if (!sx) return std::nullopt;
+  const int derived = name == "S1"     ? 0
+                      : name == "S2"   ? 1
+                      : name == "S3"   ? 2
+                      : name == "SINT" ? 3
+                      : name == "SEQV" ? 4
+                                       : -1;
+  if (derived < 0) return std::nullopt;
+  const Series zero(sx->size(), {0.0, 0.0});
+  const Series sy = stored("SY").value_or(zero), sz = stored("SZ").value_or(zero);
+  const Series sxy = stored("SXY").value_or(zero), syz = stored("SYZ").value_or(zero);
+  const Series sxz = stored("SXZ").value_or(zero);
+  Series out;
+  for (std::size_t i = 0; i < sx->size(); ++i) {
+    Eigen::Matrix3d t;
+    t << (*sx)[i].second, sxy[i].second, sxz[i].second, sxy[i].second, sy[i].second, syz[i].second,
+        sxz[i].second, syz[i].second, sz[i].second;
+    // Principal stresses S1 >= S2 >= S3, SINT = S1 - S3, SEQV the von Mises stress.
+    const Eigen::Vector3d p = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(t).eigenvalues();
+    const double s1 = p(2), s2 = p(1), s3 = p(0);
+    const double values[5] = {
+        s1, s2, s3, s1 - s3,
+        std::sqrt(0.5 * ((s1 - s2) * (s1 - s2) + (s2 - s3) * (s2 - s3) + (s3 - s1) * (s3 - s1)))};
+    out.emplace_back((*sx)[i].first, values[derived]);
+  }
+  return out;
+}
+
 /// The series of a results-based variable (ResultsReader merge rule across analyses).
 Series series_of(DeckReader& r, const Command& c, const Post26Variable& v) {
   const ResultsReader& reader = results(r, c);
@@ -32,6 +78,11 @@ Series series_of(DeckReader& r, const Command& c, const Post26Variable& v) {
       if (!seq)
         r.fail(c, fmt::format("{} element {} has no item {}{}{}", d->name, v.id, v.item,
                               v.comp.empty() ? "" : ",", v.comp));
+      if (v.node_position > 0)
+        if (auto s = element_nodal_series(reader, v.id, v.node_position, seq->name)) {
+          for (auto& p : *s) p.second += seq->offset;
+          return *s;
+        }
       Series s = reader.element_series(v.id, seq->name);
       for (auto& p : s) p.second += seq->offset;
       return s;
@@ -209,7 +260,10 @@ void cmd_nsol(DeckReader& r, const Command& c) {
 }
 
 void cmd_esol(DeckReader& r, const Command& c) {
-  // ESOL,NVAR,ELEM,NODE,Item,Comp,Name: element items are centroid values here (NODE unused).
+  // ESOL,NVAR,ELEM,NODE,Item,Comp,Name. NODE blank or 0: the element value. With a NODE, the
+  // element nodal value where the element stores them (PLANE182/183: extrapolated from the
+  // integration points while elastic, copied from the nearest one once plastic, MAPDL's ERESX
+  // default); other elements have element values only, used for the node with a warning.
   const int n = variable_number(r, c, 1, true);
   results(r, c);
   Post26Variable v;
@@ -219,6 +273,20 @@ void cmd_esol(DeckReader& r, const Command& c) {
   v.item = r.label(c, 4);
   v.comp = r.label(c, 5);
   if (v.item.empty()) r.fail(c, "Item missing");
+  if (const int node = r.integer(c, 3, 0); node != 0) {
+    const std::vector<int>& nodes = r.model.elements.at(v.id).nodes;
+    const auto at = std::find(nodes.begin(), nodes.end(), node);
+    if (at == nodes.end())
+      r.fail(c, fmt::format("node {} is not a node of element {}", node, v.id));
+    v.node_position = static_cast<int>(at - nodes.begin()) + 1;
+    const ElementTypeDescriptor* d = find_element_type(element_type_name(r, v.id));
+    const std::string nodal = fmt::format("SX@{}", v.node_position);
+    if (d != nullptr &&
+        std::find(d->result_names.begin(), d->result_names.end(), nodal) == d->result_names.end())
+      r.warn(c, fmt::format("{} stores element values only: the value of element {} stands for "
+                            "its node {}",
+                            d->name, v.id, node));
+  }
   v.name = c.blank(6) ? default_name(v.item, v.comp) : c.text(6);
   define(r, c, n, std::move(v));
 }

@@ -33,6 +33,9 @@ struct Post26Variable {
   std::string label;  // resolved nodal label (UY) or element item (SMISC,1 → stored FORC)
   std::string item;   // element Item and Comp as given (ESOL)
   std::string comp;
+  /// ESOL: position (1-based) in the element's node list of its NODE field; 0 for the element
+  /// value (NODE blank or 0).
+  int node_position = 0;
   std::vector<double> values;
   /// Imaginary parts (NSOL displacements of a harmonic analysis; 0 at time points of other
   /// analyses); empty for a real variable.

@@ -96,7 +96,22 @@ std::string element_help(const ElementTypeDescriptor& t) {
     }
     out += "\n";
   }
-  if (!t.result_names.empty()) out += fmt::format("- result items: {}\n", joined(t.result_names));
+  if (!t.result_names.empty()) {
+    // The element nodal values ITEM@k (node position k) are listed once, by their pattern.
+    std::vector<std::string> items, nodal;
+    for (const std::string& n : t.result_names) {
+      const auto at = n.find('@');
+      if (at == std::string::npos) {
+        items.push_back(n);
+      } else if (n.substr(at + 1) == "1") {
+        nodal.push_back(n.substr(0, at));
+      }
+    }
+    out += fmt::format("- result items: {}\n", joined(items));
+    if (!nodal.empty())
+      out += fmt::format("- element nodal values (ESOL with a NODE), per node position k: {}@k\n",
+                         joined(nodal, "@k "));
+  }
   if (!t.note.empty()) out += fmt::format("- note: {}\n", t.note);
   return out;
 }

@@ -5,6 +5,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "core/errors.h"
 
@@ -485,7 +486,14 @@ const std::vector<std::string>& plane_solid_result_names() {
       "SX",    "SY",    "SZ",     "SXY",     "S1",   "S2",    "S3",    "SINT",  "SEQV",
       "EPPLX", "EPPLY", "EPPLZ",  "EPPLXY",  "EPEQ", "SEPL",  "SRAT",  "PLWK",  "EPCRX",
       "EPCRY", "EPCRZ", "EPCRXY", "EPCREQV", "CREQ", "EPELX", "EPELY", "EPELZ", "EPELXY"};
-  return names;
+  static const std::vector<std::string> with_nodes = [] {
+    std::vector<std::string> all = names;
+    for (int k = 1; k <= kPlaneMaxNodes; ++k)
+      for (const char* item : {"SX", "SY", "SZ", "SXY", "EPELX", "EPELY", "EPELZ", "EPELXY"})
+        all.push_back(fmt::format("{}@{}", item, k));
+    return all;
+  }();
+  return with_nodes;
 }
 
 const std::vector<std::string>& PlaneSolid::result_names() const {
@@ -511,29 +519,54 @@ void PlaneSolid::results(const ElementContext& ctx, const Eigen::VectorXd& u,
                          const Eigen::VectorXd& v, ElementResultValues& out) const {
   if (options_.large_deflection && ctx.large_deflection) {
     finite_results(u, out);
+  } else {
+    if (plasticity_ && !ctx.stress_stiffening) {
+      plastic_results(u, out);
+    } else {
+      out = plane_stress_items(centroid_stress(u));
+    }
+    // EPEL: the elastic strain of the reported stress (isotropic law).
+    const Eigen::Vector4d s(out[0], out[1], out[2], out[3]);
+    const Eigen::Vector4d epel = elastic_strain(s);
+    std::copy(epel.data(), epel.data() + 4, out.begin() + 23);
+  }
+  // The element nodal values (ESOL,,ELEM,NODE): stored here, in the solution, because those of
+  // a plastic element come from its committed states, which a rebuilt element lacks.
+  const std::size_t first = plane_solid_result_names().size() - kPlaneNodalItems * kPlaneMaxNodes;
+  out.resize(plane_solid_result_names().size(), 0.0);
+  const std::vector<Eigen::Vector4d> at_nodes = element_nodal_stresses(ctx, u);
+  for (std::size_t k = 0; k < at_nodes.size(); ++k) {
+    const Eigen::Vector4d epel = elastic_strain(at_nodes[k]);
+    const auto at = out.begin() + static_cast<std::ptrdiff_t>(first + kPlaneNodalItems * k);
+    std::copy(at_nodes[k].data(), at_nodes[k].data() + 4, at);
+    std::copy(epel.data(), epel.data() + 4, at + 4);
+  }
+}
+
+void PlaneSolid::point_stresses(const ElementContext& ctx, const Eigen::VectorXd& u,
+                                std::vector<Eigen::Vector4d>& sigma, bool& inelastic) const {
+  sigma.clear();
+  inelastic = false;
+  if (options_.large_deflection && ctx.large_deflection) {
+    finite_point_stresses(u, sigma, inelastic);
     return;
   }
   if (plasticity_ && !ctx.stress_stiffening) {
-    plastic_results(u, out);
-  } else {
-    out = plane_stress_items(centroid_stress(u));
+    if (plasticity_->has_creep()) {
+      // As plastic_results(): the committed states are those at the converged u.
+      for (const PlasticState& st : committed_) {
+        sigma.emplace_back(st.stress.head<4>());
+        inelastic = inelastic || st.alpha > 0.0;
+      }
+      return;
+    }
+    Eigen::MatrixXd k;
+    Eigen::VectorXd f;
+    PointStates at = committed_;
+    tangent_plastic(u, k, f, &at, &sigma);
+    for (const PlasticState& st : at) inelastic = inelastic || st.alpha > 0.0;
+    return;
   }
-  // EPEL: the elastic strain of the reported stress (isotropic law).
-  const Eigen::Vector4d s(out[0], out[1], out[2], out[3]);
-  const Eigen::Vector4d epel = elastic_strain(s);
-  std::copy(epel.data(), epel.data() + 4, out.begin() + 23);
-}
-
-bool PlaneSolid::nodal_results(const ElementContext& ctx, const Eigen::VectorXd& u,
-                               std::map<int, ElementResultValues>& at_node) const {
-  // Stresses at the stiffness points, then the lowest polynomial through them (bilinear
-  // through the 2x2 points of the quadrilaterals, linear through the 3 points of the
-  // triangles, constant at the one point of the plane triangle) evaluated at the nodes: the
-  // extrapolation of integration-point stresses to the nodes (Cook et al. §6.13). Midside
-  // nodes get the polynomial's value there, the mean of their corners' values.
-  if (plasticity_ || options_.large_deflection) return false;
-  const int np = static_cast<int>(rule_.size());
-  std::vector<Eigen::Vector4d> sigma;
   Eigen::Vector4d alpha = Eigen::Vector4d::Zero();
   if (options_.technology == PlaneTechnology::IncompatibleModes) alpha = -(mode_recovery_ * u);
   for (const QuadraturePoint& q : rule_) {
@@ -549,6 +582,16 @@ bool PlaneSolid::nodal_results(const ElementContext& ctx, const Eigen::VectorXd&
       strain += (mode_matrix(p, xi) - mean_modes_) * alpha;
     sigma.push_back(d_ * strain);
   }
+}
+
+std::vector<Eigen::Vector4d> PlaneSolid::extrapolate_to_nodes(
+    const std::vector<Eigen::Vector4d>& sigma) const {
+  // The lowest polynomial through the point values (bilinear through the 2x2 points of the
+  // quadrilaterals, linear through the 3 points of the triangles, constant at the one point of
+  // the plane triangle) evaluated at the nodes: the extrapolation of integration-point stresses
+  // to the nodes (Cook et al. §6.13). Midside nodes get the polynomial's value there, the mean
+  // of their corners' values.
+  const int np = static_cast<int>(rule_.size());
   auto basis = [&](const Eigen::Vector2d& xi) {
     Eigen::VectorXd f(np);
     if (np == 4) f << 1, xi(0), xi(1), xi(0) * xi(1);
@@ -563,11 +606,51 @@ bool PlaneSolid::nodal_results(const ElementContext& ctx, const Eigen::VectorXd&
   }
   const Eigen::MatrixXd coefficients = a.partialPivLu().solve(values);
   const auto xi_nodes = plane_shape_nodes_xi(options_.shape);
-  at_node.clear();
+  std::vector<Eigen::Vector4d> out;
+  for (std::size_t k = 0; k < nodes_.size(); ++k)
+    out.emplace_back((basis(xi_nodes[k]).transpose() * coefficients).transpose());
+  return out;
+}
+
+std::vector<Eigen::Vector4d> PlaneSolid::element_nodal_stresses(const ElementContext& ctx,
+                                                                const Eigen::VectorXd& u) const {
+  std::vector<Eigen::Vector4d> sigma;
+  bool inelastic = false;
+  point_stresses(ctx, u, sigma, inelastic);
+  if (!inelastic) return extrapolate_to_nodes(sigma);
+  // ERESX default (MAPDL command reference, ERESX): "If any portion of the element is plastic
+  // (or other active material nonlinearity), copy the integration point results to the nodes":
+  // each node takes the value of its nearest stiffness point in natural coordinates; a node
+  // equally near several (midside nodes) takes their mean.
+  const auto xi_nodes = plane_shape_nodes_xi(options_.shape);
+  std::vector<Eigen::Vector4d> out;
   for (std::size_t k = 0; k < nodes_.size(); ++k) {
-    const Eigen::Vector4d s = (basis(xi_nodes[k]).transpose() * coefficients).transpose();
-    at_node[nodes_[k]] = plane_stress_items(s);
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const QuadraturePoint& q : rule_)
+      nearest = std::min(nearest, (q.xi.head<2>() - xi_nodes[k]).squaredNorm());
+    Eigen::Vector4d sum = Eigen::Vector4d::Zero();
+    int count = 0;
+    for (std::size_t q = 0; q < rule_.size(); ++q)
+      if ((rule_[q].xi.head<2>() - xi_nodes[k]).squaredNorm() <= nearest + 1e-9) {
+        sum += sigma[q];
+        ++count;
+      }
+    out.emplace_back(sum / count);
   }
+  return out;
+}
+
+bool PlaneSolid::nodal_results(const ElementContext& ctx, const Eigen::VectorXd& u,
+                               std::map<int, ElementResultValues>& at_node) const {
+  // The elastic element only: a rebuilt plastic element has no history (its element values
+  // stand for its nodes in PRNSOL; ESOL with a NODE reads the values stored in the solution).
+  if (plasticity_ || options_.large_deflection) return false;
+  std::vector<Eigen::Vector4d> sigma;
+  bool inelastic = false;
+  point_stresses(ctx, u, sigma, inelastic);
+  const std::vector<Eigen::Vector4d> s = extrapolate_to_nodes(sigma);
+  at_node.clear();
+  for (std::size_t k = 0; k < nodes_.size(); ++k) at_node[nodes_[k]] = plane_stress_items(s[k]);
   return true;
 }
 

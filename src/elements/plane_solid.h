@@ -56,8 +56,14 @@ struct PlaneSolidOptions {
 
 /// SX SY SZ SXY S1 S2 S3 SINT SEQV, then EPPLX EPPLY EPPLZ EPPLXY EPEQ SEPL SRAT PLWK, then
 /// EPCRX EPCRY EPCRZ EPCRXY EPCREQV CREQ (creep strain, equivalent, accumulated equivalent),
-/// then EPELX EPELY EPELZ EPELXY (elastic strain, engineering shear; logarithmic under NLGEOM).
+/// then EPELX EPELY EPELZ EPELXY (elastic strain, engineering shear; logarithmic under NLGEOM),
+/// then the element nodal values of each node position k = 1..8 of the element (ESOL with a
+/// NODE): SX@k SY@k SZ@k SXY@k EPELX@k EPELY@k EPELZ@k EPELXY@k (0 past the element's nodes).
 const std::vector<std::string>& plane_solid_result_names();
+
+/// The element nodal items stored per node position (plane_solid_result_names()).
+inline constexpr int kPlaneNodalItems = 8;
+inline constexpr int kPlaneMaxNodes = 8;
 
 /// The result items (plane_solid_result_names()) of a stress (xx, yy, zz, xy), the inelastic
 /// items 0.
@@ -98,6 +104,10 @@ class PlaneSolid final : public Element {
     return committed_.at(static_cast<std::size_t>(p));
   }
   int n_points() const { return static_cast<int>(rule_.size()); }
+  /// Natural coordinates of stiffness point p.
+  Eigen::Vector2d point_xi(int p) const {
+    return rule_.at(static_cast<std::size_t>(p)).xi.head<2>();
+  }
   /// K = ∫ BᵀDB dV (dV = t dA, or 2πr dA), condensed over the incompatible modes; f_int = K u.
   /// With plasticity K = ∫ BᵀC_alg B dV and f_int = ∫ Bᵀσ dV from the committed states.
   /// Large deflection and stress stiffening are refused (ElementSolutionError).
@@ -135,6 +145,13 @@ class PlaneSolid final : public Element {
   /// a plastic element (false: its history is not in a freshly built element).
   bool nodal_results(const ElementContext& ctx, const Eigen::VectorXd& u,
                      std::map<int, ElementResultValues>& at_node) const override;
+  /// The stresses (xx, yy, zz, xy) at the element's nodes (element order) as MAPDL's ERESX
+  /// default gives them: extrapolated from the stiffness points (as nodal_results()) while no
+  /// point has yielded, copied from the nearest stiffness point (midside nodes: the mean of the
+  /// nearest points) once any point carries plastic or creep strain. Evaluated from the
+  /// committed states, so valid in the solution (results()), not in a rebuilt element.
+  std::vector<Eigen::Vector4d> element_nodal_stresses(const ElementContext& ctx,
+                                                      const Eigen::VectorXd& u) const;
   /// ∫ t dA, or the volume of the full ring ∫ 2πr dA.
   std::optional<double> volume() const override { return volume_; }
 
@@ -197,6 +214,16 @@ class PlaneSolid final : public Element {
                   FiniteUpdate* update) const;
   void finite_commit(const Eigen::VectorXd& u);
   void finite_results(const Eigen::VectorXd& u, ElementResultValues& out) const;
+  /// Cauchy stresses of the stiffness points at u; `inelastic`: a point carries plastic strain.
+  void finite_point_stresses(const Eigen::VectorXd& u, std::vector<Eigen::Vector4d>& sigma,
+                             bool& inelastic) const;
+  /// Stresses of the stiffness points at u as results() evaluates them (small strain, plastic or
+  /// elastic; finite strain); `inelastic`: some point carries plastic or creep strain.
+  void point_stresses(const ElementContext& ctx, const Eigen::VectorXd& u,
+                      std::vector<Eigen::Vector4d>& sigma, bool& inelastic) const;
+  /// The elastic extrapolation of point stresses to the nodes (nodal_results()).
+  std::vector<Eigen::Vector4d> extrapolate_to_nodes(
+      const std::vector<Eigen::Vector4d>& sigma) const;
   /// The elastic strain (xx, yy, zz, xy; engineering shear) of a stress (isotropic law).
   Eigen::Vector4d elastic_strain(const Eigen::Vector4d& stress) const;
 

@@ -360,4 +360,15 @@ void PlaneSolid::finite_results(const Eigen::VectorXd& u, ElementResultValues& o
   std::copy(epel.data(), epel.data() + 4, out.begin() + 23);
 }
 
+void PlaneSolid::finite_point_stresses(const Eigen::VectorXd& u,
+                                       std::vector<Eigen::Vector4d>& sigma, bool& inelastic) const {
+  FiniteUpdate at;
+  Eigen::VectorXd f;
+  finite_sum(u, nullptr, f, &at);
+  sigma.assign(at.stress.begin(), at.stress.end());
+  inelastic = false;
+  if (plasticity_)
+    for (const PlasticState& st : at.plastic) inelastic = inelastic || st.alpha > 0.0;
+}
+
 }  // namespace impactfe

@@ -12,6 +12,11 @@ namespace impactfe {
 
 namespace {
 
+/// An element nodal value (ITEM@k, node position k: PLANE182/183), not a cell quantity.
+bool is_element_nodal_item(const std::string& item) {
+  return item.find('@') != std::string::npos;
+}
+
 /// VTK cell type of an element: the registered cell of its type (a quadrilateral with K = L is a
 /// triangle); a poly-vertex over its nodes for a type this program does not know. A
 /// superelement is registered as a poly-vertex: its master nodes.
@@ -78,8 +83,9 @@ VtkMesh build_vtk_mesh(const ResultsReader& reader) {
     const TimePoint p = reader.time_point(a.index, 0);
     for (const auto& [family, table] : p.element_results)
       for (const auto& item : table.item_names)
-        if (std::find(mesh.cell_items.begin(), mesh.cell_items.end(), item) ==
-            mesh.cell_items.end())
+        if (!is_element_nodal_item(item) &&
+            std::find(mesh.cell_items.begin(), mesh.cell_items.end(), item) ==
+                mesh.cell_items.end())
           mesh.cell_items.push_back(item);
   }
   return mesh;
@@ -143,7 +149,7 @@ VtkFrameData read_vtk_frame(const ResultsReader& reader, const VtkMesh& mesh,
         if (cell < 0) continue;
         for (std::size_t i = 0; i < table.item_names.size(); ++i) {
           const double x = table.values(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(i));
-          if (std::isfinite(x))
+          if (std::isfinite(x) && !is_element_nodal_item(table.item_names[i]))
             out.cell_arrays[item_index.at(table.item_names[i])]
                 .second[static_cast<std::size_t>(cell)] = x;
         }

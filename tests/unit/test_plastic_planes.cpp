@@ -180,6 +180,76 @@ TEST(PlasticPlanes, ElementTangentMatchesFiniteDifferences) {
   }
 }
 
+/// A displacement with a strain gradient (u = s (H x + quadratic terms)): the stiffness points of
+/// one element see different strains, so that only some of them yield at a moderate scale.
+Eigen::VectorXd graded(const Variant& v, const std::vector<Vec3>& x, double scale) {
+  const Eigen::Matrix2d h = gradient(v, 1.0);
+  Eigen::VectorXd u(2 * static_cast<int>(x.size()));
+  for (std::size_t a = 0; a < x.size(); ++a) {
+    const double dx = x[a](0) - 2.0, dy = x[a](1) - 0.5;
+    const Eigen::Vector2d quadratic(0.004 * dx * dx, v.behaviour == PlaneBehaviour::Axisymmetric
+                                                         ? 0.003 * dy * dy
+                                                         : 0.003 * dx * dx);
+    u.segment<2>(2 * a) = scale * (h * x[a].head<2>() + quadratic);
+  }
+  return u;
+}
+
+TEST(PlasticPlanes, ElementNodalStressesFollowTheEresxDefault) {
+  // MAPDL's ERESX default: integration-point stresses extrapolated to the nodes while the
+  // element is elastic (the values of nodal_results()), copied from the nearest point once a
+  // point carries plastic strain (a node equally near two points, a midside node, takes their
+  // mean). Those nodal values are what ESOL,,ELEM,NODE reads (vmr049-pl5: the bore node).
+  const auto law = J2Plasticity::bilinear(kE, kNu, kSy, kEt, false);
+  for (const Variant& v : variants()) {
+    SCOPED_TRACE(name(v));
+    // Elastic: a small load; the nodal values equal the extrapolation of nodal_results().
+    {
+      Single s = single(v, law);
+      const Eigen::VectorXd u = graded(v, s.x, 0.05);
+      s.element->commit_history({}, u);
+      for (int p = 0; p < s.element->n_points(); ++p)
+        ASSERT_EQ(s.element->point_state(p).alpha, 0.0);
+      std::vector<int> ids;
+      for (std::size_t a = 0; a < s.x.size(); ++a) ids.push_back(static_cast<int>(a) + 1);
+      const PlaneSolid elastic(1, ids, s.x, IsotropicElasticity{kE, kNu, 0.0},
+                               PlaneSolidOptions{v.shape, v.behaviour, v.technology, 0.7},
+                               std::vector<std::vector<int>>{});
+      std::map<int, ElementResultValues> extrapolated;
+      ASSERT_TRUE(elastic.nodal_results({}, u, extrapolated));
+      const std::vector<Eigen::Vector4d> at_nodes = s.element->element_nodal_stresses({}, u);
+      for (std::size_t a = 0; a < ids.size(); ++a)
+        for (int c = 0; c < 4; ++c)
+          EXPECT_NEAR(at_nodes[a](c), extrapolated.at(ids[a])[static_cast<std::size_t>(c)],
+                      1e-9 * kSy);
+    }
+    Single s = single(v, law);
+    const Eigen::VectorXd u = graded(v, s.x, 1.0);
+    s.element->commit_history({}, u);
+    bool yielded = false;
+    for (int p = 0; p < s.element->n_points(); ++p)
+      yielded = yielded || s.element->point_state(p).alpha > 0.0;
+    ASSERT_TRUE(yielded);
+    const std::vector<Eigen::Vector4d> at_nodes = s.element->element_nodal_stresses({}, u);
+    const auto xi_nodes = plane_shape_nodes_xi(v.shape);
+    ASSERT_EQ(at_nodes.size(), xi_nodes.size());
+    for (std::size_t k = 0; k < xi_nodes.size(); ++k) {
+      double nearest = 1e300;
+      for (int p = 0; p < s.element->n_points(); ++p)
+        nearest = std::min(nearest, (s.element->point_xi(p) - xi_nodes[k]).norm());
+      Eigen::Vector4d expected = Eigen::Vector4d::Zero();
+      int count = 0;
+      for (int p = 0; p < s.element->n_points(); ++p)
+        if ((s.element->point_xi(p) - xi_nodes[k]).norm() < nearest + 1e-9) {
+          expected += s.element->point_state(p).stress.head<4>();
+          ++count;
+        }
+      expected /= count;
+      EXPECT_LE((at_nodes[k] - expected).norm(), 1e-9 * kSy) << "node " << k;
+    }
+  }
+}
+
 TEST(PlasticPlanes, RestartStateRoundTrip) {
   const auto law = J2Plasticity::bilinear(kE, kNu, kSy, kEt, true);
   for (const Variant& v : variants()) {
