@@ -146,9 +146,14 @@ double J2Plasticity::creep_increment(double q_trial, double c, double alpha_n,
   const auto F = [&](double q, double e) {
     return creep_.increment(q, e, k.time, k.dt, k.temperature);
   };
+  // Only the strain-hardening laws (1, 7) read the creep strain: the others skip its partial,
+  // two of the five evaluations of the law per iteration.
+  const bool strain_hardening = creep_.option == 1 || creep_.option == 7;
   const auto partials = [&](double q, double e, double& fq, double& fe) {
     const double hq = 1e-6 * q;
     fq = hq > 0.0 ? (F(q + hq, e) - F(q - hq, e)) / (2.0 * hq) : 0.0;
+    fe = 0.0;
+    if (!strain_hardening) return;
     const double he = 1e-6 * std::max(e, 1e-300);
     fe = e > he ? (F(q, e + he) - F(q, e - he)) / (2.0 * he) : (F(q, e + he) - F(q, e)) / he;
     if (!std::isfinite(fe)) fe = 0.0;
