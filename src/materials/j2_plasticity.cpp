@@ -101,15 +101,23 @@ double CreepLaw::increment(double q, double e, double t_end, double dt, double t
     return (std::pow(t1, c3 + 1.0) - std::pow(t0, c3 + 1.0)) / (c3 + 1.0);
   };
   const double c1 = constant(1), c2 = constant(2), c3 = constant(3), c4 = constant(4);
+  // MAPDL integrates every implicit creep law by backward Euler (Theory Reference, implicit
+  // creep): the laws it gives as rates (1, 2, 3, 7, 10) contribute ε̇(σ, ε, t_n+1) Δt, the rate at
+  // the end of the substep; the laws it gives as strains (6, 11) contribute the difference of
+  // their strain between t_n and t_n+1 at the end-of-substep stress. So time hardening (2) and
+  // modified time hardening (6), equal at constant stress in the continuum, differ per substep:
+  // NAFEMS R0049 CR1b (vmr049-cr1b) integrates TBOPT 2 at Δt = 100 to ε(1000) = 0.251 where
+  // t^0.5/0.5 gives 0.316.
   switch (option) {
     case 1:  // strain hardening, backward Euler at the end-of-substep creep strain
       return dt * c1 * std::pow(q, c2) * std::pow(e, c3) * arrhenius(c4);
-    case 2:  // time hardening and its integrated (modified) form: the same increment
-    case 6:
+    case 2:  // time hardening ε̇ = C1 σ^C2 t^C3 e^(−C4/T) at t_n+1
+      return dt * c1 * std::pow(q, c2) * std::pow(t1, c3) * arrhenius(c4);
+    case 6:  // modified time hardening: ε(t_n+1) − ε(t_n) of ε = C1 σ^C2 t^(C3+1) e^(−C4/T)/(C3+1)
       return c1 * std::pow(q, c2) * arrhenius(c4) * time_integral(c3);
-    case 3: {  // generalized exponential: ∫ r e^(−rt) dt = e^(−r t0) − e^(−r t1)
+    case 3: {  // generalized exponential ε̇ = C1 σ^C2 r e^(−rt) at t_n+1
       const double r = constant(5) * std::pow(q, c3) * arrhenius(c4);
-      return c1 * std::pow(q, c2) * (std::exp(-r * t0) - std::exp(-r * t1));
+      return dt * c1 * std::pow(q, c2) * r * std::exp(-r * t1);
     }
     case 7:  // modified strain hardening
       return dt * std::pow(c1 * std::pow(q, c2) * std::pow((c3 + 1.0) * e, c3), 1.0 / (c3 + 1.0)) *
@@ -138,9 +146,14 @@ double J2Plasticity::creep_increment(double q_trial, double c, double alpha_n,
   const auto F = [&](double q, double e) {
     return creep_.increment(q, e, k.time, k.dt, k.temperature);
   };
+  // Only the strain-hardening laws (1, 7) read the creep strain: the others skip its partial,
+  // two of the five evaluations of the law per iteration.
+  const bool strain_hardening = creep_.option == 1 || creep_.option == 7;
   const auto partials = [&](double q, double e, double& fq, double& fe) {
     const double hq = 1e-6 * q;
     fq = hq > 0.0 ? (F(q + hq, e) - F(q - hq, e)) / (2.0 * hq) : 0.0;
+    fe = 0.0;
+    if (!strain_hardening) return;
     const double he = 1e-6 * std::max(e, 1e-300);
     fe = e > he ? (F(q, e + he) - F(q, e - he)) / (2.0 * he) : (F(q, e + he) - F(q, e)) / he;
     if (!std::isfinite(fe)) fe = 0.0;

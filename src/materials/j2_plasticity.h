@@ -92,10 +92,12 @@ enum class HardeningKind { BilinearIsotropic, MultilinearIsotropic, BilinearKine
 ///   7  modified strain hardening  ε̇ = [C1 σ^C2 ((C3+1) ε)^C3]^(1/(C3+1)) e^(−C4/T)
 ///   10 Norton                     ε̇ = C1 σ^C2 e^(−C3/T)
 ///   11 combined time hardening    ε = C1 σ^C2 t^(C3+1) e^(−C4/T) / (C3+1) + C5 σ^C6 t e^(−C7/T)
-/// A temperature constant of 0 means no temperature term. The time laws (2, 3, 6, 11) are
-/// integrated exactly in time over a substep at the stress of its end (so a constant stress
-/// reproduces their closed form at any step size); the strain laws (1, 7) and Norton are backward
-/// Euler at the end of the substep.
+/// A temperature constant of 0 means no temperature term. Backward Euler, as MAPDL's implicit
+/// creep: the laws given as rates (1, 2, 3, 7, 10) take the rate at the end of the substep
+/// (stress, creep strain and time t_n+1) times Δt; the laws given as strains (6, 11) take the
+/// difference of their strain over (t_n, t_n+1) at the end-of-substep stress (so a constant
+/// stress reproduces their closed form at any step size, while time hardening 2 carries the
+/// first-order error of the rectangle rule in t).
 struct CreepLaw {
   int option = 0;         ///< TBOPT
   std::vector<double> c;  ///< C1, C2, ... (missing ones 0)

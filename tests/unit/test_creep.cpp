@@ -48,17 +48,47 @@ double creep_at_constant_stress(CreepPoint& s, double sigma, double t_end, int s
   return state.plastic_strain;
 }
 
-TEST(Creep, TimeHardeningMatchesTheClosedFormAtConstantStress) {
-  // ε_cr(t) = C1 σ^C2 t^(C3+1) e^(−C4/T) / (C3+1), whatever the step (exact time integral).
+TEST(Creep, ModifiedTimeHardeningMatchesTheClosedFormAtAnyStep) {
+  // TBOPT 6 is given as a strain, ε_cr(t) = C1 σ^C2 t^(C3+1) e^(−C4/T) / (C3+1): its difference
+  // over each substep reproduces it at constant stress whatever the step.
   const double c1 = 2e-12, c2 = 3.0, c3 = -0.5, c4 = 300.0, temperature = 500.0;
   const double sigma = 120.0, t_end = 400.0;
   const double exact = c1 * std::pow(sigma, c2) * std::pow(t_end, c3 + 1.0) *
                        std::exp(-c4 / temperature) / (c3 + 1.0);
-  for (int option : {2, 6}) {
-    CreepPoint s(option, {c1, c2, c3, c4});
-    s.clock->temperature = temperature;
-    EXPECT_NEAR(creep_at_constant_stress(s, sigma, t_end, 7), exact, 1e-9 * exact) << option;
-  }
+  CreepPoint s(6, {c1, c2, c3, c4});
+  s.clock->temperature = temperature;
+  EXPECT_NEAR(creep_at_constant_stress(s, sigma, t_end, 7), exact, 1e-9 * exact);
+}
+
+TEST(Creep, TimeHardeningIsBackwardEulerAtTheEndOfEachSubstep) {
+  // TBOPT 2 is given as a rate, ε̇ = C1 σ^C2 t^C3 e^(−C4/T); MAPDL's implicit creep takes it at
+  // t_n+1, so at constant stress ε_cr(t_N) = Σ_k C1 σ^C2 t_k^C3 e^(−C4/T) Δt (the rectangle rule,
+  // below the closed form for C3 < 0). NAFEMS R0049 CR1b: C1 = 1.5625e-14, σ = 200, C2 = 5,
+  // C3 = −0.5, Δt = 100: ε(1000) = 0.005 Σ_k (100 k)^−0.5 Δt = 0.2511 (the closed form 0.3162).
+  const double c1 = 1.5625e-14, c2 = 5.0, c3 = -0.5, sigma = 200.0, t_end = 1000.0;
+  const int steps = 10;
+  double rectangle = 0.0;
+  for (int k = 1; k <= steps; ++k)
+    rectangle += c1 * std::pow(sigma, c2) * std::pow(t_end * k / steps, c3) * (t_end / steps);
+  EXPECT_NEAR(rectangle, 0.2511, 1e-4);  // the CR1b graph value 0.251
+  CreepPoint s(2, {c1, c2, c3, 0.0});
+  EXPECT_NEAR(creep_at_constant_stress(s, sigma, t_end, steps), rectangle, 1e-9 * rectangle);
+  // Refined, it converges to the closed form C1 σ^C2 t^(C3+1)/(C3+1) (error ~ Δt^(C3+1)).
+  const double exact = c1 * std::pow(sigma, c2) * std::pow(t_end, c3 + 1.0) / (c3 + 1.0);
+  CreepPoint fine(2, {c1, c2, c3, 0.0});
+  EXPECT_NEAR(creep_at_constant_stress(fine, sigma, t_end, 20000), exact, 1e-2 * exact);
+}
+
+TEST(Creep, GeneralizedExponentialIsBackwardEulerAtTheEndOfEachSubstep) {
+  // TBOPT 3, ε̇ = C1 σ^C2 r e^(−rt), r = C5 σ^C3 e^(−C4/T): the rate at t_n+1 times Δt.
+  const double c1 = 1e-8, c2 = 2.0, c3 = 0.5, c5 = 0.01, sigma = 100.0, t_end = 40.0;
+  const int steps = 4;
+  const double r = c5 * std::pow(sigma, c3);
+  double rectangle = 0.0;
+  for (int k = 1; k <= steps; ++k)
+    rectangle += c1 * std::pow(sigma, c2) * r * std::exp(-r * t_end * k / steps) * (t_end / steps);
+  CreepPoint s(3, {c1, c2, c3, 0.0, c5});
+  EXPECT_NEAR(creep_at_constant_stress(s, sigma, t_end, steps), rectangle, 1e-9 * rectangle);
 }
 
 TEST(Creep, CombinedTimeHardeningAddsTheSecondaryTerm) {

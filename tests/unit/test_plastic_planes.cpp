@@ -455,14 +455,15 @@ TEST(PlasticPlanes, DistortedPatchReproducesTheHomogeneousPlasticState) {
 }
 
 TEST(PlasticPlanes, CreepThroughTheElementAtConstantLoadMatchesTimeHardening) {
-  // J2Plasticity::creep (time hardening, TBOPT 2) in a plane-stress PLANE182 square under a
-  // constant axial force, Y free: uniaxial σ = F/A at every point, and the creep strain
-  // ε_cr(t) = C1 σ^C2 t^(C3+1)/(C3+1) (exact time integral of the law at constant stress, any
-  // step). The global Newton iteration on the element tangent finds the strain of each step.
+  // J2Plasticity::creep (modified time hardening, TBOPT 6) in a plane-stress PLANE182 square
+  // under a constant axial force, Y free: uniaxial σ = F/A at every point, and the creep strain
+  // ε_cr(t) = C1 σ^C2 t^(C3+1)/(C3+1) (the law's strain, differenced over each step: exact at
+  // constant stress, any step). The global Newton iteration on the element tangent finds the
+  // strain of each step.
   const double c1 = 2e-12, c2 = 3.0, c3 = -0.5, sigma = 120.0, thickness = 0.7;
   auto clock = std::make_shared<CreepClock>();
   clock->active = true;
-  const auto law = J2Plasticity::creep(kE, kNu, CreepLaw{2, {c1, c2, c3, 0.0}}, clock);
+  const auto law = J2Plasticity::creep(kE, kNu, CreepLaw{6, {c1, c2, c3, 0.0}}, clock);
   for (PlaneShape shape : {PlaneShape::Quad4, PlaneShape::Quad8}) {
     std::vector<Vec3> x;
     std::vector<int> ids;
