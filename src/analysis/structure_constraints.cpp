@@ -25,7 +25,7 @@ std::vector<ConstraintEquation> rigid_region(const Model& model, const RigidRegi
       !three_d && has(m, Dof::ROTZ) && !has(m, Dof::ROTX) && !has(m, Dof::ROTY) && !has(m, Dof::UZ);
   if (!three_d && !two_d)
     throw InputError(region.where,
-                     fmt::format("CERIG: master node {} carries {} in the elements; a rigid region "
+                     fmt::format("master node {} carries {} in the elements; a rigid region "
                                  "writes equations on the master's rotations (ROTX ROTY ROTZ in "
                                  "3-D, ROTZ with UX UY in 2-D): attach an element with rotations "
                                  "(a beam, MASS21 with rotary inertia) to the master",
@@ -35,7 +35,7 @@ std::vector<ConstraintEquation> rigid_region(const Model& model, const RigidRegi
     for (Dof d : region.only) {
       if (two_d && (d == Dof::UZ || d == Dof::ROTX || d == Dof::ROTY))
         throw InputError(region.where,
-                         fmt::format("CERIG: {} has no 2-D form (master node {} carries UX UY "
+                         fmt::format("{} has no 2-D form (master node {} carries UX UY "
                                      "ROTZ)",
                                      dof_name(d), m));
       labels.push_back(d);
@@ -61,7 +61,7 @@ std::vector<ConstraintEquation> rigid_region(const Model& model, const RigidRegi
     const Node& slave = model.nodes.at(s);
     if (slave.rotated() || master.rotated())
       throw InputError(region.where,
-                       fmt::format("CERIG: node {} has a rotated nodal coordinate system; rigid "
+                       fmt::format("node {} has a rotated nodal coordinate system; rigid "
                                    "regions are written in global axes here",
                                    slave.rotated() ? s : m));
     // Only the DOFs the slave carries: an equation on a DOF no element has constrains nothing.
@@ -122,6 +122,14 @@ void Structure::eliminate_constraint_equations(const std::vector<LoadStep>* step
   dependent_ = std::move(dependent);
   if (steps != nullptr)
     for (const LoadStep& step : *steps) check_slaves_free(step);
+  // A slave's motion follows its masters: an initial condition on it is not applied (the one on
+  // its masters gives it), which is said rather than passed over.
+  for (const auto& [key, ic] : model.initial_conditions)
+    if (dependent_->find(key) != nullptr && (ic.displacement != 0.0 || ic.velocity != 0.0))
+      Log::warn(
+          "{}:{}: IC on {}, the slave of a constraint equation, is not applied: its motion "
+          "follows its masters (give the IC there)",
+          ic.where.file, ic.where.line, describe(key));
   Log::info("{} constraint equation(s) eliminate {} slave DOF(s)", equations.size(),
             dependent_->slaves().size());
 }
