@@ -54,11 +54,19 @@ std::vector<ConstraintEquation> rigid_region(const Model& model, const RigidRegi
       labels.push_back(Dof::ROTZ);
     }
   }
-  const Node& master = model.nodes.at(m);
+  const auto node = [&](int id) -> const Node& {
+    const auto it = model.nodes.find(id);
+    if (it == model.nodes.end())
+      throw InputError(region.where, fmt::format("node {} of the rigid region no longer exists "
+                                                 "(deleted or renumbered after CERIG)",
+                                                 id));
+    return it->second;
+  };
+  const Node& master = node(m);
   std::vector<ConstraintEquation> out;
   for (int s : region.slaves) {
     if (s == m) continue;
-    const Node& slave = model.nodes.at(s);
+    const Node& slave = node(s);
     if (slave.rotated() || master.rotated())
       throw InputError(region.where,
                        fmt::format("node {} has a rotated nodal coordinate system; rigid "

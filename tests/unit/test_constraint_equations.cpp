@@ -89,6 +89,16 @@ TEST(ConstraintEquations, ConstantPrescribesARelativeDisplacement) {
   EXPECT_NEAR(last(*run.reader, 3, "FX"), -last(*run.reader, 1, "FX"), 1e-9);
 }
 
+TEST(ConstraintEquations, EquationsSurviveSaveAndResume) {
+  // SAVE, CEDELE,ALL, RESUME: the equation comes back with the database (u2 = 2 u4 as above).
+  const std::string deck = std::string(kTwoSprings) +
+                           "CE,1,0,2,UX,1,4,UX,-2\nSAVE\nCEDELE,ALL\nRESUME\nFINISH\n/SOLU\n"
+                           "ANTYPE,STATIC\nD,1,UX\nD,3,UX\nF,4,FX,70\nSOLVE\nFINISH\n";
+  const auto run = testing::run_deck_text("ce_resume", deck);
+  EXPECT_NEAR(last(*run.reader, 2, "UX"), 0.2, 1e-12);
+  EXPECT_NEAR(last(*run.reader, 4, "UX"), 0.1, 1e-12);
+}
+
 TEST(ConstraintEquations, ConstantAppliesToTheTotalInANonlinearRun) {
   // The same under two substeps (the element with a constant is evaluated at every iterate):
   // the end state is the same, the constant acts on the total displacement, not per increment.
