@@ -94,7 +94,7 @@ std::unique_ptr<Element> make_rigid_link(const ElementBuildContext& ctx,
 }
 
 const ElementRegistration kMpc184{{.name = "MPC184",
-                                   .number = 0,
+                                   .number = 184,
                                    .family = "RigidLink",
                                    .n_nodes = 2,
                                    .real_constants = RealConstantUse::None,
