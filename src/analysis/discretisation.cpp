@@ -10,8 +10,8 @@ Discretisation::Discretisation(const Structure& structure, std::set<DofKey> cons
                                bool condense)
     : structure_(structure),
       constrained_(std::move(constrained)),
-      dofs_(
-          std::make_unique<DofMap>(structure.elements(), constrained_, structure.coupled_dofs())) {
+      dofs_(std::make_unique<DofMap>(structure.elements(), constrained_, structure.coupled_dofs(),
+                                     structure.dependent_dofs())) {
   const auto& elements = structure.elements();
   assembler_ = std::make_unique<Assembler>(elements, *dofs_, structure.context(),
                                            structure.options().alpha_damping,

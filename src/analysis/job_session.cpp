@@ -46,6 +46,17 @@ bool runs_explicit_dynamics(const Job::Step& step) {
                                why));
 }
 
+/// The explicit run (src/explicit) has no constraint equations: CE and CERIG are refused there
+/// rather than ignored.
+void refuse_constraint_equations(const Model& model) {
+  if (!model.constraint_equations.empty())
+    throw NotImplementedError(model.constraint_equations.begin()->second.where,
+                              "constraint equations (CE) in explicit dynamics are not implemented");
+  if (!model.rigid_regions.empty())
+    throw NotImplementedError(model.rigid_regions.front().where,
+                              "rigid regions (CERIG) in explicit dynamics are not implemented");
+}
+
 /// EDMP,RIGID acts in explicit dynamics only: an implicit analysis of a model that has rigid
 /// materials refuses them rather than solving them as deformable.
 void refuse_rigid_materials(const Model& model) {
@@ -246,6 +257,7 @@ void JobSession::solve(const Job& job, std::size_t step) {
       // its need (its arrays are a few hundred bytes per element).
       explicit_ = runs_explicit_dynamics(s);
       if (s.analysis && !explicit_) refuse_rigid_materials(*s.model_snapshot);
+      if (s.analysis && explicit_) refuse_constraint_equations(*s.model_snapshot);
       if (s.analysis && !explicit_) require_model_memory(*s.model_snapshot, "SOLVE");
       const auto& restart = s.analysis ? s.analysis->options.restart : std::nullopt;
       if (restart && !solves_incrementally(s.analysis->options))

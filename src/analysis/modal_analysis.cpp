@@ -38,7 +38,8 @@ void run_modal_analysis(Structure& structure, const AnalysisRequest& request, Re
   const ModalOptions& modal = structure.options().modal;
   const LoadStep empty;
   const LoadStep& step = request.load_steps.empty() ? empty : request.load_steps.front();
-  const DofMap dofs(structure.elements(), structure.constraints_of(step), structure.coupled_dofs());
+  const DofMap dofs(structure.elements(), structure.constraints_of(step), structure.coupled_dofs(),
+                    structure.dependent_dofs());
   Assembler assembler(structure.elements(), dofs, structure.context());
   const VectorXd zero = VectorXd::Zero(dofs.n_active());
   SparseMatrix k(dofs.n_free(), dofs.n_free()), m(dofs.n_free(), dofs.n_free());

@@ -76,6 +76,7 @@ void prepare_reduced_model(ReducedRunState& state, const Structure& structure,
           step.number));
   }
   const Structure& s = *state.structure;
+  s.refuse_constraint_equations("a reduced, mode-superposition or harmonic analysis");
   if (!s.model().coupled_sets.empty())
     throw NotImplementedError(s.model().coupled_sets.begin()->second.where,
                               "coupled DOF sets (CP) in a reduced / mode-superposition "

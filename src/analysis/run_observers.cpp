@@ -28,7 +28,8 @@ void ResultStorage::store(double time, int load_step, int substep, bool dynamic,
   point.substep = substep;
   // Quantities OUTRES does not write at this point are not computed (absent, NaN in the file).
   const auto wanted = [&](OutputItem i) { return !selection[i].none(); };
-  if (wanted(OutputItem::NSOL)) point.displacement = structure.nodal_table(disc.dofs(), state.u);
+  if (wanted(OutputItem::NSOL))
+    point.displacement = structure.displacement_table(disc.dofs(), state.u);
   if (dynamic || structure.options().type == AnalysisType::Transient) {
     if (wanted(OutputItem::VSOL)) point.velocity = structure.nodal_table(disc.dofs(), state.v);
     if (wanted(OutputItem::ASOL)) point.acceleration = structure.nodal_table(disc.dofs(), state.a);

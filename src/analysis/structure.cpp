@@ -180,7 +180,17 @@ Structure::Structure(const Model& model, const AnalysisOptions& options,
   for (const auto& [id, record] : model.elements) {
     std::unique_ptr<Element> element = create_element(build, record);
     build_cache(build).built[id] = element.get();
-    elements_.push_back(adapt_element(std::move(element), model, record));
+    elements_.push_back(std::move(element));
+  }
+  // The constraint equations read the elements as built (their DOFs, MPC184's equations); the
+  // adapters then eliminate the slaves (assembly/constraint_equations.h).
+  eliminate_constraint_equations(steps);
+  {
+    std::size_t e = 0;
+    for (const auto& [id, record] : model.elements) {
+      elements_[e] = adapt_element(std::move(elements_[e]), model, record, dependent_);
+      ++e;
+    }
   }
   std::map<std::string, std::vector<std::size_t>> members;
   for (std::size_t e = 0; e < elements_.size(); ++e)
@@ -196,7 +206,7 @@ Structure::Structure(const Model& model, const AnalysisOptions& options,
 
   // Automatic constraints: DOFs without stiffness and without mass (spec §10.1 item 5).
   // Status elements (gaps) count as stiffness: a gap may close later.
-  DofMap all(elements_, {}, coupled_dofs());
+  DofMap all(elements_, {}, coupled_dofs(), dependent_);
   VectorXd stiff = VectorXd::Zero(all.n_active());
   VectorXd mass = VectorXd::Zero(all.n_active());
   Eigen::MatrixXd k, m;
@@ -249,6 +259,7 @@ Structure::Structure(const Model& model, const AnalysisOptions& options,
 }
 
 void Structure::check_load_step(const LoadStep& step) const {
+  check_slaves_free(step);
   for (const auto& key : automatic_)
     if (const auto demand = force_on(key, step)) fail_mechanism(key, *demand);
 }
@@ -309,8 +320,8 @@ std::set<DofKey> Structure::constraints_of(const LoadStep& step) const {
   return out;
 }
 
-Eigen::MatrixXd Structure::dof_table(const DofMap& dofs, const VectorXd& values, int first,
-                                     int end) const {
+Eigen::MatrixXd Structure::dof_table(const DofMap& dofs, const VectorXd& values, int first, int end,
+                                     bool with_constants) const {
   Eigen::MatrixXd table = Eigen::MatrixXd::Constant(static_cast<int>(node_ids_.size()), 6,
                                                     std::numeric_limits<double>::quiet_NaN());
   // A node's DOFs are mostly consecutive in the map: its row is looked up once per run of them
@@ -329,11 +340,26 @@ Eigen::MatrixXd Structure::dof_table(const DofMap& dofs, const VectorXd& values,
   if (first == 0)
     for (const auto& [key, index] : dofs.aliases())
       if (index < end) table(node_row(key.node), static_cast<int>(key.dof)) = values(index);
+  // The slaves of constraint equations: u_s = Σ a_j u_j (+ g for total displacements); a
+  // master no element carries counts as zero. No reaction of their own either.
+  if (first == 0 && dofs.dependent() != nullptr)
+    for (const auto& [key, dep] : dofs.dependent()->slaves()) {
+      double value = with_constants ? dep.constant : 0.0;
+      for (const auto& [master, a] : dep.masters) {
+        const int index = dofs.index(master);
+        if (index >= 0 && index < end) value += a * values(index);
+      }
+      table(node_row(key.node), static_cast<int>(key.dof)) = value;
+    }
   return table;
 }
 
 Eigen::MatrixXd Structure::nodal_table(const DofMap& dofs, const VectorXd& values) const {
   return dof_table(dofs, values, 0, dofs.n_active());
+}
+
+Eigen::MatrixXd Structure::displacement_table(const DofMap& dofs, const VectorXd& u) const {
+  return dof_table(dofs, u, 0, dofs.n_active(), true);
 }
 
 Eigen::MatrixXd Structure::reaction_table(const DofMap& dofs, const VectorXd& reactions) const {

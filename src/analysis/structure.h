@@ -16,6 +16,7 @@
 
 #include "analysis/progress.h"
 #include "assembly/assembler.h"
+#include "assembly/constraint_equations.h"
 #include "assembly/dof_map.h"
 #include "elements/element.h"
 #include "results/results_file.h"
@@ -59,6 +60,15 @@ class Structure {
   void check_load_step(const LoadStep& step) const;
   /// The coupled DOF sets (CP), each in its nodes' order (the first is the prime DOF).
   std::vector<std::vector<DofKey>> coupled_dofs() const;
+  /// The slaves of the constraint equations (CE, CERIG, MPC184) and what they depend on (null
+  /// when the model has none); hand it to every DofMap of this structure.
+  const std::shared_ptr<const DependentDofs>& dependent_dofs() const { return dependent_; }
+  /// NotImplementedError at the first constraint equation when the structure has any: for the
+  /// analyses that do not apply them (`analysis` names it), which refuse rather than ignore them.
+  void refuse_constraint_equations(const std::string& analysis) const;
+  /// Nodal table of total displacements: as nodal_table, with the constants of the constraint
+  /// equations in their slaves' values (u_s = Σ a_j u_j + g).
+  Eigen::MatrixXd displacement_table(const DofMap& dofs, const VectorXd& u) const;
   /// D of the load step plus the automatic constraints.
   std::set<DofKey> constraints_of(const LoadStep& step) const;
 
@@ -83,7 +93,12 @@ class Structure {
 
  private:
   /// A node table (NaN where no DOF) of values(i) for the DOFs first .. end − 1 of `dofs`.
-  Eigen::MatrixXd dof_table(const DofMap& dofs, const VectorXd& values, int first, int end) const;
+  Eigen::MatrixXd dof_table(const DofMap& dofs, const VectorXd& values, int first, int end,
+                            bool with_constants = false) const;
+  /// Builds dependent_ from the model's CE and CERIG and the elements' kinematic constraints.
+  void eliminate_constraint_equations(const std::vector<LoadStep>* steps);
+  /// InputError when a load step prescribes a slave with D.
+  void check_slaves_free(const LoadStep& step) const;
   /// Row of node `id` in the nodal tables; std::out_of_range when it has none.
   int node_row(int id) const;
   /// Indexes node_ids_ for node_row.
@@ -101,6 +116,7 @@ class Structure {
   int node_id_base_ = 0;
   std::map<int, int> node_row_sparse_;
   std::set<DofKey> automatic_;
+  std::shared_ptr<const DependentDofs> dependent_;
   std::vector<double> material_beta_;
   /// The elements with results, by family (ascending family name, as the tables of
   /// element_results): grouped once, not at every stored point.

@@ -153,6 +153,7 @@ SuperelementData generate_superelement(const Structure& structure, const Analysi
     throw NotImplementedError(model.coupled_sets.begin()->second.where,
                               "coupled DOF sets (CP) in a superelement generation pass are not "
                               "implemented");
+  structure.refuse_constraint_equations("a superelement generation pass");
   const DofMap dofs(elements, structure.constraints_of(request.load_steps.front()));
   const Assembler assembler(elements, dofs, ctx);
   note_linearised_elements(elements, ctx);

@@ -5,8 +5,9 @@
 namespace impactfe {
 
 DofMap::DofMap(const std::vector<std::unique_ptr<Element>>& elements,
-               const std::set<DofKey>& constrained,
-               const std::vector<std::vector<DofKey>>& coupled) {
+               const std::set<DofKey>& constrained, const std::vector<std::vector<DofKey>>& coupled,
+               std::shared_ptr<const DependentDofs> dependent)
+    : dependent_(std::move(dependent)) {
   // The active DOFs, sorted (node, then direction): a sort of the element DOF lists instead of
   // a tree insertion per entry (at 6·10⁵ DOFs that tree was a second of the set-up).
   std::vector<DofKey> active;

@@ -7,6 +7,7 @@
 #include <set>
 #include <vector>
 
+#include "assembly/constraint_equations.h"
 #include "core/dof.h"
 #include "elements/element.h"
 
@@ -20,8 +21,14 @@ class DofMap {
   /// carries the equation and the others are eliminated onto it (they get its index), so the
   /// element matrices of the set's DOFs add up in one row and column. A set with a held member
   /// is held as a whole.
+  /// `dependent`: the slaves of constraint equations (CE, CERIG, MPC184), eliminated onto their
+  /// masters by the element adapters (assembly/element_adapters.h), so no element carries them
+  /// and they are not active; kept here for the loads (F on a slave acts as Tᵀ F on its masters)
+  /// and the nodal results (u_s = Σ a_j u_j + g). CP is the special case u_s = u_prime, which
+  /// needs no transformation: the coupled DOFs share an index (the aliases).
   DofMap(const std::vector<std::unique_ptr<Element>>& elements, const std::set<DofKey>& constrained,
-         const std::vector<std::vector<DofKey>>& coupled = {});
+         const std::vector<std::vector<DofKey>>& coupled = {},
+         std::shared_ptr<const DependentDofs> dependent = nullptr);
 
   int n_active() const { return static_cast<int>(keys_.size()); }
   int n_free() const { return n_free_; }
@@ -38,6 +45,8 @@ class DofMap {
   std::set<DofKey> active_set() const { return {keys_.begin(), keys_.end()}; }
   /// The eliminated DOFs of coupled sets and the index of their prime DOF (nodal results).
   const std::vector<std::pair<DofKey, int>>& aliases() const { return aliases_; }
+  /// The slaves of constraint equations (null: none).
+  const DependentDofs* dependent() const { return dependent_.get(); }
 
  private:
   std::vector<DofKey> keys_;
@@ -46,6 +55,7 @@ class DofMap {
   std::vector<std::vector<int>> element_indices_;
   std::vector<std::pair<DofKey, int>> aliases_;
   int n_free_ = 0;
+  std::shared_ptr<const DependentDofs> dependent_;
 };
 
 }  // namespace impactfe

@@ -2,19 +2,25 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <map>
 
 namespace impactfe {
 
+TransformedElement::TransformedElement(std::unique_ptr<Element> inner)
+    : Element(inner->id()), inner_(std::move(inner)) {
+  set_material_damping(inner_->material_damping());  // the assembler reads it from here
+}
+
 NodalAxesElement::NodalAxesElement(std::unique_ptr<Element> inner, const Model& model,
                                    const SourceLocation& where)
-    : Element(inner->id()), inner_(std::move(inner)), model_(model), where_(where) {
-  set_material_damping(inner_->material_damping());  // the assembler reads it from here
+    : TransformedElement(std::move(inner)), model_(model), where_(where) {
   build_transformation();
 }
 
 void NodalAxesElement::build_transformation() {
-  const auto& dofs = inner_->dofs();
+  dofs_ = inner_->dofs();
+  const auto& dofs = dofs_;
   const int n = static_cast<int>(dofs.size());
   t_ = Eigen::MatrixXd::Identity(n, n);
   // Positions of each node's DOFs in the element: node -> dof component -> position.
@@ -47,56 +53,99 @@ void NodalAxesElement::build_transformation() {
   }
 }
 
-bool NodalAxesElement::refresh_dofs(const Eigen::VectorXd& u, const NodePositions& positions) {
+ConstrainedElement::ConstrainedElement(std::unique_ptr<Element> inner,
+                                       std::shared_ptr<const DependentDofs> dependent)
+    : TransformedElement(std::move(inner)), dependent_(std::move(dependent)) {
+  build_transformation();
+}
+
+void ConstrainedElement::build_transformation() {
+  // The adapter's DOFs: the inner element's retained DOFs in its order, then the masters of its
+  // slaves in order of first appearance. Row i of T: e_i for a retained DOF, the slave's
+  // coefficients a_j for a slave (u_s = Σ a_j u_j + g_s).
+  const auto& inner = inner_->dofs();
+  dofs_.clear();
+  std::map<DofKey, int> column;
+  const auto column_of = [&](const DofKey& key) {
+    const auto [it, fresh] = column.try_emplace(key, static_cast<int>(dofs_.size()));
+    if (fresh) dofs_.push_back(key);
+    return it->second;
+  };
+  for (const DofKey& key : inner)
+    if (dependent_->find(key) == nullptr) column_of(key);
+  for (const DofKey& key : inner)
+    if (const auto* dep = dependent_->find(key))
+      for (const auto& [master, a] : dep->masters) column_of(master);
+  const int n_inner = static_cast<int>(inner.size());
+  t_.setZero(n_inner, static_cast<int>(dofs_.size()));
+  Eigen::VectorXd g = Eigen::VectorXd::Zero(n_inner);
+  for (int i = 0; i < n_inner; ++i) {
+    const DofKey& key = inner[static_cast<std::size_t>(i)];
+    if (const auto* dep = dependent_->find(key)) {
+      for (const auto& [master, a] : dep->masters) t_(i, column.at(master)) += a;
+      g(i) = dep->constant;
+    } else {
+      t_(i, column.at(key)) = 1.0;
+    }
+  }
+  if (g.cwiseAbs().maxCoeff() > 0.0)
+    g_ = std::move(g);
+  else
+    g_.resize(0);
+}
+
+bool TransformedElement::refresh_dofs(const Eigen::VectorXd& u, const NodePositions& positions) {
   auto* update = dynamic_cast<ConnectivityUpdate*>(inner_.get());
-  if (update == nullptr || !update->refresh_dofs(t_ * u, positions)) return false;
+  if (update == nullptr || !update->refresh_dofs(inner_values(u), positions)) return false;
   build_transformation();
   return true;
 }
 
-void NodalAxesElement::tangent(const ElementContext& ctx, const Eigen::VectorXd& u,
-                               Eigen::MatrixXd& K, Eigen::VectorXd& f_int) const {
-  inner_->tangent(ctx, t_ * u, K, f_int);
+void TransformedElement::tangent(const ElementContext& ctx, const Eigen::VectorXd& u,
+                                 Eigen::MatrixXd& K, Eigen::VectorXd& f_int) const {
+  inner_->tangent(ctx, inner_values(u), K, f_int);
   K = t_.transpose() * K * t_;
   f_int = t_.transpose() * f_int;
 }
 
-void NodalAxesElement::mass(const ElementContext& ctx, Eigen::MatrixXd& M) const {
+void TransformedElement::mass(const ElementContext& ctx, Eigen::MatrixXd& M) const {
   inner_->mass(ctx, M);
   M = t_.transpose() * M * t_;
 }
 
-void NodalAxesElement::damping(const ElementContext& ctx, const Eigen::VectorXd& u,
-                               Eigen::MatrixXd& C) const {
-  inner_->damping(ctx, t_ * u, C);
+void TransformedElement::damping(const ElementContext& ctx, const Eigen::VectorXd& u,
+                                 Eigen::MatrixXd& C) const {
+  inner_->damping(ctx, inner_values(u), C);
   C = t_.transpose() * C * t_;
 }
 
-void NodalAxesElement::frame_acceleration_load(const ElementContext& ctx, const Eigen::Matrix3Xd& a,
-                                               Eigen::MatrixXd& f) const {
+void TransformedElement::frame_acceleration_load(const ElementContext& ctx,
+                                                 const Eigen::Matrix3Xd& a,
+                                                 Eigen::MatrixXd& f) const {
   inner_->frame_acceleration_load(ctx, a, f);
-  for (Eigen::Index k = 0; k < f.cols(); ++k) f.col(k) = (t_.transpose() * f.col(k)).eval();
+  f = (t_.transpose() * f).eval();
 }
 
-void NodalAxesElement::pressure_load(const ElementContext& ctx, int face,
-                                     const std::array<double, 4>& p, const Eigen::VectorXd& u,
-                                     Eigen::VectorXd& f) const {
-  inner_->pressure_load(ctx, face, p, t_ * u, f);
+void TransformedElement::pressure_load(const ElementContext& ctx, int face,
+                                       const std::array<double, 4>& p, const Eigen::VectorXd& u,
+                                       Eigen::VectorXd& f) const {
+  inner_->pressure_load(ctx, face, p, inner_values(u), f);
   f = t_.transpose() * f;
 }
 
-void NodalAxesElement::thermal_load(const ElementContext& ctx, Eigen::VectorXd& f) const {
+void TransformedElement::thermal_load(const ElementContext& ctx, Eigen::VectorXd& f) const {
   inner_->thermal_load(ctx, f);
   f = t_.transpose() * f;
 }
 
-void NodalAxesElement::results(const ElementContext& ctx, const Eigen::VectorXd& u,
-                               const Eigen::VectorXd& v, ElementResultValues& out) const {
-  inner_->results(ctx, t_ * u, t_ * v, out);
+void TransformedElement::results(const ElementContext& ctx, const Eigen::VectorXd& u,
+                                 const Eigen::VectorXd& v, ElementResultValues& out) const {
+  inner_->results(ctx, inner_values(u), t_ * v, out);
 }
 
 std::unique_ptr<Element> adapt_element(std::unique_ptr<Element> element, const Model& model,
-                                       const ElementRecord& record) {
+                                       const ElementRecord& record,
+                                       const std::shared_ptr<const DependentDofs>& dependent) {
   const auto mat = model.materials.find(record.mat);
   if (mat != model.materials.end()) {
     const Material& m = mat->second;
@@ -117,6 +166,13 @@ std::unique_ptr<Element> adapt_element(std::unique_ptr<Element> element, const M
   if (rotated) {
     Element::ThermalExpansion thermal = element->thermal_expansion();
     element = std::make_unique<NodalAxesElement>(std::move(element), model, record.where);
+    element->set_thermal_expansion(std::move(thermal));
+  }
+  if (dependent && !dependent->empty() &&
+      std::any_of(element->dofs().begin(), element->dofs().end(),
+                  [&](const DofKey& k) { return dependent->find(k) != nullptr; })) {
+    Element::ThermalExpansion thermal = element->thermal_expansion();
+    element = std::make_unique<ConstrainedElement>(std::move(element), dependent);
     element->set_thermal_expansion(std::move(thermal));
   }
   return element;

@@ -8,28 +8,37 @@
 ///   axes R of each rotated node on its translation and rotation triads): K_n = Tᵀ K T,
 ///   f_n = Tᵀ f, M_n = Tᵀ M T (Cook et al., "Concepts and Applications of FEA", §2.11).
 ///
-/// It implements every optional element interface (elements/element_capabilities.h, asserted
-/// below) by forwarding it with the same transformation, so it hides nothing the element can do.
-/// Material damping (MP,ALPD / MP,BETD) is no adapter: it is data of the element
-/// (Element::material_damping) that the assembler applies where it scatters the element.
+/// * ConstrainedElement — the slaves of constraint equations (CE, CERIG, MPC184) eliminated:
+///   u_inner = T u + g (assembly/constraint_equations.h).
+///
+/// Both are a TransformedElement. It implements every optional element interface
+/// (elements/element_capabilities.h, asserted below) by forwarding it with the same transformation,
+/// so it hides nothing the element can do. Material damping (MP,ALPD / MP,BETD) is no adapter: it
+/// is data of the element (Element::material_damping) that the assembler applies where it scatters
+/// the element.
 #include <memory>
 #include <vector>
 
+#include "assembly/constraint_equations.h"
 #include "core/model.h"
 #include "elements/element.h"
 #include "elements/element_capabilities.h"
 
 namespace impactfe {
 
-class NodalAxesElement final : public Element, public PenetrationCheck, public ConnectivityUpdate {
+/// The common form of both adapters: the inner element's DOF values are an affine function of
+/// the adapter's, u_inner = T u + g (g: the constants of constraint equations, zero for nodal
+/// axes), so K = Tᵀ K_inner T, f = Tᵀ f_inner(T u + g), M = Tᵀ M_inner T, C = Tᵀ C_inner T and
+/// every load vector is Tᵀ f_inner. Velocities and accelerations transform with T alone.
+class TransformedElement : public Element, public PenetrationCheck, public ConnectivityUpdate {
  public:
-  /// Throws InputError (at the element's record location) when a rotated node carries only part
-  /// of a translation or rotation triad in this element (the rotation would mix DOFs it lacks).
-  NodalAxesElement(std::unique_ptr<Element> inner, const Model& model, const SourceLocation& where);
-
   const char* family() const override { return inner_->family(); }
-  const std::vector<DofKey>& dofs() const override { return inner_->dofs(); }
-  bool is_nonlinear(const ElementContext& ctx) const override { return inner_->is_nonlinear(ctx); }
+  const std::vector<DofKey>& dofs() const override { return dofs_; }
+  /// A non-zero constant makes f_inner(T u + g) ≠ Tᵀ K T u: such an element is evaluated at
+  /// every iterate, like a nonlinear one, so the constant acts on the total displacement.
+  bool is_nonlinear(const ElementContext& ctx) const override {
+    return inner_->is_nonlinear(ctx) || g_.size() > 0;
+  }
   void tangent(const ElementContext& ctx, const Eigen::VectorXd& u, Eigen::MatrixXd& K,
                Eigen::VectorXd& f_int) const override;
   void mass(const ElementContext& ctx, Eigen::MatrixXd& M) const override;
@@ -52,13 +61,13 @@ class NodalAxesElement final : public Element, public PenetrationCheck, public C
     inner_->restore_history_state(state);
   }
   void commit_history(const ElementContext& ctx, const Eigen::VectorXd& u) override {
-    inner_->commit_history(ctx, t_ * u);
+    inner_->commit_history(ctx, inner_values(u));
   }
   bool has_status() const override { return inner_->has_status(); }
   bool update_status(const ElementContext& ctx, const Eigen::VectorXd& u) override {
-    return inner_->update_status(ctx, t_ * u);
+    return inner_->update_status(ctx, inner_values(u));
   }
-  void commit(const Eigen::VectorXd& u) override { inner_->commit(t_ * u); }
+  void commit(const Eigen::VectorXd& u) override { inner_->commit(inner_values(u)); }
   void revert() override { inner_->revert(); }
   void freeze_status(bool frozen) override { inner_->freeze_status(frozen); }
   GapStatus status() const override { return inner_->status(); }
@@ -67,44 +76,76 @@ class NodalAxesElement final : public Element, public PenetrationCheck, public C
   void results(const ElementContext& ctx, const Eigen::VectorXd& u, const Eigen::VectorXd& v,
                ElementResultValues& out) const override;
 
-  /// u_global = T u_nodal over the element DOFs.
+  /// u_inner = T u + g over the element DOFs.
   const Eigen::MatrixXd& transformation() const { return t_; }
+  const Element& inner() const { return *inner_; }
 
-  /// A contact element's KEYOPT(7) check (elements/penetration_check.h) on global displacements.
+  /// A contact element's KEYOPT(7) check (elements/penetration_check.h) on the inner values.
   bool checks_penetration() const override {
     const auto* check = dynamic_cast<const PenetrationCheck*>(inner_.get());
     return check != nullptr && check->checks_penetration();
   }
   double penetration_ratio(const Eigen::VectorXd& start, const Eigen::VectorXd& u) const override {
-    return dynamic_cast<const PenetrationCheck&>(*inner_).penetration_ratio(t_ * start, t_ * u);
+    return dynamic_cast<const PenetrationCheck&>(*inner_).penetration_ratio(inner_values(start),
+                                                                            inner_values(u));
   }
 
-  /// A contact element's search update (elements/connectivity.h) on global displacements; when
-  /// its DOFs change, T follows them.
+  /// A contact element's search update (elements/connectivity.h) on the inner values; when its
+  /// DOFs change, T follows them.
   bool updates_connectivity() const override {
     const auto* update = dynamic_cast<const ConnectivityUpdate*>(inner_.get());
     return update != nullptr && update->updates_connectivity();
   }
   bool refresh_dofs(const Eigen::VectorXd& u, const NodePositions& positions) override;
 
- private:
-  /// T over the inner element's current DOFs.
-  void build_transformation();
+ protected:
+  explicit TransformedElement(std::unique_ptr<Element> inner);
+  /// Sets dofs_, t_ and g_ for the inner element's current DOFs.
+  virtual void build_transformation() = 0;
+  Eigen::VectorXd inner_values(const Eigen::VectorXd& u) const {
+    return g_.size() > 0 ? Eigen::VectorXd(t_ * u + g_) : Eigen::VectorXd(t_ * u);
+  }
 
   std::unique_ptr<Element> inner_;
-  const Model& model_;
-  SourceLocation where_;
-  Eigen::MatrixXd t_;
+  std::vector<DofKey> dofs_;  // the adapter's DOFs
+  Eigen::MatrixXd t_;         // n_inner × n_dofs
+  Eigen::VectorXd g_;         // n_inner, or empty when zero
 };
 
-static_assert(implements_all<NodalAxesElement>(ElementCapabilities{}),
+static_assert(implements_all<TransformedElement>(ElementCapabilities{}),
               "an element adapter must implement every optional element interface "
               "(elements/element_capabilities.h), or it hides it from the drivers");
 
+class NodalAxesElement final : public TransformedElement {
+ public:
+  /// Throws InputError (at the element's record location) when a rotated node carries only part
+  /// of a translation or rotation triad in this element (the rotation would mix DOFs it lacks).
+  NodalAxesElement(std::unique_ptr<Element> inner, const Model& model, const SourceLocation& where);
+
+ private:
+  void build_transformation() override;
+  const Model& model_;
+  SourceLocation where_;
+};
+
+/// An element at slave DOFs of constraint equations (assembly/constraint_equations.h): its
+/// DOFs are its retained DOFs followed by the masters of its slaves, u_inner = T u + g.
+class ConstrainedElement final : public TransformedElement {
+ public:
+  ConstrainedElement(std::unique_ptr<Element> inner,
+                     std::shared_ptr<const DependentDofs> dependent);
+
+ private:
+  void build_transformation() override;
+  std::shared_ptr<const DependentDofs> dependent_;
+};
+
 /// Makes an element of the model what the equations need: the damping of its material
 /// (Element::material_damping from MP,ALPD / MP,BETD), nodal axes when one of its nodes is
-/// rotated.
-std::unique_ptr<Element> adapt_element(std::unique_ptr<Element> element, const Model& model,
-                                       const ElementRecord& record);
+/// rotated, the elimination of constraint equations' slaves when it carries one (`dependent`;
+/// the equations act in nodal axes, so that adapter wraps the nodal-axes one).
+std::unique_ptr<Element> adapt_element(
+    std::unique_ptr<Element> element, const Model& model, const ElementRecord& record,
+    const std::shared_ptr<const DependentDofs>& dependent = nullptr);
 
 }  // namespace impactfe

@@ -39,6 +39,20 @@ ResolvedDofLoads::ResolvedDofLoads(const DofMap& dofs, const LoadStep& current,
   const std::map<DofKey, double>* before =
       previous ? (forces ? &previous->forces : &previous->constraints) : nullptr;
   for (const auto& [key, value] : values) {
+    // A force on a slave of a constraint equation acts on its masters, Tᵀ F: a_j F on master j
+    // (virtual work: F δu_s = Σ a_j F δu_j). Prescribed values on slaves are refused when the
+    // structure is built.
+    const DofDependence* slave = dofs.dependent() ? dofs.dependent()->find(key) : nullptr;
+    if (slave != nullptr && forces) {
+      const auto t = tables.find(key);
+      for (const auto& [master, a] : slave->masters) {
+        const int m = dofs.index(master);
+        if (m < 0 || m >= dofs.n_free()) continue;
+        entries_.push_back(
+            {m, a * lookup(before, key), a * value, t == tables.end() ? "" : t->second, a});
+      }
+      continue;
+    }
     const int i = dofs.index(key);
     // Forces act on free DOFs, prescribed values on constrained ones (inactive DOFs are -1).
     if (forces ? (i < 0 || i >= dofs.n_free()) : i < dofs.n_free()) continue;
@@ -50,7 +64,8 @@ ResolvedDofLoads::ResolvedDofLoads(const DofMap& dofs, const LoadStep& current,
 void ResolvedDofLoads::add_to(const LoadPoint& at, VectorXd& v) const {
   // A table's value at the point's time, else the KBC interpolation from the previous step.
   for (const Entry& e : entries_)
-    v(e.index) += e.table.empty() ? interpolate(at, e.previous, e.value) : table_value(at, e.table);
+    v(e.index) += e.table.empty() ? interpolate(at, e.previous, e.value)
+                                  : e.weight * table_value(at, e.table);
 }
 
 VectorXd nodal_forces(const DofMap& dofs, const LoadPoint& at) {

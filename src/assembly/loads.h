@@ -52,7 +52,8 @@ class ResolvedDofLoads {
     int index = 0;
     double previous = 0.0;  // value at the end of the previous load step (KBC ramp start)
     double value = 0.0;
-    std::string table;  // time function, when the load is given by one
+    std::string table;    // time function, when the load is given by one
+    double weight = 1.0;  // the table's factor (a force on a slave acts as a_j F on master j)
   };
   std::vector<Entry> entries_;
 };

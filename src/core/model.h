@@ -139,6 +139,34 @@ struct CoupledSet {
   SourceLocation where;    // the CP command
 };
 
+/// One term C_i u_i of a linear constraint equation (DOF in nodal axes).
+struct ConstraintTerm {
+  DofKey dof;
+  double coefficient = 0.0;
+};
+
+/// A linear constraint equation CONST = sum C_i u_i (CE; also what CERIG and the MPC184 rigid
+/// link and beam write). The first term's DOF is the slave: it is eliminated (master-slave
+/// elimination, assembly/constraint_equations.h); the constant applies to total displacements.
+struct ConstraintEquation {
+  int id = 0;
+  double constant = 0.0;
+  std::vector<ConstraintTerm> terms;  // input order, the slave first
+  SourceLocation where;               // the command (or element record) that defined it
+};
+
+/// CERIG,MASTE,SLAVE,Ldof...: a rigid region of small rotations, written as constraint
+/// equations when the structure is built (3-D or 2-D by the DOFs the master carries there).
+struct RigidRegion {
+  int master = 0;
+  std::vector<int> slaves;
+  bool translations = true;  // the slaves' UX, UY (UZ) follow the master's motion
+  bool rotations = true;     // the slaves' rotations equal the master's
+  /// Only these slave DOFs (CERIG Ldof = UX, UY, ...), empty: as translations/rotations say.
+  std::vector<Dof> only;
+  SourceLocation where;
+};
+
 /// One load step: the full load state at its end (not deltas) and its options.
 /// Loads are cumulative: a step inherits everything from the previous step unless changed.
 struct LoadStep {
@@ -334,12 +362,14 @@ struct Model {
   std::map<int, Section> sections;
   std::map<int, ElementRecord> elements;
 
-  std::vector<DofKey> masters;                            // M, in input order, no duplicates
-  std::map<DofKey, SourceLocation> master_where;          // the M command of each master
-  std::vector<GapCondition> gap_conditions;               // GP, in input order
-  std::map<DofKey, InitialCondition> initial_conditions;  // IC
-  std::map<std::string, Component> components;            // CM, by upper-case name
-  std::map<int, CoupledSet> coupled_sets;                 // CP, by set number
+  std::vector<DofKey> masters;                             // M, in input order, no duplicates
+  std::map<DofKey, SourceLocation> master_where;           // the M command of each master
+  std::vector<GapCondition> gap_conditions;                // GP, in input order
+  std::map<DofKey, InitialCondition> initial_conditions;   // IC
+  std::map<std::string, Component> components;             // CM, by upper-case name
+  std::map<int, CoupledSet> coupled_sets;                  // CP, by set number
+  std::map<int, ConstraintEquation> constraint_equations;  // CE, by equation number
+  std::vector<RigidRegion> rigid_regions;                  // CERIG, in input order
 
   // Model building the MAPDL way (APDL_MODELING §1-§6).
   SolidModel solid;                      // keypoints, lines, areas, volumes, mesh controls

@@ -54,6 +54,8 @@ const Tables& tables() {
     add(register_load_commands, "Constraints, forces and initial conditions", kDeck);
     add(register_thermal_coupling_commands, "Temperatures and coupled DOF sets",
         "docs/thermal_loads.md");
+    add(register_constraint_equation_commands, "Constraint equations and rigid regions",
+        "docs/constraints.md");
     add(register_component_commands, "Components", kDeck);
     add(register_get_commands, "*GET", kDeck);
     add(register_post1_commands, "POST1", kPost);

@@ -304,6 +304,23 @@ void cmd_save(DeckReader& r, const Command& c) {
   for (const auto& [id, set] : m.coupled_sets)
     coupled.push_back({id, static_cast<int>(set.dof), set.nodes});
   j["coupled_sets"] = coupled;
+  // Constraint equations [id, constant, [[node, dof, c], ...]] and rigid regions
+  // [master, slaves, translations, rotations, only].
+  json equations = json::array();
+  for (const auto& [id, eq] : m.constraint_equations) {
+    json terms = json::array();
+    for (const auto& t : eq.terms)
+      terms.push_back({t.dof.node, static_cast<int>(t.dof.dof), t.coefficient});
+    equations.push_back({id, eq.constant, terms});
+  }
+  j["constraint_equations"] = equations;
+  json regions = json::array();
+  for (const auto& region : m.rigid_regions) {
+    std::vector<int> only;
+    for (Dof d : region.only) only.push_back(static_cast<int>(d));
+    regions.push_back({region.master, region.slaves, region.translations, region.rotations, only});
+  }
+  j["rigid_regions"] = regions;
   if (j["slab"] == "ALL") {
     json ic = json::array();
     for (const auto& [k, v] : m.initial_conditions)
@@ -377,6 +394,29 @@ void cmd_resume(DeckReader& r, const Command& c) {
         CoupledSet set{e[0], static_cast<Dof>(e[1].get<int>()), e[2].get<std::vector<int>>(),
                        c.where};
         m.coupled_sets[set.id] = set;
+      }
+    m.constraint_equations.clear();
+    if (j.contains("constraint_equations"))  // older files: none
+      for (const auto& e : j.at("constraint_equations")) {
+        ConstraintEquation eq;
+        eq.id = e[0];
+        eq.constant = e[1];
+        eq.where = c.where;
+        for (const auto& t : e[2])
+          eq.terms.push_back({DofKey{t[0], static_cast<Dof>(t[1].get<int>())}, t[2]});
+        m.constraint_equations[eq.id] = eq;
+      }
+    m.rigid_regions.clear();
+    if (j.contains("rigid_regions"))
+      for (const auto& e : j.at("rigid_regions")) {
+        RigidRegion region;
+        region.master = e[0];
+        region.slaves = e[1].get<std::vector<int>>();
+        region.translations = e[2];
+        region.rotations = e[3];
+        for (int d : e[4].get<std::vector<int>>()) region.only.push_back(static_cast<Dof>(d));
+        region.where = c.where;
+        m.rigid_regions.push_back(region);
       }
     if (j.at("slab") == "ALL") {
       m.initial_conditions.clear();

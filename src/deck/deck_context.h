@@ -96,6 +96,7 @@ void register_solution_commands(std::vector<CommandSpec>& table);
 void register_dynamics_commands(std::vector<CommandSpec>& table);
 void register_load_commands(std::vector<CommandSpec>& table);
 void register_thermal_coupling_commands(std::vector<CommandSpec>& table);
+void register_constraint_equation_commands(std::vector<CommandSpec>& table);
 void register_component_commands(std::vector<CommandSpec>& table);
 void register_get_commands(std::vector<CommandSpec>& table);
 void register_post1_commands(std::vector<CommandSpec>& table);

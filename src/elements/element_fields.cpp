@@ -91,6 +91,16 @@ std::vector<ElementFields> make_table() {
                {{1, {0, 1}, "1: gap locks when closed"},
                 {3, range(0, 6), "DOF: UX UX UY UZ ROTX ROTY ROTZ"},
                 {6, {0, 1, 2}, "mass location: 0 half at each node, 1 node I, 2 node J"}}});
+  // MPC184 (docs/elements/mpc184.md): the rigid link and the rigid beam, by elimination.
+  t.push_back({"MPC184",
+               {},
+               {{1,
+                 {0, 1},
+                 "0 rigid link, 1 rigid beam; the joints, slider and other MPC184 forms "
+                 "(KEYOPT(1) = 2..16) are not implemented"},
+                {2,
+                 {0, 1},
+                 "0 direct elimination; 1 (Lagrange multipliers) is solved by elimination too"}}});
   t.push_back({"MASS21",
                named({"MASSX", "MASSY", "MASSZ", "IXX", "IYY", "IZZ"}),
                {{2, {0, 1}, "1: mass in nodal axes"},

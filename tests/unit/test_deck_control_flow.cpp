@@ -262,7 +262,7 @@ TEST(DeckControlFlow, SkipUnknownStopsAtACommandThatMayChangeTheAnswer) {
   DeckOptions o;
   o.skip_unknown = true;
   o.dialect = Dialect::Modern;
-  for (const char* name : {"CE,1,0,1,UX,1", "BFE,1,TEMP,1,80", "FOO"}) {
+  for (const char* name : {"CEINTF,0.1", "BFE,1,TEMP,1,80", "FOO"}) {
     try {
       read_deck_text(std::string("/PREP7\nJPGPRF,500,100,1\n") + name + "\nN,1\n", "mem.inp", o);
       ADD_FAILURE() << name << " skipped";

@@ -70,6 +70,7 @@ std::map<std::string, Probe> probes() {
       {"COMBIN14", {"N,1,0,0,0\nN,2,1,2,0\n", {100.0, 5.0, 0.0}, "E,1,2"}},
       {"COMBIN40", {"N,1,0,0,0\nN,2,1,0,0\n", {100.0, 2.0, 3.0, 0.0, 0.0, 50.0}, "E,1,2"}},
       {"MASS21", {"N,1,0,0,0\n", {1.0, 1.0, 1.0, 0.5, 0.5, 0.5}, "E,1"}},
+      {"MPC184", {"N,1,0,0,0\nN,2,1,2,0\n", {}, "E,1,2"}},
       {"SOLID45", {cube, {}, "E,1,2,3,4,5,6,7,8"}},
       {"SOLID185", {cube, {}, "E,1,2,3,4,5,6,7,8"}},
       {"SOLID186",
@@ -138,6 +139,9 @@ const std::map<std::string, std::string>& by_design() {
       {"PLANE183 K1=1",
        "the triangle form takes the 6-node triangle's nodes from E,I,J,K,L,M,N and numbers its "
        "faces 1-3 (face 3 is I-K): the same element; the faces act through SFE pressures"},
+      {"MPC184 K2=1",
+       "Lagrange multipliers are solved by elimination as well: the same constraint equations "
+       "(docs/elements/mpc184.md; ConstraintEquations.*)"},
       {"MASS21 K2=1",
        "masses in nodal axes equal global ones on an unrotated node; refused on a "
        "rotated one (AcceptedFields-style check below)"},
