@@ -22,11 +22,11 @@ constexpr std::string_view kNoEffectOnResults[] = {
     "JPEG", "/SEG", "/IMAGE", "/PSCR", "/DEVDISP", "/DV3D", "/GSAVE", "/GRESUME", "/GCMD",
     "/GFORMAT", "/ANFILE", "PNGR", "TIFF", "PSCR", "HPGL", "/CMAP",
     // views, scaling, labels and styles of pictures
-    "/VSCALE", "/SSCALE", "/RATIO", "/NUMBER", "/GRTYP", "/GOLIST", "/GMARKER", "/LSYMBOL",
-    "/EFACET", "/CVAL", "/CLABEL", "/CPLANE", "/EXPAND", "/SHADE", "/SHRINK", "/LIGHT", "/NORMAL",
-    "/TRLCY", "/FACET", "/ANUM", "/CTYPE", "/ICLWID", "/ICSCALE", "/PBF", "/PICE", "/PSPEC",
-    "/LSPEC", "/TSPEC", "/TXTRE", "/HBC", "/GMATRIX", "/MREP", "/VCONE", "/XFRM", "/ANNOT",
-    "/TLABEL", "/LARC", "/POLYGON", "/PMORE", "/PCIRCLE", "/STITLE", "/UDOC", "/GTYPE", "/RESET",
+    "/VSCALE", "/SSCALE", "/RATIO", "/NUMBER", "/GRTYP", "/GMARKER", "/LSYMBOL", "/EFACET", "/CVAL",
+    "/CLABEL", "/CPLANE", "/EXPAND", "/SHADE", "/SHRINK", "/LIGHT", "/NORMAL", "/TRLCY", "/FACET",
+    "/ANUM", "/CTYPE", "/ICLWID", "/ICSCALE", "/PBF", "/PICE", "/PSPEC", "/LSPEC", "/TSPEC",
+    "/TXTRE", "/HBC", "/GMATRIX", "/MREP", "/VCONE", "/XFRM", "/ANNOT", "/TLABEL", "/LARC",
+    "/POLYGON", "/PMORE", "/PCIRCLE", "/STITLE", "/UDOC", "/GTYPE", "/RESET",
     // plots
     "APLOT", "KPLOT", "LPLOT", "VPLOT", "SECPLOT", "*VPLOT", "PLLS", "PLVECT", "PLPATH", "PLPAGM",
     "PLCAMP", "PLORB", "PLTRAC", "PLSECT", "PLGEOM", "PLCINT", "PLCRACK", "PLZZ", "PLMC", "PLTIME",
