@@ -524,6 +524,19 @@ void append_current(DeckReader& r, const Command& c) {
                             change, location_text(open.analysis->where)));
   }
   AnalysisRequest& a = open_analysis(r, c);
+  // The Newton settings are the analysis's, taken at its first SOLVE: a change made later does
+  // not act, and is said (not refused: decks tighten CNVTOL between load steps harmlessly).
+  const ConvergenceOptions& taken = a.options.convergence;
+  const ConvergenceOptions& now = r.model.options.convergence;
+  if (!a.load_steps.empty() &&
+      (taken.max_iterations != now.max_iterations || taken.force_tolerance != now.force_tolerance ||
+       taken.force_minref != now.force_minref ||
+       taken.displacement_tolerance != now.displacement_tolerance ||
+       taken.full_newton != now.full_newton))
+    r.warn(c, fmt::format("CNVTOL, NEQIT or NROPT changed since this analysis began at {}: the "
+                          "analysis keeps the convergence settings of its first SOLVE for all "
+                          "its load steps",
+                          location_text(a.where)));
   LoadStep s = snapshot(r, c, static_cast<int>(a.load_steps.size()) + 1);
   check_increasing(r, c, a.load_steps, s);
   a.load_steps.push_back(std::move(s));

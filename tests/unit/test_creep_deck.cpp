@@ -179,4 +179,23 @@ TEST(ShellEdgePressure, SfOnTheNodesOfAShellEdgeLoadsTheEdgeInPlane) {
             std::string::npos);
 }
 
+TEST(ConvergenceSettings, AChangeAfterTheFirstSolveOfAnAnalysisIsSaid) {
+  // The analysis keeps the Newton settings of its first SOLVE (vmr049-cr1b tightens CNVTOL
+  // between load steps): the change is said at the SOLVE it would have acted on.
+  const std::string deck =
+      "/PREP7\nET,1,LINK180\nR,1,1\nMP,EX,1,1000\nN,1\nN,2,1\nE,1,2\nD,1,ALL\nD,2,UY,,,,,UZ\n"
+      "FINISH\n/SOLU\nF,2,FX,1\nTIME,1\nSOLVE\nCNVTOL,F,,1E-8\nTIME,2\nSOLVE\n";
+  const auto warnings = warnings_of([&] { read(deck); });
+  EXPECT_TRUE(any_contains(warnings,
+                           "mem.inp:17: SOLVE: CNVTOL, NEQIT or NROPT changed since "
+                           "this analysis began at mem.inp:14"))
+      << (warnings.empty() ? "" : warnings.back());
+  // Before the first SOLVE a change acts and is not warned.
+  const std::string before =
+      "/PREP7\nET,1,LINK180\nR,1,1\nMP,EX,1,1000\nN,1\nN,2,1\nE,1,2\n"
+      "D,1,ALL\nD,2,UY,,,,,UZ\nFINISH\n/SOLU\nCNVTOL,F,,1E-8\nF,2,FX,1\n"
+      "SOLVE\n";
+  EXPECT_FALSE(any_contains(warnings_of([&] { read(before); }), "CNVTOL"));
+}
+
 }  // namespace test_creep_deck
