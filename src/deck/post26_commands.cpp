@@ -1,6 +1,6 @@
 // POST26, the time-history postprocessor (APDL_SCRIPTING §C): variables over the stored time
 // points (NSOL, ESOL, RFORCE, GAPF), their arithmetic (ADD, PROD, QUOT, ABS, SQRT, DERIV, INT1),
-// FILLDATA, TIMERANGE, STORE, NUMVAR, PRTIME, PRVAR, EXTREM, PLVAR with /AXLAB, /XRANGE,
+// FILLDATA, TIMERANGE, STORE, NUMVAR, PRTIME, NPRINT, PRVAR, EXTREM, PLVAR with /AXLAB, /XRANGE,
 // /YRANGE, /GRID, XVAR, and the array moves VGET / VPUT.
 #include <fmt/format.h>
 
@@ -457,6 +457,14 @@ void cmd_prtime(DeckReader& r, const Command& c) {
     ps.prtime = {r.real(c, 1, -1e300), r.real(c, 2, 1e300)};
 }
 
+void cmd_nprint(DeckReader& r, const Command& c) {
+  // NPRINT,N: the listing stride of PRVAR, every Nth stored point from the first. A value below
+  // 1 (VM decks write NPRINT,.25) lists every point, as the default N = 1 does.
+  const double n = r.real(c, 1, 1.0);
+  if (!std::isfinite(n) || n > 1e9) r.fail(c, fmt::format("N {} is not a point count", n));
+  post_state(r).nprint = std::max(1, static_cast<int>(n));
+}
+
 bool in_prtime(const PostState& ps, double t) {
   return !ps.prtime || (t >= ps.prtime->first - 1e-12 * std::max(1.0, std::fabs(t)) &&
                         t <= ps.prtime->second + 1e-12 * std::max(1.0, std::fabs(t)));
@@ -498,7 +506,7 @@ void cmd_prvar(DeckReader& r, const Command& c) {
     }
   }
   out += "\n              " + names + "\n";
-  for (std::size_t k = 0; k < ps.times.size(); ++k) {
+  for (std::size_t k = 0; k < ps.times.size(); k += static_cast<std::size_t>(ps.nprint)) {
     if (!in_prtime(ps, ps.times[k])) continue;
     out += " " + listing_number(ps.times[k], 12) + " ";
     for (const auto& col : cols) out += "  " + listing_number(col[k], 13);
@@ -731,6 +739,7 @@ void register_post26_commands(std::vector<CommandSpec>& t) {
   t.push_back({"TIMERANGE", cmd_timerange, kPost26});
   t.push_back({"STORE", cmd_store, kPost26});
   t.push_back({"PRTIME", cmd_prtime, kPost26});
+  t.push_back({"NPRINT", cmd_nprint, kPost26});
   t.push_back({"PRVAR", cmd_prvar, kPost26});
   t.push_back({"EXTREM", cmd_extrem, kPost26});
   t.push_back({"PLVAR", cmd_plvar, kPost26});

@@ -93,6 +93,7 @@ struct PostState {
   std::map<int, Post26Variable> variables;  // 2..numvar (1 is TIME)
   std::optional<std::pair<double, double>> timerange;
   std::optional<std::pair<double, double>> prtime;
+  int nprint = 1;  // NPRINT: PRVAR lists every Nth stored point, beginning with the first
   std::string x_label, y_label;  // /AXLAB
   std::optional<std::pair<double, double>> x_range, y_range;
   bool grid = false;

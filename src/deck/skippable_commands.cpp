@@ -33,8 +33,8 @@ constexpr std::string_view kNoEffectOnResults[] = {
     "PLTLINE", "PLOT", "REPLOT", "TBPLOT", "PLHFFAR", "PLFAR", "CMPLOT",
     // printed listings
     "PRCAMP", "PRORB", "PRERR", "PRSECT", "PRPATH", "PRCINT", "PRENERGY", "PRJSOL", "PRITER",
-    "PRNLD", "PRRFOR", "NPRINT", "IRLIST", "SLIST", "TBLIST", "SECLIST", "CPLIST", "BFLIST",
-    "BFELIST", "SFLIST", "SFELIST", "DKLIST", "FKLIST", "STAT"};
+    "PRNLD", "PRRFOR", "IRLIST", "SLIST", "TBLIST", "SECLIST", "CPLIST", "BFLIST", "BFELIST",
+    "SFLIST", "SFELIST", "DKLIST", "FKLIST", "STAT"};
 
 /// Leading '/' or '*' plus up to four characters: the part of a name MAPDL reads.
 std::string_view significant(std::string_view name) {

@@ -98,6 +98,34 @@ TEST(DeckVmInputs, DerivWithBlankArgumentAndResumeInPost26) {
   EXPECT_EQ(v[2], 1.0);           // the value SAVE kept
 }
 
+// NPRINT,N (vm74, which writes NPRINT,.25): PRVAR lists every Nth stored point from the
+// first; a value below 1 lists every point.
+TEST(DeckVmInputs, NprintSetsTheStrideOfPrvar) {
+  const std::string model =
+      "/PREP7\nET,1,MASS21,,,4\nR,1,2\nN,1\nE,1\nFINISH\n/SOLU\nANTYPE,TRANS\nD,1,UY\n"
+      "F,1,FX,4\nKBC,1\nTIME,1\nNSUBST,10\nOUTRES,ALL,ALL\nSOLVE\nFINISH\n"
+      "/POST26\nNSOL,2,1,U,X\n";
+  const auto listed_times = [](const testing::DeckRun& run) {
+    std::ifstream in(run.directory / "list.txt");
+    std::vector<double> times;
+    for (std::string line; std::getline(in, line);) {
+      std::istringstream fields(line);
+      double t = 0.0, x = 0.0;
+      if (fields >> t >> x) times.push_back(t);
+    }
+    return times;
+  };
+  const auto every_third = listed_times(
+      testing::run_deck_text("vm_nprint_3", model + "NPRINT,3\n/OUT,list,txt\nPRVAR,2\n/OUT\n"));
+  ASSERT_EQ(every_third.size(), 4u);  // stored points 0, 0.1, ..., 1: the 1st, 4th, 7th, 10th
+  EXPECT_NEAR(every_third[0], 0.0, 1e-12);
+  EXPECT_NEAR(every_third[1], 0.3, 1e-12);
+  EXPECT_NEAR(every_third[3], 0.9, 1e-12);
+  const auto all = listed_times(testing::run_deck_text(
+      "vm_nprint_all", model + "NPRINT,.25\n/OUT,list,txt\nPRVAR,2\n/OUT\n"));
+  EXPECT_EQ(all.size(), 11u);
+}
+
 // GP to a node that is not defined (vm79, vm81, vm85): a ground point (MAPDL GP: "grounded gap
 // nodes need not appear elsewhere in the model"), stored as node 0; both ends undefined is an
 // error.
