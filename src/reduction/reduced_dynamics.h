@@ -2,8 +2,11 @@
 /// Linear transient on a small dense system in generalized coordinates q (Guyan masters or
 /// modal coordinates): M q̈ + C q̇ + K q = f(t) + Σ gap forces, integrated by any TimeIntegrator.
 /// The effective matrix cK K + cC C + cM M is constant for a constant step and factorized once
-/// (dense LDLᵀ). Gap conditions (GP) act explicitly as loads computed from the displacements
-/// extrapolated from the previous two time points (spec §10.4 step 5); K is never modified.
+/// (dense LDLᵀ). The spring of a gap condition (GP) of positive stiffness acts implicitly: the
+/// step solves with the springs of the closed gaps (a low-rank update of the constant factor)
+/// and iterates the gaps' status to a fixed point. A gap's damper, and a gap of negative
+/// stiffness, act explicitly as loads from the displacements extrapolated from the previous two
+/// time points (spec §10.4 step 5, which applies the whole gap force so). K is never modified.
 #include <Eigen/Cholesky>
 
 #include <memory>
@@ -23,6 +26,14 @@ struct GeneralizedGap {
   double stiffness = 0.0;
   double gap = 0.0;
   double damping = 0.0;
+
+  /// d = b_j − b_i (n generalized coordinates): s = dᵀq + gap.
+  VectorXd direction(Eigen::Index n) const;
+  double separation(const VectorXd& q) const;
+  double closing_rate(const VectorXd& v) const;  // v_J − v_I
+  /// The spring of a positive stiffness is solved with the step; a negative one (a piece of a
+  /// force–deflection curve built from parallel gaps) stays an explicit load.
+  bool implicit() const { return stiffness > 0.0; }
 };
 
 class ReducedDynamics {
@@ -49,14 +60,27 @@ class ReducedDynamics {
   /// Generalized gap load Σ (±P b) of the last step.
   const VectorXd& gap_load() const { return gap_load_; }
   long n_factorizations() const { return n_factorizations_; }
+  /// Steps whose gap status did not settle within the status iterations.
+  long n_status_cycles() const { return n_status_cycles_; }
   long n_solves() const { return n_solves_; }
   const TimeIntegrator& integrator() const { return *integrator_; }
   const MatrixXd& k() const { return k_; }
   const MatrixXd& m() const { return m_; }
 
  private:
-  /// Gap forces at predicted displacement q* (and velocity v*), into gap_forces_ / gap_load_.
-  void gap_loads(const VectorXd& q_star, const VectorXd& v_star);
+  /// Whole gap forces at the state (q, v), into gap_forces_ / gap_load_ (start, load jumps).
+  void gap_loads(const VectorXd& q, const VectorXd& v);
+  /// The explicit part of one gap's force at the predictor (q*, v*).
+  static double explicit_gap_force(const GeneralizedGap& gap, const VectorXd& q_star,
+                                   const VectorXd& v_star);
+  /// The explicit parts of all gap forces, into gap_forces_ / gap_load_.
+  void explicit_gap_loads(const VectorXd& q_star, const VectorXd& v_star);
+  /// The correction Δq from the predictor q_pred of a step whose gap-free correction is y,
+  /// with the springs of the closed gaps (residual weight w of the external forces).
+  VectorXd implicit_gap_correction(const VectorXd& q_pred, const VectorXd& y, double weight);
+  /// The gap forces a finished step used: springs at q, explicit parts at (q*, v*).
+  void gap_loads_at(const VectorXd& q, const VectorXd& q_star, const VectorXd& v_star);
+  void add_gap_force(std::size_t g, double p);
   void factorize();
 
   MatrixXd k_, m_, c_;
@@ -68,7 +92,8 @@ class ReducedDynamics {
   VectorXd q_prev_;  // q_{n−1}, for the gap predictor
   VectorXd f_old_;   // total load (external + gaps) of the last step
   VectorXd gap_forces_, gap_load_;
-  long n_factorizations_ = 0, n_solves_ = 0;
+  MatrixXd gap_response_;  // column g: K_eff⁻¹ d_g of an implicit gap (zero otherwise)
+  long n_factorizations_ = 0, n_solves_ = 0, n_status_cycles_ = 0;
   bool first_step_ = true;
 };
 
