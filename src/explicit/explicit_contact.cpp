@@ -87,6 +87,31 @@ std::map<int, int> part_of_elements(const Model& model) {
 ExplicitContactSet::ExplicitContactSet(const Model& model, const ExplicitSystem& system) {
   const auto& definitions = model.explicit_dynamics.contacts;
   if (definitions.empty()) return;
+  collect_segments(system);
+  const std::map<int, int> part = part_of_elements(model);
+  const double slsfac = model.explicit_dynamics.penalty_factor;
+  for (const ExplicitContact& k : definitions) {
+    const bool single = k.option == "ASSC" || k.option == "SS";
+    const bool symmetric = k.option == "STS" || k.option == "ASTS";
+    std::vector<std::size_t> cont_segs, cont_nodes, targ_segs, targ_nodes;
+    // single surface: blank is the whole model
+    surface(model, system, part, k, k.contact, cont_segs, cont_nodes);
+    if (!single) surface(model, system, part, k, k.target, targ_segs, targ_nodes);
+    if (single) {
+      add_pass(k, slsfac * k.slave_scale, single, cont_nodes, cont_segs, system.n_nodes());
+    } else {
+      add_pass(k, slsfac * k.master_scale, single, cont_nodes, targ_segs, system.n_nodes());
+      if (symmetric)
+        add_pass(k, slsfac * k.slave_scale, single, targ_nodes, cont_segs, system.n_nodes());
+    }
+  }
+  force_.assign(3 * system.n_nodes(), 0.0);
+  stiffness_.assign(system.n_nodes(), 0.0);
+  previous_ = force_;
+  mark_.assign(system.n_nodes(), 0);
+}
+
+void ExplicitContactSet::collect_segments(const ExplicitSystem& system) {
   // Every element's faces; a face offered twice (by two elements) is interior.
   std::vector<ExplicitSegment> all;
   for (const auto& set : system.sets) set->segments(all);
@@ -129,111 +154,97 @@ ExplicitContactSet::ExplicitContactSet(const Model& model, const ExplicitSystem&
     segments_.push_back(g);
   }
   margin_ = 2.0 * depth_max;
-  const std::map<int, int> part = part_of_elements(model);
-  // The segments and the slave nodes of a surface named by a part number or a component.
-  const auto surface = [&](const ExplicitContact& k, const std::string& name,
-                           std::vector<std::size_t>& segs, std::vector<std::size_t>& nodes) {
-    std::vector<std::uint8_t> in_node(system.n_nodes(), 0);
-    const Component* component = nullptr;
-    int part_number = 0;
-    if (!name.empty()) {
-      const auto it = model.components.find(name);
-      if (it != model.components.end()) {
-        component = &it->second;
-        if (component->entity != "NODE" && component->entity != "ELEM")
-          throw InputError(k.where, fmt::format("EDCGEN: component {} is a {} component; contact "
-                                                "takes a node or element component",
-                                                name, component->entity));
-      } else {
-        char* end = nullptr;
-        part_number = static_cast<int>(std::strtol(name.c_str(), &end, 10));
-        if (*end != '\0' || part_number <= 0)
-          throw InputError(k.where, fmt::format("EDCGEN: '{}' is neither a component (CM) nor a "
-                                                "part number (EDPART)",
-                                                name));
-      }
-    }
-    if (component && component->entity == "NODE")
-      for (int id : component->ids)
-        if (const int n = system.index_of(id); n >= 0) in_node[static_cast<std::size_t>(n)] = 1;
-    for (std::size_t i = 0; i < segments_.size(); ++i) {
-      const Segment& g = segments_[i];
-      bool take = true;
-      if (part_number > 0) {
-        take = part.at(g.element) == part_number;
-      } else if (component && component->entity == "ELEM") {
-        take = std::binary_search(component->ids.begin(), component->ids.end(), g.element);
-      } else if (component) {
-        for (int a = 0; a < 4; ++a) take = take && in_node[static_cast<std::size_t>(g.nodes[a])];
-      }
-      if (take) segs.push_back(i);
-    }
-    std::vector<std::uint8_t> slave(system.n_nodes(), 0);
-    if (component && component->entity == "NODE")
-      slave = in_node;
-    else
-      for (std::size_t i : segs)
-        for (int a = 0; a < 4; ++a) slave[static_cast<std::size_t>(segments_[i].nodes[a])] = 1;
-    for (std::size_t n = 0; n < system.n_nodes(); ++n)
-      if (slave[n]) nodes.push_back(n);
-    if (segs.empty() && nodes.empty())
-      throw InputError(k.where, fmt::format("EDCGEN,{}: '{}' has no exterior face or node of an "
-                                            "explicit element",
-                                            k.option, name.empty() ? "the model" : name));
-  };
-  const double slsfac = model.explicit_dynamics.penalty_factor;
-  for (const ExplicitContact& k : definitions) {
-    const bool single = k.option == "ASSC" || k.option == "SS";
-    const bool symmetric = k.option == "STS" || k.option == "ASTS";
-    std::vector<std::size_t> cont_segs, cont_nodes, targ_segs, targ_nodes;
-    surface(k, k.contact, cont_segs, cont_nodes);  // single surface: blank is the whole model
-    if (!single) surface(k, k.target, targ_segs, targ_nodes);
-    const auto add = [&](std::vector<std::size_t> slaves, std::vector<std::size_t> segs,
-                         double scale) {
-      if (segs.empty())
-        throw InputError(k.where, fmt::format("EDCGEN,{}: the target surface has no exterior "
-                                              "face of an explicit element (a node component "
-                                              "names its faces by all their nodes)",
-                                              k.option));
-      Pass p;
-      p.definition = &k;
-      p.factor = slsfac * scale;
-      p.single_surface = single;
-      p.slaves = std::move(slaves);
-      p.segments = std::move(segs);
-      p.tangential.assign(3 * p.slaves.size(), 0.0);
-      p.kept.assign(p.slaves.size(), kNone);
-      if (single) {
-        // The nodes of the segments around each slave: a slave is not checked against a segment
-        // that shares one of them (its own body's neighbouring faces).
-        std::vector<std::vector<int>> near(system.n_nodes());
-        for (std::size_t i : p.segments)
-          for (int a = 0; a < 4; ++a)
-            for (int b = 0; b < 4; ++b)
-              near[static_cast<std::size_t>(segments_[i].nodes[a])].push_back(
-                  segments_[i].nodes[b]);
-        p.near_start.push_back(0);
-        for (std::size_t s : p.slaves) {
-          auto& list = near[s];
-          std::sort(list.begin(), list.end());
-          list.erase(std::unique(list.begin(), list.end()), list.end());
-          p.near.insert(p.near.end(), list.begin(), list.end());
-          p.near_start.push_back(p.near.size());
-        }
-      }
-      passes_.push_back(std::move(p));
-    };
-    if (single) {
-      add(cont_nodes, cont_segs, k.slave_scale);
+}
+
+void ExplicitContactSet::surface(const Model& model, const ExplicitSystem& system,
+                                 const std::map<int, int>& part, const ExplicitContact& k,
+                                 const std::string& name, std::vector<std::size_t>& segs,
+                                 std::vector<std::size_t>& nodes) const {
+  std::vector<std::uint8_t> in_node(system.n_nodes(), 0);
+  const Component* component = nullptr;
+  int part_number = 0;
+  if (!name.empty()) {
+    const auto it = model.components.find(name);
+    if (it != model.components.end()) {
+      component = &it->second;
+      if (component->entity != "NODE" && component->entity != "ELEM")
+        throw InputError(k.where, fmt::format("EDCGEN: component {} is a {} component; contact "
+                                              "takes a node or element component",
+                                              name, component->entity));
     } else {
-      add(cont_nodes, targ_segs, k.master_scale);
-      if (symmetric) add(targ_nodes, cont_segs, k.slave_scale);
+      char* end = nullptr;
+      part_number = static_cast<int>(std::strtol(name.c_str(), &end, 10));
+      if (*end != '\0' || part_number <= 0)
+        throw InputError(k.where, fmt::format("EDCGEN: '{}' is neither a component (CM) nor a "
+                                              "part number (EDPART)",
+                                              name));
     }
   }
-  force_.assign(3 * system.n_nodes(), 0.0);
-  stiffness_.assign(system.n_nodes(), 0.0);
-  previous_ = force_;
-  mark_.assign(system.n_nodes(), 0);
+  if (component && component->entity == "NODE")
+    for (int id : component->ids)
+      if (const int n = system.index_of(id); n >= 0) in_node[static_cast<std::size_t>(n)] = 1;
+  for (std::size_t i = 0; i < segments_.size(); ++i) {
+    const Segment& g = segments_[i];
+    bool take = true;
+    if (part_number > 0) {
+      take = part.at(g.element) == part_number;
+    } else if (component && component->entity == "ELEM") {
+      take = std::binary_search(component->ids.begin(), component->ids.end(), g.element);
+    } else if (component) {
+      for (int a = 0; a < 4; ++a) take = take && in_node[static_cast<std::size_t>(g.nodes[a])];
+    }
+    if (take) segs.push_back(i);
+  }
+  std::vector<std::uint8_t> slave(system.n_nodes(), 0);
+  if (component && component->entity == "NODE")
+    slave = in_node;
+  else
+    for (std::size_t i : segs)
+      for (int a = 0; a < 4; ++a) slave[static_cast<std::size_t>(segments_[i].nodes[a])] = 1;
+  for (std::size_t n = 0; n < system.n_nodes(); ++n)
+    if (slave[n]) nodes.push_back(n);
+  if (segs.empty() && nodes.empty())
+    throw InputError(k.where, fmt::format("EDCGEN,{}: '{}' has no exterior face or node of an "
+                                          "explicit element",
+                                          k.option, name.empty() ? "the model" : name));
+}
+
+void ExplicitContactSet::add_pass(const ExplicitContact& k, double factor, bool single,
+                                  std::vector<std::size_t> slaves, std::vector<std::size_t> segs,
+                                  std::size_t n_nodes) {
+  if (segs.empty())
+    throw InputError(k.where, fmt::format("EDCGEN,{}: the target surface has no exterior "
+                                          "face of an explicit element (a node component "
+                                          "names its faces by all their nodes)",
+                                          k.option));
+  Pass p;
+  p.definition = &k;
+  p.factor = factor;
+  p.single_surface = single;
+  p.slaves = std::move(slaves);
+  p.segments = std::move(segs);
+  p.tangential.assign(3 * p.slaves.size(), 0.0);
+  p.kept.assign(p.slaves.size(), kNone);
+  if (single) list_near_nodes(p, n_nodes);
+  passes_.push_back(std::move(p));
+}
+
+void ExplicitContactSet::list_near_nodes(Pass& p, std::size_t n_nodes) const {
+  // The nodes of the segments around each slave: a slave is not checked against a segment
+  // that shares one of them (its own body's neighbouring faces).
+  std::vector<std::vector<int>> near(n_nodes);
+  for (std::size_t i : p.segments)
+    for (int a = 0; a < 4; ++a)
+      for (int b = 0; b < 4; ++b)
+        near[static_cast<std::size_t>(segments_[i].nodes[a])].push_back(segments_[i].nodes[b]);
+  p.near_start.push_back(0);
+  for (std::size_t s : p.slaves) {
+    auto& list = near[s];
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+    p.near.insert(p.near.end(), list.begin(), list.end());
+    p.near_start.push_back(p.near.size());
+  }
 }
 
 void ExplicitContactSet::search(Pass& p, const ExplicitNodalView& s) const {

@@ -18,6 +18,7 @@
 /// sort, O(n log n)) redone only when a node has moved far enough since the last one to reach a
 /// segment it was not listed against; the cycle loops the candidate lists (O(n)). Forces are
 /// summed in a fixed order (slaves ascending, candidates ascending), so runs are repeatable.
+#include <map>
 #include <string>
 #include <vector>
 
@@ -68,6 +69,22 @@ class ExplicitContactSet final : public ExplicitInteraction {
     /// The segment each slave is in contact with (its index in segments_; none when out).
     std::vector<std::size_t> kept;
   };
+  // ---- set-up (the constructor) ----
+  /// The exterior faces of the element sets as segments, their penalty stiffness and depth;
+  /// the search margin.
+  void collect_segments(const ExplicitSystem& system);
+  /// The segments and the slave nodes of a surface named by a part number or a component
+  /// (blank: the whole model).
+  void surface(const Model& model, const ExplicitSystem& system, const std::map<int, int>& part,
+               const ExplicitContact& k, const std::string& name, std::vector<std::size_t>& segs,
+               std::vector<std::size_t>& nodes) const;
+  /// One node-to-surface pass of `k`: `slaves` against `segs`, penalty factor `factor`.
+  void add_pass(const ExplicitContact& k, double factor, bool single,
+                std::vector<std::size_t> slaves, std::vector<std::size_t> segs,
+                std::size_t n_nodes);
+  /// Single surface: the nodes of the segments around each slave of `p` (Pass::near).
+  void list_near_nodes(Pass& p, std::size_t n_nodes) const;
+
   void search(Pass& p, const ExplicitNodalView& s) const;
   std::vector<Segment> segments_;
   std::vector<Pass> passes_;
