@@ -69,6 +69,8 @@ class ExplicitContactSet final : public ExplicitInteraction {
     /// The segment each slave is in contact with (its index in segments_; none when out).
     std::vector<std::size_t> kept;
   };
+  struct Projection;  // a slave's contact point on its segment (explicit_contact.cpp)
+
   // ---- set-up (the constructor) ----
   /// The exterior faces of the element sets as segments, their penalty stiffness and depth;
   /// the search margin.
@@ -85,7 +87,23 @@ class ExplicitContactSet final : public ExplicitInteraction {
   /// Single surface: the nodes of the segments around each slave of `p` (Pass::near).
   void list_near_nodes(Pass& p, std::size_t n_nodes) const;
 
+  // ---- a cycle (add_forces) ----
+  /// Whether some node has moved by a quarter of the margin since the last search.
+  bool search_due(const ExplicitNodalView& s) const;
+  /// A new search of every pass, and the step of the pairs it lists.
+  void search_all(const ExplicitNodalView& s, const double* mass);
   void search(Pass& p, const ExplicitNodalView& s) const;
+  bool shares_node(std::size_t a, std::size_t b) const;
+  /// The segment slave j of `p` is in contact with (false when out of contact); updates kept.
+  bool find_contact(Pass& p, std::size_t j, const ExplicitNodalView& s, bool on, double dt,
+                    Projection& at) const;
+  /// The penalty (normal, damping, friction) force of slave j on its segment `at`.
+  void add_contact_force(Pass& p, std::size_t j, const ExplicitNodalView& s, const double* mass,
+                         double dt, const Projection& at);
+  void touch(std::size_t n, double fx, double fy, double fz);
+  /// The contact energy and stable step of the cycle, and the forces onto f_int.
+  void close_cycle(const ExplicitNodalView& s, const double* mass, double dt,
+                   ExplicitStepLimit& limit, double* fx, double* fy, double* fz);
   std::vector<Segment> segments_;
   std::vector<Pass> passes_;
   std::vector<double> x_search_, y_search_, z_search_;  // positions at the last search
