@@ -378,13 +378,8 @@ void Mesher::mesh_area_free(int id) {
   for (int n : take_created_midside_nodes()) meshed.interior_nodes.push_back(n);
 }
 
-void Mesher::mesh_volume_free(int id) {
+std::vector<std::array<int, 3>> Mesher::volume_boundary_triangles(int id) {
   const Volume& volume = solid_.volumes.at(id);
-  const Attributes attr = resolve(volume.attr);
-  const ElementTypeDescriptor& d = descriptor(attr.type);
-  const VtkCell cell = d.topology().linear;
-  if (cell != VtkCell::Tetra && cell != VtkCell::Hexahedron)
-    fail(fmt::format("element type {} ({}) cannot be a tetrahedron", attr.type, d.name));
   // The boundary: every area meshed with triangles (new ones by Gmsh, existing ones reused).
   std::vector<int> meshed_before;
   for (int a : volume.areas)
@@ -408,12 +403,15 @@ void Mesher::mesh_volume_free(int id) {
                         a, id));
       triangles.push_back({f[0], f[1], f[2]});
     }
+  return triangles;
+}
+
+void Mesher::fill_with_tetrahedra(int id, const std::vector<std::array<int, 3>>& triangles,
+                                  std::vector<int>& interior,
+                                  std::vector<std::array<int, 4>>& tets) {
   std::set<int> boundary_nodes;
   for (const auto& t : triangles) boundary_nodes.insert(t.begin(), t.end());
-
   GmshSession session("volume");
-  std::vector<int> interior;
-  std::vector<std::array<int, 4>> tets;
   with_gmsh(where_, fmt::format("mesh volume {}", id), [&] {
     gmsh::model::addDiscreteEntity(2, 1);
     std::vector<std::size_t> tags;
@@ -491,6 +489,19 @@ void Mesher::mesh_volume_free(int id) {
       tets.push_back(t);
     }
   });
+}
+
+void Mesher::mesh_volume_free(int id) {
+  const Volume& volume = solid_.volumes.at(id);
+  const Attributes attr = resolve(volume.attr);
+  const ElementTypeDescriptor& d = descriptor(attr.type);
+  const VtkCell cell = d.topology().linear;
+  if (cell != VtkCell::Tetra && cell != VtkCell::Hexahedron)
+    fail(fmt::format("element type {} ({}) cannot be a tetrahedron", attr.type, d.name));
+  const std::vector<std::array<int, 3>> triangles = volume_boundary_triangles(id);
+  std::vector<int> interior;
+  std::vector<std::array<int, 4>> tets;
+  fill_with_tetrahedra(id, triangles, interior, tets);
   if (d.topology().midside_nodes > 0)
     for (int a : volume.areas)
       for (int line : solid_.areas.at(a).lines) index_line_edges(std::abs(line));

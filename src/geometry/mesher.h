@@ -159,6 +159,12 @@ class Mesher {
                            const std::set<int>& kps,
                            std::map<int, std::vector<std::array<int, 4>>>& faces_of,
                            std::map<int, std::vector<int>>& interior_of);
+  /// The triangles of the areas of volume `id` (free meshed now, or meshed before).
+  std::vector<std::array<int, 3>> volume_boundary_triangles(int id);
+  /// Gmsh's tetrahedra inside the closed triangulation `triangles` of volume `id`: its new
+  /// (interior) nodes and the tetrahedra, positive volume.
+  void fill_with_tetrahedra(int id, const std::vector<std::array<int, 3>>& triangles,
+                            std::vector<int>& interior, std::vector<std::array<int, 4>>& tets);
   /// Unit normal of an area by its loop direction (the normal of its area elements).
   Vec3 area_normal(int id) const;
   /// Faces of an area meshed before: its area elements, else the faces of the volumes' elements
