@@ -209,9 +209,20 @@ class PlaneSolid final : public Element {
   struct FiniteState {
     Eigen::Vector4d strain = Eigen::Vector4d::Zero();
   };
-  struct FiniteUpdate;  // the states at u, for commit and results
+  struct FiniteUpdate;      // the states at u, for commit and results
+  struct FiniteKinematics;  // the midpoint kinematics of one point (plane_solid_finite.cpp)
+  struct FiniteResponse;    // the rotated law's response at one point (plane_solid_finite.cpp)
   void finite_sum(const Eigen::VectorXd& u, Eigen::MatrixXd* K, Eigen::VectorXd& f,
                   FiniteUpdate* update) const;
+  /// Pass 1 of finite_sum at stiffness point p: F_½, L, ∇_x N, the increment q and ∂q/∂u.
+  void finite_kinematics(std::size_t p, const Eigen::Map<const Eigen::Matrix2Xd>& un,
+                         const Eigen::Matrix2Xd& du, FiniteKinematics& k) const;
+  /// The law at stiffness point p from the committed state at ε_n + ΔRᵀ Δε ΔR, rotated by ΔR.
+  void finite_response(std::size_t p, const FiniteKinematics& k, FiniteResponse& r) const;
+  /// The point's contribution to K (the exact derivative of f_int, finite_sum's header).
+  void add_finite_tangent(const FiniteKinematics& k, const FiniteResponse& r,
+                          const Eigen::VectorXd& a, const Eigen::VectorXd& lzz,
+                          Eigen::MatrixXd& K) const;
   void finite_commit(const Eigen::VectorXd& u);
   void finite_results(const Eigen::VectorXd& u, ElementResultValues& out) const;
   /// Cauchy stresses of the stiffness points at u; `inelastic`: a point carries plastic strain.

@@ -99,12 +99,225 @@ Eigen::Vector4d PlaneSolid::elastic_strain(const Eigen::Vector4d& s) const {
               (s(2) - nu * (s(0) + s(1))) / e, 2.0 * (1.0 + nu) * s(3) / e);
 }
 
+/// Kinematics of one point (pass 1 of finite_sum; the mean dilatation of B-bar couples them).
+struct PlaneSolid::FiniteKinematics {
+  Eigen::VectorXd n;
+  Eigen::Matrix2Xd h;             // ∇_x N of the current configuration
+  Mat2 l;                         // L = ∂Δu/∂x_½ (in-plane)
+  double lzz = 0.0;               // hoop increment Δu_r / r_½ (axisymmetry)
+  double r = 0.0;                 // current radius
+  double r0 = 0.0;                // reference radius
+  double det = 0.0;               // det F (in-plane)
+  double dv0 = 0.0;               // reference measure
+  Eigen::Matrix<double, 5, 1> q;  // Δε xx yy zz xy (tensor shear), ω
+  Eigen::MatrixXd dq;             // ∂q/∂u (5 x nd)
+};
+
+/// The law's response at one point (pass 2 of finite_sum), in the current configuration.
+struct PlaneSolid::FiniteResponse {
+  Mat2 rot;               // ΔR
+  Mat2 drot;              // ∂ΔR/∂ω
+  Mat2 d2;                // Δε (in-plane tensor)
+  Vec4 strain;            // ε_n + ΔRᵀ Δε ΔR, the law's strain in the committed axes
+  Vec4 s_hat;             // σ̂, the law's stress in the committed axes
+  Eigen::Matrix4d c_alg;  // dσ̂/dε
+  PlasticState next;      // the law's state at the strain
+  double ezz = 0.0;       // thickness (plane stress) or zz strain
+  Mat2 sh2;               // σ̂ in-plane
+  Mat2 s2;                // σ = ΔR σ̂ ΔRᵀ in-plane
+  Vec4 sigma;             // Cauchy stress
+  double dv = 0.0;        // current measure
+};
+
+namespace {
+
+/// Mean dilatation of the increment over the reference volume (Hughes 1980, rate form): B-bar
+/// replaces the volumetric part of each point's q by the element mean.
+template <class Kinematics>
+void plane_mean_dilatation(std::vector<Kinematics>& kin, double v0, int nd) {
+  double theta = 0.0;
+  Eigen::RowVectorXd dtheta = Eigen::RowVectorXd::Zero(nd);
+  for (const Kinematics& k : kin) {
+    theta += k.dv0 / v0 * k.q.template head<3>().sum();
+    dtheta += k.dv0 / v0 * k.dq.topRows(3).colwise().sum();
+  }
+  for (Kinematics& k : kin) {
+    const double shift = (theta - k.q.template head<3>().sum()) / 3.0;
+    const Eigen::RowVectorXd dshift = (dtheta - k.dq.topRows(3).colwise().sum()) / 3.0;
+    for (int r = 0; r < 3; ++r) {
+      k.q(r) += shift;
+      k.dq.row(r) += dshift;
+    }
+  }
+}
+
+/// ∂σ/∂q (4 x 5): the law's tangent through ΔRᵀ Δε ΔR (columns Δε) and the rotation of σ̂
+/// (column ω).
+Eigen::Matrix<double, 4, 5> plane_stress_derivative(const Mat2& rot, const Mat2& drot,
+                                                    const Mat2& d2, const Mat2& sh2,
+                                                    const Eigen::Matrix4d& c_alg) {
+  Eigen::Matrix<double, 4, 5> ds;
+  for (int m = 0; m < 4; ++m) {
+    Mat2 e2 = Mat2::Zero();
+    double ezz_m = 0.0;
+    if (m == 0) e2(0, 0) = 1.0;
+    if (m == 1) e2(1, 1) = 1.0;
+    if (m == 2) ezz_m = 1.0;
+    if (m == 3) e2(0, 1) = e2(1, 0) = 1.0;
+    const Vec4 dsh = c_alg * voigt(rot.transpose() * e2 * rot, ezz_m, 2.0);
+    ds.col(m) = voigt(rot * in_plane(dsh, 1.0) * rot.transpose(), dsh(2), 1.0);
+  }
+  {
+    const Mat2 de = drot.transpose() * d2 * rot + rot.transpose() * d2 * drot;
+    const Vec4 dsh = c_alg * voigt(de, 0.0, 2.0);
+    const Mat2 dsig = drot * sh2 * rot.transpose() + rot * in_plane(dsh, 1.0) * rot.transpose() +
+                      rot * sh2 * drot.transpose();
+    ds.col(4) = voigt(dsig, dsh(2), 1.0);
+  }
+  return ds;
+}
+
+}  // namespace
+
+void PlaneSolid::finite_kinematics(std::size_t p, const Eigen::Map<const Eigen::Matrix2Xd>& un,
+                                   const Eigen::Matrix2Xd& du, FiniteKinematics& k) const {
+  const int nn = static_cast<int>(nodes_.size());
+  const int nd = 2 * nn;
+  const bool axi = options_.behaviour == PlaneBehaviour::Axisymmetric;
+  const Point pt = point_at(rule_[p].xi.head<2>());
+  k.n = pt.n;
+  k.dv0 = measure(pt, rule_[p].weight);
+  const Eigen::Matrix2Xd& g0 = pt.grad;  // ∂N/∂X
+  const Mat2 fn = Mat2::Identity() + un * g0.transpose();
+  const Mat2 dh = du * g0.transpose();
+  const Mat2 fh = fn + 0.5 * dh;
+  const Mat2 f_cur = fn + dh;
+  const Mat2 fh_inv = fh.inverse();
+  k.l = dh * fh_inv;
+  k.det = f_cur.determinant();
+  if (!(k.det > 0.0))
+    throw ElementSolutionError(
+        id(), fmt::format("element {}: the deformation turned an integration point inside out "
+                          "(det F = {:.3g}); a smaller load increment may help",
+                          id(), k.det));
+  const Eigen::Matrix2Xd gh = fh_inv.transpose() * g0;  // ∇_{x½} N
+  k.h = f_cur.inverse().transpose() * g0;
+  double rh = 0.0;
+  if (axi) {
+    const double dur = k.n.dot(du.row(0).transpose());
+    const double unr = k.n.dot(un.row(0).transpose());
+    rh = pt.radius + unr + 0.5 * dur;
+    k.r = pt.radius + unr + dur;
+    k.r0 = pt.radius;
+    k.lzz = dur / rh;
+  }
+  const Mat2 m = Mat2::Identity() - 0.5 * k.l;  // δL = (I − ½L) δH F_½⁻¹
+  k.q << k.l(0, 0), k.l(1, 1), k.lzz, 0.5 * (k.l(0, 1) + k.l(1, 0)), 0.5 * (k.l(1, 0) - k.l(0, 1));
+  k.dq.setZero(5, nd);
+  for (int b = 0; b < nn; ++b)
+    for (int i = 0; i < 2; ++i) {
+      const Mat2 dl = m.col(i) * gh.col(b).transpose();
+      const int j = 2 * b + i;
+      k.dq(0, j) = dl(0, 0);
+      k.dq(1, j) = dl(1, 1);
+      if (axi && i == 0) k.dq(2, j) = k.n(b) / rh * (1.0 - 0.5 * k.lzz);
+      k.dq(3, j) = 0.5 * (dl(0, 1) + dl(1, 0));
+      k.dq(4, j) = 0.5 * (dl(1, 0) - dl(0, 1));
+    }
+}
+
+void PlaneSolid::finite_response(std::size_t p, const FiniteKinematics& k,
+                                 FiniteResponse& r) const {
+  const bool axi = options_.behaviour == PlaneBehaviour::Axisymmetric;
+  const bool pstress = options_.behaviour == PlaneBehaviour::PlaneStress;
+  const double nu_ratio = poisson_ / (1.0 - poisson_);
+  Mat2 jrot;
+  jrot << 0.0, -1.0, 1.0, 0.0;
+  // Built as local values and stored at the end: Eigen evaluates a product assigned to an
+  // existing matrix by another path than one it constructs, and with FMA the two can round
+  // differently (the results stay bitwise those of the undivided finite_sum).
+  const double c = 0.5 * k.q(4);
+  const Mat2 rot = incremental_rotation(c);
+  const Mat2 drot = (1.0 / (1.0 + c * c)) * jrot * rot;  // ∂ΔR/∂ω
+  Mat2 d2;
+  d2 << k.q(0), k.q(3), k.q(3), k.q(1);
+  // The increment rotated back to the axes of the committed state: ΔRᵀ Δε ΔR.
+  const Vec4 strain = finite_[p].strain + voigt(rot.transpose() * d2 * rot, k.q(2), 2.0);
+  Vec4 s_hat;
+  Eigen::Matrix4d c_alg;
+  PlasticState next;
+  double ezz = strain(2);
+  if (plasticity_) {
+    point_response(committed_[p], strain, s_hat, c_alg, &next);
+    if (pstress) ezz = next.thickness_strain;
+  } else {
+    s_hat = d_ * strain;
+    c_alg = d_;
+    if (pstress) ezz = -nu_ratio * (strain(0) + strain(1));
+  }
+  const Mat2 sh2 = in_plane(s_hat, 1.0);
+  const Mat2 s2 = rot * sh2 * rot.transpose();
+  const Vec4 sigma = voigt(s2, s_hat(2), 1.0);
+  // Current measure dv = J dV₀.
+  double jac = k.det;
+  if (axi) jac *= k.r / k.r0;  // F_θθ = r / R
+  if (pstress) jac *= std::exp(ezz);
+  const double dv = jac * k.dv0;
+  r.rot = rot;
+  r.drot = drot;
+  r.d2 = d2;
+  r.strain = strain;
+  r.s_hat = s_hat;
+  r.c_alg = c_alg;
+  r.next = next;
+  r.ezz = ezz;
+  r.sh2 = sh2;
+  r.s2 = s2;
+  r.sigma = sigma;
+  r.dv = dv;
+}
+
+void PlaneSolid::add_finite_tangent(const FiniteKinematics& k, const FiniteResponse& r,
+                                    const Eigen::VectorXd& a, const Eigen::VectorXd& lzz,
+                                    Eigen::MatrixXd& K) const {
+  const int nn = static_cast<int>(nodes_.size());
+  const int nd = 2 * nn;
+  const bool pstress = options_.behaviour == PlaneBehaviour::PlaneStress;
+  const double nu_ratio = poisson_ / (1.0 - poisson_);
+  const Eigen::Matrix<double, 4, 5> ds =
+      plane_stress_derivative(r.rot, r.drot, r.d2, r.sh2, r.c_alg);
+  const Eigen::MatrixXd dsigma = ds * k.dq;  // 4 x nd
+  // tr δl_k (+ the change of the thickness in plane stress).
+  Eigen::VectorXd tr(nd);
+  for (int b = 0; b < nn; ++b)
+    for (int i = 0; i < 2; ++i) tr(2 * b + i) = k.h(i, b) + lzz(2 * b + i);
+  if (pstress) tr.noalias() -= nu_ratio * (k.dq.row(0) + k.dq.row(1)).transpose();
+  const double dv = r.dv;
+  for (int bk = 0; bk < nn; ++bk)
+    for (int ik = 0; ik < 2; ++ik) {
+      const int col = 2 * bk + ik;
+      const Mat2 dsk = in_plane(dsigma.col(col), 1.0);
+      const Eigen::Vector2d sh_k = r.s2 * k.h.col(bk);
+      for (int bj = 0; bj < nn; ++bj) {
+        const Eigen::Vector2d dsh = dsk * k.h.col(bj);
+        for (int ij = 0; ij < 2; ++ij) {
+          const int row = 2 * bj + ij;
+          // δσ_k : δl_j, δl_j = e_ij ⊗ ∇N_bj (+ the hoop entry N / r).
+          double v = dsh(ij) + dsigma(2, col) * lzz(row);
+          // − σ : (δl_j δl_k): (δl_j δl_k) = e_ij (∇N_bj · e_ik) ⊗ ∇N_bk.
+          v -= k.h(ik, bj) * sh_k(ij) + r.sigma(2) * lzz(row) * lzz(col);
+          v += a(row) * tr(col);
+          K(row, col) += dv * v;
+        }
+      }
+    }
+}
+
 void PlaneSolid::finite_sum(const Eigen::VectorXd& u, Eigen::MatrixXd* K, Eigen::VectorXd& f,
                             FiniteUpdate* update) const {
   const int nn = static_cast<int>(nodes_.size());
   const int nd = 2 * nn;
   const bool axi = options_.behaviour == PlaneBehaviour::Axisymmetric;
-  const bool pstress = options_.behaviour == PlaneBehaviour::PlaneStress;
   const bool bbar = options_.technology == PlaneTechnology::BBar;
   const Eigen::Map<const Eigen::Matrix2Xd> un(committed_u_.data(), 2, nn);
   const Eigen::Map<const Eigen::Matrix2Xd> uc(u.data(), 2, nn);
@@ -112,82 +325,13 @@ void PlaneSolid::finite_sum(const Eigen::VectorXd& u, Eigen::MatrixXd* K, Eigen:
   const std::size_t np = rule_.size();
 
   // Pass 1: kinematics of every point (the mean dilatation of B-bar couples the points).
-  struct Kin {
-    Eigen::VectorXd n;
-    Eigen::Matrix2Xd h;             // ∇_x N of the current configuration
-    Mat2 l;                         // L = ∂Δu/∂x_½ (in-plane)
-    double lzz = 0.0;               // hoop increment Δu_r / r_½ (axisymmetry)
-    double r = 0.0;                 // current radius
-    double r0 = 0.0;                // reference radius
-    double det = 0.0;               // det F (in-plane)
-    double dv0 = 0.0;               // reference measure
-    Eigen::Matrix<double, 5, 1> q;  // Δε xx yy zz xy (tensor shear), ω
-    Eigen::MatrixXd dq;             // ∂q/∂u (5 x nd)
-  };
-  std::vector<Kin> kin(np);
+  std::vector<FiniteKinematics> kin(np);
   double v0 = 0.0;
   for (std::size_t p = 0; p < np; ++p) {
-    Kin& k = kin[p];
-    const Point pt = point_at(rule_[p].xi.head<2>());
-    k.n = pt.n;
-    k.dv0 = measure(pt, rule_[p].weight);
-    v0 += k.dv0;
-    const Eigen::Matrix2Xd& g0 = pt.grad;  // ∂N/∂X
-    const Mat2 fn = Mat2::Identity() + un * g0.transpose();
-    const Mat2 dh = du * g0.transpose();
-    const Mat2 fh = fn + 0.5 * dh;
-    const Mat2 f_cur = fn + dh;
-    const Mat2 fh_inv = fh.inverse();
-    k.l = dh * fh_inv;
-    k.det = f_cur.determinant();
-    if (!(k.det > 0.0))
-      throw ElementSolutionError(
-          id(), fmt::format("element {}: the deformation turned an integration point inside out "
-                            "(det F = {:.3g}); a smaller load increment may help",
-                            id(), k.det));
-    const Eigen::Matrix2Xd gh = fh_inv.transpose() * g0;  // ∇_{x½} N
-    k.h = f_cur.inverse().transpose() * g0;
-    double rh = 0.0;
-    if (axi) {
-      const double dur = k.n.dot(du.row(0).transpose());
-      const double unr = k.n.dot(un.row(0).transpose());
-      rh = pt.radius + unr + 0.5 * dur;
-      k.r = pt.radius + unr + dur;
-      k.r0 = pt.radius;
-      k.lzz = dur / rh;
-    }
-    const Mat2 m = Mat2::Identity() - 0.5 * k.l;  // δL = (I − ½L) δH F_½⁻¹
-    k.q << k.l(0, 0), k.l(1, 1), k.lzz, 0.5 * (k.l(0, 1) + k.l(1, 0)),
-        0.5 * (k.l(1, 0) - k.l(0, 1));
-    k.dq.setZero(5, nd);
-    for (int b = 0; b < nn; ++b)
-      for (int i = 0; i < 2; ++i) {
-        const Mat2 dl = m.col(i) * gh.col(b).transpose();
-        const int j = 2 * b + i;
-        k.dq(0, j) = dl(0, 0);
-        k.dq(1, j) = dl(1, 1);
-        if (axi && i == 0) k.dq(2, j) = k.n(b) / rh * (1.0 - 0.5 * k.lzz);
-        k.dq(3, j) = 0.5 * (dl(0, 1) + dl(1, 0));
-        k.dq(4, j) = 0.5 * (dl(1, 0) - dl(0, 1));
-      }
+    finite_kinematics(p, un, du, kin[p]);
+    v0 += kin[p].dv0;
   }
-  if (bbar) {
-    // Mean dilatation of the increment over the reference volume (Hughes 1980, rate form).
-    double theta = 0.0;
-    Eigen::RowVectorXd dtheta = Eigen::RowVectorXd::Zero(nd);
-    for (const Kin& k : kin) {
-      theta += k.dv0 / v0 * k.q.head<3>().sum();
-      dtheta += k.dv0 / v0 * k.dq.topRows(3).colwise().sum();
-    }
-    for (Kin& k : kin) {
-      const double shift = (theta - k.q.head<3>().sum()) / 3.0;
-      const Eigen::RowVectorXd dshift = (dtheta - k.dq.topRows(3).colwise().sum()) / 3.0;
-      for (int r = 0; r < 3; ++r) {
-        k.q(r) += shift;
-        k.dq.row(r) += dshift;
-      }
-    }
-  }
+  if (bbar) plane_mean_dilatation(kin, v0, nd);
 
   // Pass 2: the law at every point, internal force and tangent.
   f.setZero(nd);
@@ -197,108 +341,37 @@ void PlaneSolid::finite_sum(const Eigen::VectorXd& u, Eigen::MatrixXd* K, Eigen:
     update->plastic = committed_;
     update->stress.resize(np);
   }
-  const double nu_ratio = poisson_ / (1.0 - poisson_);
-  Mat2 jrot;
-  jrot << 0.0, -1.0, 1.0, 0.0;
   for (std::size_t p = 0; p < np; ++p) {
-    const Kin& k = kin[p];
-    const double c = 0.5 * k.q(4);
-    const Mat2 rot = incremental_rotation(c);
-    const Mat2 drot = (1.0 / (1.0 + c * c)) * jrot * rot;  // ∂ΔR/∂ω
-    Mat2 d2;
-    d2 << k.q(0), k.q(3), k.q(3), k.q(1);
-    // The increment rotated back to the axes of the committed state: ΔRᵀ Δε ΔR.
-    const Vec4 strain = finite_[p].strain + voigt(rot.transpose() * d2 * rot, k.q(2), 2.0);
-    Vec4 s_hat;
-    Eigen::Matrix4d c_alg;
-    PlasticState next;
-    double ezz = strain(2);
-    if (plasticity_) {
-      point_response(committed_[p], strain, s_hat, c_alg, &next);
-      if (pstress) ezz = next.thickness_strain;
-    } else {
-      s_hat = d_ * strain;
-      c_alg = d_;
-      if (pstress) ezz = -nu_ratio * (strain(0) + strain(1));
-    }
-    const Mat2 sh2 = in_plane(s_hat, 1.0);
-    const Mat2 s2 = rot * sh2 * rot.transpose();
-    const Vec4 sigma = voigt(s2, s_hat(2), 1.0);
-    // Current measure dv = J dV₀.
-    double jac = k.det;
-    if (axi) jac *= k.r / k.r0;  // F_θθ = r / R
-    if (pstress) jac *= std::exp(ezz);
-    const double dv = jac * k.dv0;
+    const FiniteKinematics& k = kin[p];
+    FiniteResponse r;
+    finite_response(p, k, r);
     // σ : δl_j per DOF (the integrand of f) and the spatial gradient rows.
     Eigen::VectorXd a(nd), lzz = Eigen::VectorXd::Zero(nd);
     for (int b = 0; b < nn; ++b) {
-      const Eigen::Vector2d sh = s2 * k.h.col(b);
+      const Eigen::Vector2d sh = r.s2 * k.h.col(b);
       a(2 * b) = sh(0);
       a(2 * b + 1) = sh(1);
       if (axi) {
         lzz(2 * b) = k.n(b) / k.r;
-        a(2 * b) += sigma(2) * lzz(2 * b);
+        a(2 * b) += r.sigma(2) * lzz(2 * b);
       }
     }
-    f.noalias() += dv * a;
+    f.noalias() += r.dv * a;
     if (update) {
       FiniteState st;
-      st.strain = rotate_strain(rot, strain);
-      st.strain(2) = ezz;
+      st.strain = rotate_strain(r.rot, r.strain);
+      st.strain(2) = r.ezz;
       update->finite[p] = st;
       if (plasticity_) {
-        next.plastic_strain = rotate6(rot, next.plastic_strain, true);
-        next.back_stress = rotate6(rot, next.back_stress, false);
-        next.stress = rotate6(rot, next.stress, false);
+        PlasticState next = r.next;
+        next.plastic_strain = rotate6(r.rot, next.plastic_strain, true);
+        next.back_stress = rotate6(r.rot, next.back_stress, false);
+        next.stress = rotate6(r.rot, next.stress, false);
         update->plastic[p] = next;
       }
-      update->stress[p] = sigma;
+      update->stress[p] = r.sigma;
     }
-    if (!K) continue;
-    // ∂σ/∂q (4 x 5): the law's tangent through ΔRᵀ Δε ΔR and the rotation of σ̂.
-    Eigen::Matrix<double, 4, 5> ds;
-    for (int m = 0; m < 4; ++m) {
-      Mat2 e2 = Mat2::Zero();
-      double ezz_m = 0.0;
-      if (m == 0) e2(0, 0) = 1.0;
-      if (m == 1) e2(1, 1) = 1.0;
-      if (m == 2) ezz_m = 1.0;
-      if (m == 3) e2(0, 1) = e2(1, 0) = 1.0;
-      const Vec4 dsh = c_alg * voigt(rot.transpose() * e2 * rot, ezz_m, 2.0);
-      ds.col(m) = voigt(rot * in_plane(dsh, 1.0) * rot.transpose(), dsh(2), 1.0);
-    }
-    {
-      const Mat2 de = drot.transpose() * d2 * rot + rot.transpose() * d2 * drot;
-      const Vec4 dsh = c_alg * voigt(de, 0.0, 2.0);
-      const Mat2 dsig = drot * sh2 * rot.transpose() + rot * in_plane(dsh, 1.0) * rot.transpose() +
-                        rot * sh2 * drot.transpose();
-      ds.col(4) = voigt(dsig, dsh(2), 1.0);
-    }
-    const Eigen::MatrixXd dsigma = ds * k.dq;  // 4 x nd
-    // tr δl_k (+ the change of the thickness in plane stress).
-    Eigen::VectorXd tr(nd);
-    for (int b = 0; b < nn; ++b)
-      for (int i = 0; i < 2; ++i) tr(2 * b + i) = k.h(i, b) + lzz(2 * b + i);
-    if (pstress) tr.noalias() -= nu_ratio * (k.dq.row(0) + k.dq.row(1)).transpose();
-    Eigen::MatrixXd& kk = *K;
-    for (int bk = 0; bk < nn; ++bk)
-      for (int ik = 0; ik < 2; ++ik) {
-        const int col = 2 * bk + ik;
-        const Mat2 dsk = in_plane(dsigma.col(col), 1.0);
-        const Eigen::Vector2d sh_k = s2 * k.h.col(bk);
-        for (int bj = 0; bj < nn; ++bj) {
-          const Eigen::Vector2d dsh = dsk * k.h.col(bj);
-          for (int ij = 0; ij < 2; ++ij) {
-            const int row = 2 * bj + ij;
-            // δσ_k : δl_j, δl_j = e_ij ⊗ ∇N_bj (+ the hoop entry N / r).
-            double v = dsh(ij) + dsigma(2, col) * lzz(row);
-            // − σ : (δl_j δl_k): (δl_j δl_k) = e_ij (∇N_bj · e_ik) ⊗ ∇N_bk.
-            v -= k.h(ik, bj) * sh_k(ij) + sigma(2) * lzz(row) * lzz(col);
-            v += a(row) * tr(col);
-            kk(row, col) += dv * v;
-          }
-        }
-      }
+    if (K) add_finite_tangent(k, r, a, lzz, *K);
   }
 }
 

@@ -106,6 +106,130 @@ struct PointKinematics3 {
   Eigen::Matrix<double, 9, Eigen::Dynamic> dq;  // ∂q/∂u (9 x 3n)
 };
 
+/// Pass 1 of finite_strain_sum at one point: F_½, L, ∇_x N, the increment q and ∂q/∂u.
+void point_kinematics3(const FiniteStrainElement& element, const FiniteStrainPoint& point,
+                       const Eigen::Matrix3Xd& u_n, const Eigen::Matrix3Xd& du,
+                       PointKinematics3& k) {
+  const auto nn = du.cols();
+  const auto nd = 3 * nn;
+  const Eigen::Matrix3Xd& g0 = point.grad;  // ∂N/∂X
+  k.dv0 = point.dv0;
+  const Mat3f fn = Mat3f::Identity() + u_n * g0.transpose();
+  const Mat3f dh = du * g0.transpose();
+  const Mat3f fh = fn + 0.5 * dh;
+  const Mat3f f_cur = fn + dh;
+  const Mat3f fh_inv = fh.inverse();
+  const Mat3f l = dh * fh_inv;
+  k.det = f_cur.determinant();
+  if (!(k.det > 0.0))
+    throw ElementSolutionError(
+        element.id,
+        fmt::format("element {}: the deformation turned an integration point inside out "
+                    "(det F = {:.3g}); a smaller load increment may help",
+                    element.id, k.det));
+  const Eigen::Matrix3Xd gh = fh_inv.transpose() * g0;  // ∇_{x½} N
+  k.h = f_cur.inverse().transpose() * g0;
+  const Mat3f m = Mat3f::Identity() - 0.5 * l;  // δL = (I − ½L) δH F_½⁻¹
+  k.q << l(0, 0), l(1, 1), l(2, 2), 0.5 * (l(0, 1) + l(1, 0)), 0.5 * (l(1, 2) + l(2, 1)),
+      0.5 * (l(0, 2) + l(2, 0)), 0.5 * (l(2, 1) - l(1, 2)), 0.5 * (l(0, 2) - l(2, 0)),
+      0.5 * (l(1, 0) - l(0, 1));
+  k.dq.setZero(9, nd);
+  for (Eigen::Index b = 0; b < nn; ++b)
+    for (int i = 0; i < 3; ++i) {
+      const Mat3f dl = m.col(i) * gh.col(b).transpose();
+      const Eigen::Index j = 3 * b + i;
+      k.dq(0, j) = dl(0, 0);
+      k.dq(1, j) = dl(1, 1);
+      k.dq(2, j) = dl(2, 2);
+      k.dq(3, j) = 0.5 * (dl(0, 1) + dl(1, 0));
+      k.dq(4, j) = 0.5 * (dl(1, 2) + dl(2, 1));
+      k.dq(5, j) = 0.5 * (dl(0, 2) + dl(2, 0));
+      k.dq(6, j) = 0.5 * (dl(2, 1) - dl(1, 2));
+      k.dq(7, j) = 0.5 * (dl(0, 2) - dl(2, 0));
+      k.dq(8, j) = 0.5 * (dl(1, 0) - dl(0, 1));
+    }
+}
+
+/// Mean dilatation of the increment over the reference volume (Hughes 1980, rate form): the
+/// volumetric part of each point's q replaced by the element mean.
+void mean_dilatation3(std::vector<PointKinematics3>& kin, double v0, Eigen::Index nd) {
+  double theta = 0.0;
+  Eigen::RowVectorXd dtheta = Eigen::RowVectorXd::Zero(nd);
+  for (const PointKinematics3& k : kin) {
+    theta += k.dv0 / v0 * k.q.head<3>().sum();
+    dtheta += k.dv0 / v0 * k.dq.topRows<3>().colwise().sum();
+  }
+  for (PointKinematics3& k : kin) {
+    const double shift = (theta - k.q.head<3>().sum()) / 3.0;
+    const Eigen::RowVectorXd dshift = (dtheta - k.dq.topRows<3>().colwise().sum()) / 3.0;
+    for (int r = 0; r < 3; ++r) {
+      k.q(r) += shift;
+      k.dq.row(r) += dshift;
+    }
+  }
+}
+
+/// ∂σ/∂q (6 x 9): the law's tangent through ΔRᵀ Δε ΔR (columns Δε), and the rotation of σ̂
+/// through ∂ΔR/∂ω_m = ½ (I − ½ΔW)⁻¹ G_m (I + ΔR) (columns ω).
+Eigen::Matrix<double, 6, 9> stress_derivative3(const Mat3f& rot, const Mat3f& a_inv,
+                                               const Mat3f& d2, const Mat3f& sh3,
+                                               const Matrix6d& c_alg) {
+  const auto& gen = spin_generators3();
+  const auto& basis = strain_basis3();
+  Eigen::Matrix<double, 6, 9> ds;
+  for (int m = 0; m < 6; ++m) {
+    const Mat3f& e = basis[static_cast<std::size_t>(m)];
+    const Vector6d dsh = c_alg * voigt3(rot.transpose() * e * rot, 2.0);
+    ds.col(m) = voigt3(rot * sym_tensor3(dsh, 1.0) * rot.transpose(), 1.0);
+  }
+  for (int m = 0; m < 3; ++m) {
+    const Mat3f drot = 0.5 * a_inv * gen[static_cast<std::size_t>(m)] * (Mat3f::Identity() + rot);
+    const Mat3f de = drot.transpose() * d2 * rot + rot.transpose() * d2 * drot;
+    const Vector6d dsh = c_alg * voigt3(de, 2.0);
+    const Mat3f dsig = drot * sh3 * rot.transpose() +
+                       rot * sym_tensor3(dsh, 1.0) * rot.transpose() + rot * sh3 * drot.transpose();
+    ds.col(6 + m) = voigt3(dsig, 1.0);
+  }
+  return ds;
+}
+
+/// FiniteStrainTangent::Symmetric: ∫ δε̄_jᵀ C̃ δε̄_k dv (tensor shears: the shear rows count
+/// twice in the contraction) and the initial-stress stiffness δ_ij ∫ ∇N_bj · σ ∇N_bk dv.
+void add_symmetric_tangent3(const PointKinematics3& k, const Eigen::Matrix<double, 6, 9>& ds,
+                            const Mat3f& s3, double dv, Eigen::MatrixXd& kk) {
+  const auto nn = k.h.cols();
+  Eigen::Matrix<double, 6, Eigen::Dynamic> weighted = k.dq.topRows<6>();
+  weighted.bottomRows<3>() *= 2.0;
+  kk.noalias() += dv * (weighted.transpose() * (ds.leftCols<6>() * k.dq.topRows<6>()));
+  const Eigen::MatrixXd g = dv * (k.h.transpose() * (s3 * k.h));
+  for (Eigen::Index bj = 0; bj < nn; ++bj)
+    for (Eigen::Index bk = 0; bk < nn; ++bk)
+      for (int i = 0; i < 3; ++i) kk(3 * bj + i, 3 * bk + i) += g(bj, bk);
+}
+
+/// The exact tangent K_jk = ∫ [ δσ_k : δl_j − σ : (δl_j δl_k) + (σ : δl_j) tr δl_k ] dv.
+void add_exact_tangent3(const PointKinematics3& k, const Eigen::Matrix<double, 6, 9>& ds,
+                        const Eigen::Matrix3Xd& sh_all, const Eigen::Map<const Eigen::VectorXd>& a,
+                        double dv, Eigen::MatrixXd& kk) {
+  const auto nn = k.h.cols();
+  const Eigen::MatrixXd dsigma = ds * k.dq;  // 6 x nd
+  for (Eigen::Index bk = 0; bk < nn; ++bk)
+    for (int ik = 0; ik < 3; ++ik) {
+      const Eigen::Index col = 3 * bk + ik;
+      // δσ_k : δl_j = (δσ_k ∇N_bj)_ij for every j at once.
+      const Eigen::Matrix3Xd dsh = sym_tensor3(dsigma.col(col), 1.0) * k.h;
+      const double tr = k.h(ik, bk);  // tr δl_k
+      for (Eigen::Index bj = 0; bj < nn; ++bj) {
+        const double hj = k.h(ik, bj);
+        for (int ij = 0; ij < 3; ++ij) {
+          const Eigen::Index row = 3 * bj + ij;
+          // − σ : (δl_j δl_k) = −(∇N_bj · e_ik) (σ ∇N_bk)_ij; + (σ : δl_j) tr δl_k.
+          kk(row, col) += dv * (dsh(ij, bj) - hj * sh_all(ij, bk) + a(row) * tr);
+        }
+      }
+    }
+}
+
 }  // namespace
 
 void finite_strain_sum(const FiniteStrainElement& element, const Eigen::Matrix3Xd& u_n,
@@ -122,62 +246,10 @@ void finite_strain_sum(const FiniteStrainElement& element, const Eigen::Matrix3X
   std::vector<PointKinematics3> kin(np);
   double v0 = 0.0;
   for (std::size_t p = 0; p < np; ++p) {
-    PointKinematics3& k = kin[p];
-    const Eigen::Matrix3Xd& g0 = points[p].grad;  // ∂N/∂X
-    k.dv0 = points[p].dv0;
-    v0 += k.dv0;
-    const Mat3f fn = Mat3f::Identity() + u_n * g0.transpose();
-    const Mat3f dh = du * g0.transpose();
-    const Mat3f fh = fn + 0.5 * dh;
-    const Mat3f f_cur = fn + dh;
-    const Mat3f fh_inv = fh.inverse();
-    const Mat3f l = dh * fh_inv;
-    k.det = f_cur.determinant();
-    if (!(k.det > 0.0))
-      throw ElementSolutionError(
-          element.id,
-          fmt::format("element {}: the deformation turned an integration point inside out "
-                      "(det F = {:.3g}); a smaller load increment may help",
-                      element.id, k.det));
-    const Eigen::Matrix3Xd gh = fh_inv.transpose() * g0;  // ∇_{x½} N
-    k.h = f_cur.inverse().transpose() * g0;
-    const Mat3f m = Mat3f::Identity() - 0.5 * l;  // δL = (I − ½L) δH F_½⁻¹
-    k.q << l(0, 0), l(1, 1), l(2, 2), 0.5 * (l(0, 1) + l(1, 0)), 0.5 * (l(1, 2) + l(2, 1)),
-        0.5 * (l(0, 2) + l(2, 0)), 0.5 * (l(2, 1) - l(1, 2)), 0.5 * (l(0, 2) - l(2, 0)),
-        0.5 * (l(1, 0) - l(0, 1));
-    k.dq.setZero(9, nd);
-    for (Eigen::Index b = 0; b < nn; ++b)
-      for (int i = 0; i < 3; ++i) {
-        const Mat3f dl = m.col(i) * gh.col(b).transpose();
-        const Eigen::Index j = 3 * b + i;
-        k.dq(0, j) = dl(0, 0);
-        k.dq(1, j) = dl(1, 1);
-        k.dq(2, j) = dl(2, 2);
-        k.dq(3, j) = 0.5 * (dl(0, 1) + dl(1, 0));
-        k.dq(4, j) = 0.5 * (dl(1, 2) + dl(2, 1));
-        k.dq(5, j) = 0.5 * (dl(0, 2) + dl(2, 0));
-        k.dq(6, j) = 0.5 * (dl(2, 1) - dl(1, 2));
-        k.dq(7, j) = 0.5 * (dl(0, 2) - dl(2, 0));
-        k.dq(8, j) = 0.5 * (dl(1, 0) - dl(0, 1));
-      }
+    point_kinematics3(element, points[p], u_n, du, kin[p]);
+    v0 += kin[p].dv0;
   }
-  if (element.mean_dilatation) {
-    // Mean dilatation of the increment over the reference volume (Hughes 1980, rate form).
-    double theta = 0.0;
-    Eigen::RowVectorXd dtheta = Eigen::RowVectorXd::Zero(nd);
-    for (const PointKinematics3& k : kin) {
-      theta += k.dv0 / v0 * k.q.head<3>().sum();
-      dtheta += k.dv0 / v0 * k.dq.topRows<3>().colwise().sum();
-    }
-    for (PointKinematics3& k : kin) {
-      const double shift = (theta - k.q.head<3>().sum()) / 3.0;
-      const Eigen::RowVectorXd dshift = (dtheta - k.dq.topRows<3>().colwise().sum()) / 3.0;
-      for (int r = 0; r < 3; ++r) {
-        k.q(r) += shift;
-        k.dq.row(r) += dshift;
-      }
-    }
-  }
+  if (element.mean_dilatation) mean_dilatation3(kin, v0, nd);
 
   // Pass 2: the law at every point, internal force and tangent.
   f.setZero(nd);
@@ -188,7 +260,6 @@ void finite_strain_sum(const FiniteStrainElement& element, const Eigen::Matrix3X
     update->dv.resize(np);
   }
   const auto& gen = spin_generators3();
-  const auto& basis = strain_basis3();
   for (std::size_t p = 0; p < np; ++p) {
     const PointKinematics3& k = kin[p];
     Mat3f w = Mat3f::Zero();
@@ -231,51 +302,11 @@ void finite_strain_sum(const FiniteStrainElement& element, const Eigen::Matrix3X
       update->dv[p] = dv;
     }
     if (!K) continue;
-    // ∂σ/∂q (6 x 9): the law's tangent through ΔRᵀ Δε ΔR, and the rotation of σ̂.
-    Eigen::Matrix<double, 6, 9> ds;
-    for (int m = 0; m < 6; ++m) {
-      const Mat3f& e = basis[static_cast<std::size_t>(m)];
-      const Vector6d dsh = c_alg * voigt3(rot.transpose() * e * rot, 2.0);
-      ds.col(m) = voigt3(rot * sym_tensor3(dsh, 1.0) * rot.transpose(), 1.0);
-    }
-    for (int m = 0; m < 3; ++m) {
-      const Mat3f drot = 0.5 * a_inv * gen[static_cast<std::size_t>(m)] * (Mat3f::Identity() + rot);
-      const Mat3f de = drot.transpose() * d2 * rot + rot.transpose() * d2 * drot;
-      const Vector6d dsh = c_alg * voigt3(de, 2.0);
-      const Mat3f dsig = drot * sh3 * rot.transpose() +
-                         rot * sym_tensor3(dsh, 1.0) * rot.transpose() +
-                         rot * sh3 * drot.transpose();
-      ds.col(6 + m) = voigt3(dsig, 1.0);
-    }
-    Eigen::MatrixXd& kk = *K;
-    if (form == FiniteStrainTangent::Symmetric) {
-      // ∫ δε̄_jᵀ C̃ δε̄_k dv (tensor shears: the shear rows count twice in the contraction) and
-      // the initial-stress stiffness δ_ij ∫ ∇N_bj · σ ∇N_bk dv.
-      Eigen::Matrix<double, 6, Eigen::Dynamic> weighted = k.dq.topRows<6>();
-      weighted.bottomRows<3>() *= 2.0;
-      kk.noalias() += dv * (weighted.transpose() * (ds.leftCols<6>() * k.dq.topRows<6>()));
-      const Eigen::MatrixXd g = dv * (k.h.transpose() * (s3 * k.h));
-      for (Eigen::Index bj = 0; bj < nn; ++bj)
-        for (Eigen::Index bk = 0; bk < nn; ++bk)
-          for (int i = 0; i < 3; ++i) kk(3 * bj + i, 3 * bk + i) += g(bj, bk);
-      continue;
-    }
-    const Eigen::MatrixXd dsigma = ds * k.dq;  // 6 x nd
-    for (Eigen::Index bk = 0; bk < nn; ++bk)
-      for (int ik = 0; ik < 3; ++ik) {
-        const Eigen::Index col = 3 * bk + ik;
-        // δσ_k : δl_j = (δσ_k ∇N_bj)_ij for every j at once.
-        const Eigen::Matrix3Xd dsh = sym_tensor3(dsigma.col(col), 1.0) * k.h;
-        const double tr = k.h(ik, bk);  // tr δl_k
-        for (Eigen::Index bj = 0; bj < nn; ++bj) {
-          const double hj = k.h(ik, bj);
-          for (int ij = 0; ij < 3; ++ij) {
-            const Eigen::Index row = 3 * bj + ij;
-            // − σ : (δl_j δl_k) = −(∇N_bj · e_ik) (σ ∇N_bk)_ij; + (σ : δl_j) tr δl_k.
-            kk(row, col) += dv * (dsh(ij, bj) - hj * sh_all(ij, bk) + a(row) * tr);
-          }
-        }
-      }
+    const Eigen::Matrix<double, 6, 9> ds = stress_derivative3(rot, a_inv, d2, sh3, c_alg);
+    if (form == FiniteStrainTangent::Symmetric)
+      add_symmetric_tangent3(k, ds, s3, dv, *K);
+    else
+      add_exact_tangent3(k, ds, sh_all, a, dv, *K);
   }
 }
 

@@ -82,11 +82,137 @@ std::map<int, int> part_of_elements(const Model& model) {
   return out;
 }
 
+/// The penetration of the slave at `xs` behind the segment on `nodes` (of depth `depth`): false
+/// when it is not behind it (or deeper than the segment's depth) or does not project onto it.
+/// `gap` is set once the slave is found behind the face's plane (a slave that slid off its
+/// segment is told by it).
+bool behind_segment(const int nodes[4], double depth, const ExplicitNodalView& s, Vec xs,
+                    double& gap, double& u, double& v, Vec& nrm) {
+  Vec q[4], centre{0, 0, 0};
+  for (int a = 0; a < 4; ++a) {
+    const auto n = static_cast<std::size_t>(nodes[a]);
+    q[a] = {s.x[n], s.y[n], s.z[n]};
+    centre = {centre.x + 0.25 * q[a].x, centre.y + 0.25 * q[a].y, centre.z + 0.25 * q[a].z};
+  }
+  // The face's plane (normal from the diagonals) rules out what lies far from it.
+  const Vec plane = cross(sub(q[2], q[0]), sub(q[3], q[1]));
+  const double len = std::sqrt(dot(plane, plane));
+  if (!(len > 0.0)) return false;
+  const double across = -dot(sub(xs, centre), plane) / len;
+  if (!(across > 0.0) || across > 2.0 * depth) return false;
+  gap = across - 1e-4 * depth;  // off the face: how far behind its plane
+  local_coordinates(q, xs, u, v);
+  if (!(std::abs(u) <= 1 + kEdgeTolerance && std::abs(v) <= 1 + kEdgeTolerance)) return false;
+  // The gap at the point X(ξ, η) of the bilinear face the slave projects onto, along the
+  // face's normal there: g = −(x_s − X)·n. Its change with a node of the face is N_a n,
+  // the shares the reaction is spread by, so the force is the gradient of ½kg² and the
+  // springs give back what they took. The gap from the centroid's plane instead changes
+  // by ¼ n with each corner: on a warped face (the dished face under an impactor) the
+  // reaction on a corner a slave sits on did four times the work of the spring.
+  Vec x, dxi, deta;
+  surface_point(q, std::clamp(u, -1.0, 1.0), std::clamp(v, -1.0, 1.0), x, dxi, deta);
+  nrm = cross(dxi, deta);
+  const double size = std::sqrt(dot(nrm, nrm));
+  if (!(size > 0.0)) return false;
+  nrm = {nrm.x / size, nrm.y / size, nrm.z / size};
+  // Penetration behind the face, less a sliver (1e-4 of the depth): a node on the edge of a
+  // face it runs along (the side of a body it hits end on) has round-off penetrations of
+  // that side, smaller than its true one; taking the smallest would pick the side.
+  gap = -dot(sub(xs, x), nrm) - 1e-4 * depth;
+  return gap > 0.0 && gap <= depth;
+}
+
+/// Whether the slave `sn` (at `xs` now) was in front of (or on) the plane of the segment on
+/// `nodes` at x_n = x_{n+1} − step v_{n+1/2}.
+bool crossed_segment(const int nodes[4], double depth, const ExplicitNodalView& s, std::size_t sn,
+                     Vec xs, double step) {
+  if (!(step > 0.0)) return false;
+  Vec q[4], centre{0, 0, 0};
+  for (int a = 0; a < 4; ++a) {
+    const auto n = static_cast<std::size_t>(nodes[a]);
+    q[a] = {s.x[n] - step * s.vx[n], s.y[n] - step * s.vy[n], s.z[n] - step * s.vz[n]};
+    centre = {centre.x + 0.25 * q[a].x, centre.y + 0.25 * q[a].y, centre.z + 0.25 * q[a].z};
+  }
+  const Vec nrm = cross(sub(q[2], q[0]), sub(q[3], q[1]));
+  const Vec xp{xs.x - step * s.vx[sn], xs.y - step * s.vy[sn], xs.z - step * s.vz[sn]};
+  return dot(sub(xp, centre), nrm) >= -1e-4 * depth * std::sqrt(dot(nrm, nrm));
+}
+
+/// Viscous contact damping VDC (LS-DYNA Theory Manual, "Contact damping"): the force −c·v_n
+/// along the normal, c = VDC/100 · 2mω, m = min(m_s, m_m), ω² = k(m_s + m_m)/(m_s m_m), m_m the
+/// segment's mass at the projection (Σ N_a m_a). The normal force stays ≥ 0: the damping slows
+/// a separation, it never holds the bodies together.
+double damped_normal_force(const ExplicitContact& k, double fn, double vn, double stiffness,
+                           const double shape[4], const int nodes[4], const double* mass,
+                           std::size_t sn) {
+  double m_master = 0.0;
+  for (int a = 0; a < 4; ++a) m_master += shape[a] * mass[static_cast<std::size_t>(nodes[a])];
+  const double m_slave = mass[sn];
+  if (m_slave > 0.0 && m_master > 0.0) {
+    const double omega = std::sqrt(stiffness * (m_slave + m_master) / (m_slave * m_master));
+    const double c = 0.02 * k.viscous_damping * std::min(m_slave, m_master) * omega;
+    fn = std::max(0.0, fn - c * vn);
+  }
+  return fn;
+}
+
+/// Elastic-slip friction: the tangential spring `ft` (stiffness k) loaded by the relative
+/// tangential motion dt·v_t, its force bounded by μ f_n, μ = FD + (FS − FD) e^{−DC|v_t|}. Returns
+/// the spring's force; adds its energy to `stored`.
+Vec elastic_slip_friction(const ExplicitContact& k, double* ft, Vec vr, double vn, Vec normal,
+                          double stiffness, double fn, double dt, double& stored) {
+  const double mu_s = k.static_friction, mu_d = k.dynamic_friction;
+  const Vec vt{vr.x - vn * normal.x, vr.y - vn * normal.y, vr.z - vn * normal.z};
+  const double speed = std::sqrt(dot(vt, vt));
+  const double mu = mu_d + (mu_s - mu_d) * std::exp(-k.decay * speed);
+  Vec t{ft[0], ft[1], ft[2]};
+  const double tn = dot(t, normal);
+  t = {t.x - tn * normal.x - stiffness * dt * vt.x, t.y - tn * normal.y - stiffness * dt * vt.y,
+       t.z - tn * normal.z - stiffness * dt * vt.z};
+  const double size = std::sqrt(dot(t, t)), bound = mu * fn;
+  if (size > bound) t = {t.x * bound / size, t.y * bound / size, t.z * bound / size};
+  ft[0] = t.x, ft[1] = t.y, ft[2] = t.z;
+  stored += 0.5 * dot(t, t) / stiffness;
+  return t;
+}
+
 }  // namespace
+
+struct ExplicitContactSet::Projection {
+  double gap;           // penetration behind the segment
+  double xi, eta;       // the slave's local coordinates on it
+  std::size_t segment;  // index into segments_
+  double normal[3];     // the segment's unit normal there
+};
 
 ExplicitContactSet::ExplicitContactSet(const Model& model, const ExplicitSystem& system) {
   const auto& definitions = model.explicit_dynamics.contacts;
   if (definitions.empty()) return;
+  collect_segments(system);
+  const std::map<int, int> part = part_of_elements(model);
+  const double slsfac = model.explicit_dynamics.penalty_factor;
+  for (const ExplicitContact& k : definitions) {
+    const bool single = k.option == "ASSC" || k.option == "SS";
+    const bool symmetric = k.option == "STS" || k.option == "ASTS";
+    std::vector<std::size_t> cont_segs, cont_nodes, targ_segs, targ_nodes;
+    // single surface: blank is the whole model
+    surface(model, system, part, k, k.contact, cont_segs, cont_nodes);
+    if (!single) surface(model, system, part, k, k.target, targ_segs, targ_nodes);
+    if (single) {
+      add_pass(k, slsfac * k.slave_scale, single, cont_nodes, cont_segs, system.n_nodes());
+    } else {
+      add_pass(k, slsfac * k.master_scale, single, cont_nodes, targ_segs, system.n_nodes());
+      if (symmetric)
+        add_pass(k, slsfac * k.slave_scale, single, targ_nodes, cont_segs, system.n_nodes());
+    }
+  }
+  force_.assign(3 * system.n_nodes(), 0.0);
+  stiffness_.assign(system.n_nodes(), 0.0);
+  previous_ = force_;
+  mark_.assign(system.n_nodes(), 0);
+}
+
+void ExplicitContactSet::collect_segments(const ExplicitSystem& system) {
   // Every element's faces; a face offered twice (by two elements) is interior.
   std::vector<ExplicitSegment> all;
   for (const auto& set : system.sets) set->segments(all);
@@ -129,111 +255,97 @@ ExplicitContactSet::ExplicitContactSet(const Model& model, const ExplicitSystem&
     segments_.push_back(g);
   }
   margin_ = 2.0 * depth_max;
-  const std::map<int, int> part = part_of_elements(model);
-  // The segments and the slave nodes of a surface named by a part number or a component.
-  const auto surface = [&](const ExplicitContact& k, const std::string& name,
-                           std::vector<std::size_t>& segs, std::vector<std::size_t>& nodes) {
-    std::vector<std::uint8_t> in_node(system.n_nodes(), 0);
-    const Component* component = nullptr;
-    int part_number = 0;
-    if (!name.empty()) {
-      const auto it = model.components.find(name);
-      if (it != model.components.end()) {
-        component = &it->second;
-        if (component->entity != "NODE" && component->entity != "ELEM")
-          throw InputError(k.where, fmt::format("EDCGEN: component {} is a {} component; contact "
-                                                "takes a node or element component",
-                                                name, component->entity));
-      } else {
-        char* end = nullptr;
-        part_number = static_cast<int>(std::strtol(name.c_str(), &end, 10));
-        if (*end != '\0' || part_number <= 0)
-          throw InputError(k.where, fmt::format("EDCGEN: '{}' is neither a component (CM) nor a "
-                                                "part number (EDPART)",
-                                                name));
-      }
-    }
-    if (component && component->entity == "NODE")
-      for (int id : component->ids)
-        if (const int n = system.index_of(id); n >= 0) in_node[static_cast<std::size_t>(n)] = 1;
-    for (std::size_t i = 0; i < segments_.size(); ++i) {
-      const Segment& g = segments_[i];
-      bool take = true;
-      if (part_number > 0) {
-        take = part.at(g.element) == part_number;
-      } else if (component && component->entity == "ELEM") {
-        take = std::binary_search(component->ids.begin(), component->ids.end(), g.element);
-      } else if (component) {
-        for (int a = 0; a < 4; ++a) take = take && in_node[static_cast<std::size_t>(g.nodes[a])];
-      }
-      if (take) segs.push_back(i);
-    }
-    std::vector<std::uint8_t> slave(system.n_nodes(), 0);
-    if (component && component->entity == "NODE")
-      slave = in_node;
-    else
-      for (std::size_t i : segs)
-        for (int a = 0; a < 4; ++a) slave[static_cast<std::size_t>(segments_[i].nodes[a])] = 1;
-    for (std::size_t n = 0; n < system.n_nodes(); ++n)
-      if (slave[n]) nodes.push_back(n);
-    if (segs.empty() && nodes.empty())
-      throw InputError(k.where, fmt::format("EDCGEN,{}: '{}' has no exterior face or node of an "
-                                            "explicit element",
-                                            k.option, name.empty() ? "the model" : name));
-  };
-  const double slsfac = model.explicit_dynamics.penalty_factor;
-  for (const ExplicitContact& k : definitions) {
-    const bool single = k.option == "ASSC" || k.option == "SS";
-    const bool symmetric = k.option == "STS" || k.option == "ASTS";
-    std::vector<std::size_t> cont_segs, cont_nodes, targ_segs, targ_nodes;
-    surface(k, k.contact, cont_segs, cont_nodes);  // single surface: blank is the whole model
-    if (!single) surface(k, k.target, targ_segs, targ_nodes);
-    const auto add = [&](std::vector<std::size_t> slaves, std::vector<std::size_t> segs,
-                         double scale) {
-      if (segs.empty())
-        throw InputError(k.where, fmt::format("EDCGEN,{}: the target surface has no exterior "
-                                              "face of an explicit element (a node component "
-                                              "names its faces by all their nodes)",
-                                              k.option));
-      Pass p;
-      p.definition = &k;
-      p.factor = slsfac * scale;
-      p.single_surface = single;
-      p.slaves = std::move(slaves);
-      p.segments = std::move(segs);
-      p.tangential.assign(3 * p.slaves.size(), 0.0);
-      p.kept.assign(p.slaves.size(), kNone);
-      if (single) {
-        // The nodes of the segments around each slave: a slave is not checked against a segment
-        // that shares one of them (its own body's neighbouring faces).
-        std::vector<std::vector<int>> near(system.n_nodes());
-        for (std::size_t i : p.segments)
-          for (int a = 0; a < 4; ++a)
-            for (int b = 0; b < 4; ++b)
-              near[static_cast<std::size_t>(segments_[i].nodes[a])].push_back(
-                  segments_[i].nodes[b]);
-        p.near_start.push_back(0);
-        for (std::size_t s : p.slaves) {
-          auto& list = near[s];
-          std::sort(list.begin(), list.end());
-          list.erase(std::unique(list.begin(), list.end()), list.end());
-          p.near.insert(p.near.end(), list.begin(), list.end());
-          p.near_start.push_back(p.near.size());
-        }
-      }
-      passes_.push_back(std::move(p));
-    };
-    if (single) {
-      add(cont_nodes, cont_segs, k.slave_scale);
+}
+
+void ExplicitContactSet::surface(const Model& model, const ExplicitSystem& system,
+                                 const std::map<int, int>& part, const ExplicitContact& k,
+                                 const std::string& name, std::vector<std::size_t>& segs,
+                                 std::vector<std::size_t>& nodes) const {
+  std::vector<std::uint8_t> in_node(system.n_nodes(), 0);
+  const Component* component = nullptr;
+  int part_number = 0;
+  if (!name.empty()) {
+    const auto it = model.components.find(name);
+    if (it != model.components.end()) {
+      component = &it->second;
+      if (component->entity != "NODE" && component->entity != "ELEM")
+        throw InputError(k.where, fmt::format("EDCGEN: component {} is a {} component; contact "
+                                              "takes a node or element component",
+                                              name, component->entity));
     } else {
-      add(cont_nodes, targ_segs, k.master_scale);
-      if (symmetric) add(targ_nodes, cont_segs, k.slave_scale);
+      char* end = nullptr;
+      part_number = static_cast<int>(std::strtol(name.c_str(), &end, 10));
+      if (*end != '\0' || part_number <= 0)
+        throw InputError(k.where, fmt::format("EDCGEN: '{}' is neither a component (CM) nor a "
+                                              "part number (EDPART)",
+                                              name));
     }
   }
-  force_.assign(3 * system.n_nodes(), 0.0);
-  stiffness_.assign(system.n_nodes(), 0.0);
-  previous_ = force_;
-  mark_.assign(system.n_nodes(), 0);
+  if (component && component->entity == "NODE")
+    for (int id : component->ids)
+      if (const int n = system.index_of(id); n >= 0) in_node[static_cast<std::size_t>(n)] = 1;
+  for (std::size_t i = 0; i < segments_.size(); ++i) {
+    const Segment& g = segments_[i];
+    bool take = true;
+    if (part_number > 0) {
+      take = part.at(g.element) == part_number;
+    } else if (component && component->entity == "ELEM") {
+      take = std::binary_search(component->ids.begin(), component->ids.end(), g.element);
+    } else if (component) {
+      for (int a = 0; a < 4; ++a) take = take && in_node[static_cast<std::size_t>(g.nodes[a])];
+    }
+    if (take) segs.push_back(i);
+  }
+  std::vector<std::uint8_t> slave(system.n_nodes(), 0);
+  if (component && component->entity == "NODE")
+    slave = in_node;
+  else
+    for (std::size_t i : segs)
+      for (int a = 0; a < 4; ++a) slave[static_cast<std::size_t>(segments_[i].nodes[a])] = 1;
+  for (std::size_t n = 0; n < system.n_nodes(); ++n)
+    if (slave[n]) nodes.push_back(n);
+  if (segs.empty() && nodes.empty())
+    throw InputError(k.where, fmt::format("EDCGEN,{}: '{}' has no exterior face or node of an "
+                                          "explicit element",
+                                          k.option, name.empty() ? "the model" : name));
+}
+
+void ExplicitContactSet::add_pass(const ExplicitContact& k, double factor, bool single,
+                                  std::vector<std::size_t> slaves, std::vector<std::size_t> segs,
+                                  std::size_t n_nodes) {
+  if (segs.empty())
+    throw InputError(k.where, fmt::format("EDCGEN,{}: the target surface has no exterior "
+                                          "face of an explicit element (a node component "
+                                          "names its faces by all their nodes)",
+                                          k.option));
+  Pass p;
+  p.definition = &k;
+  p.factor = factor;
+  p.single_surface = single;
+  p.slaves = std::move(slaves);
+  p.segments = std::move(segs);
+  p.tangential.assign(3 * p.slaves.size(), 0.0);
+  p.kept.assign(p.slaves.size(), kNone);
+  if (single) list_near_nodes(p, n_nodes);
+  passes_.push_back(std::move(p));
+}
+
+void ExplicitContactSet::list_near_nodes(Pass& p, std::size_t n_nodes) const {
+  // The nodes of the segments around each slave: a slave is not checked against a segment
+  // that shares one of them (its own body's neighbouring faces).
+  std::vector<std::vector<int>> near(n_nodes);
+  for (std::size_t i : p.segments)
+    for (int a = 0; a < 4; ++a)
+      for (int b = 0; b < 4; ++b)
+        near[static_cast<std::size_t>(segments_[i].nodes[a])].push_back(segments_[i].nodes[b]);
+  p.near_start.push_back(0);
+  for (std::size_t s : p.slaves) {
+    auto& list = near[s];
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+    p.near.insert(p.near.end(), list.begin(), list.end());
+    p.near_start.push_back(p.near.size());
+  }
 }
 
 void ExplicitContactSet::search(Pass& p, const ExplicitNodalView& s) const {
@@ -294,239 +406,162 @@ void ExplicitContactSet::search(Pass& p, const ExplicitNodalView& s) const {
   }
 }
 
-ExplicitStepLimit ExplicitContactSet::add_forces(const ExplicitNodalView& s, const double* mass,
-                                                 double time, double dt, double* fx, double* fy,
-                                                 double* fz) {
-  ExplicitStepLimit limit;
-  if (passes_.empty()) return limit;
+bool ExplicitContactSet::search_due(const ExplicitNodalView& s) const {
   // A new search when some node may have moved by half the margin since the last one: a node
   // and a segment that approach each other then still lie within their listed boxes.
-  bool due = !started_;
-  if (started_) {
-    double moved = 0.0;
-    for (std::size_t n = 0; n < x_search_.size(); ++n) {
-      const double dx = s.x[n] - x_search_[n], dy = s.y[n] - y_search_[n],
-                   dz = s.z[n] - z_search_[n];
-      moved = std::max(moved, dx * dx + dy * dy + dz * dz);
-    }
-    due = std::sqrt(moved) > 0.25 * margin_;
+  if (!started_) return true;
+  double moved = 0.0;
+  for (std::size_t n = 0; n < x_search_.size(); ++n) {
+    const double dx = s.x[n] - x_search_[n], dy = s.y[n] - y_search_[n], dz = s.z[n] - z_search_[n];
+    moved = std::max(moved, dx * dx + dy * dy + dz * dz);
   }
-  if (due) {
-    for (Pass& p : passes_) search(p, s);
-    x_search_.assign(s.x, s.x + force_.size() / 3);
-    y_search_.assign(s.y, s.y + force_.size() / 3);
-    z_search_.assign(s.z, s.z + force_.size() / 3);
-    started_ = true;
-    ++searches_;
-    // The step the contact will need once the listed pairs touch: a pair's row bound is 2k/m on
-    // either side (see below), doubled for a node that is slave in one pass and master in the
-    // other. Without it the first cycle of a stiff contact would run at the elements' step.
-    double omega2 = 0.0;
-    potential_element_ = 0;
-    for (const Pass& p : passes_)
-      for (std::size_t j = 0; j < p.slaves.size(); ++j)
-        for (std::size_t c = p.candidate_start[j]; c < p.candidate_start[j + 1]; ++c) {
-          const Segment& g = segments_[p.candidates[c]];
-          const double soften = damped_step_factor(*p.definition);
-          const double k4 = 4.0 * p.factor * g.stiffness / (soften * soften);
-          double w = mass[p.slaves[j]] > 0.0 ? k4 / mass[p.slaves[j]] : 0.0;
-          for (int a = 0; a < 4; ++a)
-            if (const double m = mass[static_cast<std::size_t>(g.nodes[a])]; m > 0.0)
-              w = std::max(w, k4 / m);
-          if (w > omega2) omega2 = w, potential_element_ = g.element;
-        }
-    potential_step_ =
-        omega2 > 0.0 ? 2.0 / std::sqrt(omega2) : std::numeric_limits<double>::infinity();
-  }
-  limit.take(potential_step_, potential_element_);
-  stored_ = 0.0;
-  active_ = 0;
-  touched_.clear();
-  const auto touch = [this](std::size_t n, Vec f) {
-    if (!mark_[n]) {
-      mark_[n] = 1;
-      touched_.push_back(n);
-    }
-    force_[3 * n] += f.x;
-    force_[3 * n + 1] += f.y;
-    force_[3 * n + 2] += f.z;
-  };
-  const auto shares_node = [this](std::size_t a, std::size_t b) {
-    for (int i = 0; i < 4; ++i)
-      for (int j = 0; j < 4; ++j)
-        if (segments_[a].nodes[i] == segments_[b].nodes[j]) return true;
-    return false;
-  };
-  for (Pass& p : passes_) {
-    const ExplicitContact& k = *p.definition;
-    const bool on = time >= k.birth && !(k.death > 0.0 && time > k.death);
-    for (std::size_t j = 0; j < p.slaves.size(); ++j) {
-      double* ft = &p.tangential[3 * j];
-      const std::size_t sn = p.slaves[j];
-      const Vec xs{s.x[sn], s.y[sn], s.z[sn]};
-      double best = std::numeric_limits<double>::infinity(), xi = 0, eta = 0;
-      std::size_t chosen = 0;
-      Vec normal{0, 0, 0};
-      // The penetration of the slave behind segment `i`: false when it is not behind it (or
-      // deeper than the segment's depth) or does not project onto it.
-      const auto behind = [&](std::size_t i, double& gap, double& u, double& v, Vec& nrm) {
-        const Segment& g = segments_[i];
-        Vec q[4], centre{0, 0, 0};
-        for (int a = 0; a < 4; ++a) {
-          const auto n = static_cast<std::size_t>(g.nodes[a]);
-          q[a] = {s.x[n], s.y[n], s.z[n]};
-          centre = {centre.x + 0.25 * q[a].x, centre.y + 0.25 * q[a].y, centre.z + 0.25 * q[a].z};
-        }
-        // The face's plane (normal from the diagonals) rules out what lies far from it.
-        const Vec plane = cross(sub(q[2], q[0]), sub(q[3], q[1]));
-        const double len = std::sqrt(dot(plane, plane));
-        if (!(len > 0.0)) return false;
-        const double across = -dot(sub(xs, centre), plane) / len;
-        if (!(across > 0.0) || across > 2.0 * g.depth) return false;
-        gap = across - 1e-4 * g.depth;  // off the face: how far behind its plane
-        local_coordinates(q, xs, u, v);
-        if (!(std::abs(u) <= 1 + kEdgeTolerance && std::abs(v) <= 1 + kEdgeTolerance)) return false;
-        // The gap at the point X(ξ, η) of the bilinear face the slave projects onto, along the
-        // face's normal there: g = −(x_s − X)·n. Its change with a node of the face is N_a n,
-        // the shares the reaction is spread by, so the force is the gradient of ½kg² and the
-        // springs give back what they took. The gap from the centroid's plane instead changes
-        // by ¼ n with each corner: on a warped face (the dished face under an impactor) the
-        // reaction on a corner a slave sits on did four times the work of the spring.
-        Vec x, dxi, deta;
-        surface_point(q, std::clamp(u, -1.0, 1.0), std::clamp(v, -1.0, 1.0), x, dxi, deta);
-        nrm = cross(dxi, deta);
-        const double size = std::sqrt(dot(nrm, nrm));
-        if (!(size > 0.0)) return false;
-        nrm = {nrm.x / size, nrm.y / size, nrm.z / size};
-        // Penetration behind the face, less a sliver (1e-4 of the depth): a node on the edge of a
-        // face it runs along (the side of a body it hits end on) has round-off penetrations of
-        // that side, smaller than its true one; taking the smallest would pick the side.
-        gap = -dot(sub(xs, x), nrm) - 1e-4 * g.depth;
-        return gap > 0.0 && gap <= g.depth;
-      };
-      // Whether the slave was in front of (or on) the plane of segment `i` at x_n.
-      const auto crossed = [&](std::size_t i, double step) {
-        if (!(step > 0.0)) return false;
-        const Segment& g = segments_[i];
-        Vec q[4], centre{0, 0, 0};
-        for (int a = 0; a < 4; ++a) {
-          const auto n = static_cast<std::size_t>(g.nodes[a]);
-          q[a] = {s.x[n] - step * s.vx[n], s.y[n] - step * s.vy[n], s.z[n] - step * s.vz[n]};
-          centre = {centre.x + 0.25 * q[a].x, centre.y + 0.25 * q[a].y, centre.z + 0.25 * q[a].z};
-        }
-        const Vec nrm = cross(sub(q[2], q[0]), sub(q[3], q[1]));
-        const Vec xp{xs.x - step * s.vx[sn], xs.y - step * s.vy[sn], xs.z - step * s.vz[sn]};
-        return dot(sub(xp, centre), nrm) >= -1e-4 * g.depth * std::sqrt(dot(nrm, nrm));
-      };
-      // A slave in contact keeps the segment it came through while it stays behind it and
-      // projects onto it. Choosing afresh each cycle the smallest penetration over all the
-      // segments would let it jump to a face it never crossed (at a corner of the other body,
-      // the side face the slave is a round-off inside of): the spring's energy ½kg² of the face
-      // it came through would vanish in one cycle, energy the contact never gives back.
-      std::size_t& kept = p.kept[j];
-      const std::size_t was = kept;
-      bool slid = false;  // behind its segment's plane still, but no longer over it
-      if (on && kept != kNone) {
-        double gap = -1.0, u, v;
-        Vec nrm;
-        if (behind(kept, gap, u, v, nrm))
-          best = gap, xi = u, eta = v, chosen = kept, normal = nrm;
-        else
-          slid = gap > 0.0 && gap <= segments_[kept].depth;
-      }
-      const bool held = best < std::numeric_limits<double>::infinity();
-      for (std::size_t c = p.candidate_start[j]; on && !held && c < p.candidate_start[j + 1]; ++c) {
+  return std::sqrt(moved) > 0.25 * margin_;
+}
+
+void ExplicitContactSet::search_all(const ExplicitNodalView& s, const double* mass) {
+  for (Pass& p : passes_) search(p, s);
+  x_search_.assign(s.x, s.x + force_.size() / 3);
+  y_search_.assign(s.y, s.y + force_.size() / 3);
+  z_search_.assign(s.z, s.z + force_.size() / 3);
+  started_ = true;
+  ++searches_;
+  // The step the contact will need once the listed pairs touch: a pair's row bound is 2k/m on
+  // either side (see add_contact_force), doubled for a node that is slave in one pass and master
+  // in the other. Without it the first cycle of a stiff contact would run at the elements' step.
+  double omega2 = 0.0;
+  potential_element_ = 0;
+  for (const Pass& p : passes_)
+    for (std::size_t j = 0; j < p.slaves.size(); ++j)
+      for (std::size_t c = p.candidate_start[j]; c < p.candidate_start[j + 1]; ++c) {
         const Segment& g = segments_[p.candidates[c]];
-        bool skip = false;
-        for (int a = 0; a < 4; ++a) {
-          skip = skip || static_cast<std::size_t>(g.nodes[a]) == sn;
-          if (p.single_surface)
-            skip = skip || std::binary_search(p.near.begin() + p.near_start[j],
-                                              p.near.begin() + p.near_start[j + 1], g.nodes[a]);
-        }
-        if (skip) continue;
-        double gap, u, v;
-        Vec nrm;
-        if (!behind(p.candidates[c], gap, u, v, nrm) || gap >= best) continue;
-        // A new contact is a slave that came through the face over this step: it was in front
-        // of the face's plane at x_n = x_{n+1} − dt v_{n+1/2}. A slave found behind a face it
-        // did not cross is inside the other body through another face (near an edge: behind
-        // the side face of a body whose top face it lies on) or was there at the start; a
-        // spring taken up at such a penetration would give back energy it never took. A slave
-        // sliding off its segment onto one sharing a node with it is handed over.
-        if (!(slid && shares_node(was, p.candidates[c])) && !crossed(p.candidates[c], dt)) continue;
-        best = gap, xi = u, eta = v, chosen = p.candidates[c], normal = nrm;
-      }
-      kept = best < std::numeric_limits<double>::infinity() ? chosen : kNone;
-      if (!(best < std::numeric_limits<double>::infinity())) {
-        ft[0] = ft[1] = ft[2] = 0.0;  // out of contact: the friction spring is released
-        continue;
-      }
-      ++active_;
-      const Segment& g = segments_[chosen];
-      double shape[4];
-      Vec vm{0, 0, 0};
-      for (int a = 0; a < 4; ++a) {
-        shape[a] = 0.25 * (1 + kXi[a] * std::clamp(xi, -1.0, 1.0)) *
-                   (1 + kEta[a] * std::clamp(eta, -1.0, 1.0));
-        const auto n = static_cast<std::size_t>(g.nodes[a]);
-        vm = {vm.x + shape[a] * s.vx[n], vm.y + shape[a] * s.vy[n], vm.z + shape[a] * s.vz[n]};
-      }
-      const double stiffness = p.factor * g.stiffness;
-      const Vec vr = sub({s.vx[sn], s.vy[sn], s.vz[sn]}, vm);
-      const double vn = dot(vr, normal);  // > 0: separating
-      double fn = stiffness * best;
-      if (k.viscous_damping > 0.0) {
-        // Viscous contact damping VDC (LS-DYNA Theory Manual, "Contact damping"): the force
-        // −c·v_n along the normal, c = VDC/100 · 2mω, m = min(m_s, m_m), ω² = k(m_s + m_m)/(m_s
-        // m_m), m_m the segment's mass at the projection (Σ N_a m_a). The normal force stays ≥ 0:
-        // the damping slows a separation, it never holds the bodies together.
-        double m_master = 0.0;
+        const double soften = damped_step_factor(*p.definition);
+        const double k4 = 4.0 * p.factor * g.stiffness / (soften * soften);
+        double w = mass[p.slaves[j]] > 0.0 ? k4 / mass[p.slaves[j]] : 0.0;
         for (int a = 0; a < 4; ++a)
-          m_master += shape[a] * mass[static_cast<std::size_t>(g.nodes[a])];
-        const double m_slave = mass[sn];
-        if (m_slave > 0.0 && m_master > 0.0) {
-          const double omega = std::sqrt(stiffness * (m_slave + m_master) / (m_slave * m_master));
-          const double c = 0.02 * k.viscous_damping * std::min(m_slave, m_master) * omega;
-          fn = std::max(0.0, fn - c * vn);
-        }
+          if (const double m = mass[static_cast<std::size_t>(g.nodes[a])]; m > 0.0)
+            w = std::max(w, k4 / m);
+        if (w > omega2) omega2 = w, potential_element_ = g.element;
       }
-      Vec f{fn * normal.x, fn * normal.y, fn * normal.z};
-      stored_ += 0.5 * stiffness * best * best;
-      const double mu_s = k.static_friction, mu_d = k.dynamic_friction;
-      if (mu_s > 0.0 || mu_d > 0.0) {
-        // Elastic-slip friction: the tangential spring (stiffness k) loaded by the relative
-        // tangential motion dt·v_t, its force bounded by μ f_n, μ = FD + (FS − FD) e^{−DC|v_t|}.
-        const Vec vt{vr.x - vn * normal.x, vr.y - vn * normal.y, vr.z - vn * normal.z};
-        const double speed = std::sqrt(dot(vt, vt));
-        const double mu = mu_d + (mu_s - mu_d) * std::exp(-k.decay * speed);
-        Vec t{ft[0], ft[1], ft[2]};
-        const double tn = dot(t, normal);
-        t = {t.x - tn * normal.x - stiffness * dt * vt.x,
-             t.y - tn * normal.y - stiffness * dt * vt.y,
-             t.z - tn * normal.z - stiffness * dt * vt.z};
-        const double size = std::sqrt(dot(t, t)), bound = mu * fn;
-        if (size > bound) t = {t.x * bound / size, t.y * bound / size, t.z * bound / size};
-        ft[0] = t.x, ft[1] = t.y, ft[2] = t.z;
-        stored_ += 0.5 * dot(t, t) / stiffness;
-        f = {f.x + t.x, f.y + t.y, f.z + t.z};
-      }
-      touch(sn, f);
-      // Gershgorin's bound on the largest frequency of M⁻¹K_c: the pair's spring matrix
-      // k[1, −N; −N, NNᵀ] has the absolute row sums 2k (slave) and 2k·N_a (masters).
-      // Damping lowers the spring's stable step by damped_step_factor: as a stiffer spring.
-      const double soften = damped_step_factor(k);
-      const double bound = 2.0 * stiffness / (soften * soften);
-      stiffness_[sn] += bound;
-      for (int a = 0; a < 4; ++a) {
-        touch(static_cast<std::size_t>(g.nodes[a]),
-              {-shape[a] * f.x, -shape[a] * f.y, -shape[a] * f.z});
-        stiffness_[static_cast<std::size_t>(g.nodes[a])] += bound * shape[a];
-      }
-      if (element_ == 0) element_ = g.element;
-    }
+  potential_step_ =
+      omega2 > 0.0 ? 2.0 / std::sqrt(omega2) : std::numeric_limits<double>::infinity();
+}
+
+bool ExplicitContactSet::shares_node(std::size_t a, std::size_t b) const {
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j)
+      if (segments_[a].nodes[i] == segments_[b].nodes[j]) return true;
+  return false;
+}
+
+bool ExplicitContactSet::find_contact(Pass& p, std::size_t j, const ExplicitNodalView& s, bool on,
+                                      double dt, Projection& at) const {
+  const std::size_t sn = p.slaves[j];
+  const Vec xs{s.x[sn], s.y[sn], s.z[sn]};
+  double best = std::numeric_limits<double>::infinity(), xi = 0, eta = 0;
+  std::size_t chosen = 0;
+  Vec normal{0, 0, 0};
+  // A slave in contact keeps the segment it came through while it stays behind it and
+  // projects onto it. Choosing afresh each cycle the smallest penetration over all the
+  // segments would let it jump to a face it never crossed (at a corner of the other body,
+  // the side face the slave is a round-off inside of): the spring's energy ½kg² of the face
+  // it came through would vanish in one cycle, energy the contact never gives back.
+  std::size_t& kept = p.kept[j];
+  const std::size_t was = kept;
+  bool slid = false;  // behind its segment's plane still, but no longer over it
+  if (on && kept != kNone) {
+    double gap = -1.0, u, v;
+    Vec nrm;
+    const Segment& g = segments_[kept];
+    if (behind_segment(g.nodes, g.depth, s, xs, gap, u, v, nrm))
+      best = gap, xi = u, eta = v, chosen = kept, normal = nrm;
+    else
+      slid = gap > 0.0 && gap <= segments_[kept].depth;
   }
-  peak_active_ = std::max(peak_active_, active_);
+  const bool held = best < std::numeric_limits<double>::infinity();
+  for (std::size_t c = p.candidate_start[j]; on && !held && c < p.candidate_start[j + 1]; ++c) {
+    const Segment& g = segments_[p.candidates[c]];
+    bool skip = false;
+    for (int a = 0; a < 4; ++a) {
+      skip = skip || static_cast<std::size_t>(g.nodes[a]) == sn;
+      if (p.single_surface)
+        skip = skip || std::binary_search(p.near.begin() + p.near_start[j],
+                                          p.near.begin() + p.near_start[j + 1], g.nodes[a]);
+    }
+    if (skip) continue;
+    double gap, u, v;
+    Vec nrm;
+    if (!behind_segment(g.nodes, g.depth, s, xs, gap, u, v, nrm) || gap >= best) continue;
+    // A new contact is a slave that came through the face over this step: it was in front
+    // of the face's plane at x_n = x_{n+1} − dt v_{n+1/2}. A slave found behind a face it
+    // did not cross is inside the other body through another face (near an edge: behind
+    // the side face of a body whose top face it lies on) or was there at the start; a
+    // spring taken up at such a penetration would give back energy it never took. A slave
+    // sliding off its segment onto one sharing a node with it is handed over.
+    if (!(slid && shares_node(was, p.candidates[c])) &&
+        !crossed_segment(g.nodes, g.depth, s, sn, xs, dt))
+      continue;
+    best = gap, xi = u, eta = v, chosen = p.candidates[c], normal = nrm;
+  }
+  kept = best < std::numeric_limits<double>::infinity() ? chosen : kNone;
+  if (!(best < std::numeric_limits<double>::infinity())) return false;
+  at = {best, xi, eta, chosen, {normal.x, normal.y, normal.z}};
+  return true;
+}
+
+void ExplicitContactSet::touch(std::size_t n, double fx, double fy, double fz) {
+  if (!mark_[n]) {
+    mark_[n] = 1;
+    touched_.push_back(n);
+  }
+  force_[3 * n] += fx;
+  force_[3 * n + 1] += fy;
+  force_[3 * n + 2] += fz;
+}
+
+void ExplicitContactSet::add_contact_force(Pass& p, std::size_t j, const ExplicitNodalView& s,
+                                           const double* mass, double dt, const Projection& at) {
+  const ExplicitContact& k = *p.definition;
+  const std::size_t sn = p.slaves[j];
+  const double best = at.gap;
+  const Vec normal{at.normal[0], at.normal[1], at.normal[2]};
+  const Segment& g = segments_[at.segment];
+  double shape[4];
+  Vec vm{0, 0, 0};
+  for (int a = 0; a < 4; ++a) {
+    shape[a] = 0.25 * (1 + kXi[a] * std::clamp(at.xi, -1.0, 1.0)) *
+               (1 + kEta[a] * std::clamp(at.eta, -1.0, 1.0));
+    const auto n = static_cast<std::size_t>(g.nodes[a]);
+    vm = {vm.x + shape[a] * s.vx[n], vm.y + shape[a] * s.vy[n], vm.z + shape[a] * s.vz[n]};
+  }
+  const double stiffness = p.factor * g.stiffness;
+  const Vec vr = sub({s.vx[sn], s.vy[sn], s.vz[sn]}, vm);
+  const double vn = dot(vr, normal);  // > 0: separating
+  double fn = stiffness * best;
+  if (k.viscous_damping > 0.0)
+    fn = damped_normal_force(k, fn, vn, stiffness, shape, g.nodes, mass, sn);
+  Vec f{fn * normal.x, fn * normal.y, fn * normal.z};
+  stored_ += 0.5 * stiffness * best * best;
+  if (k.static_friction > 0.0 || k.dynamic_friction > 0.0) {
+    const Vec t =
+        elastic_slip_friction(k, &p.tangential[3 * j], vr, vn, normal, stiffness, fn, dt, stored_);
+    f = {f.x + t.x, f.y + t.y, f.z + t.z};
+  }
+  touch(sn, f.x, f.y, f.z);
+  // Gershgorin's bound on the largest frequency of M⁻¹K_c: the pair's spring matrix
+  // k[1, −N; −N, NNᵀ] has the absolute row sums 2k (slave) and 2k·N_a (masters).
+  // Damping lowers the spring's stable step by damped_step_factor: as a stiffer spring.
+  const double soften = damped_step_factor(k);
+  const double bound = 2.0 * stiffness / (soften * soften);
+  stiffness_[sn] += bound;
+  for (int a = 0; a < 4; ++a) {
+    touch(static_cast<std::size_t>(g.nodes[a]), -shape[a] * f.x, -shape[a] * f.y, -shape[a] * f.z);
+    stiffness_[static_cast<std::size_t>(g.nodes[a])] += bound * shape[a];
+  }
+  if (element_ == 0) element_ = g.element;
+}
+
+void ExplicitContactSet::close_cycle(const ExplicitNodalView& s, const double* mass, double dt,
+                                     ExplicitStepLimit& limit, double* fx, double* fy, double* fz) {
   // Work of the contact forces on the nodes over the step, trapezoidal: ½(f_n + f_{n+1})·dt v;
   // the contact energy is minus it (what the springs hold and friction and damping took).
   double work = 0.0;
@@ -559,6 +594,34 @@ ExplicitStepLimit ExplicitContactSet::add_forces(const ExplicitNodalView& s, con
     mark_[n] = 0;
   }
   touched_before_.swap(touched_);
+}
+
+ExplicitStepLimit ExplicitContactSet::add_forces(const ExplicitNodalView& s, const double* mass,
+                                                 double time, double dt, double* fx, double* fy,
+                                                 double* fz) {
+  ExplicitStepLimit limit;
+  if (passes_.empty()) return limit;
+  if (search_due(s)) search_all(s, mass);
+  limit.take(potential_step_, potential_element_);
+  stored_ = 0.0;
+  active_ = 0;
+  touched_.clear();
+  for (Pass& p : passes_) {
+    const ExplicitContact& k = *p.definition;
+    const bool on = time >= k.birth && !(k.death > 0.0 && time > k.death);
+    for (std::size_t j = 0; j < p.slaves.size(); ++j) {
+      Projection at;
+      if (!find_contact(p, j, s, on, dt, at)) {
+        double* ft = &p.tangential[3 * j];
+        ft[0] = ft[1] = ft[2] = 0.0;  // out of contact: the friction spring is released
+        continue;
+      }
+      ++active_;
+      add_contact_force(p, j, s, mass, dt, at);
+    }
+  }
+  peak_active_ = std::max(peak_active_, active_);
+  close_cycle(s, mass, dt, limit, fx, fy, fz);
   return limit;
 }
 

@@ -18,6 +18,7 @@
 /// sort, O(n log n)) redone only when a node has moved far enough since the last one to reach a
 /// segment it was not listed against; the cycle loops the candidate lists (O(n)). Forces are
 /// summed in a fixed order (slaves ascending, candidates ascending), so runs are repeatable.
+#include <map>
 #include <string>
 #include <vector>
 
@@ -68,7 +69,41 @@ class ExplicitContactSet final : public ExplicitInteraction {
     /// The segment each slave is in contact with (its index in segments_; none when out).
     std::vector<std::size_t> kept;
   };
+  struct Projection;  // a slave's contact point on its segment (explicit_contact.cpp)
+
+  // ---- set-up (the constructor) ----
+  /// The exterior faces of the element sets as segments, their penalty stiffness and depth;
+  /// the search margin.
+  void collect_segments(const ExplicitSystem& system);
+  /// The segments and the slave nodes of a surface named by a part number or a component
+  /// (blank: the whole model).
+  void surface(const Model& model, const ExplicitSystem& system, const std::map<int, int>& part,
+               const ExplicitContact& k, const std::string& name, std::vector<std::size_t>& segs,
+               std::vector<std::size_t>& nodes) const;
+  /// One node-to-surface pass of `k`: `slaves` against `segs`, penalty factor `factor`.
+  void add_pass(const ExplicitContact& k, double factor, bool single,
+                std::vector<std::size_t> slaves, std::vector<std::size_t> segs,
+                std::size_t n_nodes);
+  /// Single surface: the nodes of the segments around each slave of `p` (Pass::near).
+  void list_near_nodes(Pass& p, std::size_t n_nodes) const;
+
+  // ---- a cycle (add_forces) ----
+  /// Whether some node has moved by a quarter of the margin since the last search.
+  bool search_due(const ExplicitNodalView& s) const;
+  /// A new search of every pass, and the step of the pairs it lists.
+  void search_all(const ExplicitNodalView& s, const double* mass);
   void search(Pass& p, const ExplicitNodalView& s) const;
+  bool shares_node(std::size_t a, std::size_t b) const;
+  /// The segment slave j of `p` is in contact with (false when out of contact); updates kept.
+  bool find_contact(Pass& p, std::size_t j, const ExplicitNodalView& s, bool on, double dt,
+                    Projection& at) const;
+  /// The penalty (normal, damping, friction) force of slave j on its segment `at`.
+  void add_contact_force(Pass& p, std::size_t j, const ExplicitNodalView& s, const double* mass,
+                         double dt, const Projection& at);
+  void touch(std::size_t n, double fx, double fy, double fz);
+  /// The contact energy and stable step of the cycle, and the forces onto f_int.
+  void close_cycle(const ExplicitNodalView& s, const double* mass, double dt,
+                   ExplicitStepLimit& limit, double* fx, double* fy, double* fz);
   std::vector<Segment> segments_;
   std::vector<Pass> passes_;
   std::vector<double> x_search_, y_search_, z_search_;  // positions at the last search

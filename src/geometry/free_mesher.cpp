@@ -45,6 +45,49 @@ Vec3 newell_normal(const std::vector<Vec3>& p) {
   return len > 0.0 ? Vec3(n / len) : n;
 }
 
+/// Line `l` as a curve of the Gmsh built-in model between its keypoints' points: straight, a
+/// circular arc under 180 degrees, or a spline through samples; `extra_point` numbers the points
+/// added (arc centres, spline samples).
+void add_geo_curve(const Line& line, int l, int& extra_point) {
+  namespace geo = gmsh::model::geo;
+  const Vec3 a = line_point(line, 0.0), b = line_point(line, 1.0);
+  const double len = std::max(line_length(line), 1e-30);
+  // Straight: every sample on the chord at its own parameter.
+  double off_chord = 0.0;
+  for (int k = 1; k < 8; ++k) {
+    const double s = k / 8.0;
+    off_chord = std::max(off_chord, (line_point(line, s) - (a + s * (b - a))).norm());
+  }
+  if (off_chord <= 1e-9 * len) {
+    geo::addLine(line.kp1, line.kp2, l);
+    return;
+  }
+  // A circular arc under 180 degrees: Gmsh's exact circle; other paths: a spline through
+  // samples of the line.
+  const Vec3 m = line_point(line, 0.5);
+  const auto c = circle_centre(a, m, b);
+  bool arc = c.has_value();
+  if (arc) {
+    const double r = (a - *c).norm();
+    for (int k = 1; k < 8 && arc; ++k)
+      arc = std::abs((line_point(line, k / 8.0) - *c).norm() - r) <= 1e-9 * std::max(r, len);
+    const double sweep = std::acos(std::clamp((a - *c).dot(b - *c) / (r * r), -1.0, 1.0));
+    arc = arc && sweep < 0.99 * M_PI && (m - *c).dot((a + b) / 2.0 - *c) > 0.0;
+  }
+  if (arc) {
+    geo::addPoint(c->x(), c->y(), c->z(), 0.0, ++extra_point);
+    geo::addCircleArc(line.kp1, extra_point, line.kp2, l);
+  } else {
+    std::vector<int> pts{line.kp1};
+    for (int k = 1; k < 32; ++k) {
+      const Vec3 p = line_point(line, k / 32.0);
+      pts.push_back(geo::addPoint(p.x(), p.y(), p.z(), 0.0, ++extra_point));
+    }
+    pts.push_back(line.kp2);
+    geo::addSpline(pts, l);
+  }
+}
+
 }  // namespace
 
 /// Unit normal of an area by its loop direction (Newell's formula over samples of its lines;
@@ -96,7 +139,6 @@ std::map<int, std::vector<std::array<int, 4>>> Mesher::free_area_nodes(
       todo.size() == 1 ? fmt::format("area {}", todo[0]) : fmt::format("{} areas", todo.size());
   GmshSession session("areas");
   namespace geo = gmsh::model::geo;
-  std::map<std::size_t, int> node_of;  // Gmsh node tag -> program node
   std::map<int, std::vector<std::array<int, 4>>> faces_of;
   std::map<int, std::vector<int>> interior_of;
   with_gmsh(where_, "mesh " + what, [&] {
@@ -108,101 +150,9 @@ std::map<int, std::vector<std::array<int, 4>>> Mesher::free_area_nodes(
       const Vec3& x = solid_.keypoints.at(k).x;
       geo::addPoint(x.x(), x.y(), x.z(), 0.0, k);
     }
-    for (int l : lines) {
-      const Line& line = solid_.lines.at(l);
-      const Vec3 a = line_point(line, 0.0), b = line_point(line, 1.0);
-      const double len = std::max(line_length(line), 1e-30);
-      // Straight: every sample on the chord at its own parameter.
-      double off_chord = 0.0;
-      for (int k = 1; k < 8; ++k) {
-        const double s = k / 8.0;
-        off_chord = std::max(off_chord, (line_point(line, s) - (a + s * (b - a))).norm());
-      }
-      if (off_chord <= 1e-9 * len) {
-        geo::addLine(line.kp1, line.kp2, l);
-        continue;
-      }
-      // A circular arc under 180 degrees: Gmsh's exact circle; other paths: a spline through
-      // samples of the line.
-      const Vec3 m = line_point(line, 0.5);
-      const auto c = circle_centre(a, m, b);
-      bool arc = c.has_value();
-      if (arc) {
-        const double r = (a - *c).norm();
-        for (int k = 1; k < 8 && arc; ++k)
-          arc = std::abs((line_point(line, k / 8.0) - *c).norm() - r) <= 1e-9 * std::max(r, len);
-        const double sweep = std::acos(std::clamp((a - *c).dot(b - *c) / (r * r), -1.0, 1.0));
-        arc = arc && sweep < 0.99 * M_PI && (m - *c).dot((a + b) / 2.0 - *c) > 0.0;
-      }
-      if (arc) {
-        geo::addPoint(c->x(), c->y(), c->z(), 0.0, ++extra_point);
-        geo::addCircleArc(line.kp1, extra_point, line.kp2, l);
-      } else {
-        std::vector<int> pts{line.kp1};
-        for (int k = 1; k < 32; ++k) {
-          const Vec3 p = line_point(line, k / 32.0);
-          pts.push_back(geo::addPoint(p.x(), p.y(), p.z(), 0.0, ++extra_point));
-        }
-        pts.push_back(line.kp2);
-        geo::addSpline(pts, l);
-      }
-    }
+    for (int l : lines) add_geo_curve(solid_.lines.at(l), l, extra_point);
     int loop_tag = 0;
-    for (int a : todo) {
-      const Area& area = solid_.areas.at(a);
-      // The boundary's closed loops (an area read from a CAD file may have holes): the one
-      // with the largest extent is the outer one, Gmsh's first.
-      std::vector<std::vector<int>> loops;
-      std::vector<int> current;
-      int start = 0;
-      for (int sl : area.lines) {
-        const Line& line = solid_.lines.at(std::abs(sl));
-        const int from = sl > 0 ? line.kp1 : line.kp2, to = sl > 0 ? line.kp2 : line.kp1;
-        if (current.empty()) start = from;
-        current.push_back(sl);
-        if (to == start) loops.push_back(std::exchange(current, {}));
-      }
-      if (!current.empty()) fail(fmt::format("area {}: its lines do not close into loops", a));
-      auto extent = [&](const std::vector<int>& loop) {
-        Eigen::AlignedBox3d box;
-        for (int sl : loop) {
-          const Line& line = solid_.lines.at(std::abs(sl));
-          box.extend(solid_.keypoints.at(line.kp1).x);
-          box.extend(solid_.keypoints.at(line.kp2).x);
-        }
-        return box.diagonal().norm();
-      };
-      std::stable_sort(loops.begin(), loops.end(),
-                       [&](const auto& p, const auto& q) { return extent(p) > extent(q); });
-      std::vector<int> wires;
-      for (const auto& loop : loops) wires.push_back(geo::addCurveLoop(loop, ++loop_tag));
-      // Planar (every boundary sample within 1e-9 of the longest line from the loop's plane):
-      // a plane surface; otherwise a 3- or 4-sided area is the transfinite (Coons) patch of
-      // its boundary, as the mapped mesher takes it.
-      std::vector<Vec3> boundary;
-      for (int sl : loops.front()) {
-        const Line& line = solid_.lines.at(std::abs(sl));
-        for (int k = 0; k < 8; ++k)
-          boundary.push_back(line_point(line, sl > 0 ? k / 8.0 : 1.0 - k / 8.0));
-      }
-      const Vec3 n = newell_normal(boundary);
-      double off_plane = 0.0;
-      for (int sl : area.lines)
-        for (int k = 0; k <= 8; ++k)
-          off_plane = std::max(
-              off_plane,
-              std::abs(n.dot(line_point(solid_.lines.at(std::abs(sl)), k / 8.0) - boundary[0])));
-      if (off_plane <= 1e-9 * std::max(longest, 1e-30)) {
-        geo::addPlaneSurface(wires, a);
-      } else if (loops.size() == 1 && area.lines.size() <= 4) {
-        geo::addSurfaceFilling(wires, a);
-      } else {
-        fail(
-            fmt::format("area {} is not planar and has {} sides: free meshing takes planar "
-                        "areas or curved ones with 3 or 4 sides",
-                        a, area.lines.size()));
-      }
-    }
+    for (int a : todo) add_free_surface(a, longest, loop_tag);
     geo::synchronize();
     for (int l : lines) {
       const Line& line = solid_.lines.at(l);
@@ -218,55 +168,7 @@ std::map<int, std::vector<std::array<int, 4>>> Mesher::free_area_nodes(
       for (int a : todo) gmsh::model::mesh::setRecombine(2, a);
     }
     gmsh::model::mesh::generate(2);
-
-    std::vector<std::size_t> tags;
-    std::vector<double> xyz, par;
-    for (int k : kps) {
-      gmsh::model::mesh::getNodes(tags, xyz, par, 0, k, false, false);
-      for (std::size_t t : tags) node_of[t] = keypoint_node(k);
-    }
-    for (int l : lines) {
-      gmsh::model::mesh::getNodes(tags, xyz, par, 1, l, false, true);
-      const std::vector<int>& nodes = solid_.lines.at(l).nodes;
-      if (tags.size() + 2 != nodes.size())
-        fail(fmt::format("Gmsh put {} nodes inside line {}, which has {}", tags.size(), l,
-                         nodes.size() - 2));
-      std::vector<std::size_t> order(tags.size());
-      for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-      std::sort(order.begin(), order.end(),
-                [&](std::size_t i, std::size_t j) { return par[i] < par[j]; });
-      for (std::size_t i = 0; i < order.size(); ++i) node_of[tags[order[i]]] = nodes[i + 1];
-    }
-    for (int a : todo) {
-      gmsh::model::mesh::getNodes(tags, xyz, par, 2, a, false, false);
-      for (std::size_t i = 0; i < tags.size(); ++i) {
-        const int id = add_node(Vec3(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]));
-        node_of[tags[i]] = id;
-        interior_of[a].push_back(id);
-      }
-      std::vector<int> types;
-      std::vector<std::vector<std::size_t>> etags, enodes;
-      gmsh::model::mesh::getElements(types, etags, enodes, 2, a);
-      const Vec3 n = area_normal(a);
-      for (std::size_t t = 0; t < types.size(); ++t) {
-        const std::size_t nn = types[t] == 2 ? 3 : types[t] == 3 ? 4 : 0;
-        if (nn == 0) fail(fmt::format("Gmsh made elements of type {} on area {}", types[t], a));
-        for (std::size_t e = 0; e * nn < enodes[t].size(); ++e) {
-          std::array<int, 4> f{};
-          for (std::size_t k = 0; k < nn; ++k) f[k] = node_of.at(enodes[t][e * nn + k]);
-          // Oriented by the area's loop (the element normal of MAPDL's area meshes).
-          const Vec3 x0 = model_.nodes.at(f[0]).x, x1 = model_.nodes.at(f[1]).x,
-                     x2 = model_.nodes.at(f[2]).x;
-          if (n.squaredNorm() > 0.0 && (x1 - x0).cross(x2 - x0).dot(n) < 0.0) {
-            if (nn == 3)
-              std::swap(f[1], f[2]);
-            else
-              std::swap(f[1], f[3]);
-          }
-          faces_of[a].push_back(f);
-        }
-      }
-    }
+    read_free_area_mesh(todo, lines, kps, faces_of, interior_of);
   });
   for (int a : todo) {
     Area& area = solid_.areas.at(a);
@@ -280,6 +182,118 @@ std::map<int, std::vector<std::array<int, 4>>> Mesher::free_area_nodes(
     area.interior_nodes = std::move(interior_of[a]);
   }
   return faces_of;
+}
+
+void Mesher::add_free_surface(int a, double longest, int& loop_tag) const {
+  namespace geo = gmsh::model::geo;
+  const Area& area = solid_.areas.at(a);
+  // The boundary's closed loops (an area read from a CAD file may have holes): the one
+  // with the largest extent is the outer one, Gmsh's first.
+  std::vector<std::vector<int>> loops;
+  std::vector<int> current;
+  int start = 0;
+  for (int sl : area.lines) {
+    const Line& line = solid_.lines.at(std::abs(sl));
+    const int from = sl > 0 ? line.kp1 : line.kp2, to = sl > 0 ? line.kp2 : line.kp1;
+    if (current.empty()) start = from;
+    current.push_back(sl);
+    if (to == start) loops.push_back(std::exchange(current, {}));
+  }
+  if (!current.empty()) fail(fmt::format("area {}: its lines do not close into loops", a));
+  auto extent = [&](const std::vector<int>& loop) {
+    Eigen::AlignedBox3d box;
+    for (int sl : loop) {
+      const Line& line = solid_.lines.at(std::abs(sl));
+      box.extend(solid_.keypoints.at(line.kp1).x);
+      box.extend(solid_.keypoints.at(line.kp2).x);
+    }
+    return box.diagonal().norm();
+  };
+  std::stable_sort(loops.begin(), loops.end(),
+                   [&](const auto& p, const auto& q) { return extent(p) > extent(q); });
+  std::vector<int> wires;
+  for (const auto& loop : loops) wires.push_back(geo::addCurveLoop(loop, ++loop_tag));
+  // Planar (every boundary sample within 1e-9 of the longest line from the loop's plane):
+  // a plane surface; otherwise a 3- or 4-sided area is the transfinite (Coons) patch of
+  // its boundary, as the mapped mesher takes it.
+  std::vector<Vec3> boundary;
+  for (int sl : loops.front()) {
+    const Line& line = solid_.lines.at(std::abs(sl));
+    for (int k = 0; k < 8; ++k)
+      boundary.push_back(line_point(line, sl > 0 ? k / 8.0 : 1.0 - k / 8.0));
+  }
+  const Vec3 n = newell_normal(boundary);
+  double off_plane = 0.0;
+  for (int sl : area.lines)
+    for (int k = 0; k <= 8; ++k)
+      off_plane = std::max(
+          off_plane,
+          std::abs(n.dot(line_point(solid_.lines.at(std::abs(sl)), k / 8.0) - boundary[0])));
+  if (off_plane <= 1e-9 * std::max(longest, 1e-30)) {
+    geo::addPlaneSurface(wires, a);
+  } else if (loops.size() == 1 && area.lines.size() <= 4) {
+    geo::addSurfaceFilling(wires, a);
+  } else {
+    fail(
+        fmt::format("area {} is not planar and has {} sides: free meshing takes planar "
+                    "areas or curved ones with 3 or 4 sides",
+                    a, area.lines.size()));
+  }
+}
+
+void Mesher::read_free_area_mesh(const std::vector<int>& todo, const std::set<int>& lines,
+                                 const std::set<int>& kps,
+                                 std::map<int, std::vector<std::array<int, 4>>>& faces_of,
+                                 std::map<int, std::vector<int>>& interior_of) {
+  std::map<std::size_t, int> node_of;  // Gmsh node tag -> program node
+  std::vector<std::size_t> tags;
+  std::vector<double> xyz, par;
+  for (int k : kps) {
+    gmsh::model::mesh::getNodes(tags, xyz, par, 0, k, false, false);
+    for (std::size_t t : tags) node_of[t] = keypoint_node(k);
+  }
+  for (int l : lines) {
+    gmsh::model::mesh::getNodes(tags, xyz, par, 1, l, false, true);
+    const std::vector<int>& nodes = solid_.lines.at(l).nodes;
+    if (tags.size() + 2 != nodes.size())
+      fail(fmt::format("Gmsh put {} nodes inside line {}, which has {}", tags.size(), l,
+                       nodes.size() - 2));
+    std::vector<std::size_t> order(tags.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::sort(order.begin(), order.end(),
+              [&](std::size_t i, std::size_t j) { return par[i] < par[j]; });
+    for (std::size_t i = 0; i < order.size(); ++i) node_of[tags[order[i]]] = nodes[i + 1];
+  }
+  for (int a : todo) {
+    gmsh::model::mesh::getNodes(tags, xyz, par, 2, a, false, false);
+    for (std::size_t i = 0; i < tags.size(); ++i) {
+      const int id = add_node(Vec3(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]));
+      node_of[tags[i]] = id;
+      interior_of[a].push_back(id);
+    }
+    std::vector<int> types;
+    std::vector<std::vector<std::size_t>> etags, enodes;
+    gmsh::model::mesh::getElements(types, etags, enodes, 2, a);
+    const Vec3 n = area_normal(a);
+    for (std::size_t t = 0; t < types.size(); ++t) {
+      const std::size_t nn = types[t] == 2 ? 3 : types[t] == 3 ? 4 : 0;
+      if (nn == 0) fail(fmt::format("Gmsh made elements of type {} on area {}", types[t], a));
+      for (std::size_t e = 0; e * nn < enodes[t].size(); ++e) {
+        std::array<int, 4> f{};
+        for (std::size_t k = 0; k < nn; ++k) f[k] = node_of.at(enodes[t][e * nn + k]);
+        // Oriented by the area's loop (the element normal of MAPDL's area meshes).
+        const Vec3 x0 = model_.nodes.at(f[0]).x, x1 = model_.nodes.at(f[1]).x,
+                   x2 = model_.nodes.at(f[2]).x;
+        if (n.squaredNorm() > 0.0 && (x1 - x0).cross(x2 - x0).dot(n) < 0.0) {
+          if (nn == 3)
+            std::swap(f[1], f[2]);
+          else
+            std::swap(f[1], f[3]);
+        }
+        faces_of[a].push_back(f);
+      }
+    }
+  }
 }
 
 std::vector<std::array<int, 4>> Mesher::existing_area_faces(int id) const {
@@ -364,13 +378,8 @@ void Mesher::mesh_area_free(int id) {
   for (int n : take_created_midside_nodes()) meshed.interior_nodes.push_back(n);
 }
 
-void Mesher::mesh_volume_free(int id) {
+std::vector<std::array<int, 3>> Mesher::volume_boundary_triangles(int id) {
   const Volume& volume = solid_.volumes.at(id);
-  const Attributes attr = resolve(volume.attr);
-  const ElementTypeDescriptor& d = descriptor(attr.type);
-  const VtkCell cell = d.topology().linear;
-  if (cell != VtkCell::Tetra && cell != VtkCell::Hexahedron)
-    fail(fmt::format("element type {} ({}) cannot be a tetrahedron", attr.type, d.name));
   // The boundary: every area meshed with triangles (new ones by Gmsh, existing ones reused).
   std::vector<int> meshed_before;
   for (int a : volume.areas)
@@ -394,12 +403,15 @@ void Mesher::mesh_volume_free(int id) {
                         a, id));
       triangles.push_back({f[0], f[1], f[2]});
     }
+  return triangles;
+}
+
+void Mesher::fill_with_tetrahedra(int id, const std::vector<std::array<int, 3>>& triangles,
+                                  std::vector<int>& interior,
+                                  std::vector<std::array<int, 4>>& tets) {
   std::set<int> boundary_nodes;
   for (const auto& t : triangles) boundary_nodes.insert(t.begin(), t.end());
-
   GmshSession session("volume");
-  std::vector<int> interior;
-  std::vector<std::array<int, 4>> tets;
   with_gmsh(where_, fmt::format("mesh volume {}", id), [&] {
     gmsh::model::addDiscreteEntity(2, 1);
     std::vector<std::size_t> tags;
@@ -477,6 +489,19 @@ void Mesher::mesh_volume_free(int id) {
       tets.push_back(t);
     }
   });
+}
+
+void Mesher::mesh_volume_free(int id) {
+  const Volume& volume = solid_.volumes.at(id);
+  const Attributes attr = resolve(volume.attr);
+  const ElementTypeDescriptor& d = descriptor(attr.type);
+  const VtkCell cell = d.topology().linear;
+  if (cell != VtkCell::Tetra && cell != VtkCell::Hexahedron)
+    fail(fmt::format("element type {} ({}) cannot be a tetrahedron", attr.type, d.name));
+  const std::vector<std::array<int, 3>> triangles = volume_boundary_triangles(id);
+  std::vector<int> interior;
+  std::vector<std::array<int, 4>> tets;
+  fill_with_tetrahedra(id, triangles, interior, tets);
   if (d.topology().midside_nodes > 0)
     for (int a : volume.areas)
       for (int line : solid_.areas.at(a).lines) index_line_edges(std::abs(line));

@@ -11,6 +11,7 @@
 #include <array>
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -149,6 +150,21 @@ class Mesher {
   /// the area's loop; a triangle's fourth entry is 0).
   std::map<int, std::vector<std::array<int, 4>>> free_area_nodes(const std::vector<int>& areas,
                                                                  bool quads);
+  /// free_area_nodes' Gmsh model: the plane or filling surface of area `a` on its loops (the
+  /// curves exist); `loop_tag` numbers the curve loops.
+  void add_free_surface(int a, double longest, int& loop_tag) const;
+  /// free_area_nodes' mesh back from Gmsh: the curve nodes onto the keypoints' and lines'
+  /// nodes, new nodes inside the areas, and the areas' faces.
+  void read_free_area_mesh(const std::vector<int>& todo, const std::set<int>& lines,
+                           const std::set<int>& kps,
+                           std::map<int, std::vector<std::array<int, 4>>>& faces_of,
+                           std::map<int, std::vector<int>>& interior_of);
+  /// The triangles of the areas of volume `id` (free meshed now, or meshed before).
+  std::vector<std::array<int, 3>> volume_boundary_triangles(int id);
+  /// Gmsh's tetrahedra inside the closed triangulation `triangles` of volume `id`: its new
+  /// (interior) nodes and the tetrahedra, positive volume.
+  void fill_with_tetrahedra(int id, const std::vector<std::array<int, 3>>& triangles,
+                            std::vector<int>& interior, std::vector<std::array<int, 4>>& tets);
   /// Unit normal of an area by its loop direction (the normal of its area elements).
   Vec3 area_normal(int id) const;
   /// Faces of an area meshed before: its area elements, else the faces of the volumes' elements

@@ -403,12 +403,10 @@ std::string table_name(const MaterialTable& t) {
   return t.label == "PLAS" ? "TB,PLAS,,,," + t.option : "TB," + t.label;
 }
 
-}  // namespace
-
-std::optional<J2Plasticity> plasticity_of(const Model& model, const ElementRecord& record,
-                                          double young, double poisson, bool implicit) {
-  const MaterialTable* table = nullptr;
-  const MaterialTable* creep = nullptr;
+/// The plasticity table (TB,PLAS, BISO, BKIN, MISO, MKIN, KINH) and the creep table of the
+/// element's material; TB,HILL is checked to be von Mises's potential.
+void plasticity_tables_of(const Model& model, const ElementRecord& record,
+                          const MaterialTable*& table, const MaterialTable*& creep) {
   for (const auto& [key, t] : model.material_tables) {
     if (key.first == record.mat && is_plasticity_table(t.label)) table = &t;
     if (key.first == record.mat && t.label == "CREEP") creep = &t;
@@ -425,27 +423,74 @@ std::optional<J2Plasticity> plasticity_of(const Model& model, const ElementRecor
                                               record.mat, record.id));
     }
   }
-  if (creep) {
-    const auto fail = [&](const std::string& what) {
-      throw InputError(creep->where, fmt::format("material {} (TB,CREEP,,,,{}, used by element "
-                                                 "{}): {}",
-                                                 record.mat, creep->option, record.id, what));
-    };
-    if (table)
-      fail(fmt::format("creep combined with {} plasticity (TB at {}:{}) is not implemented",
-                       table_name(*table), table->where.file, table->where.line));
-    if (!implicit) fail("implicit creep is not available in explicit dynamics");
-    CreepLaw law;
-    law.option = std::stoi(creep->option);
-    law.c = creep->temperatures.front().constants;
-    if (!(law.constant(1) > 0.0))
-      fail(fmt::format("C1 (TBDATA 1) is {} (must be positive)", law.constant(1)));
-    if ((law.option == 2 || law.option == 6 || law.option == 11) && law.constant(3) <= -1.0)
-      fail(fmt::format("C3 = {} must be greater than −1 (time exponent)", law.constant(3)));
-    if (law.option == 7 && law.constant(3) <= -1.0)
-      fail(fmt::format("C3 = {} must be greater than −1", law.constant(3)));
-    return J2Plasticity::creep(young, poisson, std::move(law), model.creep_clock);
+}
+
+/// Implicit creep (TB,CREEP): the law's option and constants, checked.
+J2Plasticity creep_of(const Model& model, const ElementRecord& record, const MaterialTable* creep,
+                      const MaterialTable* table, double young, double poisson, bool implicit) {
+  const auto fail = [&](const std::string& what) {
+    throw InputError(creep->where, fmt::format("material {} (TB,CREEP,,,,{}, used by element "
+                                               "{}): {}",
+                                               record.mat, creep->option, record.id, what));
+  };
+  if (table)
+    fail(fmt::format("creep combined with {} plasticity (TB at {}:{}) is not implemented",
+                     table_name(*table), table->where.file, table->where.line));
+  if (!implicit) fail("implicit creep is not available in explicit dynamics");
+  CreepLaw law;
+  law.option = std::stoi(creep->option);
+  law.c = creep->temperatures.front().constants;
+  if (!(law.constant(1) > 0.0))
+    fail(fmt::format("C1 (TBDATA 1) is {} (must be positive)", law.constant(1)));
+  if ((law.option == 2 || law.option == 6 || law.option == 11) && law.constant(3) <= -1.0)
+    fail(fmt::format("C3 = {} must be greater than −1 (time exponent)", law.constant(3)));
+  if (law.option == 7 && law.constant(3) <= -1.0)
+    fail(fmt::format("C3 = {} must be greater than −1", law.constant(3)));
+  return J2Plasticity::creep(young, poisson, std::move(law), model.creep_clock);
+}
+
+/// The hardening curve of MISO as (plastic strain, stress) points, checked: TB,PLAS,,,,MISO
+/// points are (plastic strain, stress); legacy TB,MISO points are (total strain, stress) with the
+/// first on the elastic line, converted by ε_p = ε − σ/E (spec §6.3).
+template <class Fail>
+std::vector<std::pair<double, double>> multilinear_curve(const MaterialTable& table, double young,
+                                                         const Fail& fail) {
+  std::vector<std::pair<double, double>> curve = table.temperatures.front().points;
+  if (curve.empty()) fail("no stress-strain points (TBPT)");
+  if (table.label == "MISO") {
+    const auto [e1, s1] = curve.front();
+    if (!(e1 > 0.0) || std::abs(s1 / e1 - young) > 1e-3 * young)
+      fail(
+          fmt::format("the first point ({}, {}) must lie on the elastic line (slope {} ≠ EX = "
+                      "{})",
+                      e1, s1, e1 > 0.0 ? s1 / e1 : 0.0, young));
+    for (auto& [eps, sig] : curve) eps -= sig / young;
+    curve.front().first = 0.0;
   }
+  if (std::abs(curve.front().first) > 1e-12)
+    fail(fmt::format("the first point must be at plastic strain 0 (it is at {})",
+                     curve.front().first));
+  curve.front().first = 0.0;
+  if (!(curve.front().second > 0.0))
+    fail(fmt::format("the yield stress (first point) is {} (must be positive)",
+                     curve.front().second));
+  for (std::size_t j = 1; j < curve.size(); ++j)
+    if (!(curve[j].first > curve[j - 1].first) || curve[j].second < curve[j - 1].second)
+      fail(
+          fmt::format("point {} ({}, {}): plastic strain must increase and stress must not "
+                      "fall (softening is not supported)",
+                      j + 1, curve[j].first, curve[j].second));
+  return curve;
+}
+
+}  // namespace
+
+std::optional<J2Plasticity> plasticity_of(const Model& model, const ElementRecord& record,
+                                          double young, double poisson, bool implicit) {
+  const MaterialTable* table = nullptr;
+  const MaterialTable* creep = nullptr;
+  plasticity_tables_of(model, record, table, creep);
+  if (creep) return creep_of(model, record, creep, table, young, poisson, implicit);
   if (!table) return std::nullopt;
   const std::string name = table_name(*table);
   const auto fail = [&](const std::string& what) {
@@ -478,34 +523,7 @@ std::optional<J2Plasticity> plasticity_of(const Model& model, const ElementRecor
                        young));
     return J2Plasticity::bilinear(young, poisson, sy, et, law == "BKIN");
   }
-  // MISO: TB,PLAS,,,,MISO points are (plastic strain, stress); legacy TB,MISO points are (total
-  // strain, stress) with the first on the elastic line, converted by ε_p = ε − σ/E (spec §6.3).
-  std::vector<std::pair<double, double>> curve = data.points;
-  if (curve.empty()) fail("no stress-strain points (TBPT)");
-  if (table->label == "MISO") {
-    const auto [e1, s1] = curve.front();
-    if (!(e1 > 0.0) || std::abs(s1 / e1 - young) > 1e-3 * young)
-      fail(
-          fmt::format("the first point ({}, {}) must lie on the elastic line (slope {} ≠ EX = "
-                      "{})",
-                      e1, s1, e1 > 0.0 ? s1 / e1 : 0.0, young));
-    for (auto& [eps, sig] : curve) eps -= sig / young;
-    curve.front().first = 0.0;
-  }
-  if (std::abs(curve.front().first) > 1e-12)
-    fail(fmt::format("the first point must be at plastic strain 0 (it is at {})",
-                     curve.front().first));
-  curve.front().first = 0.0;
-  if (!(curve.front().second > 0.0))
-    fail(fmt::format("the yield stress (first point) is {} (must be positive)",
-                     curve.front().second));
-  for (std::size_t j = 1; j < curve.size(); ++j)
-    if (!(curve[j].first > curve[j - 1].first) || curve[j].second < curve[j - 1].second)
-      fail(
-          fmt::format("point {} ({}, {}): plastic strain must increase and stress must not "
-                      "fall (softening is not supported)",
-                      j + 1, curve[j].first, curve[j].second));
-  return J2Plasticity::multilinear(young, poisson, std::move(curve));
+  return J2Plasticity::multilinear(young, poisson, multilinear_curve(*table, young, fail));
 }
 
 // ---- flat forms of the committed states (restart files) ----------------------------------------
