@@ -190,6 +190,13 @@ def test_command_line_errors_exit_1_with_the_usage_line(binary):
         p = run([binary] + args, expect=1)
         assert p.stderr.startswith("error: ") and "usage: impactfe" in p.stderr, (args, p.stderr)
     assert run([binary, "run", "--help"]).stdout.startswith("run an APDL deck")
+    # The usage line names every subcommand of --help; a word that is none is said to be none.
+    listed = re.search(r"Subcommands:\n((?:  \S+ .*\n)+)", run([binary, "--help"]).stdout)
+    names = [line.split()[0] for line in listed.group(1).splitlines()]
+    assert "mesh" in names, names
+    p = run([binary, "frobnicate", "x.inp"], expect=1)
+    assert p.stderr.startswith("error: 'frobnicate' is not a subcommand of impactfe\n"), p.stderr
+    assert f"usage: impactfe {{{'|'.join(names)}}} ..." in p.stderr, p.stderr
 
 
 def _interrupt(binary, deck, out, sig, jobname="progress"):
