@@ -135,6 +135,28 @@ def test_progress_line_of_a_reduced_transient(binary, tmp_path):
     assert "status changes" not in "".join(lines)
 
 
+def test_progress_line_of_an_explicit_run(binary, tmp_path):
+    """An explicit (central difference) run shows its cycles, time step and energy error, within
+    an 80-column terminal; the last line is the end of the run."""
+    text = open(os.path.join(DECKS, "..", "verification", "explicit_bar_wave_solid164.inp")).read()
+    deck = tmp_path / "wave.inp"
+    deck.write_text(text.replace("TIME,3.0E-4", "TIME,1.0E-2"))  # about a second of cycles
+    status, text = _run_on_terminal(binary, str(deck), str(tmp_path / "explicit"), columns=80)
+    assert status == 0, text
+    lines = [s for s in _lines(text) if s.startswith(("explicit dynamics", "t "))]
+    assert len(lines) >= 2, text
+    assert all(len(s) <= 79 for s in lines), lines
+    pat = re.compile(r"(explicit dynamics \| )?t (\S+)/0\.01 \| (ls 1 |load step 1 )?cycle (\d+)"
+                     r"( \| dt \S+)?( \| (energy error|err) \S+ %)?")
+    seen = [pat.match(s) for s in lines]
+    assert all(seen), lines
+    cycles = [int(m.group(4)) for m in seen]
+    assert cycles == sorted(cycles) and cycles[-1] > cycles[0], lines
+    assert abs(float(seen[-1].group(2)) - 0.01) < 1e-12, lines[-1]
+    assert any("err" in s for s in lines), lines
+    assert "iter" not in "".join(lines) and "chg" not in "".join(lines)
+
+
 def test_no_progress_line_without_a_terminal(binary, tmp_path):
     deck = _deck(tmp_path, 2000)
     p = run([binary, "run", deck, "-o", str(tmp_path / "pipe")])
