@@ -255,6 +255,11 @@ def test_interrupted_run_stops_cleanly(binary, tmp_path, sig, status):
     assert code == status, stderr
     name = "SIGINT" if sig == signal.SIGINT else "SIGTERM"
     assert "stopping after the current substep" in stderr, stderr
+    # The message names what came (Ctrl-C only for SIGINT); off a terminal no empty line.
+    received = "interrupt received" if sig == signal.SIGINT else "SIGTERM received"
+    assert f"impactfe: {received}: stopping" in stderr, stderr
+    assert ("Ctrl-C" in stderr) == (sig == signal.SIGINT), stderr
+    assert "\n\n" not in stderr and not stderr.startswith("\n"), repr(stderr)
     m = re.search(rf"impactfe: interrupted by {name} at t = (\S+) \(load step 1, substep "
                   r"(\d+)\)", stderr)
     assert m, stderr
