@@ -17,7 +17,8 @@ const ENERGY_LABELS = {
   gap_work: 'Gap work Wg',
   dissipation: 'Damping dissipation D',
   plastic_work: 'Plastic work Wp',
-  numerical_dissipation: 'Numerical dissipation W − (T+U+Wg+D+Wp)',
+  numerical_dissipation: 'Numerical dissipation T0 + W − (T+U+Wg+D+Wp)',
+  initial_kinetic: 'Initial kinetic energy T0 (IC)',
 };
 
 const ATTRIBUTE_LABELS = {
@@ -100,12 +101,16 @@ function energy(section, data, plots) {
     section.appendChild(grid);
     plots.add(grid, fig);
     const f = e.final;
-    const w = f.external_work;
-    const rows = Object.entries(f).map(([k, v]) => [ENERGY_LABELS[k] || k, fmt(v, 5), w ? `${fmt((100 * v) / w, 3)} %` : '–']);
-    section.appendChild(el('p', { class: 'table-caption' }, `Energies at the end, t = ${fmt(e.time_final, 6)} (share of the external work):`));
-    section.appendChild(table(['Term', 'Value', 'Share of W'], rows, 'data narrow'));
+    // The energy put in: the external work and the kinetic energy of the initial velocities.
+    const t0 = f.initial_kinetic || 0;
+    const w = (f.external_work || 0) + t0;
+    const input = t0 ? 'T0 + W' : 'W';
+    const order = ['initial_kinetic', ...Object.keys(f).filter((k) => k !== 'initial_kinetic')];
+    const rows = order.filter((k) => k in f).map((k) => [ENERGY_LABELS[k] || k, fmt(f[k], 5), w ? `${fmt((100 * f[k]) / w, 3)} %` : '–']);
+    section.appendChild(el('p', { class: 'table-caption' }, `Energies at the end, t = ${fmt(e.time_final, 6)} (share of the energy put in, ${input}):`));
+    section.appendChild(table(['Term', 'Value', `Share of ${input}`], rows, 'data narrow'));
     const share = w ? Math.abs(f.numerical_dissipation / w) : 0;
-    if (share > 0.05) section.appendChild(el('p', { class: 'warning' }, `The time integrator removed ${fmt(100 * share, 3)} % of the external work (numerical dissipation above 5 %): a smaller time step or another integrator (Newmark, HHT-α) gives a more faithful balance.`));
+    if (share > 0.05) section.appendChild(el('p', { class: 'warning' }, `The time integrator removed ${fmt(100 * share, 3)} % of the energy put in (numerical dissipation above 5 %): a smaller time step or another integrator (Newmark, HHT-α) gives a more faithful balance.`));
   }
 }
 

@@ -8,6 +8,7 @@
 
 #include "analysis/analyses.h"
 #include "analysis/direct_solution.h"
+#include "analysis/progress.h"
 #include "analysis/superelement_expansion.h"
 #include "core/interruption.h"
 #include "core/job_lock.h"
@@ -328,8 +329,27 @@ void JobSession::run_whole(const Job::Step& step, AnalysisStatistics& stats) {
   const AnalysisRequest& request = *step.analysis;
   if (explicit_) {
     stats.description = "explicit dynamics (central difference)";
-    const ExplicitRunSummary summary = run_explicit_analysis(
-        *models_.back(), request, *writer_, {.accept_energy_error = settings_.accept_energy_error});
+    ExplicitRunOptions options{.accept_energy_error = settings_.accept_energy_error};
+    if (ProgressObserver* observer = settings_.progress)
+      options.progress = [observer](const ExplicitProgress& p) {
+        ProgressEvent e;
+        e.analysis = "explicit dynamics";
+        e.time = p.time;
+        e.time_end = p.load_step_end;
+        e.load_step = p.load_step;
+        // No substeps: the end of a load step counts as its last one (always drawn).
+        e.substep = p.last_of_load_step ? 1 : 0;
+        e.substeps = 1;
+        e.dt = p.dt;
+        e.status_changes = -1;
+        e.substeps_left = 0;  // the estimate runs to the end of the last load step
+        e.run_time_end = p.run_end;
+        e.cycles = p.cycles;
+        e.energy_error = p.energy_error;
+        observer->substep_done(e);
+      };
+    const ExplicitRunSummary summary =
+        run_explicit_analysis(*models_.back(), request, *writer_, options);
     stats.n_load_steps = static_cast<int>(request.load_steps.size());
     stats.n_substeps = static_cast<int>(summary.cycles);
     stats.n_stored = summary.stored_points;

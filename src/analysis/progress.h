@@ -1,6 +1,7 @@
 #pragma once
 /// Progress of a running analysis, reported through an observer that the program (the CLI)
 /// implements: libraries never print. Drivers call it after every converged substep.
+#include <limits>
 #include <string>
 
 namespace impactfe {
@@ -19,6 +20,12 @@ struct ProgressEvent {
   /// (later SOLVEs of the deck are not read yet); -1 when not counted.
   long long substeps_left = -1;
   double run_time_end = 0.0;  // end time of the last load step known so far
+  /// Explicit dynamics: the cycles run so far (the line shows them instead of substeps and
+  /// iterations; -1 for the substep drivers) and the energy error of the last energy check,
+  /// |total − put in| relative to the larger of what was put in and T + internal energy (NaN
+  /// before the first check).
+  long long cycles = -1;
+  double energy_error = std::numeric_limits<double>::quiet_NaN();
 };
 
 class ProgressObserver {

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 namespace impactfe {
@@ -51,7 +52,18 @@ struct Field {
   bool shown = true;
 };
 
-enum FieldName { kAnalysis, kTime, kStep, kDt, kIterations, kChanges, kElapsed, kLeft, kFields };
+enum FieldName {
+  kAnalysis,
+  kTime,
+  kStep,
+  kDt,
+  kEnergy,
+  kIterations,
+  kChanges,
+  kElapsed,
+  kLeft,
+  kFields
+};
 
 /// What a narrower terminal costs, in order: each action shortens or drops a field; the time
 /// reached is never dropped (what the line is for), the time left last.
@@ -59,9 +71,9 @@ struct Cut {
   FieldName field;
   bool drop;  // else shorten
 };
-constexpr Cut kCuts[] = {{kChanges, false}, {kIterations, true}, {kStep, false}, {kAnalysis, true},
-                         {kChanges, true},  {kDt, true},         {kLeft, false}, {kElapsed, true},
-                         {kStep, true},     {kLeft, true}};
+constexpr Cut kCuts[] = {{kChanges, false}, {kIterations, true}, {kStep, false}, {kEnergy, false},
+                         {kAnalysis, true}, {kChanges, true},    {kDt, true},    {kLeft, false},
+                         {kEnergy, true},   {kElapsed, true},    {kStep, true},  {kLeft, true}};
 
 std::string joined(const std::vector<Field>& fields) {
   std::string line;
@@ -80,13 +92,22 @@ std::string progress_line(const ProgressEvent& e, double elapsed, std::optional<
   std::vector<Field> fields(kFields);
   fields[kAnalysis] = {e.analysis, ""};
   fields[kTime] = {fmt::format("t {:.6g}/{:.6g}", e.time, e.time_end), ""};
-  fields[kStep] = {fmt::format("load step {} substep {}/{}", e.load_step, e.substep, e.substeps),
-                   fmt::format("ls {} {}/{}", e.load_step, e.substep, e.substeps)};
+  const bool explicit_run = e.cycles >= 0;
+  if (explicit_run)
+    fields[kStep] = {fmt::format("load step {} cycle {}", e.load_step, e.cycles),
+                     fmt::format("cycle {}", e.cycles)};
+  else
+    fields[kStep] = {fmt::format("load step {} substep {}/{}", e.load_step, e.substep, e.substeps),
+                     fmt::format("ls {} {}/{}", e.load_step, e.substep, e.substeps)};
   fields[kDt] = {fmt::format("dt {:.3g}", e.dt), ""};
+  fields[kEnergy] = {fmt::format("energy error {:.2g} %", 100.0 * e.energy_error),
+                     fmt::format("err {:.2g} %", 100.0 * e.energy_error)};
+  fields[kEnergy].present = std::isfinite(e.energy_error);
   fields[kIterations] = {fmt::format("{} iter", e.iterations), ""};
+  fields[kIterations].present = !explicit_run;
   fields[kChanges] = {fmt::format("{} status changes", e.status_changes),
                       fmt::format("{} chg", e.status_changes)};
-  fields[kChanges].present = e.status_changes >= 0;  // -1: the driver does not count them
+  fields[kChanges].present = !explicit_run && e.status_changes >= 0;  // -1: not counted
   fields[kElapsed] = {fmt::format("{} elapsed", duration_text(elapsed)), ""};
   const double end = progress_end_time(e);
   if (left && end > e.time)

@@ -11,6 +11,11 @@ namespace impactfe::app {
 
 namespace {
 
+/// Whether stderr is a terminal, read once when the handlers are installed: there the message
+/// starts on a line of its own (after the progress line or the echoed ^C); in a file or a pipe
+/// it starts at once.
+volatile sig_atomic_t stderr_is_terminal = 0;
+
 /// write(2) of a literal: the only output a signal handler may do (async-signal-safe).
 void say(const char* text) {
   const ssize_t ignored = write(STDERR_FILENO, text, std::strlen(text));
@@ -19,21 +24,25 @@ void say(const char* text) {
 
 void on_stop_signal(int signal) {
   const bool again = stop_requested() != 0;
+  if (stderr_is_terminal) say("\n");
   if (again || !stop_points_active()) {
-    say(again ? "\nimpactfe: stopped at once (second interrupt); the results file is left as it "
+    say(again ? "impactfe: stopped at once (second interrupt); the results file is left as it "
                 "was last flushed\n"
-              : "\nimpactfe: stopped at once (no step loop running); the results file is left as "
+              : "impactfe: stopped at once (no step loop running); the results file is left as "
                 "it was last flushed\n");
     _exit(128 + signal);
   }
   request_stop(signal);
-  say("\nimpactfe: interrupt received: stopping after the current substep (press Ctrl-C again "
-      "to stop at once)\n");
+  say(signal == SIGINT ? "impactfe: interrupt received: stopping after the current substep (press "
+                         "Ctrl-C again to stop at once)\n"
+                       : "impactfe: SIGTERM received: stopping after the current substep (send "
+                         "it again to stop at once)\n");
 }
 
 }  // namespace
 
 void install_interrupt_handlers() {
+  stderr_is_terminal = isatty(STDERR_FILENO) != 0 ? 1 : 0;
   struct sigaction action {};
   action.sa_handler = on_stop_signal;
   sigemptyset(&action.sa_mask);

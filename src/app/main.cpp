@@ -286,15 +286,27 @@ int help_command(const HelpArgs& args) {
   return kExitOk;
 }
 
+/// The usage line: every subcommand the program has, in the order of `impactfe --help`.
+std::string usage_line(const CLI::App& app) {
+  std::string names;
+  for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; }))
+    names += (names.empty() ? "" : "|") + sub->get_name();
+  return fmt::format("usage: impactfe {{{}}} ...; impactfe --help, impactfe SUBCOMMAND --help",
+                     names);
+}
+
 /// A command-line error: CLI11's message, the usage line, exit status 1 (help and --version: 0).
-int command_line_error(const CLI::App& app, const CLI::ParseError& e) {
+/// A first word that names no subcommand is said as such (CLI11 only says one is required).
+int command_line_error(const CLI::App& app, const CLI::ParseError& e, int argc, char** argv) {
   if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) {
     app.exit(e);
     return kExitOk;
   }
-  std::cerr << "error: " << e.what() << "\n"
-            << "usage: impactfe {run|post|info|export|report|help|houbolt-spectrum} ...; "
-               "impactfe --help, impactfe SUBCOMMAND --help\n";
+  std::string message = e.what();
+  const auto named = [&](const CLI::App* sub) { return sub->check_name(argv[1]); };
+  if (argc > 1 && argv[1][0] != '-' && app.get_subcommands(named).empty())
+    message = fmt::format("'{}' is not a subcommand of impactfe", argv[1]);
+  std::cerr << "error: " << message << "\n" << usage_line(app) << "\n";
   return kExitInput;
 }
 
@@ -328,7 +340,7 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return command_line_error(app, e);
+    return command_line_error(app, e, argc, argv);
   }
 
   try {

@@ -240,7 +240,8 @@ class EnergyCheck {
     peak_ = std::max(peak_, e.put_in());
     const double reference = std::max(peak_, e.internal + e.kinetic);
     if (!(reference > 0.0) || cd.cycles() < kExplicitFirstJudgedCycle) return;
-    worst_ = std::max(worst_, std::abs(e.drift()) / reference);
+    last_ = std::abs(e.drift()) / reference;
+    worst_ = std::max(worst_, last_);
     over_ = std::abs(e.drift()) > kExplicitEnergyBound * reference ? over_ + 1 : 0;
     if (over_ < kExplicitChecksOver || warned_) return;
     const std::string message = fmt::format(
@@ -258,11 +259,14 @@ class EnergyCheck {
     warned_ = true;
   }
   double worst() const { return worst_; }
+  /// The error of the last check that judged the balance (NaN before the first).
+  double last() const { return last_; }
 
  private:
   bool accept_;
   bool warned_ = false;
   int over_ = 0;
+  double last_ = std::numeric_limits<double>::quiet_NaN();
   double peak_ = 0.0, worst_ = 0.0;
 };
 
@@ -357,6 +361,9 @@ ExplicitRunSummary run_explicit_analysis(const Model& model, const AnalysisReque
       }
       cd.cycle(dt);
       const bool last = cd.time() >= step_end * (1.0 - 1e-12);
+      if (options.progress && (last || cd.cycles() % kProgressCycles == 0))
+        options.progress(
+            {cd.time(), step_end, end, step.number, last, cd.cycles(), dt, check.last()});
       const bool full = results.due(cd.time()) || last;
       const bool partial = history.due(cd.time());
       if (full || partial) {

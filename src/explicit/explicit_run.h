@@ -3,6 +3,7 @@
 /// elements are all explicit ones (SOLID164, ...) runs here instead of the implicit drivers, by
 /// the central difference of central_difference.h, over the load steps of the request, and
 /// writes its results into the job's results file like an implicit transient.
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -11,9 +12,26 @@
 
 namespace impactfe {
 
+/// Where a running explicit analysis is, for the program's progress line.
+struct ExplicitProgress {
+  double time = 0.0;
+  double load_step_end = 0.0;  // end time of the load step being run
+  double run_end = 0.0;        // end time of the last load step
+  int load_step = 0;
+  bool last_of_load_step = false;
+  long long cycles = 0;
+  double dt = 0.0;            // the step of the last cycle
+  double energy_error = 0.0;  // of the last energy check (NaN before the first)
+};
+
 struct ExplicitRunOptions {
   bool accept_energy_error = false;  // --accept-energy-error: warn and go on
+  /// Told every kProgressCycles cycles and at the end of every load step (empty: nobody asks).
+  std::function<void(const ExplicitProgress&)> progress;
 };
+
+/// Cycles between two progress reports (the line is drawn 10 times a second at most).
+inline constexpr long kProgressCycles = 64;
 
 /// Figures of a finished run, for the run summary.
 struct ExplicitRunSummary {

@@ -13,6 +13,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <numeric>
+#include <optional>
 #include <set>
 
 #include "core/errors.h"
@@ -194,9 +195,15 @@ Pass scan_time_points(const ResultsReader& reader, const std::vector<FrameRef>& 
   for (std::size_t f = 0; f < frames.size(); ++f)
     frame_slot[{frames[f].analysis, frames[f].row}] = f;
   pass.frames.resize(frames.size());
+  // The kinetic energy of the initial velocities (IC), put in like external work: the kinetic
+  // energy of the initial state (load step 0) a transient stores first. A transient without one
+  // continues the run before it in the file (ANTYPE,,RESTART) and carries its T0 (0 when the
+  // file does not hold that run); static analyses start at rest.
+  double run_t0 = 0.0;
   for (const auto& a : reader.analyses()) {
     std::vector<double> t;
     std::map<std::string, std::vector<double>> energy;
+    std::optional<double> initial_kinetic;
     for (int k = 0; k < a.n_time_points; ++k) {
       TimePoint p = reader.time_point(a.index, k);
       for (Eigen::Index i = 0; i < n_nodes; ++i)
@@ -222,6 +229,8 @@ Pass scan_time_points(const ResultsReader& reader, const std::vector<FrameRef>& 
       }
       contact.add(p);
       if (p.energy.count("external_work") && p.energy.count("kinetic")) {
+        if (p.load_step == 0 && !initial_kinetic && std::isfinite(p.energy.at("kinetic")))
+          initial_kinetic = p.energy.at("kinetic");
         t.push_back(p.time);
         for (const char* name : kEnergyNames)
           energy[name].push_back(p.energy.count(name) ? p.energy.at(name) : kNaN);
@@ -230,14 +239,16 @@ Pass scan_time_points(const ResultsReader& reader, const std::vector<FrameRef>& 
         pass.frames[it->second] = std::move(p);
     }
     if (t.empty()) continue;
-    // Numerical dissipation: the remainder of the balance, W_ext - (T + U + W_gap + D + W_p), the
-    // energy the integrator removed (Houbolt damps the high modes; thesis Fig. 3-4).
+    if (initial_kinetic) run_t0 = *initial_kinetic;
+    const double t0 = a.kind == ResultsKind::Transient ? run_t0 : 0.0;
+    // Numerical dissipation: the remainder of the balance, T0 + W_ext - (T + U + W_gap + D + W_p),
+    // the energy the integrator removed (Houbolt damps the high modes; thesis Fig. 3-4).
     std::vector<double> remainder(t.size());
     for (std::size_t k = 0; k < t.size(); ++k) {
       double sum = 0.0;
       for (const char* name : {"kinetic", "strain", "gap_work", "dissipation", "plastic_work"})
         if (std::isfinite(energy[name][k])) sum += energy[name][k];
-      remainder[k] = energy["external_work"][k] - sum;
+      remainder[k] = t0 + energy["external_work"][k] - sum;
     }
     energy["numerical_dissipation"] = remainder;
     json e = {{"analysis", a.index}, {"description", a.description}, {"curves", json::array()}};
@@ -252,6 +263,7 @@ Pass scan_time_points(const ResultsReader& reader, const std::vector<FrameRef>& 
       final_values[name] = s.back().second;
     }
     if (e["curves"].empty()) continue;  // a single static point: no balance over time
+    if (t0 != 0.0) final_values["initial_kinetic"] = t0;
     e["final"] = final_values;
     e["time_final"] = t.back();
     pass.energy.push_back(std::move(e));

@@ -135,6 +135,28 @@ def test_progress_line_of_a_reduced_transient(binary, tmp_path):
     assert "status changes" not in "".join(lines)
 
 
+def test_progress_line_of_an_explicit_run(binary, tmp_path):
+    """An explicit (central difference) run shows its cycles, time step and energy error, within
+    an 80-column terminal; the last line is the end of the run."""
+    text = open(os.path.join(DECKS, "..", "verification", "explicit_bar_wave_solid164.inp")).read()
+    deck = tmp_path / "wave.inp"
+    deck.write_text(text.replace("TIME,3.0E-4", "TIME,1.0E-2"))  # about a second of cycles
+    status, text = _run_on_terminal(binary, str(deck), str(tmp_path / "explicit"), columns=80)
+    assert status == 0, text
+    lines = [s for s in _lines(text) if s.startswith(("explicit dynamics", "t "))]
+    assert len(lines) >= 2, text
+    assert all(len(s) <= 79 for s in lines), lines
+    pat = re.compile(r"(explicit dynamics \| )?t (\S+)/0\.01 \| (ls 1 |load step 1 )?cycle (\d+)"
+                     r"( \| dt \S+)?( \| (energy error|err) \S+ %)?")
+    seen = [pat.match(s) for s in lines]
+    assert all(seen), lines
+    cycles = [int(m.group(4)) for m in seen]
+    assert cycles == sorted(cycles) and cycles[-1] > cycles[0], lines
+    assert abs(float(seen[-1].group(2)) - 0.01) < 1e-12, lines[-1]
+    assert any("err" in s for s in lines), lines
+    assert "iter" not in "".join(lines) and "chg" not in "".join(lines)
+
+
 def test_no_progress_line_without_a_terminal(binary, tmp_path):
     deck = _deck(tmp_path, 2000)
     p = run([binary, "run", deck, "-o", str(tmp_path / "pipe")])
@@ -190,6 +212,13 @@ def test_command_line_errors_exit_1_with_the_usage_line(binary):
         p = run([binary] + args, expect=1)
         assert p.stderr.startswith("error: ") and "usage: impactfe" in p.stderr, (args, p.stderr)
     assert run([binary, "run", "--help"]).stdout.startswith("run an APDL deck")
+    # The usage line names every subcommand of --help; a word that is none is said to be none.
+    listed = re.search(r"Subcommands:\n((?:  \S+ .*\n)+)", run([binary, "--help"]).stdout)
+    names = [line.split()[0] for line in listed.group(1).splitlines()]
+    assert "mesh" in names, names
+    p = run([binary, "frobnicate", "x.inp"], expect=1)
+    assert p.stderr.startswith("error: 'frobnicate' is not a subcommand of impactfe\n"), p.stderr
+    assert f"usage: impactfe {{{'|'.join(names)}}} ..." in p.stderr, p.stderr
 
 
 def _interrupt(binary, deck, out, sig, jobname="progress"):
@@ -226,6 +255,11 @@ def test_interrupted_run_stops_cleanly(binary, tmp_path, sig, status):
     assert code == status, stderr
     name = "SIGINT" if sig == signal.SIGINT else "SIGTERM"
     assert "stopping after the current substep" in stderr, stderr
+    # The message names what came (Ctrl-C only for SIGINT); off a terminal no empty line.
+    received = "interrupt received" if sig == signal.SIGINT else "SIGTERM received"
+    assert f"impactfe: {received}: stopping" in stderr, stderr
+    assert ("Ctrl-C" in stderr) == (sig == signal.SIGINT), stderr
+    assert "\n\n" not in stderr and not stderr.startswith("\n"), repr(stderr)
     m = re.search(rf"impactfe: interrupted by {name} at t = (\S+) \(load step 1, substep "
                   r"(\d+)\)", stderr)
     assert m, stderr

@@ -3,6 +3,7 @@
 // fields of least use dropped first; the time left from the smoothed pace of the run.
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <string>
 
 #include "analysis/progress_line.h"
@@ -67,6 +68,37 @@ TEST(ProgressLine, NoEstimateYetAndNoStatusCount) {
   const std::string line = progress_line(e, 1.0, std::nullopt, 400);
   EXPECT_EQ(line.find("left"), std::string::npos) << line;
   EXPECT_EQ(line.find("status"), std::string::npos) << line;
+}
+
+/// An explicit (central difference) run: cycles, the time step and the energy error instead of
+/// substeps, iterations and status changes.
+ProgressEvent explicit_event() {
+  ProgressEvent e;
+  e.analysis = "explicit dynamics";
+  e.time = 1.25e-4;
+  e.time_end = 5e-4;
+  e.load_step = 1;
+  e.dt = 1.234e-7;
+  e.status_changes = -1;
+  e.substeps_left = 0;
+  e.run_time_end = 1e-3;
+  e.cycles = 1013;
+  e.energy_error = 0.0042;
+  return e;
+}
+
+TEST(ProgressLine, ExplicitRunShowsCyclesTimeStepAndEnergyError) {
+  EXPECT_EQ(progress_line(explicit_event(), 12.3, 86.0, 400),
+            "explicit dynamics | t 0.000125/0.0005 | load step 1 cycle 1013 | dt 1.23e-07 | "
+            "energy error 0.42 % | 12.3 s elapsed | ~1:26 min left to t 0.001");
+  const std::string at80 = progress_line(explicit_event(), 12.3, 86.0, 80);
+  EXPECT_LE(at80.size(), 80u) << at80;
+  EXPECT_NE(at80.find("cycle 1013"), std::string::npos) << at80;
+  EXPECT_NE(at80.find("err 0.42 %"), std::string::npos) << at80;
+  EXPECT_EQ(at80.find("iter"), std::string::npos) << at80;
+  ProgressEvent before_a_check = explicit_event();
+  before_a_check.energy_error = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(progress_line(before_a_check, 12.3, 86.0, 400).find("err"), std::string::npos);
 }
 
 TEST(TimeLeftEstimate, ConstantPaceIsExact) {

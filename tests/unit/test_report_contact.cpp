@@ -146,6 +146,49 @@ TEST_F(ReportContactTest, UnitsLabelTheAxes) {
   EXPECT_TRUE(displacement);
 }
 
+TEST_F(ReportContactTest, InitialKineticEnergyIsPutInLikeExternalWork) {
+  // A plate dropped with an initial velocity (IC): T0 = 5 at the initial state (load step 0), no
+  // external work; later T = 3, U = 1.5: the integrator removed T0 − (T + U) = 0.5, not −4.5.
+  // A second analysis continues the run from a restart point (no initial state of its own): it
+  // carries the run's T0.
+  const std::string path = (dir_ / "dropped.h5").string();
+  {
+    ResultsWriter w(path, plate_on_floor(""));
+    for (int analysis = 0; analysis < 2; ++analysis) {
+      w.begin_analysis(ResultsKind::Transient, "drop");
+      for (int k = 0; k < 4; ++k) {
+        TimePoint p;
+        p.time = 1e-4 * (4 * analysis + k);
+        p.load_step = analysis == 0 && k == 0 ? 0 : 1;
+        p.substep = 4 * analysis + k;
+        p.displacement = Eigen::MatrixXd::Zero(9, 6);
+        p.velocity = p.acceleration = p.reaction = p.displacement;
+        const bool start = analysis == 0 && k == 0;
+        p.energy = {{"kinetic", start           ? 5.0
+                                : analysis == 0 ? 3.0
+                                                : 2.0},
+                    {"strain", start           ? 0.0
+                               : analysis == 0 ? 1.5
+                                               : 2.5},
+                    {"external_work", 0.0}};
+        w.append(p);
+      }
+      w.end_analysis();
+    }
+  }
+  const json d = json::parse(report_data_json(ResultsReader(path), {}));
+  ASSERT_EQ(d["energy"].size(), 2u);
+  for (const json& e : d["energy"]) {
+    EXPECT_NEAR(e["final"]["numerical_dissipation"].get<double>(), 0.5, 1e-12) << e["analysis"];
+    EXPECT_NEAR(e["final"]["initial_kinetic"].get<double>(), 5.0, 1e-12) << e["analysis"];
+  }
+  // The remainder starts at 0 (the initial state balances).
+  for (const json& c : d["energy"][0]["curves"])
+    if (c["label"] == "numerical_dissipation") EXPECT_NEAR(c["peak_abs"].get<double>(), 0.5, 1e-6);
+  // Without an initial velocity nothing is added (and no T0 row).
+  EXPECT_FALSE(report_of(dir_, "")["energy"][0]["final"].contains("initial_kinetic"));
+}
+
 TEST(ReportUnits, SystemsAndQuantities) {
   EXPECT_FALSE(unit_labels("USER"));
   EXPECT_FALSE(unit_labels(""));
