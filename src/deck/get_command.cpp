@@ -57,7 +57,24 @@ double get_node(DeckReader& r, const Command& c, const GetRequest& g, int n, boo
       if (r.model.nodes.empty()) return 0.0;
       return g.it1num == "MAXD" ? r.model.nodes.rbegin()->first : r.model.nodes.begin()->first;
     }
-    unsupported(r, c, g, "ENTNUM 0: COUNT, NUM MAX/MIN/MAXD/MIND");
+    if ((i1 == "MNLOC" || i1 == "MXLOC") &&
+        (g.it1num == "X" || g.it1num == "Y" || g.it1num == "Z")) {
+      // The least / greatest coordinate of the selected nodes (global Cartesian: in another
+      // active system the coordinate would be that system's, not done here).
+      if (r.model.coordinate_systems.active != 0)
+        r.fail(c, fmt::format("{}: only in the global Cartesian system (CSYS,0); CSYS {} is "
+                              "active",
+                              g.what(), r.model.coordinate_systems.active));
+      const int axis = g.it1num[0] - 'X';
+      std::optional<double> out;
+      for (const auto& [id, node] : r.model.nodes) {
+        if (!r.model.selection.nodes.selected(id)) continue;
+        const double v = node.x(axis);
+        if (!out || (i1 == "MNLOC" ? v < *out : v > *out)) out = v;
+      }
+      return out.value_or(0.0);
+    }
+    unsupported(r, c, g, "ENTNUM 0: COUNT, NUM MAX/MIN/MAXD/MIND, MNLOC/MXLOC X/Y/Z");
   }
   const bool defined = r.model.nodes.count(n) != 0;
   if (!defined) {

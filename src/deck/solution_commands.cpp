@@ -161,8 +161,10 @@ void cmd_nropt(DeckReader& r, const Command& c) {
 }
 
 void cmd_neqit(DeckReader& r, const Command& c) {
-  const int n = r.integer(c, 1, 25);
-  if (n <= 0) r.fail(c, fmt::format("NEQIT {} must be positive", n));
+  // NITER 0 or blank: the program chooses (CDB archives write NEQIT,0); impactfe's choice is 25.
+  int n = r.integer(c, 1, 25);
+  if (n == 0) n = 25;
+  if (n < 0) r.fail(c, fmt::format("NEQIT {} must be positive", n));
   r.model.options.convergence.max_iterations = n;
   if (r.label(c, 2) == "FORCE") r.model.options.convergence.max_iterations = 1;
 }
@@ -216,6 +218,14 @@ void cmd_toff(DeckReader& r, const Command& c) {
   // laws' temperature terms e^(−C/T) read T + TOFF (MAPDL Command Reference, TOFF). Kept with
   // RATE: both arm the creep clock at SOLVE (arm_creep_clock).
   r.solution.temperature_offset = r.real(c, 1, 0.0);
+}
+
+void cmd_stef(DeckReader& r, const Command& c) {
+  // STEF,VALUE: the Stefan-Boltzmann constant (blank: MAPDL's 0.119E-10). Thermal archives
+  // (CDWRITE) state it; it enters radiation only, which impactfe does not model.
+  const double value = r.real(c, 1, 0.119e-10);
+  if (!(value > 0.0)) r.fail(c, fmt::format("VALUE {} must be positive", value));
+  r.solution.stefan_boltzmann = value;
 }
 
 void cmd_sstif(DeckReader& r, const Command& c) {
@@ -738,6 +748,7 @@ void register_solution_commands(std::vector<CommandSpec>& t) {
   t.push_back({"SSTIF", cmd_sstif, kPrepSolu});
   t.push_back({"RATE", cmd_rate, kPrepSolu});
   t.push_back({"TOFF", cmd_toff, kPrepSolu});
+  t.push_back({"STEF", cmd_stef, kPrepSolu});
   t.push_back({"LUMPM", cmd_lumpm, kPrepSolu});
   t.push_back({"ANTYPE", cmd_antype, kPrepSolu});
   t.push_back({"OUTRES", cmd_outres, kPrepSolu});

@@ -20,7 +20,7 @@ const char* role_name(ShapeRole role) {
     case ShapeRole::Line:
       return "line (spar, beam or spring between two nodes)";
     case ShapeRole::Point:
-      return "point (a mass at a node)";
+      return "point (a mass at a node; MESH200: a mesh-only cell, drawn as its nodes)";
     case ShapeRole::Gap:
       return "gap (acts between two bodies at a node pair)";
     case ShapeRole::Contact:
