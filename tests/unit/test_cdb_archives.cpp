@@ -81,7 +81,7 @@ TEST(StringArrays, HoldOneTextPerColumnAddressedByCharacter) {
       "*VWRITE,DIR(1,2)\n%C\n"
       "*VWRITE,DIR(3,1)\n%C\n"
       "*VWRITE,KIND,LENGTH\n(F3.0,F4.0)\n");
-  EXPECT_EQ(out, "C:\\Work\\ANSYS\\\nabcXY\nWork\\ANSYS\\\n 4. 24.\n") << out;
+  EXPECT_EQ(out, "C:\\Work\\ANSYS\\\nabcXY\n\\Work\\ANSYS\\\n 4. 24.\n") << out;
 }
 
 TEST(StringArrays, RefuseNumbersAndOverlongDimensions) {
