@@ -432,7 +432,8 @@ std::optional<GetValue> get_value(DeckReader& r, const Command& c, const GetRequ
   if (e == "FSUM" || e == "SSUM" || e == "SORT") return GetValue{get_post1_sum(r, c, g)};
   if (e == "VARI") return GetValue{get_variable(r, c, g)};
   if (e == "ETYP") return GetValue{get_element_type(r, c, g)};
-  if (e == "RCON") return GetValue{get_real_constant(r, c, g)};
+  // REAL: the name Workbench input files write for RCON (*get,,real,0,NUM,MAX).
+  if (e == "RCON" || e == "REAL") return GetValue{get_real_constant(r, c, g)};
   if (const auto value = get_material_property(r, c, g)) return GetValue{*value};
   if (e == "COMM" || e == "COMMON")
     r.fail(c, fmt::format("{}: MAPDL's internal common blocks do not exist in impactfe", g.what()));

@@ -262,6 +262,48 @@ TEST(CdbArchives, EqslvAndStef) {
             std::string::npos);
 }
 
+TEST(CdbArchives, ArchiveDefaultsAreAcceptedAndOtherValuesRefused) {
+  EXPECT_EQ(stop_of("/PREP7\nIRLF,0\nKUSE,0\nPSTRES,OFF\nCRPLIM,0.1,0\nCRPLIM,0,1\n"
+                    "NCNV,1,0,0,0,0\nNEQIT,0\n"),
+            "");
+  EXPECT_NE(stop_of("/PREP7\nIRLF,1\n").find("deck.inp:2: IRLF: KEY 1: inertia relief"),
+            std::string::npos);
+  EXPECT_NE(stop_of("/PREP7\nKUSE,1\n").find("deck.inp:2: KUSE: KEY 1"), std::string::npos);
+  EXPECT_NE(stop_of("/PREP7\nPSTRES,ON\n").find("deck.inp:2: PSTRES: ON"), std::string::npos);
+  EXPECT_NE(stop_of("/PREP7\nCRPLIM,0.5,1\n").find("creep-ratio time-step control"),
+            std::string::npos);
+  EXPECT_NE(stop_of("/PREP7\nNCNV,2\n").find("deck.inp:2: NCNV: KSTOP 2"), std::string::npos);
+}
+
+TEST(CdbArchives, EmodifAndTheBoundingBoxOfTheNodes) {
+  const std::string deck =
+      "/PREP7\nET,1,SOLID185\nET,2,SOLID185\nMP,EX,1,1\nN,1,-1\nN,2,1\nN,3,1,1\nN,4,0,1\n"
+      "N,5,0,0,1\nN,6,1,0,1\nN,7,1,1,1\nN,8,0,1,2\nE,1,2,3,4,5,6,7,8\nE,1,2,3,4,5,6,7,8\n"
+      "ESEL,S,ELEM,,2\nCM,SECOND,ELEM\nALLSEL\n";
+  const Model m = read_deck_text(deck +
+                                     "EMODIF,SECOND,MAT,3\nEMODIF,1,TYPE,2\n"
+                                     "EMODIF,ALL,REAL,4\nEMODIF,1,ESYS,0\nFINISH\n",
+                                 "emodif.inp")
+                      .model;
+  EXPECT_EQ(m.elements.at(1).mat, 1);
+  EXPECT_EQ(m.elements.at(2).mat, 3);  // the component's element
+  EXPECT_EQ(m.elements.at(1).type, 2);
+  EXPECT_EQ(m.elements.at(2).real, 4);
+  EXPECT_NE(stop_of(deck + "EMODIF,1,ESYS,13\n")
+                .find("EMODIF: ESYS 13: element coordinate systems are not supported"),
+            std::string::npos);
+  EXPECT_NE(stop_of(deck + "EMODIF,1,TYPE,9\n").find("element type 9 is not defined"),
+            std::string::npos);
+  // *GET NODE MNLOC / MXLOC: the least and greatest coordinate of the selected nodes.
+  const std::string out = run_output(deck +
+                                     "*GET,XMIN,NODE,,MNLOC,X\n*GET,ZMAX,NODE,0,MXLOC,Z\n"
+                                     "NSEL,S,NODE,,2,3\n*GET,XMIN2,NODE,,MNLOC,X\n"
+                                     "*VWRITE,XMIN,ZMAX,XMIN2\n(3F5.1)\n");
+  EXPECT_EQ(out, " -1.0  2.0  1.0\n") << out;
+  // REAL for RCON, as Workbench writes it.
+  EXPECT_EQ(run_output("/PREP7\nR,3,1.0\n*get,NR,real,0,NUM,MAX\n*VWRITE,NR\n(F3.0)\n"), " 3.\n");
+}
+
 TEST(CdbArchives, CdreadFindsTheArchiveWhateverItsCaseAndAtTheBeginLevel) {
   namespace fs = std::filesystem;
   const fs::path dir = testing::fresh_directory("cdread_case");
