@@ -85,6 +85,12 @@ SetData read_set(const ResultsReader& reader, const ResultSet& set) {
     d.point.acceleration = d.point.velocity;
     d.point.reaction = d.point.velocity;
     d.frequency = set.time;
+    // MXPAND Elcalc YES: the mode's element results are the analysis's time point of the mode.
+    const auto steps = reader.load_steps_of(set.analysis);
+    for (std::size_t k = 0; k < steps.size(); ++k)
+      if (steps[k].second == set.mode)
+        d.point.element_results =
+            reader.time_point(set.analysis, static_cast<int>(k)).element_results;
   } else {
     d.point = reader.time_point(set.analysis, set.point);
   }
