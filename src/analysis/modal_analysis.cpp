@@ -112,9 +112,12 @@ void run_modal_analysis(Structure& structure, const AnalysisRequest& request, Re
   }
   writer.write_modes(freqs, shapes);
   if (structure.options().modal.element_results) {
-    // MXPAND Elcalc YES: each mode's element results (of the stored shape), as a time point at
+    // MXPAND Elcalc YES: each mode's element results and reactions (of the stored shape), as a
+    // time point at
     // the mode's frequency (load step 1, substep = mode) that POST1 reads with the mode's set.
     const VectorXd zero = VectorXd::Zero(dofs.n_active());
+    const SparseMatrix k_all = sol.assembler->stiffness_matrix(zero);
+    const SparseMatrix m_all = sol.assembler->mass_matrix();
     for (Eigen::Index j = 0; j < sol.shapes.cols(); ++j) {
       VectorXd shape = VectorXd::Zero(dofs.n_active());
       shape.head(dofs.n_free()) = sol.stored_scale(j) * sol.shapes.col(j);
@@ -126,7 +129,10 @@ void run_modal_analysis(Structure& structure, const AnalysisRequest& request, Re
       p.velocity = Eigen::MatrixXd::Constant(p.displacement.rows(), 6,
                                              std::numeric_limits<double>::quiet_NaN());
       p.acceleration = p.velocity;
-      p.reaction = p.velocity;
+      // The supports' forces of the harmonic motion in the mode: R = K φ − ω² M φ.
+      const double w2 = std::pow(2.0 * M_PI * freqs[static_cast<std::size_t>(j)], 2);
+      const VectorXd reactions = k_all * shape - w2 * (m_all * shape);
+      p.reaction = structure.reaction_table(dofs, reactions);
       p.element_results = structure.element_results(*sol.assembler, shape, zero);
       writer.append(std::move(p));
     }
