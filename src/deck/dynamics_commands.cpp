@@ -88,8 +88,17 @@ void cmd_modopt(DeckReader& r, const Command& c) {
 }
 
 void cmd_mxpand(DeckReader& r, const Command& c) {
+  // MXPAND,NMODE,FREQB,FREQE,Elcalc: every extracted mode is written (NMODE and the frequency
+  // window do not narrow it); Elcalc YES also writes each mode's element results.
   Log::info("{}:{}: MXPAND: all extracted modes are kept in memory and written", c.where.file,
             c.where.line);
+  const std::string elcalc = r.label(c, 4);
+  if (elcalc == "YES" || elcalc == "ON" || elcalc == "1")
+    r.model.options.modal.element_results = true;
+  else if (elcalc.empty() || elcalc == "NO" || elcalc == "OFF" || elcalc == "0")
+    r.model.options.modal.element_results = false;
+  else
+    r.fail(c, fmt::format("Elcalc '{}' must be YES or NO", c.text(4)));
 }
 
 void cmd_lvscale(DeckReader& r, const Command& c) {

@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cmath>
 #include <ctime>
+#include <map>
 
 #include "deck/get_hooks.h"
 #include "deck/post1_print.h"
@@ -247,6 +248,8 @@ GetValue get_active(DeckReader& r, const Command& c, const GetRequest& g) {
         return {4.0};
       case AnalysisType::Substructure:
         return {7.0};
+      case AnalysisType::Spectrum:
+        return {8.0};
     }
   }
   if (i1 == "TYPE") return {static_cast<double>(r.modeling.current_type)};
@@ -300,10 +303,27 @@ GetValue get_etab(DeckReader& r, const Command& c, const GetRequest& g, bool vec
   return GetValue{get_element(r, c, e2, integer_field(r, c, g, g.it1num), vector)};
 }
 
-// *GET,Par,MODE,m,FREQ.
+// *GET,Par,MODE,m,FREQ, and of the last spectrum analysis MCOEF (mode coefficient), PFACT
+// (participation factor), EFFM (effective mass), DAMP (effective damping ratio).
 double get_mode(DeckReader& r, const Command& c, const GetRequest& g) {
   const int m = integer_field(r, c, g, g.entnum);
-  if (g.item1 != "FREQ") unsupported(r, c, g, "FREQ");
+  static const std::map<std::string, const char*> kSpectrumItems = {
+      {"MCOEF", "mode_coefficient"},
+      {"PFACT", "participation_factor"},
+      {"EFFM", "effective_mass"},
+      {"DAMP", "damping_ratio"}};
+  if (const auto item = kSpectrumItems.find(g.item1); item != kSpectrumItems.end()) {
+    const auto analyses = results(r, c).analyses();
+    for (auto a = analyses.rbegin(); a != analyses.rend(); ++a) {
+      if (a->kind != ResultsKind::Spectrum) continue;
+      const auto v = a->numeric_attributes.find(fmt::format("{}_{}", item->second, m));
+      if (v == a->numeric_attributes.end())
+        r.fail(c, fmt::format("{}: mode {} was not used by the spectrum analysis", g.what(), m));
+      return v->second;
+    }
+    r.fail(c, fmt::format("{}: no spectrum analysis (ANTYPE,SPECTR) was solved", g.what()));
+  }
+  if (g.item1 != "FREQ") unsupported(r, c, g, "FREQ, MCOEF, PFACT, EFFM, DAMP");
   std::vector<double> f;
   try {
     f = results(r, c).frequencies();

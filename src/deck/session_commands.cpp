@@ -96,7 +96,7 @@ void register_session_commands(std::vector<CommandSpec>& t) {
   // Control commands, run by the executor.
   for (const char* name :
        {"*DO", "*DOWHILE", "*ENDDO", "*IF", "*ELSEIF", "*ELSE", "*ENDIF", "*EXIT", "*CYCLE", "*GO",
-        "*BEGIN", "*END", "*CREATE", "*USE", "/INPUT", "/EOF", "*REPEAT"})
+        "*BEGIN", "*END", "*CREATE", "*USE", "/INPUT", "/EOF", "/EXIT", "*REPEAT"})
     t.push_back({name, nullptr, kAnywhere});
   for (const char* name :
        {"/INTER",  "/NOPR",   "/GOPR",    "/PNUM",   "/PBC",    "EPLOT",  "NPLOT",    "/REPLOT",

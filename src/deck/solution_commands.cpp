@@ -251,9 +251,12 @@ void cmd_antype(DeckReader& r, const Command& c) {
     type = AnalysisType::Substructure;
   else if (l == "HARMIC" || l == "HARMONIC" || l == "3")
     type = AnalysisType::Harmonic;
-  else if (l == "SPECTR" || l == "SPECTRUM" || l == "8")
-    r.fail(c, "spectrum analysis (ANTYPE,SPECTR: response spectrum, PSD) is not supported");
-  else if (l == "BUCKLE" || l == "1")
+  else if (l == "SPECTR" || l == "SPECTRUM" || l == "8") {
+    // The spectrum analysis works on the modes of the modal analysis solved before it.
+    if (r.model.modal_load_vectors.empty())
+      r.fail(c, "a spectrum analysis needs the modal analysis (ANTYPE,MODAL ... SOLVE) first");
+    type = AnalysisType::Spectrum;
+  } else if (l == "BUCKLE" || l == "1")
     r.fail(c, "buckling analysis (ANTYPE,BUCKLE) is not supported");
   else if (l.empty())
     ;
@@ -567,8 +570,27 @@ void arm_creep_clock(DeckReader& r, const Job::Step& step) {
 
 void solve_current(DeckReader& r, const Command& c) {
   append_current(r, c);
-  const AnalysisRequest& a = *r.job.steps[*r.solution.open_analysis].analysis;
+  AnalysisRequest& a = *r.job.steps[*r.solution.open_analysis].analysis;
   if (a.options.type == AnalysisType::Modal) r.model.modal_load_vectors = a.load_steps;
+  if (a.options.type == AnalysisType::Spectrum) {
+    // The modes are those of the modal analysis: its constraints, not the D given since (a
+    // spectrum analysis has no load step of its own).
+    if (r.model.modal_load_vectors.empty())
+      r.fail(c, "a spectrum analysis needs the modal analysis (ANTYPE,MODAL ... SOLVE) first");
+    if (a.load_steps.size() > 1)
+      r.fail(c, "a spectrum analysis is solved once; start another with ANTYPE,SPECTR");
+    const SpectrumOptions& s = a.options.spectrum;
+    if (!s.single_point) r.fail(c, "give the spectrum type (SPOPT,SPRS) before SOLVE");
+    if (s.direction.norm() == 0.0) r.fail(c, "no excitation direction (SED) was given");
+    if (s.frequencies.empty() || s.curves.empty())
+      r.fail(c, "no spectrum table (FREQ and SV) was given");
+    for (const auto& [damping, values] : s.curves)
+      if (values.size() != s.frequencies.size())
+        r.fail(c, fmt::format("the spectrum curve of damping {:g} has {} values (SV) for {} "
+                              "frequencies (FREQ)",
+                              damping, values.size(), s.frequencies.size()));
+    a.load_steps.back().constraints = r.model.modal_load_vectors.front().constraints;
+  }
   arm_creep_clock(r, r.job.steps[*r.solution.open_analysis]);
   r.solve_step(*r.solution.open_analysis);
 }

@@ -57,11 +57,18 @@ enum class ResultsKind {
   ReducedTransient,
   Expansion,
   Substructure,
-  Harmonic
+  Harmonic,
+  Spectrum
 };
 /// "static", "modal", "transient", "reduced_transient", "expansion", "substructure",
-/// "harmonic".
+/// "harmonic", "spectrum".
 const char* results_kind_name(ResultsKind kind);
+/// Whether the time points of an analysis of this kind are a history in time: not those of a
+/// modal analysis (one per mode, at its frequency: the modes' element results) or of a spectrum
+/// analysis (peak responses).
+inline bool is_time_history(ResultsKind kind) {
+  return kind != ResultsKind::Modal && kind != ResultsKind::Spectrum;
+}
 
 /// Energy columns of the per-analysis `energy` dataset, in stored order (docs/results_file.md).
 /// "plastic_work" came last (files written before it have 5 columns).

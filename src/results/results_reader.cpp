@@ -26,7 +26,7 @@ namespace {
 ResultsKind parse_kind(const std::string& name, const std::string& path) {
   for (auto k : {ResultsKind::Static, ResultsKind::Modal, ResultsKind::Transient,
                  ResultsKind::ReducedTransient, ResultsKind::Expansion, ResultsKind::Substructure,
-                 ResultsKind::Harmonic})
+                 ResultsKind::Harmonic, ResultsKind::Spectrum})
     if (name == results_kind_name(k)) return k;
   throw InputError(fmt::format("results file '{}': unknown analysis kind '{}'", path, name));
 }
@@ -459,8 +459,9 @@ std::vector<std::pair<double, double>> ResultsReader::nodal_series(int node,
     const auto index = static_cast<hsize_t>(impl_->node_index(node));
     Series merged;
     for (const auto& an : impl_->analyses)
-      merge_into(merged,
-                 impl_->collect(an, impl_->nodal_column(an, where->dataset, index, where->column)));
+      if (is_time_history(an.info.kind))
+        merge_into(merged, impl_->collect(
+                               an, impl_->nodal_column(an, where->dataset, index, where->column)));
     std::stable_sort(merged.begin(), merged.end(),
                      [](const auto& a, const auto& b) { return a.first < b.first; });
     return merged;
@@ -497,6 +498,7 @@ std::vector<std::pair<double, double>> ResultsReader::element_series(
     bool found = false;
     std::vector<std::string> available;
     for (const auto& an : impl_->analyses) {
+      if (!is_time_history(an.info.kind)) continue;
       for (const auto& fam : an.families) {
         auto e = std::find(fam.element_ids.begin(), fam.element_ids.end(), element);
         if (e == fam.element_ids.end()) continue;
