@@ -1,6 +1,7 @@
 #include <cmath>
 
 #include "analysis/analyses.h"
+#include "analysis/damped_modes.h"
 #include "assembly/loads.h"
 #include "core/log.h"
 #include "linalg/eigen_solver.h"
@@ -30,6 +31,48 @@ int modes_with_mass(const Structure& structure, const SparseMatrix& m_lower, int
   }
   return wanted;
 }
+
+namespace {
+
+/// MODOPT,QRDAMP: the damped modes of the system projected on the undamped ones (damped_modes.h)
+/// with the damping of the model: element dampers (COMBIN14/40 ...), α M + β K (ALPHAD, BETAD)
+/// and the modal ratios DMPRAT + MDAMP(j) (2 ζ_j ω_j on the diagonal). Stored as the analysis's
+/// damped frequencies and stabilities (Hz: Im λ / 2π, Re λ / 2π; *GET MODE DFRQ, STAB); the mode
+/// shapes stay the undamped real ones.
+void write_qr_damped_modes(const Structure& structure, const Assembler& assembler,
+                           const MatrixXd& phi, const VectorXd& omega, ResultsWriter& writer,
+                           AnalysisStatistics& stats) {
+  const AnalysisOptions& options = structure.options();
+  const auto n = phi.cols();
+  const int nf = static_cast<int>(phi.rows());
+  MatrixXd cm = MatrixXd::Zero(n, n);
+  if (assembler.has_damping()) {
+    const SparseMatrix c = assembler.damping_matrix(VectorXd::Zero(assembler.dofs().n_active()));
+    const SparseMatrix c_free = c.topLeftCorner(nf, nf);
+    cm = phi.transpose() * (c_free * phi);
+    cm = 0.5 * (cm + cm.transpose());
+  }
+  for (Eigen::Index j = 0; j < n; ++j) {
+    double zeta = options.damping_ratio;
+    auto it = options.modal_damping.find(static_cast<int>(j) + 1);
+    if (it != options.modal_damping.end()) zeta += it->second;
+    cm(j, j) +=
+        options.alpha_damping + options.beta_damping * omega(j) * omega(j) + 2.0 * zeta * omega(j);
+  }
+  const std::vector<DampedMode> modes = damped_modes(omega, cm);
+  std::vector<double> stability, damped;
+  for (const DampedMode& m : modes) {
+    stability.push_back(m.stability / (2.0 * M_PI));
+    damped.push_back(m.damped_frequency / (2.0 * M_PI));
+  }
+  writer.write_damped_modes(stability, damped);
+  for (std::size_t j = 0; j < modes.size(); ++j)
+    stats.notes.push_back(
+        fmt::format("QRDAMP mode {}: damped frequency {:.6g} Hz, stability {:.6g} Hz", j + 1,
+                    damped[j], stability[j]));
+}
+
+}  // namespace
 
 void run_modal_analysis(Structure& structure, const AnalysisRequest& request, ResultsWriter& writer,
                         const RunSettings&, AnalysisStatistics& stats) {
@@ -77,10 +120,12 @@ void run_modal_analysis(Structure& structure, const AnalysisRequest& request, Re
   }
   std::vector<double> freqs;
   std::vector<Eigen::MatrixXd> shapes;
+  std::vector<int> kept;
   for (int j = 0; j < eig.eigenvalues.size(); ++j) {
     const double f = std::sqrt(std::max(eig.eigenvalues(j), 0.0)) / (2.0 * M_PI);
     if (modal.freq_end && f > *modal.freq_end) break;
     if (modal.freq_begin && f < *modal.freq_begin) continue;
+    kept.push_back(j);
     VectorXd shape = VectorXd::Zero(dofs.n_active());
     shape.head(dofs.n_free()) = eig.eigenvectors.col(j);
     if (modal.normalize_to_unity) shape /= shape.cwiseAbs().maxCoeff();
@@ -90,6 +135,15 @@ void run_modal_analysis(Structure& structure, const AnalysisRequest& request, Re
   writer.write_modes(freqs, shapes);
   for (std::size_t j = 0; j < freqs.size(); ++j)
     stats.notes.push_back(fmt::format("mode {}: {:.6g} Hz", j + 1, freqs[j]));
+  if (modal.method == "QRDAMP") {
+    MatrixXd phi(dofs.n_free(), static_cast<Eigen::Index>(kept.size()));
+    VectorXd omega(static_cast<Eigen::Index>(kept.size()));
+    for (std::size_t j = 0; j < kept.size(); ++j) {
+      phi.col(static_cast<Eigen::Index>(j)) = eig.eigenvectors.col(kept[j]);
+      omega(static_cast<Eigen::Index>(j)) = std::sqrt(std::max(eig.eigenvalues(kept[j]), 0.0));
+    }
+    write_qr_damped_modes(structure, assembler, phi, omega, writer, stats);
+  }
   stats.n_stored = static_cast<int>(freqs.size());
 }
 
