@@ -2,6 +2,7 @@
 #include <limits>
 
 #include "analysis/analyses.h"
+#include "analysis/damped_modes.h"
 #include "assembly/loads.h"
 #include "core/log.h"
 #include "linalg/eigen_solver.h"
@@ -31,6 +32,48 @@ int modes_with_mass(const Structure& structure, const SparseMatrix& m_lower, int
   }
   return wanted;
 }
+
+namespace {
+
+/// MODOPT,QRDAMP: the damped modes of the system projected on the undamped ones (damped_modes.h)
+/// with the damping of the model: element dampers (COMBIN14/40 ...), α M + β K (ALPHAD, BETAD)
+/// and the modal ratios DMPRAT + MDAMP(j) (2 ζ_j ω_j on the diagonal). Stored as the analysis's
+/// damped frequencies and stabilities (Hz: Im λ / 2π, Re λ / 2π; *GET MODE DFRQ, STAB); the mode
+/// shapes stay the undamped real ones.
+void write_qr_damped_modes(const Structure& structure, const Assembler& assembler,
+                           const MatrixXd& phi, const VectorXd& omega, ResultsWriter& writer,
+                           AnalysisStatistics& stats) {
+  const AnalysisOptions& options = structure.options();
+  const auto n = phi.cols();
+  const int nf = static_cast<int>(phi.rows());
+  MatrixXd cm = MatrixXd::Zero(n, n);
+  if (assembler.has_damping()) {
+    const SparseMatrix c = assembler.damping_matrix(VectorXd::Zero(assembler.dofs().n_active()));
+    const SparseMatrix c_free = c.topLeftCorner(nf, nf);
+    cm = phi.transpose() * (c_free * phi);
+    cm = 0.5 * (cm + cm.transpose());
+  }
+  for (Eigen::Index j = 0; j < n; ++j) {
+    double zeta = options.damping_ratio;
+    auto it = options.modal_damping.find(static_cast<int>(j) + 1);
+    if (it != options.modal_damping.end()) zeta += it->second;
+    cm(j, j) +=
+        options.alpha_damping + options.beta_damping * omega(j) * omega(j) + 2.0 * zeta * omega(j);
+  }
+  const std::vector<DampedMode> modes = damped_modes(omega, cm);
+  std::vector<double> stability, damped;
+  for (const DampedMode& m : modes) {
+    stability.push_back(m.stability / (2.0 * M_PI));
+    damped.push_back(m.damped_frequency / (2.0 * M_PI));
+  }
+  writer.write_damped_modes(stability, damped);
+  for (std::size_t j = 0; j < modes.size(); ++j)
+    stats.notes.push_back(
+        fmt::format("QRDAMP mode {}: damped frequency {:.6g} Hz, stability {:.6g} Hz", j + 1,
+                    damped[j], stability[j]));
+}
+
+}  // namespace
 
 ModalSolution solve_modes(Structure& structure, const AnalysisRequest& request,
                           AnalysisStatistics& stats, const char* analysis) {
@@ -113,8 +156,8 @@ void run_modal_analysis(Structure& structure, const AnalysisRequest& request, Re
   writer.write_modes(freqs, shapes);
   if (structure.options().modal.element_results) {
     // MXPAND Elcalc YES: each mode's element results and reactions (of the stored shape), as a
-    // time point at
-    // the mode's frequency (load step 1, substep = mode) that POST1 reads with the mode's set.
+    // time point at the mode's frequency (load step 1, substep = mode) that POST1 reads with the
+    // mode's set.
     const VectorXd zero = VectorXd::Zero(dofs.n_active());
     const SparseMatrix k_all = sol.assembler->stiffness_matrix(zero);
     const SparseMatrix m_all = sol.assembler->mass_matrix();
@@ -139,6 +182,12 @@ void run_modal_analysis(Structure& structure, const AnalysisRequest& request, Re
   }
   for (std::size_t j = 0; j < freqs.size(); ++j)
     stats.notes.push_back(fmt::format("mode {}: {:.6g} Hz", j + 1, freqs[j]));
+  if (structure.options().modal.method == "QRDAMP") {
+    VectorXd omega(sol.shapes.cols());
+    for (Eigen::Index j = 0; j < omega.size(); ++j)
+      omega(j) = 2.0 * M_PI * freqs[static_cast<std::size_t>(j)];
+    write_qr_damped_modes(structure, *sol.assembler, sol.shapes, omega, writer, stats);
+  }
   stats.n_stored = static_cast<int>(freqs.size());
 }
 

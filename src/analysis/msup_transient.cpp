@@ -21,7 +21,9 @@ EigenResult lowest_modes(Structure& structure, const ReducedRunState& state, int
   const DofMap& dofs = *state.dofs;
   const int nf = dofs.n_free();
   const std::string& method = options.modal.method;
-  if (method == "QRDAMP" || method == "DAMP" || method == "UNSYM")
+  // QRDAMP's basis is the undamped real modes, with the full projected damping matrix
+  // (modal_damping below): what the QR damped mode superposition is. DAMP and UNSYM are not.
+  if (method == "DAMP" || method == "UNSYM")
     Log::warn("MODOPT,{}: undamped real modes from the symmetric Lanczos solver are used", method);
   int n_modes = std::min(std::max(wanted, 1), nf);
   const VectorXd zero = VectorXd::Zero(dofs.n_active());
@@ -135,8 +137,9 @@ void run_msup_transient(Structure& structure, const AnalysisRequest& request, Re
       model, dofs, [&](int i) { return VectorXd(phi.row(i).transpose()); }, "");
   const auto [q0, v0] = modal_initial_state(model, *state);
 
-  state->points = reduced_time_axis(state->load_steps, state->dt, stats.notes,
-                                    history_bytes_per_point(nm, static_cast<int>(gaps.size())));
+  state->points = reduced_time_axis(state->load_steps, state->dt, stats.notes);
+  GeneralizedHistory::require_disk_space(static_cast<double>(state->points.size()), nm,
+                                         static_cast<int>(gaps.size()));
   if (state->dt > 0.0 && nm > 0) {
     const double period = 2.0 * M_PI / omega(nm - 1);
     if (state->dt > coarsest_step(period))

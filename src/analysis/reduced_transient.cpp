@@ -72,7 +72,7 @@ void note_gap_histories(const ReducedRunState& state, std::size_t n_gaps,
   for (std::size_t g = 0; g < n_gaps; ++g) {
     double peak = 0.0, closed_at = std::numeric_limits<double>::quiet_NaN();
     for (std::size_t p = 0; p < state.points.size(); ++p) {
-      const double f = state.gap_forces[p](static_cast<int>(g));
+      const double f = state.history->at(p).gap_forces(static_cast<int>(g));
       if (f != 0.0 && std::isnan(closed_at)) closed_at = state.points[p].time;
       if (std::abs(f) > std::abs(peak)) peak = f;
     }
@@ -134,9 +134,9 @@ void run_reduced_transient(Structure& structure, const AnalysisRequest& request,
   master_initial_conditions(model, dofs, master_position, q0, v0);
 
   // --- Integration ---------------------------------------------------------------------------
-  state->points =
-      reduced_time_axis(state->load_steps, state->dt, stats.notes,
-                        history_bytes_per_point(guyan.n_masters(), static_cast<int>(gaps.size())));
+  state->points = reduced_time_axis(state->load_steps, state->dt, stats.notes);
+  GeneralizedHistory::require_disk_space(static_cast<double>(state->points.size()),
+                                         guyan.n_masters(), static_cast<int>(gaps.size()));
   ReducedDynamics dynamics(guyan.k(), guyan.m(), guyan.c(), std::move(gaps),
                            make_time_integrator(options));
   double seconds_per_step = 0.0;

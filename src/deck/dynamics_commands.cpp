@@ -76,7 +76,9 @@ void cmd_modopt(DeckReader& r, const Command& c) {
   ModalOptions& m = r.model.options.modal;
   const std::string method = r.label(c, 1);
   if (!method.empty()) m.method = method;
-  if (method == "QRDAMP" || method == "DAMP" || method == "UNSYM")
+  // QRDAMP projects the damping on the undamped modes (modal_analysis.cpp, damped_modes.h);
+  // DAMP and UNSYM would need complex eigensolvers of the full matrices.
+  if (method == "DAMP" || method == "UNSYM")
     r.warn(c, "damped/unsymmetric eigensolvers not available; undamped real modes computed");
   const auto n = r.opt_int(c, 2);
   if (!n) r.fail(c, "NMODE (number of modes) is required");

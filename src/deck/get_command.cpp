@@ -303,8 +303,10 @@ GetValue get_etab(DeckReader& r, const Command& c, const GetRequest& g, bool vec
   return GetValue{get_element(r, c, e2, integer_field(r, c, g, g.it1num), vector)};
 }
 
-// *GET,Par,MODE,m,FREQ, and of the last spectrum analysis MCOEF (mode coefficient), PFACT
-// (participation factor), EFFM (effective mass), DAMP (effective damping ratio).
+// *GET,Par,MODE,m,FREQ (undamped natural frequency), after MODOPT,QRDAMP DFRQ and STAB (damped
+// frequency Im λ / 2π and stability Re λ / 2π, Hz), and of the last spectrum analysis MCOEF (mode
+// coefficient), PFACT (participation factor), EFFM (effective mass), DAMP (effective damping
+// ratio).
 double get_mode(DeckReader& r, const Command& c, const GetRequest& g) {
   const int m = integer_field(r, c, g, g.entnum);
   static const std::map<std::string, const char*> kSpectrumItems = {
@@ -323,13 +325,22 @@ double get_mode(DeckReader& r, const Command& c, const GetRequest& g) {
     }
     r.fail(c, fmt::format("{}: no spectrum analysis (ANTYPE,SPECTR) was solved", g.what()));
   }
-  if (g.item1 != "FREQ") unsupported(r, c, g, "FREQ, MCOEF, PFACT, EFFM, DAMP");
+  if (g.item1 != "FREQ" && g.item1 != "DFRQ" && g.item1 != "STAB")
+    unsupported(r, c, g, "FREQ, DFRQ, STAB, MCOEF, PFACT, EFFM, DAMP");
   std::vector<double> f;
+  bool undamped = false;
   try {
-    f = results(r, c).frequencies();
+    const ResultsReader& file = results(r, c);
+    f = g.item1 == "FREQ"   ? file.frequencies()
+        : g.item1 == "DFRQ" ? file.damped_frequencies()
+                            : file.stabilities();
+    undamped = f.empty() && g.item1 != "FREQ" && !file.frequencies().empty();
   } catch (const InputError& err) {
     r.fail(c, err.what());
   }
+  if (undamped)
+    r.fail(c, fmt::format("{}: the modal analysis was undamped; {} needs MODOPT,QRDAMP", g.what(),
+                          g.item1));
   if (m < 1 || m > static_cast<int>(f.size()))
     r.fail(c, fmt::format("{}: mode {} was not computed (modes 1..{})", g.what(), m, f.size()));
   return f[static_cast<std::size_t>(m - 1)];

@@ -603,6 +603,37 @@ std::vector<double> ResultsReader::frequencies() const {
   return {};
 }
 
+namespace {
+
+/// A per-mode dataset of the last modal analysis; empty when that analysis lacks it.
+template <class Analyses, class ReadDoubles>
+std::vector<double> last_modal_dataset(const Analyses& analyses, const char* name,
+                                       const ReadDoubles& read) {
+  for (auto it = analyses.rbegin(); it != analyses.rend(); ++it)
+    if (it->info.n_modes > 0) return read(it->group + "/" + name);
+  return {};
+}
+
+}  // namespace
+
+std::vector<double> ResultsReader::damped_frequencies() const {
+  return impl_->guarded([&] {
+    return last_modal_dataset(impl_->analyses, "damped_frequencies", [&](const std::string& p) {
+      return h5::exists_path(impl_->file, p) ? h5::read_doubles(impl_->file, p)
+                                             : std::vector<double>{};
+    });
+  });
+}
+
+std::vector<double> ResultsReader::stabilities() const {
+  return impl_->guarded([&] {
+    return last_modal_dataset(impl_->analyses, "stabilities", [&](const std::string& p) {
+      return h5::exists_path(impl_->file, p) ? h5::read_doubles(impl_->file, p)
+                                             : std::vector<double>{};
+    });
+  });
+}
+
 Eigen::MatrixXd ResultsReader::mode_shape(int mode) const {
   for (auto it = impl_->analyses.rbegin(); it != impl_->analyses.rend(); ++it)
     if (it->info.n_modes > 0) return mode_shape_of(it->info.index, mode);
