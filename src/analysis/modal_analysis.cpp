@@ -38,8 +38,8 @@ namespace {
 /// MODOPT,QRDAMP: the damped modes of the system projected on the undamped ones (damped_modes.h)
 /// with the damping of the model: element dampers (COMBIN14/40 ...), α M + β K (ALPHAD, BETAD)
 /// and the modal ratios DMPRAT + MDAMP(j) (2 ζ_j ω_j on the diagonal). Stored as the analysis's
-/// damped frequencies and stabilities (Hz: Im λ / 2π, Re λ / 2π; *GET MODE DFRQ, STAB); the mode
-/// shapes stay the undamped real ones.
+/// attributes damped_frequency_<n> and stability_<n> (Hz: Im λ / 2π, Re λ / 2π; *GET MODE DFRQ,
+/// STAB); the mode shapes stay the undamped real ones.
 void write_qr_damped_modes(const Structure& structure, const Assembler& assembler,
                            const MatrixXd& phi, const VectorXd& omega, ResultsWriter& writer,
                            AnalysisStatistics& stats) {
@@ -66,7 +66,10 @@ void write_qr_damped_modes(const Structure& structure, const Assembler& assemble
     stability.push_back(m.stability / (2.0 * M_PI));
     damped.push_back(m.damped_frequency / (2.0 * M_PI));
   }
-  writer.write_damped_modes(stability, damped);
+  for (std::size_t j = 0; j < modes.size(); ++j) {
+    writer.set_attribute(fmt::format("damped_frequency_{}", j + 1), damped[j]);
+    writer.set_attribute(fmt::format("stability_{}", j + 1), stability[j]);
+  }
   for (std::size_t j = 0; j < modes.size(); ++j)
     stats.notes.push_back(
         fmt::format("QRDAMP mode {}: damped frequency {:.6g} Hz, stability {:.6g} Hz", j + 1,

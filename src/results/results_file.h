@@ -123,10 +123,6 @@ class ResultsWriter {
   /// Modal results of the current analysis: frequencies (Hz) and mode shapes (each n_nodes x 6).
   void write_modes(const std::vector<double>& frequencies_hz,
                    const std::vector<Eigen::MatrixXd>& shapes);
-  /// Damped modes of the current modal analysis (MODOPT,QRDAMP; after write_modes): the
-  /// stability Re λ / 2π and damped frequency Im λ / 2π (Hz) of each mode.
-  void write_damped_modes(const std::vector<double>& stability_hz,
-                          const std::vector<double>& damped_hz);
   /// Free-form scalar attributes of the current analysis (summary numbers, counts).
   void set_attribute(const std::string& name, double value);
   void set_attribute(const std::string& name, const std::string& value);
@@ -208,8 +204,9 @@ class ResultsReader {
   std::vector<std::pair<double, double>> gap_force_series(int gap) const;
   /// Modal frequencies (Hz) of the last modal analysis; empty when none.
   std::vector<double> frequencies() const;
-  /// Damped frequencies and stabilities (Hz) of the last modal analysis; empty when it was
-  /// undamped (only MODOPT,QRDAMP stores them).
+  /// Damped frequencies and stabilities (Hz) of the last modal analysis (its attributes
+  /// damped_frequency_<n>, stability_<n>); empty when it was undamped (only MODOPT,QRDAMP
+  /// stores them).
   std::vector<double> damped_frequencies() const;
   std::vector<double> stabilities() const;
   /// Mode shape (n_nodes x 6) of mode 1-based `mode` of the last modal analysis.

@@ -730,21 +730,6 @@ void ResultsFileWriter::write_modes(const std::vector<double>& frequencies_hz,
   m.flush();
 }
 
-void ResultsFileWriter::write_damped_modes(const std::vector<double>& stability_hz,
-                                           const std::vector<double>& damped_hz) {
-  impl_->require_open("write_damped_modes");
-  Impl& m = *impl_;
-  const Impl::Guard guard(m, 16.0 * static_cast<double>(damped_hz.size()));
-  IMPACTFE_CHECK(stability_hz.size() == damped_hz.size(),
-                 "ResultsWriter::write_damped_modes: stabilities and frequencies differ in count");
-  const hsize_t n = damped_hz.size();
-  for (const char* name : {"stabilities", "damped_frequencies"})
-    if (h5::exists(m.group, name)) H5Ldelete(m.group, name, H5P_DEFAULT);
-  h5::write_dataset(m.group, "stabilities", {n}, stability_hz.data(), h5::Storage::Checked);
-  h5::write_dataset(m.group, "damped_frequencies", {n}, damped_hz.data(), h5::Storage::Checked);
-  m.flush();
-}
-
 void ResultsFileWriter::set_attribute(const std::string& name, double value) {
   impl_->require_open("set_attribute");
   const Impl::Guard guard(*impl_, 0.0);

@@ -42,8 +42,6 @@ class ResultsFileWriter {
   void set_sparse_output(bool sparse);
   void write_modes(const std::vector<double>& frequencies_hz,
                    const std::vector<Eigen::MatrixXd>& shapes);
-  void write_damped_modes(const std::vector<double>& stability_hz,
-                          const std::vector<double>& damped_hz);
   void set_attribute(const std::string& name, double value);
   void set_attribute(const std::string& name, const std::string& value);
   void set_count(const std::string& name, long long value);

@@ -605,33 +605,30 @@ std::vector<double> ResultsReader::frequencies() const {
 
 namespace {
 
-/// A per-mode dataset of the last modal analysis; empty when that analysis lacks it.
-template <class Analyses, class ReadDoubles>
-std::vector<double> last_modal_dataset(const Analyses& analyses, const char* name,
-                                       const ReadDoubles& read) {
-  for (auto it = analyses.rbegin(); it != analyses.rend(); ++it)
-    if (it->info.n_modes > 0) return read(it->group + "/" + name);
-  return {};
+/// The per-mode attributes <prefix>_1, <prefix>_2, ... of the last modal analysis, in order.
+std::vector<double> last_modal_series(const std::vector<ResultsReader::AnalysisInfo>& analyses,
+                                      const std::string& prefix) {
+  std::vector<double> values;
+  for (auto it = analyses.rbegin(); it != analyses.rend(); ++it) {
+    if (it->n_modes == 0) continue;
+    for (int n = 1;; ++n) {
+      const auto v = it->numeric_attributes.find(prefix + "_" + std::to_string(n));
+      if (v == it->numeric_attributes.end()) break;
+      values.push_back(v->second);
+    }
+    break;
+  }
+  return values;
 }
 
 }  // namespace
 
 std::vector<double> ResultsReader::damped_frequencies() const {
-  return impl_->guarded([&] {
-    return last_modal_dataset(impl_->analyses, "damped_frequencies", [&](const std::string& p) {
-      return h5::exists_path(impl_->file, p) ? h5::read_doubles(impl_->file, p)
-                                             : std::vector<double>{};
-    });
-  });
+  return last_modal_series(analyses(), "damped_frequency");
 }
 
 std::vector<double> ResultsReader::stabilities() const {
-  return impl_->guarded([&] {
-    return last_modal_dataset(impl_->analyses, "stabilities", [&](const std::string& p) {
-      return h5::exists_path(impl_->file, p) ? h5::read_doubles(impl_->file, p)
-                                             : std::vector<double>{};
-    });
-  });
+  return last_modal_series(analyses(), "stability");
 }
 
 Eigen::MatrixXd ResultsReader::mode_shape(int mode) const {

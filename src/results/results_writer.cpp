@@ -332,14 +332,6 @@ void ResultsWriter::write_modes(const std::vector<double>& frequencies_hz,
   m.post([&m, frequencies_hz, shapes] { m.file->write_modes(frequencies_hz, shapes); }, bytes);
 }
 
-void ResultsWriter::write_damped_modes(const std::vector<double>& stability_hz,
-                                       const std::vector<double>& damped_hz) {
-  Impl& m = *impl_;
-  const double bytes = 16.0 * static_cast<double>(damped_hz.size());
-  m.post([&m, stability_hz, damped_hz] { m.file->write_damped_modes(stability_hz, damped_hz); },
-         bytes);
-}
-
 void ResultsWriter::set_attribute(const std::string& name, double value) {
   Impl& m = *impl_;
   m.post([&m, name, value] { m.file->set_attribute(name, value); });

@@ -124,7 +124,7 @@ SV,,0.1,0.1)"));
   EXPECT_TRUE(found) << "no item of element 1 is k1 |phi1(2)| = " << force;
   // Without a combination command the spectrum analysis stores no response (SVTYP 3:
   // Ai = Su γi).
-  const auto& spectrum = run.reader->analyses().back();
+  const auto spectrum = run.reader->analyses().back();  // a copy: analyses() is a temporary
   EXPECT_EQ(spectrum.n_time_points, 0);
   const double gamma1 = eig.eigenvectors().col(0).dot(m * Eigen::Vector2d::Ones());
   EXPECT_NEAR(std::abs(spectrum.numeric_attributes.at("mode_coefficient_1")),
