@@ -48,4 +48,21 @@ std::vector<DampedMode> damped_modes(const VectorXd& omega, const MatrixXd& moda
   return modes;
 }
 
+MatrixXd project_modal_damping(const MatrixXd& phi, const SparseMatrix& c_free,
+                               const AnalysisOptions& options, const VectorXd& omega) {
+  const auto n = phi.cols();
+  MatrixXd cm = MatrixXd::Zero(n, n);
+  if (c_free.nonZeros()) {
+    cm = phi.transpose() * (c_free * phi);
+    cm = 0.5 * (cm + cm.transpose());
+  }
+  for (Eigen::Index j = 0; j < n; ++j) {
+    double zeta = options.damping_ratio;
+    auto it = options.modal_damping.find(static_cast<int>(j) + 1);
+    if (it != options.modal_damping.end()) zeta += it->second;
+    cm(j, j) += 2.0 * zeta * omega(j);
+  }
+  return cm;
+}
+
 }  // namespace impactfe

@@ -7,6 +7,7 @@
 /// a damped frequency ω_d; with C_m diagonal, σ = −ζ ω and ω_d = ω √(1 − ζ²).
 #include <vector>
 
+#include "core/model.h"
 #include "linalg/sparse.h"
 
 namespace impactfe {
@@ -24,5 +25,10 @@ struct DampedMode {
 /// in order of magnitude (each such mode reports ω_d = 0 and the slower decay rate as σ).
 /// `omega`: undamped ω_j (rad/s); `modal_damping`: C_m (n × n, symmetric).
 std::vector<DampedMode> damped_modes(const VectorXd& omega, const MatrixXd& modal_damping);
+
+/// The damping matrix in the mass-normalised modes Φ (free DOFs x modes): Φᵀ C Φ (symmetrised;
+/// `c_free` over the free DOFs, empty for none) + diag(2 ζ_j ω_j) with ζ_j = DMPRAT + MDAMP(j).
+MatrixXd project_modal_damping(const MatrixXd& phi, const SparseMatrix& c_free,
+                               const AnalysisOptions& options, const VectorXd& omega);
 
 }  // namespace impactfe

@@ -44,22 +44,14 @@ void write_qr_damped_modes(const Structure& structure, const Assembler& assemble
                            const MatrixXd& phi, const VectorXd& omega, ResultsWriter& writer,
                            AnalysisStatistics& stats) {
   const AnalysisOptions& options = structure.options();
-  const auto n = phi.cols();
   const int nf = static_cast<int>(phi.rows());
-  MatrixXd cm = MatrixXd::Zero(n, n);
-  if (assembler.has_damping()) {
-    const SparseMatrix c = assembler.damping_matrix(VectorXd::Zero(assembler.dofs().n_active()));
-    const SparseMatrix c_free = c.topLeftCorner(nf, nf);
-    cm = phi.transpose() * (c_free * phi);
-    cm = 0.5 * (cm + cm.transpose());
-  }
-  for (Eigen::Index j = 0; j < n; ++j) {
-    double zeta = options.damping_ratio;
-    auto it = options.modal_damping.find(static_cast<int>(j) + 1);
-    if (it != options.modal_damping.end()) zeta += it->second;
-    cm(j, j) +=
-        options.alpha_damping + options.beta_damping * omega(j) * omega(j) + 2.0 * zeta * omega(j);
-  }
+  SparseMatrix c_free;
+  if (assembler.has_damping())
+    c_free =
+        assembler.damping_matrix(VectorXd::Zero(assembler.dofs().n_active())).topLeftCorner(nf, nf);
+  MatrixXd cm = project_modal_damping(phi, c_free, options, omega);
+  // α M + β K in the mass-normalised modes: α I + β diag(ω²).
+  cm.diagonal().array() += options.alpha_damping + options.beta_damping * omega.array().square();
   const std::vector<DampedMode> modes = damped_modes(omega, cm);
   std::vector<double> stability, damped;
   for (const DampedMode& m : modes) {

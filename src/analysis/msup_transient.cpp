@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "analysis/analyses.h"
+#include "analysis/damped_modes.h"
 #include "analysis/reduced_run.h"
 #include "core/log.h"
 #include "linalg/eigen_solver.h"
@@ -55,24 +56,12 @@ EigenResult lowest_modes(Structure& structure, const ReducedRunState& state, int
 MatrixXd modal_damping(const ReducedRunState& state, const AnalysisOptions& options,
                        const VectorXd& omega) {
   const int nf = state.dofs->n_free();
-  const auto nm = omega.size();
-  const MatrixXd& phi = state.modes;
   const VectorXd zero = VectorXd::Zero(state.dofs->n_active());
   const SparseMatrix k_full = state.assembler->stiffness_matrix(zero);
   const SparseMatrix c_full = damping_matrix(state, k_full);
-  MatrixXd cm = MatrixXd::Zero(nm, nm);
-  if (c_full.nonZeros()) {
-    const MatrixXd c_phi = c_full.topLeftCorner(nf, nf) * phi;
-    cm = phi.transpose() * c_phi;
-    cm = 0.5 * (cm + cm.transpose());
-  }
-  for (int j = 0; j < nm; ++j) {
-    double zeta = options.damping_ratio;
-    auto it = options.modal_damping.find(j + 1);
-    if (it != options.modal_damping.end()) zeta += it->second;
-    cm(j, j) += 2.0 * zeta * omega(j);
-  }
-  return cm;
+  const SparseMatrix c_free =
+      c_full.nonZeros() ? SparseMatrix(c_full.topLeftCorner(nf, nf)) : SparseMatrix();
+  return project_modal_damping(state.modes, c_free, options, omega);
 }
 
 namespace {

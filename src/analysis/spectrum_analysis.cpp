@@ -65,6 +65,21 @@ std::map<std::string, ElementResultTable> combine_element_results(
   return combined;
 }
 
+/// A response stored as a point at t = 0 of load step `load_step` (substep 1): the
+/// displacement table, velocity, acceleration and reaction absent (NaN).
+TimePoint response_point(int load_step, MatrixXd displacement) {
+  TimePoint p;
+  p.time = 0.0;
+  p.load_step = load_step;
+  p.substep = 1;
+  p.displacement = std::move(displacement);
+  p.velocity =
+      MatrixXd::Constant(p.displacement.rows(), 6, std::numeric_limits<double>::quiet_NaN());
+  p.acceleration = p.velocity;
+  p.reaction = p.velocity;
+  return p;
+}
+
 }  // namespace
 
 void run_spectrum_analysis(Structure& structure, const AnalysisRequest& request,
@@ -188,15 +203,7 @@ void run_spectrum_analysis(Structure& structure, const AnalysisRequest& request,
       solver->factorize(sol.k_lower);
       response.head(nf) = solver->solve(force);
     }
-    TimePoint p;
-    p.time = 0.0;
-    p.load_step = 2;
-    p.substep = 1;
-    p.displacement = structure.nodal_table(dofs, response);
-    const auto rows = p.displacement.rows();
-    p.velocity = MatrixXd::Constant(rows, 6, std::numeric_limits<double>::quiet_NaN());
-    p.acceleration = p.velocity;
-    p.reaction = p.velocity;
+    TimePoint p = response_point(2, structure.nodal_table(dofs, response));
     if (element_results)
       p.element_results = structure.element_results(*sol.assembler, response, VectorXd::Zero(na));
     // The periodic (modal) and the rigid (missing mass) parts combine by SRSS.
@@ -216,15 +223,7 @@ void run_spectrum_analysis(Structure& structure, const AnalysisRequest& request,
   // gives the mode coefficients only): kept in the file at load step 0, which POST1 does not
   // list as a set (MAPDL writes it outside the results file, to Jobname.mcom).
   if (combine) {
-    TimePoint c;
-    c.time = 0.0;
-    c.load_step = 0;
-    c.substep = 1;
-    c.displacement = structure.nodal_table(dofs, combined);
-    const auto rows = c.displacement.rows();
-    c.velocity = MatrixXd::Constant(rows, 6, std::numeric_limits<double>::quiet_NaN());
-    c.acceleration = c.velocity;
-    c.reaction = c.velocity;
+    TimePoint c = response_point(0, structure.nodal_table(dofs, combined));
     c.element_results = std::move(combined_elements);
     writer.append(std::move(c));
   }
