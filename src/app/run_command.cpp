@@ -141,6 +141,7 @@ std::optional<DeckOptions> deck_options(const RunArgs& args, const fs::path& sta
     options.results_file = results.string();
   }
   options.output = &std::cout;  // the deck's listings (*VWRITE, *MSG, /COM, ...) until /OUT
+  options.processes = process_count();
   if (args.dialect == "4x") options.dialect = Dialect::Classic4x;
   if (args.dialect == "modern") options.dialect = Dialect::Modern;
   return options;

@@ -83,6 +83,8 @@ const Tables& tables() {
         "Database and restart files (SAVE, RESUME, /CLEAR, RESCONTROL, PARSAV)", kDeck);
     add(register_cdb_commands, "CDB archives (CDREAD, NBLOCK, EBLOCK, CMBLOCK, RLBLOCK)",
         "docs/meshes.md");
+    add(register_workbench_commands,
+        "Workbench input files: distributed files, diagnostics, CEWRITE, /XML", kDeck);
     return t;
   }();
   return tables;

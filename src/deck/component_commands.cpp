@@ -19,13 +19,15 @@ namespace {
 std::string component_name(DeckReader& r, const Command& c, int field) {
   const std::string name = r.label(c, field);
   if (name.empty()) r.fail(c, "component name missing");
-  const bool ok = std::isalpha(static_cast<unsigned char>(name[0])) != 0 &&
+  // A leading underscore is allowed: MAPDL's hidden components, which Workbench input files
+  // write (_FIXEDSU, _CM54UX_XP).
+  const bool ok = (std::isalpha(static_cast<unsigned char>(name[0])) != 0 || name[0] == '_') &&
                   std::all_of(name.begin(), name.end(), [](unsigned char ch) {
                     return std::isalnum(ch) != 0 || ch == '_' || ch == '.';
                   });
   if (!ok || name.size() > 256)
-    r.fail(c, fmt::format("'{}' is not a valid component name (a letter, then letters, digits, "
-                          "'_' or '.')",
+    r.fail(c, fmt::format("'{}' is not a valid component name (a letter or '_', then letters, "
+                          "digits, '_' or '.')",
                           c.text(field)));
   if (name == "ALL" || name == "STAT" || name == "DEFA")
     r.fail(c, fmt::format("'{}' is reserved and cannot name a component", name));

@@ -110,6 +110,7 @@ void register_array_commands(std::vector<CommandSpec>& table);
 void register_output_commands(std::vector<CommandSpec>& table);
 void register_database_commands(std::vector<CommandSpec>& table);
 void register_cdb_commands(std::vector<CommandSpec>& table);
+void register_workbench_commands(std::vector<CommandSpec>& table);
 
 /// Modern dialect (MAPDL): a name of at least four significant characters that begins exactly
 /// one table command is that command (`SECT` → SECTYPE, `NSUBS` → NSUBST). nullptr when none;

@@ -32,6 +32,8 @@ struct DeckOptions {
   /// Where the deck's printed output goes until /OUT redirects it (*VWRITE, *MSG, *STATUS,
   /// /COM, PRNSOL, ...). Null: to the log; `impactfe run` passes std::cout.
   std::ostream* output = nullptr;
+  /// MPI ranks the run's solutions use (1 without MPI): *GET,Par,ACTIVE,,SOLU,DLBR.
+  int processes = 1;
 };
 
 /// Parses `path` (following /INPUT files). Throws InputError "FILE:LINE: COMMAND: what".

@@ -235,6 +235,18 @@ GetValue get_active(DeckReader& r, const Command& c, const GetRequest& g) {
     if (g.it1num == "NCMSS") return {attr("substeps")};
     if (g.it1num == "NCMIT") return {attr("iterations")};
     if (g.it1num == "CNVG") return {a.status == "complete" ? 1.0 : 0.0};
+    // Distributed-solution statistics a Workbench input file prints after SOLVE. COMB, the time
+    // spent combining per-process files: impactfe writes none (rank 0 writes the results), 0.
+    // DLBR, the element load balance ratio: 1 on one process; on several MPI ranks the split is
+    // in the run summary's "element assembly split" line.
+    if (g.it1num == "COMB") return {0.0};
+    if (g.it1num == "DLBR") {
+      if (r.options.processes != 1)
+        r.fail(c, fmt::format("{}: the run uses {} MPI ranks; their element split is in the run "
+                              "summary (element assembly split), not a *GET item",
+                              g.what(), r.options.processes));
+      return {1.0};
+    }
   }
   if (i1 == "ANTY") {
     switch (r.model.options.type) {
@@ -252,6 +264,9 @@ GetValue get_active(DeckReader& r, const Command& c, const GetRequest& g) {
         return {8.0};
     }
   }
+  // The interactive key: impactfe runs every deck as a batch job (0), which Workbench input
+  // files test before their SOLVE.
+  if (i1 == "INT") return {0.0};
   if (i1 == "TYPE") return {static_cast<double>(r.modeling.current_type)};
   if (i1 == "MAT") return {static_cast<double>(r.modeling.current_mat)};
   if (i1 == "REAL") return {static_cast<double>(r.modeling.current_real)};
@@ -268,8 +283,8 @@ GetValue get_active(DeckReader& r, const Command& c, const GetRequest& g) {
   if (i1 == "TIME" && g.it1num == "CPU")
     return {static_cast<double>(std::clock()) / CLOCKS_PER_SEC};
   unsupported(r, c, g,
-              "SET TIME/FREQ/LSTP/SBST/NSET, SOLU DTIME/NCMLS/NCMSS/NCMIT/CNVG, ANTY, TYPE, MAT, "
-              "REAL, SECT, CSYS, JOBNAM, TITLE, TIME WALL/CPU");
+              "SET TIME/FREQ/LSTP/SBST/NSET, SOLU DTIME/NCMLS/NCMSS/NCMIT/CNVG/COMB/DLBR, ANTY, "
+              "INT, TYPE, MAT, REAL, SECT, CSYS, JOBNAM, TITLE, TIME WALL/CPU");
 }
 
 int integer_field(DeckReader& r, const Command& c, const GetRequest& g, const std::string& text) {

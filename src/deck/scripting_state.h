@@ -43,6 +43,7 @@ struct ScriptingState {
   std::map<std::string, MacroFile> files;                 // *CREATE files: "NAME.EXT" / "NAME"
   CommandFileState command_file;                          // *CFOPEN
   VectorSettings vector_settings;                         // *VFACT *VMASK *VLEN *VCUM *VABS *VCOL
+  std::string xml_encoding = "ISO-8859-1";                // XMLO,ENCODING (for /XML)
 };
 
 }  // namespace impactfe::deck

@@ -326,7 +326,7 @@ std::vector<OutputItem> output_items(DeckReader& r, const Command& c, const std:
   if (item == "MISC" || item == "NLOAD") return {I::MISC};
   if (item == "BASIC") return {I::NSOL, I::RSOL, I::STRS};
   for (const char* other : {"EPPL", "EPTH", "EPCR", "EPDI", "FGRAD", "FFLUX", "LOCI", "SVAR",
-                            "VENG", "CINT", "FSOL", "NAR", "CONT", "ETMP", "SRFS"})
+                            "VENG", "CINT", "FSOL", "NAR", "CONT", "ETMP", "SRFS", "EANGL"})
     if (item == other) {
       r.warn(c, fmt::format("Item {}: impactfe writes no such results; nothing to control", item));
       return {};
