@@ -163,6 +163,23 @@ TEST(Meshing, LineSpacingRatio) {
   for (std::size_t k = 0; k < x.size(); ++k) EXPECT_NEAR(x[k], expected[k], 1e-12);
 }
 
+TEST(Meshing, QuadraticLineNodesNumberedAlongTheLine) {
+  // LMESH of BEAM189 numbers the keypoint nodes first, then every interior node, corner and
+  // midside, in order along the line, as MAPDL does: vm70 reads node 10 of 8 elements on a
+  // 240-long line as the midspan (x = 120).
+  const Model m = read(
+      "/PREP7\nET,1,BEAM189\nSECTYPE,1,BEAM,RECT\nSECDATA,1,1\nMP,EX,1,1\nK,1\nK,2,240\n"
+      "L,1,2\nESIZE,,8\nLMESH,1\n");
+  ASSERT_EQ(m.nodes.size(), 17u);
+  EXPECT_NEAR(m.nodes.at(2).x.x(), 240.0, 1e-12);
+  for (int n = 3; n <= 17; ++n) EXPECT_NEAR(m.nodes.at(n).x.x(), 15.0 * (n - 2), 1e-9) << n;
+  // Element 1: I = node 1, J = node 4 (x = 30), midside K = node 3 (x = 15).
+  const auto& e = m.elements.begin()->second.nodes;
+  EXPECT_EQ(e[0], 1);
+  EXPECT_EQ(e[1], 4);
+  EXPECT_EQ(e[2], 3);
+}
+
 TEST(Meshing, TrianglesOnThreeAndFourSidedAreas) {
   const std::string head = "/PREP7\nET,1,SHELL63\nR,1,0.1\nMP,EX,1,1E7\nMSHAPE,1,2D\nESIZE,,4\n";
   const Model tri = read(head + "K,1\nK,2,1\nK,3,0,1\nA,1,2,3\nAMESH,1\n");
