@@ -180,6 +180,31 @@ TEST(Meshing, QuadraticLineNodesNumberedAlongTheLine) {
   EXPECT_EQ(e[2], 3);
 }
 
+TEST(Meshing, PcircAreasAboutTheWorkingPlaneOrigin) {
+  const std::string head = "/PREP7\nET,1,PLANE182\nMP,EX,1,1\n";
+  // A quarter sector moved with the working plane (vm272: WPOFF,0,16 then PCIRC,8,,180,270).
+  const Model q = read(head + "WPOFF,0,16\nPCIRC,8,,180,270\n");
+  ASSERT_EQ(q.solid.areas.size(), 1u);
+  std::vector<Vec3> kps;
+  for (const auto& [id, k] : q.solid.keypoints) kps.push_back(k.x);
+  ASSERT_EQ(kps.size(), 3u);
+  EXPECT_TRUE(kps[0].isApprox(Vec3(0, 16, 0), 1e-12));
+  EXPECT_TRUE(kps[1].isApprox(Vec3(-8, 16, 0), 1e-12));
+  EXPECT_NEAR((kps[2] - Vec3(0, 8, 0)).norm(), 0.0, 1e-12);
+  // An annular sector, radii in either order: keypoints at R = 1 and 2.
+  const Model a = read(head + "PCIRC,2,1,0,90\n");
+  ASSERT_EQ(a.solid.keypoints.size(), 4u);
+  for (const auto& [id, k] : a.solid.keypoints) {
+    const double r = k.x.norm();
+    EXPECT_TRUE(std::abs(r - 1) < 1e-12 || std::abs(r - 2) < 1e-12) << r;
+  }
+  // A full solid circle: four 90° arcs bound one area, which meshes.
+  const Model full = read(head + "PCIRC,3\nESIZE,,4\nAMESH,ALL\n");
+  EXPECT_EQ(full.solid.lines.size(), 4u);
+  EXPECT_EQ(full.solid.areas.size(), 1u);
+  EXPECT_FALSE(full.elements.empty());
+}
+
 TEST(Meshing, TrianglesOnThreeAndFourSidedAreas) {
   const std::string head = "/PREP7\nET,1,SHELL63\nR,1,0.1\nMP,EX,1,1E7\nMSHAPE,1,2D\nESIZE,,4\n";
   const Model tri = read(head + "K,1\nK,2,1\nK,3,0,1\nA,1,2,3\nAMESH,1\n");
