@@ -198,6 +198,15 @@ TEST(Meshing, PcircAreasAboutTheWorkingPlaneOrigin) {
     const double r = k.x.norm();
     EXPECT_TRUE(std::abs(r - 1) < 1e-12 || std::abs(r - 2) < 1e-12) << r;
   }
+  // Lines 1 and 3 are the arcs, 2 and 4 the radial edges (MAPDL's numbering: vmr029-t9-185
+  // gives lines 2 and 4 one division through the thickness).
+  ASSERT_EQ(a.solid.lines.size(), 4u);
+  for (int id = 1; id <= 4; ++id) {
+    const auto& l = a.solid.lines.at(id);
+    const Vec3 p = a.solid.keypoints.at(l.kp1).x, q = a.solid.keypoints.at(l.kp2).x;
+    const bool radial = std::abs(std::atan2(p.y(), p.x()) - std::atan2(q.y(), q.x())) < 1e-9;
+    EXPECT_EQ(radial, id % 2 == 0) << "line " << id;
+  }
   // A full solid circle: four 90° arcs bound one area, which meshes.
   const Model full = read(head + "PCIRC,3\nESIZE,,4\nAMESH,ALL\n");
   EXPECT_EQ(full.solid.lines.size(), 4u);
