@@ -171,6 +171,24 @@ void cmd_vfill(DeckReader& r, const Command& c) {
       values.push_back(r.real(c, k, 0.0));
     }
     r.scripting.vector_settings = VectorSettings{};
+    // A vector command works on one column of ParR (§A.8): the values past its last row are
+    // not stored, as MAPDL runs vmr049-pl2a-181 (10 values into an 8-row column); the warning
+    // names how many were dropped.
+    if (const auto n = split_subscripted_name(c.text(1))) {
+      const Param* p = r.params.find(n->name);
+      if (p != nullptr && p->is_array() && !p->is_character_array()) {
+        const int row = n->subscripts.empty() || n->subscripts[0].empty()
+                            ? 1
+                            : static_cast<int>(std::lround(r.eval(c, n->subscripts[0])));
+        const long long room = static_cast<long long>(p->imax) - row + 1;
+        if (room >= 1 && static_cast<long long>(values.size()) > room) {
+          r.warn(c, fmt::format("{} has {} rows: the last {} of {} values (from row {}) are "
+                                "past its column and not stored",
+                                n->name, p->imax, values.size() - room, values.size(), row));
+          values.resize(static_cast<std::size_t>(room));
+        }
+      }
+    }
     assign_vector(r, c, c.text(1), values);
     return;
   }

@@ -167,15 +167,20 @@ void cmd_wpave(DeckReader& r, const Command& c) {
 /// Rotates the nodal coordinate systems of `ids` into system `kcn` (NROTAT, DSYM).
 void rotate_nodes(DeckReader& r, const Command& c, const std::vector<int>& ids, int kcn) {
   const CoordinateSystem system = systems(r).get(kcn);
+  // A node on the axis (R = 0) has no radial direction: MAPDL rotates it as at θ = 0 (its
+  // NROTAT note only advises against rotating such nodes; vmr049-cr5-185 rotates them and back),
+  // so its nodal axes are the system's own axes (axes_at returns them), with a warning.
+  std::vector<int> on_axis;
   for (int id : ids) {
     Node& node = r.model.nodes.at(id);
     Mat3 axes;
-    if (!system.axes_at(node.x, axes))
-      r.fail(c, fmt::format("node {} lies on the axis of coordinate system {} (R = 0): its nodal "
-                            "x direction is undefined",
-                            id, kcn));
+    if (!system.axes_at(node.x, axes)) on_axis.push_back(id);
     node.angles_deg = clean_angles(angles_from_rotation(axes));
   }
+  if (!on_axis.empty())
+    r.warn(c, fmt::format("{} node{} on the axis of coordinate system {} (R = 0, first: node {}) "
+                          "rotated as at θ = 0: nodal x along the system's X axis",
+                          on_axis.size(), on_axis.size() == 1 ? "" : "s", kcn, on_axis.front()));
 }
 
 void cmd_nrotat(DeckReader& r, const Command& c) {

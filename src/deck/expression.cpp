@@ -297,8 +297,8 @@ class Parser {
         if (blank_argument) throw ExpressionError(fmt::format("blank subscript of {}", n));
         return element(n, *param, args);
       }
-      if (param != nullptr)
-        throw ExpressionError(fmt::format("'{}' is a scalar parameter, not an array", n));
+      // A scalar parameter may share its name with a get function (UZ = node UZ stored by
+      // *GET, then UZ(N) the function): with parentheses the name is the function.
       std::vector<double> x;
       for (const auto& a : args) x.push_back(require_number(a, ("as an argument of " + n).c_str()));
       bool known = false;
@@ -306,6 +306,8 @@ class Parser {
       if (known) return v;
       double result = 0.0;
       if (host_ != nullptr && host_->call(n, x, result)) return result;
+      if (param != nullptr)
+        throw ExpressionError(fmt::format("'{}' is a scalar parameter, not an array", n));
       throw ExpressionError(fmt::format("'{}' is neither an array parameter nor a function", n));
     }
     if (param == nullptr) {

@@ -5,16 +5,20 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/dof.h"
 #include "deck/deck_context.h"
 
 namespace impactfe::deck {
 
 namespace {
 
+/// Names refused as parameters: the convenience labels that a node, element or switch field
+/// takes in place of a number (ALL, ON, OFF), and the built-in functions. DOF and force labels
+/// (UZ, MZ, ...) are accepted, as MAPDL accepts them (its Programmer's Reference only advises
+/// against them): the reader never substitutes a numeric parameter into a label field
+/// (DeckReader::label), so D,1,UZ and *GET,..,U,Z keep their labels while a numeric field may
+/// use the parameter (vm70 stores *GET,MZ,ELEM,...).
 bool reserved_label(const std::string& name) {
-  return parse_dof_label(name).has_value() || parse_force_label(name).has_value() ||
-         name == "ALL" || name == "ON" || name == "OFF" || is_builtin_function(name);
+  return name == "ALL" || name == "ON" || name == "OFF" || is_builtin_function(name);
 }
 
 /// A parameter name given as a target (the Par field is never substituted, §A.2).

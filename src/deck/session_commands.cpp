@@ -93,6 +93,9 @@ void register_session_commands(std::vector<CommandSpec>& t) {
   t.push_back({"FINISH", cmd_finish, kAnywhere});
   t.push_back({"/TITLE", cmd_title, kAnywhere});
   t.push_back({"/FILNAME", cmd_filname, kBegin | kPrep7});
+  // The spelling of the Verification Manual decks (vm149, vmr029-t4-*), which MAPDL runs as
+  // /FILNAME; its first four characters (/FILE) differ, so the 4x rule does not find it.
+  t.push_back({"/FILENAME", cmd_filname, kBegin | kPrep7});
   // Control commands, run by the executor.
   for (const char* name :
        {"*DO", "*DOWHILE", "*ENDDO", "*IF", "*ELSEIF", "*ELSE", "*ENDIF", "*EXIT", "*CYCLE", "*GO",

@@ -240,6 +240,14 @@ void cmd_cyl4(DeckReader& r, const Command& c) {
                          r.real(c, 5, 0.0), t1, t2, std::min(0.0, depth), std::max(0.0, depth));
 }
 
+void cmd_pcirc(DeckReader& r, const Command& c) {
+  // PCIRC,RAD1,RAD2,THETA1,THETA2: a circular area (a sector, an annular sector) about the
+  // working plane origin, as CYL4 without depth; RAD1, RAD2 in either order, blank or equal
+  // radii a solid circle.
+  builder(r, c).cylinder(working_plane(r), 0.0, 0.0, r.real(c, 1, 0.0), r.real(c, 2, 0.0),
+                         r.real(c, 3, 0.0), r.real(c, 4, 360.0), 0.0, 0.0);
+}
+
 void cmd_cylind(DeckReader& r, const Command& c) {
   // CYLIND,RAD1,RAD2,Z1,Z2,THETA1,THETA2
   const double z1 = r.real(c, 3, 0.0), z2 = r.real(c, 4, 0.0);
@@ -332,7 +340,6 @@ const std::map<std::string, std::string>& refusal_reasons() {
       {"CIRCLE", "CIRCLE is not supported; use LARC or CYL4"},
       {"BSPLIN", "splines are not supported"},
       {"SPLINE", "splines are not supported"},
-      {"PCIRC", "PCIRC is not supported; use CYL4"},
       {"CON4", "cones are not supported (not a primitive here)"},
       {"CONE", "cones are not supported (not a primitive here)"},
       {"TORUS", "tori are not supported"},
@@ -398,6 +405,7 @@ void register_solid_model_commands(std::vector<CommandSpec>& t) {
   t.push_back({"BLC5", cmd_blc, kPrep7});
   t.push_back({"BLOCK", cmd_block, kPrep7});
   t.push_back({"CYL4", cmd_cyl4, kPrep7});
+  t.push_back({"PCIRC", cmd_pcirc, kPrep7});
   t.push_back({"CYLIND", cmd_cylind, kPrep7});
   t.push_back({"NUMSTR", cmd_numstr, kPrep7});
   for (const char* name : {"KLIST", "LLIST", "ALIST", "VLIST"})

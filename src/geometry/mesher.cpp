@@ -251,13 +251,15 @@ void Mesher::plan_divisions(const std::vector<std::vector<int>>& classes, const 
   }
 }
 
-void Mesher::line_nodes(int id, std::optional<double> area_size) {
+void Mesher::line_nodes(int id, std::optional<double> area_size,
+                        std::map<std::pair<int, int>, int>* midsides) {
   Line& line = solid_.lines.at(id);
   if (!line.nodes.empty()) return;
   const auto planned = planned_.find(id);
   int n = planned != planned_.end() ? planned->second : fixed_divisions(line);
   if (n <= 0) n = soft_divisions(line, area_size);
-  check_new_nodes(n - 1.0, fmt::format("line {} into {} divisions", id, n));
+  check_new_nodes(midsides != nullptr ? 2.0 * n - 1.0 : n - 1.0,
+                  fmt::format("line {} into {} divisions", id, n));
   double space = line.space;
   const bool line_sized = line.ndiv > 0 || line.size || line.angle;
   const auto s1 = solid_.keypoints.at(line.kp1).size;
@@ -267,9 +269,21 @@ void Mesher::line_nodes(int id, std::optional<double> area_size) {
   const int a = keypoint_node(line.kp1);
   const int b = keypoint_node(line.kp2);
   std::vector<int> nodes{a};
-  for (int k = 1; k < n; ++k)
-    nodes.push_back(add_node(line_point(line, f[static_cast<std::size_t>(k)])));
+  std::vector<int> middle;  // midside node of division k (with `midsides`)
+  for (int k = 1; k <= n; ++k) {
+    if (midsides != nullptr)
+      middle.push_back(add_node(line_point(
+          line, 0.5 * (f[static_cast<std::size_t>(k - 1)] + f[static_cast<std::size_t>(k)]))));
+    if (k < n) nodes.push_back(add_node(line_point(line, f[static_cast<std::size_t>(k)])));
+  }
   nodes.push_back(b);
+  if (midsides != nullptr)
+    for (int k = 0; k < n; ++k) {
+      const auto key =
+          std::minmax(nodes[static_cast<std::size_t>(k)], nodes[static_cast<std::size_t>(k + 1)]);
+      (*midsides)[key] = middle[static_cast<std::size_t>(k)];
+      if (midside_index_) midside_index_->emplace(key, middle[static_cast<std::size_t>(k)]);
+    }
   solid_.lines.at(id).nodes = std::move(nodes);
 }
 
@@ -412,7 +426,9 @@ void Mesher::mesh_line(int id) {
     Log::info("{}:{}: {}: line {} is already meshed", where_.file, where_.line, where_.command, id);
     return;
   }
-  line_nodes(id);
+  const bool quadratic = d.topology().midside_nodes > 0;
+  std::map<std::pair<int, int>, int> midsides;
+  line_nodes(id, std::nullopt, quadratic && line.nodes.empty() ? &midsides : nullptr);
   const Line& l = solid_.lines.at(id);
   std::vector<int> elements;
   const int n = static_cast<int>(l.nodes.size()) - 1;
@@ -426,12 +442,14 @@ void Mesher::mesh_line(int id) {
   }
   // A quadratic line element (BEAM189) gets its midside node on the line (on an arc, not on
   // its chord) before the orientation node.
-  const bool quadratic = d.topology().midside_nodes > 0;
   if (quadratic) index_line_edges(id);
   for (int k = 0; k < n; ++k) {
     std::vector<int> nodes{l.nodes[static_cast<std::size_t>(k)],
                            l.nodes[static_cast<std::size_t>(k + 1)]};
-    if (quadratic) nodes.push_back(midside_node(nodes[0], nodes[1]));
+    if (quadratic) {
+      const auto made = midsides.find(std::minmax(nodes[0], nodes[1]));
+      nodes.push_back(made != midsides.end() ? made->second : midside_node(nodes[0], nodes[1]));
+    }
     if (orient) {
       const double s = (k + 0.5) / n;
       const Vec3 mid = 0.5 * (model_.nodes.at(nodes[0]).x + model_.nodes.at(nodes[1]).x);

@@ -97,7 +97,12 @@ class Mesher {
   void plan_divisions(const std::vector<std::vector<int>>& classes, const std::string& what,
                       std::optional<double> area_size);
   /// Creates the nodes of a line (and of its keypoints) when it has none.
-  void line_nodes(int id, std::optional<double> area_size = std::nullopt);
+  /// With `midsides` (a quadratic line element meshing a line that has no nodes yet), the
+  /// midside nodes are created in turn with the corner nodes, numbered in order along the line as
+  /// MAPDL numbers them (vm70 reads node 10 as the midspan of 8 BEAM189 elements); `midsides`
+  /// receives them by corner pair.
+  void line_nodes(int id, std::optional<double> area_size = std::nullopt,
+                  std::map<std::pair<int, int>, int>* midsides = nullptr);
   /// Creates the nodes of an area (lines first) when it has none; `triangles` asks for the
   /// triangular lattice on a 3-sided area.
   void area_nodes(int id, bool triangles);

@@ -287,9 +287,15 @@ int SolidBuilder::cylinder(const CoordinateSystem& wp, double xc, double yc, dou
       const int b = keypoint(0, point(r_out, theta1, z));
       const int c = keypoint(0, point(r_out, theta2, z));
       const int d = keypoint(0, point(r_in, theta2, z));
-      lv.kps = {a, b, c, d};
-      lv.lines = {line(a, b, flat), arc(b, c, centre(z), axis, sweep), line(c, d, flat),
-                  -arc(a, d, centre(z), axis, sweep)};
+      // Lines numbered outer arc, radial edge at THETA2, inner arc, radial edge at THETA1, so
+      // that the radial edges are the even lines as in MAPDL (vmr029-t9-185 sizes lines 2 and 4
+      // of PCIRC,RM+T/2,RM-T/2,... to one division through the thickness).
+      const int outer = arc(b, c, centre(z), axis, sweep);
+      const int end_edge = line(c, d, flat);
+      const int inner = arc(a, d, centre(z), axis, sweep);
+      const int start_edge = line(a, b, flat);
+      lv.kps = {b, c, d, a};
+      lv.lines = {outer, end_edge, -inner, start_edge};
     }
     return lv;
   };

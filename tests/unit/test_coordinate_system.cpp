@@ -91,9 +91,14 @@ TEST(CoordinateSystem, WorkingPlanePrimitivesAndNrotat) {
   EXPECT_NEAR(m.nodes.at(1).angles_deg(0), 30.0, 1e-10);
   EXPECT_NEAR(m.nodes.at(1).angles_deg(1), 0.0, 1e-10);
   EXPECT_TRUE(m.nodes.at(2).rotated());
-  EXPECT_THROW(read("/PREP7\nCSYS,1\nN,1,0,0,5\nNROTAT,1\n"), InputError);  // on the axis
-  EXPECT_THROW(read("/PREP7\nLOCAL,11,3\n"), InputError);                   // toroidal
-  EXPECT_THROW(read("/PREP7\nCSYS,15\n"), InputError);                      // undefined
+  // On the axis of a cylindrical system (no radial direction): rotated as at θ = 0, nodal x
+  // along the system's X axis (LOCAL,11 turned 40° about Z), as MAPDL runs vmr049-cr5-185.
+  const Model axis = read("/PREP7\nLOCAL,11,1,0,0,0,40\nN,1,0,0,5\nNROTAT,1\n");
+  EXPECT_NEAR(axis.nodes.at(1).angles_deg(0), 40.0, 1e-10);
+  EXPECT_NEAR(axis.nodes.at(1).angles_deg(1), 0.0, 1e-10);
+  EXPECT_NEAR(axis.nodes.at(1).angles_deg(2), 0.0, 1e-10);
+  EXPECT_THROW(read("/PREP7\nLOCAL,11,3\n"), InputError);  // toroidal
+  EXPECT_THROW(read("/PREP7\nCSYS,15\n"), InputError);     // undefined
 }
 
 }  // namespace

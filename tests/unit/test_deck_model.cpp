@@ -386,6 +386,8 @@ TEST(DeckModel, InputFilesRelativeToTheIncludingDeck) {
 
 TEST(DeckModel, FilnameSetsJobnameUnlessGivenOnTheCommandLine) {
   EXPECT_EQ(parse("/FILNAME,crash\n").model.jobname, "crash");
+  // The Verification Manual's spelling (vm149: /filename,case1).
+  EXPECT_EQ(parse("/filename,case1\n").model.jobname, "case1");
   DeckOptions o;
   o.jobname = "cli";
   EXPECT_EQ(read_deck_text("/FILNAME,crash\n", "x.inp", o).model.jobname, "cli");

@@ -163,6 +163,57 @@ TEST(Meshing, LineSpacingRatio) {
   for (std::size_t k = 0; k < x.size(); ++k) EXPECT_NEAR(x[k], expected[k], 1e-12);
 }
 
+TEST(Meshing, QuadraticLineNodesNumberedAlongTheLine) {
+  // LMESH of BEAM189 numbers the keypoint nodes first, then every interior node, corner and
+  // midside, in order along the line, as MAPDL does: vm70 reads node 10 of 8 elements on a
+  // 240-long line as the midspan (x = 120).
+  const Model m = read(
+      "/PREP7\nET,1,BEAM189\nSECTYPE,1,BEAM,RECT\nSECDATA,1,1\nMP,EX,1,1\nK,1\nK,2,240\n"
+      "L,1,2\nESIZE,,8\nLMESH,1\n");
+  ASSERT_EQ(m.nodes.size(), 17u);
+  EXPECT_NEAR(m.nodes.at(2).x.x(), 240.0, 1e-12);
+  for (int n = 3; n <= 17; ++n) EXPECT_NEAR(m.nodes.at(n).x.x(), 15.0 * (n - 2), 1e-9) << n;
+  // Element 1: I = node 1, J = node 4 (x = 30), midside K = node 3 (x = 15).
+  const auto& e = m.elements.begin()->second.nodes;
+  EXPECT_EQ(e[0], 1);
+  EXPECT_EQ(e[1], 4);
+  EXPECT_EQ(e[2], 3);
+}
+
+TEST(Meshing, PcircAreasAboutTheWorkingPlaneOrigin) {
+  const std::string head = "/PREP7\nET,1,PLANE182\nMP,EX,1,1\n";
+  // A quarter sector moved with the working plane (vm272: WPOFF,0,16 then PCIRC,8,,180,270).
+  const Model q = read(head + "WPOFF,0,16\nPCIRC,8,,180,270\n");
+  ASSERT_EQ(q.solid.areas.size(), 1u);
+  std::vector<Vec3> kps;
+  for (const auto& [id, k] : q.solid.keypoints) kps.push_back(k.x);
+  ASSERT_EQ(kps.size(), 3u);
+  EXPECT_TRUE(kps[0].isApprox(Vec3(0, 16, 0), 1e-12));
+  EXPECT_TRUE(kps[1].isApprox(Vec3(-8, 16, 0), 1e-12));
+  EXPECT_NEAR((kps[2] - Vec3(0, 8, 0)).norm(), 0.0, 1e-12);
+  // An annular sector, radii in either order: keypoints at R = 1 and 2.
+  const Model a = read(head + "PCIRC,2,1,0,90\n");
+  ASSERT_EQ(a.solid.keypoints.size(), 4u);
+  for (const auto& [id, k] : a.solid.keypoints) {
+    const double r = k.x.norm();
+    EXPECT_TRUE(std::abs(r - 1) < 1e-12 || std::abs(r - 2) < 1e-12) << r;
+  }
+  // Lines 1 and 3 are the arcs, 2 and 4 the radial edges (MAPDL's numbering: vmr029-t9-185
+  // gives lines 2 and 4 one division through the thickness).
+  ASSERT_EQ(a.solid.lines.size(), 4u);
+  for (int id = 1; id <= 4; ++id) {
+    const auto& l = a.solid.lines.at(id);
+    const Vec3 p = a.solid.keypoints.at(l.kp1).x, q = a.solid.keypoints.at(l.kp2).x;
+    const bool radial = std::abs(std::atan2(p.y(), p.x()) - std::atan2(q.y(), q.x())) < 1e-9;
+    EXPECT_EQ(radial, id % 2 == 0) << "line " << id;
+  }
+  // A full solid circle: four 90° arcs bound one area, which meshes.
+  const Model full = read(head + "PCIRC,3\nESIZE,,4\nAMESH,ALL\n");
+  EXPECT_EQ(full.solid.lines.size(), 4u);
+  EXPECT_EQ(full.solid.areas.size(), 1u);
+  EXPECT_FALSE(full.elements.empty());
+}
+
 TEST(Meshing, TrianglesOnThreeAndFourSidedAreas) {
   const std::string head = "/PREP7\nET,1,SHELL63\nR,1,0.1\nMP,EX,1,1E7\nMSHAPE,1,2D\nESIZE,,4\n";
   const Model tri = read(head + "K,1\nK,2,1\nK,3,0,1\nA,1,2,3\nAMESH,1\n");
