@@ -3,6 +3,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
+
+#include "elements/face_pressure.h"
 
 namespace impactfe {
 
@@ -17,21 +20,47 @@ double curve_value(const std::vector<double>& x, const std::vector<double>& y, d
 
 ExplicitCurveLoads::ExplicitCurveLoads(const ExplicitSystem& system,
                                        const ExplicitControls& controls) {
+  const auto index = [&](const ExplicitCurveLoad& l, int node) {
+    const int n = system.index_of(node);
+    if (n < 0)
+      throw InputError(l.where, fmt::format("EDLOAD {} on {}: node {} carries no explicit element",
+                                            l.label, l.component, node));
+    return static_cast<std::size_t>(n);
+  };
   for (const ExplicitCurveLoad& l : controls.loads) {
+    if (l.label == "PRESS") {
+      Pressure p{&l, {}, {}};
+      for (int node : l.nodes) p.nodes.push_back(index(l, node));
+      p.previous.assign(3 * p.nodes.size(), 0.0);
+      pressures_.push_back(std::move(p));
+      continue;
+    }
     // ACLX/ACLY/ACLZ accelerate the base (as ACEL): each node feels the body force −m a.
     const bool base = l.label.rfind("ACL", 0) == 0;
-    Entry e{&l, l.label.back() - 'X', base, {}, {}, {}, l.label[0] == 'V' && l.birth <= 0.0};
-    for (int node : l.nodes) {
-      const int n = system.index_of(node);
-      if (n < 0)
-        throw InputError(l.where, fmt::format("EDLOAD {} on {}: node {} carries no explicit "
-                                              "element",
-                                              l.label, l.component, node));
-      e.nodes.push_back(static_cast<std::size_t>(n));
+    const bool prescribed = l.label.size() == 2 && (l.label[0] == 'V' || l.label[0] == 'U');
+    Entry e{&l, l.label.back() - 'X',        base, l.label[0] == 'U', 0.0, {}, {},
+            {}, prescribed && l.birth <= 0.0};
+    if (l.label.rfind("RB", 0) == 0) {
+      // A force on the centre of mass: m_i/M of it on each node of the body has no moment
+      // about the centre (Σ m_i r_i = 0), so the body's Newton–Euler equations see F alone.
+      int body = -1;
+      for (int node : l.nodes) {
+        const std::size_t n = index(l, node);
+        const int b = system.is_rigid(n) ? system.rigid_body_of[n] : -1;
+        if (b < 0 || (body >= 0 && b != body))
+          throw InputError(l.where, fmt::format("EDLOAD {} on part {}: node {} is not a node of "
+                                                "the part's rigid body",
+                                                l.label, l.component, node));
+        body = b;
+      }
+      e.nodes = system.rigid_bodies[static_cast<std::size_t>(body)].nodes;
+      for (std::size_t n : e.nodes) e.body_mass += system.mass[n];
+    } else {
+      for (int node : l.nodes) e.nodes.push_back(index(l, node));
     }
     e.previous.assign(e.nodes.size(), 0.0);
     e.held.assign(e.nodes.size(), 0.0);
-    (l.label[0] == 'V' ? velocities_ : forces_).push_back(std::move(e));
+    (prescribed ? velocities_ : forces_).push_back(std::move(e));
   }
 }
 
@@ -49,14 +78,54 @@ ExplicitStepLimit ExplicitCurveLoads::add_forces(const ExplicitNodalView& state,
     const double curve = this->value(*e.load, time);
     for (std::size_t j = 0; j < e.nodes.size(); ++j) {
       const std::size_t n = e.nodes[j];
-      const double value = e.per_mass ? -mass[n] * curve : curve;
+      const double value = e.per_mass          ? -mass[n] * curve
+                           : e.body_mass > 0.0 ? mass[n] / e.body_mass * curve
+                                               : curve;
       // Work over the step by the trapezoidal rule: ½(f_n + f_{n+1})·Δx, Δx = dt v_{n+1/2}.
       work_ += 0.5 * (e.previous[j] + value) * dt * v[e.direction][n];
       e.previous[j] = value;
       f[e.direction][n] -= value;  // an external force: f_int sign
     }
   }
+  for (Pressure& p : pressures_) add_pressure(p, state, time, dt, fx, fy, fz);
   return {};
+}
+
+void ExplicitCurveLoads::add_pressure(Pressure& p, const ExplicitNodalView& s, double time,
+                                      double dt, double* fx, double* fy, double* fz) {
+  const double pressure = this->value(*p.load, time);
+  double* f[3] = {fx, fy, fz};
+  const double* v[3] = {s.vx, s.vy, s.vz};
+  for (std::size_t k = 0; 4 * k < p.nodes.size(); ++k) {
+    const std::size_t* n = &p.nodes[4 * k];
+    std::array<Vec3, 4> x;
+    for (std::size_t a = 0; a < 4; ++a) x[a] = Vec3(s.x[n[a]], s.y[n[a]], s.z[n[a]]);
+    // A follower load on the face at x_{n+1}: f_a = p ∫ N_a (∂x/∂ξ × ∂x/∂η) dξ dη (exact for
+    // the bilinear face); a triangle (a corner repeated) gives p A n / 3 to each corner.
+    std::array<Vec3, 4> force;
+    int skip = -1;
+    for (int a = 0; a < 4; ++a)
+      if (n[a] == n[(a + 3) % 4]) skip = a;
+    if (skip >= 0) {
+      std::size_t c[3], m = 0;
+      for (int a = 0; a < 4; ++a)
+        if (a != skip) c[m++] = static_cast<std::size_t>(a);
+      const Vec3 share = pressure / 6.0 * (x[c[1]] - x[c[0]]).cross(x[c[2]] - x[c[0]]);
+      force.fill(share);
+      force[static_cast<std::size_t>(skip)] = Vec3::Zero();
+    } else {
+      force = bilinear_face_pressure_forces(x, {pressure, pressure, pressure, pressure});
+    }
+    double* previous = &p.previous[12 * k];
+    for (int a = 0; a < 4; ++a)
+      for (int d = 0; d < 3; ++d) {
+        const double value = force[static_cast<std::size_t>(a)](d);
+        // Work over the step by the trapezoidal rule: ½(f_n + f_{n+1})·Δx, Δx = dt v_{n+1/2}.
+        work_ += 0.5 * (previous[3 * a + d] + value) * dt * v[d][n[a]];
+        previous[3 * a + d] = value;
+        f[d][n[a]] -= value;  // an external force: f_int sign
+      }
+  }
 }
 
 void ExplicitCurveLoads::prescribe(double time, double mean, const double* mass, double* vx,
@@ -70,7 +139,13 @@ void ExplicitCurveLoads::prescribe(double time, double mean, const double* mass,
     const bool held = e.active;  // its accelerations were zeroed at the last hold
     e.active = time >= e.load->birth && !(e.load->death > 0.0 && time > e.load->death);
     if (!e.active) continue;
-    const double value = this->value(*e.load, time);
+    // A prescribed displacement u(t) moves the DOF by u(t_{n+1}) − u(t_n) over the step: the
+    // half-step velocity of its differences, so that x = X + u(t) at the integer times.
+    const double value =
+        e.displacement
+            ? (this->value(*e.load, integer_time_) - this->value(*e.load, integer_time_ - step_)) /
+                  step_
+            : this->value(*e.load, time);
     e.current = value;
     for (std::size_t j = 0; j < e.nodes.size(); ++j) {
       const std::size_t n = e.nodes[j];

@@ -1,9 +1,10 @@
 #pragma once
 /// Loads by curve of an explicit run (EDLOAD; docs/explicit_dynamics.md): nodal forces FX, FY,
-/// FZ, base accelerations ACLX, ACLY, ACLZ (the body force −m a on each node) and prescribed
-/// velocities VX, VY, VZ on the nodes of a component, valued by a curve of
-/// time: linear between its points, held at the first before it and at the last beyond it (as
-/// LS-DYNA's load curves), times SCALE, active between BTIME and DTIME.
+/// FZ, base accelerations ACLX, ACLY, ACLZ (the body force −m a on each node), prescribed
+/// velocities VX, VY, VZ and displacements UX, UY, UZ on the nodes of a component, pressures
+/// (PRESS) on element faces and forces on the centre of mass of a rigid body (RBFX, RBFY,
+/// RBFZ), valued by a curve of time: linear between its points, held at the first before it and
+/// at the last beyond it (as LS-DYNA's load curves), times SCALE, active between BTIME and DTIME.
 #include <vector>
 
 #include "core/explicit_controls.h"
@@ -21,7 +22,7 @@ class ExplicitCurveLoads final : public ExplicitInteraction {
   /// The loads of `controls` on the nodes of `system` (InputError at the EDLOAD for a node that
   /// carries no explicit element).
   ExplicitCurveLoads(const ExplicitSystem& system, const ExplicitControls& controls);
-  bool empty() const { return forces_.empty() && velocities_.empty(); }
+  bool empty() const { return forces_.empty() && velocities_.empty() && pressures_.empty(); }
 
   ExplicitStepLimit add_forces(const ExplicitNodalView& state, const double* mass, double time,
                                double dt, double* fx, double* fy, double* fz) override;
@@ -35,14 +36,27 @@ class ExplicitCurveLoads final : public ExplicitInteraction {
     const ExplicitCurveLoad* load;
     int direction;                   // 0 x, 1 y, 2 z
     bool per_mass = false;           // ACLX..: the body force −m a of a base acceleration
+    bool displacement = false;       // UX..: the velocity from the curve's differences
+    double body_mass = 0.0;          // RBFX..: the rigid body's mass (its nodes take m_i/M)
     std::vector<std::size_t> nodes;  // run indices
     std::vector<double> previous;    // force at t_n of each node (trapezoidal work)
     std::vector<double> held;        // prescribed: the acceleration the forces would give
     bool active = false;             // a velocity prescribed at the last half step
     double current = 0.0;            // the velocity prescribed at the last half step
   };
+  /// PRESS: faces of 4 run node indices (a triangle repeats one), the pressure acting along
+  /// the right-hand normal of that order.
+  struct Pressure {
+    const ExplicitCurveLoad* load;
+    std::vector<std::size_t> nodes;  // 4 per face
+    std::vector<double> previous;    // 12 per face: the nodal forces at t_n (trapezoidal work)
+  };
   double value(const ExplicitCurveLoad& l, double time) const;
+  /// Adds the forces of a pressure entry at x_{n+1} and their work over the step.
+  void add_pressure(Pressure& p, const ExplicitNodalView& state, double time, double dt, double* fx,
+                    double* fy, double* fz);
   std::vector<Entry> forces_, velocities_;
+  std::vector<Pressure> pressures_;
   double work_ = 0.0;
   double integer_time_ = 0.0;     // t_{n+1} after prescribe() at t_{n+1/2}
   double step_ = 0.0;             // dt_{n+1/2}, the step after the last prescribe()

@@ -67,7 +67,7 @@ void refuse_unsupported(const Model& model, const AnalysisRequest& request) {
 }
 
 /// A rigid body moves by its EDMP constraint codes and the forces of its nodes: D on its nodes
-/// and velocities prescribed there by curve (EDLOAD VX ...) would fight it and are refused.
+/// and motion prescribed there by curve (EDLOAD VX, UX ...) would fight it and are refused.
 void refuse_rigid_node_loads(const Model& model, const AnalysisRequest& request,
                              const ExplicitSystem& s) {
   if (s.rigid_bodies.empty()) return;
@@ -88,7 +88,7 @@ void refuse_rigid_node_loads(const Model& model, const AnalysisRequest& request,
                                      "VAL1 and VAL2",
                                      step.number, key.node, dof_name(key.dof), mat));
   for (const ExplicitCurveLoad& load : model.explicit_dynamics.loads)
-    if (load.label.size() == 2 && load.label[0] == 'V')
+    if (load.label.size() == 2 && (load.label[0] == 'V' || load.label[0] == 'U'))
       for (int node : load.nodes)
         if (const int mat = body_material(node))
           throw NotImplementedError(load.where,
