@@ -74,13 +74,12 @@ void cmd_edcurve(DeckReader& r, const Command& c) {
   curves[*lcid] = std::move(curve);
 }
 
-const std::set<std::string> kLoadLabels = {"FX",   "FY",   "FZ",   "VX",   "VY",   "VZ",
-                                           "UX",   "UY",   "UZ",   "ACLX", "ACLY", "ACLZ",
-                                           "RBFX", "RBFY", "RBFZ", "PRESS"};
+const std::set<std::string> kLoadLabels = {
+    "FX",   "FY",   "FZ",   "VX",   "VY",   "VZ",   "UX",   "UY",   "UZ",   "ACLX", "ACLY",
+    "ACLZ", "RBFX", "RBFY", "RBFZ", "RBVX", "RBVY", "RBVZ", "RBUX", "RBUY", "RBUZ", "PRESS"};
 const std::set<std::string> kRefusedLabels = {
-    "MX",   "MY",   "MZ",   "ROTX", "ROTY", "ROTZ", "OMGX", "OMGY", "OMGZ", "AX",
-    "AY",   "AZ",   "TEMP", "RBMX", "RBMY", "RBMZ", "RBUX", "RBUY", "RBUZ", "RBRX",
-    "RBRY", "RBRZ", "RBVX", "RBVY", "RBVZ", "RBOX", "RBOY", "RBOZ"};
+    "MX", "MY",   "MZ",   "ROTX", "ROTY", "ROTZ", "OMGX", "OMGY", "OMGZ", "AX",   "AY",
+    "AZ", "TEMP", "RBMX", "RBMY", "RBMZ", "RBRX", "RBRY", "RBRZ", "RBOX", "RBOY", "RBOZ"};
 
 /// MAPDL's face numbering of SOLID164 (as SOLID185: 1 J-I-L-K, 2 I-J-N-M, 3 J-K-O-N, 4 K-L-P-O,
 /// 5 L-I-M-P, 6 M-N-O-P, each counterclockwise seen from outside), read backwards: a positive
@@ -184,7 +183,8 @@ void cmd_edload(DeckReader& r, const Command& c) {
     r.fail(c, fmt::format("Lab {}: not implemented in explicit dynamics; EDLOAD carries out the "
                           "nodal forces FX, FY, FZ, the prescribed velocities VX, VY, VZ and "
                           "displacements UX, UY, UZ, the base accelerations ACLX, ACLY, ACLZ, "
-                          "the pressure PRESS and the forces on rigid bodies RBFX, RBFY, RBFZ",
+                          "the pressure PRESS and, on rigid bodies, the forces RBFX, RBFY, RBFZ, "
+                          "velocities RBVX, RBVY, RBVZ and displacements RBUX, RBUY, RBUZ",
                           lab));
   if (!kLoadLabels.count(lab)) r.fail(c, fmt::format("Lab '{}': not an EDLOAD label", c.text(2)));
   const bool pressure = lab == "PRESS", rigid = lab.rfind("RB", 0) == 0;

@@ -231,6 +231,8 @@ void CentralDifference::rigid_accelerations() {
         (force / body.mass - damping_ * r.velocity) / (1.0 + 0.5 * damping_ * previous_step_);
     for (int i = 0; i < 3; ++i)
       if (body.fixed_translation[static_cast<std::size_t>(i)]) r.acceleration(i) = 0.0;
+    // A centre velocity prescribed by curve (EDLOAD RBVX ...) is held.
+    for (ExplicitInteraction* i : interactions_) i->hold_rigid(k, body.mass, r.acceleration.data());
     // Euler's equations in global axes: J α = m − ω × J ω, J = R J₀ Rᵀ (ω of the half step
     // before: the explicit gyroscopic term).
     const Eigen::Matrix3d J = r.rotation * body.inertia0 * r.rotation.transpose();
@@ -257,6 +259,8 @@ void CentralDifference::move_rigid_bodies(double dt, double mean) {
     const RigidBody& body = system_.rigid_bodies[k];
     RigidMotion& r = rigid_[k];
     r.velocity += mean * r.acceleration;
+    for (ExplicitInteraction* i : interactions_)
+      i->prescribe_rigid(k, body.mass, mean, r.velocity.data());
     r.omega += mean * r.alpha;
     r.centre += dt * r.velocity;
     // R_{n+1} = exp(Δt ω̂) R_n: the rotation by the angle Δt|ω| about ω (Rodrigues).

@@ -3,6 +3,7 @@
 /// loads by curve (EDLOAD) and contact (EDCGEN). The central difference calls each interaction
 /// once per cycle at x_{n+1}; the interaction adds its nodal forces in the sign of f_int (the
 /// node's acceleration is −f/m), tracks its own energy, and may prescribe velocities.
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -29,6 +30,16 @@ class ExplicitInteraction {
   /// Zeroes the accelerations of the prescribed DOFs (after keeping what the forces would give
   /// them, for the work of the next prescribe).
   virtual void hold(double* ax, double* ay, double* az) { (void)ax, (void)ay, (void)az; }
+  /// Overrides components of the centre velocity v_c(n+1/2) of rigid body `body` (of mass
+  /// `mass`) prescribed there, after prescribe() of the same step, and counts the work.
+  virtual void prescribe_rigid(std::size_t body, double mass, double mean, double* velocity) {
+    (void)body, (void)mass, (void)mean, (void)velocity;
+  }
+  /// Zeroes the prescribed components of the body's centre acceleration (keeping what the
+  /// forces would give, for the work).
+  virtual void hold_rigid(std::size_t body, double mass, double* acceleration) {
+    (void)body, (void)mass, (void)acceleration;
+  }
   /// Work put into the model (forces by curve, prescribed velocities) since the start.
   virtual double external_work() const { return 0.0; }
   /// Energy held in or dissipated by the interaction (penalty springs, friction).

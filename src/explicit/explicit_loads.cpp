@@ -37,10 +37,12 @@ ExplicitCurveLoads::ExplicitCurveLoads(const ExplicitSystem& system,
     }
     // ACLX/ACLY/ACLZ accelerate the base (as ACEL): each node feels the body force −m a.
     const bool base = l.label.rfind("ACL", 0) == 0;
-    const bool prescribed = l.label.size() == 2 && (l.label[0] == 'V' || l.label[0] == 'U');
-    Entry e{&l, l.label.back() - 'X',        base, l.label[0] == 'U', 0.0, {}, {},
+    const bool rigid = l.label.rfind("RB", 0) == 0;
+    const char kind = rigid ? l.label[2] : l.label[0];  // F, V, U, A(CL)
+    const bool prescribed = kind == 'V' || kind == 'U';
+    Entry e{&l, l.label.back() - 'X',        base, kind == 'U', 0.0, 0, {}, {},
             {}, prescribed && l.birth <= 0.0};
-    if (l.label.rfind("RB", 0) == 0) {
+    if (rigid) {
       // A force on the centre of mass: m_i/M of it on each node of the body has no moment
       // about the centre (Σ m_i r_i = 0), so the body's Newton–Euler equations see F alone.
       int body = -1;
@@ -53,7 +55,19 @@ ExplicitCurveLoads::ExplicitCurveLoads(const ExplicitSystem& system,
                                                 l.label, l.component, node));
         body = b;
       }
-      e.nodes = system.rigid_bodies[static_cast<std::size_t>(body)].nodes;
+      const RigidBody& b = system.rigid_bodies[static_cast<std::size_t>(body)];
+      if (prescribed) {
+        // The motion of the centre: the body's own state, driven in prescribe_rigid().
+        if (b.fixed_translation[static_cast<std::size_t>(e.direction)])
+          throw InputError(l.where, fmt::format("EDLOAD {} on part {}: EDMP,RIGID,{} fixes that "
+                                                "translation of the body",
+                                                l.label, l.component, b.material));
+        e.body = static_cast<std::size_t>(body);
+        e.held.assign(1, 0.0);
+        rigid_motions_.push_back(std::move(e));
+        continue;
+      }
+      e.nodes = b.nodes;
       for (std::size_t n : e.nodes) e.body_mass += system.mass[n];
     } else {
       for (int node : l.nodes) e.nodes.push_back(index(l, node));
@@ -67,6 +81,15 @@ ExplicitCurveLoads::ExplicitCurveLoads(const ExplicitSystem& system,
 double ExplicitCurveLoads::value(const ExplicitCurveLoad& l, double time) const {
   if (time < l.birth || (l.death > 0.0 && time > l.death)) return 0.0;
   return l.scale * curve_value(l.times, l.values, time - l.birth);
+}
+
+double ExplicitCurveLoads::prescribed_velocity(const Entry& e) const {
+  // A prescribed displacement u(t) moves the DOF by u(t_{n+1}) − u(t_n) over the step: the
+  // half-step velocity of its differences, so that x = X + u(t) at the integer times.
+  if (e.displacement)
+    return (this->value(*e.load, integer_time_) - this->value(*e.load, integer_time_ - step_)) /
+           step_;
+  return this->value(*e.load, integer_time_ - 0.5 * step_);
 }
 
 ExplicitStepLimit ExplicitCurveLoads::add_forces(const ExplicitNodalView& state, const double* mass,
@@ -139,13 +162,7 @@ void ExplicitCurveLoads::prescribe(double time, double mean, const double* mass,
     const bool held = e.active;  // its accelerations were zeroed at the last hold
     e.active = time >= e.load->birth && !(e.load->death > 0.0 && time > e.load->death);
     if (!e.active) continue;
-    // A prescribed displacement u(t) moves the DOF by u(t_{n+1}) − u(t_n) over the step: the
-    // half-step velocity of its differences, so that x = X + u(t) at the integer times.
-    const double value =
-        e.displacement
-            ? (this->value(*e.load, integer_time_) - this->value(*e.load, integer_time_ - step_)) /
-                  step_
-            : this->value(*e.load, time);
+    const double value = prescribed_velocity(e);
     e.current = value;
     for (std::size_t j = 0; j < e.nodes.size(); ++j) {
       const std::size_t n = e.nodes[j];
@@ -173,6 +190,36 @@ void ExplicitCurveLoads::hold(double* ax, double* ay, double* az) {
       e.held[j] = u;
       if (e.active) u = 0.0;
     }
+}
+
+void ExplicitCurveLoads::prescribe_rigid(std::size_t body, double mass, double mean,
+                                         double* velocity) {
+  // As prescribe() for a node, with the body's mass and centre velocity (called after it: the
+  // step and t_{n+1} are this cycle's).
+  const double time = integer_time_ - 0.5 * step_;
+  for (Entry& e : rigid_motions_) {
+    if (e.body != body) continue;
+    const bool held = e.active;
+    e.active = time >= e.load->birth && !(e.load->death > 0.0 && time > e.load->death);
+    if (!e.active) continue;
+    const double value = prescribed_velocity(e);
+    e.current = value;
+    double& u = velocity[e.direction];
+    const double old = held ? u : u - mean * e.held[0];
+    work_ += 0.5 * mass * (value * value - old * old);
+    u = value;
+  }
+}
+
+void ExplicitCurveLoads::hold_rigid(std::size_t body, double mass, double* acceleration) {
+  for (Entry& e : rigid_motions_) {
+    if (e.body != body) continue;
+    double& u = acceleration[e.direction];
+    // The work against the body's other forces over the step just taken, as hold().
+    if (e.active && step_ > 0.0) work_ -= 0.5 * mass * (e.held[0] + u) * step_ * e.current;
+    e.held[0] = u;
+    if (e.active) u = 0.0;
+  }
 }
 
 }  // namespace impactfe

@@ -2,9 +2,10 @@
 /// Loads by curve of an explicit run (EDLOAD; docs/explicit_dynamics.md): nodal forces FX, FY,
 /// FZ, base accelerations ACLX, ACLY, ACLZ (the body force −m a on each node), prescribed
 /// velocities VX, VY, VZ and displacements UX, UY, UZ on the nodes of a component, pressures
-/// (PRESS) on element faces and forces on the centre of mass of a rigid body (RBFX, RBFY,
-/// RBFZ), valued by a curve of time: linear between its points, held at the first before it and
-/// at the last beyond it (as LS-DYNA's load curves), times SCALE, active between BTIME and DTIME.
+/// (PRESS) on element faces, forces on the centre of mass of a rigid body (RBFX, RBFY, RBFZ)
+/// and its prescribed velocity or displacement (RBVX.., RBUX..), valued by a curve of time: linear
+/// between its points, held at the first before it and at the last beyond it (as LS-DYNA's load
+/// curves), times SCALE, active between BTIME and DTIME.
 #include <vector>
 
 #include "core/explicit_controls.h"
@@ -22,13 +23,17 @@ class ExplicitCurveLoads final : public ExplicitInteraction {
   /// The loads of `controls` on the nodes of `system` (InputError at the EDLOAD for a node that
   /// carries no explicit element).
   ExplicitCurveLoads(const ExplicitSystem& system, const ExplicitControls& controls);
-  bool empty() const { return forces_.empty() && velocities_.empty() && pressures_.empty(); }
+  bool empty() const {
+    return forces_.empty() && velocities_.empty() && pressures_.empty() && rigid_motions_.empty();
+  }
 
   ExplicitStepLimit add_forces(const ExplicitNodalView& state, const double* mass, double time,
                                double dt, double* fx, double* fy, double* fz) override;
   void prescribe(double time, double mean, const double* mass, double* vx, double* vy,
                  double* vz) override;
   void hold(double* ax, double* ay, double* az) override;
+  void prescribe_rigid(std::size_t body, double mass, double mean, double* velocity) override;
+  void hold_rigid(std::size_t body, double mass, double* acceleration) override;
   double external_work() const override { return work_; }
 
  private:
@@ -38,6 +43,7 @@ class ExplicitCurveLoads final : public ExplicitInteraction {
     bool per_mass = false;           // ACLX..: the body force −m a of a base acceleration
     bool displacement = false;       // UX..: the velocity from the curve's differences
     double body_mass = 0.0;          // RBFX..: the rigid body's mass (its nodes take m_i/M)
+    std::size_t body = 0;            // RBVX.., RBUX..: the rigid body whose centre is driven
     std::vector<std::size_t> nodes;  // run indices
     std::vector<double> previous;    // force at t_n of each node (trapezoidal work)
     std::vector<double> held;        // prescribed: the acceleration the forces would give
@@ -52,10 +58,14 @@ class ExplicitCurveLoads final : public ExplicitInteraction {
     std::vector<double> previous;    // 12 per face: the nodal forces at t_n (trapezoidal work)
   };
   double value(const ExplicitCurveLoad& l, double time) const;
+  /// The prescribed velocity of a motion entry over the step to t_{n+1} = integer_time_ (the
+  /// curve's value at t_{n+1/2}, or the displacement's difference over the step).
+  double prescribed_velocity(const Entry& e) const;
   /// Adds the forces of a pressure entry at x_{n+1} and their work over the step.
   void add_pressure(Pressure& p, const ExplicitNodalView& state, double time, double dt, double* fx,
                     double* fy, double* fz);
   std::vector<Entry> forces_, velocities_;
+  std::vector<Entry> rigid_motions_;  // RBVX.., RBUX..: prescribed motion of a body's centre
   std::vector<Pressure> pressures_;
   double work_ = 0.0;
   double integer_time_ = 0.0;     // t_{n+1} after prescribe() at t_{n+1/2}

@@ -91,11 +91,11 @@ void refuse_rigid_node_loads(const Model& model, const AnalysisRequest& request,
     if (load.label.size() == 2 && (load.label[0] == 'V' || load.label[0] == 'U'))
       for (int node : load.nodes)
         if (const int mat = body_material(node))
-          throw NotImplementedError(load.where,
-                                    fmt::format("EDLOAD {} on node {} of the rigid body of "
-                                                "material {}: prescribed motion of a rigid body "
-                                                "(RBV labels) is not implemented",
-                                                load.label, node, mat));
+          throw InputError(load.where,
+                           fmt::format("EDLOAD {} on node {} of the rigid body of material {}: "
+                                       "prescribe the motion of a rigid body on its part "
+                                       "(EDLOAD RB{} with the PART number)",
+                                       load.label, node, mat, load.label));
   if (s.sets.empty())
     throw InputError(request.where,
                      "every element is rigid (EDMP,RIGID): an explicit run needs deformable "
