@@ -74,12 +74,13 @@ void cmd_edcurve(DeckReader& r, const Command& c) {
   curves[*lcid] = std::move(curve);
 }
 
-const std::set<std::string> kLoadLabels = {
-    "FX",   "FY",   "FZ",   "VX",   "VY",   "VZ",   "UX",   "UY",   "UZ",   "ACLX", "ACLY",
-    "ACLZ", "RBFX", "RBFY", "RBFZ", "RBVX", "RBVY", "RBVZ", "RBUX", "RBUY", "RBUZ", "PRESS"};
+const std::set<std::string> kLoadLabels = {"FX",   "FY",   "FZ",   "VX",   "VY",   "VZ",   "UX",
+                                           "UY",   "UZ",   "ACLX", "ACLY", "ACLZ", "RBFX", "RBFY",
+                                           "RBFZ", "RBMX", "RBMY", "RBMZ", "RBVX", "RBVY", "RBVZ",
+                                           "RBUX", "RBUY", "RBUZ", "PRESS"};
 const std::set<std::string> kRefusedLabels = {
-    "MX", "MY",   "MZ",   "ROTX", "ROTY", "ROTZ", "OMGX", "OMGY", "OMGZ", "AX",   "AY",
-    "AZ", "TEMP", "RBMX", "RBMY", "RBMZ", "RBRX", "RBRY", "RBRZ", "RBOX", "RBOY", "RBOZ"};
+    "MX", "MY", "MZ",   "ROTX", "ROTY", "ROTZ", "OMGX", "OMGY", "OMGZ", "AX",
+    "AY", "AZ", "TEMP", "RBRX", "RBRY", "RBRZ", "RBOX", "RBOY", "RBOZ"};
 
 /// MAPDL's face numbering of SOLID164 (as SOLID185: 1 J-I-L-K, 2 I-J-N-M, 3 J-K-O-N, 4 K-L-P-O,
 /// 5 L-I-M-P, 6 M-N-O-P, each counterclockwise seen from outside), read backwards: a positive
@@ -184,6 +185,7 @@ void cmd_edload(DeckReader& r, const Command& c) {
                           "nodal forces FX, FY, FZ, the prescribed velocities VX, VY, VZ and "
                           "displacements UX, UY, UZ, the base accelerations ACLX, ACLY, ACLZ, "
                           "the pressure PRESS and, on rigid bodies, the forces RBFX, RBFY, RBFZ, "
+                          "moments RBMX, RBMY, RBMZ, "
                           "velocities RBVX, RBVY, RBVZ and displacements RBUX, RBUY, RBUZ",
                           lab));
   if (!kLoadLabels.count(lab)) r.fail(c, fmt::format("Lab '{}': not an EDLOAD label", c.text(2)));

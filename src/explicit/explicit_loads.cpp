@@ -38,10 +38,13 @@ ExplicitCurveLoads::ExplicitCurveLoads(const ExplicitSystem& system,
     // ACLX/ACLY/ACLZ accelerate the base (as ACEL): each node feels the body force −m a.
     const bool base = l.label.rfind("ACL", 0) == 0;
     const bool rigid = l.label.rfind("RB", 0) == 0;
-    const char kind = rigid ? l.label[2] : l.label[0];  // F, V, U, A(CL)
+    const char kind = rigid ? l.label[2] : l.label[0];  // F, M, V, U, A(CL)
     const bool prescribed = kind == 'V' || kind == 'U';
-    Entry e{&l, l.label.back() - 'X',        base, kind == 'U', 0.0, 0, {}, {},
-            {}, prescribed && l.birth <= 0.0};
+    Entry e{.load = &l,
+            .direction = l.label.back() - 'X',
+            .per_mass = base,
+            .displacement = kind == 'U',
+            .active = prescribed && l.birth <= 0.0};
     if (rigid) {
       // A force on the centre of mass: m_i/M of it on each node of the body has no moment
       // about the centre (Σ m_i r_i = 0), so the body's Newton–Euler equations see F alone.
@@ -69,6 +72,12 @@ ExplicitCurveLoads::ExplicitCurveLoads(const ExplicitSystem& system,
       }
       e.nodes = b.nodes;
       for (std::size_t n : e.nodes) e.body_mass += system.mass[n];
+      if (kind == 'M') {
+        e.moment = true;
+        e.previous.assign(3 * e.nodes.size(), 0.0);
+        forces_.push_back(std::move(e));
+        continue;
+      }
     } else {
       for (int node : l.nodes) e.nodes.push_back(index(l, node));
     }
@@ -98,6 +107,10 @@ ExplicitStepLimit ExplicitCurveLoads::add_forces(const ExplicitNodalView& state,
   double* f[3] = {fx, fy, fz};
   const double* v[3] = {state.vx, state.vy, state.vz};
   for (Entry& e : forces_) {
+    if (e.moment) {
+      add_rigid_moment(e, state, mass, time, dt, fx, fy, fz);
+      continue;
+    }
     const double curve = this->value(*e.load, time);
     for (std::size_t j = 0; j < e.nodes.size(); ++j) {
       const std::size_t n = e.nodes[j];
@@ -112,6 +125,39 @@ ExplicitStepLimit ExplicitCurveLoads::add_forces(const ExplicitNodalView& state,
   }
   for (Pressure& p : pressures_) add_pressure(p, state, time, dt, fx, fy, fz);
   return {};
+}
+
+void ExplicitCurveLoads::add_rigid_moment(Entry& e, const ExplicitNodalView& s, const double* mass,
+                                          double time, double dt, double* fx, double* fy,
+                                          double* fz) {
+  // A moment M on the body as nodal forces F_i = m_i α × q_i about the centre of the nodal
+  // masses c (q_i = x_i − c) with J_m α = M, J_m = Σ m_i (|q_i|² 1 − q_i q_iᵀ): their moment
+  // Σ q_i × F_i = J_m α = M and their sum α × Σ m_i q_i = 0, so the body's Newton–Euler
+  // equations see M alone, whatever its own inertia.
+  Vec3 moment = Vec3::Zero();
+  moment(e.direction) = this->value(*e.load, time);
+  Vec3 centre = Vec3::Zero();
+  for (std::size_t n : e.nodes) centre += mass[n] * Vec3(s.x[n], s.y[n], s.z[n]);
+  centre /= e.body_mass;
+  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();
+  for (std::size_t n : e.nodes) {
+    const Vec3 q = Vec3(s.x[n], s.y[n], s.z[n]) - centre;
+    inertia += mass[n] * (q.squaredNorm() * Eigen::Matrix3d::Identity() - q * q.transpose());
+  }
+  const Vec3 alpha = rigid_angular_acceleration(inertia, moment, {false, false, false});
+  double* f[3] = {fx, fy, fz};
+  const double* v[3] = {s.vx, s.vy, s.vz};
+  for (std::size_t j = 0; j < e.nodes.size(); ++j) {
+    const std::size_t n = e.nodes[j];
+    const Vec3 force = mass[n] * alpha.cross(Vec3(s.x[n], s.y[n], s.z[n]) - centre);
+    for (int d = 0; d < 3; ++d) {
+      double& previous = e.previous[3 * j + static_cast<std::size_t>(d)];
+      // Work over the step by the trapezoidal rule, as the forces'.
+      work_ += 0.5 * (previous + force(d)) * dt * v[d][n];
+      previous = force(d);
+      f[d][n] -= force(d);
+    }
+  }
 }
 
 void ExplicitCurveLoads::add_pressure(Pressure& p, const ExplicitNodalView& s, double time,

@@ -3,9 +3,9 @@
 /// FZ, base accelerations ACLX, ACLY, ACLZ (the body force −m a on each node), prescribed
 /// velocities VX, VY, VZ and displacements UX, UY, UZ on the nodes of a component, pressures
 /// (PRESS) on element faces, forces on the centre of mass of a rigid body (RBFX, RBFY, RBFZ)
-/// and its prescribed velocity or displacement (RBVX.., RBUX..), valued by a curve of time: linear
-/// between its points, held at the first before it and at the last beyond it (as LS-DYNA's load
-/// curves), times SCALE, active between BTIME and DTIME.
+/// and its prescribed velocity or displacement (RBVX.., RBUX..) or a moment on it (RBMX..), valued
+/// by a curve of time: linear between its points, held at the first before it and at the last
+/// beyond it (as LS-DYNA's load curves), times SCALE, active between BTIME and DTIME.
 #include <vector>
 
 #include "core/explicit_controls.h"
@@ -44,6 +44,7 @@ class ExplicitCurveLoads final : public ExplicitInteraction {
     bool displacement = false;       // UX..: the velocity from the curve's differences
     double body_mass = 0.0;          // RBFX..: the rigid body's mass (its nodes take m_i/M)
     std::size_t body = 0;            // RBVX.., RBUX..: the rigid body whose centre is driven
+    bool moment = false;             // RBMX..: a moment on the rigid body (3 forces per node)
     std::vector<std::size_t> nodes;  // run indices
     std::vector<double> previous;    // force at t_n of each node (trapezoidal work)
     std::vector<double> held;        // prescribed: the acceleration the forces would give
@@ -61,6 +62,9 @@ class ExplicitCurveLoads final : public ExplicitInteraction {
   /// The prescribed velocity of a motion entry over the step to t_{n+1} = integer_time_ (the
   /// curve's value at t_{n+1/2}, or the displacement's difference over the step).
   double prescribed_velocity(const Entry& e) const;
+  /// Adds the nodal forces of a moment on a rigid body (RBMX ..) at x_{n+1} and their work.
+  void add_rigid_moment(Entry& e, const ExplicitNodalView& state, const double* mass, double time,
+                        double dt, double* fx, double* fy, double* fz);
   /// Adds the forces of a pressure entry at x_{n+1} and their work over the step.
   void add_pressure(Pressure& p, const ExplicitNodalView& state, double time, double dt, double* fx,
                     double* fy, double* fz);

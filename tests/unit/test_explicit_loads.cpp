@@ -105,6 +105,22 @@ TEST(ExplicitRigidLoad, ForceActsOnTheCentreOfMass) {
   const Model model =
       read_deck_text(prep("explicit_edload_rigid_force_solid164.inp"), "r.inp").model;
   EXPECT_LT((resultant(model, 0.25) - Vec3(1000, 500, 0)).norm(), 1e-9);
+  // A moment (RBMZ) is nodal forces with no resultant and the moment M about the centre.
+  const Model turned =
+      read_deck_text(prep("explicit_edload_rigid_moment_solid164.inp"), "m.inp").model;
+  EXPECT_LT(resultant(turned, 0.5).norm(), 1e-9);
+  ExplicitSystem system = build_explicit_system(turned);
+  ExplicitCurveLoads loads(system, turned.explicit_dynamics);
+  const std::size_t n = system.n_nodes();
+  std::vector<double> zero(n, 0.0), fx(n, 0.0), fy(n, 0.0), fz(n, 0.0);
+  const ExplicitNodalView view{system.x0.data(), system.y0.data(), system.z0.data(),
+                               zero.data(),      zero.data(),      zero.data()};
+  loads.add_forces(view, system.mass.data(), 0.5, 0.0, fx.data(), fy.data(), fz.data());
+  Vec3 moment = Vec3::Zero();
+  for (std::size_t i = 0; i < n; ++i)
+    moment -= (Vec3(system.x0[i], system.y0[i], system.z0[i]) - Vec3(2.5, 0.5, 0.5))
+                  .cross(Vec3(fx[i], fy[i], fz[i]));
+  EXPECT_LT((moment - Vec3(0, 0, 1000.0 / 6.0)).norm(), 1e-9);
 }
 
 TEST(ExplicitRigidLoad, PrescribedMotionDrivesTheBodyAndBooksItsWork) {
