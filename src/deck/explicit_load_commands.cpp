@@ -74,13 +74,12 @@ void cmd_edcurve(DeckReader& r, const Command& c) {
   curves[*lcid] = std::move(curve);
 }
 
-const std::set<std::string> kLoadLabels = {"FX",   "FY",   "FZ",   "VX",   "VY",   "VZ",   "UX",
-                                           "UY",   "UZ",   "ACLX", "ACLY", "ACLZ", "RBFX", "RBFY",
-                                           "RBFZ", "RBMX", "RBMY", "RBMZ", "RBVX", "RBVY", "RBVZ",
-                                           "RBUX", "RBUY", "RBUZ", "PRESS"};
-const std::set<std::string> kRefusedLabels = {
-    "MX", "MY", "MZ",   "ROTX", "ROTY", "ROTZ", "OMGX", "OMGY", "OMGZ", "AX",
-    "AY", "AZ", "TEMP", "RBRX", "RBRY", "RBRZ", "RBOX", "RBOY", "RBOZ"};
+const std::set<std::string> kLoadLabels = {
+    "FX",   "FY",   "FZ",   "VX",   "VY",   "VZ",   "UX",   "UY",   "UZ",   "ROTX", "ROTY",
+    "ROTZ", "OMGX", "OMGY", "OMGZ", "ACLX", "ACLY", "ACLZ", "RBFX", "RBFY", "RBFZ", "RBMX",
+    "RBMY", "RBMZ", "RBVX", "RBVY", "RBVZ", "RBUX", "RBUY", "RBUZ", "PRESS"};
+const std::set<std::string> kRefusedLabels = {"MX",   "MY",   "MZ",   "AX",   "AY",   "AZ",  "TEMP",
+                                              "RBRX", "RBRY", "RBRZ", "RBOX", "RBOY", "RBOZ"};
 
 /// MAPDL's face numbering of SOLID164 (as SOLID185: 1 J-I-L-K, 2 I-J-N-M, 3 J-K-O-N, 4 K-L-P-O,
 /// 5 L-I-M-P, 6 M-N-O-P, each counterclockwise seen from outside), read backwards: a positive
@@ -183,7 +182,9 @@ void cmd_edload(DeckReader& r, const Command& c) {
   if (kRefusedLabels.count(lab))
     r.fail(c, fmt::format("Lab {}: not implemented in explicit dynamics; EDLOAD carries out the "
                           "nodal forces FX, FY, FZ, the prescribed velocities VX, VY, VZ and "
-                          "displacements UX, UY, UZ, the base accelerations ACLX, ACLY, ACLZ, "
+                          "displacements UX, UY, UZ, the rotations ROTX.. and angular velocities "
+                          "OMGX.. (shell and "
+                          "beam nodes), the base accelerations ACLX, ACLY, ACLZ, "
                           "the pressure PRESS and, on rigid bodies, the forces RBFX, RBFY, RBFZ, "
                           "moments RBMX, RBMY, RBMZ, "
                           "velocities RBVX, RBVY, RBVZ and displacements RBUX, RBUY, RBUZ",

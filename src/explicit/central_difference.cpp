@@ -180,6 +180,9 @@ void CentralDifference::accelerations() {
   }
   if (!rigid_.empty()) rigid_accelerations();
   for (ExplicitInteraction* i : interactions_) i->hold(ax_.data(), ay_.data(), az_.data());
+  if (system_.has_rotations())
+    for (ExplicitInteraction* i : interactions_)
+      i->hold_rotations(inertia, bx_.data(), by_.data(), bz_.data());
 }
 
 void CentralDifference::fit_rigid_velocities() {
@@ -382,12 +385,16 @@ void CentralDifference::cycle(double dt) {
   external_work_ += dt * work;  // f_ext constant over the step: f·Δx (fixed DOFs: v = 0)
   // Rotations: the same half-step update of ω; the rotation is the sum of the increments Δt ω
   // in global axes (output only: the shells work from ω and their current frame).
-  for (std::size_t r : system_.rotational_nodes) {
+  for (std::size_t r : system_.rotational_nodes)
     if (!system_.is_rigid(r)) {  // a rigid body's nodes turn with it (move_rigid_bodies)
       wx_[r] += mean * bx_[r];
       wy_[r] += mean * by_[r];
       wz_[r] += mean * bz_[r];
     }
+  if (system_.has_rotations())
+    for (ExplicitInteraction* i : interactions_)
+      i->prescribe_rotations(mean, system_.inertia.data(), wx_.data(), wy_.data(), wz_.data());
+  for (std::size_t r : system_.rotational_nodes) {
     rx_[r] += dt * wx_[r];
     ry_[r] += dt * wy_[r];
     rz_[r] += dt * wz_[r];

@@ -30,6 +30,16 @@ class ExplicitInteraction {
   /// Zeroes the accelerations of the prescribed DOFs (after keeping what the forces would give
   /// them, for the work of the next prescribe).
   virtual void hold(double* ax, double* ay, double* az) { (void)ax, (void)ay, (void)az; }
+  /// Overrides the angular velocities ω_{n+1/2} of prescribed rotational DOFs (after
+  /// prescribe() of the same step; `inertia` the nodal rotary inertia) and counts the work.
+  virtual void prescribe_rotations(double mean, const double* inertia, double* wx, double* wy,
+                                   double* wz) {
+    (void)mean, (void)inertia, (void)wx, (void)wy, (void)wz;
+  }
+  /// Zeroes the angular accelerations of the prescribed rotational DOFs.
+  virtual void hold_rotations(const double* inertia, double* bx, double* by, double* bz) {
+    (void)inertia, (void)bx, (void)by, (void)bz;
+  }
   /// Overrides components of the centre velocity v_c(n+1/2) of rigid body `body` (of mass
   /// `mass`) prescribed there, after prescribe() of the same step, and counts the work.
   virtual void prescribe_rigid(std::size_t body, double mass, double mean, double* velocity) {

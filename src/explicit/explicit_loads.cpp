@@ -39,11 +39,13 @@ ExplicitCurveLoads::ExplicitCurveLoads(const ExplicitSystem& system,
     const bool base = l.label.rfind("ACL", 0) == 0;
     const bool rigid = l.label.rfind("RB", 0) == 0;
     const char kind = rigid ? l.label[2] : l.label[0];  // F, M, V, U, A(CL)
-    const bool prescribed = kind == 'V' || kind == 'U';
+    // ROTX.. and OMGX..: the rotation and angular velocity of a node with rotational DOFs.
+    const bool rotational = !rigid && (kind == 'R' || kind == 'O');
+    const bool prescribed = kind == 'V' || kind == 'U' || rotational;
     Entry e{.load = &l,
             .direction = l.label.back() - 'X',
             .per_mass = base,
-            .displacement = kind == 'U',
+            .displacement = kind == 'U' || (rotational && kind == 'R'),
             .active = prescribed && l.birth <= 0.0};
     if (rigid) {
       // A force on the centre of mass: m_i/M of it on each node of the body has no moment
@@ -83,7 +85,14 @@ ExplicitCurveLoads::ExplicitCurveLoads(const ExplicitSystem& system,
     }
     e.previous.assign(e.nodes.size(), 0.0);
     e.held.assign(e.nodes.size(), 0.0);
-    (prescribed ? velocities_ : forces_).push_back(std::move(e));
+    if (rotational)
+      for (int node : l.nodes)
+        if (!std::binary_search(system.rotational_nodes.begin(), system.rotational_nodes.end(),
+                                index(l, node)))
+          throw InputError(l.where, fmt::format("EDLOAD {} on {}: node {} has no rotational "
+                                                "DOFs (those of SHELL163 and BEAM161 nodes)",
+                                                l.label, l.component, node));
+    (rotational ? rotations_ : prescribed ? velocities_ : forces_).push_back(std::move(e));
   }
 }
 
@@ -204,7 +213,19 @@ void ExplicitCurveLoads::prescribe(double time, double mean, const double* mass,
   integer_time_ += step_;
   mass_ = mass;
   double* v[3] = {vx, vy, vz};
-  for (Entry& e : velocities_) {
+  drive(velocities_, mean, mass, v);
+}
+
+void ExplicitCurveLoads::prescribe_rotations(double mean, const double* inertia, double* wx,
+                                             double* wy, double* wz) {
+  double* w[3] = {wx, wy, wz};
+  drive(rotations_, mean, inertia, w);
+}
+
+void ExplicitCurveLoads::drive(std::vector<Entry>& entries, double mean, const double* mass,
+                               double* v[3]) {
+  const double time = integer_time_ - 0.5 * step_;
+  for (Entry& e : entries) {
     const bool held = e.active;  // its accelerations were zeroed at the last hold
     e.active = time >= e.load->birth && !(e.load->death > 0.0 && time > e.load->death);
     if (!e.active) continue;
@@ -224,7 +245,16 @@ void ExplicitCurveLoads::prescribe(double time, double mean, const double* mass,
 
 void ExplicitCurveLoads::hold(double* ax, double* ay, double* az) {
   double* a[3] = {ax, ay, az};
-  for (Entry& e : velocities_)
+  release(velocities_, mass_, a);
+}
+
+void ExplicitCurveLoads::hold_rotations(const double* inertia, double* bx, double* by, double* bz) {
+  double* b[3] = {bx, by, bz};
+  release(rotations_, inertia, b);
+}
+
+void ExplicitCurveLoads::release(std::vector<Entry>& entries, const double* mass, double* a[3]) {
+  for (Entry& e : entries)
     for (std::size_t j = 0; j < e.nodes.size(); ++j) {
       double& u = a[e.direction][e.nodes[j]];
       // Held over the step just taken (Δx = dt v_p), the DOF had the other forces m a_free
@@ -232,7 +262,7 @@ void ExplicitCurveLoads::hold(double* ax, double* ay, double* az) {
       // trapezoidal rule as the forces' (½m(a_n + a_{n+1})·Δx), so that the work put in up to
       // t_{n+1} is there when the energies of t_{n+1} are taken. (The impulse m(v_p − v_free)
       // at the mean velocity instead credits half a step late or early.)
-      if (e.active && mass_) work_ -= 0.5 * mass_[e.nodes[j]] * (e.held[j] + u) * step_ * e.current;
+      if (e.active && mass) work_ -= 0.5 * mass[e.nodes[j]] * (e.held[j] + u) * step_ * e.current;
       e.held[j] = u;
       if (e.active) u = 0.0;
     }

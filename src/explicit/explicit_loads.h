@@ -24,7 +24,8 @@ class ExplicitCurveLoads final : public ExplicitInteraction {
   /// carries no explicit element).
   ExplicitCurveLoads(const ExplicitSystem& system, const ExplicitControls& controls);
   bool empty() const {
-    return forces_.empty() && velocities_.empty() && pressures_.empty() && rigid_motions_.empty();
+    return forces_.empty() && velocities_.empty() && pressures_.empty() && rigid_motions_.empty() &&
+           rotations_.empty();
   }
 
   ExplicitStepLimit add_forces(const ExplicitNodalView& state, const double* mass, double time,
@@ -32,6 +33,9 @@ class ExplicitCurveLoads final : public ExplicitInteraction {
   void prescribe(double time, double mean, const double* mass, double* vx, double* vy,
                  double* vz) override;
   void hold(double* ax, double* ay, double* az) override;
+  void prescribe_rotations(double mean, const double* inertia, double* wx, double* wy,
+                           double* wz) override;
+  void hold_rotations(const double* inertia, double* bx, double* by, double* bz) override;
   void prescribe_rigid(std::size_t body, double mass, double mean, double* velocity) override;
   void hold_rigid(std::size_t body, double mass, double* acceleration) override;
   double external_work() const override { return work_; }
@@ -69,7 +73,13 @@ class ExplicitCurveLoads final : public ExplicitInteraction {
   void add_pressure(Pressure& p, const ExplicitNodalView& state, double time, double dt, double* fx,
                     double* fy, double* fz);
   std::vector<Entry> forces_, velocities_;
-  std::vector<Entry> rigid_motions_;  // RBVX.., RBUX..: prescribed motion of a body's centre
+  std::vector<Entry> rigid_motions_;
+  std::vector<Entry> rotations_;  // ROTX.., OMGX..: prescribed rotations of shell, beam nodes
+  /// Prescribes the half-step velocities of `entries` (v: x, y, z arrays; `mass` the inertia)
+  /// and counts the work; release() zeroes their accelerations after keeping them.
+  void drive(std::vector<Entry>& entries, double mean, const double* mass, double* v[3]);
+  void release(std::vector<Entry>& entries, const double* mass,
+               double* a[3]);  // RBVX.., RBUX..: prescribed motion of a body's centre
   std::vector<Pressure> pressures_;
   double work_ = 0.0;
   double integer_time_ = 0.0;     // t_{n+1} after prescribe() at t_{n+1/2}

@@ -161,12 +161,17 @@ TEST(ExplicitLoads, EdloadRefusesWhatItDoesNotCarryOut) {
   const auto refused = [&](const std::string& line) {
     EXPECT_ANY_THROW(read_deck_text(brick + line + "\n", "r.inp")) << line;
   };
-  refused("EDLOAD,ADD,PRESS,7,BRICK,T,P");                   // SOLID164 has faces 1..6
-  refused("CM,CORNER,NODE\nEDLOAD,ADD,PRESS,1,CORNER,T,P");  // a node component
-  refused("EDLOAD,ADD,RBFX,,1,T,P");                         // part 1 is not rigid
-  refused("EDLOAD,ADD,RBFX,,BRICK,T,P");                     // not a part number
-  refused("EDMP,RIGID,1\nEDLOAD,ADD,RBOX,,1,T,P");           // rigid-body angular velocity
-  refused("NSEL,ALL\nCM,ALLN,NODE\nEDLOAD,ADD,ROTX,,ALLN,T,P");
+  refused("EDLOAD,ADD,PRESS,7,BRICK,T,P");                     // SOLID164 has faces 1..6
+  refused("CM,CORNER,NODE\nEDLOAD,ADD,PRESS,1,CORNER,T,P");    // a node component
+  refused("EDLOAD,ADD,RBFX,,1,T,P");                           // part 1 is not rigid
+  refused("EDLOAD,ADD,RBFX,,BRICK,T,P");                       // not a part number
+  refused("EDMP,RIGID,1\nEDLOAD,ADD,RBOX,,1,T,P");             // rigid-body angular velocity
+  refused("NSEL,ALL\nCM,ALLN,NODE\nEDLOAD,ADD,AX,,ALLN,T,P");  // nodal accelerations
+  // A rotation prescribed at nodes without rotational DOFs (a brick's) is refused by the run.
+  const Model rotated =
+      read_deck_text(brick + "NSEL,ALL\nCM,ALLN,NODE\nEDLOAD,ADD,ROTX,,ALLN,T,P\n", "o.inp").model;
+  const ExplicitSystem system = build_explicit_system(rotated);
+  EXPECT_THROW(ExplicitCurveLoads(system, rotated.explicit_dynamics), InputError);
   EXPECT_NO_THROW(read_deck_text(brick + "EDMP,RIGID,1\nEDLOAD,ADD,RBFX,,1,T,P\n", "a.inp"));
   const std::string shell =
       "/PREP7\nET,1,SHELL163\nR,1,1,2,0.01\nMP,EX,1,1E6\nMP,NUXY,1,0.3\nMP,DENS,1,1000\n"
