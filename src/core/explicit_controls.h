@@ -39,13 +39,13 @@ struct ExplicitCurve {
   SourceLocation where;
 };
 
-/// EDLOAD,ADD: a load by curve on the nodes of a component. Lab FX/FY/FZ: nodal force on each
-/// node; VX/VY/VZ: prescribed velocity. The value at time t is SCALE · curve(t − BTIME) between
-/// BTIME and DTIME (0: no death), linear between the points and held beyond the last.
+/// EDLOAD,ADD: a load by curve (forces, prescribed motion, base accelerations, PRESS, RBF..).
+/// The value at time t is SCALE · curve(t − BTIME) between BTIME and DTIME (0: no death),
+/// linear between the points and held beyond the last (docs/explicit_dynamics.md).
 struct ExplicitCurveLoad {
-  std::string label;       // FX FY FZ VX VY VZ
-  std::string component;   // node component (upper case) or part number as text
-  std::vector<int> nodes;  // its nodes when EDLOAD was given (ascending)
+  std::string label;       // FX FY FZ UX.. VX.. ACLX.. PRESS RBFX..
+  std::string component;   // node or element component (upper case), part number as text
+  std::vector<int> nodes;  // ascending nodes; PRESS: 4 per face, the pressure's normal order
   std::vector<double> times, values;
   double scale = 1.0, birth = 0.0, death = 0.0;
   SourceLocation where;

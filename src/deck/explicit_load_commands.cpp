@@ -74,12 +74,84 @@ void cmd_edcurve(DeckReader& r, const Command& c) {
   curves[*lcid] = std::move(curve);
 }
 
-const std::set<std::string> kLoadLabels = {"FX", "FY",   "FZ",   "VX",  "VY",
-                                           "VZ", "ACLX", "ACLY", "ACLZ"};
-const std::set<std::string> kRefusedLabels = {
-    "MX",   "MY",   "MZ",   "UX",   "UY",    "UZ",   "ROTX", "ROTY", "ROTZ", "OMGX", "OMGY", "OMGZ",
-    "AX",   "AY",   "AZ",   "TEMP", "PRESS", "RBFX", "RBFY", "RBFZ", "RBMX", "RBMY", "RBMZ", "RBUX",
-    "RBUY", "RBUZ", "RBRX", "RBRY", "RBRZ",  "RBVX", "RBVY", "RBVZ", "RBOX", "RBOY", "RBOZ"};
+const std::set<std::string> kLoadLabels = {
+    "FX",   "FY",   "FZ",   "VX",   "VY",   "VZ",   "UX",   "UY",   "UZ",   "ROTX", "ROTY",
+    "ROTZ", "OMGX", "OMGY", "OMGZ", "ACLX", "ACLY", "ACLZ", "RBFX", "RBFY", "RBFZ", "RBMX",
+    "RBMY", "RBMZ", "RBVX", "RBVY", "RBVZ", "RBUX", "RBUY", "RBUZ", "PRESS"};
+const std::set<std::string> kRefusedLabels = {"MX",   "MY",   "MZ",   "AX",   "AY",   "AZ",  "TEMP",
+                                              "RBRX", "RBRY", "RBRZ", "RBOX", "RBOY", "RBOZ"};
+
+/// MAPDL's face numbering of SOLID164 (as SOLID185: 1 J-I-L-K, 2 I-J-N-M, 3 J-K-O-N, 4 K-L-P-O,
+/// 5 L-I-M-P, 6 M-N-O-P, each counterclockwise seen from outside), read backwards: a positive
+/// pressure pushes into the element, along the right-hand normal of the reversed order.
+constexpr int kBrickFacesInward[6][4] = {{2, 3, 0, 1}, {4, 5, 1, 0}, {5, 6, 2, 1},
+                                         {6, 7, 3, 2}, {7, 4, 0, 3}, {7, 6, 5, 4}};
+
+/// EDLOAD PRESS: the loaded faces of an element component, 4 node numbers per face ordered so
+/// that a positive pressure acts along their right-hand normal. SOLID164: KEY 1..6 (into the
+/// element); SHELL163: KEY 1 (bottom, along +N, the I-J-K-L normal) or 2 (top, along −N), the
+/// faces of MAPDL's element reference. A triangle repeats its third node.
+std::vector<int> pressure_faces(DeckReader& r, const Command& c, const std::string& name,
+                                const Component& comp, int key) {
+  std::vector<int> faces;
+  for (int id : comp.ids) {
+    const auto e = r.model.elements.find(id);
+    if (e == r.model.elements.end())
+      r.fail(c, fmt::format("element {} of component {} no longer exists", id, name));
+    const auto t = r.model.element_types.find(e->second.type);
+    const std::string type = t == r.model.element_types.end() ? "" : t->second.ansys_name;
+    const std::vector<int>& n = e->second.nodes;
+    if (type == "SOLID164") {
+      if (key < 1 || key > 6)
+        r.fail(c,
+               fmt::format("KEY {}: SOLID164 (element {}) has the pressure faces 1 to 6", key, id));
+      for (int a : kBrickFacesInward[key - 1]) faces.push_back(n.at(static_cast<std::size_t>(a)));
+    } else if (type == "SHELL163") {
+      if (key != 1 && key != 2)
+        r.fail(c, fmt::format("KEY {}: the pressure on SHELL163 (element {}) acts on face 1 "
+                              "(bottom, along +N) or 2 (top, along -N); its edge faces are not "
+                              "implemented",
+                              key, id));
+      const int l = n.size() > 3 ? n[3] : n[2];  // a triangle (K = L)
+      if (key == 1)
+        faces.insert(faces.end(), {n[0], n[1], n[2], l});
+      else
+        faces.insert(faces.end(), {l, n[2], n[1], n[0]});
+    } else {
+      r.fail(c, fmt::format("element {} of component {} is a {}: EDLOAD PRESS loads SOLID164 "
+                            "and SHELL163",
+                            id, name, type.empty() ? "element of no type" : type));
+    }
+  }
+  if (faces.empty()) r.fail(c, fmt::format("component {} has no elements", name));
+  return faces;
+}
+
+/// The rigid body a rigid-body load (RBFX ...) acts on: Cname is a part number (EDPART: the
+/// combinations of type, material and real set in ascending order) whose material is rigid
+/// (EDMP,RIGID); the nodes of the part's elements (ascending).
+std::vector<int> rigid_part_nodes(DeckReader& r, const Command& c, const std::string& lab) {
+  const auto part = r.opt_int(c, 4);
+  if (!part || *part <= 0)
+    r.fail(c, fmt::format("Cname '{}': {} takes the PART number (EDPART) of a rigid body",
+                          c.text(4), lab));
+  std::map<std::tuple<int, int, int>, std::vector<int>> parts;
+  for (const auto& [id, e] : r.model.elements) parts[{e.type, e.mat, e.real}].push_back(id);
+  if (*part > static_cast<int>(parts.size()))
+    r.fail(c, fmt::format("PART {}: the model has {} parts (EDPART,LIST)", *part, parts.size()));
+  auto it = parts.begin();
+  std::advance(it, *part - 1);
+  const int mat = std::get<1>(it->first);
+  if (r.model.explicit_dynamics.rigid_materials.count(mat) == 0)
+    r.fail(c, fmt::format("PART {} (material {}) is not rigid: {} acts on a rigid body "
+                          "(EDMP,RIGID,{})",
+                          *part, mat, lab, mat));
+  std::set<int> nodes;
+  for (int id : it->second)
+    for (int n : r.model.elements.at(id).nodes)
+      if (n > 0) nodes.insert(n);
+  return {nodes.begin(), nodes.end()};
+}
 
 void list_loads(const std::vector<ExplicitCurveLoad>& loads, const std::string& lab,
                 const std::string& cname) {
@@ -109,26 +181,38 @@ void cmd_edload(DeckReader& r, const Command& c) {
   if (option != "ADD") r.fail(c, fmt::format("Option '{}': ADD, DELE or LIST", c.text(1)));
   if (kRefusedLabels.count(lab))
     r.fail(c, fmt::format("Lab {}: not implemented in explicit dynamics; EDLOAD carries out the "
-                          "nodal forces FX, FY, FZ, the prescribed velocities VX, VY, VZ and the "
-                          "base accelerations ACLX, ACLY, ACLZ",
+                          "nodal forces FX, FY, FZ, the prescribed velocities VX, VY, VZ and "
+                          "displacements UX, UY, UZ, the rotations ROTX.. and angular velocities "
+                          "OMGX.. (shell and "
+                          "beam nodes), the base accelerations ACLX, ACLY, ACLZ, "
+                          "the pressure PRESS and, on rigid bodies, the forces RBFX, RBFY, RBFZ, "
+                          "moments RBMX, RBMY, RBMZ, "
+                          "velocities RBVX, RBVY, RBVZ and displacements RBUX, RBUY, RBUZ",
                           lab));
   if (!kLoadLabels.count(lab)) r.fail(c, fmt::format("Lab '{}': not an EDLOAD label", c.text(2)));
-  if (r.real(c, 3, 0.0) != 0.0)
+  const bool pressure = lab == "PRESS", rigid = lab.rfind("RB", 0) == 0;
+  if (!pressure && r.real(c, 3, 0.0) != 0.0)
     r.fail(c, "KEY: a local coordinate system for the load is not implemented (global axes)");
   if (r.real(c, 7, 0.0) != 0.0)
     r.fail(c, "PHASE: loads in a stress initialization phase are not implemented (PHASE 0 only)");
-  const auto it = r.model.components.find(cname);
-  if (cname.empty() || it == r.model.components.end())
-    r.fail(c, fmt::format("Cname '{}': no such component (CM); EDLOAD takes a node component "
-                          "(PART numbers are for rigid-body loads, not implemented)",
-                          c.text(4)));
-  if (it->second.entity != "NODE")
-    r.fail(c, fmt::format("Cname {} is a {} component; EDLOAD {} takes a node component", cname,
-                          it->second.entity, lab));
   ExplicitCurveLoad load;
   load.label = lab;
   load.component = cname;
-  load.nodes = it->second.ids;
+  if (rigid) {
+    load.nodes = rigid_part_nodes(r, c, lab);
+  } else {
+    const auto it = r.model.components.find(cname);
+    if (cname.empty() || it == r.model.components.end())
+      r.fail(c, fmt::format("Cname '{}': no such component (CM); EDLOAD {} takes {} component",
+                            c.text(4), lab, pressure ? "an element" : "a node"));
+    const std::string entity = pressure ? "ELEM" : "NODE";
+    if (it->second.entity != entity)
+      r.fail(c, fmt::format("Cname {} is a {} component; EDLOAD {} takes {} component", cname,
+                            it->second.entity, lab, pressure ? "an element" : "a node"));
+    load.nodes = pressure
+                     ? pressure_faces(r, c, cname, it->second, c.blank(3) ? 1 : r.integer(c, 3, 1))
+                     : it->second.ids;
+  }
   if (const auto lcid = r.opt_int(c, 8); lcid && *lcid != 0) {
     const auto& curves = r.model.explicit_dynamics.curves;
     const auto curve = curves.find(*lcid);
@@ -148,10 +232,11 @@ void cmd_edload(DeckReader& r, const Command& c) {
   if (load.death != 0.0 && load.death <= load.birth)
     r.fail(c, fmt::format("DTIME {:g} is not after BTIME {:g}", load.death, load.birth));
   load.where = c.where;
-  // A load of the same label on the same component is redefined, not added (the VM's vme3
-  // redefines its load so between two solutions).
+  // A load of the same label on the same component (and faces) is redefined, not added (the
+  // VM's vme3 redefines its load so between two solutions).
   for (auto it = loads.begin(); it != loads.end();)
-    if (it->label == load.label && it->component == load.component) {
+    if (it->label == load.label && it->component == load.component &&
+        (!pressure || it->nodes == load.nodes)) {
       Log::info("{}:{}: EDLOAD: the {} load on {} of line {} is replaced", c.where.file,
                 c.where.line, load.label, load.component, it->where.line);
       it = loads.erase(it);

@@ -180,6 +180,9 @@ void CentralDifference::accelerations() {
   }
   if (!rigid_.empty()) rigid_accelerations();
   for (ExplicitInteraction* i : interactions_) i->hold(ax_.data(), ay_.data(), az_.data());
+  if (system_.has_rotations())
+    for (ExplicitInteraction* i : interactions_)
+      i->hold_rotations(inertia, bx_.data(), by_.data(), bz_.data());
 }
 
 void CentralDifference::fit_rigid_velocities() {
@@ -231,6 +234,8 @@ void CentralDifference::rigid_accelerations() {
         (force / body.mass - damping_ * r.velocity) / (1.0 + 0.5 * damping_ * previous_step_);
     for (int i = 0; i < 3; ++i)
       if (body.fixed_translation[static_cast<std::size_t>(i)]) r.acceleration(i) = 0.0;
+    // A centre velocity prescribed by curve (EDLOAD RBVX ...) is held.
+    for (ExplicitInteraction* i : interactions_) i->hold_rigid(k, body.mass, r.acceleration.data());
     // Euler's equations in global axes: J α = m − ω × J ω, J = R J₀ Rᵀ (ω of the half step
     // before: the explicit gyroscopic term).
     const Eigen::Matrix3d J = r.rotation * body.inertia0 * r.rotation.transpose();
@@ -257,6 +262,8 @@ void CentralDifference::move_rigid_bodies(double dt, double mean) {
     const RigidBody& body = system_.rigid_bodies[k];
     RigidMotion& r = rigid_[k];
     r.velocity += mean * r.acceleration;
+    for (ExplicitInteraction* i : interactions_)
+      i->prescribe_rigid(k, body.mass, mean, r.velocity.data());
     r.omega += mean * r.alpha;
     r.centre += dt * r.velocity;
     // R_{n+1} = exp(Δt ω̂) R_n: the rotation by the angle Δt|ω| about ω (Rodrigues).
@@ -378,12 +385,16 @@ void CentralDifference::cycle(double dt) {
   external_work_ += dt * work;  // f_ext constant over the step: f·Δx (fixed DOFs: v = 0)
   // Rotations: the same half-step update of ω; the rotation is the sum of the increments Δt ω
   // in global axes (output only: the shells work from ω and their current frame).
-  for (std::size_t r : system_.rotational_nodes) {
+  for (std::size_t r : system_.rotational_nodes)
     if (!system_.is_rigid(r)) {  // a rigid body's nodes turn with it (move_rigid_bodies)
       wx_[r] += mean * bx_[r];
       wy_[r] += mean * by_[r];
       wz_[r] += mean * bz_[r];
     }
+  if (system_.has_rotations())
+    for (ExplicitInteraction* i : interactions_)
+      i->prescribe_rotations(mean, system_.inertia.data(), wx_.data(), wy_.data(), wz_.data());
+  for (std::size_t r : system_.rotational_nodes) {
     rx_[r] += dt * wx_[r];
     ry_[r] += dt * wy_[r];
     rz_[r] += dt * wz_[r];

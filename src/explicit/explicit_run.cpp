@@ -67,7 +67,7 @@ void refuse_unsupported(const Model& model, const AnalysisRequest& request) {
 }
 
 /// A rigid body moves by its EDMP constraint codes and the forces of its nodes: D on its nodes
-/// and velocities prescribed there by curve (EDLOAD VX ...) would fight it and are refused.
+/// and motion prescribed there by curve (EDLOAD VX, UX ...) would fight it and are refused.
 void refuse_rigid_node_loads(const Model& model, const AnalysisRequest& request,
                              const ExplicitSystem& s) {
   if (s.rigid_bodies.empty()) return;
@@ -88,14 +88,19 @@ void refuse_rigid_node_loads(const Model& model, const AnalysisRequest& request,
                                      "VAL1 and VAL2",
                                      step.number, key.node, dof_name(key.dof), mat));
   for (const ExplicitCurveLoad& load : model.explicit_dynamics.loads)
-    if (load.label.size() == 2 && load.label[0] == 'V')
+    if ((load.label.size() == 2 && (load.label[0] == 'V' || load.label[0] == 'U')) ||
+        load.label.rfind("ROT", 0) == 0 || load.label.rfind("OMG", 0) == 0)
       for (int node : load.nodes)
         if (const int mat = body_material(node))
-          throw NotImplementedError(load.where,
-                                    fmt::format("EDLOAD {} on node {} of the rigid body of "
-                                                "material {}: prescribed motion of a rigid body "
-                                                "(RBV labels) is not implemented",
-                                                load.label, node, mat));
+          throw InputError(
+              load.where,
+              fmt::format("EDLOAD {} on node {} of the rigid body of material {}: {}", load.label,
+                          node, mat,
+                          load.label.size() == 2
+                              ? "prescribe the motion of a rigid body on its part (EDLOAD RB" +
+                                    load.label + " with the PART number)"
+                              : std::string("a rigid body's rotation is not prescribed at its "
+                                            "nodes (its RBR, RBO labels are not implemented)")));
   if (s.sets.empty())
     throw InputError(request.where,
                      "every element is rigid (EDMP,RIGID): an explicit run needs deformable "

@@ -174,7 +174,7 @@ TEST(ExplicitContact, UnsupportedOptionsAreRefused) {
   EXPECT_ANY_THROW(read_deck_text(base + "EDCGEN,NTS,1,2,0.3,0.3,0,0,150\n", "v.inp"));
   EXPECT_NO_THROW(read_deck_text(base + "EDCGEN,NTS,1,2,0.3,0.3,0,0,20\n", "w.inp"));
   EXPECT_ANY_THROW(read_deck_text(base + "*DIM,T,ARRAY,2\n*DIM,V,ARRAY,2\nT(1)=0,1\nV(1)=1,1\n"
-                                         "EDLOAD,ADD,UX,,BARA,T,V\n",
+                                         "EDLOAD,ADD,AX,,BARA,T,V\n",
                                   "l.inp"));
 }
 
