@@ -140,10 +140,19 @@ void cmd_secdata(DeckReader& r, const Command& c) {
   const SectionTypeDescriptor& d = *find_section_type(s.type);
   if (d.single_secdata && !s.data.empty())
     r.fail(c, "only one SECDATA (a single homogeneous layer) is supported");
-  s.data.clear();
   const int given =
       d.max_values > 0 ? std::min(c.last_given(), d.max_values) : std::max(1, c.last_given());
-  for (int f = 1; f <= given; ++f) s.data.push_back(r.real(c, f, 0.0));
+  std::vector<double> values;
+  for (int f = 1; f <= given; ++f) values.push_back(r.real(c, f, 0.0));
+  if (d.layered) {
+    // SECDATA,TK,MAT,THETA,NUMPT,LayerName: a layer on top of the previous ones. The layer
+    // name (field 5) only labels the layer; the program refers to layers by number.
+    if (c.last_given() > 5) r.fail(c, "fields after LayerName (field 5) are not shell layer data");
+    s.layers.push_back(values);
+    if (s.layers.size() == 1) s.data = values;
+  } else {
+    s.data = values;
+  }
   try {
     const std::string note = d.check_data(s);
     if (!note.empty()) Log::info("{}:{}: SECDATA: {}", c.where.file, c.where.line, note);
@@ -153,8 +162,8 @@ void cmd_secdata(DeckReader& r, const Command& c) {
 }
 
 // SECOFFSET,Location: the locations the section type accepts (beams CENT, the node on the
-// centroid; shells MID). Other locations would move the nodes off the section's reference and
-// are refused (APDL_MODELING §7.4).
+// centroid; shells MID, BOT, TOP). Other locations would move the nodes off the section's reference
+// and are refused (APDL_MODELING §7.4).
 void cmd_secoffset(DeckReader& r, const Command& c) {
   auto it = r.model.sections.find(r.modeling.last_section);
   if (it == r.model.sections.end()) r.fail(c, "SECOFFSET without a preceding SECTYPE");
@@ -162,8 +171,10 @@ void cmd_secoffset(DeckReader& r, const Command& c) {
   const std::string& type = it->second.type;
   const SectionTypeDescriptor& d = *find_section_type(type);
   if (!d.offsets.empty() &&
-      (loc.empty() || std::find(d.offsets.begin(), d.offsets.end(), loc) != d.offsets.end()))
+      (loc.empty() || std::find(d.offsets.begin(), d.offsets.end(), loc) != d.offsets.end())) {
+    it->second.offset = loc;
     return;
+  }
   r.fail(c, fmt::format("location '{}' is not supported for a {} section ({} only)", c.text(1),
                         type, d.offset_names()));
 }
