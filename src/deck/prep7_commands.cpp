@@ -179,6 +179,19 @@ void cmd_secoffset(DeckReader& r, const Command& c) {
                         type, d.offset_names()));
 }
 
+// SECCONTROL: overrides of a section's computed stiffness and mass (shells: transverse shear
+// E11 E22 E12, added mass); all fields blank keeps the computed ones, which is carried out.
+// A value given would replace what the elements compute from the layers and is refused.
+void cmd_seccontrol(DeckReader& r, const Command& c) {
+  if (r.model.sections.count(r.modeling.last_section) == 0)
+    r.fail(c, "SECCONTROL without a preceding SECTYPE");
+  for (int f = 1; f <= c.last_given(); ++f)
+    if (!c.blank(f))
+      r.fail(c, fmt::format("field {} ('{}'): section stiffness overrides are not carried out "
+                            "(all fields blank: the computed section)",
+                            f, c.text(f)));
+}
+
 void cmd_secnum(DeckReader& r, const Command& c) {
   r.modeling.current_secnum = r.integer(c, 1, 1);
 }
@@ -479,6 +492,7 @@ void register_prep7_commands(std::vector<CommandSpec>& t) {
   t.push_back({"SECDATA", cmd_secdata, kPrep7});
   t.push_back({"SECNUM", cmd_secnum, kPrep7});
   t.push_back({"SECOFFSET", cmd_secoffset, kPrep7});
+  t.push_back({"SECCONTROL", cmd_seccontrol, kPrep7});
   t.push_back({"N", cmd_n, kPrep7});
   t.push_back({"E", cmd_e, kPrep7});
   t.push_back({"EN", cmd_en, kPrep7});
