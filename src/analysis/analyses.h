@@ -26,11 +26,31 @@ std::unique_ptr<DirectSolution> begin_direct_analysis(Structure& structure, Resu
 /// density when no free DOF has mass (the mass matrix is zero: no frequency exists).
 int modes_with_mass(const Structure& structure, const SparseMatrix& m_lower, int wanted,
                     const char* analysis, AnalysisStatistics& stats);
+/// Single-point response spectrum analysis (ANTYPE,SPECTR + SPOPT,SPRS; spectrum_analysis.cpp):
+/// the modes of the model again, their participation in the excitation direction, the mode
+/// coefficients from the spectrum, the combined response and the missing mass response.
+void run_spectrum_analysis(Structure& structure, const AnalysisRequest& request,
+                           ResultsWriter& writer, const RunSettings& settings,
+                           AnalysisStatistics& stats);
 /// Harmonic response (ANTYPE,HARMIC + HROPT,FULL or MSUP): the complex steady-state response at
 /// each frequency of the load steps (harmonic_analysis.cpp).
 void run_harmonic_analysis(Structure& structure, const AnalysisRequest& request,
                            ResultsWriter& writer, const RunSettings& settings,
                            AnalysisStatistics& stats);
+/// The modes of K x = λ M x over the free DOFs of the first load step's constraints (MODOPT:
+/// count, frequency window), as a modal analysis and the analyses built on its modes use them.
+struct ModalSolution {
+  std::unique_ptr<DofMap> dofs;
+  std::unique_ptr<Assembler> assembler;  // over `dofs`
+  SparseMatrix k_lower, m_lower;         // lower triangles over the free DOFs
+  std::vector<double> frequencies;       // Hz, ascending
+  MatrixXd shapes;                       // free DOFs x modes, mass-normalised (φᵀ M φ = 1)
+  /// The factor from the mass-normalised shape to the stored one (MODOPT Nrmkey ON: largest
+  /// component 1; else 1).
+  VectorXd stored_scale;
+};
+ModalSolution solve_modes(Structure& structure, const AnalysisRequest& request,
+                          AnalysisStatistics& stats, const char* analysis);
 /// Modal analysis (ANTYPE,MODAL + MODOPT): natural frequencies (Hz) and mode shapes.
 void run_modal_analysis(Structure& structure, const AnalysisRequest& request, ResultsWriter& writer,
                         const RunSettings& settings, AnalysisStatistics& stats);

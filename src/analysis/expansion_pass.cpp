@@ -16,7 +16,7 @@ namespace impactfe {
 void run_expansion_pass(const ExpansionPassRequest& request, ReducedSolutionState* base,
                         ResultsWriter& writer, const RunSettings&, AnalysisStatistics& stats) {
   auto* state = dynamic_cast<ReducedRunState*>(base);
-  if (!state || state->points.empty())
+  if (!state || state->points.empty() || !state->history)
     throw InputError(request.where,
                      "expansion pass: no reduced or mode-superposition transient ran before it");
   using clock = std::chrono::steady_clock;
@@ -27,22 +27,21 @@ void run_expansion_pass(const ExpansionPassRequest& request, ReducedSolutionStat
                                     state->method == "msup" ? "mode-superposition" : "reduced"));
   std::vector<ExpansionRequest> requests = request.requests;
   if (requests.empty()) requests.push_back({1, 0.0, state->points.back().time, false});
-  std::vector<double> times;
-  for (const ReducedPoint& p : state->points) times.push_back(p.time);
-  const std::vector<int> selected = expansion_points(requests, times);
+  const std::vector<int> selected = expansion_points(
+      requests, state->points.size(), [&](std::size_t i) { return state->points[i].time; });
 
   const DofMap& dofs = *state->dofs;
   const int nf = dofs.n_free();
   const Structure& structure = *state->structure;
   const bool correction = request.static_correction && state->guyan != nullptr;
   for (int index : selected) {
-    const ReducedPoint& p = state->points[static_cast<std::size_t>(index)];
-    const std::size_t i = static_cast<std::size_t>(index);
+    const ReducedPoint p = state->points[static_cast<std::size_t>(index)];
+    const GeneralizedHistory::Record h = state->history->at(static_cast<std::size_t>(index));
     const VectorXd f = state->external_force(p);
     const VectorXd f_free = f.head(nf);
-    const VectorXd u = state->to_active(state->expand(state->q[i], correction ? &f_free : nullptr));
-    const VectorXd v = state->to_active(state->expand(state->v[i], nullptr));
-    const VectorXd a = state->to_active(state->expand(state->a[i], nullptr));
+    const VectorXd u = state->to_active(state->expand(h.q, correction ? &f_free : nullptr));
+    const VectorXd v = state->to_active(state->expand(h.v, nullptr));
+    const VectorXd a = state->to_active(state->expand(h.a, nullptr));
     // Reactions at the constrained DOFs: K u + C v + M a − f (gap forces act on free DOFs).
     VectorXd f_int, f_damp;
     state->assembler->assemble({}, u, v, Assembler::Output{nullptr, &f_int, &f_damp});
@@ -57,7 +56,7 @@ void run_expansion_pass(const ExpansionPassRequest& request, ReducedSolutionStat
     tp.acceleration = structure.nodal_table(dofs, a);
     tp.reaction = structure.reaction_table(dofs, reactions);
     tp.element_results = structure.element_results(*state->assembler, u, v);
-    tp.gap_forces = state->gap_forces[i];
+    tp.gap_forces = h.gap_forces;
     tp.energy["kinetic"] = 0.5 * v.dot(state->mass_all * v);
     writer.append(std::move(tp));
     ++stats.n_stored;

@@ -381,6 +381,9 @@ void JobSession::run_whole(const Job::Step& step, AnalysisStatistics& stats) {
     case AnalysisType::Harmonic:
       run_harmonic_analysis(structure, request, *writer_, settings_, stats);
       break;
+    case AnalysisType::Spectrum:
+      run_spectrum_analysis(structure, request, *writer_, settings_, stats);
+      break;
     case AnalysisType::Substructure:
       run_substructure_generation(structure, request, *writer_, settings_, stats, jobname_);
       break;

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "analysis/analyses.h"
+#include "analysis/damped_modes.h"
 #include "analysis/reduced_run.h"
 #include "core/log.h"
 #include "linalg/eigen_solver.h"
@@ -21,7 +22,9 @@ EigenResult lowest_modes(Structure& structure, const ReducedRunState& state, int
   const DofMap& dofs = *state.dofs;
   const int nf = dofs.n_free();
   const std::string& method = options.modal.method;
-  if (method == "QRDAMP" || method == "DAMP" || method == "UNSYM")
+  // QRDAMP's basis is the undamped real modes, with the full projected damping matrix
+  // (modal_damping below): what the QR damped mode superposition is. DAMP and UNSYM are not.
+  if (method == "DAMP" || method == "UNSYM")
     Log::warn("MODOPT,{}: undamped real modes from the symmetric Lanczos solver are used", method);
   int n_modes = std::min(std::max(wanted, 1), nf);
   const VectorXd zero = VectorXd::Zero(dofs.n_active());
@@ -53,24 +56,12 @@ EigenResult lowest_modes(Structure& structure, const ReducedRunState& state, int
 MatrixXd modal_damping(const ReducedRunState& state, const AnalysisOptions& options,
                        const VectorXd& omega) {
   const int nf = state.dofs->n_free();
-  const auto nm = omega.size();
-  const MatrixXd& phi = state.modes;
   const VectorXd zero = VectorXd::Zero(state.dofs->n_active());
   const SparseMatrix k_full = state.assembler->stiffness_matrix(zero);
   const SparseMatrix c_full = damping_matrix(state, k_full);
-  MatrixXd cm = MatrixXd::Zero(nm, nm);
-  if (c_full.nonZeros()) {
-    const MatrixXd c_phi = c_full.topLeftCorner(nf, nf) * phi;
-    cm = phi.transpose() * c_phi;
-    cm = 0.5 * (cm + cm.transpose());
-  }
-  for (int j = 0; j < nm; ++j) {
-    double zeta = options.damping_ratio;
-    auto it = options.modal_damping.find(j + 1);
-    if (it != options.modal_damping.end()) zeta += it->second;
-    cm(j, j) += 2.0 * zeta * omega(j);
-  }
-  return cm;
+  const SparseMatrix c_free =
+      c_full.nonZeros() ? SparseMatrix(c_full.topLeftCorner(nf, nf)) : SparseMatrix();
+  return project_modal_damping(state.modes, c_free, options, omega);
 }
 
 namespace {
@@ -135,8 +126,9 @@ void run_msup_transient(Structure& structure, const AnalysisRequest& request, Re
       model, dofs, [&](int i) { return VectorXd(phi.row(i).transpose()); }, "");
   const auto [q0, v0] = modal_initial_state(model, *state);
 
-  state->points = reduced_time_axis(state->load_steps, state->dt, stats.notes,
-                                    history_bytes_per_point(nm, static_cast<int>(gaps.size())));
+  state->points = reduced_time_axis(state->load_steps, state->dt, stats.notes);
+  GeneralizedHistory::require_disk_space(static_cast<double>(state->points.size()), nm,
+                                         static_cast<int>(gaps.size()));
   if (state->dt > 0.0 && nm > 0) {
     const double period = 2.0 * M_PI / omega(nm - 1);
     if (state->dt > coarsest_step(period))

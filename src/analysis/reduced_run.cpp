@@ -208,11 +208,6 @@ VectorXd static_initial_state(const MatrixXd& k, const VectorXd& f,
 
 }  // namespace
 
-double history_bytes_per_point(int n_coordinates, int n_gaps) {
-  constexpr double kVector = sizeof(VectorXd) + 16.0;  // object + allocator header per block
-  return 3.0 * (kVector + 8.0 * n_coordinates) + kVector + 8.0 * n_gaps;
-}
-
 void integrate_reduced(ReducedRunState& state, ReducedDynamics& dynamics,
                        const std::function<VectorXd(const VectorXd&)>& reduce,
                        const std::function<VectorXd(const VectorXd&)>& table, const VectorXd& q0,
@@ -246,10 +241,7 @@ void integrate_reduced(ReducedRunState& state, ReducedDynamics& dynamics,
     tp.energy["strain"] = 0.5 * dynamics.q().dot(dynamics.k() * dynamics.q());
     writer.append(std::move(tp));
     ++stats.n_stored;
-    state.q.push_back(dynamics.q());
-    state.v.push_back(dynamics.v());
-    state.a.push_back(dynamics.a());
-    state.gap_forces.push_back(dynamics.gap_forces());
+    state.history->append(dynamics.q(), dynamics.v(), dynamics.a(), dynamics.gap_forces());
   };
 
   const ReducedPoint& p0 = state.points.front();
@@ -258,6 +250,8 @@ void integrate_reduced(ReducedRunState& state, ReducedDynamics& dynamics,
   VectorXd q_init = q0;
   if (f0.squaredNorm() > 0.0) q_init = static_initial_state(dynamics.k(), f0, coordinate_name);
   dynamics.start(q_init, v0, f0, state.dt > 0.0 ? state.dt : 1.0);
+  state.history = std::make_unique<GeneralizedHistory>(
+      static_cast<int>(dynamics.q().size()), static_cast<int>(dynamics.gap_forces().size()));
   store(p0);
   ++stats.n_load_steps;
 
@@ -307,6 +301,11 @@ void integrate_reduced(ReducedRunState& state, ReducedDynamics& dynamics,
     }
   }
   seconds_per_step = n_steps ? integration / n_steps : 0.0;
+  if (state.history->points_on_file() > 0)
+    stats.notes.push_back(fmt::format(
+        "state history: {} of {} points kept in a temporary file for the expansion pass "
+        "(bounded memory)",
+        state.history->points_on_file(), state.history->size()));
   stats.n_factorizations += dynamics.n_factorizations();
   stats.n_solves += dynamics.n_solves();
 }

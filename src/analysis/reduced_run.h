@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "analysis/analyses.h"
+#include "analysis/generalized_history.h"
 #include "analysis/progress.h"
 #include "assembly/loads.h"
 #include "linalg/eigen_solver.h"
@@ -35,8 +36,8 @@ class ReducedRunState : public ReducedSolutionState {
   std::string method;  // "reduced" or "msup"
 
   double dt = 0.0;
-  std::vector<ReducedPoint> points;
-  std::vector<VectorXd> q, v, a, gap_forces;
+  ReducedTimeAxis points;
+  std::unique_ptr<GeneralizedHistory> history;  // q, q̇, q̈, gap forces of every point
 
   /// External load over all active DOFs at a computed point (F + ACEL inertia).
   VectorXd external_force(const ReducedPoint& p) const;
@@ -77,11 +78,6 @@ MatrixXd modal_damping(const ReducedRunState& state, const AnalysisOptions& opti
 std::vector<GeneralizedGap> generalized_gaps(const Model& model, const DofMap& dofs,
                                              const std::function<VectorXd(int free_index)>& row,
                                              const std::string& requirement);
-
-/// Bytes the time loop keeps per time point: the displacement, velocity and acceleration of the
-/// `n_coordinates` reduced coordinates and the `n_gaps` gap forces (Eigen vectors with their
-/// headers and heap blocks), which the expansion pass reads back.
-double history_bytes_per_point(int n_coordinates, int n_gaps);
 
 /// Runs the time loop shared by both transients: initial state (static solve when load step 1
 /// carries loads), integration, a results point per step (`table`: free-DOF values for the

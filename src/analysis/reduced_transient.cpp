@@ -69,18 +69,22 @@ void master_initial_conditions(const Model& model, const DofMap& dofs,
 /// The run summary's line for each gap condition: when it first carried force, and its peak.
 void note_gap_histories(const ReducedRunState& state, std::size_t n_gaps,
                         AnalysisStatistics& stats) {
-  for (std::size_t g = 0; g < n_gaps; ++g) {
-    double peak = 0.0, closed_at = std::numeric_limits<double>::quiet_NaN();
-    for (std::size_t p = 0; p < state.points.size(); ++p) {
-      const double f = state.gap_forces[p](static_cast<int>(g));
-      if (f != 0.0 && std::isnan(closed_at)) closed_at = state.points[p].time;
-      if (std::abs(f) > std::abs(peak)) peak = f;
+  // One pass over the history (it may be read back from its file), all gaps at once.
+  std::vector<double> peak(n_gaps, 0.0);
+  std::vector<double> closed_at(n_gaps, std::numeric_limits<double>::quiet_NaN());
+  for (std::size_t p = 0; n_gaps > 0 && p < state.points.size(); ++p) {
+    const VectorXd forces = state.history->at(p).gap_forces;
+    for (std::size_t g = 0; g < n_gaps; ++g) {
+      const double f = forces(static_cast<Eigen::Index>(g));
+      if (f != 0.0 && std::isnan(closed_at[g])) closed_at[g] = state.points[p].time;
+      if (std::abs(f) > std::abs(peak[g])) peak[g] = f;
     }
-    stats.notes.push_back(std::isnan(closed_at)
+  }
+  for (std::size_t g = 0; g < n_gaps; ++g)
+    stats.notes.push_back(std::isnan(closed_at[g])
                               ? fmt::format("gap {}: never closed (no force)", g + 1)
                               : fmt::format("gap {}: first force at t = {:g}, peak force {:.6g}",
-                                            g + 1, closed_at, peak));
-  }
+                                            g + 1, closed_at[g], peak[g]));
 }
 
 }  // namespace
@@ -134,9 +138,9 @@ void run_reduced_transient(Structure& structure, const AnalysisRequest& request,
   master_initial_conditions(model, dofs, master_position, q0, v0);
 
   // --- Integration ---------------------------------------------------------------------------
-  state->points =
-      reduced_time_axis(state->load_steps, state->dt, stats.notes,
-                        history_bytes_per_point(guyan.n_masters(), static_cast<int>(gaps.size())));
+  state->points = reduced_time_axis(state->load_steps, state->dt, stats.notes);
+  GeneralizedHistory::require_disk_space(static_cast<double>(state->points.size()),
+                                         guyan.n_masters(), static_cast<int>(gaps.size()));
   ReducedDynamics dynamics(guyan.k(), guyan.m(), guyan.c(), std::move(gaps),
                            make_time_integrator(options));
   double seconds_per_step = 0.0;

@@ -239,7 +239,7 @@ Structure::Structure(const Model& model, const AnalysisOptions& options,
   // carry no inertia; say which. Massless rotations are normal (lumped masses), and a reduced
   // transient's slaves are massless by design (its masters are checked by the driver).
   const bool dynamic =
-      options.type == AnalysisType::Modal ||
+      options.type == AnalysisType::Modal || options.type == AnalysisType::Spectrum ||
       (options.type == AnalysisType::Transient && options.method != TransientMethod::Reduced);
   if (dynamic) {
     std::set<DofKey> massless;

@@ -233,7 +233,7 @@ struct InitialCondition {
   SourceLocation where;  // the IC command
 };
 
-enum class AnalysisType { Static, Modal, Transient, Substructure, Harmonic };
+enum class AnalysisType { Static, Modal, Transient, Substructure, Harmonic, Spectrum };
 enum class TransientMethod { Full, Reduced, ModeSuperposition };
 enum class IntegratorKind { Houbolt, Newmark, HHT };
 enum class Dialect { Classic4x, Modern };
@@ -264,6 +264,7 @@ struct ModalOptions {
   std::optional<double> freq_end;
   bool normalize_to_unity = false;  // Nrmkey ON: max component 1, else mass-normalised
   std::string method = "LANB";
+  bool element_results = false;  // MXPAND Elcalc YES: the element results of each mode
 };
 
 /// One requested expansion of a reduced / MSUP transient: n solutions in (t_begin, t_end].
@@ -280,6 +281,30 @@ struct HarmonicOptions {
   int n_modes = 0;                  // HROPT MAXMODE (0: the MODOPT count)
   bool amplitude_phase = false;     // HROUT,OFF: printed as amplitude and phase (printout only)
   double structural_damping = 0.0;  // DMPSTR g: i g K
+};
+
+/// The single-point response spectrum analysis (ANTYPE,SPECTR + SPOPT,SPRS; docs/
+/// spectrum_analysis.md): the excitation (SED, SVTYP, FREQ, SV), the mode combination (SRSS,
+/// CQC, GRP, DSUM, NRLSUM) and the missing mass response (MMASS).
+struct SpectrumOptions {
+  bool single_point = false;      // SPOPT,SPRS given
+  int n_modes = 0;                // SPOPT NMODE (0: every mode of the modal analysis)
+  bool element_results = false;   // SPOPT Elcalc YES
+  Vec3 direction = Vec3::Zero();  // SED: the excitation direction (normalised by the analysis)
+  /// SVTYP KSV: 0 seismic velocity, 2 seismic acceleration, 3 seismic displacement.
+  int spectrum_type = 0;
+  double scale = 1.0;                                          // SVTYP FACT
+  bool linear_interpolation = false;                           // SVTYP KeyInterp
+  std::vector<double> frequencies;                             // FREQ (Hz)
+  std::vector<std::pair<double, std::vector<double>>> curves;  // SV: damping -> values
+  /// The mode combination: "" (none given), SRSS, CQC, GRP, DSUM, NRLSUM.
+  std::string combination;
+  double significance = 0.001;            // SIGNIF of the combination command
+  std::string response = "DISP";          // Label: DISP, VELO, ACEL
+  double duration = 10.0;                 // DSUM TD (s)
+  bool missing_mass = false;              // MMASS,ON
+  double zero_period_acceleration = 0.0;  // MMASS ZPA
+  SourceLocation where;                   // the SPOPT command
 };
 
 /// Analysis-wide options (first load step semantics).
@@ -299,6 +324,7 @@ struct AnalysisOptions {
   double alpha_damping = 0.0;           // ALPHAD
   double beta_damping = 0.0;            // BETAD
   HarmonicOptions harmonic;             // ANTYPE,HARMIC
+  SpectrumOptions spectrum;             // ANTYPE,SPECTR
   int superelement_matrices = 1;        // KAY(6) under KAN=7 / SEOPT SEMATR
   std::string superelement_name;        // SEOPT Sename
   std::optional<int> total_masters;     // TOTAL NTOT (automatic masters)

@@ -31,8 +31,9 @@ VectorOperand vector_operand(DeckReader& r, const Command& c, int f) {
     if (p != nullptr && p->is_array()) {
       op.column = true;
       op.pos = array_position(r, c, t);
-      if (p->type == ParamType::CharArray)
-        r.fail(c, fmt::format("field {}: {} is a CHAR array (numbers needed)", f, n->name));
+      if (p->is_character_array())
+        r.fail(c, fmt::format("field {}: {} is a {} array (numbers needed)", f, n->name,
+                              param_type_name(p->type)));
       return op;
     }
   }
@@ -74,8 +75,9 @@ VectorPass begin_vector_pass(DeckReader& r, const Command& c, int f, long long d
               imax, start[1] + create_cols - 1);
   }
   p.out = array_position(r, c, p.result);
-  if (p.out.param->type == ParamType::CharArray)
-    r.fail(c, fmt::format("{} is a CHAR array: numbers cannot be stored in it", n->name));
+  if (p.out.param->is_character_array())
+    r.fail(c, fmt::format("{} is a {} array: numbers cannot be stored in it", n->name,
+                          param_type_name(p.out.param->type)));
   const long long avail = (p.out.param->imax - p.out.i) / p.step + 1;
   p.rows = p.settings.n_rows ? *p.settings.n_rows : avail;
   if (p.rows > avail)
@@ -87,7 +89,7 @@ VectorPass begin_vector_pass(DeckReader& r, const Command& c, int f, long long d
   p.active.assign(static_cast<std::size_t>(p.rows), 1);
   if (!p.settings.mask.empty()) {
     const ArrayPosition m = array_position(r, c, p.settings.mask);
-    if (m.param->type == ParamType::CharArray) r.fail(c, "the *VMASK array is a CHAR array");
+    if (m.param->is_character_array()) r.fail(c, "the *VMASK array is a CHAR array");
     for (long long k = 0; k < p.rows; ++k) {
       const long long mi = m.i + p.row(k);
       if (mi <= m.param->imax)  // a short mask counts as true beyond its end
@@ -476,7 +478,7 @@ void cmd_vmask(DeckReader& r, const Command& c) {
     return;
   }
   const ArrayPosition m = array_position(r, c, c.text(1));  // checked now
-  if (m.param->type == ParamType::CharArray) r.fail(c, "a mask must be a numeric array");
+  if (m.param->is_character_array()) r.fail(c, "a mask must be a numeric array");
   r.scripting.vector_settings.mask = c.text(1);
 }
 

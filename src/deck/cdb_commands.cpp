@@ -9,12 +9,15 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "core/text.h"
 #include "deck/cdb_format.h"
 #include "deck/cdb_writer.h"
 #include "deck/deck_context.h"
@@ -315,6 +318,35 @@ void cmd_numoff(DeckReader& r, const Command& c) {
                           label));
 }
 
+/// The file `name` in `directory`, its name compared without regard to case when no file has it
+/// exactly (an archive CDWRITE wrote as VM193A.CDB and a deck reading vm193a.cdb: MAPDL's file
+/// names are case-insensitive on Windows, where the Verification Manual decks were written).
+/// Empty when there is none.
+std::string file_in(const std::filesystem::path& directory, const std::string& name) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path exact = directory / name;
+  if (fs::is_regular_file(exact, ec)) return exact.string();
+  const fs::path wanted(name);
+  const fs::path parent = (directory / wanted).parent_path();
+  const std::string leaf = to_upper(wanted.filename().string());
+  for (fs::directory_iterator it(parent, ec), end; !ec && it != end; it.increment(ec))
+    if (it->is_regular_file(ec) && to_upper(it->path().filename().string()) == leaf)
+      return it->path().string();
+  return {};
+}
+
+/// Where CDREAD finds Fname.Ext: MAPDL reads it from the working directory, where CDWRITE wrote
+/// it (the run's directory here); impactfe also looks beside the deck, where an archive that
+/// comes with a deck is. An absolute name is taken as it is.
+std::string find_archive(const std::string& name, const std::string& deck) {
+  namespace fs = std::filesystem;
+  if (fs::path(name).is_absolute()) return file_in(fs::path("/"), name.substr(1));
+  if (std::string found = file_in(fs::current_path(), name); !found.empty()) return found;
+  const fs::path beside = fs::path(deck).parent_path();
+  return file_in(beside.empty() ? fs::path(".") : beside, name);
+}
+
 // CDREAD,Option,Fname,Ext: reads a CDB archive (CDWRITE,DB) into the database, as the commands
 // it holds; the processor the deck was in is kept. _CDRDOFF is 0 (no solid model was read
 // first, so the archive's NUMOFF branch runs, as in MAPDL; DeckReader::run_file).
@@ -328,7 +360,11 @@ void cmd_cdread(DeckReader& r, const Command& c) {
   std::string name = r.text_field(c, 2), ext = r.text_field(c, 3);
   if (name.empty()) name = r.model.jobname;
   if (ext.empty()) ext = "cdb";
-  const std::string path = resolve_input(c.where.file, name, ext);
+  const std::string path = find_archive(name + "." + ext, c.where.file);
+  if (path.empty())
+    r.fail(c, fmt::format("the archive '{}.{}' does not exist in the run's directory or beside "
+                          "the deck (names compared without regard to case)",
+                          name, ext));
   const unsigned processor = r.processor;
   r.run_file(path, c.where);
   r.processor = processor;
@@ -373,18 +409,110 @@ void cmd_zero_only(DeckReader& r, const Command& c) {
                             c.name));
 }
 
+// ---- settings every archive states (CDWRITE writes the solution options too) ---------------
+
+// Settings every CDB archive states, at MAPDL's defaults, for features impactfe does not have:
+// the default is what impactfe does, anything else is refused.
+
+void cmd_irlf(DeckReader& r, const Command& c) {
+  // IRLF,KEY: 0 no inertia relief (impactfe's only form); 1 and -1 are refused.
+  if (const int key = r.integer(c, 1, 0); key != 0)
+    r.fail(c, fmt::format("KEY {}: inertia relief is not implemented (0 only)", key));
+}
+
+void cmd_kuse(DeckReader& r, const Command& c) {
+  // KUSE,KEY: 0 lets the program decide when to factor the matrix again, which impactfe does;
+  // forcing reuse (1) or a new factorisation (-1) is refused.
+  if (const int key = r.integer(c, 1, 0); key != 0)
+    r.fail(c, fmt::format("KEY {}: only 0 (the program decides when to factor again)", key));
+}
+
+void cmd_pstres(DeckReader& r, const Command& c) {
+  // PSTRES,Key: OFF (the default) computes no prestress effects; ON is refused.
+  if (r.on_off(c, 1, false))
+    r.fail(c,
+           "ON: prestress effects (the stress stiffness of an earlier static solution in a "
+           "modal or harmonic analysis) are not carried over here");
+}
+
+void cmd_crplim(DeckReader& r, const Command& c) {
+  // CRPLIM,CRCR,Option: the creep-ratio limit of automatic time stepping. The defaults are
+  // accepted (implicit creep, Option 1: 0, no limit, as impactfe; explicit creep, Option 0: 0.1,
+  // for a creep integration impactfe does not have); any other limit is refused.
+  const std::string option = r.label(c, 2);
+  const bool implicit = option == "1" || option == "ON";
+  if (!implicit && !option.empty() && option != "0" && option != "OFF")
+    r.fail(c, fmt::format("Option '{}': 1 (implicit) or 0 (explicit)", c.text(2)));
+  const double crcr = r.real(c, 1, implicit ? 0.0 : 0.1);
+  if (implicit ? crcr != 0.0 : crcr != 0.1)
+    r.fail(c, fmt::format("CRCR {} for {} creep: creep-ratio time-step control is not "
+                          "implemented (only MAPDL's default, {})",
+                          crcr, implicit ? "implicit" : "explicit", implicit ? "0" : "0.1"));
+}
+
+void cmd_ncnv(DeckReader& r, const Command& c) {
+  // NCNV,KSTOP,DLIM,ITLIM,ETLIM,CPLIM: KSTOP 1 (the default) stops the run when a solution does
+  // not converge, as impactfe does; the limits 0 (none). Anything else is refused.
+  if (const int kstop = r.integer(c, 1, 1); kstop != 1)
+    r.fail(c, fmt::format("KSTOP {}: only 1 (stop when the solution does not converge)", kstop));
+  for (int f = 2; f <= 5; ++f)
+    if (r.real(c, f, 0.0) != 0.0)
+      r.fail(c, fmt::format("field {}: termination limits are not implemented (0 only)", f));
+}
+
+void cmd_eqslv(DeckReader& r, const Command& c) {
+  // EQSLV,Lab,TOLER,MULT,--,KeepFile (MAPDL Command Reference, EQSLV). impactfe solves every
+  // linear system with its sparse direct factorisation (linalg/): SPARSE is that solver; the
+  // iterative solvers converge to the solution of the same equations, which the direct solve
+  // gives to round-off, so their TOLER is met; MULT (their iteration-limit multiplier) and
+  // KeepFile (MAPDL's scratch files) concern how MAPDL gets there. A label that is not an
+  // equation solver is refused.
+  const std::string lab = r.label(c, 1);
+  static const std::set<std::string> kDirect = {"", "SPARSE", "SPAR", "FRONT", "DSPARSE"};
+  static const std::set<std::string> kIterative = {"PCG", "JCG", "ICCG", "QMR", "JCCG", "PPCG"};
+  if (!kDirect.count(lab) && !kIterative.count(lab))
+    r.fail(c, fmt::format("Lab '{}' is not an equation solver (SPARSE, PCG, JCG, ICCG, QMR)", lab));
+  const double toler = r.real(c, 2, 1e-8);
+  if (!(toler > 0.0) || toler >= 1.0)
+    r.fail(c, fmt::format("TOLER {} must lie between 0 and 1", toler));
+  if (!c.blank(4)) r.fail(c, fmt::format("field 4 '{}' is not an EQSLV field", c.text(4)));
+  const std::string keep = r.label(c, 5);
+  if (!keep.empty() && keep != "KEEP" && keep != "DELE" && keep != "0" && keep != "1")
+    r.fail(c, fmt::format("KeepFile '{}': KEEP or DELE", c.text(5)));
+  // Workbench input files write `eqsl,sparse,,,,,1`: a sixth field that the command reference
+  // does not describe; its 1 is accepted (it does not choose the solver), anything else refused.
+  if (!c.blank(6) && r.real(c, 6, 0.0) != 1.0)
+    r.fail(c, fmt::format("field 6 '{}' is not an EQSLV field (Workbench's 1 is accepted)",
+                          c.text(6)));
+  for (int f = 7; f <= c.n_fields(); ++f)
+    if (!c.blank(f)) r.fail(c, fmt::format("field {} '{}' is not an EQSLV field", f, c.text(f)));
+  if (kIterative.count(lab))
+    Log::info(
+        "{}:{}: EQSLV,{}: the equations are solved by the sparse direct factorisation, "
+        "whose solution meets TOLER = {:g}",
+        c.where.file, c.where.line, lab, toler);
+}
+
 }  // namespace
 
 void register_cdb_commands(std::vector<CommandSpec>& t) {
   for (const char* name : {"OMEGA", "DOMEGA", "CGLOC", "CGOMEGA", "DCGOMG"})
     t.push_back({name, cmd_zero_only, kPrep7 | kSolu});
   t.push_back({"CDWRITE", cmd_cdwrite, kPrep7 | kSolu});
-  t.push_back({"CDREAD", cmd_cdread, kPrep7});
+  // Valid at the Begin level too: the archive's own /PREP7 line starts the preprocessor
+  // (vm169 reads its archive before any /PREP7).
+  t.push_back({"CDREAD", cmd_cdread, kBegin | kPrep7});
   t.push_back({"NUMOFF", cmd_numoff, kPrep7});
   t.push_back({"NBLOCK", cmd_nblock, kPrep7});
   t.push_back({"EBLOCK", cmd_eblock, kPrep7});
   t.push_back({"CMBLOCK", cmd_cmblock, kPrep7 | kSolu | kPost});
   t.push_back({"RLBLOCK", cmd_rlblock, kPrep7});
+  t.push_back({"EQSLV", cmd_eqslv, kPrepSolu});
+  t.push_back({"IRLF", cmd_irlf, kPrepSolu});
+  t.push_back({"KUSE", cmd_kuse, kPrepSolu});
+  t.push_back({"PSTRES", cmd_pstres, kPrepSolu});
+  t.push_back({"CRPLIM", cmd_crplim, kPrepSolu});
+  t.push_back({"NCNV", cmd_ncnv, kPrepSolu});
 }
 
 }  // namespace impactfe::deck

@@ -51,6 +51,9 @@ const Tables& tables() {
     add(register_dynamics_commands,
         "Dynamic analysis options (method, integration, damping, modes)",
         "docs/time_integration.md");
+    add(register_spectrum_commands,
+        "Response spectrum analysis (spectrum, direction, mode combination)",
+        "docs/spectrum_analysis.md");
     add(register_load_commands, "Constraints, forces and initial conditions", kDeck);
     add(register_thermal_coupling_commands, "Temperatures and coupled DOF sets",
         "docs/thermal_loads.md");

@@ -603,6 +603,16 @@ DeckReader::Flow DeckReader::run_range(Frame& f, std::size_t begin, std::size_t 
       run_input(c);
     } else if (n == "/EOF") {
       return Flow::EndFile;
+    } else if (n == "/EXIT") {
+      // /EXIT,Slab: the run ends here. NOSAVE only: nothing is saved at the exit.
+      const std::string slab = to_upper(trim(c.text(1)));
+      if (slab != "NOSAVE")
+        fail(c, fmt::format("saving the database at the exit ('{}') is not supported; give "
+                            "/EXIT,NOSAVE (and SAVE before it)",
+                            slab.empty() ? "MODEL" : slab));
+      Log::info("{}:{}: /EXIT: the run ends here", c.where.file, c.where.line);
+      stopped_ = true;
+      return Flow::Stop;
     } else if (n == "*REPEAT") {
       repeat_previous(c);
     } else {

@@ -240,6 +240,7 @@ json param_json(const Param& p) {
       j["value"] = p.text;
       break;
     case ParamType::CharArray:
+    case ParamType::StringArray:
       j["dims"] = {p.imax, p.jmax, p.kmax};
       j["values"] = p.texts;
       break;
@@ -256,14 +257,15 @@ Param param_of(const json& j) {
   if (type == "SCALAR") return Param::scalar(j.at("value"));
   if (type == "CHARACTER") return Param::character(j.at("value"));
   const json& d = j.at("dims");
-  const ParamType t = type == "CHAR"    ? ParamType::CharArray
-                      : type == "TABLE" ? ParamType::Table
-                                        : ParamType::Array;
+  const ParamType t = type == "CHAR"     ? ParamType::CharArray
+                      : type == "STRING" ? ParamType::StringArray
+                      : type == "TABLE"  ? ParamType::Table
+                                         : ParamType::Array;
   Param p = Param::array(t, d[0], d[1], d[2]);
-  if (t == ParamType::CharArray) {
+  if (p.is_character_array()) {
+    const std::size_t size = p.texts.size();
     p.texts = j.at("values").get<std::vector<std::string>>();
-    if (p.texts.size() != static_cast<std::size_t>(p.imax) * p.jmax * p.kmax)
-      throw std::runtime_error("array size mismatch");
+    if (p.texts.size() != size) throw std::runtime_error("array size mismatch");
   } else {
     const auto values = j.at("values").get<std::vector<double>>();
     if (values.size() != p.values.size()) throw std::runtime_error("array size mismatch");

@@ -94,6 +94,7 @@ void register_prep7_commands(std::vector<CommandSpec>& table);
 void register_generation_commands(std::vector<CommandSpec>& table);
 void register_solution_commands(std::vector<CommandSpec>& table);
 void register_dynamics_commands(std::vector<CommandSpec>& table);
+void register_spectrum_commands(std::vector<CommandSpec>& table);
 void register_load_commands(std::vector<CommandSpec>& table);
 void register_thermal_coupling_commands(std::vector<CommandSpec>& table);
 void register_constraint_equation_commands(std::vector<CommandSpec>& table);

@@ -167,7 +167,7 @@ std::string DeckReader::text_field(const Command& c, int i) const {
   if (auto n = split_subscripted_name(t)) {
     const Param* p = params.find(n->name);
     if (p != nullptr &&
-        (p->type == ParamType::Text || (p->type == ParamType::CharArray && n->has_parentheses))) {
+        (p->type == ParamType::Text || (p->is_character_array() && n->has_parentheses))) {
       try {
         const Value v = evaluate_value(t, params, &functions_);
         if (is_text(v)) {

@@ -76,7 +76,9 @@ void cmd_modopt(DeckReader& r, const Command& c) {
   ModalOptions& m = r.model.options.modal;
   const std::string method = r.label(c, 1);
   if (!method.empty()) m.method = method;
-  if (method == "QRDAMP" || method == "DAMP" || method == "UNSYM")
+  // QRDAMP projects the damping on the undamped modes (modal_analysis.cpp, damped_modes.h);
+  // DAMP and UNSYM would need complex eigensolvers of the full matrices.
+  if (method == "DAMP" || method == "UNSYM")
     r.warn(c, "damped/unsymmetric eigensolvers not available; undamped real modes computed");
   const auto n = r.opt_int(c, 2);
   if (!n) r.fail(c, "NMODE (number of modes) is required");
@@ -88,8 +90,17 @@ void cmd_modopt(DeckReader& r, const Command& c) {
 }
 
 void cmd_mxpand(DeckReader& r, const Command& c) {
+  // MXPAND,NMODE,FREQB,FREQE,Elcalc: every extracted mode is written (NMODE and the frequency
+  // window do not narrow it); Elcalc YES also writes each mode's element results.
   Log::info("{}:{}: MXPAND: all extracted modes are kept in memory and written", c.where.file,
             c.where.line);
+  const std::string elcalc = r.label(c, 4);
+  if (elcalc == "YES" || elcalc == "ON" || elcalc == "1")
+    r.model.options.modal.element_results = true;
+  else if (elcalc.empty() || elcalc == "NO" || elcalc == "OFF" || elcalc == "0")
+    r.model.options.modal.element_results = false;
+  else
+    r.fail(c, fmt::format("Elcalc '{}' must be YES or NO", c.text(4)));
 }
 
 void cmd_lvscale(DeckReader& r, const Command& c) {

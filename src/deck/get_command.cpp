@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cmath>
 #include <ctime>
+#include <map>
 
 #include "deck/get_hooks.h"
 #include "deck/post1_print.h"
@@ -57,7 +58,24 @@ double get_node(DeckReader& r, const Command& c, const GetRequest& g, int n, boo
       if (r.model.nodes.empty()) return 0.0;
       return g.it1num == "MAXD" ? r.model.nodes.rbegin()->first : r.model.nodes.begin()->first;
     }
-    unsupported(r, c, g, "ENTNUM 0: COUNT, NUM MAX/MIN/MAXD/MIND");
+    if ((i1 == "MNLOC" || i1 == "MXLOC") &&
+        (g.it1num == "X" || g.it1num == "Y" || g.it1num == "Z")) {
+      // The least / greatest coordinate of the selected nodes (global Cartesian: in another
+      // active system the coordinate would be that system's, not done here).
+      if (r.model.coordinate_systems.active != 0)
+        r.fail(c, fmt::format("{}: only in the global Cartesian system (CSYS,0); CSYS {} is "
+                              "active",
+                              g.what(), r.model.coordinate_systems.active));
+      const int axis = g.it1num[0] - 'X';
+      std::optional<double> out;
+      for (const auto& [id, node] : r.model.nodes) {
+        if (!r.model.selection.nodes.selected(id)) continue;
+        const double v = node.x(axis);
+        if (!out || (i1 == "MNLOC" ? v < *out : v > *out)) out = v;
+      }
+      return out.value_or(0.0);
+    }
+    unsupported(r, c, g, "ENTNUM 0: COUNT, NUM MAX/MIN/MAXD/MIND, MNLOC/MXLOC X/Y/Z");
   }
   const bool defined = r.model.nodes.count(n) != 0;
   if (!defined) {
@@ -230,6 +248,8 @@ GetValue get_active(DeckReader& r, const Command& c, const GetRequest& g) {
         return {4.0};
       case AnalysisType::Substructure:
         return {7.0};
+      case AnalysisType::Spectrum:
+        return {8.0};
     }
   }
   if (i1 == "TYPE") return {static_cast<double>(r.modeling.current_type)};
@@ -283,16 +303,44 @@ GetValue get_etab(DeckReader& r, const Command& c, const GetRequest& g, bool vec
   return GetValue{get_element(r, c, e2, integer_field(r, c, g, g.it1num), vector)};
 }
 
-// *GET,Par,MODE,m,FREQ.
+// *GET,Par,MODE,m,FREQ (undamped natural frequency), after MODOPT,QRDAMP DFRQ and STAB (damped
+// frequency Im λ / 2π and stability Re λ / 2π, Hz), and of the last spectrum analysis MCOEF (mode
+// coefficient), PFACT (participation factor), EFFM (effective mass), DAMP (effective damping
+// ratio).
 double get_mode(DeckReader& r, const Command& c, const GetRequest& g) {
   const int m = integer_field(r, c, g, g.entnum);
-  if (g.item1 != "FREQ") unsupported(r, c, g, "FREQ");
+  static const std::map<std::string, const char*> kSpectrumItems = {
+      {"MCOEF", "mode_coefficient"},
+      {"PFACT", "participation_factor"},
+      {"EFFM", "effective_mass"},
+      {"DAMP", "damping_ratio"}};
+  if (const auto item = kSpectrumItems.find(g.item1); item != kSpectrumItems.end()) {
+    const auto analyses = results(r, c).analyses();
+    for (auto a = analyses.rbegin(); a != analyses.rend(); ++a) {
+      if (a->kind != ResultsKind::Spectrum) continue;
+      const auto v = a->numeric_attributes.find(fmt::format("{}_{}", item->second, m));
+      if (v == a->numeric_attributes.end())
+        r.fail(c, fmt::format("{}: mode {} was not used by the spectrum analysis", g.what(), m));
+      return v->second;
+    }
+    r.fail(c, fmt::format("{}: no spectrum analysis (ANTYPE,SPECTR) was solved", g.what()));
+  }
+  if (g.item1 != "FREQ" && g.item1 != "DFRQ" && g.item1 != "STAB")
+    unsupported(r, c, g, "FREQ, DFRQ, STAB, MCOEF, PFACT, EFFM, DAMP");
   std::vector<double> f;
+  bool undamped = false;
   try {
-    f = results(r, c).frequencies();
+    const ResultsReader& file = results(r, c);
+    f = g.item1 == "FREQ"   ? file.frequencies()
+        : g.item1 == "DFRQ" ? file.damped_frequencies()
+                            : file.stabilities();
+    undamped = f.empty() && g.item1 != "FREQ" && !file.frequencies().empty();
   } catch (const InputError& err) {
     r.fail(c, err.what());
   }
+  if (undamped)
+    r.fail(c, fmt::format("{}: the modal analysis was undamped; {} needs MODOPT,QRDAMP", g.what(),
+                          g.item1));
   if (m < 1 || m > static_cast<int>(f.size()))
     r.fail(c, fmt::format("{}: mode {} was not computed (modes 1..{})", g.what(), m, f.size()));
   return f[static_cast<std::size_t>(m - 1)];
@@ -415,7 +463,8 @@ std::optional<GetValue> get_value(DeckReader& r, const Command& c, const GetRequ
   if (e == "FSUM" || e == "SSUM" || e == "SORT") return GetValue{get_post1_sum(r, c, g)};
   if (e == "VARI") return GetValue{get_variable(r, c, g)};
   if (e == "ETYP") return GetValue{get_element_type(r, c, g)};
-  if (e == "RCON") return GetValue{get_real_constant(r, c, g)};
+  // REAL: the name Workbench input files write for RCON (*get,,real,0,NUM,MAX).
+  if (e == "RCON" || e == "REAL") return GetValue{get_real_constant(r, c, g)};
   if (const auto value = get_material_property(r, c, g)) return GetValue{*value};
   if (e == "COMM" || e == "COMMON")
     r.fail(c, fmt::format("{}: MAPDL's internal common blocks do not exist in impactfe", g.what()));

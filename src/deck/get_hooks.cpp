@@ -283,6 +283,7 @@ std::optional<Value> parm_items(DeckReader& r, const Command& c, const GetItem& 
       case ParamType::Text:
         return 3.0;
       case ParamType::CharArray:
+      case ParamType::StringArray:
         return 4.0;
     }
   }

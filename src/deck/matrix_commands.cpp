@@ -113,7 +113,7 @@ Eigen::MatrixXd read_matrix(DeckReader& r, const Command& c, int f, std::optiona
   if (c.blank(f)) r.fail(c, fmt::format("field {}: {} missing", f, what));
   const ArrayPosition pos = array_position(r, c, c.text(f));
   const Param& p = *pos.param;
-  if (p.type == ParamType::CharArray) r.fail(c, fmt::format("{} is a CHAR array", pos.name));
+  if (p.is_character_array()) r.fail(c, fmt::format("{} is a CHAR array", pos.name));
   const int m = p.imax - pos.i + 1;
   const int n = cols ? *cols : p.jmax - pos.j + 1;
   if (pos.j + n - 1 > p.jmax)
@@ -141,7 +141,7 @@ void write_matrix(DeckReader& r, const Command& c, int f, const Eigen::MatrixXd&
   }
   const ArrayPosition pos = array_position(r, c, text);
   Param& p = *pos.param;
-  if (p.type == ParamType::CharArray) r.fail(c, fmt::format("{} is a CHAR array", pos.name));
+  if (p.is_character_array()) r.fail(c, fmt::format("{} is a CHAR array", pos.name));
   if (pos.i + a.rows() - 1 > p.imax || pos.j + a.cols() - 1 > p.jmax)
     r.fail(c, fmt::format("{} ({}x{}) cannot hold a {}x{} result from {}", pos.name, p.imax, p.jmax,
                           a.rows(), a.cols(), text));

@@ -62,7 +62,7 @@ struct VwriteItem {
     if (kind == Constant) return constant;
     const int i = start.i + static_cast<int>(row);
     if (i > start.param->imax)  // a shorter column pads with 0 / blanks (§A.9)
-      return start.param->type == ParamType::CharArray ? Value(std::string()) : Value(0.0);
+      return start.param->is_character_array() ? Value(std::string()) : Value(0.0);
     return start.param->entry(i, start.j, start.k);
   }
 };
@@ -78,6 +78,9 @@ void cmd_vwrite(DeckReader& r, const Command& c) {
     const Param* p = n ? r.params.find(n->name) : nullptr;
     if (to_upper(t) == "SEQU") {
       item.kind = VwriteItem::Sequence;
+    } else if (p != nullptr && p->type == ParamType::StringArray) {
+      // A STRING array element is one text (its row subscript is a character position).
+      item.constant = r.value(c, k);
     } else if (p != nullptr && p->is_array()) {
       // Array elements are addressed by position (TABLE entries too, §A.7).
       item.kind = VwriteItem::Column;

@@ -96,6 +96,24 @@ void store_values(DeckReader& r, const Command& c, const Target& t, const std::v
     return;
   }
   Param& p = element_owner(r, c, t);
+  if (p.type == ParamType::StringArray) {
+    // Par(i,j,k) = 'text': the text is written into column j from character i on (the row
+    // subscript of a STRING array is a character position, *DIM).
+    if (v.size() > 1)
+      r.fail(c, fmt::format("{} values for the STRING array {}: one text per assignment", v.size(),
+                            t.name));
+    if (!is_text(v[0]))
+      r.fail(c, fmt::format("{} is a STRING array: give a quoted text, not {}", t.name,
+                            format_number(std::get<double>(v[0]))));
+    check_range(r, c, t.name, p, t.s[0], t.s[1], t.s[2]);
+    std::string& entry = p.texts[p.offset(t.s[0], t.s[1], t.s[2])];
+    const auto from = static_cast<std::size_t>(t.s[0] - 1);
+    if (entry.size() < from) entry.resize(from, ' ');
+    entry = entry.substr(0, from) + std::get<std::string>(v[0]);
+    entry =
+        fit_text(r, c, entry, static_cast<std::size_t>(p.imax), "the STRING array's length, IMAX");
+    return;
+  }
   for (std::size_t n = 0; n < v.size(); ++n) {
     const int i = t.s[0] + static_cast<int>(n);
     check_range(r, c, t.name, p, i, t.s[1], t.s[2]);
@@ -174,13 +192,23 @@ void cmd_dim(DeckReader& r, const Command& c) {
     type = ParamType::CharArray;
   else if (type_label == "TABLE")
     type = ParamType::Table;
+  else if (type_label == "STRING")
+    type = ParamType::StringArray;
   else if (!type_label.empty() && type_label != "ARRAY")
-    r.fail(c, fmt::format("array type {} is not supported (ARRAY, CHAR, TABLE)", type_label));
+    r.fail(c,
+           fmt::format("array type {} is not supported (ARRAY, CHAR, TABLE, STRING)", type_label));
   int dims[3];
   for (int k = 0; k < 3; ++k) {
     dims[k] = r.integer(c, 3 + k, 1);
     if (dims[k] < 1)
       r.fail(c, fmt::format("field {}: extent {} must be at least 1", 3 + k, dims[k]));
+  }
+  if (type == ParamType::StringArray) {
+    // IMAX of a STRING array is its text length: rounded up to a multiple of 8, at most 248.
+    if (dims[0] > kMaxStringArrayLength)
+      r.fail(c, fmt::format("field 3: a STRING array holds at most {} characters, not {}",
+                            kMaxStringArrayLength, dims[0]));
+    dims[0] = (dims[0] + 7) / 8 * 8;
   }
   const long long entries = static_cast<long long>(dims[0] + 1) * (dims[1] + 1) * (dims[2] + 1);
   if (entries > kMaxArrayEntries)
@@ -278,8 +306,9 @@ namespace {
 Param& numeric_column(DeckReader& r, const Command& c, const ArrayPosition& pos, std::size_t n,
                       const char* verb) {
   Param& p = *pos.param;
-  if (p.type == ParamType::CharArray)
-    r.fail(c, fmt::format("{} is a CHAR array: numbers cannot be {} it", pos.name, verb));
+  if (p.is_character_array())
+    r.fail(c, fmt::format("{} is a {} array: numbers cannot be {} it", pos.name,
+                          param_type_name(p.type), verb));
   const long long room = p.imax - pos.i + 1;
   if (static_cast<long long>(n) > room)
     r.fail(c, fmt::format("{} is too short: {} values from row {}, but it has {} row{}", pos.name,
@@ -337,6 +366,7 @@ ParameterInfo parameter_info(DeckReader& r, const std::string& name) {
       info.type = 3;
       break;
     case ParamType::CharArray:
+    case ParamType::StringArray:
       info.type = 4;
       break;
   }

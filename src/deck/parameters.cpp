@@ -24,6 +24,8 @@ const char* param_type_name(ParamType type) {
       return "CHAR";
     case ParamType::Table:
       return "TABLE";
+    case ParamType::StringArray:
+      return "STRING";
   }
   return "?";
 }
@@ -31,6 +33,9 @@ const char* param_type_name(ParamType type) {
 // ---- Param ---------------------------------------------------------------------------------
 
 std::size_t Param::offset(int i, int j, int k) const {
+  if (type == ParamType::StringArray)
+    return static_cast<std::size_t>(j - 1) +
+           static_cast<std::size_t>(jmax) * static_cast<std::size_t>(k - 1);
   if (type == ParamType::Table) {
     const auto ni = static_cast<std::size_t>(imax + 1);
     const auto nj = static_cast<std::size_t>(jmax + 1);
@@ -45,6 +50,11 @@ std::size_t Param::offset(int i, int j, int k) const {
 
 Value Param::entry(int i, int j, int k) const {
   if (type == ParamType::CharArray) return texts[offset(i, j, k)];
+  if (type == ParamType::StringArray) {
+    const std::string& t = texts[offset(i, j, k)];
+    const auto from = static_cast<std::size_t>(i - 1);
+    return from < t.size() ? t.substr(from) : std::string();
+  }
   return values[offset(i, j, k)];
 }
 
@@ -70,6 +80,8 @@ Param Param::array(ParamType type, int imax, int jmax, int kmax) {
   p.kmax = kmax;
   if (type == ParamType::CharArray) {
     p.texts.assign(static_cast<std::size_t>(imax) * jmax * kmax, std::string());
+  } else if (type == ParamType::StringArray) {
+    p.texts.assign(static_cast<std::size_t>(jmax) * kmax, std::string());
   } else if (type == ParamType::Table) {
     p.values.assign(static_cast<std::size_t>(imax + 1) * (jmax + 1) * (kmax + 1), 0.0);
     p.variables = {"ROW", "COLUMN", "PLANE"};

@@ -22,12 +22,17 @@ inline bool is_text(const Value& v) {
   return std::holds_alternative<std::string>(v);
 }
 
-enum class ParamType { Number, Text, Array, CharArray, Table };
+/// StringArray is *DIM,Par,STRING: one text of up to IMAX characters per column and plane; the
+/// row subscript is a character position in it, so Par(i,j) is the text of column j from
+/// character i on.
+enum class ParamType { Number, Text, Array, CharArray, Table, StringArray };
 const char* param_type_name(ParamType type);
 
 /// Longest text of a character scalar (*SET VALUE) and of a CHAR-array entry (§A.6).
 inline constexpr std::size_t kMaxTextLength = 32;
 inline constexpr std::size_t kMaxCharEntryLength = 8;
+/// Longest text of a STRING array entry (*DIM: IMAX is rounded up to a multiple of 8, at most 248).
+inline constexpr int kMaxStringArrayLength = 248;
 /// Largest number of entries of one array (a typo in *DIM must not allocate gigabytes).
 inline constexpr long long kMaxArrayEntries = 50'000'000;
 
@@ -44,14 +49,20 @@ struct Param {
   std::array<std::string, 3> variables;  // Table: primary variables (Var1..Var3)
 
   bool is_array() const {
-    return type == ParamType::Array || type == ParamType::CharArray || type == ParamType::Table;
+    return type == ParamType::Array || type == ParamType::CharArray || type == ParamType::Table ||
+           type == ParamType::StringArray;
+  }
+  /// CHAR or STRING: entries are texts.
+  bool is_character_array() const {
+    return type == ParamType::CharArray || type == ParamType::StringArray;
   }
   /// Lowest valid subscript: 0 for a TABLE (its index row/column/plane), else 1.
   int low() const { return type == ParamType::Table ? 0 : 1; }
   bool in_range(int i, int j, int k) const {
     return i >= low() && i <= imax && j >= low() && j <= jmax && k >= low() && k <= kmax;
   }
-  /// Storage index of (i, j, k); the subscripts must be in range.
+  /// Storage index of (i, j, k); the subscripts must be in range. For a STRING array the index
+  /// of the text of column j, plane k (i is the character position in it).
   std::size_t offset(int i, int j, int k) const;
   /// Entry (i, j, k) as a Value (a number, or the text of a CHAR entry).
   Value entry(int i, int j, int k) const;

@@ -177,7 +177,9 @@ void refresh(DeckReader& r, const Command& c, bool force = false) {
   if (!force && ps.times_generation == r.solutions) return;
   std::vector<double> times;
   for (const auto& a : reader.analyses()) {
-    if (a.kind == ResultsKind::Modal || a.kind == ResultsKind::Substructure) continue;
+    if (a.kind == ResultsKind::Modal || a.kind == ResultsKind::Substructure ||
+        a.kind == ResultsKind::Spectrum)
+      continue;
     for (double t : reader.times(a.index)) {
       if (ps.timerange && (t < ps.timerange->first - 1e-12 * std::max(1.0, std::fabs(t)) ||
                            t > ps.timerange->second + 1e-12 * std::max(1.0, std::fabs(t))))

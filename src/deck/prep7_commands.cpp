@@ -291,6 +291,12 @@ void cmd_e(DeckReader& r, const Command& c) {
 }
 
 void cmd_en(DeckReader& r, const Command& c) {
+  // EN,R5.5,ATTR,-1 ends the element records of a CDB archive after its EBLOCK (as
+  // N,R5.3,LOC,-1 ends the nodes); other R5 records are not read.
+  if (const std::string form = r.label(c, 1); form.rfind("R5.", 0) == 0) {
+    if (r.label(c, 2) == "ATTR" && r.integer(c, 3, 0) == -1) return;
+    r.fail(c, fmt::format("the CDB element record form {} is not supported (EBLOCK is)", form));
+  }
   const auto id = r.opt_int(c, 1);
   if (!id) r.fail(c, "element number missing");
   if (c.last_given() < 2) r.fail(c, "node list missing");
@@ -307,8 +313,16 @@ void cmd_emore(DeckReader& r, const Command& c) {
   std::vector<int>& nodes = e->second.nodes;
   for (int f = 1; f <= c.last_given(); ++f, ++r.modeling.emore_position) {
     const int node = r.integer(c, f, 0);
-    if (r.modeling.emore_position >= static_cast<int>(nodes.size()))
-      r.fail(c, fmt::format("element {} has {} nodes: EMORE gives more", e->first, nodes.size()));
+    if (r.modeling.emore_position >= static_cast<int>(nodes.size())) {
+      // A type whose node count varies (MESH200: 2 to 20 by KEYOPT(1)) takes them up to its most.
+      const auto type = r.model.element_types.find(e->second.type);
+      const int most = type == r.model.element_types.end()
+                           ? 0
+                           : element_type_descriptor(type->second).max_nodes();
+      if (r.modeling.emore_position >= most)
+        r.fail(c, fmt::format("element {} has {} nodes: EMORE gives more", e->first, nodes.size()));
+      nodes.resize(static_cast<std::size_t>(r.modeling.emore_position) + 1, 0);
+    }
     if (node < 0) r.fail(c, fmt::format("node {} is not positive", node));
     if (node > 0) r.require_node(c, node);
     nodes[static_cast<std::size_t>(r.modeling.emore_position)] = node;
@@ -345,6 +359,43 @@ void cmd_mpchg(DeckReader& r, const Command& c) {
   for (int id : ids) r.model.elements.at(id).mat = *mat;
   Log::info("{}:{}: MPCHG: {} element{} now of material {}", c.where.file, c.where.line, ids.size(),
             ids.size() == 1 ? "" : "s", *mat);
+}
+
+void cmd_emodif(DeckReader& r, const Command& c) {
+  // EMODIF,IEL,STLOC,I1: sets an attribute of elements (a number, ALL for the selected ones, or
+  // a component), as Workbench input files assign their layered sections. STLOC MAT, TYPE,
+  // REAL, SECNUM, and ESYS 0; an element coordinate system (ESYS > 0) and node replacement
+  // (STLOC a node position) are refused.
+  if (c.blank(1)) r.fail(c, "IEL missing (an element number, ALL or a component)");
+  const std::string what = r.label(c, 2);
+  const int value = r.integer(c, 3, 0);
+  if (value < 0) r.fail(c, fmt::format("I1 {} must not be negative", value));
+  if (what == "ESYS") {
+    if (value != 0)
+      r.fail(c, fmt::format("ESYS {}: element coordinate systems are not supported (ESYS 0 only)",
+                            value));
+  } else if (what != "MAT" && what != "TYPE" && what != "REAL" && what != "SECNUM") {
+    r.fail(c, fmt::format("STLOC '{}': MAT, TYPE, REAL, SECNUM or ESYS (changing the nodes of an "
+                          "element is not supported)",
+                          c.text(2)));
+  }
+  if (what == "TYPE" && r.model.element_types.count(value) == 0)
+    r.fail(c, fmt::format("element type {} is not defined", value));
+  std::vector<int> ids;
+  if (const auto cm = r.model.components.find(r.label(c, 1));
+      cm != r.model.components.end() && cm->second.entity == "ELEM")
+    ids = cm->second.ids;
+  else
+    ids = entity_list(r, c, 1, 0, 0, r.model.elements, r.model.selection.elements, "element");
+  for (int id : ids) {
+    if (r.model.elements.count(id) == 0) continue;  // a component's element deleted since
+    ElementRecord& e = r.model.elements.at(id);
+    if (what == "MAT") e.mat = value;
+    if (what == "TYPE") e.type = value;
+    if (what == "REAL") e.real = value;
+    if (what == "SECNUM") e.secnum = value;
+  }
+  if (what == "SECNUM") r.modeling.secnum_given = true;
 }
 
 // ---- masters and gaps ------------------------------------------------------------------------
@@ -502,6 +553,7 @@ void register_prep7_commands(std::vector<CommandSpec>& t) {
   t.push_back({"REAL", cmd_real, kPrep7});
   t.push_back({"MAT", cmd_mat, kPrep7});
   t.push_back({"MPCHG", cmd_mpchg, kPrep7 | kSolu});
+  t.push_back({"EMODIF", cmd_emodif, kPrep7});
   t.push_back({"M", cmd_m, kPrep7 | kSolu});
   t.push_back({"TOTAL", cmd_total, kPrep7 | kSolu});
   t.push_back({"GP", cmd_gp, kPrep7 | kSolu});

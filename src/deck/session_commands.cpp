@@ -96,7 +96,7 @@ void register_session_commands(std::vector<CommandSpec>& t) {
   // Control commands, run by the executor.
   for (const char* name :
        {"*DO", "*DOWHILE", "*ENDDO", "*IF", "*ELSEIF", "*ELSE", "*ENDIF", "*EXIT", "*CYCLE", "*GO",
-        "*BEGIN", "*END", "*CREATE", "*USE", "/INPUT", "/EOF", "*REPEAT"})
+        "*BEGIN", "*END", "*CREATE", "*USE", "/INPUT", "/EOF", "/EXIT", "*REPEAT"})
     t.push_back({name, nullptr, kAnywhere});
   for (const char* name :
        {"/INTER",  "/NOPR",   "/GOPR",    "/PNUM",   "/PBC",    "EPLOT",  "NPLOT",    "/REPLOT",
@@ -121,8 +121,8 @@ void register_session_commands(std::vector<CommandSpec>& t) {
   t.push_back({"MODCONTROL", cmd_ignored, kPrep7 | kSolu,
                "MAPDL's modal results-file control: the modes are stored the same way here"});
   t.push_back({"QRDOPT", cmd_ignored, kPrep7 | kSolu,
-               "options of MAPDL's QR damped eigensolver; impactfe computes undamped real modes "
-               "(MODOPT)"});
+               "options of MAPDL's QR damped eigensolver (factor reuse, the symmetric solver, "
+               "contribution printout): none changes the damped modes of MODOPT,QRDAMP"});
   // Lines every Workbench input file (ds.dat) carries.
   t.push_back({"/WB", cmd_ignored, kAnywhere,
                "marks the sections of a Workbench input file: no effect on the model"});

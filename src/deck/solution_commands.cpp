@@ -161,8 +161,10 @@ void cmd_nropt(DeckReader& r, const Command& c) {
 }
 
 void cmd_neqit(DeckReader& r, const Command& c) {
-  const int n = r.integer(c, 1, 25);
-  if (n <= 0) r.fail(c, fmt::format("NEQIT {} must be positive", n));
+  // NITER 0 or blank: the program chooses (CDB archives write NEQIT,0); impactfe's choice is 25.
+  int n = r.integer(c, 1, 25);
+  if (n == 0) n = 25;
+  if (n < 0) r.fail(c, fmt::format("NEQIT {} must be positive", n));
   r.model.options.convergence.max_iterations = n;
   if (r.label(c, 2) == "FORCE") r.model.options.convergence.max_iterations = 1;
 }
@@ -218,6 +220,14 @@ void cmd_toff(DeckReader& r, const Command& c) {
   r.solution.temperature_offset = r.real(c, 1, 0.0);
 }
 
+void cmd_stef(DeckReader& r, const Command& c) {
+  // STEF,VALUE: the Stefan-Boltzmann constant (blank: MAPDL's 0.119E-10). Thermal archives
+  // (CDWRITE) state it; it enters radiation only, which impactfe does not model.
+  const double value = r.real(c, 1, 0.119e-10);
+  if (!(value > 0.0)) r.fail(c, fmt::format("VALUE {} must be positive", value));
+  r.solution.stefan_boltzmann = value;
+}
+
 void cmd_sstif(DeckReader& r, const Command& c) {
   r.model.options.stress_stiffening = r.on_off(c, 1, false);
 }
@@ -241,9 +251,12 @@ void cmd_antype(DeckReader& r, const Command& c) {
     type = AnalysisType::Substructure;
   else if (l == "HARMIC" || l == "HARMONIC" || l == "3")
     type = AnalysisType::Harmonic;
-  else if (l == "SPECTR" || l == "SPECTRUM" || l == "8")
-    r.fail(c, "spectrum analysis (ANTYPE,SPECTR: response spectrum, PSD) is not supported");
-  else if (l == "BUCKLE" || l == "1")
+  else if (l == "SPECTR" || l == "SPECTRUM" || l == "8") {
+    // The spectrum analysis works on the modes of the modal analysis solved before it.
+    if (r.model.modal_load_vectors.empty())
+      r.fail(c, "a spectrum analysis needs the modal analysis (ANTYPE,MODAL ... SOLVE) first");
+    type = AnalysisType::Spectrum;
+  } else if (l == "BUCKLE" || l == "1")
     r.fail(c, "buckling analysis (ANTYPE,BUCKLE) is not supported");
   else if (l.empty())
     ;
@@ -557,8 +570,27 @@ void arm_creep_clock(DeckReader& r, const Job::Step& step) {
 
 void solve_current(DeckReader& r, const Command& c) {
   append_current(r, c);
-  const AnalysisRequest& a = *r.job.steps[*r.solution.open_analysis].analysis;
+  AnalysisRequest& a = *r.job.steps[*r.solution.open_analysis].analysis;
   if (a.options.type == AnalysisType::Modal) r.model.modal_load_vectors = a.load_steps;
+  if (a.options.type == AnalysisType::Spectrum) {
+    // The modes are those of the modal analysis: its constraints, not the D given since (a
+    // spectrum analysis has no load step of its own).
+    if (r.model.modal_load_vectors.empty())
+      r.fail(c, "a spectrum analysis needs the modal analysis (ANTYPE,MODAL ... SOLVE) first");
+    if (a.load_steps.size() > 1)
+      r.fail(c, "a spectrum analysis is solved once; start another with ANTYPE,SPECTR");
+    const SpectrumOptions& s = a.options.spectrum;
+    if (!s.single_point) r.fail(c, "give the spectrum type (SPOPT,SPRS) before SOLVE");
+    if (s.direction.norm() == 0.0) r.fail(c, "no excitation direction (SED) was given");
+    if (s.frequencies.empty() || s.curves.empty())
+      r.fail(c, "no spectrum table (FREQ and SV) was given");
+    for (const auto& [damping, values] : s.curves)
+      if (values.size() != s.frequencies.size())
+        r.fail(c, fmt::format("the spectrum curve of damping {:g} has {} values (SV) for {} "
+                              "frequencies (FREQ)",
+                              damping, values.size(), s.frequencies.size()));
+    a.load_steps.back().constraints = r.model.modal_load_vectors.front().constraints;
+  }
   arm_creep_clock(r, r.job.steps[*r.solution.open_analysis]);
   r.solve_step(*r.solution.open_analysis);
 }
@@ -738,6 +770,7 @@ void register_solution_commands(std::vector<CommandSpec>& t) {
   t.push_back({"SSTIF", cmd_sstif, kPrepSolu});
   t.push_back({"RATE", cmd_rate, kPrepSolu});
   t.push_back({"TOFF", cmd_toff, kPrepSolu});
+  t.push_back({"STEF", cmd_stef, kPrepSolu});
   t.push_back({"LUMPM", cmd_lumpm, kPrepSolu});
   t.push_back({"ANTYPE", cmd_antype, kPrepSolu});
   t.push_back({"OUTRES", cmd_outres, kPrepSolu});

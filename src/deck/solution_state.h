@@ -43,6 +43,10 @@ struct SolutionState {
   // the creep clock of the model solved (Model::creep_clock) takes them then.
   bool creep_rate = false;          // RATE
   double temperature_offset = 0.0;  // TOFF
+  /// STEF: the Stefan-Boltzmann constant of radiation (MAPDL's default 0.119E-10, in Btu/hr,
+  /// in, °R). Kept for *GET and the archive; nothing radiates here (radiation elements, RDSF
+  /// and RADOPT are refused where given), so it acts on no result.
+  double stefan_boltzmann = 0.119e-10;
 };
 
 }  // namespace impactfe::deck

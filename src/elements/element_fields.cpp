@@ -123,6 +123,21 @@ std::vector<ElementFields> make_table() {
                {{2, {0, 1}, "integration: 0 uniform reduced 2x2x2, 1 full 3x3x3"},
                 {6, {0}, "1 (mixed u-P formulation) is not implemented"}}});
   t.push_back({"SOLID187", {}, {{6, {0}, "1 and 2 (mixed u-P formulations) are not implemented"}}});
+  // Legacy quadratic solids, computed as SOLID186 / SOLID187 (docs/elements/solid186.md). Their
+  // output KEYOPTs (SOLID95 4, 5, 6; SOLID92 5, 6) and SOLID95's 14-point rule are refused.
+  t.push_back({"SOLID95",
+               {},
+               {{11,
+                 {0},
+                 "0 2x2x2 reduced integration; 1 (14-point integration) is not "
+                 "implemented"}}});
+  t.push_back({"SOLID92", {}, {}});
+  // MESH200: mesh-only (no solution); KEYOPT(1) its cell.
+  t.push_back({"MESH200",
+               {},
+               {{1, range(0, 11),
+                 "cell: 0-3 lines (2 or 3 nodes), 4-5 triangles, 6-7 quadrilaterals, 8-9 "
+                 "tetrahedra, 10-11 bricks (without or with midside nodes)"}}});
   // 2-D solids (docs/elements/plane182.md). THK is read with KEYOPT(3) = 3 only.
   t.push_back({"PLANE182",
                named({"THK"}),

@@ -68,7 +68,12 @@ std::string element_help(const ElementTypeDescriptor& t) {
   std::string out = fmt::format("### {}\n\n", t.name);
   out += fmt::format("- family: {}{}\n", t.family,
                      t.number > 0 ? fmt::format(" (ANSYS 4.2 type {})", t.number) : "");
-  out += fmt::format("- nodes: {}; role: {}\n", node_count(t), role_name(t.role));
+  // A point role on a set of points (MESH200): a cell that joins nothing, drawn as its nodes.
+  const bool mesh_only = t.role == ShapeRole::Point && t.vtk_cell == VtkCell::PolyVertex;
+  out += fmt::format("- nodes: {}; role: {}\n", node_count(t),
+                     mesh_only ? "mesh-only cell (drawn as its nodes; contributes nothing to the "
+                                 "solution)"
+                               : role_name(t.role));
   out += fmt::format("- real constants: {}; material: {}\n", real_constant_use(t.real_constants),
                      t.needs_material ? "required (MAT)" : "not read");
   if (!t.section_types.empty())

@@ -31,7 +31,9 @@ bool role_fits_cell(ShapeRole role, int dimension) {
     case ShapeRole::Gap:
       return dimension == 1;
     case ShapeRole::Point:
-      return dimension == 0;
+      // A mass at a node; or MESH200's cell, whose shape varies with KEYOPT(1): a set of points
+      // (PolyVertex) to the pictures, joined to no degree of freedom.
+      return dimension == 0 || dimension == -1;
     case ShapeRole::Contact:
     case ShapeRole::Target:
       return dimension == 0 || dimension == 2;

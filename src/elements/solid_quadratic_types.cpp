@@ -1,6 +1,6 @@
 // The element types of the quadratic solids (elements/solid_quadratic.h): SOLID186 (20-node
-// hexahedron and its degenerate tetrahedron) and SOLID187 (10-node tetrahedron), their factories
-// and registrations.
+// hexahedron and its degenerate tetrahedron) and SOLID187 (10-node tetrahedron), with the legacy
+// SOLID95 and SOLID92 computed as them, their factories and registrations.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -115,22 +115,21 @@ std::optional<std::pair<std::vector<int>, std::vector<std::vector<int>>>> solid1
   return std::make_pair(tet, faces);
 }
 
-std::unique_ptr<Element> make_solid186(const ElementBuildContext& ctx,
-                                       const ElementRecord& record) {
+/// The 20-node brick of SOLID186 (`name`) and of the legacy SOLID95, which has the same
+/// serendipity shape functions and node order; `order` is the Gauss rule per direction.
+std::unique_ptr<Element> make_brick20(const ElementBuildContext& ctx, const ElementRecord& record,
+                                      const char* name, int order) {
   const Model& model = ctx.model;
   if (record.nodes.size() != 20)
-    throw InputError(record.where, fmt::format("element {}: SOLID186 needs 20 nodes I..P, Q..B, "
-                                               "got {}",
-                                               record.id, record.nodes.size()));
-  require_all_nodes(record, "SOLID186", 20);
+    throw InputError(record.where, fmt::format("element {}: {} needs 20 nodes I..P, Q..B, got {}",
+                                               record.id, name, record.nodes.size()));
+  require_all_nodes(record, name, 20);
   const IsotropicElasticity material =
       read_isotropic_elasticity(model, record.mat, record.id, record.where);
   std::optional<J2Plasticity> law = plasticity_of(model, record, material.young, material.poisson);
-  refuse_large_deflection_creep(ctx, record, "SOLID186", law);
+  refuse_large_deflection_creep(ctx, record, name, law);
   const std::vector<int>& n = record.nodes;
   if (std::set<int>(n.begin(), n.begin() + 8).size() == 8) {
-    // KEYOPT(2) = 0: uniform reduced integration (2x2x2), MAPDL's default; 1: full (3x3x3).
-    const int order = type_of(model, record).key(2) == 1 ? 3 : 2;
     return std::make_unique<QuadraticSolid>(
         record.id, QuadraticShape::Hex20, n, coordinates(model, record, n), material,
         gauss_cube(order), hex20_faces(), record.where, std::move(law), ctx.large_deflection);
@@ -142,28 +141,51 @@ std::unique_ptr<Element> make_solid186(const ElementBuildContext& ctx,
                                             std::move(law), ctx.large_deflection);
   throw InputError(
       record.where,
-      fmt::format("element {}: SOLID186 with repeated corner nodes is taken only as the "
+      fmt::format("element {}: {} with repeated corner nodes is taken only as the "
                   "tetrahedron (K = L = S, M = N = O = P = U = V = W = X, A = B); its wedge "
                   "(K = L, O = P) and pyramid (M = N = O = P) forms are not implemented "
                   "(mesh those regions with bricks or with SOLID187 tetrahedra)",
-                  record.id));
+                  record.id, name));
 }
 
-std::unique_ptr<Element> make_solid187(const ElementBuildContext& ctx,
+std::unique_ptr<Element> make_solid186(const ElementBuildContext& ctx,
                                        const ElementRecord& record) {
+  // KEYOPT(2) = 0: uniform reduced integration (2x2x2), MAPDL's default; 1: full (3x3x3).
+  return make_brick20(ctx, record, "SOLID186", type_of(ctx.model, record).key(2) == 1 ? 3 : 2);
+}
+
+/// SOLID95 with KEYOPT(11) = 0 (its default, 2x2x2 reduced integration) is SOLID186 with its
+/// default KEYOPT(2) = 0; the 14-point rule (KEYOPT(11) = 1) is refused (element_fields.cpp).
+std::unique_ptr<Element> make_solid95(const ElementBuildContext& ctx, const ElementRecord& record) {
+  return make_brick20(ctx, record, "SOLID95", 2);
+}
+
+/// The 10-node tetrahedron of SOLID187 and of the legacy SOLID92 (same shape functions, node
+/// order and 4-point rule).
+std::unique_ptr<Element> make_tet10(const ElementBuildContext& ctx, const ElementRecord& record,
+                                    const char* name) {
   if (record.nodes.size() != 10)
-    throw InputError(record.where, fmt::format("element {}: SOLID187 needs 10 nodes I..R, got {}",
-                                               record.id, record.nodes.size()));
-  require_all_nodes(record, "SOLID187", 10);
+    throw InputError(record.where, fmt::format("element {}: {} needs 10 nodes I..R, got {}",
+                                               record.id, name, record.nodes.size()));
+  require_all_nodes(record, name, 10);
   const IsotropicElasticity material =
       read_isotropic_elasticity(ctx.model, record.mat, record.id, record.where);
   std::optional<J2Plasticity> law =
       plasticity_of(ctx.model, record, material.young, material.poisson);
-  refuse_large_deflection_creep(ctx, record, "SOLID187", law);
+  refuse_large_deflection_creep(ctx, record, name, law);
   return std::make_unique<QuadraticSolid>(record.id, QuadraticShape::Tet10, record.nodes,
                                           coordinates(ctx.model, record, record.nodes), material,
                                           tetrahedron_4_point(), tet10_faces(), record.where,
                                           std::move(law), ctx.large_deflection);
+}
+
+std::unique_ptr<Element> make_solid187(const ElementBuildContext& ctx,
+                                       const ElementRecord& record) {
+  return make_tet10(ctx, record, "SOLID187");
+}
+
+std::unique_ptr<Element> make_solid92(const ElementBuildContext& ctx, const ElementRecord& record) {
+  return make_tet10(ctx, record, "SOLID92");
 }
 
 ElementTypeDescriptor quadratic_solid_type(const char* name, int number, int n_nodes, VtkCell cell,
@@ -188,6 +210,23 @@ const ElementRegistration kSolid186{quadratic_solid_type(
     "SOLID186", 186, 20, VtkCell::QuadraticHexahedron, hex20_faces(), make_solid186)};
 const ElementRegistration kSolid187{quadratic_solid_type(
     "SOLID187", 187, 10, VtkCell::QuadraticTetra, tet10_faces(), make_solid187)};
+
+/// The legacy quadratic solids of MAPDL (SOLID95 20-node brick, SOLID92 10-node tetrahedron),
+/// written by old archives: the same elements as SOLID186 / SOLID187 (MAPDL's own migration
+/// table maps them so), computed by the same kernel.
+ElementTypeDescriptor legacy_quadratic_solid_type(ElementTypeDescriptor d, const char* note) {
+  d.note = note;
+  return d;
+}
+
+const ElementRegistration kSolid95{legacy_quadratic_solid_type(
+    quadratic_solid_type("SOLID95", 95, 20, VtkCell::QuadraticHexahedron, hex20_faces(),
+                         make_solid95),
+    "SOLID95 is computed as SOLID186 with its default 2x2x2 reduced integration (SOLID95 "
+    "KEYOPT(11) = 0)")};
+const ElementRegistration kSolid92{legacy_quadratic_solid_type(
+    quadratic_solid_type("SOLID92", 92, 10, VtkCell::QuadraticTetra, tet10_faces(), make_solid92),
+    "SOLID92 is computed as SOLID187 (the same 10-node tetrahedron)")};
 
 }  // namespace
 

@@ -146,7 +146,7 @@ std::vector<FrameRef> choose_frames(const ResultsReader& reader, const ReportMes
                                     std::size_t max_frames) {
   std::vector<std::pair<int, double>> completeness;  // analysis, fraction of finite U
   for (const auto& a : reader.analyses()) {
-    if (a.kind == ResultsKind::Modal || a.n_time_points == 0) continue;
+    if (!is_time_history(a.kind) || a.n_time_points == 0) continue;
     const TimePoint p = reader.time_point(a.index, a.n_time_points - 1);
     std::size_t finite = 0, total = 0;
     for (int i : mesh.used_nodes)
@@ -201,6 +201,7 @@ Pass scan_time_points(const ResultsReader& reader, const std::vector<FrameRef>& 
   // file does not hold that run); static analyses start at rest.
   double run_t0 = 0.0;
   for (const auto& a : reader.analyses()) {
+    if (!is_time_history(a.kind)) continue;
     std::vector<double> t;
     std::map<std::string, std::vector<double>> energy;
     std::optional<double> initial_kinetic;

@@ -85,6 +85,14 @@ SetData read_set(const ResultsReader& reader, const ResultSet& set) {
     d.point.acceleration = d.point.velocity;
     d.point.reaction = d.point.velocity;
     d.frequency = set.time;
+    // MXPAND Elcalc YES: the mode's element results are the analysis's time point of the mode.
+    const auto steps = reader.load_steps_of(set.analysis);
+    for (std::size_t k = 0; k < steps.size(); ++k)
+      if (steps[k].second == set.mode) {
+        TimePoint mode = reader.time_point(set.analysis, static_cast<int>(k));
+        d.point.element_results = std::move(mode.element_results);
+        d.point.reaction = std::move(mode.reaction);
+      }
   } else {
     d.point = reader.time_point(set.analysis, set.point);
   }

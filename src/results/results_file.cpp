@@ -22,6 +22,8 @@ const char* results_kind_name(ResultsKind kind) {
       return "substructure";
     case ResultsKind::Harmonic:
       return "harmonic";
+    case ResultsKind::Spectrum:
+      return "spectrum";
   }
   return "unknown";
 }

@@ -57,11 +57,18 @@ enum class ResultsKind {
   ReducedTransient,
   Expansion,
   Substructure,
-  Harmonic
+  Harmonic,
+  Spectrum
 };
 /// "static", "modal", "transient", "reduced_transient", "expansion", "substructure",
-/// "harmonic".
+/// "harmonic", "spectrum".
 const char* results_kind_name(ResultsKind kind);
+/// Whether the time points of an analysis of this kind are a history in time: not those of a
+/// modal analysis (one per mode, at its frequency: the modes' element results) or of a spectrum
+/// analysis (peak responses).
+inline bool is_time_history(ResultsKind kind) {
+  return kind != ResultsKind::Modal && kind != ResultsKind::Spectrum;
+}
 
 /// Energy columns of the per-analysis `energy` dataset, in stored order (docs/results_file.md).
 /// "plastic_work" came last (files written before it have 5 columns).
@@ -197,6 +204,11 @@ class ResultsReader {
   std::vector<std::pair<double, double>> gap_force_series(int gap) const;
   /// Modal frequencies (Hz) of the last modal analysis; empty when none.
   std::vector<double> frequencies() const;
+  /// Damped frequencies and stabilities (Hz) of the last modal analysis (its attributes
+  /// damped_frequency_<n>, stability_<n>); empty when it was undamped (only MODOPT,QRDAMP
+  /// stores them).
+  std::vector<double> damped_frequencies() const;
+  std::vector<double> stabilities() const;
   /// Mode shape (n_nodes x 6) of mode 1-based `mode` of the last modal analysis.
   Eigen::MatrixXd mode_shape(int mode) const;
   /// Frequencies (Hz) / mode shape of modal analysis a (1-based); empty / InputError when the

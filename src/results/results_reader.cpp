@@ -26,7 +26,7 @@ namespace {
 ResultsKind parse_kind(const std::string& name, const std::string& path) {
   for (auto k : {ResultsKind::Static, ResultsKind::Modal, ResultsKind::Transient,
                  ResultsKind::ReducedTransient, ResultsKind::Expansion, ResultsKind::Substructure,
-                 ResultsKind::Harmonic})
+                 ResultsKind::Harmonic, ResultsKind::Spectrum})
     if (name == results_kind_name(k)) return k;
   throw InputError(fmt::format("results file '{}': unknown analysis kind '{}'", path, name));
 }
@@ -459,8 +459,9 @@ std::vector<std::pair<double, double>> ResultsReader::nodal_series(int node,
     const auto index = static_cast<hsize_t>(impl_->node_index(node));
     Series merged;
     for (const auto& an : impl_->analyses)
-      merge_into(merged,
-                 impl_->collect(an, impl_->nodal_column(an, where->dataset, index, where->column)));
+      if (is_time_history(an.info.kind))
+        merge_into(merged, impl_->collect(
+                               an, impl_->nodal_column(an, where->dataset, index, where->column)));
     std::stable_sort(merged.begin(), merged.end(),
                      [](const auto& a, const auto& b) { return a.first < b.first; });
     return merged;
@@ -497,6 +498,7 @@ std::vector<std::pair<double, double>> ResultsReader::element_series(
     bool found = false;
     std::vector<std::string> available;
     for (const auto& an : impl_->analyses) {
+      if (!is_time_history(an.info.kind)) continue;
       for (const auto& fam : an.families) {
         auto e = std::find(fam.element_ids.begin(), fam.element_ids.end(), element);
         if (e == fam.element_ids.end()) continue;
@@ -599,6 +601,34 @@ std::vector<double> ResultsReader::frequencies() const {
   for (auto it = impl_->analyses.rbegin(); it != impl_->analyses.rend(); ++it)
     if (it->info.n_modes > 0) return frequencies_of(it->info.index);
   return {};
+}
+
+namespace {
+
+/// The per-mode attributes <prefix>_1, <prefix>_2, ... of the last modal analysis, in order.
+std::vector<double> last_modal_series(const std::vector<ResultsReader::AnalysisInfo>& analyses,
+                                      const std::string& prefix) {
+  std::vector<double> values;
+  for (auto it = analyses.rbegin(); it != analyses.rend(); ++it) {
+    if (it->n_modes == 0) continue;
+    for (int n = 1;; ++n) {
+      const auto v = it->numeric_attributes.find(prefix + "_" + std::to_string(n));
+      if (v == it->numeric_attributes.end()) break;
+      values.push_back(v->second);
+    }
+    break;
+  }
+  return values;
+}
+
+}  // namespace
+
+std::vector<double> ResultsReader::damped_frequencies() const {
+  return last_modal_series(analyses(), "damped_frequency");
+}
+
+std::vector<double> ResultsReader::stabilities() const {
+  return last_modal_series(analyses(), "stability");
 }
 
 Eigen::MatrixXd ResultsReader::mode_shape(int mode) const {

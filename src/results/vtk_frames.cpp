@@ -94,6 +94,7 @@ VtkMesh build_vtk_mesh(const ResultsReader& reader) {
 std::vector<VtkFrame> vtk_frames(const ResultsReader& reader) {
   std::vector<std::tuple<double, int, int>> all;
   for (const auto& a : reader.analyses()) {
+    if (!is_time_history(a.kind)) continue;
     const auto times = reader.times(a.index);
     for (std::size_t k = 0; k < times.size(); ++k)
       all.emplace_back(times[k], a.index, static_cast<int>(k));

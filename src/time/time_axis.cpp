@@ -4,10 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <set>
 
 #include "core/log.h"
-#include "core/memory_budget.h"
 
 namespace impactfe {
 
@@ -29,9 +29,8 @@ int substep_count(const LoadStep& step, double span, double dt) {
   return std::max(1, static_cast<int>(n));
 }
 
-std::vector<ReducedPoint> reduced_time_axis(const std::vector<LoadStep>& steps, double& dt,
-                                            std::vector<std::string>& notes,
-                                            double bytes_per_point) {
+ReducedTimeAxis reduced_time_axis(const std::vector<LoadStep>& steps, double& dt,
+                                  std::vector<std::string>& notes) {
   if (steps.empty()) throw InputError("reduced transient: no load steps were written");
   dt = 0.0;
   for (const LoadStep& s : steps)
@@ -45,13 +44,7 @@ std::vector<ReducedPoint> reduced_time_axis(const std::vector<LoadStep>& steps, 
     throw InputError(
         steps.front().where,
         fmt::format("reduced transient: time step {} must be > 0 (DTIME / DELTIM)", dt));
-  struct Span {
-    int n = 0;  // substeps
-    bool exact = false;
-    double start = 0.0;
-  };
-  std::vector<Span> spans(steps.size());
-  double total = 1.0;  // points, t = 0 included
+  std::vector<ReducedTimeAxis::Span> spans;
   double t_prev = 0.0;
   bool warned = false;
   for (std::size_t i = 1; i < steps.size(); ++i) {
@@ -79,64 +72,80 @@ std::vector<ReducedPoint> reduced_time_axis(const std::vector<LoadStep>& steps, 
       Log::warn("{}", note);
       notes.push_back(note);
     }
-    spans[i] = {n, exact, t_prev};
-    total += n;
+    spans.push_back({n, exact, t_prev, *step.time_end, step.number, static_cast<int>(i)});
     t_prev = exact ? *step.time_end : t_prev + n * dt;
   }
-  const double per_point = static_cast<double>(sizeof(ReducedPoint)) + bytes_per_point;
-  const MemoryAvailable available = memory_available();
-  if (total * per_point > available.bytes)
-    require_memory(total * per_point,
-                   fmt::format("the {:.0f} time points of this reduced / mode-superposition "
-                               "transient with their history ({:.0f} bytes each, kept for the "
-                               "expansion pass)",
-                               total, per_point),
-                   fmt::format("at most about {:.0f} points fit: a larger DELTIM or a shorter TIME",
-                               std::floor(available.bytes / per_point)));
-  std::vector<ReducedPoint> points;
-  points.reserve(static_cast<std::size_t>(total));
-  points.push_back({0.0, steps.front().number, 1, 0, 1.0});
-  for (std::size_t i = 1; i < steps.size(); ++i) {
-    const auto [n, exact, start] = spans[i];
-    for (int k = 1; k <= n; ++k) {
-      const double t = (k == n && exact) ? *steps[i].time_end : start + k * dt;
-      points.push_back({t, steps[i].number, k, static_cast<int>(i), static_cast<double>(k) / n});
-    }
+  return ReducedTimeAxis(steps.front().number, std::move(spans), dt);
+}
+
+ReducedTimeAxis::ReducedTimeAxis(int first_load_step, std::vector<Span> spans, double dt)
+    : first_load_step_(first_load_step), spans_(std::move(spans)), dt_(dt) {
+  std::size_t next = 1;  // point 0: the initial state
+  for (const Span& span : spans_) {
+    first_.push_back(next);
+    next += static_cast<std::size_t>(span.n);
   }
-  return points;
+  first_.push_back(next);
+}
+
+ReducedPoint ReducedTimeAxis::operator[](std::size_t i) const {
+  if (i == 0) return {0.0, first_load_step_, 1, 0, 1.0};
+  // The span holding point i: the last whose first point is at or before it.
+  const auto it = std::upper_bound(first_.begin(), first_.end() - 1, i);
+  const auto s = static_cast<std::size_t>(it - first_.begin()) - 1;
+  const Span& span = spans_[s];
+  const int k = static_cast<int>(i - first_[s]) + 1;
+  // Same expression as the points had when they were stored: start + k Δt, TIME at the end.
+  const double t = (k == span.n && span.exact) ? span.end : span.start + k * dt_;
+  return {t, span.load_step, k, span.step_index, static_cast<double>(k) / span.n};
 }
 
 namespace {
 
-/// Index of the stored time nearest to t.
-int nearest_time(const std::vector<double>& times, double t) {
-  int best = 0;
-  for (std::size_t i = 1; i < times.size(); ++i)
-    if (std::abs(times[i] - t) < std::abs(times[static_cast<std::size_t>(best)] - t))
-      best = static_cast<int>(i);
-  return best;
+/// Index of the stored time nearest to t (ascending times; the earlier of two as near).
+std::size_t nearest_time(std::size_t count, const std::function<double(std::size_t)>& time_at,
+                         double t) {
+  std::size_t lo = 0, hi = count;  // first index with time_at >= t, by bisection
+  while (lo < hi) {
+    const std::size_t mid = lo + (hi - lo) / 2;
+    if (time_at(mid) < t)
+      lo = mid + 1;
+    else
+      hi = mid;
+  }
+  if (lo == count) return count - 1;
+  if (lo > 0 && std::abs(time_at(lo - 1) - t) <= std::abs(time_at(lo) - t)) return lo - 1;
+  return lo;
 }
 
 }  // namespace
 
-std::vector<int> expansion_points(const std::vector<ExpansionRequest>& requests,
-                                  const std::vector<double>& times) {
+std::vector<int> expansion_points(const std::vector<ExpansionRequest>& requests, std::size_t count,
+                                  const std::function<double(std::size_t)>& time_at) {
   std::set<int> chosen;
-  if (times.empty()) return {};
-  const double t_last = times.back();
+  if (count == 0) return {};
+  const double t_last = time_at(count - 1);
   for (const ExpansionRequest& r : requests) {
     double begin = r.t_begin, end = std::min(r.t_end, t_last);
     if (end <= begin && begin == 0.0) end = t_last;  // blank range: the whole run
     if (r.every_step) {
-      for (std::size_t i = 0; i < times.size(); ++i)
-        if (times[i] > begin - 1e-12 * t_last && times[i] <= end + 1e-12 * t_last)
+      for (std::size_t i = 0; i < count; ++i) {
+        const double t = time_at(i);
+        if (t > begin - 1e-12 * t_last && t <= end + 1e-12 * t_last)
           chosen.insert(static_cast<int>(i));
+      }
       continue;
     }
     const int n = std::max(1, r.count);
-    for (int k = 1; k <= n; ++k) chosen.insert(nearest_time(times, begin + k * (end - begin) / n));
+    for (int k = 1; k <= n; ++k)
+      chosen.insert(static_cast<int>(nearest_time(count, time_at, begin + k * (end - begin) / n)));
   }
   return {chosen.begin(), chosen.end()};
+}
+
+std::vector<int> expansion_points(const std::vector<ExpansionRequest>& requests,
+                                  const std::vector<double>& times) {
+  return expansion_points(requests, times.size(), [&](std::size_t i) { return times[i]; });
 }
 
 }  // namespace impactfe

@@ -45,6 +45,25 @@ std::string real_commands(const std::vector<double>& values) {
 
 const std::string kMaterial = "MP,EX,1,2E5\nMP,NUXY,1,0.3\nMP,DENS,1,7.8E-3\n";
 
+/// MESH200: a cell of each KEYOPT(1) shape on the 20 nodes of a brick (E, then EMORE).
+Probe mesh200_probe(const std::string& cube) {
+  const int nodes[] = {2, 3, 2, 3, 3, 6, 4, 8, 4, 10, 8, 20};
+  const auto element = [](int n) {
+    std::string out = "E";
+    for (int k = 1; k <= n; ++k) out += (k == 9 || k == 17 ? "\nEMORE," : ",") + std::to_string(k);
+    return out;
+  };
+  Probe p{cube +
+              "N,9,0.5,0,0\nN,10,1,0.6,0\nN,11,0.5,1.1,0\nN,12,0,0.5,0\nN,13,0.5,0,1.05\n"
+              "N,14,1,0.5,1.05\nN,15,0.5,1,1\nN,16,0,0.5,1\nN,17,0,0,0.5\nN,18,1,0,0.55\n"
+              "N,19,1,1.1,0.5\nN,20,0,1,0.5\n",
+          {},
+          element(2)};
+  for (int v = 1; v <= 11; ++v)
+    p.element_with[fmt::format("KEYOPT,1,1,{}\n", v)] = element(nodes[v]);
+  return p;
+}
+
 std::map<std::string, Probe> probes() {
   const std::string cube =
       "N,1,0,0,0\nN,2,1,0,0\nN,3,1,1.2,0\nN,4,0,1,0\nN,5,0,0,1\nN,6,1,0,1.1\nN,7,1,1,1\n"
@@ -52,7 +71,7 @@ std::map<std::string, Probe> probes() {
   const std::string plate = "N,1,0,0,0\nN,2,2,0,0\nN,3,2,1.5,0.1\nN,4,0,1.5,0\n";
   std::vector<double> shell(19, 0.0);
   shell[0] = shell[1] = shell[2] = shell[3] = 0.1;
-  return {
+  std::map<std::string, Probe> all = {
       {"LINK1", {"N,1,0,0\nN,2,3,4\n", {2.0, 0.0}, "E,1,2"}},
       {"LINK8", {"N,1,0,0,0\nN,2,3,4,12\n", {2.0, 0.0}, "E,1,2"}},
       {"LINK180", {"N,1,0,0,0\nN,2,3,4,12\n", {2.0, 0.0, 0.0}, "E,1,2"}},
@@ -85,6 +104,7 @@ std::map<std::string, Probe> probes() {
         {},
         "E,1,2,3,4,5,6,7,8\nEMORE,9,10"}},
       {"SHELL63", {plate, shell, "E,1,2,3,4"}},
+      {"MESH200", mesh200_probe(cube)},
       {"SHELL181", {plate, {0.1, 0.1, 0.1, 0.1}, "E,1,2,3,4"}},
       {"SHELL281",
        {"N,1,0,0\nN,2,2,0\nN,3,2.2,1.5\nN,4,0,1.4\nN,5,1,0\nN,6,2.1,0.75\nN,7,1.1,1.45\n"
@@ -102,50 +122,60 @@ std::map<std::string, Probe> probes() {
         {{"KEYOPT,1,1,1\n", "E,1,2,3,4,5,6"}},
         "KEYOPT,1,3,3\n"}},
   };
+  all["SOLID95"] = all.at("SOLID186");  // the legacy solids: computed as SOLID186 / SOLID187
+  all["SOLID92"] = all.at("SOLID187");
+  return all;
 }
 
 /// Fields that cannot change a one-element model by design, with the reason and where the
 /// field's effect is checked instead. Key "TYPE R<position>" or "TYPE K<number>=<value>".
 const std::map<std::string, std::string>& by_design() {
-  static const std::map<std::string, std::string> m = {
-      {"LINK1 K1=1",
-       "an option of the thesis's ANSYS 4 decks with no effect on LINK1 (their "
-       "results: DeckThesis.*, ReferenceSection2.*)"},
-      {"COMBIN40 K1=1", "lock-up acts once the gap has closed (CombinationGap.*)"},
-      {"COMBIN40 R5", "FSLIDE acts while sliding (CombinationGap.*)"},
-      {"COMBIN40 K3=1", "KEYOPT(3) 0 and 1 both choose UX (MAPDL's numbering)"},
-      {"SHELL63 K5=1", "a printout option of the thesis's ANSYS 4 decks (helmet_full.inp)"},
-      {"SOLID45 K2=1",
-       "reduced integration is approximated by full 2x2x2 integration (warned; "
-       "docs/elements/solid45.md)"},
-      {"SHELL181 K3=2", "both integrations are computed with the SHELL63 kernel's extra shapes"},
-      {"SHELL281 K8=1", "layer data storage: a printout option (docs/elements/shell281.md)"},
-      {"SHELL281 K8=2", "layer data storage: a printout option (docs/elements/shell281.md)"},
-      {"BEAM188 K3=2",
-       "the element is exact for end loads with any interpolation "
-       "(docs/elements/beam.md, KEYOPT(3))"},
-      {"BEAM188 K3=3",
-       "the element is exact for end loads with any interpolation "
-       "(docs/elements/beam.md, KEYOPT(3))"},
-      {"LINK180 K2=1",
-       "the area is held constant under either value (KEYOPT(2) = 1 is exactly that; the "
-       "default's incompressible section agrees to first order in the strain)"},
-      {"PLANE182 R1",
-       "THK acts with KEYOPT(3) = 3 only (checked by K3=3 here); otherwise unit thickness, as "
-       "in MAPDL"},
-      {"PLANE183 R1",
-       "THK acts with KEYOPT(3) = 3 only (checked by K3=3 here); otherwise unit thickness, as "
-       "in MAPDL"},
-      {"PLANE183 K1=1",
-       "the triangle form takes the 6-node triangle's nodes from E,I,J,K,L,M,N and numbers its "
-       "faces 1-3 (face 3 is I-K): the same element; the faces act through SFE pressures"},
-      {"MPC184 K2=1",
-       "Lagrange multipliers are solved by elimination as well: the same constraint equations "
-       "(docs/elements/mpc184.md; ConstraintEquations.*)"},
-      {"MASS21 K2=1",
-       "masses in nodal axes equal global ones on an unrotated node; refused on a "
-       "rotated one (AcceptedFields-style check below)"},
-  };
+  static const std::map<std::string, std::string> m = [] {
+    std::map<std::string, std::string> out = {
+        {"LINK1 K1=1",
+         "an option of the thesis's ANSYS 4 decks with no effect on LINK1 (their "
+         "results: DeckThesis.*, ReferenceSection2.*)"},
+        {"COMBIN40 K1=1", "lock-up acts once the gap has closed (CombinationGap.*)"},
+        {"COMBIN40 R5", "FSLIDE acts while sliding (CombinationGap.*)"},
+        {"COMBIN40 K3=1", "KEYOPT(3) 0 and 1 both choose UX (MAPDL's numbering)"},
+        {"SHELL63 K5=1", "a printout option of the thesis's ANSYS 4 decks (helmet_full.inp)"},
+        {"SOLID45 K2=1",
+         "reduced integration is approximated by full 2x2x2 integration (warned; "
+         "docs/elements/solid45.md)"},
+        {"SHELL181 K3=2", "both integrations are computed with the SHELL63 kernel's extra shapes"},
+        {"SHELL281 K8=1", "layer data storage: a printout option (docs/elements/shell281.md)"},
+        {"SHELL281 K8=2", "layer data storage: a printout option (docs/elements/shell281.md)"},
+        {"BEAM188 K3=2",
+         "the element is exact for end loads with any interpolation "
+         "(docs/elements/beam.md, KEYOPT(3))"},
+        {"BEAM188 K3=3",
+         "the element is exact for end loads with any interpolation "
+         "(docs/elements/beam.md, KEYOPT(3))"},
+        {"LINK180 K2=1",
+         "the area is held constant under either value (KEYOPT(2) = 1 is exactly that; the "
+         "default's incompressible section agrees to first order in the strain)"},
+        {"PLANE182 R1",
+         "THK acts with KEYOPT(3) = 3 only (checked by K3=3 here); otherwise unit thickness, as "
+         "in MAPDL"},
+        {"PLANE183 R1",
+         "THK acts with KEYOPT(3) = 3 only (checked by K3=3 here); otherwise unit thickness, as "
+         "in MAPDL"},
+        {"PLANE183 K1=1",
+         "the triangle form takes the 6-node triangle's nodes from E,I,J,K,L,M,N and numbers its "
+         "faces 1-3 (face 3 is I-K): the same element; the faces act through SFE pressures"},
+        {"MPC184 K2=1",
+         "Lagrange multipliers are solved by elimination as well: the same constraint equations "
+         "(docs/elements/mpc184.md; ConstraintEquations.*)"},
+        {"MASS21 K2=1",
+         "masses in nodal axes equal global ones on an unrotated node; refused on a "
+         "rotated one (AcceptedFields-style check below)"},
+    };
+    // MESH200's KEYOPT(1) chooses the cell of a mesh-only element: no stiffness in any
+    // (CdbArchives.Mesh200CellsAreCheckedByKeyopt checks the node counts it takes).
+    for (int v = 1; v <= 11; ++v)
+      out[fmt::format("MESH200 K1={}", v)] = "the cell of a mesh-only element, without stiffness";
+    return out;
+  }();
   return m;
 }
 
