@@ -103,6 +103,93 @@ TEST(ShellLaminate, RotatedStiffnessOfAQuarterTurnSwapsTheAxes) {
   EXPECT_NEAR(G90(1, 1), 5e5, 1e-9);
 }
 
+TEST(ShellLaminate, OffAxisPlyMatchesTheTransformedReducedStiffness) {
+  // Q̄ of a ply at θ = 30° against Jones eq. 2.85 written out term by term (m = cos θ,
+  // n = sin θ): a wrong sense of θ flips the sign of Q̄16 and Q̄26.
+  const LayerElasticity e = ply();
+  const double den = 1 - e.nu12 * e.nu12 * e.E2 / e.E1;
+  const double Q11 = e.E1 / den, Q22 = e.E2 / den, Q12 = e.nu12 * e.E2 / den, Q66 = e.G12;
+  const double m = std::cos(M_PI / 6), n = std::sin(M_PI / 6);
+  const double m2 = m * m, n2 = n * n;
+  const Eigen::Matrix3d Q = shell::rotated_plane_stiffness(e, 30.0);
+  const double tol = 1e-12 * Q11;
+  EXPECT_NEAR(Q(0, 0), Q11 * m2 * m2 + 2 * (Q12 + 2 * Q66) * n2 * m2 + Q22 * n2 * n2, tol);
+  EXPECT_NEAR(Q(1, 1), Q11 * n2 * n2 + 2 * (Q12 + 2 * Q66) * n2 * m2 + Q22 * m2 * m2, tol);
+  EXPECT_NEAR(Q(0, 1), (Q11 + Q22 - 4 * Q66) * n2 * m2 + Q12 * (n2 * n2 + m2 * m2), tol);
+  EXPECT_NEAR(Q(2, 2), (Q11 + Q22 - 2 * Q12 - 2 * Q66) * n2 * m2 + Q66 * (n2 * n2 + m2 * m2), tol);
+  EXPECT_NEAR(Q(0, 2), (Q11 - Q12 - 2 * Q66) * n * m2 * m + (Q12 - Q22 + 2 * Q66) * n2 * n * m,
+              tol);
+  EXPECT_NEAR(Q(1, 2), (Q11 - Q12 - 2 * Q66) * n2 * n * m + (Q12 - Q22 + 2 * Q66) * n * m2 * m,
+              tol);
+  EXPECT_GT(Q(0, 2), 0.0);  // the stiff fibre at +30° couples εx to τxy positively
+  EXPECT_NEAR(Q(2, 0), Q(0, 2), tol);
+  // Transverse shear: G13 along the fibre, G23 across it; Gxz = G13 m² + G23 n².
+  const Eigen::Matrix2d G = shell::rotated_shear_stiffness(e, 30.0);
+  EXPECT_NEAR(G(0, 0), e.G13 * m2 + e.G23 * n2, 1e-9);
+  EXPECT_NEAR(G(1, 1), e.G13 * n2 + e.G23 * m2, 1e-9);
+  EXPECT_NEAR(G(0, 1), (e.G13 - e.G23) * m * n, 1e-9);
+}
+
+/// The equivalent-energy shear correction factor of direction `dir` by brute force: the section
+/// cut into `slices` thin slices of constant E = Q̄(dir, dir) and G, the first moment S(z) of the
+/// bending stiffness below z about the neutral axis summed slice by slice, and
+/// k = (EI)² / (∫G dz · ∫S²/G dz) (the shear stress of cylindrical bending τ = Q S / EI carries
+/// the energy of a constant shear strain over k ∫G dz).
+double brute_force_shear_factor(const shell::Laminate& lam, int dir, int slices) {
+  const double h = lam.thickness, dz = h / slices;
+  auto ply_at = [&](double z) -> const shell::Ply& {
+    for (const auto& p : lam.plies)
+      if (z <= p.z_top) return p;
+    return lam.plies.back();
+  };
+  double EA = 0, ES = 0, GA = 0;
+  for (int i = 0; i < slices; ++i) {
+    const double z = -h / 2 + (i + 0.5) * dz;
+    const auto& p = ply_at(z);
+    EA += p.Q(dir, dir) * dz, ES += p.Q(dir, dir) * z * dz, GA += p.G(dir, dir) * dz;
+  }
+  const double z0 = ES / EA;
+  double EI = 0;
+  for (int i = 0; i < slices; ++i) {
+    const double z = -h / 2 + (i + 0.5) * dz;
+    EI += ply_at(z).Q(dir, dir) * ((z - z0) * (z - z0) * dz + dz * dz * dz / 12);
+  }
+  double S = 0, energy = 0;
+  for (int i = 0; i < slices; ++i) {
+    const double z = -h / 2 + (i + 0.5) * dz;
+    const auto& p = ply_at(z);
+    const double half = 0.5 * p.Q(dir, dir) * (z - z0) * dz;  // S at the slice's middle
+    energy += (S + half) * (S + half) / p.G(dir, dir) * dz;
+    S += 2 * half;
+  }
+  return EI * EI / (GA * energy);
+}
+
+TEST(ShellLaminate, ShearCorrectionMatchesABruteForceEnergyBalance) {
+  // A symmetric cross-ply, an unsymmetric two-ply (neutral axis off the middle) and a sandwich
+  // (stiff thin faces, soft thick core): the factors far from 5/6 show the layering counts.
+  const double t = 0.1;
+  LayerElasticity face = isotropic(70e9, 0.3), core = isotropic(0.2e9, 0.3);
+  core.G13 = core.G23 = 0.05e9;
+  core.isotropic = false;
+  std::vector<LayerInput> sandwich = {
+      {0.1 * t, face, 0, 1, 3}, {0.8 * t, core, 0, 2, 3}, {0.1 * t, face, 0, 1, 3}};
+  const std::vector<shell::Laminate> cases = {shell::make_laminate(layup({0, 90, 90, 0}, t, ply())),
+                                              shell::make_laminate(layup({0, 90}, t, ply())),
+                                              shell::make_laminate(sandwich)};
+  for (const auto& lam : cases)
+    for (int dir = 0; dir < 2; ++dir) {
+      const double k = brute_force_shear_factor(lam, dir, 40000);
+      EXPECT_NEAR(lam.shear_factor(dir), k, 1e-5 * k) << "direction " << dir;
+      double GA = 0;
+      for (const auto& p : lam.plies) GA += p.G(dir, dir) * (p.z_top - p.z_bot);
+      EXPECT_NEAR(lam.shear(dir, dir), k * GA, 1e-5 * k * GA);
+    }
+  // The sandwich's core carries nearly all of the shear at a nearly uniform stress: k ≈ the
+  // core's share of ∫G dz, far below 5/6.
+  EXPECT_LT(cases[2].shear_factor(0), 0.2);
+}
+
 TEST(ShellLaminate, MinorPoissonRatioGivesTheMajorOne) {
   // MP,NUXY is the minor ratio (vm60: NUXY = 0.01, EX/EY = 25): ν12 = 0.25.
   Material m;
