@@ -167,7 +167,10 @@ void cmd_secdata(DeckReader& r, const Command& c) {
 void cmd_secoffset(DeckReader& r, const Command& c) {
   auto it = r.model.sections.find(r.modeling.last_section);
   if (it == r.model.sections.end()) r.fail(c, "SECOFFSET without a preceding SECTYPE");
-  const std::string loc = c.blank(1) ? "" : r.label(c, 1);
+  std::string loc = c.blank(1) ? "" : r.label(c, 1);
+  // Workbench writes the whole words (secoff,bottom); MAPDL reads them as BOT and MID.
+  if (loc == "BOTTOM") loc = "BOT";
+  if (loc == "MIDDLE") loc = "MID";
   const std::string& type = it->second.type;
   const SectionTypeDescriptor& d = *find_section_type(type);
   if (!d.offsets.empty() &&
