@@ -78,6 +78,11 @@ struct Section {
   std::string type;     // SECTYPE Type: "LINK", "SHELL", "BEAM"
   std::string subtype;  // SECTYPE Subtype ("RECT"), empty for a type without subtypes
   std::vector<double> data;
+  /// SHELL: the values of every SECDATA (thickness, MAT, θ in degrees, NUMPT), one per layer,
+  /// bottom layer first (APDL_MODELING §7.2); `data` is the first of them.
+  std::vector<std::vector<double>> layers;
+  /// SECOFFSET location (upper case), empty when not given.
+  std::string offset;
 };
 
 /// An element as defined in the deck. Node list may contain repeats (degenerate shapes).

@@ -73,10 +73,16 @@ void write_materials(const Model& m, std::ostream& out) {
 void write_sections(const Model& m, std::ostream& out) {
   for (const auto& [id, s] : m.sections) {
     out << fmt::format("SECTYPE,{},{},{}\n", id, s.type, s.subtype);
-    if (s.data.empty()) continue;
-    out << "SECDATA";
-    for (double v : s.data) out << ',' << exact(v);
-    out << '\n';
+    // A layered shell section: one SECDATA per layer, bottom first.
+    const std::vector<std::vector<double>> lines =
+        s.layers.empty() ? std::vector<std::vector<double>>{s.data} : s.layers;
+    for (const std::vector<double>& line : lines) {
+      if (line.empty()) continue;
+      out << "SECDATA";
+      for (double v : line) out << ',' << exact(v);
+      out << '\n';
+    }
+    if (!s.offset.empty()) out << fmt::format("SECOFFSET,{}\n", s.offset);
   }
 }
 

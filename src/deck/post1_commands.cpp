@@ -138,10 +138,24 @@ void cmd_results_set(DeckReader& r, const Command& c) {
 
 void cmd_shell(DeckReader& r, const Command& c) {
   // SHELL,Loc: the surface of a shell whose stresses POST1 reports (MAPDL SHELL; TOP default).
-  const std::string loc = c.blank(1) ? "TOP" : r.label(c, 1);
+  std::string loc = c.blank(1) ? "TOP" : r.label(c, 1);
+  // MAPDL reads the label's first letters: SHELL,BOTTOM is BOT, SHELL,MIDDLE is MID.
+  if (loc == "BOTTOM") loc = "BOT";
+  if (loc == "MIDDLE") loc = "MID";
   if (loc != "TOP" && loc != "MID" && loc != "BOT")
     r.fail(c, fmt::format("Loc '{}': TOP, MID or BOT", c.text(1)));
   post_state(r).shell_location = loc;
+}
+
+void cmd_layer(DeckReader& r, const Command& c) {
+  // LAYER,NUM: the layer of a layered shell whose TOP, MID or BOT surface (SHELL) POST1 reports;
+  // 0 (blank) the section's own top, middle and bottom (MAPDL LAYER).
+  const std::string key = c.blank(1) ? "" : r.label(c, 1);
+  if (key == "FCMAX")
+    r.fail(c, "NUM FCMAX: failure criteria (FC) are not carried out (a layer number)");
+  const int layer = r.integer(c, 1, 0);
+  if (layer < 0) r.fail(c, fmt::format("layer number {} must not be negative", layer));
+  post_state(r).layer = layer;
 }
 
 void cmd_rsys(DeckReader& r, const Command& c) {
@@ -427,6 +441,7 @@ void register_post1_commands(std::vector<CommandSpec>& t) {
   t.push_back({"SET", cmd_results_set, kPost1});
   t.push_back({"FILE", cmd_file, kPost1 | kPost26});
   t.push_back({"SHELL", cmd_shell, kPost1});
+  t.push_back({"LAYER", cmd_layer, kPost1});
   t.push_back({"RSYS", cmd_rsys, kPost1});
   t.push_back({"ETABLE", cmd_etable, kPost1});
   t.push_back({"PRETAB", cmd_pretab, kPost1});

@@ -136,7 +136,10 @@ std::optional<double> nodal_item_value(DeckReader& r, const Command& c, const No
       if (column == d->result_names.end()) return std::nullopt;
       if (!at) at = element_nodal_results(r, c, e);
       if (at->count(node) == 0) return std::nullopt;
-      return at->at(node)[static_cast<std::size_t>(column - d->result_names.begin())];
+      // A homogeneous element of a type whose layered elements have more columns.
+      const auto index = static_cast<std::size_t>(column - d->result_names.begin());
+      if (index >= at->at(node).size()) return std::nullopt;
+      return at->at(node)[index];
     };
     std::optional<double> v;
     if (direction >= 0 && is_tensor_item(item.element_item)) {

@@ -67,6 +67,7 @@ struct PostState {
   std::map<std::string, double> ssum;         // ETABLE label → last SSUM total
   std::string force_kind = "TOTAL";           // FORCE: TOTAL, STATIC, DAMP, INERT
   std::string shell_location = "TOP";         // SHELL: TOP, MID, BOT (the layer of shell S)
+  int layer = 0;  // LAYER: the layer of a layered shell whose surfaces SHELL picks (0: section)
   // RSYS,KCN: the system of the nodal vector results (U, ROT, V, A, reactions); nullopt = as
   // stored (global Cartesian, the nodal axes at a rotated node).
   std::optional<int> rsys;

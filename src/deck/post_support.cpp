@@ -354,8 +354,12 @@ std::optional<double> element_result(DeckReader& r, const Command& c, int elemen
 
 std::string shell_location_column(DeckReader& r, const std::string& name) {
   const std::string& location = post_state(r).shell_location;
-  if (location == "TOP" || name.size() <= 4 || name.compare(name.size() - 4, 4, "_TOP") != 0)
+  const int layer = post_state(r).layer;
+  if ((location == "TOP" && layer == 0) || name.size() <= 4 ||
+      name.compare(name.size() - 4, 4, "_TOP") != 0)
     return name;
+  // LAYER,N: the surface of layer N ("SX_L2_BOT", a layered shell's columns).
+  if (layer > 0) return fmt::format("{}_L{}_{}", name.substr(0, name.size() - 4), layer, location);
   return name.substr(0, name.size() - 3) + location;
 }
 
@@ -367,16 +371,21 @@ std::optional<double> stored_element_result(DeckReader& r, const Command& c, int
   // SHELL,MID or BOT: a shell's S items at that surface instead of the top (MAPDL SHELL).
   const std::string& location = post_state(r).shell_location;
   const ElementTypeDescriptor* type = find_element_type(type_name);
-  if (location != "TOP" && type != nullptr)
+  const int layer = post_state(r).layer;
+  if ((location != "TOP" || layer > 0) && type != nullptr)
     if (const auto seq = find_result_sequence(*type, item, comp)) {
-      if (const std::string layer = shell_location_column(r, seq->name); layer != seq->name) {
+      if (const std::string column = shell_location_column(r, seq->name); column != seq->name) {
         const auto row = data.element_rows.find(element);
         if (row == data.element_rows.end()) return std::numeric_limits<double>::quiet_NaN();
         const ElementResultTable& table = data.point.element_results.at(row->second.first);
-        const auto col = std::find(table.item_names.begin(), table.item_names.end(), layer);
+        const auto col = std::find(table.item_names.begin(), table.item_names.end(), column);
         if (col == table.item_names.end())
           r.fail(c,
-                 fmt::format("{} {} has no {} value at SHELL,{}", type_name, item, comp, location));
+                 fmt::format("{} {} has no {} value at SHELL,{}{}", type_name, item, comp, location,
+                             layer > 0 ? fmt::format(" of LAYER,{} (the S components of a layered "
+                                                     "SHELL181 or SHELL281 section)",
+                                                     layer)
+                                       : std::string()));
         return table.values(row->second.second,
                             static_cast<Eigen::Index>(col - table.item_names.begin()));
       }

@@ -140,10 +140,19 @@ void cmd_secdata(DeckReader& r, const Command& c) {
   const SectionTypeDescriptor& d = *find_section_type(s.type);
   if (d.single_secdata && !s.data.empty())
     r.fail(c, "only one SECDATA (a single homogeneous layer) is supported");
-  s.data.clear();
   const int given =
       d.max_values > 0 ? std::min(c.last_given(), d.max_values) : std::max(1, c.last_given());
-  for (int f = 1; f <= given; ++f) s.data.push_back(r.real(c, f, 0.0));
+  std::vector<double> values;
+  for (int f = 1; f <= given; ++f) values.push_back(r.real(c, f, 0.0));
+  if (d.layered) {
+    // SECDATA,TK,MAT,THETA,NUMPT,LayerName: a layer on top of the previous ones. The layer
+    // name (field 5) only labels the layer; the program refers to layers by number.
+    if (c.last_given() > 5) r.fail(c, "fields after LayerName (field 5) are not shell layer data");
+    s.layers.push_back(values);
+    if (s.layers.size() == 1) s.data = values;
+  } else {
+    s.data = values;
+  }
   try {
     const std::string note = d.check_data(s);
     if (!note.empty()) Log::info("{}:{}: SECDATA: {}", c.where.file, c.where.line, note);
@@ -153,19 +162,37 @@ void cmd_secdata(DeckReader& r, const Command& c) {
 }
 
 // SECOFFSET,Location: the locations the section type accepts (beams CENT, the node on the
-// centroid; shells MID). Other locations would move the nodes off the section's reference and
-// are refused (APDL_MODELING §7.4).
+// centroid; shells MID, BOT, TOP). Other locations would move the nodes off the section's reference
+// and are refused (APDL_MODELING §7.4).
 void cmd_secoffset(DeckReader& r, const Command& c) {
   auto it = r.model.sections.find(r.modeling.last_section);
   if (it == r.model.sections.end()) r.fail(c, "SECOFFSET without a preceding SECTYPE");
-  const std::string loc = c.blank(1) ? "" : r.label(c, 1);
+  std::string loc = c.blank(1) ? "" : r.label(c, 1);
+  // Workbench writes the whole words (secoff,bottom); MAPDL reads them as BOT and MID.
+  if (loc == "BOTTOM") loc = "BOT";
+  if (loc == "MIDDLE") loc = "MID";
   const std::string& type = it->second.type;
   const SectionTypeDescriptor& d = *find_section_type(type);
   if (!d.offsets.empty() &&
-      (loc.empty() || std::find(d.offsets.begin(), d.offsets.end(), loc) != d.offsets.end()))
+      (loc.empty() || std::find(d.offsets.begin(), d.offsets.end(), loc) != d.offsets.end())) {
+    it->second.offset = loc;
     return;
+  }
   r.fail(c, fmt::format("location '{}' is not supported for a {} section ({} only)", c.text(1),
                         type, d.offset_names()));
+}
+
+// SECCONTROL: overrides of a section's computed stiffness and mass (shells: transverse shear
+// E11 E22 E12, added mass); all fields blank keeps the computed ones, which is carried out.
+// A value given would replace what the elements compute from the layers and is refused.
+void cmd_seccontrol(DeckReader& r, const Command& c) {
+  if (r.model.sections.count(r.modeling.last_section) == 0)
+    r.fail(c, "SECCONTROL without a preceding SECTYPE");
+  for (int f = 1; f <= c.last_given(); ++f)
+    if (!c.blank(f))
+      r.fail(c, fmt::format("field {} ('{}'): section stiffness overrides are not carried out "
+                            "(all fields blank: the computed section)",
+                            f, c.text(f)));
 }
 
 void cmd_secnum(DeckReader& r, const Command& c) {
@@ -519,6 +546,7 @@ void register_prep7_commands(std::vector<CommandSpec>& t) {
   t.push_back({"SECDATA", cmd_secdata, kPrep7});
   t.push_back({"SECNUM", cmd_secnum, kPrep7});
   t.push_back({"SECOFFSET", cmd_secoffset, kPrep7});
+  t.push_back({"SECCONTROL", cmd_seccontrol, kPrep7});
   t.push_back({"N", cmd_n, kPrep7});
   t.push_back({"E", cmd_e, kPrep7});
   t.push_back({"EN", cmd_en, kPrep7});

@@ -22,8 +22,9 @@ SolidLoads& solid_loads(DeckReader& r) {
 }
 
 void require_pressure(DeckReader& r, const Command& c, int field) {
+  // MAPDL reads the label's first four letters: PRESS (vmr031) is PRES.
   const std::string lab = r.label(c, field);
-  if (lab != "PRES")
+  if (lab != "PRES" && lab != "PRESS")
     r.fail(c, fmt::format("surface load '{}' not supported in a structural analysis (PRES)",
                           c.text(field)));
 }

@@ -195,7 +195,9 @@ std::vector<ElementFields> make_table() {
   t.push_back({"SHELL181",
                named({"TK(I)", "TK(J)", "TK(K)", "TK(L)"}),
                {{1, {0, 1}, "0 bending and membrane, 1 membrane only"},
-                {3, {0, 2}, "integration: both computed with extra displacement shapes"}}});
+                {3, {0, 2}, "integration: both computed with extra displacement shapes"},
+                {8, {0, 1, 2}, "layer data storage (a printout option: no effect here)"},
+                {9, {0}, "1 (user thickness routine) is not supported"}}});
   t.push_back({"SHELL281",
                named({"TK(I)", "TK(J)", "TK(K)", "TK(L)"}),
                {{1, {0, 1}, "0 bending and membrane, 1 membrane only"},

@@ -24,11 +24,22 @@ std::function<std::string(const Section&)> positive_first_value(const char* what
 const std::vector<SectionTypeDescriptor>& section_types() {
   static const std::vector<SectionTypeDescriptor> types = {
       {.name = "LINK", .single_secdata = true, .check_data = positive_first_value("area")},
-      // Shells: the section's reference plane is the middle surface (MID).
+      // Shells: one SECDATA per layer, bottom first (Thickness, MAT, THETA, NUMPT; the layer
+      // name is a label only). The nodes lie on the middle (MID), bottom or top surface;
+      // SHELL181 takes MID only (its factory refuses the others).
       {.name = "SHELL",
-       .offsets = {"MID"},
-       .single_secdata = true,
-       .check_data = positive_first_value("thickness")},
+       .offsets = {"MID", "BOT", "TOP"},
+       .max_values = 4,
+       .layered = true,
+       .check_data = [](const Section& s) -> std::string {
+         const std::vector<double>& layer = s.layers.empty() ? s.data : s.layers.back();
+         if (layer.empty() || layer[0] <= 0.0)
+           throw std::invalid_argument("thickness must be positive");
+         if (layer.size() > 3 && layer[3] != 0.0 && (layer[3] < 1.0 || layer[3] > 9.0))
+           throw std::invalid_argument(
+               fmt::format("NUMPT {:g}: 1 to 9 integration points per layer", layer[3]));
+         return {};
+       }},
       // 2-D solids (PLANE182/183 KEYOPT(3) = 3): the thickness.
       {.name = "PLANE", .single_secdata = true, .check_data = positive_first_value("thickness")},
       // Beams: the subtype's dimensions (at most 12 values), whose properties go to the log;

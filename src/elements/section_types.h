@@ -21,6 +21,8 @@ struct SectionTypeDescriptor {
   int max_values = 0;
   /// A second SECDATA is refused (a single homogeneous layer); otherwise it replaces the data.
   bool single_secdata = false;
+  /// Each SECDATA adds a layer (Section::layers) instead of replacing the data (SHELL).
+  bool layered = false;
   /// Checks a section's SECDATA values: throws std::invalid_argument with the reason (a user
   /// message); returns a line for the log (empty: nothing to log).
   std::function<std::string(const Section&)> check_data;

@@ -53,8 +53,31 @@ Shell281::Shell281(int id, const Shell281Data& data, const SourceLocation& where
       X_(data.positions),
       t_(data.thickness),
       node_ids_(data.node_ids),
-      data_(data) {
+      data_(data),
+      zeta0_(data.offset) {
   IMPACTFE_CHECK(n_ == 8 || n_ == 6, "SHELL281: 8 or 6 nodes");
+  if (data.laminate.plies.empty()) {
+    // One homogeneous isotropic layer.
+    const double c = data.E / (1.0 - data.nu * data.nu);
+    Mat3 Q;
+    Q << c, c * data.nu, 0, c * data.nu, c, 0, 0, 0, c * 0.5 * (1.0 - data.nu);
+    const double G = data.E / (2.0 * (1.0 + data.nu));
+    layers_.push_back(
+        {-1.0, 1.0, Q, data.shear_factor * G * Eigen::Matrix2d::Identity(), data.rho});
+  } else {
+    // The laminate's layers at their share of the thickness, the transverse shear scaled by
+    // the section's correction factors (shell_laminate.h).
+    const shell::Laminate& lam = data.laminate;
+    const Eigen::Vector2d k = lam.shear_factor.cwiseSqrt();
+    for (const shell::Ply& p : lam.plies)
+      layers_.push_back({2.0 * p.z_bot / lam.thickness, 2.0 * p.z_top / lam.thickness, p.Q,
+                         k.asDiagonal() * p.G * k.asDiagonal(), p.rho});
+    layers_.back().zeta_top = 1.0;
+  }
+  for (const Layer& l : layers_) drill_g_ += 0.5 * (l.zeta_top - l.zeta_bot) * l.Q(2, 2);
+  if (layers_.size() > static_cast<std::size_t>(kMaxResultLayers))
+    throw InputError(where, fmt::format("element {}: {} layers; at most {} are carried out", id,
+                                        layers_.size(), kMaxResultLayers));
   // Membrane only (KEYOPT(1) = 1): the translations alone, as MAPDL's membrane shells have
   // (the rotations would carry no stiffness).
   for (int node : data.node_ids)
@@ -105,11 +128,26 @@ double Shell281::thickness_at(const Eigen::VectorXd& N) const {
   return t;
 }
 
-Mat3 Shell281::membrane_d() const {
-  const double c = data_.E / (1.0 - data_.nu * data_.nu);
-  Mat3 D;
-  D << c, c * data_.nu, 0, c * data_.nu, c, 0, 0, 0, c * 0.5 * (1.0 - data_.nu);
-  return D;
+std::vector<Shell281::ThicknessPoint> Shell281::thickness_rule() const {
+  if (data_.membrane_only) return {{0.0, 2.0, 0}};
+  return layer_points();
+}
+
+std::vector<Shell281::ThicknessPoint> Shell281::layer_points() const {
+  std::vector<ThicknessPoint> out;
+  for (std::size_t k = 0; k < layers_.size(); ++k) {
+    const double mid = 0.5 * (layers_[k].zeta_top + layers_[k].zeta_bot);
+    const double half = 0.5 * (layers_[k].zeta_top - layers_[k].zeta_bot);
+    out.push_back({mid - half * kZeta, half, k});
+    out.push_back({mid + half * kZeta, half, k});
+  }
+  return out;
+}
+
+Mat3 Shell281::mean_q() const {
+  Mat3 Q = Mat3::Zero();
+  for (const Layer& l : layers_) Q += 0.5 * (l.zeta_top - l.zeta_bot) * l.Q;
+  return Q;
 }
 
 std::vector<Shell281::Rule> Shell281::full_rule() const {
@@ -156,7 +194,8 @@ Eigen::MatrixXd Shell281::global_gradient(double xi, double eta, double zeta, do
   Mat3 J = Mat3::Zero();
   for (int a = 0; a < n_; ++a) {
     const double h = 0.5 * t_[static_cast<std::size_t>(a)];
-    const Vec3 x = X_[static_cast<std::size_t>(a)] + zeta * h * V_[static_cast<std::size_t>(a)];
+    const Vec3 x =
+        X_[static_cast<std::size_t>(a)] + (zeta + zeta0_) * h * V_[static_cast<std::size_t>(a)];
     J.row(0) += dN(0, a) * x.transpose();
     J.row(1) += dN(1, a) * x.transpose();
     J.row(2) += N(a) * h * V_[static_cast<std::size_t>(a)].transpose();
@@ -169,7 +208,8 @@ Eigen::MatrixXd Shell281::global_gradient(double xi, double eta, double zeta, do
   for (int a = 0; a < n_; ++a) {
     const double h = 0.5 * t_[static_cast<std::size_t>(a)];
     const Vec3 g = Ji * Vec3(dN(0, a), dN(1, a), 0.0);
-    const Vec3 r = h * (Ji * Vec3(zeta * dN(0, a), zeta * dN(1, a), N(a)));
+    const double z = zeta + zeta0_;
+    const Vec3 r = h * (Ji * Vec3(z * dN(0, a), z * dN(1, a), N(a)));
     const Vec3& V = V_[static_cast<std::size_t>(a)];
     for (int i = 0; i < 3; ++i) {
       const Vec3 c = V.cross(Vec3::Unit(i));
@@ -219,15 +259,15 @@ Eigen::MatrixXd Shell281::covariant_shear(double xi, double eta, double zeta) co
   for (int a = 0; a < n_; ++a) {
     const double h = 0.5 * t_[static_cast<std::size_t>(a)];
     const Vec3& V = V_[static_cast<std::size_t>(a)];
-    const Vec3 x = X_[static_cast<std::size_t>(a)] + zeta * h * V;
+    const Vec3 x = X_[static_cast<std::size_t>(a)] + (zeta + zeta0_) * h * V;
     g[0] += dN(0, a) * x;
     g[1] += dN(1, a) * x;
     g[2] += N(a) * h * V;
     const Mat3 S = -h * skew(V);
     dU[0].block<3, 3>(0, 6 * a) = dN(0, a) * Mat3::Identity();
     dU[1].block<3, 3>(0, 6 * a) = dN(1, a) * Mat3::Identity();
-    dU[0].block<3, 3>(0, 6 * a + 3) = zeta * dN(0, a) * S;
-    dU[1].block<3, 3>(0, 6 * a + 3) = zeta * dN(1, a) * S;
+    dU[0].block<3, 3>(0, 6 * a + 3) = (zeta + zeta0_) * dN(0, a) * S;
+    dU[1].block<3, 3>(0, 6 * a + 3) = (zeta + zeta0_) * dN(1, a) * S;
     dU[2].block<3, 3>(0, 6 * a + 3) = N(a) * S;
   }
   // γ_ξζ = g_ξ·∂U/∂ζ + g_ζ·∂U/∂ξ, γ_ηζ likewise.
@@ -267,7 +307,8 @@ Eigen::MatrixXd Shell281::assumed_shear(double xi, double eta, double zeta, cons
   Mat3 J = Mat3::Zero();
   for (int b = 0; b < n_; ++b) {
     const double h = 0.5 * t_[static_cast<std::size_t>(b)];
-    const Vec3 x = X_[static_cast<std::size_t>(b)] + zeta * h * V_[static_cast<std::size_t>(b)];
+    const Vec3 x =
+        X_[static_cast<std::size_t>(b)] + (zeta + zeta0_) * h * V_[static_cast<std::size_t>(b)];
     J.row(0) += dN(0, b) * x.transpose();
     J.row(1) += dN(1, b) * x.transpose();
     J.row(2) += N(b) * h * V_[static_cast<std::size_t>(b)].transpose();
@@ -290,33 +331,32 @@ Eigen::MatrixXd Shell281::shear_b(double xi, double eta, double zeta, const Mat3
 Eigen::MatrixXd Shell281::stiffness() const {
   const int nd = 6 * n_;
   Eigen::MatrixXd K = Eigen::MatrixXd::Zero(nd, nd);
-  const Mat3 Dm = membrane_d();
-  const double G = data_.E / (2.0 * (1.0 + data_.nu));
-  const double Ds = data_.shear_factor * G;
+  const double G = drill_g_;
+  const Mat3 Qm = mean_q();
   Eigen::VectorXd N;
   Eigen::MatrixXd dN;
-  // Membrane and bending (membrane only: the mid-surface, twice the weight of ζ ∈ [−1, 1]).
-  const std::vector<double> zetas =
-      data_.membrane_only ? std::vector<double>{0.0} : std::vector<double>{-kZeta, kZeta};
-  const double wz = data_.membrane_only ? 2.0 : 1.0;
+  // Membrane and bending, layer by layer (membrane only: the mid-surface, twice the weight of
+  // ζ ∈ [−1, 1], with the thickness-averaged stiffness).
+  const std::vector<ThicknessPoint> rule = thickness_rule();
   for (const Rule& q : bending_rule()) {
     shape(q.xi, q.eta, N, dN);
     const Mat3 R = frame(N, dN, nullptr);
-    for (double zeta : zetas) {
+    for (const ThicknessPoint& z : rule) {
       double detJ = 0.0;
-      const Eigen::MatrixXd B = strains(gradient(q.xi, q.eta, zeta, R, &detJ)).topRows(3);
-      K.noalias() += B.transpose() * Dm * B * (detJ * q.w * wz);
+      const Eigen::MatrixXd B = strains(gradient(q.xi, q.eta, z.zeta, R, &detJ)).topRows(3);
+      const Mat3& Q = data_.membrane_only ? Qm : layers_[z.layer].Q;
+      K.noalias() += B.transpose() * Q * B * (detJ * q.w * z.w);
     }
   }
   if (!data_.membrane_only)
     for (const Rule& q : shear_rule()) {
       shape(q.xi, q.eta, N, dN);
       const Mat3 R = frame(N, dN, nullptr);
-      for (double zeta : zetas) {
+      for (const ThicknessPoint& z : rule) {
         double detJ = 0.0;
-        gradient(q.xi, q.eta, zeta, R, &detJ);
-        const Eigen::MatrixXd B = shear_b(q.xi, q.eta, zeta, R);
-        K.noalias() += B.transpose() * B * (Ds * detJ * q.w);
+        gradient(q.xi, q.eta, z.zeta, R, &detJ);
+        const Eigen::MatrixXd B = shear_b(q.xi, q.eta, z.zeta, R);
+        K.noalias() += B.transpose() * layers_[z.layer].Gs * B * (detJ * q.w * z.w);
       }
     }
   // Drilling: γ ∫ (θ·e3 − ½(L_yx − L_xy))² dA on the mid-surface (Hughes & Brezzi 1989, eq. 4.1
@@ -341,26 +381,27 @@ Eigen::MatrixXd Shell281::geometric_stiffness(const Eigen::VectorXd& u) const {
   // §18.3); σ33 = 0.
   const int nd = 6 * n_;
   Eigen::MatrixXd K = Eigen::MatrixXd::Zero(nd, nd);
-  const Mat3 Dm = membrane_d();
-  const double Ds = data_.shear_factor * data_.E / (2.0 * (1.0 + data_.nu));
   Eigen::VectorXd N;
   Eigen::MatrixXd dN;
   for (const Rule& q : bending_rule()) {
     shape(q.xi, q.eta, N, dN);
     const Mat3 R = frame(N, dN, nullptr);
-    for (double zeta : {-kZeta, kZeta}) {
+    for (const ThicknessPoint& z : thickness_rule()) {
+      const double zeta = z.zeta;
       double detJ = 0.0;
       const Eigen::MatrixXd Gg = global_gradient(q.xi, q.eta, zeta, &detJ);
       const Eigen::VectorXd e = strains(gradient(q.xi, q.eta, zeta, R, nullptr)) * u;
-      const Eigen::Vector3d sm = Dm * e.head<3>();
-      const double s13 = data_.membrane_only ? 0.0 : Ds * e(3);
-      const double s23 = data_.membrane_only ? 0.0 : Ds * e(4);
+      const Layer& l = layers_[z.layer];
+      const Eigen::Vector3d sm = (data_.membrane_only ? mean_q() : l.Q) * e.head<3>();
+      const Eigen::Vector2d sq =
+          data_.membrane_only ? Eigen::Vector2d::Zero() : (l.Gs * e.tail<2>()).eval();
+      const double s13 = sq(0), s23 = sq(1);
       Mat3 S;
       S << sm(0), sm(2), s13, sm(2), sm(1), s23, s13, s23, 0.0;
       const Mat3 sigma = R * S * R.transpose();
       for (int i = 0; i < 3; ++i) {
         const Eigen::MatrixXd Gi = Gg.middleRows(3 * i, 3);
-        K.noalias() += Gi.transpose() * sigma * Gi * (detJ * q.w);
+        K.noalias() += Gi.transpose() * sigma * Gi * (detJ * q.w * z.w);
       }
     }
   }
@@ -399,25 +440,28 @@ void Shell281::mass(const ElementContext& ctx, Eigen::MatrixXd& M) const {
     shape(q.xi, q.eta, N, dN);
     double dA = 0.0;
     const Mat3 R = frame(N, dN, &dA);
-    for (double zeta : {-kZeta, kZeta}) {
+    double rho_mean = 0.0;  // the thickness-averaged density
+    for (const ThicknessPoint& z : layer_points()) {
+      const double zeta = z.zeta, rho = layers_[z.layer].rho * z.w;
+      rho_mean += 0.5 * rho;
       double detJ = 0.0;
       global_gradient(q.xi, q.eta, zeta, &detJ);
       // H: U = Σ N_a u_a − Σ ζ h_a N_a (V_a ×) θ_a.
       Eigen::MatrixXd H = Eigen::MatrixXd::Zero(3, nd);
       for (int a = 0; a < n_; ++a) {
         H.block<3, 3>(0, 6 * a) = N(a) * Mat3::Identity();
-        H.block<3, 3>(0, 6 * a + 3) = -zeta * 0.5 * t_[static_cast<std::size_t>(a)] * N(a) *
-                                      skew(V_[static_cast<std::size_t>(a)]);
+        H.block<3, 3>(0, 6 * a + 3) = -(zeta + zeta0_) * 0.5 * t_[static_cast<std::size_t>(a)] *
+                                      N(a) * skew(V_[static_cast<std::size_t>(a)]);
       }
-      M.noalias() += H.transpose() * H * (data_.rho * detJ * q.w);
-      total += data_.rho * detJ * q.w;
+      M.noalias() += H.transpose() * H * (rho * detJ * q.w);
+      total += rho * detJ * q.w;
     }
     // The drilling rotation carries the rotary inertia ρt³/12 of the other two (the directors
     // give it none), as SHELL181's θz does.
     const double t = thickness_at(N);
     Eigen::RowVectorXd b = Eigen::RowVectorXd::Zero(nd);
     for (int a = 0; a < n_; ++a) b.segment<3>(6 * a + 3) = N(a) * R.col(2).transpose();
-    M.noalias() += b.transpose() * b * (data_.rho * t * t * t / 12.0 * dA * q.w);
+    M.noalias() += b.transpose() * b * (rho_mean * t * t * t / 12.0 * dA * q.w);
   }
   M = 0.5 * (M + M.transpose()).eval();
   if (!ctx.lumped_mass) {
@@ -512,8 +556,20 @@ const std::vector<std::string>& Shell281::names() {
   return kShell281Results;
 }
 
+const std::vector<std::string>& Shell281::layered_names() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> out = kShell281Results;
+    for (int l = 1; l <= kMaxResultLayers; ++l)
+      for (const char* where : {"TOP", "MID", "BOT"})
+        for (const char* item : {"SX", "SY", "SXY", "SEQV"})
+          out.push_back(fmt::format("{}_L{}_{}", item, l, where));
+    return out;
+  }();
+  return names;
+}
+
 const std::vector<std::string>& Shell281::result_names() const {
-  return kShell281Results;
+  return layered() ? layered_names() : kShell281Results;
 }
 
 ElementResultValues Shell281::values_at(double xi, double eta, const Eigen::VectorXd& u) const {
@@ -522,53 +578,76 @@ ElementResultValues Shell281::values_at(double xi, double eta, const Eigen::Vect
   shape(xi, eta, N, dN);
   const Mat3 R = frame(N, dN, nullptr);
   const double t = thickness_at(N), h = 0.5 * t;
-  const Mat3 Dm = membrane_d();
-  const double Ds = data_.shear_factor * data_.E / (2.0 * (1.0 + data_.nu));
+  const Mat3 Qm = mean_q();
   auto strain = [&](double zeta) -> Eigen::VectorXd {
     return strains(gradient(xi, eta, data_.membrane_only ? 0.0 : zeta, R, nullptr)) * u;
   };
-  // Resultants by the thickness rule: N = ∫σ dz, M = ∫zσ dz (z = ζ t/2 toward the top),
-  // Q = ∫ k G γ dz.
+  // The stress at ζ in layer k (the membrane element: the mean stiffness).
+  auto stress = [&](double zeta, std::size_t k) -> Eigen::Vector3d {
+    return (data_.membrane_only ? Qm : layers_[k].Q) * strain(zeta).head<3>();
+  };
+  // Resultants by the thickness rule: N = ∫σ dz, M = ∫zσ dz (z = ζ t/2 toward the top, about
+  // the mid-surface), Q = ∫ k G γ dz.
   Eigen::Vector3d Nr = Eigen::Vector3d::Zero(), Mr = Eigen::Vector3d::Zero();
   Eigen::Vector2d Q = Eigen::Vector2d::Zero();
-  for (double zeta : {-kZeta, kZeta}) {
-    const Eigen::VectorXd e = strain(zeta);
-    const Eigen::Vector3d s = Dm * e.head<3>();
-    Nr += s * h;
-    Mr += s * zeta * h * h;
-    if (!data_.membrane_only) Q += Ds * (shear_b(xi, eta, zeta, R) * u) * h;
+  for (const ThicknessPoint& z : thickness_rule()) {
+    const Eigen::Vector3d s = stress(z.zeta, z.layer);
+    Nr += s * h * z.w;
+    Mr += s * z.zeta * h * h * z.w;
+    if (!data_.membrane_only)
+      Q += layers_[z.layer].Gs * (shear_b(xi, eta, z.zeta, R) * u) * h * z.w;
   }
+  // TOP and BOT: the top of the top layer, the bottom of the bottom one; MID: ζ = 0 in the layer
+  // that holds it (the upper one at an interface).
+  std::size_t mid_layer = 0;
+  while (mid_layer + 1 < layers_.size() && layers_[mid_layer].zeta_top <= 0.0) ++mid_layer;
   const Eigen::VectorXd et = strain(1.0), em = strain(0.0), eb = strain(-1.0);
-  const Eigen::Vector3d st = Dm * et.head<3>(), sm = Dm * em.head<3>(), sb = Dm * eb.head<3>();
-  return {Nr(0),
-          Nr(1),
-          Nr(2),
-          Mr(0),
-          Mr(1),
-          Mr(2),
-          st(0),
-          st(1),
-          st(2),
-          sm(0),
-          sm(1),
-          sm(2),
-          sb(0),
-          sb(1),
-          sb(2),
-          shell::plane_stress_von_mises(st(0), st(1), st(2)),
-          shell::plane_stress_von_mises(sm(0), sm(1), sm(2)),
-          shell::plane_stress_von_mises(sb(0), sb(1), sb(2)),
-          Q(0),
-          Q(1),
-          et(0),
-          et(1),
-          et(2),
-          em(0),
-          em(1),
-          em(2),
-          eb(0),
-          eb(1),
-          eb(2)};
+  const Eigen::Vector3d st = stress(1.0, layers_.size() - 1), sm = stress(0.0, mid_layer),
+                        sb = stress(-1.0, 0);
+  ElementResultValues out = {Nr(0),
+                             Nr(1),
+                             Nr(2),
+                             Mr(0),
+                             Mr(1),
+                             Mr(2),
+                             st(0),
+                             st(1),
+                             st(2),
+                             sm(0),
+                             sm(1),
+                             sm(2),
+                             sb(0),
+                             sb(1),
+                             sb(2),
+                             shell::plane_stress_von_mises(st(0), st(1), st(2)),
+                             shell::plane_stress_von_mises(sm(0), sm(1), sm(2)),
+                             shell::plane_stress_von_mises(sb(0), sb(1), sb(2)),
+                             Q(0),
+                             Q(1),
+                             et(0),
+                             et(1),
+                             et(2),
+                             em(0),
+                             em(1),
+                             em(2),
+                             eb(0),
+                             eb(1),
+                             eb(2)};
+  if (!layered()) return out;
+  // Each layer's stresses at its top, middle and bottom (layered_names() order); the unused
+  // layers' columns stay zero.
+  out.resize(layered_names().size(), 0.0);
+  for (std::size_t k = 0; k < layers_.size(); ++k) {
+    const Layer& l = layers_[k];
+    std::size_t i = kShell281Results.size() + 12 * k;
+    for (const double zeta : {l.zeta_top, 0.5 * (l.zeta_top + l.zeta_bot), l.zeta_bot}) {
+      const Eigen::Vector3d s = stress(zeta, k);
+      out[i] = s(0), out[i + 1] = s(1), out[i + 2] = s(2);
+      out[i + 3] = shell::plane_stress_von_mises(s(0), s(1), s(2));
+      i += 4;
+    }
+  }
+  return out;
 }
 
 Eigen::Matrix3d Shell281::result_axes(const ElementContext&, const Eigen::VectorXd&) const {
@@ -599,6 +678,8 @@ ElementResultValues in_centre_axes(ElementResultValues v, double c, double s) {
   };
   for (std::size_t i : {0, 3, 6, 9, 12}) tensor(i, 1.0);
   for (std::size_t i : {20, 23, 26}) tensor(i, 0.5);
+  // A layered element's layer stresses (Shell281::layered_names()), SEQV unchanged.
+  for (std::size_t i = Shell281::names().size(); i + 4 <= v.size(); i += 4) tensor(i, 1.0);
   const double qx = v[18], qy = v[19];
   v[18] = c * qx - s * qy;
   v[19] = s * qx + c * qy;
@@ -658,124 +739,11 @@ bool Shell281::nodal_results(const ElementContext&, const Eigen::VectorXd& u,
       v[static_cast<std::size_t>(15 + s)] = shell::plane_stress_von_mises(
           v[static_cast<std::size_t>(6 + 3 * s)], v[static_cast<std::size_t>(7 + 3 * s)],
           v[static_cast<std::size_t>(8 + 3 * s)]);
+    for (std::size_t i = names().size(); i + 4 <= v.size(); i += 4)
+      v[i + 3] = shell::plane_stress_von_mises(v[i], v[i + 1], v[i + 2]);
     at_node[node_ids_[static_cast<std::size_t>(a)]] = std::move(v);
   }
   return true;
 }
-
-namespace {
-
-std::unique_ptr<Element> make_shell281(const ElementBuildContext& ctx,
-                                       const ElementRecord& record) {
-  const Model& model = ctx.model;
-  const auto fail = [&](const std::string& msg) {
-    return InputError(record.where, fmt::format("element {} (SHELL281): {}", record.id, msg));
-  };
-  if (ctx.large_deflection)
-    throw fail("large deflection (NLGEOM,ON) is not implemented for SHELL281; use SHELL181");
-  const ElementType& type = model.element_types.at(record.type);
-  const std::vector<int>& n = record.nodes;
-  if (n.size() != 8) throw fail(fmt::format("needs 8 nodes I..P, got {}", n.size()));
-  for (std::size_t k = 0; k < n.size(); ++k)
-    if (n[k] == 0)
-      throw fail(fmt::format("node {} is not given: midside nodes may not be omitted", k + 1));
-  Shell281Data data;
-  std::vector<int> corners_of;  // record positions of the element's nodes
-  if (n[2] == n[3] && n[6] == n[2]) {
-    // The triangle K = L = O: I J K with midsides M N P.
-    corners_of = {0, 1, 2, 4, 5, 7};
-  } else {
-    corners_of = {0, 1, 2, 3, 4, 5, 6, 7};
-  }
-  for (int k : corners_of) data.node_ids.push_back(n[static_cast<std::size_t>(k)]);
-  if (std::set<int>(data.node_ids.begin(), data.node_ids.end()).size() != data.node_ids.size())
-    throw fail("repeated nodes are taken only as the triangle K = L = O");
-  for (int id : data.node_ids) {
-    const auto it = model.nodes.find(id);
-    if (it == model.nodes.end()) throw fail(fmt::format("node {} is not defined", id));
-    data.positions.push_back(it->second.x);
-  }
-  const auto mat_it = model.materials.find(record.mat);
-  if (mat_it == model.materials.end() || !mat_it->second.has("EX"))
-    throw fail(fmt::format("material {} has no EX", record.mat));
-  const Material& mat = mat_it->second;
-  require_isotropic(mat, record.mat, record.id, record.where);
-  data.E = mat.get("EX", 0.0);
-  if (!(data.E > 0.0)) throw fail(fmt::format("material {}: EX must be positive", record.mat));
-  data.nu = mat.has("NUXY") ? mat.get("NUXY", 0.3) : mat.get("PRXY", 0.3);
-  data.rho = mat.get("DENS", 0.0);
-  // Thickness: the section (SECTYPE SHELL / SECDATA) or the real constants TK(I..L); a
-  // midside node takes the mean of its corners.
-  std::array<double, 4> tc{};
-  const auto sec_it = model.sections.find(record.secnum);
-  const bool by_section =
-      record.secnum > 0 && sec_it != model.sections.end() && !sec_it->second.data.empty();
-  if (by_section) {
-    tc.fill(sec_it->second.data[0]);
-  } else {
-    const auto it = model.real_sets.find(record.real);
-    if (it == model.real_sets.end())
-      throw fail(fmt::format("no section {} and no real constant set {} (thickness)", record.secnum,
-                             record.real));
-    const double ti = it->second.get(1);
-    for (int i = 0; i < 4; ++i) {
-      const double t = it->second.get(i + 1);
-      tc[static_cast<std::size_t>(i)] = t != 0.0 ? t : ti;
-    }
-  }
-  const int nc = data.node_ids.size() == 8 ? 4 : 3;
-  for (int i = 0; i < nc; ++i) {
-    if (!(tc[static_cast<std::size_t>(i)] > 0.0)) throw fail("zero or negative thickness");
-    data.thickness.push_back(tc[static_cast<std::size_t>(i)]);
-  }
-  for (int i = 0; i < nc; ++i)
-    data.thickness.push_back(
-        0.5 * (tc[static_cast<std::size_t>(i)] + tc[static_cast<std::size_t>((i + 1) % nc)]));
-  data.membrane_only = type.key(1) == 1;
-  return std::make_unique<Shell281>(record.id, data, record.where);
-}
-
-const ElementRegistration kShell281{
-    {.name = "SHELL281",
-     .number = 281,
-     .family = "Shell281",
-     .n_nodes = 8,
-     .real_constants = RealConstantUse::UnlessSection,
-     .needs_material = true,
-     .section_types = {"SHELL"},
-     .vtk_cell = VtkCell::QuadraticQuad,
-     .role = ShapeRole::Shell,
-     .result_names = kShell281Results,
-     // S and EPEL at the top surface (MAPDL's default; SHELL,MID / BOT choose the others);
-     // SMISC 1-8 = N, M and Q resultants.
-     .result_sequences = {{"S", "X", "SX_TOP"},
-                          {"S", "Y", "SY_TOP"},
-                          {"S", "XY", "SXY_TOP"},
-                          {"S", "EQV", "SEQV_TOP"},
-                          {"EPEL", "X", "EPX_TOP"},
-                          {"EPEL", "Y", "EPY_TOP"},
-                          {"EPEL", "XY", "EPXY_TOP"},
-                          {"SMISC", "1", "TX"},
-                          {"SMISC", "2", "TY"},
-                          {"SMISC", "3", "TXY"},
-                          {"SMISC", "4", "MX"},
-                          {"SMISC", "5", "MY"},
-                          {"SMISC", "6", "MXY"},
-                          {"SMISC", "7", "QXZ"},
-                          {"SMISC", "8", "QYZ"}},
-     // Faces 1 and 2 (bottom, top: all eight nodes), edges 3..6 (J-I, K-J, L-K, I-L and their
-     // midside nodes); SF loads face 1.
-     .faces = {{0, 1, 2, 3, 4, 5, 6, 7},
-               {0, 1, 2, 3, 4, 5, 6, 7},
-               {1, 0, 4},
-               {2, 1, 5},
-               {3, 2, 6},
-               {0, 3, 7}},
-     .sf_faces = 1,
-     .note = "SHELL281 is a degenerated-continuum Mindlin-Reissner shell: 3x3 Gauss with "
-             "tied transverse shear, small deflection; KEYOPT(1) = 1 has translations only",
-     .create = make_shell281}};
-
-}  // namespace
 
 }  // namespace impactfe

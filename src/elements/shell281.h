@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "elements/element.h"
+#include "elements/shell_laminate.h"
 
 namespace impactfe {
 
@@ -39,6 +40,12 @@ struct Shell281Data {
   double shear_factor = 5.0 / 6.0;
   double drill_factor = 1.0;   // γ / (G t)
   bool membrane_only = false;  // KEYOPT(1) = 1
+  /// A layered section (SECDATA per layer, shell_laminate.h); empty plies: one homogeneous
+  /// isotropic layer of E, nu, rho. The layers span the thickness in proportion to theirs.
+  shell::Laminate laminate;
+  /// SECOFFSET: the nodes on the mid-surface (0), the bottom (+1: the material lies on the side
+  /// of the normal) or the top (−1), in units of the half thickness.
+  double offset = 0.0;
 };
 
 class Shell281 : public Element {
@@ -46,7 +53,8 @@ class Shell281 : public Element {
   /// Throws InputError(where, ...) for a degenerate geometry (non-positive Jacobian).
   Shell281(int id, const Shell281Data& data, const SourceLocation& where);
 
-  const char* family() const override { return "Shell281"; }
+  /// "Shell281", or "Shell281Layered" for a layered section (whose results add each layer's).
+  const char* family() const override { return layered() ? "Shell281Layered" : "Shell281"; }
   const std::vector<DofKey>& dofs() const override { return dofs_; }
   bool is_nonlinear(const ElementContext& ctx) const override { return ctx.stress_stiffening; }
   /// K (plus the stress stiffness of the stresses at u with SSTIF), f = K u.
@@ -84,6 +92,11 @@ class Shell281 : public Element {
   Eigen::MatrixXd geometric_stiffness(const Eigen::VectorXd& u) const;
 
   static const std::vector<std::string>& names();
+  /// The result names of a layered element: names() and then, for each layer L = 1, 2, ..:
+  /// SX SY SXY SEQV at its TOP, MID and BOT ("SX_L1_TOP"), up to kMaxResultLayers layers.
+  static const std::vector<std::string>& layered_names();
+  static constexpr int kMaxResultLayers = 12;
+  bool layered() const { return layers_.size() > 1; }
 
  private:
   struct Rule {
@@ -113,7 +126,26 @@ class Shell281 : public Element {
   std::vector<Rule> shear_rule() const;
   std::vector<Rule> full_rule() const;
   double thickness_at(const Eigen::VectorXd& N) const;
-  Eigen::Matrix3d membrane_d() const;
+  /// A layer in the thickness coordinate ζ ∈ [−1, 1] with its stiffness in the lamina frame.
+  struct Layer {
+    double zeta_bot, zeta_top;
+    Eigen::Matrix3d Q;   // (σ11, σ22, τ12) of (ε11, ε22, γ12)
+    Eigen::Matrix2d Gs;  // (τ13, τ23) of (γ13, γ23), shear correction included
+    double rho;
+  };
+  /// A point of the thickness rule: ζ, its weight (Σ = 2 over the thickness) and its layer.
+  struct ThicknessPoint {
+    double zeta, w;
+    std::size_t layer;
+  };
+  /// Two-point Gauss in each layer (exact for strains linear in ζ); the mid-surface with
+  /// weight 2 and the thickness-averaged stiffness for the membrane-only element.
+  std::vector<ThicknessPoint> thickness_rule() const;
+  /// Two-point Gauss in each layer, whatever the KEYOPT(1) (the mass).
+  std::vector<ThicknessPoint> layer_points() const;
+  /// The in-plane stiffness averaged over the thickness (membrane only).
+  Eigen::Matrix3d mean_q() const;
+
   /// Result values at (ξ, η) (result_names() order).
   ElementResultValues values_at(double xi, double eta, const Eigen::VectorXd& u) const;
 
@@ -125,6 +157,9 @@ class Shell281 : public Element {
   std::vector<int> node_ids_;
   Shell281Data data_;
   double volume_ = 0.0;
+  std::vector<Layer> layers_;  // bottom first
+  double drill_g_ = 0.0;       // the thickness-averaged in-plane shear modulus
+  double zeta0_ = 0.0;         // Shell281Data::offset
 };
 
 }  // namespace impactfe

@@ -44,7 +44,8 @@ Shell4::Shell4(int id, const Shell4Data& data, const SourceLocation& where)
     : Element(id),
       n_(static_cast<int>(data.node_ids.size())),
       X_(data.positions),
-      plasticity_(data.plasticity) {
+      plasticity_(data.plasticity),
+      laminate_(data.kernel.laminate) {
   for (int node : data.node_ids)
     for (Dof d : kAllDofs) dofs_.push_back(DofKey{node, d});
   ShellCorners corners(3, n_);
@@ -522,10 +523,6 @@ void Shell4::pressure_load(const ElementContext& ctx, int face, const std::array
 }
 
 namespace {
-// Faces 1 and 2 (bottom, top: pressures normal to the shell) and the edges 3..6 (J-I, K-J, L-K,
-// I-L: in-plane edge pressures); SF loads face 1 only (sf_faces).
-const std::vector<std::vector<int>> kShellFaces = {{0, 1, 2, 3}, {0, 1, 2, 3}, {1, 0},
-                                                   {2, 1},       {3, 2},       {0, 3}};
 const std::vector<std::string> kShell4Results = {
     "TX",       "TY",     "TXY",    "MX",      "MY",      "MXY",    "SX_TOP",  "SY_TOP",
     "SXY_TOP",  "SX_MID", "SY_MID", "SXY_MID", "SX_BOT",  "SY_BOT", "SXY_BOT", "SEQV_TOP",
@@ -533,8 +530,24 @@ const std::vector<std::string> kShell4Results = {
     "EPCRZ",    "EPCRXY", "EPCRYZ", "EPCRXZ",  "EPCREQV", "CREQ"};
 }  // namespace
 
-const std::vector<std::string>& Shell4::result_names() const {
+const std::vector<std::string>& Shell4::names() {
   return kShell4Results;
+}
+
+const std::vector<std::string>& Shell4::layered_names() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> out = kShell4Results;
+    for (int l = 1; l <= kMaxResultLayers; ++l)
+      for (const char* where : {"TOP", "MID", "BOT"})
+        for (const char* item : {"SX", "SY", "SXY", "SEQV"})
+          out.push_back(fmt::format("{}_L{}_{}", item, l, where));
+    return out;
+  }();
+  return names;
+}
+
+const std::vector<std::string>& Shell4::result_names() const {
+  return laminate_ ? layered_names() : kShell4Results;
 }
 
 Eigen::VectorXd Shell4::local_displacement(const ElementContext& ctx,
@@ -589,11 +602,34 @@ void Shell4::results(const ElementContext& ctx, const Eigen::VectorXd& u, const 
   const Eigen::Vector3d creep_in_plane = rot(Eigen::Vector3d(creep(0), creep(1), 0.5 * creep(3)));
   const double creep_xz = cs * creep(5) + sn * creep(4), creep_yz = -sn * creep(5) + cs * creep(4);
   // Elastic: linear through the thickness; plastic: the layer stresses (surfaces and middle).
-  const Eigen::Vector3d mid = plasticity_ ? rot(layers[2]) : Eigen::Vector3d(N / r.t);
-  const Eigen::Vector3d top =
+  Eigen::Vector3d mid = plasticity_ ? rot(layers[2]) : Eigen::Vector3d(N / r.t);
+  Eigen::Vector3d top =
       plasticity_ ? rot(layers[4]) : Eigen::Vector3d(mid + 6.0 * Mm / (r.t * r.t));
-  const Eigen::Vector3d bot =
+  Eigen::Vector3d bot =
       plasticity_ ? rot(layers[0]) : Eigen::Vector3d(mid - 6.0 * Mm / (r.t * r.t));
+  // A laminate: the mid-surface strain ε0 = A⁻¹N and curvature κ = D⁻¹M (B = 0), each layer's
+  // stress Q̄ (ε0 + z κ) (classical lamination, Jones §4.2), piecewise linear through the
+  // thickness: TOP and BOT the top of the top layer and the bottom of the bottom one, MID z = 0
+  // in the layer holding it.
+  std::vector<double> layer_values;
+  if (laminate_) {
+    const Eigen::Vector3d e0 = laminate_->A.ldlt().solve(r.N);
+    const Eigen::Vector3d kappa = laminate_->D.ldlt().solve(r.M);
+    const auto& plies = laminate_->plies;
+    const auto stress = [&](std::size_t k, double z) { return rot(plies[k].Q * (e0 + z * kappa)); };
+    std::size_t mid_layer = 0;
+    while (mid_layer + 1 < plies.size() && plies[mid_layer].z_top <= 0.0) ++mid_layer;
+    top = stress(plies.size() - 1, plies.back().z_top);
+    mid = stress(mid_layer, 0.0);
+    bot = stress(0, plies.front().z_bot);
+    for (std::size_t k = 0; k < plies.size(); ++k)
+      for (const double z :
+           {plies[k].z_top, 0.5 * (plies[k].z_top + plies[k].z_bot), plies[k].z_bot}) {
+        const Eigen::Vector3d s = stress(k, z);
+        layer_values.insert(layer_values.end(),
+                            {s(0), s(1), s(2), shell::plane_stress_von_mises(s(0), s(1), s(2))});
+      }
+  }
   out = {N(0),
          N(1),
          N(2),
@@ -624,6 +660,10 @@ void Shell4::results(const ElementContext& ctx, const Eigen::VectorXd& u, const 
          creep_xz,
          equivalent_inelastic_strain(creep),
          creq};
+  if (laminate_) {
+    out.insert(out.end(), layer_values.begin(), layer_values.end());
+    out.resize(layered_names().size(), 0.0);
+  }
 }
 
 Eigen::Matrix3d Shell4::result_axes(const ElementContext& ctx, const Eigen::VectorXd& u) const {
@@ -642,137 +682,5 @@ Eigen::Matrix3d Shell4::result_axes(const ElementContext& ctx, const Eigen::Vect
   A.col(2) = R.col(2);
   return A;
 }
-
-namespace {
-
-/// SHELL63 (thin DK kernel), or SHELL181 (`shell181`: the Mindlin–Reissner kernel).
-std::unique_ptr<Element> make_shell4(const ElementBuildContext& ctx, const ElementRecord& record,
-                                     bool shell181) {
-  const Model& model = ctx.model;
-  const auto fail = [&](const std::string& msg) {
-    return InputError(record.where, fmt::format("element {}: {}", record.id, msg));
-  };
-  const auto type_it = model.element_types.find(record.type);
-  if (type_it == model.element_types.end())
-    throw fail(fmt::format("element type {} is not defined", record.type));
-  const ElementType& type = type_it->second;
-  Shell4Data data;
-  data.shell181 = shell181;
-  data.keep_corotational_stiffness = ctx.large_deflection;
-
-  // Nodes: I, J, K, L; K = L (or three nodes) gives the triangle.
-  std::vector<int> ids = record.nodes;
-  if (ids.size() == 4 && ids[2] == ids[3]) ids.pop_back();
-  if (ids.size() != 3 && ids.size() != 4)
-    throw fail(fmt::format("SHELL needs nodes I, J, K, L (K = L for a triangle), got {}",
-                           record.nodes.size()));
-  for (std::size_t i = 0; i < ids.size(); ++i)
-    for (std::size_t j = i + 1; j < ids.size(); ++j)
-      if (ids[i] == ids[j]) throw fail(fmt::format("zero area: node {} repeated", ids[i]));
-  for (int id : ids) {
-    const auto it = model.nodes.find(id);
-    if (it == model.nodes.end()) throw fail(fmt::format("node {} is not defined", id));
-    data.positions.push_back(it->second.x);
-  }
-  data.node_ids = ids;
-
-  // Material.
-  const auto mat_it = model.materials.find(record.mat);
-  if (mat_it == model.materials.end() || !mat_it->second.has("EX"))
-    throw fail(fmt::format("material {} has no EX", record.mat));
-  const Material& mat = mat_it->second;
-  require_isotropic(mat, record.mat, record.id, record.where);
-  shell::KernelData& k = data.kernel;
-  k.E = mat.get("EX", 0.0);
-  if (!(k.E > 0.0)) throw fail(fmt::format("material {}: EX must be positive", record.mat));
-  k.nu = mat.has("NUXY") ? mat.get("NUXY", 0.3) : mat.get("PRXY", 0.3);
-  k.rho = mat.get("DENS", 0.0);
-
-  // Thickness: SHELL181 section (SECTYPE SHELL / SECDATA) or real constants TK(I..L).
-  const auto sec_it = model.sections.find(record.secnum);
-  const RealSet* real = nullptr;
-  if (const auto it = model.real_sets.find(record.real); it != model.real_sets.end())
-    real = &it->second;
-  const bool by_section =
-      record.secnum > 0 && sec_it != model.sections.end() && !sec_it->second.data.empty();
-  if (by_section) {
-    k.t.fill(sec_it->second.data[0]);
-  } else {
-    if (real == nullptr)
-      throw fail(fmt::format("real constant set {} is not defined", record.real));
-    const double ti = real->get(1);
-    for (int i = 0; i < 4; ++i) {
-      const double t = real->get(i + 1);
-      k.t[static_cast<std::size_t>(i)] = t != 0.0 ? t : ti;
-    }
-    if (ids.size() == 3) k.t[2] = real->get(3) != 0.0 ? real->get(3) : ti;
-  }
-  for (std::size_t i = 0; i < ids.size(); ++i)
-    if (!(k.t[i] > 0.0)) throw fail("zero or negative thickness");
-  // The other real constants apply whenever the thickness comes from them (a modern deck's
-  // elements carry SECNUM 1 whether or not a section 1 exists).
-  if (real != nullptr && !by_section) {
-    k.efs = real->get(5);
-    data.theta_deg = real->get(6);
-    k.rmi = real->get(7) != 0.0 ? real->get(7) : 1.0;
-    k.added_mass = real->get(19);
-  }
-  k.membrane = type.key(1) != 2;
-  k.bending = type.key(1) != 1;
-  // SHELL63 KEYOPT(3) = 2 suppresses the extra shapes; SHELL181's KEYOPT(3) chooses reduced
-  // (0) or full integration with incompatible modes (2): the kernel's extra shapes for both.
-  k.extra_shapes = shell181 || type.key(3) != 2;
-  // SHELL181 is a Mindlin–Reissner shell (MITC transverse shear, shell_kernel_mindlin.cpp);
-  // SHELL63 keeps the thin DK kernel.
-  k.mindlin = shell181;
-  // SHELL181's drilling penalty at Hughes & Brezzi's γ = G t (drill_factor 1) rather than
-  // SHELL63's 10⁻³ G t: the drilling modes' frequency goes as √(12 γ / (ρ t³)), and at 10⁻³
-  // they fell among a thick plate's first bending modes (54 Hz for a 1 m steel plate).
-  if (shell181) k.drill_factor = 1.0;
-  k.rotary_inertia = type.key(7) != 1;
-  // SHELL181 takes TB plasticity; SHELL63 is elastic (the SOLVE check refuses it there).
-  if (shell181) data.plasticity = plasticity_of(model, record, k.E, k.nu);
-  return std::make_unique<Shell4>(record.id, data, record.where);
-}
-
-ElementTypeDescriptor shell_type(const char* name, int number, bool shell181) {
-  return {.name = name,
-          .number = number,
-          .family = "Shell4",
-          .n_nodes = 4,
-          .min_nodes = 3,
-          .real_constants = RealConstantUse::UnlessSection,
-          .needs_material = true,
-          .section_types = {"SHELL"},
-          .vtk_cell = VtkCell::Quad,
-          .role = ShapeRole::Shell,
-          .result_names = kShell4Results,
-          // S at the top surface (MAPDL's default shell location); SMISC 1-6 = T and M resultants.
-          .result_sequences =
-              {{"S", "X", "SX_TOP"},     {"S", "Y", "SY_TOP"},      {"S", "XY", "SXY_TOP"},
-               {"S", "EQV", "SEQV_TOP"}, {"SMISC", "1", "TX"},      {"SMISC", "2", "TY"},
-               {"SMISC", "3", "TXY"},    {"SMISC", "4", "MX"},      {"SMISC", "5", "MY"},
-               {"SMISC", "6", "MXY"},    {"SMISC", "7", "QXZ"},     {"SMISC", "8", "QYZ"},
-               {"NL", "EPEQ", "EPEQ"},   {"NL", "SRAT", "SRAT"},    {"NL", "PLWK", "PLWK"},
-               {"NL", "CREQ", "CREQ"},   {"EPCR", "X", "EPCRX"},    {"EPCR", "Y", "EPCRY"},
-               {"EPCR", "Z", "EPCRZ"},   {"EPCR", "XY", "EPCRXY"},  {"EPCR", "YZ", "EPCRYZ"},
-               {"EPCR", "XZ", "EPCRXZ"}, {"EPCR", "EQV", "EPCREQV"}},
-          .plasticity = shell181,
-          .faces = kShellFaces,
-          .sf_faces = 1,
-          .note = shell181
-                      ? "SHELL181 is a Mindlin-Reissner shell: MITC4 / MITC3 transverse shear, "
-                        "2x2 integration with incompatible membrane modes for KEYOPT(3) = 0 "
-                        "and 2; layered J2 plasticity with a TB table"
-                      : "",
-          .create = [shell181](const ElementBuildContext& ctx, const ElementRecord& record) {
-            return make_shell4(ctx, record, shell181);
-          }};
-}
-
-const ElementRegistration kShell63{shell_type("SHELL63", 63, false)};
-const ElementRegistration kShell181{shell_type("SHELL181", 181, true)};
-
-}  // namespace
 
 }  // namespace impactfe

@@ -37,7 +37,14 @@ class Shell4 : public Element {
   /// Throws InputError(where, ...) for zero area or a re-entrant quad.
   Shell4(int id, const Shell4Data& data, const SourceLocation& where);
 
-  const char* family() const override { return "Shell4"; }
+  /// "Shell4", or "Shell4Layered" for a layered SHELL181 section (its results add the layers').
+  const char* family() const override { return laminate_ ? "Shell4Layered" : "Shell4"; }
+  /// The result names of a layered SHELL181: the homogeneous ones, then for each layer L:
+  /// SX SY SXY SEQV at its TOP, MID and BOT ("SX_L1_TOP"), up to kMaxResultLayers layers.
+  static const std::vector<std::string>& layered_names();
+  /// The result names of a homogeneous element.
+  static const std::vector<std::string>& names();
+  static constexpr int kMaxResultLayers = 12;
   const std::vector<DofKey>& dofs() const override { return dofs_; }
   bool is_nonlinear(const ElementContext& ctx) const override {
     return ctx.large_deflection || ctx.stress_stiffening || plasticity_.has_value();
@@ -131,7 +138,8 @@ class Shell4 : public Element {
   std::unique_ptr<shell::FlatShellKernel> kernel_;
   std::unique_ptr<CorotationalTriangle> triangle_;  // elastic triangle: the fast path
   std::optional<J2Plasticity> plasticity_;
-  std::vector<PlasticState> committed_;  // in-plane point × layer
+  std::shared_ptr<const shell::Laminate> laminate_;  // a layered section (KernelData::laminate)
+  std::vector<PlasticState> committed_;              // in-plane point × layer
 };
 
 }  // namespace impactfe

@@ -271,7 +271,9 @@ void FlatShellKernel::add_membrane(Eigen::MatrixXd& K) const {
     shape(p.xi, p.eta, N, dN, detJ);
     const double t = thickness_at(N);
     const double wgt = detJ * p.w;
-    const Eigen::Matrix3d D = plane_stress(data_.nu, data_.E * t / (1.0 - data_.nu * data_.nu));
+    const Eigen::Matrix3d D =
+        data_.laminate ? data_.laminate->A
+                       : plane_stress(data_.nu, data_.E * t / (1.0 - data_.nu * data_.nu));
     const Eigen::MatrixXd B = compatible_B(dN);
     Kuu += B.transpose() * D * B * wgt;
     if (incompatible) {
@@ -293,8 +295,10 @@ void FlatShellKernel::add_membrane(Eigen::MatrixXd& K) const {
 }
 
 void FlatShellKernel::add_drilling(Eigen::MatrixXd& K) const {
-  // Hughes–Brezzi drilling penalty on r = θz − ½(∂v/∂x − ∂u/∂y), on (u, v, θz) per node.
-  const double G = data_.E / (2.0 * (1.0 + data_.nu));
+  // Hughes–Brezzi drilling penalty on r = θz − ½(∂v/∂x − ∂u/∂y), on (u, v, θz) per node; a
+  // laminate's G the thickness average A66 / t.
+  const double G = data_.laminate ? data_.laminate->A(2, 2) / data_.laminate->thickness
+                                  : data_.E / (2.0 * (1.0 + data_.nu));
   Eigen::VectorXd N;
   Eigen::MatrixXd dN;
   double detJ = 0.0;
@@ -337,8 +341,10 @@ void FlatShellKernel::add_bending(Eigen::MatrixXd& K) const {
   for (const auto& p : points()) {
     shape(p.xi, p.eta, N, dN, detJ);
     const double t = thickness_at(N);
-    const Eigen::Matrix3d D = plane_stress(
-        data_.nu, data_.E * t * t * t * data_.rmi / (12.0 * (1.0 - data_.nu * data_.nu)));
+    const Eigen::Matrix3d D =
+        data_.laminate ? data_.laminate->D
+                       : plane_stress(data_.nu, data_.E * t * t * t * data_.rmi /
+                                                    (12.0 * (1.0 - data_.nu * data_.nu)));
     bending_b(p.xi, p.eta, B);
     Kb += B.transpose() * D * B * detJ * p.w;
   }
@@ -402,15 +408,22 @@ Resultants FlatShellKernel::resultants(const Eigen::VectorXd& d) const {
   Eigen::Vector3d strain;
   if (data_.membrane) {
     strain.noalias() = Bm0_ * dm;
-    r.N = plane_stress(data_.nu, data_.E * r.t / nu2) * strain;
+    r.N = data_.laminate ? (data_.laminate->A * strain).eval()
+                         : (plane_stress(data_.nu, data_.E * r.t / nu2) * strain).eval();
   }
   if (data_.bending) {
     strain.noalias() = Bb0_ * db;
-    r.M = plane_stress(data_.nu, data_.E * r.t * r.t * r.t * data_.rmi / (12.0 * nu2)) * strain;
+    r.M = data_.laminate
+              ? (data_.laminate->D * strain).eval()
+              : (plane_stress(data_.nu, data_.E * r.t * r.t * r.t * data_.rmi / (12.0 * nu2)) *
+                 strain)
+                    .eval();
     if (data_.mindlin) {
       Eigen::Vector2d gamma;
       gamma.noalias() = Bs0_ * db;
-      r.Q = data_.shear_factor * data_.E / (2.0 * (1.0 + data_.nu)) * r.t * gamma;
+      r.Q = data_.laminate
+                ? (data_.laminate->shear * gamma).eval()
+                : (data_.shear_factor * data_.E / (2.0 * (1.0 + data_.nu)) * r.t * gamma).eval();
     }
   }
   return r;

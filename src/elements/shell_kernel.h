@@ -21,6 +21,9 @@
 #include <array>
 #include <vector>
 
+#include <memory>
+
+#include "elements/shell_laminate.h"
 #include "materials/j2_plasticity.h"
 
 namespace impactfe::shell {
@@ -41,6 +44,9 @@ struct KernelData {
   double drill_factor = 1.0e-3;         // γ / (G t) of the drilling penalty
   bool mindlin = false;                 // Mindlin–Reissner bending + MITC shear (SHELL181)
   double shear_factor = 5.0 / 6.0;      // k of the transverse shear stiffness k G t
+  /// A symmetric layered section (SHELL181): membrane A, bending D and transverse shear of the
+  /// laminate instead of those of E, ν, t (B = 0: the kernel has no membrane-bending coupling).
+  std::shared_ptr<const Laminate> laminate;
 };
 
 /// Stress resultants at the centroid, element axes: N = (TX, TY, TXY) force/length,

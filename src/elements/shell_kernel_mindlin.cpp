@@ -128,7 +128,10 @@ void FlatShellKernel::add_shear(Eigen::MatrixXd& K) const {
     // D_s = k G t (Mindlin 1951; k = 5/6, Reissner 1945).
     const double t = thickness_at(N);
     const double stab = t * t / (t * t + kAlpha * stabilise_h2);
-    Ks += stab * data_.shear_factor * G * t * Bs.transpose() * Bs * detJ * p.w;
+    if (data_.laminate)
+      Ks += stab * Bs.transpose() * data_.laminate->shear * Bs * detJ * p.w;
+    else
+      Ks += stab * data_.shear_factor * G * t * Bs.transpose() * Bs * detJ * p.w;
   }
   for (int a = 0; a < n_; ++a)
     for (int b = 0; b < n_; ++b)

@@ -283,6 +283,9 @@ TEST(AcceptedFields, OrthotropicConstantsAreRefused) {
          std::vector<std::pair<std::string, std::string>>{{"MP,EY,1,100E9", "EY = 1e+11"},
                                                           {"MP,PRYZ,1,0.2", "PRYZ = 0.2"},
                                                           {"MP,GXY,1,50E9", "GXY = 5e+10"}}) {
+      // SHELL181 carries out an orthotropic layer (EY, GXY) through its section
+      // (shell_laminate.h, test_shell_laminate.cpp); PRYZ does not enter a shell and is refused.
+      if (type == "SHELL181" && label != "PRYZ = 0.2") continue;
       const std::string err = error_of("orthotropic_" + type, elastic_deck(type, extra));
       EXPECT_NE(err.find("material 1 is anisotropic (" + label), std::string::npos)
           << type << " " << extra << ": " << err;

@@ -143,6 +143,8 @@ const std::map<std::string, std::string>& by_design() {
          "reduced integration is approximated by full 2x2x2 integration (warned; "
          "docs/elements/solid45.md)"},
         {"SHELL181 K3=2", "both integrations are computed with the SHELL63 kernel's extra shapes"},
+        {"SHELL181 K8=1", "layer data storage: a printout option (docs/elements/shell181.md)"},
+        {"SHELL181 K8=2", "layer data storage: a printout option (docs/elements/shell181.md)"},
         {"SHELL281 K8=1", "layer data storage: a printout option (docs/elements/shell281.md)"},
         {"SHELL281 K8=2", "layer data storage: a printout option (docs/elements/shell281.md)"},
         {"BEAM188 K3=2",

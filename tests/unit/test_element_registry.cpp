@@ -4,6 +4,7 @@
 // results file and VTK cell table. The second part checks the built-in registrations against
 // their element classes.
 #include <gtest/gtest.h>
+#include <algorithm>
 
 #include <fmt/format.h>
 
@@ -259,7 +260,16 @@ TEST(ElementRegistry, EveryBuiltInTypeMatchesItsElementClass) {
     SCOPED_TRACE(d->name);
     const Model m = one_element_model(d->name);
     const auto e = create_element(ElementBuildContext{m, {}}, m.elements.at(1));
-    EXPECT_EQ(e->result_names(), d->result_names);
+    // A layered shell type registers its layered elements' names (SHELL181, SHELL281): a
+    // homogeneous element's names are their beginning, the same columns first.
+    const auto& names = e->result_names();
+    if (d->name == "SHELL181" || d->name == "SHELL281") {
+      ASSERT_LT(names.size(), d->result_names.size());
+      EXPECT_TRUE(std::equal(names.begin(), names.end(), d->result_names.begin()));
+      EXPECT_EQ(d->result_names[names.size()], "SX_L1_TOP");
+    } else {
+      EXPECT_EQ(names, d->result_names);
+    }
     EXPECT_EQ(e->family(), d->family);
     if (e->has_status()) EXPECT_TRUE(d->has_status);
     EXPECT_GE(d->number, 1);
