@@ -10,6 +10,7 @@
 
 #include "core/log.h"
 #include "deck/deck_context.h"
+#include "results/svg_plot.h"  // xml_escape
 
 namespace impactfe::deck {
 
@@ -127,29 +128,6 @@ void cmd_xmlo(DeckReader& r, const Command& c) {
   r.scripting.xml_encoding = value;
 }
 
-std::string xml_escaped(const std::string& s) {
-  std::string out;
-  for (char ch : s) {
-    switch (ch) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += ch;
-    }
-  }
-  return out;
-}
-
 /// /XML,Fname,Ext: writes the global scalar parameters (numbers and character strings) to
 /// Fname.Ext as <parameter name= type=> elements (impactfe's own layout, docs/deck_reader.md);
 /// Workbench reads its run statistics back this way.
@@ -165,10 +143,10 @@ void cmd_xml(DeckReader& r, const Command& c) {
   for (const auto& [pname, p] : r.params.all()) {
     if (p.type == ParamType::Number)
       out << fmt::format("  <parameter name=\"{}\" type=\"number\">{:.15g}</parameter>\n",
-                         xml_escaped(pname), p.number);
+                         xml_escape(pname), p.number);
     else if (p.type == ParamType::Text)
       out << fmt::format("  <parameter name=\"{}\" type=\"string\">{}</parameter>\n",
-                         xml_escaped(pname), xml_escaped(p.text));
+                         xml_escape(pname), xml_escape(p.text));
   }
   out << "</parameters>\n";
   if (!out) r.fail(c, fmt::format("writing '{}' failed", path));

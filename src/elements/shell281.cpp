@@ -557,14 +557,8 @@ const std::vector<std::string>& Shell281::names() {
 }
 
 const std::vector<std::string>& Shell281::layered_names() {
-  static const std::vector<std::string> names = [] {
-    std::vector<std::string> out = kShell281Results;
-    for (int l = 1; l <= kMaxResultLayers; ++l)
-      for (const char* where : {"TOP", "MID", "BOT"})
-        for (const char* item : {"SX", "SY", "SXY", "SEQV"})
-          out.push_back(fmt::format("{}_L{}_{}", item, l, where));
-    return out;
-  }();
+  static const std::vector<std::string> names =
+      shell::with_layer_result_names(kShell281Results, kMaxResultLayers);
   return names;
 }
 

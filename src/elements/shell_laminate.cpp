@@ -173,4 +173,14 @@ std::vector<LayerInput> section_layers(const Model& model, const Section& sectio
   return out;
 }
 
+std::vector<std::string> with_layer_result_names(const std::vector<std::string>& homogeneous,
+                                                 int layers) {
+  std::vector<std::string> out = homogeneous;
+  for (int l = 1; l <= layers; ++l)
+    for (const char* where : {"TOP", "MID", "BOT"})
+      for (const char* item : {"SX", "SY", "SXY", "SEQV"})
+        out.push_back(fmt::format("{}_L{}_{}", item, l, where));
+  return out;
+}
+
 }  // namespace impactfe::shell

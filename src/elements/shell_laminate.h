@@ -78,6 +78,11 @@ Laminate make_laminate(const std::vector<LayerInput>& layers,
 std::vector<LayerInput> section_layers(const Model& model, const Section& section,
                                        int element_material);
 
+/// The result names of a layered shell: `homogeneous` followed by SX SY SXY SEQV at the TOP, MID
+/// and BOT of each of `layers` layers ("SX_L1_TOP", ...).
+std::vector<std::string> with_layer_result_names(const std::vector<std::string>& homogeneous,
+                                                 int layers);
+
 /// The plane-stress stiffness of `e` in its own axes, turned by θ (degrees) into the element
 /// axes: Q̄ = Tᵀ Q T with T the engineering-strain rotation (Jones eq. 2.84).
 Eigen::Matrix3d rotated_plane_stiffness(const LayerElasticity& e, double theta_deg);
