@@ -178,7 +178,7 @@ bool same_model_section(const Model& a, const Model& b) {
     const ElementRecord& x = i->second;
     const ElementRecord& y = j->second;
     if (i->first != j->first || x.type != y.type || x.mat != y.mat || x.real != y.real ||
-        x.secnum != y.secnum || x.nodes != y.nodes)
+        x.secnum != y.secnum || x.esys != y.esys || x.nodes != y.nodes)
       return false;
   }
   return true;

@@ -93,6 +93,10 @@ struct ElementRecord {
   int real = 1;
   int mat = 1;
   int secnum = 0;
+  /// ESYS: the local coordinate system (> 10) that orients the element axes; 0 the element's
+  /// own (shells: x along I-J). Carried out by the types whose descriptor says so
+  /// (ElementTypeDescriptor::esys_axes); a SOLVE refuses it on the others.
+  int esys = 0;
   std::vector<int> nodes;
   std::string superelement_file;  // MATRIX50 only: "unit:8" (4x) or a file name (SE)
   SourceLocation where;

@@ -150,6 +150,7 @@ class AttributeScope {
     r_.modeling.current_real = saved_.current_real;
     r_.modeling.current_mat = saved_.current_mat;
     r_.modeling.current_secnum = saved_.current_secnum;
+    r_.modeling.esys = saved_.esys;
   }
   AttributeScope(const AttributeScope&) = delete;
   AttributeScope& operator=(const AttributeScope&) = delete;
@@ -179,7 +180,8 @@ void cmd_eblock(DeckReader& r, const Command& c) {
     if (mat < 0) break;  // the -1 record ends the block
     const long long esys = column_int(b, col[4]), dead = column_int(b, col[5]);
     const long long n_nodes = column_int(b, col[8]), id = column_int(b, col[10]);
-    if (esys != 0) b.fail("element coordinate systems (ESYS > 0) are not supported");
+    if (esys != 0 && esys <= 10)
+      b.fail(fmt::format("ESYS {}: 0 or a local coordinate system above 10", esys));
     if (dead != 0) b.fail("killed elements (birth/death flag) are not supported");
     if (n_nodes < 1 || n_nodes > 64) b.fail(fmt::format("{} nodes per element", n_nodes));
     if (id <= 0 || id > kMaxEntityNumber) b.fail(fmt::format("element number {} out of range", id));
@@ -196,6 +198,7 @@ void cmd_eblock(DeckReader& r, const Command& c) {
     r.modeling.current_type = static_cast<int>(column_int(b, col[1]));
     r.modeling.current_real = static_cast<int>(column_int(b, col[2]));
     r.modeling.current_secnum = static_cast<int>(column_int(b, col[3]));
+    r.modeling.esys = static_cast<int>(esys);
     if (r.model.elements.count(static_cast<int>(id)) == 0) check_model_size(r, c, 0, 1);
     r.add_element(b.at_record(), static_cast<int>(id), std::move(nodes));
     ++count;

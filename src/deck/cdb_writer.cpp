@@ -112,7 +112,7 @@ void write_elements(const Model& m, std::ostream& out) {
       throw std::invalid_argument(
           fmt::format("element {} is a superelement (MATRIX50): not written to a CDB", id));
     out << fmt::format("{:10d}{:10d}{:10d}{:10d}{:10d}{:10d}{:10d}{:10d}{:10d}{:10d}{:10d}", e.mat,
-                       e.type, e.real, e.secnum, 0, 0, 0, 0, e.nodes.size(), 0, id);
+                       e.type, e.real, e.secnum, e.esys, 0, 0, 0, e.nodes.size(), 0, id);
     for (std::size_t k = 0; k < e.nodes.size(); ++k) {
       if (k == 8 || (k > 8 && (k - 8) % 19 == 0)) out << '\n';
       out << fmt::format("{:10d}", e.nodes[k]);

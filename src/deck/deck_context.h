@@ -318,6 +318,9 @@ void check_model_size(const DeckReader& r, const Command& c, long long new_nodes
 void check_target_shape(DeckReader& r, const Command& c, const std::vector<int>& nodes);
 /// Fails at `c` when a generated node or element number is outside 1..kMaxEntityNumber.
 int checked_number(const DeckReader& r, const Command& c, long long number, const char* what);
+/// An ESYS number (ESYS, EMODIF, KATT/AATT/VATT): 0 or a local system number > 10 (the system
+/// need exist only when a SOLVE builds the elements).
+void check_esys_number(DeckReader& r, const Command& c, int kcn);
 
 /// Closes a 4x /STRESS block (END, FINISH or the end of the deck): its requests become an
 /// expansion pass of the preceding reduced transient.

@@ -351,6 +351,7 @@ void DeckReader::add_element(const Command& c, int id, std::vector<int> nodes) {
   rec.real = modeling.current_real;
   rec.mat = modeling.current_mat;
   rec.secnum = modeling.current_secnum;
+  rec.esys = modeling.esys;
   rec.nodes = std::move(nodes);
   rec.where = c.where;
   if (model.elements.count(id) == 0) modeling.element_order.push_back(id);

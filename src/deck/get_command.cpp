@@ -147,7 +147,7 @@ double get_element(DeckReader& r, const Command& c, const GetRequest& g, int e, 
   }
   const ElementRecord& rec = r.model.elements.at(e);
   if (i1 == "ATTR") {
-    if (g.it1num == "ESYS") return 0.0;
+    if (g.it1num == "ESYS") return static_cast<double>(rec.esys);
     if (g.it1num == "ENAM") {
       const ElementTypeDescriptor* d = find_element_type(element_type_name(r, e));
       return d != nullptr ? d->number : 0.0;

@@ -183,9 +183,20 @@ void assign_attributes(DeckReader& r, const Command& c, Map& map, const Selectio
            fmt::format("{} meshed {}(s) keep their attributes (clear them first)", skipped, what));
 }
 
+}  // namespace
+
+void check_esys_number(DeckReader& r, const Command& c, int kcn) {
+  if (kcn != 0 && kcn <= 10)
+    r.fail(c, fmt::format("ESYS {}: an element coordinate system is 0 (the element's own axes) "
+                          "or a local system above 10 (LOCAL defines one parallel to a global "
+                          "system)",
+                          kcn));
+}
+
+namespace {
+
 void check_esys_field(DeckReader& r, const Command& c, int f) {
-  if (f > 0 && r.integer(c, f, 0) > 0)
-    r.fail(c, "element coordinate systems (ESYS > 0) are not supported");
+  check_esys_number(r, c, r.integer(c, f, 0));
 }
 
 void cmd_katt(DeckReader& r, const Command& c) {
@@ -219,12 +230,10 @@ void cmd_vatt(DeckReader& r, const Command& c) {
 }
 
 void cmd_esys(DeckReader& r, const Command& c) {
+  // ESYS,KCN: the element coordinate system of the elements defined next (E, meshing).
   const int kcn = r.integer(c, 1, 0);
-  if (kcn != 0)
-    r.fail(c,
-           "element coordinate systems (ESYS > 0) are not supported: solid results are in "
-           "global axes, shell results in element axes");
-  r.modeling.esys = 0;
+  check_esys_number(r, c, kcn);
+  r.modeling.esys = kcn;
 }
 
 template <class Map>
@@ -377,9 +386,15 @@ void cmd_vrotat(DeckReader& r, const Command& c) {
 }  // namespace
 
 geometry::MeshPointers mesh_pointers(const DeckReader& r) {
-  return geometry::MeshPointers{r.modeling.current_type, r.modeling.current_mat,
-                                r.modeling.current_real, r.modeling.current_secnum,
-                                r.options.max_nodes,     r.options.max_elements};
+  geometry::MeshPointers p;
+  p.type = r.modeling.current_type;
+  p.mat = r.modeling.current_mat;
+  p.real = r.modeling.current_real;
+  p.secnum = r.modeling.current_secnum;
+  p.esys = r.modeling.esys;
+  p.max_nodes = r.options.max_nodes;
+  p.max_elements = r.options.max_elements;
+  return p;
 }
 
 void record_created_elements(DeckReader& r, const geometry::Mesher& mesher) {

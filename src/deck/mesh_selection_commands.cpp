@@ -1,6 +1,6 @@
 // Selection of nodes and elements (APDL_MODELING §1.2, §1.3, §1.5, §1.6), the subset that model
 // building needs: NSEL (NODE, LOC in the active system, EXT), ESEL (ELEM, TYPE, MAT, REAL, SEC,
-// ENAME, CENT, LIVE), NSLE, ESLN, ALLSEL, NALL, EALL. Built on the shared Selection helper
+// ESYS, ENAME, CENT, LIVE), NSLE, ESLN, ALLSEL, NALL, EALL. Built on the shared Selection helper
 // (core/selection.h); to be unified with the post-processing branch's selection at merge.
 #include <fmt/format.h>
 
@@ -100,7 +100,8 @@ void cmd_esel(DeckReader& r, const Command& c) {
     std::string item = r.label(c, 2);
     if (item.empty()) item = "ELEM";
     const auto& elements = r.model.elements;
-    if (item == "ELEM" || item == "TYPE" || item == "MAT" || item == "REAL" || item == "SEC") {
+    if (item == "ELEM" || item == "TYPE" || item == "MAT" || item == "REAL" || item == "SEC" ||
+        item == "ESYS") {
       const auto t = value_test(r, c, 4, true);
       test = [&elements, item, t](int id) {
         const ElementRecord& e = elements.at(id);
@@ -108,6 +109,7 @@ void cmd_esel(DeckReader& r, const Command& c) {
                       : item == "TYPE" ? e.type
                       : item == "MAT"  ? e.mat
                       : item == "REAL" ? e.real
+                      : item == "ESYS" ? e.esys
                                        : e.secnum;
         return t(v);
       };
@@ -130,8 +132,8 @@ void cmd_esel(DeckReader& r, const Command& c) {
     } else if (item == "LIVE") {
       test = [](int) { return true; };
     } else {
-      r.fail(c, fmt::format("item '{}' not supported here (ELEM, TYPE, MAT, REAL, SEC, ENAME, "
-                            "CENT, LIVE)",
+      r.fail(c, fmt::format("item '{}' not supported here (ELEM, TYPE, MAT, REAL, SEC, ESYS, "
+                            "ENAME, CENT, LIVE)",
                             c.text(2)));
     }
   }

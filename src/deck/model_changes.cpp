@@ -43,9 +43,9 @@ std::string element_change(const Model& began, const Model& now) {
       return fmt::format("the elements solved changed (element {} selected or added)", id);
     const ElementRecord& b = i->second;
     if (b.type != e.type || b.real != e.real || b.mat != e.mat || b.secnum != e.secnum ||
-        b.nodes != e.nodes || b.superelement_file != e.superelement_file)
-      return fmt::format("element {} changed (type, real constants, material, section or nodes)",
-                         id);
+        b.esys != e.esys || b.nodes != e.nodes || b.superelement_file != e.superelement_file)
+      return fmt::format(
+          "element {} changed (type, real constants, material, section, ESYS or nodes)", id);
     ++i;
   }
   if (i != began.elements.end())

@@ -267,6 +267,7 @@ void add_superelement(DeckReader& r, const Command& c, int id, const std::string
   rec.real = r.modeling.current_real;
   rec.mat = r.modeling.current_mat;
   rec.secnum = r.modeling.current_secnum;
+  rec.esys = r.modeling.esys;
   rec.superelement_file = file;
   rec.where = c.where;
   if (r.model.elements.count(id) == 0) r.modeling.element_order.push_back(id);
@@ -367,16 +368,14 @@ void cmd_mpchg(DeckReader& r, const Command& c) {
 void cmd_emodif(DeckReader& r, const Command& c) {
   // EMODIF,IEL,STLOC,I1: sets an attribute of elements (a number, ALL for the selected ones, or
   // a component), as Workbench input files assign their layered sections. STLOC MAT, TYPE,
-  // REAL, SECNUM, and ESYS 0; an element coordinate system (ESYS > 0) and node replacement
-  // (STLOC a node position) are refused.
+  // REAL, SECNUM and ESYS (0, or a local system > 10: element_esys_check); node replacement
+  // (STLOC a node position) is refused.
   if (c.blank(1)) r.fail(c, "IEL missing (an element number, ALL or a component)");
   const std::string what = r.label(c, 2);
   const int value = r.integer(c, 3, 0);
   if (value < 0) r.fail(c, fmt::format("I1 {} must not be negative", value));
   if (what == "ESYS") {
-    if (value != 0)
-      r.fail(c, fmt::format("ESYS {}: element coordinate systems are not supported (ESYS 0 only)",
-                            value));
+    check_esys_number(r, c, value);
   } else if (what != "MAT" && what != "TYPE" && what != "REAL" && what != "SECNUM") {
     r.fail(c, fmt::format("STLOC '{}': MAT, TYPE, REAL, SECNUM or ESYS (changing the nodes of an "
                           "element is not supported)",
@@ -397,6 +396,7 @@ void cmd_emodif(DeckReader& r, const Command& c) {
     if (what == "TYPE") e.type = value;
     if (what == "REAL") e.real = value;
     if (what == "SECNUM") e.secnum = value;
+    if (what == "ESYS") e.esys = value;
   }
   if (what == "SECNUM") r.modeling.secnum_given = true;
 }

@@ -15,6 +15,8 @@ std::unique_ptr<Element> create_element(const ElementBuildContext& ctx,
                                                record.id, record.type));
   const ElementType& type = type_it->second;
   const ElementTypeDescriptor& descriptor = element_type_descriptor(type);
+  if (const std::string why = esys_refusal(ctx.model, record); !why.empty())
+    throw InputError(record.where, fmt::format("element {}: {}", record.id, why));
   // The element's own checks first (they name the field in the element's words), then: every
   // KEYOPT and real constant given is one the element carries out (element_fields.h).
   auto element = descriptor.create(ctx, record);

@@ -106,6 +106,30 @@ std::optional<ResultSequence> find_result_sequence(const ElementTypeDescriptor& 
   return std::nullopt;
 }
 
+std::string esys_refusal(const Model& model, const ElementRecord& record) {
+  if (record.esys == 0) return {};
+  const ElementTypeDescriptor& d = element_type_descriptor(model.element_type(record.type));
+  if (!d.esys_axes) {
+    std::string carried;
+    for (const auto& [name, other] : registry())
+      if (other.esys_axes) carried += (carried.empty() ? "" : ", ") + name;
+    return fmt::format(
+        "ESYS {}: {} takes its axes from its nodes (an element coordinate system "
+        "is carried out for {} only)",
+        record.esys, d.name, carried);
+  }
+  if (record.esys <= 10 || !model.coordinate_systems.has(record.esys))
+    return fmt::format("ESYS {} is not a defined local coordinate system (LOCAL,{})", record.esys,
+                       record.esys);
+  return {};
+}
+
+Eigen::Matrix3d esys_axes_at(const Model& model, int esys, const Eigen::Vector3d& x) {
+  Eigen::Matrix3d axes;
+  model.coordinate_systems.get(esys).axes_at(x, axes);  // on a cylinder's axis: its own axes
+  return axes;
+}
+
 std::string supported_element_type_names() {
   std::string out;
   for (const auto& [name, d] : registry()) out += (out.empty() ? "" : " ") + name;

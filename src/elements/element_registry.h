@@ -80,6 +80,9 @@ struct ElementTypeDescriptor {
   std::vector<ResultSequence> result_sequences;
   /// True when elements of this type may carry a status (gap open/closed, slider).
   bool has_status = false;
+  /// True when ESYS > 0 (ElementRecord::esys) orients the element's axes; a SOLVE refuses it
+  /// on the other types (esys_refusal).
+  bool esys_axes = false;
   /// True when the element applies a TB plasticity law of its material (BISO, BKIN, MISO:
   /// materials/j2_plasticity.h); a SOLVE refuses such a material on other types.
   bool plasticity = false;
@@ -126,6 +129,12 @@ const ElementTypeDescriptor& element_type_descriptor(const ElementType& type);
 std::vector<const ElementTypeDescriptor*> registered_element_types();
 /// "COMBIN14 COMBIN40 LINK1 ..." for error messages.
 std::string supported_element_type_names();
+/// Why an element's ESYS cannot be carried out (empty when it can: ESYS 0, or a defined local
+/// system on a type with esys_axes).
+std::string esys_refusal(const Model& model, const ElementRecord& record);
+/// The global directions of the axes of local system `esys` at the point `x` (columns; a
+/// curvilinear system's at that point). Precondition: esys_refusal is empty.
+Eigen::Matrix3d esys_axes_at(const Model& model, int esys, const Eigen::Vector3d& x);
 /// The stored result that MAPDL's Item,Comp of an element of this type reads (nullopt when the
 /// element has none); Item may also be a stored result name itself (Comp blank).
 std::optional<ResultSequence> find_result_sequence(const ElementTypeDescriptor& type,

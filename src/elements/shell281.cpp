@@ -13,6 +13,7 @@
 #include "core/errors.h"
 #include "elements/element_registry.h"
 #include "elements/quadratic_shapes.h"
+#include "elements/shell_frame.h"
 #include "elements/shell_kernel.h"
 #include "materials/isotropic_elasticity.h"
 
@@ -181,7 +182,7 @@ Mat3 Shell281::frame(const Eigen::VectorXd& N, const Eigen::MatrixXd& dN, double
   if (dA != nullptr) *dA = n.norm();
   Mat3 R;
   R.col(2) = n.normalized();
-  R.col(0) = a1.normalized();
+  R.col(0) = data_.esys_axes ? shell_esys_x_axis(*data_.esys_axes, R.col(2)) : a1.normalized();
   R.col(1) = R.col(2).cross(R.col(0));
   return R;
 }

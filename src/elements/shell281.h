@@ -6,8 +6,9 @@
 /// Degenerated-continuum (Ahmad) Mindlin–Reissner shell (Ahmad, Irons & Zienkiewicz 1970;
 /// Zienkiewicz & Taylor vol. 2, §15.3): X(ξ, η, ζ) = Σ N_a (x_a + ζ t_a/2 V_a) with the nodal
 /// director V_a the surface normal of the element at node a, and the displacement
-/// U = Σ N_a (u_a + ζ t_a/2 θ_a × V_a). Strains in the lamina frame (e1, e2 tangent, e3 normal)
-/// with σ33 = 0; transverse shear k G with k = 5/6.
+/// U = Σ N_a (u_a + ζ t_a/2 θ_a × V_a). Strains in the lamina frame (e1, e2 tangent, e3 normal;
+/// e1 along ∂X/∂ξ, or the ESYS x axis projected on the surface) with σ33 = 0; transverse shear
+/// k G with k = 5/6.
 /// - Quadrilateral: 3 x 3 Gauss, the transverse shear tied (assumed covariant strains, in the
 ///   manner of the MITC elements, Bathe & Dvorkin 1986): γ_ξζ = c0 + c1 ξ + c2 η + c3 ξη + c4 η²
 ///   from the sides' points (±1/√3, ±1) and the centre, γ_ηζ likewise. Free of shear locking
@@ -21,6 +22,7 @@
 #include <Eigen/Core>
 
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -46,6 +48,10 @@ struct Shell281Data {
   /// SECOFFSET: the nodes on the mid-surface (0), the bottom (+1: the material lies on the side
   /// of the normal) or the top (−1), in units of the half thickness.
   double offset = 0.0;
+  /// ESYS: the axes of the element's local coordinate system (columns, global directions); the
+  /// lamina frame's e1 is then their x axis projected on the surface (shell_esys_x_axis), not
+  /// ∂X/∂ξ. It orients the layer angles and the element results.
+  std::optional<Eigen::Matrix3d> esys_axes;
 };
 
 class Shell281 : public Element {

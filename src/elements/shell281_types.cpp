@@ -100,6 +100,13 @@ std::unique_ptr<Element> make_shell281(const ElementBuildContext& ctx,
     data.thickness.push_back(
         0.5 * (tc[static_cast<std::size_t>(i)] + tc[static_cast<std::size_t>((i + 1) % nc)]));
   data.membrane_only = type.key(1) == 1;
+  if (record.esys != 0) {
+    if (const std::string why = esys_refusal(model, record); !why.empty()) throw fail(why);
+    // A curvilinear system's axes at the corners' centroid.
+    Vec3 centroid = Vec3::Zero();
+    for (int a = 0; a < nc; ++a) centroid += data.positions[static_cast<std::size_t>(a)] / nc;
+    data.esys_axes = esys_axes_at(model, record.esys, centroid);
+  }
   return std::make_unique<Shell281>(record.id, data, record.where);
 }
 
@@ -132,6 +139,7 @@ const ElementRegistration kShell281{
                           {"SMISC", "6", "MXY"},
                           {"SMISC", "7", "QXZ"},
                           {"SMISC", "8", "QYZ"}},
+     .esys_axes = true,
      // Faces 1 and 2 (bottom, top: all eight nodes), edges 3..6 (J-I, K-J, L-K, I-L and their
      // midside nodes); SF loads face 1.
      .faces = {{0, 1, 2, 3, 4, 5, 6, 7},

@@ -1,12 +1,14 @@
 // SHELL63 and SHELL181 (shell4.h): the factory that reads the model and the registrations.
 #include <fmt/format.h>
 
+#include <cmath>
 #include <memory>
 #include <stdexcept>
 
 #include "core/errors.h"
 #include "elements/element_registry.h"
 #include "elements/shell4.h"
+#include "elements/shell_frame.h"
 #include "elements/shell_laminate.h"
 #include "materials/isotropic_elasticity.h"
 #include "materials/j2_plasticity.h"
@@ -50,6 +52,19 @@ std::unique_ptr<Element> make_shell4(const ElementBuildContext& ctx, const Eleme
     data.positions.push_back(it->second.x);
   }
   data.node_ids = ids;
+  // ESYS: the angle about the normal from the facet's e1 (I-J, the axes the kernel works in)
+  // to the local system's x axis projected on the facet. The layer angles and the result axes
+  // (THETA) turn by it.
+  double esys_angle_deg = 0.0;
+  if (record.esys != 0) {
+    if (const std::string why = esys_refusal(model, record); !why.empty()) throw fail(why);
+    ShellCorners x(3, static_cast<Eigen::Index>(ids.size()));
+    for (std::size_t a = 0; a < ids.size(); ++a)
+      x.col(static_cast<Eigen::Index>(a)) = data.positions[a];
+    const ShellFrame f = shell_frame(x, false);
+    const Vec3 ex = shell_esys_x_axis(esys_axes_at(model, record.esys, f.c), f.e3());
+    esys_angle_deg = std::atan2(ex.dot(f.e2()), ex.dot(f.e1())) * 180.0 / M_PI;
+  }
 
   // A layered section (several SECDATA, or an orthotropic layer): SHELL181 takes a symmetric
   // laminate (shell_laminate.h); the material of the first layer gives E and ν otherwise.
@@ -70,6 +85,7 @@ std::unique_ptr<Element> make_shell4(const ElementBuildContext& ctx, const Eleme
       throw fail(e.what());
     }
     mat_id = layers.front().material;
+    for (shell::LayerInput& layer : layers) layer.theta_deg += esys_angle_deg;
     if (layers.size() > 1 || !layers.front().elasticity.isotropic) {
       if (!shell181)
         throw fail(
@@ -126,10 +142,11 @@ std::unique_ptr<Element> make_shell4(const ElementBuildContext& ctx, const Eleme
   // elements carry SECNUM 1 whether or not a section 1 exists).
   if (real != nullptr && !by_section) {
     k.efs = real->get(5);
-    data.theta_deg = real->get(6);
+    data.theta_deg = real->get(6);  // THETA
     k.rmi = real->get(7) != 0.0 ? real->get(7) : 1.0;
     k.added_mass = real->get(19);
   }
+  data.theta_deg += esys_angle_deg;
   k.membrane = type.key(1) != 2;
   k.bending = type.key(1) != 1;
   // SHELL63 KEYOPT(3) = 2 suppresses the extra shapes; SHELL181's KEYOPT(3) chooses reduced
@@ -173,6 +190,7 @@ ElementTypeDescriptor shell_type(const char* name, int number, bool shell181) {
                {"NL", "CREQ", "CREQ"},   {"EPCR", "X", "EPCRX"},    {"EPCR", "Y", "EPCRY"},
                {"EPCR", "Z", "EPCRZ"},   {"EPCR", "XY", "EPCRXY"},  {"EPCR", "YZ", "EPCRYZ"},
                {"EPCR", "XZ", "EPCRXZ"}, {"EPCR", "EQV", "EPCREQV"}},
+          .esys_axes = true,
           .plasticity = shell181,
           .faces = kShellFaces,
           .sf_faces = 1,

@@ -179,4 +179,11 @@ ShellMatNN frame_spin_derivative(const ShellFrame& f, const Vec3& w) {
   return frame_spin_derivative_n<9>(f, w);
 }
 
+Eigen::Vector3d shell_esys_x_axis(const Eigen::Matrix3d& local_axes, const Eigen::Vector3d& n) {
+  const Eigen::Vector3d x = local_axes.col(0) - local_axes.col(0).dot(n) * n;
+  if (x.norm() > 1e-3) return x.normalized();
+  const Eigen::Vector3d y = local_axes.col(1) - local_axes.col(1).dot(n) * n;
+  return y.normalized().cross(n);
+}
+
 }  // namespace impactfe

@@ -54,4 +54,10 @@ ShellMatNN side_hessian(const ShellFrame& f, const Eigen::Vector3d& y);
 /// co-rotated frame; Felippa & Haugen 2005, §7.3, there obtained for the triangle only).
 ShellMatNN frame_spin_derivative(const ShellFrame& f, const Eigen::Vector3d& w);
 
+/// The element x axis that ESYS gives a shell whose unit normal at a point is `n`: the local x
+/// axis projected on the tangent plane (MAPDL's ESYS for shells) or, when that projection is
+/// shorter than 10⁻³ (the axis within 0.06° of the normal), the local y axis projected and
+/// turned −90° about the normal, so that it becomes the element y axis.
+Eigen::Vector3d shell_esys_x_axis(const Eigen::Matrix3d& local_axes, const Eigen::Vector3d& n);
+
 }  // namespace impactfe

@@ -142,6 +142,8 @@ ExplicitSystem build_explicit_system(const Model& model) {
   std::map<std::string, std::vector<const ElementRecord*>> by_type, rigid_by_type;
   std::map<int, std::set<int>> rigid_nodes;  // material → node ids
   for (const auto& [id, record] : model.elements) {
+    if (const std::string why = esys_refusal(model, record); !why.empty())
+      throw InputError(record.where, fmt::format("element {}: {}", id, why));
     const std::string& type = model.element_type(record.type).ansys_name;
     if (e.rigid_materials.count(record.mat)) {
       rigid_by_type[type].push_back(&record);

@@ -59,6 +59,7 @@ Mesher::Attributes Mesher::resolve(const EntityAttributes& own) const {
   a.mat = own.mat > 0 ? own.mat : current_.mat;
   a.real = own.real > 0 ? own.real : current_.real;
   a.secnum = own.secnum > 0 ? own.secnum : current_.secnum;
+  a.esys = own.esys > 0 ? own.esys : current_.esys;
   if (model_.element_types.count(a.type) == 0)
     fail(fmt::format("element type {} is not defined (ET before meshing)", a.type));
   return a;
@@ -173,6 +174,7 @@ int Mesher::add_element(const Attributes& attr, std::vector<int> nodes) {
   e.mat = attr.mat;
   e.real = attr.real;
   e.secnum = attr.secnum;
+  e.esys = attr.esys;
   e.nodes = std::move(nodes);
   e.where = where_;
   model_.elements[id] = std::move(e);

@@ -34,13 +34,14 @@ inline bool free_grid(const AreaGrid& g) {
 /// Largest node or element number meshing may give (the deck's kMaxEntityNumber).
 inline constexpr long long kMaxMeshNumber = 2'000'000'000;
 
-/// The current element attribute pointers (TYPE, MAT, REAL, SECNUM) used for entities without
-/// their own xATT attributes.
+/// The current element attribute pointers (TYPE, MAT, REAL, SECNUM, ESYS) used for entities
+/// without their own xATT attributes.
 struct MeshPointers {
   int type = 1;
   int mat = 1;
   int real = 1;
   int secnum = 0;
+  int esys = 0;
   /// Most nodes and elements the model may hold (DeckOptions::max_nodes / max_elements): a
   /// mesh that would exceed them is refused before it is built (issue 12, resource bounds).
   std::size_t max_nodes = 10'000'000;
@@ -87,6 +88,7 @@ class Mesher {
     int mat = 1;
     int real = 1;
     int secnum = 0;
+    int esys = 0;
   };
   /// The entity's attributes, falling back on the current pointers; checks the element type.
   Attributes resolve(const EntityAttributes& own) const;

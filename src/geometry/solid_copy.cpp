@@ -196,8 +196,8 @@ void copy_mesh(Model& model, Mesher& mesher, const CopyRequest& q, const Closure
     std::vector<int> out;
     for (int e : list) {
       const ElementRecord rec = model.elements.at(e);
-      out.push_back(
-          mesher.add_element({rec.type, rec.mat, rec.real, rec.secnum}, nodes_of(rec.nodes)));
+      out.push_back(mesher.add_element({rec.type, rec.mat, rec.real, rec.secnum, rec.esys},
+                                       nodes_of(rec.nodes)));
     }
     return out;
   };

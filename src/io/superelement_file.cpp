@@ -225,6 +225,10 @@ std::string serialize_generation_model(const Model& model, bool lumped_mass,
     o << '\n';
   }
   for (const auto& [id, e] : model.elements) {
+    if (e.esys != 0)
+      throw InputError(e.where, fmt::format("element {}: ESYS {} is not carried into a "
+                                            "superelement (its coordinate systems are not stored)",
+                                            id, e.esys));
     o << "element " << id << ' ' << e.type << ' ' << e.real << ' ' << e.mat << ' ' << e.secnum
       << ' ' << e.nodes.size();
     for (int n : e.nodes) o << ' ' << n;
