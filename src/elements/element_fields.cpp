@@ -203,6 +203,13 @@ std::vector<ElementFields> make_table() {
                {{1, {0, 1}, "0 bending and membrane, 1 membrane only"},
                 {8, {0, 1, 2}, "layer data storage (a printout option: no effect here)"},
                 {9, {0}, "1 (user thickness routine) is not supported"}}});
+  t.push_back({"SHELL208",
+               {},
+               {{3,
+                 {0, 2},
+                 "0 one integration point along the length; 2 an extra internal node (quadratic, "
+                 "condensed), two points"},
+                {8, {0, 1, 2}, "layer data storage (a printout option: no effect here)"}}});
   t.push_back({"MATRIX50", {}, {}});
   // Contact (APDL_MODELING §8.4, docs/elements/conta174.md, conta175.md, conta178.md).
   t.push_back({"CONTA174", surface_contact_constants(), surface_contact_keyopts()});

@@ -111,6 +111,9 @@ std::map<std::string, Probe> probes() {
         "N,8,0,0.7\n",
         {0.1, 0.12, 0.14, 0.16},
         "E,1,2,3,4,5,6,7,8"}},
+      // An axisymmetric cone segment: both radial and axial extent, so membrane, bending and
+      // hoop terms all act.
+      {"SHELL208", {"SECTYPE,1,SHELL\nSECDATA,0.1\nN,1,1,0\nN,2,2,1.5\n", {}, "SECNUM,1\nE,1,2"}},
       {"PLANE182",
        {"N,1,0,0\nN,2,2,0\nN,3,2.2,1.5\nN,4,0,1.4\n", {0.1}, "E,1,2,3,4", {}, "KEYOPT,1,3,3\n"}},
       // The 6-node triangle (K = L = O), so that KEYOPT(1) = 1 (the triangle form, E with
@@ -145,6 +148,8 @@ const std::map<std::string, std::string>& by_design() {
         {"SHELL181 K3=2", "both integrations are computed with the SHELL63 kernel's extra shapes"},
         {"SHELL181 K8=1", "layer data storage: a printout option (docs/elements/shell181.md)"},
         {"SHELL181 K8=2", "layer data storage: a printout option (docs/elements/shell181.md)"},
+        {"SHELL208 K8=1", "layer data storage: a printout option (docs/elements/shell208.md)"},
+        {"SHELL208 K8=2", "layer data storage: a printout option (docs/elements/shell208.md)"},
         {"SHELL281 K8=1", "layer data storage: a printout option (docs/elements/shell281.md)"},
         {"SHELL281 K8=2", "layer data storage: a printout option (docs/elements/shell281.md)"},
         {"BEAM188 K3=2",
