@@ -387,6 +387,17 @@ double get_post1_sum(DeckReader& r, const Command& c, const GetRequest& g) {
   unsupported(r, c, g, "MAX, MIN, IMAX, IMIN");
 }
 
+// *GET,Par,PLNSOL,0,MIN|MAX: the extremes of the last contour picture (PLNSOL, PLESOL,
+// PLETAB) over what it drew.
+double get_contour_range(DeckReader& r, const Command& c, const GetRequest& g) {
+  const auto& range = post_state(r).contour_range;
+  if (!range)
+    r.fail(c, fmt::format("{}: no contour picture (PLNSOL, PLESOL, PLETAB) was drawn", g.what()));
+  if (g.item1 == "MIN") return range->first;
+  if (g.item1 == "MAX") return range->second;
+  unsupported(r, c, g, "MIN, MAX");
+}
+
 // *GET,Par,VARI,n,...: a POST26 variable's extremes or its value at a time or location.
 double get_variable(DeckReader& r, const Command& c, const GetRequest& g) {
   const int n = integer_field(r, c, g, g.entnum);
@@ -477,6 +488,7 @@ std::optional<GetValue> get_value(DeckReader& r, const Command& c, const GetRequ
   if (e == "MODE") return GetValue{get_mode(r, c, g)};
   if (e == "FSUM" || e == "SSUM" || e == "SORT") return GetValue{get_post1_sum(r, c, g)};
   if (e == "VARI") return GetValue{get_variable(r, c, g)};
+  if (e == "PLNSOL" || e == "PLNS") return GetValue{get_contour_range(r, c, g)};
   if (e == "ETYP") return GetValue{get_element_type(r, c, g)};
   // REAL: the name Workbench input files write for RCON (*get,,real,0,NUM,MAX).
   if (e == "RCON" || e == "REAL") return GetValue{get_real_constant(r, c, g)};

@@ -130,10 +130,11 @@ void cmd_pldisp(DeckReader& r, const Command& c) {
 }
 
 /// Contour pictures: each shape gets its element's value (`element_value`) or its nodes' values
-/// (`node_value`, shaded in between); the scale spans the values drawn.
+/// (`node_value` of the element at the node, shaded in between); the scale spans the values
+/// drawn.
 void contour_picture(DeckReader& r, const Command& c, const std::string& what,
                      const std::function<std::optional<double>(int element)>& element_value,
-                     const std::function<std::optional<double>(int node)>& node_value,
+                     const std::function<std::optional<double>(int element, int node)>& node_value,
                      int kund_field) {
   Deformed d = deformed_layer(r, c, kund_field);
   std::vector<PlotShape> shapes;
@@ -153,7 +154,7 @@ void contour_picture(DeckReader& r, const Command& c, const std::string& what,
       for (int n : piece.nodes) {
         sh.points.push_back(d.position(n));
         if (!node_value) continue;
-        const auto v = node_value(n);
+        const auto v = node_value(e, n);
         complete = complete && v && std::isfinite(*v);
         sh.point_values.push_back(v.value_or(0.0));
       }
@@ -170,6 +171,7 @@ void contour_picture(DeckReader& r, const Command& c, const std::string& what,
     }
   }
   if (scale.min > scale.max) r.fail(c, fmt::format("no selected element has {} values", what));
+  post_state(r).contour_range = std::make_pair(scale.min, scale.max);
   d.layer.shapes = std::move(shapes);
   draw(r, c, {"impactfe", "POST1 " + what}, std::move(d.layer), std::move(d.undeformed), scale);
 }
@@ -182,7 +184,7 @@ void cmd_plnsol(DeckReader& r, const Command& c) {
   std::map<int, std::optional<double>> at_node;
   contour_picture(
       r, c, item.labels[0], {},
-      [&](int node) {
+      [&](int, int node) {
         if (at_node.count(node) == 0) at_node[node] = nodal_item_value(r, c, item, 0, node);
         return at_node[node];
       },
@@ -190,12 +192,23 @@ void cmd_plnsol(DeckReader& r, const Command& c) {
 }
 
 void cmd_plesol(DeckReader& r, const Command& c) {
-  // PLESOL,Item,Comp,KUND,Fact: element values, flat per element.
+  // PLESOL,Item,Comp,KUND,Fact: each element's own values, not averaged across elements (MAPDL's
+  // discontinuous contours): for the stresses and strains its values at its nodes, extrapolated
+  // where the element has them; other items flat per element.
   const std::string item = r.label(c, 1), comp = r.label(c, 2);
   if (item.empty()) r.fail(c, "Item missing");
+  const bool per_node = (item == "S" || item == "EPEL" || item == "EPPL" || item == "EPCR") &&
+                        !comp.empty() && comp != "COMP" && comp != "PRIN";
+  std::optional<NodalItem> nodal;
+  if (per_node) nodal = nodal_item(r, c, item, comp);
   contour_picture(
       r, c, comp.empty() ? item : item + "," + comp,
-      [&](int e) { return element_result(r, c, e, item, comp); }, {}, 3);
+      [&](int e) { return element_result(r, c, e, item, comp); },
+      per_node ? std::function<std::optional<double>(int, int)>([&](int e, int node) {
+        return element_item_value_at_node(r, c, *nodal, 0, e, node);
+      })
+               : std::function<std::optional<double>(int, int)>(),
+      3);
 }
 
 void cmd_pletab(DeckReader& r, const Command& c) {

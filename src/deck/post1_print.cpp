@@ -112,56 +112,62 @@ NodalItem nodal_item(DeckReader& r, const Command& c, const std::string& item_in
   return out;
 }
 
+std::optional<double> element_item_value_at_node(DeckReader& r, const Command& c,
+                                                 const NodalItem& item, std::size_t k, int e,
+                                                 int node) {
+  const int direction = tensor_direction(item.elements[k]);
+  static const std::array<const char*, 6> kComponents = {"X", "Y", "Z", "XY", "YZ", "XZ"};
+  // The element's values extrapolated to this node when it has them, else its centroid value.
+  const ElementTypeDescriptor* d = find_element_type(element_type_name(r, e));
+  std::optional<std::map<int, std::vector<double>>> at;
+  const auto at_node = [&](const std::string& comp) -> std::optional<double> {
+    if (d == nullptr) return std::nullopt;
+    const auto seq = find_result_sequence(*d, item.element_item, comp);
+    if (!seq) return std::nullopt;
+    // A shell's surface items at the SHELL location (TOP, MID, BOT).
+    const auto column = std::find(d->result_names.begin(), d->result_names.end(),
+                                  shell_location_column(r, seq->name));
+    if (column == d->result_names.end()) return std::nullopt;
+    if (!at) at = element_nodal_results(r, c, e);
+    if (at->count(node) == 0) return std::nullopt;
+    // A homogeneous element of a type whose layered elements have more columns.
+    const auto index = static_cast<std::size_t>(column - d->result_names.begin());
+    if (index >= at->at(node).size()) return std::nullopt;
+    return at->at(node)[index];
+  };
+  std::optional<double> v;
+  if (direction >= 0 && is_tensor_item(item.element_item)) {
+    // A stress or strain component: the element's tensor at the node (or its centroid values;
+    // absent components 0 in its axes), rotated into the results system at the node.
+    std::array<std::optional<double>, 6> six;
+    for (std::size_t i = 0; i < six.size(); ++i) six[i] = at_node(kComponents[i]);
+    if (std::none_of(six.begin(), six.end(), [](const auto& x) { return x.has_value(); }))
+      for (std::size_t i = 0; i < six.size(); ++i)
+        six[i] = stored_element_result(r, c, e, item.element_item, kComponents[i]);
+    if (std::any_of(six.begin(), six.end(), [](const auto& x) { return x.has_value(); })) {
+      std::array<double, 6> stored{};
+      for (std::size_t i = 0; i < six.size(); ++i)
+        stored[i] = six[i] && std::isfinite(*six[i]) ? *six[i] : 0.0;
+      v = tensor_in_results_system(r, c, e, item.element_item, stored, direction,
+                                   r.model.node(node).x);
+    }
+  } else {
+    v = at_node(item.elements[k]);
+    if (!v) v = stored_element_result(r, c, e, item.element_item, item.elements[k]);
+  }
+  if (v && !std::isfinite(*v)) return std::nullopt;
+  return v;
+}
+
 std::optional<double> nodal_item_value(DeckReader& r, const Command& c, const NodalItem& item,
                                        std::size_t k, int node) {
   if (item.element_item.empty()) return nodal_result(r, c, node, item.labels[k]);
   double sum = 0.0;
   int n = 0;
-  const int direction = tensor_direction(item.elements[k]);
-  static const std::array<const char*, 6> kComponents = {"X", "Y", "Z", "XY", "YZ", "XZ"};
   for (int e : selected_elements(r)) {
     const auto& nodes = r.model.elements.at(e).nodes;
     if (std::find(nodes.begin(), nodes.end(), node) == nodes.end()) continue;
-    // The element's values extrapolated to this node when it has them (the 2-D solids),
-    // else its centroid value.
-    const ElementTypeDescriptor* d = find_element_type(element_type_name(r, e));
-    std::optional<std::map<int, std::vector<double>>> at;
-    const auto at_node = [&](const std::string& comp) -> std::optional<double> {
-      if (d == nullptr) return std::nullopt;
-      const auto seq = find_result_sequence(*d, item.element_item, comp);
-      if (!seq) return std::nullopt;
-      // A shell's surface items at the SHELL location (TOP, MID, BOT).
-      const auto column = std::find(d->result_names.begin(), d->result_names.end(),
-                                    shell_location_column(r, seq->name));
-      if (column == d->result_names.end()) return std::nullopt;
-      if (!at) at = element_nodal_results(r, c, e);
-      if (at->count(node) == 0) return std::nullopt;
-      // A homogeneous element of a type whose layered elements have more columns.
-      const auto index = static_cast<std::size_t>(column - d->result_names.begin());
-      if (index >= at->at(node).size()) return std::nullopt;
-      return at->at(node)[index];
-    };
-    std::optional<double> v;
-    if (direction >= 0 && is_tensor_item(item.element_item)) {
-      // A stress or strain component: the element's tensor at the node (or its centroid
-      // values; absent components 0 in its axes), rotated into the results system at the node.
-      std::array<std::optional<double>, 6> six;
-      for (std::size_t i = 0; i < six.size(); ++i) six[i] = at_node(kComponents[i]);
-      if (std::none_of(six.begin(), six.end(), [](const auto& x) { return x.has_value(); }))
-        for (std::size_t i = 0; i < six.size(); ++i)
-          six[i] = stored_element_result(r, c, e, item.element_item, kComponents[i]);
-      if (std::any_of(six.begin(), six.end(), [](const auto& x) { return x.has_value(); })) {
-        std::array<double, 6> stored{};
-        for (std::size_t i = 0; i < six.size(); ++i)
-          stored[i] = six[i] && std::isfinite(*six[i]) ? *six[i] : 0.0;
-        v = tensor_in_results_system(r, c, e, item.element_item, stored, direction,
-                                     r.model.node(node).x);
-      }
-    } else {
-      v = at_node(item.elements[k]);
-      if (!v) v = stored_element_result(r, c, e, item.element_item, item.elements[k]);
-    }
-    if (v && std::isfinite(*v)) {
+    if (const auto v = element_item_value_at_node(r, c, item, k, e, node)) {
       sum += *v;
       ++n;
     }

@@ -24,6 +24,12 @@ NodalItem nodal_item(DeckReader& r, const Command& c, const std::string& item,
 /// elements at the node that have the element item (nullopt when none has it).
 std::optional<double> nodal_item_value(DeckReader& r, const Command& c, const NodalItem& item,
                                        std::size_t k, int node);
+/// Column k of an element item (S, EPEL, ...) of element e at its node: its values extrapolated
+/// to the node where it has them, else its centroid value, in the results system (RSYS);
+/// nullopt when it has no such item.
+std::optional<double> element_item_value_at_node(DeckReader& r, const Command& c,
+                                                 const NodalItem& item, std::size_t k, int e,
+                                                 int node);
 
 /// PRETAB's table: one row per element, then MINIMUM / MAXIMUM VALUES.
 std::string element_table_listing(const std::vector<int>& elements,

@@ -86,6 +86,9 @@ struct PostState {
   std::unique_ptr<ModelPicture> picture;  // the picture /NOERASE keeps drawing on
   std::string picture_path;
   int n_pictures = 0;
+  // The least and greatest value of the last contour picture (PLNSOL, PLESOL, PLETAB) over what
+  // it drew: *GET,Par,PLNSOL,0,MIN|MAX.
+  std::optional<std::pair<double, double>> contour_range;
 
   // ---- POST26 -----------------------------------------------------------------------------
   int numvar = 10;

@@ -79,6 +79,29 @@ TEST(DeckVmInputs, GetNodeStressOfPlaneSolids) {
   EXPECT_NEAR(v[2], -600.0, 1e-6);
 }
 
+// *GET,Par,PLNSOL,0,MIN|MAX (14 VM decks): the extremes of the last contour picture. Three
+// plane-stress PLANE182 in a row, thicknesses 1, 2, 1, ν = 0, pulled by 100: σx = 100, 50, 100
+// exactly. PLNSOL averages the elements at a node (75 where the thin and thick meet), PLESOL
+// draws each element's own values (50 in the middle one).
+TEST(DeckVmInputs, GetExtremesOfTheLastContourPicture) {
+  const auto run = testing::run_deck_text(
+      "vm_get_plnsol",
+      "/PREP7\nET,1,PLANE182,,,3\nR,1,1\nR,2,2\nMP,EX,1,2E5\nMP,NUXY,1,0\nN,1\nN,2,1\nN,3,2\n"
+      "N,4,3\nN,5,0,1\nN,6,1,1\nN,7,2,1\nN,8,3,1\nREAL,1\nE,1,2,6,5\nREAL,2\nE,2,3,7,6\n"
+      "REAL,1\nE,3,4,8,7\nFINISH\n/SOLU\nD,1,UX,,,,,UY\nD,5,UX\nF,4,FX,50\nF,8,FX,50\n"
+      "SOLVE\nFINISH\n/POST1\nSET,LAST\nPLNSOL,S,X\n*GET,NMIN,PLNSOL,0,MIN\n"
+      "*GET,NMAX,PLNSOL,0,MAX\nPLESOL,S,X\n*GET,EMIN,PLNSOL,0,MIN\n*GET,EMAX,PLNSOL,0,MAX\n"
+      "/OUT,contour_range,txt\n*VWRITE,NMIN,NMAX,EMIN,EMAX\n(4E18.9)\n/OUT\n");
+  const auto v = numbers_in(run, "contour_range.txt");
+  ASSERT_EQ(v.size(), 4u);
+  EXPECT_NEAR(v[0], 75.0, 1e-7);
+  EXPECT_NEAR(v[1], 100.0, 1e-7);
+  EXPECT_NEAR(v[2], 50.0, 1e-7);
+  EXPECT_NEAR(v[3], 100.0, 1e-7);
+  EXPECT_NE(error_of("/POST1\n*GET,X,PLNSOL,0,MIN\n").find("no contour picture"),
+            std::string::npos);
+}
+
 // DERIV with a blank IX (vm84, vm85) differentiates with respect to variable 1, the time; RESUME
 // in POST26 (vm81, vm182) brings back the parameters a SAVE kept.
 TEST(DeckVmInputs, DerivWithBlankArgumentAndResumeInPost26) {
