@@ -89,6 +89,24 @@ inline double value_stored_at(const std::vector<std::pair<double, double>>& seri
   return NAN;
 }
 
+/// The last stored value of a nodal quantity (ResultsReader::nodal_series); a test failure and
+/// NaN when none was stored.
+inline double last_nodal_value(const ResultsReader& r, int node, const std::string& lab) {
+  const auto series = r.nodal_series(node, lab);
+  EXPECT_FALSE(series.empty()) << "node " << node << " " << lab;
+  return series.empty() ? NAN : series.back().second;
+}
+
+/// The message a deck run stops with ("" when it runs to its end).
+inline std::string run_deck_error(const std::string& tag, const std::string& text) {
+  try {
+    run_deck_text(tag, text);
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "";
+}
+
 /// Linear interpolation of a (time, value) series at time t (clamped to its ends).
 inline double value_at(const std::vector<std::pair<double, double>>& series, double t) {
   if (t <= series.front().first) return series.front().second;

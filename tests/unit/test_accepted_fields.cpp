@@ -226,7 +226,7 @@ TEST(AcceptedFields, MpchgWithinOneAnalysisIsRefused) {
                  bar_deck("LINK180", "1", kRho,
                           fmt::format("MP,EX,2,{}\nANTYPE,STATIC\nF,2,FX,1000\nSOLVE\n{}\nSOLVE\n",
                                       2 * kE, change)));
-    EXPECT_NE(err.find("element 1 changed (type, real constants, material, section or nodes) "
+    EXPECT_NE(err.find("element 1 changed (type, real constants, material, section, ESYS or nodes) "
                        "since this analysis began at"),
               std::string::npos)
         << change << ": " << err;

@@ -13,20 +13,8 @@
 namespace impactfe::test_constraint_equations {
 namespace {
 
-double last(const ResultsReader& r, int node, const std::string& lab) {
-  const auto series = r.nodal_series(node, lab);
-  EXPECT_FALSE(series.empty()) << "node " << node << " " << lab;
-  return series.empty() ? std::nan("") : series.back().second;
-}
-
-std::string error_of(const std::string& tag, const std::string& text) {
-  try {
-    testing::run_deck_text(tag, text);
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "";
-}
+using testing::last_nodal_value;
+using testing::run_deck_error;
 
 // Two UX springs to ground, k1 at node 2 and k2 at node 4, tied by u2 = 2 u4 (CE,,0,2,UX,1,4,UX,
 // -2: node 2 is the slave). The reduced system has one DOF, u4, with stiffness 4 k1 + k2 and load
@@ -42,12 +30,13 @@ TEST(ConstraintEquations, EquationTyingTwoSpringsClosedForm) {
   const auto run = testing::run_deck_text("ce_two_springs", deck);
   const double k1 = 100, k2 = 300, F = 70;
   const double u4 = F / (4 * k1 + k2);
-  EXPECT_NEAR(last(*run.reader, 4, "UX"), u4, 1e-12);
-  EXPECT_NEAR(last(*run.reader, 2, "UX"), 2 * u4, 1e-12);  // the slave's value, recovered
+  EXPECT_NEAR(last_nodal_value(*run.reader, 4, "UX"), u4, 1e-12);
+  EXPECT_NEAR(last_nodal_value(*run.reader, 2, "UX"), 2 * u4,
+              1e-12);  // the slave's value, recovered
   // Reactions: each spring's ground end. They do not sum to −F: u2 = 2 u4 is a lever, whose
   // constraint force (λ on u2, −2λ on u4) has a resultant of its own.
-  EXPECT_NEAR(last(*run.reader, 1, "FX"), -k1 * 2 * u4, 1e-9);
-  EXPECT_NEAR(last(*run.reader, 3, "FX"), -k2 * u4, 1e-9);
+  EXPECT_NEAR(last_nodal_value(*run.reader, 1, "FX"), -k1 * 2 * u4, 1e-9);
+  EXPECT_NEAR(last_nodal_value(*run.reader, 3, "FX"), -k2 * u4, 1e-9);
 }
 
 TEST(ConstraintEquations, ForceOnTheSlaveActsOnItsMasters) {
@@ -56,8 +45,8 @@ TEST(ConstraintEquations, ForceOnTheSlaveActsOnItsMasters) {
                            "F,2,FX,70\nSOLVE\nFINISH\n";
   const auto run = testing::run_deck_text("ce_slave_force", deck);
   const double u4 = 2 * 70.0 / (4 * 100.0 + 300.0);
-  EXPECT_NEAR(last(*run.reader, 4, "UX"), u4, 1e-12);
-  EXPECT_NEAR(last(*run.reader, 2, "UX"), 2 * u4, 1e-12);
+  EXPECT_NEAR(last_nodal_value(*run.reader, 4, "UX"), u4, 1e-12);
+  EXPECT_NEAR(last_nodal_value(*run.reader, 2, "UX"), 2 * u4, 1e-12);
 }
 
 TEST(ConstraintEquations, HeldFirstDofLeavesTheEliminationToTheNext) {
@@ -68,10 +57,10 @@ TEST(ConstraintEquations, HeldFirstDofLeavesTheEliminationToTheNext) {
                            "CE,1,0,2,UX,1,4,UX,-2\nFINISH\n/SOLU\nANTYPE,STATIC\nD,1,UX\nD,3,UX\n"
                            "D,2,UX,0.1\nSOLVE\nFINISH\n";
   const auto run = testing::run_deck_text("ce_held_first", deck);
-  EXPECT_NEAR(last(*run.reader, 4, "UX"), 0.05, 1e-12);
-  EXPECT_NEAR(last(*run.reader, 2, "FX"), 17.5, 1e-9);
-  EXPECT_NEAR(last(*run.reader, 1, "FX"), -10.0, 1e-9);
-  EXPECT_NEAR(last(*run.reader, 3, "FX"), -15.0, 1e-9);
+  EXPECT_NEAR(last_nodal_value(*run.reader, 4, "UX"), 0.05, 1e-12);
+  EXPECT_NEAR(last_nodal_value(*run.reader, 2, "FX"), 17.5, 1e-9);
+  EXPECT_NEAR(last_nodal_value(*run.reader, 1, "FX"), -10.0, 1e-9);
+  EXPECT_NEAR(last_nodal_value(*run.reader, 3, "FX"), -15.0, 1e-9);
 }
 
 TEST(ConstraintEquations, ConstantPrescribesARelativeDisplacement) {
@@ -83,10 +72,11 @@ TEST(ConstraintEquations, ConstantPrescribesARelativeDisplacement) {
                            "D,1,UX\nD,3,UX\nSOLVE\nFINISH\n";
   const auto run = testing::run_deck_text("ce_constant", deck);
   const double k1 = 100, k2 = 300;
-  EXPECT_NEAR(last(*run.reader, 2, "UX"), 0.5 * k2 / (k1 + k2), 1e-12);
-  EXPECT_NEAR(last(*run.reader, 4, "UX"), -0.5 * k1 / (k1 + k2), 1e-12);
-  EXPECT_NEAR(last(*run.reader, 1, "FX"), -k1 * 0.5 * k2 / (k1 + k2), 1e-9);
-  EXPECT_NEAR(last(*run.reader, 3, "FX"), -last(*run.reader, 1, "FX"), 1e-9);
+  EXPECT_NEAR(last_nodal_value(*run.reader, 2, "UX"), 0.5 * k2 / (k1 + k2), 1e-12);
+  EXPECT_NEAR(last_nodal_value(*run.reader, 4, "UX"), -0.5 * k1 / (k1 + k2), 1e-12);
+  EXPECT_NEAR(last_nodal_value(*run.reader, 1, "FX"), -k1 * 0.5 * k2 / (k1 + k2), 1e-9);
+  EXPECT_NEAR(last_nodal_value(*run.reader, 3, "FX"), -last_nodal_value(*run.reader, 1, "FX"),
+              1e-9);
 }
 
 TEST(ConstraintEquations, EquationsSurviveSaveAndResume) {
@@ -95,8 +85,8 @@ TEST(ConstraintEquations, EquationsSurviveSaveAndResume) {
                            "CE,1,0,2,UX,1,4,UX,-2\nSAVE\nCEDELE,ALL\nRESUME\nFINISH\n/SOLU\n"
                            "ANTYPE,STATIC\nD,1,UX\nD,3,UX\nF,4,FX,70\nSOLVE\nFINISH\n";
   const auto run = testing::run_deck_text("ce_resume", deck);
-  EXPECT_NEAR(last(*run.reader, 2, "UX"), 0.2, 1e-12);
-  EXPECT_NEAR(last(*run.reader, 4, "UX"), 0.1, 1e-12);
+  EXPECT_NEAR(last_nodal_value(*run.reader, 2, "UX"), 0.2, 1e-12);
+  EXPECT_NEAR(last_nodal_value(*run.reader, 4, "UX"), 0.1, 1e-12);
 }
 
 TEST(ConstraintEquations, ConstantAppliesToTheTotalInANonlinearRun) {
@@ -106,8 +96,8 @@ TEST(ConstraintEquations, ConstantAppliesToTheTotalInANonlinearRun) {
                            "CE,1,0.5,2,UX,1,4,UX,-1\nFINISH\n/SOLU\nANTYPE,STATIC\nNSUBST,2\n"
                            "OUTRES,ALL,ALL\nD,1,UX\nD,3,UX\nSOLVE\nFINISH\n";
   const auto run = testing::run_deck_text("ce_constant_substeps", deck);
-  EXPECT_NEAR(last(*run.reader, 2, "UX"), 0.5 * 300 / 400.0, 1e-12);
-  EXPECT_NEAR(last(*run.reader, 4, "UX"), -0.5 * 100 / 400.0, 1e-12);
+  EXPECT_NEAR(last_nodal_value(*run.reader, 2, "UX"), 0.5 * 300 / 400.0, 1e-12);
+  EXPECT_NEAR(last_nodal_value(*run.reader, 4, "UX"), -0.5 * 100 / 400.0, 1e-12);
 }
 
 TEST(ConstraintEquations, RigidRegionCarriesAMomentAsAForceCouple2D) {
@@ -122,12 +112,12 @@ TEST(ConstraintEquations, RigidRegionCarriesAMomentAsAForceCouple2D) {
       "F,1,MZ,40\nSOLVE\nFINISH\n";
   const auto run = testing::run_deck_text("cerig_couple_2d", deck);
   const double theta = M / (2 * k * h * h);
-  EXPECT_NEAR(last(*run.reader, 1, "ROTZ"), theta, 1e-12);
-  EXPECT_NEAR(last(*run.reader, 1, "UX"), 0.0, 1e-12);
-  EXPECT_NEAR(last(*run.reader, 2, "UX"), -theta * h, 1e-12);
-  EXPECT_NEAR(last(*run.reader, 3, "UX"), theta * h, 1e-12);
-  EXPECT_NEAR(last(*run.reader, 4, "FX"), M / (2 * h), 1e-9);
-  EXPECT_NEAR(last(*run.reader, 5, "FX"), -M / (2 * h), 1e-9);
+  EXPECT_NEAR(last_nodal_value(*run.reader, 1, "ROTZ"), theta, 1e-12);
+  EXPECT_NEAR(last_nodal_value(*run.reader, 1, "UX"), 0.0, 1e-12);
+  EXPECT_NEAR(last_nodal_value(*run.reader, 2, "UX"), -theta * h, 1e-12);
+  EXPECT_NEAR(last_nodal_value(*run.reader, 3, "UX"), theta * h, 1e-12);
+  EXPECT_NEAR(last_nodal_value(*run.reader, 4, "FX"), M / (2 * h), 1e-9);
+  EXPECT_NEAR(last_nodal_value(*run.reader, 5, "FX"), -M / (2 * h), 1e-9);
 }
 
 TEST(ConstraintEquations, RigidRegionCarriesAMomentAsAForceCouple3D) {
@@ -141,10 +131,10 @@ TEST(ConstraintEquations, RigidRegionCarriesAMomentAsAForceCouple3D) {
       "D,4,UX\nD,5,UX\nD,1,UY,,,,,UZ,ROTX,ROTZ\nF,1,MY,10\nSOLVE\nFINISH\n";
   const auto run = testing::run_deck_text("cerig_couple_3d", deck);
   const double theta = M / (2 * k * h * h);
-  EXPECT_NEAR(last(*run.reader, 1, "ROTY"), theta, 1e-12);
-  EXPECT_NEAR(last(*run.reader, 2, "UX"), theta * h, 1e-12);
-  EXPECT_NEAR(last(*run.reader, 4, "FX"), -M / (2 * h), 1e-9);
-  EXPECT_NEAR(last(*run.reader, 5, "FX"), M / (2 * h), 1e-9);
+  EXPECT_NEAR(last_nodal_value(*run.reader, 1, "ROTY"), theta, 1e-12);
+  EXPECT_NEAR(last_nodal_value(*run.reader, 2, "UX"), theta * h, 1e-12);
+  EXPECT_NEAR(last_nodal_value(*run.reader, 4, "FX"), -M / (2 * h), 1e-9);
+  EXPECT_NEAR(last_nodal_value(*run.reader, 5, "FX"), M / (2 * h), 1e-9);
 }
 
 TEST(ConstraintEquations, RigidBeamWithTipMassModalClosedForm) {
@@ -170,25 +160,25 @@ TEST(ConstraintEquations, RigidLinkKeepsItsLengthBetweenSprings) {
       "TYPE,1\nE,2,3\nTYPE,2\nREAL,2\nE,1,2\nREAL,3\nE,3,4\nFINISH\n/SOLU\nANTYPE,STATIC\n"
       "D,1,ALL\nD,4,ALL\nF,3,FX,80\nSOLVE\nFINISH\n";
   const auto run = testing::run_deck_text("mpc184_link", deck);
-  EXPECT_NEAR(last(*run.reader, 2, "UX"), 0.2, 1e-12);
-  EXPECT_NEAR(last(*run.reader, 3, "UX"), 0.2, 1e-12);
-  EXPECT_NEAR(last(*run.reader, 1, "FX"), -20.0, 1e-9);
-  EXPECT_NEAR(last(*run.reader, 4, "FX"), -60.0, 1e-9);
+  EXPECT_NEAR(last_nodal_value(*run.reader, 2, "UX"), 0.2, 1e-12);
+  EXPECT_NEAR(last_nodal_value(*run.reader, 3, "UX"), 0.2, 1e-12);
+  EXPECT_NEAR(last_nodal_value(*run.reader, 1, "FX"), -20.0, 1e-9);
+  EXPECT_NEAR(last_nodal_value(*run.reader, 4, "FX"), -60.0, 1e-9);
 }
 
 TEST(ConstraintEquations, RefusesJointsNlgeomAndMastersWithoutRotations) {
-  const std::string joint =
-      error_of("mpc184_joint",
-               "/PREP7\nET,1,MPC184,6\nN,1\nN,2,1\nE,1,2\nFINISH\n/SOLU\nANTYPE,STATIC\nD,1,ALL\n"
-               "SOLVE\nFINISH\n");
+  const std::string joint = run_deck_error(
+      "mpc184_joint",
+      "/PREP7\nET,1,MPC184,6\nN,1\nN,2,1\nE,1,2\nFINISH\n/SOLU\nANTYPE,STATIC\nD,1,ALL\n"
+      "SOLVE\nFINISH\n");
   EXPECT_NE(joint.find("KEYOPT(1) = 6"), std::string::npos) << joint;
   EXPECT_NE(joint.find("joints"), std::string::npos) << joint;
-  const std::string nlgeom = error_of(
+  const std::string nlgeom = run_deck_error(
       "mpc184_nlgeom",
       "/PREP7\nET,1,MPC184,1\nET,2,MASS21\nR,2,1,1,1,1,1,1\nN,1\nN,2,1\nTYPE,1\nE,1,2\nTYPE,2\n"
       "REAL,2\nE,2\nFINISH\n/SOLU\nANTYPE,STATIC\nNLGEOM,ON\nD,1,ALL\nF,2,FY,1\nSOLVE\nFINISH\n");
   EXPECT_NE(nlgeom.find("NLGEOM"), std::string::npos) << nlgeom;
-  const std::string no_rotation = error_of(
+  const std::string no_rotation = run_deck_error(
       "cerig_no_rotation", std::string(kTwoSprings) +
                                "CERIG,2,4\nFINISH\n/SOLU\nANTYPE,STATIC\nD,1,UX\nSOLVE\nFINISH\n");
   EXPECT_NE(no_rotation.find("no rotations"), std::string::npos) << no_rotation;

@@ -15,20 +15,8 @@
 namespace impactfe::test_element_esys {
 namespace {
 
-double last(const ResultsReader& r, int node, const std::string& lab) {
-  const auto series = r.nodal_series(node, lab);
-  EXPECT_FALSE(series.empty()) << "node " << node << " " << lab;
-  return series.empty() ? std::nan("") : series.back().second;
-}
-
-std::string error_of(const std::string& tag, const std::string& text) {
-  try {
-    testing::run_deck_text(tag, text);
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "";
-}
+using testing::last_nodal_value;
+using testing::run_deck_error;
 
 /// A 1 x 0.5 cantilever plate of an orthotropic three-layer section (angles a/b/a), clamped at
 /// x = 0, a transverse force and an in-plane shear force at the corner (1, 0.5); `esys_lines`
@@ -55,7 +43,8 @@ std::array<double, 3> tip_displacement(const std::string& tag, const std::string
     if (std::abs(x(k, 0) - 1.0) < 1e-9 && std::abs(x(k, 1) - 0.5) < 1e-9)
       tip = ids[static_cast<std::size_t>(k)];
   EXPECT_GT(tip, 0);
-  return {last(*run.reader, tip, "UX"), last(*run.reader, tip, "UY"), last(*run.reader, tip, "UZ")};
+  return {last_nodal_value(*run.reader, tip, "UX"), last_nodal_value(*run.reader, tip, "UY"),
+          last_nodal_value(*run.reader, tip, "UZ")};
 }
 
 void expect_same(const std::array<double, 3>& u, const std::array<double, 3>& v) {
@@ -134,18 +123,18 @@ TEST(ElementEsys, ResultAxesOfAnIsotropicShellFollowTheSystem) {
 }
 
 TEST(ElementEsys, RefusedWhereItIsNotCarriedOut) {
-  EXPECT_NE(error_of("esys_low", "/PREP7\nESYS,5\n").find("ESYS 5"), std::string::npos);
+  EXPECT_NE(run_deck_error("esys_low", "/PREP7\nESYS,5\n").find("ESYS 5"), std::string::npos);
   const std::string solid =
       "/PREP7\nET,1,SOLID185\nMP,EX,1,1e5\nMP,PRXY,1,0.3\nLOCAL,11,0,0,0,0,30\nCSYS,0\nESYS,11\n"
       "BLOCK,0,1,0,1,0,1\nESIZE,1\nVMESH,ALL\nNSEL,S,LOC,X,0\nD,ALL,ALL\nNSEL,S,LOC,X,1\n"
       "F,ALL,FX,1\nALLSEL\nFINISH\n/SOLU\nSOLVE\n";
-  const std::string message = error_of("esys_solid", solid);
+  const std::string message = run_deck_error("esys_solid", solid);
   EXPECT_NE(message.find("SOLID185 takes its axes from its nodes"), std::string::npos) << message;
   const std::string undefined =
       "/PREP7\nET,1,SHELL181\nMP,EX,1,1e5\nMP,PRXY,1,0.3\nSECTYPE,1,SHELL\nSECDATA,0.1\n"
       "ESYS,12\nRECTNG,0,1,0,1\nESIZE,1\nAMESH,ALL\nNSEL,S,LOC,X,0\nD,ALL,ALL\nALLSEL\nFINISH\n"
       "/SOLU\nSOLVE\n";
-  const std::string why = error_of("esys_undefined", undefined);
+  const std::string why = run_deck_error("esys_undefined", undefined);
   EXPECT_NE(why.find("ESYS 12 is not a defined local coordinate system"), std::string::npos) << why;
 }
 

@@ -240,6 +240,12 @@ Model one_element_model(const std::string& type) {
     m.sections[1] = Section{1, "BEAM", "RECT", {0.1, 0.1}};
     r.secnum = 1;
   }
+  // A shell that reads its thickness from a section only (SHELL208): one layer 0.1 thick.
+  const ElementFields* fields = element_fields(type);
+  if (d.accepts_section("SHELL") && (fields == nullptr || fields->real_constants.empty())) {
+    m.sections[1] = Section{1, "SHELL", "", {0.1}, {{0.1}}, ""};
+    r.secnum = 1;
+  }
   m.elements[1] = r;
   return m;
 }
@@ -276,8 +282,8 @@ TEST(ElementRegistry, EveryBuiltInTypeMatchesItsElementClass) {
     ++checked;
   }
   // LINK1 LINK8 LINK180 COMBIN14 MASS21 COMBIN40 SHELL63/181 SOLID45/185 SOLID186/187 BEAM188
-  // BEAM189 BEAM4 BEAM3 PLANE182/183 SHELL281 MPC184 MESH200 SOLID95/92
-  EXPECT_EQ(checked, 23);
+  // BEAM189 BEAM4 BEAM3 PLANE182/183 SHELL281 SHELL208 MPC184 MESH200 SOLID95/92
+  EXPECT_EQ(checked, 24);
 }
 
 }  // namespace

@@ -154,34 +154,29 @@ TEST_P(Shell208Deck, ClampedCircularPlateUnderUniformPressure) {
 INSTANTIATE_TEST_SUITE_P(Integration, Shell208Deck, ::testing::Values(0, 2));
 
 TEST(Shell208Deck, RefusesWhatItDoesNotCarryOut) {
-  const auto error_of = [](const std::string& tag, const std::string& text) {
-    try {
-      testing::run_deck_text(tag, text);
-    } catch (const std::exception& e) {
-      return std::string(e.what());
-    }
-    return std::string();
-  };
   const std::string base = "/PREP7\nET,1,SHELL208\nMP,EX,1,30E6\nMP,NUXY,1,.3\nN,1,1\nN,2,1,1\n";
   const std::string layered = base +
                               "SECTYPE,1,SHELL\nSECDATA,0.1,1\nSECDATA,0.1,1\nE,1,2\nD,1,ALL\n"
                               "F,2,FY,1\nFINISH\n/SOLU\nSOLVE\n";
-  EXPECT_NE(error_of("shell208_layered", layered).find("layered SHELL208"), std::string::npos);
+  EXPECT_NE(testing::run_deck_error("shell208_layered", layered).find("layered SHELL208"),
+            std::string::npos);
   const std::string large = base +
                             "SECTYPE,1,SHELL\nSECDATA,0.1\nE,1,2\nD,1,ALL\nF,2,FY,1\nFINISH\n"
                             "/SOLU\nNLGEOM,ON\nSOLVE\n";
-  EXPECT_NE(error_of("shell208_nlgeom", large).find("large deflection"), std::string::npos);
+  EXPECT_NE(testing::run_deck_error("shell208_nlgeom", large).find("large deflection"),
+            std::string::npos);
   // The apex of a dome sits on the axis (its bottom surface at the node crosses it): read;
   // a section thicker than the element's distance from the axis is not.
   const std::string apex =
       "/PREP7\nET,1,SHELL208\nMP,EX,1,30E6\nMP,NUXY,1,.3\nSECTYPE,1,SHELL\nSECDATA,0.01\n"
       "N,1,0,0.5\nN,2,0.02,0.499\nE,1,2\nD,1,UX,,,,,ROTZ\nD,2,ALL\nF,1,FY,-1\nFINISH\n/SOLU\n"
       "SOLVE\n";
-  EXPECT_EQ(error_of("shell208_apex", apex), "");
+  EXPECT_EQ(testing::run_deck_error("shell208_apex", apex), "");
   const std::string thick =
       "/PREP7\nET,1,SHELL208\nMP,EX,1,30E6\nMP,NUXY,1,.3\nSECTYPE,1,SHELL\nSECDATA,0.5\n"
       "N,1,0,0\nN,2,0.1,0.2\nE,1,2\nD,1,ALL\nFINISH\n/SOLU\nSOLVE\n";
-  EXPECT_NE(error_of("shell208_thick", thick).find("its thickness reaches across the axis"),
+  EXPECT_NE(testing::run_deck_error("shell208_thick", thick)
+                .find("its thickness reaches across the axis"),
             std::string::npos);
 }
 
