@@ -41,10 +41,11 @@ Mat3 skew(const Vec3& v) {
 }
 
 const std::vector<std::string> kShell281Results = {
-    "TX",       "TY",       "TXY",     "MX",      "MY",      "MXY",     "SX_TOP",   "SY_TOP",
-    "SXY_TOP",  "SX_MID",   "SY_MID",  "SXY_MID", "SX_BOT",  "SY_BOT",  "SXY_BOT",  "SEQV_TOP",
-    "SEQV_MID", "SEQV_BOT", "QXZ",     "QYZ",     "EPX_TOP", "EPY_TOP", "EPXY_TOP", "EPX_MID",
-    "EPY_MID",  "EPXY_MID", "EPX_BOT", "EPY_BOT", "EPXY_BOT"};
+    "TX",       "TY",       "TXY",     "MX",      "MY",       "MXY",     "SX_TOP",   "SY_TOP",
+    "SXY_TOP",  "SX_MID",   "SY_MID",  "SXY_MID", "SX_BOT",   "SY_BOT",  "SXY_BOT",  "SEQV_TOP",
+    "SEQV_MID", "SEQV_BOT", "QXZ",     "QYZ",     "EPX_TOP",  "EPY_TOP", "EPXY_TOP", "EPX_MID",
+    "EPY_MID",  "EPXY_MID", "EPX_BOT", "EPY_BOT", "EPXY_BOT", "EPEQ",    "PLWK",     "EPCRX",
+    "EPCRY",    "EPCRZ",    "EPCRXY",  "EPCRYZ",  "EPCRXZ",   "EPCREQV", "CREQ"};
 
 }  // namespace
 
@@ -114,6 +115,7 @@ Shell281::Shell281(int id, const Shell281Data& data, const SourceLocation& where
                                             id));
       volume_ += detJ * q.w;
     }
+  if (data_.plasticity) committed_.assign(bending_rule().size() * kPlasticPoints, PlasticState{});
 }
 
 void Shell281::shape(double xi, double eta, Eigen::VectorXd& N, Eigen::MatrixXd& dN) const {
@@ -330,9 +332,13 @@ Eigen::MatrixXd Shell281::shear_b(double xi, double eta, double zeta, const Mat3
 }
 
 Eigen::MatrixXd Shell281::stiffness() const {
+  const Eigen::MatrixXd K = membrane_bending_stiffness() + shear_drilling_stiffness();
+  return 0.5 * (K + K.transpose());
+}
+
+Eigen::MatrixXd Shell281::membrane_bending_stiffness() const {
   const int nd = 6 * n_;
   Eigen::MatrixXd K = Eigen::MatrixXd::Zero(nd, nd);
-  const double G = drill_g_;
   const Mat3 Qm = mean_q();
   Eigen::VectorXd N;
   Eigen::MatrixXd dN;
@@ -349,6 +355,16 @@ Eigen::MatrixXd Shell281::stiffness() const {
       K.noalias() += B.transpose() * Q * B * (detJ * q.w * z.w);
     }
   }
+  return K;
+}
+
+Eigen::MatrixXd Shell281::shear_drilling_stiffness() const {
+  const int nd = 6 * n_;
+  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(nd, nd);
+  const double G = drill_g_;
+  Eigen::VectorXd N;
+  Eigen::MatrixXd dN;
+  const std::vector<ThicknessPoint> rule = thickness_rule();
   if (!data_.membrane_only)
     for (const Rule& q : shear_rule()) {
       shape(q.xi, q.eta, N, dN);
@@ -374,7 +390,7 @@ Eigen::MatrixXd Shell281::stiffness() const {
       const double gamma = data_.drill_factor * G * thickness_at(N);
       K.noalias() += b.transpose() * b * (gamma * dA * q.w);
     }
-  return 0.5 * (K + K.transpose());
+  return K;
 }
 
 Eigen::MatrixXd Shell281::geometric_stiffness(const Eigen::VectorXd& u) const {
@@ -426,6 +442,15 @@ Eigen::MatrixXd Shell281::reduce(const Eigen::MatrixXd& A) const {
 
 void Shell281::tangent(const ElementContext& ctx, const Eigen::VectorXd& u, Eigen::MatrixXd& K,
                        Eigen::VectorXd& f_int) const {
+  if (data_.plasticity) {
+    if (ctx.stress_stiffening)
+      throw ElementSolutionError(
+          id(), fmt::format("element {}: stress stiffening is not implemented for SHELL281 with "
+                            "plasticity or creep",
+                            id()));
+    plastic_sum(u, K, f_int, nullptr);  // never membrane only (refused when built)
+    return;
+  }
   K = reduce(stiffness());
   f_int = K * u;
   if (ctx.stress_stiffening) K += reduce(geometric_stiffness(expand(u)));
@@ -568,6 +593,15 @@ const std::vector<std::string>& Shell281::result_names() const {
 }
 
 ElementResultValues Shell281::values_at(double xi, double eta, const Eigen::VectorXd& u) const {
+  if (data_.plasticity) {
+    // The values of the states at the points, interpolated at (ξ, η).
+    const std::vector<ElementResultValues> at = plastic_point_values(u);
+    const std::vector<double> w = point_weights(xi, eta);
+    ElementResultValues out(at.front().size(), 0.0);
+    for (std::size_t p = 0; p < at.size(); ++p)
+      for (std::size_t i = 0; i < out.size(); ++i) out[i] += w[p] * at[p][i];
+    return out;
+  }
   Eigen::VectorXd N;
   Eigen::MatrixXd dN;
   shape(xi, eta, N, dN);
@@ -628,6 +662,7 @@ ElementResultValues Shell281::values_at(double xi, double eta, const Eigen::Vect
                              eb(0),
                              eb(1),
                              eb(2)};
+  out.resize(kShell281Results.size(), 0.0);  // elastic: no inelastic strain
   if (!layered()) return out;
   // Each layer's stresses at its top, middle and bottom (layered_names() order); the unused
   // layers' columns stay zero.
@@ -685,6 +720,10 @@ ElementResultValues in_centre_axes(ElementResultValues v, double c, double s) {
 
 bool Shell281::nodal_results(const ElementContext&, const Eigen::VectorXd& u,
                              std::map<int, ElementResultValues>& at_node) const {
+  // With plasticity or creep the values depend on the history, which only the solution holds:
+  // the stored centroid values stand for the nodes (as for SHELL181 and MAPDL's ERESX for a
+  // nonlinear material, which copies the integration points' values).
+  if (data_.plasticity) return false;
   // Extrapolated from the 2 x 2 Gauss points of the quadrilateral (the 3 points of the triangle)
   // as MAPDL's SHELL281 reports its nodal results (ERESX default for a linear material): the
   // bilinear (linear) field through the points' values, evaluated at the nodes, so a midside

@@ -17,6 +17,10 @@
 /// - Triangle: the 3-point midside rule (degree 2) for membrane, bending and shear.
 /// - Drilling: Hughes–Brezzi penalty γ ∫ (θ·e3 − ½(∂v/∂x − ∂u/∂y))² dA, γ = G t, integrated
 ///   with the full rule, zero for a rigid rotation (Hughes & Brezzi 1989).
+/// - Plasticity and implicit creep (a TB table of a homogeneous isotropic section): the
+///   plane-stress J2 return (j2_plasticity.h) at the in-plane points of the membrane and bending
+///   rule and 5 Gauss–Lobatto points through the thickness (the surfaces among them), as
+///   SHELL181's; the transverse shear and drilling stay elastic.
 /// Small deflection only: NLGEOM,ON is refused when the element is built. KEYOPT(1) = 1
 /// (membrane only) has the translations alone.
 #include <Eigen/Core>
@@ -28,6 +32,7 @@
 
 #include "elements/element.h"
 #include "elements/shell_laminate.h"
+#include "materials/j2_plasticity.h"
 
 namespace impactfe {
 
@@ -52,6 +57,8 @@ struct Shell281Data {
   /// lamina frame's e1 is then their x axis projected on the surface (shell_esys_x_axis), not
   /// ∂X/∂ξ. It orients the layer angles and the element results.
   std::optional<Eigen::Matrix3d> esys_axes;
+  /// TB plasticity or implicit creep of the (homogeneous, isotropic) section (plasticity_of).
+  std::optional<J2Plasticity> plasticity;
 };
 
 class Shell281 : public Element {
@@ -62,8 +69,11 @@ class Shell281 : public Element {
   /// "Shell281", or "Shell281Layered" for a layered section (whose results add each layer's).
   const char* family() const override { return layered() ? "Shell281Layered" : "Shell281"; }
   const std::vector<DofKey>& dofs() const override { return dofs_; }
-  bool is_nonlinear(const ElementContext& ctx) const override { return ctx.stress_stiffening; }
-  /// K (plus the stress stiffness of the stresses at u with SSTIF), f = K u.
+  bool is_nonlinear(const ElementContext& ctx) const override {
+    return ctx.stress_stiffening || data_.plasticity.has_value();
+  }
+  /// K (plus the stress stiffness of the stresses at u with SSTIF), f = K u; with plasticity
+  /// the consistent tangent and f_int of the states returned from the committed ones at u.
   void tangent(const ElementContext& ctx, const Eigen::VectorXd& u, Eigen::MatrixXd& K,
                Eigen::VectorXd& f_int) const override;
   /// Consistent ∫ρ Hᵀ H dV (rotary inertia of the directors included) plus ρt³/12 on the
@@ -87,6 +97,12 @@ class Shell281 : public Element {
                      std::map<int, ElementResultValues>& at_node) const override;
   std::optional<double> volume() const override { return volume_; }
 
+  bool has_history() const override { return data_.plasticity.has_value(); }
+  void commit_history(const ElementContext& ctx, const Eigen::VectorXd& u) override;
+  double plastic_work() const override;
+  std::vector<double> history_state() const override;
+  void restore_history_state(const std::vector<double>& state) override;
+
   int n_nodes() const { return n_; }
   /// The element's displacement vector on all 6n DOFs (membrane only: rotations zero).
   Eigen::VectorXd expand(const Eigen::VectorXd& u) const;
@@ -103,6 +119,8 @@ class Shell281 : public Element {
   static const std::vector<std::string>& layered_names();
   static constexpr int kMaxResultLayers = 12;
   bool layered() const { return layers_.size() > 1; }
+  /// Points through the thickness of the plasticity rule (Gauss–Lobatto, shell281_plastic.cpp).
+  static constexpr int kPlasticPoints = 5;
 
  private:
   struct Rule {
@@ -155,6 +173,19 @@ class Shell281 : public Element {
   /// Result values at (ξ, η) (result_names() order).
   ElementResultValues values_at(double xi, double eta, const Eigen::VectorXd& u) const;
 
+  /// The membrane and bending stiffness (layer by layer) and the transverse shear and
+  /// drilling stiffness, whose sum is stiffness().
+  Eigen::MatrixXd membrane_bending_stiffness() const;
+  Eigen::MatrixXd shear_drilling_stiffness() const;
+  /// With plasticity: K and f_int at ue (6n) from the committed states; `updated` receives the
+  /// states at ue (point-major: bending_rule() point × 5 Lobatto points, bottom first).
+  void plastic_sum(const Eigen::VectorXd& ue, Eigen::MatrixXd& K, Eigen::VectorXd& f,
+                   std::vector<PlasticState>* updated) const;
+  /// With plasticity: the result values at each bending_rule() point from its states at ue,
+  /// and the weights that interpolate them at (ξ, η) (Lagrange through the points).
+  std::vector<ElementResultValues> plastic_point_values(const Eigen::VectorXd& ue) const;
+  std::vector<double> point_weights(double xi, double eta) const;
+
   int n_ = 0;
   std::vector<DofKey> dofs_;
   std::vector<Vec3> X_;
@@ -163,9 +194,10 @@ class Shell281 : public Element {
   std::vector<int> node_ids_;
   Shell281Data data_;
   double volume_ = 0.0;
-  std::vector<Layer> layers_;  // bottom first
-  double drill_g_ = 0.0;       // the thickness-averaged in-plane shear modulus
-  double zeta0_ = 0.0;         // Shell281Data::offset
+  std::vector<Layer> layers_;            // bottom first
+  double drill_g_ = 0.0;                 // the thickness-averaged in-plane shear modulus
+  double zeta0_ = 0.0;                   // Shell281Data::offset
+  std::vector<PlasticState> committed_;  // plasticity: the converged states (plastic_sum order)
 };
 
 }  // namespace impactfe

@@ -10,6 +10,7 @@
 #include "elements/shell281.h"
 #include "elements/shell_laminate.h"
 #include "materials/isotropic_elasticity.h"
+#include "materials/j2_plasticity.h"
 
 namespace impactfe {
 
@@ -100,6 +101,12 @@ std::unique_ptr<Element> make_shell281(const ElementBuildContext& ctx,
     data.thickness.push_back(
         0.5 * (tc[static_cast<std::size_t>(i)] + tc[static_cast<std::size_t>((i + 1) % nc)]));
   data.membrane_only = type.key(1) == 1;
+  // TB plasticity or implicit creep of a homogeneous isotropic section (as SHELL181's).
+  data.plasticity = plasticity_of(model, record, data.E, data.nu);
+  if (data.plasticity && laminate)
+    throw fail("plasticity or creep (TB) with a layered or orthotropic section is not implemented");
+  if (data.plasticity && data.membrane_only)
+    throw fail("plasticity or creep (TB) with KEYOPT(1) = 1 (membrane only) is not implemented");
   if (record.esys != 0) {
     if (const std::string why = esys_refusal(model, record); !why.empty()) throw fail(why);
     // A curvilinear system's axes at the corners' centroid.
@@ -124,22 +131,18 @@ const ElementRegistration kShell281{
      .result_names = Shell281::layered_names(),
      // S and EPEL at the top surface (MAPDL's default; SHELL,MID / BOT choose the others);
      // SMISC 1-8 = N, M and Q resultants.
-     .result_sequences = {{"S", "X", "SX_TOP"},
-                          {"S", "Y", "SY_TOP"},
-                          {"S", "XY", "SXY_TOP"},
-                          {"S", "EQV", "SEQV_TOP"},
-                          {"EPEL", "X", "EPX_TOP"},
-                          {"EPEL", "Y", "EPY_TOP"},
-                          {"EPEL", "XY", "EPXY_TOP"},
-                          {"SMISC", "1", "TX"},
-                          {"SMISC", "2", "TY"},
-                          {"SMISC", "3", "TXY"},
-                          {"SMISC", "4", "MX"},
-                          {"SMISC", "5", "MY"},
-                          {"SMISC", "6", "MXY"},
-                          {"SMISC", "7", "QXZ"},
-                          {"SMISC", "8", "QYZ"}},
+     .result_sequences =
+         {{"S", "X", "SX_TOP"},       {"S", "Y", "SY_TOP"},     {"S", "XY", "SXY_TOP"},
+          {"S", "EQV", "SEQV_TOP"},   {"EPEL", "X", "EPX_TOP"}, {"EPEL", "Y", "EPY_TOP"},
+          {"EPEL", "XY", "EPXY_TOP"}, {"SMISC", "1", "TX"},     {"SMISC", "2", "TY"},
+          {"SMISC", "3", "TXY"},      {"SMISC", "4", "MX"},     {"SMISC", "5", "MY"},
+          {"SMISC", "6", "MXY"},      {"SMISC", "7", "QXZ"},    {"SMISC", "8", "QYZ"},
+          {"NL", "EPEQ", "EPEQ"},     {"NL", "PLWK", "PLWK"},   {"NL", "CREQ", "CREQ"},
+          {"EPCR", "X", "EPCRX"},     {"EPCR", "Y", "EPCRY"},   {"EPCR", "Z", "EPCRZ"},
+          {"EPCR", "XY", "EPCRXY"},   {"EPCR", "YZ", "EPCRYZ"}, {"EPCR", "XZ", "EPCRXZ"},
+          {"EPCR", "EQV", "EPCREQV"}},
      .esys_axes = true,
+     .plasticity = true,
      // Faces 1 and 2 (bottom, top: all eight nodes), edges 3..6 (J-I, K-J, L-K, I-L and their
      // midside nodes); SF loads face 1.
      .faces = {{0, 1, 2, 3, 4, 5, 6, 7},
@@ -150,7 +153,9 @@ const ElementRegistration kShell281{
                {0, 3, 7}},
      .sf_faces = 1,
      .note = "SHELL281 is a degenerated-continuum Mindlin-Reissner shell: 3x3 Gauss with "
-             "tied transverse shear, small deflection; KEYOPT(1) = 1 has translations only",
+             "tied transverse shear, small deflection; KEYOPT(1) = 1 has translations only; "
+             "J2 plasticity or implicit creep (TB) of a homogeneous section at 5 Lobatto "
+             "points through the thickness",
      .create = make_shell281}};
 
 }  // namespace

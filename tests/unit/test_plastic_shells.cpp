@@ -1,7 +1,7 @@
-// Elastic-plastic SHELL181 (layered plane-stress J2): a plate cycled in uniaxial membrane
-// tension-compression follows the closed-form BKIN loop, the element tangent matches finite
-// differences, and a strip in cylindrical bending yields at the closed-form rotation and
-// flattens at the limit moment of its layered section.
+// Elastic-plastic SHELL181 and SHELL281 (plane-stress J2 at 5 Lobatto points through the
+// thickness): a plate cycled in uniaxial membrane tension-compression follows the closed-form
+// BKIN loop, the element tangent matches finite differences, and a strip in cylindrical bending
+// yields at the closed-form rotation and flattens at the limit moment of its layered section.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,6 +10,7 @@
 
 #include "../support/bilinear_closed_form.h"
 #include "../support/run_deck.h"
+#include "elements/shell281.h"
 #include "elements/shell4.h"
 
 namespace impactfe::test_plastic_shells {
@@ -18,6 +19,9 @@ namespace {
 constexpr double kE = 200e3, kSy = 250.0, kEt = 20e3;
 /// TB,PLAS's second constant: the plastic tangent modulus E Et/(E − Et) of the tangent kEt.
 constexpr double kEp = kE * kEt / (kE - kEt);
+
+/// The deck tests run for SHELL181 and SHELL281.
+class PlasticShellElement : public ::testing::TestWithParam<std::string> {};
 
 TEST(PlasticShells, ElementTangentMatchesFiniteDifferences) {
   // A skewed quad (incompatible membrane modes active) and a triangle, loaded into membrane +
@@ -65,28 +69,37 @@ TEST(PlasticShells, ElementTangentMatchesFiniteDifferences) {
     }
 }
 
-TEST(PlasticShells, MembraneCycleFollowsTheBkinLoop) {
-  // One SHELL181 quad 1 × 1, t = 0.1, pulled along X by D,UX on the edge x = 1; free to
-  // contract in Y, rotations fixed: uniaxial plane stress, σx = ΣFX / t.
+TEST_P(PlasticShellElement, MembraneCycleFollowsTheBkinLoop) {
+  // One quad 1 × 1 (SHELL281: its midside nodes too), t = 0.1, pulled along X by D,UX on the edge x
+  // = 1; free to contract in Y, rotations fixed: uniaxial plane stress, σx = ΣFX / t.
   const double t = 0.1, ey = kSy / kE;
   const auto path = testing::cyclic_strain_path(4.0 * ey, 0.45 * ey);
   std::ostringstream deck;
   deck << std::setprecision(17);  // kEp is not a short decimal
-  deck << "/PREP7\nET,1,SHELL181\nSECTYPE,1,SHELL\nSECDATA," << t << "\nMP,EX,1," << kE
+  const bool quadratic = GetParam() == "SHELL281";
+  deck << "/PREP7\nET,1," << GetParam() << "\nSECTYPE,1,SHELL\nSECDATA," << t << "\nMP,EX,1," << kE
        << "\nMP,PRXY,1,0.3\nTB,PLAS,1,,,BKIN\nTBDATA,1," << kSy << "," << kEp
-       << "\nN,1,0,0\nN,2,1,0\nN,3,1,1\nN,4,0,1\nE,1,2,3,4\nFINISH\n/SOLU\nANTYPE,STATIC\n"
-          "CNVTOL,F,,1E-10\nD,ALL,UZ\nD,ALL,ROTX\nD,ALL,ROTY\nD,ALL,ROTZ\nD,1,UX\nD,4,UX\n"
-          "D,1,UY\n";
-  for (std::size_t k = 0; k < path.size(); ++k)
-    deck << "TIME," << k + 1 << "\nD,2,UX," << path[k] << "\nD,3,UX," << path[k] << "\nSOLVE\n";
+       << "\nN,1,0,0\nN,2,1,0\nN,3,1,1\nN,4,0,1\n"
+       << (quadratic ? "N,5,0.5,0\nN,6,1,0.5\nN,7,0.5,1\nN,8,0,0.5\nE,1,2,3,4,5,6,7,8\n"
+                     : "E,1,2,3,4\n")
+       << "FINISH\n/SOLU\nANTYPE,STATIC\nCNVTOL,F,,1E-10\nD,ALL,UZ\nD,ALL,ROTX\nD,ALL,ROTY\n"
+          "D,ALL,ROTZ\nD,1,UX\nD,4,UX\nD,1,UY\n"
+       << (quadratic ? "D,8,UX\n" : "");
+  for (std::size_t k = 0; k < path.size(); ++k) {
+    deck << "TIME," << k + 1 << "\nD,2,UX," << path[k] << "\nD,3,UX," << path[k] << "\n";
+    if (quadratic) deck << "D,6,UX," << path[k] << "\n";
+    deck << "SOLVE\n";
+  }
   deck << "FINISH\n";
-  const auto run = testing::run_deck_text("shell_membrane_cycle", deck.str());
+  const auto run = testing::run_deck_text("shell_membrane_cycle_" + GetParam(), deck.str());
   const auto expected = testing::bilinear_closed_form(path, kE, kSy, kEt, true);
-  const auto f2 = run.reader->nodal_series(2, "FX"), f3 = run.reader->nodal_series(3, "FX");
+  std::vector<std::vector<std::pair<double, double>>> pulled;
+  for (int node : quadratic ? std::vector<int>{2, 3, 6} : std::vector<int>{2, 3})
+    pulled.push_back(run.reader->nodal_series(node, "FX"));
   double max_error = 0.0;
   for (std::size_t k = 0; k < path.size(); ++k) {
-    const double sx =
-        (testing::value_stored_at(f2, k + 1.0) + testing::value_stored_at(f3, k + 1.0)) / t;
+    double sx = 0.0;
+    for (const auto& f : pulled) sx += testing::value_stored_at(f, k + 1.0) / t;
     max_error = std::max(max_error, std::abs(sx - expected[k]));
   }
   // The reaction at a prescribed DOF is the internal force there: +σx t at the pulled edge.
@@ -95,11 +108,12 @@ TEST(PlasticShells, MembraneCycleFollowsTheBkinLoop) {
             5.0 * ey);
 }
 
-TEST(PlasticShells, StripInCylindricalBendingYieldsAndReachesTheSectionLimit) {
-  // Strip L = 4, b = 1, t = 0.1 (4 SHELL181), ROTX held at every node (cylindrical bending:
-  // κy = 0, so by symmetry every layer is in plane strain εy = 0); end rotation θ = κL imposed
-  // at x = L, x = 0 held against rigid motion only, so the curvature is uniform. Moment per
-  // width from the reactions MY at x = 0. Closed forms (von Mises, plane strain):
+TEST_P(PlasticShellElement, StripInCylindricalBendingYieldsAndReachesTheSectionLimit) {
+  // Strip L = 4, b = 1, t = 0.1 (4 elements; SHELL281 with its midside nodes), ROTX held at every
+  // node (cylindrical bending: κy = 0, so by symmetry every layer is in plane strain εy = 0); end
+  // rotation θ = κL imposed at x = L, x = 0 held against rigid motion only, so the curvature is
+  // uniform. Moment per width from the reactions MY at x = 0. Closed forms (von Mises, plane
+  // strain):
   //   elastic m = E t³ κ / (12 (1 − ν²));
   //   first yield of the surface when σx √(1 − ν + ν²) = σy, i.e. at
   //   θ_1 = θ_y (1 − ν²)/√(1 − ν + ν²) = 1.024 θ_y with θ_y = 2σy L/(E t);
@@ -112,22 +126,42 @@ TEST(PlasticShells, StripInCylindricalBendingYieldsAndReachesTheSectionLimit) {
   const double theta_y = 2.0 * kSy * length / (kE * t);
   const std::vector<double> rotations = {0.9 * theta_y, 1.1 * theta_y, 10.0 * theta_y};
   std::ostringstream deck;
-  deck << "/PREP7\nET,1,SHELL181\nSECTYPE,1,SHELL\nSECDATA," << t << "\nMP,EX,1," << kE
+  // SHELL281's midside nodes: 11..14 (y = 0) and 15..18 (y = 1) at x = i + ½, 19..23 at
+  // x = i, y = ½; the held end x = 0 is nodes 1, 6 (and 19), the turned end x = 4 nodes 5, 10
+  // (and 23).
+  const bool quadratic = GetParam() == "SHELL281";
+  deck << "/PREP7\nET,1," << GetParam() << "\nSECTYPE,1,SHELL\nSECDATA," << t << "\nMP,EX,1," << kE
        << "\nMP,PRXY,1," << nu << "\nTB,BISO,1\nTBDATA,1," << kSy << "," << 1e-4 * kE << "\n";
   for (int i = 0; i <= 4; ++i)
     deck << "N," << i + 1 << "," << i << ",0\nN," << i + 6 << "," << i << ",1\n";
-  for (int i = 1; i <= 4; ++i)
-    deck << "E," << i << "," << i + 1 << "," << i + 6 << "," << i + 5 << "\n";
+  if (quadratic) {
+    for (int i = 0; i < 4; ++i)
+      deck << "N," << i + 11 << "," << i + 0.5 << ",0\nN," << i + 15 << "," << i + 0.5 << ",1\n";
+    for (int i = 0; i <= 4; ++i) deck << "N," << i + 19 << "," << i << ",0.5\n";
+  }
+  for (int i = 1; i <= 4; ++i) {
+    deck << "E," << i << "," << i + 1 << "," << i + 6 << "," << i + 5;
+    if (quadratic) deck << "," << i + 10 << "," << i + 19 << "," << i + 14 << "," << i + 18;
+    deck << "\n";
+  }
   deck << "FINISH\n/SOLU\nANTYPE,STATIC\nCNVTOL,F,,1E-8\nNSUBST,20\nNEQIT,50\n"
           "D,1,UX\nD,1,UY\nD,1,UZ\nD,1,ROTY\nD,6,UX\nD,6,UZ\nD,6,ROTY\nD,ALL,ROTX\n";
-  for (std::size_t k = 0; k < rotations.size(); ++k)
+  if (quadratic) deck << "D,19,UX\nD,19,UZ\nD,19,ROTY\n";
+  for (std::size_t k = 0; k < rotations.size(); ++k) {
     deck << "TIME," << k + 1 << "\nD,5,ROTY," << -rotations[k] << "\nD,10,ROTY," << -rotations[k]
-         << "\nSOLVE\n";
+         << "\n";
+    if (quadratic) deck << "D,23,ROTY," << -rotations[k] << "\n";
+    deck << "SOLVE\n";
+  }
   deck << "FINISH\n";
-  const auto run = testing::run_deck_text("shell_strip_bending", deck.str());
-  const auto m1 = run.reader->nodal_series(1, "MY"), m6 = run.reader->nodal_series(6, "MY");
+  const auto run = testing::run_deck_text("shell_strip_bending_" + GetParam(), deck.str());
+  std::vector<std::vector<std::pair<double, double>>> held;
+  for (int node : quadratic ? std::vector<int>{1, 6, 19} : std::vector<int>{1, 6})
+    held.push_back(run.reader->nodal_series(node, "MY"));
   auto moment = [&](double time) {
-    return std::abs(testing::value_stored_at(m1, time) + testing::value_stored_at(m6, time));
+    double m = 0.0;
+    for (const auto& series : held) m += testing::value_stored_at(series, time);
+    return std::abs(m);
   };
   const double elastic = kE * t * t * t / (12.0 * (1.0 - nu * nu)) * rotations[0] / length;
   EXPECT_NEAR(moment(1.0), elastic, 1e-6 * elastic);  // uniform curvature: exact
@@ -143,6 +177,68 @@ TEST(PlasticShells, StripInCylindricalBendingYieldsAndReachesTheSectionLimit) {
   EXPECT_NEAR(moment(3.0), rule_limit, 0.01 * rule_limit);
   EXPECT_LT(moment(3.0), m_p);
   RecordProperty("moment_over_rule_limit_10_theta_y", std::to_string(moment(3.0) / rule_limit));
+}
+
+INSTANTIATE_TEST_SUITE_P(Shells, PlasticShellElement, ::testing::Values("SHELL181", "SHELL281"));
+
+TEST(PlasticShells, Shell281TangentMatchesFiniteDifferences) {
+  // A curved, skewed 8-node quad and a 6-node triangle loaded into membrane + bending +
+  // twisting plasticity from a committed plastic state (the elastic tied transverse shear and
+  // drilling beside the plastic points).
+  for (int n : {8, 6}) {
+    Shell281Data data;
+    if (n == 8) {
+      data.node_ids = {1, 2, 3, 4, 5, 6, 7, 8};
+      data.positions = {Vec3(0, 0, 0),          Vec3(1.2, 0.1, 0.05),  Vec3(1.0, 0.9, 0.1),
+                        Vec3(-0.1, 1.0, 0),     Vec3(0.6, 0.0, 0.04),  Vec3(1.1, 0.5, 0.1),
+                        Vec3(0.45, 0.95, 0.08), Vec3(-0.05, 0.5, 0.02)};
+    } else {
+      data.node_ids = {1, 2, 3, 4, 5, 6};
+      data.positions = {Vec3(0, 0, 0),         Vec3(1.2, 0.1, 0.05), Vec3(0.2, 1.0, 0.1),
+                        Vec3(0.6, 0.02, 0.04), Vec3(0.7, 0.6, 0.1),  Vec3(0.1, 0.5, 0.03)};
+    }
+    data.thickness.assign(static_cast<std::size_t>(n), 0.05);
+    data.E = kE;
+    data.nu = 0.3;
+    data.plasticity = J2Plasticity::bilinear(kE, 0.3, kSy, kEt, false);
+    Shell281 shell(1, data, {});
+    Eigen::VectorXd u = Eigen::VectorXd::Zero(6 * n);
+    for (int a = 0; a < n; ++a) {
+      const Vec3& x = data.positions[static_cast<std::size_t>(a)];
+      u(6 * a) = 0.002 * x.x() + 0.0005 * x.y();
+      u(6 * a + 1) = -0.0007 * x.y();
+      u(6 * a + 2) = 0.004 * x.x() * x.x() + 0.002 * x.x() * x.y();
+      u(6 * a + 3) = 0.05 * x.y();
+      u(6 * a + 4) = -0.06 * x.x() + 0.01;
+    }
+    shell.commit_history({}, 0.7 * u);
+    EXPECT_GT(shell.plastic_work(), 0.0);
+    Eigen::MatrixXd k, kp, km;
+    Eigen::VectorXd f, fp, fm;
+    shell.tangent({}, u, k, f);
+    Eigen::MatrixXd fd(6 * n, 6 * n);
+    const double h = 1e-8;
+    for (int j = 0; j < 6 * n; ++j) {
+      Eigen::VectorXd up = u, um = u;
+      up(j) += h;
+      um(j) -= h;
+      shell.tangent({}, up, kp, fp);
+      shell.tangent({}, um, km, fm);
+      fd.col(j) = (fp - fm) / (2.0 * h);
+    }
+    EXPECT_LT((k - fd).norm(), 1e-5 * k.norm()) << "nodes " << n;
+    // A rigid motion from the committed state adds no force (the states do not change).
+    Eigen::VectorXd rigid = Eigen::VectorXd::Zero(6 * n);
+    for (int a = 0; a < n; ++a) rigid(6 * a + 2) = 0.01;
+    shell.tangent({}, 0.7 * u + rigid, kp, fp);
+    shell.tangent({}, 0.7 * u, km, fm);
+    EXPECT_LT((fp - fm).norm(), 1e-9 * fm.norm());
+    // Restart: the flat state restores the same element.
+    Shell281 copy(1, data, {});
+    copy.restore_history_state(shell.history_state());
+    copy.tangent({}, u, kp, fp);
+    EXPECT_EQ((fp - f).norm(), 0.0);
+  }
 }
 
 }  // namespace
