@@ -149,6 +149,23 @@ std::vector<ElementFields> make_table() {
                  "0 plane stress, 1 axisymmetric, 2 plane strain, 3 plane stress with "
                  "thickness; 5 and 6 are not implemented"},
                 {6, {0}, "1 (mixed u-P formulation) is not implemented"}}});
+  // The legacy forms (computed as PLANE182 / PLANE183): KEYOPT(5) and (6) choose printout
+  // (nodal stresses, surface solutions) and have no effect here.
+  t.push_back({"PLANE42",
+               named({"THK"}),
+               {{2, {0, 1}, "0 extra displacement shapes (incompatible modes), 1 suppressed"},
+                {3, range(0, 3),
+                 "0 plane stress, 1 axisymmetric, 2 plane strain, 3 plane stress with "
+                 "thickness"},
+                {5, range(0, 2), "printout of extra element output (no effect here)"},
+                {6, range(0, 4), "printout of surface solutions (no effect here)"}}});
+  t.push_back({"PLANE82",
+               named({"THK"}),
+               {{3, range(0, 3),
+                 "0 plane stress, 1 axisymmetric, 2 plane strain, 3 plane stress with "
+                 "thickness"},
+                {5, range(0, 2), "printout of extra element output (no effect here)"},
+                {6, range(0, 4), "printout of surface solutions (no effect here)"}}});
   t.push_back({"PLANE183",
                named({"THK"}),
                {{1, {0, 1}, "0 8-node quadrilateral, 1 6-node triangle"},

@@ -1,9 +1,11 @@
 // The element types of the 2-D structural solids (elements/plane_solid.h): PLANE182 (4-node
 // quadrilateral, triangle K = L) and PLANE183 (8-node quadrilateral, 6-node triangle), their
-// KEYOPTs, thickness, factories and registrations.
+// KEYOPTs, thickness, factories and registrations; the legacy PLANE42 and PLANE82 computed as
+// them.
 #include <fmt/format.h>
 
 #include <set>
+#include <string>
 
 #include "core/errors.h"
 #include "elements/element_fields.h"
@@ -92,26 +94,21 @@ void check_large_deflection(const ElementBuildContext& ctx, const ElementRecord&
                                                record.id, name));
 }
 
-std::unique_ptr<Element> make_plane182(const ElementBuildContext& ctx,
-                                       const ElementRecord& record) {
+/// The 4-node quadrilateral (triangle K = L) of PLANE182 and of the legacy PLANE42 (`name`),
+/// with its technology chosen from the type's KEYOPTs by the caller.
+std::unique_ptr<Element> make_quad4(const ElementBuildContext& ctx, const ElementRecord& record,
+                                    const char* name, PlaneTechnology technology) {
   const Model& model = ctx.model;
   const ElementType& type = model.element_types.at(record.type);
   PlaneSolidOptions o = behaviour_of(model, type, record);
   o.large_deflection = ctx.large_deflection;
-  const int k1 = type.key(1);
-  if (k1 == 2 && o.behaviour != PlaneBehaviour::PlaneStress)
-    throw InputError(record.where,
-                     fmt::format("element {} (PLANE182): KEYOPT(1) = 2 (enhanced strain) in "
-                                 "plane strain or axisymmetry needs the enhanced volumetric mode, "
-                                 "which is not implemented; use 0 (B-bar) or 3",
-                                 record.id));
   const IsotropicElasticity material =
       read_isotropic_elasticity(model, record.mat, record.id, record.where);
   std::optional<J2Plasticity> plasticity =
       plasticity_of(model, record, material.young, material.poisson);
   const std::vector<int>& n = record.nodes;
   if (n.size() == 4 && n[2] == n[3]) {
-    check_large_deflection(ctx, record, "PLANE182", PlaneTechnology::Standard, plasticity);
+    check_large_deflection(ctx, record, name, PlaneTechnology::Standard, plasticity);
     // The triangle K = L: the constant-strain triangle I J K (MAPDL integrates it at one point).
     o.shape = PlaneShape::Tri3;
     const std::vector<int> tri = {n[0], n[1], n[2]};
@@ -120,19 +117,49 @@ std::unique_ptr<Element> make_plane182(const ElementBuildContext& ctx,
         std::vector<std::vector<int>>{{1, 0}, {2, 1}, {}, {0, 2}}, record.where, plasticity);
   }
   o.shape = PlaneShape::Quad4;
-  // KEYOPT(1) = 0: B-bar in plane strain and axisymmetry (in plane stress σzz = 0 leaves no
-  // volumetric constraint to relieve: full 2x2). 2 (plane stress) and 3: incompatible modes.
-  // 1: uniform reduced integration, the centre point with hourglass stabilisation.
-  if (k1 == 0 && o.behaviour != PlaneBehaviour::PlaneStress) o.technology = PlaneTechnology::BBar;
-  if (k1 == 1) o.technology = PlaneTechnology::Reduced;
-  if (k1 == 2 || k1 == 3) o.technology = PlaneTechnology::IncompatibleModes;
-  check_large_deflection(ctx, record, "PLANE182", o.technology, plasticity);
+  o.technology = technology;
+  check_large_deflection(ctx, record, name, o.technology, plasticity);
   return std::make_unique<PlaneSolid>(record.id, n, coordinates(model, record, n), material, o,
                                       quad_faces(VtkCell::Quad), record.where, plasticity);
 }
 
-std::unique_ptr<Element> make_plane183(const ElementBuildContext& ctx,
+std::unique_ptr<Element> make_plane182(const ElementBuildContext& ctx,
                                        const ElementRecord& record) {
+  const Model& model = ctx.model;
+  const ElementType& type = model.element_types.at(record.type);
+  const bool plane_stress = type.key(3) == 0 || type.key(3) == 3;
+  const int k1 = type.key(1);
+  if (k1 == 2 && !plane_stress)
+    throw InputError(record.where,
+                     fmt::format("element {} (PLANE182): KEYOPT(1) = 2 (enhanced strain) in "
+                                 "plane strain or axisymmetry needs the enhanced volumetric mode, "
+                                 "which is not implemented; use 0 (B-bar) or 3",
+                                 record.id));
+  // KEYOPT(1) = 0: B-bar in plane strain and axisymmetry (in plane stress σzz = 0 leaves no
+  // volumetric constraint to relieve: full 2x2). 2 (plane stress) and 3: incompatible modes.
+  // 1: uniform reduced integration, the centre point with hourglass stabilisation.
+  PlaneTechnology technology = PlaneTechnology::Standard;
+  if (k1 == 0 && !plane_stress) technology = PlaneTechnology::BBar;
+  if (k1 == 1) technology = PlaneTechnology::Reduced;
+  if (k1 == 2 || k1 == 3) technology = PlaneTechnology::IncompatibleModes;
+  return make_quad4(ctx, record, "PLANE182", technology);
+}
+
+/// PLANE42 (MAPDL's legacy 4-node solid): KEYOPT(2) = 0, its default, includes the extra
+/// displacement shapes (incompatible modes, Wilson–Taylor: PLANE182's KEYOPT(1) = 3); 1
+/// suppresses them (plain 2x2 Gauss). KEYOPT(3) as PLANE182's.
+std::unique_ptr<Element> make_plane42(const ElementBuildContext& ctx, const ElementRecord& record) {
+  const ElementType& type = ctx.model.element_types.at(record.type);
+  return make_quad4(
+      ctx, record, "PLANE42",
+      type.key(2) == 1 ? PlaneTechnology::Standard : PlaneTechnology::IncompatibleModes);
+}
+
+/// The 8-node quadrilateral (6-node triangle K = L = O) of PLANE183 and of the legacy PLANE82
+/// (`name`; the same shape functions, node order and 2x2 rule); only PLANE183 has the 6-node
+/// triangle form KEYOPT(1) = 1.
+std::unique_ptr<Element> make_quad8(const ElementBuildContext& ctx, const ElementRecord& record,
+                                    const char* name) {
   const Model& model = ctx.model;
   const ElementType& type = model.element_types.at(record.type);
   PlaneSolidOptions o = behaviour_of(model, type, record);
@@ -141,15 +168,15 @@ std::unique_ptr<Element> make_plane183(const ElementBuildContext& ctx,
   for (std::size_t k = 0; k < n.size(); ++k)
     if (n[k] == 0)
       throw InputError(record.where,
-                       fmt::format("element {} (PLANE183): node {} is not given: midside nodes "
+                       fmt::format("element {} ({}): node {} is not given: midside nodes "
                                    "may not be omitted",
-                                   record.id, k + 1));
+                                   record.id, name, k + 1));
   const IsotropicElasticity material =
       read_isotropic_elasticity(model, record.mat, record.id, record.where);
   std::optional<J2Plasticity> plasticity =
       plasticity_of(model, record, material.young, material.poisson);
-  check_large_deflection(ctx, record, "PLANE183", PlaneTechnology::Standard, plasticity);
-  const bool triangle_form = type.key(1) == 1;
+  check_large_deflection(ctx, record, name, PlaneTechnology::Standard, plasticity);
+  const bool triangle_form = std::string(name) == "PLANE183" && type.key(1) == 1;
   if (n[2] == n[3] && n[6] == n[2]) {
     // The triangle K = L = O: the 6-node triangle I J K with midsides M N P. Its I-K side is
     // face 4 (I-L) of the quadrilateral numbering, and face 3 of the 6-node form (KEYOPT(1) = 1).
@@ -168,12 +195,22 @@ std::unique_ptr<Element> make_plane183(const ElementBuildContext& ctx,
                                  record.id));
   if (std::set<int>(n.begin(), n.begin() + 4).size() != 4)
     throw InputError(record.where,
-                     fmt::format("element {} (PLANE183): repeated corners are taken only as the "
+                     fmt::format("element {} ({}): repeated corners are taken only as the "
                                  "triangle K = L = O",
-                                 record.id));
+                                 record.id, name));
   o.shape = PlaneShape::Quad8;
   return std::make_unique<PlaneSolid>(record.id, n, coordinates(model, record, n), material, o,
                                       quad_faces(VtkCell::QuadraticQuad), record.where, plasticity);
+}
+
+std::unique_ptr<Element> make_plane183(const ElementBuildContext& ctx,
+                                       const ElementRecord& record) {
+  return make_quad8(ctx, record, "PLANE183");
+}
+
+/// PLANE82 (MAPDL's legacy 8-node solid) is PLANE183's quadrilateral with its default 2x2 rule.
+std::unique_ptr<Element> make_plane82(const ElementBuildContext& ctx, const ElementRecord& record) {
+  return make_quad8(ctx, record, "PLANE82");
 }
 
 ElementTypeDescriptor plane_solid_type(const char* name, int number, int n_nodes, int min_nodes,
@@ -207,6 +244,20 @@ ElementTypeDescriptor plane_solid_type(const char* name, int number, int n_nodes
 
 const ElementRegistration kPlane182{
     plane_solid_type("PLANE182", 182, 4, 3, VtkCell::Quad, make_plane182)};
+// The legacy forms: PLANE42 as PLANE182 (incompatible modes by default), PLANE82 as PLANE183.
+const ElementRegistration kPlane42{[] {
+  ElementTypeDescriptor d = plane_solid_type("PLANE42", 42, 4, 3, VtkCell::Quad, make_plane42);
+  d.note =
+      "PLANE42 is computed as PLANE182: KEYOPT(2) = 0 (its default) with incompatible modes "
+      "(PLANE182 KEYOPT(1) = 3), 1 plain 2x2 Gauss";
+  return d;
+}()};
+const ElementRegistration kPlane82{[] {
+  ElementTypeDescriptor d =
+      plane_solid_type("PLANE82", 82, 8, 6, VtkCell::QuadraticQuad, make_plane82);
+  d.note = "PLANE82 is computed as PLANE183 (the same 8-node shape functions and 2x2 rule)";
+  return d;
+}()};
 const ElementRegistration kPlane183{[] {
   ElementTypeDescriptor d =
       plane_solid_type("PLANE183", 183, 8, 6, VtkCell::QuadraticQuad, make_plane183);

@@ -125,6 +125,10 @@ std::map<std::string, Probe> probes() {
         {{"KEYOPT,1,1,1\n", "E,1,2,3,4,5,6"}},
         "KEYOPT,1,3,3\n"}},
   };
+  all["PLANE42"] = all.at("PLANE182");  // the legacy plane solids: computed as PLANE182 / 183
+  all["PLANE42"].element_with.clear();
+  all["PLANE82"] = all.at("PLANE183");
+  all["PLANE82"].element_with.clear();
   all["SOLID95"] = all.at("SOLID186");  // the legacy solids: computed as SOLID186 / SOLID187
   all["SOLID92"] = all.at("SOLID187");
   return all;
@@ -150,6 +154,18 @@ const std::map<std::string, std::string>& by_design() {
         {"SHELL181 K8=2", "layer data storage: a printout option (docs/elements/shell181.md)"},
         {"SHELL208 K8=1", "layer data storage: a printout option (docs/elements/shell208.md)"},
         {"SHELL208 K8=2", "layer data storage: a printout option (docs/elements/shell208.md)"},
+        {"PLANE42 K5=1", "a printout option (docs/elements/plane182.md, legacy forms)"},
+        {"PLANE42 K5=2", "a printout option (docs/elements/plane182.md, legacy forms)"},
+        {"PLANE42 K6=1", "a printout option (docs/elements/plane182.md, legacy forms)"},
+        {"PLANE42 K6=2", "a printout option (docs/elements/plane182.md, legacy forms)"},
+        {"PLANE42 K6=3", "a printout option (docs/elements/plane182.md, legacy forms)"},
+        {"PLANE42 K6=4", "a printout option (docs/elements/plane182.md, legacy forms)"},
+        {"PLANE82 K5=1", "a printout option (docs/elements/plane182.md, legacy forms)"},
+        {"PLANE82 K5=2", "a printout option (docs/elements/plane182.md, legacy forms)"},
+        {"PLANE82 K6=1", "a printout option (docs/elements/plane182.md, legacy forms)"},
+        {"PLANE82 K6=2", "a printout option (docs/elements/plane182.md, legacy forms)"},
+        {"PLANE82 K6=3", "a printout option (docs/elements/plane182.md, legacy forms)"},
+        {"PLANE82 K6=4", "a printout option (docs/elements/plane182.md, legacy forms)"},
         {"SHELL281 K8=1", "layer data storage: a printout option (docs/elements/shell281.md)"},
         {"SHELL281 K8=2", "layer data storage: a printout option (docs/elements/shell281.md)"},
         {"BEAM188 K3=2",
@@ -162,6 +178,12 @@ const std::map<std::string, std::string>& by_design() {
          "the area is held constant under either value (KEYOPT(2) = 1 is exactly that; the "
          "default's incompressible section agrees to first order in the strain)"},
         {"PLANE182 R1",
+         "THK acts with KEYOPT(3) = 3 only (checked by K3=3 here); otherwise unit thickness, as "
+         "in MAPDL"},
+        {"PLANE42 R1",
+         "THK acts with KEYOPT(3) = 3 only (checked by K3=3 here); otherwise unit thickness, as "
+         "in MAPDL"},
+        {"PLANE82 R1",
          "THK acts with KEYOPT(3) = 3 only (checked by K3=3 here); otherwise unit thickness, as "
          "in MAPDL"},
         {"PLANE183 R1",
