@@ -366,23 +366,28 @@ void cmd_mpchg(DeckReader& r, const Command& c) {
 }
 
 void cmd_emodif(DeckReader& r, const Command& c) {
-  // EMODIF,IEL,STLOC,I1: sets an attribute of elements (a number, ALL for the selected ones, or
-  // a component), as Workbench input files assign their layered sections. STLOC MAT, TYPE,
-  // REAL, SECNUM and ESYS (0, or a local system > 10: element_esys_check); node replacement
-  // (STLOC a node position) is refused.
+  // EMODIF,IEL,STLOC,I1: sets attributes of elements (a number, ALL for the selected ones, or a
+  // component), as Workbench input files assign their layered sections. STLOC MAT, TYPE, REAL,
+  // SECNUM or ESYS (0, or a local system > 10) sets that one to I1 (MAT, TYPE, REAL, SECNUM:
+  // 1 when I1 is 0 or blank, MAPDL's default); STLOC 0 or blank sets all five to the current
+  // pointers (TYPE, MAT, REAL, SECNUM, ESYS). Node replacement (STLOC a node position) is refused.
   if (c.blank(1)) r.fail(c, "IEL missing (an element number, ALL or a component)");
-  const std::string what = r.label(c, 2);
-  const int value = r.integer(c, 3, 0);
+  const std::string what = c.blank(2) ? "0" : r.label(c, 2);
+  const bool all_attributes = what == "0";
+  int value = r.integer(c, 3, 0);
   if (value < 0) r.fail(c, fmt::format("I1 {} must not be negative", value));
   if (what == "ESYS") {
     check_esys_number(r, c, value);
-  } else if (what != "MAT" && what != "TYPE" && what != "REAL" && what != "SECNUM") {
-    r.fail(c, fmt::format("STLOC '{}': MAT, TYPE, REAL, SECNUM or ESYS (changing the nodes of an "
-                          "element is not supported)",
+  } else if (what == "MAT" || what == "TYPE" || what == "REAL" || what == "SECNUM") {
+    if (value == 0) value = 1;
+  } else if (!all_attributes) {
+    r.fail(c, fmt::format("STLOC '{}': MAT, TYPE, REAL, SECNUM, ESYS or 0 (changing the nodes of "
+                          "an element is not supported)",
                           c.text(2)));
   }
-  if (what == "TYPE" && r.model.element_types.count(value) == 0)
-    r.fail(c, fmt::format("element type {} is not defined", value));
+  const int type = all_attributes ? r.modeling.current_type : value;
+  if ((what == "TYPE" || all_attributes) && r.model.element_types.count(type) == 0)
+    r.fail(c, fmt::format("element type {} is not defined", type));
   std::vector<int> ids;
   if (const auto cm = r.model.components.find(r.label(c, 1));
       cm != r.model.components.end() && cm->second.entity == "ELEM")
@@ -392,6 +397,14 @@ void cmd_emodif(DeckReader& r, const Command& c) {
   for (int id : ids) {
     if (r.model.elements.count(id) == 0) continue;  // a component's element deleted since
     ElementRecord& e = r.model.elements.at(id);
+    if (all_attributes) {
+      e.type = r.modeling.current_type;
+      e.mat = r.modeling.current_mat;
+      e.real = r.modeling.current_real;
+      e.secnum = r.modeling.current_secnum;
+      e.esys = r.modeling.esys;
+      continue;
+    }
     if (what == "MAT") e.mat = value;
     if (what == "TYPE") e.type = value;
     if (what == "REAL") e.real = value;

@@ -296,6 +296,18 @@ TEST(CdbArchives, EmodifAndTheBoundingBoxOfTheNodes) {
   EXPECT_EQ(m.elements.at(2).mat, 3);  // the component's element
   EXPECT_EQ(m.elements.at(1).type, 2);
   EXPECT_EQ(m.elements.at(2).real, 4);
+  // STLOC blank (or 0): every attribute from the current pointers (vm141: TYPE,3 then
+  // EMODIF,ALL); an attribute's I1 blank or 0 is its default 1.
+  const Model all = read_deck_text(deck +
+                                       "ET,5,SOLID185\nTYPE,5\nMAT,7\nREAL,2\nEMODIF,1\n"
+                                       "EMODIF,2,MAT,4\nEMODIF,2,MAT\nFINISH\n",
+                                   "emodif_all.inp")
+                        .model;
+  EXPECT_EQ(all.elements.at(1).type, 5);
+  EXPECT_EQ(all.elements.at(1).mat, 7);
+  EXPECT_EQ(all.elements.at(1).real, 2);
+  EXPECT_EQ(all.elements.at(2).type, 1);
+  EXPECT_EQ(all.elements.at(2).mat, 1);
   // ESYS may name a system defined later (a Workbench file writes LOCAL before or after): it
   // is checked when the element is solved (test_element_esys.cpp).
   EXPECT_EQ(
