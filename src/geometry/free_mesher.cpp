@@ -111,9 +111,19 @@ bool Mesher::area_needs_free_mesh(int id) const {
   const Area& area = solid_.areas.at(id);
   if (solid_.mesh.key == 1) return false;  // MSHKEY,1: mapped only (the mapped mesher refuses)
   const std::size_t sides = area.lines.size();
-  if (sides == 4) return false;
-  if (sides == 3) return solid_.mesh.shape_2d != 1;
-  return true;
+  if (sides != 3 && sides != 4) return true;
+  if (sides == 3 && solid_.mesh.shape_2d != 1) return true;
+  // A 3- or 4-sided area is meshed mapped unless the divisions given to its lines (LESIZE)
+  // cannot map: opposite sides of a quadrilateral, or the three sides of a triangle pattern,
+  // must have as many. Free meshing (MSHKEY,0) then meshes it as MAPDL does.
+  const auto given = [&](std::size_t k) {
+    return fixed_divisions(solid_.lines.at(std::abs(area.lines[k])));
+  };
+  const auto differ = [&](std::size_t a, std::size_t b) {
+    return given(a) > 0 && given(b) > 0 && given(a) != given(b);
+  };
+  if (sides == 4) return differ(0, 2) || differ(1, 3);
+  return differ(0, 1) || differ(1, 2) || differ(0, 2);
 }
 
 std::map<int, std::vector<std::array<int, 4>>> Mesher::free_area_nodes(

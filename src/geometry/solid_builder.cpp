@@ -152,8 +152,15 @@ int SolidBuilder::area_from_lines(std::vector<int> lines) {
   return id;
 }
 
-int SolidBuilder::area_from_keypoints(const std::vector<int>& kps, const CoordinateSystem& path) {
-  if (kps.size() < 3) fail(fmt::format("an area needs at least 3 keypoints, {} given", kps.size()));
+int SolidBuilder::area_from_keypoints(const std::vector<int>& given, const CoordinateSystem& path) {
+  // A keypoint repeated next to itself (A,1,2,5,5: MAPDL's triangle given with four) is one
+  // corner; any other repeat is refused.
+  std::vector<int> kps;
+  for (int k : given)
+    if (kps.empty() || kps.back() != k) kps.push_back(k);
+  if (kps.size() > 1 && kps.back() == kps.front()) kps.pop_back();
+  if (kps.size() < 3)
+    fail(fmt::format("an area needs at least 3 distinct keypoints, {} given", kps.size()));
   for (int k : kps) kp(k);
   const std::set<int> wanted(kps.begin(), kps.end());
   if (wanted.size() != kps.size()) fail("a keypoint is listed twice");

@@ -220,6 +220,11 @@ TEST(Meshing, TrianglesOnThreeAndFourSidedAreas) {
   EXPECT_EQ(tri.elements.size(), 16u);  // n² triangles
   EXPECT_EQ(tri.nodes.size(), 15u);     // (n+1)(n+2)/2
   for (const auto& [id, e] : tri.elements) EXPECT_EQ(e.nodes[2], e.nodes[3]);
+  // A keypoint repeated next to itself is one corner (vm141: A,1,2,5,5 is a triangle); another
+  // repeat is refused.
+  const Model repeated = read(head + "K,1\nK,2,1\nK,3,0,1\nA,1,2,3,3\nAMESH,1\n");
+  EXPECT_EQ(element_shapes(repeated), element_shapes(tri));
+  EXPECT_THROW(read(head + "K,1\nK,2,1\nK,3,0,1\nA,1,2,1,3\n"), InputError);
   const Model quad = read(head + "RECTNG,0,2,0,1\nAMESH,ALL\n");
   EXPECT_EQ(quad.elements.size(), 2u * 4u * 4u);
   // Mapped quadrilaterals (MSHKEY,1) refuse a 3-sided area; free meshing (the default) meshes
@@ -227,6 +232,20 @@ TEST(Meshing, TrianglesOnThreeAndFourSidedAreas) {
   EXPECT_THROW(
       read("/PREP7\nET,1,SHELL63\nR,1,0.1\nK,1\nK,2,1\nK,3,0,1\nA,1,2,3\nMSHKEY,1\nAMESH,1\n"),
       InputError);
+}
+
+TEST(Meshing, UnmappableDivisionsMeshFreeUnlessMapped) {
+  // Opposite sides given 4 and 2 divisions cannot map: free meshing (MSHKEY,0, the default)
+  // meshes the area with those divisions on its lines; MSHKEY,1 refuses it.
+  const std::string deck =
+      "/PREP7\nET,1,SHELL63\nR,1,0.1\nMP,EX,1,1E7\nK,1\nK,2,2\nK,3,2,1\nK,4,0,1\nA,1,2,3,4\n"
+      "LESIZE,1,,,4\nLESIZE,3,,,2\n";
+  const Model free = read(deck + "AMESH,1\n");
+  EXPECT_GT(free.elements.size(), 0u);
+  std::size_t on_bottom = 0;
+  for (const auto& [id, n] : free.nodes) on_bottom += std::abs(n.x(1)) < 1e-12 ? 1 : 0;
+  EXPECT_EQ(on_bottom, 5u);  // line 1 (K1-K2) in 4 divisions
+  EXPECT_THROW(read(deck + "MSHKEY,1\nAMESH,1\n"), InputError);
 }
 
 TEST(Meshing, FullCylinderVolume) {
