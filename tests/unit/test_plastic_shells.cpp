@@ -20,6 +20,39 @@ constexpr double kE = 200e3, kSy = 250.0, kEt = 20e3;
 /// TB,PLAS's second constant: the plastic tangent modulus E Et/(E − Et) of the tangent kEt.
 constexpr double kEp = kE * kEt / (kE - kEt);
 
+/// A membrane, bending and twisting displacement of shell nodes at `positions` (6 DOFs each).
+Eigen::VectorXd shell_probe_displacement(const std::vector<Vec3>& positions) {
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(6 * static_cast<Eigen::Index>(positions.size()));
+  for (std::size_t a = 0; a < positions.size(); ++a) {
+    const Vec3& x = positions[a];
+    const auto i = 6 * static_cast<Eigen::Index>(a);
+    u(i) = 0.002 * x.x() + 0.0005 * x.y();  // membrane
+    u(i + 1) = -0.0007 * x.y();
+    u(i + 2) = 0.004 * x.x() * x.x() + 0.002 * x.x() * x.y();  // bending and twist
+    u(i + 3) = 0.05 * x.y();
+    u(i + 4) = -0.06 * x.x() + 0.01;
+  }
+  return u;
+}
+
+/// ‖K(u) − central differences of f_int at u‖ / ‖K(u)‖; `f` receives f_int(u).
+double tangent_fd_error(const Element& e, const Eigen::VectorXd& u, Eigen::VectorXd& f) {
+  Eigen::MatrixXd k, kp, km;
+  Eigen::VectorXd fp, fm;
+  e.tangent({}, u, k, f);
+  Eigen::MatrixXd fd(u.size(), u.size());
+  const double h = 1e-8;
+  for (Eigen::Index j = 0; j < u.size(); ++j) {
+    Eigen::VectorXd up = u, um = u;
+    up(j) += h;
+    um(j) -= h;
+    e.tangent({}, up, kp, fp);
+    e.tangent({}, um, km, fm);
+    fd.col(j) = (fp - fm) / (2.0 * h);
+  }
+  return (k - fd).norm() / k.norm();
+}
+
 /// The deck tests run for SHELL181 and SHELL281.
 class PlasticShellElement : public ::testing::TestWithParam<std::string> {};
 
@@ -41,30 +74,10 @@ TEST(PlasticShells, ElementTangentMatchesFiniteDifferences) {
       data.shell181 = true;
       data.plasticity = J2Plasticity::bilinear(kE, 0.3, kSy, kEt, false);
       Shell4 shell(1, data, {});
-      Eigen::VectorXd u = Eigen::VectorXd::Zero(6 * n);
-      for (int a = 0; a < n; ++a) {
-        const Vec3& x = data.positions[static_cast<std::size_t>(a)];
-        u(6 * a) = 0.002 * x.x() + 0.0005 * x.y();  // membrane
-        u(6 * a + 1) = -0.0007 * x.y();
-        u(6 * a + 2) = 0.004 * x.x() * x.x() + 0.002 * x.x() * x.y();  // bending and twist
-        u(6 * a + 3) = 0.05 * x.y();
-        u(6 * a + 4) = -0.06 * x.x() + 0.01;
-      }
+      const Eigen::VectorXd u = shell_probe_displacement(data.positions);
       shell.commit_history({}, 0.7 * u);
-      Eigen::MatrixXd k, kp, km;
-      Eigen::VectorXd f, fp, fm;
-      shell.tangent({}, u, k, f);
-      Eigen::MatrixXd fd(6 * n, 6 * n);
-      const double h = 1e-8;
-      for (int j = 0; j < 6 * n; ++j) {
-        Eigen::VectorXd up = u, um = u;
-        up(j) += h;
-        um(j) -= h;
-        shell.tangent({}, up, kp, fp);
-        shell.tangent({}, um, km, fm);
-        fd.col(j) = (fp - fm) / (2.0 * h);
-      }
-      EXPECT_LT((k - fd).norm(), 1e-5 * k.norm()) << "nodes " << n << " mindlin " << mindlin;
+      Eigen::VectorXd f;
+      EXPECT_LT(tangent_fd_error(shell, u, f), 1e-5) << "nodes " << n << " mindlin " << mindlin;
       EXPECT_GT(shell.plastic_work(), 0.0);
     }
 }
@@ -202,31 +215,12 @@ TEST(PlasticShells, Shell281TangentMatchesFiniteDifferences) {
     data.nu = 0.3;
     data.plasticity = J2Plasticity::bilinear(kE, 0.3, kSy, kEt, false);
     Shell281 shell(1, data, {});
-    Eigen::VectorXd u = Eigen::VectorXd::Zero(6 * n);
-    for (int a = 0; a < n; ++a) {
-      const Vec3& x = data.positions[static_cast<std::size_t>(a)];
-      u(6 * a) = 0.002 * x.x() + 0.0005 * x.y();
-      u(6 * a + 1) = -0.0007 * x.y();
-      u(6 * a + 2) = 0.004 * x.x() * x.x() + 0.002 * x.x() * x.y();
-      u(6 * a + 3) = 0.05 * x.y();
-      u(6 * a + 4) = -0.06 * x.x() + 0.01;
-    }
+    const Eigen::VectorXd u = shell_probe_displacement(data.positions);
     shell.commit_history({}, 0.7 * u);
     EXPECT_GT(shell.plastic_work(), 0.0);
-    Eigen::MatrixXd k, kp, km;
+    Eigen::MatrixXd kp, km;
     Eigen::VectorXd f, fp, fm;
-    shell.tangent({}, u, k, f);
-    Eigen::MatrixXd fd(6 * n, 6 * n);
-    const double h = 1e-8;
-    for (int j = 0; j < 6 * n; ++j) {
-      Eigen::VectorXd up = u, um = u;
-      up(j) += h;
-      um(j) -= h;
-      shell.tangent({}, up, kp, fp);
-      shell.tangent({}, um, km, fm);
-      fd.col(j) = (fp - fm) / (2.0 * h);
-    }
-    EXPECT_LT((k - fd).norm(), 1e-5 * k.norm()) << "nodes " << n;
+    EXPECT_LT(tangent_fd_error(shell, u, f), 1e-5) << "nodes " << n;
     // A rigid motion from the committed state adds no force (the states do not change).
     Eigen::VectorXd rigid = Eigen::VectorXd::Zero(6 * n);
     for (int a = 0; a < n; ++a) rigid(6 * a + 2) = 0.01;
