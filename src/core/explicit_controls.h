@@ -48,6 +48,7 @@ struct ExplicitCurveLoad {
   std::vector<int> nodes;  // ascending nodes; PRESS: 4 per face, the pressure's normal order
   std::vector<double> times, values;
   double scale = 1.0, birth = 0.0, death = 0.0;
+  int part_material = 0;  // RBFX ..: the material of the part (EDPART) the load names
   SourceLocation where;
 };
 
@@ -69,6 +70,16 @@ struct ExplicitContact {
 struct ExplicitRigidMaterial {
   int translation = 0;  // VAL1: the fixed translations of the centre of mass
   int rotation = 0;     // VAL2: the fixed rotations
+  SourceLocation where;
+};
+
+/// EDCRB,ADD,NEQN,PARTM,PARTS: the rigid body of the slave part moves with that of the master
+/// part as one body (LS-DYNA *CONSTRAINED_RIGID_BODIES): mass, centre and inertia from the
+/// elements of every member, the master's constraint codes (EDMP,RIGID). The parts are stored
+/// by their materials, whose rigid bodies they are.
+struct ExplicitRigidMerge {
+  int master_part = 0, slave_part = 0;
+  int master_material = 0, slave_material = 0;
   SourceLocation where;
 };
 
@@ -101,6 +112,7 @@ struct ExplicitControls {
   std::vector<ExplicitCurveLoad> loads;                     // EDLOAD, in input order
   std::vector<ExplicitContact> contacts;                    // EDCGEN, entity number = index + 1
   std::map<int, ExplicitRigidMaterial> rigid_materials;     // EDMP,RIGID, by material
+  std::map<int, ExplicitRigidMerge> rigid_merges;           // EDCRB, by equation number NEQN
   std::optional<ExplicitMassDamping> mass_damping;          // EDDAMP,ALL
   /// EDHIST: the node components whose nodes the stored history points (EDHTIME) hold; empty:
   /// all nodes.

@@ -143,6 +143,17 @@ void register_surface_load_commands(std::vector<CommandSpec>& table);
 void register_material_commands(std::vector<CommandSpec>& table);
 void register_explicit_commands(std::vector<CommandSpec>& table);
 
+/// A part of explicit dynamics as EDPART numbers them: one combination of element type,
+/// material and real set, numbered from 1 in ascending (type, material, real) order.
+struct ExplicitPart {
+  int number = 0, type = 0, mat = 0, real = 0;
+  std::vector<int> elements;  // ascending ids
+};
+class DeckReader;
+/// The part whose number field `field` of `c` gives (`name` the field's MAPDL name); fails
+/// when the field is not a part number of the model.
+ExplicitPart explicit_part(DeckReader& r, const Command& c, int field, const char* name);
+
 class DeckReader {
  public:
   DeckReader(const DeckOptions& options, Dialect dialect, const std::string& jobname);

@@ -1,9 +1,9 @@
 // Explicit dynamics settings (the ED* commands of MAPDL's ANSYS LS-DYNA interface, Command
 // Reference release 18.2; docs/explicit_dynamics.md): EDCTS, EDHGLS, EDBVIS, EDRST, EDHTIME,
-// EDVEL, EDPART, EDMP, EDDAMP, EDHIST (loads by curve and contact: explicit_load_commands.cpp).
-// They set Model::explicit_dynamics; the explicit run (src/explicit) reads it. The ED commands of
-// features not implemented (restarts, ...) are refused where they appear, so that no deck runs
-// without them silently.
+// EDVEL, EDPART, EDMP, EDCRB, EDDAMP, EDHIST (loads by curve and contact:
+// explicit_load_commands.cpp). They set Model::explicit_dynamics; the explicit run (src/explicit)
+// reads it. The ED commands of features not implemented (restarts, ...) are refused where they
+// appear, so that no deck runs without them silently.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -92,6 +92,44 @@ void cmd_edmp(DeckReader& r, const Command& c) {
     if (!c.blank(k)) r.fail(c, "RIGID takes VAL1 and VAL2 only");
   m.where = c.where;
   controls(r, c).rigid_materials[mat] = m;
+}
+
+void list_rigid_merges(const ExplicitControls& e, int neqn) {
+  for (const auto& [number, m] : e.rigid_merges)
+    if (neqn == 0 || number == neqn)
+      Log::info("EDCRB: equation {}: part {} (material {}) moves with part {} (material {})",
+                number, m.slave_part, m.slave_material, m.master_part, m.master_material);
+}
+
+void cmd_edcrb(DeckReader& r, const Command& c) {
+  // EDCRB,Option,NEQN,PARTM,PARTS: the slave part's rigid body joins the master part's. Whether
+  // both are rigid (EDMP,RIGID may follow) is checked when the run starts.
+  const std::string option = r.label(c, 1).empty() ? "ADD" : r.label(c, 1);
+  auto& merges = r.model.explicit_dynamics.rigid_merges;
+  const int neqn = r.integer(c, 2, 0);
+  if (neqn < 0) r.fail(c, fmt::format("NEQN {}: an equation number is positive", neqn));
+  if (option == "LIST") return list_rigid_merges(r.model.explicit_dynamics, neqn);
+  if (option == "DELE") {
+    if (neqn == 0)
+      merges.clear();
+    else if (merges.erase(neqn) == 0)
+      r.fail(c, fmt::format("NEQN {}: no such rigid body equation (EDCRB,LIST)", neqn));
+    return;
+  }
+  if (option != "ADD") r.fail(c, fmt::format("Option '{}': ADD, DELE or LIST", c.text(1)));
+  for (int k = 5; k <= c.n_fields(); ++k)
+    if (!c.blank(k)) r.fail(c, "EDCRB takes Option, NEQN, PARTM and PARTS only");
+  const ExplicitPart master = explicit_part(r, c, 3, "PARTM");
+  const ExplicitPart slave = explicit_part(r, c, 4, "PARTS");
+  if (master.number == slave.number)
+    r.fail(c, fmt::format("PARTM and PARTS are both part {}", master.number));
+  ExplicitRigidMerge m{.master_part = master.number,
+                       .slave_part = slave.number,
+                       .master_material = master.mat,
+                       .slave_material = slave.mat,
+                       .where = c.where};
+  // NEQN defaults to PARTS; an equation number given again replaces its equation.
+  controls(r, c).rigid_merges[neqn > 0 ? neqn : slave.number] = m;
 }
 
 void cmd_eddamp(DeckReader& r, const Command& c) {
@@ -208,6 +246,24 @@ void cmd_edpart(DeckReader& r, const Command& c) {
 
 }  // namespace
 
+ExplicitPart explicit_part(DeckReader& r, const Command& c, int field, const char* name) {
+  const auto number = r.opt_int(c, field);
+  if (!number || *number <= 0)
+    r.fail(c, fmt::format("{} '{}': a part number (EDPART) is expected", name, c.text(field)));
+  std::map<std::tuple<int, int, int>, std::vector<int>> parts;
+  for (const auto& [id, e] : r.model.elements) parts[{e.type, e.mat, e.real}].push_back(id);
+  if (*number > static_cast<int>(parts.size()))
+    r.fail(c,
+           fmt::format("{} {}: the model has {} parts (EDPART,LIST)", name, *number, parts.size()));
+  auto it = parts.begin();
+  std::advance(it, *number - 1);
+  return ExplicitPart{.number = *number,
+                      .type = std::get<0>(it->first),
+                      .mat = std::get<1>(it->first),
+                      .real = std::get<2>(it->first),
+                      .elements = std::move(it->second)};
+}
+
 void register_explicit_commands(std::vector<CommandSpec>& t) {
   t.push_back({"EDCTS", cmd_edcts, kPrepSolu});
   t.push_back({"EDHGLS", cmd_edhgls, kPrepSolu});
@@ -217,12 +273,13 @@ void register_explicit_commands(std::vector<CommandSpec>& t) {
   t.push_back({"EDVEL", cmd_edvel, kPrepSolu});
   t.push_back({"EDPART", cmd_edpart, kPrepSolu});
   t.push_back({"EDMP", cmd_edmp, kPrepSolu});
+  t.push_back({"EDCRB", cmd_edcrb, kPrepSolu});
   t.push_back({"EDDAMP", cmd_eddamp, kPrepSolu});
   t.push_back({"EDHIST", cmd_edhist, kPrepSolu});
   register_explicit_load_commands(t);
   constexpr const char* kNo = "not implemented in explicit dynamics (docs/explicit_dynamics.md)";
   for (const char* name : {"EDCNSTR", "EDBOUND", "EDWRITE", "EDCONTACT", "EDCSC", "EDSHELL",
-                           "EDSTART", "EDADAPT", "EDOUT", "EDINT", "EDENERGY", "EDCRB", "EDNROT"})
+                           "EDSTART", "EDADAPT", "EDOUT", "EDINT", "EDENERGY", "EDNROT"})
     t.push_back({name, [](DeckReader&, const Command&) {}, kPrepSolu, nullptr, kNo});
 }
 

@@ -5,9 +5,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <map>
 #include <set>
-#include <tuple>
 
 #include "core/log.h"
 #include "deck/deck_context.h"
@@ -127,27 +125,19 @@ std::vector<int> pressure_faces(DeckReader& r, const Command& c, const std::stri
   return faces;
 }
 
-/// The rigid body a rigid-body load (RBFX ...) acts on: Cname is a part number (EDPART: the
-/// combinations of type, material and real set in ascending order) whose material is rigid
-/// (EDMP,RIGID); the nodes of the part's elements (ascending).
-std::vector<int> rigid_part_nodes(DeckReader& r, const Command& c, const std::string& lab) {
-  const auto part = r.opt_int(c, 4);
-  if (!part || *part <= 0)
-    r.fail(c, fmt::format("Cname '{}': {} takes the PART number (EDPART) of a rigid body",
-                          c.text(4), lab));
-  std::map<std::tuple<int, int, int>, std::vector<int>> parts;
-  for (const auto& [id, e] : r.model.elements) parts[{e.type, e.mat, e.real}].push_back(id);
-  if (*part > static_cast<int>(parts.size()))
-    r.fail(c, fmt::format("PART {}: the model has {} parts (EDPART,LIST)", *part, parts.size()));
-  auto it = parts.begin();
-  std::advance(it, *part - 1);
-  const int mat = std::get<1>(it->first);
-  if (r.model.explicit_dynamics.rigid_materials.count(mat) == 0)
+/// The rigid body a rigid-body load (RBFX ...) acts on: Cname is a part number (EDPART) whose
+/// material is rigid (EDMP,RIGID); the nodes of the part's elements (ascending), and the
+/// part's material in `material`.
+std::vector<int> rigid_part_nodes(DeckReader& r, const Command& c, const std::string& lab,
+                                  int& material) {
+  const ExplicitPart part = explicit_part(r, c, 4, "Cname");
+  if (r.model.explicit_dynamics.rigid_materials.count(part.mat) == 0)
     r.fail(c, fmt::format("PART {} (material {}) is not rigid: {} acts on a rigid body "
                           "(EDMP,RIGID,{})",
-                          *part, mat, lab, mat));
+                          part.number, part.mat, lab, part.mat));
+  material = part.mat;
   std::set<int> nodes;
-  for (int id : it->second)
+  for (int id : part.elements)
     for (int n : r.model.elements.at(id).nodes)
       if (n > 0) nodes.insert(n);
   return {nodes.begin(), nodes.end()};
@@ -199,7 +189,7 @@ void cmd_edload(DeckReader& r, const Command& c) {
   load.label = lab;
   load.component = cname;
   if (rigid) {
-    load.nodes = rigid_part_nodes(r, c, lab);
+    load.nodes = rigid_part_nodes(r, c, lab, load.part_material);
   } else {
     const auto it = r.model.components.find(cname);
     if (cname.empty() || it == r.model.components.end())

@@ -61,6 +61,13 @@ ExplicitCurveLoads::ExplicitCurveLoads(const ExplicitSystem& system,
         body = b;
       }
       const RigidBody& b = system.rigid_bodies[static_cast<std::size_t>(body)];
+      // EDCRB: the slave body takes the master's loading; a load of its own is refused rather
+      // than silently moved to the merged body.
+      if (l.part_material != 0 && l.part_material != b.material)
+        throw InputError(l.where, fmt::format("EDLOAD {} on part {}: EDCRB merges its rigid body "
+                                              "(material {}) into that of material {}; load the "
+                                              "master part",
+                                              l.label, l.component, l.part_material, b.material));
       if (prescribed) {
         // The motion of the centre: the body's own state, driven in prescribe_rigid().
         if (b.fixed_translation[static_cast<std::size_t>(e.direction)])

@@ -84,11 +84,55 @@ void index_slots(ExplicitSystem& s) {
   }
 }
 
-/// One body per rigid material: its nodes (those of its elements, and so also the nodes
-/// deformable elements share with it), mass, centre and inertia. A node of two rigid materials
-/// is refused: the bodies would have to be merged (EDCRB, not implemented).
+/// The material whose rigid body the elements of each rigid material join: itself, or the end
+/// of its chain of EDCRB master parts. A merged part that is not rigid, a body merged into two
+/// masters and a cycle of merges are refused, located at the EDCRB command.
+std::map<int, int> rigid_body_materials(const ExplicitControls& e) {
+  std::map<int, int> master;  // slave material → master material, one step
+  for (const auto& [neqn, m] : e.rigid_merges) {
+    for (const auto& [part, mat] :
+         {std::pair{m.master_part, m.master_material}, std::pair{m.slave_part, m.slave_material}})
+      if (e.rigid_materials.count(mat) == 0)
+        throw InputError(m.where, fmt::format("EDCRB equation {}: part {} (material {}) is not a "
+                                              "rigid body (EDMP,RIGID,{})",
+                                              neqn, part, mat, mat));
+    if (m.slave_material == m.master_material) continue;  // parts of one material: one body
+    const auto [it, inserted] = master.emplace(m.slave_material, m.master_material);
+    if (!inserted && it->second != m.master_material)
+      throw InputError(m.where,
+                       fmt::format("EDCRB equation {}: the rigid body of material {} is already "
+                                   "merged into that of material {}",
+                                   neqn, m.slave_material, it->second));
+  }
+  // A chain from a merge's master back to its slave closes a cycle: refused at the first
+  // equation (in NEQN order) of the cycle.
+  for (const auto& [neqn, m] : e.rigid_merges) {
+    int r = m.master_material;
+    for (std::size_t hops = 0; hops <= master.size() && master.count(r); ++hops) {
+      if (r == m.slave_material) break;
+      r = master.at(r);
+    }
+    if (r == m.slave_material && m.slave_material != m.master_material)
+      throw InputError(m.where,
+                       fmt::format("EDCRB equation {}: merging the rigid body of material {} "
+                                   "into that of material {} closes a cycle of merges",
+                                   neqn, m.slave_material, m.master_material));
+  }
+  std::map<int, int> root;
+  for (const auto& entry : e.rigid_materials) {
+    int r = entry.first;
+    while (master.count(r)) r = master.at(r);
+    root[entry.first] = r;
+  }
+  return root;
+}
+
+/// One body per rigid material, or per group of them that EDCRB merges (`body_material`: each
+/// rigid material's body): its nodes (those of its elements, and so also the nodes deformable
+/// elements share with it), mass, centre and inertia. A node of two bodies that are not merged
+/// is refused.
 void build_rigid_bodies(const Model& model, const std::map<int, std::set<int>>& rigid_nodes,
-                        ExplicitSystem& s) {
+                        const std::map<int, int>& body_material, ExplicitSystem& s) {
   if (rigid_nodes.empty()) return;
   s.rigid_body_of.assign(s.n_nodes(), -1);
   std::vector<double> rigid_mass(s.n_nodes(), 0.0);
@@ -100,13 +144,15 @@ void build_rigid_bodies(const Model& model, const std::map<int, std::set<int>>& 
     body.material = mat;
     body.fixed_translation = rigid_constraint_axes(m.translation);
     body.fixed_rotation = rigid_constraint_axes(m.rotation);
+    for (const auto& [member, root] : body_material)
+      if (root == mat) body.materials.push_back(member);
     for (int id : ids) {
       const auto n = static_cast<std::size_t>(s.index_of(id));
       if (s.rigid_body_of[n] >= 0)
         throw InputError(
             m.where,
-            fmt::format("node {} belongs to the rigid bodies of materials {} and {}: "
-                        "merging rigid bodies (EDCRB) is not implemented",
+            fmt::format("node {} belongs to the rigid bodies of materials {} and {}: merge them "
+                        "with EDCRB or keep their nodes apart",
                         id, s.rigid_bodies[static_cast<std::size_t>(s.rigid_body_of[n])].material,
                         mat));
       s.rigid_body_of[n] = static_cast<int>(s.rigid_bodies.size());
@@ -117,7 +163,7 @@ void build_rigid_bodies(const Model& model, const std::map<int, std::set<int>>& 
     Eigen::Matrix3d second = Eigen::Matrix3d::Zero();
     for (const auto& set : s.rigid_sets)
       for (std::size_t k = 0; k < set->size(); ++k)
-        if (model.elements.at(set->element_id(k)).mat == mat)
+        if (body_material.at(model.elements.at(set->element_id(k)).mat) == mat)
           second += set->second_mass_moment(initial, k);
     for (std::size_t n : body.nodes) {
       const Eigen::Vector3d x(s.x0[n], s.y0[n], s.z0[n]);
@@ -140,7 +186,8 @@ ExplicitSystem build_explicit_system(const Model& model) {
   // form sets of their own, kept apart from the force loop.
   const ExplicitControls& e = model.explicit_dynamics;
   std::map<std::string, std::vector<const ElementRecord*>> by_type, rigid_by_type;
-  std::map<int, std::set<int>> rigid_nodes;  // material → node ids
+  const std::map<int, int> body_material = rigid_body_materials(e);
+  std::map<int, std::set<int>> rigid_nodes;  // body's material → node ids
   for (const auto& [id, record] : model.elements) {
     if (const std::string why = esys_refusal(model, record); !why.empty())
       throw InputError(record.where, fmt::format("element {}: {}", id, why));
@@ -154,7 +201,7 @@ ExplicitSystem build_explicit_system(const Model& model) {
                    static_cast<std::size_t>(
                        element_type_descriptor(model.element_type(record.type)).n_nodes));
       for (std::size_t a = 0; a < own; ++a)
-        if (record.nodes[a] != 0) rigid_nodes[record.mat].insert(record.nodes[a]);
+        if (record.nodes[a] != 0) rigid_nodes[body_material.at(record.mat)].insert(record.nodes[a]);
     } else {
       by_type[type].push_back(&record);
     }
@@ -185,7 +232,7 @@ ExplicitSystem build_explicit_system(const Model& model) {
   for (const auto& set : s.sets) set->add_lumped_mass(s.mass);
   for (const auto& set : s.rigid_sets) set->add_lumped_mass(s.mass);
   for (double m : s.mass) s.physical_mass += m;
-  build_rigid_bodies(model, rigid_nodes, s);
+  build_rigid_bodies(model, rigid_nodes, body_material, s);
   index_slots(s);
   std::vector<std::uint8_t> rotational(s.n_nodes(), 0);
   for (const auto& set : s.sets)

@@ -16,7 +16,8 @@
 namespace impactfe {
 
 struct RigidBody {
-  int material = 0;
+  int material = 0;                      // the body's (EDCRB: the master part's) material
+  std::vector<int> materials;            // every material whose elements it holds, ascending
   std::vector<std::size_t> nodes;        // system node indices, ascending
   std::vector<Eigen::Vector3d> offsets;  // r_i at the start, per node
   double mass = 0.0;

@@ -99,6 +99,27 @@ TEST(ExplicitPressure, WorkIsTheEnergyPutIn) {
   EXPECT_LT(std::abs(e.drift()), 0.005 * work);
 }
 
+/// An explicit run of a model with its loads by curve and no fixed DOFs, started.
+struct CurveLoadRun {
+  explicit CurveLoadRun(const Model& m)
+      : system(build_explicit_system(m)),
+        loads(system, m.explicit_dynamics),
+        cd(system, m.explicit_dynamics) {
+    cd.add_interaction(&loads);
+    cd.set_loads(std::vector<std::uint8_t>(3 * system.n_nodes(), 0), Vec3::Zero());
+    cd.start();
+  }
+  void run_to(double end) {
+    while (cd.time() < end) cd.cycle(std::min(cd.stable_step(), end - cd.time()));
+  }
+  Vec3 displacement(int node) {
+    return cd.displacement(static_cast<std::size_t>(system.index_of(node)));
+  }
+  ExplicitSystem system;
+  ExplicitCurveLoads loads;
+  CentralDifference cd;
+};
+
 TEST(ExplicitRigidLoad, ForceActsOnTheCentreOfMass) {
   // explicit_edload_rigid_force_solid164: RBFX = 1000 and RBFY = 2000 t on the rigid cube
   // (part 2): the resultant is the curves' values and the body does not turn.
@@ -135,18 +156,13 @@ TEST(ExplicitRigidLoad, PrescribedMotionDrivesTheBodyAndBooksItsWork) {
   swap("EDLOAD,ADD,RBFX,,2,T,PX", "EDLOAD,ADD,RBVX,,2,T,PX,0,,0.002");
   swap("EDLOAD,ADD,RBFY,,2,T,PY", "EDLOAD,ADD,RBUY,,2,T,PY,0,,1E-4");
   Model model = read_deck_text(text, "m.inp").model;
-  ExplicitSystem system = build_explicit_system(model);
-  ExplicitCurveLoads loads(system, model.explicit_dynamics);
-  CentralDifference cd(system, model.explicit_dynamics);
-  cd.add_interaction(&loads);
-  cd.set_loads(std::vector<std::uint8_t>(3 * system.n_nodes(), 0), Vec3::Zero());
-  cd.start();
-  while (cd.time() < 1.0) cd.cycle(std::min(cd.stable_step(), 1.0 - cd.time()));
+  CurveLoadRun run(model);
+  run.run_to(1.0);
   for (int node : {101, 107}) {
-    const Vec3 u = cd.displacement(static_cast<std::size_t>(system.index_of(node)));
+    const Vec3 u = run.displacement(node);
     EXPECT_LT((u - Vec3(2.0, 0.2, 0.0)).norm(), 1e-12) << node << ": " << u.transpose();
   }
-  const ExplicitEnergies e = cd.energies();
+  const ExplicitEnergies e = run.cd.energies();
   EXPECT_NEAR(e.external_work, 2020.0, 1e-6 * 2020.0);
   EXPECT_NEAR(e.kinetic, 2020.0, 1e-6 * 2020.0);
   // A translation the body's EDMP constraint fixes cannot be prescribed.
@@ -154,6 +170,42 @@ TEST(ExplicitRigidLoad, PrescribedMotionDrivesTheBodyAndBooksItsWork) {
   Model fixed = read_deck_text(text, "f.inp").model;
   ExplicitSystem s2 = build_explicit_system(fixed);
   EXPECT_THROW(ExplicitCurveLoads(s2, fixed.explicit_dynamics), InputError);
+}
+
+TEST(ExplicitRigidLoad, MergedBodiesMoveAsOneBody) {
+  // explicit_edcrb_merged_bodies_solid164: the unit cubes of materials 2 (x 2 .. 3) and 3
+  // (x 4 .. 5), 1000 each, merged by EDCRB: one body of mass 2000 centred at x = 3.5 with
+  // J_zz = 2 (1000 (1 + 1)/12 + 1000 · 1²) = 2333.33 (parallel axes), the master's codes.
+  std::string text = prep("explicit_edcrb_merged_bodies_solid164.inp");
+  const auto swap = [&](const std::string& from, const std::string& to) {
+    text.replace(text.find(from), from.size(), to);
+  };
+  const Model model = read_deck_text(text, "m.inp").model;
+  const ExplicitSystem system = build_explicit_system(model);
+  ASSERT_EQ(system.rigid_bodies.size(), 1u);
+  const RigidBody& body = system.rigid_bodies[0];
+  EXPECT_EQ(body.material, 2);
+  EXPECT_EQ(body.materials, (std::vector<int>{2, 3}));
+  EXPECT_EQ(body.nodes.size(), 16u);
+  EXPECT_NEAR(body.mass, 2000.0, 1e-9);
+  EXPECT_LT((body.centre0 - Eigen::Vector3d(3.5, 0.5, 0.5)).norm(), 1e-12);
+  EXPECT_NEAR(body.inertia0(2, 2), 2.0 * (2000.0 / 12.0 + 1000.0), 1e-9);
+  EXPECT_NEAR(body.inertia0(0, 0), 2.0 * 2000.0 / 12.0, 1e-9);
+  EXPECT_FALSE(body.fixed_translation[1]);
+  // A moment RBMZ = 2333.33 on the master turns both cubes at α = M/J_zz = 1 about the common
+  // centre: after t = 0.1 the angle is αt²/2 = 0.005, the slave's far corner (207, at
+  // r = (1.5, 0.5) from the centre) has moved by (R − 1) r.
+  swap("PY(1) = 1000,1000", "PY(1) = 2333.333333333333,2333.333333333333");
+  swap("EDLOAD,ADD,RBFY,,2,T,PY", "EDLOAD,ADD,RBMZ,,2,T,PY");
+  Model turned = read_deck_text(text, "t.inp").model;
+  CurveLoadRun run(turned);
+  run.run_to(0.1);
+  const double angle = 0.005;
+  const Vec3 r(1.5, 0.5, 0.0);
+  const Vec3 moved(std::cos(angle) * r.x() - std::sin(angle) * r.y() - r.x(),
+                   std::sin(angle) * r.x() + std::cos(angle) * r.y() - r.y(), 0.0);
+  const Vec3 u = run.displacement(207);
+  EXPECT_LT((u - moved).norm(), 1e-3 * moved.norm()) << u.transpose();
 }
 
 TEST(ExplicitLoads, EdloadRefusesWhatItDoesNotCarryOut) {
