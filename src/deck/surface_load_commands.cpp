@@ -1,7 +1,7 @@
-// Surface loads and loads on solid-model entities (APDL_MODELING §5.1-§5.6): SF, SFE, SFA and
-// their deletion (SFDELE, SFEDELE, SFADELE), DK, DL, DA, FK and their deletion, SBCTRAN (and the
-// automatic transfer at SOLVE), the `%TABLE%` load-value field, and the refusals of SFL, SFGRAD,
-// SFBEAM and FL.
+// Surface loads and loads on solid-model entities (APDL_MODELING §5.1-§5.6): SF, SFE, SFBEAM,
+// SFA and their deletion (SFDELE, SFEDELE, SFADELE), DK, DL, DA, FK and their deletion, SBCTRAN
+// (and the automatic transfer at SOLVE), the `%TABLE%` load-value field, and the refusals of
+// SFL, SFGRAD and FL.
 #include <fmt/format.h>
 
 #include <optional>
@@ -103,6 +103,41 @@ void cmd_sfe(DeckReader& r, const Command& c) {
                                 ? r.model.element_types.at(rec.type).ansys_name
                                 : "undefined type",
                             lkey));
+    r.model.current.pressures[FaceKey{e, lkey}] = load;
+  }
+}
+
+void cmd_sfbeam(DeckReader& r, const Command& c) {
+  // SFBEAM,Elem,LKEY,Lab,VALI,VALJ,VAL2I,VAL2J,IOFFST,JOFFST,LENRAT: a force per length on face
+  // LKEY of beam elements, VALI at node I and VALJ (default VALI) at J, linear between; the
+  // faces are the elements' own (Beam::pressure_load, QuadraticBeam::pressure_load).
+  const auto elements = element_list(r, c, 1);
+  const int lkey = r.integer(c, 2, 1);
+  require_pressure(r, c, 3);
+  const LoadField vi = load_field(r, c, 4);
+  SurfaceLoad load = uniform(vi);
+  if (!c.blank(5)) {
+    if (!vi.table.empty()) r.fail(c, "VALJ with a table VALI: the table gives the whole load");
+    load.values[1] = r.real(c, 5, 0.0);
+  }
+  if (r.real(c, 6, 0.0) != 0.0 || r.real(c, 7, 0.0) != 0.0)
+    r.fail(c, "VAL2I, VAL2J (imaginary parts of a harmonic load) are not supported");
+  if (r.real(c, 8, 0.0) != 0.0 || r.real(c, 9, 0.0) != 0.0)
+    r.fail(c,
+           "IOFFST, JOFFST: a load over part of the element is not implemented (the whole "
+           "length from I to J is)");
+  const double lenrat = r.real(c, 10, 0.0);
+  if (lenrat != 0.0 && lenrat != 1.0) r.fail(c, fmt::format("LENRAT {:g}: 0 or 1", lenrat));
+  for (int e : elements) {
+    const ElementRecord& rec = r.model.elements.at(e);
+    const auto type = r.model.element_types.find(rec.type);
+    const std::string name = type != r.model.element_types.end() ? type->second.ansys_name : "";
+    if (name != "BEAM188" && name != "BEAM189" && name != "BEAM3" && name != "BEAM4")
+      r.fail(c, fmt::format("element {} is a {}: SFBEAM loads the beams BEAM188, BEAM189, BEAM3 "
+                            "and BEAM4",
+                            e, name.empty() ? "element of no type" : name));
+    if (geometry::element_face_nodes(r.model, rec, lkey).empty())
+      r.fail(c, fmt::format("LKEY {}: {} has faces 1 to {}", lkey, name, name == "BEAM3" ? 4 : 5));
     r.model.current.pressures[FaceKey{e, lkey}] = load;
   }
 }
@@ -343,6 +378,7 @@ void prepare_model_for_solution(DeckReader& r, const Command& c) {
 void register_surface_load_commands(std::vector<CommandSpec>& t) {
   t.push_back({"SF", cmd_sf, kPrepSolu});
   t.push_back({"SFE", cmd_sfe, kPrepSolu});
+  t.push_back({"SFBEAM", cmd_sfbeam, kPrepSolu});
   t.push_back({"SFA", cmd_sfa, kPrepSolu});
   t.push_back({"SFDELE", cmd_sfdele, kPrepSolu});
   t.push_back({"SFEDELE", cmd_sfedele, kPrepSolu});
@@ -357,7 +393,7 @@ void register_surface_load_commands(std::vector<CommandSpec>& t) {
   t.push_back({"DADELE", cmd_dadele, kPrepSolu});
   for (const char* name : {"SBCTRAN", "DTRAN", "FTRAN", "SFTRAN"})
     t.push_back({name, cmd_sbctran, kPrepSolu});
-  for (const char* name : {"SFL", "SFGRAD", "SFBEAM", "FL"})
+  for (const char* name : {"SFL", "SFGRAD", "FL"})
     t.push_back({name, cmd_surface_refused, kAnywhere});
 }
 

@@ -443,6 +443,54 @@ Eigen::Vector3d Beam::thermal_resultants() const {
   return D_elastic_.col(0) * eps;  // D (ε_th, 0, 0): N, and My, Mz of an offset section
 }
 
+void Beam::pressure_load(const ElementContext& ctx, int face, const std::array<double, 4>& p,
+                         const Eigen::VectorXd& u, Eigen::VectorXd& f) const {
+  // The faces of MAPDL's beams (SFBEAM, SFE): BEAM188 and BEAM4 1 −z, 2 −y (normal, I-J),
+  // 3 +x (tangential), 4 +x at I, 5 −x at J (axial); BEAM3 1 −y, 2 +x, 3 I, 4 J. Force per
+  // length, p[0] at I and p[1] at J, linear between.
+  const bool planar = data_.active.size() == 6;
+  const int kind = planar ? (face == 1 ? 2 : face + 1) : face;  // as BEAM188's numbering
+  if (kind < 1 || kind > 5 || (planar && face > 4))
+    throw ModelError(fmt::format("element {} (beam) has no face {}", id(), face));
+  // The element's axes: under large deflection the co-rotated frame and chord (a follower
+  // load, MAPDL's beam pressures act in the element axes), else the initial ones.
+  Mat3 axes = data_.frame;
+  double L = length_;
+  if (ctx.large_deflection) {
+    const Vec12 U = expand(u);
+    axes = corotate(U, nullptr).Rr;
+    L = (data_.xj + U.segment<3>(6) - data_.xi - U.segment<3>(0)).norm();
+  }
+  const double pi = p[0], pj = p[1];
+  Vec12 fl = Vec12::Zero();  // local: node I (u v w θx θy θz), then node J
+  if (kind == 1 || kind == 2) {
+    // Hermite (cubic) work-equivalent loads of q(s) = pi + (pj − pi) s/L (Przemieniecki §5.5):
+    // the fixed-end forces L(7pi + 3pj)/20, L(3pi + 7pj)/20 and moments L²(3pi + 2pj)/60,
+    // −L²(2pi + 3pj)/60; with the element's exact stiffness they give exact nodal
+    // displacements. A load along −y turns about z (θz = v'), one along −z about y (θy = −w').
+    const double fi = L * (7.0 * pi + 3.0 * pj) / 20.0, fj = L * (3.0 * pi + 7.0 * pj) / 20.0;
+    const double mi = L * L * (3.0 * pi + 2.0 * pj) / 60.0;
+    const double mj = -L * L * (2.0 * pi + 3.0 * pj) / 60.0;
+    if (kind == 2) {  // along −y
+      fl(1) = -fi, fl(7) = -fj, fl(5) = -mi, fl(11) = -mj;
+    } else {  // along −z
+      fl(2) = -fi, fl(8) = -fj, fl(4) = mi, fl(10) = mj;
+    }
+  } else if (kind == 3) {
+    fl(0) = L * (2.0 * pi + pj) / 6.0;  // linear interpolation of the axial displacement
+    fl(6) = L * (pi + 2.0 * pj) / 6.0;
+  } else if (kind == 4) {
+    fl(0) = pi;  // +x at I
+  } else {
+    fl(6) = -p[0];  // −x at J (the face's one node)
+  }
+  Vec12 fg;
+  for (int b = 0; b < 4; ++b) fg.segment<3>(3 * b) = axes * fl.segment<3>(3 * b);
+  f.resize(static_cast<Eigen::Index>(data_.active.size()));
+  for (std::size_t k = 0; k < data_.active.size(); ++k)
+    f(static_cast<Eigen::Index>(k)) = fg(data_.active[k]);
+}
+
 void Beam::thermal_load(const ElementContext&, Eigen::VectorXd& f) const {
   const Eigen::Vector3d r = thermal_resultants();
   // Local end loads in the DOF order u v w θx θy θz: −r at I, +r at J (as f_int = Bᵀ r).

@@ -93,6 +93,12 @@ class Beam final : public Element {
   /// Equivalent nodal forces of the axial thermal strain ε_th = ALPX ΔT (ΔT the mean of the end
   /// temperatures): the section resultants D (ε_th, 0, 0) applied at the ends, −at I, +at J.
   void thermal_load(const ElementContext& ctx, Eigen::VectorXd& f) const override;
+  /// Work-equivalent nodal loads of a force per length on face `face` (SFBEAM, SFE): MAPDL's
+  /// beam faces, normal loads with the Hermite moments; follows the element under large
+  /// deflection. The section forces stay those of the nodal displacements (K u), as the
+  /// one-point element reports them: mesh finely where a distributed load acts.
+  void pressure_load(const ElementContext& ctx, int face, const std::array<double, 4>& p,
+                     const Eigen::VectorXd& u, Eigen::VectorXd& f) const override;
   std::optional<double> volume() const override { return data_.section.area * length_; }
 
   bool has_history() const override { return data_.plasticity.has_value(); }

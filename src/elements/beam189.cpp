@@ -230,6 +230,33 @@ void QuadraticBeam::thermal_load(const ElementContext&, Eigen::VectorXd& f) cons
   f = thermal_forces();
 }
 
+void QuadraticBeam::pressure_load(const ElementContext&, int face, const std::array<double, 4>& p,
+                                  const Eigen::VectorXd&, Eigen::VectorXd& f) const {
+  // BEAM189's faces (SFBEAM, SFE): 1 −z, 2 −y (normal), 3 +x (tangential) along the axis, the
+  // force per length p[0] at I and p[1] at J, linear in ξ; 4 +x at I, 5 −x at J (axial).
+  // ∫ N_a q(ξ) e(ξ) |x_ξ| dξ by 3-point Gauss (exact on a straight element), e the section axis
+  // at the point, so the load follows a curved element's axis.
+  Vec18 fe = Vec18::Zero();
+  if (face >= 1 && face <= 3) {
+    const int axis = face == 1 ? 2 : face == 2 ? 1 : 0;
+    const double sign = face == 3 ? 1.0 : -1.0;
+    for (const auto& [xi, w] : kGauss3) {
+      const Eigen::Vector3d N = shape(xi), dN = shape_derivative(xi);
+      const double jac = (dN(0) * data_.x[0] + dN(1) * data_.x[1] + dN(2) * data_.x[2]).norm();
+      const double q = 0.5 * (1.0 - xi) * p[0] + 0.5 * (1.0 + xi) * p[1];
+      const Vec3 load = sign * q * jac * w * axes_at(xi).col(axis);
+      for (int a = 0; a < 3; ++a) fe.segment<3>(6 * a) += N(a) * load;
+    }
+  } else if (face == 4 || face == 5) {
+    const int node = face - 4;  // I (ξ = −1) or J (+1)
+    fe.segment<3>(6 * node) =
+        (face == 4 ? 1.0 : -1.0) * p[0] * axes_at(node == 0 ? -1.0 : 1.0).col(0);
+  } else {
+    throw ModelError(fmt::format("element {} (BEAM189) has no face {}", id(), face));
+  }
+  f = fe;
+}
+
 const std::vector<std::string>& quadratic_beam_result_names() {
   static const std::vector<std::string> names = {
       "FX_I",   "MY_I",   "MZ_I",   "TQ_I",   "SFZ_I",  "SFY_I",  "FX_J",   "MY_J",
@@ -352,6 +379,7 @@ const ElementRegistration kBeam189{
      .role = ShapeRole::Line,
      .result_names = quadratic_beam_result_names(),
      .result_sequences = beam189_sequences(),
+     .faces = {{0, 1}, {0, 1}, {0, 1}, {0}, {1}},  // SFBEAM / SFE faces of BEAM188
      .note = "BEAM189: quadratic Timoshenko beam, 2-point Gauss along the axis; linear elastic, "
              "small deflection with stress stiffening (NLGEOM and plasticity refused)",
      .create = make_beam189}};

@@ -90,6 +90,11 @@ class QuadraticBeam final : public Element {
   /// the temperature changes at I, J, K: ∫ Bᵀ D (ε_th, 0, ...) ds (2-point Gauss, as K).
   void thermal_load(const ElementContext& ctx, Eigen::VectorXd& f) const override;
 
+  /// Work-equivalent nodal loads of a force per length on face `face` (SFBEAM, SFE; the faces
+  /// of BEAM188). Small deflection: the load acts on the initial axis.
+  void pressure_load(const ElementContext& ctx, int face, const std::array<double, 4>& p,
+                     const Eigen::VectorXd& u, Eigen::VectorXd& f) const override;
+
   /// Arc length of the axis (3-point Gauss of |x_ξ|, exact for a straight element).
   double length() const { return length_; }
   /// Section axes at ξ (columns: tangent x, y, z in global components).

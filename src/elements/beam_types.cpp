@@ -148,6 +148,12 @@ std::vector<ResultSequence> concat(std::initializer_list<std::vector<ResultSeque
   return all;
 }
 
+// The pressure faces (SFBEAM, SFE; Beam::pressure_load): BEAM188 and BEAM4 1-3 along I-J
+// (−z, −y normal; +x tangential), 4 at I, 5 at J (axial); BEAM3 1-2 along I-J, 3 at I, 4 at J.
+// SF by selected nodes loads none of them (sf_faces 0), as in MAPDL.
+const std::vector<std::vector<int>> kBeamFaces = {{0, 1}, {0, 1}, {0, 1}, {0}, {1}};
+const std::vector<std::vector<int>> kPlanarBeamFaces = {{0, 1}, {0, 1}, {0}, {1}};
+
 // APDL_MODELING §8.1: SMISC 1-6 / 14-19 FX MY MZ TQ SFZ SFY at I / J; 31-35 / 36-40 SDIR SByT
 // SByB SBzT SBzB at I / J.
 const ElementRegistration kBeam188{
@@ -170,6 +176,7 @@ const ElementRegistration kBeam188{
                               "SBYB_J", "SBZT_J", "SBZB_J"}),
           {{"NL", "EPEQ", "EPEQ"}, {"NL", "SRAT", "SRAT"}, {"NL", "PLWK", "PLWK"}}}),
      .plasticity = true,
+     .faces = kBeamFaces,
      .note = "BEAM188: KEYOPT(3) = 0, 2, 3 give one element (exact stiffness for nodal loads, "
              "cubic mass); KEYOPT(2) not used (rigid cross section under NLGEOM)",
      .create = make_beam188}};
@@ -195,6 +202,7 @@ const ElementRegistration kBeam4{
                  numbered_sequences("SMISC", 1,
                                     {"FX_I", "SFY_I", "SFZ_I", "TQ_I", "MY_I", "MZ_I", "FX_J",
                                      "SFY_J", "SFZ_J", "TQ_J", "MY_J", "MZ_J"})}),
+     .faces = kBeamFaces,
      .create = make_beam4}};
 
 // BEAM3: LS 1-3 / 4-6 SDIR SBYT SBYB at I / J; NMISC 1-4; SMISC 1, 2, 6 / 7, 8, 12 MFORX MFORY
@@ -215,6 +223,7 @@ const ElementRegistration kBeam3{
           numbered_sequences(
               "SMISC", 1,
               {"FX_I", "SFY_I", "", "", "", "MZ_I", "FX_J", "SFY_J", "", "", "", "MZ_J"})}),
+     .faces = kPlanarBeamFaces,
      .create = make_beam3}};
 
 }  // namespace
