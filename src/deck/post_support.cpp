@@ -243,6 +243,21 @@ double nodal_component_in_rsys(DeckReader& r, const SetData& data, int row, int 
   return (axes.transpose() * global)(lab.column - base);
 }
 
+/// True when `node` is one of an element's own nodes, which carry its DOFs: an orientation
+/// node (BEAM188's K, BEAM189's L) or a node no element uses has none, and MAPDL lists 0 there.
+bool node_has_dofs(const Model& model, int node) {
+  for (const auto& [id, e] : model.elements) {
+    const auto type = model.element_types.find(e.type);
+    if (type == model.element_types.end()) continue;
+    const std::size_t own = std::min(
+        e.nodes.size(), static_cast<std::size_t>(element_type_descriptor(type->second).n_nodes));
+    if (std::find(e.nodes.begin(), e.nodes.begin() + static_cast<std::ptrdiff_t>(own), node) !=
+        e.nodes.begin() + static_cast<std::ptrdiff_t>(own))
+      return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 double nodal_result(DeckReader& r, const Command& c, int node, const std::string& label) {
@@ -267,12 +282,15 @@ double nodal_result(DeckReader& r, const Command& c, int node, const std::string
     r.fail(c, fmt::format("{} of node {} was not computed by the reduced run (not a master DOF; "
                           "expand it: EXPASS or /STRESS)",
                           label, node));
-  if (lab->dataset != 'R' && !nodal_row_written(data, lab->dataset, row))
+  if (lab->dataset != 'R' && !nodal_row_written(data, lab->dataset, row) &&
+      node_has_dofs(r.model, node))
     r.fail(c,
            fmt::format("{} of node {} is not in the current set: OUTRES did not write {} of "
-                       "this node at this time (or the node has no DOFs)",
+                       "this node at this time",
                        label, node, lab->dataset == 'U' ? "NSOL" : std::string(1, lab->dataset)));
-  return 0.0;  // a DOF the node does not have (MAPDL lists 0), or a reaction of a free DOF
+  // A DOF the node does not have or a node without DOFs (MAPDL lists 0), or a reaction of a
+  // free DOF.
+  return 0.0;
 }
 
 std::string element_type_name(const DeckReader& r, int element) {
@@ -372,6 +390,12 @@ std::optional<double> stored_element_result(DeckReader& r, const Command& c, int
   const std::string& location = post_state(r).shell_location;
   const ElementTypeDescriptor* type = find_element_type(type_name);
   const int layer = post_state(r).layer;
+  const std::string k = to_upper(comp);
+  const bool principal =
+      to_upper(item) == "S" && (k == "1" || k == "2" || k == "3" || k == "INT" || k == "EQV");
+  // A principal value the element stores at the top only (SHELL181's SEQV): from the
+  // components at the surface asked for, below.
+  bool from_components = false;
   if ((location != "TOP" || layer > 0) && type != nullptr)
     if (const auto seq = find_result_sequence(*type, item, comp)) {
       if (const std::string column = shell_location_column(r, seq->name); column != seq->name) {
@@ -379,24 +403,26 @@ std::optional<double> stored_element_result(DeckReader& r, const Command& c, int
         if (row == data.element_rows.end()) return std::numeric_limits<double>::quiet_NaN();
         const ElementResultTable& table = data.point.element_results.at(row->second.first);
         const auto col = std::find(table.item_names.begin(), table.item_names.end(), column);
-        if (col == table.item_names.end())
+        if (col == table.item_names.end() && principal)
+          from_components = true;
+        else if (col == table.item_names.end())
           r.fail(c,
                  fmt::format("{} {} has no {} value at SHELL,{}{}", type_name, item, comp, location,
                              layer > 0 ? fmt::format(" of LAYER,{} (the S components of a layered "
                                                      "SHELL181 or SHELL281 section)",
                                                      layer)
                                        : std::string()));
-        return table.values(row->second.second,
-                            static_cast<Eigen::Index>(col - table.item_names.begin()));
+        if (!from_components)
+          return table.values(row->second.second,
+                              static_cast<Eigen::Index>(col - table.item_names.begin()));
       }
     }
-  const auto value = element_item(data, element, type_name, item, comp);
-  if (value || to_upper(item) != "S") return value;
+  const auto value = from_components ? std::optional<double>()
+                                     : element_item(data, element, type_name, item, comp);
+  if (value || !principal) return value;
   // Principal stresses of an element that gives only the components (shells: SX SY SXY at the
   // surface): the eigenvalues of the stress tensor, S1 ≥ S2 ≥ S3, SINT = S1 − S3 and the von
   // Mises SEQV (absent components are 0: a shell's SZ, SYZ, SXZ).
-  const std::string k = to_upper(comp);
-  if (k != "1" && k != "2" && k != "3" && k != "INT" && k != "EQV") return value;
   const auto part = [&](const char* name) -> std::optional<double> {
     return element_result(r, c, element, "S", name);
   };

@@ -123,6 +123,29 @@ TEST(DeckVmInputs, DerivWithBlankArgumentAndResumeInPost26) {
 
 // NPRINT,N (vm74, which writes NPRINT,.25): PRVAR lists every Nth stored point from the
 // first; a value below 1 lists every point.
+// vm217: a BEAM188's orientation node has no DOFs; PRNSOL and *GET list 0 there, as MAPDL
+// does, instead of stopping. vm139: SHELL,MID with the principal stresses of a SHELL181, which
+// stores its von Mises stress at the top only: S,EQV at the mid-surface from the mid-surface
+// components. A plate strip of SHELL181 pulled in X by 100 per unit width (t = 1): σx = 100 at
+// every surface, so SEQV = 100 at MID (and the top), S1 = 100.
+TEST(DeckVmInputs, OrientationNodeListsZeroAndMidSurfaceEquivalentStress) {
+  const auto run = testing::run_deck_text(
+      "vm_orientation_mid_eqv",
+      "/PREP7\nET,1,BEAM188\nSECTYPE,1,BEAM,RECT\nSECDATA,1,2\nMP,EX,1,2E5\nMP,PRXY,1,0.3\n"
+      "N,1\nN,2,10\nN,3,0,5\nE,1,2,3\nET,2,SHELL181\nSECTYPE,2,SHELL\nSECDATA,1\nTYPE,2\n"
+      "SECNUM,2\nN,11,0,20\nN,12,10,20\nN,13,10,30\nN,14,0,30\nE,11,12,13,14\nFINISH\n"
+      "/SOLU\nD,1,ALL\nF,2,FY,1\nD,11,ALL\nD,14,UX,,,,,UZ,ROTX,ROTY,ROTZ\nD,12,UZ,,,,,ROTX,"
+      "ROTY,ROTZ\nD,13,UZ,,,,,ROTX,ROTY,ROTZ\nF,12,FX,500\nF,13,FX,500\nSOLVE\nFINISH\n"
+      "/POST1\nSET,LAST\nNSEL,S,NODE,,3\nPRNSOL,U,COMP\n*GET,U3,NODE,3,U,Y\nNSEL,ALL\n"
+      "SHELL,MID\n*GET,SEQV,ELEM,2,S,EQV\n*GET,S1,ELEM,2,S,1\n/OUT,mid,txt\n"
+      "*VWRITE,U3,SEQV,S1\n(3E18.9)\n/OUT\n");
+  const auto v = numbers_in(run, "mid.txt");
+  ASSERT_EQ(v.size(), 3u);
+  EXPECT_EQ(v[0], 0.0);
+  EXPECT_NEAR(v[1], 100.0, 1e-9);
+  EXPECT_NEAR(v[2], 100.0, 1e-9);
+}
+
 TEST(DeckVmInputs, NprintSetsTheStrideOfPrvar) {
   const std::string model =
       "/PREP7\nET,1,MASS21,,,4\nR,1,2\nN,1\nE,1\nFINISH\n/SOLU\nANTYPE,TRANS\nD,1,UY\n"
