@@ -83,6 +83,9 @@ struct Section {
   std::vector<std::vector<double>> layers;
   /// SECOFFSET location (upper case), empty when not given.
   std::string offset;
+  /// SECCONTROL values (blank: 0, the computed property). BEAM: TXZ, (unused), TXY transverse
+  /// shear stiffnesses kGA of the x-z and x-y planes, ADDMAS added mass per length.
+  std::vector<double> controls;
 };
 
 /// An element as defined in the deck. Node list may contain repeats (degenerate shapes).

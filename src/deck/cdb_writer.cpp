@@ -83,6 +83,12 @@ void write_sections(const Model& m, std::ostream& out) {
       out << '\n';
     }
     if (!s.offset.empty()) out << fmt::format("SECOFFSET,{}\n", s.offset);
+    if (!s.controls.empty()) {
+      out << "SECCONTROL";
+      for (std::size_t k = 0; k < s.controls.size(); ++k)
+        out << ',' << (k == 1 ? std::string() : exact(s.controls[k]));
+      out << '\n';
+    }
   }
 }
 

@@ -182,17 +182,36 @@ void cmd_secoffset(DeckReader& r, const Command& c) {
                         type, d.offset_names()));
 }
 
-// SECCONTROL: overrides of a section's computed stiffness and mass (shells: transverse shear
-// E11 E22 E12, added mass); all fields blank keeps the computed ones, which is carried out.
-// A value given would replace what the elements compute from the layers and is refused.
+// SECCONTROL: overrides of the last section's computed properties. BEAM: VAL1 TXZ and VAL3 TXY
+// the transverse shear stiffnesses kGA (force) of the x-z and x-y planes, VAL4 ADDMAS the mass
+// per length; blank or 0 keeps the computed value (VAL2 is unused). Other section types (shell
+// transverse shear E11 E22 E12, link ADDMAS and TENSKEY): all fields blank keeps the computed
+// section, which is carried out; a value given is refused.
 void cmd_seccontrol(DeckReader& r, const Command& c) {
-  if (r.model.sections.count(r.modeling.last_section) == 0)
-    r.fail(c, "SECCONTROL without a preceding SECTYPE");
+  const auto sec = r.model.sections.find(r.modeling.last_section);
+  if (sec == r.model.sections.end()) r.fail(c, "SECCONTROL without a preceding SECTYPE");
+  if (sec->second.type == "BEAM") {
+    if (c.last_given() > 4) r.fail(c, "a BEAM section takes TXZ, -, TXY and ADDMAS (4 fields)");
+    if (!c.blank(2))
+      r.fail(c, fmt::format("field 2 ('{}') is unused for a BEAM section", c.text(2)));
+    std::vector<double> v(4, 0.0);
+    for (int f : {1, 3, 4}) {
+      v[static_cast<std::size_t>(f - 1)] = r.real(c, f, 0.0);
+      if (v[static_cast<std::size_t>(f - 1)] < 0.0)
+        r.fail(c, fmt::format("field {} ({}): must not be negative", f,
+                              f == 1   ? "TXZ"
+                              : f == 3 ? "TXY"
+                                       : "ADDMAS"));
+    }
+    sec->second.controls = v;
+    return;
+  }
   for (int f = 1; f <= c.last_given(); ++f)
     if (!c.blank(f))
-      r.fail(c, fmt::format("field {} ('{}'): section stiffness overrides are not carried out "
-                            "(all fields blank: the computed section)",
-                            f, c.text(f)));
+      r.fail(c, fmt::format("field {} ('{}'): {} section overrides are not carried out (all "
+                            "fields blank: the computed section; BEAM sections take TXZ, TXY, "
+                            "ADDMAS)",
+                            f, c.text(f), sec->second.type));
 }
 
 void cmd_secnum(DeckReader& r, const Command& c) {

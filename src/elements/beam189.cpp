@@ -193,7 +193,7 @@ void QuadraticBeam::mass(const ElementContext& ctx, Eigen::MatrixXd& M) const {
     for (int a = 0; a < 3; ++a)
       for (int b = 0; b < 3; ++b) {
         const double nn = w * J * N(a) * N(b);
-        Me.block<3, 3>(6 * a, 6 * b) += nn * rho * p.area * Mat3::Identity();
+        Me.block<3, 3>(6 * a, 6 * b) += nn * (rho * p.area + p.added_mass) * Mat3::Identity();
         Me.block<3, 3>(6 * a + 3, 6 * b + 3) += nn * Ir;
       }
   }
@@ -338,7 +338,7 @@ std::unique_ptr<Element> make_beam189(const ElementBuildContext& ctx, const Elem
   d.youngs_modulus = mat.youngs_modulus;
   d.shear_modulus = mat.youngs_modulus / (2.0 * (1.0 + mat.poisson_ratio));
   d.density = mat.density;
-  d.section = record_beam_section(model, record, name, mat.poisson_ratio);
+  d.section = record_beam_section(model, record, name, mat.poisson_ratio, d.shear_modulus);
   if (plasticity_of(model, record, d.youngs_modulus, mat.poisson_ratio))
     throw beam_element_error(
         record, name,

@@ -50,6 +50,8 @@ struct BeamSectionProperties {
   std::vector<BeamFibre> fibres;
   /// How the shear areas were obtained (for the log): "5/6 A", "Cowper (ν = 0.3)", ...
   std::string shear_note;
+  /// Added mass per length (SECCONTROL ADDMAS).
+  double added_mass = 0.0;
 };
 
 /// Properties of a SECTYPE,,BEAM section from its subtype and SECDATA values, with Poisson's

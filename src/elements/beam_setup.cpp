@@ -49,17 +49,27 @@ Eigen::Matrix3d beam_frame(const ElementRecord& record, const char* name, const 
 }
 
 BeamSectionProperties record_beam_section(const Model& model, const ElementRecord& record,
-                                          const char* name, double nu) {
+                                          const char* name, double nu, double shear_modulus) {
   const auto sec = model.sections.find(record.secnum);
   if (record.secnum <= 0 || sec == model.sections.end() || sec->second.type != "BEAM")
     throw beam_element_error(
         record, name,
         fmt::format("needs a beam section (SECTYPE,{},BEAM and SECNUM)", record.secnum));
+  BeamSectionProperties p;
   try {
-    return beam_section_properties(sec->second.subtype, sec->second.data, nu);
+    p = beam_section_properties(sec->second.subtype, sec->second.data, nu);
   } catch (const std::invalid_argument& e) {
     throw beam_element_error(record, name, fmt::format("section {}: {}", record.secnum, e.what()));
   }
+  // SECCONTROL: the transverse shear stiffnesses kGA given replace the computed ones (as shear
+  // areas kGA/G of the element's material), and the added mass per length.
+  const std::vector<double>& controls = sec->second.controls;
+  const auto control = [&](std::size_t k) { return k < controls.size() ? controls[k] : 0.0; };
+  if (control(0) > 0.0) p.shear_area_z = control(0) / shear_modulus;
+  if (control(2) > 0.0) p.shear_area_y = control(2) / shear_modulus;
+  if (control(0) > 0.0 || control(2) > 0.0) p.shear_note += ", SECCONTROL shear stiffness";
+  p.added_mass = control(3);
+  return p;
 }
 
 BeamFibreStresses beam_fibre_stresses(const BeamSectionProperties& p, double youngs_modulus,

@@ -26,9 +26,11 @@ Eigen::Matrix3d beam_frame(const ElementRecord& record, const char* name, const 
                            const Vec3& xj, const Vec3* xk, double theta_deg);
 
 /// The properties of the SECTYPE,,BEAM section the record's SECNUM names (InputError when it
-/// names none or its data is bad); `nu` is Poisson's ratio of the shear correction.
+/// names none or its data is bad); `nu` is Poisson's ratio of the shear correction. The
+/// section's SECCONTROL shear stiffnesses become shear areas of `shear_modulus`, its ADDMAS the
+/// added mass per length.
 BeamSectionProperties record_beam_section(const Model& model, const ElementRecord& record,
-                                          const char* name, double nu);
+                                          const char* name, double nu, double shear_modulus);
 
 /// Nominal (elastic) stresses of the resultants N, My, Mz of a section with elastic section
 /// stiffness D (elements/beam_section.h): σ = E (ε0 + z κy − y κz) at the extreme fibres, with

@@ -75,7 +75,8 @@ std::unique_ptr<Element> make_beam188(const ElementBuildContext& ctx, const Elem
         fmt::format("KEYOPT(3) = {} is not a valid interpolation (0, 2 or 3)", type.key(3)));
   BeamData d = beam_data(model, record, name, false, 0.0);
   const double nu = d.youngs_modulus / (2.0 * d.shear_modulus) - 1.0;
-  d.section = record_beam_section(model, record, name, nu);
+  d.section = record_beam_section(model, record, name, nu, d.shear_modulus);
+  d.added_mass = d.section.added_mass;
   // TB plasticity: a law per fibre of the section (docs/plasticity.md). ASEC has properties but
   // no geometry, so there is nothing to integrate the stresses over (its 4 fibres only reproduce
   // A and the second moments): refused rather than yielding at made-up points.
