@@ -21,6 +21,14 @@ void register_explicit_load_commands(std::vector<CommandSpec>& t);
 
 namespace {
 
+/// The model's parts as EDPART numbers them: its elements grouped by (type, material, real
+/// set), the groups in ascending order (part 1 first), the ids ascending in each.
+std::map<std::tuple<int, int, int>, std::vector<int>> model_parts(const Model& model) {
+  std::map<std::tuple<int, int, int>, std::vector<int>> parts;
+  for (const auto& [id, e] : model.elements) parts[{e.type, e.mat, e.real}].push_back(id);
+  return parts;
+}
+
 ExplicitControls& controls(DeckReader& r, const Command& c) {
   r.model.explicit_dynamics.where = c.where;
   return r.model.explicit_dynamics;
@@ -236,12 +244,10 @@ void cmd_edpart(DeckReader& r, const Command& c) {
   const std::string option = r.label(c, 1).empty() ? "CREATE" : r.label(c, 1);
   if (option != "CREATE" && option != "UPDATE" && option != "LIST")
     r.fail(c, fmt::format("Option '{}': CREATE, UPDATE or LIST", c.text(1)));
-  std::map<std::tuple<int, int, int>, int> parts;
-  for (const auto& [id, e] : r.model.elements) ++parts[{e.type, e.mat, e.real}];
   int number = 0;
-  for (const auto& [key, count] : parts)
+  for (const auto& [key, elements] : model_parts(r.model))
     Log::info("EDPART: part {}: TYPE {} MAT {} REAL {} ({} elements)", ++number, std::get<0>(key),
-              std::get<1>(key), std::get<2>(key), count);
+              std::get<1>(key), std::get<2>(key), elements.size());
 }
 
 }  // namespace
@@ -250,8 +256,7 @@ ExplicitPart explicit_part(DeckReader& r, const Command& c, int field, const cha
   const auto number = r.opt_int(c, field);
   if (!number || *number <= 0)
     r.fail(c, fmt::format("{} '{}': a part number (EDPART) is expected", name, c.text(field)));
-  std::map<std::tuple<int, int, int>, std::vector<int>> parts;
-  for (const auto& [id, e] : r.model.elements) parts[{e.type, e.mat, e.real}].push_back(id);
+  auto parts = model_parts(r.model);
   if (*number > static_cast<int>(parts.size()))
     r.fail(c,
            fmt::format("{} {}: the model has {} parts (EDPART,LIST)", name, *number, parts.size()));
