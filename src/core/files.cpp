@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -37,6 +39,11 @@ std::optional<std::string> local_read_file(const std::string& path, const ReadLi
   if (!in) return std::nullopt;
   // Read in pieces, so that a device or a pipe without end (/dev/zero) stops at a bound.
   std::string text;
+  // A regular file's size is known: one allocation instead of doubling copies (a 10⁶-node CDB
+  // archive is ~300 MB).
+  const auto size = std::filesystem::file_size(path, ec);
+  if (!ec && std::filesystem::is_regular_file(path, ec))
+    text.reserve(static_cast<std::size_t>(std::min<std::uintmax_t>(size, limits.max_bytes)));
   std::vector<char> piece(std::size_t{1} << 16);
   int line = 1;
   std::size_t line_start = 0;  // offset in `text` of the current line

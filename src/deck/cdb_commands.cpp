@@ -21,6 +21,7 @@
 #include "deck/cdb_format.h"
 #include "deck/cdb_writer.h"
 #include "deck/deck_context.h"
+#include "elements/element_registry.h"
 
 namespace impactfe::deck {
 
@@ -83,21 +84,28 @@ long long column_int(const BlockRecords& b, std::string_view text) {
 
 /// The real of a fixed-width column ("" = 0); Fortran exponents (1.0D3, 1.0-003) accepted.
 double column_real(const BlockRecords& b, std::string_view text) {
-  const std::string t = trim(text);
+  const std::string_view t = trim_view(text);
   if (t.empty()) return 0.0;
   if (const auto v = parse_fortran_number(t)) return *v;
   b.fail(fmt::format("'{}' is not a number", t));
 }
 
-/// The fields of a record by the format's columns; a short record leaves the rest blank.
-std::vector<std::string_view> columns(std::string_view record, const std::vector<int>& widths) {
-  std::vector<std::string_view> out;
+/// The fields of a record by the format's columns into `out`; a short record leaves the rest
+/// blank.
+void split_columns(std::string_view record, const std::vector<int>& widths,
+                   std::vector<std::string_view>& out) {
+  out.clear();
   std::size_t pos = 0;
   for (int w : widths) {
     out.push_back(pos < record.size() ? record.substr(pos, static_cast<std::size_t>(w))
                                       : std::string_view());
     pos += static_cast<std::size_t>(w);
   }
+}
+
+std::vector<std::string_view> columns(std::string_view record, const std::vector<int>& widths) {
+  std::vector<std::string_view> out;
+  split_columns(record, widths, out);
   return out;
 }
 
@@ -121,11 +129,11 @@ void cmd_nblock(DeckReader& r, const Command& c) {
   if (widths.size() < n_ints + 3) b.fail("the format has fewer than the node's columns");
   std::string_view record;
   std::vector<Node> nodes;
+  std::vector<std::string_view> col;
   while (b.next(record)) {
-    if (trim(record) == "-1" || trim(record).rfind("N,", 0) == 0 ||
-        trim(record).rfind("n,", 0) == 0)
-      break;  // the end of the block
-    const auto col = columns(record, widths);
+    const std::string_view t = trim_view(record);
+    if (t == "-1" || t.rfind("N,", 0) == 0 || t.rfind("n,", 0) == 0) break;  // the end of the block
+    split_columns(record, widths, col);
     Node n;
     const long long id = column_int(b, col[0]);
     if (id <= 0 || id > kMaxEntityNumber) b.fail(fmt::format("node number {} out of range", id));
@@ -160,28 +168,83 @@ class AttributeScope {
   ModelingState saved_;
 };
 
+/// Checks an EBLOCK record's element coordinate system (0 or a local system above 10).
+void check_element_esys(const BlockRecords& b, long long esys) {
+  if (esys != 0 && esys <= 10)
+    b.fail(fmt::format("ESYS {}: 0 or a local coordinate system above 10", esys));
+}
+
+// EBLOCK,NUM_NODES,,NDMAX,NDSEL without SOLID (the format MAPDL and Workbench write for contact,
+// target and other elements without solid-model data): element number, TYPE, REAL, MAT, ESYS,
+// then up to ten nodes; the record's blank columns end the node list, and an element type with
+// more than ten nodes continues on the next record. A -1 record ends the block.
+void eblock_nonsolid(DeckReader& r, const Command& c) {
+  BlockRecords b(r, c, 1);
+  const std::vector<int> widths = format_widths(b, 0);
+  if (widths.size() < 6) b.fail("the format has fewer than the 5 columns before the nodes");
+  AttributeScope scope(r);
+  std::string_view record;
+  long long count = 0;
+  while (b.next(record)) {
+    const auto col = columns(record, widths);
+    const long long id = column_int(b, col[0]);
+    if (id < 0) break;  // the -1 record ends the block
+    if (id == 0 || id > kMaxEntityNumber) b.fail(fmt::format("element number {} out of range", id));
+    const long long esys = column_int(b, col[4]);
+    check_element_esys(b, esys);
+    r.modeling.current_type = static_cast<int>(column_int(b, col[1]));
+    r.modeling.current_real = static_cast<int>(column_int(b, col[2]));
+    r.modeling.current_mat = static_cast<int>(column_int(b, col[3]));
+    r.modeling.esys = static_cast<int>(esys);
+    const auto type = r.model.element_types.find(r.modeling.current_type);
+    if (type == r.model.element_types.end())
+      b.fail(fmt::format("element type {} is not defined (ET missing before the EBLOCK)",
+                         r.modeling.current_type));
+    const int max_nodes = element_type_descriptor(type->second).max_nodes();
+    std::vector<int> nodes;
+    auto read_nodes = [&](const std::vector<std::string_view>& fields, std::size_t first) {
+      std::size_t k = first;
+      for (; k < fields.size() && !trim_view(fields[k]).empty(); ++k)
+        nodes.push_back(static_cast<int>(column_int(b, fields[k])));
+      return k == fields.size();  // every column filled: the list may continue
+    };
+    bool full = read_nodes(col, 5);
+    const std::vector<int> more_widths(widths.size(), widths.front());
+    while (full && static_cast<int>(nodes.size()) < max_nodes && b.next(record))
+      full = read_nodes(columns(record, more_widths), 0);
+    if (nodes.empty()) b.fail(fmt::format("element {} has no nodes", id));
+    check_target_shape(r, b.at_record(), nodes);
+    if (r.model.elements.count(static_cast<int>(id)) == 0) check_model_size(r, c, 0, 1);
+    r.add_element(b.at_record(), static_cast<int>(id), std::move(nodes));
+    ++count;
+  }
+  if (count == 0) r.warn(c, "the block defines no element");
+}
+
 // EBLOCK,NUM_NODES,Solkey,NDMAX,NDSEL (solid format): MAT, TYPE, REAL, SECNUM, ESYS, birth/death,
 // solid-model reference, shape, number of nodes, (unused), element number, 8 nodes per record
 // line, further nodes on continuation lines; a -1 record ends the block.
 void cmd_eblock(DeckReader& r, const Command& c) {
+  if (c.blank(2)) {
+    eblock_nonsolid(r, c);
+    return;
+  }
   if (r.label(c, 2) != "SOLID")
-    r.fail(c,
-           "only the SOLID format of EBLOCK is supported (the non-solid format of contact "
-           "and line elements is not)");
+    r.fail(c, fmt::format("Solkey '{}': SOLID or blank (the non-solid format)", r.label(c, 2)));
   BlockRecords b(r, c, 1);
   const std::vector<int> widths = format_widths(b, 0);
   if (widths.size() < 11) b.fail("the format has fewer than the 11 columns before the nodes");
   AttributeScope scope(r);
   std::string_view record;
   long long count = 0;
+  std::vector<std::string_view> col;
   while (b.next(record)) {
-    auto col = columns(record, widths);
+    split_columns(record, widths, col);
     const long long mat = column_int(b, col[0]);
     if (mat < 0) break;  // the -1 record ends the block
     const long long esys = column_int(b, col[4]), dead = column_int(b, col[5]);
     const long long n_nodes = column_int(b, col[8]), id = column_int(b, col[10]);
-    if (esys != 0 && esys <= 10)
-      b.fail(fmt::format("ESYS {}: 0 or a local coordinate system above 10", esys));
+    check_element_esys(b, esys);
     if (dead != 0) b.fail("killed elements (birth/death flag) are not supported");
     if (n_nodes < 1 || n_nodes > 64) b.fail(fmt::format("{} nodes per element", n_nodes));
     if (id <= 0 || id > kMaxEntityNumber) b.fail(fmt::format("element number {} out of range", id));
@@ -226,7 +289,7 @@ void cmd_cmblock(DeckReader& r, const Command& c) {
   std::string_view record;
   while (read < n_items && b.next(record)) {
     for (const auto& col : columns(record, widths)) {
-      if (read == n_items || trim(col).empty()) break;
+      if (read == n_items || trim_view(col).empty()) break;
       const long long v = column_int(b, col);
       ++read;
       if (v < 0) {

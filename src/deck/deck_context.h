@@ -43,12 +43,12 @@ const char* processor_name(unsigned processor);
 /// A command ready for its handler: resolved (upper-case) name and raw field texts.
 struct Command {
   std::string name;
-  std::vector<std::string> fields;           // fields[0] is field 1
-  std::string rest;                          // raw text after the first comma (/TITLE, /COM)
-  bool assignment = false;                   // modern `Par = expr`
-  std::vector<std::string> format_lines;     // the line(s) after *VWRITE / *MSG, verbatim
-  std::shared_ptr<const std::string> block;  // CDB block data (RawCommand::block), or null
-  int block_line = 0;                        // line of the block's first line
+  std::vector<std::string> fields;        // fields[0] is field 1
+  std::string rest;                       // raw text after the first comma (/TITLE, /COM)
+  bool assignment = false;                // modern `Par = expr`
+  std::vector<std::string> format_lines;  // the line(s) after *VWRITE / *MSG, verbatim
+  BlockText block;                        // CDB block data (RawCommand::block), or none
+  int block_line = 0;                     // line of the block's first line
   SourceLocation where;
   int n_fields() const { return static_cast<int>(fields.size()); }
   /// Field i (1-based), "" when absent.
@@ -162,6 +162,8 @@ class DeckReader {
   void run_file(const std::string& path, const SourceLocation& where);
   /// Executes lexed text (the main deck of read_deck_text).
   void run_text(const std::string& text, const std::string& path);
+  /// As run_text; the CDB blocks of `text` are read in place (views of the shared text).
+  void run_shared_text(const std::shared_ptr<const std::string>& text, const std::string& path);
   /// Closes open blocks at the end of the deck and returns the job.
   Job finish();
 

@@ -429,31 +429,34 @@ Job DeckReader::finish() {
 
 namespace {
 
-Job read_impl(const std::string& text, const std::string& path, const DeckOptions& options) {
+Job read_impl(const std::shared_ptr<const std::string>& text, const std::string& path,
+              const DeckOptions& options) {
   Dialect dialect = Dialect::Modern;
   if (options.dialect) {
     dialect = *options.dialect;
   } else if (std::set<std::string> scanned{deck::canonical_or_self(path)};
-             deck::uses_4x(deck::lex_text(text, path, Dialect::Modern), path, scanned)) {
+             deck::uses_4x(deck::lex_text(*text, path, Dialect::Modern, text), path, scanned)) {
     dialect = Dialect::Classic4x;
   }
   std::string jobname = options.jobname;
   if (jobname.empty()) jobname = std::filesystem::path(path).stem().string();
   Log::info("{}: reading deck ({} dialect)", path, dialect == Dialect::Classic4x ? "4x" : "modern");
   deck::DeckReader reader(options, dialect, jobname);
-  reader.run_text(text, path);
+  reader.run_shared_text(text, path);
   return reader.finish();
 }
 
 }  // namespace
 
 Job read_deck(const std::string& path, const DeckOptions& options) {
-  return read_impl(deck::read_text_file(path, SourceLocation{}), path, options);
+  return read_impl(
+      std::make_shared<const std::string>(deck::read_text_file(path, SourceLocation{})), path,
+      options);
 }
 
 Job read_deck_text(const std::string& text, const std::string& virtual_path,
                    const DeckOptions& options) {
-  return read_impl(text, virtual_path, options);
+  return read_impl(std::make_shared<const std::string>(text), virtual_path, options);
 }
 
 }  // namespace impactfe

@@ -4,20 +4,35 @@
 
 #include <algorithm>
 #include <cctype>
+#include <charconv>
+#include <cmath>
 #include <cstdlib>
 
 namespace impactfe::deck {
 
-std::string trim(std::string_view text) {
+std::string_view trim_view(std::string_view text) {
   std::size_t b = 0;
   std::size_t e = text.size();
   auto blank = [](char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n'; };
   while (b < e && blank(text[b])) ++b;
   while (e > b && blank(text[e - 1])) --e;
-  return std::string(text.substr(b, e - b));
+  return text.substr(b, e - b);
+}
+
+std::string trim(std::string_view text) {
+  return std::string(trim_view(text));
 }
 
 std::optional<double> parse_fortran_number(std::string_view text) {
+  // The common form (1.2345E+002, -0.5) read directly; D exponents, a sign-only exponent
+  // (1.0-003) and a leading '+' take the general path below.
+  if (!text.empty() && text.front() != '+') {
+    double value = 0.0;
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+    if (ec == std::errc() && end == text.data() + text.size() && std::isfinite(value) &&
+        text.find_first_not_of("0123456789.eE+-") == std::string_view::npos)
+      return value;
+  }
   std::size_t i = 0;
   const std::size_t n = text.size();
   std::string normal;
@@ -224,7 +239,7 @@ namespace {
 
 /// A record of a CDB block: numbers in fixed columns, no comma, no letter but an exponent.
 bool is_block_record(std::string_view line) {
-  const std::string t = trim(line);
+  const std::string_view t = trim_view(line);
   if (t.empty()) return false;
   for (char ch : t)
     if (!(std::isdigit(static_cast<unsigned char>(ch)) || ch == ' ' || ch == '\t' || ch == '.' ||
@@ -235,40 +250,67 @@ bool is_block_record(std::string_view line) {
 
 /// The end marker MAPDL writes after an NBLOCK: `N,R5.3,LOC,-1,` (R5.1 alike).
 bool is_nblock_end(std::string_view line) {
-  std::string t = to_upper(trim(line));
+  const std::string_view view = trim_view(line);
+  if (view.empty() || (view.front() != 'N' && view.front() != 'n')) return false;
+  std::string t = to_upper(std::string(view));
   t.erase(std::remove(t.begin(), t.end(), ' '), t.end());
   return t.rfind("N,R5.", 0) == 0 && t.find(",LOC,-1") != std::string::npos;
 }
 
 /// Consumes the lines of the block after `text[pos]` (format lines, then records; the NBLOCK
 /// end marker too) into `cmd.block`; returns the position after them and advances `line`.
-std::size_t take_block(std::string_view text, std::size_t pos, int& line, RawCommand& cmd) {
-  std::string block;
+std::size_t take_block(std::string_view text, std::size_t pos, int& line, RawCommand& cmd,
+                       const std::shared_ptr<const std::string>& owner) {
   cmd.block_line = line + 1;
-  bool formats = true;
+  const std::size_t first = pos;
+  bool formats = true, carriage_returns = false;
   while (pos < text.size()) {
     std::size_t end = text.find('\n', pos);
     if (end == std::string_view::npos) end = text.size();
     std::string_view physical = text.substr(pos, end - pos);
-    if (!physical.empty() && physical.back() == '\r') physical.remove_suffix(1);
-    const std::string t = trim(physical);
+    if (!physical.empty() && physical.back() == '\r') {
+      physical.remove_suffix(1);
+      carriage_returns = true;
+    }
+    const std::string_view t = trim_view(physical);
     const bool format = formats && !t.empty() && t.front() == '(';
     const bool end_marker = cmd.name == "NBLOCK" && is_nblock_end(physical);
     if (!format && !end_marker && !is_block_record(physical)) break;
     formats = format;
-    block.append(physical).push_back('\n');
     ++line;
     pos = end + 1;
     if (end_marker) break;
   }
-  cmd.block = std::make_shared<const std::string>(std::move(block));
+  // The block's lines ('\n'-separated): a view of the file's text when it has no CRs and the
+  // caller keeps the text, a copy otherwise.
+  const std::string_view span = text.substr(first, std::min(pos, text.size()) - first);
+  if (!carriage_returns && owner) {
+    cmd.block = BlockText{owner, span};
+    return pos;
+  }
+  std::string block;
+  block.reserve(span.size());
+  for (std::size_t at = 0; at < span.size();) {
+    std::size_t end = span.find('\n', at);
+    if (end == std::string_view::npos) end = span.size();
+    std::string_view physical = span.substr(at, end - at);
+    if (!physical.empty() && physical.back() == '\r') physical.remove_suffix(1);
+    block.append(physical).push_back('\n');
+    at = end + 1;
+  }
+  auto copy = std::make_shared<const std::string>(std::move(block));
+  cmd.block = BlockText{copy, *copy};
   return pos;
 }
 
 }  // namespace
 
 std::vector<RawCommand> lex_text(std::string_view text, const std::string& file_name,
-                                 Dialect dialect) {
+                                 Dialect dialect, std::shared_ptr<const std::string> owner) {
+  // Views are taken only of text the owner holds.
+  if (owner &&
+      (text.data() < owner->data() || text.data() + text.size() > owner->data() + owner->size()))
+    owner = nullptr;
   const auto file = std::make_shared<const std::string>(file_name);
   std::vector<RawCommand> out;
   int line = 0;
@@ -313,7 +355,7 @@ std::vector<RawCommand> lex_text(std::string_view text, const std::string& file_
         out.push_back(std::move(c));
       }
       if (block && end < text.size()) {
-        pos = take_block(text, end + 1, line, out.back());
+        pos = take_block(text, end + 1, line, out.back(), owner);
         if (pos >= text.size()) break;
         continue;
       }

@@ -12,6 +12,16 @@
 
 namespace impactfe::deck {
 
+/// The data lines of a CDB block: a view of the text they were read from and what keeps that
+/// text alive (the whole file's text, shared by the file's blocks, or a copy of the lines).
+struct BlockText {
+  std::shared_ptr<const std::string> owner;
+  std::string_view text;
+  explicit operator bool() const { return owner != nullptr; }
+  std::string_view operator*() const { return text; }
+  const std::string_view* operator->() const { return &text; }
+};
+
 /// One command as written in the deck: upper-cased name (empty for a 4x repeat line) and the
 /// trimmed field texts, case preserved (handlers upper-case labels; file names keep their case).
 struct RawCommand {
@@ -28,7 +38,7 @@ struct RawCommand {
   /// The data lines of a CDB block command (NBLOCK, EBLOCK, CMBLOCK, RLBLOCK): its Fortran
   /// format line(s) and fixed-column records, as written ('\n'-separated), read by its handler in
   /// one pass; `block_line` is the line number of its first line. Null for other commands.
-  std::shared_ptr<const std::string> block;
+  BlockText block;
   int block_line = 0;
   /// The file, shared by all the commands of one lexed text (a copy per command was 32 bytes
   /// plus a heap string for a long path, on decks of 10⁵ lines: issue 11).
@@ -42,6 +52,8 @@ inline constexpr std::size_t kMaxLineLength = 640;
 
 /// Strips blanks, tabs and a trailing '\r'.
 std::string trim(std::string_view text);
+/// `text` without leading and trailing blanks (space, tab, CR, LF), as a view of it.
+std::string_view trim_view(std::string_view text);
 
 /// Fortran free-format real: `30E6`, `.06`, `-2.`, `1.E-4`, `1.0D3`, `+5`. nullopt when `text`
 /// (already trimmed) is not a complete number.
@@ -64,7 +76,10 @@ bool takes_format_line(std::string_view upper_name);
 bool takes_block(std::string_view upper_name);
 
 /// Lexes a whole deck text, line by line (format lines after *VWRITE / *MSG kept verbatim; the
-/// data lines after a CDB block command attached to it, see RawCommand::block).
-std::vector<RawCommand> lex_text(std::string_view text, const std::string& file, Dialect dialect);
+/// data lines after a CDB block command attached to it, see RawCommand::block). When `owner`
+/// holds `text`, the blocks are views of it instead of copies (a CDB archive of 10⁶ nodes is
+/// read once into memory, not twice).
+std::vector<RawCommand> lex_text(std::string_view text, const std::string& file, Dialect dialect,
+                                 std::shared_ptr<const std::string> owner = nullptr);
 
 }  // namespace impactfe::deck

@@ -59,19 +59,24 @@ std::string resolve_input(const std::string& includer, const std::string& fname,
 }
 
 void DeckReader::run_file(const std::string& path, const SourceLocation& where) {
-  const std::string text = read_text_file(path, where);
+  const auto text = std::make_shared<const std::string>(read_text_file(path, where));
   // A CDB archive tests MAPDL's flag _CDRDOFF (1 only after CDREAD read a solid model first,
   // which never happens here): 0 unless the deck set it.
   std::string ext = std::filesystem::path(path).extension().string();
   if (to_upper(ext) == ".CDB" && params.find("_CDRDOFF") == nullptr) params.set("_CDRDOFF", 0.0);
-  auto cmds = lex_text(text, path, dialect);
+  auto cmds = lex_text(*text, path, dialect, text);
   std::error_code ec;
   const auto canonical = std::filesystem::weakly_canonical(path, ec);
   run_program(cmds, "file " + (ec ? path : canonical.string()), where);
 }
 
 void DeckReader::run_text(const std::string& text, const std::string& path) {
-  auto cmds = lex_text(text, path, dialect);
+  run_shared_text(std::make_shared<const std::string>(text), path);
+}
+
+void DeckReader::run_shared_text(const std::shared_ptr<const std::string>& text,
+                                 const std::string& path) {
+  auto cmds = lex_text(*text, path, dialect, text);
   std::error_code ec;
   const auto canonical = std::filesystem::weakly_canonical(path, ec);
   run_program(cmds, "file " + (ec ? path : canonical.string()), SourceLocation{});

@@ -95,6 +95,25 @@ const char* kArchive =
     "MPDATA,R5.0, 1,NUXY,       3, 1, 0.300000000    ,\n"
     "FINISH\n";
 
+// The element block without SOLID (as MAPDL and Workbench write contact and target elements):
+// element number, TYPE, REAL, MAT, ESYS and the nodes, more than ten continuing on the next
+// record.
+const char* const kNonSolidArchive =
+    "/PREP7\n"
+    "ET,1,186\nET,2,170\nET,3,174\n"
+    "*DO,I,1,20\n"
+    "N,I,I,MOD(I,3),MOD(I,5)\n"
+    "*ENDDO\n"
+    "EBLOCK,10,,22,3\n"
+    "(15i9)\n"
+    "       20        2        3        4        0        1        2        3        4\n"
+    "       21        3        3        4        0        5        6        7        8\n"
+    "       22        1        1        1        0        1        2        3        4        5"
+    "        6        7        8        9       10\n"
+    "       11       12       13       14       15       16       17       18       19       20\n"
+    "       -1\n"
+    "FINISH\n";
+
 TEST(CdbRead, BlocksByColumn) {
   const Job job = read_deck_text(kArchive, "archive.cdb");
   const Model& m = job.model;
@@ -129,15 +148,49 @@ TEST(CdbRead, BadRecordsNameTheirLine) {
     // the line itself is no command.
     EXPECT_NE(std::string(e.what()).find("bad.cdb:"), std::string::npos) << e.what();
   }
-  std::string nonsolid = kArchive;
-  nonsolid.replace(nonsolid.find("EBLOCK,19,SOLID"), 15, "EBLOCK,19,,   ");
+  std::string solkey = kArchive;
+  solkey.replace(solkey.find("EBLOCK,19,SOLID"), 15, "EBLOCK,19,SOLIX");
   try {
-    read_deck_text(nonsolid, "nonsolid.cdb");
-    FAIL() << "the non-solid EBLOCK format was read";
+    read_deck_text(solkey, "solkey.cdb");
+    FAIL() << "Solkey SOLIX was read";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find(":24: EBLOCK: only the SOLID format"), std::string::npos)
+    EXPECT_NE(std::string(e.what()).find(":24: EBLOCK: Solkey 'SOLIX'"), std::string::npos)
         << e.what();
   }
+  std::string nonsolid_esys = kNonSolidArchive;
+  nonsolid_esys.replace(nonsolid_esys.find("       20        2        3        4        0"), 45,
+                        "       20        2        3        4        5");
+  try {
+    read_deck_text(nonsolid_esys, "esys.cdb");
+    FAIL() << "ESYS 5 (a system below 11) was read";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("esys.cdb:10: EBLOCK: ESYS 5"), std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(CdbRead, NonSolidElementBlock) {
+  const Job job = read_deck_text(kNonSolidArchive, "nonsolid.cdb");
+  const Model& m = job.model;
+  ASSERT_EQ(m.elements.size(), 3u);
+  const ElementRecord& target = m.elements.at(20);
+  EXPECT_EQ(target.type, 2);
+  EXPECT_EQ(target.real, 3);
+  EXPECT_EQ(target.mat, 4);
+  EXPECT_EQ(target.nodes, (std::vector<int>{1, 2, 3, 4}));
+  EXPECT_EQ(m.elements.at(21).type, 3);
+  // Four of CONTA174's eight nodes: completed as E,5,6,7,8 completes them.
+  const Job by_e = read_deck_text(
+      "/PREP7\nET,3,174\n*DO,I,5,8\nN,I,I\n*ENDDO\nTYPE,3\n"
+      "E,5,6,7,8\nFINISH\n",
+      "e.inp");
+  EXPECT_EQ(m.elements.at(21).nodes, by_e.model.elements.at(1).nodes);
+  // Twenty nodes: ten on the record, ten on its continuation.
+  const ElementRecord& brick = m.elements.at(22);
+  EXPECT_EQ(brick.type, 1);
+  std::vector<int> all(20);
+  for (int k = 0; k < 20; ++k) all[static_cast<std::size_t>(k)] = k + 1;
+  EXPECT_EQ(brick.nodes, all);
 }
 
 TEST(CdbWrite, ReadBackGivesTheSameModelAndFile) {
