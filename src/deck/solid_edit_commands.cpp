@@ -126,8 +126,14 @@ void merge_elements(DeckReader& r, const Command& c) {
 }
 
 void cmd_nummrg(DeckReader& r, const Command& c) {
-  // NUMMRG,Label,TOLER,GTOLER,Action,Switch
-  const std::string label = r.label(c, 1);
+  // NUMMRG,Label,TOLER,GTOLER,Action,Switch; MAPDL reads the label's first four characters
+  // (VM178 writes NUMMRG,NODES).
+  std::string label = r.label(c, 1);
+  if (label.size() > 4) {
+    const std::string four = label.substr(0, 4);
+    if (four == "NODE" || four == "ELEM" || four == "TYPE" || four == "REAL" || four == "SECT")
+      label = four;
+  }
   const std::string action = r.label(c, 4);
   const std::string sw = r.label(c, 5);
   if (!action.empty() && action != "SELE")

@@ -202,11 +202,17 @@ int SolidBuilder::volume_from_areas(const std::vector<int>& areas) {
   return id;
 }
 
-int SolidBuilder::volume_from_keypoints(const std::vector<int>& kps, const CoordinateSystem& path) {
+int SolidBuilder::volume_from_keypoints(const std::vector<int>& kps, const CoordinateSystem& path,
+                                        FaceOrder order) {
   if (kps.size() != 8) fail(fmt::format("a volume needs 8 keypoints I..P, {} given", kps.size()));
-  // The areas in the hexahedron's face order (bottom, top, then the sides), outward.
+  // The areas, outward: the hexahedron's face table is bottom, top, then the sides (BLOCK's
+  // numbering); V numbers them as the brick element's faces 1-6, the top last (MAPDL's VM
+  // decks mesh the top of V volumes as areas 6, 11 and 16 of three volumes in a row).
+  auto faces = cell_topology(VtkCell::Hexahedron).faces;
+  if (order == FaceOrder::BrickFaces)
+    std::rotate(faces.begin() + 1, faces.begin() + 2, faces.end());
   std::vector<int> areas;
-  for (const auto& f : cell_topology(VtkCell::Hexahedron).faces) {
+  for (const auto& f : faces) {
     std::vector<int> loop;
     for (int c : f) {
       const int k = kps[static_cast<std::size_t>(c)];
@@ -243,7 +249,7 @@ int SolidBuilder::block(const CoordinateSystem& wp, double x1, double x2, double
   for (double z : {z1, z2})
     for (const auto& [x, y] : {std::pair{x1, y1}, {x2, y1}, {x2, y2}, {x1, y2}})
       k.push_back(keypoint(0, flat.to_global(Vec3(x, y, z))));
-  return volume_from_keypoints(k, flat);
+  return volume_from_keypoints(k, flat, FaceOrder::Primitive);
 }
 
 int SolidBuilder::cylinder(const CoordinateSystem& wp, double xc, double yc, double r1, double r2,

@@ -45,9 +45,16 @@ class SolidBuilder {
   int area_from_keypoints(const std::vector<int>& kps, const CoordinateSystem& path);
   /// VA: a volume bounded by `areas` (≥ 4, a closed shell: every line on exactly two areas).
   int volume_from_areas(const std::vector<int>& areas);
+  /// The order in which a volume through keypoints numbers its new areas.
+  enum class FaceOrder {
+    Primitive,   // BLOCK: bottom, top, then the sides I-J, J-K, K-L, L-I
+    BrickFaces,  // V: the brick's faces 1-6: bottom, the sides I-J ... L-I, top last
+  };
   /// V: a volume through 8 keypoints (bottom I..L, top M..P; repeated keypoints give a prism or
-  /// a pyramid), missing lines straight in `path`.
-  int volume_from_keypoints(const std::vector<int>& kps, const CoordinateSystem& path);
+  /// a pyramid), missing lines straight in `path`; an area the volume shares with an existing
+  /// one is reused, so the new areas take the numbers in `order` skipping it.
+  int volume_from_keypoints(const std::vector<int>& kps, const CoordinateSystem& path,
+                            FaceOrder order = FaceOrder::BrickFaces);
 
   /// RECTNG / BLC4 / BLC5 (depth 0): rectangle x1..x2, y1..y2 in the working plane `wp`.
   int rectangle(const CoordinateSystem& wp, double x1, double x2, double y1, double y2);

@@ -122,6 +122,38 @@ TEST(Meshing, AdjacentBlocksShareTheirFaceAfterMerging) {
   }
 }
 
+// V numbers a volume's new areas as the brick's faces 1-6 (bottom, the sides I-J ... L-I, the
+// top last), skipping a face it shares with a volume before it; BLOCK numbers bottom, top, then
+// the sides.
+TEST(Meshing, AreaNumbersOfVAndBlock) {
+  const Model m = read(std::string(kBrick) +
+                       "K,1\nK,2,1\nK,3,1,1\nK,4,0,1\nK,5,0,0,1\nK,6,1,0,1\nK,7,1,1,1\n"
+                       "K,8,0,1,1\nK,9,2\nK,10,2,1\nK,11,2,0,1\nK,12,2,1,1\n"
+                       "V,1,2,3,4,5,6,7,8\nV,2,9,10,3,6,11,12,7\n");
+  ASSERT_EQ(m.solid.areas.size(), 11u);  // the face x = 1 is shared
+  auto keypoints = [&](int area) {
+    const std::vector<int>& k = m.solid.areas.at(area).keypoints;
+    return std::set<int>(k.begin(), k.end());
+  };
+  EXPECT_EQ(keypoints(1), (std::set<int>{1, 2, 3, 4}));
+  EXPECT_EQ(keypoints(2), (std::set<int>{1, 2, 6, 5}));
+  EXPECT_EQ(keypoints(3), (std::set<int>{2, 3, 7, 6}));
+  EXPECT_EQ(keypoints(4), (std::set<int>{3, 4, 8, 7}));
+  EXPECT_EQ(keypoints(5), (std::set<int>{4, 1, 5, 8}));
+  EXPECT_EQ(keypoints(6), (std::set<int>{5, 6, 7, 8}));
+  EXPECT_EQ(keypoints(7), (std::set<int>{2, 9, 10, 3}));
+  EXPECT_EQ(keypoints(10), (std::set<int>{10, 3, 7, 12}));  // the shared face (2 3 7 6) skipped
+  EXPECT_EQ(keypoints(11), (std::set<int>{6, 11, 12, 7}));
+  const Model block = read(std::string(kBrick) + "BLOCK,0,1,0,1,0,1\n");
+  auto z_of_area = [&](int area) {
+    std::set<double> z;
+    for (int k : block.solid.areas.at(area).keypoints) z.insert(block.solid.keypoints.at(k).x(2));
+    return z;
+  };
+  EXPECT_EQ(z_of_area(1), (std::set<double>{0.0}));
+  EXPECT_EQ(z_of_area(2), (std::set<double>{1.0}));
+}
+
 TEST(Meshing, AdjacentAreasAreConforming) {
   const Model m = read(
       "/PREP7\nET,1,SHELL181\nMP,EX,1,1E7\nSECTYPE,1,SHELL\nSECDATA,0.1\n"
@@ -319,6 +351,11 @@ TEST(Meshing, NodesMergeAndElementsFollow) {
   for (const auto& [id, e] : m.elements)
     for (int n : e.nodes) EXPECT_EQ(m.nodes.count(n), 1u);
   expect_valid_hexes(m);
+  // MAPDL reads NUMMRG's label by its first four characters (VM178: NUMMRG,NODES).
+  const Model nodes = read(std::string(kBrick) +
+                           "BLOCK,0,1,0,1,0,1\nBLOCK,1,2,0,1,0,1\nESIZE,0.5\nVMESH,ALL\n"
+                           "NUMMRG,NODES\n");
+  EXPECT_EQ(nodes.nodes.size(), 45u);
 }
 
 TEST(Meshing, SelectionOfEntitiesAndTheirNodes) {
