@@ -39,16 +39,26 @@ void NodalAxesElement::build_transformation() {
       for (int a = 0; a < 3; ++a)
         present += pos[static_cast<std::size_t>(3 * group + a)] >= 0 ? 1 : 0;
       if (present == 0) continue;
-      if (present != 3)
+      // An element with only some of the three DOFs (a plane element's UX UY, a 2-D beam's ROTZ)
+      // takes a nodal rotation that maps their directions onto themselves (about Z, as NROTAT in
+      // a cylindrical system gives in the XY plane): its block of R.
+      const auto has = [&](int a) { return pos[static_cast<std::size_t>(3 * group + a)] >= 0; };
+      bool closed = true;
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b)
+          if (has(a) != has(b) && std::abs(R(a, b)) > 1e-12) closed = false;
+      if (!closed)
         throw InputError(where_, fmt::format("element {} ({}): node {} has a rotated nodal "
-                                             "coordinate system but the element carries only {} "
-                                             "of its {} DOFs",
+                                             "coordinate system that mixes the element's {} of "
+                                             "the {} DOFs with ones it does not carry (a 2-D "
+                                             "element takes a rotation about Z only)",
                                              id(), inner_->family(), node, present,
                                              group == 0 ? "UX/UY/UZ" : "ROTX/ROTY/ROTZ"));
       for (int a = 0; a < 3; ++a)
         for (int b = 0; b < 3; ++b)
-          t_(pos[static_cast<std::size_t>(3 * group + a)],
-             pos[static_cast<std::size_t>(3 * group + b)]) = R(a, b);
+          if (has(a) && has(b))
+            t_(pos[static_cast<std::size_t>(3 * group + a)],
+               pos[static_cast<std::size_t>(3 * group + b)]) = R(a, b);
     }
   }
 }

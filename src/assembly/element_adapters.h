@@ -119,7 +119,8 @@ static_assert(implements_all<TransformedElement>(ElementCapabilities{}),
 class NodalAxesElement final : public TransformedElement {
  public:
   /// Throws InputError (at the element's record location) when a rotated node carries only part
-  /// of a translation or rotation triad in this element (the rotation would mix DOFs it lacks).
+  /// of a translation or rotation triad in this element and the rotation mixes those DOFs with
+  /// ones the element lacks (a plane element's UX UY take a rotation about Z).
   NodalAxesElement(std::unique_ptr<Element> inner, const Model& model, const SourceLocation& where);
 
  private:
