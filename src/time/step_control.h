@@ -6,6 +6,7 @@
 /// load-step end. Pure bookkeeping of times, owned by TimeSchedule (time/time_schedule.h): it
 /// proposes the next step and hears whether it was accepted.
 #include <optional>
+#include <string>
 #include <vector>
 
 namespace impactfe {
@@ -13,7 +14,8 @@ namespace impactfe {
 /// The step limits of a load step under AUTOTS (all in time units; auto_step_plan in
 /// time/time_schedule.h).
 struct AutoStepPlan {
-  bool automatic = false;  // AUTOTS ON / AUTO
+  bool automatic = false;  // AUTOTS ON / AUTO, or unset with a largest step above the first
+  std::string implied;     // why AUTOTS was implied (a note for the summary), or empty
   double t_start = 0.0, t_end = 0.0;
   double dt0 = 0.0;       // first step (NSUBST NSBSTP / DELTIM DTIME): the nominal grid
   double dt_min = 0.0;    // smallest step a cut may reach (NSBMX / DTMIN)

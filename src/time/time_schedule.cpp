@@ -125,6 +125,16 @@ AutoStepPlan auto_step_plan(const LoadStep& step, const StepControl& c, const Lo
     p.dt_min = c.n_max ? span / *c.n_max : p.dt0 / 1000.0;
     p.dt_max = c.n_min ? span / *c.n_min : default_max;
   }
+  // AUTOTS not given, but a largest step above the first (DTMAX > DTIME, NSBMN < NSBSTP): a
+  // limit that only automatic time stepping uses, so the deck asks for it (MAPDL's default is
+  // AUTOTS ON); carried out rather than accepted and ignored.
+  if (!c.automatic && !p.automatic) {
+    if (step.dt && c.dt_max && *c.dt_max > p.dt0 * (1.0 + 1e-9) && span > p.dt0 * (1.0 + 1e-9))
+      p.implied = fmt::format("DELTIM's DTMAX {:g} exceeds DTIME {:g}", *c.dt_max, p.dt0);
+    else if (!step.dt && c.n_min && *c.n_min < t.n_substeps)
+      p.implied = fmt::format("NSUBST's NSBMN {} is below NSBSTP {}", *c.n_min, t.n_substeps);
+    p.automatic = !p.implied.empty();
+  }
   p.dt_min = std::min(p.dt_min, p.dt0);
   p.dt_max = std::min(std::max(p.dt_max, p.dt0), span);
   p.dt_first = p.dt0;
@@ -213,6 +223,14 @@ void TimeSchedule::begin_load_step(const LoadStep& step, std::vector<int> output
                                  step.number, resume_autots_t_end_, plan_.t_end));
   if (const std::string note = rounding_note(step, timing_); !note.empty()) {
     Log::warn("{}", note);
+    notes_.push_back(note);
+  }
+  if (!plan_.implied.empty()) {
+    const std::string note = fmt::format(
+        "load step {}: automatic time stepping (AUTOTS not given, but {}: a limit "
+        "only AUTOTS uses; AUTOTS,OFF for constant steps)",
+        step.number, plan_.implied);
+    Log::info("{}", note);
     notes_.push_back(note);
   }
   control_.reset();

@@ -58,6 +58,35 @@ TEST(StepControl, DefaultLimitsFollowTheSpec) {
   EXPECT_NO_THROW(auto_step_plan(deltim, d, timing(0.0, 1.0, 10), true, false));
 }
 
+// AUTOTS not given: constant steps, unless the deck gives a largest step above the first (a
+// limit only AUTOTS uses, so it asks for it), which is said in a note.
+TEST(StepControl, ALargestStepAboveTheFirstImpliesAutots) {
+  LoadStep deltim;
+  deltim.dt = 0.1;
+  StepControl d;
+  d.dt_max = 0.5;
+  AutoStepPlan p = auto_step_plan(deltim, d, timing(0.0, 1.0, 10), false, false);
+  EXPECT_TRUE(p.automatic);
+  EXPECT_NE(p.implied.find("DTMAX 0.5 exceeds DTIME 0.1"), std::string::npos) << p.implied;
+  EXPECT_DOUBLE_EQ(p.dt_max, 0.5);
+  d.dt_max = 0.1;  // no growth asked for
+  EXPECT_FALSE(auto_step_plan(deltim, d, timing(0.0, 1.0, 10), false, false).automatic);
+  d.dt_max = 0.5;
+  d.automatic = false;  // AUTOTS,OFF said: constant steps
+  p = auto_step_plan(deltim, d, timing(0.0, 1.0, 10), false, false);
+  EXPECT_FALSE(p.automatic);
+  EXPECT_TRUE(p.implied.empty());
+  LoadStep nsubst;
+  nsubst.n_substeps = 10;
+  StepControl n;
+  n.n_min = 2;  // NSUBST,10,,2
+  p = auto_step_plan(nsubst, n, timing(0.0, 1.0, 10), true, false);
+  EXPECT_TRUE(p.automatic);
+  EXPECT_NE(p.implied.find("NSBMN 2 is below NSBSTP 10"), std::string::npos) << p.implied;
+  n.n_min = 10;
+  EXPECT_FALSE(auto_step_plan(nsubst, n, timing(0.0, 1.0, 10), true, false).automatic);
+}
+
 AutoStepPlan plan(double dt0, double dt_min, double dt_max, double t_end = 1.0) {
   AutoStepPlan p;
   p.automatic = true;
