@@ -42,7 +42,11 @@ void NodalAxesElement::build_transformation() {
       // An element with only some of the three DOFs (a plane element's UX UY, a 2-D beam's ROTZ)
       // takes a nodal rotation that maps their directions onto themselves (about Z, as NROTAT in
       // a cylindrical system gives in the XY plane): its block of R.
-      const auto has = [&](int a) { return pos[static_cast<std::size_t>(3 * group + a)] >= 0; };
+      // (A named reference: clang 14 cannot capture a structured binding.)
+      const std::array<int, 6>& at = pos;
+      const auto has = [&at, group](int a) {
+        return at[static_cast<std::size_t>(3 * group + a)] >= 0;
+      };
       bool closed = true;
       for (int a = 0; a < 3; ++a)
         for (int b = 0; b < 3; ++b)
