@@ -190,12 +190,15 @@ std::vector<RawCommand> lex_line_of(std::string_view text,
   if (stripped.empty()) return out;
   if (starts_with_upper(stripped, "C***")) return out;  // 4x comment line
   // /TITLE and /COM keep the rest of the line verbatim (commas, case, '$' and '!'). Their name
-  // ends at the first comma or blank: `/COM REF: TEXT, MORE` is a comment as `/COM,REF...` is.
+  // ends at the first character that is no letter or digit: `/COM REF: TEXT, MORE` is a comment
+  // as `/COM,REF...` is, and so is `/COM------ RESULTS` (VM264, VMR049-CR2-185).
   if (starts_with_upper(stripped, "/TIT") || starts_with_upper(stripped, "/COM")) {
     RawCommand cmd;
     cmd.file = file;
     cmd.line = line;
-    const std::size_t end = stripped.find_first_of(", \t");
+    std::size_t end = 1;
+    while (end < stripped.size() && std::isalnum(static_cast<unsigned char>(stripped[end]))) ++end;
+    if (end == stripped.size()) end = std::string::npos;
     cmd.name = to_upper(trim(std::string_view(stripped).substr(0, end)));
     if (end != std::string::npos) {
       std::string_view rest = std::string_view(stripped).substr(end);

@@ -78,7 +78,7 @@ TEST(DeckLexer, TitleKeepsCaseAndCommas) {
 
 // `/COM REF: TEXT, MORE` (a blank after the name, as 20 VM decks write it) is a comment, not the
 // unknown command "/COM REF"; so is `/COM,text, with commas`.
-TEST(DeckLexer, CommentNameEndsAtABlank) {
+TEST(DeckLexer, CommentNameEndsAtABlankOrASign) {
   const auto c = lex_line("/COM   REF: BATHE AND DVORKIN, 1983", "d", 1, Dialect::Modern);
   ASSERT_EQ(c.size(), 1u);
   EXPECT_EQ(c[0].name, "/COM");
@@ -92,6 +92,10 @@ TEST(DeckLexer, CommentNameEndsAtABlank) {
   const auto e = lex_line("/COM", "d", 1, Dialect::Modern);
   EXPECT_EQ(e[0].name, "/COM");
   EXPECT_EQ(e[0].rest, "");
+  // The name ends at the first character that is no letter or digit (VM264: `/COM-----`).
+  const auto f = lex_line("/COM------ RESULTS COMPARISON ---", "d", 1, Dialect::Modern);
+  EXPECT_EQ(f[0].name, "/COM");
+  EXPECT_EQ(f[0].rest, "------ RESULTS COMPARISON ---");
 }
 
 // MAPDL: "never include a blank space before the * character because the rest of the input
