@@ -1,5 +1,6 @@
 // Copying and numbering of solid-model entities and meshes (APDL_MODELING §3.1, §3.5-§3.7):
-// KGEN, LGEN, AGEN, VGEN, VGLUE and AGLUE (coincident boundaries only), NUMMRG, NUMCMP.
+// KGEN, LGEN, AGEN, VGEN, their reflections KSYMM, LSYMM, ARSYM, VSYMM, VGLUE and AGLUE
+// (coincident boundaries only), NUMMRG, NUMCMP.
 #include <fmt/format.h>
 
 #include <set>
@@ -57,6 +58,49 @@ void cmd_generate(DeckReader& r, const Command& c) {
   q.kinc = r.integer(c, 8, 0);
   if (q.kinc < 0) r.fail(c, fmt::format("KINC {} must not be negative", q.kinc));
   q.copy_mesh = r.integer(c, 9, 0) == 0;
+  geometry::Mesher mesher(r.model, mesh_pointers(r), c.where);
+  geometry::copy_solid(r.model, q, mesher, c.where);
+  record_created_elements(r, mesher);
+}
+
+// KSYMM / LSYMM / ARSYM / VSYMM,Ncomp,N1,N2,NINC,KINC,NOELEM,IMOVE: one reflected copy of the
+// pattern (or the pattern moved onto its image with IMOVE = 1) about the plane through the
+// origin of the active Cartesian system normal to its axis Ncomp. The copy runs through the
+// reflected keypoints in the original order, so a reflected area's normal is the mirror image of
+// the original's, reversed.
+void cmd_symmetry(DeckReader& r, const Command& c) {
+  const SolidModel& s = r.model.solid;
+  const ModelSelection& sel = r.model.selection;
+  geometry::CopyRequest q;
+  const std::string axis = c.blank(1) ? "X" : r.label(c, 1);  // X by default
+  if (axis == "X")
+    q.mirror = 0;
+  else if (axis == "Y")
+    q.mirror = 1;
+  else if (axis == "Z")
+    q.mirror = 2;
+  else
+    r.fail(c, fmt::format("Ncomp '{}': X, Y or Z (the axis normal to the reflection plane)",
+                          c.text(1)));
+  if (c.name == "KSYMM") {
+    q.kind = SolidKind::Keypoint;
+    q.pattern = pattern(r, c, 2, s.keypoints, sel.keypoints, "keypoint");
+  } else if (c.name == "LSYMM") {
+    q.kind = SolidKind::Line;
+    q.pattern = pattern(r, c, 2, s.lines, sel.lines, "line");
+  } else if (c.name == "ARSYM") {
+    q.kind = SolidKind::Area;
+    q.pattern = pattern(r, c, 2, s.areas, sel.areas, "area");
+  } else {
+    q.kind = SolidKind::Volume;
+    q.pattern = pattern(r, c, 2, s.volumes, sel.volumes, "volume");
+  }
+  q.copies = 1;
+  q.move = r.integer(c, 7, 0) == 1;
+  q.system = r.model.coordinate_systems.active_system();
+  q.kinc = r.integer(c, 5, 0);
+  if (q.kinc < 0) r.fail(c, fmt::format("KINC {} must not be negative", q.kinc));
+  q.copy_mesh = r.integer(c, 6, 0) == 0;
   geometry::Mesher mesher(r.model, mesh_pointers(r), c.where);
   geometry::copy_solid(r.model, q, mesher, c.where);
   record_created_elements(r, mesher);
@@ -134,6 +178,7 @@ void cmd_nummrg(DeckReader& r, const Command& c) {
     if (four == "NODE" || four == "ELEM" || four == "TYPE" || four == "REAL" || four == "SECT")
       label = four;
   }
+  if (label == "KPOI" || label.rfind("KPOINT", 0) == 0) label = "KP";  // VM62: NUMMRG,KPOI
   const std::string action = r.label(c, 4);
   const std::string sw = r.label(c, 5);
   if (!action.empty() && action != "SELE")
@@ -235,6 +280,8 @@ void cmd_glue(DeckReader& r, const Command& c) {
 void register_solid_edit_commands(std::vector<CommandSpec>& t) {
   for (const char* name : {"KGEN", "LGEN", "AGEN", "VGEN"})
     t.push_back({name, cmd_generate, kPrep7});
+  for (const char* name : {"KSYMM", "LSYMM", "ARSYM", "VSYMM"})
+    t.push_back({name, cmd_symmetry, kPrep7});
   t.push_back({"NUMMRG", cmd_nummrg, kPrep7});
   t.push_back({"NUMCMP", cmd_numcmp, kPrep7});
   t.push_back({"VGLUE", cmd_glue, kPrep7});

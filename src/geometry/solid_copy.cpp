@@ -24,6 +24,14 @@ struct Rigid {
 /// axis of a spherical one.
 std::optional<Rigid> rigid_motion(const CopyRequest& q, int k) {
   const CoordinateSystem& cs = q.system;
+  if (q.mirror >= 0) {
+    // A reflection (det R = -1): a line's path system becomes left-handed, which maps the same
+    // points (to_global / from_global only use R and its transpose), so arcs stay arcs.
+    Mat3 flip = Mat3::Identity();
+    flip(q.mirror, q.mirror) = -1.0;
+    const Mat3 R = cs.axes * flip * cs.axes.transpose();
+    return Rigid{R, cs.origin - R * cs.origin};
+  }
   const Vec3 d = k * q.increment;
   if (cs.kind == CsysKind::Cartesian) return Rigid{Mat3::Identity(), cs.axes * d};
   if (d(0) != 0.0) return std::nullopt;
@@ -35,6 +43,11 @@ std::optional<Rigid> rigid_motion(const CopyRequest& q, int k) {
 }
 
 Vec3 moved_point(const CopyRequest& q, const Vec3& x, int k) {
+  if (q.mirror >= 0) {
+    Vec3 local = q.system.from_global(x);
+    local(q.mirror) = -local(q.mirror);
+    return q.system.to_global(local);
+  }
   return q.system.to_global(q.system.from_global(x) + k * q.increment);
 }
 
@@ -231,6 +244,22 @@ void copy_mesh(Model& model, Mesher& mesher, const CopyRequest& q, const Closure
 void copy_solid(Model& model, const CopyRequest& q, Mesher& mesher, const SourceLocation& where) {
   SolidModel& s = model.solid;
   const Closure c = closure(s, q, where);
+  if (q.mirror >= 0) {
+    if (q.system.kind != CsysKind::Cartesian)
+      throw InputError(where,
+                       "a reflection needs a Cartesian active coordinate system (CSYS,0 "
+                       "or a Cartesian LOCAL)");
+    // A mirrored mesh would turn its elements inside out (negative Jacobians): reflect the
+    // geometry, then mesh it.
+    bool meshed = false;
+    for (int a : c.areas) meshed = meshed || !s.areas.at(a).elements.empty();
+    for (int v : c.volumes) meshed = meshed || !s.volumes.at(v).elements.empty();
+    for (int l : c.lines) meshed = meshed || !s.lines.at(l).elements.empty();
+    if (meshed && (q.copy_mesh || q.move))
+      throw InputError(where,
+                       "reflecting a meshed pattern is not supported: reflect the "
+                       "geometry before meshing it (or NOELEM = 1)");
+  }
   if (q.move) {
     move_pattern(model, q, c);
     return;

@@ -1,5 +1,6 @@
 #pragma once
-/// Copies and moves of solid-model entities (KGEN, LGEN, AGEN, VGEN; APDL_MODELING §3.1, §3.5):
+/// Copies and moves of solid-model entities (KGEN, LGEN, AGEN, VGEN; APDL_MODELING §3.1, §3.5),
+/// and their reflections (KSYMM, LSYMM, ARSYM, VSYMM):
 /// each copy is displaced by the increments DX, DY, DZ of a coordinate system (DR, Dθ, DZ in a
 /// cylindrical one) relative to the previous copy. Copies take their lower entities along
 /// (an area its lines and keypoints), keep the pattern's attributes and, unless NOELEM = 1,
@@ -24,6 +25,9 @@ struct CopyRequest {
   int kinc = 0;           // keypoint number increment between copies (0: lowest free)
   bool copy_mesh = true;  // NOELEM = 0
   bool move = false;      // IMOVE = 1: move the pattern instead of copying it
+  /// KSYMM / LSYMM / ARSYM / VSYMM: the component (0 X, 1 Y, 2 Z) of the active Cartesian system
+  /// that the one copy reflects, about the plane through its origin; -1 for a displacement.
+  int mirror = -1;
 };
 
 /// Runs a copy or move; mesh copies are created through `mesher` (its created_elements()).

@@ -154,6 +154,39 @@ TEST(Meshing, AreaNumbersOfVAndBlock) {
   EXPECT_EQ(z_of_area(2), (std::set<double>{1.0}));
 }
 
+// ARSYM reflects areas (with their lines and keypoints) about the plane normal to an axis of
+// the active Cartesian system; an arc stays an arc; NUMMRG,KPOI merges the keypoints on the
+// plane, and the two halves mesh conformingly. A meshed pattern is refused.
+TEST(Meshing, ArsymReflectsAreasAndArcs) {
+  const std::string half = std::string(kBrick) +
+                           "ET,1,SHELL63\nR,1,0.1\nK,1\nK,2,2\nK,3,0,2\nL,1,2\n"
+                           "LARC,2,3,1,2\nL,3,1\nAL,1,2,3\nLOCAL,11,0,0,1\nARSYM,Y,1\nCSYS,0\n";
+  const Model m = read(half + "NUMMRG,KPOI\n");
+  ASSERT_EQ(m.solid.areas.size(), 2u);
+  EXPECT_EQ(m.solid.keypoints.size(), 4u);  // K1 and K3 met their images and were merged
+  std::set<std::array<long long, 3>> reflected;
+  for (const auto& [id, k] : m.solid.keypoints) reflected.insert(key(k.x));
+  EXPECT_TRUE(reflected.count(key(Vec3(0, 2, 0))));  // K1 (0, 0) about y = 1
+  EXPECT_TRUE(reflected.count(key(Vec3(2, 2, 0))));  // K2 (2, 0)
+  EXPECT_TRUE(reflected.count(key(Vec3(0, 0, 0))));  // K3 (0, 2) onto K1: merged
+  // The reflected arc: a quarter circle about (0, 2) through (2, 2) and (0, 0); its mid-point.
+  const Model meshed = read(half + "NUMMRG,KPOI\nESIZE,,8\nAMESH,ALL\n");
+  bool on_arc = false;
+  const Vec3 mid(std::sqrt(2.0), 2.0 - std::sqrt(2.0), 0.0);
+  for (const auto& [id, n] : meshed.nodes) on_arc = on_arc || (n.x - mid).norm() < 1e-9;
+  EXPECT_TRUE(on_arc);
+  try {
+    read(std::string(kBrick) +
+         "ET,1,SHELL63\nR,1,0.1\nK,1\nK,2,1\nK,3,1,1\nA,1,2,3\n"
+         "ESIZE,0.5\nAMESH,1\nARSYM,X,1\n");
+    FAIL() << "a meshed pattern was reflected";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(":13: ARSYM: reflecting a meshed pattern"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(Meshing, AdjacentAreasAreConforming) {
   const Model m = read(
       "/PREP7\nET,1,SHELL181\nMP,EX,1,1E7\nSECTYPE,1,SHELL\nSECDATA,0.1\n"
