@@ -31,24 +31,40 @@ std::vector<int> pattern(DeckReader& r, const Command& c, int f1, const Map& map
   return entity_list(r, c, f1, f1 + 1, f1 + 2, map, sel, what);
 }
 
-void cmd_generate(DeckReader& r, const Command& c) {
-  // xGEN,ITIME,N1,N2,NINC,DX,DY,DZ,KINC,NOELEM,IMOVE
+/// The kind and pattern (fields 2-4) of a copy or reflection, by the command's first letter:
+/// KGEN/KSYMM keypoints, LGEN/LSYMM lines, AGEN/ARSYM areas, VGEN/VSYMM volumes.
+void set_pattern(DeckReader& r, const Command& c, geometry::CopyRequest& q) {
   const SolidModel& s = r.model.solid;
   const ModelSelection& sel = r.model.selection;
-  geometry::CopyRequest q;
-  if (c.name == "KGEN") {
-    q.kind = SolidKind::Keypoint;
-    q.pattern = pattern(r, c, 2, s.keypoints, sel.keypoints, "keypoint");
-  } else if (c.name == "LGEN") {
-    q.kind = SolidKind::Line;
-    q.pattern = pattern(r, c, 2, s.lines, sel.lines, "line");
-  } else if (c.name == "AGEN") {
-    q.kind = SolidKind::Area;
-    q.pattern = pattern(r, c, 2, s.areas, sel.areas, "area");
-  } else {
-    q.kind = SolidKind::Volume;
-    q.pattern = pattern(r, c, 2, s.volumes, sel.volumes, "volume");
+  switch (c.name.front()) {
+    case 'K':
+      q.kind = SolidKind::Keypoint;
+      q.pattern = pattern(r, c, 2, s.keypoints, sel.keypoints, "keypoint");
+      break;
+    case 'L':
+      q.kind = SolidKind::Line;
+      q.pattern = pattern(r, c, 2, s.lines, sel.lines, "line");
+      break;
+    case 'A':
+      q.kind = SolidKind::Area;
+      q.pattern = pattern(r, c, 2, s.areas, sel.areas, "area");
+      break;
+    default:
+      q.kind = SolidKind::Volume;
+      q.pattern = pattern(r, c, 2, s.volumes, sel.volumes, "volume");
   }
+}
+
+void run_copy(DeckReader& r, const Command& c, const geometry::CopyRequest& q) {
+  geometry::Mesher mesher(r.model, mesh_pointers(r), c.where);
+  geometry::copy_solid(r.model, q, mesher, c.where);
+  record_created_elements(r, mesher);
+}
+
+void cmd_generate(DeckReader& r, const Command& c) {
+  // xGEN,ITIME,N1,N2,NINC,DX,DY,DZ,KINC,NOELEM,IMOVE
+  geometry::CopyRequest q;
+  set_pattern(r, c, q);
   const int itime = r.integer(c, 1, 2);
   q.move = r.integer(c, 10, 0) == 1;
   if (!q.move && itime < 2) r.fail(c, fmt::format("ITIME {} must be greater than 1", itime));
@@ -58,9 +74,7 @@ void cmd_generate(DeckReader& r, const Command& c) {
   q.kinc = r.integer(c, 8, 0);
   if (q.kinc < 0) r.fail(c, fmt::format("KINC {} must not be negative", q.kinc));
   q.copy_mesh = r.integer(c, 9, 0) == 0;
-  geometry::Mesher mesher(r.model, mesh_pointers(r), c.where);
-  geometry::copy_solid(r.model, q, mesher, c.where);
-  record_created_elements(r, mesher);
+  run_copy(r, c, q);
 }
 
 // KSYMM / LSYMM / ARSYM / VSYMM,Ncomp,N1,N2,NINC,KINC,NOELEM,IMOVE: one reflected copy of the
@@ -69,8 +83,6 @@ void cmd_generate(DeckReader& r, const Command& c) {
 // reflected keypoints in the original order, so a reflected area's normal is the mirror image of
 // the original's, reversed.
 void cmd_symmetry(DeckReader& r, const Command& c) {
-  const SolidModel& s = r.model.solid;
-  const ModelSelection& sel = r.model.selection;
   geometry::CopyRequest q;
   const std::string axis = c.blank(1) ? "X" : r.label(c, 1);  // X by default
   if (axis == "X")
@@ -82,28 +94,14 @@ void cmd_symmetry(DeckReader& r, const Command& c) {
   else
     r.fail(c, fmt::format("Ncomp '{}': X, Y or Z (the axis normal to the reflection plane)",
                           c.text(1)));
-  if (c.name == "KSYMM") {
-    q.kind = SolidKind::Keypoint;
-    q.pattern = pattern(r, c, 2, s.keypoints, sel.keypoints, "keypoint");
-  } else if (c.name == "LSYMM") {
-    q.kind = SolidKind::Line;
-    q.pattern = pattern(r, c, 2, s.lines, sel.lines, "line");
-  } else if (c.name == "ARSYM") {
-    q.kind = SolidKind::Area;
-    q.pattern = pattern(r, c, 2, s.areas, sel.areas, "area");
-  } else {
-    q.kind = SolidKind::Volume;
-    q.pattern = pattern(r, c, 2, s.volumes, sel.volumes, "volume");
-  }
+  set_pattern(r, c, q);
   q.copies = 1;
   q.move = r.integer(c, 7, 0) == 1;
   q.system = r.model.coordinate_systems.active_system();
   q.kinc = r.integer(c, 5, 0);
   if (q.kinc < 0) r.fail(c, fmt::format("KINC {} must not be negative", q.kinc));
   q.copy_mesh = r.integer(c, 6, 0) == 0;
-  geometry::Mesher mesher(r.model, mesh_pointers(r), c.where);
-  geometry::copy_solid(r.model, q, mesher, c.where);
-  record_created_elements(r, mesher);
+  run_copy(r, c, q);
 }
 
 /// The deck's own node and element lists follow a renumbering.
