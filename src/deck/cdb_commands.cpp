@@ -183,10 +183,12 @@ void eblock_nonsolid(DeckReader& r, const Command& c) {
   const std::vector<int> widths = format_widths(b, 0);
   if (widths.size() < 6) b.fail("the format has fewer than the 5 columns before the nodes");
   AttributeScope scope(r);
+  const std::vector<int> more_widths(widths.size(), widths.front());  // continuation records
   std::string_view record;
   long long count = 0;
+  std::vector<std::string_view> col, more;
   while (b.next(record)) {
-    const auto col = columns(record, widths);
+    split_columns(record, widths, col);
     const long long id = column_int(b, col[0]);
     if (id < 0) break;  // the -1 record ends the block
     if (id == 0 || id > kMaxEntityNumber) b.fail(fmt::format("element number {} out of range", id));
@@ -209,9 +211,10 @@ void eblock_nonsolid(DeckReader& r, const Command& c) {
       return k == fields.size();  // every column filled: the list may continue
     };
     bool full = read_nodes(col, 5);
-    const std::vector<int> more_widths(widths.size(), widths.front());
-    while (full && static_cast<int>(nodes.size()) < max_nodes && b.next(record))
-      full = read_nodes(columns(record, more_widths), 0);
+    while (full && static_cast<int>(nodes.size()) < max_nodes && b.next(record)) {
+      split_columns(record, more_widths, more);
+      full = read_nodes(more, 0);
+    }
     if (nodes.empty()) b.fail(fmt::format("element {} has no nodes", id));
     check_target_shape(r, b.at_record(), nodes);
     if (r.model.elements.count(static_cast<int>(id)) == 0) check_model_size(r, c, 0, 1);
@@ -235,9 +238,10 @@ void cmd_eblock(DeckReader& r, const Command& c) {
   const std::vector<int> widths = format_widths(b, 0);
   if (widths.size() < 11) b.fail("the format has fewer than the 11 columns before the nodes");
   AttributeScope scope(r);
+  const std::vector<int> more_widths(widths.size(), widths.front());  // continuation records
   std::string_view record;
   long long count = 0;
-  std::vector<std::string_view> col;
+  std::vector<std::string_view> col, more;
   while (b.next(record)) {
     split_columns(record, widths, col);
     const long long mat = column_int(b, col[0]);
@@ -252,7 +256,7 @@ void cmd_eblock(DeckReader& r, const Command& c) {
     for (std::size_t k = 11; k < col.size() && static_cast<long long>(nodes.size()) < n_nodes; ++k)
       nodes.push_back(static_cast<int>(column_int(b, col[k])));
     while (static_cast<long long>(nodes.size()) < n_nodes && b.next(record)) {
-      const auto more = columns(record, std::vector<int>(widths.size(), widths.front()));
+      split_columns(record, more_widths, more);
       for (std::size_t k = 0; k < more.size() && static_cast<long long>(nodes.size()) < n_nodes;
            ++k)
         nodes.push_back(static_cast<int>(column_int(b, more[k])));
