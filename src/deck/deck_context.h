@@ -183,6 +183,9 @@ class DeckReader {
   /// Evaluates an expression with the parameters and the get functions; errors name `c`.
   double eval(const Command& c, const std::string& expression) const;
   Value eval_value(const Command& c, const std::string& expression) const;
+  /// The same, throwing ExpressionError, for callers that fall back to a label or word their
+  /// own message (*GET fields: `*GET,S,NODE,NODE(10,0,-1),U,Y`).
+  Value evaluate_expression(std::string_view expression) const;
   /// `%expr%` substitution (§A.5 rule 3) of one text; `%%` is a literal %.
   std::string substitute_percent(const Command& c, const std::string& text) const;
   /// ON/OFF/1/0/YES/NO (blank → fallback).

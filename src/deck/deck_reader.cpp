@@ -190,6 +190,10 @@ Value DeckReader::value(const Command& c, int i) const {
   return eval_value(c, t);
 }
 
+Value DeckReader::evaluate_expression(std::string_view expression) const {
+  return evaluate_value(expression, params, &functions_);
+}
+
 Value DeckReader::eval_value(const Command& c, const std::string& expression) const {
   try {
     return evaluate_value(expression, params, &functions_);

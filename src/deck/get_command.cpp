@@ -287,9 +287,17 @@ GetValue get_active(DeckReader& r, const Command& c, const GetRequest& g) {
               "INT, TYPE, MAT, REAL, SECT, CSYS, JOBNAM, TITLE, TIME WALL/CPU");
 }
 
+// A numeric field of *GET: parameters and get functions (NODE(x,y,z)) evaluated.
+double field_number(const DeckReader& r, const std::string& text) {
+  const Value v = r.evaluate_expression(text.empty() ? "0" : text);
+  if (is_text(v))
+    throw ExpressionError(fmt::format("'{}' is a text, not a number", std::get<std::string>(v)));
+  return std::get<double>(v);
+}
+
 int integer_field(DeckReader& r, const Command& c, const GetRequest& g, const std::string& text) {
   try {
-    return static_cast<int>(std::lround(evaluate(text.empty() ? "0" : text, r.params)));
+    return static_cast<int>(std::lround(field_number(r, text)));
   } catch (const ExpressionError& e) {
     r.fail(c, fmt::format("{}: bad number '{}' ({})", g.what(), text, e.what()));
   }
@@ -297,7 +305,7 @@ int integer_field(DeckReader& r, const Command& c, const GetRequest& g, const st
 
 double real_field(DeckReader& r, const Command& c, const GetRequest& g, const std::string& text) {
   try {
-    return evaluate(text.empty() ? "0" : text, r.params);
+    return field_number(r, text);
   } catch (const ExpressionError& e) {
     r.fail(c, fmt::format("{}: bad number '{}' ({})", g.what(), text, e.what()));
   }

@@ -24,7 +24,7 @@ GetItem read_get_item(DeckReader& r, const Command& c, int f) {
     q.entname = to_upper(ent);
   } else {
     try {
-      const Value v = evaluate_value(ent, r.params);
+      const Value v = r.evaluate_expression(ent);
       if (is_text(v))
         q.entname = to_upper(std::get<std::string>(v));
       else

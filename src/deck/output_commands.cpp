@@ -309,7 +309,7 @@ void cmd_cfwrite(DeckReader& r, const Command& c) {
       std::string out = f;
       if (!f.empty() && f.front() != '\'' && !parse_fortran_number(f)) {
         try {
-          const Value v = evaluate_value(f, r.params);
+          const Value v = r.evaluate_expression(f);
           out = is_text(v) ? std::get<std::string>(v) : format_number(std::get<double>(v));
         } catch (const ExpressionError&) {
           out = f;  // a label (UX, ALL, ...)

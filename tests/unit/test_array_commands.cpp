@@ -415,4 +415,17 @@ TEST(ArrayCommands, FourierSeriesFitAndEvaluation) {
             std::string::npos);
 }
 
+// A get function in a numeric field of *GET or *VGET (vmfebsta-le5 with N2 = NODE(...) written
+// in place): evaluated like any other field, not taken for a label.
+TEST(GetActive, GetFunctionInTheEntityField) {
+  Session s;
+  s.run(
+      "/PREP7\nN,1\nN,2,10,0,-1\nN,3,10,1,-1\n*GET,X2,NODE,NODE(10,0.1,-1),LOC,X\n"
+      "*GET,Y3,NODE,NODE(10,0.9,-1),LOC,Y\n*DIM,V,,2\n*VGET,V(1),NODE,NODE(9,0,-1),LOC,X\n");
+  EXPECT_DOUBLE_EQ(s.num("X2"), 10.0);
+  EXPECT_DOUBLE_EQ(s.num("Y3"), 1.0);
+  EXPECT_DOUBLE_EQ(s.column("V")[0], 10.0);
+  EXPECT_DOUBLE_EQ(s.column("V")[1], 10.0);  // node 3, the next in order
+}
+
 }  // namespace test_array_commands
