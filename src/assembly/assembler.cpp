@@ -61,6 +61,9 @@ Assembler::Assembler(const std::vector<std::unique_ptr<Element>>& elements, cons
         const int* end = rows + pattern_.column_start[static_cast<std::size_t>(col) + 1];
         const int* it = std::lower_bound(begin, end, row);
         scatter.push_back({b * n + a, static_cast<int>(it - rows)});
+        // Two DOFs of the element coupled into one (CP) land on one diagonal entry, which
+        // takes both K_ab and K_ba: the upper triangle's entry is not scattered otherwise.
+        if (a != b && row == col) scatter.push_back({a * n + b, static_cast<int>(it - rows)});
       }
     scatter.shrink_to_fit();
   }

@@ -79,6 +79,31 @@ TEST(ConstraintEquations, ConstantPrescribesARelativeDisplacement) {
               1e-9);
 }
 
+// CP couples two DOFs of one element into one equation: the nonlinear elements' tangent takes
+// both K_ab and K_ba on that diagonal entry. A large-deflection SHELL181 cantilever whose tip
+// nodes share UZ (CP) gives the deflection of the same tie as a constraint equation and of no
+// tie at all (a symmetric load); only K_ab, before, left Newton stalled at the full load.
+TEST(ConstraintEquations, CoupledDofsOfOneNonlinearElement) {
+  const auto deflection = [](const std::string& tag, const std::string& tie) {
+    const auto run = testing::run_deck_text(
+        tag,
+        "/PREP7\nET,1,SHELL181\nSECTYPE,1,SHELL\nSECDATA,0.1\nMP,EX,1,1E7\nMP,NUXY,1,0.3\n"
+        "N,1\nN,2,0,1\nN,3,10\nN,4,10,1\nE,1,3,4,2\nD,1,ALL\nD,2,ALL\n" +
+            tie +
+            "\nF,3,FZ,10\nF,4,FZ,10\nFINISH\n/SOLU\nANTYPE,STATIC\nNLGEOM,ON\nNSUBST,5\n"
+            "SOLVE\nFINISH\n");
+    const auto w = run.reader->nodal_series(3, "UZ");
+    return std::make_pair(w.back().second, run.statistics.analyses.back().n_iterations);
+  };
+  const auto [free_w, free_iterations] = deflection("cp_shell_free", "");
+  const auto [cp_w, cp_iterations] = deflection("cp_shell_cp", "CP,1,UZ,3,4");
+  const auto [ce_w, ce_iterations] = deflection("cp_shell_ce", "CE,1,0,3,UZ,1,4,UZ,-1");
+  EXPECT_GT(free_w, 4.0);  // large deflection: below the linear 5.86 of this mesh
+  EXPECT_NEAR(cp_w, free_w, 1e-6 * free_w);
+  EXPECT_NEAR(ce_w, free_w, 1e-6 * free_w);
+  EXPECT_LE(cp_iterations, free_iterations);
+}
+
 TEST(ConstraintEquations, EquationsSurviveSaveAndResume) {
   // SAVE, CEDELE,ALL, RESUME: the equation comes back with the database (u2 = 2 u4 as above).
   const std::string deck = std::string(kTwoSprings) +
