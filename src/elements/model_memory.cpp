@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 
@@ -32,6 +33,7 @@ std::pair<double, bool> dofs_per_node(const ElementTypeDescriptor& d) {
 
 struct Counts {
   double elements = 0.0, element_nodes = 0.0, matrix = 0.0, dofs_weight = 0.0, solid = 0.0;
+  bool all_explicit = true;  // every element has an explicit kernel: the run is explicit
 };
 
 void add(Counts& c, const ElementTypeDescriptor& d, double count) {
@@ -44,6 +46,7 @@ void add(Counts& c, const ElementTypeDescriptor& d, double count) {
   c.matrix += count * n * (n + 1.0) / 2.0 / 2.5;
   c.dofs_weight += count * per_node;
   if (solid) c.solid += count;
+  if (!d.explicit_set) c.all_explicit = false;
 }
 
 }  // namespace
@@ -87,6 +90,17 @@ ModelMemory estimate_model_memory(const Model& model, int added_type, double add
   m.solid_dofs = c.elements > 0.0 ? m.dofs * c.solid / c.elements : 0.0;
   m.database = m.nodes * kNodeBytes + c.elements * kElementRecordBytes + c.element_nodes * 4.0;
   m.structure = c.elements * kElementObjectBytes;
+  // One block of stored points being filled (results/result_series.h, block_rows_for): every
+  // nodal quantity (4 of 6 components) and element value (24) of a point, 64 points, fewer
+  // down to 4 when that passes 32 MB.
+  const double row_bytes = 8.0 * (24.0 * m.nodes + 24.0 * c.elements + 16.0);
+  m.results = std::max(std::min(64.0 * row_bytes, 32.0 * 1024 * 1024), 4.0 * row_bytes);
+  // An explicit run (every element with an explicit kernel, as the solve decides) keeps no
+  // matrix: its lumped mass, forces, velocities and displacements are DOF vectors.
+  if (c.all_explicit && c.elements > 0.0) {
+    m.matrices = 20.0 * m.dofs * 8.0;
+    return m;
+  }
   // The stiffness, the mass and the effective matrix (the linear parts' sums and the one
   // factored), with the DOF vectors of a solve.
   m.matrices = 3.0 * c.matrix * kMatrixEntryBytes + 20.0 * m.dofs * 8.0;
@@ -112,10 +126,13 @@ void require_model_memory(const Model& model, const std::string& what, int added
     scaled.solid_dofs = scaled.dofs * solid_ratio;
     scaled.database = need.database * s;
     scaled.structure = need.structure * s;
+    scaled.results = need.results * s;
     scaled.matrices = need.matrices * s;
     scaled.factor =
-        std::max(need.matrices * s / 3.0 * kFactorEntryBytes / kMatrixEntryBytes,
-                 kSolidFill * std::pow(scaled.solid_dofs, 4.0 / 3.0) * kFactorEntryBytes);
+        need.factor <= 0.0  // an explicit run factors nothing
+            ? 0.0
+            : std::max(need.matrices * s / 3.0 * kFactorEntryBytes / kMatrixEntryBytes,
+                       kSolidFill * std::pow(scaled.solid_dofs, 4.0 / 3.0) * kFactorEntryBytes);
     (scaled.total() <= available.bytes ? lo : hi) = s;
   }
   throw MemoryLimitError(fmt::format(

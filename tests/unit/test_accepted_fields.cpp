@@ -170,6 +170,25 @@ TEST(AcceptedFields, ModelChangesBetweenLoadStepsAreRefused) {
   EXPECT_NEAR(last(run.reader->nodal_series(2, "UX")), 1000.0 * kL / (2 * kE * kA), 1e-15);
 }
 
+// The rest of the model between load steps, changed from /PREP7 without FINISH (which would end
+// the analysis): refused at the next SOLVE, naming what changed, like MP and RMODIF above.
+TEST(AcceptedFields, ElementTypeTableAndNodeChangesBetweenLoadStepsAreRefused) {
+  const std::string two_steps =
+      "ANTYPE,STATIC\nF,2,FX,1000\nSOLVE\n/PREP7\n{}\n/SOLU\nF,2,FX,2000\nSOLVE\n";
+  const std::pair<const char*, const char*> cases[] = {
+      {"ET,1,LINK8", "element type 1 changed (ET, KEYOPT)"},
+      {"KEYOPT,1,2,1", "element type 1 changed (ET, KEYOPT)"},
+      {"TB,BISO,1\nTBDATA,1,1E5,0", "TB table"},
+      {"N,2,20", "node 2 changed"}};
+  for (const auto& [change, message] : cases) {
+    const std::string err =
+        error_of("model_change_between_steps",
+                 bar_deck("LINK180", "1", kRho, fmt::format(fmt::runtime(two_steps), change)));
+    EXPECT_NE(err.find(": SOLVE: "), std::string::npos) << change << ": " << err;
+    EXPECT_NE(err.find(message), std::string::npos) << change << ": " << err;
+  }
+}
+
 /// The bar of bar_deck with a material 2 of twice the modulus; `rest`: the deck after the first
 /// analysis's FINISH.
 std::string two_analyses(const std::string& rest) {

@@ -19,6 +19,8 @@
 #include "core/files.h"
 #include "core/job_lock.h"
 #include "core/memory_budget.h"
+#include "core/model.h"
+#include "elements/model_memory.h"
 #include "linalg/linear_solver.h"
 
 namespace impactfe::test_run_safety {
@@ -298,6 +300,23 @@ TEST(MemoryLimits, MillionsOfBricksAreRefusedAtTheMeshCommandInAnInstant) {
   EXPECT_EQ(wait_exit_status(
                 start_run(dir / "small.inp", dir / "out", dir / "s.txt", {"--memory", "lots"})),
             1);
+}
+
+// An explicit model factors nothing: a million SOLID164 bricks need their element states and
+// DOF vectors and a block of stored points (3 GB), not the 30 GB factor that the same SOLID185 mesh
+// would need; the mesh-time check refused them as if they were implicit.
+TEST(MemoryLimits, ExplicitModelsAreEstimatedWithoutAFactor) {
+  for (const char* name : {"SOLID164", "SOLID185"}) {
+    Model model;
+    model.element_types[1] = ElementType{1, name, {}, {}};
+    const ModelMemory m = estimate_model_memory(model, 1, 1.0e6, 1.0e6);
+    if (std::string(name) == "SOLID164") {
+      EXPECT_EQ(m.factor, 0.0);
+      EXPECT_LT(m.total(), 4.0e9) << m.describe();  // the results block: 1.5 GB
+    } else {
+      EXPECT_GT(m.factor, 1.0e10) << m.describe();
+    }
+  }
 }
 
 TEST(MemoryLimits, SymbolicAnalysisRefusesAFactorThatCannotFit) {
