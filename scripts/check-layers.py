@@ -45,7 +45,9 @@ DECK_STATE = {
                  # EBLOCK sets the attribute pointers of each element record it adds.
                  "cdb_commands.cpp",
                  # EDMP's MAT defaults to the MAT attribute pointer.
-                 "explicit_commands.cpp"],
+                 "explicit_commands.cpp",
+                 # CE,R5.0,NODE records continue the equation of the CE,R5.0,DEFI before them.
+                 "constraint_equation_commands.cpp"],
     # 4x defines the analysis (KAN) in PREP7; FINISH closes a 4x /STRESS block.
     "solution": ["solution_commands.cpp", "dynamics_commands.cpp", "prep7_commands.cpp",
                  "session_commands.cpp"],

@@ -438,6 +438,10 @@ void cmd_cdread(DeckReader& r, const Command& c) {
   const unsigned processor = r.processor;
   r.run_file(path, c.where);
   r.processor = processor;
+  if (r.modeling.archive_terms_left > 0)
+    r.fail(c, fmt::format("the archive '{}' ends {} term(s) short of constraint equation {} "
+                          "(CE,R5.0,DEFI gives more terms than its CE,R5.0,NODE records)",
+                          path, r.modeling.archive_terms_left, r.modeling.archive_equation));
 }
 
 // CDWRITE,Option,Fname,Ext: the model as a CDB archive (cdb_writer.h), Fname.Ext (default

@@ -92,6 +92,32 @@ void write_sections(const Model& m, std::ostream& out) {
   }
 }
 
+// LOCAL,R5.0,LOC|ANG|PRM,KCN,KCS,...: the local systems (11 and up) as MAPDL's archives give
+// them: origin, then the angles of the axes, then the shape parameters (1, 1: not elliptical).
+// Each record makes its system active, so the block ends with CSYS,0, as MAPDL's archives do.
+void write_coordinate_systems(const Model& m, std::ostream& out) {
+  bool any = false;
+  for (const auto& [id, cs] : m.coordinate_systems.systems()) {
+    if (id <= 10) continue;
+    const int kind = static_cast<int>(cs.kind);
+    const Vec3 angles = angles_from_rotation(cs.axes);
+    // The angles must give back the same axes: a SOLVE with elements or nodes in the system
+    // would otherwise differ from the original in the last bits.
+    if (rotation_from_angles(angles) != cs.axes)
+      throw std::invalid_argument(fmt::format(
+          "the axes of local system {} are not reproduced exactly by the angles a CDB holds "
+          "(THXY THYZ THZX {} {} {})",
+          id, exact(angles[0]), exact(angles[1]), exact(angles[2])));
+    out << fmt::format("LOCAL,R5.0,LOC,{},{},{},{},{}\n", id, kind, exact(cs.origin[0]),
+                       exact(cs.origin[1]), exact(cs.origin[2]));
+    out << fmt::format("LOCAL,R5.0,ANG,{},{},{},{},{}\n", id, kind, exact(angles[0]),
+                       exact(angles[1]), exact(angles[2]));
+    out << fmt::format("LOCAL,R5.0,PRM,{},{},{},{}\n", id, kind, exact(1.0), exact(1.0));
+    any = true;
+  }
+  if (any) out << "CSYS,0\n";
+}
+
 // NBLOCK,6,SOLID: node, solid-model entity, line location (both 0), X Y Z THXY THYZ THZX.
 void write_nodes(const Model& m, std::ostream& out) {
   if (m.nodes.empty()) return;
@@ -147,6 +173,98 @@ void write_components(const Model& m, std::ostream& out) {
   }
 }
 
+// CP,NSET,Lab,NODE1,...,NODE17: the coupled sets as CP commands (the prime node first), a set
+// of more nodes continued by further CP commands of the same set, which add to it.
+void write_coupled_sets(const Model& m, std::ostream& out) {
+  for (const auto& [id, set] : m.coupled_sets)
+    for (std::size_t k = 0; k < set.nodes.size(); k += 17) {
+      out << fmt::format("CP,{},{}", id, dof_name(set.dof));
+      for (std::size_t j = k; j < std::min(k + 17, set.nodes.size()); ++j)
+        out << ',' << set.nodes[j];
+      out << '\n';
+    }
+}
+
+// CE,R5.0,DEFI,NTERMS,NEQN,CONST and CE,R5.0,NODE records of two terms each (node, DOF,
+// coefficient), the slave first: the form of MAPDL's archives.
+void write_constraint_equations(const Model& m, std::ostream& out) {
+  for (const auto& [id, eq] : m.constraint_equations) {
+    out << fmt::format("CE,R5.0,DEFI,{},{},{}\n", eq.terms.size(), id, exact(eq.constant));
+    for (std::size_t k = 0; k < eq.terms.size(); k += 2) {
+      out << "CE,R5.0,NODE";
+      for (std::size_t j = k; j < std::min(k + 2, eq.terms.size()); ++j)
+        out << fmt::format(",{},{},{}", eq.terms[j].dof.node, dof_name(eq.terms[j].dof.dof),
+                           exact(eq.terms[j].coefficient));
+      out << '\n';
+    }
+  }
+}
+
+// CERIG,MASTE,SLAVE,Ldof,...: the rigid regions, one command per slave. impactfe writes a
+// region's equations when the structure is built, where the DOFs the elements carry make it 3-D
+// or 2-D; kept as CERIG, the region read back gives the same equations in the same order.
+void write_rigid_regions(const Model& m, std::ostream& out) {
+  for (const RigidRegion& region : m.rigid_regions) {
+    // The single labels, when given, are the whole list the equations are written for
+    // (RigidRegion::only); otherwise the groups.
+    std::vector<std::string> labels;
+    for (Dof d : region.only) labels.emplace_back(dof_name(d));
+    if (region.only.empty()) {
+      if (region.translations && region.rotations)
+        labels.emplace_back("ALL");
+      else
+        labels.emplace_back(region.translations ? "UXYZ" : "RXYZ");
+    }
+    if (labels.size() > 5)
+      throw std::invalid_argument(fmt::format(
+          "the rigid region of master node {} ({}:{}) has more DOF labels than one CERIG holds",
+          region.master, region.where.file, region.where.line));
+    for (int slave : region.slaves) {
+      out << fmt::format("CERIG,{},{}", region.master, slave);
+      for (const std::string& label : labels) out << ',' << label;
+      out << '\n';
+    }
+  }
+}
+
+// SFE,ELEM,LKEY,PRES,1,R5.0 and the values at the face's corners on the next line: the form of
+// MAPDL's archives.
+void write_surface_loads(const LoadStep& s, std::ostream& out) {
+  for (const auto& [face, load] : s.pressures) {
+    out << fmt::format("SFE,{},{},PRES,1,R5.0\n", face.element, face.face);
+    for (double v : load.values) out << fmt::format("{:>{}}", exact(v), kRealWidth);
+    out << '\n';
+  }
+}
+
+/// What a CDB written here cannot hold in the current load step: refused, so that an archive
+/// never reads back as a different model.
+void refuse_unwritten_loads(const Model& m) {
+  const LoadStep& s = m.current;
+  if (!s.constraint_tables.empty() || !s.force_tables.empty())
+    throw std::invalid_argument(
+        "table (%TABLE%) constraints and forces are not written to a CDB: write the archive "
+        "before applying them");
+  for (const auto& [face, load] : s.pressures)
+    if (load.tabular())
+      throw std::invalid_argument(fmt::format(
+          "the pressure on face {} of element {} is a table (%{}%): table loads are not written "
+          "to a CDB",
+          face.face, face.element, load.table));
+  for (const std::string& table : s.acel_tables)
+    if (!table.empty())
+      throw std::invalid_argument(
+          fmt::format("ACEL by the table %{}% is not written to a CDB", table));
+  if (!s.forces_imag.empty())
+    throw std::invalid_argument("imaginary parts of forces (F VALUE2) are not written to a CDB");
+  if (s.load_vector_scale != 0.0)
+    throw std::invalid_argument("LVSCALE load vectors are not written to a CDB");
+  if (!m.gap_conditions.empty())
+    throw std::invalid_argument(
+        fmt::format("gap conditions (GP, the first at {}:{}) are not written to a CDB",
+                    m.gap_conditions.front().where.file, m.gap_conditions.front().where.line));
+}
+
 void write_loads(const Model& m, std::ostream& out) {
   const LoadStep& s = m.current;
   for (const auto& [key, value] : s.constraints)
@@ -155,16 +273,17 @@ void write_loads(const Model& m, std::ostream& out) {
   for (const auto& [key, value] : s.forces)
     if (!s.force_tables.count(key))
       out << fmt::format("F,{},{},{}\n", key.node, force_name(key.dof), exact(value));
-  if (!s.constraint_tables.empty() || !s.force_tables.empty() || !s.pressures.empty())
-    throw std::invalid_argument(
-        "table loads and surface loads are not written to a CDB yet: write the archive before "
-        "applying them");
+  write_surface_loads(s, out);
   for (const auto& [key, ic] : m.initial_conditions)
     out << fmt::format("IC,{},{},{},{}\n", key.node, dof_name(key.dof), exact(ic.displacement),
                        exact(ic.velocity));
   for (const auto& key : m.masters) out << fmt::format("M,{},{}\n", key.node, dof_name(key.dof));
-  if (!m.gap_conditions.empty())
-    throw std::invalid_argument("gap conditions (GP) are not written to a CDB");
+  // Temperatures of the thermal strain: TREF, the uniform temperature, the node temperatures.
+  if (s.reference_temperature != 0.0)
+    out << fmt::format("TREF,{}\n", exact(s.reference_temperature));
+  if (s.uniform_temperature) out << fmt::format("BFUNIF,TEMP,{}\n", exact(*s.uniform_temperature));
+  for (const auto& [node, value] : s.node_temperatures)
+    out << fmt::format("BF,{},TEMP,{}\n", node, exact(value));
   if (s.acel != Vec3::Zero())
     out << fmt::format("ACEL,{},{},{}\n", exact(s.acel[0]), exact(s.acel[1]), exact(s.acel[2]));
 }
@@ -172,15 +291,20 @@ void write_loads(const Model& m, std::ostream& out) {
 }  // namespace
 
 void write_cdb(const Model& m, std::ostream& out) {
+  refuse_unwritten_loads(m);
   out << "/COM,impactfe CDB archive (CDWRITE,DB): mesh, materials, sections, components, loads\n";
   out << "/PREP7\n";
   write_types(m, out);
   write_real_sets(m, out);
   write_materials(m, out);
   write_sections(m, out);
+  write_coordinate_systems(m, out);
   write_nodes(m, out);
   write_elements(m, out);
   write_components(m, out);
+  write_coupled_sets(m, out);
+  write_constraint_equations(m, out);
+  write_rigid_regions(m, out);
   write_loads(m, out);
   out << "FINISH\n";
 }

@@ -8,6 +8,7 @@
 #include "core/dof.h"
 #include "core/log.h"
 #include "deck/modeling_helpers.h"
+#include "deck/modeling_state.h"
 
 namespace impactfe::deck {
 
@@ -21,7 +22,55 @@ Dof structural_dof(DeckReader& r, const Command& c, int field) {
   return *dof;
 }
 
+/// One term of an equation: the DOF's coefficient is added to a term of the same DOF.
+void add_term(ConstraintEquation& eq, const DofKey& key, double coefficient) {
+  const auto same = std::find_if(eq.terms.begin(), eq.terms.end(),
+                                 [&](const ConstraintTerm& t) { return t.dof == key; });
+  if (same != eq.terms.end())
+    same->coefficient += coefficient;
+  else
+    eq.terms.push_back({key, coefficient});
+}
+
+// The CDB archive form of CE: `CE,R5.0,DEFI,NTERMS,NEQN,CONST` defines equation NEQN, then
+// `CE,R5.0,NODE,NODE1,Lab1,C1,NODE2,Lab2,C2` records give its NTERMS terms, two to a record,
+// slave first. The equation replaces one of the same number (the archive holds all of it).
+void ce_archive_form(DeckReader& r, const Command& c) {
+  auto& equations = r.model.constraint_equations;
+  const std::string part = r.label(c, 2);
+  if (part == "DEFI") {
+    if (r.modeling.archive_terms_left > 0)
+      r.fail(c, fmt::format("CE,R5.0,DEFI before the last {} term(s) of equation {}",
+                            r.modeling.archive_terms_left, r.modeling.archive_equation));
+    const int n_terms = r.integer(c, 3, 0), id = r.integer(c, 4, 0);
+    if (n_terms <= 0) r.fail(c, fmt::format("NTERMS {}: at least one term", c.text(3)));
+    if (id <= 0) r.fail(c, fmt::format("bad equation number '{}'", c.text(4)));
+    ConstraintEquation eq;
+    eq.id = id;
+    eq.constant = r.real(c, 5, 0.0);
+    eq.where = c.where;
+    equations[id] = std::move(eq);
+    r.modeling.archive_equation = id;
+    r.modeling.archive_terms_left = n_terms;
+  } else if (part == "NODE") {
+    if (r.modeling.archive_terms_left <= 0)
+      r.fail(c, "CE,R5.0,NODE without a CE,R5.0,DEFI whose terms it continues");
+    ConstraintEquation& eq = equations[r.modeling.archive_equation];
+    for (int f = 3; f <= 6 && r.modeling.archive_terms_left > 0; f += 3) {
+      if (c.blank(f) && f > 3) break;  // one term on this record, the rest on the next
+      if (c.blank(f)) r.fail(c, "the node of the record's first term is missing");
+      const int node = r.integer(c, f, 0);
+      r.require_node(c, node);
+      add_term(eq, DofKey{node, structural_dof(r, c, f + 1)}, r.real(c, f + 2, 0.0));
+      --r.modeling.archive_terms_left;
+    }
+  } else {
+    r.fail(c, fmt::format("CE,R5.0 record '{}': DEFI or NODE", c.text(2)));
+  }
+}
+
 void cmd_ce(DeckReader& r, const Command& c) {
+  if (r.label(c, 1) == "R5.0") return ce_archive_form(r, c);
   // CE,NEQN,CONST,NODE1,Lab1,C1,NODE2,Lab2,C2,NODE3,Lab3,C3: CONST = Σ C_i u_i (MAPDL Command
   // Reference, CE). NEQN blank or NEXT: the highest equation number + 1; HIGH: the highest (to
   // add terms); n: that equation (terms are added to it). A zero coefficient drops its term.
@@ -53,13 +102,7 @@ void cmd_ce(DeckReader& r, const Command& c) {
     const Dof dof = structural_dof(r, c, f + 1);
     const double coefficient = r.real(c, f + 2, 0.0);
     if (coefficient == 0.0) continue;
-    const DofKey key{node, dof};
-    const auto same = std::find_if(eq.terms.begin(), eq.terms.end(),
-                                   [&](const ConstraintTerm& t) { return t.dof == key; });
-    if (same != eq.terms.end())
-      same->coefficient += coefficient;
-    else
-      eq.terms.push_back({key, coefficient});
+    add_term(eq, DofKey{node, dof}, coefficient);
   }
   if (eq.terms.empty()) {
     if (fresh) equations.erase(id);

@@ -238,6 +238,10 @@ bool takes_block(std::string_view n) {
   return n == "NBLOCK" || n == "EBLOCK" || n == "CMBLOCK" || n == "RLBLOCK";
 }
 
+bool takes_value_record(const RawCommand& cmd) {
+  return cmd.name == "SFE" && cmd.fields.size() >= 5 && to_upper(trim(cmd.fields[4])) == "R5.0";
+}
+
 namespace {
 
 /// A record of a CDB block: numbers in fixed columns, no comma, no letter but an exponent.
@@ -261,13 +265,16 @@ bool is_nblock_end(std::string_view line) {
 }
 
 /// Consumes the lines of the block after `text[pos]` (format lines, then records; the NBLOCK
-/// end marker too) into `cmd.block`; returns the position after them and advances `line`.
+/// end marker too) into `cmd.block`; returns the position after them and advances `line`. A
+/// command with one value record (takes_value_record) takes that line only, no format line.
 std::size_t take_block(std::string_view text, std::size_t pos, int& line, RawCommand& cmd,
                        const std::shared_ptr<const std::string>& owner) {
   cmd.block_line = line + 1;
   const std::size_t first = pos;
-  bool formats = true, carriage_returns = false;
-  while (pos < text.size()) {
+  const bool one_record = takes_value_record(cmd);
+  bool formats = !one_record, carriage_returns = false;
+  int records = 0;
+  while (pos < text.size() && !(one_record && records == 1)) {
     std::size_t end = text.find('\n', pos);
     if (end == std::string_view::npos) end = text.size();
     std::string_view physical = text.substr(pos, end - pos);
@@ -281,6 +288,7 @@ std::size_t take_block(std::string_view text, std::size_t pos, int& line, RawCom
     if (!format && !end_marker && !is_block_record(physical)) break;
     formats = format;
     ++line;
+    ++records;
     pos = end + 1;
     if (end_marker) break;
   }
@@ -352,7 +360,8 @@ std::vector<RawCommand> lex_text(std::string_view text, const std::string& file_
     } else {
       auto cmds = lex_line_of(physical, file, line, dialect);
       format_next = !cmds.empty() && takes_format_line(cmds.back().name);
-      const bool block = !cmds.empty() && takes_block(cmds.back().name);
+      const bool block =
+          !cmds.empty() && (takes_block(cmds.back().name) || takes_value_record(cmds.back()));
       for (auto& c : cmds) {
         c.source = std::string(physical);
         out.push_back(std::move(c));

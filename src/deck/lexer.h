@@ -37,7 +37,8 @@ struct RawCommand {
   std::string source;  // the physical line as written (*CREATE keeps it for *LIST)
   /// The data lines of a CDB block command (NBLOCK, EBLOCK, CMBLOCK, RLBLOCK): its Fortran
   /// format line(s) and fixed-column records, as written ('\n'-separated), read by its handler in
-  /// one pass; `block_line` is the line number of its first line. Null for other commands.
+  /// one pass; the values line of `SFE,...,R5.0` (takes_value_record) alike. `block_line` is the
+  /// line number of its first line. Null for other commands.
   BlockText block;
   int block_line = 0;
   /// The file, shared by all the commands of one lexed text (a copy per command was 32 bytes
@@ -74,6 +75,10 @@ bool takes_format_line(std::string_view upper_name);
 
 /// True for the CDB block commands whose following lines are fixed-column data (takes_block).
 bool takes_block(std::string_view upper_name);
+
+/// True for a command of a CDB archive whose values are on the next line, one record of numbers:
+/// the surface load `SFE,ELEM,LKEY,Lab,KVAL,R5.0` (its handler reads RawCommand::block).
+bool takes_value_record(const RawCommand& cmd);
 
 /// Lexes a whole deck text, line by line (format lines after *VWRITE / *MSG kept verbatim; the
 /// data lines after a CDB block command attached to it, see RawCommand::block). When `owner`

@@ -39,6 +39,10 @@ struct ModelingState {
   /// (MAT, Lab) of the last TB command and the index of its current temperature (TBTEMP).
   std::optional<std::pair<int, std::string>> table;
   std::size_t table_temperature = 0;
+  /// The equation of the last `CE,R5.0,DEFI` of a CDB archive and how many of its terms the
+  /// `CE,R5.0,NODE` records after it have still to give.
+  int archive_equation = 0;
+  int archive_terms_left = 0;
 
   // Generation memory.
   std::vector<int> defined_by_n;   // nodes defined by N, in order (FILL defaults)

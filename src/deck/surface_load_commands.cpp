@@ -6,8 +6,11 @@
 
 #include <optional>
 #include <set>
+#include <string_view>
+#include <vector>
 
 #include "core/text.h"
+#include "deck/lexer.h"
 #include "deck/modeling_helpers.h"
 #include "deck/post_support.h"
 #include "geometry/element_faces.h"
@@ -82,17 +85,51 @@ std::vector<int> element_list(DeckReader& r, const Command& c, int field) {
   return entity_list(r, c, field, 0, 0, r.model.elements, r.model.selection.elements, "element");
 }
 
+/// The values line of the CDB archive form `SFE,ELEM,LKEY,Lab,KVAL,R5.0` (the lexer attaches it
+/// as the command's block): VALUE1 to VALUE4 at the face's corners, separated by blanks; one
+/// value alone loads every corner.
+SurfaceLoad archive_face_values(DeckReader& r, const Command& c) {
+  Command at_values = c;
+  at_values.where.line = c.block_line;
+  if (!c.block) r.fail(c, "R5.0: the line of values that follows the command is missing");
+  std::string_view line = *c.block;
+  if (const std::size_t end = line.find('\n'); end != std::string_view::npos)
+    line = line.substr(0, end);
+  std::vector<double> values;
+  for (std::size_t pos = 0; pos < line.size();) {
+    while (pos < line.size() && (line[pos] == ' ' || line[pos] == '\t')) ++pos;
+    std::size_t end = pos;
+    while (end < line.size() && line[end] != ' ' && line[end] != '\t') ++end;
+    if (end == pos) break;
+    const std::string_view token = line.substr(pos, end - pos);
+    const auto v = parse_fortran_number(token);
+    if (!v) r.fail(at_values, fmt::format("SFE values line: '{}' is not a number", token));
+    if (values.size() == 4) r.fail(at_values, "SFE values line: more than 4 values");
+    values.push_back(*v);
+    pos = end;
+  }
+  if (values.empty()) r.fail(at_values, "SFE values line: no value");
+  SurfaceLoad load;
+  load.values.fill(values.front());
+  for (std::size_t k = 1; k < values.size(); ++k) load.values[k] = values[k];
+  return load;
+}
+
 void cmd_sfe(DeckReader& r, const Command& c) {
-  // SFE,ELEM,LKEY,Lab,KVAL,VALUE1,VALUE2,VALUE3,VALUE4,MESHFLAG
+  // SFE,ELEM,LKEY,Lab,KVAL,VALUE1,VALUE2,VALUE3,VALUE4,MESHFLAG; in a CDB archive
+  // SFE,ELEM,LKEY,Lab,KVAL,R5.0 with the values on the next line (archive_face_values).
   const auto elements = element_list(r, c, 1);
   const int lkey = r.integer(c, 2, 1);
   require_pressure(r, c, 3);
   const int kval = r.integer(c, 4, 0);
   if (kval == 2) r.fail(c, "KVAL = 2 (imaginary part) is not supported");
   if (kval != 0 && kval != 1) r.fail(c, fmt::format("KVAL {} must be 0 or 1", kval));
-  const LoadField v1 = load_field(r, c, 5);
-  SurfaceLoad load = uniform(v1);
-  const bool tapered = !c.blank(6) || !c.blank(7) || !c.blank(8);
+  const bool archive = r.label(c, 5) == "R5.0";
+  if (archive && c.last_given() > 5)
+    r.fail(c, "R5.0: the values are on the next line, not after R5.0");
+  const LoadField v1 = archive ? LoadField{} : load_field(r, c, 5);
+  SurfaceLoad load = archive ? archive_face_values(r, c) : uniform(v1);
+  const bool tapered = !archive && (!c.blank(6) || !c.blank(7) || !c.blank(8));
   if (tapered && v1.table.empty())
     for (int k = 1; k < 4; ++k) load.values[static_cast<std::size_t>(k)] = r.real(c, 5 + k, 0.0);
   for (int e : elements) {

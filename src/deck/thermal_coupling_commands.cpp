@@ -77,6 +77,12 @@ void cmd_cp(DeckReader& r, const Command& c) {
   // the highest; NODE1 = ALL: the selected nodes; a negative node leaves the set.
   auto& sets = r.model.coupled_sets;
   const std::string nset = r.label(c, 1);
+  // CDWRITE writes coupled sets as CP commands (cdb_writer.cpp); the record form of MAPDL's own
+  // archives is not documented where it could be checked, so it is refused, not guessed at.
+  if (nset.rfind("R5.", 0) == 0)
+    r.fail(c, fmt::format("the CDB record form CP,{} of a coupled set is not read: give the set as "
+                          "CP,NSET,Lab,NODE1,...",
+                          c.text(1)));
   const int highest = sets.empty() ? 0 : sets.rbegin()->first;
   int id = 0;
   if (nset.empty() || nset == "NEXT") {

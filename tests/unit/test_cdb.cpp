@@ -1,11 +1,16 @@
 // CDB archives: the Fortran formats of the blocks, the lexer handing a block's records to its
-// command, NBLOCK/EBLOCK/CMBLOCK/RLBLOCK read by column, and CDWRITE,DB read back by CDREAD to
-// the same model and the same file.
+// command, NBLOCK/EBLOCK/CMBLOCK/RLBLOCK read by column, the record forms of CE, LOCAL and SFE,
+// and CDWRITE,DB read back by CDREAD to the same model, the same file and the same solution.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
+#include <string>
 
+#include "../support/run_deck.h"
 #include "core/errors.h"
 #include "deck/cdb_format.h"
 #include "deck/cdb_writer.h"
@@ -226,6 +231,177 @@ TEST(CdbWrite, ReadBackGivesTheSameModelAndFile) {
   EXPECT_EQ(read.current.forces, built.current.forces);
   EXPECT_EQ(read.material_tables.size(), 1u);
   EXPECT_EQ(read.initial_conditions.at(DofKey{1001, Dof::UX}).velocity, 2.5);
+}
+
+// A shell plate whose elements take their axes from a local system (ESYS 11), held at X = 0,
+// its end X = 1 made rigid (CERIG) with the master on a beam that carries the load, two nodes
+// coupled in UZ (CP), two tied by an equation (CE), and a uniform and a tapered pressure (SFE).
+const char* kCoupledModel =
+    "/PREP7\nET,1,SHELL181\nMP,EX,1,2E11\nMP,PRXY,1,0.3\nSECTYPE,1,SHELL\nSECDATA,0.01\n"
+    "LOCAL,11,0,0,0,0,30\nCSYS,0\nESYS,11\nRECTNG,0,1,0,0.5\nESIZE,0.25\nAMESH,ALL\nESYS,0\n"
+    "ET,2,BEAM188\nMP,EX,2,2E11\nMP,PRXY,2,0.3\nSECTYPE,2,BEAM,RECT\nSECDATA,0.05,0.05\n"
+    "N,1000,1.25,0.25,0\nN,1001,1.75,0.25,0\nTYPE,2\nMAT,2\nSECNUM,2\nE,1000,1001\n"
+    "NSEL,S,LOC,X,1\nCERIG,1000,ALL,ALL\nALLSEL\n"
+    "CP,1,UZ,NODE(0.5,0.5,0),NODE(0.75,0.5,0)\n"
+    "CE,1,0,NODE(0.25,0,0),UZ,1,NODE(0.25,0.5,0),UZ,-0.5\n"
+    "NSEL,S,LOC,X,0\nD,ALL,ALL\nALLSEL\n"
+    "ESEL,S,CENT,X,0,0.5\nSFE,ALL,1,PRES,,1000\nALLSEL\n"
+    "SFE,8,1,PRES,,100,200,300,400\nF,1001,FZ,100\nF,1001,MX,5\n";
+
+TEST(CdbWrite, CouplingsEquationsLocalSystemsAndPressuresReadBack) {
+  const Model built = read_deck_text(std::string(kCoupledModel) + "FINISH\n", "built.inp").model;
+  ASSERT_FALSE(built.coupled_sets.empty());
+  ASSERT_FALSE(built.constraint_equations.empty());
+  ASSERT_FALSE(built.rigid_regions.empty());
+  ASSERT_FALSE(built.current.pressures.empty());
+  std::ostringstream first;
+  write_cdb(built, first);
+  EXPECT_NE(first.str().find("CE,R5.0,DEFI,2,1,"), std::string::npos) << first.str();
+  EXPECT_NE(first.str().find("LOCAL,R5.0,ANG,11,0,"), std::string::npos);
+  EXPECT_NE(first.str().find("SFE,8,1,PRES,1,R5.0\n"), std::string::npos);
+  const Model read = read_deck_text(first.str(), "written.cdb").model;
+  std::ostringstream second;
+  write_cdb(read, second);
+  EXPECT_EQ(first.str(), second.str());
+  ASSERT_EQ(read.coupled_sets.size(), built.coupled_sets.size());
+  for (const auto& [id, set] : built.coupled_sets) {
+    EXPECT_EQ(read.coupled_sets.at(id).dof, set.dof);
+    EXPECT_EQ(read.coupled_sets.at(id).nodes, set.nodes);
+  }
+  ASSERT_EQ(read.constraint_equations.size(), built.constraint_equations.size());
+  for (const auto& [id, eq] : built.constraint_equations) {
+    const ConstraintEquation& back = read.constraint_equations.at(id);
+    EXPECT_EQ(back.constant, eq.constant);
+    ASSERT_EQ(back.terms.size(), eq.terms.size());
+    for (std::size_t k = 0; k < eq.terms.size(); ++k) {
+      EXPECT_EQ(back.terms[k].dof, eq.terms[k].dof);
+      EXPECT_EQ(back.terms[k].coefficient, eq.terms[k].coefficient);
+    }
+  }
+  std::vector<int> slaves;
+  for (const RigidRegion& region : read.rigid_regions) {
+    EXPECT_EQ(region.master, 1000);
+    EXPECT_TRUE(region.translations && region.rotations);
+    slaves.insert(slaves.end(), region.slaves.begin(), region.slaves.end());
+  }
+  EXPECT_EQ(slaves, built.rigid_regions.front().slaves);
+  ASSERT_TRUE(read.coordinate_systems.has(11));
+  EXPECT_EQ(read.coordinate_systems.get(11).axes, built.coordinate_systems.get(11).axes);
+  EXPECT_EQ(read.coordinate_systems.active, 0);
+  EXPECT_EQ(read.elements.at(1).esys, 11);
+  ASSERT_EQ(read.current.pressures.size(), built.current.pressures.size());
+  for (const auto& [face, load] : built.current.pressures)
+    EXPECT_EQ(read.current.pressures.at(face).values, load.values) << "element " << face.element;
+}
+
+TEST(CdbWrite, ReadBackSolvesBitwiseAsTheOriginal) {
+  const auto original = testing::run_deck_text(
+      "cdb_original", std::string(kCoupledModel) +
+                          "CDWRITE,DB,'model',cdb\nFINISH\n/SOLU\nANTYPE,STATIC\nSOLVE\nFINISH\n");
+  const std::filesystem::path archive = original.directory / "model.cdb";
+  ASSERT_TRUE(std::filesystem::exists(archive));
+  const auto again = testing::run_deck_text(
+      "cdb_read_back", "/PREP7\nCDREAD,DB,'" + (original.directory / "model").string() +
+                           "',cdb\nCDWRITE,DB,'again',cdb\nFINISH\n/SOLU\nANTYPE,STATIC\n"
+                           "SOLVE\nFINISH\n");
+  const auto text = [](const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  };
+  EXPECT_EQ(text(archive), text(again.directory / "again.cdb"));
+  ASSERT_EQ(again.reader->node_ids(), original.reader->node_ids());
+  double largest = 0.0;
+  for (int id : original.reader->node_ids())
+    for (const char* dof : {"UX", "UY", "UZ", "ROTX", "ROTY", "ROTZ"}) {
+      const double v = original.reader->nodal_series(id, dof).back().second;
+      EXPECT_EQ(again.reader->nodal_series(id, dof).back().second, v) << "node " << id << dof;
+      largest = std::max(largest, std::abs(v));
+    }
+  EXPECT_GT(largest, 0.0);  // the loads act: the comparison is not of zeros
+}
+
+TEST(CdbRead, SurfaceLoadRecordForm) {
+  const std::string deck =
+      "/PREP7\nET,1,SHELL181\nSECTYPE,1,SHELL\nSECDATA,0.01\nN,1\nN,2,1\nN,3,1,1\nN,4,0,1\n"
+      "E,1,2,3,4\nSFE,1,1,PRES,1,R5.0\n 1.00000000E+00 2.00000000E+00 3.00000000E+00 "
+      "4.00000000E+00\nSFE,       1,     2,PRES, 0,R5.0\n  7.50000000    \nFINISH\n";
+  const Model m = read_deck_text(deck, "sfe.cdb").model;
+  EXPECT_EQ(m.current.pressures.at(FaceKey{1, 1}).values, (std::array<double, 4>{1, 2, 3, 4}));
+  EXPECT_EQ(m.current.pressures.at(FaceKey{1, 2}).values,
+            (std::array<double, 4>{7.5, 7.5, 7.5, 7.5}));
+  std::string bad = deck;
+  bad.replace(bad.find(" 1.00000000E+00"), 15, " 1.0x");
+  try {
+    read_deck_text(bad, "sfe_bad.cdb");
+    FAIL() << "a values line with a letter was read";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("sfe_bad.cdb:"), std::string::npos) << e.what();
+  }
+}
+
+TEST(CdbRead, ConstraintEquationRecordsAreChecked) {
+  const std::string nodes = "/PREP7\nN,1\nN,2,1\nN,3,2\n";
+  const Model m = read_deck_text(nodes +
+                                     "CE,R5.0,DEFI,       3,       4,  0.25    \n"
+                                     "CE,R5.0,NODE,       1,UX  ,  1.0    ,       2,UY  , -2.0\n"
+                                     "CE,R5.0,NODE,       3,ROTZ,  0.5\nFINISH\n",
+                                 "ce.cdb")
+                      .model;
+  const ConstraintEquation& eq = m.constraint_equations.at(4);
+  EXPECT_EQ(eq.constant, 0.25);
+  ASSERT_EQ(eq.terms.size(), 3u);
+  EXPECT_EQ(eq.terms[0].dof, (DofKey{1, Dof::UX}));
+  EXPECT_EQ(eq.terms[1].coefficient, -2.0);
+  EXPECT_EQ(eq.terms[2].dof, (DofKey{3, Dof::ROTZ}));
+  const auto stop = [](const std::string& text) {
+    try {
+      read_deck_text(text, "ce.cdb");
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(stop(nodes + "CE,R5.0,NODE,1,UX,1.0\n").find("ce.cdb:5: CE: CE,R5.0,NODE without"),
+            std::string::npos);
+  EXPECT_NE(stop(nodes + "CE,R5.0,DEFI,2,1,0\nCE,R5.0,NODE,1,UX,1\nCE,R5.0,DEFI,1,2,0\n")
+                .find("ce.cdb:7: CE: CE,R5.0,DEFI before the last 1 term(s) of equation 1"),
+            std::string::npos);
+  EXPECT_NE(stop(nodes + "CP,R5.0,1,UX\n").find("ce.cdb:5: CP: the CDB record form"),
+            std::string::npos);
+}
+
+TEST(CdbWrite, RefusesWhatTheArchiveCannotHold) {
+  const std::string base = "/PREP7\nET,1,LINK180\nN,1\nN,2,1\nE,1,2\n";
+  const auto stop = [](const std::string& text) {
+    try {
+      testing::run_deck_text("cdb_refused", text);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  const std::string table = stop(base +
+                                 "*DIM,LOAD,TABLE,2,1,1,TIME\nLOAD(1,0)=0,1\nLOAD(1,1)=0,5\n"
+                                 "F,2,FX,%LOAD%\nCDWRITE,DB,'t',cdb\n");
+  EXPECT_NE(table.find("cdb_refused.inp:10: CDWRITE: table (%TABLE%) constraints and forces"),
+            std::string::npos)
+      << table;
+  const std::string gap = stop(base + "M,1,UX\nM,2,UX\nGP,1,2,UX,1E3,0.1\nCDWRITE,DB,'t',cdb\n");
+  EXPECT_NE(gap.find(":9: CDWRITE: gap conditions (GP, the first at "), std::string::npos) << gap;
+}
+
+TEST(CdbWrite, TemperaturesReadBack) {
+  const Model built = read_deck_text(
+                          "/PREP7\nET,1,LINK180\nN,1\nN,2,1\nE,1,2\nTREF,20\nTUNIF,50\n"
+                          "BF,2,TEMP,100.5\nFINISH\n",
+                          "temperatures.inp")
+                          .model;
+  std::ostringstream first;
+  write_cdb(built, first);
+  const Model read = read_deck_text(first.str(), "temperatures.cdb").model;
+  EXPECT_EQ(read.current.reference_temperature, 20.0);
+  EXPECT_EQ(read.current.uniform_temperature, std::optional<double>(50.0));
+  EXPECT_EQ(read.current.node_temperatures, built.current.node_temperatures);
 }
 
 }  // namespace
