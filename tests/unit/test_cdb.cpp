@@ -368,6 +368,18 @@ TEST(CdbRead, ConstraintEquationRecordsAreChecked) {
             std::string::npos);
   EXPECT_NE(stop(nodes + "CP,R5.0,1,UX\n").find("ce.cdb:5: CP: the CDB record form"),
             std::string::npos);
+  // An archive that ends before the terms its last DEFI announced stops at the CDREAD.
+  const std::filesystem::path dir = testing::fresh_directory("cdb_short_equation");
+  {
+    std::ofstream out(dir / "short.cdb");
+    out << "CE,R5.0,DEFI,3,1,0\nCE,R5.0,NODE,1,UX,1,2,UX,-1\n";
+  }
+  const std::string short_archive =
+      stop(nodes + "CDREAD,DB,'" + (dir / "short").string() + "',cdb\n");
+  EXPECT_NE(short_archive.find("ce.cdb:5: CDREAD: the archive"), std::string::npos)
+      << short_archive;
+  EXPECT_NE(short_archive.find("ends 1 term(s) short of constraint equation 1"), std::string::npos)
+      << short_archive;
 }
 
 TEST(CdbWrite, RefusesWhatTheArchiveCannotHold) {
