@@ -104,6 +104,8 @@ NewtonOptions EquilibriumIncrement::newton_options(const LoadPoint& at) const {
   NewtonOptions newton;
   newton.max_iterations = conv.max_iterations;
   newton.full_newton = conv.full_newton;
+  newton.line_search = conv.line_search;
+  newton.line_search_auto = conv.line_search_auto;
   newton.reform_every = at.current->reformulation;
   newton.tangent_varies =
       disc_->assembler().is_nonlinear() &&
@@ -141,6 +143,8 @@ SubstepOutcome EquilibriumIncrement::find_equilibrium(const LoadPoint& at, const
   }
   status_loop.end_step();
   stats_.n_iterations += result.iterations;
+  stats_.line_search = stats_.line_search || newton.line_search || newton.line_search_auto;
+  stats_.n_line_searches += result.line_searches;
   stats_.n_status_changes += inc_.n_status_changes;
   outcome.status_changes = inc_.n_status_changes;
   outcome.step = dynamic ? integrator_->step() : 0.0;

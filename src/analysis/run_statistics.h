@@ -12,9 +12,11 @@ struct AnalysisStatistics {
   int n_dofs = 0;           // free DOFs
   int n_load_steps = 0;
   int n_substeps = 0;
-  int n_iterations = 0;  // equilibrium iterations
-  int n_stored = 0;      // time points written
-  long n_analyses = 0;   // symbolic factorizations
+  int n_iterations = 0;      // equilibrium iterations
+  bool line_search = false;  // LNSRCH on
+  int n_line_searches = 0;   // corrections the line search shortened
+  int n_stored = 0;          // time points written
+  long n_analyses = 0;       // symbolic factorizations
   long n_factorizations = 0;
   long n_solves = 0;
   // Linear solver figures (SolverCounters): phase times and the sizes of the largest factor.

@@ -54,6 +54,9 @@ void print_summary(const std::string& jobname, const RunStatistics& stats, doubl
       text +=
           fmt::format("    stepping: {:.3f} s, {:.4f} ms per substep (factorizations included)\n",
                       a.stepping_seconds, 1e3 * a.stepping_seconds / a.n_substeps);
+    if (a.line_search)
+      text += fmt::format("    line search (LNSRCH): {} of {} corrections shortened\n",
+                          a.n_line_searches, a.n_iterations);
     for (const auto& note : a.notes) text += "    " + note + "\n";
   }
   if (!Log::warnings().empty())

@@ -262,6 +262,8 @@ struct ConvergenceOptions {
   double force_minref = 1e-2;
   std::optional<double> displacement_tolerance;  // CNVTOL,U (off unless given)
   bool full_newton = true;
+  bool line_search = false;       // LNSRCH,ON
+  bool line_search_auto = false;  // LNSRCH,AUTO
 };
 
 /// MODOPT: number of modes and frequency window (Hz).

@@ -48,6 +48,8 @@ const Tables& tables() {
         "Element types, sections, nodes, elements, master DOFs, 4x analysis keys", kDeck);
     add(register_generation_commands, "Generation (copies, fills, reflections)", kDeck);
     add(register_solution_commands, "Analysis settings and SOLVE", "docs/solution_control.md");
+    add(register_convergence_commands, "Equilibrium iterations (Newton, line search, criteria)",
+        "docs/solution_control.md");
     add(register_dynamics_commands,
         "Dynamic analysis options (method, integration, damping, modes)",
         "docs/time_integration.md");

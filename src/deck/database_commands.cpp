@@ -80,7 +80,8 @@ json options_json(const AnalysisOptions& o) {
           {"lumped_mass", o.lumped_mass},
           {"convergence",
            {o.convergence.max_iterations, o.convergence.force_tolerance, o.convergence.force_minref,
-            opt(o.convergence.displacement_tolerance), o.convergence.full_newton}},
+            opt(o.convergence.displacement_tolerance), o.convergence.full_newton,
+            o.convergence.line_search, o.convergence.line_search_auto}},
           {"modal",
            {o.modal.n_modes, opt(o.modal.freq_begin), opt(o.modal.freq_end),
             o.modal.normalize_to_unity, o.modal.method}},
@@ -107,7 +108,13 @@ AnalysisOptions options_of(const json& j) {
   o.stress_stiffening = j.at("stress_stiffening");
   o.lumped_mass = j.at("lumped_mass");
   const json& cv = j.at("convergence");
-  o.convergence = {cv[0], cv[1], cv[2], opt_of(cv[3]), cv[4]};
+  o.convergence = {cv[0],
+                   cv[1],
+                   cv[2],
+                   opt_of(cv[3]),
+                   cv[4],
+                   cv.size() > 5 && cv[5].get<bool>(),
+                   cv.size() > 6 && cv[6].get<bool>()};
   const json& md = j.at("modal");
   o.modal = {md[0], opt_of(md[1]), opt_of(md[2]), md[3], md[4]};
   o.msup_modes = j.at("msup_modes");

@@ -93,6 +93,7 @@ void register_session_commands(std::vector<CommandSpec>& table);
 void register_prep7_commands(std::vector<CommandSpec>& table);
 void register_generation_commands(std::vector<CommandSpec>& table);
 void register_solution_commands(std::vector<CommandSpec>& table);
+void register_convergence_commands(std::vector<CommandSpec>& table);
 void register_dynamics_commands(std::vector<CommandSpec>& table);
 void register_spectrum_commands(std::vector<CommandSpec>& table);
 void register_load_commands(std::vector<CommandSpec>& table);

@@ -107,7 +107,8 @@ void register_session_commands(std::vector<CommandSpec>& t) {
         "/ESHAPE", "/TYPE",   "/USER",    "/ZOOM",   "/HEADER", "/PAGE",  "/FORMAT",  "/GRAPHICS",
         "/GFILE",  "/GLINE",  "/GCOLUMN", "/GROPT",  "/GTHK",   "/WAIT",  "/UIS",     "/GST",
         "NLIST",   "ELIST",   "ETLIST",   "DLIST",   "FLIST",   "MPLIST", "RLIST",    "KLIST",
-        "LLIST",   "/STATUS", "/PSF",     "/PSYMB",  "GPLOT",   "/LINE",  "/COLOR",   "LINES"})
+        "LLIST",   "/STATUS", "/PSF",     "/PSYMB",  "GPLOT",   "/LINE",  "/COLOR",   "LINES",
+        "CSLIST",  "SFLLIST"})
     t.push_back({name, cmd_ignored, kAnywhere, "graphics or printing only: no effect on results"});
   t.push_back({"/CONFIG", cmd_ignored, kAnywhere,
                "MAPDL's memory and file sizing has no counterpart here"});

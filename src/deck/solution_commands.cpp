@@ -136,60 +136,6 @@ void cmd_kbc(DeckReader& r, const Command& c) {
   r.model.current.stepped = k == 1;
 }
 
-void cmd_krf(DeckReader& r, const Command& c) {
-  const int n = r.integer(c, 1, 1);
-  if (n <= 0) r.fail(c, fmt::format("re-formulation interval {} must be positive", n));
-  r.model.current.reformulation = n;
-  r.model.options.convergence.full_newton = n == 1;
-}
-
-void cmd_nropt(DeckReader& r, const Command& c) {
-  const std::string l = r.label(c, 1);
-  ConvergenceOptions& cv = r.model.options.convergence;
-  if (l == "FULL" || l == "AUTO" || l.empty()) {
-    cv.full_newton = true;
-    r.model.current.reformulation = 1;
-  } else if (l == "MODI" || l == "INIT") {
-    cv.full_newton = false;
-    r.model.current.reformulation = l == "INIT" ? 1000000 : 1;
-  } else if (l == "UNSYM") {
-    r.warn(c, "UNSYM treated as FULL (symmetric matrices)");
-    cv.full_newton = true;
-  } else {
-    r.fail(c, fmt::format("bad option '{}' (FULL, MODI, INIT, AUTO)", c.text(1)));
-  }
-}
-
-void cmd_neqit(DeckReader& r, const Command& c) {
-  // NITER 0 or blank: the program chooses (CDB archives write NEQIT,0); impactfe's choice is 25.
-  int n = r.integer(c, 1, 25);
-  if (n == 0) n = 25;
-  if (n < 0) r.fail(c, fmt::format("NEQIT {} must be positive", n));
-  r.model.options.convergence.max_iterations = n;
-  if (r.label(c, 2) == "FORCE") r.model.options.convergence.max_iterations = 1;
-}
-
-void cmd_cnvtol(DeckReader& r, const Command& c) {
-  const std::string lab = r.label(c, 1);
-  ConvergenceOptions& cv = r.model.options.convergence;
-  const auto value = r.opt_real(c, 2);
-  if (lab == "F" || lab == "M") {
-    if (value && *value < 0.0) {
-      r.warn(c, "removing the force criterion is not supported; kept");
-      return;
-    }
-    cv.force_tolerance = r.real(c, 3, 0.005);
-    cv.force_minref = r.real(c, 5, cv.force_minref);
-  } else if (lab == "U" || lab == "ROT") {
-    if (value && *value < 0.0)
-      cv.displacement_tolerance.reset();
-    else
-      cv.displacement_tolerance = r.real(c, 3, 0.05);
-  } else {
-    r.fail(c, fmt::format("bad label '{}' (F, M, U, ROT)", c.text(1)));
-  }
-}
-
 void cmd_timint(DeckReader& r, const Command& c) {
   r.model.current.time_integration = r.on_off(c, 1, true);
 }
@@ -545,11 +491,13 @@ void append_current(DeckReader& r, const Command& c) {
       (taken.max_iterations != now.max_iterations || taken.force_tolerance != now.force_tolerance ||
        taken.force_minref != now.force_minref ||
        taken.displacement_tolerance != now.displacement_tolerance ||
-       taken.full_newton != now.full_newton))
-    r.warn(c, fmt::format("CNVTOL, NEQIT or NROPT changed since this analysis began at {}: the "
-                          "analysis keeps the convergence settings of its first SOLVE for all "
-                          "its load steps",
-                          location_text(a.where)));
+       taken.full_newton != now.full_newton || taken.line_search != now.line_search ||
+       taken.line_search_auto != now.line_search_auto))
+    r.warn(c, fmt::format(
+                  "CNVTOL, NEQIT, NROPT or LNSRCH changed since this analysis began at {}: the "
+                  "analysis keeps the convergence settings of its first SOLVE for all "
+                  "its load steps",
+                  location_text(a.where)));
   LoadStep s = snapshot(r, c, static_cast<int>(a.load_steps.size()) + 1);
   check_increasing(r, c, a.load_steps, s);
   a.load_steps.push_back(std::move(s));
@@ -761,10 +709,6 @@ void register_solution_commands(std::vector<CommandSpec>& t) {
   t.push_back({"ITER", cmd_iter, kPrepSolu | kStress});
   t.push_back({"AUTOTS", cmd_autots, kPrepSolu});
   t.push_back({"KBC", cmd_kbc, kPrepSolu});
-  t.push_back({"KRF", cmd_krf, kPrepSolu});
-  t.push_back({"NROPT", cmd_nropt, kPrepSolu});
-  t.push_back({"NEQIT", cmd_neqit, kPrepSolu});
-  t.push_back({"CNVTOL", cmd_cnvtol, kPrepSolu});
   t.push_back({"TIMINT", cmd_timint, kPrepSolu});
   t.push_back({"NLGEOM", cmd_nlgeom, kPrepSolu});
   t.push_back({"SSTIF", cmd_sstif, kPrepSolu});

@@ -2,8 +2,50 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace impactfe {
+
+double line_search_step(NonlinearProblem& problem, const VectorXd& u, const VectorXd& du,
+                        const VectorXd& r0) {
+  const int n = static_cast<int>(du.size());
+  const double g0 = du.dot(r0);
+  if (!(g0 > 0.0)) return 1.0;  // not a descent direction of the energy: nothing to search
+  VectorXd trial = u, r;
+  const auto g = [&](double s) {
+    trial.head(n) = u.head(n) + s * du;
+    double reference = 0.0;
+    problem.expect_tangent(false);
+    problem.residual(trial, r, reference);
+    const double value = du.dot(r.head(n));
+    return std::isfinite(value) ? value : -std::numeric_limits<double>::infinity();
+  };
+  constexpr double kTolerance = 0.5, kSmallest = 0.05;
+  double s_hi = 1.0, g_hi = g(1.0);
+  if (std::abs(g_hi) <= kTolerance * g0 || g_hi > 0.0) return 1.0;  // energy still falling at 1
+  double s_lo = 0.0, g_lo = g0;
+  double s = 1.0;
+  int side = 0;  // Illinois: the end kept twice in a row has its g halved
+  for (int k = 0; k < 5; ++k) {
+    s = std::isfinite(g_hi) ? s_hi - g_hi * (s_hi - s_lo) / (g_hi - g_lo) : 0.5 * (s_lo + s_hi);
+    s = std::clamp(s, kSmallest, 1.0);
+    const double gs = g(s);
+    if (std::abs(gs) <= kTolerance * g0) break;
+    if (gs > 0.0) {
+      s_lo = s;
+      g_lo = gs;
+      if (side == -1) g_hi *= 0.5;
+      side = -1;
+    } else {
+      s_hi = s;
+      g_hi = gs;
+      if (side == 1) g_lo *= 0.5;
+      side = 1;
+    }
+    if (s <= kSmallest && gs < 0.0) break;
+  }
+  return s;
+}
 
 NewtonResult NewtonRaphson::solve(NonlinearProblem& problem, VectorXd& u) const {
   const int n = problem.n_unknowns();
@@ -56,6 +98,14 @@ NewtonResult NewtonRaphson::solve(NonlinearProblem& problem, VectorXd& u) const 
     if (line_search_) {
       const double step = line_search_(u, du, residual_norm);
       if (step != 1.0) du *= step;
+    } else if (options_.line_search ||
+               (options_.line_search_auto && result.history.size() >= 3 &&
+                result.history.back() > result.history[result.history.size() - 2])) {
+      const double step = line_search_step(problem, u, du, r.head(n));
+      if (step != 1.0) {
+        du *= step;
+        ++result.line_searches;
+      }
     }
     u.head(n) += du;
     unsettled = !test_.displacement_converged(du.norm(), u.head(n).norm());

@@ -46,6 +46,12 @@ struct NewtonOptions {
   /// False for a problem whose tangent does not depend on u (then only a status change or new
   /// coefficients re-form it, whatever the Newton variant).
   bool tangent_varies = true;
+  /// LNSRCH: each correction scaled by the step length s that makes the residual nearly
+  /// orthogonal to it (line_search_step).
+  bool line_search = false;
+  /// LNSRCH,AUTO: the search only for a correction after one that raised the residual norm
+  /// (the first, the predictor's, aside): full Newton while it converges.
+  bool line_search_auto = false;
 };
 
 struct NewtonResult {
@@ -55,11 +61,21 @@ struct NewtonResult {
   double reference = 0.0;       // with MINREF applied
   bool finite = true;           // false: the residual became NaN or infinite (iteration stopped)
   std::vector<double> history;  // residual norm at each evaluation
+  int line_searches = 0;        // corrections the line search shortened (s < 1)
 };
 
 /// Scales the correction Δu (line search). Arguments: iterate u, correction du over the
 /// unknowns, residual norm before the correction; returns the step length s (u += s Δu).
 using LineSearch = std::function<double(const VectorXd& u, const VectorXd& du, double r_norm)>;
+
+/// The line search of LNSRCH (Crisfield 1991, §9.3; Bathe §8.4.2): g(s) = Δuᵀ R(u + s Δu), the
+/// residual's component along the correction, is zero at the energy minimum along it. The full
+/// step is kept when |g(1)| <= ½ g(0); otherwise s is found by regula falsi (Illinois) on
+/// [0, 1] when g changes sign there, in at most five more residual evaluations, and kept in
+/// [0.05, 1]. `r0`: the residual at u over the unknowns. The problem's residual is evaluated at
+/// the trial points; its statuses are not updated.
+double line_search_step(NonlinearProblem& problem, const VectorXd& u, const VectorXd& du,
+                        const VectorXd& r0);
 
 class NewtonRaphson {
  public:

@@ -187,7 +187,7 @@ TEST(ConvergenceSettings, AChangeAfterTheFirstSolveOfAnAnalysisIsSaid) {
       "FINISH\n/SOLU\nF,2,FX,1\nTIME,1\nSOLVE\nCNVTOL,F,,1E-8\nTIME,2\nSOLVE\n";
   const auto warnings = warnings_of([&] { read(deck); });
   EXPECT_TRUE(any_contains(warnings,
-                           "mem.inp:17: SOLVE: CNVTOL, NEQIT or NROPT changed since "
+                           "mem.inp:17: SOLVE: CNVTOL, NEQIT, NROPT or LNSRCH changed since "
                            "this analysis began at mem.inp:14"))
       << (warnings.empty() ? "" : warnings.back());
   // Before the first SOLVE a change acts and is not warned.

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <cmath>
 #include <vector>
 
 #include "nonlinear/newton_raphson.h"
@@ -209,6 +210,78 @@ TEST(NewtonRaphson, APredictorInBalanceIsAcceptedWithoutIterating) {
   EXPECT_TRUE(result.converged);
   EXPECT_EQ(result.iterations, 0);
   EXPECT_EQ(p.factorizations, 0);
+}
+
+/// A saturating spring, f_int = F0 (atan(u − a) + atan a), loaded by f = F0 atan a: the root is
+/// u = a. Full Newton from u = 0 overshoots further at every iteration when a > 1.39 (the
+/// tangent F0 / (1 + (u − a)²) flattens), the textbook divergence that a line search cures.
+class SaturatingSpring final : public NonlinearProblem {
+ public:
+  double f0 = 100.0, a = 2.0;
+  int n_unknowns() const override { return 1; }
+  double residual(const VectorXd& u, VectorXd& r, double& reference) override {
+    r = VectorXd::Constant(1, f0 * std::atan(a) - f0 * (std::atan(u(0) - a) + std::atan(a)));
+    reference = f0 * std::atan(a);
+    return std::abs(r(0));
+  }
+  bool tangent_stale() const override { return true; }
+  void factorize_tangent(const VectorXd& u) override { k_ = f0 / (1.0 + (u(0) - a) * (u(0) - a)); }
+  VectorXd solve(const VectorXd& r) override { return r / k_; }
+
+ private:
+  double k_ = 0.0;
+};
+
+TEST(NewtonRaphson, LineSearchConvergesWhereFullNewtonDiverges) {
+  NewtonOptions options;
+  options.max_iterations = 30;
+  SaturatingSpring plain, searched;
+  VectorXd u = VectorXd::Zero(1);
+  const NewtonResult diverged = NewtonRaphson(options, ConvergenceTest(tight())).solve(plain, u);
+  EXPECT_FALSE(diverged.converged);
+  options.line_search = true;
+  u.setZero();
+  const NewtonResult result = NewtonRaphson(options, ConvergenceTest(tight())).solve(searched, u);
+  EXPECT_TRUE(result.converged);
+  EXPECT_NEAR(u(0), 2.0, 1e-9);
+  EXPECT_GE(result.line_searches, 1);
+  EXPECT_LE(result.iterations, 12);
+}
+
+TEST(NewtonRaphson, AutomaticLineSearchStepsInOnlyWhenTheResidualGrows) {
+  // AUTO: the saturating spring's residual grows from its second correction on, and the search
+  // then brings it home; the hardening chain converges without one.
+  NewtonOptions options;
+  options.max_iterations = 30;
+  options.line_search_auto = true;
+  SaturatingSpring spring;
+  VectorXd u = VectorXd::Zero(1);
+  const NewtonResult a = NewtonRaphson(options, ConvergenceTest(tight())).solve(spring, u);
+  EXPECT_TRUE(a.converged);
+  EXPECT_NEAR(u(0), 2.0, 1e-9);
+  EXPECT_GE(a.line_searches, 1);
+  HardeningChain chain;
+  VectorXd w = VectorXd::Zero(3);
+  const NewtonResult b = NewtonRaphson(options, ConvergenceTest(tight())).solve(chain, w);
+  EXPECT_TRUE(b.converged);
+  EXPECT_EQ(b.line_searches, 0);
+}
+
+TEST(NewtonRaphson, LineSearchKeepsTheFullStepOnAConvexProblem) {
+  // The hardening chain's full corrections already halve g: the search never shortens one,
+  // and the iterations are full Newton's.
+  HardeningChain plain, searched;
+  NewtonOptions options;
+  options.max_iterations = 30;
+  VectorXd u = VectorXd::Zero(3);
+  const NewtonResult a = NewtonRaphson(options, ConvergenceTest(tight())).solve(plain, u);
+  options.line_search = true;
+  VectorXd w = VectorXd::Zero(3);
+  const NewtonResult b = NewtonRaphson(options, ConvergenceTest(tight())).solve(searched, w);
+  EXPECT_TRUE(b.converged);
+  EXPECT_EQ(b.line_searches, 0);
+  EXPECT_EQ(b.iterations, a.iterations);
+  EXPECT_NEAR((u - w).norm(), 0.0, 1e-12);
 }
 
 }  // namespace
