@@ -9,7 +9,6 @@
 #include "core/errors.h"
 #include "core/log.h"
 #include "elements/element_registry.h"
-#include "elements/face_pressure.h"
 #include "materials/inelastic_strain.h"
 
 namespace impactfe {
@@ -653,46 +652,6 @@ void Brick8::thermal_load(const ElementContext&, Eigen::VectorXd& f) const {
   for (int c = 0; c < 8; ++c) f.segment<3>(3 * corner_to_unique_[c]) += fc.segment<3>(3 * c);
 }
 
-namespace {
-/// Face k + 1 as corner positions with the outward normal by the right-hand rule, in MAPDL's
-/// numbering of the solid elements (SOLID185: 1 J-I-L-K, 2 I-J-N-M, 3 J-K-O-N, 4 K-L-P-O,
-/// 5 L-I-M-P, 6 M-N-O-P; face-node order = SFE VALUE1..VALUE4): the hexahedron's faces
-/// (elements/cell_topology.h: bottom, top, sides) with the top last and the bottom read from J.
-std::vector<std::vector<int>> numbered_brick_faces() {
-  const auto& f = cell_topology(VtkCell::Hexahedron).faces;
-  return {{f[0][3], f[0][0], f[0][1], f[0][2]}, f[2], f[3], f[4], f[5], f[1]};
-}
-
-const std::vector<std::vector<int>>& brick_faces() {
-  static const std::vector<std::vector<int>> faces = numbered_brick_faces();
-  return faces;
-}
-}  // namespace
-
-void Brick8::pressure_load(const ElementContext& ctx, int face, const std::array<double, 4>& p,
-                           const Eigen::VectorXd& u, Eigen::VectorXd& f) const {
-  if (face < 1 || face > 6)
-    throw ModelError(fmt::format("element {}: brick face {} does not exist (1..6)", id(), face));
-  const auto& corners = brick_faces()[static_cast<std::size_t>(face - 1)];
-  const Eigen::Matrix<double, 24, 1> uc = to_corners(u);
-  std::array<Vec3, 4> x;
-  for (int a = 0; a < 4; ++a) {
-    const int c = corners[static_cast<std::size_t>(a)];
-    x[static_cast<std::size_t>(a)] = x_[static_cast<std::size_t>(c)];
-    if (ctx.large_deflection) x[static_cast<std::size_t>(a)] += uc.segment<3>(3 * c);
-  }
-  // The face orders above make the normal of the corner order point outward; positive pressure
-  // pushes inward.
-  std::array<Vec3, 4> fa = bilinear_face_pressure_forces(x, p);
-  for (Vec3& fc : fa) fc = -fc;
-  f.setZero(n_dofs());
-  for (int a = 0; a < 4; ++a) {
-    const int c = corners[static_cast<std::size_t>(a)];
-    f.segment<3>(3 * corner_to_unique_[static_cast<std::size_t>(c)]) +=
-        fa[static_cast<std::size_t>(a)];
-  }
-}
-
 const std::vector<std::string>& Brick8::result_names() const {
   return brick8_result_names();
 }
@@ -707,8 +666,43 @@ const std::vector<std::string>& brick8_result_names() {
   return names;
 }
 
-const std::vector<std::vector<int>>& brick8_faces() {
-  return brick_faces();
+ElementResultValues solid_stress_row(const Vector6d& s) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(voigt_to_tensor(s),
+                                                          Eigen::EigenvaluesOnly);
+  const Eigen::Vector3d pr = es.eigenvalues();  // ascending
+  const double s1 = pr(2), s2 = pr(1), s3 = pr(0);
+  const double seqv =
+      std::sqrt(0.5 * ((s1 - s2) * (s1 - s2) + (s2 - s3) * (s2 - s3) + (s3 - s1) * (s3 - s1)));
+  ElementResultValues out = {s(0), s(1), s(2), s(3), s(4), s(5), s1, s2, s3, s1 - s3, seqv};
+  out.resize(brick8_result_names().size(), 0.0);
+  return out;
+}
+
+bool Brick8::nodal_results(const ElementContext& ctx, const Eigen::VectorXd& u,
+                           std::map<int, ElementResultValues>& at_node) const {
+  if (plasticity_ || ctx.large_deflection || degenerate() || thermal_expansion().expands())
+    return false;
+  const Eigen::Matrix<double, 24, 1> uc = to_corners(u);
+  Eigen::VectorXd q(24 + n_internal_);
+  q.head<24>() = uc;
+  if (n_internal_ > 0) q.tail(n_internal_) = mode_recovery() * uc;
+  std::array<Vector6d, kGauss> sigma;
+  for (int p = 0; p < kGauss; ++p)
+    sigma[static_cast<std::size_t>(p)] = d_ * (strain_operator(p, n_internal_ > 0) * q);
+  // Gauss point p sits at ξ = corner p / √3: the trilinear functions of the points, at the
+  // corner c, are those of the element at ξ = √3 · corner c.
+  const double r3 = std::sqrt(3.0);
+  at_node.clear();
+  Eigen::Matrix<double, 8, 1> n;
+  Eigen::Matrix<double, 3, 8> dn;
+  for (int c = 0; c < 8; ++c) {
+    const double xi[3] = {r3 * kCornerXi[c][0], r3 * kCornerXi[c][1], r3 * kCornerXi[c][2]};
+    shape(xi, n, dn);
+    Vector6d s = Vector6d::Zero();
+    for (int p = 0; p < kGauss; ++p) s += n(p) * sigma[static_cast<std::size_t>(p)];
+    at_node[nodes_[static_cast<std::size_t>(c)]] = solid_stress_row(s);
+  }
+  return true;
 }
 
 void Brick8::results(const ElementContext& ctx, const Eigen::VectorXd& u, const Eigen::VectorXd& v,

@@ -17,6 +17,7 @@
 #include <Eigen/Core>
 
 #include <array>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -41,6 +42,9 @@ enum class BrickStrain { Standard, BBar, Enhanced };
 /// The brick's result names (SX..PLWK) and its faces 1..6 in MAPDL's numbering (corner
 /// positions, outward normals by the right-hand rule): for the registration.
 const std::vector<std::string>& brick8_result_names();
+/// A row of brick8_result_names() with the stress columns of s (xx yy zz xy yz xz): S X..XZ,
+/// the principal stresses S1 ≥ S2 ≥ S3, SINT and SEQV; the plastic and creep columns zero.
+ElementResultValues solid_stress_row(const Vector6d& s);
 /// The POST1 sequences (S, EPPL, NL, EPCR) of brick8_result_names(), shared by the 3-D solids
 /// (brick8_types.cpp).
 const std::vector<ResultSequence>& solid_result_sequences();
@@ -113,6 +117,14 @@ class Brick8 final : public Element {
   const std::vector<std::string>& result_names() const override;
   void results(const ElementContext& ctx, const Eigen::VectorXd& u, const Eigen::VectorXd& v,
                ElementResultValues& out) const override;
+  /// The stresses at the corners (PRNSOL, PLNSOL, *GET NODE S) of an elastic small-strain
+  /// brick with 8 distinct nodes: the trilinear field through the 8 Gauss points' stresses
+  /// evaluated at the corners (Cook et al. §6.13; MAPDL's ERESX default for elastic elements).
+  /// false (the centroid values stand for the nodes) for a plastic, large-deflection or
+  /// degenerate brick, and for one whose material expands thermally (a rebuilt copy does not
+  /// know the temperatures of the set).
+  bool nodal_results(const ElementContext& ctx, const Eigen::VectorXd& u,
+                     std::map<int, ElementResultValues>& at_node) const override;
 
   /// True when the incompatible modes are active (requested and all 8 nodes distinct).
   bool extra_shapes() const { return extra_shapes_; }

@@ -251,24 +251,6 @@ const std::vector<std::string>& QuadraticSolid::result_names() const {
   return quadratic_solid_result_names();
 }
 
-namespace {
-
-/// A result row with its stress columns: S X..XZ, the principal stresses S1 ≥ S2 ≥ S3, SINT and
-/// SEQV (from the principal values); the other columns zero.
-ElementResultValues stress_columns(const Vector6d& s) {
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(voigt_to_tensor(s),
-                                                          Eigen::EigenvaluesOnly);
-  const Eigen::Vector3d pr = es.eigenvalues();  // ascending
-  const double s1 = pr(2), s2 = pr(1), s3 = pr(0);
-  const double seqv =
-      std::sqrt(0.5 * ((s1 - s2) * (s1 - s2) + (s2 - s3) * (s2 - s3) + (s3 - s1) * (s3 - s1)));
-  ElementResultValues out = {s(0), s(1), s(2), s(3), s(4), s(5), s1, s2, s3, s1 - s3, seqv};
-  out.resize(quadratic_solid_result_names().size(), 0.0);
-  return out;
-}
-
-}  // namespace
-
 void QuadraticSolid::results(const ElementContext& ctx, const Eigen::VectorXd& u,
                              const Eigen::VectorXd& v, ElementResultValues& out) const {
   if (finite_strain() && ctx.large_deflection) {
@@ -279,7 +261,39 @@ void QuadraticSolid::results(const ElementContext& ctx, const Eigen::VectorXd& u
     plastic_results(u, out);
     return;
   }
-  out = stress_columns(stress_at(quadratic_shape_centre(shape_), u));  // plastic items 0
+  out = solid_stress_row(stress_at(quadratic_shape_centre(shape_), u));  // plastic items 0
+}
+
+bool QuadraticSolid::nodal_results(const ElementContext& ctx, const Eigen::VectorXd& u,
+                                   std::map<int, ElementResultValues>& at_node) const {
+  if (plasticity_ || finite_strain() || ctx.large_deflection) return false;
+  const bool brick = shape_ == QuadraticShape::Hex20;
+  const int nb = brick ? 8 : 4;
+  auto basis = [&](const Eigen::Vector3d& xi) {
+    Eigen::VectorXd f(nb);
+    if (brick)
+      f << 1, xi(0), xi(1), xi(2), xi(0) * xi(1), xi(1) * xi(2), xi(0) * xi(2),
+          xi(0) * xi(1) * xi(2);
+    else
+      f << 1, xi(0), xi(1), xi(2);
+    return f;
+  };
+  const int np = static_cast<int>(rule_.size());
+  Eigen::MatrixXd a(np, nb), values(np, 6);
+  for (int q = 0; q < np; ++q) {
+    const Eigen::Vector3d& xi = rule_[static_cast<std::size_t>(q)].xi;
+    a.row(q) = basis(xi).transpose();
+    values.row(q) = stress_at(xi, u).transpose();
+  }
+  // Exact through 8 (2x2x2) or 4 points; least squares through 27.
+  const Eigen::MatrixXd coefficients = a.colPivHouseholderQr().solve(values);
+  const std::vector<Eigen::Vector3d> xi_nodes = quadratic_shape_nodes_xi(shape_);
+  at_node.clear();
+  for (std::size_t k = 0; k < nodes_.size(); ++k) {
+    const Vector6d s = (basis(xi_nodes[k]).transpose() * coefficients).transpose();
+    at_node[nodes_[k]] = solid_stress_row(s);
+  }
+  return true;
 }
 
 // ---- plasticity ----------------------------------------------------------------------------
@@ -379,7 +393,7 @@ void QuadraticSolid::plastic_results(const Eigen::VectorXd& u, ElementResultValu
   eppl /= total;
   epeq /= total;
   plwk /= total;
-  out = stress_columns(s);
+  out = solid_stress_row(s);
   if (creep) {
     // A creep law (no yield surface): EPCR X..XZ, EQV = √(2/3 ε:ε) of the (deviatoric) creep
     // strain with the engineering shears halved, NL CREQ the accumulated equivalent creep
@@ -446,7 +460,7 @@ void QuadraticSolid::finite_results(const Eigen::VectorXd& u, ElementResultValue
     srat =
         std::max(srat, von_mises(st.stress - st.back_stress) / plasticity_->flow_stress(st.alpha));
   }
-  out = stress_columns(s);
+  out = solid_stress_row(s);
   if (!plasticity_) return;
   const double plastic[10] = {eppl(0), eppl(1), eppl(2), eppl(3),
                               eppl(4), eppl(5), epeq,    plasticity_->flow_stress(epeq),

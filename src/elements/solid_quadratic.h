@@ -12,6 +12,7 @@
 /// is refused (docs/elements/solid186.md).
 #include <Eigen/Core>
 
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -81,6 +82,14 @@ class QuadraticSolid final : public Element {
   const std::vector<std::string>& result_names() const override;
   void results(const ElementContext& ctx, const Eigen::VectorXd& u, const Eigen::VectorXd& v,
                ElementResultValues& out) const override;
+  /// The stresses at the nodes (PRNSOL, PLNSOL, *GET NODE S) of an elastic small-strain element:
+  /// the lowest polynomial through the stiffness points' stresses, trilinear on the brick (fitted
+  /// by least squares to the 27 points of KEYOPT(2) = 1), linear on the tetrahedron, evaluated at
+  /// the nodes, so a midside node takes the mean of its corners (Cook et al. §6.13; MAPDL's
+  /// ERESX default for elastic elements). false (the centroid values stand for the nodes) for a
+  /// plastic or finite-strain element, whose rebuilt copy has no history.
+  bool nodal_results(const ElementContext& ctx, const Eigen::VectorXd& u,
+                     std::map<int, ElementResultValues>& at_node) const override;
   std::optional<double> volume() const override { return volume_; }
   /// Finite strain: f_int at u and the exact tangent, non-symmetric, or with `symmetric` the
   /// symmetric form tangent() assembles (FiniteStrainTangent::Symmetric).

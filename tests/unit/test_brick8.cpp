@@ -331,6 +331,42 @@ TEST(Brick8, WithoutExtraShapesPureBendingIsTooStiff) {
 
 // ---- stresses -----------------------------------------------------------------------------
 
+TEST(Brick8, NodalStressesOfPureBendingAreTheExactLinearField) {
+  // With the incompatible modes (SOLID185 KEYOPT(2) = 2 or 3, SOLID45) a rectangular brick
+  // bends exactly, so its Gauss points carry σx = −Eκy: the corners must get it at their own y
+  // (±Eκh/2), where the centroid value is 0. The plain brick (parasitic shear) and the B-bar
+  // brick extrapolate their own Gauss-point values.
+  const double h = 1.0, kappa = 1e-4;
+  std::array<Vec3, 8> x = box(2.0, h, 0.8);
+  for (auto& p : x) p -= Vec3(0, h / 2, 0.4);
+  Eigen::VectorXd u(24);
+  for (int c = 0; c < 8; ++c)
+    u.segment<3>(3 * c) =
+        Vec3(-kappa * x[c](0) * x[c](1),
+             0.5 * kappa * (x[c](0) * x[c](0) + kNu * (x[c](1) * x[c](1) - x[c](2) * x[c](2))),
+             kNu * kappa * x[c](1) * x[c](2));
+  for (BrickStrain strain : {BrickStrain::Standard, BrickStrain::Enhanced}) {
+    const Brick8 e(1, kDistinct, x, steel(), true, {}, std::nullopt, false, strain);
+    std::map<int, ElementResultValues> at;
+    ASSERT_TRUE(e.nodal_results({}, u, at));
+    ASSERT_EQ(at.size(), 8u);
+    for (int c = 0; c < 8; ++c) {
+      const ElementResultValues& r = at.at(c + 1);
+      EXPECT_NEAR(r[0], -kE * kappa * x[c](1), 1e-9 * kE * kappa) << "corner " << c + 1;
+      for (int i = 1; i < 6; ++i)
+        EXPECT_NEAR(r[static_cast<std::size_t>(i)], 0.0, 1e-9 * kE * kappa);
+    }
+  }
+  // Plastic, large-deflection and degenerate bricks keep their element values.
+  const Brick8 plain(1, kDistinct, x, steel(), false);
+  std::map<int, ElementResultValues> at;
+  EXPECT_TRUE(plain.nodal_results({}, u, at));
+  EXPECT_FALSE(plain.nodal_results({true, false, false}, u, at));
+  const Shape prism = degenerate_shapes()[0];
+  const Brick8 collapsed(1, prism.nodes, prism.x, steel(), false);
+  EXPECT_FALSE(collapsed.nodal_results({}, Eigen::VectorXd::Zero(collapsed.n_dofs()), at));
+}
+
 TEST(Brick8, UniaxialStressResults) {
   const Brick8 e(1, kDistinct, distorted(), steel(), true);
   const double eps = 1e-3;

@@ -246,6 +246,45 @@ TEST(QuadraticSolid, ConstantStrainOfOneTetrahedron) {
     EXPECT_LT((b->stress_at(q.xi, ub) - sigma).norm(), 1e-9 * sigma.norm());
 }
 
+/// The exact pure-bending field about z (σx = −Eκy, every other stress 0): u = −κxy,
+/// v = κ(x² + ν(y² − z²))/2, w = κνyz.
+Vec3 pure_bending_field(const Vec3& x, double kappa) {
+  return Vec3(-kappa * x(0) * x(1), 0.5 * kappa * (x(0) * x(0) + 0.3 * (x(1) * x(1) - x(2) * x(2))),
+              0.3 * kappa * x(1) * x(2));
+}
+
+TEST(QuadraticSolid, NodalStressesAreExtrapolatedFromTheStiffnessPoints) {
+  // A straight-sided (affine) element reproduces the quadratic pure-bending field exactly, so
+  // its stiffness points carry the linear σx = −Eκy, and the nodes must get that linear field
+  // at their own y: the 20-node brick (2x2x2 and, fitted by least squares, 3x3x3) and the
+  // 10-node tetrahedron. The centroid value (σx at the centroid's y) is wrong at every node.
+  const auto skewed = [](const Vec3& xi) {
+    return Vec3(2.0 * xi(0) + 0.3 * xi(1), 0.7 * xi(1) + 0.1 * xi(2) - 0.2,
+                0.5 * xi(2) + 0.1 * xi(0));
+  };
+  const double kappa = 1e-4;
+  std::vector<std::unique_ptr<QuadraticSolid>> elements;
+  elements.push_back(brick(2, skewed));
+  elements.push_back(brick(3, skewed));
+  elements.push_back(tet(skewed));
+  for (const auto& e : elements) {
+    const auto x = mapped_nodes(e->shape(), skewed);
+    Eigen::VectorXd u(e->n_dofs());
+    for (std::size_t a = 0; a < x.size(); ++a)
+      u.segment<3>(3 * a) = pure_bending_field(x[a], kappa);
+    std::map<int, ElementResultValues> at;
+    ASSERT_TRUE(e->nodal_results({}, u, at));
+    ASSERT_EQ(at.size(), x.size());
+    const double scale = kE * kappa;
+    for (std::size_t a = 0; a < x.size(); ++a) {
+      const ElementResultValues& r = at.at(static_cast<int>(a) + 1);
+      EXPECT_NEAR(r[0], -kE * kappa * x[a](1), 1e-9 * scale) << "node " << a + 1;
+      for (int c = 1; c < 6; ++c) EXPECT_NEAR(r[static_cast<std::size_t>(c)], 0.0, 1e-9 * scale);
+      EXPECT_NEAR(r[10], std::abs(r[0]), 1e-9 * scale);  // SEQV of uniaxial stress
+    }
+  }
+}
+
 TEST(QuadraticSolid, MassTotalsAndPositiveLumpedMass) {
   const auto box = [](const Vec3& xi) {
     return Vec3(1.0 + xi(0), 0.5 * (1 + xi(1)), 0.75 * (1 + xi(2)));
