@@ -164,8 +164,9 @@ double get_element(DeckReader& r, const Command& c, const GetRequest& g, int e, 
   }
   if (i1 == "ETAB") {
     const PostState& ps = post_state(r);
-    const auto col = std::find_if(ps.etable.begin(), ps.etable.end(),
-                                  [&](const EtableColumn& x) { return x.label == g.it1num; });
+    const auto col = std::find_if(ps.etable.begin(), ps.etable.end(), [&](const EtableColumn& x) {
+      return x.label == g.it1num.substr(0, 8);
+    });
     if (col == ps.etable.end())
       r.fail(c, fmt::format("{}: no element-table column '{}'", g.what(), g.it1num));
     const auto it = col->values.find(e);

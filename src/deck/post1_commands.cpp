@@ -210,7 +210,12 @@ void fill_column(DeckReader& r, const Command& c, EtableColumn& col) {
 void cmd_etable(DeckReader& r, const Command& c) {
   // ETABLE,Lab,Item,Comp,Option
   PostState& ps = post_state(r);
-  const std::string lab = r.label(c, 1);
+  // A label has at most 8 characters: a longer one is known by its first 8, here and wherever
+  // it is named (column()).
+  const std::string given = r.label(c, 1);
+  const std::string lab = given.substr(0, 8);
+  if (given.size() > 8)
+    r.warn(c, fmt::format("label '{}' is longer than 8 characters: taken as '{}'", given, lab));
   const std::string item = r.label(c, 2);
   if (lab == "REFL") {
     for (auto& col : ps.etable) fill_column(r, c, col);
@@ -241,9 +246,7 @@ void cmd_etable(DeckReader& r, const Command& c) {
   EtableColumn col;
   col.item = item;
   col.comp = r.label(c, 3);
-  col.label = lab.empty() ? default_label(item, col.comp) : lab;
-  if (col.label.size() > 8)
-    r.fail(c, fmt::format("label '{}' longer than 8 characters", col.label));
+  col.label = lab.empty() ? default_label(item, col.comp).substr(0, 8) : lab;
   fill_column(r, c, col);
   existing = std::find_if(ps.etable.begin(), ps.etable.end(),
                           [&](const EtableColumn& e) { return e.label == col.label; });
@@ -257,8 +260,9 @@ void cmd_etable(DeckReader& r, const Command& c) {
 
 const EtableColumn& column(DeckReader& r, const Command& c, const std::string& label) {
   const PostState& ps = post_state(r);
-  const auto it = std::find_if(ps.etable.begin(), ps.etable.end(),
-                               [&](const EtableColumn& e) { return e.label == label; });
+  const auto it = std::find_if(ps.etable.begin(), ps.etable.end(), [&](const EtableColumn& e) {
+    return e.label == label.substr(0, 8);
+  });
   if (it == ps.etable.end())
     r.fail(c, fmt::format("no element-table column '{}' (ETABLE first)", label));
   return *it;

@@ -1,10 +1,13 @@
 // Temperatures of the thermal strain (TREF, TUNIF, BFUNIF, BF, BFDELE) and coupled DOF sets (CP,
-// CPINTF, CPDELE); docs/thermal_loads.md. Temperatures are load-step state in Model::current,
-// coupled sets model state in Model::coupled_sets.
+// CPNGEN, CPSGEN, CPLGEN, CPINTF, CPDELE); docs/thermal_loads.md, docs/constraints.md.
+// Temperatures are load-step state in Model::current, coupled sets model state in
+// Model::coupled_sets.
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <map>
+#include <optional>
 #include <utility>
 
 #include "core/dof.h"
@@ -132,6 +135,116 @@ void cmd_cp(DeckReader& r, const Command& c) {
   if (set.nodes.empty()) sets.erase(id);
 }
 
+/// Fails at c when a node of `nodes` is already in another coupled set of `dof` than `id` (a DOF
+/// belongs to one set at most).
+void check_not_coupled(DeckReader& r, const Command& c, int id, Dof dof,
+                       const std::vector<int>& nodes) {
+  for (const auto& [other_id, other] : r.model.coupled_sets)
+    if (other_id != id && other.dof == dof)
+      for (int n : nodes)
+        if (std::find(other.nodes.begin(), other.nodes.end(), n) != other.nodes.end())
+          r.fail(c, fmt::format("node {} {} is already in coupled set {}", n, dof_name(dof),
+                                other_id));
+}
+
+/// Adds a new set numbered after the highest (CPSGEN, CPLGEN: "the highest existing set number
+/// + 1").
+void add_next_set(DeckReader& r, const Command& c, Dof dof, std::vector<int> nodes) {
+  for (int n : nodes) r.require_node(c, n);
+  auto& sets = r.model.coupled_sets;
+  const int id = sets.empty() ? 1 : sets.rbegin()->first + 1;
+  check_not_coupled(r, c, id, dof, nodes);
+  sets[id] = CoupledSet{id, dof, std::move(nodes), c.where};
+}
+
+void cmd_cpngen(DeckReader& r, const Command& c) {
+  // CPNGEN,NSET,Lab,NODE1,NODE2,NINC: nodes NODE1..NODE2 by NINC (or a component) into set NSET
+  // (Lab defaults to the set's own); −NODE1 removes the range from the set.
+  auto& sets = r.model.coupled_sets;
+  const int id = r.integer(c, 1, 0);
+  if (id <= 0) r.fail(c, fmt::format("set number '{}' must be positive", c.text(1)));
+  const auto existing = sets.find(id);
+  std::optional<Dof> dof;
+  if (!c.blank(2)) {
+    dof = parse_dof_label(r.label(c, 2));
+    if (!dof) r.fail(c, fmt::format("bad DOF label '{}' (UX UY UZ ROTX ROTY ROTZ)", c.text(2)));
+  } else if (existing != sets.end()) {
+    dof = existing->second.dof;
+  } else {
+    r.fail(c, fmt::format("set {} does not exist: give its DOF label", id));
+  }
+  const bool remove = !c.blank(3) && r.label(c, 3).front() == '-';
+  if (remove) {
+    if (existing == sets.end()) return;
+    const int first = -r.integer(c, 3, 0);
+    const int last = c.blank(4) ? first : std::abs(r.integer(c, 4, first));
+    const int inc = std::max(1, r.integer(c, 5, 1));
+    for (int n = first; n <= last; n += inc) std::erase(existing->second.nodes, n);
+    if (existing->second.nodes.empty()) sets.erase(existing);
+    return;
+  }
+  const std::vector<int> nodes = r.node_range(c, 3, 4, 5);
+  CoupledSet& set = sets[id];
+  if (set.nodes.empty()) {
+    set.id = id;
+    set.dof = *dof;
+    set.where = c.where;
+  } else if (set.dof != *dof) {
+    r.fail(c, fmt::format("coupled set {} couples {}, not {}", id, dof_name(set.dof), c.text(2)));
+  }
+  for (int n : nodes)
+    if (std::find(set.nodes.begin(), set.nodes.end(), n) == set.nodes.end()) set.nodes.push_back(n);
+  check_not_coupled(r, c, id, set.dof, set.nodes);
+  if (set.nodes.empty()) sets.erase(id);
+}
+
+void cmd_cpsgen(DeckReader& r, const Command& c) {
+  // CPSGEN,ITIME,INC,NSET1,NSET2,NINC: ITIME − 1 copies of sets NSET1..NSET2 by NINC (−NSET1:
+  // the last |NSET1| sets), their nodes incremented by INC per copy, each numbered after the
+  // highest set, with the same DOF label.
+  const int itime = r.integer(c, 1, 0);
+  const int inc = r.integer(c, 2, 0);
+  if (itime <= 1) return;  // "ITIME must be > 1 for generation to occur"
+  auto& sets = r.model.coupled_sets;
+  const int nset1 = r.integer(c, 3, 0);
+  std::vector<CoupledSet> sources;
+  if (nset1 < 0) {
+    int count = -nset1;
+    for (auto it = sets.rbegin(); it != sets.rend() && count > 0; ++it, --count)
+      sources.insert(sources.begin(), it->second);
+  } else {
+    if (nset1 == 0) r.fail(c, "NSET1 (the first set to copy) is missing");
+    const int nset2 = r.integer(c, 4, nset1);
+    const int ninc = std::max(1, r.integer(c, 5, 1));
+    for (int id = nset1; id <= nset2; id += ninc) {
+      const auto it = sets.find(id);
+      if (it == sets.end()) r.fail(c, fmt::format("coupled set {} does not exist", id));
+      sources.push_back(it->second);
+    }
+  }
+  for (int k = 1; k < itime; ++k)
+    for (const CoupledSet& source : sources) {
+      std::vector<int> nodes;
+      for (int n : source.nodes) nodes.push_back(n + k * inc);
+      add_next_set(r, c, source.dof, std::move(nodes));
+    }
+}
+
+void cmd_cplgen(DeckReader& r, const Command& c) {
+  // CPLGEN,NSETF,Lab1,...,Lab5: a new set of the nodes of set NSETF for each label.
+  const int from = r.integer(c, 1, 0);
+  const auto it = r.model.coupled_sets.find(from);
+  if (it == r.model.coupled_sets.end())
+    r.fail(c, fmt::format("coupled set {} does not exist", c.text(1)));
+  const std::vector<int> nodes = it->second.nodes;
+  for (int f = 2; f <= 6; ++f) {
+    if (c.blank(f)) continue;
+    const auto dof = parse_dof_label(r.label(c, f));
+    if (!dof) r.fail(c, fmt::format("bad DOF label '{}' (UX UY UZ ROTX ROTY ROTZ)", c.text(f)));
+    add_next_set(r, c, *dof, nodes);
+  }
+}
+
 void cmd_cpintf(DeckReader& r, const Command& c) {
   // CPINTF,Lab,TOLER: one coupled set per group of coincident selected nodes (all coordinates
   // within TOLER, default 1e-4) for Lab (ALL: UX..ROTZ), numbered after the highest set.
@@ -204,6 +317,9 @@ void register_thermal_coupling_commands(std::vector<CommandSpec>& t) {
   t.push_back({"BF", cmd_bf, kPrepSolu});
   t.push_back({"BFDELE", cmd_bfdele, kPrepSolu});
   t.push_back({"CP", cmd_cp, kPrepSolu});
+  t.push_back({"CPNGEN", cmd_cpngen, kPrepSolu});
+  t.push_back({"CPSGEN", cmd_cpsgen, kPrepSolu});
+  t.push_back({"CPLGEN", cmd_cplgen, kPrepSolu});
   t.push_back({"CPINTF", cmd_cpintf, kPrepSolu});
   t.push_back({"CPDELE", cmd_cpdele, kPrepSolu});
 }

@@ -9,6 +9,8 @@
 
 #include "../support/run_deck.h"
 #include "assembly/constraint_equations.h"
+#include "core/errors.h"
+#include "deck/deck_reader.h"
 
 namespace impactfe::test_constraint_equations {
 namespace {
@@ -102,6 +104,37 @@ TEST(ConstraintEquations, CoupledDofsOfOneNonlinearElement) {
   EXPECT_NEAR(cp_w, free_w, 1e-6 * free_w);
   EXPECT_NEAR(ce_w, free_w, 1e-6 * free_w);
   EXPECT_LE(cp_iterations, free_iterations);
+}
+
+TEST(ConstraintEquations, CoupledSetsAreGeneratedFromSets) {
+  // CPSGEN copies sets with their nodes incremented (numbered after the highest set), CPLGEN
+  // makes sets of the same nodes for other labels, CPNGEN adds or removes a node range.
+  DeckOptions o;
+  o.dialect = Dialect::Modern;
+  std::string nodes = "/PREP7\n";
+  for (int n = 1; n <= 40; ++n) nodes += "N," + std::to_string(n) + "," + std::to_string(n) + "\n";
+  const Job job = read_deck_text(nodes +
+                                     "CP,1,UZ,2,12\nCP,2,ROTY,2,12\nCPSGEN,3,2,1,2\n"
+                                     "CPLGEN,1,UX,ROTZ\nCPNGEN,20,UY,30,34,2\nCPNGEN,20,,-32\n",
+                                 "mem.inp", o);
+  const auto& sets = job.model.coupled_sets;
+  ASSERT_EQ(sets.size(), 9u);
+  const auto expect = [&](int id, Dof dof, std::vector<int> n) {
+    ASSERT_EQ(sets.count(id), 1u) << id;
+    EXPECT_EQ(sets.at(id).dof, dof) << id;
+    EXPECT_EQ(sets.at(id).nodes, n) << id;
+  };
+  expect(3, Dof::UZ, {4, 14});
+  expect(4, Dof::ROTY, {4, 14});
+  expect(5, Dof::UZ, {6, 16});
+  expect(6, Dof::ROTY, {6, 16});
+  expect(7, Dof::UX, {2, 12});
+  expect(8, Dof::ROTZ, {2, 12});
+  expect(20, Dof::UY, {30, 34});
+  // A generated set may not take a DOF already coupled, nor a node that does not exist.
+  EXPECT_THROW(read_deck_text(nodes + "CP,1,UZ,2,12\nCP,2,UZ,4,14\nCPSGEN,2,2,1\n", "mem.inp", o),
+               InputError);
+  EXPECT_THROW(read_deck_text(nodes + "CP,1,UZ,2,12\nCPSGEN,2,30,1\n", "mem.inp", o), InputError);
 }
 
 TEST(ConstraintEquations, EquationsSurviveSaveAndResume) {
