@@ -210,6 +210,18 @@ class Shell163Set final : public ExplicitElementSet {
     return total;
   }
   void results(Eigen::MatrixXd& out) const override;
+  /// Each shell as a two-sided segment of its thickness (explicit_contact.h: the surfaces lie
+  /// ±t/2 off the mid-surface, k = f·K·A/(largest diagonal)).
+  void segments(std::vector<ExplicitSegment>& out) const override {
+    for (std::size_t k = 0; k < size(); ++k) {
+      ExplicitSegment s;
+      for (int a = 0; a < 4; ++a) s.nodes[a] = nodes_[4 * k + a];
+      s.element = ids_[k];
+      s.bulk_modulus = materials_[static_cast<std::size_t>(material_[k])].rate.bulk;
+      s.thickness = thickness_[k];
+      out.push_back(s);
+    }
+  }
 
  private:
   ExplicitStepLimit chunk_forces(const ExplicitNodalView& state, double dt, double* element_forces,

@@ -85,9 +85,12 @@ std::map<int, int> part_of_elements(const Model& model) {
 /// The penetration of the slave at `xs` behind the segment on `nodes` (of depth `depth`): false
 /// when it is not behind it (or deeper than the segment's depth) or does not project onto it.
 /// `gap` is set once the slave is found behind the face's plane (a slave that slid off its
-/// segment is told by it).
-bool behind_segment(const int nodes[4], double depth, const ExplicitNodalView& s, Vec xs,
-                    double& gap, double& u, double& v, Vec& nrm) {
+/// segment is told by it). `side` (±1) turns the face's normal: a shell is touched from either
+/// side. `offset` is how far in front of the face the contact surface lies: half the thickness
+/// of a shell segment plus half that of a shell slave node, 0 between solids.
+bool behind_segment(const int nodes[4], double depth, double offset, double side,
+                    const ExplicitNodalView& s, Vec xs, double& gap, double& u, double& v,
+                    Vec& nrm) {
   Vec q[4], centre{0, 0, 0};
   for (int a = 0; a < 4; ++a) {
     const auto n = static_cast<std::size_t>(nodes[a]);
@@ -98,13 +101,13 @@ bool behind_segment(const int nodes[4], double depth, const ExplicitNodalView& s
   const Vec plane = cross(sub(q[2], q[0]), sub(q[3], q[1]));
   const double len = std::sqrt(dot(plane, plane));
   if (!(len > 0.0)) return false;
-  const double across = -dot(sub(xs, centre), plane) / len;
-  if (!(across > 0.0) || across > 2.0 * depth) return false;
+  const double across = offset - side * dot(sub(xs, centre), plane) / len;
+  if (!(across > 0.0) || across > 2.0 * (depth + offset)) return false;
   gap = across - 1e-4 * depth;  // off the face: how far behind its plane
   local_coordinates(q, xs, u, v);
   if (!(std::abs(u) <= 1 + kEdgeTolerance && std::abs(v) <= 1 + kEdgeTolerance)) return false;
   // The gap at the point X(ξ, η) of the bilinear face the slave projects onto, along the
-  // face's normal there: g = −(x_s − X)·n. Its change with a node of the face is N_a n,
+  // face's normal there: g = offset − (x_s − X)·n. Its change with a node of the face is N_a n,
   // the shares the reaction is spread by, so the force is the gradient of ½kg² and the
   // springs give back what they took. The gap from the centroid's plane instead changes
   // by ¼ n with each corner: on a warped face (the dished face under an impactor) the
@@ -114,19 +117,18 @@ bool behind_segment(const int nodes[4], double depth, const ExplicitNodalView& s
   nrm = cross(dxi, deta);
   const double size = std::sqrt(dot(nrm, nrm));
   if (!(size > 0.0)) return false;
-  nrm = {nrm.x / size, nrm.y / size, nrm.z / size};
+  nrm = {side * nrm.x / size, side * nrm.y / size, side * nrm.z / size};
   // Penetration behind the face, less a sliver (1e-4 of the depth): a node on the edge of a
   // face it runs along (the side of a body it hits end on) has round-off penetrations of
   // that side, smaller than its true one; taking the smallest would pick the side.
-  gap = -dot(sub(xs, x), nrm) - 1e-4 * depth;
-  return gap > 0.0 && gap <= depth;
+  gap = offset - dot(sub(xs, x), nrm) - 1e-4 * depth;
+  return gap > 0.0 && gap <= depth + offset;
 }
 
-/// Whether the slave `sn` (at `xs` now) was in front of (or on) the plane of the segment on
-/// `nodes` at x_n = x_{n+1} − step v_{n+1/2}.
-bool crossed_segment(const int nodes[4], double depth, const ExplicitNodalView& s, std::size_t sn,
-                     Vec xs, double step) {
-  if (!(step > 0.0)) return false;
+/// The slave `sn` (at `xs` now) at x_n = x_{n+1} − step v_{n+1/2}, seen from the segment on
+/// `nodes` then: its distance in front of the face's plane along the (unturned) normal.
+double distance_before(const int nodes[4], const ExplicitNodalView& s, std::size_t sn, Vec xs,
+                       double step) {
   Vec q[4], centre{0, 0, 0};
   for (int a = 0; a < 4; ++a) {
     const auto n = static_cast<std::size_t>(nodes[a]);
@@ -134,8 +136,10 @@ bool crossed_segment(const int nodes[4], double depth, const ExplicitNodalView& 
     centre = {centre.x + 0.25 * q[a].x, centre.y + 0.25 * q[a].y, centre.z + 0.25 * q[a].z};
   }
   const Vec nrm = cross(sub(q[2], q[0]), sub(q[3], q[1]));
+  const double len = std::sqrt(dot(nrm, nrm));
+  if (!(len > 0.0)) return 0.0;
   const Vec xp{xs.x - step * s.vx[sn], xs.y - step * s.vy[sn], xs.z - step * s.vz[sn]};
-  return dot(sub(xp, centre), nrm) >= -1e-4 * depth * std::sqrt(dot(nrm, nrm));
+  return dot(sub(xp, centre), nrm) / len;
 }
 
 /// Viscous contact damping VDC (LS-DYNA Theory Manual, "Contact damping"): the force −c·v_n
@@ -215,6 +219,7 @@ ExplicitContactSet::ExplicitContactSet(const Model& model, const ExplicitSystem&
 void ExplicitContactSet::collect_segments(const ExplicitSystem& system) {
   // Every element's faces; a face offered twice (by two elements) is interior.
   std::vector<ExplicitSegment> all;
+  node_offset_.assign(system.n_nodes(), 0.0);
   for (const auto& set : system.sets) set->segments(all);
   for (const auto& set : system.rigid_sets) set->segments(all);  // rigid bodies' faces too
   std::map<std::array<int, 4>, int> count;
@@ -240,18 +245,25 @@ void ExplicitContactSet::collect_segments(const ExplicitSystem& system) {
     std::copy(s.nodes, s.nodes + 4, g.nodes);
     g.element = s.element;
     if (s.thickness > 0.0) {
-      // Shell: k = f·K·A / (largest diagonal) (LS-DYNA Theory Manual, penalty method).
+      // Shell: k = f·K·A / (largest diagonal) (LS-DYNA Theory Manual, penalty method). Its
+      // surfaces lie half the thickness off the mid-surface on either side; a slave is held
+      // until it reaches the far one (depth: the thickness).
       const double diagonal = std::sqrt(
           std::max(dot(sub(p[2], p[0]), sub(p[2], p[0])), dot(sub(p[3], p[1]), sub(p[3], p[1]))));
       g.stiffness = s.bulk_modulus * area / diagonal;
       g.depth = s.thickness;
+      g.offset = 0.5 * s.thickness;
+      for (int a = 0; a < 4; ++a) {
+        double& r = node_offset_[static_cast<std::size_t>(s.nodes[a])];
+        r = std::max(r, g.offset);
+      }
     } else {
       // Solid: k = f·K·A²/V; a node deeper than half the element (V/A) behind the face has not
       // come through it (single surface: it belongs to the same body).
       g.stiffness = s.bulk_modulus * area * area / s.volume;
       g.depth = 0.5 * s.volume / area;
     }
-    depth_max = std::max(depth_max, g.depth);
+    depth_max = std::max(depth_max, g.depth + 2.0 * g.offset);
     segments_.push_back(g);
   }
   margin_ = 2.0 * depth_max;
@@ -326,6 +338,7 @@ void ExplicitContactSet::add_pass(const ExplicitContact& k, double factor, bool 
   p.segments = std::move(segs);
   p.tangential.assign(3 * p.slaves.size(), 0.0);
   p.kept.assign(p.slaves.size(), kNone);
+  p.side.assign(p.slaves.size(), 1);
   if (single) list_near_nodes(p, n_nodes);
   passes_.push_back(std::move(p));
 }
@@ -459,6 +472,7 @@ bool ExplicitContactSet::find_contact(Pass& p, std::size_t j, const ExplicitNoda
   const Vec xs{s.x[sn], s.y[sn], s.z[sn]};
   double best = std::numeric_limits<double>::infinity(), xi = 0, eta = 0;
   std::size_t chosen = 0;
+  signed char side = 1;
   Vec normal{0, 0, 0};
   // A slave in contact keeps the segment it came through while it stays behind it and
   // projects onto it. Choosing afresh each cycle the smallest penetration over all the
@@ -472,10 +486,11 @@ bool ExplicitContactSet::find_contact(Pass& p, std::size_t j, const ExplicitNoda
     double gap = -1.0, u, v;
     Vec nrm;
     const Segment& g = segments_[kept];
-    if (behind_segment(g.nodes, g.depth, s, xs, gap, u, v, nrm))
-      best = gap, xi = u, eta = v, chosen = kept, normal = nrm;
+    const double offset = g.offset + node_offset_[sn];
+    if (behind_segment(g.nodes, g.depth, offset, p.side[j], s, xs, gap, u, v, nrm))
+      best = gap, xi = u, eta = v, chosen = kept, side = p.side[j], normal = nrm;
     else
-      slid = gap > 0.0 && gap <= segments_[kept].depth;
+      slid = gap > 0.0 && gap <= g.depth + offset;
   }
   const bool held = best < std::numeric_limits<double>::infinity();
   for (std::size_t c = p.candidate_start[j]; on && !held && c < p.candidate_start[j + 1]; ++c) {
@@ -488,22 +503,29 @@ bool ExplicitContactSet::find_contact(Pass& p, std::size_t j, const ExplicitNoda
                                           p.near.begin() + p.near_start[j + 1], g.nodes[a]);
     }
     if (skip) continue;
+    // The side the slave comes from: a solid's face is touched from outside (its normal), a
+    // shell's from the side of its mid-surface the slave was on at the start of the step.
+    const double before = distance_before(g.nodes, s, sn, xs, dt > 0.0 ? dt : 0.0);
+    const signed char from = g.offset > 0.0 && before < 0.0 ? -1 : 1;
+    const double offset = g.offset + node_offset_[sn];
     double gap, u, v;
     Vec nrm;
-    if (!behind_segment(g.nodes, g.depth, s, xs, gap, u, v, nrm) || gap >= best) continue;
-    // A new contact is a slave that came through the face over this step: it was in front
-    // of the face's plane at x_n = x_{n+1} − dt v_{n+1/2}. A slave found behind a face it
+    if (!behind_segment(g.nodes, g.depth, offset, from, s, xs, gap, u, v, nrm) || gap >= best)
+      continue;
+    // A new contact is a slave that came through the contact surface over this step: it was
+    // in front of it at x_n = x_{n+1} − dt v_{n+1/2}. A slave found behind a face it
     // did not cross is inside the other body through another face (near an edge: behind
     // the side face of a body whose top face it lies on) or was there at the start; a
     // spring taken up at such a penetration would give back energy it never took. A slave
     // sliding off its segment onto one sharing a node with it is handed over.
     if (!(slid && shares_node(was, p.candidates[c])) &&
-        !crossed_segment(g.nodes, g.depth, s, sn, xs, dt))
+        !(dt > 0.0 && from * before >= offset - 1e-4 * g.depth))
       continue;
-    best = gap, xi = u, eta = v, chosen = p.candidates[c], normal = nrm;
+    best = gap, xi = u, eta = v, chosen = p.candidates[c], side = from, normal = nrm;
   }
   kept = best < std::numeric_limits<double>::infinity() ? chosen : kNone;
   if (!(best < std::numeric_limits<double>::infinity())) return false;
+  p.side[j] = side;
   at = {best, xi, eta, chosen, {normal.x, normal.y, normal.z}};
   return true;
 }

@@ -51,6 +51,7 @@ class ExplicitContactSet final : public ExplicitInteraction {
     int element;
     double stiffness;  // K·A²/V (solid) or K·A/diagonal (shell), without the factors
     double depth;      // how far behind the face a node is still taken as penetrating
+    double offset;     // a shell's half thickness: its two surfaces off the mid-surface (0)
   };
   /// One node-to-surface pass.
   struct Pass {
@@ -66,8 +67,10 @@ class ExplicitContactSet final : public ExplicitInteraction {
     std::vector<std::size_t> candidate_start;  // CSR per slave into candidates
     std::vector<std::size_t> candidates;       // indices into segments_
     std::vector<double> tangential;            // friction force on each slave (3 each)
-    /// The segment each slave is in contact with (its index in segments_; none when out).
+    /// The segment each slave is in contact with (its index in segments_; none when out), and
+    /// the side of it (±1 along its normal; a shell's back is −1).
     std::vector<std::size_t> kept;
+    std::vector<signed char> side;
   };
   struct Projection;  // a slave's contact point on its segment (explicit_contact.cpp)
 
@@ -105,6 +108,9 @@ class ExplicitContactSet final : public ExplicitInteraction {
   void close_cycle(const ExplicitNodalView& s, const double* mass, double dt,
                    ExplicitStepLimit& limit, double* fx, double* fy, double* fz);
   std::vector<Segment> segments_;
+  /// Half the thickness of the thickest shell at each node (0 off shells): a shell node as a
+  /// slave touches a surface that far off its mid-surface.
+  std::vector<double> node_offset_;
   std::vector<Pass> passes_;
   std::vector<double> x_search_, y_search_, z_search_;  // positions at the last search
   double margin_ = 0.0;                                 // box inflation of the search
