@@ -161,6 +161,27 @@ TEST(ExplicitShell, HourglassModesAreResisted) {
   }
 }
 
+TEST(ExplicitShell, TwistIsNotAnHourglassMode) {
+  // One square element twisting: v_z = xy with the rotations of a Kirchhoff twist (ω_x = ∂v_z/∂y
+  // = x, ω_y = −∂v_z/∂x = −y), so v_z is γ's pattern but no transverse shear varies across the
+  // element: no hourglass work (the transverse hourglass rate γ·v_z alone damped it). The same
+  // v_z with ω = 0 is the hourglass mode and is resisted.
+  const std::string deck = kHead + "N,1,-1,-1,0\nN,2,1,-1,0\nN,3,1,1,0\nN,4,-1,1,0\nE,1,2,3,4\n";
+  for (const bool twist : {true, false}) {
+    Shells run(read_deck_text(deck, "one.inp").model);
+    for (std::size_t a = 0; a < 4; ++a) {
+      run.vz[a] = run.x[a] * run.y[a];
+      if (twist) run.wx[a] = run.x[a], run.wy[a] = -run.y[a];
+    }
+    run.evaluate(1e-6);
+    if (twist) {
+      EXPECT_NEAR(run.set().energies().hourglass, 0.0, 1e-15);
+    } else {
+      EXPECT_GT(run.set().energies().hourglass, 1e-12);
+    }
+  }
+}
+
 TEST(ExplicitShell, PlaneStressReturnStaysOnTheYieldSurface) {
   // Equal biaxial stretching of a plate far beyond yield (BISO, yield 250, tangent 1000): the
   // plane-stress return keeps σ_zz = 0 and σ_x = σ_y = the flow stress of the plastic strain.
