@@ -1,14 +1,17 @@
-// Constraint equations (CE, CEDELE, CELIST) and rigid regions (CERIG): model state in
-// Model::constraint_equations and Model::rigid_regions. The deck only records them; the
+// Constraint equations (CE, CEDELE, CELIST, and RBE3's) and rigid regions (CERIG): model state
+// in Model::constraint_equations and Model::rigid_regions. The deck only records them; the
 // structure eliminates their slaves (assembly/constraint_equations.h, docs/constraints.md).
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
+#include <string>
 
 #include "core/dof.h"
 #include "core/log.h"
 #include "deck/modeling_helpers.h"
 #include "deck/modeling_state.h"
+#include "elements/kinematic_constraint.h"
 
 namespace impactfe::deck {
 
@@ -186,6 +189,95 @@ void cmd_cerig(DeckReader& r, const Command& c) {
   r.model.rigid_regions.push_back(std::move(region));
 }
 
+/// An array parameter given with its starting subscript, NAME(n): its entries from n to the end
+/// of the column.
+std::vector<double> array_from(DeckReader& r, const Command& c, int field, const char* what) {
+  const std::string text = r.label(c, field);
+  const auto open = text.find('(');
+  const std::string name = text.substr(0, open);
+  const Param* p = r.params.find(name);
+  if (p == nullptr || p->type != ParamType::Array)
+    r.fail(c, fmt::format("{} '{}' is not a numeric array parameter (*DIM): give NAME(1)", what,
+                          c.text(field)));
+  int first = 1;
+  if (open != std::string::npos) {
+    const std::string index = text.substr(open + 1, text.find(')') - open - 1);
+    try {
+      first = std::stoi(index);
+    } catch (const std::exception&) {
+      r.fail(c,
+             fmt::format("{} '{}': the starting subscript is not a number", what, c.text(field)));
+    }
+  }
+  if (first < 1 || first > p->imax)
+    r.fail(c, fmt::format("{} '{}': subscript {} is outside 1..{}", what, c.text(field), first,
+                          p->imax));
+  std::vector<double> out;
+  for (int i = first; i <= p->imax; ++i) out.push_back(p->values[p->offset(i, 1, 1)]);
+  return out;
+}
+
+void cmd_rbe3(DeckReader& r, const Command& c) {
+  // RBE3,Master,DOF,Slaves,Wtfact (MAPDL Command Reference, RBE3): the master's DOF (ALL, the
+  // default, UXYZ, RXYZ or one label) follow the weighted rigid fit of the slaves' translations;
+  // Slaves: ALL (the selected nodes) or an array of node numbers NAME(n), Wtfact an array of
+  // weights (default 1 each). Written as constraint equations now, from the nodes' positions,
+  // master first, numbered after the highest equation.
+  const int master = r.integer(c, 1, 0);
+  r.require_node(c, master);
+  std::vector<Dof> dofs;
+  const std::string lab = r.label(c, 2);
+  if (lab.empty() || lab == "ALL")
+    dofs.assign(kAllDofs.begin(), kAllDofs.end());
+  else if (lab == "UXYZ")
+    dofs = {Dof::UX, Dof::UY, Dof::UZ};
+  else if (lab == "RXYZ")
+    dofs = {Dof::ROTX, Dof::ROTY, Dof::ROTZ};
+  else
+    dofs = {structural_dof(r, c, 2)};
+  std::vector<int> slaves;
+  if (r.label(c, 3) == "ALL") {
+    slaves = r.node_range(c, 3, 0, 0);
+  } else {
+    for (double v : array_from(r, c, 3, "Slaves")) {
+      const int node = static_cast<int>(std::lround(v));
+      if (node == 0) continue;  // unused entries past the list
+      if (static_cast<double>(node) != v)
+        r.fail(c, fmt::format("slave node {:g} is not a node number", v));
+      r.require_node(c, node);
+      slaves.push_back(node);
+    }
+  }
+  std::erase(slaves, master);
+  if (slaves.empty()) r.fail(c, "no slave node besides the master");
+  std::vector<double> weights(slaves.size(), 1.0);
+  if (!c.blank(4)) {
+    const std::vector<double> given = array_from(r, c, 4, "Wtfact");
+    if (given.size() < slaves.size())
+      r.fail(c, fmt::format("Wtfact has {} weight(s) for {} slave node(s)", given.size(),
+                            slaves.size()));
+    for (std::size_t i = 0; i < slaves.size(); ++i) {
+      if (!(given[i] >= 0.0))
+        r.fail(c, fmt::format("weight {:g} of slave node {} is negative", given[i], slaves[i]));
+      weights[i] = given[i];
+    }
+  }
+  for (int s : slaves)
+    if (r.model.node(s).rotated() || r.model.node(master).rotated())
+      r.fail(c, fmt::format("node {} has a rotated nodal coordinate system; RBE3 is written in "
+                            "global axes here",
+                            r.model.node(s).rotated() ? s : master));
+  std::vector<Vec3> x;
+  for (int s : slaves) x.push_back(r.model.node(s).x);
+  auto& equations = r.model.constraint_equations;
+  int next = equations.empty() ? 1 : equations.rbegin()->first + 1;
+  for (auto& eq : distributing_coupling_equations(master, r.model.node(master).x, slaves, x,
+                                                  weights, dofs, c.where)) {
+    eq.id = next++;
+    equations[eq.id] = std::move(eq);
+  }
+}
+
 }  // namespace
 
 void register_constraint_equation_commands(std::vector<CommandSpec>& t) {
@@ -193,6 +285,7 @@ void register_constraint_equation_commands(std::vector<CommandSpec>& t) {
   t.push_back({"CEDELE", cmd_cedele, kPrepSolu});
   t.push_back({"CELIST", cmd_celist, kPrepSolu});
   t.push_back({"CERIG", cmd_cerig, kPrepSolu});
+  t.push_back({"RBE3", cmd_rbe3, kPrepSolu});
 }
 
 }  // namespace impactfe::deck

@@ -30,4 +30,21 @@ std::vector<ConstraintEquation> rigid_region_equations(int master, const Vec3& x
                                                        const std::vector<Dof>& dofs,
                                                        const SourceLocation& where);
 
+/// The equations of a distributing coupling (RBE3): the master moves with the weighted
+/// least-squares rigid fit of its slaves' translations. With weights w_i, W = Σ w_i, the
+/// weighted centroid x_c and r_i = x_i − x_c, J = Σ w_i (|r_i|² I − r_i r_iᵀ):
+///   θ = J⁻¹ Σ w_i r_i × u_i,   u_c = Σ w_i u_i / W,   u_m = u_c + θ × (x_m − x_c),  θ_m = θ;
+/// their transpose hands a force F and a moment M on the master to the slaves as
+/// f_i = (w_i / W) F + w_i (J⁻¹ M_c) × r_i, M_c the moment about x_c (the force in proportion
+/// to the weights, the moment as forces in proportion to weight times distance). One equation
+/// per master DOF of `dofs`, master first (it is the dependent DOF): −u_m + Σ c u_i = 0.
+/// Throws InputError at `where` when the slaves cannot carry what is asked: J singular (fewer
+/// than three slaves off one line) with a rotation asked, or with the master off the centroid.
+std::vector<ConstraintEquation> distributing_coupling_equations(int master, const Vec3& x_master,
+                                                                const std::vector<int>& slaves,
+                                                                const std::vector<Vec3>& x_slaves,
+                                                                const std::vector<double>& weights,
+                                                                const std::vector<Dof>& dofs,
+                                                                const SourceLocation& where);
+
 }  // namespace impactfe

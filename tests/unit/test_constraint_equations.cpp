@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <numbers>
 #include <string>
 
@@ -11,6 +12,7 @@
 #include "assembly/constraint_equations.h"
 #include "core/errors.h"
 #include "deck/deck_reader.h"
+#include "elements/kinematic_constraint.h"
 
 namespace impactfe::test_constraint_equations {
 namespace {
@@ -135,6 +137,51 @@ TEST(ConstraintEquations, CoupledSetsAreGeneratedFromSets) {
   EXPECT_THROW(read_deck_text(nodes + "CP,1,UZ,2,12\nCP,2,UZ,4,14\nCPSGEN,2,2,1\n", "mem.inp", o),
                InputError);
   EXPECT_THROW(read_deck_text(nodes + "CP,1,UZ,2,12\nCPSGEN,2,30,1\n", "mem.inp", o), InputError);
+}
+
+TEST(ConstraintEquations, DistributingCouplingFollowsRigidMotionsOfItsSlaves) {
+  // RBE3's master follows a rigid translation and a rigid small rotation of its slaves exactly
+  // (weighted, irregular slaves, master off the centroid); slaves on a line cannot carry the
+  // master's rotations and are refused.
+  const std::vector<int> slaves = {1, 2, 3, 4, 5};
+  const std::vector<Vec3> x = {Vec3(0, 0, 0), Vec3(2, 0.1, 0), Vec3(2.2, 1.5, 0.3),
+                               Vec3(-0.1, 1.2, 0.2), Vec3(1, 0.6, -0.4)};
+  const std::vector<double> w = {1.0, 2.0, 0.5, 1.5, 3.0};
+  const Vec3 xm(0.7, 0.4, 2.5);
+  const auto eqs = distributing_coupling_equations(
+      100, xm, slaves, x, w, {Dof::UX, Dof::UY, Dof::UZ, Dof::ROTX, Dof::ROTY, Dof::ROTZ}, {});
+  ASSERT_EQ(eqs.size(), 6u);
+  const Vec3 t(0.3, -0.2, 0.5), theta(1e-3, -2e-3, 0.5e-3);
+  // The master's DOF d from the equation: −u_m + Σ c u_i = 0.
+  const auto master_value = [&](std::size_t k, const std::function<Vec3(const Vec3&)>& u) {
+    double sum = 0.0;
+    for (const ConstraintTerm& term : eqs[k].terms) {
+      if (term.dof.node == 100) continue;
+      sum += term.coefficient *
+             u(x[static_cast<std::size_t>(term.dof.node - 1)])(static_cast<int>(term.dof.dof));
+    }
+    return sum;
+  };
+  for (std::size_t k = 0; k < 6; ++k) {
+    EXPECT_EQ(eqs[k].terms.front().dof.node, 100);  // the master is the dependent DOF
+    EXPECT_DOUBLE_EQ(eqs[k].terms.front().coefficient, -1.0);
+    const double moved = master_value(k, [&](const Vec3&) { return t; });
+    EXPECT_NEAR(moved, k < 3 ? t(static_cast<int>(k)) : 0.0, 1e-14) << k;
+    const double turned = master_value(k, [&](const Vec3& p) { return Vec3(theta.cross(p)); });
+    const double expected =
+        k < 3 ? theta.cross(xm)(static_cast<int>(k)) : theta(static_cast<int>(k) - 3);
+    EXPECT_NEAR(turned, expected, 1e-14) << k;
+  }
+  const std::vector<Vec3> line = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(2, 0, 0)};
+  EXPECT_THROW(distributing_coupling_equations(100, Vec3(1, 0, 1), {1, 2, 3}, line, {1, 1, 1},
+                                               {Dof::ROTX}, {}),
+               InputError);
+  // Translations of a master at the centroid of slaves on a line are their mean.
+  const auto mean = distributing_coupling_equations(100, Vec3(1, 0, 0), {1, 2, 3}, line, {1, 1, 1},
+                                                    {Dof::UY}, {});
+  ASSERT_EQ(mean.front().terms.size(), 4u);
+  for (std::size_t i = 1; i < 4; ++i)
+    EXPECT_NEAR(mean.front().terms[i].coefficient, 1.0 / 3, 1e-15);
 }
 
 TEST(ConstraintEquations, EquationsSurviveSaveAndResume) {
