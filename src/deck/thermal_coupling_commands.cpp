@@ -75,6 +75,21 @@ void cmd_bfdele(DeckReader& r, const Command& c) {
   }
 }
 
+/// Coupled set `id` of `dof`, new (defined at c) or existing with that DOF (else the command
+/// fails: a set couples one DOF).
+CoupledSet& open_set(DeckReader& r, const Command& c, int id, Dof dof) {
+  CoupledSet& set = r.model.coupled_sets[id];
+  if (set.nodes.empty()) {
+    set.id = id;
+    set.dof = dof;
+    set.where = c.where;
+  } else if (set.dof != dof) {
+    r.fail(c,
+           fmt::format("coupled set {} couples {}, not {}", id, dof_name(set.dof), dof_name(dof)));
+  }
+  return set;
+}
+
 void cmd_cp(DeckReader& r, const Command& c) {
   // CP,NSET,Lab,NODE1,...,NODE17: NSET blank or NEXT = the highest set number + 1, HIGH or -1 =
   // the highest; NODE1 = ALL: the selected nodes; a negative node leaves the set.
@@ -100,14 +115,7 @@ void cmd_cp(DeckReader& r, const Command& c) {
   const std::string lab = r.label(c, 2);
   const auto dof = parse_dof_label(lab);
   if (!dof) r.fail(c, fmt::format("bad DOF label '{}' (UX UY UZ ROTX ROTY ROTZ)", c.text(2)));
-  CoupledSet& set = sets[id];
-  if (set.nodes.empty()) {
-    set.id = id;
-    set.dof = *dof;
-    set.where = c.where;
-  } else if (set.dof != *dof) {
-    r.fail(c, fmt::format("coupled set {} couples {}, not {}", id, dof_name(set.dof), lab));
-  }
+  CoupledSet& set = open_set(r, c, id, *dof);
   std::vector<int> nodes;
   if (r.label(c, 3) == "ALL") {
     nodes = r.node_range(c, 3, 0, 0);
@@ -184,14 +192,7 @@ void cmd_cpngen(DeckReader& r, const Command& c) {
     return;
   }
   const std::vector<int> nodes = r.node_range(c, 3, 4, 5);
-  CoupledSet& set = sets[id];
-  if (set.nodes.empty()) {
-    set.id = id;
-    set.dof = *dof;
-    set.where = c.where;
-  } else if (set.dof != *dof) {
-    r.fail(c, fmt::format("coupled set {} couples {}, not {}", id, dof_name(set.dof), c.text(2)));
-  }
+  CoupledSet& set = open_set(r, c, id, *dof);
   for (int n : nodes)
     if (std::find(set.nodes.begin(), set.nodes.end(), n) == set.nodes.end()) set.nodes.push_back(n);
   check_not_coupled(r, c, id, set.dof, set.nodes);

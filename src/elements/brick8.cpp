@@ -751,41 +751,26 @@ void Brick8::results(const ElementContext& ctx, const Eigen::VectorXd& u, const 
     plastic_strain.setZero();
     epeq = sepl = srat = plwk = 0.0;
   }
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(voigt_to_tensor(s),
-                                                          Eigen::EigenvaluesOnly);
-  const Eigen::Vector3d pr = es.eigenvalues();  // ascending
-  const double s1 = pr(2), s2 = pr(1), s3 = pr(0);
-  const double seqv =
-      std::sqrt(0.5 * ((s1 - s2) * (s1 - s2) + (s2 - s3) * (s2 - s3) + (s3 - s1) * (s3 - s1)));
-  out = {s(0),
-         s(1),
-         s(2),
-         s(3),
-         s(4),
-         s(5),
-         s1,
-         s2,
-         s3,
-         s1 - s3,
-         seqv,
-         plastic_strain(0),
-         plastic_strain(1),
-         plastic_strain(2),
-         plastic_strain(3),
-         plastic_strain(4),
-         plastic_strain(5),
-         epeq,
-         sepl,
-         srat,
-         plwk,
-         creep_strain(0),
-         creep_strain(1),
-         creep_strain(2),
-         creep_strain(3),
-         creep_strain(4),
-         creep_strain(5),
-         equivalent_inelastic_strain(creep_strain),
-         creq};
+  out = solid_stress_row(s);
+  const double inelastic[18] = {plastic_strain(0),
+                                plastic_strain(1),
+                                plastic_strain(2),
+                                plastic_strain(3),
+                                plastic_strain(4),
+                                plastic_strain(5),
+                                epeq,
+                                sepl,
+                                srat,
+                                plwk,
+                                creep_strain(0),
+                                creep_strain(1),
+                                creep_strain(2),
+                                creep_strain(3),
+                                creep_strain(4),
+                                creep_strain(5),
+                                equivalent_inelastic_strain(creep_strain),
+                                creq};
+  std::copy(inelastic, inelastic + 18, out.begin() + 11);
 }
 
 }  // namespace impactfe
