@@ -147,6 +147,12 @@ std::map<int, std::vector<std::array<int, 4>>> Mesher::free_area_nodes(
 
   const std::string what =
       todo.size() == 1 ? fmt::format("area {}", todo[0]) : fmt::format("{} areas", todo.size());
+  // The node count is known only once Gmsh has meshed, and Gmsh's quadrilateral recombination
+  // grows faster than the mesh (78,543 nodes in 43 s): a count far past the limits is refused
+  // before, from the areas' size and their boundary divisions.
+  double estimate = 0.0;
+  for (int a : todo) estimate += estimated_free_nodes(a);
+  check_new_nodes(estimate, what);
   GmshSession session("areas");
   namespace geo = gmsh::model::geo;
   std::map<int, std::vector<std::array<int, 4>>> faces_of;
@@ -192,6 +198,27 @@ std::map<int, std::vector<std::array<int, 4>>> Mesher::free_area_nodes(
     area.interior_nodes = std::move(interior_of[a]);
   }
   return faces_of;
+}
+
+double Mesher::estimated_free_nodes(int a) const {
+  // The area of the polygon through the keypoints of its boundary (Newell; the chords of arcs)
+  // over that of two equilateral triangles of the boundary's mean division h: a triangulation
+  // has about twice as many triangles as nodes.
+  const Area& area = solid_.areas.at(a);
+  Vec3 twice_area = Vec3::Zero();
+  double perimeter = 0.0;
+  double divisions = 0.0;
+  for (int sl : area.lines) {
+    const Line& line = solid_.lines.at(std::abs(sl));
+    const Vec3& from = solid_.keypoints.at(sl > 0 ? line.kp1 : line.kp2).x;
+    const Vec3& to = solid_.keypoints.at(sl > 0 ? line.kp2 : line.kp1).x;
+    twice_area += from.cross(to);
+    perimeter += line_length(line);
+    divisions += static_cast<double>(line.nodes.size()) - 1.0;
+  }
+  if (!(perimeter > 0.0) || !(divisions > 0.0)) return 0.0;
+  const double h = perimeter / divisions;
+  return 0.5 * twice_area.norm() / (0.5 * std::sqrt(3.0) * h * h);
 }
 
 void Mesher::add_free_surface(int a, double longest, int& loop_tag) const {

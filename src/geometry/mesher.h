@@ -157,6 +157,9 @@ class Mesher {
   /// the area's loop; a triangle's fourth entry is 0).
   std::map<int, std::vector<std::array<int, 4>>> free_area_nodes(const std::vector<int>& areas,
                                                                  bool quads);
+  /// About how many nodes a free mesh of area `id` makes, from its size and its boundary
+  /// divisions (checked against the limits before Gmsh meshes).
+  double estimated_free_nodes(int id) const;
   /// free_area_nodes' Gmsh model: the plane or filling surface of area `a` on its loops (the
   /// curves exist); `loop_tag` numbers the curve loops.
   void add_free_surface(int a, double longest, int& loop_tag) const;
