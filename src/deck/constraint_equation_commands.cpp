@@ -240,6 +240,7 @@ void cmd_rbe3(DeckReader& r, const Command& c) {
     slaves = r.node_range(c, 3, 0, 0);
   } else {
     for (double v : array_from(r, c, 3, "Slaves")) {
+      if (!(std::abs(v) < 2e9)) r.fail(c, fmt::format("slave node {:g} is not a node number", v));
       const int node = static_cast<int>(std::lround(v));
       if (node == 0) continue;  // unused entries past the list
       if (static_cast<double>(node) != v)

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <limits>
 #include <map>
 #include <optional>
 #include <utility>
@@ -223,10 +224,17 @@ void cmd_cpsgen(DeckReader& r, const Command& c) {
       sources.push_back(it->second);
     }
   }
+  // Each copy's nodes must exist (add_next_set), so the copies end within the model's nodes.
   for (int k = 1; k < itime; ++k)
     for (const CoupledSet& source : sources) {
       std::vector<int> nodes;
-      for (int n : source.nodes) nodes.push_back(n + k * inc);
+      for (int n : source.nodes) {
+        const long long node = n + static_cast<long long>(k) * inc;
+        if (node <= 0 || node > std::numeric_limits<int>::max())
+          r.fail(c, fmt::format("copy {} of coupled set {} would take node {}, which cannot exist",
+                                k, source.id, node));
+        nodes.push_back(static_cast<int>(node));
+      }
       add_next_set(r, c, source.dof, std::move(nodes));
     }
 }
