@@ -11,6 +11,7 @@
 #include "core/log.h"
 #include "deck/modeling_helpers.h"
 #include "deck/modeling_state.h"
+#include "deck/parameters.h"
 #include "elements/kinematic_constraint.h"
 
 namespace impactfe::deck {
@@ -189,34 +190,6 @@ void cmd_cerig(DeckReader& r, const Command& c) {
   r.model.rigid_regions.push_back(std::move(region));
 }
 
-/// An array parameter given with its starting subscript, NAME(n): its entries from n to the end
-/// of the column.
-std::vector<double> array_from(DeckReader& r, const Command& c, int field, const char* what) {
-  const std::string text = r.label(c, field);
-  const auto open = text.find('(');
-  const std::string name = text.substr(0, open);
-  const Param* p = r.params.find(name);
-  if (p == nullptr || p->type != ParamType::Array)
-    r.fail(c, fmt::format("{} '{}' is not a numeric array parameter (*DIM): give NAME(1)", what,
-                          c.text(field)));
-  int first = 1;
-  if (open != std::string::npos) {
-    const std::string index = text.substr(open + 1, text.find(')') - open - 1);
-    try {
-      first = std::stoi(index);
-    } catch (const std::exception&) {
-      r.fail(c,
-             fmt::format("{} '{}': the starting subscript is not a number", what, c.text(field)));
-    }
-  }
-  if (first < 1 || first > p->imax)
-    r.fail(c, fmt::format("{} '{}': subscript {} is outside 1..{}", what, c.text(field), first,
-                          p->imax));
-  std::vector<double> out;
-  for (int i = first; i <= p->imax; ++i) out.push_back(p->values[p->offset(i, 1, 1)]);
-  return out;
-}
-
 void cmd_rbe3(DeckReader& r, const Command& c) {
   // RBE3,Master,DOF,Slaves,Wtfact (MAPDL Command Reference, RBE3): the master's DOF (ALL, the
   // default, UXYZ, RXYZ or one label) follow the weighted rigid fit of the slaves' translations;
@@ -239,7 +212,7 @@ void cmd_rbe3(DeckReader& r, const Command& c) {
   if (r.label(c, 3) == "ALL") {
     slaves = r.node_range(c, 3, 0, 0);
   } else {
-    for (double v : array_from(r, c, 3, "Slaves")) {
+    for (double v : array_column(r, c, 3, "Slaves")) {
       if (!(std::abs(v) < 2e9)) r.fail(c, fmt::format("slave node {:g} is not a node number", v));
       const int node = static_cast<int>(std::lround(v));
       if (node == 0) continue;  // unused entries past the list
@@ -253,7 +226,7 @@ void cmd_rbe3(DeckReader& r, const Command& c) {
   if (slaves.empty()) r.fail(c, "no slave node besides the master");
   std::vector<double> weights(slaves.size(), 1.0);
   if (!c.blank(4)) {
-    const std::vector<double> given = array_from(r, c, 4, "Wtfact");
+    const std::vector<double> given = array_column(r, c, 4, "Wtfact");
     if (given.size() < slaves.size())
       r.fail(c, fmt::format("Wtfact has {} weight(s) for {} slave node(s)", given.size(),
                             slaves.size()));

@@ -16,20 +16,6 @@ namespace impactfe::deck {
 
 namespace {
 
-/// The values of a numeric array parameter's column. The field names the array (its first column
-/// from row 1) or one of its elements, NAME(i) or NAME(i,j): the column from that row to the
-/// array's end (vme2 gives EDLOAD's Par1 as TIME(1)).
-std::vector<double> array_values(DeckReader& r, const Command& c, int field, const char* what) {
-  const std::string text = r.label(c, field);
-  const std::string name = trim(text.substr(0, text.find('(')));
-  const ParameterInfo info = parameter_info(r, name);
-  if (name.empty() || info.type != 1)
-    r.fail(c, fmt::format("{} '{}': not a numeric array parameter (*DIM,{},ARRAY,n)", what,
-                          c.text(field), name.empty() ? "Par" : name));
-  const ArrayPosition first = array_position(r, c, text);
-  return read_vector(r, c, text, info.dims[0] - first.i + 1);
-}
-
 /// A curve's points: strictly increasing abscissae, the shorter length of the two arrays.
 void check_curve(DeckReader& r, const Command& c, std::vector<double>& x, std::vector<double>& y) {
   const std::size_t n = std::min(x.size(), y.size());
@@ -65,8 +51,8 @@ void cmd_edcurve(DeckReader& r, const Command& c) {
   if (option != "ADD") r.fail(c, fmt::format("Option '{}': ADD, DELE or LIST", c.text(1)));
   if (!lcid || *lcid <= 0) r.fail(c, "LCID: the curve number is a positive integer");
   ExplicitCurve curve;
-  curve.x = array_values(r, c, 3, "Par1");
-  curve.y = array_values(r, c, 4, "Par2");
+  curve.x = array_column(r, c, 3, "Par1");
+  curve.y = array_column(r, c, 4, "Par2");
   check_curve(r, c, curve.x, curve.y);
   curve.where = c.where;
   curves[*lcid] = std::move(curve);
@@ -211,8 +197,8 @@ void cmd_edload(DeckReader& r, const Command& c) {
     load.times = curve->second.x;
     load.values = curve->second.y;
   } else {
-    load.times = array_values(r, c, 5, "Par1");
-    load.values = array_values(r, c, 6, "Par2");
+    load.times = array_column(r, c, 5, "Par1");
+    load.values = array_column(r, c, 6, "Par2");
     check_curve(r, c, load.times, load.values);
   }
   load.scale = r.real(c, 9, 1.0);

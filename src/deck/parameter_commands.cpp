@@ -352,6 +352,17 @@ std::vector<double> read_vector(DeckReader& r, const Command& c, const std::stri
   return out;
 }
 
+std::vector<double> array_column(DeckReader& r, const Command& c, int field, const char* what) {
+  const std::string text = r.label(c, field);
+  const std::string name = trim(text.substr(0, text.find('(')));
+  const ParameterInfo info = parameter_info(r, name);
+  if (name.empty() || info.type != 1)
+    r.fail(c, fmt::format("{} '{}': not a numeric array parameter (*DIM,{},ARRAY,n)", what,
+                          c.text(field), name.empty() ? "Par" : name));
+  const ArrayPosition first = array_position(r, c, text);
+  return read_vector(r, c, text, info.dims[0] - first.i + 1);
+}
+
 ParameterInfo parameter_info(DeckReader& r, const std::string& name) {
   ParameterInfo info;
   const Param* p = r.params.find(to_upper(trim(name)));

@@ -161,6 +161,10 @@ void assign_vector(DeckReader& r, const Command& c, const std::string& target,
 /// read). Error when the array is undefined, not numeric, or too short.
 std::vector<double> read_vector(DeckReader& r, const Command& c, const std::string& source,
                                 int count);
+/// The values of a numeric array parameter's column from the element a field names: the array
+/// (its first column from row 1), NAME(i) or NAME(i,j), down to the array's end (vme2 gives
+/// EDLOAD's Par1 as TIME(1); RBE3 its slaves as SLV(1)). `what` names the field in errors.
+std::vector<double> array_column(DeckReader& r, const Command& c, int field, const char* what);
 
 /// *GET,Par,PARM,Name,TYPE / DIM: the type code of MAPDL (-1 undefined, 0 numeric scalar,
 /// 1 numeric array, 2 table, 3 character scalar, 4 character array) and the extents of an array
