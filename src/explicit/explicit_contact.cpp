@@ -505,8 +505,11 @@ bool ExplicitContactSet::find_contact(Pass& p, std::size_t j, const ExplicitNoda
     if (skip) continue;
     // The side the slave comes from: a solid's face is touched from outside (its normal), a
     // shell's from the side of its mid-surface the slave was on at the start of the step.
-    const double before = distance_before(g.nodes, s, sn, xs, dt > 0.0 ? dt : 0.0);
-    const signed char from = g.offset > 0.0 && before < 0.0 ? -1 : 1;
+    // The position before the step is needed first only for a shell (its side); for a solid's
+    // face only once the slave is found behind it, as the crossing test below asks.
+    const bool shell = g.offset > 0.0;
+    double before = shell ? distance_before(g.nodes, s, sn, xs, dt > 0.0 ? dt : 0.0) : 0.0;
+    const signed char from = shell && before < 0.0 ? -1 : 1;
     const double offset = g.offset + node_offset_[sn];
     double gap, u, v;
     Vec nrm;
@@ -518,9 +521,9 @@ bool ExplicitContactSet::find_contact(Pass& p, std::size_t j, const ExplicitNoda
     // the side face of a body whose top face it lies on) or was there at the start; a
     // spring taken up at such a penetration would give back energy it never took. A slave
     // sliding off its segment onto one sharing a node with it is handed over.
-    if (!(slid && shares_node(was, p.candidates[c])) &&
-        !(dt > 0.0 && from * before >= offset - 1e-4 * g.depth))
-      continue;
+    const bool handed_over = slid && shares_node(was, p.candidates[c]);
+    if (!handed_over && !shell && dt > 0.0) before = distance_before(g.nodes, s, sn, xs, dt);
+    if (!handed_over && !(dt > 0.0 && from * before >= offset - 1e-4 * g.depth)) continue;
     best = gap, xi = u, eta = v, chosen = p.candidates[c], side = from, normal = nrm;
   }
   kept = best < std::numeric_limits<double>::infinity() ? chosen : kNone;
