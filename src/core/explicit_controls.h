@@ -73,6 +73,21 @@ struct ExplicitRigidMaterial {
   SourceLocation where;
 };
 
+/// Hourglass control and bulk viscosity of the reduced-integration elements (SOLID164,
+/// SHELL163) of one material (EDMP,HGLS, LS-DYNA's *HOURGLASS), or of every material without
+/// EDMP,HGLS (EDHGLS, EDBVIS: the viscous form).
+struct ExplicitHourglass {
+  /// VAL1: 0 to 3 the viscous forms, 4 and 5 the stiffness forms (docs/explicit_dynamics.md).
+  int type = 0;
+  double membrane = 0.1;        // VAL2 QM: the solid's coefficient, the shell's membrane one
+  double bulk_quadratic = 1.5;  // VAL3 (solids)
+  double bulk_linear = 0.06;    // VAL4 (solids)
+  double bending = 0.1;         // VAL5: the shell's rotational modes (default VAL2)
+  double warping = 0.1;         // VAL6: the shell's transverse mode (default VAL2)
+  bool stiffness() const { return type >= 4; }
+  SourceLocation where;  // the EDMP command (unknown for the global settings)
+};
+
 /// EDCRB,ADD,NEQN,PARTM,PARTS: the rigid body of the slave part moves with that of the master
 /// part as one body (LS-DYNA *CONSTRAINED_RIGID_BODIES): mass, centre and inertia from the
 /// elements of every member, the master's constraint codes (EDMP,RIGID). The parts are stored
@@ -105,6 +120,17 @@ struct ExplicitControls {
   /// EDBVIS QVCO, LVCO: quadratic and linear bulk viscosity coefficients (1.5, 0.06).
   double bulk_quadratic = 1.5;
   double bulk_linear = 0.06;
+  std::map<int, ExplicitHourglass> hourglass_materials;  // EDMP,HGLS, by material
+  /// The hourglass control and bulk viscosity of the elements of material `mat`.
+  ExplicitHourglass hourglass_of(int mat) const {
+    if (const auto it = hourglass_materials.find(mat); it != hourglass_materials.end())
+      return it->second;
+    return ExplicitHourglass{.membrane = hourglass_coefficient,
+                             .bulk_quadratic = bulk_quadratic,
+                             .bulk_linear = bulk_linear,
+                             .bending = hourglass_coefficient,
+                             .warping = hourglass_coefficient};
+  }
   ExplicitOutputInterval results;                           // EDRST (default 100 intervals)
   ExplicitOutputInterval history;                           // EDHTIME (default 1000 intervals)
   std::vector<ExplicitInitialVelocity> initial_velocities;  // EDVEL, in input order

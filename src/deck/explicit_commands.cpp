@@ -81,14 +81,44 @@ ExplicitOutputInterval output_interval(DeckReader& r, const Command& c) {
   return out;
 }
 
+void edmp_hourglass(DeckReader& r, const Command& c, int mat) {
+  // EDMP,HGLS,MAT,VAL1..VAL6: hourglass type, QM, the bulk viscosity coefficients, the shell's
+  // bending and warping coefficients (default QM).
+  ExplicitHourglass h;
+  h.type = r.integer(c, 3, 0);
+  if (h.type < 0 || h.type > 5)
+    r.fail(c, fmt::format("VAL1 {}: the hourglass control type is 0 to 5 (0 to 3 viscous, 4 and "
+                          "5 stiffness)",
+                          h.type));
+  h.membrane = r.real(c, 4, 0.1);
+  h.bulk_quadratic = r.real(c, 5, 1.5);
+  h.bulk_linear = r.real(c, 6, 0.06);
+  h.bending = r.real(c, 7, h.membrane);
+  h.warping = r.real(c, 8, h.membrane);
+  for (const double v : {h.membrane, h.bulk_quadratic, h.bulk_linear, h.bending, h.warping})
+    if (!(v >= 0.0)) r.fail(c, fmt::format("VAL2 to VAL6 are coefficients >= 0, got {:g}", v));
+  for (const double v : {h.membrane, h.bending, h.warping})
+    if (v > 0.15)
+      r.warn(c, fmt::format("hourglass coefficient {:g} above 0.15 may make the run unstable "
+                            "(EDMP notes)",
+                            v));
+  for (int k = 9; k <= c.n_fields(); ++k)
+    if (!c.blank(k)) r.fail(c, "HGLS takes VAL1 to VAL6 only");
+  h.where = c.where;
+  controls(r, c).hourglass_materials[mat] = h;
+}
+
 void cmd_edmp(DeckReader& r, const Command& c) {
-  // EDMP,Lab,MAT,VAL1,VAL2: RIGID (VAL1, VAL2 the translational and rotational constraint
-  // codes); the other labels are refused.
+  // EDMP,Lab,MAT,VAL1..VAL6: RIGID (VAL1, VAL2 the translational and rotational constraint
+  // codes) and HGLS (hourglass and bulk viscosity); the other labels are refused.
   const std::string lab = r.label(c, 1);
-  if (lab.rfind("RIGI", 0) != 0)
-    r.fail(c, fmt::format("Lab '{}' is not implemented in explicit dynamics (RIGID)", c.text(1)));
+  const bool hourglass = lab == "HGLS";
+  if (lab.rfind("RIGI", 0) != 0 && !hourglass)
+    r.fail(c, fmt::format("Lab '{}' is not implemented in explicit dynamics (RIGID, HGLS)",
+                          c.text(1)));
   const int mat = r.integer(c, 2, r.modeling.current_mat);
   if (mat <= 0) r.fail(c, fmt::format("MAT {}: a material number is positive", mat));
+  if (hourglass) return edmp_hourglass(r, c, mat);
   ExplicitRigidMaterial m;
   m.translation = r.integer(c, 3, 0);
   m.rotation = r.integer(c, 4, 0);

@@ -46,9 +46,9 @@ struct ExplicitBuildContext {
   const Model& model;
   /// The run's index of a node id (InputError at the element when the node is undefined).
   std::function<int(int node, const ElementRecord& record)> node_index;
-  double hourglass_coefficient = 0.1;  // EDHGLS HGCO
-  double bulk_quadratic = 1.5;         // EDBVIS QVCO
-  double bulk_linear = 0.06;           // EDBVIS LVCO
+  /// EDHGLS, EDBVIS and EDMP,HGLS: the hourglass control and bulk viscosity by material.
+  const ExplicitControls& controls;
+  ExplicitHourglass hourglass_of(int mat) const { return controls.hourglass_of(mat); }
 };
 
 /// The smallest stable time step of a set and the element (user id) that has it.

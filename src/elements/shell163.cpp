@@ -11,10 +11,10 @@
 // of the nodal angular velocities. Stresses at NIP Gauss points through the thickness, plane
 // stress (σ_zz = 0) in the local frame, transverse shear scaled by SHRF; the nodal forces and
 // moments are the derivatives of the internal power A ∫ σ:d dz (so the energy balance holds).
-// Viscous hourglass control of the five BT hourglass modes with the shape vector γ orthogonal to
-// linear fields; the transverse one through the variation of the transverse shear across the
-// element, so that a plate's twist is not damped. Runs only in an explicit analysis: its implicit
-// factory refuses.
+// Hourglass control of the five BT hourglass modes with the shape vector γ orthogonal to linear
+// fields, viscous or (EDMP,HGLS types 4, 5) stiffness form; the transverse one through the
+// variation of the transverse shear across the element, so that a plate's twist is not resisted.
+// Runs only in an explicit analysis: its implicit factory refuses.
 #include <fmt/format.h>
 #include <Eigen/Geometry>
 
@@ -245,13 +245,17 @@ class Shell163Set final : public ExplicitElementSet {
   // Per element and point (kMaxPoints each): σ (xx, yy, zz = 0, xy, yz, xz, local axes), back
   // stress, equivalent plastic strain.
   std::vector<double> stress_, back_, alpha_;
-  double hourglass_ = 0.1;
+  /// EDMP,HGLS (or EDHGLS) of each material, as materials_.
+  std::vector<ExplicitHourglass> hourglass_;
+  /// The stiffness form's stored generalized hourglass forces, 6 per element in the local frame
+  /// (membrane x, y; transverse shear variations xz, yz; rotations x, y); empty when no
+  /// material uses it.
+  std::vector<double> hourglass_force_;
   double gauss_z_[kMaxPoints + 1][kMaxPoints] = {}, gauss_w_[kMaxPoints + 1][kMaxPoints] = {};
 };
 
 Shell163Set::Shell163Set(const ExplicitBuildContext& ctx,
-                         const std::vector<const ElementRecord*>& records)
-    : hourglass_(ctx.hourglass_coefficient) {
+                         const std::vector<const ElementRecord*>& records) {
   for (int n = 1; n <= kMaxPoints; ++n) gauss_legendre(n, gauss_z_[n], gauss_w_[n]);
   std::map<int, int> material_index;
   for (const ElementRecord* r : records) {
@@ -311,6 +315,7 @@ Shell163Set::Shell163Set(const ExplicitBuildContext& ctx,
       m.rate.density = e.density;
       m.rate.plasticity = plasticity_of(ctx.model, *r, e.young, e.poisson, false);
       materials_.push_back(std::move(m));
+      hourglass_.push_back(ctx.hourglass_of(r->mat));
     }
     std::array<double, 4> x{}, y{}, z{};
     for (int a = 0; a < 4; ++a) {
@@ -341,6 +346,9 @@ Shell163Set::Shell163Set(const ExplicitBuildContext& ctx,
   stress_.assign(6 * kMaxPoints * ids_.size(), 0.0);
   back_.assign(6 * kMaxPoints * ids_.size(), 0.0);
   alpha_.assign(kMaxPoints * ids_.size(), 0.0);
+  if (std::any_of(hourglass_.begin(), hourglass_.end(),
+                  [](const ExplicitHourglass& h) { return h.stiffness(); }))
+    hourglass_force_.assign(6 * ids_.size(), 0.0);
 }
 
 double Shell163Set::update_point(std::size_t k, int p, const double* d, double dt) {
@@ -471,17 +479,8 @@ ExplicitStepLimit Shell163Set::chunk_forces(const ExplicitNodalView& state, doub
     const double area = kin.area;
     energies.internal += dt * area * power;
     energies.plastic_work += area * plastic;
-    // Viscous hourglass control of the BT modes: γ = h − (h·x) B1 − (h·y) B2 is orthogonal to
-    // every linear field, so it never resists a uniform strain rate or a rigid motion. The
-    // membrane coefficient scales as the solid's HGCO ρ c V^{2/3}/4 with V^{2/3} → t √A; the
-    // transverse and rotational ones by t/√A less (a plate's bending wave of wavelength √A is
-    // that much slower than the membrane wave: the same fraction of critical damping), the
-    // rotational one by A/12 more (the rotary inertia's A/6 per node).
-    const double rho = density_[k];
-    const double c = wave_speed(k);
-    const double cm = 0.25 * hourglass_ * rho * c * t * std::sqrt(area);
-    const double cw = cm * t / std::sqrt(area);
-    const double cb = cw * area / 12.0;
+    // Hourglass control of the BT modes: γ = h − (h·x) B1 − (h·y) B2 is orthogonal to every
+    // linear field, so it never resists a uniform strain rate or a rigid motion.
     double gamma[4], hx = 0.0, hy = 0.0;
     for (int a = 0; a < 4; ++a) hx += kH[a] * kin.xl[a], hy += kH[a] * kin.yl[a];
     for (int a = 0; a < 4; ++a) gamma[a] = kH[a] - hx * kin.b1[a] - hy * kin.b2[a];
@@ -497,33 +496,66 @@ ExplicitStepLimit Shell163Set::chunk_forces(const ExplicitNodalView& state, doub
     // What the one point misses is the variation of the transverse shear across the element:
     // ∂γ_xz/∂y = w,xy + ∂ω_y/∂y and ∂γ_yz/∂x = w,xy − ∂ω_x/∂x, with w,xy = γ·v_z / A (exact
     // on a rectangle), zero for the twist and γ·v_z / A for the hourglass with ω = 0. The
-    // viscosity acts on them, c_s = c_w A²/2, which is c_w (γ·v_z)² on that hourglass as before.
+    // control acts on them with c_w A²/2, which is c_w (γ·v_z)² on that hourglass.
     double rot_y = 0.0, rot_x = 0.0;  // ∂ω_y/∂y, ∂ω_x/∂x at the centre
     for (int a = 0; a < 4; ++a) rot_y += kin.b2[a] * kin.w[a][1], rot_x += kin.b1[a] * kin.w[a][0];
-    double shear_xz = q[2] / area + rot_y, shear_yz = q[2] / area - rot_x;
-    const double cs = 0.5 * cw * area * area;
-    if (hourglass_ > 0.0) {
-      energies.hourglass += dt * (cm * (q[0] * q[0] + q[1] * q[1]) +
-                                  cs * (shear_xz * shear_xz + shear_yz * shear_yz) +
-                                  cb * (q[3] * q[3] + q[4] * q[4]));
+    // The generalized hourglass rates: membrane x, y; shear variations xz, yz; rotations x, y.
+    const double rate[6] = {q[0], q[1], q[2] / area + rot_y, q[2] / area - rot_x, q[3], q[4]};
+    const ExplicitHourglass& control = hourglass_[static_cast<std::size_t>(material_[k])];
+    double coefficient[3];  // membrane, shear variation, rotation
+    if (control.stiffness()) {
+      // Stiffness form (Belytschko, Lin & Tsay 1984; LS-DYNA Theory Manual, "Hourglass
+      // control" of the Belytschko–Tsay shell): rates of the hourglass forces r_m E t A/8 B·B,
+      // r_w κ G t³ A/12 B·B (times A²/2 on the shear variations, as above), r_θ E t³ A/192 B·B.
+      double bb = 0.0;
+      for (int a = 0; a < 4; ++a) bb += kin.b1[a] * kin.b1[a] + kin.b2[a] * kin.b2[a];
+      const ShellMaterial& sm = materials_[static_cast<std::size_t>(material_[k])];
+      const double shear_modulus = sm.young / (2.0 * (1.0 + sm.poisson));
+      coefficient[0] = control.membrane * sm.young * t * area / 8.0 * bb;
+      coefficient[1] = 0.5 * area * area * control.warping * shear_factor_[k] * shear_modulus * t *
+                       t * t * area / 12.0 * bb;
+      coefficient[2] = control.bending * sm.young * t * t * t * area / 192.0 * bb;
     } else {
-      std::fill(q, q + 5, 0.0);
-      shear_xz = shear_yz = 0.0;
+      // Viscous form: the membrane coefficient scales as the solid's QM ρ c V^{2/3}/4 with
+      // V^{2/3} → t √A; the transverse and rotational ones by t/√A less (a plate's bending
+      // wave of wavelength √A is that much slower than the membrane wave: the same fraction of
+      // critical damping), the rotational one by A/12 more (the rotary inertia's A/6 per node).
+      const double scale = 0.25 * density_[k] * wave_speed(k) * t;
+      const double cw = scale * control.warping * t;
+      coefficient[0] = scale * control.membrane * std::sqrt(area);
+      coefficient[1] = 0.5 * cw * area * area;
+      coefficient[2] = scale * control.bending * t * area / 12.0;
     }
+    double h[6];  // the generalized hourglass forces
+    double hourglass_power = 0.0;
+    for (int i = 0; i < 6; ++i) {
+      const double ci = coefficient[i / 2];
+      if (control.stiffness()) {
+        double& stored = hourglass_force_[6 * k + static_cast<std::size_t>(i)];
+        const double before = stored;
+        stored += ci * dt * rate[i];
+        h[i] = stored;
+        hourglass_power += 0.5 * (before + stored) * rate[i];
+      } else {
+        h[i] = ci * rate[i];
+        hourglass_power += h[i] * rate[i];
+      }
+    }
+    energies.hourglass += dt * hourglass_power;
     // Nodal forces and moments: the derivatives of the power A(N:d + M:κ + Q·γ) by the nodal
     // velocities (local axes), then to global axes.
     double* f = element_forces + 12 * k;
     double* mo = element_moments ? element_moments + 12 * k : nullptr;
     for (int a = 0; a < 4; ++a) {
       const double b1 = kin.b1[a], b2 = kin.b2[a];
-      const double fx = area * (b1 * resultant[0] + b2 * resultant[2]) + cm * q[0] * gamma[a];
-      const double fy = area * (b2 * resultant[1] + b1 * resultant[2]) + cm * q[1] * gamma[a];
-      const double fz = area * (b1 * resultant[4] + b2 * resultant[3]) +
-                        cs * (shear_xz + shear_yz) * gamma[a] / area;
+      const double fx = area * (b1 * resultant[0] + b2 * resultant[2]) + h[0] * gamma[a];
+      const double fy = area * (b2 * resultant[1] + b1 * resultant[2]) + h[1] * gamma[a];
+      const double fz =
+          area * (b1 * resultant[4] + b2 * resultant[3]) + (h[2] + h[3]) * gamma[a] / area;
       const double mx = area * (-b2 * moment[1] - b1 * moment[2] - mean[a] * resultant[3]) +
-                        cb * q[3] * gamma[a] - cs * shear_yz * b1;
+                        h[4] * gamma[a] - h[3] * b1;
       const double my = area * (b1 * moment[0] + b2 * moment[2] + mean[a] * resultant[4]) +
-                        cb * q[4] * gamma[a] + cs * shear_xz * b2;
+                        h[5] * gamma[a] + h[2] * b2;
       const Vec3 force = fx * kin.e1 + fy * kin.e2 + fz * kin.e3;
       const Vec3 turn = mx * kin.e1 + my * kin.e2;
       for (int i = 0; i < 3; ++i) {
@@ -531,7 +563,7 @@ ExplicitStepLimit Shell163Set::chunk_forces(const ExplicitNodalView& state, doub
         if (mo) mo[3 * a + i] = turn(i);
       }
     }
-    limit.take(characteristic_length(kin, triangle_[k]) / c, ids_[k]);
+    limit.take(characteristic_length(kin, triangle_[k]) / wave_speed(k), ids_[k]);
   }
   return limit;
 }

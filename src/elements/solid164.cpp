@@ -1,8 +1,9 @@
 // SOLID164: the 8-node explicit brick (MAPDL Element Reference release 18.2; LS-DYNA solid
 // formulation 1), docs/explicit_dynamics.md. One-point (uniform strain) integration with the
 // volume derivatives of Flanagan & Belytschko (1981), hexahedron_volume.h; Flanagan–Belytschko
-// viscous hourglass control with the hourglass shape vectors γ orthogonal to every linear
-// velocity field (so a uniform strain rate is never resisted: the patch test is exact); the
+// hourglass control, viscous or (EDMP,HGLS types 4, 5) stiffness form, with the hourglass shape
+// vectors γ orthogonal to every linear velocity field (so a uniform strain rate is never
+// resisted: the patch test is exact); the
 // Jaumann-rate hypoelastic stress update with radial return for TB plasticity
 // (materials/rate_plasticity.h); linear and quadratic bulk viscosity (EDBVIS). Runs only in an
 // explicit analysis: its implicit factory refuses.
@@ -89,36 +90,72 @@ inline double contract(const double* s, const double* d) {
   return s[0] * d[0] + s[1] * d[1] + s[2] * d[2] + 2.0 * (s[3] * d[3] + s[4] * d[4] + s[5] * d[5]);
 }
 
-/// FB viscous hourglass forces (added to f) and their power Q Σ|q_α|² (≥ 0: dissipated).
-double hourglass_forces(const BrickKinematics& k, double coefficient, double* f) {
-  if (!(coefficient > 0.0)) return 0.0;  // EDHGLS,0: no hourglass control
+/// The hourglass shape vectors γ_α = Γ_α − (Γ_α·x_i) b_i / V of the four modes (FB eq. (50)
+/// ff.: orthogonal to every linear velocity field) and the hourglass velocities q_α = Σ_I v_I γ_αI.
+struct HourglassModes {
+  double gamma[4][8];
+  double q[4][3];
+};
+
+void hourglass_modes(const BrickKinematics& k, HourglassModes& m) {
   const double inv = 1.0 / k.volume;
-  double power = 0.0;
-  for (const auto& base : kHourglassBase) {
+  for (int mode = 0; mode < 4; ++mode) {
+    const double* base = kHourglassBase[mode];
     double hx = 0.0, hy = 0.0, hz = 0.0;  // Γ·x per direction
     for (int a = 0; a < 8; ++a) {
       hx += base[a] * k.x[a];
       hy += base[a] * k.y[a];
       hz += base[a] * k.z[a];
     }
-    double gamma[8];
-    double qx = 0.0, qy = 0.0, qz = 0.0;  // hourglass velocity modes Σ v γ
+    double* gamma = m.gamma[mode];
+    double* q = m.q[mode];
+    q[0] = q[1] = q[2] = 0.0;
     for (int a = 0; a < 8; ++a) {
       gamma[a] = base[a] - inv * (hx * k.bx[a] + hy * k.by[a] + hz * k.bz[a]);
-      qx += k.vx[a] * gamma[a];
-      qy += k.vy[a] * gamma[a];
-      qz += k.vz[a] * gamma[a];
+      q[0] += k.vx[a] * gamma[a];
+      q[1] += k.vy[a] * gamma[a];
+      q[2] += k.vz[a] * gamma[a];
     }
-    qx *= coefficient;
-    qy *= coefficient;
-    qz *= coefficient;
-    for (int a = 0; a < 8; ++a) {
-      f[3 * a] += qx * gamma[a];
-      f[3 * a + 1] += qy * gamma[a];
-      f[3 * a + 2] += qz * gamma[a];
-    }
-    power += (qx * qx + qy * qy + qz * qz) / coefficient;
   }
+}
+
+/// Adds the hourglass forces Σ_α Q_α γ_αI (Q_α a vector per mode) to f.
+void add_hourglass_forces(const HourglassModes& m, const double (*force)[3], double* f) {
+  for (int mode = 0; mode < 4; ++mode)
+    for (int a = 0; a < 8; ++a)
+      for (int i = 0; i < 3; ++i) f[3 * a + i] += force[mode][i] * m.gamma[mode][a];
+}
+
+/// Viscous form: Q_α = c q_α; returns the power c Σ|q_α|² (≥ 0: dissipated).
+double viscous_hourglass(const HourglassModes& m, double coefficient, double* f) {
+  double force[4][3], power = 0.0;
+  for (int mode = 0; mode < 4; ++mode)
+    for (int i = 0; i < 3; ++i) {
+      force[mode][i] = coefficient * m.q[mode][i];
+      power += force[mode][i] * m.q[mode][i];
+    }
+  add_hourglass_forces(m, force, f);
+  return power;
+}
+
+/// Stiffness form: the stored hourglass forces Q_α (global axes, 12 values) turn with the spin
+/// W over dt and grow by κ q_α dt; returns the power ½(Q_α,n + Q_α,n+1)·q_α, whose integral is
+/// the energy ½|Q|²/κ the hourglass springs hold (recoverable, not dissipated).
+double stiffness_hourglass(const HourglassModes& m, const BrickKinematics& k, double stiffness,
+                           double dt, double* stored, double* f) {
+  double force[4][3], power = 0.0;
+  for (int mode = 0; mode < 4; ++mode) {
+    double* qs = stored + 3 * mode;
+    const double turned[3] = {qs[0] + dt * (k.w01 * qs[1] + k.w02 * qs[2]),
+                              qs[1] + dt * (-k.w01 * qs[0] + k.w12 * qs[2]),
+                              qs[2] + dt * (-k.w02 * qs[0] - k.w12 * qs[1])};
+    for (int i = 0; i < 3; ++i) {
+      qs[i] = turned[i] + stiffness * dt * m.q[mode][i];
+      force[mode][i] = qs[i];
+      power += 0.5 * (turned[i] + qs[i]) * m.q[mode][i];
+    }
+  }
+  add_hourglass_forces(m, force, f);
   return power;
 }
 
@@ -181,14 +218,15 @@ class Solid164Set final : public ExplicitElementSet {
   std::vector<double> stress_;  // 6 per element
   std::vector<double> back_;    // 6 per element (kinematic hardening)
   std::vector<double> alpha_;   // equivalent plastic strain
-  double hourglass_ = 0.1, bulk_quadratic_ = 1.5, bulk_linear_ = 0.06;
+  /// EDMP,HGLS (or EDHGLS, EDBVIS) of each material, as materials_.
+  std::vector<ExplicitHourglass> hourglass_;
+  /// The stiffness form's stored hourglass forces, 12 per element (empty when no material
+  /// uses it).
+  std::vector<double> hourglass_force_;
 };
 
 Solid164Set::Solid164Set(const ExplicitBuildContext& ctx,
-                         const std::vector<const ElementRecord*>& records)
-    : hourglass_(ctx.hourglass_coefficient),
-      bulk_quadratic_(ctx.bulk_quadratic),
-      bulk_linear_(ctx.bulk_linear) {
+                         const std::vector<const ElementRecord*>& records) {
   std::map<int, int> material_index;
   for (const ElementRecord* r : records) {
     if (r->nodes.size() != 8)
@@ -211,6 +249,7 @@ Solid164Set::Solid164Set(const ExplicitBuildContext& ctx,
       m.density = e.density;
       m.plasticity = plasticity_of(ctx.model, *r, e.young, e.poisson, false);
       materials_.push_back(std::move(m));
+      hourglass_.push_back(ctx.hourglass_of(r->mat));
     }
     double x[8], y[8], z[8], share[8];
     for (int a = 0; a < 8; ++a) {
@@ -238,6 +277,9 @@ Solid164Set::Solid164Set(const ExplicitBuildContext& ctx,
   stress_.assign(6 * ids_.size(), 0.0);
   back_.assign(6 * ids_.size(), 0.0);
   alpha_.assign(ids_.size(), 0.0);
+  if (std::any_of(hourglass_.begin(), hourglass_.end(),
+                  [](const ExplicitHourglass& h) { return h.stiffness(); }))
+    hourglass_force_.assign(12 * ids_.size(), 0.0);
 }
 
 double Solid164Set::element_step(const ExplicitNodalView& state, std::size_t k) const {
@@ -278,15 +320,18 @@ ExplicitStepLimit Solid164Set::chunk_forces(const ExplicitNodalView& state, doub
                                                       ids_[k], kin.volume));
     rates(kin);
     const double stress_power = update_stress(k, kin, dt, energies);
-    const RateMaterial& m = materials_[static_cast<std::size_t>(material_[k])];
+    const auto mat = static_cast<std::size_t>(material_[k]);
+    const RateMaterial& m = materials_[mat];
+    const ExplicitHourglass& control = hourglass_[mat];
+    const double modulus = m.bulk + 4.0 * m.shear / 3.0;  // λ + 2μ = ρc²
     const double rho = density_[k];
-    const double c = std::sqrt((m.bulk + 4.0 * m.shear / 3.0) / rho);
+    const double c = std::sqrt(modulus / rho);
     const double length = characteristic_length(kin);
     // Bulk viscosity (LS-DYNA theory manual, "Bulk viscosity"): in compression only.
     const double volumetric = kin.d[0] + kin.d[1] + kin.d[2];
     double q = 0.0, speed_term = 0.0;
     if (volumetric < 0.0) {
-      speed_term = bulk_quadratic_ * length * -volumetric + bulk_linear_ * c;
+      speed_term = control.bulk_quadratic * length * -volumetric + control.bulk_linear * c;
       q = rho * length * speed_term * -volumetric;
     }
     limit.take(mass_factor_[k] * length / (speed_term + std::sqrt(speed_term * speed_term + c * c)),
@@ -299,9 +344,24 @@ ExplicitStepLimit Solid164Set::chunk_forces(const ExplicitNodalView& state, doub
       f[3 * a + 1] = s[3] * kin.bx[a] + (s[1] - q) * kin.by[a] + s[4] * kin.bz[a];
       f[3 * a + 2] = s[5] * kin.bx[a] + s[4] * kin.by[a] + (s[2] - q) * kin.bz[a];
     }
-    // FB hourglass viscosity QM ρ c V^{2/3} / 4 (LS-DYNA theory manual, hourglass type 2).
-    const double coefficient = 0.25 * hourglass_ * rho * c * std::cbrt(kin.volume * kin.volume);
-    energies.hourglass += dt * hourglass_forces(kin, coefficient, f);
+    if (!(control.membrane > 0.0)) continue;  // QM 0: no hourglass control
+    HourglassModes modes;
+    hourglass_modes(kin, modes);
+    if (control.stiffness()) {
+      // FB stiffness form: κ = QM (λ + 2μ) Σ_I b_I·b_I / (3V), 0.5 QM (λ + 2μ) h on a cube of
+      // side h, of the order of the stiffness a fully integrated brick has for these modes.
+      double norm2 = 0.0;
+      for (int a = 0; a < 8; ++a)
+        norm2 += kin.bx[a] * kin.bx[a] + kin.by[a] * kin.by[a] + kin.bz[a] * kin.bz[a];
+      const double stiffness = control.membrane * modulus * norm2 / (3.0 * kin.volume);
+      energies.hourglass +=
+          dt * stiffness_hourglass(modes, kin, stiffness, dt, &hourglass_force_[12 * k], f);
+    } else {
+      // FB viscous form: QM ρ c V^{2/3} / 4 (LS-DYNA theory manual, hourglass types 2, 3).
+      const double coefficient =
+          0.25 * control.membrane * rho * c * std::cbrt(kin.volume * kin.volume);
+      energies.hourglass += dt * viscous_hourglass(modes, coefficient, f);
+    }
   }
   return limit;
 }

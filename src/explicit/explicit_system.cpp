@@ -216,9 +216,7 @@ ExplicitSystem build_explicit_system(const Model& model) {
                                fmt::format("element {}: node {} is not defined", record.id, node));
             return index;
           },
-      .hourglass_coefficient = e.hourglass_coefficient,
-      .bulk_quadratic = e.bulk_quadratic,
-      .bulk_linear = e.bulk_linear};
+      .controls = e};
   for (const auto& [name, records] : by_type) {
     const ElementTypeDescriptor& d = *find_element_type(name);
     s.set_offset.push_back(s.n_slots);

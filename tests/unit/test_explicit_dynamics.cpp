@@ -4,6 +4,8 @@
 // materials/rate_plasticity.h, and the central-difference run (determinism, mass scaling).
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
+
 #include <Eigen/Geometry>
 
 #include <cmath>
@@ -173,6 +175,103 @@ TEST(ExplicitSolid, HourglassModesAreResisted) {
       for (std::size_t n = 0; n < 8; ++n) power += f[n](direction) * (*v)[n];
       EXPECT_GT(power, 0.0) << "mode " << mode;
     }
+}
+
+/// Moves the nodes of `run` with its velocities over `steps` cycles of dt, evaluating the forces
+/// at each configuration.
+void advance(Block& run, int steps, double dt) {
+  auto& set = *run.system.sets.front();
+  for (int i = 0; i < steps; ++i) {
+    for (std::size_t n = 0; n < run.x.size(); ++n)
+      run.x[n] += dt * run.vx[n], run.y[n] += dt * run.vy[n], run.z[n] += dt * run.vz[n];
+    set.internal_forces(run.view(), dt, run.forces.data());
+  }
+}
+
+TEST(ExplicitSolid, StiffnessHourglassHoldsItsEnergyAndGivesItBack) {
+  // The cube driven along an hourglass mode (v = 1e-4 Γ_1 in x) for 100 cycles and back: the
+  // stiffness form (EDMP,HGLS type 4) holds ½κq² with κ = QM (λ + 2μ) Σb·b / (3V) = QM (λ + 2μ)
+  // / 2 on the unit cube, q = Σ u·γ = 8 · 1e-4 · t, and gives it all back on the way home (forces
+  // and energy to zero); the viscous form (type 0) dissipates twice the outgoing work.
+  const double gamma[8] = {1, 1, -1, -1, -1, -1, 1, 1};
+  const double e = 2e5, nu = 0.3, modulus = e * (1 - nu) / ((1 + nu) * (1 - 2 * nu));
+  const double qm = 0.1, kappa = qm * modulus / 2.0, dt = 1e-3;
+  const int steps = 100;
+  for (const int type : {4, 0}) {
+    Block run(read_deck_text(std::string(kCube) + fmt::format("EDMP,HGLS,1,{},{}\n", type, qm),
+                             "cube.inp")
+                  .model);
+    for (std::size_t a = 0; a < 8; ++a) run.vx[a] = 1e-4 * gamma[a];
+    advance(run, steps, dt);
+    auto& set = *run.system.sets.front();
+    const double q = 8 * 1e-4 * steps * dt, out = set.energies().hourglass;
+    if (type == 4) {
+      EXPECT_NEAR(out, 0.5 * kappa * q * q, 1e-9 * kappa * q * q);
+      // Each node carries Q γ_I = κ q γ_I against the mode (to the change of shape, 1e-5).
+      EXPECT_NEAR(run.nodal()[0].x(), kappa * q, 1e-4 * kappa * q);
+    }
+    for (std::size_t a = 0; a < 8; ++a) run.vx[a] = -run.vx[a];
+    advance(run, steps, dt);
+    if (type == 4) {
+      EXPECT_NEAR(set.energies().hourglass, 0.0, 1e-9 * out);
+      for (const Vec3& f : run.nodal()) EXPECT_LT(f.norm(), 1e-9 * kappa * q);
+    } else {
+      EXPECT_NEAR(set.energies().hourglass, 2.0 * out, 1e-9 * out);
+    }
+  }
+}
+
+TEST(ExplicitSolid, StiffnessHourglassForcesTurnWithTheElement) {
+  // An hourglass deformation held (stiffness form), then the cube turned rigidly by 90° about z
+  // in 2000 cycles (each cycle the exact rotation, the velocity ω × x: a pure spin): the stored
+  // hourglass forces turn with it (Jaumann rate, first order in ω dt), and the rotation does no
+  // hourglass work.
+  const double gamma[8] = {1, 1, -1, -1, -1, -1, 1, 1};
+  Block run(read_deck_text(std::string(kCube) + "EDMP,HGLS,1,5\n", "cube.inp").model);
+  for (std::size_t a = 0; a < 8; ++a) run.vx[a] = 1e-4 * gamma[a];
+  advance(run, 10, 1e-3);
+  const std::vector<Vec3> before = run.nodal();
+  const double stored = run.system.sets.front()->energies().hourglass;
+  const int steps = 2000;
+  const double omega = (M_PI / 2) / (steps * 1e-3);
+  auto& set = *run.system.sets.front();
+  for (int i = 0; i < steps; ++i) {
+    const double c = std::cos(omega * 1e-3), s = std::sin(omega * 1e-3);
+    for (std::size_t n = 0; n < 8; ++n) {
+      const double x = c * run.x[n] - s * run.y[n], y = s * run.x[n] + c * run.y[n];
+      run.x[n] = x, run.y[n] = y;
+      run.vx[n] = -omega * y, run.vy[n] = omega * x, run.vz[n] = 0.0;
+    }
+    set.internal_forces(run.view(), 1e-3, run.forces.data());
+  }
+  const std::vector<Vec3> after = run.nodal();
+  const Eigen::Matrix3d turn = Eigen::AngleAxisd(M_PI / 2, Vec3::UnitZ()).toRotationMatrix();
+  for (std::size_t n = 0; n < 8; ++n)
+    EXPECT_LT((after[n] - turn * before[n]).norm(), 2e-3 * before[n].norm()) << "node " << n;
+  EXPECT_NEAR(set.energies().hourglass, stored, 2e-3 * stored);
+}
+
+TEST(ExplicitSolid, HourglassControlByMaterial) {
+  // EDMP,HGLS: VAL1 0 to 5, coefficients >= 0, at most six values; QM 0 turns the control off
+  // for that material alone.
+  const auto model = [](const std::string& line) {
+    return read_deck_text(std::string(kCube) + line, "cube.inp").model;
+  };
+  EXPECT_THROW(model("EDMP,HGLS,1,6\n"), InputError);
+  EXPECT_THROW(model("EDMP,HGLS,1,4,-0.1\n"), InputError);
+  EXPECT_THROW(model("EDMP,HGLS,1,4,0.1,1.5,0.06,0.1,0.1,7\n"), InputError);
+  const ExplicitHourglass h = model("EDMP,HGLS,1,4,0.05\n").explicit_dynamics.hourglass_of(1);
+  EXPECT_EQ(h.type, 4);
+  EXPECT_EQ(h.membrane, 0.05);
+  EXPECT_EQ(h.bending, 0.05);
+  EXPECT_EQ(h.warping, 0.05);
+  EXPECT_EQ(h.bulk_quadratic, 1.5);
+  EXPECT_EQ(model("EDHGLS,0.07\n").explicit_dynamics.hourglass_of(1).membrane, 0.07);
+  Block run(model("EDMP,HGLS,1,0,0\n"));
+  const double gamma[8] = {1, 1, -1, -1, -1, -1, 1, 1};
+  for (std::size_t a = 0; a < 8; ++a) run.vz[a] = 0.01 * gamma[a];
+  advance(run, 1, 1e-3);
+  EXPECT_EQ(run.system.sets.front()->energies().hourglass, 0.0);
 }
 
 TEST(ExplicitSolid, KeyoptionsOfSolid164) {
