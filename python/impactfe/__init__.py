@@ -299,6 +299,23 @@ class Results:
                                "gap element such as COMBIN40 is its element item FORC)")
         return merge(per)
 
+    def _contact_points(self, entity, component):
+        entity = integer(entity, "contact")
+        column = {"FX": 0, "FY": 1, "FZ": 2}.get(str(component).upper())
+        if column is None:
+            raise ResultsError(f"contact force component '{component}': FX, FY or FZ")
+        per, found = [], False
+        for a in self._analyses:
+            if ("contact_forces" not in a.group
+                    or not 1 <= entity <= a.group["contact_forces"].shape[1] // 3):
+                continue
+            found = True
+            per.append(self._finite(a, a.rows("contact_forces", (3 * (entity - 1) + column,))))
+        if not found:
+            raise ResultsError(f"contact {entity} is not stored in '{self.path}' (explicit runs "
+                               "store the force of each EDCGEN contact)")
+        return merge(per)
+
     @staticmethod
     def _finite(a, values):
         if values is None:
@@ -306,19 +323,21 @@ class Results:
         return [(float(t), float(v)) for t, v in zip(a.times, values) if math.isfinite(v)]
 
     @guarded
-    def history(self, node=None, element=None, gap=None, item=None):
+    def history(self, node=None, element=None, gap=None, item=None, contact=None):
         """Time history as a DataFrame indexed by time: `node=43, item="UZ"` (or a list of
-        items), `element=86, item="SEQV_TOP"`, `gap=1`. Columns are named like `impactfe post`
-        (N43_UZ, E86_SEQV_TOP, GAP1); with several items the rows are the union of their times
-        and a missing value is NaN."""
-        if sum(x is not None for x in (node, element, gap)) != 1:
-            raise ResultsError("give exactly one of node=, element=, gap=")
+        items), `element=86, item="SEQV_TOP"`, `gap=1`, `contact=1, item="FZ"` (the force on
+        the contact surface of explicit contact 1). Columns are named like `impactfe post`
+        (N43_UZ, E86_SEQV_TOP, GAP1, CONTACT1_FZ); with several items the rows are the union of
+        their times and a missing value is NaN."""
+        if sum(x is not None for x in (node, element, gap, contact)) != 1:
+            raise ResultsError("give exactly one of node=, element=, gap=, contact=")
         if gap is not None:
             items = [None]
         elif item is None:
             raise ResultsError("give item= (" + ("UX..ROTZ, VX..VZ, AX..AZ, FX..MZ"
-                                                 if node is not None else "SAXL, FORC, SEQV, ...")
-                               + ")")
+                                                 if node is not None else "FX, FY, FZ"
+                                                 if contact is not None else
+                                                 "SAXL, FORC, SEQV, ...") + ")")
         else:
             items = _labels(item, "UX, SEQV, ...")
         columns = {}
@@ -327,6 +346,8 @@ class Results:
                 columns[f"N{node}_{it}"] = self._nodal_points(node, it)
             elif element is not None:
                 columns[f"E{element}_{it}"] = self._element_points(element, it)
+            elif contact is not None:
+                columns[f"CONTACT{contact}_{it}"] = self._contact_points(contact, it)
             else:
                 columns[f"GAP{gap}"] = self._gap_points(gap)
         for name, pts in columns.items():

@@ -92,7 +92,7 @@ CLI::App* add_run(CLI::App& app, RunArgs& run) {
 
 struct PostArgs {
   std::string file;
-  std::vector<std::string> nsol, esol, gapf;
+  std::vector<std::string> nsol, esol, gapf, rcforc;
   bool freq = false;
   int mode = 0;
 };
@@ -103,6 +103,8 @@ CLI::App* add_post(CLI::App& app, PostArgs& post) {
   cmd->add_option("--nsol", post.nsol, "NODE,LAB (UX..ROTZ, VX..VZ, AX..AZ, FX..MZ)");
   cmd->add_option("--esol", post.esol, "ELEM,ITEM (SAXL, FORC, STAT, ...)");
   cmd->add_option("--gapf", post.gapf, "GP gap-condition number");
+  cmd->add_option("--rcforc", post.rcforc,
+                  "N,FX|FY|FZ: force on the contact surface of explicit contact N (EDCGEN order)");
   cmd->add_flag("--freq", post.freq, "print mode,frequency_hz");
   cmd->add_option("--mode", post.mode, "print the shape of mode N");
   return cmd;
@@ -125,8 +127,9 @@ int post_command(const PostArgs& post) {
   for (const auto& s : post.nsol) requests.push_back(parse_nsol(s));
   for (const auto& s : post.esol) requests.push_back(parse_esol(s));
   for (const auto& s : post.gapf) requests.push_back(parse_gapf(s));
+  for (const auto& s : post.rcforc) requests.push_back(parse_rcforc(s));
   if (requests.empty()) {
-    std::cerr << "error: give --nsol, --esol, --gapf, --freq or --mode\n";
+    std::cerr << "error: give --nsol, --esol, --gapf, --rcforc, --freq or --mode\n";
     return kExitInput;
   }
   std::cout << post_csv(reader, requests);

@@ -9,6 +9,8 @@
 #include <map>
 #include <tuple>
 
+#include "core/numbers.h"
+
 namespace impactfe {
 
 namespace {
@@ -195,19 +197,27 @@ ExplicitContactSet::ExplicitContactSet(const Model& model, const ExplicitSystem&
   collect_segments(system);
   const std::map<int, int> part = part_of_elements(model);
   const double slsfac = model.explicit_dynamics.penalty_factor;
-  for (const ExplicitContact& k : definitions) {
+  interface_force_.assign(3 * definitions.size(), 0.0);
+  for (std::size_t entity = 0; entity < definitions.size(); ++entity) {
+    const ExplicitContact& k = definitions[entity];
     const bool single = k.option == "ASSC" || k.option == "SS";
     const bool symmetric = k.option == "STS" || k.option == "ASTS";
     std::vector<std::size_t> cont_segs, cont_nodes, targ_segs, targ_nodes;
     // single surface: blank is the whole model
     surface(model, system, part, k, k.contact, cont_segs, cont_nodes);
     if (!single) surface(model, system, part, k, k.target, targ_segs, targ_nodes);
+    // The interface force counts what acts on the contact surface: its own slaves' forces (+1)
+    // and the reactions on its segments of the reverse pass (−1); none for a single surface.
     if (single) {
-      add_pass(k, slsfac * k.slave_scale, single, cont_nodes, cont_segs, system.n_nodes());
+      add_pass(k, slsfac * k.slave_scale, single, cont_nodes, cont_segs, system.n_nodes(), entity,
+               0.0);
+      for (int i = 0; i < 3; ++i) interface_force_[3 * entity + i] = kNaN;
     } else {
-      add_pass(k, slsfac * k.master_scale, single, cont_nodes, targ_segs, system.n_nodes());
+      add_pass(k, slsfac * k.master_scale, single, cont_nodes, targ_segs, system.n_nodes(), entity,
+               1.0);
       if (symmetric)
-        add_pass(k, slsfac * k.slave_scale, single, targ_nodes, cont_segs, system.n_nodes());
+        add_pass(k, slsfac * k.slave_scale, single, targ_nodes, cont_segs, system.n_nodes(), entity,
+                 -1.0);
     }
   }
   force_.assign(3 * system.n_nodes(), 0.0);
@@ -324,7 +334,7 @@ void ExplicitContactSet::surface(const Model& model, const ExplicitSystem& syste
 
 void ExplicitContactSet::add_pass(const ExplicitContact& k, double factor, bool single,
                                   std::vector<std::size_t> slaves, std::vector<std::size_t> segs,
-                                  std::size_t n_nodes) {
+                                  std::size_t n_nodes, std::size_t entity, double side) {
   if (segs.empty())
     throw InputError(k.where, fmt::format("EDCGEN,{}: the target surface has no exterior "
                                           "face of an explicit element (a node component "
@@ -332,6 +342,8 @@ void ExplicitContactSet::add_pass(const ExplicitContact& k, double factor, bool 
                                           k.option));
   Pass p;
   p.definition = &k;
+  p.entity = entity;
+  p.interface_side = side;
   p.factor = factor;
   p.single_surface = single;
   p.slaves = std::move(slaves);
@@ -572,6 +584,12 @@ void ExplicitContactSet::add_contact_force(Pass& p, std::size_t j, const Explici
     f = {f.x + t.x, f.y + t.y, f.z + t.z};
   }
   touch(sn, f.x, f.y, f.z);
+  if (p.interface_side != 0.0) {
+    double* total = &interface_force_[3 * p.entity];
+    total[0] += p.interface_side * f.x;
+    total[1] += p.interface_side * f.y;
+    total[2] += p.interface_side * f.z;
+  }
   // Gershgorin's bound on the largest frequency of M⁻¹K_c: the pair's spring matrix
   // k[1, −N; −N, NNᵀ] has the absolute row sums 2k (slave) and 2k·N_a (masters).
   // Damping lowers the spring's stable step by damped_step_factor: as a stiffer spring.
@@ -631,6 +649,8 @@ ExplicitStepLimit ExplicitContactSet::add_forces(const ExplicitNodalView& s, con
   stored_ = 0.0;
   active_ = 0;
   touched_.clear();
+  for (const Pass& p : passes_)
+    if (p.interface_side != 0.0) std::fill_n(&interface_force_[3 * p.entity], 3, 0.0);
   for (Pass& p : passes_) {
     const ExplicitContact& k = *p.definition;
     const bool on = time >= k.birth && !(k.death > 0.0 && time > k.death);

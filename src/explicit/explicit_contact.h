@@ -41,6 +41,10 @@ class ExplicitContactSet final : public ExplicitInteraction {
   /// Energy in the penalty springs now (normal and tangential): contact_energy() minus it is
   /// what friction and damping dissipated.
   double stored_energy() const { return stored_; }
+  /// The resultant force on the contact surface (Cont of EDCGEN) of each contact entity in the
+  /// last cycle, x, y, z per entity in EDCGEN order (LS-DYNA's RCFORC; the target surface
+  /// takes the opposite force). NaN for a single surface contact, which has no sides.
+  const std::vector<double>& interface_forces() const { return interface_force_; }
   /// A line for the run summary.
   std::string summary() const;
   long searches() const { return searches_; }
@@ -56,7 +60,9 @@ class ExplicitContactSet final : public ExplicitInteraction {
   /// One node-to-surface pass.
   struct Pass {
     const ExplicitContact* definition;
-    double factor;  // SLSFAC × SFS or SFM
+    std::size_t entity;     // the contact entity (EDCGEN order from 0)
+    double interface_side;  // +1: slaves on the contact surface; −1: segments on it; 0: single
+    double factor;          // SLSFAC × SFS or SFM
     bool single_surface;
     std::vector<std::size_t> slaves;    // run node indices, ascending
     std::vector<std::size_t> segments;  // indices into segments_, ascending
@@ -85,8 +91,8 @@ class ExplicitContactSet final : public ExplicitInteraction {
                std::vector<std::size_t>& nodes) const;
   /// One node-to-surface pass of `k`: `slaves` against `segs`, penalty factor `factor`.
   void add_pass(const ExplicitContact& k, double factor, bool single,
-                std::vector<std::size_t> slaves, std::vector<std::size_t> segs,
-                std::size_t n_nodes);
+                std::vector<std::size_t> slaves, std::vector<std::size_t> segs, std::size_t n_nodes,
+                std::size_t entity, double side);
   /// Single surface: the nodes of the segments around each slave of `p` (Pass::near).
   void list_near_nodes(Pass& p, std::size_t n_nodes) const;
 
@@ -121,6 +127,7 @@ class ExplicitContactSet final : public ExplicitInteraction {
   int element_ = 0;  // an element in contact (named when the contact's step rules)
   std::vector<std::size_t> touched_, touched_before_;
   std::vector<std::uint8_t> mark_;
+  std::vector<double> interface_force_;  // interface_forces()
   double energy_ = 0.0, stored_ = 0.0;
   long searches_ = 0;
   long active_ = 0, peak_active_ = 0;

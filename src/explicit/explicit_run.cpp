@@ -182,10 +182,11 @@ void set_initial_velocities(const Model& model, const ExplicitSystem& s, Central
   }
 }
 
-/// One stored time point: nodal U, V, A and reactions in the file's node order; the element
-/// results and the energies when `full`.
+/// One stored time point: nodal U, V, A and reactions in the file's node order, the contact
+/// entities' forces; the element results and the energies when `full`.
 TimePoint make_point(const ExplicitSystem& s, const CentralDifference& cd,
-                     const std::vector<int>& file_nodes, int load_step, int point, bool full) {
+                     const ExplicitContactSet& contact, const std::vector<int>& file_nodes,
+                     int load_step, int point, bool full) {
   TimePoint p;
   p.time = cd.time();
   p.load_step = load_step;
@@ -213,6 +214,11 @@ TimePoint make_point(const ExplicitSystem& s, const CentralDifference& cd,
       p.acceleration(row, 3 + i) = b(i);
       if (cd.rotation_fixed(n, i)) p.reaction(row, 3 + i) = m(i);
     }
+  }
+  if (!contact.empty()) {
+    const std::vector<double>& f = contact.interface_forces();
+    p.contact_forces =
+        Eigen::Map<const Eigen::VectorXd>(f.data(), static_cast<Eigen::Index>(f.size()));
   }
   const ExplicitEnergies e = cd.energies();
   p.energy = {{"kinetic", e.kinetic},
@@ -354,7 +360,7 @@ ExplicitRunSummary run_explicit_analysis(const Model& model, const AnalysisReque
     if (i == 0) {
       cd.start();
       // The initial state is load step 0, substep 0, as the implicit transients store it.
-      writer.append(make_point(system, cd, writer.node_ids(), 0, 0, true));
+      writer.append(make_point(system, cd, contact, writer.node_ids(), 0, 0, true));
     }
     const double step_end = *step.time_end;
     const double start = thread_cpu_seconds();
@@ -375,7 +381,8 @@ ExplicitRunSummary run_explicit_analysis(const Model& model, const AnalysisReque
         loop_seconds += thread_cpu_seconds() - start;
         check.check(cd);
         if (full || store_history)
-          writer.append(make_point(system, cd, writer.node_ids(), step.number, ++point, full));
+          writer.append(
+              make_point(system, cd, contact, writer.node_ids(), step.number, ++point, full));
         results.advance(cd.time());
         history.advance(cd.time());
         if (const int signal = stop_requested())

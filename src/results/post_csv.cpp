@@ -92,6 +92,16 @@ PostRequest parse_gapf(const std::string& spec) {
   return {PostRequest::Gap, *parse_positive(f[0]), ""};
 }
 
+PostRequest parse_rcforc(const std::string& spec) {
+  auto f = split_fields(spec);
+  const std::string lab = f.size() == 2 ? to_upper(f[1]) : "";
+  if (f.size() != 2 || !parse_positive(f[0]) || (lab != "FX" && lab != "FY" && lab != "FZ"))
+    throw InputError(fmt::format(
+        "contact force request '{}': expected the contact entity and FX, FY or FZ (e.g. 1,FZ)",
+        spec));
+  return {PostRequest::Contact, *parse_positive(f[0]), lab};
+}
+
 std::string post_column_name(const PostRequest& r) {
   switch (r.kind) {
     case PostRequest::Nodal:
@@ -100,6 +110,8 @@ std::string post_column_name(const PostRequest& r) {
       return fmt::format("E{}_{}", r.id, r.label);
     case PostRequest::Gap:
       return fmt::format("GAP{}", r.id);
+    case PostRequest::Contact:
+      return fmt::format("CONTACT{}_{}", r.id, r.label);
   }
   return {};
 }
@@ -113,6 +125,8 @@ std::vector<std::pair<double, double>> post_series(const ResultsReader& reader,
       return reader.element_series(r.id, r.label);
     case PostRequest::Gap:
       return reader.gap_force_series(r.id);
+    case PostRequest::Contact:
+      return reader.contact_force_series(r.id, r.label);
   }
   return {};
 }
@@ -200,6 +214,7 @@ std::string results_info(const ResultsReader& reader) {
       out += "\n";
     }
     if (a.n_gaps > 0) out += fmt::format("  gap forces: {}\n", a.n_gaps);
+    if (a.n_contacts > 0) out += fmt::format("  contact forces: {} contacts\n", a.n_contacts);
     if (a.n_modes > 0) out += fmt::format("  modes: {}\n", a.n_modes);
     for (const auto& [name, value] : a.numeric_attributes)
       out += fmt::format("  {} = {:.10g}\n", name, value);

@@ -11,9 +11,10 @@ namespace impactfe {
 
 /// One requested CSV column: a nodal quantity (NSOL), an element item (ESOL) or a GP gap force.
 struct PostRequest {
-  enum Kind { Nodal, Element, Gap } kind = Nodal;
-  int id = 0;         // node, element or 1-based gap number
-  std::string label;  // upper-cased: UX..MZ (Nodal), item name (Element), empty (Gap)
+  enum Kind { Nodal, Element, Gap, Contact } kind = Nodal;
+  int id = 0;  // node, element or 1-based gap number
+  /// Upper-cased: UX..MZ (Nodal), item name (Element), empty (Gap), FX FY FZ (Contact).
+  std::string label;
 };
 
 /// Parses "NODE,LAB", e.g. "2,UX" (LAB as accepted by ResultsReader::nodal_series).
@@ -22,6 +23,8 @@ PostRequest parse_nsol(const std::string& spec);
 PostRequest parse_esol(const std::string& spec);
 /// Parses "NUM", the 1-based GP gap number.
 PostRequest parse_gapf(const std::string& spec);
+/// --rcforc N,FX: the force on the contact surface of explicit contact entity N.
+PostRequest parse_rcforc(const std::string& spec);
 
 /// Column header of a request: N<node>_<LAB>, E<elem>_<ITEM> or GAP<n>.
 std::string post_column_name(const PostRequest& request);

@@ -41,6 +41,9 @@ struct TimePoint {
   Eigen::MatrixXd reaction;      // reaction forces at constrained DOFs, NaN elsewhere
   std::map<std::string, ElementResultTable> element_results;  // by element family
   Eigen::VectorXd gap_forces;  // GP gap-condition forces, input order (reduced / MSUP runs)
+  /// Explicit runs with contact: the resultant force (x, y, z) on the contact surface of each
+  /// EDCGEN entity, 3 per entity in EDCGEN order (NaN for a single surface).
+  Eigen::VectorXd contact_forces;
   /// Frame acceleration (ACEL) acting at this time point, when the analysis records it (full
   /// runs): a superelement expansion applies its static correction from it.
   std::optional<Eigen::Vector3d> frame_acceleration;
@@ -160,8 +163,9 @@ class ResultsReader {
     int n_time_points = 0;
     double time_first = 0.0;  // first / last stored time (0 when no time point)
     double time_last = 0.0;
-    int n_gaps = 0;   // columns of gap_forces
-    int n_modes = 0;  // modal results stored in this analysis
+    int n_gaps = 0;      // columns of gap_forces
+    int n_contacts = 0;  // contact entities of contact_forces (3 columns each)
+    int n_modes = 0;     // modal results stored in this analysis
     std::vector<std::string> element_families;
     std::map<std::string, double> numeric_attributes;
     std::map<std::string, std::string> text_attributes;
@@ -202,6 +206,10 @@ class ResultsReader {
   std::vector<std::pair<double, double>> element_series(int element, const std::string& item) const;
   /// Time series of a GP gap-condition force (1-based gap number).
   std::vector<std::pair<double, double>> gap_force_series(int gap) const;
+  /// Time series of the force on the contact surface of an explicit contact entity (1-based,
+  /// EDCGEN order), component FX, FY or FZ.
+  std::vector<std::pair<double, double>> contact_force_series(int entity,
+                                                              const std::string& component) const;
   /// Modal frequencies (Hz) of the last modal analysis; empty when none.
   std::vector<double> frequencies() const;
   /// Damped frequencies and stabilities (Hz) of the last modal analysis (its attributes

@@ -640,7 +640,8 @@ void ResultsFileWriter::append(const TimePoint& point) {
   Impl& m = *impl_;
   double values = static_cast<double>(point.displacement.size() + point.displacement_imag.size() +
                                       point.velocity.size() + point.acceleration.size() +
-                                      point.reaction.size() + point.gap_forces.size()) +
+                                      point.reaction.size() + point.gap_forces.size() +
+                                      point.contact_forces.size()) +
                   16.0;
   for (const auto& [family, table] : point.element_results)
     values += static_cast<double>(table.values.size() + table.element_ids.size());
@@ -662,13 +663,15 @@ void ResultsFileWriter::append(const TimePoint& point) {
   m.write_nodal("A", point.acceleration);
   m.write_reactions(point.reaction);
 
-  if (point.gap_forces.size() > 0) {
-    const auto n_g = static_cast<hsize_t>(point.gap_forces.size());
-    BlockSeries& s = m.series_for("gap_forces", {n_g});
-    IMPACTFE_CHECK(n_g == s.row_dims[0],
-                   fmt::format("ResultsWriter::append: {} gap forces, the analysis has {}", n_g,
+  // Per-point vectors whose length the analysis's first point fixes.
+  for (const auto& [name, v] : {std::pair{"gap_forces", &point.gap_forces},
+                                std::pair{"contact_forces", &point.contact_forces}}) {
+    if (v->size() == 0) continue;
+    BlockSeries& s = m.series_for(name, {static_cast<hsize_t>(v->size())});
+    IMPACTFE_CHECK(static_cast<hsize_t>(v->size()) == s.row_dims[0],
+                   fmt::format("ResultsWriter::append: {} {}, the analysis has {}", v->size(), name,
                                s.row_dims[0]));
-    m.put_row(s, point.gap_forces.data());
+    m.put_row(s, v->data());
   }
   if (point.frame_acceleration)
     m.put_row(m.series_for("frame_acceleration", {3}), point.frame_acceleration->data());

@@ -353,6 +353,13 @@ Analysis ResultsReader::Impl::load_analysis(int k, const std::string& group) con
     Handle ds(check(H5Dopen2(g, "gap_forces", H5P_DEFAULT), "open gap_forces"));
     an.info.n_gaps = static_cast<int>(h5::dims_of(ds).at(1));
   }
+  if (h5::exists(g, "contact_forces")) {
+    Handle ds(check(H5Dopen2(g, "contact_forces", H5P_DEFAULT), "open contact_forces"));
+    const hsize_t columns = h5::dims_of(ds).at(1);
+    if (columns % 3 != 0)
+      throw std::runtime_error("contact_forces has a column count that is not 3 per contact");
+    an.info.n_contacts = static_cast<int>(columns / 3);
+  }
   if (h5::exists(g, "frequencies")) {
     Handle fds(check(H5Dopen2(g, "frequencies", H5P_DEFAULT), "open frequencies"));
     an.info.n_modes = static_cast<int>(h5::dims_of(fds).at(0));
@@ -555,6 +562,39 @@ std::vector<std::pair<double, double>> ResultsReader::gap_force_series(int gap) 
   });
 }
 
+std::vector<std::pair<double, double>> ResultsReader::contact_force_series(
+    int entity, const std::string& component) const {
+  return impl_->guarded([&] {
+    static const std::map<std::string, int> kComponent = {{"FX", 0}, {"FY", 1}, {"FZ", 2}};
+    const auto c = kComponent.find(component);
+    if (c == kComponent.end())
+      throw InputError(fmt::format("contact force component '{}': FX, FY or FZ", component));
+    Series merged;
+    bool found = false;
+    int most = 0;
+    for (const auto& an : impl_->analyses) {
+      most = std::max(most, an.info.n_contacts);
+      if (entity < 1 || entity > an.info.n_contacts) continue;
+      found = true;
+      merge_into(merged,
+                 impl_->collect(
+                     an, impl_->column(an, "contact_forces",
+                                       static_cast<hsize_t>(3 * (entity - 1) + c->second), -1)));
+    }
+    if (!found)
+      throw InputError(most == 0
+                           ? fmt::format("no contact forces are stored in '{}' (explicit runs "
+                                         "with EDCGEN store them)",
+                                         impl_->path)
+                           : fmt::format("contact {} does not exist (the results file has "
+                                         "contacts 1..{})",
+                                         entity, most));
+    std::stable_sort(merged.begin(), merged.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
+    return merged;
+  });
+}
+
 std::vector<std::pair<int, int>> ResultsReader::load_steps_of(int analysis) const {
   return impl_->guarded([&] {
     const Analysis& an = impl_->analysis(analysis);
@@ -664,6 +704,11 @@ TimePoint ResultsReader::time_point(int analysis, int k) const {
       const auto n_g = static_cast<hsize_t>(an.info.n_gaps);
       const auto v = impl_->rows(an, "gap_forces", {0}, {n_g}, r, 1);
       p.gap_forces = Eigen::Map<const Eigen::VectorXd>(v.data(), an.info.n_gaps);
+    }
+    if (an.info.n_contacts > 0) {
+      const auto n_c = static_cast<hsize_t>(3 * an.info.n_contacts);
+      const auto v = impl_->rows(an, "contact_forces", {0}, {n_c}, r, 1);
+      p.contact_forces = Eigen::Map<const Eigen::VectorXd>(v.data(), 3 * an.info.n_contacts);
     }
     if (h5::exists(file, an.group + "/frame_acceleration")) {
       const auto v = impl_->rows(an, "frame_acceleration", {0}, {3}, r, 1);

@@ -20,6 +20,8 @@ from conftest import EXAMPLES, ROOT
 #: Results file name -> the deck that makes it (examples/<name>.inp unless said).
 DECKS_OF = {name: os.path.join(EXAMPLES, name[:-3] + ".inp") for name in (
     "helmet_full.h5", "crash1.h5", "crash3.h5", "plate_drop.h5", "plate_modes.h5")}
+DECKS_OF["explicit_contact_blocks_solid164.h5"] = os.path.join(
+    ROOT, "tests", "verification", "explicit_contact_blocks_solid164.inp")
 PAGES = ["README.md", "python/README.md", *sorted(
     os.path.relpath(p, ROOT) for p in glob.glob(os.path.join(ROOT, "docs", "**", "*.md"),
                                                 recursive=True))]

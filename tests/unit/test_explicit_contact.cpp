@@ -145,6 +145,27 @@ TEST(ExplicitContact, BlockDropOnOffsetMeshesGivesBackTheEnergy) {
   EXPECT_LT(d.momentum, 1e-9);
 }
 
+TEST(ExplicitContact, InterfaceForceIsWhatMovesTheContactSurface) {
+  // The impactor (part 1, nodes 1..27, the contact surface of EDCGEN,ASTS,1,2) feels only the
+  // contact, its elements' forces summing to zero over its nodes: each cycle the interface force
+  // on it is Σ m a of its nodes, and the target takes the opposite (Σ m a of nodes 1001..).
+  ContactRun r(prep("explicit_contact_blocks_solid164.inp"), 0, -1);
+  double peak = 0.0, worst = 0.0;
+  while (r.cd.time() < 4e-5) {
+    r.cd.cycle(std::min(r.cd.stable_step(), 4e-5 - r.cd.time()));
+    Vec3 impactor = Vec3::Zero(), target = Vec3::Zero();
+    for (std::size_t n = 0; n < r.system.n_nodes(); ++n)
+      (r.system.node_ids[n] <= 27 ? impactor : target) += r.system.mass[n] * r.cd.acceleration(n);
+    const std::vector<double>& f = r.contact.interface_forces();
+    ASSERT_EQ(f.size(), 3u);
+    const Vec3 force(f[0], f[1], f[2]);
+    peak = std::max(peak, force.norm());
+    worst = std::max({worst, (force - impactor).norm(), (force + target).norm()});
+  }
+  EXPECT_GT(peak, 1e4);  // the impact: m1 v0 = 0.312 taken in about 2e-5
+  EXPECT_LT(worst, 1e-9 * peak);
+}
+
 /// A SHELL163 plate (4 x 4 elements, 0.04 x 0.04, thickness 0.004) at z = 0 and a SOLID164 block
 /// (2 x 2 x 1 elements, 0.02 x 0.02 x 0.01) centred under or over it, 0.005 apart at their
 /// surfaces, the block moving towards the plate at 5 m/s. ASTS between the parts (block 1,
