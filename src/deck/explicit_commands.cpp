@@ -97,11 +97,10 @@ void edmp_hourglass(DeckReader& r, const Command& c, int mat) {
   h.warping = r.real(c, 8, h.membrane);
   for (const double v : {h.membrane, h.bulk_quadratic, h.bulk_linear, h.bending, h.warping})
     if (!(v >= 0.0)) r.fail(c, fmt::format("VAL2 to VAL6 are coefficients >= 0, got {:g}", v));
-  for (const double v : {h.membrane, h.bending, h.warping})
-    if (v > 0.15)
-      r.warn(c, fmt::format("hourglass coefficient {:g} above 0.15 may make the run unstable "
-                            "(EDMP notes)",
-                            v));
+  if (const double most = std::max({h.membrane, h.bending, h.warping}); most > 0.15)
+    r.warn(c, fmt::format("hourglass coefficient {:g} above 0.15 may make the run unstable "
+                          "(EDMP notes)",
+                          most));
   for (int k = 9; k <= c.n_fields(); ++k)
     if (!c.blank(k)) r.fail(c, "HGLS takes VAL1 to VAL6 only");
   h.where = c.where;

@@ -260,8 +260,8 @@ class EnergyCheck {
         "against {:.4g} "
         "put in (initial kinetic + external work), {:.1f} % off (bound {:.0f} %, passed at {} "
         "checks in a row): an unstable time step (EDCTS TSSFAC above 1 or a stiff element "
-        "outside the step estimate) or an hourglass mode out of control (EDHGLS). The results "
-        "up to here are kept; --accept-energy-error goes on",
+        "outside the step estimate) or an hourglass mode out of control (EDHGLS, EDMP,HGLS). "
+        "The results up to here are kept; --accept-energy-error goes on",
         cd.time(), cd.cycles(), e.drift() > 0 ? "created" : "lost",
         e.kinetic + e.internal + e.hourglass + e.contact + e.damping, e.put_in(),
         100.0 * std::abs(e.drift()) / reference, 100.0 * kExplicitEnergyBound, kExplicitChecksOver);
