@@ -316,6 +316,24 @@ class Results:
                                "store the force of each EDCGEN contact)")
         return merge(per)
 
+    def _part_points(self, part, item):
+        part = integer(part, "part")
+        column = {"KE": 0, "IE": 1, "HE": 2}.get(str(item).upper())
+        if column is None:
+            raise ResultsError(f"part energy '{item}': KE (kinetic), IE (internal) or HE "
+                               "(hourglass)")
+        per, found = [], False
+        for a in self._analyses:
+            if ("part_energies" not in a.group
+                    or not 1 <= part <= a.group["part_energies"].shape[1] // 3):
+                continue
+            found = True
+            per.append(self._finite(a, a.rows("part_energies", (3 * (part - 1) + column,))))
+        if not found:
+            raise ResultsError(f"part {part} has no energies stored in '{self.path}' (explicit "
+                               "runs store them)")
+        return merge(per)
+
     @staticmethod
     def _finite(a, values):
         if values is None:
@@ -323,20 +341,23 @@ class Results:
         return [(float(t), float(v)) for t, v in zip(a.times, values) if math.isfinite(v)]
 
     @guarded
-    def history(self, node=None, element=None, gap=None, item=None, contact=None):
+    def history(self, node=None, element=None, gap=None, item=None, contact=None,
+                part=None):
         """Time history as a DataFrame indexed by time: `node=43, item="UZ"` (or a list of
         items), `element=86, item="SEQV_TOP"`, `gap=1`, `contact=1, item="FZ"` (the force on
-        the contact surface of explicit contact 1). Columns are named like `impactfe post`
-        (N43_UZ, E86_SEQV_TOP, GAP1, CONTACT1_FZ); with several items the rows are the union of
-        their times and a missing value is NaN."""
-        if sum(x is not None for x in (node, element, gap, contact)) != 1:
-            raise ResultsError("give exactly one of node=, element=, gap=, contact=")
+        the contact surface of explicit contact 1), `part=2, item="KE"` (KE, IE, HE: the
+        kinetic, internal, hourglass energy of part 2 of an explicit run). Columns are named
+        like `impactfe post` (N43_UZ, E86_SEQV_TOP, GAP1, CONTACT1_FZ, PART2_KE); with several
+        items the rows are the union of their times and a missing value is NaN."""
+        if sum(x is not None for x in (node, element, gap, contact, part)) != 1:
+            raise ResultsError("give exactly one of node=, element=, gap=, contact=, part=")
         if gap is not None:
             items = [None]
         elif item is None:
             raise ResultsError("give item= (" + ("UX..ROTZ, VX..VZ, AX..AZ, FX..MZ"
                                                  if node is not None else "FX, FY, FZ"
-                                                 if contact is not None else
+                                                 if contact is not None else "KE, IE, HE"
+                                                 if part is not None else
                                                  "SAXL, FORC, SEQV, ...") + ")")
         else:
             items = _labels(item, "UX, SEQV, ...")
@@ -348,6 +369,8 @@ class Results:
                 columns[f"E{element}_{it}"] = self._element_points(element, it)
             elif contact is not None:
                 columns[f"CONTACT{contact}_{it}"] = self._contact_points(contact, it)
+            elif part is not None:
+                columns[f"PART{part}_{it}"] = self._part_points(part, it)
             else:
                 columns[f"GAP{gap}"] = self._gap_points(gap)
         for name, pts in columns.items():

@@ -92,7 +92,7 @@ CLI::App* add_run(CLI::App& app, RunArgs& run) {
 
 struct PostArgs {
   std::string file;
-  std::vector<std::string> nsol, esol, gapf, rcforc;
+  std::vector<std::string> nsol, esol, gapf, rcforc, part;
   bool freq = false;
   int mode = 0;
 };
@@ -105,6 +105,8 @@ CLI::App* add_post(CLI::App& app, PostArgs& post) {
   cmd->add_option("--gapf", post.gapf, "GP gap-condition number");
   cmd->add_option("--rcforc", post.rcforc,
                   "N,FX|FY|FZ: force on the contact surface of explicit contact N (EDCGEN order)");
+  cmd->add_option("--part", post.part,
+                  "N,KE|IE|HE: kinetic, internal or hourglass energy of part N (EDPART numbers)");
   cmd->add_flag("--freq", post.freq, "print mode,frequency_hz");
   cmd->add_option("--mode", post.mode, "print the shape of mode N");
   return cmd;
@@ -128,8 +130,9 @@ int post_command(const PostArgs& post) {
   for (const auto& s : post.esol) requests.push_back(parse_esol(s));
   for (const auto& s : post.gapf) requests.push_back(parse_gapf(s));
   for (const auto& s : post.rcforc) requests.push_back(parse_rcforc(s));
+  for (const auto& s : post.part) requests.push_back(parse_part_energy(s));
   if (requests.empty()) {
-    std::cerr << "error: give --nsol, --esol, --gapf, --rcforc, --freq or --mode\n";
+    std::cerr << "error: give --nsol, --esol, --gapf, --rcforc, --part, --freq or --mode\n";
     return kExitInput;
   }
   std::cout << post_csv(reader, requests);

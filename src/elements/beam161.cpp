@@ -105,9 +105,8 @@ class Beam161Set final : public ExplicitElementSet {
   int nodes_per_element() const override { return 2; }
   const int* nodes(std::size_t k) const override { return &nodes_[2 * k]; }
   bool has_rotations() const override { return true; }
-  void add_lumped_mass(std::vector<double>& mass) const override {
-    for (std::size_t k = 0; k < size(); ++k)
-      for (int a = 0; a < 2; ++a) mass[nodes_[2 * k + a]] += half_mass(k);
+  void add_element_mass(std::size_t k, std::vector<double>& mass) const override {
+    for (int a = 0; a < 2; ++a) mass[nodes_[2 * k + a]] += half_mass(k);
   }
   void add_rotary_inertia(std::vector<double>& inertia) const override {
     for (std::size_t k = 0; k < size(); ++k)
@@ -397,7 +396,7 @@ ExplicitStepLimit Beam161Set::chunk_forces(const ExplicitNodalView& st, double d
       ms += pt.w * pt.t * s[0];
       mt -= pt.w * pt.s * s[0];
     }
-    energies.internal += dt * lm * power;
+    energies.internal += internal_work(k, dt * lm * power);
     energies.plastic_work += lm * plastic;
     // ∂P/∂v and ∂P/∂ω of P = L(Nε̇ + Q_s γ̇_s + Q_t γ̇_t + T κ̇_r + M_s κ̇_s + M_t κ̇_t).
     const Vec3 force = n * e1 + qs * e2 + qt * e3;

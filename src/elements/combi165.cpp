@@ -61,7 +61,7 @@ class Combi165Set final : public ExplicitElementSet {
   int element_id(std::size_t k) const override { return ids_[k]; }
   int nodes_per_element() const override { return 2; }
   const int* nodes(std::size_t k) const override { return &nodes_[2 * k]; }
-  void add_lumped_mass(std::vector<double>&) const override {}
+  void add_element_mass(std::size_t, std::vector<double>&) const override {}
   Eigen::Matrix3d second_mass_moment(const ExplicitNodalView&, std::size_t) const override {
     return Eigen::Matrix3d::Zero();
   }
@@ -152,11 +152,11 @@ ExplicitStepLimit Combi165Set::chunk_forces(const ExplicitNodalView& s, double d
     if (stiffness_[k] > 0.0) {
       force = stiffness_[k] * (l - rest_length_[k]);
       // The work of a linear spring over the step, exact: ½(N_n + N_{n+1})(L_{n+1} − L_n).
-      energies.internal += 0.5 * (old + force) * (l - length_[k]);
+      energies.internal += internal_work(k, 0.5 * (old + force) * (l - length_[k]));
     } else {
       const double rate = e.dot(Vec3(s.vx[j] - s.vx[i], s.vy[j] - s.vy[i], s.vz[j] - s.vz[i]));
       force = damping_[k] * rate;
-      energies.internal += dt * force * rate;  // dissipated: c ṡ² Δt
+      energies.internal += internal_work(k, dt * force * rate);  // dissipated: c ṡ² Δt
     }
     force_[k] = force;
     length_[k] = l;

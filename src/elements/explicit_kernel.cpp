@@ -15,6 +15,7 @@ ExplicitStepLimit ExplicitElementSet::internal_forces_and_moments(const Explicit
                                                                   double dt, double* element_forces,
                                                                   double* element_moments) {
   const std::size_t n = size();
+  if (element_energy_.size() != 2 * n) element_energy_.assign(2 * n, 0.0);
   if (has_rotations() && element_moments == nullptr) {
     // A run without rotations elsewhere still needs the set's moments computed (sized once).
     dropped_moments_.resize(3 * static_cast<std::size_t>(nodes_per_element()) * n);

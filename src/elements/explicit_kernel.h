@@ -95,8 +95,12 @@ class ExplicitElementSet {
   virtual int nodes_per_element() const = 0;
   /// The run's node indices of element k (nodes_per_element of them).
   virtual const int* nodes(std::size_t k) const = 0;
-  /// Adds each element's lumped (row-sum) mass to its nodes.
-  virtual void add_lumped_mass(std::vector<double>& mass) const = 0;
+  /// Adds element k's lumped (row-sum) mass to its nodes.
+  virtual void add_element_mass(std::size_t k, std::vector<double>& mass) const = 0;
+  /// Adds each element's lumped mass to its nodes.
+  void add_lumped_mass(std::vector<double>& mass) const {
+    for (std::size_t k = 0; k < size(); ++k) add_element_mass(k, mass);
+  }
   /// ∫ρ x xᵀ dV of element k about the origin in the configuration `state`: the rotational
   /// inertia of a rigid body (EDMP,RIGID) made of such elements.
   virtual Eigen::Matrix3d second_mass_moment(const ExplicitNodalView& state,
@@ -127,6 +131,9 @@ class ExplicitElementSet {
                                                 double* element_forces, double* element_moments);
   /// Energies accumulated since the start.
   ExplicitSetEnergies energies() const { return energies_; }
+  /// Each element's internal energy (with its plastic work) and hourglass energy since the
+  /// start, 2 per element (empty before the first cycle): the part energies of the results.
+  const std::vector<double>& element_energies() const { return element_energy_; }
   /// Elements per chunk of the threaded element loop.
   static constexpr std::size_t kChunk = 256;
   /// The contact segments of every element (all faces of a solid: the contact keeps the ones
@@ -143,7 +150,19 @@ class ExplicitElementSet {
                                          double* element_forces, double* element_moments,
                                          std::size_t begin, std::size_t end,
                                          ExplicitSetEnergies& energies) = 0;
+  /// Adds an element's internal (hourglass) energy increment to its own total and returns it
+  /// for the chunk's sum: `energies.internal += internal_work(k, dW)`. Each element writes
+  /// only its own entries, so the element loop may run on several threads.
+  double internal_work(std::size_t k, double work) {
+    element_energy_[2 * k] += work;
+    return work;
+  }
+  double hourglass_work(std::size_t k, double work) {
+    element_energy_[2 * k + 1] += work;
+    return work;
+  }
   ExplicitSetEnergies energies_;
+  std::vector<double> element_energy_;
 
  private:
   std::vector<ExplicitSetEnergies> chunk_energies_;

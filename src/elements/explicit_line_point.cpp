@@ -48,9 +48,8 @@ class Link160Set final : public ExplicitElementSet {
   int element_id(std::size_t k) const override { return ids_[k]; }
   int nodes_per_element() const override { return 2; }
   const int* nodes(std::size_t k) const override { return &nodes_[2 * k]; }
-  void add_lumped_mass(std::vector<double>& mass) const override {
-    for (std::size_t k = 0; k < size(); ++k)
-      for (int a = 0; a < 2; ++a) mass[nodes_[2 * k + a]] += 0.5 * density_[k] * volume_[k];
+  void add_element_mass(std::size_t k, std::vector<double>& mass) const override {
+    for (int a = 0; a < 2; ++a) mass[nodes_[2 * k + a]] += 0.5 * density_[k] * volume_[k];
   }
   /// ∫ρA x xᵀ ds, x linear along the link: m (x₁x₁ᵀ + x₂x₂ᵀ)/3 + m (x₁x₂ᵀ + x₂x₁ᵀ)/6.
   Eigen::Matrix3d second_mass_moment(const ExplicitNodalView& s, std::size_t k) const override {
@@ -169,7 +168,7 @@ ExplicitStepLimit Link160Set::chunk_forces(const ExplicitNodalView& s, double dt
       }
     }
     stress_[k] = trial;
-    energies.internal += dt * 0.5 * (old + trial) * rate * area_[k] * l;
+    energies.internal += internal_work(k, dt * 0.5 * (old + trial) * rate * area_[k] * l);
     const double force = trial * area_[k];
     double* fk = f + 6 * k;
     for (int c = 0; c < 3; ++c) {
@@ -198,8 +197,8 @@ class Mass166Set final : public ExplicitElementSet {
   int element_id(std::size_t k) const override { return ids_[k]; }
   int nodes_per_element() const override { return 1; }
   const int* nodes(std::size_t k) const override { return &nodes_[k]; }
-  void add_lumped_mass(std::vector<double>& mass) const override {
-    for (std::size_t k = 0; k < size(); ++k) mass[nodes_[k]] += mass_[k];
+  void add_element_mass(std::size_t k, std::vector<double>& mass) const override {
+    mass[nodes_[k]] += mass_[k];
   }
   Eigen::Matrix3d second_mass_moment(const ExplicitNodalView& s, std::size_t k) const override {
     const int n = nodes_[k];

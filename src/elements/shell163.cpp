@@ -150,9 +150,8 @@ class Shell163Set final : public ExplicitElementSet {
   int nodes_per_element() const override { return 4; }
   const int* nodes(std::size_t k) const override { return &nodes_[4 * k]; }
   bool has_rotations() const override { return true; }
-  void add_lumped_mass(std::vector<double>& mass) const override {
-    for (std::size_t k = 0; k < size(); ++k)
-      for (int a = 0; a < 4; ++a) mass[nodes_[4 * k + a]] += density_[k] * share_[4 * k + a];
+  void add_element_mass(std::size_t k, std::vector<double>& mass) const override {
+    for (int a = 0; a < 4; ++a) mass[nodes_[4 * k + a]] += density_[k] * share_[4 * k + a];
   }
   /// LS-DYNA scales the shells' rotary inertia so that the rotations do not control the step.
   /// Here I = m (A + t²)/6 per node with m its translational share: the stiffest rotational
@@ -477,7 +476,7 @@ ExplicitStepLimit Shell163Set::chunk_forces(const ExplicitNodalView& state, doub
       moment[2] += weight * z * s[3];
     }
     const double area = kin.area;
-    energies.internal += dt * area * power;
+    energies.internal += internal_work(k, dt * area * power);
     energies.plastic_work += area * plastic;
     // Hourglass control of the BT modes: γ = h − (h·x) B1 − (h·y) B2 is orthogonal to every
     // linear field, so it never resists a uniform strain rate or a rigid motion.
@@ -541,7 +540,7 @@ ExplicitStepLimit Shell163Set::chunk_forces(const ExplicitNodalView& state, doub
         hourglass_power += h[i] * rate[i];
       }
     }
-    energies.hourglass += dt * hourglass_power;
+    energies.hourglass += hourglass_work(k, dt * hourglass_power);
     // Nodal forces and moments: the derivatives of the power A(N:d + M:κ + Q·γ) by the nodal
     // velocities (local axes), then to global axes.
     double* f = element_forces + 12 * k;

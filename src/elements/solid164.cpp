@@ -168,9 +168,8 @@ class Solid164Set final : public ExplicitElementSet {
   int element_id(std::size_t k) const override { return ids_[k]; }
   int nodes_per_element() const override { return 8; }
   const int* nodes(std::size_t k) const override { return &nodes_[8 * k]; }
-  void add_lumped_mass(std::vector<double>& mass) const override {
-    for (std::size_t k = 0; k < size(); ++k)
-      for (int a = 0; a < 8; ++a) mass[nodes_[8 * k + a]] += density_[k] * share_[8 * k + a];
+  void add_element_mass(std::size_t k, std::vector<double>& mass) const override {
+    for (int a = 0; a < 8; ++a) mass[nodes_[8 * k + a]] += density_[k] * share_[8 * k + a];
   }
   Eigen::Matrix3d second_mass_moment(const ExplicitNodalView& state, std::size_t k) const override {
     double x[8], y[8], z[8], m[9];
@@ -336,7 +335,7 @@ ExplicitStepLimit Solid164Set::chunk_forces(const ExplicitNodalView& state, doub
     }
     limit.take(mass_factor_[k] * length / (speed_term + std::sqrt(speed_term * speed_term + c * c)),
                ids_[k]);
-    energies.internal += dt * kin.volume * (stress_power - q * volumetric);
+    energies.internal += internal_work(k, dt * kin.volume * (stress_power - q * volumetric));
     const double* s = &stress_[6 * k];
     double* f = element_forces + 24 * k;
     for (int a = 0; a < 8; ++a) {
@@ -354,13 +353,13 @@ ExplicitStepLimit Solid164Set::chunk_forces(const ExplicitNodalView& state, doub
       for (int a = 0; a < 8; ++a)
         norm2 += kin.bx[a] * kin.bx[a] + kin.by[a] * kin.by[a] + kin.bz[a] * kin.bz[a];
       const double stiffness = control.membrane * modulus * norm2 / (3.0 * kin.volume);
-      energies.hourglass +=
-          dt * stiffness_hourglass(modes, kin, stiffness, dt, &hourglass_force_[12 * k], f);
+      energies.hourglass += hourglass_work(
+          k, dt * stiffness_hourglass(modes, kin, stiffness, dt, &hourglass_force_[12 * k], f));
     } else {
       // FB viscous form: QM ρ c V^{2/3} / 4 (LS-DYNA theory manual, hourglass types 2, 3).
       const double coefficient =
           0.25 * control.membrane * rho * c * std::cbrt(kin.volume * kin.volume);
-      energies.hourglass += dt * viscous_hourglass(modes, coefficient, f);
+      energies.hourglass += hourglass_work(k, dt * viscous_hourglass(modes, coefficient, f));
     }
   }
   return limit;

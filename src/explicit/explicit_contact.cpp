@@ -10,6 +10,7 @@
 #include <tuple>
 
 #include "core/numbers.h"
+#include "explicit/part_energies.h"
 
 namespace impactfe {
 
@@ -71,17 +72,6 @@ void local_coordinates(const Vec p[4], Vec q, double& xi, double& eta) {
 double damped_step_factor(const ExplicitContact& k) {
   const double xi = 0.01 * k.viscous_damping;
   return std::sqrt(1.0 + xi * xi) - xi;
-}
-
-/// Parts as EDPART numbers them: the (type, material, real) combinations in ascending order.
-std::map<int, int> part_of_elements(const Model& model) {
-  std::map<std::tuple<int, int, int>, int> parts;
-  for (const auto& [id, e] : model.elements) parts[{e.type, e.mat, e.real}] = 0;
-  int number = 0;
-  for (auto& [key, n] : parts) n = ++number;
-  std::map<int, int> out;
-  for (const auto& [id, e] : model.elements) out[id] = parts[{e.type, e.mat, e.real}];
-  return out;
 }
 
 /// The penetration of the slave at `xs` behind the segment on `nodes` (of depth `depth`): false
@@ -195,7 +185,7 @@ ExplicitContactSet::ExplicitContactSet(const Model& model, const ExplicitSystem&
   const auto& definitions = model.explicit_dynamics.contacts;
   if (definitions.empty()) return;
   collect_segments(system);
-  const std::map<int, int> part = part_of_elements(model);
+  const std::map<int, int> part = explicit_part_numbers(model);
   const double slsfac = model.explicit_dynamics.penalty_factor;
   interface_force_.assign(3 * definitions.size(), 0.0);
   for (std::size_t entity = 0; entity < definitions.size(); ++entity) {

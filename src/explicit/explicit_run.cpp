@@ -15,6 +15,7 @@
 #include "explicit/central_difference.h"
 #include "explicit/explicit_contact.h"
 #include "explicit/explicit_loads.h"
+#include "explicit/part_energies.h"
 
 namespace impactfe {
 
@@ -183,10 +184,10 @@ void set_initial_velocities(const Model& model, const ExplicitSystem& s, Central
 }
 
 /// One stored time point: nodal U, V, A and reactions in the file's node order, the contact
-/// entities' forces; the element results and the energies when `full`.
+/// entities' forces, the parts' energies; the element results and the energies when `full`.
 TimePoint make_point(const ExplicitSystem& s, const CentralDifference& cd,
-                     const ExplicitContactSet& contact, const std::vector<int>& file_nodes,
-                     int load_step, int point, bool full) {
+                     const ExplicitContactSet& contact, const ExplicitPartEnergies& parts,
+                     const std::vector<int>& file_nodes, int load_step, int point, bool full) {
   TimePoint p;
   p.time = cd.time();
   p.load_step = load_step;
@@ -220,6 +221,7 @@ TimePoint make_point(const ExplicitSystem& s, const CentralDifference& cd,
     p.contact_forces =
         Eigen::Map<const Eigen::VectorXd>(f.data(), static_cast<Eigen::Index>(f.size()));
   }
+  p.part_energies = parts.at(s, cd);
   const ExplicitEnergies e = cd.energies();
   p.energy = {{"kinetic", e.kinetic},
               {"strain", e.internal - e.plastic_work},
@@ -331,6 +333,7 @@ ExplicitRunSummary run_explicit_analysis(const Model& model, const AnalysisReque
   if (!loads.empty()) cd.add_interaction(&loads);
   ExplicitContactSet contact(model, system);
   if (!contact.empty()) cd.add_interaction(&contact);
+  const ExplicitPartEnergies parts(model, system);
   set_initial_velocities(model, system, cd);
   const double end = *request.load_steps.back().time_end;
   OutputGrid results{controls.results.for_end_time(end, 100)};
@@ -360,7 +363,7 @@ ExplicitRunSummary run_explicit_analysis(const Model& model, const AnalysisReque
     if (i == 0) {
       cd.start();
       // The initial state is load step 0, substep 0, as the implicit transients store it.
-      writer.append(make_point(system, cd, contact, writer.node_ids(), 0, 0, true));
+      writer.append(make_point(system, cd, contact, parts, writer.node_ids(), 0, 0, true));
     }
     const double step_end = *step.time_end;
     const double start = thread_cpu_seconds();
@@ -381,8 +384,8 @@ ExplicitRunSummary run_explicit_analysis(const Model& model, const AnalysisReque
         loop_seconds += thread_cpu_seconds() - start;
         check.check(cd);
         if (full || store_history)
-          writer.append(
-              make_point(system, cd, contact, writer.node_ids(), step.number, ++point, full));
+          writer.append(make_point(system, cd, contact, parts, writer.node_ids(), step.number,
+                                   ++point, full));
         results.advance(cd.time());
         history.advance(cd.time());
         if (const int signal = stop_requested())

@@ -102,6 +102,17 @@ PostRequest parse_rcforc(const std::string& spec) {
   return {PostRequest::Contact, *parse_positive(f[0]), lab};
 }
 
+PostRequest parse_part_energy(const std::string& spec) {
+  auto f = split_fields(spec);
+  const std::string lab = f.size() == 2 ? to_upper(f[1]) : "";
+  if (f.size() != 2 || !parse_positive(f[0]) || (lab != "KE" && lab != "IE" && lab != "HE"))
+    throw InputError(
+        fmt::format("part energy request '{}': expected the part and KE, IE or HE "
+                    "(e.g. 1,KE)",
+                    spec));
+  return {PostRequest::Part, *parse_positive(f[0]), lab};
+}
+
 std::string post_column_name(const PostRequest& r) {
   switch (r.kind) {
     case PostRequest::Nodal:
@@ -112,6 +123,8 @@ std::string post_column_name(const PostRequest& r) {
       return fmt::format("GAP{}", r.id);
     case PostRequest::Contact:
       return fmt::format("CONTACT{}_{}", r.id, r.label);
+    case PostRequest::Part:
+      return fmt::format("PART{}_{}", r.id, r.label);
   }
   return {};
 }
@@ -127,6 +140,8 @@ std::vector<std::pair<double, double>> post_series(const ResultsReader& reader,
       return reader.gap_force_series(r.id);
     case PostRequest::Contact:
       return reader.contact_force_series(r.id, r.label);
+    case PostRequest::Part:
+      return reader.part_energy_series(r.id, r.label);
   }
   return {};
 }
@@ -215,6 +230,7 @@ std::string results_info(const ResultsReader& reader) {
     }
     if (a.n_gaps > 0) out += fmt::format("  gap forces: {}\n", a.n_gaps);
     if (a.n_contacts > 0) out += fmt::format("  contact forces: {} contacts\n", a.n_contacts);
+    if (a.n_parts > 0) out += fmt::format("  part energies: {} parts\n", a.n_parts);
     if (a.n_modes > 0) out += fmt::format("  modes: {}\n", a.n_modes);
     for (const auto& [name, value] : a.numeric_attributes)
       out += fmt::format("  {} = {:.10g}\n", name, value);

@@ -11,9 +11,10 @@ namespace impactfe {
 
 /// One requested CSV column: a nodal quantity (NSOL), an element item (ESOL) or a GP gap force.
 struct PostRequest {
-  enum Kind { Nodal, Element, Gap, Contact } kind = Nodal;
+  enum Kind { Nodal, Element, Gap, Contact, Part } kind = Nodal;
   int id = 0;  // node, element or 1-based gap number
-  /// Upper-cased: UX..MZ (Nodal), item name (Element), empty (Gap), FX FY FZ (Contact).
+  /// Upper-cased: UX..MZ (Nodal), item name (Element), empty (Gap), FX FY FZ (Contact), KE IE
+  /// HE (Part).
   std::string label;
 };
 
@@ -25,6 +26,8 @@ PostRequest parse_esol(const std::string& spec);
 PostRequest parse_gapf(const std::string& spec);
 /// --rcforc N,FX: the force on the contact surface of explicit contact entity N.
 PostRequest parse_rcforc(const std::string& spec);
+/// --part N,KE|IE|HE: the kinetic, internal or hourglass energy of part N of an explicit run.
+PostRequest parse_part_energy(const std::string& spec);
 
 /// Column header of a request: N<node>_<LAB>, E<elem>_<ITEM> or GAP<n>.
 std::string post_column_name(const PostRequest& request);

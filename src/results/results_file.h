@@ -44,6 +44,9 @@ struct TimePoint {
   /// Explicit runs with contact: the resultant force (x, y, z) on the contact surface of each
   /// EDCGEN entity, 3 per entity in EDCGEN order (NaN for a single surface).
   Eigen::VectorXd contact_forces;
+  /// Explicit runs: kinetic, internal and hourglass energy of each part (EDPART numbers), 3 per
+  /// part.
+  Eigen::VectorXd part_energies;
   /// Frame acceleration (ACEL) acting at this time point, when the analysis records it (full
   /// runs): a superelement expansion applies its static correction from it.
   std::optional<Eigen::Vector3d> frame_acceleration;
@@ -165,6 +168,7 @@ class ResultsReader {
     double time_last = 0.0;
     int n_gaps = 0;      // columns of gap_forces
     int n_contacts = 0;  // contact entities of contact_forces (3 columns each)
+    int n_parts = 0;     // parts of part_energies (3 columns each)
     int n_modes = 0;     // modal results stored in this analysis
     std::vector<std::string> element_families;
     std::map<std::string, double> numeric_attributes;
@@ -210,6 +214,10 @@ class ResultsReader {
   /// EDCGEN order), component FX, FY or FZ.
   std::vector<std::pair<double, double>> contact_force_series(int entity,
                                                               const std::string& component) const;
+  /// Time series of an explicit run's part energy (part 1-based, EDPART numbers): KE kinetic,
+  /// IE internal, HE hourglass.
+  std::vector<std::pair<double, double>> part_energy_series(int part,
+                                                            const std::string& item) const;
   /// Modal frequencies (Hz) of the last modal analysis; empty when none.
   std::vector<double> frequencies() const;
   /// Damped frequencies and stabilities (Hz) of the last modal analysis (its attributes

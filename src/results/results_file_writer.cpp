@@ -641,7 +641,7 @@ void ResultsFileWriter::append(const TimePoint& point) {
   double values = static_cast<double>(point.displacement.size() + point.displacement_imag.size() +
                                       point.velocity.size() + point.acceleration.size() +
                                       point.reaction.size() + point.gap_forces.size() +
-                                      point.contact_forces.size()) +
+                                      point.contact_forces.size() + point.part_energies.size()) +
                   16.0;
   for (const auto& [family, table] : point.element_results)
     values += static_cast<double>(table.values.size() + table.element_ids.size());
@@ -665,7 +665,8 @@ void ResultsFileWriter::append(const TimePoint& point) {
 
   // Per-point vectors whose length the analysis's first point fixes.
   for (const auto& [name, v] : {std::pair{"gap_forces", &point.gap_forces},
-                                std::pair{"contact_forces", &point.contact_forces}}) {
+                                std::pair{"contact_forces", &point.contact_forces},
+                                std::pair{"part_energies", &point.part_energies}}) {
     if (v->size() == 0) continue;
     BlockSeries& s = m.series_for(name, {static_cast<hsize_t>(v->size())});
     IMPACTFE_CHECK(static_cast<hsize_t>(v->size()) == s.row_dims[0],

@@ -180,6 +180,32 @@ struct ResultsReader::Impl {
     return rows(an, dataset, {index, static_cast<hsize_t>(col)}, {1, 1}, 0, an.times.size());
   }
 
+  /// The merged time series of column 3(index − 1) + component of a per-point dataset of three
+  /// values per entity (contact_forces, part_energies), `count` entities per analysis; `noun`
+  /// names an entity in the messages, `none` says when the file has none.
+  Series triple_series(const std::string& dataset, int AnalysisInfo::*count, int index,
+                       int component, const std::string& noun, const std::string& none) const {
+    Series merged;
+    bool found = false;
+    int most = 0;
+    for (const auto& an : analyses) {
+      most = std::max(most, an.info.*count);
+      if (index < 1 || index > an.info.*count) continue;
+      found = true;
+      merge_into(
+          merged,
+          collect(an, column(an, dataset, static_cast<hsize_t>(3 * (index - 1) + component), -1)));
+    }
+    if (!found)
+      throw InputError(most == 0 ? fmt::format("no {} are stored in '{}'", none, path)
+                                 : fmt::format("{} {} does not exist (the results file has {}s "
+                                               "1..{})",
+                                               noun, index, noun, most));
+    std::stable_sort(merged.begin(), merged.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
+    return merged;
+  }
+
   Series collect(const Analysis& an, const std::vector<double>& values) const {
     Series s;
     for (std::size_t k = 0; k < values.size(); ++k)
@@ -359,6 +385,13 @@ Analysis ResultsReader::Impl::load_analysis(int k, const std::string& group) con
     if (columns % 3 != 0)
       throw std::runtime_error("contact_forces has a column count that is not 3 per contact");
     an.info.n_contacts = static_cast<int>(columns / 3);
+  }
+  if (h5::exists(g, "part_energies")) {
+    Handle ds(check(H5Dopen2(g, "part_energies", H5P_DEFAULT), "open part_energies"));
+    const hsize_t columns = h5::dims_of(ds).at(1);
+    if (columns % 3 != 0)
+      throw std::runtime_error("part_energies has a column count that is not 3 per part");
+    an.info.n_parts = static_cast<int>(columns / 3);
   }
   if (h5::exists(g, "frequencies")) {
     Handle fds(check(H5Dopen2(g, "frequencies", H5P_DEFAULT), "open frequencies"));
@@ -569,29 +602,23 @@ std::vector<std::pair<double, double>> ResultsReader::contact_force_series(
     const auto c = kComponent.find(component);
     if (c == kComponent.end())
       throw InputError(fmt::format("contact force component '{}': FX, FY or FZ", component));
-    Series merged;
-    bool found = false;
-    int most = 0;
-    for (const auto& an : impl_->analyses) {
-      most = std::max(most, an.info.n_contacts);
-      if (entity < 1 || entity > an.info.n_contacts) continue;
-      found = true;
-      merge_into(merged,
-                 impl_->collect(
-                     an, impl_->column(an, "contact_forces",
-                                       static_cast<hsize_t>(3 * (entity - 1) + c->second), -1)));
-    }
-    if (!found)
-      throw InputError(most == 0
-                           ? fmt::format("no contact forces are stored in '{}' (explicit runs "
-                                         "with EDCGEN store them)",
-                                         impl_->path)
-                           : fmt::format("contact {} does not exist (the results file has "
-                                         "contacts 1..{})",
-                                         entity, most));
-    std::stable_sort(merged.begin(), merged.end(),
-                     [](const auto& a, const auto& b) { return a.first < b.first; });
-    return merged;
+    return impl_->triple_series("contact_forces", &AnalysisInfo::n_contacts, entity, c->second,
+                                "contact", "contact forces (explicit runs with EDCGEN store them)");
+  });
+}
+
+std::vector<std::pair<double, double>> ResultsReader::part_energy_series(
+    int part, const std::string& item) const {
+  return impl_->guarded([&] {
+    static const std::map<std::string, int> kItem = {{"KE", 0}, {"IE", 1}, {"HE", 2}};
+    const auto c = kItem.find(item);
+    if (c == kItem.end())
+      throw InputError(
+          fmt::format("part energy '{}': KE (kinetic), IE (internal) or HE "
+                      "(hourglass)",
+                      item));
+    return impl_->triple_series("part_energies", &AnalysisInfo::n_parts, part, c->second, "part",
+                                "part energies (explicit runs store them)");
   });
 }
 
@@ -709,6 +736,11 @@ TimePoint ResultsReader::time_point(int analysis, int k) const {
       const auto n_c = static_cast<hsize_t>(3 * an.info.n_contacts);
       const auto v = impl_->rows(an, "contact_forces", {0}, {n_c}, r, 1);
       p.contact_forces = Eigen::Map<const Eigen::VectorXd>(v.data(), 3 * an.info.n_contacts);
+    }
+    if (an.info.n_parts > 0) {
+      const auto n_e = static_cast<hsize_t>(3 * an.info.n_parts);
+      const auto v = impl_->rows(an, "part_energies", {0}, {n_e}, r, 1);
+      p.part_energies = Eigen::Map<const Eigen::VectorXd>(v.data(), 3 * an.info.n_parts);
     }
     if (h5::exists(file, an.group + "/frame_acceleration")) {
       const auto v = impl_->rows(an, "frame_acceleration", {0}, {3}, r, 1);

@@ -108,6 +108,31 @@ def test_contact_forces_are_stored_per_contact(run_deck, binary):
     run([binary, "post", h5, "--rcforc", "2,FZ"], expect=1)
 
 
+def test_part_energies_add_up_to_the_balance(run_deck, binary):
+    """The block drop's two parts (EDPART: the impactor 1, the target 2): their kinetic,
+    internal and hourglass energies add up, at every stored point, to the run's kinetic, strain
+    plus plastic and hourglass energies; at the start the impactor has all of it, ½ m1 v0² =
+    0.78."""
+    from conftest import run
+
+    h5 = run_deck(os.path.join(ROOT, "tests", "verification",
+                               "explicit_contact_blocks_solid164.inp"), "blocks")
+    r = impactfe.open(h5)
+    parts = {p: r.history(part=p, item=["KE", "IE", "HE"]) for p in (1, 2)}
+    e = r.energy()
+    e = e[e["analysis"] == e["analysis"].max()]
+    total = parts[1].to_numpy() + parts[2].to_numpy()
+    assert np.allclose(total[:, 0], e["kinetic"].to_numpy(), rtol=0, atol=1e-12)
+    internal = e["strain"] + e["plastic_work"].fillna(0.0)
+    assert np.allclose(total[:, 1], internal.to_numpy(), rtol=0, atol=1e-12)
+    assert np.allclose(total[:, 2], e["dissipation"].to_numpy(), rtol=0, atol=1e-12)
+    assert parts[1]["PART1_KE"].iloc[0] == pytest.approx(0.78, rel=1e-12)
+    assert parts[2]["PART2_KE"].iloc[0] == 0.0
+    csv = run([binary, "post", h5, "--part", "2,HE"]).stdout.splitlines()
+    assert csv[0] == "time,PART2_HE" and len(csv) == len(parts[2]) + 1
+    run([binary, "post", h5, "--part", "3,KE"], expect=1)
+
+
 def test_results_are_bitwise_equal_for_any_thread_count(binary, tmp_path):
     """The element loop runs in chunks of 256 elements on the thread pool; each element writes
     its own force slots and each chunk its own energy sums, taken in chunk order
