@@ -299,40 +299,34 @@ class Results:
                                "gap element such as COMBIN40 is its element item FORC)")
         return merge(per)
 
-    def _contact_points(self, entity, component):
-        entity = integer(entity, "contact")
-        column = {"FX": 0, "FY": 1, "FZ": 2}.get(str(component).upper())
+    def _triple_points(self, dataset, index, item, items, missing):
+        """Series of column 3 (index - 1) + items[item] of a dataset of three values per entity
+        (contact_forces, part_energies)."""
+        column = items.get(str(item).upper())
         if column is None:
-            raise ResultsError(f"contact force component '{component}': FX, FY or FZ")
+            raise ResultsError(f"'{item}' is not one of {', '.join(items)}")
         per, found = [], False
         for a in self._analyses:
-            if ("contact_forces" not in a.group
-                    or not 1 <= entity <= a.group["contact_forces"].shape[1] // 3):
+            if dataset not in a.group or not 1 <= index <= a.group[dataset].shape[1] // 3:
                 continue
             found = True
-            per.append(self._finite(a, a.rows("contact_forces", (3 * (entity - 1) + column,))))
+            per.append(self._finite(a, a.rows(dataset, (3 * (index - 1) + column,))))
         if not found:
-            raise ResultsError(f"contact {entity} is not stored in '{self.path}' (explicit runs "
-                               "store the force of each EDCGEN contact)")
+            raise ResultsError(f"{missing} in '{self.path}'")
         return merge(per)
+
+    def _contact_points(self, entity, component):
+        entity = integer(entity, "contact")
+        return self._triple_points("contact_forces", entity, component,
+                                   {"FX": 0, "FY": 1, "FZ": 2},
+                                   f"contact {entity} is not stored (explicit runs store the "
+                                   "force of each EDCGEN contact)")
 
     def _part_points(self, part, item):
         part = integer(part, "part")
-        column = {"KE": 0, "IE": 1, "HE": 2}.get(str(item).upper())
-        if column is None:
-            raise ResultsError(f"part energy '{item}': KE (kinetic), IE (internal) or HE "
-                               "(hourglass)")
-        per, found = [], False
-        for a in self._analyses:
-            if ("part_energies" not in a.group
-                    or not 1 <= part <= a.group["part_energies"].shape[1] // 3):
-                continue
-            found = True
-            per.append(self._finite(a, a.rows("part_energies", (3 * (part - 1) + column,))))
-        if not found:
-            raise ResultsError(f"part {part} has no energies stored in '{self.path}' (explicit "
-                               "runs store them)")
-        return merge(per)
+        return self._triple_points("part_energies", part, item, {"KE": 0, "IE": 1, "HE": 2},
+                                   f"part {part} has no energies stored (explicit runs store "
+                                   "them: KE kinetic, IE internal, HE hourglass)")
 
     @staticmethod
     def _finite(a, values):

@@ -3,10 +3,9 @@
 // volume derivatives of Flanagan & Belytschko (1981), hexahedron_volume.h; Flanagan–Belytschko
 // hourglass control, viscous or (EDMP,HGLS types 4, 5) stiffness form, with the hourglass shape
 // vectors γ orthogonal to every linear velocity field (so a uniform strain rate is never
-// resisted: the patch test is exact); the
-// Jaumann-rate hypoelastic stress update with radial return for TB plasticity
-// (materials/rate_plasticity.h); linear and quadratic bulk viscosity (EDBVIS). Runs only in an
-// explicit analysis: its implicit factory refuses.
+// resisted: the patch test is exact); the Jaumann-rate hypoelastic stress update with radial
+// return for TB plasticity (materials/rate_plasticity.h); linear and quadratic bulk viscosity
+// (EDBVIS, EDMP,HGLS). Runs only in an explicit analysis: its implicit factory refuses.
 #include <fmt/format.h>
 
 #include <algorithm>

@@ -379,19 +379,15 @@ Analysis ResultsReader::Impl::load_analysis(int k, const std::string& group) con
     Handle ds(check(H5Dopen2(g, "gap_forces", H5P_DEFAULT), "open gap_forces"));
     an.info.n_gaps = static_cast<int>(h5::dims_of(ds).at(1));
   }
-  if (h5::exists(g, "contact_forces")) {
-    Handle ds(check(H5Dopen2(g, "contact_forces", H5P_DEFAULT), "open contact_forces"));
+  // Three values per entity: the explicit contacts' forces, the parts' energies.
+  for (const auto& [dataset, count] : {std::pair{"contact_forces", &an.info.n_contacts},
+                                       std::pair{"part_energies", &an.info.n_parts}}) {
+    if (!h5::exists(g, dataset)) continue;
+    Handle ds(check(H5Dopen2(g, dataset, H5P_DEFAULT), std::string("open ") + dataset));
     const hsize_t columns = h5::dims_of(ds).at(1);
     if (columns % 3 != 0)
-      throw std::runtime_error("contact_forces has a column count that is not 3 per contact");
-    an.info.n_contacts = static_cast<int>(columns / 3);
-  }
-  if (h5::exists(g, "part_energies")) {
-    Handle ds(check(H5Dopen2(g, "part_energies", H5P_DEFAULT), "open part_energies"));
-    const hsize_t columns = h5::dims_of(ds).at(1);
-    if (columns % 3 != 0)
-      throw std::runtime_error("part_energies has a column count that is not 3 per part");
-    an.info.n_parts = static_cast<int>(columns / 3);
+      throw std::runtime_error(std::string(dataset) + " has a column count that is not 3 each");
+    *count = static_cast<int>(columns / 3);
   }
   if (h5::exists(g, "frequencies")) {
     Handle fds(check(H5Dopen2(g, "frequencies", H5P_DEFAULT), "open frequencies"));
