@@ -113,8 +113,10 @@ void cmd_rmodif(DeckReader& r, const Command& c) {
 // ---- sections ---------------------------------------------------------------------------------
 
 void cmd_sectype(DeckReader& r, const Command& c) {
-  const int id = r.integer(c, 1, 0);
-  if (id <= 0) r.fail(c, "section id missing or not positive");
+  // SECID blank or 0: one above the highest section id defined (SECTYPE notes).
+  int id = r.integer(c, 1, 0);
+  if (id < 0) r.fail(c, fmt::format("section id {}: a section id is positive", id));
+  if (id == 0) id = r.model.sections.empty() ? 1 : r.model.sections.rbegin()->first + 1;
   const std::string type = r.label(c, 2);
   const SectionTypeDescriptor* d = find_section_type(type);
   if (d == nullptr)

@@ -84,12 +84,13 @@ void cmd_generate(DeckReader& r, const Command& c) {
 // the original's, reversed.
 void cmd_symmetry(DeckReader& r, const Command& c) {
   geometry::CopyRequest q;
-  const std::string axis = c.blank(1) ? "X" : r.label(c, 1);  // X by default
-  if (axis == "X")
+  // X by default; 1, 2, 3 are the legacy numbers of X, Y, Z (Verification Manual decks).
+  const std::string axis = c.blank(1) ? "X" : r.label(c, 1);
+  if (axis == "X" || axis == "1")
     q.mirror = 0;
-  else if (axis == "Y")
+  else if (axis == "Y" || axis == "2")
     q.mirror = 1;
-  else if (axis == "Z")
+  else if (axis == "Z" || axis == "3")
     q.mirror = 2;
   else
     r.fail(c, fmt::format("Ncomp '{}': X, Y or Z (the axis normal to the reflection plane)",

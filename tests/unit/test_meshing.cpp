@@ -175,6 +175,12 @@ TEST(Meshing, ArsymReflectsAreasAndArcs) {
   const Vec3 mid(std::sqrt(2.0), 2.0 - std::sqrt(2.0), 0.0);
   for (const auto& [id, n] : meshed.nodes) on_arc = on_arc || (n.x - mid).norm() < 1e-9;
   EXPECT_TRUE(on_arc);
+  // Ncomp 2 (the legacy number of Y, Verification Manual decks) reflects the same way.
+  std::string legacy = half;
+  legacy.replace(legacy.find("ARSYM,Y,1"), 9, "ARSYM,2,1");
+  std::set<std::array<long long, 3>> same;
+  for (const auto& [id, k] : read(legacy + "NUMMRG,KPOI\n").solid.keypoints) same.insert(key(k.x));
+  EXPECT_EQ(same, reflected);
   try {
     read(std::string(kBrick) +
          "ET,1,SHELL63\nR,1,0.1\nK,1\nK,2,1\nK,3,1,1\nA,1,2,3\n"
@@ -185,6 +191,16 @@ TEST(Meshing, ArsymReflectsAreasAndArcs) {
               std::string::npos)
         << e.what();
   }
+}
+
+TEST(Meshing, SectypeWithoutAnIdTakesTheNextOne) {
+  // SECID blank or 0: one above the highest section id defined (SECTYPE notes).
+  const Model m = read(
+      "/PREP7\nSECTYPE,3,SHELL\nSECDATA,0.1\nSECTYPE,,SHELL\nSECDATA,0.2\n"
+      "SECTYPE,0,SHELL\nSECDATA,0.3\n");
+  ASSERT_EQ(m.sections.size(), 3u);
+  EXPECT_TRUE(m.sections.count(3) && m.sections.count(4) && m.sections.count(5));
+  EXPECT_THROW(read("/PREP7\nSECTYPE,-1,SHELL\n"), InputError);
 }
 
 TEST(Meshing, AdjacentAreasAreConforming) {
