@@ -239,6 +239,39 @@ void copy_mesh(Model& model, Mesher& mesher, const CopyRequest& q, const Closure
     s.volumes.at(to).elements = copy_elements(s.volumes.at(from).elements);
 }
 
+/// A reflected meshed pattern is meshed again rather than copied (its elements' node order
+/// would turn them inside out): each copied volume, area, line and keypoint whose original
+/// carries elements gets their attributes and is meshed the way VMESH, AMESH, ... mesh it (a
+/// mapped mesh comes out as the mirror image of the original; a free mesh is made anew).
+void mesh_reflection(Model& model, Mesher& mesher, const CopyMaps& m) {
+  SolidModel& s = model.solid;
+  const auto attributes_of = [&model](const std::vector<int>& elements) {
+    const ElementRecord& e = model.elements.at(elements.front());
+    return EntityAttributes{
+        .mat = e.mat, .real = e.real, .type = e.type, .esys = e.esys, .secnum = e.secnum};
+  };
+  for (const auto& [from, to] : m.volumes)
+    if (const auto& el = s.volumes.at(from).elements; !el.empty()) {
+      s.volumes.at(to).attr = attributes_of(el);
+      mesher.mesh_volume(to);
+    }
+  for (const auto& [from, to] : m.areas)
+    if (const auto& el = s.areas.at(from).elements; !el.empty()) {
+      s.areas.at(to).attr = attributes_of(el);
+      mesher.mesh_area(to);
+    }
+  for (const auto& [from, to] : m.lines)
+    if (const auto& el = s.lines.at(from).elements; !el.empty()) {
+      s.lines.at(to).attr = attributes_of(el);
+      mesher.mesh_line(to);
+    }
+  for (const auto& [from, to] : m.kps)
+    if (const auto& el = s.keypoints.at(from).elements; !el.empty()) {
+      s.keypoints.at(to).attr = attributes_of(el);
+      mesher.mesh_keypoint(to);
+    }
+}
+
 }  // namespace
 
 void copy_solid(Model& model, const CopyRequest& q, Mesher& mesher, const SourceLocation& where) {
@@ -249,16 +282,16 @@ void copy_solid(Model& model, const CopyRequest& q, Mesher& mesher, const Source
       throw InputError(where,
                        "a reflection needs a Cartesian active coordinate system (CSYS,0 "
                        "or a Cartesian LOCAL)");
-    // A mirrored mesh would turn its elements inside out (negative Jacobians): reflect the
-    // geometry, then mesh it.
+    // A mirrored copy of the elements would be inside out (negative Jacobians): the reflected
+    // geometry is meshed again (mesh_reflection); a meshed pattern is not moved.
     bool meshed = false;
     for (int a : c.areas) meshed = meshed || !s.areas.at(a).elements.empty();
     for (int v : c.volumes) meshed = meshed || !s.volumes.at(v).elements.empty();
     for (int l : c.lines) meshed = meshed || !s.lines.at(l).elements.empty();
-    if (meshed && (q.copy_mesh || q.move))
+    if (meshed && q.move)
       throw InputError(where,
-                       "reflecting a meshed pattern is not supported: reflect the "
-                       "geometry before meshing it (or NOELEM = 1)");
+                       "moving a meshed pattern to its reflection is not supported (IMOVE = 1): "
+                       "reflect the geometry before meshing it, or copy it (IMOVE = 0)");
   }
   if (q.move) {
     move_pattern(model, q, c);
@@ -268,7 +301,10 @@ void copy_solid(Model& model, const CopyRequest& q, Mesher& mesher, const Source
   bool warned = false;
   for (int k = 1; k <= q.copies; ++k) {
     CopyMaps m = copy_entities(s, b, q, c, k, where, warned);
-    if (q.copy_mesh) copy_mesh(model, mesher, q, c, k, m);
+    if (q.copy_mesh && q.mirror >= 0)
+      mesh_reflection(model, mesher, m);
+    else if (q.copy_mesh)
+      copy_mesh(model, mesher, q, c, k, m);
   }
 }
 

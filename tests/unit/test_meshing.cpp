@@ -156,7 +156,7 @@ TEST(Meshing, AreaNumbersOfVAndBlock) {
 
 // ARSYM reflects areas (with their lines and keypoints) about the plane normal to an axis of
 // the active Cartesian system; an arc stays an arc; NUMMRG,KPOI merges the keypoints on the
-// plane, and the two halves mesh conformingly. A meshed pattern is refused.
+// plane, and the two halves mesh conformingly. A meshed pattern's reflection is meshed.
 TEST(Meshing, ArsymReflectsAreasAndArcs) {
   const std::string half = std::string(kBrick) +
                            "ET,1,SHELL63\nR,1,0.1\nK,1\nK,2,2\nK,3,0,2\nL,1,2\n"
@@ -181,14 +181,24 @@ TEST(Meshing, ArsymReflectsAreasAndArcs) {
   std::set<std::array<long long, 3>> same;
   for (const auto& [id, k] : read(legacy + "NUMMRG,KPOI\n").solid.keypoints) same.insert(key(k.x));
   EXPECT_EQ(same, reflected);
+  // A meshed pattern: the reflected area is meshed with the pattern's element attributes, its
+  // nodes the mirror images of the pattern's; moving a meshed pattern (IMOVE = 1) is refused.
+  const std::string meshed_triangle = std::string(kBrick) +
+                                      "ET,1,PLANE182\nET,2,PLANE182\nK,1\nK,2,1\nK,3,1,1\n"
+                                      "A,1,2,3\nTYPE,2\nESIZE,0.5\nAMESH,1\nTYPE,1\n";
+  const Model one = read(meshed_triangle);
+  const Model two = read(meshed_triangle + "ARSYM,X,1\n");
+  EXPECT_EQ(two.elements.size(), 2 * one.elements.size());
+  std::set<std::array<long long, 3>> mirrored, all;
+  for (const auto& [id, n] : one.nodes) mirrored.insert(key(Vec3(-n.x.x(), n.x.y(), n.x.z())));
+  for (const auto& [id, n] : two.nodes) all.insert(key(n.x));
+  for (const auto& p : mirrored) EXPECT_TRUE(all.count(p));
+  for (const auto& [id, e] : two.elements) EXPECT_EQ(e.type, 2);  // the pattern's TYPE
   try {
-    read(std::string(kBrick) +
-         "ET,1,SHELL63\nR,1,0.1\nK,1\nK,2,1\nK,3,1,1\nA,1,2,3\n"
-         "ESIZE,0.5\nAMESH,1\nARSYM,X,1\n");
-    FAIL() << "a meshed pattern was reflected";
+    read(meshed_triangle + "ARSYM,X,1,,,,,1\n");
+    FAIL() << "a meshed pattern was moved to its reflection";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find(":13: ARSYM: reflecting a meshed pattern"),
-              std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("ARSYM: moving a meshed pattern"), std::string::npos)
         << e.what();
   }
 }
