@@ -184,6 +184,20 @@ void cmd_dmpstr(DeckReader& r, const Command& c) {
   r.model.options.harmonic.structural_damping = g;
 }
 
+void cmd_rigid(DeckReader& r, const Command& c) {
+  // RIGID,Dof1..Dof6: the known rigid-body modes of a component mode synthesis (its notes: the
+  // command applies only to CMS, which CMSOPT refuses here). Elsewhere it has no effect, in
+  // MAPDL as here: a modal analysis finds a free model's rigid-body modes itself.
+  for (int k = 1; k <= c.n_fields(); ++k) {
+    if (c.blank(k)) continue;
+    const std::string dof = r.label(c, k);
+    if (dof != "ALL" && dof != "UX" && dof != "UY" && dof != "UZ" && dof != "ROTX" &&
+        dof != "ROTY" && dof != "ROTZ")
+      r.fail(c, fmt::format("Dof{} '{}': ALL, UX, UY, UZ, ROTX, ROTY or ROTZ", k, c.text(k)));
+  }
+  r.ignore(c);
+}
+
 }  // namespace
 
 void register_dynamics_commands(std::vector<CommandSpec>& t) {
@@ -194,6 +208,9 @@ void register_dynamics_commands(std::vector<CommandSpec>& t) {
   t.push_back({"DMPRAT", cmd_dmprat, kPrepSolu});
   t.push_back({"MDAMP", cmd_mdamp, kPrepSolu});
   t.push_back({"MODOPT", cmd_modopt, kPrepSolu});
+  t.push_back({"RIGID", cmd_rigid, kPrepSolu,
+               "acts only in a component mode synthesis (CMSOPT, refused): no effect elsewhere, "
+               "as in MAPDL"});
   t.push_back({"MXPAND", cmd_mxpand, kPrepSolu});
   t.push_back({"LVSCALE", cmd_lvscale, kSolu});
   t.push_back({"HROPT", cmd_hropt, kPrepSolu});
