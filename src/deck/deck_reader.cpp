@@ -375,10 +375,12 @@ void DeckReader::validate_elements() {
     if (d.defined_by_file && e.superelement_file.empty())
       throw InputError(e.where,
                        fmt::format("element {}: {} without a superelement file", id, d.name));
-    // A midside node that neither E nor EMORE gave (the element's factory refuses it too).
+    // A midside node that neither E nor EMORE gave (the element's factory refuses it too):
+    // zero, or beyond the nodes given.
     const CellTopology& cell = d.topology();
     for (int k = cell.corner_nodes; cell.midside_nodes > 0 && k < cell.n_nodes(); ++k)
-      if (e.nodes[static_cast<std::size_t>(k)] == 0)
+      if (static_cast<std::size_t>(k) >= e.nodes.size() ||
+          e.nodes[static_cast<std::size_t>(k)] == 0)
         throw InputError(e.where, fmt::format("element {} ({}): midside node {} (of {}) is not "
                                               "given (E takes the first 8 nodes, EMORE the rest)",
                                               id, t->second.ansys_name, k + 1, cell.n_nodes()));
