@@ -250,26 +250,17 @@ void mesh_reflection(Model& model, Mesher& mesher, const CopyMaps& m) {
     return EntityAttributes{
         .mat = e.mat, .real = e.real, .type = e.type, .esys = e.esys, .secnum = e.secnum};
   };
-  for (const auto& [from, to] : m.volumes)
-    if (const auto& el = s.volumes.at(from).elements; !el.empty()) {
-      s.volumes.at(to).attr = attributes_of(el);
-      mesher.mesh_volume(to);
-    }
-  for (const auto& [from, to] : m.areas)
-    if (const auto& el = s.areas.at(from).elements; !el.empty()) {
-      s.areas.at(to).attr = attributes_of(el);
-      mesher.mesh_area(to);
-    }
-  for (const auto& [from, to] : m.lines)
-    if (const auto& el = s.lines.at(from).elements; !el.empty()) {
-      s.lines.at(to).attr = attributes_of(el);
-      mesher.mesh_line(to);
-    }
-  for (const auto& [from, to] : m.kps)
-    if (const auto& el = s.keypoints.at(from).elements; !el.empty()) {
-      s.keypoints.at(to).attr = attributes_of(el);
-      mesher.mesh_keypoint(to);
-    }
+  const auto remesh = [&](const std::map<int, int>& copies, auto& entities, auto mesh) {
+    for (const auto& [from, to] : copies)
+      if (const auto& el = entities.at(from).elements; !el.empty()) {
+        entities.at(to).attr = attributes_of(el);
+        mesh(to);
+      }
+  };
+  remesh(m.volumes, s.volumes, [&mesher](int id) { mesher.mesh_volume(id); });
+  remesh(m.areas, s.areas, [&mesher](int id) { mesher.mesh_area(id); });
+  remesh(m.lines, s.lines, [&mesher](int id) { mesher.mesh_line(id); });
+  remesh(m.kps, s.keypoints, [&mesher](int id) { mesher.mesh_keypoint(id); });
 }
 
 }  // namespace
