@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <filesystem>
@@ -184,7 +185,12 @@ struct ResultsReader::Impl {
   /// values per entity (contact_forces, part_energies), `count` entities per analysis; `noun`
   /// names an entity in the messages, `none` says when the file has none.
   Series triple_series(const std::string& dataset, int AnalysisInfo::*count, int index,
-                       int component, const std::string& noun, const std::string& none) const {
+                       const std::string& item, const std::array<const char*, 3>& items,
+                       const std::string& bad_item, const std::string& noun,
+                       const std::string& none) const {
+    const auto at = std::find(items.begin(), items.end(), item);
+    if (at == items.end()) throw InputError(bad_item);
+    const auto component = static_cast<int>(at - items.begin());
     Series merged;
     bool found = false;
     int most = 0;
@@ -594,27 +600,20 @@ std::vector<std::pair<double, double>> ResultsReader::gap_force_series(int gap) 
 std::vector<std::pair<double, double>> ResultsReader::contact_force_series(
     int entity, const std::string& component) const {
   return impl_->guarded([&] {
-    static const std::map<std::string, int> kComponent = {{"FX", 0}, {"FY", 1}, {"FZ", 2}};
-    const auto c = kComponent.find(component);
-    if (c == kComponent.end())
-      throw InputError(fmt::format("contact force component '{}': FX, FY or FZ", component));
-    return impl_->triple_series("contact_forces", &AnalysisInfo::n_contacts, entity, c->second,
-                                "contact", "contact forces (explicit runs with EDCGEN store them)");
+    return impl_->triple_series(
+        "contact_forces", &AnalysisInfo::n_contacts, entity, component, {"FX", "FY", "FZ"},
+        fmt::format("contact force component '{}': FX, FY or FZ", component), "contact",
+        "contact forces (explicit runs with EDCGEN store them)");
   });
 }
 
 std::vector<std::pair<double, double>> ResultsReader::part_energy_series(
     int part, const std::string& item) const {
   return impl_->guarded([&] {
-    static const std::map<std::string, int> kItem = {{"KE", 0}, {"IE", 1}, {"HE", 2}};
-    const auto c = kItem.find(item);
-    if (c == kItem.end())
-      throw InputError(
-          fmt::format("part energy '{}': KE (kinetic), IE (internal) or HE "
-                      "(hourglass)",
-                      item));
-    return impl_->triple_series("part_energies", &AnalysisInfo::n_parts, part, c->second, "part",
-                                "part energies (explicit runs store them)");
+    return impl_->triple_series(
+        "part_energies", &AnalysisInfo::n_parts, part, item, {"KE", "IE", "HE"},
+        fmt::format("part energy '{}': KE (kinetic), IE (internal) or HE (hourglass)", item),
+        "part", "part energies (explicit runs store them)");
   });
 }
 
