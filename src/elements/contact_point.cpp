@@ -116,7 +116,11 @@ ContactPoint::State ContactPoint::next_state(const Eigen::VectorXd& u, bool in_r
     // P = λ + k_n·pen otherwise). A multiplier that still pushes across a positive gap
     // (λ − k_n g > 0 for 0 < g < λ/k_n) acts as a spring anchored beyond the surface: on
     // rebound it does work λ²/(2 k_n) and more that the impact never put in.
-    closed = gap <= 0.0;
+    // A multiplier that carries the load converges to g = 0 (its Uzawa update is exact for a
+    // linear neighbourhood), and round-off then leaves g a few ulps either side: within 1e-8 of
+    // the penetration the multiplier stands for (λ/k_n) the contact stays closed, else a body
+    // resting on it alone would come loose (singular) at the iteration after an update.
+    closed = gap <= 0.0 || (s.lambda > 0.0 && gap <= 1e-8 * s.lambda / data_.kn);
   if (!closed) {
     // Opening releases the multiplier: a re-closure starts from the penalty force.
 

@@ -1,7 +1,8 @@
 #pragma once
 /// The point contact law shared by CONTA178 (node to node) and CONTA175 (node to a rigid
 /// target surface), APDL_MODELING §8.4. Two points I (for CONTA175: the target's pilot node) and
-/// J (the contact node), each with UX, UY, UZ; a contact normal n pointing from the I side to the
+/// J (the contact node), each with UX, UY, UZ (in 2-D, TARGE169, UX, UY only and the vectors
+/// below with z = 0: elements/target_line.h); a contact normal n pointing from the I side to the
 /// J side and the gap g = g0 + n·(u_J − u_I), closed when g ≤ 0 (penetration −g). CONTA178 has
 /// a fixed n and g0; CONTA175 re-finds them by the contact search before each status update
 /// (the locate() hook), so its DOF list - and the assembly pattern - does not change within a
@@ -14,9 +15,10 @@
 /// multiplier is updated λ ← λ − k_n g (Uzawa step) and the iteration is declared unconverged,
 /// at most kMaxAugmentations times per substep; λ is committed with the step and carried into
 /// the next one, so a lasting contact converges to the exact constraint over the substeps.
-/// A contact is closed only while it penetrates (g ≤ 0, as MAPDL: no force across an open gap)
-/// and opening releases λ: a multiplier kept across a positive gap would push the bodies apart
-/// beyond the surface and give back more energy than the impact put in.
+/// A contact is closed only while it penetrates (g ≤ 0, as MAPDL: no force across an open gap;
+/// with a multiplier λ > 0, g ≤ 1e-8 λ/k_n, the round-off around the g = 0 that the multiplier
+/// converges to) and opening releases λ: a multiplier kept across a positive gap would push the
+/// bodies apart beyond the surface and give back more energy than the impact put in.
 ///
 /// Tangential contact: Coulomb friction with elastic slip (Wriggers §5.2.3; the return map of
 /// the COMBIN40 slider in 3-D): trial force ξ = k_t (u_t − s) with the relative tangential

@@ -13,6 +13,7 @@
 namespace impactfe {
 
 class TargetSurface;
+class LineTarget;
 struct SegmentFacets;
 
 /// What contact elements need of a body element at their node (contact_point.h: the default
@@ -29,6 +30,8 @@ struct ElementBuildCache {
   bool node_index_built = false;
   /// real-constant set → its contact target (elements/target_surface.h).
   std::map<int, std::shared_ptr<const TargetSurface>> targets;
+  /// real-constant set → its 2-D contact target (elements/target_line.h).
+  std::map<int, std::shared_ptr<const LineTarget>> line_targets;
   /// element id → its AttachedElement; nullptr for elements that are no body (unknown type,
   /// status elements such as gaps and contact, superelements).
   std::unordered_map<int, std::unique_ptr<AttachedElement>> attached;

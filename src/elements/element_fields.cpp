@@ -231,6 +231,9 @@ std::vector<ElementFields> make_table() {
   // Contact (APDL_MODELING §8.4, docs/elements/conta174.md, conta175.md, conta178.md).
   t.push_back({"CONTA174", surface_contact_constants(), surface_contact_keyopts()});
   t.push_back({"CONTA175", surface_contact_constants(), surface_contact_keyopts()});
+  // 2-D (docs/elements/targe169.md): the same law and fields, UX, UY per node.
+  t.push_back({"CONTA171", surface_contact_constants(), surface_contact_keyopts()});
+  t.push_back({"CONTA172", surface_contact_constants(), surface_contact_keyopts()});
   {
     auto r = named({"FKN", "GAP", "START", "FKS", "REDFACT", "NX", "NY", "NZ", "TOLN"});
     r[4].refused = true;
@@ -240,6 +243,13 @@ std::vector<ElementFields> make_table() {
                   {12, range(0, 6), "behaviour of the contact"}}});
   }
   t.push_back({"TARGE170", {}, {{2, {0, 1}, "boundary conditions: 0 automatic, 1 given"}}, true});
+  t.push_back(
+      {"TARGE169",
+       {},
+       {{2,
+         {0, 1},
+         "boundary conditions: 0 automatic, 1 given (refused on a rigid target without a pilot)"}},
+       true});
   std::sort(t.begin(), t.end(), [](const auto& a, const auto& b) { return a.type < b.type; });
   return t;
 }

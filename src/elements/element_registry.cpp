@@ -19,7 +19,7 @@ std::map<std::string, ElementTypeDescriptor>& registry() {
 }
 
 /// A role's cell: material and masses have the dimension of their role; a gap acts between
-/// two nodes; contact and target elements are points or faces.
+/// two nodes; contact and target elements are points, lines (2-D) or faces.
 bool role_fits_cell(ShapeRole role, int dimension) {
   switch (role) {
     case ShapeRole::Solid:
@@ -36,7 +36,7 @@ bool role_fits_cell(ShapeRole role, int dimension) {
       return dimension == 0 || dimension == -1;
     case ShapeRole::Contact:
     case ShapeRole::Target:
-      return dimension == 0 || dimension == 2;
+      return dimension >= 0 && dimension <= 2;
     case ShapeRole::Superelement:
       return dimension == -1;
   }

@@ -22,16 +22,17 @@ void PointMass::mass(const ElementContext&, Eigen::MatrixXd& M) const {
 }
 
 namespace {
-const std::vector<std::string> kPointMassResults;
+/// KENE: the kinetic energy ½ vᵀ M v of the mass (MAPDL's element energy item, ETABLE,,KENE).
+const std::vector<std::string> kPointMassResults = {"KENE"};
 }  // namespace
 
 const std::vector<std::string>& PointMass::result_names() const {
   return kPointMassResults;
 }
 
-void PointMass::results(const ElementContext&, const Eigen::VectorXd&, const Eigen::VectorXd&,
+void PointMass::results(const ElementContext&, const Eigen::VectorXd&, const Eigen::VectorXd& v,
                         ElementResultValues& out) const {
-  out.clear();
+  out.assign(1, 0.5 * v.dot(diagonal_.cwiseProduct(v)));
 }
 
 namespace {

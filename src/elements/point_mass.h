@@ -8,7 +8,8 @@
 namespace impactfe {
 
 /// Diagonal mass on the DOFs of one node: diag(MASSX, MASSY, MASSZ, IXX, IYY, IZZ) restricted
-/// to the KEYOPT(3) DOF set (mass units of the deck, e.g. lbf·s²/in). No stiffness, no results.
+/// to the KEYOPT(3) DOF set (mass units of the deck, e.g. lbf·s²/in). No stiffness; its result
+/// is its kinetic energy KENE = ½ vᵀ M v.
 class PointMass final : public Element {
  public:
   /// No strain of its own: a thermal expansion of its material does not act on it (MAPDL

@@ -12,6 +12,7 @@
 #include "elements/element_build_cache.h"
 #include "elements/element_registry.h"
 #include "elements/line_element_data.h"
+#include "elements/target_line.h"
 
 namespace impactfe {
 
@@ -232,6 +233,11 @@ std::shared_ptr<const TargetSurface> contact_target(const ElementBuildContext& c
   const auto fail = [&](const std::string& what) {
     return InputError(record.where, fmt::format("element {}: {}", record.id, what));
   };
+  if (triangles.empty() && has_line_target(model, record.real))
+    throw fail(
+        fmt::format("real constant set {} holds 2-D TARGE169 target segments: a 3-D "
+                    "contact element cannot meet them (use CONTA171/172 or CONTA175)",
+                    record.real));
   if (triangles.empty())
     throw fail(
         fmt::format("no TARGE170 target facets share its real constant set {} (a contact "
@@ -282,13 +288,12 @@ std::shared_ptr<const TargetSurface> contact_target(const ElementBuildContext& c
   return shared;
 }
 
-namespace {
-
-/// The KEYOPTs and real constants of CONTA174/175 that impactfe carries out; any other value
-/// stops the build, named in the contact element's words (`fail` makes the located error).
-template <typename Fail>
-void check_surface_contact_fields(const ElementType& type, const RealSet& real, int real_id,
-                                  const Fail& fail) {
+void check_surface_contact_fields(const ElementRecord& record, const char* name,
+                                  const ElementType& type, const RealSet& real) {
+  const auto fail = [&](const std::string& what) {
+    return InputError(record.where, fmt::format("element {} ({}): {}", record.id, name, what));
+  };
+  const int real_id = record.real;
   for (int k = 1; k < static_cast<int>(type.keyopt.size()); ++k) {
     const int v = type.key(k);
     const bool ok = v == 0 || (k == 2 && v == 1) || (k == 4 && v <= 3) || (k == 7 && v == 1) ||
@@ -311,8 +316,6 @@ void check_surface_contact_fields(const ElementType& type, const RealSet& real, 
                       i, real_id));
 }
 
-}  // namespace
-
 std::unique_ptr<ContactPoint> target_point(const ElementBuildContext& ctx,
                                            const ElementRecord& record, const Node& node,
                                            const char* family, const char* name, double share,
@@ -328,7 +331,7 @@ std::unique_ptr<ContactPoint> target_point(const ElementBuildContext& ctx,
   data.bisect_on_penetration = type.key(7) == 1;
 
   const RealSet& real = line_data::real_set(model, record, family);
-  check_surface_contact_fields(type, real, record.real, fail);
+  check_surface_contact_fields(record, name, type, real);
   std::shared_ptr<const TargetSurface> target = contact_target(ctx, record);
   if (target->pilot() == node.id) throw fail("the contact node is the target's pilot node");
   std::vector<int> candidates;

@@ -199,6 +199,11 @@ class DeformableTargetPoint final : public ContactPoint, public ConnectivityUpda
   bool large_sliding_;
 };
 
+/// The KEYOPTs and real constants of a surface contact element (CONTA171/172/174/175) that
+/// impactfe carries out; any other value is an InputError naming `record` and `name`.
+void check_surface_contact_fields(const ElementRecord& record, const char* name,
+                                  const ElementType& type, const RealSet& real);
+
 /// The law of contact node `node` of `record` (a CONTA175, or a CONTA174 face node) against the
 /// target of its real set (rigid: RigidTargetPoint; deformable: DeformableTargetPoint), from its
 /// type's KEYOPTs, its real constants (3 FKN, 4 FTOLN, 6 PINB, 10 CNOF, 12 FKT) and MP,MU of its

@@ -143,7 +143,7 @@ TEST(Esurf, RejectsOtherTypesOptionsAndEmptySelections) {
       EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
     }
   };
-  fails("TYPE,1\nESURF\n", "TARGE170 target facets, CONTA174 contact faces or CONTA175");
+  fails("TYPE,1\nESURF\n", "TARGE170 target facets, CONTA174 contact faces, TARGE169 target");
   fails("TYPE,2\nESURF,5\n", "XNODE");
   fails("TYPE,2\nESURF,,SIDE\n", "Tlab");
   fails("TYPE,2\nNSEL,S,LOC,Z,0.5\nESLN,S,0\nESURF\n", "no exterior face");
@@ -174,7 +174,8 @@ REAL,3
   fails("TSHAP,PILO\nE,1,2,3,4\n", "TSHAP,PILO makes a TARGE170 of 1 node, 4 given");
   fails("TSHAP,QUAD\nE,1,2,3\n", "TSHAP,QUAD makes a TARGE170 of 4 nodes, 3 given");
   fails("TSHAP,SPHE\n", "analytic rigid primitives");
-  fails("TSHAP,LINE\n", "2-D (TARGE169)");
+  fails("TSHAP,LINE\nE,1,2\n", "TSHAP,LINE is a 2-D (TARGE169) target shape");
+  fails("TSHAP,PARA\n", "curved 2-D (TARGE169) target segments");
   fails("TSHAP,QUA8\n", "higher-order");
   fails("TSHAP,BLOB\n", "unknown target shape");
 }

@@ -209,8 +209,8 @@ const std::map<std::string, std::string>& by_design() {
 }
 
 /// Contact types: their fields act through a contact pair, checked by the contact tests.
-const std::set<std::string> kContactTypes = {"CONTA174", "CONTA175", "CONTA178", "TARGE170",
-                                             "MATRIX50"};
+const std::set<std::string> kContactTypes = {"CONTA171", "CONTA172", "CONTA174", "CONTA175",
+                                             "CONTA178", "TARGE169", "TARGE170", "MATRIX50"};
 
 Model model_of(const std::string& type, const Probe& p, const std::vector<double>& real,
                const std::string& keyopts) {
@@ -341,7 +341,8 @@ TEST(ElementFields, EveryDeclaredFieldActsOrIsRefused) {
 TEST(ElementFields, ContactTypesDeclareWhatTheirElementsAccept) {
   // Their own checks (contact_node_to_node.cpp, target_surface.cpp) refuse the rest; the central
   // check must not refuse what they carry out, and refuses what is not declared.
-  for (const std::string type : {"CONTA174", "CONTA175", "CONTA178", "TARGE170"}) {
+  for (const std::string type :
+       {"CONTA171", "CONTA172", "CONTA174", "CONTA175", "CONTA178", "TARGE169", "TARGE170"}) {
     const ElementFields* f = element_fields(type);
     ASSERT_NE(f, nullptr) << type;
     for (int number = 1; number <= 18; ++number) {

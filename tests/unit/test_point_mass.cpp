@@ -50,10 +50,14 @@ TEST(PointMass, PendulumMassOnThreeTranslations) {
   ElementContext large;
   large.large_deflection = true;
   EXPECT_FALSE(e->is_nonlinear(large));
-  EXPECT_TRUE(e->result_names().empty());
-  ElementResultValues out{1.0};
-  e->results(ElementContext{}, u, u, out);
-  EXPECT_TRUE(out.empty());
+  // Its one result is the kinetic energy KENE = ½ vᵀ M v (ETABLE,,KENE; vm65).
+  EXPECT_EQ(e->result_names(), (std::vector<std::string>{"KENE"}));
+  ElementResultValues out;
+  Eigen::VectorXd v(3);
+  v << 1.0, -2.0, 3.0;
+  e->results(ElementContext{}, u, v, out);
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_DOUBLE_EQ(out[0], 0.5 * (1.0 + 4.0 + 9.0));
 }
 
 TEST(PointMass, SixDofDiagonal) {
