@@ -129,6 +129,9 @@ void cmd_desize(DeckReader& r, const Command& c) {
 }
 
 void cmd_smrtsize(DeckReader& r, const Command& c) {
+  // OFF (the default state) is what impactfe always does; STAT only lists.
+  const std::string l = r.label(c, 1);
+  if (l == "OFF" || l == "STAT") return;
   r.warn(c, "SmartSizing is not implemented; the DESIZE defaults are used");
 }
 
