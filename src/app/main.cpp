@@ -256,6 +256,7 @@ int mesh_command(const MeshArgs& args) {
   std::cout << fmt::format("mesh: {} volumes, {} areas from {}: {} nodes, {} elements -> {}\n",
                            model.solid.volumes.size(), model.solid.areas.size(), args.file,
                            model.nodes.size(), model.elements.size(), out);
+  std::cout << deck::mesh_quality_lines(model);
   return kExitOk;
 }
 

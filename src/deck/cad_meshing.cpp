@@ -7,6 +7,7 @@
 #include "core/errors.h"
 #include "deck/deck_reader.h"
 #include "elements/element_registry.h"
+#include "geometry/mesh_quality.h"
 
 namespace impactfe::deck {
 
@@ -27,6 +28,20 @@ Model mesh_cad_file(const CadMeshRequest& request) {
   if (request.triangles) text += "MSHAPE,1,2D\n";
   text += type->role == ShapeRole::Solid ? "VMESH,ALL\n" : "AMESH,ALL\n";
   return read_deck_text(text, request.file, DeckOptions{}).model;
+}
+
+std::string mesh_quality_lines(const Model& model) {
+  std::vector<int> elements;
+  for (const auto& [id, e] : model.elements) elements.push_back(id);
+  const geometry::MeshQuality q = geometry::mesh_quality(model, elements);
+  if (q.measured == 0) return {};
+  std::string out = fmt::format("quality: {}\n", geometry::describe(q));
+  if (q.past_limits > 0)
+    out += fmt::format(
+        "quality: {} element(s) past the shape limits ({} inverted or flat), the first element "
+        "{}\n",
+        q.past_limits, q.inverted, q.first_past_limits);
+  return out;
 }
 
 }  // namespace impactfe::deck

@@ -19,4 +19,9 @@ struct CadMeshRequest {
 /// what the deck commands refuse.
 Model mesh_cad_file(const CadMeshRequest& request);
 
+/// The worst element shapes of the whole mesh (geometry/mesh_quality.h) as the lines `impactfe
+/// mesh` prints: "quality: ..." and, when elements are past the limits, a second line naming
+/// the first; empty for a mesh without area or volume elements.
+std::string mesh_quality_lines(const Model& model);
+
 }  // namespace impactfe::deck

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "deck/modeling_helpers.h"
+#include "geometry/mesh_quality.h"
 #include "geometry/solid_sweep.h"
 
 namespace impactfe::deck {
@@ -259,11 +260,31 @@ void cmd_lmesh(DeckReader& r, const Command& c) {
   record_created_elements(r, mesher);
 }
 
+/// The shapes of the elements a meshing command made (geometry/mesh_quality.h): one line in the
+/// log, and a warning naming the first element past the limits (inverted ones first).
+void report_mesh_quality(DeckReader& r, const Command& c, const geometry::Mesher& mesher) {
+  const geometry::MeshQuality q = geometry::mesh_quality(r.model, mesher.created_elements());
+  if (q.measured == 0) return;
+  Log::info("{}:{}: {}: {}", c.where.file, c.where.line, c.name, geometry::describe(q));
+  if (q.inverted > 0)
+    r.warn(c, fmt::format("{} inverted or flat element(s) (scaled Jacobian <= 0 or a folded "
+                          "quadratic map), the first element {}: an element refuses them or "
+                          "computes them wrongly; check the geometry and the line divisions",
+                          q.inverted, q.first_past_limits));
+  else if (q.past_limits > 0)
+    r.warn(c,
+           fmt::format("{} element(s) past the shape limits (edge ratio > {}, scaled Jacobian "
+                       "< {} or Jacobian ratio > {}), the first element {}",
+                       q.past_limits, geometry::kEdgeRatioWarning, geometry::kScaledJacobianWarning,
+                       geometry::kJacobianRatioWarning, q.first_past_limits));
+}
+
 void cmd_amesh(DeckReader& r, const Command& c) {
   geometry::Mesher mesher(r.model, mesh_pointers(r), c.where);
   for (int id : mesh_targets(r, c, solid(r).areas, r.model.selection.areas, "area"))
     mesher.mesh_area(id);
   record_created_elements(r, mesher);
+  report_mesh_quality(r, c, mesher);
 }
 
 void cmd_vmesh(DeckReader& r, const Command& c) {
@@ -271,6 +292,7 @@ void cmd_vmesh(DeckReader& r, const Command& c) {
   for (int id : mesh_targets(r, c, solid(r).volumes, r.model.selection.volumes, "volume"))
     mesher.mesh_volume(id);
   record_created_elements(r, mesher);
+  report_mesh_quality(r, c, mesher);
 }
 
 void cmd_vsweep(DeckReader& r, const Command& c) {
@@ -284,6 +306,7 @@ void cmd_vsweep(DeckReader& r, const Command& c) {
   geometry::Mesher mesher(r.model, mesh_pointers(r), c.where);
   for (int id : volumes) mesher.mesh_volume(id, source, target);
   record_created_elements(r, mesher);
+  report_mesh_quality(r, c, mesher);
 }
 
 void cmd_clear(DeckReader& r, const Command& c) {
