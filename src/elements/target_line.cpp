@@ -11,6 +11,7 @@
 #include "elements/element_build_cache.h"
 #include "elements/element_registry.h"
 #include "elements/line_element_data.h"
+#include "elements/target_element.h"
 #include "elements/target_surface.h"
 
 namespace impactfe {
@@ -227,10 +228,6 @@ std::unique_ptr<ContactPoint> line_target_point(const ElementBuildContext& ctx,
   const auto fail = [&](const std::string& what) {
     return InputError(record.where, fmt::format("element {} ({}): {}", record.id, name, what));
   };
-  ContactLawData data;
-  data.augmented = type.key(2) == 0;
-  data.behaviour = static_cast<ContactBehaviour>(type.key(12));
-  data.bisect_on_penetration = type.key(7) == 1;
   const RealSet& real = line_data::real_set(model, record, family);
   check_surface_contact_fields(record, name, type, real);
   std::shared_ptr<const LineTarget> target = line_target(ctx, record);
@@ -251,7 +248,7 @@ std::unique_ptr<ContactPoint> line_target_point(const ElementBuildContext& ctx,
     return v * d;
   };
   const double reach = distance(real.get(6), 2.0, "PINB (real constant 6)");
-  data.toln = real.get(4) < 0.0 || depth > 0.0 ? distance(real.get(4), 0.1, "FTOLN") : 0.0;
+  const double toln = real.get(4) < 0.0 || depth > 0.0 ? distance(real.get(4), 0.1, "FTOLN") : 0.0;
 
   // The initial normal: of the segment nearest to the node (its stiffness direction).
   const auto& segments = target->segments();
@@ -279,83 +276,25 @@ std::unique_ptr<ContactPoint> line_target_point(const ElementBuildContext& ctx,
   // Absolute stiffnesses: force/length for a point contact; force/length³ over the node's
   // contact area (tributary length × out-of-plane extent) for a line contact.
   const double per = length > 0.0 ? length * (extent > 0.0 ? extent : 1.0) : 1.0;
-  const double fkn = real.get(3) != 0.0 ? real.get(3) : 1.0;
-  if (fkn < 0.0) {
-    data.kn = -fkn * per;
-  } else {
-    const double base = attached_stiffness(ctx, node.id, n0);
-    if (!(base > 0.0))
-      throw fail(
-          fmt::format("FKN > 0 is a factor on the stiffness at node {}, and no element "
-                      "with stiffness is attached: give a negative (absolute) FKN",
-                      node.id));
-    data.kn = fkn * base * share;
-  }
-  const double fkt = real.get(12) != 0.0 ? real.get(12) : 1.0;
-  data.kt = fkt < 0.0 ? -fkt * per : fkt * data.kn;
-  const auto mat = model.materials.find(record.mat);
-  data.mu = mat == model.materials.end() ? 0.0 : mat->second.get("MU", 0.0);
-  if (data.mu < 0.0) throw fail(fmt::format("MU of material {} is negative", record.mat));
+  ContactLawData data = surface_contact_law(ctx, record, name, real, node.id, n0, share, per);
+  data.toln = toln;
   return std::make_unique<LineTargetPoint>(family, record.id, node.id, node.x, std::move(target),
                                            std::move(candidates), reach, real.get(10), data, large);
 }
 
 namespace {
 
-/// A TARGE169 element carries nothing itself: its segments act through the contact elements of
-/// its real set. Its nodes' UX, UY are listed so that the element is well formed (2-D: no UZ);
-/// on a rigid target, without stiffness or mass, they are constrained automatically (what
-/// MAPDL does for KEYOPT(2) = 0), unless the pilot, which the contact elements move.
-class LineTargetElement final : public Element {
- public:
-  LineTargetElement(int id, const std::vector<int>& nodes) : Element(id) {
-    for (int n : nodes)
-      for (Dof d : {Dof::UX, Dof::UY}) dofs_.push_back({n, d});
-  }
-  /// No strain of its own: a thermal expansion of its material does not act on it.
-  void thermal_load(const ElementContext&, Eigen::VectorXd& f) const override {
-    f.setZero(n_dofs());
-  }
-  const char* family() const override { return kLineTargetFamily; }
-  const std::vector<DofKey>& dofs() const override { return dofs_; }
-  bool is_nonlinear(const ElementContext&) const override { return false; }
-  void tangent(const ElementContext&, const Eigen::VectorXd&, Eigen::MatrixXd& K,
-               Eigen::VectorXd& f_int) const override {
-    K.setZero(n_dofs(), n_dofs());
-    f_int.setZero(n_dofs());
-  }
-  void mass(const ElementContext&, Eigen::MatrixXd& M) const override {
-    M.setZero(n_dofs(), n_dofs());
-  }
-  static const std::vector<std::string>& names() {
-    static const std::vector<std::string> n;
-    return n;
-  }
-  const std::vector<std::string>& result_names() const override { return names(); }
-  void results(const ElementContext&, const Eigen::VectorXd&, const Eigen::VectorXd&,
-               ElementResultValues& out) const override {
-    out.clear();
-  }
-
- private:
-  std::vector<DofKey> dofs_;
-};
-
 std::unique_ptr<Element> make_line_target(const ElementBuildContext& ctx,
                                           const ElementRecord& record) {
   const Model& model = ctx.model;
   const ElementType& type = line_data::element_type(model, record);
-  for (int k = 1; k < static_cast<int>(type.keyopt.size()); ++k)
-    if (type.key(k) != 0 && !(k == 2 && type.key(k) == 1))
-      throw InputError(record.where,
-                       fmt::format("element {} (TARGE169): KEYOPT({}) = {} is not supported "
-                                   "(KEYOPT(2) 0 or 1; the others 0)",
-                                   record.id, k, type.key(k)));
+  check_target_keyopts(type, record, "TARGE169");
   line_data::real_set(model, record, kLineTargetFamily);
   const std::vector<int> nodes = target169_nodes(record);
   // Builds the target once to report a bad target at its first element.
   line_target(ctx, record);
-  return std::make_unique<LineTargetElement>(record.id, nodes);
+  return std::make_unique<TargetElement>(record.id, kLineTargetFamily, nodes,
+                                         std::initializer_list<Dof>{Dof::UX, Dof::UY});
 }
 
 const ElementRegistration kTarge169{{.name = "TARGE169",
@@ -366,7 +305,7 @@ const ElementRegistration kTarge169{{.name = "TARGE169",
                                      .real_constants = RealConstantUse::Required,
                                      .vtk_cell = VtkCell::Line,
                                      .role = ShapeRole::Target,
-                                     .result_names = LineTargetElement::names(),
+                                     .result_names = TargetElement::names(),
                                      .create = make_line_target}};
 
 }  // namespace

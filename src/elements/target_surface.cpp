@@ -12,6 +12,7 @@
 #include "elements/element_build_cache.h"
 #include "elements/element_registry.h"
 #include "elements/line_element_data.h"
+#include "elements/target_element.h"
 #include "elements/target_line.h"
 
 namespace impactfe {
@@ -316,6 +317,38 @@ void check_surface_contact_fields(const ElementRecord& record, const char* name,
                       i, real_id));
 }
 
+ContactLawData surface_contact_law(const ElementBuildContext& ctx, const ElementRecord& record,
+                                   const char* name, const RealSet& real, int node, const Vec3& n0,
+                                   double share, double per) {
+  const Model& model = ctx.model;
+  const ElementType& type = model.element_types.at(record.type);
+  const auto fail = [&](const std::string& what) {
+    return InputError(record.where, fmt::format("element {} ({}): {}", record.id, name, what));
+  };
+  ContactLawData data;
+  data.augmented = type.key(2) == 0;
+  data.behaviour = static_cast<ContactBehaviour>(type.key(12));
+  data.bisect_on_penetration = type.key(7) == 1;
+  const double fkn = real.get(3) != 0.0 ? real.get(3) : 1.0;
+  if (fkn < 0.0) {
+    data.kn = -fkn * per;
+  } else {
+    const double base = attached_stiffness(ctx, node, n0);
+    if (!(base > 0.0))
+      throw fail(
+          fmt::format("FKN > 0 is a factor on the stiffness at node {}, and no element "
+                      "with stiffness is attached: give a negative (absolute) FKN",
+                      node));
+    data.kn = fkn * base * share;
+  }
+  const double fkt = real.get(12) != 0.0 ? real.get(12) : 1.0;
+  data.kt = fkt < 0.0 ? -fkt * per : fkt * data.kn;
+  const auto mat = model.materials.find(record.mat);
+  data.mu = mat == model.materials.end() ? 0.0 : mat->second.get("MU", 0.0);
+  if (data.mu < 0.0) throw fail(fmt::format("MU of material {} is negative", record.mat));
+  return data;
+}
+
 std::unique_ptr<ContactPoint> target_point(const ElementBuildContext& ctx,
                                            const ElementRecord& record, const Node& node,
                                            const char* family, const char* name, double share,
@@ -325,11 +358,6 @@ std::unique_ptr<ContactPoint> target_point(const ElementBuildContext& ctx,
   const auto fail = [&](const std::string& what) {
     return InputError(record.where, fmt::format("element {} ({}): {}", record.id, name, what));
   };
-  ContactLawData data;
-  data.augmented = type.key(2) == 0;
-  data.behaviour = static_cast<ContactBehaviour>(type.key(12));
-  data.bisect_on_penetration = type.key(7) == 1;
-
   const RealSet& real = line_data::real_set(model, record, family);
   check_surface_contact_fields(record, name, type, real);
   std::shared_ptr<const TargetSurface> target = contact_target(ctx, record);
@@ -349,7 +377,7 @@ std::unique_ptr<ContactPoint> target_point(const ElementBuildContext& ctx,
     return v * depth;
   };
   const double reach = length(real.get(6), 2.0, "PINB (real constant 6)");
-  data.toln = real.get(4) < 0.0 || depth > 0.0 ? length(real.get(4), 0.1, "FTOLN") : 0.0;
+  const double toln = real.get(4) < 0.0 || depth > 0.0 ? length(real.get(4), 0.1, "FTOLN") : 0.0;
 
   // The initial normal: the nearest facet within the pinball, else the first facet.
   const auto hit = target->closest(node.x, reach);
@@ -368,24 +396,9 @@ std::unique_ptr<ContactPoint> target_point(const ElementBuildContext& ctx,
       n0 = target->triangles()[static_cast<std::size_t>(candidates.front())].normal;
   }
   // Absolute stiffnesses: force/length per node, or force/length³ over the tributary area.
-  const double per = area > 0.0 ? area : 1.0;
-  const double fkn = real.get(3) != 0.0 ? real.get(3) : 1.0;
-  if (fkn < 0.0) {
-    data.kn = -fkn * per;
-  } else {
-    const double base = attached_stiffness(ctx, node.id, n0);
-    if (!(base > 0.0))
-      throw fail(
-          fmt::format("FKN > 0 is a factor on the stiffness at node {}, and no element "
-                      "with stiffness is attached: give a negative (absolute) FKN",
-                      node.id));
-    data.kn = fkn * base * share;
-  }
-  const double fkt = real.get(12) != 0.0 ? real.get(12) : 1.0;
-  data.kt = fkt < 0.0 ? -fkt * per : fkt * data.kn;
-  const auto mat = model.materials.find(record.mat);
-  data.mu = mat == model.materials.end() ? 0.0 : mat->second.get("MU", 0.0);
-  if (data.mu < 0.0) throw fail(fmt::format("MU of material {} is negative", record.mat));
+  ContactLawData data =
+      surface_contact_law(ctx, record, name, real, node.id, n0, share, area > 0.0 ? area : 1.0);
+  data.toln = toln;
   if (!target->deformable())
     return std::make_unique<RigidTargetPoint>(family, record.id, node.id, node.x,
                                               model.nodes.at(target->pilot()).x, std::move(target),
@@ -403,56 +416,11 @@ std::unique_ptr<ContactPoint> target_point(const ElementBuildContext& ctx,
 
 namespace {
 
-/// A TARGE170 element carries nothing itself: its facets act through the contact elements of
-/// its real set, which take the pilot node's DOFs (rigid target) or the facet nodes' (deformable
-/// target). Its nodes' UX, UY, UZ are listed so that the element is well formed; on a rigid
-/// target, without stiffness or mass, they are constrained automatically, unless the pilot.
-class RigidTargetElement final : public Element {
- public:
-  /// No strain of its own: a thermal expansion of its material does not act on it (MAPDL
-  /// applies thermal strain to the structural solids, shells, beams and links only).
-  void thermal_load(const ElementContext&, Eigen::VectorXd& f) const override {
-    f.setZero(n_dofs());
-  }
-  RigidTargetElement(int id, const std::vector<int>& nodes) : Element(id) {
-    for (int n : nodes)
-      for (Dof d : {Dof::UX, Dof::UY, Dof::UZ}) dofs_.push_back({n, d});
-  }
-  const char* family() const override { return kRigidTargetFamily; }
-  const std::vector<DofKey>& dofs() const override { return dofs_; }
-  bool is_nonlinear(const ElementContext&) const override { return false; }
-  void tangent(const ElementContext&, const Eigen::VectorXd&, Eigen::MatrixXd& K,
-               Eigen::VectorXd& f_int) const override {
-    K.setZero(n_dofs(), n_dofs());
-    f_int.setZero(n_dofs());
-  }
-  void mass(const ElementContext&, Eigen::MatrixXd& M) const override {
-    M.setZero(n_dofs(), n_dofs());
-  }
-  static const std::vector<std::string>& names() {
-    static const std::vector<std::string> n;
-    return n;
-  }
-  const std::vector<std::string>& result_names() const override { return names(); }
-  void results(const ElementContext&, const Eigen::VectorXd&, const Eigen::VectorXd&,
-               ElementResultValues& out) const override {
-    out.clear();
-  }
-
- private:
-  std::vector<DofKey> dofs_;
-};
-
 std::unique_ptr<Element> make_rigid_target(const ElementBuildContext& ctx,
                                            const ElementRecord& record) {
   const Model& model = ctx.model;
   const ElementType& type = line_data::element_type(model, record);
-  for (int k = 1; k < static_cast<int>(type.keyopt.size()); ++k)
-    if (type.key(k) != 0 && !(k == 2 && type.key(k) == 1))
-      throw InputError(record.where,
-                       fmt::format("element {} (TARGE170): KEYOPT({}) = {} is not supported "
-                                   "(KEYOPT(2) 0 or 1; the others 0)",
-                                   record.id, k, type.key(k)));
+  check_target_keyopts(type, record, "TARGE170");
   const std::vector<int> nodes = distinct_nodes(record);
   for (std::size_t k = 0; k < nodes.size(); ++k)
     line_data::node(model, record, k, 1, kRigidTargetFamily);
@@ -464,7 +432,8 @@ std::unique_ptr<Element> make_rigid_target(const ElementBuildContext& ctx,
   line_data::real_set(model, record, kRigidTargetFamily);
   // Builds the target once to report a bad target at its first element.
   contact_target(ctx, record);
-  return std::make_unique<RigidTargetElement>(record.id, nodes);
+  return std::make_unique<TargetElement>(record.id, kRigidTargetFamily, nodes,
+                                         std::initializer_list<Dof>{Dof::UX, Dof::UY, Dof::UZ});
 }
 
 const ElementRegistration kTarge170{{.name = "TARGE170",
@@ -475,7 +444,7 @@ const ElementRegistration kTarge170{{.name = "TARGE170",
                                      .real_constants = RealConstantUse::Required,
                                      .vtk_cell = VtkCell::Quad,
                                      .role = ShapeRole::Target,
-                                     .result_names = RigidTargetElement::names(),
+                                     .result_names = TargetElement::names(),
                                      .create = make_rigid_target}};
 
 }  // namespace

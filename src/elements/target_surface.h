@@ -204,6 +204,17 @@ class DeformableTargetPoint final : public ContactPoint, public ConnectivityUpda
 void check_surface_contact_fields(const ElementRecord& record, const char* name,
                                   const ElementType& type, const RealSet& real);
 
+/// The point law of contact node `node` of `record` from its type (KEYOPT(2) augmented Lagrange
+/// or penalty, 7 bisection, 12 behaviour), its real set (3 FKN, 12 FKT) and MP,MU of its MAT,
+/// shared by the 3-D (target_point) and the 2-D (line_target_point) contact: a positive FKN
+/// scales the stiffness attached to the node along `n0`, times `share`; a negative FKN or FKT is
+/// absolute, times `per` (1 for a point, the tributary area of a surface node). The penetration
+/// tolerance is the caller's (its depth rule differs in 2-D and 3-D). InputError at `record`,
+/// named `name`, for a stiffness that cannot be formed or a negative MU.
+ContactLawData surface_contact_law(const ElementBuildContext& ctx, const ElementRecord& record,
+                                   const char* name, const RealSet& real, int node, const Vec3& n0,
+                                   double share, double per);
+
 /// The law of contact node `node` of `record` (a CONTA175, or a CONTA174 face node) against the
 /// target of its real set (rigid: RigidTargetPoint; deformable: DeformableTargetPoint), from its
 /// type's KEYOPTs, its real constants (3 FKN, 4 FTOLN, 6 PINB, 10 CNOF, 12 FKT) and MP,MU of its
