@@ -265,6 +265,29 @@ void cmd_n(DeckReader& r, const Command& c) {
   r.modeling.defined_by_n.push_back(id);
 }
 
+void cmd_nmodif(DeckReader& r, const Command& c) {
+  // NMODIF,NODE,X,Y,Z,THXY,THYZ,THZX: moves existing nodes (a number, ALL for the selected ones,
+  // or a node component) and sets their rotation angles; X, Y, Z in the active coordinate
+  // system, a blank field keeps the node's value (APDL_MODELING §2.2, as N).
+  if (c.blank(1)) r.fail(c, "NODE missing (a node number, ALL or a component)");
+  std::vector<int> ids;
+  if (const auto cm = r.model.components.find(r.label(c, 1));
+      cm != r.model.components.end() && cm->second.entity == "NODE")
+    ids = cm->second.ids;
+  else
+    ids = entity_list(r, c, 1, 0, 0, r.model.nodes, r.model.selection.nodes, "node");
+  const CoordinateSystem& cs = r.model.coordinate_systems.active_system();
+  for (int id : ids) {
+    const auto it = r.model.nodes.find(id);
+    if (it == r.model.nodes.end()) r.fail(c, fmt::format("node {} is not defined", id));
+    Node& n = it->second;
+    Vec3 local = cs.from_global(n.x);
+    for (int k = 0; k < 3; ++k) local(k) = r.real(c, 2 + k, local(k));
+    n.x = cs.to_global(local);
+    for (int k = 0; k < 3; ++k) n.angles_deg(k) = r.real(c, 5 + k, n.angles_deg(k));
+  }
+}
+
 std::vector<int> node_fields(DeckReader& r, const Command& c, int first) {
   std::vector<int> nodes;
   const int last = c.last_given();
@@ -582,6 +605,7 @@ void register_prep7_commands(std::vector<CommandSpec>& t) {
   t.push_back({"SECOFFSET", cmd_secoffset, kPrep7});
   t.push_back({"SECCONTROL", cmd_seccontrol, kPrep7});
   t.push_back({"N", cmd_n, kPrep7});
+  t.push_back({"NMODIF", cmd_nmodif, kPrep7});
   t.push_back({"E", cmd_e, kPrep7});
   t.push_back({"EN", cmd_en, kPrep7});
   t.push_back({"EMORE", cmd_emore, kPrep7});

@@ -393,4 +393,26 @@ TEST(DeckModel, FilnameSetsJobnameUnlessGivenOnTheCommandLine) {
   EXPECT_EQ(read_deck_text("/FILNAME,crash\n", "x.inp", o).model.jobname, "cli");
 }
 
+/// NMODIF moves existing nodes in the active system, a blank field keeping the node's value;
+/// *REPEAT steps the node number; ALL takes the selected nodes; an undefined node is refused.
+TEST(DeckModel, NmodifMovesNodesKeepingBlankFields) {
+  const Model m = parse(
+                      "/PREP7\nN,1,1,2,3\nN,2,4,5,6\nN,3,7,8,9\nNMODIF,1,10\n"
+                      "NMODIF,2,,,0.5,30\n*REPEAT,2,1\nCSYS,1\nNMODIF,1,2,90\n")
+                      .model;
+  EXPECT_NEAR(m.nodes.at(1).x.x(), 0.0, 1e-12);
+  EXPECT_NEAR(m.nodes.at(1).x.y(), 2.0, 1e-12);  // r = 2 at 90 degrees
+  EXPECT_NEAR(m.nodes.at(1).x.z(), 3.0, 1e-12);  // Z kept
+  for (int n : {2, 3}) {
+    EXPECT_NEAR(m.nodes.at(n).x.z(), 0.5, 1e-12);
+    EXPECT_NEAR(m.nodes.at(n).angles_deg.x(), 30.0, 1e-12);
+  }
+  EXPECT_NEAR(m.nodes.at(3).x.x(), 7.0, 1e-12);
+  const Model all = parse("/PREP7\nN,1,1\nN,2,2\nN,3,3\nNSEL,S,NODE,,2,3\nNMODIF,ALL,,4\n").model;
+  EXPECT_NEAR(all.nodes.at(1).x.y(), 0.0, 1e-12);
+  EXPECT_NEAR(all.nodes.at(2).x.y(), 4.0, 1e-12);
+  EXPECT_NEAR(all.nodes.at(3).x.y(), 4.0, 1e-12);
+  EXPECT_NE(error_of("/PREP7\nN,1\nNMODIF,5,1\n").find("node 5"), std::string::npos);
+}
+
 }  // namespace test_deck_model
