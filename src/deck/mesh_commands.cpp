@@ -270,7 +270,7 @@ void report_mesh_quality(DeckReader& r, const Command& c, const geometry::Mesher
     r.warn(c, fmt::format("{} inverted or flat element(s) (scaled Jacobian <= 0 or a folded "
                           "quadratic map), the first element {}: an element refuses them or "
                           "computes them wrongly; check the geometry and the line divisions",
-                          q.inverted, q.first_past_limits));
+                          q.inverted, q.first_inverted));
   else if (q.past_limits > 0)
     r.warn(c,
            fmt::format("{} element(s) past the shape limits (edge ratio > {}, scaled Jacobian "

@@ -237,7 +237,10 @@ MeshQuality mesh_quality(const Model& model, const std::vector<int>& elements) {
       q.worst_jacobian_ratio_element = id;
     }
     const bool inverted = !(s->scaled_jacobian > 0.0) || ratio == kInf;
-    q.inverted += inverted ? 1 : 0;
+    if (inverted) {
+      ++q.inverted;
+      if (q.first_inverted == 0 || id < q.first_inverted) q.first_inverted = id;
+    }
     if (inverted || s->edge_ratio > kEdgeRatioWarning ||
         s->scaled_jacobian < kScaledJacobianWarning || ratio > kJacobianRatioWarning) {
       ++q.past_limits;

@@ -58,6 +58,7 @@ struct MeshQuality {
   double worst_jacobian_ratio = 1.0;  // over the quadratic cells
   int worst_jacobian_ratio_element = 0;
   int inverted = 0;           // scaled Jacobian ≤ 0 or a Jacobian ratio of +inf
+  int first_inverted = 0;     // the lowest inverted element number
   int past_limits = 0;        // past one of the warning limits (inverted ones included)
   int first_past_limits = 0;  // the lowest such element number
 };

@@ -162,6 +162,20 @@ TEST(MeshQuality, MeshingReportsTheShapesAndWarnsPastTheLimits) {
       "ESIZE,1\nMSHKEY,1\nVMESH,ALL\n",
       "cubes.inp", DeckOptions{});
   EXPECT_TRUE(Log::warnings().empty());
+  // A 30:1 brick and an inverted cube (its M..P below I..L): the inverted one is named as such,
+  // the first past the limits is the stretched one.
+  const geometry::MeshQuality bad = geometry::mesh_quality(
+      read_deck_text("/PREP7\nET,1,SOLID185\nMP,EX,1,1\nMP,PRXY,1,0.3\n"
+                     "N,1\nN,2,30\nN,3,30,1\nN,4,0,1\nN,5,0,0,1\nN,6,30,0,1\nN,7,30,1,1\n"
+                     "N,8,0,1,1\nN,9,0,0,3\nN,10,1,0,3\nN,11,1,1,3\nN,12,0,1,3\n"
+                     "N,13,0,0,2\nN,14,1,0,2\nN,15,1,1,2\nN,16,0,1,2\n"
+                     "E,1,2,3,4,5,6,7,8\nE,9,10,11,12,13,14,15,16\n",
+                     "bad.inp", DeckOptions{})
+          .model,
+      {1, 2});
+  EXPECT_EQ(bad.inverted, 1);
+  EXPECT_EQ(bad.first_inverted, 2);
+  EXPECT_EQ(bad.first_past_limits, 1);
   Log::set_sink(nullptr);
   Log::clear();
 }
