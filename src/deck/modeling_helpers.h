@@ -65,6 +65,18 @@ std::vector<int> entity_list(DeckReader& r, const Command& c, int f1, int f2, in
   return out;
 }
 
+/// Field `f` as the name of a component of `entity` ("NODE", "ELEM"): its members; otherwise
+/// entity_list's number, range or ALL (fields f, f2, f3).
+template <class Map>
+std::vector<int> component_or_entity_list(DeckReader& r, const Command& c, int f, int f2, int f3,
+                                          const char* entity, const Map& map,
+                                          const Selection& selection, const char* what) {
+  if (const auto cm = r.model.components.find(r.label(c, f));
+      cm != r.model.components.end() && cm->second.entity == entity)
+    return cm->second.ids;
+  return entity_list(r, c, f, f2, f3, map, selection, what);
+}
+
 // ---- selection (APDL_MODELING §1.1) ------------------------------------------------------------
 
 /// The Type field of a select command (blank = S). `associative`: only S, R, A, U are allowed.

@@ -270,12 +270,8 @@ void cmd_nmodif(DeckReader& r, const Command& c) {
   // or a node component) and sets their rotation angles; X, Y, Z in the active coordinate
   // system, a blank field keeps the node's value (APDL_MODELING §2.2, as N).
   if (c.blank(1)) r.fail(c, "NODE missing (a node number, ALL or a component)");
-  std::vector<int> ids;
-  if (const auto cm = r.model.components.find(r.label(c, 1));
-      cm != r.model.components.end() && cm->second.entity == "NODE")
-    ids = cm->second.ids;
-  else
-    ids = entity_list(r, c, 1, 0, 0, r.model.nodes, r.model.selection.nodes, "node");
+  const std::vector<int> ids = component_or_entity_list(r, c, 1, 0, 0, "NODE", r.model.nodes,
+                                                        r.model.selection.nodes, "node");
   const CoordinateSystem& cs = r.model.coordinate_systems.active_system();
   for (int id : ids) {
     const auto it = r.model.nodes.find(id);
@@ -432,12 +428,8 @@ void cmd_emodif(DeckReader& r, const Command& c) {
   const int type = all_attributes ? r.modeling.current_type : value;
   if ((what == "TYPE" || all_attributes) && r.model.element_types.count(type) == 0)
     r.fail(c, fmt::format("element type {} is not defined", type));
-  std::vector<int> ids;
-  if (const auto cm = r.model.components.find(r.label(c, 1));
-      cm != r.model.components.end() && cm->second.entity == "ELEM")
-    ids = cm->second.ids;
-  else
-    ids = entity_list(r, c, 1, 0, 0, r.model.elements, r.model.selection.elements, "element");
+  const std::vector<int> ids = component_or_entity_list(r, c, 1, 0, 0, "ELEM", r.model.elements,
+                                                        r.model.selection.elements, "element");
   for (int id : ids) {
     if (r.model.elements.count(id) == 0) continue;  // a component's element deleted since
     ElementRecord& e = r.model.elements.at(id);
