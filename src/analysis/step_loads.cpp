@@ -16,6 +16,7 @@ void StepLoads::resolve(const Discretisation& disc, const LoadStep& step,
 }
 
 void StepLoads::resolve_again(const Discretisation& disc) {
+  rotation_force_.resize(0);  // a new numbering: formed again when needed
   if (step_ == nullptr) return;
   forces_ = ResolvedDofLoads(disc.dofs(), *step_, previous_, ResolvedDofLoads::Kind::Forces);
   prescribed_ =
@@ -30,6 +31,8 @@ void StepLoads::external_force(const Discretisation& disc, const LoadPoint& at, 
                                VectorXd& f) const {
   const DofMap& dofs = disc.dofs();
   disc.frame_load().assign(frame_acceleration(at), dofs.n_active(), f);
+  if (at.current->rotation.any() || (at.previous != nullptr && at.previous->rotation.any()))
+    add_rotational_forces(disc, at, f);
   if (at.current == step_) {
     forces_.add_to(at, f);
   } else {
@@ -38,6 +41,32 @@ void StepLoads::external_force(const Discretisation& disc, const LoadPoint& at, 
   if (!at.current->pressures.empty())
     f += pressure_forces(structure_.elements(), dofs, structure_.context(), at, u);
   if (thermal_ || at.current->gives_temperatures()) add_thermal_forces(disc, at, f);
+}
+
+void StepLoads::add_rotational_forces(const Discretisation& disc, const LoadPoint& at,
+                                      VectorXd& f) const {
+  const RotationalLoads loads = rotational_loads(at);
+  // The load acts on the initial geometry; under large deflection it would have to follow the
+  // deformed one (and spin softening would enter the stiffness), which is not implemented.
+  if (structure_.context().large_deflection)
+    throw NotImplementedError(
+        loads.where,
+        "rotational inertia loads (OMEGA, DOMEGA, CGOMGA, DCGOMG) under large deflection "
+        "(NLGEOM) are not implemented: the load would have to follow the deformed geometry");
+  const DofMap& dofs = disc.dofs();
+  if (rotation_force_.size() != dofs.n_active() || !(loads == rotation_)) {
+    const Model& model = structure_.model();
+    const auto position = [&model](int node) {
+      const auto it = model.nodes.find(node);
+      IMPACTFE_CHECK(it != model.nodes.end(),
+                     fmt::format("node {} of an element is not in the model", node));
+      return it->second.x;
+    };
+    rotation_force_ =
+        rotational_inertia_load(structure_.elements(), dofs, structure_.context(), position, loads);
+    rotation_ = loads;
+  }
+  f += rotation_force_;
 }
 
 void StepLoads::add_thermal_forces(const Discretisation& disc, const LoadPoint& at,

@@ -140,6 +140,14 @@ void TransformedElement::frame_acceleration_load(const ElementContext& ctx,
   f = (t_.transpose() * f).eval();
 }
 
+void TransformedElement::acceleration_field_load(const ElementContext& ctx,
+                                                 const std::vector<LinearAccelerationField>& fields,
+                                                 const std::function<Vec3(int)>& position,
+                                                 Eigen::MatrixXd& f) const {
+  inner_->acceleration_field_load(ctx, fields, position, f);
+  f = (t_.transpose() * f).eval();
+}
+
 void TransformedElement::pressure_load(const ElementContext& ctx, int face,
                                        const std::array<double, 4>& p, const Eigen::VectorXd& u,
                                        Eigen::VectorXd& f) const {

@@ -47,6 +47,10 @@ class TransformedElement : public Element, public PenetrationCheck, public Conne
                Eigen::MatrixXd& C) const override;
   void frame_acceleration_load(const ElementContext& ctx, const Eigen::Matrix3Xd& a,
                                Eigen::MatrixXd& f) const override;
+  void acceleration_field_load(const ElementContext& ctx,
+                               const std::vector<LinearAccelerationField>& fields,
+                               const std::function<Vec3(int)>& position,
+                               Eigen::MatrixXd& f) const override;
   void pressure_load(const ElementContext& ctx, int face, const std::array<double, 4>& p,
                      const Eigen::VectorXd& u, Eigen::VectorXd& f) const override;
   void set_temperature_change(std::vector<double> dT) override {

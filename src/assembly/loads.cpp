@@ -84,6 +84,41 @@ Vec3 frame_acceleration(const LoadPoint& at) {
   return a;
 }
 
+RotationalLoads rotational_loads(const LoadPoint& at) {
+  const RotationalLoads& now = at.current->rotation;
+  const RotationalLoads before = at.previous ? at.previous->rotation : RotationalLoads{};
+  RotationalLoads out;
+  const auto ramp = [&](Vec3 RotationalLoads::*v) {
+    for (int d = 0; d < 3; ++d) (out.*v)(d) = interpolate(at, (before.*v)(d), (now.*v)(d));
+  };
+  for (auto v : {&RotationalLoads::omega, &RotationalLoads::domega, &RotationalLoads::cg_location,
+                 &RotationalLoads::cg_omega, &RotationalLoads::cg_domega})
+    ramp(v);
+  out.where = now.any() ? now.where : before.where;
+  return out;
+}
+
+VectorXd rotational_inertia_load(const std::vector<std::unique_ptr<Element>>& elements,
+                                 const DofMap& dofs, const ElementContext& ctx,
+                                 const std::function<Vec3(int)>& position,
+                                 const RotationalLoads& loads) {
+  VectorXd f = VectorXd::Zero(dofs.n_active());
+  const std::vector<LinearAccelerationField> fields{rotational_acceleration(loads)};
+  if (fields.front().zero()) return f;
+  Eigen::MatrixXd fe;
+  for (std::size_t e = 0; e < elements.size(); ++e) {
+    try {
+      elements[e]->acceleration_field_load(ctx, fields, position, fe);
+    } catch (...) {
+      rethrow_at(loads.where);
+    }
+    const auto& idx = dofs.element_indices(e);
+    for (std::size_t a = 0; a < idx.size(); ++a)
+      if (idx[a] >= 0) f(idx[a]) += fe(static_cast<int>(a), 0);
+  }
+  return f;
+}
+
 VectorXd pressure_forces(const std::vector<std::unique_ptr<Element>>& elements, const DofMap& dofs,
                          const ElementContext& ctx, const LoadPoint& at, const VectorXd& u) {
   VectorXd f = VectorXd::Zero(dofs.n_active());

@@ -4,6 +4,7 @@
 /// APDL_MODELING §5.1-§5.3) and prescribed displacements (D), ramped or stepped per KBC (spec
 /// §3.20), or given by time functions (`%TABLE%` loads, APDL_MODELING §5.5).
 #include <array>
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -89,6 +90,19 @@ class FrameAccelerationLoad {
  private:
   std::array<VectorXd, 3> unit_;
 };
+
+/// The rotational inertia loads (OMEGA, DOMEGA, CGLOC, CGOMGA, DCGOMG) at a load point: each
+/// component ramped per KBC from the previous step's value (the angular velocity is ramped, so
+/// the centrifugal load grows with its square), or stepped.
+RotationalLoads rotational_loads(const LoadPoint& at);
+/// Inertia load over all active DOFs of the acceleration field of `loads`
+/// (rotational_acceleration, MAPDL Theory Reference "Acceleration Effect"), summed from each
+/// element's Element::acceleration_field_load (−M ā); `position(node)` gives the node's
+/// coordinates. An element's refusal names the command that gave the loads (loads.where).
+VectorXd rotational_inertia_load(const std::vector<std::unique_ptr<Element>>& elements,
+                                 const DofMap& dofs, const ElementContext& ctx,
+                                 const std::function<Vec3(int)>& position,
+                                 const RotationalLoads& loads);
 
 /// Consistent nodal loads of the face pressures over all active DOFs, at displacement u (over
 /// all active DOFs; under large deflection the pressures follow the deformed faces), from each

@@ -19,6 +19,7 @@
 #include "core/load_values.h"
 #include "core/material_table.h"
 #include "core/output_control.h"
+#include "core/rotating_frame.h"
 #include "core/selection.h"
 #include "core/solid_model.h"
 
@@ -203,6 +204,7 @@ struct LoadStep {
   std::map<DofKey, std::string> constraint_tables;
   std::map<DofKey, std::string> force_tables;
   std::array<std::string, 3> acel_tables;    // ACEL components
+  RotationalLoads rotation;                  // OMEGA, DOMEGA, CGLOC, CGOMGA, DCGOMG
   std::map<FaceKey, SurfaceLoad> pressures;  // SF, SFE, SFA (face pressures)
   // Temperatures of the thermal strain (docs/thermal_loads.md). The reference temperature is
   // TREF (MP,REFT of a material overrides it); every node without BF,TEMP has the uniform

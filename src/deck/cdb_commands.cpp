@@ -472,17 +472,6 @@ void cmd_cdwrite(DeckReader& r, const Command& c) {
             r.model.nodes.size(), r.model.elements.size());
 }
 
-// OMEGA, DOMEGA, CGLOC, CGOMEGA, DCGOMG: every CDB archive states them, zero for a model
-// without rotating-frame loads. Zero is what impactfe computes; anything else is refused (no
-// rotating reference frames). DMPSTR, also in every archive, is a harmonic analysis command
-// (dynamics_commands.cpp).
-void cmd_zero_only(DeckReader& r, const Command& c) {
-  for (int f = 1; f <= c.last_given(); ++f)
-    if (!c.blank(f) && r.real(c, f, 0.0) != 0.0)
-      r.fail(c, fmt::format("a non-zero {} is not supported (only 0, as CDB archives write it)",
-                            c.name));
-}
-
 // ---- settings every archive states (CDWRITE writes the solution options too) ---------------
 
 // Settings every CDB archive states, at MAPDL's defaults, for features impactfe does not have:
@@ -570,8 +559,6 @@ void cmd_eqslv(DeckReader& r, const Command& c) {
 }  // namespace
 
 void register_cdb_commands(std::vector<CommandSpec>& t) {
-  for (const char* name : {"OMEGA", "DOMEGA", "CGLOC", "CGOMEGA", "DCGOMG"})
-    t.push_back({name, cmd_zero_only, kPrep7 | kSolu});
   t.push_back({"CDWRITE", cmd_cdwrite, kPrep7 | kSolu});
   // Valid at the Begin level too: the archive's own /PREP7 line starts the preprocessor
   // (vm169 reads its archive before any /PREP7).

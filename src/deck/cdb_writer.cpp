@@ -286,6 +286,15 @@ void write_loads(const Model& m, std::ostream& out) {
     out << fmt::format("BF,{},TEMP,{}\n", node, exact(value));
   if (s.acel != Vec3::Zero())
     out << fmt::format("ACEL,{},{},{}\n", exact(s.acel[0]), exact(s.acel[1]), exact(s.acel[2]));
+  const RotationalLoads& w = s.rotation;
+  const std::pair<const char*, const Vec3*> rotational[] = {{"OMEGA", &w.omega},
+                                                            {"DOMEGA", &w.domega},
+                                                            {"CGLOC", &w.cg_location},
+                                                            {"CGOMGA", &w.cg_omega},
+                                                            {"DCGOMG", &w.cg_domega}};
+  for (const auto& [name, v] : rotational)
+    if (*v != Vec3::Zero())
+      out << fmt::format("{},{},{},{}\n", name, exact((*v)(0)), exact((*v)(1)), exact((*v)(2)));
 }
 
 }  // namespace

@@ -198,7 +198,12 @@ json temperature_table(const std::map<int, double>& t) {
 }
 
 json load_state_json(const LoadStep& s) {
+  const RotationalLoads& w = s.rotation;
+  json rotation = json::array();
+  for (const Vec3* v : {&w.omega, &w.domega, &w.cg_location, &w.cg_omega, &w.cg_domega})
+    rotation.push_back({(*v)(0), (*v)(1), (*v)(2)});
   return {{"time_end", opt(s.time_end)},
+          {"rotation", rotation},
           {"dt", opt(s.dt)},
           {"n_substeps", s.n_substeps ? json(*s.n_substeps) : json(nullptr)},
           {"output_every", s.output.every},
@@ -226,6 +231,14 @@ LoadStep load_state_of(const json& j) {
   s.reformulation = j.at("reformulation");
   s.time_integration = j.at("time_integration");
   s.acel = Vec3(j.at("acel")[0], j.at("acel")[1], j.at("acel")[2]);
+  if (j.contains("rotation")) {  // older files: none
+    RotationalLoads& w = s.rotation;
+    Vec3* v[] = {&w.omega, &w.domega, &w.cg_location, &w.cg_omega, &w.cg_domega};
+    for (std::size_t k = 0; k < 5; ++k) {
+      const json& e = j.at("rotation").at(k);
+      *v[k] = Vec3(e[0], e[1], e[2]);
+    }
+  }
   s.constraints = dof_table_of(j.at("constraints"));
   s.forces = dof_table_of(j.at("forces"));
   if (j.contains("step_control")) step_control_of(j.at("step_control"), s);  // older files: none

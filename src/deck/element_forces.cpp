@@ -119,6 +119,15 @@ std::map<int, NodalForce> element_nodal_forces(DeckReader& r, const Command& c, 
   if (kind == "TOTAL" || kind == "INERT") {
     el->mass(ctx, M);
     f += M * a;
+    // The inertia of the rotational loads (OMEGA, DOMEGA, CGOMGA, DCGOMG) of the load state in
+    // the database: M ā, the element's load −M ā taken back (MAPDL's element nodal forces
+    // include the inertia of the acceleration effect; vm131 sums them at the support).
+    if (const RotationalLoads& w = r.model.current.rotation; w.any()) {
+      const auto position = [&](int node) { return r.model.nodes.at(node).x; };
+      Eigen::MatrixXd inertia;
+      el->acceleration_field_load(ctx, {rotational_acceleration(w)}, position, inertia);
+      f -= inertia.col(0);
+    }
   }
   std::map<int, NodalForce> out;
   for (std::size_t k = 0; k < el->dofs().size(); ++k) {

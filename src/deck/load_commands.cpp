@@ -1,5 +1,6 @@
 // Loads and initial conditions: D, DDELE, F, FDELE, ACEL, IC, ICDELE (APDL_SUBSET §3.19, §3.22,
-// §3.23; APDL_SCRIPTING §E.9). Loads are cumulative state in Model::current.
+// §3.23; APDL_SCRIPTING §E.9), and the rotational inertia loads OMEGA, DOMEGA, CGLOC, CGOMGA,
+// DCGOMG (MAPDL 18.2 Command Reference). Loads are cumulative state in Model::current.
 #include <fmt/format.h>
 
 #include "core/dof.h"
@@ -130,6 +131,48 @@ void cmd_acel(DeckReader& r, const Command& c) {
   }
 }
 
+// OMEGA,OMEGX,OMEGY,OMEGZ,KSPIN; DOMEGA,DOMGX,DOMGY,DOMGZ; CGLOC,XLOC,YLOC,ZLOC;
+// CGOMGA,CGOMX,CGOMY,CGOMZ; DCGOMG,DCGOX,DCGOY,DCGOZ: three global Cartesian components each
+// (blank = 0), replacing the earlier ones. The analysis applies them as the inertia load of the
+// acceleration field they give (core/rotating_frame.h). Tables (%TABLE%) and spin softening
+// (KSPIN) are refused: they would change the load or the stiffness in ways not carried out.
+void set_rotational_vector(DeckReader& r, const Command& c, Vec3& v, int first_other_field) {
+  for (int k = 0; k < 3; ++k) {
+    const std::string text = trim(c.text(k + 1));
+    if (!text.empty() && text.front() == '%')
+      r.fail(c, fmt::format("field {} '{}': a {} given by a table is not supported (numbers only)",
+                            k + 1, text, c.name));
+    v(k) = r.real(c, k + 1, 0.0);
+  }
+  for (int f = first_other_field; f <= c.n_fields(); ++f)
+    if (!c.blank(f))
+      r.fail(c, fmt::format("field {} '{}' is not a {} field", f, c.text(f), c.name));
+  if (v != Vec3::Zero()) r.model.current.rotation.where = c.where;
+}
+
+void cmd_omega(DeckReader& r, const Command& c) {
+  // KSPIN (field 4): spin softening, the stiffness change of a rotating body, is not carried
+  // out; 0 / OFF (the default) is what impactfe does.
+  if (const std::string kspin = r.label(c, 4); !kspin.empty() && kspin != "0" && kspin != "OFF") {
+    if (kspin == "ON" || r.real(c, 4, 0.0) != 0.0)
+      r.fail(c, fmt::format("KSPIN '{}': spin softening is not implemented (0 or OFF only)",
+                            c.text(4)));
+  }
+  set_rotational_vector(r, c, r.model.current.rotation.omega, 5);
+}
+void cmd_domega(DeckReader& r, const Command& c) {
+  set_rotational_vector(r, c, r.model.current.rotation.domega, 4);
+}
+void cmd_cgloc(DeckReader& r, const Command& c) {
+  set_rotational_vector(r, c, r.model.current.rotation.cg_location, 4);
+}
+void cmd_cgomga(DeckReader& r, const Command& c) {
+  set_rotational_vector(r, c, r.model.current.rotation.cg_omega, 4);
+}
+void cmd_dcgomg(DeckReader& r, const Command& c) {
+  set_rotational_vector(r, c, r.model.current.rotation.cg_domega, 4);
+}
+
 void cmd_ic(DeckReader& r, const Command& c) {
   // IC,NODE,Lab,VALUE,VALUE2,NEND,NINC
   const std::string l = r.label(c, 2);
@@ -178,6 +221,11 @@ void register_load_commands(std::vector<CommandSpec>& t) {
   t.push_back({"F", cmd_f, kPrepSolu});
   t.push_back({"FDELE", cmd_fdele, kPrepSolu});
   t.push_back({"ACEL", cmd_acel, kPrepSolu});
+  t.push_back({"OMEGA", cmd_omega, kPrepSolu});
+  t.push_back({"DOMEGA", cmd_domega, kPrepSolu});
+  t.push_back({"CGLOC", cmd_cgloc, kPrepSolu});
+  t.push_back({"CGOMGA", cmd_cgomga, kPrepSolu});
+  t.push_back({"DCGOMG", cmd_dcgomg, kPrepSolu});
   t.push_back({"IC", cmd_ic, kPrepSolu});
   t.push_back({"ICDELE", cmd_icdele, kPrepSolu});
 }

@@ -500,6 +500,17 @@ void append_current(DeckReader& r, const Command& c) {
                   location_text(a.where)));
   LoadStep s = snapshot(r, c, static_cast<int>(a.load_steps.size()) + 1);
   check_increasing(r, c, a.load_steps, s);
+  // The rotational inertia loads enter the load vector of the static and full transient
+  // solutions (analysis/step_loads.cpp); the modal, harmonic, reduced, mode-superposition and
+  // substructure analyses would ignore them, so they are refused there.
+  const bool incremental =
+      a.options.type == AnalysisType::Static ||
+      (a.options.type == AnalysisType::Transient && a.options.method == TransientMethod::Full);
+  if (s.rotation.any() && !incremental)
+    r.fail(c, fmt::format("the rotational inertia loads (OMEGA, DOMEGA, CGOMGA, DCGOMG; the last "
+                          "given at {}) are carried out in static and full transient analyses "
+                          "only, not in this one",
+                          location_text(s.rotation.where)));
   a.load_steps.push_back(std::move(s));
   if (a.load_steps.back().time_end) r.solution.last_solved_time = a.load_steps.back().time_end;
 }

@@ -74,6 +74,18 @@ class Element {
   /// superelement overrides it with the exact reduced vectors −Σ_d a_d g_d (spec §10.6, U25).
   virtual void frame_acceleration_load(const ElementContext& ctx, const Eigen::Matrix3Xd& a,
                                        Eigen::MatrixXd& f) const;
+  /// Inertia loads of acceleration fields linear in position (the rotational loads OMEGA,
+  /// DOMEGA, CGOMGA, DCGOMG: core/rotating_frame.h), column k of f for fields[k]: f = −M ā with
+  /// ā the field at each node on the translational DOFs and the material's angular acceleration
+  /// on the rotational ones (the mass formed once for all fields). With the consistent mass of
+  /// an isoparametric element this is ∫ρ Nᵀ a(x) dV exactly, since a linear field is interpolated
+  /// exactly. `position(node)` gives a node's coordinates. Throws ModelError when a field has a
+  /// component along a translation the element has no DOF for (a plane element in Z): that part
+  /// of the load could not act. A superelement refuses (its file has no such load vectors).
+  virtual void acceleration_field_load(const ElementContext& ctx,
+                                       const std::vector<LinearAccelerationField>& fields,
+                                       const std::function<Vec3(int)>& position,
+                                       Eigen::MatrixXd& f) const;
   /// Consistent nodal load of a pressure on face `face` (1-based, the face numbering of the
   /// element type's registration) with values `p` at the face's nodes (face-node order), over the
   /// element DOFs in global axes (APDL_MODELING §5.1-§5.3). Positive pressure acts into the face.
@@ -212,5 +224,11 @@ struct ElementBuildContext {
 /// bad data: missing material property, zero length/area/volume, wrong node count.
 std::unique_ptr<Element> create_element(const ElementBuildContext& ctx,
                                         const ElementRecord& record);
+
+/// Throws ModelError (naming `element`) unless each field is unchanged by a rotation about the
+/// global Y axis: the load of an axisymmetric element (X radial, Y the axis) must be
+/// axisymmetric itself (rotations about Y only, CGLOC on the Y axis).
+void require_axisymmetric_fields(const Element& element,
+                                 const std::vector<LinearAccelerationField>& fields);
 
 }  // namespace impactfe

@@ -422,6 +422,15 @@ void PlaneSolid::mass(const ElementContext& ctx, Eigen::MatrixXd& M) const {
       for (int i = 0; i < 2; ++i) M(2 * a + i, 2 * b + i) = ms(a, b);
 }
 
+void PlaneSolid::acceleration_field_load(const ElementContext& ctx,
+                                         const std::vector<LinearAccelerationField>& fields,
+                                         const std::function<Vec3(int)>& position,
+                                         Eigen::MatrixXd& f) const {
+  if (options_.behaviour == PlaneBehaviour::Axisymmetric)
+    require_axisymmetric_fields(*this, fields);
+  Element::acceleration_field_load(ctx, fields, position, f);
+}
+
 void PlaneSolid::pressure_load(const ElementContext& ctx, int face, const std::array<double, 4>& p,
                                const Eigen::VectorXd& u, Eigen::VectorXd& f) const {
   if (face < 1 || face > static_cast<int>(faces_.size()))

@@ -116,6 +116,12 @@ class PlaneSolid final : public Element {
   /// Consistent ρ∫NᵀN dV; lumped: row sums (4-node shapes) or HRZ (8- and 6-node shapes,
   /// whose row sums are negative at the corners).
   void mass(const ElementContext& ctx, Eigen::MatrixXd& M) const override;
+  /// −M ā (Element's), in axisymmetry for fields symmetric about Y only: the radial
+  /// centrifugal load ρω²r then acts on the ring of radius r through the 2πr of the mass.
+  void acceleration_field_load(const ElementContext& ctx,
+                               const std::vector<LinearAccelerationField>& fields,
+                               const std::function<Vec3(int)>& position,
+                               Eigen::MatrixXd& f) const override;
   /// Pressure on edge `face` (1..4), linear between the values at its two corners (p[0] at the
   /// face's first node), positive into the element: f_a = −∫ N_a p n dS (dS = t ds or 2πr ds).
   void pressure_load(const ElementContext& ctx, int face, const std::array<double, 4>& p,

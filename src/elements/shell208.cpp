@@ -119,6 +119,15 @@ class Shell208 : public Element {
     f_int = K * u;
   }
 
+  /// −M ā (Element's) for fields symmetric about Y (the axis) only.
+  void acceleration_field_load(const ElementContext& ctx,
+                               const std::vector<LinearAccelerationField>& fields,
+                               const std::function<Vec3(int)>& position,
+                               Eigen::MatrixXd& f) const override {
+    require_axisymmetric_fields(*this, fields);
+    Element::acceleration_field_load(ctx, fields, position, f);
+  }
+
   void mass(const ElementContext& ctx, Eigen::MatrixXd& M) const override {
     // ∫ρ Hᵀ H dV of the displacement U = Σ N_a (u_a − η θ_a t): 3 points along, 5 across.
     M.setZero(6, 6);

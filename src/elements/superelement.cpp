@@ -43,6 +43,18 @@ void Superelement::frame_acceleration_load(const ElementContext&, const Eigen::M
     f.col(k).noalias() = -(data_->unit_acceleration * a.col(k));
 }
 
+void Superelement::acceleration_field_load(const ElementContext&,
+                                           const std::vector<LinearAccelerationField>&,
+                                           const std::function<Vec3(int)>&,
+                                           Eigen::MatrixXd&) const {
+  // The reduced mass at the master nodes alone would miss the field over the interior: the
+  // exact load needs the vectors of the generation pass, which the file does not have.
+  throw NotImplementedError(
+      fmt::format("superelement {}: rotational inertia loads (OMEGA, DOMEGA, CGOMGA, DCGOMG) on a "
+                  "superelement are not implemented (its file has no load vectors for them)",
+                  id()));
+}
+
 namespace {
 const std::vector<std::string> kSuperelementResults;
 }  // namespace

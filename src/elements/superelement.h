@@ -31,6 +31,11 @@ class Superelement final : public Element {
   /// f = −Σ_d a_d g_d: exact reduced inertia load of the whole substructure (spec §10.6, U25).
   void frame_acceleration_load(const ElementContext& ctx, const Eigen::Matrix3Xd& a,
                                Eigen::MatrixXd& f) const override;
+  /// Refused (NotImplementedError): the file has no load vectors of rotational loads.
+  void acceleration_field_load(const ElementContext& ctx,
+                               const std::vector<LinearAccelerationField>& fields,
+                               const std::function<Vec3(int)>& position,
+                               Eigen::MatrixXd& f) const override;
   /// None: internal results come from the expansion pass (spec §11.7).
   const std::vector<std::string>& result_names() const override;
   void results(const ElementContext& ctx, const Eigen::VectorXd& u, const Eigen::VectorXd& v,

@@ -51,6 +51,7 @@ void refuse_unsupported(const Model& model, const AnalysisRequest& request) {
     };
     if (!step.forces.empty()) refuse("nodal forces (F) are");
     if (!step.pressures.empty()) refuse("surface loads (SF) are");
+    if (step.rotation.any()) refuse("rotational inertia loads (OMEGA, DOMEGA, CGOMGA, DCGOMG) are");
     if (!step.constraint_tables.empty()) refuse("table (time-function) constraints are");
     for (const auto& t : step.acel_tables)
       if (!t.empty()) refuse("table (time-function) accelerations are");
