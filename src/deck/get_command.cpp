@@ -12,6 +12,7 @@
 #include <map>
 
 #include "deck/get_hooks.h"
+#include "deck/post1_path.h"
 #include "deck/post1_print.h"
 #include "deck/post26.h"
 #include "deck/post_support.h"
@@ -497,6 +498,7 @@ std::optional<GetValue> get_value(DeckReader& r, const Command& c, const GetRequ
   if (e == "MODE") return GetValue{get_mode(r, c, g)};
   if (e == "FSUM" || e == "SSUM" || e == "SORT") return GetValue{get_post1_sum(r, c, g)};
   if (e == "VARI") return GetValue{get_variable(r, c, g)};
+  if (e == "PATH") return GetValue{get_path_value(r, c, g.item1, g.it1num)};
   if (e == "PLNSOL" || e == "PLNS") return GetValue{get_contour_range(r, c, g)};
   if (e == "ETYP") return GetValue{get_element_type(r, c, g)};
   // REAL: the name Workbench input files write for RCON (*get,,real,0,NUM,MAX).

@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "deck/element_forces.h"
+#include "deck/post1_path.h"
 #include "deck/post1_print.h"
 #include "deck/post_support.h"
 
@@ -458,6 +459,7 @@ void register_post1_commands(std::vector<CommandSpec>& t) {
   t.push_back({"FSUM", cmd_fsum, kPost1});
   t.push_back({"NFORCE", cmd_nforce, kPost1});
   register_post1_print_commands(t);
+  register_post1_path_commands(t);
 }
 
 }  // namespace impactfe::deck

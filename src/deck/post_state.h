@@ -2,6 +2,7 @@
 /// The post-processing state of one deck session (DeckReader::post): the results file being
 /// read, the current POST1 set, the element table, sort order, the last sums, the plot settings
 /// and the POST26 variables. Shared by the POST1 / POST26 / *GET handler files.
+#include <algorithm>
 #include <array>
 #include <map>
 #include <memory>
@@ -9,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "core/coordinate_system.h"
 #include "results/result_sets.h"
 #include "results/results_file.h"
 #include "results/svg_plot.h"
@@ -46,6 +48,38 @@ struct Post26Variable {
 struct SortResult {
   double max = 0.0, min = 0.0;
   int imax = 0, imin = 0;
+};
+
+/// One point of a path (PPATH): a node's position or a location, and the coordinate system in
+/// which the path runs from the previous point to this one.
+struct PathPoint {
+  bool defined = false;
+  int node = 0;  // 0: given by its coordinates
+  Vec3 x = Vec3::Zero();
+  int csys = 0;
+};
+
+/// A path (PATH): its points, the number of divisions between adjacent points and the path
+/// items (PDEF, PCALC, PVECT, ...) at its interpolation points, (points − 1) · divisions + 1 of
+/// them. XG, YG, ZG (global coordinates) and S (distance along the path) are made when the last
+/// point is defined.
+struct PathDefinition {
+  std::string name;
+  int n_sets = 30;  // items the path may hold, XG YG ZG S included
+  int n_div = 20;
+  std::vector<PathPoint> points;
+  std::vector<std::string> labels;  // items in definition order
+  std::map<std::string, std::vector<double>> items;
+  // PRANGE: the part of the path PRPATH lists and PLPATH draws (every `increment`-th point with
+  // S in [s_min, s_max]) and PLPATH's x variable.
+  int increment = 1;
+  std::optional<double> s_min, s_max;
+  std::string x_item = "S";
+
+  bool complete() const {
+    return !points.empty() &&
+           std::all_of(points.begin(), points.end(), [](const PathPoint& p) { return p.defined; });
+  }
 };
 
 struct PostState {
@@ -89,6 +123,10 @@ struct PostState {
   // The least and greatest value of the last contour picture (PLNSOL, PLESOL, PLETAB) over what
   // it drew: *GET,Par,PLNSOL,0,MIN|MAX.
   std::optional<std::pair<double, double>> contour_range;
+
+  // ---- paths (PATH, PPATH, PDEF, PCALC, ...) ------------------------------------------------
+  std::map<std::string, PathDefinition> paths;
+  std::string current_path;  // name of the path the path commands act on
 
   // ---- POST26 -----------------------------------------------------------------------------
   int numvar = 10;

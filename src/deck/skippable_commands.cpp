@@ -28,13 +28,13 @@ constexpr std::string_view kNoEffectOnResults[] = {
     "/TXTRE", "/HBC", "/GMATRIX", "/MREP", "/VCONE", "/XFRM", "/ANNOT", "/TLABEL", "/LARC",
     "/POLYGON", "/PMORE", "/PCIRCLE", "/STITLE", "/UDOC", "/GTYPE", "/RESET",
     // plots
-    "APLOT", "KPLOT", "LPLOT", "VPLOT", "SECPLOT", "*VPLOT", "PLLS", "PLVECT", "PLPATH", "PLPAGM",
-    "PLCAMP", "PLORB", "PLTRAC", "PLSECT", "PLGEOM", "PLCINT", "PLCRACK", "PLZZ", "PLMC", "PLTIME",
-    "PLTLINE", "PLOT", "REPLOT", "TBPLOT", "PLHFFAR", "PLFAR", "CMPLOT",
+    "APLOT", "KPLOT", "LPLOT", "VPLOT", "SECPLOT", "*VPLOT", "PLLS", "PLVECT", "PLCAMP", "PLORB",
+    "PLTRAC", "PLGEOM", "PLCINT", "PLCRACK", "PLZZ", "PLMC", "PLTIME", "PLTLINE", "PLOT", "REPLOT",
+    "TBPLOT", "PLHFFAR", "PLFAR", "CMPLOT",
     // printed listings
-    "PRCAMP", "PRORB", "PRERR", "PRSECT", "PRPATH", "PRCINT", "PRENERGY", "PRJSOL", "PRITER",
-    "PRNLD", "PRRFOR", "IRLIST", "SLIST", "TBLIST", "SECLIST", "CPLIST", "BFLIST", "BFELIST",
-    "SFLIST", "SFELIST", "DKLIST", "FKLIST", "STAT"};
+    "PRCAMP", "PRORB", "PRERR", "PRCINT", "PRENERGY", "PRJSOL", "PRITER", "PRNLD", "PRRFOR",
+    "IRLIST", "SLIST", "TBLIST", "SECLIST", "CPLIST", "BFLIST", "BFELIST", "SFLIST", "SFELIST",
+    "DKLIST", "FKLIST", "STAT"};
 
 /// Leading '/' or '*' plus up to four characters: the part of a name MAPDL reads.
 std::string_view significant(std::string_view name) {
