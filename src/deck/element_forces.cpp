@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 #include <cmath>
 
 #include "deck/post_state.h"
@@ -11,6 +13,8 @@
 namespace impactfe::deck {
 
 namespace {
+
+constexpr const char* kThermalExpansionLabels[] = {"ALPX", "ALPY", "ALPZ"};
 
 /// Values of a nodal array (U, V or A) of the set at the element's DOFs; absent values are 0.
 Eigen::VectorXd gather(const Eigen::MatrixXd& m, const std::vector<int>& node_ids,
@@ -25,12 +29,25 @@ Eigen::VectorXd gather(const Eigen::MatrixXd& m, const std::vector<int>& node_id
   return out;
 }
 
+/// Whether the element's material expands (ALPX, ALPY or ALPZ) in a model given temperatures.
+bool heated_expanding(const DeckReader& r, const ElementRecord& e) {
+  if (!r.model.current.gives_temperatures()) return false;
+  const auto mat = r.model.materials.find(e.mat);
+  if (mat == r.model.materials.end()) return false;
+  return std::any_of(std::begin(kThermalExpansionLabels), std::end(kThermalExpansionLabels),
+                     [&](const char* alpha) { return mat->second.get(alpha, 0.0) != 0.0; });
+}
+
 }  // namespace
 
 std::map<int, std::vector<double>> element_nodal_results(DeckReader& r, const Command& c,
                                                          int element) {
   const auto rec = r.model.elements.find(element);
   if (rec == r.model.elements.end()) return {};
+  // The element is rebuilt here without the temperatures of the solution: the extrapolated
+  // values of an element whose material expands, in a model given temperatures, would miss its
+  // thermal strain, so its stored (centroid) values stand for its nodes.
+  if (heated_expanding(r, rec->second)) return {};
   const ResultsReader& reader = results(r, c);
   const SetData& set = current_set(r, c);
   const ElementBuildContext build{r.model, [&](const ElementRecord& e) -> std::string {
@@ -77,6 +94,11 @@ const Mat3& element_result_axes(DeckReader& r, const Command& c, int element) {
 std::map<int, NodalForce> element_nodal_forces(DeckReader& r, const Command& c, int element) {
   const auto rec = r.model.elements.find(element);
   if (rec == r.model.elements.end()) r.fail(c, fmt::format("element {} is not defined", element));
+  // Rebuilt without the temperatures of the solution, K u would miss the thermal load.
+  if (heated_expanding(r, rec->second))
+    r.fail(c, fmt::format("element {}: its nodal forces (NFORCE, FSUM) under a thermal strain are "
+                          "not available (the element is rebuilt without its temperatures)",
+                          element));
   const ResultsReader& reader = results(r, c);
   const SetData& set = current_set(r, c);
   const ElementBuildContext build{

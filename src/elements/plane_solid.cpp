@@ -367,6 +367,7 @@ void PlaneSolid::form_stiffness() {
     }
     // Static condensation of the internal modes: K = Kuu − Kau' Kaa⁻¹ Kau, α = −Kaa⁻¹ Kau u.
     mode_recovery_ = kaa.ldlt().solve(kau);
+    kaa_inverse_ = kaa.inverse();
     k_ -= kau.transpose() * mode_recovery_;
   }
   if (reduced) k_ += hourglass_;
@@ -482,11 +483,68 @@ Eigen::Vector4d PlaneSolid::centroid_stress(const Eigen::VectorXd& u) const {
     for (int r = 0; r < 3; ++r) b.row(r) += shift;
   }
   Eigen::Vector4d strain = b * u;
-  if (options_.technology == PlaneTechnology::IncompatibleModes) {
-    const Eigen::Vector4d alpha = -(mode_recovery_ * u);
-    strain += (mode_matrix(p, centre(options_.shape)) - mean_modes_) * alpha;
+  if (options_.technology == PlaneTechnology::IncompatibleModes)
+    strain += (mode_matrix(p, centre(options_.shape)) - mean_modes_) * mode_amplitudes(u);
+  return d_ * (strain - thermal_strain(p));
+}
+
+Eigen::Vector4d PlaneSolid::thermal_strain(const Point& p) const {
+  const std::vector<double>& dT = temperature_change();
+  const ThermalExpansion& te = thermal_expansion();
+  if (dT.empty() || !te.expands()) return Eigen::Vector4d::Zero();
+  double t = 0.0;
+  for (std::size_t k = 0; k < nodes_.size(); ++k)
+    for (std::size_t j = 0; j < te.nodes.size() && j < dT.size(); ++j)
+      if (te.nodes[j] == nodes_[k]) {
+        t += p.n(static_cast<Eigen::Index>(k)) * dT[j];
+        break;
+      }
+  // Plane stress: D has no zz row or column, so αz ΔT drops out as σzz = 0 requires.
+  return Eigen::Vector4d(te.alpha.x() * t, te.alpha.y() * t, te.alpha.z() * t, 0.0);
+}
+
+void PlaneSolid::thermal_sums(Eigen::VectorXd& f_u, Eigen::Vector4d& f_a) const {
+  const bool reduced = options_.technology == PlaneTechnology::Reduced;
+  const bool modes = options_.technology == PlaneTechnology::IncompatibleModes;
+  f_u = Eigen::VectorXd::Zero(2 * static_cast<Eigen::Index>(nodes_.size()));
+  f_a.setZero();
+  for (const QuadraturePoint& q : rule_) {
+    const Point p = point_at(q.xi.head<2>());
+    const double dv = reduced ? volume_ : measure(p, q.weight);
+    Eigen::MatrixXd b = point_strain(p);
+    if (options_.technology == PlaneTechnology::BBar) {
+      const Eigen::RowVectorXd shift = (mean_dilatation_ - b.topRows(3).colwise().sum()) / 3.0;
+      for (int r = 0; r < 3; ++r) b.row(r) += shift;
+    }
+    const Eigen::Vector4d s = d_ * thermal_strain(p);
+    f_u.noalias() += dv * (b.transpose() * s);
+    if (modes)
+      f_a.noalias() += dv * ((mode_matrix(p, q.xi.head<2>()) - mean_modes_).transpose() * s);
   }
-  return d_ * strain;
+}
+
+Eigen::Vector4d PlaneSolid::mode_amplitudes(const Eigen::VectorXd& u) const {
+  Eigen::Vector4d alpha = -(mode_recovery_ * u);
+  if (!temperature_change().empty() && thermal_expansion().expands()) {
+    Eigen::VectorXd f_u;
+    Eigen::Vector4d f_a;
+    thermal_sums(f_u, f_a);
+    alpha += kaa_inverse_ * f_a;
+  }
+  return alpha;
+}
+
+void PlaneSolid::thermal_load(const ElementContext&, Eigen::VectorXd& f) const {
+  if (plasticity_ || options_.large_deflection)
+    throw NotImplementedError(fmt::format(
+        "element {} ({}): thermal strain is implemented for the elastic small-strain 2-D solids; "
+        "this one is {}",
+        id(), family(), plasticity_ ? "plastic (TB)" : "under large deflection (NLGEOM,ON)"));
+  Eigen::Vector4d f_a;
+  thermal_sums(f, f_a);
+  // Static condensation of the modes: (K_uu − K_ua K_aa⁻¹ K_au) u = f_u − Rᵀ f_a, R = K_aa⁻¹ K_au.
+  if (options_.technology == PlaneTechnology::IncompatibleModes)
+    f.noalias() -= mode_recovery_.transpose() * f_a;
 }
 
 const std::vector<std::string>& plane_solid_result_names() {
@@ -577,7 +635,7 @@ void PlaneSolid::point_stresses(const ElementContext& ctx, const Eigen::VectorXd
     return;
   }
   Eigen::Vector4d alpha = Eigen::Vector4d::Zero();
-  if (options_.technology == PlaneTechnology::IncompatibleModes) alpha = -(mode_recovery_ * u);
+  if (options_.technology == PlaneTechnology::IncompatibleModes) alpha = mode_amplitudes(u);
   for (const QuadraturePoint& q : rule_) {
     const Eigen::Vector2d xi = q.xi.head<2>();
     const Point p = point_at(xi);
@@ -589,7 +647,7 @@ void PlaneSolid::point_stresses(const ElementContext& ctx, const Eigen::VectorXd
     Eigen::Vector4d strain = b * u;
     if (options_.technology == PlaneTechnology::IncompatibleModes)
       strain += (mode_matrix(p, xi) - mean_modes_) * alpha;
-    sigma.push_back(d_ * strain);
+    sigma.push_back(d_ * (strain - thermal_strain(p)));
   }
 }
 

@@ -126,6 +126,13 @@ class PlaneSolid final : public Element {
   /// face's first node), positive into the element: f_a = −∫ N_a p n dS (dS = t ds or 2πr ds).
   void pressure_load(const ElementContext& ctx, int face, const std::array<double, 4>& p,
                      const Eigen::VectorXd& u, Eigen::VectorXd& f) const override;
+  /// Equivalent nodal forces of the thermal strain (docs/thermal_loads.md): f = ∫ Bᵀ D ε_th dV
+  /// with ε_th = α (T − T_ref) at the stiffness points, T interpolated from the nodes: (αx, αy,
+  /// 0) ΔT in plane stress (σzz = 0), (αx, αy, αz) ΔT with εzz = 0 in plane strain (so σzz =
+  /// ν(σx + σy) − E αz ΔT), the hoop strain αz ΔT in axisymmetry; B-bar, the reduced mean strain
+  /// and the incompatible modes as in the stiffness (the modes' share condensed:
+  /// f = f_u − Rᵀ f_a). Elastic small strain; with plasticity or NLGEOM: NotImplementedError.
+  void thermal_load(const ElementContext& ctx, Eigen::VectorXd& f) const override;
   const std::vector<std::string>& result_names() const override;
   /// Finite strain (large deflection, plane_solid_finite.cpp) at total displacement u from the
   /// committed state: f_int = ∫ Bᵀσ dv over the current configuration and its exact derivative
@@ -241,6 +248,13 @@ class PlaneSolid final : public Element {
   /// The elastic extrapolation of point stresses to the nodes (nodal_results()).
   std::vector<Eigen::Vector4d> extrapolate_to_nodes(
       const std::vector<Eigen::Vector4d>& sigma) const;
+  /// ε_th = α (T − T_ref) (xx, yy, zz, xy) at a point, T interpolated from the nodes'
+  /// temperature changes (temperature_change()); zero when none is set.
+  Eigen::Vector4d thermal_strain(const Point& p) const;
+  /// The thermal load on the nodal DOFs (f_u) and on the incompatible modes (f_a).
+  void thermal_sums(Eigen::VectorXd& f_u, Eigen::Vector4d& f_a) const;
+  /// The incompatible-mode amplitudes at u: −R u, plus K_aa⁻¹ f_a under a thermal strain.
+  Eigen::Vector4d mode_amplitudes(const Eigen::VectorXd& u) const;
   /// The elastic strain (xx, yy, zz, xy; engineering shear) of a stress (isotropic law).
   Eigen::Vector4d elastic_strain(const Eigen::Vector4d& stress) const;
 
@@ -257,9 +271,10 @@ class PlaneSolid final : public Element {
   Eigen::MatrixXd k_;
   Eigen::RowVectorXd mean_dilatation_;  // B-bar: element mean of the volumetric row
   Eigen::Matrix4d mean_modes_;          // incompatible modes: their element mean (subtracted)
-  Eigen::MatrixXd mode_recovery_;       // α = −mode_recovery_ u
-  Eigen::MatrixXd hourglass_;           // reduced integration: the stabilisation stiffness
-  Eigen::MatrixXd mean_strain_;         // reduced integration: B̄ = ∫ B dV / V
+  Eigen::MatrixXd mode_recovery_;       // α = −mode_recovery_ u (+ K_aa⁻¹ f_a, thermal)
+  Eigen::Matrix4d kaa_inverse_ = Eigen::Matrix4d::Zero();  // incompatible modes: K_aa⁻¹
+  Eigen::MatrixXd hourglass_;    // reduced integration: the stabilisation stiffness
+  Eigen::MatrixXd mean_strain_;  // reduced integration: B̄ = ∫ B dV / V
   Eigen::Matrix2d j0_inverse_;
   double det0_ = 1.0;
   std::optional<J2Plasticity> plasticity_;
