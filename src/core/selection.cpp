@@ -9,8 +9,11 @@ std::optional<SelectType> parse_select_type(std::string_view label) {
   if (label == "U") return SelectType::Unselect;
   if (label == "ALL") return SelectType::All;
   if (label == "NONE") return SelectType::None;
-  if (label == "INVE") return SelectType::Invert;
-  if (label == "STAT") return SelectType::Stat;
+  // INVE and STAT as MAPDL reads them: their first four characters (INVERT, STATUS).
+  if (label.size() >= 4 && std::string_view("INVERT").substr(0, label.size()) == label)
+    return SelectType::Invert;
+  if (label.size() >= 4 && std::string_view("STATUS").substr(0, label.size()) == label)
+    return SelectType::Stat;
   return std::nullopt;
 }
 

@@ -314,12 +314,17 @@ void DeckReader::add_element(const Command& c, int id, std::vector<int> nodes) {
   if (d.triangle_form_keyopt > 0 && type.key(d.triangle_form_keyopt) == 1) {
     // The 6-node triangle I J K L M N (PLANE183 KEYOPT(1) = 1) in the quadrilateral's form
     // with K = L = O: I J K K, then the midsides L M (K) N of I-J J-K (K-K) K-I.
+    // The corners alone leave the midside nodes to EMID (or to the model check, which refuses
+    // an element still without them).
     while (!nodes.empty() && nodes.back() == 0) nodes.pop_back();
-    if (nodes.size() != 6)
+    if (nodes.size() == 3)
+      nodes = {nodes[0], nodes[1], nodes[2], nodes[2], 0, 0, nodes[2], 0};
+    else if (nodes.size() == 6)
+      nodes = {nodes[0], nodes[1], nodes[2], nodes[2], nodes[3], nodes[4], nodes[2], nodes[5]};
+    else
       fail(c, fmt::format("{} with KEYOPT({}) = 1 is the 6-node triangle: E takes the nodes I J "
-                          "K L M N, got {}",
+                          "K L M N (or the corners I J K, EMID adding the midside nodes), got {}",
                           d.name, d.triangle_form_keyopt, nodes.size()));
-    nodes = {nodes[0], nodes[1], nodes[2], nodes[2], nodes[3], nodes[4], nodes[2], nodes[5]};
   }
   const int given = static_cast<int>(nodes.size());
   // A cell with midside nodes takes its corners from E and the rest from EMORE (E has 8 node

@@ -196,6 +196,8 @@ void copy_element(DeckReader& r, const Command& c, const ElementRecord& src, lon
   if (d.defined_by_file)
     r.fail(c, fmt::format("element {} is a superelement and cannot be copied", src.id));
   for (int& n : e.nodes) {
+    // A midside node not given yet (0, left to EMORE or EMID) stays missing in the copy.
+    if (n == 0) continue;
     const int from = n;
     n = checked_number(r, c, n + k * ninc, "node");
     if (r.model.nodes.count(n) == 0 && dxyz && from != 0 && r.model.nodes.count(from) != 0) {

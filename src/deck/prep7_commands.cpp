@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 #include <stdexcept>
 
 #include "core/dof.h"
@@ -282,6 +283,80 @@ void cmd_nmodif(DeckReader& r, const Command& c) {
     n.x = cs.to_global(local);
     for (int k = 0; k < 3; ++k) n.angles_deg(k) = r.real(c, 5 + k, n.angles_deg(k));
   }
+}
+
+void cmd_ndele(DeckReader& r, const Command& c) {
+  // NDELE,NODE1,NODE2,NINC: deletes nodes no element uses (NODE1 = ALL: the selected ones, or a
+  // node component). A node an element uses stays, with a warning that counts them, as MAPDL
+  // deletes only free nodes. A node that carries a constraint, load, initial condition,
+  // temperature, coupling, constraint equation or master DOF, or belongs to a meshed
+  // solid-model entity, is refused: deleting it would leave those pointing at nothing.
+  if (c.blank(1)) r.fail(c, "NODE1 missing (a node number, ALL or a component)");
+  const std::vector<int> ids = component_or_entity_list(r, c, 1, 2, 3, "NODE", r.model.nodes,
+                                                        r.model.selection.nodes, "node");
+  std::set<int> used;
+  for (const auto& [id, e] : r.model.elements) used.insert(e.nodes.begin(), e.nodes.end());
+  std::set<int> referenced;
+  const LoadStep& loads = r.model.current;
+  for (const auto* dofs : {&loads.constraints, &loads.forces})
+    for (const auto& [k, v] : *dofs) referenced.insert(k.node);
+  for (const auto& [k, v] : r.model.initial_conditions) referenced.insert(k.node);
+  for (const auto& [n, t] : loads.node_temperatures) referenced.insert(n);
+  for (const auto& k : r.model.masters) referenced.insert(k.node);
+  for (const auto& [id, set] : r.model.coupled_sets)
+    referenced.insert(set.nodes.begin(), set.nodes.end());
+  for (const auto& [id, eq] : r.model.constraint_equations)
+    for (const auto& t : eq.terms) referenced.insert(t.dof.node);
+  const SolidModel& solid = r.model.solid;
+  for (const auto& [id, k] : solid.keypoints) referenced.insert(k.node);
+  for (const auto& [id, l] : solid.lines) referenced.insert(l.nodes.begin(), l.nodes.end());
+  for (const auto& [id, a] : solid.areas) {
+    referenced.insert(a.grid.nodes.begin(), a.grid.nodes.end());
+    referenced.insert(a.interior_nodes.begin(), a.interior_nodes.end());
+  }
+  for (const auto& [id, v] : solid.volumes)
+    referenced.insert(v.interior_nodes.begin(), v.interior_nodes.end());
+  int kept = 0;
+  for (int id : ids) {
+    if (used.count(id) != 0) {
+      ++kept;
+      continue;
+    }
+    if (referenced.count(id) != 0)
+      r.fail(c, fmt::format("node {} carries loads, constraints, couplings or a solid-model "
+                            "mesh; delete those first (DDELE, FDELE, ...)",
+                            id));
+    r.model.nodes.erase(id);
+    r.model.selection.nodes.forget(id);
+  }
+  if (kept > 0)
+    r.warn(c,
+           fmt::format("{} of the {} nodes are used by elements and were kept", kept, ids.size()));
+}
+
+void cmd_edele(DeckReader& r, const Command& c) {
+  // EDELE,IEL1,IEL2,INC: deletes elements (IEL1 = ALL: the selected ones, or an element
+  // component), their face pressures with them; they leave the solid-model entities that
+  // meshed them. Their nodes stay (NDELE deletes free nodes).
+  if (c.blank(1)) r.fail(c, "IEL1 missing (an element number, ALL or a component)");
+  const std::vector<int> ids = component_or_entity_list(r, c, 1, 2, 3, "ELEM", r.model.elements,
+                                                        r.model.selection.elements, "element");
+  const std::set<int> gone(ids.begin(), ids.end());
+  for (int id : ids) {
+    r.model.elements.erase(id);
+    r.model.selection.elements.forget(id);
+  }
+  auto& pressures = r.model.current.pressures;
+  for (auto it = pressures.begin(); it != pressures.end();)
+    it = gone.count(it->first.element) != 0 ? pressures.erase(it) : std::next(it);
+  const auto drop = [&](std::vector<int>& elements) {
+    std::erase_if(elements, [&](int e) { return gone.count(e) != 0; });
+  };
+  SolidModel& solid = r.model.solid;
+  for (auto& [id, k] : solid.keypoints) drop(k.elements);
+  for (auto& [id, l] : solid.lines) drop(l.elements);
+  for (auto& [id, a] : solid.areas) drop(a.elements);
+  for (auto& [id, v] : solid.volumes) drop(v.elements);
 }
 
 std::vector<int> node_fields(DeckReader& r, const Command& c, int first) {
@@ -598,6 +673,7 @@ void register_prep7_commands(std::vector<CommandSpec>& t) {
   t.push_back({"SECCONTROL", cmd_seccontrol, kPrep7});
   t.push_back({"N", cmd_n, kPrep7});
   t.push_back({"NMODIF", cmd_nmodif, kPrep7});
+  t.push_back({"NDELE", cmd_ndele, kPrep7});
   t.push_back({"E", cmd_e, kPrep7});
   t.push_back({"EN", cmd_en, kPrep7});
   t.push_back({"EMORE", cmd_emore, kPrep7});
@@ -607,6 +683,7 @@ void register_prep7_commands(std::vector<CommandSpec>& t) {
   t.push_back({"MAT", cmd_mat, kPrep7});
   t.push_back({"MPCHG", cmd_mpchg, kPrep7 | kSolu});
   t.push_back({"EMODIF", cmd_emodif, kPrep7});
+  t.push_back({"EDELE", cmd_edele, kPrep7});
   t.push_back({"M", cmd_m, kPrep7 | kSolu});
   t.push_back({"TOTAL", cmd_total, kPrep7 | kSolu});
   t.push_back({"GP", cmd_gp, kPrep7 | kSolu});

@@ -186,23 +186,31 @@ void cmd_lumpm(DeckReader& r, const Command& c) {
 
 void cmd_antype(DeckReader& r, const Command& c) {
   const std::string l = r.label(c, 1);
+  // The label or its number; MAPDL also reads an abbreviation of at least four characters
+  // (ANTYPE,SUBST, TRAN).
+  const auto is = [&](const char* number, std::initializer_list<const char*> names) {
+    if (l == number) return true;
+    for (const char* name : names)
+      if (l == name || (l.size() >= 4 && std::string(name).rfind(l, 0) == 0)) return true;
+    return false;
+  };
   AnalysisType type = r.model.options.type;
-  if (l == "STATIC" || l == "0" || l == "STAT")
+  if (is("0", {"STATIC"}))
     type = AnalysisType::Static;
-  else if (l == "MODAL" || l == "2")
+  else if (is("2", {"MODAL"}))
     type = AnalysisType::Modal;
-  else if (l == "TRANS" || l == "TRANSIENT" || l == "4")
+  else if (is("4", {"TRANSIENT"}))
     type = AnalysisType::Transient;
-  else if (l == "SUBSTR" || l == "SUBSTRUCTURE" || l == "7")
+  else if (is("7", {"SUBSTR", "SUBSTRUCTURE"}))
     type = AnalysisType::Substructure;
-  else if (l == "HARMIC" || l == "HARMONIC" || l == "3")
+  else if (is("3", {"HARMIC", "HARMONIC"}))
     type = AnalysisType::Harmonic;
-  else if (l == "SPECTR" || l == "SPECTRUM" || l == "8") {
+  else if (is("8", {"SPECTR", "SPECTRUM"})) {
     // The spectrum analysis works on the modes of the modal analysis solved before it.
     if (r.model.modal_load_vectors.empty())
       r.fail(c, "a spectrum analysis needs the modal analysis (ANTYPE,MODAL ... SOLVE) first");
     type = AnalysisType::Spectrum;
-  } else if (l == "BUCKLE" || l == "1")
+  } else if (is("1", {"BUCKLE"}))
     r.fail(c, "buckling analysis (ANTYPE,BUCKLE) is not supported");
   else if (l.empty())
     ;

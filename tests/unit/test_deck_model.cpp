@@ -415,4 +415,64 @@ TEST(DeckModel, NmodifMovesNodesKeepingBlankFields) {
   EXPECT_NE(error_of("/PREP7\nN,1\nNMODIF,5,1\n").find("node 5"), std::string::npos);
 }
 
+TEST(DeckModel, NdeleDeletesFreeNodesAndKeepsUsedOnes) {
+  const Model m = parse(
+                      "/PREP7\nET,1,LINK180\nN,1\nN,2,1\nN,3,2\nN,4,3\nE,1,2\n"
+                      "NDELE,1,4\n")
+                      .model;
+  EXPECT_EQ(m.nodes.count(1), 1u);  // used by element 1
+  EXPECT_EQ(m.nodes.count(2), 1u);
+  EXPECT_EQ(m.nodes.count(3), 0u);
+  EXPECT_EQ(m.nodes.count(4), 0u);
+  // A node with a constraint is refused rather than leaving the constraint behind.
+  EXPECT_NE(error_of("/PREP7\nN,1\nD,1,UX\nNDELE,1\n").find("node 1 carries"), std::string::npos);
+}
+
+TEST(DeckModel, EdeleDeletesElementsAndTheirPressures) {
+  const Model m = parse(
+                      "/PREP7\nET,1,PLANE182\nN,1\nN,2,1\nN,3,1,1\nN,4,0,1\nN,5,2\n"
+                      "N,6,2,1\nE,1,2,3,4\nE,2,5,6,3\nSFE,1,1,PRES,,5\nSFE,2,1,PRES,,5\n"
+                      "ESEL,S,ELEM,,2\nEDELE,ALL\nESEL,ALL\nNDELE,ALL\n")
+                      .model;
+  EXPECT_EQ(m.elements.count(1), 1u);
+  EXPECT_EQ(m.elements.count(2), 0u);
+  EXPECT_EQ(m.current.pressures.count(FaceKey{2, 1}), 0u);
+  EXPECT_EQ(m.current.pressures.count(FaceKey{1, 1}), 1u);
+  EXPECT_EQ(m.nodes.count(5), 0u);  // freed by EDELE, deleted by NDELE
+  EXPECT_EQ(m.nodes.count(3), 1u);
+}
+
+TEST(DeckModel, EgenKeepsMissingMidsideNodesMissing) {
+  // PLANE183 given its corners only: the copies' midside nodes stay 0 (EMID fills them), not
+  // the pattern's 0 plus the node increment.
+  const Model m = parse(
+                      "/PREP7\nET,1,PLANE183\nN,1\nN,2,1\nN,3,2\nN,11,0,1\nN,12,1,1\n"
+                      "N,13,2,1\nE,1,2,12,11\nEGEN,2,1,1\nEMID\n")
+                      .model;
+  ASSERT_EQ(m.elements.count(2), 1u);
+  const auto& n = m.elements.at(2).nodes;
+  EXPECT_EQ(n[0], 2);
+  EXPECT_EQ(n[2], 13);
+  // EMID placed the shared midside node of edge 2-12 once, for both elements.
+  EXPECT_EQ(m.elements.at(1).nodes[5], n[7]);
+  EXPECT_NEAR(m.nodes.at(n[7]).x.x(), 1.0, 1e-12);
+  EXPECT_NEAR(m.nodes.at(n[7]).x.y(), 0.5, 1e-12);
+}
+
+TEST(DeckModel, TriangleFormTakesItsCornersForEmid) {
+  const Model m = parse("/PREP7\nET,1,PLANE183,1\nN,1\nN,2,1\nN,3,0,1\nE,1,2,3\nEMID\n").model;
+  const auto& n = m.elements.at(1).nodes;
+  ASSERT_EQ(n.size(), 8u);
+  EXPECT_EQ(n[3], 3);  // the triangle K = L = O
+  EXPECT_EQ(n[6], 3);
+  EXPECT_NEAR(m.nodes.at(n[4]).x.x(), 0.5, 1e-12);  // midside of I-J
+  EXPECT_NEAR(m.nodes.at(n[7]).x.y(), 0.5, 1e-12);  // midside of K-I
+}
+
+TEST(DeckModel, SelectionTypesReadAsMapdlAbbreviates) {
+  const Model m = parse("/PREP7\nN,1\nN,2,1\nNSEL,S,NODE,,1\nNSEL,INVERT\n").model;
+  EXPECT_FALSE(m.selection.nodes.selected(1));
+  EXPECT_TRUE(m.selection.nodes.selected(2));
+}
+
 }  // namespace test_deck_model
