@@ -498,7 +498,11 @@ std::optional<GetValue> get_value(DeckReader& r, const Command& c, const GetRequ
   if (e == "MODE") return GetValue{get_mode(r, c, g)};
   if (e == "FSUM" || e == "SSUM" || e == "SORT") return GetValue{get_post1_sum(r, c, g)};
   if (e == "VARI") return GetValue{get_variable(r, c, g)};
-  if (e == "PATH") return GetValue{get_path_value(r, c, g.item1, g.it1num)};
+  if (e == "PATH") {
+    if (g.item1 == "ITEM" && g.item2 == "PATHPT")
+      return GetValue{get_path_value(r, c, g.item1, g.it1num, integer_field(r, c, g, g.it2num))};
+    return GetValue{get_path_value(r, c, g.item1, g.it1num)};
+  }
   if (e == "PLNSOL" || e == "PLNS") return GetValue{get_contour_range(r, c, g)};
   if (e == "ETYP") return GetValue{get_element_type(r, c, g)};
   // REAL: the name Workbench input files write for RCON (*get,,real,0,NUM,MAX).

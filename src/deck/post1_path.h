@@ -27,9 +27,9 @@ std::vector<double> interpolate_at(DeckReader& r, const Command& c, const std::v
                                    const std::string& item, const std::string& comp, bool average);
 
 /// *GET,Par,PATH,0,MAX|MIN|LAST|FIRST,Lab: the extremes, last or first value of a path item of
-/// the current path.
+/// the current path; *GET,Par,PATH,0,ITEM,Lab,PATHPT,n: its value at point n (1-based).
 double get_path_value(DeckReader& r, const Command& c, const std::string& what,
-                      const std::string& label);
+                      const std::string& label, int point = 0);
 
 void register_post1_path_commands(std::vector<CommandSpec>& table);
 void register_post1_section_commands(std::vector<CommandSpec>& table);

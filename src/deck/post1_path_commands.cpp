@@ -620,14 +620,20 @@ std::vector<double> interpolate_at(DeckReader& r, const Command& c, const std::v
 }
 
 double get_path_value(DeckReader& r, const Command& c, const std::string& what,
-                      const std::string& label) {
+                      const std::string& label, int point) {
   const PathDefinition& p = complete_path(r, c);
   const auto& v = path_item(r, c, p, label);
   if (what == "MAX") return *std::max_element(v.begin(), v.end());
   if (what == "MIN") return *std::min_element(v.begin(), v.end());
   if (what == "LAST") return v.back();
   if (what == "FIRST") return v.front();
-  r.fail(c, fmt::format("*GET PATH item '{}': MAX, MIN, LAST or FIRST", what));
+  if (what == "ITEM") {
+    if (point < 1 || point > static_cast<int>(v.size()))
+      r.fail(c, fmt::format("*GET PATH ITEM,{},PATHPT,{}: the point must be 1..{}", label, point,
+                            v.size()));
+    return v[static_cast<std::size_t>(point - 1)];
+  }
+  r.fail(c, fmt::format("*GET PATH item '{}': MAX, MIN, LAST, FIRST or ITEM,Lab,PATHPT,n", what));
 }
 
 void register_post1_path_commands(std::vector<CommandSpec>& t) {
