@@ -440,6 +440,18 @@ void cmd_nforce(DeckReader& r, const Command& c) {
   print(r, out + "\n");
 }
 
+// AVPRIN,KEY,EFFNU: how nodal principal stresses are averaged (post_state.h); EFFNU (the
+// effective Poisson's ratio of equivalent strains) only as MAPDL's automatic choice.
+void cmd_avprin(DeckReader& r, const Command& c) {
+  const int key = r.integer(c, 1, 0);
+  if (key != 0 && key != 1) r.fail(c, fmt::format("KEY = {}: 0 or 1", key));
+  if (r.real(c, 2, 0.0) != 0.0)
+    r.fail(c,
+           "EFFNU: a given effective Poisson's ratio is not supported (blank or 0: the "
+           "material's for elastic strains)");
+  post_state(r).average_principal = key;
+}
+
 }  // namespace
 
 void register_post1_commands(std::vector<CommandSpec>& t) {
@@ -448,6 +460,7 @@ void register_post1_commands(std::vector<CommandSpec>& t) {
   t.push_back({"SHELL", cmd_shell, kPost1});
   t.push_back({"LAYER", cmd_layer, kPost1});
   t.push_back({"RSYS", cmd_rsys, kPost1});
+  t.push_back({"AVPRIN", cmd_avprin, kPost1 | kPost26});
   t.push_back({"ETABLE", cmd_etable, kPost1});
   t.push_back({"PRETAB", cmd_pretab, kPost1});
   t.push_back({"SSUM", cmd_ssum, kPost1});

@@ -120,10 +120,62 @@ void cmd_path(DeckReader& r, const Command& c) {
   ps.current_path = name;
 }
 
+// FLST,NFIELD,NITEMS,ITYPE: the start of a picked list as the GUI logs it; FITEM,NFIELD,ITEM
+// adds an item (a negative one: the range from the previous item). Nodes only (ITYPE 1), for
+// PPATH,P51X.
+void cmd_flst(DeckReader& r, const Command& c) {
+  PostState& ps = post_state(r);
+  const int type = r.integer(c, 3, 0);
+  if (type != 1)
+    r.fail(c, fmt::format("ITYPE = {}: only a node list (1) is read, for PPATH,P51X", type));
+  ps.picked_expected = r.integer(c, 2, 0);
+  if (ps.picked_expected < 1) r.fail(c, "NITEMS must be at least 1");
+  ps.picked_nodes.clear();
+}
+
+void cmd_fitem(DeckReader& r, const Command& c) {
+  PostState& ps = post_state(r);
+  if (ps.picked_expected == 0) r.fail(c, "FITEM without FLST");
+  const int item = r.integer(c, 2, 0);
+  if (item < 0 && !ps.picked_nodes.empty()) {
+    for (int n = ps.picked_nodes.back() + 1; n <= -item; ++n) ps.picked_nodes.push_back(n);
+  } else if (item > 0) {
+    ps.picked_nodes.push_back(item);
+  } else {
+    r.fail(c, fmt::format("ITEM {} is not a node number", c.text(2)));
+  }
+}
+
 // PPATH,POINT,NODE,X,Y,Z,CS
 void cmd_ppath(DeckReader& r, const Command& c) {
   PathDefinition& p = current_path(r, c);
   if (r.label(c, 1) == "P") r.fail(c, "graphical picking (PPATH,P) is not available");
+  if (r.label(c, 1) == "P51X") {
+    // The GUI's log of picked path points: PPATH,P51X,1 with the nodes of FLST / FITEM as the
+    // points 1, 2, ... in order.
+    PostState& ps = post_state(r);
+    if (ps.picked_nodes.empty()) r.fail(c, "P51X: no FLST / FITEM node list precedes it");
+    if (r.integer(c, 2, 1) != 1) r.fail(c, "PPATH,P51X takes 1 in field 2 (points by node)");
+    if (static_cast<int>(ps.picked_nodes.size()) != ps.picked_expected)
+      r.fail(c, fmt::format("FLST announced {} items, FITEM gave {}", ps.picked_expected,
+                            ps.picked_nodes.size()));
+    if (ps.picked_nodes.size() > p.points.size())
+      r.fail(c, fmt::format("{} picked nodes for the {} points of path {}", ps.picked_nodes.size(),
+                            p.points.size(), p.name));
+    for (std::size_t k = 0; k < ps.picked_nodes.size(); ++k) {
+      const auto n = r.model.nodes.find(ps.picked_nodes[k]);
+      if (n == r.model.nodes.end())
+        r.fail(c, fmt::format("node {} is not defined", ps.picked_nodes[k]));
+      p.points[k] = {true, n->first, n->second.x,
+                     c.blank(6) ? r.model.coordinate_systems.active : r.integer(c, 6, 0)};
+      if (!r.model.coordinate_systems.has(p.points[k].csys))
+        r.fail(c, fmt::format("CS {} is not a defined coordinate system", p.points[k].csys));
+    }
+    ps.picked_nodes.clear();
+    ps.picked_expected = 0;
+    if (p.complete()) make_geometry(r, c, p);
+    return;
+  }
   const int k = r.integer(c, 1, 0);
   if (k < 1 || k > static_cast<int>(p.points.size()))
     r.fail(c, fmt::format("POINT {} outside 1..{} (nPts of path {})", k, p.points.size(), p.name));
@@ -639,6 +691,8 @@ double get_path_value(DeckReader& r, const Command& c, const std::string& what,
 void register_post1_path_commands(std::vector<CommandSpec>& t) {
   t.push_back({"PATH", path_ops::cmd_path, kPost1});
   t.push_back({"PPATH", path_ops::cmd_ppath, kPost1});
+  t.push_back({"FLST", path_ops::cmd_flst, kPost1});
+  t.push_back({"FITEM", path_ops::cmd_fitem, kPost1});
   t.push_back({"PDEF", path_ops::cmd_pdef, kPost1});
   t.push_back({"PCALC", path_ops::cmd_pcalc, kPost1});
   t.push_back({"PVECT", path_ops::cmd_pvect, kPost1});

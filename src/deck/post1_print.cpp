@@ -5,6 +5,8 @@
 
 #include <fmt/format.h>
 
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -162,6 +164,32 @@ std::optional<double> element_item_value_at_node(DeckReader& r, const Command& c
 std::optional<double> nodal_item_value(DeckReader& r, const Command& c, const NodalItem& item,
                                        std::size_t k, int node) {
   if (item.element_item.empty()) return nodal_result(r, c, node, item.labels[k]);
+  // AVPRIN,0 (MAPDL's default): a principal stress, the stress intensity or the von Mises stress
+  // at a node from the averaged components (AVPRIN,1: the elements' own values averaged, as for
+  // every strain here).
+  const std::string& comp = item.elements[k];
+  const bool derived = comp == "1" || comp == "2" || comp == "3" || comp == "INT" || comp == "EQV";
+  if (derived && item.element_item == "S" && post_state(r).average_principal == 0) {
+    const NodalItem components = nodal_item(r, c, "S", "COMP");
+    std::array<double, 6> s{};
+    bool complete = true;
+    for (std::size_t j = 0; j < 6 && complete; ++j) {
+      const auto v = nodal_item_value(r, c, components, j, node);
+      complete = v.has_value();
+      if (v) s[j] = *v;
+    }
+    if (complete) {
+      Eigen::Matrix3d t;
+      t << s[0], s[3], s[5], s[3], s[1], s[4], s[5], s[4], s[2];
+      const Eigen::Vector3d e = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(t).eigenvalues();
+      if (comp == "1") return e[2];
+      if (comp == "2") return e[1];
+      if (comp == "3") return e[0];
+      if (comp == "INT") return e[2] - e[0];
+      return std::sqrt(0.5 * ((e[2] - e[1]) * (e[2] - e[1]) + (e[1] - e[0]) * (e[1] - e[0]) +
+                              (e[2] - e[0]) * (e[2] - e[0])));
+    }
+  }
   double sum = 0.0;
   int n = 0;
   for (int e : selected_elements(r)) {

@@ -101,6 +101,9 @@ struct PostState {
   std::map<std::string, double> ssum;         // ETABLE label → last SSUM total
   std::string force_kind = "TOTAL";           // FORCE: TOTAL, STATIC, DAMP, INERT
   std::string shell_location = "TOP";         // SHELL: TOP, MID, BOT (the layer of shell S)
+  // AVPRIN,KEY: 0 nodal principal stresses, SINT and SEQV from the averaged components, 1 the
+  // averages of the elements' own values.
+  int average_principal = 0;
   int layer = 0;  // LAYER: the layer of a layered shell whose surfaces SHELL picks (0: section)
   // RSYS,KCN: the system of the nodal vector results (U, ROT, V, A, reactions); nullopt = as
   // stored (global Cartesian, the nodal axes at a rotated node).
@@ -127,6 +130,9 @@ struct PostState {
   // ---- paths (PATH, PPATH, PDEF, PCALC, ...) ------------------------------------------------
   std::map<std::string, PathDefinition> paths;
   std::string current_path;  // name of the path the path commands act on
+  // FLST / FITEM: the node list a GUI-written PPATH,P51X takes its points from.
+  std::vector<int> picked_nodes;
+  int picked_expected = 0;
 
   // ---- POST26 -----------------------------------------------------------------------------
   int numvar = 10;
