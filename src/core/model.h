@@ -318,15 +318,21 @@ struct SpectrumOptions {
   SourceLocation where;                   // the SPOPT command
 };
 
+/// ERESX: how elements give their integration-point results at their nodes. Default: MAPDL's
+/// (extrapolated while elastic, the nearest point copied once a point is inelastic), Copy
+/// (ERESX,YES: always the nearest point), Extrapolate (ERESX,NO: always extrapolated).
+enum class NodalStressRule { Default = 0, Copy = 1, Extrapolate = 2 };
+
 /// Analysis-wide options (first load step semantics).
 struct AnalysisOptions {
   AnalysisType type = AnalysisType::Static;
   TransientMethod method = TransientMethod::Full;
   IntegratorKind integrator = IntegratorKind::Newmark;
   TimeIntegrationParameters tintp;
-  bool large_deflection = false;   // KAY(6) / NLGEOM
-  bool stress_stiffening = false;  // KAY(8) / SSTIF (NLGEOM implies it)
-  bool lumped_mass = false;        // KAY(1) / LUMPM
+  bool large_deflection = false;                              // KAY(6) / NLGEOM
+  bool stress_stiffening = false;                             // KAY(8) / SSTIF (NLGEOM implies it)
+  bool lumped_mass = false;                                   // KAY(1) / LUMPM
+  NodalStressRule nodal_stresses = NodalStressRule::Default;  // ERESX
   ConvergenceOptions convergence;
   ModalOptions modal;
   int msup_modes = 0;                   // TRNOPT MAXMODE (0 = all computed)

@@ -78,6 +78,7 @@ json options_json(const AnalysisOptions& o) {
           {"large_deflection", o.large_deflection},
           {"stress_stiffening", o.stress_stiffening},
           {"lumped_mass", o.lumped_mass},
+          {"eresx", static_cast<int>(o.nodal_stresses)},
           {"convergence",
            {o.convergence.max_iterations, o.convergence.force_tolerance, o.convergence.force_minref,
             opt(o.convergence.displacement_tolerance), o.convergence.full_newton,
@@ -107,6 +108,7 @@ AnalysisOptions options_of(const json& j) {
   o.large_deflection = j.at("large_deflection");
   o.stress_stiffening = j.at("stress_stiffening");
   o.lumped_mass = j.at("lumped_mass");
+  o.nodal_stresses = static_cast<NodalStressRule>(j.value("eresx", 0));  // older files: DEFA
   const json& cv = j.at("convergence");
   o.convergence = {cv[0],
                    cv[1],

@@ -119,9 +119,6 @@ void register_session_commands(std::vector<CommandSpec>& t) {
   // Lines every CDB archive carries.
   t.push_back({"DOF", cmd_ignored, kPrep7 | kSolu,
                "the degrees of freedom follow from the element types here"});
-  t.push_back({"ERESX", cmd_ignored, kPrep7 | kSolu,
-               "extrapolation of integration-point results to the nodes: impactfe stores element "
-               "results at the element centre"});
   t.push_back({"MODCONTROL", cmd_ignored, kPrep7 | kSolu,
                "MAPDL's modal results-file control: the modes are stored the same way here"});
   t.push_back({"QRDOPT", cmd_ignored, kPrep7 | kSolu,

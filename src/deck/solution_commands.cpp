@@ -182,6 +182,21 @@ void cmd_lumpm(DeckReader& r, const Command& c) {
   r.model.options.lumped_mass = r.on_off(c, 1, false);
 }
 
+void cmd_eresx(DeckReader& r, const Command& c) {
+  // ERESX,Key: DEFA (MAPDL's default: extrapolated while elastic, the nearest point copied
+  // once inelastic), YES (copied), NO (extrapolated); ON and OFF as YES and NO. Carried out by
+  // PLANE182/183; SOLVE refuses it with the other elements that give nodal values.
+  const std::string key = r.label(c, 1);
+  if (key.empty() || key == "DEFA")
+    r.model.options.nodal_stresses = NodalStressRule::Default;
+  else if (key == "YES" || key == "ON")
+    r.model.options.nodal_stresses = NodalStressRule::Copy;
+  else if (key == "NO" || key == "OFF")
+    r.model.options.nodal_stresses = NodalStressRule::Extrapolate;
+  else
+    r.fail(c, fmt::format("Key '{}': DEFA, YES or NO", c.text(1)));
+}
+
 // ---- analysis type and method ------------------------------------------------------------------
 
 void cmd_antype(DeckReader& r, const Command& c) {
@@ -519,6 +534,16 @@ void append_current(DeckReader& r, const Command& c) {
                           "given at {}) are carried out in static and full transient analyses "
                           "only, not in this one",
                           location_text(s.rotation.where)));
+  // ERESX other than DEFA is carried out by the 2-D solids only: refused where another element
+  // would extrapolate (or copy) by its own rule.
+  if (r.model.options.nodal_stresses != NodalStressRule::Default)
+    for (const auto& [id, type] : r.model.element_types)
+      for (const char* other :
+           {"SOLID45", "SOLID185", "SOLID186", "SOLID187", "SOLID95", "SHELL208", "SHELL281"})
+        if (type.ansys_name == other)
+          r.fail(c, fmt::format("ERESX,YES/NO is carried out for PLANE182/183 only; element "
+                                "type {} is {}, whose nodal values follow MAPDL's default",
+                                id, other));
   a.load_steps.push_back(std::move(s));
   if (a.load_steps.back().time_end) r.solution.last_solved_time = a.load_steps.back().time_end;
 }
@@ -735,6 +760,7 @@ void register_solution_commands(std::vector<CommandSpec>& t) {
   t.push_back({"TOFF", cmd_toff, kPrepSolu});
   t.push_back({"STEF", cmd_stef, kPrepSolu});
   t.push_back({"LUMPM", cmd_lumpm, kPrepSolu});
+  t.push_back({"ERESX", cmd_eresx, kPrep7 | kSolu});
   t.push_back({"ANTYPE", cmd_antype, kPrepSolu});
   t.push_back({"OUTRES", cmd_outres, kPrepSolu});
   t.push_back({"OUTPR", cmd_outpr, kPrepSolu});

@@ -602,9 +602,13 @@ void PlaneSolid::results(const ElementContext& ctx, const Eigen::VectorXd& u,
   const std::size_t first = plane_solid_result_names().size() - kPlaneNodalItems * kPlaneMaxNodes;
   out.resize(plane_solid_result_names().size(), 0.0);
   const std::vector<Eigen::Vector4d> at_nodes = element_nodal_stresses(ctx, u);
+  // Slot k + 1 is the node's position in the element's node list as E gives it: the 6-node
+  // triangle is I J K K L M K N there (the quadrilateral form), its nodes I J K L M N here.
+  static constexpr std::array<std::size_t, 6> kTri6Slot = {0, 1, 2, 4, 5, 7};
   for (std::size_t k = 0; k < at_nodes.size(); ++k) {
     const Eigen::Vector4d epel = elastic_strain(at_nodes[k]);
-    const auto at = out.begin() + static_cast<std::ptrdiff_t>(first + kPlaneNodalItems * k);
+    const std::size_t slot = options_.shape == PlaneShape::Tri6 ? kTri6Slot[k] : k;
+    const auto at = out.begin() + static_cast<std::ptrdiff_t>(first + kPlaneNodalItems * slot);
     std::copy(at_nodes[k].data(), at_nodes[k].data() + 4, at);
     std::copy(epel.data(), epel.data() + 4, at + 4);
   }
@@ -684,10 +688,18 @@ std::vector<Eigen::Vector4d> PlaneSolid::element_nodal_stresses(const ElementCon
   std::vector<Eigen::Vector4d> sigma;
   bool inelastic = false;
   point_stresses(ctx, u, sigma, inelastic);
-  if (!inelastic) return extrapolate_to_nodes(sigma);
   // ERESX default (MAPDL command reference, ERESX): "If any portion of the element is plastic
-  // (or other active material nonlinearity), copy the integration point results to the nodes":
-  // each node takes the value of its nearest stiffness point in natural coordinates; a node
+  // (or other active material nonlinearity), copy the integration point results to the nodes";
+  // ERESX,YES copies always, ERESX,NO extrapolates always.
+  const NodalStressRule rule = options_.nodal_stresses;
+  const bool copy =
+      rule == NodalStressRule::Copy || (rule == NodalStressRule::Default && inelastic);
+  return copy ? copy_to_nodes(sigma) : extrapolate_to_nodes(sigma);
+}
+
+std::vector<Eigen::Vector4d> PlaneSolid::copy_to_nodes(
+    const std::vector<Eigen::Vector4d>& sigma) const {
+  // Each node takes the value of its nearest stiffness point in natural coordinates; a node
   // equally near several (midside nodes) takes their mean.
   const auto xi_nodes = plane_shape_nodes_xi(options_.shape);
   std::vector<Eigen::Vector4d> out;
@@ -715,7 +727,9 @@ bool PlaneSolid::nodal_results(const ElementContext& ctx, const Eigen::VectorXd&
   std::vector<Eigen::Vector4d> sigma;
   bool inelastic = false;
   point_stresses(ctx, u, sigma, inelastic);
-  const std::vector<Eigen::Vector4d> s = extrapolate_to_nodes(sigma);
+  const std::vector<Eigen::Vector4d> s = options_.nodal_stresses == NodalStressRule::Copy
+                                             ? copy_to_nodes(sigma)
+                                             : extrapolate_to_nodes(sigma);
   at_node.clear();
   for (std::size_t k = 0; k < nodes_.size(); ++k) at_node[nodes_[k]] = plane_stress_items(s[k]);
   return true;

@@ -52,6 +52,9 @@ struct PlaneSolidOptions {
   /// NLGEOM,ON when the element is built: finite-strain kinematics with a committed
   /// configuration and stress per point (Standard or BBar technology only).
   bool large_deflection = false;
+  /// ERESX: the element nodal stresses extrapolated from the stiffness points or copied from
+  /// the nearest one (element_nodal_stresses()).
+  NodalStressRule nodal_stresses = NodalStressRule::Default;
 };
 
 /// SX SY SZ SXY S1 S2 S3 SINT SEQV, then EPPLX EPPLY EPPLZ EPPLXY EPEQ SEPL SRAT PLWK, then
@@ -248,6 +251,8 @@ class PlaneSolid final : public Element {
   /// The elastic extrapolation of point stresses to the nodes (nodal_results()).
   std::vector<Eigen::Vector4d> extrapolate_to_nodes(
       const std::vector<Eigen::Vector4d>& sigma) const;
+  /// Each node's nearest stiffness point's stresses (a node equally near several: their mean).
+  std::vector<Eigen::Vector4d> copy_to_nodes(const std::vector<Eigen::Vector4d>& sigma) const;
   /// ε_th = α (T − T_ref) (xx, yy, zz, xy) at a point, T interpolated from the nodes'
   /// temperature changes (temperature_change()); zero when none is set.
   Eigen::Vector4d thermal_strain(const Point& p) const;

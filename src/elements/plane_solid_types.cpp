@@ -102,6 +102,7 @@ std::unique_ptr<Element> make_quad4(const ElementBuildContext& ctx, const Elemen
   const ElementType& type = model.element_types.at(record.type);
   PlaneSolidOptions o = behaviour_of(model, type, record);
   o.large_deflection = ctx.large_deflection;
+  o.nodal_stresses = model.options.nodal_stresses;
   const IsotropicElasticity material =
       read_isotropic_elasticity(model, record.mat, record.id, record.where);
   std::optional<J2Plasticity> plasticity =
@@ -164,6 +165,7 @@ std::unique_ptr<Element> make_quad8(const ElementBuildContext& ctx, const Elemen
   const ElementType& type = model.element_types.at(record.type);
   PlaneSolidOptions o = behaviour_of(model, type, record);
   o.large_deflection = ctx.large_deflection;
+  o.nodal_stresses = model.options.nodal_stresses;
   const std::vector<int>& n = record.nodes;
   for (std::size_t k = 0; k < n.size(); ++k)
     if (n[k] == 0)
