@@ -579,15 +579,7 @@ void cmd_plpath(DeckReader& r, const Command& c) {
   o.x_label = p.x_item == "S" ? "DIST" : p.x_item;
   o.y_label = "VALUE";
   o.grid = ps.grid;
-  const std::string base = ps.show_name.empty() ? r.model.jobname : ps.show_name;
-  const std::string file = fmt::format("{}{:03d}.svg", base, ps.n_pictures++);
-  ps.picture.reset();
-  try {
-    write_text_file(file, xy_graph_svg(curves, o));
-  } catch (const InputError& e) {
-    r.fail(c, e.what());
-  }
-  Log::info("{}:{}: PLPATH: graph {}", c.where.file, c.where.line, file);
+  write_graph(r, c, curves, o);
 }
 
 // PLPAGM: path items drawn on the model's picture; listed as ignored (graphics only).

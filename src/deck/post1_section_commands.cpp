@@ -217,15 +217,7 @@ void cmd_plsect(DeckReader& r, const Command& c) {
   o.x_label = "DIST";
   o.y_label = "S" + comp;
   o.grid = ps.grid;
-  const std::string base = ps.show_name.empty() ? r.model.jobname : ps.show_name;
-  const std::string file = fmt::format("{}{:03d}.svg", base, ps.n_pictures++);
-  ps.picture.reset();
-  try {
-    write_text_file(file, xy_graph_svg({membrane, mb, total}, o));
-  } catch (const InputError& e) {
-    r.fail(c, e.what());
-  }
-  Log::info("{}:{}: PLSECT: graph {}", c.where.file, c.where.line, file);
+  write_graph(r, c, {membrane, mb, total}, o);
 }
 
 }  // namespace section_ops

@@ -570,15 +570,7 @@ void cmd_plvar(DeckReader& r, const Command& c) {
   o.x_range = ps.x_range;
   o.y_range = ps.y_range;
   o.grid = ps.grid;
-  const std::string base = ps.show_name.empty() ? r.model.jobname : ps.show_name;
-  const std::string path = fmt::format("{}{:03d}.svg", base, ps.n_pictures++);
-  ps.picture.reset();  // a graph ends the /NOERASE drawing of model pictures
-  try {
-    write_text_file(path, xy_graph_svg(curves, o));
-  } catch (const InputError& e) {
-    r.fail(c, e.what());
-  }
-  Log::info("{}:{}: PLVAR: graph {}", c.where.file, c.where.line, path);
+  write_graph(r, c, curves, o);
 }
 
 void cmd_axlab(DeckReader& r, const Command& c) {

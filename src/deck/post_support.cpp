@@ -517,4 +517,18 @@ void print(DeckReader& r, const std::string& text) {
   write_output(r, text);
 }
 
+void write_graph(DeckReader& r, const Command& c, const std::vector<GraphCurve>& curves,
+                 const GraphOptions& options) {
+  PostState& ps = post_state(r);
+  const std::string base = ps.show_name.empty() ? r.model.jobname : ps.show_name;
+  const std::string path = fmt::format("{}{:03d}.svg", base, ps.n_pictures++);
+  ps.picture.reset();
+  try {
+    write_text_file(path, xy_graph_svg(curves, options));
+  } catch (const InputError& e) {
+    r.fail(c, e.what());
+  }
+  Log::info("{}:{}: {}: graph {}", c.where.file, c.where.line, c.name, path);
+}
+
 }  // namespace impactfe::deck

@@ -97,4 +97,9 @@ std::string set_heading(const SetData& data);
 /// Writes text to the output sink.
 void print(DeckReader& r, const std::string& text);
 
+/// Writes an x-y graph (PLVAR, PLPATH, PLSECT) as the next picture file
+/// `<jobname or /SHOW name>NNN.svg`; it ends the /NOERASE drawing of model pictures.
+void write_graph(DeckReader& r, const Command& c, const std::vector<GraphCurve>& curves,
+                 const GraphOptions& options);
+
 }  // namespace impactfe::deck
