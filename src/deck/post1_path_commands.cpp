@@ -35,9 +35,9 @@ PathDefinition& current_path(DeckReader& r, const Command& c) {
   return it->second;
 }
 
-std::size_t path_size(const PathDefinition& p) {
-  return (p.points.size() - 1) * static_cast<std::size_t>(p.n_div) + 1;
-}
+/// The most interpolation points a path may have ((nPts − 1) nDiv + 1), a bound on its memory
+/// and on the element search of each PDEF.
+constexpr long long kMaxPathPoints = 100000;
 
 /// Stores item `label` (replacing an item of that name), within the path's nSets items.
 void store_item(DeckReader& r, const Command& c, PathDefinition& p, const std::string& label,
@@ -113,8 +113,10 @@ void cmd_path(DeckReader& r, const Command& c) {
   p.n_div = r.integer(c, 4, 20);
   if (n_pts < 2 || n_pts > 1000) r.fail(c, fmt::format("nPts = {}: 2 to 1000 points", n_pts));
   if (p.n_sets < 4) r.fail(c, fmt::format("nSets = {}: at least 4 (XG, YG, ZG, S)", p.n_sets));
-  if (p.n_div < 1 || p.n_div > 100000)
-    r.fail(c, fmt::format("nDiv = {}: 1 to 100000 divisions", p.n_div));
+  if (p.n_div < 1) r.fail(c, fmt::format("nDiv = {}: at least 1 division", p.n_div));
+  if (static_cast<long long>(n_pts - 1) * p.n_div + 1 > kMaxPathPoints)
+    r.fail(c, fmt::format("{} points x {} divisions: a path has at most {} interpolation points",
+                          n_pts, p.n_div, kMaxPathPoints));
   p.points.resize(static_cast<std::size_t>(n_pts));
   ps.paths[name] = std::move(p);
   ps.current_path = name;
@@ -129,7 +131,8 @@ void cmd_flst(DeckReader& r, const Command& c) {
   if (type != 1)
     r.fail(c, fmt::format("ITYPE = {}: only a node list (1) is read, for PPATH,P51X", type));
   ps.picked_expected = r.integer(c, 2, 0);
-  if (ps.picked_expected < 1) r.fail(c, "NITEMS must be at least 1");
+  if (ps.picked_expected < 1 || ps.picked_expected > kMaxPathPoints)
+    r.fail(c, fmt::format("NITEMS = {}: 1 to {} nodes", ps.picked_expected, kMaxPathPoints));
   ps.picked_nodes.clear();
 }
 
@@ -137,9 +140,18 @@ void cmd_fitem(DeckReader& r, const Command& c) {
   PostState& ps = post_state(r);
   if (ps.picked_expected == 0) r.fail(c, "FITEM without FLST");
   const int item = r.integer(c, 2, 0);
+  const auto room =
+      static_cast<long long>(ps.picked_expected) - static_cast<long long>(ps.picked_nodes.size());
   if (item < 0 && !ps.picked_nodes.empty()) {
-    for (int n = ps.picked_nodes.back() + 1; n <= -item; ++n) ps.picked_nodes.push_back(n);
+    const long long first = static_cast<long long>(ps.picked_nodes.back()) + 1;
+    if (-static_cast<long long>(item) - first + 1 > room)
+      r.fail(c, fmt::format("the range to {} exceeds the {} items FLST announced", -item,
+                            ps.picked_expected));
+    for (long long n = first; n <= -static_cast<long long>(item); ++n)
+      ps.picked_nodes.push_back(static_cast<int>(n));
   } else if (item > 0) {
+    if (room < 1)
+      r.fail(c, fmt::format("more items than the {} FLST announced", ps.picked_expected));
     ps.picked_nodes.push_back(item);
   } else {
     r.fail(c, fmt::format("ITEM {} is not a node number", c.text(2)));
